@@ -1,0 +1,1 @@
+//! thorndike (placeholder).
