@@ -1,1 +1,250 @@
-//! geometry (placeholder).
+//! Triangular-tooth gear geometry: tip and valley vertices, straight flanks, eccentric rotation centre.
+//!
+//! A [`Gear`] is described in its own frame, centred on its *geometric* centre (the centre of the
+//! tip circle). Tip `k` sits at polar angle `tips[k]` and radius `R`; valley `k` sits midway in
+//! angle between tip `k` and tip `k + 1`, at radius `r`; flanks are straight. The gear turns about
+//! its *rotation* centre, which may be offset from the geometric centre (an eccentric gear turns
+//! like a cam). All angles are radians.
+
+use std::f64::consts::TAU;
+
+use nalgebra::Vector2;
+use serde::{Deserialize, Serialize};
+
+/// A point or vector in a plane, in millimetres (or any consistent length unit).
+pub type Vec2 = Vector2<f64>;
+
+/// Why a gear could not be built: the field and the rule it broke.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{field}: {rule}")]
+pub struct GeometryError {
+    /// The offending field, e.g. `teeth`, `root_radius`, `tips[3]`.
+    pub field: String,
+    /// The rule that was broken, in words.
+    pub rule: String,
+}
+
+impl GeometryError {
+    fn new(field: impl Into<String>, rule: impl Into<String>) -> Self {
+        Self { field: field.into(), rule: rule.into() }
+    }
+}
+
+/// A gear with straight-flanked triangular teeth.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Gear {
+    tip_radius: f64,
+    root_radius: f64,
+    /// Tip angles in the gear frame, strictly increasing, spanning less than one turn.
+    tips: Vec<f64>,
+    /// Valley angles, midway between consecutive tips (the last one wraps round).
+    valleys: Vec<f64>,
+    /// Rotation centre relative to the geometric centre, in the gear frame.
+    rotation_centre: Vec2,
+}
+
+fn check_finite(field: &str, x: f64) -> Result<(), GeometryError> {
+    if x.is_finite() { Ok(()) } else { Err(GeometryError::new(field, "must be a finite number")) }
+}
+
+impl Gear {
+    /// An ideal gear: `teeth` tips evenly spaced at `360°·k/N`, rotating about its geometric centre.
+    pub fn ideal(teeth: usize, tip_radius: f64, root_radius: f64) -> Result<Self, GeometryError> {
+        if teeth < 3 {
+            return Err(GeometryError::new("teeth", format!("must be at least 3 (got {teeth})")));
+        }
+        let pitch = TAU / teeth as f64;
+        let tips = (0..teeth).map(|k| pitch * k as f64).collect();
+        Self::new(tip_radius, root_radius, tips, Vec2::zeros())
+    }
+
+    /// A gear with explicit tip angles (radians, gear frame) and rotation centre offset.
+    ///
+    /// Rules: at least 3 tips; `0 < root_radius < tip_radius`; every value finite; tips strictly
+    /// increasing and all within one turn of the first (`tips[N-1] < tips[0] + 2π`); the rotation
+    /// centre inside the root circle (otherwise the gear could not sit on an arbor).
+    pub fn new(
+        tip_radius: f64,
+        root_radius: f64,
+        tips: Vec<f64>,
+        rotation_centre: Vec2,
+    ) -> Result<Self, GeometryError> {
+        check_finite("tip_radius", tip_radius)?;
+        check_finite("root_radius", root_radius)?;
+        if tips.len() < 3 {
+            return Err(GeometryError::new("teeth", format!("must be at least 3 (got {})", tips.len())));
+        }
+        if root_radius <= 0.0 {
+            return Err(GeometryError::new("root_radius", "must be greater than 0"));
+        }
+        if root_radius >= tip_radius {
+            return Err(GeometryError::new(
+                "root_radius",
+                format!("must be less than tip_radius ({root_radius} >= {tip_radius})"),
+            ));
+        }
+        for (k, &t) in tips.iter().enumerate() {
+            check_finite(&format!("tips[{k}]"), t)?;
+        }
+        for k in 1..tips.len() {
+            if tips[k] <= tips[k - 1] {
+                return Err(GeometryError::new(
+                    format!("tips[{k}]"),
+                    "tip angles must be strictly increasing",
+                ));
+            }
+        }
+        if tips[tips.len() - 1] >= tips[0] + TAU {
+            return Err(GeometryError::new(
+                format!("tips[{}]", tips.len() - 1),
+                "all tips must lie within one turn of tips[0]",
+            ));
+        }
+        check_finite("rotation_centre.x", rotation_centre.x)?;
+        check_finite("rotation_centre.y", rotation_centre.y)?;
+        if rotation_centre.norm() >= root_radius {
+            return Err(GeometryError::new(
+                "rotation_centre",
+                "must lie inside the root circle (eccentricity smaller than the valley radius)",
+            ));
+        }
+        let n = tips.len();
+        let valleys = (0..n)
+            .map(|k| {
+                let next = if k + 1 == n { tips[0] + TAU } else { tips[k + 1] };
+                0.5 * (tips[k] + next)
+            })
+            .collect();
+        Ok(Self { tip_radius, root_radius, tips, valleys, rotation_centre })
+    }
+
+    /// Number of teeth N.
+    pub fn teeth(&self) -> usize {
+        self.tips.len()
+    }
+
+    /// Outer (tip) radius R.
+    pub fn tip_radius(&self) -> f64 {
+        self.tip_radius
+    }
+
+    /// Inner (valley) radius r.
+    pub fn root_radius(&self) -> f64 {
+        self.root_radius
+    }
+
+    /// Tooth height h = R − r.
+    pub fn tooth_height(&self) -> f64 {
+        self.tip_radius - self.root_radius
+    }
+
+    /// Nominal angular pitch 2π/N.
+    pub fn pitch(&self) -> f64 {
+        TAU / self.teeth() as f64
+    }
+
+    /// Tip angles in the gear frame.
+    pub fn tip_angles(&self) -> &[f64] {
+        &self.tips
+    }
+
+    /// Valley angles in the gear frame (valley `k` lies between tip `k` and tip `k+1`).
+    pub fn valley_angles(&self) -> &[f64] {
+        &self.valleys
+    }
+
+    /// Rotation centre relative to the geometric centre (zero for a concentric gear).
+    pub fn rotation_centre(&self) -> Vec2 {
+        self.rotation_centre
+    }
+
+    /// Tip `k` (any integer: taken modulo N) in the gear frame, about the geometric centre.
+    pub fn tip(&self, k: i64) -> Vec2 {
+        let (i, turns) = self.wrap(k);
+        polar(self.tip_radius, self.tips[i] + TAU * turns as f64)
+    }
+
+    /// Valley `k` (between tip `k` and tip `k+1`) in the gear frame, about the geometric centre.
+    pub fn valley(&self, k: i64) -> Vec2 {
+        let (i, turns) = self.wrap(k);
+        polar(self.root_radius, self.valleys[i] + TAU * turns as f64)
+    }
+
+    /// Tip angle of unwrapped tooth index `k` (tooth k + N is tooth k one turn later).
+    pub fn tip_angle(&self, k: i64) -> f64 {
+        let (i, turns) = self.wrap(k);
+        self.tips[i] + TAU * turns as f64
+    }
+
+    /// The closed outline: tip0, valley0, tip1, valley1, ... (counter-clockwise, gear frame).
+    pub fn outline(&self) -> Vec<Vec2> {
+        (0..self.teeth() as i64).flat_map(|k| [self.tip(k), self.valley(k)]).collect()
+    }
+
+    /// Tooth `k` as the triangle (valley k−1, tip k, valley k), gear frame.
+    pub fn tooth(&self, k: i64) -> [Vec2; 3] {
+        [self.valley(k - 1), self.tip(k), self.valley(k)]
+    }
+
+    /// Split an unwrapped tooth index into (index in 0..N, whole turns).
+    fn wrap(&self, k: i64) -> (usize, i64) {
+        let n = self.teeth() as i64;
+        (k.rem_euclid(n) as usize, k.div_euclid(n))
+    }
+}
+
+/// The point at `radius`, `angle` from the origin.
+pub fn polar(radius: f64, angle: f64) -> Vec2 {
+    let (s, c) = angle.sin_cos();
+    Vec2::new(radius * c, radius * s)
+}
+
+/// Rotate `v` counter-clockwise by `angle`.
+pub fn rotate(v: Vec2, angle: f64) -> Vec2 {
+    let (s, c) = angle.sin_cos();
+    Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y)
+}
+
+/// Centre distance D for two gears of tip radii `r_tip1`, `r_tip2` and common tooth height `h`
+/// at clearance `g_percent` of h: `D = R1 + R2 − h + G` (the paper, section 3).
+pub fn centre_distance(r_tip1: f64, r_tip2: f64, h: f64, g_percent: f64) -> f64 {
+    r_tip1 + r_tip2 - h + h * g_percent / 100.0
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, reason = "tests")]
+    use super::*;
+
+    #[test]
+    fn ideal_gear_has_valleys_midway() {
+        let g = Gear::ideal(8, 200.0, 100.0).unwrap();
+        assert_eq!(g.teeth(), 8);
+        assert!((g.valley_angles()[7] - (7.5 * TAU / 8.0)).abs() < 1e-15);
+        assert!((g.tip(9) - g.tip(1)).norm() < 1e-12);
+        assert!((g.tip_angle(9) - g.tip_angle(1) - TAU).abs() < 1e-15);
+    }
+
+    #[test]
+    fn constructors_name_the_rule() {
+        let e = Gear::ideal(2, 10.0, 9.0).unwrap_err();
+        assert_eq!(e.field, "teeth");
+        let e = Gear::ideal(8, 10.0, 10.0).unwrap_err();
+        assert_eq!(e.field, "root_radius");
+        assert!(e.rule.contains("less than tip_radius"));
+        let e = Gear::ideal(8, f64::NAN, 1.0).unwrap_err();
+        assert_eq!(e.field, "tip_radius");
+        let e = Gear::new(10.0, 9.0, vec![0.0, 2.0, 1.0], Vec2::zeros()).unwrap_err();
+        assert_eq!(e.field, "tips[2]");
+        let e = Gear::new(10.0, 9.0, vec![0.0, 2.0, 6.5], Vec2::zeros()).unwrap_err();
+        assert!(e.rule.contains("one turn"));
+        let e = Gear::new(10.0, 9.0, vec![0.0, 2.0, 4.0], Vec2::new(9.5, 0.0)).unwrap_err();
+        assert_eq!(e.field, "rotation_centre");
+    }
+
+    #[test]
+    fn centre_distance_matches_paper_example() {
+        // N = 8, R = 200, r = 100, D = 310 is G = 10 % of h.
+        assert!((centre_distance(200.0, 200.0, 100.0, 10.0) - 310.0).abs() < 1e-12);
+    }
+}

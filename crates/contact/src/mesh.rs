@@ -1,0 +1,266 @@
+//! A mesh: driver, driven gear and centre distance, placed in the world frame; and the exact
+//! configuration-space obstacle of one driver tooth against one driven tooth.
+//!
+//! World frame: the driver's rotation centre is the origin, the driven gear's is `(D, 0)`. The
+//! driver turns counter-clockwise by φ, the driven gear clockwise by θ, so both angles are
+//! positive in the gear's own direction of rotation, as in the paper. At φ = 0 the driver's
+//! gear-frame +x axis points at the driven gear; at θ = 0 the driven gear's +x axis points at the
+//! driver. So driver tip `j` stands `t_j + φ` from the line of centres and driven tip `k` stands
+//! `θ − t_k` from it (the paper's φ' and θ' of Appendix I for tooth pair (0, 0)).
+
+use std::f64::consts::{PI, TAU};
+
+use geometry::{Gear, Vec2, rotate};
+
+use crate::roots::circle_segment;
+
+/// Why a mesh cannot be built.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{field}: {rule}")]
+pub struct MeshError {
+    /// The offending field.
+    pub field: String,
+    /// The broken rule.
+    pub rule: String,
+}
+
+/// One gear as the solver sees it: vertices relative to the rotation centre, cached.
+#[derive(Debug, Clone)]
+pub(crate) struct Placed {
+    pub gear: Gear,
+    /// Tip k − rotation centre.
+    pub tips: Vec<Vec2>,
+    /// Valley k − rotation centre.
+    pub valleys: Vec<Vec2>,
+    /// Largest distance of any vertex from the rotation centre.
+    pub reach: f64,
+    /// Largest angular gap between consecutive tips.
+    pub max_gap: f64,
+    /// Angular window either side of the line of centres in which a tooth can touch the other gear.
+    pub window: f64,
+}
+
+impl Placed {
+    fn new(gear: Gear) -> Self {
+        let e = gear.rotation_centre();
+        let n = gear.teeth() as i64;
+        let tips: Vec<Vec2> = (0..n).map(|k| gear.tip(k) - e).collect();
+        let valleys: Vec<Vec2> = (0..n).map(|k| gear.valley(k) - e).collect();
+        let reach = tips.iter().chain(&valleys).map(|v| v.norm()).fold(0.0, f64::max);
+        let max_gap = (0..n)
+            .map(|k| gear.tip_angle(k + 1) - gear.tip_angle(k))
+            .fold(0.0, f64::max);
+        Self { gear, tips, valleys, reach, max_gap, window: 0.0 }
+    }
+
+    #[inline]
+    fn idx(&self, k: i64) -> usize {
+        k.rem_euclid(self.tips.len() as i64) as usize
+    }
+
+    /// Tooth k as (valley k−1, tip k, valley k), relative to the rotation centre.
+    #[inline]
+    pub fn tooth(&self, k: i64) -> [Vec2; 3] {
+        [self.valleys[self.idx(k - 1)], self.tips[self.idx(k)], self.valleys[self.idx(k)]]
+    }
+
+    /// Unwrapped tooth indices whose tip angle (gear frame) lies in `[lo, hi]`.
+    pub fn teeth_between(&self, lo: f64, hi: f64) -> std::ops::RangeInclusive<i64> {
+        let n = self.tips.len() as i64;
+        let t = self.gear.tip_angles();
+        // First unwrapped index with tip angle >= x.
+        let first_at_least = |x: f64| -> i64 {
+            let turns = ((x - t[0]) / TAU).floor();
+            let within = x - TAU * turns;
+            let i = t.partition_point(|&a| a < within) as i64;
+            turns as i64 * n + i
+        };
+        first_at_least(lo)..=first_at_least(hi) - 1
+    }
+}
+
+/// Two gears in mesh at a centre distance, ready for the contact solver.
+#[derive(Debug, Clone)]
+pub struct Mesh {
+    pub(crate) driver: Placed,
+    pub(crate) driven: Placed,
+    pub(crate) centre_distance: f64,
+}
+
+/// The obstacle a driver tooth makes for the driven gear at one driver angle: the closed interval
+/// of driven angles `[lo, hi]` at which the two teeth overlap or touch.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Obstacle {
+    /// Unwrapped driver tooth index.
+    pub driver_tooth: i64,
+    /// Unwrapped driven tooth index.
+    pub driven_tooth: i64,
+    /// Lowest driven angle of contact (the driven tooth touches this driver tooth from behind).
+    pub lo: f64,
+    /// Highest driven angle of contact (the driven tooth touches it from ahead: being pushed).
+    pub hi: f64,
+}
+
+impl Mesh {
+    /// Places `driver` and `driven` at centre distance `centre_distance` (between rotation centres).
+    ///
+    /// Refused: a non-finite or non-positive distance; gear bodies (root circles, allowing for
+    /// eccentricity) that would overlap at every angle; and, for concentric gears, a non-positive
+    /// clearance, where every tip reaches below the other gear's valleys.
+    pub fn new(driver: Gear, driven: Gear, centre_distance: f64) -> Result<Self, MeshError> {
+        let bad = |rule: String| MeshError { field: "centre_distance".into(), rule };
+        if !centre_distance.is_finite() || centre_distance <= 0.0 {
+            return Err(bad("must be a finite positive length".into()));
+        }
+        let e1 = driver.rotation_centre().norm();
+        let e2 = driven.rotation_centre().norm();
+        let bodies = driver.root_radius() + driven.root_radius() + e1 + e2;
+        if centre_distance <= bodies {
+            return Err(bad(format!(
+                "must exceed r1 + r2 + |e1| + |e2| = {bodies}: the gear bodies would overlap at every angle"
+            )));
+        }
+        if e1 == 0.0 && e2 == 0.0 {
+            let deepest = (driver.tip_radius() + driven.root_radius())
+                .max(driven.tip_radius() + driver.root_radius());
+            if centre_distance <= deepest {
+                return Err(bad(format!(
+                    "must exceed {deepest} (clearance G > 0): the tips would reach below the other gear's valleys and the gears overlap at every tooth"
+                )));
+            }
+        }
+        let mut driver = Placed::new(driver);
+        let mut driven = Placed::new(driven);
+        let lens = |own: f64, other: f64| -> f64 {
+            // Angle at this gear's centre to where the two reach circles cross.
+            let c = (centre_distance.powi(2) + own * own - other * other) / (2.0 * centre_distance * own);
+            c.clamp(-1.0, 1.0).acos()
+        };
+        let w1 = lens(driver.reach, driven.reach);
+        let w2 = lens(driven.reach, driver.reach);
+        driver.window = w1 + driver.max_gap + (e1 / driver.gear.root_radius()).asin() + 1e-6;
+        driven.window = w2 + driven.max_gap + (e2 / driven.gear.root_radius()).asin() + 1e-6;
+        Ok(Self { driver, driven, centre_distance })
+    }
+
+    /// The driving gear.
+    pub fn driver(&self) -> &Gear {
+        &self.driver.gear
+    }
+
+    /// The driven gear.
+    pub fn driven(&self) -> &Gear {
+        &self.driven.gear
+    }
+
+    /// Centre distance D between the rotation centres.
+    pub fn centre_distance(&self) -> f64 {
+        self.centre_distance
+    }
+
+    /// Whether the gears can ever touch (their reach circles cross).
+    pub fn can_touch(&self) -> bool {
+        self.driver.reach + self.driven.reach > self.centre_distance
+    }
+
+    fn c2(&self) -> Vec2 {
+        Vec2::new(self.centre_distance, 0.0)
+    }
+
+    /// World position of a driver vertex given relative to its rotation centre.
+    #[inline]
+    pub(crate) fn driver_world(&self, rel: Vec2, phi: f64) -> Vec2 {
+        rotate(rel, phi)
+    }
+
+    /// World position of a driven vertex given relative to its rotation centre.
+    #[inline]
+    pub(crate) fn driven_world(&self, rel: Vec2, theta: f64) -> Vec2 {
+        self.c2() + rotate(rel, PI - theta)
+    }
+
+    /// World outlines (closed polygons) of both gears at (φ, θ).
+    pub fn world_outlines(&self, phi: f64, theta: f64) -> (Vec<Vec2>, Vec<Vec2>) {
+        let outline = |p: &Placed, f: &dyn Fn(Vec2) -> Vec2| -> Vec<Vec2> {
+            p.tips.iter().zip(&p.valleys).flat_map(|(&t, &v)| [f(t), f(v)]).collect()
+        };
+        (
+            outline(&self.driver, &|v| self.driver_world(v, phi)),
+            outline(&self.driven, &|v| self.driven_world(v, theta)),
+        )
+    }
+
+    /// Driver teeth near the line of centres at driver angle φ.
+    pub(crate) fn driver_teeth(&self, phi: f64) -> std::ops::RangeInclusive<i64> {
+        self.driver.teeth_between(-phi - self.driver.window, -phi + self.driver.window)
+    }
+
+    /// Driven teeth whose obstacles can lie in the driven-angle range `[lo, hi]`.
+    pub(crate) fn driven_teeth(&self, lo: f64, hi: f64) -> std::ops::RangeInclusive<i64> {
+        self.driven.teeth_between(lo - self.driven.window, hi + self.driven.window)
+    }
+
+    /// The exact obstacle of driver tooth `j` against driven tooth `k` at driver angle φ, or
+    /// `None` if no driven angle brings them into contact.
+    ///
+    /// Its ends are contact roots: a vertex of one tooth on a flank of the other (tip on flank is
+    /// the paper's Phase 1 or 2; tip on tip is the shared end of both), each solved in closed form.
+    pub fn obstacle(&self, phi: f64, j: i64, k: i64) -> Option<Obstacle> {
+        let c2 = self.c2();
+        let a = self.driver.tooth(j).map(|v| self.driver_world(v, phi));
+        let b = self.driven.tooth(k);
+        // The obstacle of tooth k sits near θ = t_k: unwrap every root to that neighbourhood.
+        let reference = self.driven.gear.tip_angle(k);
+        let mut lo = f64::INFINITY;
+        let mut hi = f64::NEG_INFINITY;
+        let mut add = |theta: f64| {
+            let t = reference + wrap_pi(theta - reference);
+            lo = lo.min(t);
+            hi = hi.max(t);
+        };
+        // Driver vertex P on a driven edge: in the driven frame P runs on the circle |P − c2|.
+        for p in a {
+            let rel = p - c2;
+            let rho = rel.norm();
+            let base = rel.y.atan2(rel.x);
+            for e in 0..3 {
+                circle_segment(Vec2::zeros(), rho, b[e], b[(e + 1) % 3], |x| {
+                    add(x.y.atan2(x.x) - base + PI);
+                });
+            }
+        }
+        // Driven vertex Q on a driver edge: in the world Q runs on the circle |Q| about c2.
+        for q in b {
+            let rho = q.norm();
+            let base = q.y.atan2(q.x) + PI;
+            for e in 0..3 {
+                circle_segment(c2, rho, a[e], a[(e + 1) % 3], |x| {
+                    let r = x - c2;
+                    add(base - r.y.atan2(r.x));
+                });
+            }
+        }
+        (lo <= hi).then_some(Obstacle { driver_tooth: j, driven_tooth: k, lo, hi })
+    }
+
+    /// All tooth-pair obstacles at driver angle φ that can reach driven angles in `[lo, hi]`.
+    pub fn obstacles(&self, phi: f64, lo: f64, hi: f64, out: &mut Vec<Obstacle>) {
+        out.clear();
+        for j in self.driver_teeth(phi) {
+            for k in self.driven_teeth(lo, hi) {
+                if let Some(o) = self.obstacle(phi, j, k) {
+                    if o.hi >= lo && o.lo <= hi {
+                        out.push(o);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// `x` reduced to (−π, π].
+#[inline]
+pub(crate) fn wrap_pi(x: f64) -> f64 {
+    let y = x.rem_euclid(TAU);
+    if y > PI { y - TAU } else { y }
+}

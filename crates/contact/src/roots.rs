@@ -1,0 +1,66 @@
+//! The one exact primitive of the solver: where a circle crosses a straight segment.
+//!
+//! Every contact condition of two straight-flanked gears is "a vertex of one gear lies on a flank
+//! of the other". Seen from the gear that turns, the vertex runs on a circle about that gear's
+//! rotation centre, so the contact angles are the crossings of that circle with the flank.
+
+use geometry::Vec2;
+
+/// Parameter slack at the ends of a segment, so a vertex-on-vertex contact is found from both
+/// adjacent flanks despite rounding.
+const END_SLACK: f64 = 1e-12;
+
+/// Calls `found` with every point X = A + t(B − A), t ∈ [0, 1], with |X − C| = ρ.
+#[inline]
+pub(crate) fn circle_segment(c: Vec2, rho: f64, a: Vec2, b: Vec2, mut found: impl FnMut(Vec2)) {
+    let d = b - a;
+    let f = a - c;
+    let dd = d.dot(&d);
+    if dd == 0.0 {
+        return;
+    }
+    let fd = f.dot(&d);
+    let ff = f.dot(&f) - rho * rho;
+    let disc = fd * fd - dd * ff;
+    if disc < 0.0 {
+        return;
+    }
+    let sq = disc.sqrt();
+    // Numerically stable pair of roots of dd t² + 2 fd t + ff = 0.
+    let q = -(fd + fd.signum() * sq);
+    let (t1, t2) = if q == 0.0 { (0.0, 0.0) } else { (q / dd, ff / q) };
+    for t in [t1, t2] {
+        if (-END_SLACK..=1.0 + END_SLACK).contains(&t) {
+            found(a + d * t.clamp(0.0, 1.0));
+        }
+    }
+    // A tangent circle gives one double root; report it once only when both coincide exactly.
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn unit_circle_crosses_horizontal_segment() {
+        let mut pts = Vec::new();
+        circle_segment(Vec2::zeros(), 1.0, Vec2::new(-2.0, 0.0), Vec2::new(2.0, 0.0), |x| pts.push(x));
+        pts.sort_by(|p, q| p.x.total_cmp(&q.x));
+        assert_eq!(pts.len(), 2);
+        assert!((pts[0].x + 1.0).abs() < 1e-15 && (pts[1].x - 1.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn segment_ending_inside_gives_one_crossing() {
+        let mut n = 0;
+        circle_segment(Vec2::zeros(), 1.0, Vec2::new(0.0, 0.0), Vec2::new(2.0, 0.0), |_| n += 1);
+        assert_eq!(n, 1);
+    }
+
+    #[test]
+    fn far_segment_gives_none() {
+        let mut n = 0;
+        circle_segment(Vec2::zeros(), 1.0, Vec2::new(-2.0, 3.0), Vec2::new(2.0, 3.0), |_| n += 1);
+        assert_eq!(n, 0);
+    }
+}

@@ -1,0 +1,567 @@
+//! The push model, solved exactly: the driven gear stays put until a driver tooth pushes it, then
+//! moves only as far as it must to stay clear.
+//!
+//! At a driver angle φ every driver tooth j makes, for every driven tooth k, an obstacle: a closed
+//! interval `[lo, hi]` of driven angles at which the two teeth overlap (see [`Mesh::obstacle`]).
+//! The driven angle θ never lies strictly inside one. Obstacles *behind* θ (hi ≤ θ) push it: θ is
+//! the running maximum of their upper ends. Obstacles *ahead* (lo ≥ θ) are driver teeth the driven
+//! tooth is moving towards. Hence the two events:
+//!
+//! - **jam**: an obstacle ahead reaches θ: the driven gear is held on both sides (or, having slack
+//!   behind it, would have to turn backwards, which the push model forbids);
+//! - **disengagement**: the pushing obstacle stops rising (its tips slip past each other) while no
+//!   other driver tooth touches: the driven gear is left behind.
+//!
+//! Between events θ(φ) is the maximum of closed-form contact curves, so it is exact at every φ;
+//! events are located by bisection or golden-section search on those curves to 1e-13 rad.
+//! The driver angle is advanced in steps of a sixteenth of the driver's pitch only to bracket them.
+
+use std::f64::consts::TAU;
+
+use serde::Serialize;
+
+use crate::mesh::{Mesh, Obstacle};
+
+/// Relative tolerance (radians) when deciding on which side of θ an obstacle lies.
+const SIDE_TOL: f64 = 1e-10;
+/// Event location accuracy in driver angle (radians): far below the required 1e-6°.
+const LOCATE_TOL: f64 = 1e-13;
+/// Steps per driver pitch used to bracket events.
+const STEPS_PER_PITCH: f64 = 16.0;
+
+/// What happened at an event.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum EventKind {
+    /// The clearance interval of the driven gear closed: the driver cannot advance.
+    Jam,
+    /// The pushing tooth slipped past its driven tooth with no other tooth in contact.
+    Disengagement,
+}
+
+/// One jam or disengagement.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Event {
+    /// Driver angle of the event (radians).
+    pub phi: f64,
+    /// Driven angle at the event, before any release (radians).
+    pub theta: f64,
+    /// Jam or disengagement.
+    pub kind: EventKind,
+    /// Unwrapped driver tooth of the contact that closed (jam) or was lost (disengagement).
+    pub driver_tooth: i64,
+    /// Unwrapped driven tooth of that contact.
+    pub driven_tooth: i64,
+    /// Driven angle to which the gear was released after a jam (equal to `theta` otherwise).
+    pub theta_after: f64,
+}
+
+/// How the driven gear moves over one segment of driver angle.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Motion {
+    /// Standing still.
+    Rest,
+    /// Pushed: θ is the largest upper end of these (driver tooth, driven tooth) obstacles.
+    Push(Vec<(i64, i64)>),
+    /// Jammed with no free position nearby: the driven gear is held where it is.
+    Held,
+}
+
+/// A stretch of driver angle over which the driven angle follows one closed-form rule.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Segment {
+    /// First driver angle.
+    pub phi_start: f64,
+    /// Last driver angle.
+    pub phi_end: f64,
+    /// Driven angle at `phi_start`.
+    pub theta_start: f64,
+    /// Driven angle at `phi_end`.
+    pub theta_end: f64,
+    /// The rule.
+    pub motion: Motion,
+}
+
+/// How the driven gear starts.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Start {
+    /// Put the driven gear at this angle; if that overlaps, it is pushed clear first.
+    At(f64),
+    /// Start touching the driver: from the given guess, pushed clear if it overlaps, otherwise
+    /// turned back until a driven tooth rests against a driver tooth (the paper's initial contact).
+    Touching(f64),
+}
+
+/// The exact run of one mesh over a range of driver angle.
+#[derive(Debug, Clone)]
+pub struct Trajectory {
+    mesh: Mesh,
+    segments: Vec<Segment>,
+    events: Vec<Event>,
+}
+
+impl Trajectory {
+    /// Driven angle at driver angle φ (clamped to the simulated range), exact.
+    pub fn theta_at(&self, phi: f64) -> f64 {
+        let i = self.segments.partition_point(|s| s.phi_end < phi).min(self.segments.len() - 1);
+        let s = &self.segments[i];
+        match &s.motion {
+            Motion::Rest | Motion::Held => s.theta_start,
+            Motion::Push(pairs) => {
+                if phi <= s.phi_start {
+                    return s.theta_start;
+                }
+                if phi >= s.phi_end {
+                    return s.theta_end;
+                }
+                pairs
+                    .iter()
+                    .filter_map(|&(j, k)| self.mesh.obstacle(phi, j, k).map(|o| o.hi))
+                    .fold(s.theta_start, f64::max)
+            }
+        }
+    }
+
+    /// The segments, in order of driver angle.
+    pub fn segments(&self) -> &[Segment] {
+        &self.segments
+    }
+
+    /// Every jam and disengagement, in order.
+    pub fn events(&self) -> &[Event] {
+        &self.events
+    }
+
+    /// First simulated driver angle.
+    pub fn phi_start(&self) -> f64 {
+        self.segments[0].phi_start
+    }
+
+    /// Last simulated driver angle.
+    pub fn phi_end(&self) -> f64 {
+        self.segments[self.segments.len() - 1].phi_end
+    }
+
+    /// The mesh this run belongs to.
+    pub fn mesh(&self) -> &Mesh {
+        &self.mesh
+    }
+
+    /// Number of jams.
+    pub fn jams(&self) -> usize {
+        self.events.iter().filter(|e| e.kind == EventKind::Jam).count()
+    }
+
+    /// Number of disengagements.
+    pub fn disengagements(&self) -> usize {
+        self.events.iter().filter(|e| e.kind == EventKind::Disengagement).count()
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Side {
+    Behind,
+    Ahead,
+}
+
+/// Working state of one run.
+struct Run<'m> {
+    mesh: &'m Mesh,
+    phi: f64,
+    theta: f64,
+    held: bool,
+    /// Known tooth pairs and their side of θ.
+    sides: Vec<((i64, i64), Side)>,
+    segments: Vec<Segment>,
+    events: Vec<Event>,
+    scratch: Vec<Obstacle>,
+}
+
+impl Mesh {
+    /// Runs the push model from driver angle `phi_start` to `phi_end` (radians, `phi_end >=
+    /// phi_start`).
+    pub fn run(&self, phi_start: f64, phi_end: f64, start: Start) -> Trajectory {
+        let mut run = Run {
+            mesh: self,
+            phi: phi_start,
+            theta: 0.0,
+            held: false,
+            sides: Vec::new(),
+            segments: Vec::new(),
+            events: Vec::new(),
+            scratch: Vec::new(),
+        };
+        run.start(start);
+        let step = self.driver.max_gap.min(TAU / self.driver.tips.len() as f64) / STEPS_PER_PITCH;
+        while run.phi < phi_end {
+            let next = (run.phi + step).min(phi_end);
+            run.advance(next);
+        }
+        if run.segments.is_empty() {
+            run.rest_to(phi_end);
+        }
+        Trajectory { mesh: self.clone(), segments: run.segments, events: run.events }
+    }
+
+    /// Upper end of the (j, k) obstacle at φ, or −∞ when it does not exist.
+    fn hi(&self, phi: f64, pair: (i64, i64)) -> f64 {
+        self.obstacle(phi, pair.0, pair.1).map_or(f64::NEG_INFINITY, |o| o.hi)
+    }
+
+    /// Lower end of the (j, k) obstacle at φ, or +∞ when it does not exist.
+    fn lo(&self, phi: f64, pair: (i64, i64)) -> f64 {
+        self.obstacle(phi, pair.0, pair.1).map_or(f64::INFINITY, |o| o.lo)
+    }
+
+    /// The nearest driven angle ≥ θ that overlaps no driver tooth at φ, or None if the obstacles
+    /// close up over more than a turn of the driven gear.
+    pub fn next_free(&self, phi: f64, theta: f64) -> Option<f64> {
+        let gap = self.driven.max_gap;
+        let mut obs = Vec::new();
+        let mut reach = 3.0 * gap;
+        loop {
+            self.obstacles(phi, theta - gap, theta + reach, &mut obs);
+            obs.sort_by(|a, b| a.lo.total_cmp(&b.lo));
+            let mut top = theta;
+            for o in &obs {
+                if o.lo < top - SIDE_TOL && o.hi > top {
+                    top = o.hi;
+                } else if o.lo <= top + SIDE_TOL && o.hi > top && top > theta {
+                    // Touching obstacles chain only once we are already being carried forward.
+                    top = o.hi;
+                }
+            }
+            if top < theta + reach - gap {
+                return Some(top);
+            }
+            if reach > TAU + 3.0 * gap {
+                return None;
+            }
+            reach *= 2.0;
+        }
+    }
+}
+
+impl Run<'_> {
+    fn start(&mut self, start: Start) {
+        let (guess, touching) = match start {
+            Start::At(t) => (t, false),
+            Start::Touching(t) => (t, true),
+        };
+        let phi = self.phi;
+        self.theta = match self.mesh.next_free(phi, guess) {
+            Some(t) if t > guess => t,
+            Some(_) if touching => {
+                // Free: turn back until a driver tooth is met (highest upper end below the guess).
+                let gap = self.mesh.driven.max_gap;
+                self.mesh.obstacles(phi, guess - 2.0 * gap, guess, &mut self.scratch);
+                self.scratch.iter().map(|o| o.hi).filter(|&h| h <= guess).fold(f64::NEG_INFINITY, f64::max).max(guess - 2.0 * gap)
+            }
+            Some(t) => t,
+            None => {
+                self.held = true;
+                guess
+            }
+        };
+        self.classify_all(phi);
+    }
+
+    /// Re-derive every nearby obstacle's side from scratch, relative to the current θ.
+    fn classify_all(&mut self, phi: f64) {
+        let gap = self.mesh.driven.max_gap;
+        self.mesh.obstacles(phi, self.theta - 2.0 * gap, self.theta + 2.0 * gap, &mut self.scratch);
+        self.sides.clear();
+        for o in &self.scratch {
+            let side = if o.hi <= self.theta + SIDE_TOL { Side::Behind } else { Side::Ahead };
+            self.sides.push(((o.driver_tooth, o.driven_tooth), side));
+        }
+    }
+
+    fn side_of(&self, pair: (i64, i64)) -> Option<Side> {
+        self.sides.iter().find(|(p, _)| *p == pair).map(|&(_, s)| s)
+    }
+
+    fn push_segment(&mut self, phi_end: f64, theta_end: f64, motion: Motion) {
+        if phi_end <= self.phi && !self.segments.is_empty() {
+            self.theta = theta_end;
+            return;
+        }
+        self.segments.push(Segment {
+            phi_start: self.phi,
+            phi_end,
+            theta_start: self.theta,
+            theta_end,
+            motion,
+        });
+        self.phi = phi_end;
+        self.theta = theta_end;
+    }
+
+    fn rest_to(&mut self, phi_end: f64) {
+        let motion = if self.held { Motion::Held } else { Motion::Rest };
+        self.push_segment(phi_end, self.theta, motion);
+    }
+
+    /// Advance from `self.phi` to `phi1`, locating every event in between.
+    fn advance(&mut self, phi1: f64) {
+        let mesh = self.mesh;
+        let phi0 = self.phi;
+        let theta0 = self.theta;
+        if self.held {
+            match mesh.next_free(phi1, theta0) {
+                Some(t) => {
+                    self.rest_to(phi1);
+                    self.held = false;
+                    self.theta = t;
+                    self.classify_all(phi1);
+                }
+                None => self.rest_to(phi1),
+            }
+            return;
+        }
+
+        // Obstacles at the end of the step, sided.
+        let gap = mesh.driven.max_gap;
+        mesh.obstacles(phi1, theta0 - 2.0 * gap, theta0 + 2.0 * gap, &mut self.scratch);
+        let obs = std::mem::take(&mut self.scratch);
+        let mut behind: Vec<(i64, i64)> = Vec::new();
+        let mut ahead: Vec<(i64, i64)> = Vec::new();
+        let mut unsure: Vec<Obstacle> = Vec::new();
+        for o in &obs {
+            let pair = (o.driver_tooth, o.driven_tooth);
+            match self.side_of(pair) {
+                Some(Side::Behind) => behind.push(pair),
+                Some(Side::Ahead) => ahead.push(pair),
+                None if o.hi <= theta0 + SIDE_TOL => behind.push(pair),
+                None => unsure.push(*o),
+            }
+        }
+        // Pairs behind at the start that vanished during the step may still have pushed.
+        for &(pair, side) in &self.sides {
+            if side == Side::Behind && !behind.contains(&pair) {
+                behind.push(pair);
+            }
+        }
+        // A new obstacle not clearly behind: ahead if it lies above where the driven gear can get
+        // to in this step, otherwise decide at the angle where it first appeared.
+        for o in unsure {
+            let pair = (o.driver_tooth, o.driven_tooth);
+            let reach = behind.iter().map(|&p| mesh.hi(phi1, p)).fold(theta0, f64::max);
+            let side = if o.lo >= reach - SIDE_TOL {
+                Side::Ahead
+            } else {
+                let phi_a = bisect(phi0, phi1, |p| mesh.obstacle(p, pair.0, pair.1).is_some());
+                let at = mesh.obstacle(phi_a, pair.0, pair.1).map_or(o.lo, |a| 0.5 * (a.lo + a.hi));
+                let theta_a = self.provisional_theta(&behind, phi0, theta0, phi_a);
+                if at <= theta_a + SIDE_TOL { Side::Behind } else { Side::Ahead }
+            };
+            match side {
+                Side::Behind => behind.push(pair),
+                Side::Ahead => ahead.push(pair),
+            }
+        }
+
+        // Pushing pairs at the start: those whose upper end is at θ.
+        let pushers: Vec<(i64, i64)> = behind
+            .iter()
+            .copied()
+            .filter(|&p| (mesh.hi(phi0, p) - theta0).abs() <= SIDE_TOL * (1.0 + theta0.abs()))
+            .collect();
+        let envelope = |p: f64| behind.iter().map(|&b| mesh.hi(p, b)).fold(f64::NEG_INFINITY, f64::max);
+
+        // Plan the step without the obstacles ahead: (phi_end, theta_end, motion, event).
+        let mut plan: Vec<(f64, f64, Motion, Option<Event>)> = Vec::new();
+        if !pushers.is_empty() {
+            // Is the push continuous through the step? The pushers' envelope must not peak.
+            let push_env = |p: f64| pushers.iter().map(|&b| mesh.hi(p, b)).fold(f64::NEG_INFINITY, f64::max);
+            let e1 = envelope(phi1);
+            let handed_over = |p: f64| envelope(p) > push_env(p) + SIDE_TOL;
+            if push_env(phi1) >= theta0 && !handed_over(phi1) {
+                plan.push((phi1, push_env(phi1), Motion::Push(pushers.clone()), None));
+            } else {
+                // Where do the pushers stop rising (peak or vanish)?
+                let phi_pk = golden_max(phi0, phi1, &push_env);
+                let theta_pk = push_env(phi_pk).max(theta0);
+                // Did another behind obstacle take over before that?
+                let others: Vec<(i64, i64)> = behind.iter().copied().filter(|p| !pushers.contains(p)).collect();
+                let other_env = |p: f64| others.iter().map(|&b| mesh.hi(p, b)).fold(f64::NEG_INFINITY, f64::max);
+                if other_env(phi_pk) >= theta_pk - SIDE_TOL {
+                    // Continuous handoff: one Push segment over the whole step with every behind pair.
+                    plan.push((phi1, e1.max(theta0), Motion::Push(behind.clone()), None));
+                } else {
+                    let lost = pushers
+                        .iter()
+                        .copied()
+                        .max_by(|&a, &b| mesh.hi(phi_pk, a).total_cmp(&mesh.hi(phi_pk, b)))
+                        .unwrap_or(pushers[0]);
+                    plan.push((phi_pk, theta_pk, Motion::Push(pushers.clone()), Some(Event {
+                        phi: phi_pk,
+                        theta: theta_pk,
+                        kind: EventKind::Disengagement,
+                        driver_tooth: lost.0,
+                        driven_tooth: lost.1,
+                        theta_after: theta_pk,
+                    })));
+                    self.rest_then_maybe_push(&mut plan, &others, phi_pk, theta_pk, phi1);
+                }
+            }
+        } else {
+            self.rest_then_maybe_push(&mut plan, &behind, phi0, theta0, phi1);
+        }
+
+        // Jam check against the obstacles ahead, along the planned path.
+        let theta_on_plan = |p: f64| -> f64 {
+            let mut from = (phi0, theta0);
+            for (end, th, motion, _) in &plan {
+                if p <= *end {
+                    return match motion {
+                        Motion::Push(pairs) => pairs.iter().map(|&b| mesh.hi(p, b)).fold(from.1, f64::max).min(*th),
+                        _ => from.1,
+                    };
+                }
+                from = (*end, *th);
+            }
+            from.1
+        };
+        let front = |p: f64| ahead.iter().map(|&a| mesh.lo(p, a)).fold(f64::INFINITY, f64::min);
+        let clear_at = |p: f64| front(p) >= theta_on_plan(p) - SIDE_TOL;
+        let jam_at = if ahead.is_empty() || clear_at(phi1) && clear_at(0.5 * (phi0 + phi1)) {
+            None
+        } else if !clear_at(phi0) {
+            Some(phi0)
+        } else {
+            let end = if clear_at(phi1) { 0.5 * (phi0 + phi1) } else { phi1 };
+            Some(bisect(phi0, end, |p| clear_at(p)))
+        };
+
+        self.scratch = obs;
+        match jam_at {
+            None => {
+                for (end, th, motion, event) in plan {
+                    self.push_segment(end, th, motion);
+                    if let Some(e) = event {
+                        self.events.push(e);
+                    }
+                }
+                self.reside(&behind, &ahead);
+            }
+            Some(phi_j) => {
+                let th_j = theta_on_plan(phi_j);
+                for (end, th, motion, event) in plan {
+                    if end < phi_j {
+                        self.push_segment(end, th, motion);
+                        if let Some(e) = event {
+                            self.events.push(e);
+                        }
+                    } else {
+                        self.push_segment(phi_j, th_j, motion);
+                        break;
+                    }
+                }
+                let theta_j = self.theta;
+                let closing = ahead
+                    .iter()
+                    .copied()
+                    .min_by(|&a, &b| mesh.lo(phi_j, a).total_cmp(&mesh.lo(phi_j, b)))
+                    .unwrap_or((0, 0));
+                let release = mesh.next_free(phi_j, theta_j);
+                self.held = release.is_none();
+                let after = release.unwrap_or(theta_j);
+                self.events.push(Event {
+                    phi: phi_j,
+                    theta: theta_j,
+                    kind: EventKind::Jam,
+                    driver_tooth: closing.0,
+                    driven_tooth: closing.1,
+                    theta_after: after,
+                });
+                self.theta = after;
+                self.classify_all(phi_j);
+            }
+        }
+    }
+
+    /// Plan a rest at θ from `phi_a`, re-engaging if an obstacle behind rises to θ before `phi1`.
+    fn rest_then_maybe_push(
+        &self,
+        plan: &mut Vec<(f64, f64, Motion, Option<Event>)>,
+        behind: &[(i64, i64)],
+        phi_a: f64,
+        theta: f64,
+        phi1: f64,
+    ) {
+        let mesh = self.mesh;
+        let env = |p: f64| behind.iter().map(|&b| mesh.hi(p, b)).fold(f64::NEG_INFINITY, f64::max);
+        if env(phi1) > theta + SIDE_TOL {
+            let phi_r = bisect(phi_a, phi1, |p| env(p) < theta);
+            plan.push((phi_r, theta, Motion::Rest, None));
+            plan.push((phi1, env(phi1), Motion::Push(behind.to_vec()), None));
+        } else {
+            plan.push((phi1, theta, Motion::Rest, None));
+        }
+    }
+
+    /// θ at `phi` along the push of `behind` from (phi0, theta0), ignoring events.
+    fn provisional_theta(&self, behind: &[(i64, i64)], _phi0: f64, theta0: f64, phi: f64) -> f64 {
+        behind.iter().map(|&b| self.mesh.hi(phi, b)).fold(theta0, f64::max)
+    }
+
+    /// Record the sides for the next step: everything at or below θ is behind.
+    fn reside(&mut self, behind: &[(i64, i64)], ahead: &[(i64, i64)]) {
+        let phi = self.phi;
+        let theta = self.theta;
+        self.sides.clear();
+        for &p in behind {
+            if self.mesh.obstacle(phi, p.0, p.1).is_some() {
+                self.sides.push((p, Side::Behind));
+            }
+        }
+        for &p in ahead {
+            if let Some(o) = self.mesh.obstacle(phi, p.0, p.1) {
+                let side = if o.hi <= theta + SIDE_TOL { Side::Behind } else { Side::Ahead };
+                self.sides.push((p, side));
+            }
+        }
+    }
+}
+
+/// The boundary between where `good` holds (at `a`) and where it fails (at `b`), to LOCATE_TOL.
+fn bisect(mut a: f64, mut b: f64, good: impl Fn(f64) -> bool) -> f64 {
+    while b - a > LOCATE_TOL {
+        let m = 0.5 * (a + b);
+        if m <= a || m >= b {
+            break;
+        }
+        if good(m) { a = m } else { b = m }
+    }
+    a
+}
+
+/// Where a function that rises and then falls (or ends, −∞) takes its largest value on [a, b].
+fn golden_max(mut a: f64, mut b: f64, f: impl Fn(f64) -> f64) -> f64 {
+    const R: f64 = 0.618_033_988_749_894_8;
+    let mut x1 = b - R * (b - a);
+    let mut x2 = a + R * (b - a);
+    let mut f1 = f(x1);
+    let mut f2 = f(x2);
+    while b - a > LOCATE_TOL {
+        if f1 < f2 {
+            a = x1;
+            x1 = x2;
+            f1 = f2;
+            x2 = a + R * (b - a);
+            f2 = f(x2);
+        } else {
+            b = x2;
+            x2 = x1;
+            f2 = f1;
+            x1 = b - R * (b - a);
+            f1 = f(x1);
+        }
+        if x1 >= x2 {
+            break;
+        }
+    }
+    // The end points may be better than the interior (monotone on the bracket).
+    let mid = 0.5 * (a + b);
+    [a, mid, b].into_iter().max_by(|&p, &q| f(p).total_cmp(&f(q))).unwrap_or(mid)
+}
