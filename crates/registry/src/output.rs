@@ -1,0 +1,387 @@
+//! What an experiment returns, and how it is stored.
+
+use std::collections::BTreeSet;
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use serde_json::{Value, json};
+
+use crate::{RunError, Table};
+
+/// What an experiment returns.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct Report {
+    /// Tables, printed and stored in this order.
+    pub tables: Vec<Table>,
+    /// Other files to store beside the tables (SVG figures, raw data...).
+    pub files: Vec<OutputFile>,
+}
+
+impl Report {
+    /// All tables rendered ([`Table::render`]), separated by blank lines; this is what is
+    /// printed and snapshotted.
+    pub fn text(&self) -> String {
+        self.tables
+            .iter()
+            .map(Table::render)
+            .collect::<Vec<_>>()
+            .join("\n")
+    }
+
+    /// The tables as pretty-printed JSON:
+    /// `{"tables": [{"title", "columns", "rows", "notes"}], "files": [names]}`; cells stay strings,
+    /// exactly as printed.
+    pub fn to_json(&self) -> String {
+        let tables: Vec<Value> = self
+            .tables
+            .iter()
+            .map(|t| {
+                json!({
+                    "title": t.title,
+                    "columns": t.columns,
+                    "rows": t.rows,
+                    "notes": t.notes,
+                })
+            })
+            .collect();
+        let files: Vec<&str> = self.files.iter().map(|f| f.name.as_str()).collect();
+        let mut s = format!("{:#}", json!({ "tables": tables, "files": files }));
+        s.push('\n');
+        s
+    }
+}
+
+/// A file an experiment wants stored in its results directory.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct OutputFile {
+    /// Plain file name, e.g. `fig2.svg` (no directories).
+    pub name: String,
+    /// Its bytes.
+    pub contents: Vec<u8>,
+}
+
+impl OutputFile {
+    /// A file named `name` holding `contents`.
+    pub fn new(name: impl Into<String>, contents: impl Into<Vec<u8>>) -> Self {
+        OutputFile {
+            name: name.into(),
+            contents: contents.into(),
+        }
+    }
+}
+
+const TABLE_MD: &str = "table.md";
+const TABLES_JSON: &str = "tables.json";
+
+/// Lowercase ASCII letters and digits, other runs of characters made one `-`.
+fn slug(title: &str) -> String {
+    let mut s = String::new();
+    for c in title.chars() {
+        if c.is_ascii_alphanumeric() {
+            s.push(c.to_ascii_lowercase());
+        } else if !s.is_empty() && !s.ends_with('-') {
+            s.push('-');
+        }
+    }
+    while s.ends_with('-') {
+        s.pop();
+    }
+    s.truncate(80);
+    while s.ends_with('-') {
+        s.pop();
+    }
+    s
+}
+
+/// Every file to write, in order: the report's files, `table.md`, `tables.json`, one CSV per table.
+/// Refuses a bad or repeated name before anything is written.
+fn plan(report: &Report) -> Result<Vec<(String, Vec<u8>)>, RunError> {
+    let mut names = BTreeSet::new();
+    let mut files = Vec::new();
+    for f in &report.files {
+        let n = f.name.as_str();
+        if n.is_empty()
+            || n == "."
+            || n == ".."
+            || n.contains(['/', '\\', '\0'])
+            || Path::new(n).components().count() != 1
+        {
+            return Err(RunError::Internal(format!(
+                "output file name {n:?} is not a plain file name"
+            )));
+        }
+        if n == TABLE_MD || n == TABLES_JSON || !names.insert(n.to_owned()) {
+            return Err(RunError::Internal(format!(
+                "output file name {n:?} is used twice"
+            )));
+        }
+        files.push((n.to_owned(), f.contents.clone()));
+    }
+    for fixed in [TABLE_MD, TABLES_JSON] {
+        names.insert(fixed.to_owned());
+    }
+    files.push((TABLE_MD.to_owned(), report.text().into_bytes()));
+    files.push((TABLES_JSON.to_owned(), report.to_json().into_bytes()));
+    for (i, t) in report.tables.iter().enumerate() {
+        let mut base = slug(&t.title);
+        if base.is_empty() {
+            base = format!("table-{}", i + 1);
+        }
+        let mut name = format!("{base}.csv");
+        let mut k = 2;
+        while names.contains(&name) {
+            name = format!("{base}-{k}.csv");
+            k += 1;
+        }
+        names.insert(name.clone());
+        files.push((name, t.to_csv().into_bytes()));
+    }
+    Ok(files)
+}
+
+/// A fresh hidden name beside `dir` for a temporary directory.
+fn sibling(dir: &Path, what: &str) -> Result<PathBuf, RunError> {
+    static COUNTER: AtomicU64 = AtomicU64::new(0);
+    let name = dir
+        .file_name()
+        .ok_or_else(|| RunError::Internal(format!("results path {} has no name", dir.display())))?
+        .to_string_lossy();
+    let nanos = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.subsec_nanos())
+        .unwrap_or(0);
+    let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+    Ok(dir.with_file_name(format!(".{name}.{what}-{}-{n}-{nanos}", std::process::id())))
+}
+
+fn io_err(what: &str, path: &Path, e: std::io::Error) -> RunError {
+    RunError::Internal(format!("{what} {}: {e}", path.display()))
+}
+
+/// Writes `report` into `dir` (= `<out>/<id>`) atomically.
+///
+/// Writes every [`OutputFile`] plus `table.md` ([`Report::text`]), `tables.json`
+/// ([`Report::to_json`]) and one `<slug>.csv` per table (the slug of its title, or `table-<n>`
+/// if it has none; `-2`, `-3`... added to repeats). Everything goes to a hidden sibling
+/// temporary directory first, which is then renamed over `dir` (a previous `dir` is replaced
+/// whole, so no stale file survives). The parent of `dir` is created if missing.
+///
+/// On any error ([`RunError::Internal`]: a file name that is not a plain name or is used
+/// twice, or an I/O failure) no temporary directory remains and `dir` is as it was before:
+/// absent if it was absent, the previous results if there were some.
+pub fn write_results(dir: &Path, report: &Report) -> Result<(), RunError> {
+    let files = plan(report)?;
+    if let Some(parent) = dir.parent().filter(|p| !p.as_os_str().is_empty()) {
+        fs::create_dir_all(parent).map_err(|e| io_err("cannot create", parent, e))?;
+    }
+    let tmp = sibling(dir, "tmp")?;
+    fs::create_dir(&tmp).map_err(|e| io_err("cannot create", &tmp, e))?;
+    let filled = files.iter().try_for_each(|(name, bytes)| {
+        let path = tmp.join(name);
+        fs::write(&path, bytes).map_err(|e| io_err("cannot write", &path, e))
+    });
+    let result = filled.and_then(|()| swap_in(&tmp, dir));
+    if result.is_err() {
+        // Best effort: the error being reported matters more than a failed clean-up.
+        let _ = fs::remove_dir_all(&tmp);
+    }
+    result
+}
+
+/// Renames `tmp` to `dir`, moving a previous `dir` aside first and deleting it after.
+fn swap_in(tmp: &Path, dir: &Path) -> Result<(), RunError> {
+    match fs::symlink_metadata(dir) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            fs::rename(tmp, dir).map_err(|e| io_err("cannot rename results to", dir, e))
+        }
+        Err(e) => Err(io_err("cannot inspect", dir, e)),
+        Ok(meta) if !meta.is_dir() => Err(RunError::Internal(format!(
+            "{} exists and is not a directory",
+            dir.display()
+        ))),
+        Ok(_) => {
+            let old = sibling(dir, "old")?;
+            fs::rename(dir, &old).map_err(|e| io_err("cannot move aside", dir, e))?;
+            if let Err(e) = fs::rename(tmp, dir) {
+                // Put the previous results back.
+                let _ = fs::rename(&old, dir);
+                return Err(io_err("cannot rename results to", dir, e));
+            }
+            fs::remove_dir_all(&old).map_err(|e| io_err("cannot remove old results", &old, e))
+        }
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
+mod tests {
+    use super::*;
+
+    /// A fresh empty directory under the system temp dir, removed on drop.
+    struct TempDir(PathBuf);
+    impl TempDir {
+        fn new(tag: &str) -> Self {
+            let p = std::env::temp_dir().join(format!(
+                "registry-test-{tag}-{}-{}",
+                std::process::id(),
+                std::time::SystemTime::now()
+                    .duration_since(std::time::UNIX_EPOCH)
+                    .unwrap()
+                    .as_nanos()
+            ));
+            fs::create_dir_all(&p).unwrap();
+            TempDir(p)
+        }
+        fn entries(&self) -> Vec<String> {
+            let mut v: Vec<String> = fs::read_dir(&self.0)
+                .unwrap()
+                .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+                .collect();
+            v.sort();
+            v
+        }
+    }
+    impl Drop for TempDir {
+        fn drop(&mut self) {
+            let _ = fs::remove_dir_all(&self.0);
+        }
+    }
+
+    fn report() -> Report {
+        let mut t = Table::new("Mesh error (deg)", ["tooth", "error"]);
+        t.row(vec!["1".into(), "0.25".into()]);
+        let mut u = Table::new("Mesh error (deg)", ["a"]);
+        u.row(vec!["x".into()]);
+        let v = Table::new("", ["b"]);
+        Report {
+            tables: vec![t, u, v],
+            files: vec![OutputFile::new("fig.svg", "<svg/>")],
+        }
+    }
+
+    #[test]
+    fn writes_every_file() {
+        let tmp = TempDir::new("ok");
+        let dir = tmp.0.join("out").join("fig2");
+        write_results(&dir, &report()).unwrap();
+        let mut names: Vec<String> = fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        names.sort();
+        assert_eq!(
+            names,
+            [
+                "fig.svg",
+                "mesh-error-deg-2.csv",
+                "mesh-error-deg.csv",
+                "table-3.csv",
+                "table.md",
+                "tables.json"
+            ]
+        );
+        assert_eq!(
+            fs::read_to_string(dir.join("table.md")).unwrap(),
+            report().text()
+        );
+        assert_eq!(
+            fs::read_to_string(dir.join("mesh-error-deg.csv")).unwrap(),
+            "tooth,error\n1,0.25\n"
+        );
+        let json: Value =
+            serde_json::from_str(&fs::read_to_string(dir.join("tables.json")).unwrap()).unwrap();
+        assert_eq!(json["tables"][0]["rows"][0][1], "0.25");
+        assert_eq!(json["files"][0], "fig.svg");
+        // Only the results directory is left in out/.
+        assert_eq!(
+            fs::read_dir(tmp.0.join("out")).unwrap().count(),
+            1,
+            "temporary directory left behind"
+        );
+    }
+
+    #[test]
+    fn replaces_previous_results_whole() {
+        let tmp = TempDir::new("replace");
+        let dir = tmp.0.join("fig2");
+        fs::create_dir_all(&dir).unwrap();
+        fs::write(dir.join("stale.txt"), "old").unwrap();
+        write_results(&dir, &report()).unwrap();
+        assert!(!dir.join("stale.txt").exists());
+        assert!(dir.join("table.md").exists());
+        assert_eq!(tmp.entries(), ["fig2"]);
+    }
+
+    #[test]
+    fn bad_file_name_writes_nothing() {
+        for bad in ["sub/x.svg", "", "..", "table.md", "fig.svg"] {
+            let tmp = TempDir::new("badname");
+            let dir = tmp.0.join("fig2");
+            let mut r = report();
+            r.files.push(OutputFile::new(bad, "x"));
+            let e = write_results(&dir, &r).unwrap_err();
+            assert_eq!(e.exit_code(), 1, "{bad:?}");
+            assert!(tmp.entries().is_empty(), "{bad:?}: {:?}", tmp.entries());
+        }
+    }
+
+    #[test]
+    fn failure_midway_leaves_nothing() {
+        // The OS refuses a 300-byte name after the first file is written: the temporary
+        // directory must go, and no results directory appear.
+        let tmp = TempDir::new("midway");
+        let dir = tmp.0.join("fig2");
+        let mut r = report();
+        r.files.push(OutputFile::new("x".repeat(300), "x"));
+        assert!(write_results(&dir, &r).is_err());
+        assert!(tmp.entries().is_empty(), "{:?}", tmp.entries());
+    }
+
+    #[test]
+    fn failure_midway_keeps_previous_results() {
+        let tmp = TempDir::new("keep");
+        let dir = tmp.0.join("fig2");
+        write_results(&dir, &report()).unwrap();
+        let mut r = report();
+        r.files.push(OutputFile::new("x".repeat(300), "x"));
+        assert!(write_results(&dir, &r).is_err());
+        assert_eq!(tmp.entries(), ["fig2"]);
+        assert!(dir.join("fig.svg").exists());
+    }
+
+    #[test]
+    fn unwritable_parent_fails_and_leaves_nothing() {
+        // The parent is a plain file, so nothing can be created under it (even as root).
+        let tmp = TempDir::new("unwritable");
+        let parent = tmp.0.join("plain-file");
+        fs::write(&parent, "not a dir").unwrap();
+        let e = write_results(&parent.join("fig2"), &report()).unwrap_err();
+        assert_eq!(e.exit_code(), 1);
+        assert_eq!(tmp.entries(), ["plain-file"]);
+
+        // A results path that is a file is refused, and the file kept.
+        let dir = tmp.0.join("fig2");
+        fs::write(&dir, "a file").unwrap();
+        assert!(write_results(&dir, &report()).is_err());
+        assert_eq!(tmp.entries(), ["fig2", "plain-file"]);
+    }
+
+    #[test]
+    fn text_separates_tables_by_blank_lines() {
+        let r = report();
+        let text = r.text();
+        assert!(
+            text.contains("|     1 |  0.25 |\n\n### Mesh error (deg)\n"),
+            "{text}"
+        );
+        assert_eq!(Report::default().text(), "");
+    }
+
+    #[test]
+    fn slugs() {
+        assert_eq!(slug("Mesh error (deg), N=24"), "mesh-error-deg-n-24");
+        assert_eq!(slug("  ---  "), "");
+        assert_eq!(slug("Ångström"), "ngstr-m");
+    }
+}

@@ -1,0 +1,286 @@
+//! Readable tables: aligned Markdown for people, CSV and JSON for programs.
+
+/// A readable table: rendered as an aligned Markdown table (pipes, header separator,
+/// right-aligned numbers).
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct Table {
+    /// Title, rendered as a `###` heading above the table and used for the CSV file name.
+    pub title: String,
+    /// Column headers.
+    pub columns: Vec<String>,
+    /// Rows of cells, already formatted (see [`fmt_f64`]).
+    pub rows: Vec<Vec<String>>,
+    /// Notes rendered below the table, one bullet each.
+    pub notes: Vec<String>,
+}
+
+impl Table {
+    /// An empty table with a title and column headers
+    /// (anything iterable over strings: `["a", "b"]`, `&["a", "b"]`, `vec![String]`...).
+    pub fn new<S: AsRef<str>>(
+        title: impl Into<String>,
+        columns: impl IntoIterator<Item = S>,
+    ) -> Self {
+        Table {
+            title: title.into(),
+            columns: columns.into_iter().map(|c| c.as_ref().to_owned()).collect(),
+            rows: Vec::new(),
+            notes: Vec::new(),
+        }
+    }
+
+    /// Appends a row. A row shorter than the header is padded with empty cells when rendered.
+    pub fn row(&mut self, cells: Vec<String>) {
+        self.rows.push(cells);
+    }
+
+    /// Appends a note, rendered below the table.
+    pub fn note(&mut self, s: impl Into<String>) {
+        self.notes.push(s.into());
+    }
+
+    /// Number of columns rendered: the header's, or the longest row's if longer.
+    fn width(&self) -> usize {
+        self.rows
+            .iter()
+            .map(Vec::len)
+            .chain(std::iter::once(self.columns.len()))
+            .max()
+            .unwrap_or(0)
+    }
+
+    /// The table as aligned Markdown, ending with a newline:
+    ///
+    /// ```text
+    /// ### Title
+    ///
+    /// | name  | value |
+    /// |:------|------:|
+    /// | alpha |  1.50 |
+    ///
+    /// - a note
+    /// ```
+    ///
+    /// A column whose cells are all numbers (empty and `-` cells aside) is right-aligned.
+    /// Pipes in cells are escaped and line breaks become spaces.
+    pub fn render(&self) -> String {
+        let n = self.width();
+        let cell = |row: &[String], i: usize| -> String {
+            row.get(i).map(|c| md_cell(c)).unwrap_or_default()
+        };
+        let header: Vec<String> = (0..n).map(|i| cell(&self.columns, i)).collect();
+        let body: Vec<Vec<String>> = self
+            .rows
+            .iter()
+            .map(|r| (0..n).map(|i| cell(r, i)).collect())
+            .collect();
+        let numeric: Vec<bool> = (0..n)
+            .map(|i| {
+                let mut any = false;
+                for r in &body {
+                    let c = r[i].trim();
+                    if c.is_empty() || c == "-" || c == "—" {
+                        continue;
+                    }
+                    if !looks_numeric(c) {
+                        return false;
+                    }
+                    any = true;
+                }
+                any
+            })
+            .collect();
+        let widths: Vec<usize> = (0..n)
+            .map(|i| {
+                body.iter()
+                    .map(|r| r[i].chars().count())
+                    .chain([header[i].chars().count(), 3])
+                    .max()
+                    .unwrap_or(3)
+            })
+            .collect();
+
+        let mut out = String::new();
+        if !self.title.is_empty() {
+            out.push_str("### ");
+            out.push_str(&md_cell(&self.title));
+            out.push_str("\n\n");
+        }
+        if n > 0 {
+            let line = |cells: &[String], out: &mut String| {
+                out.push('|');
+                for (i, c) in cells.iter().enumerate() {
+                    let pad = widths[i] - c.chars().count();
+                    out.push(' ');
+                    if numeric[i] {
+                        out.extend(std::iter::repeat_n(' ', pad));
+                        out.push_str(c);
+                    } else {
+                        out.push_str(c);
+                        out.extend(std::iter::repeat_n(' ', pad));
+                    }
+                    out.push_str(" |");
+                }
+                out.push('\n');
+            };
+            line(&header, &mut out);
+            out.push('|');
+            for i in 0..n {
+                if numeric[i] {
+                    out.extend(std::iter::repeat_n('-', widths[i] + 1));
+                    out.push(':');
+                } else {
+                    out.push(':');
+                    out.extend(std::iter::repeat_n('-', widths[i] + 1));
+                }
+                out.push('|');
+            }
+            out.push('\n');
+            for r in &body {
+                line(r, &mut out);
+            }
+        }
+        if !self.notes.is_empty() {
+            if n > 0 {
+                out.push('\n');
+            }
+            for note in &self.notes {
+                out.push_str("- ");
+                out.push_str(&one_line(note));
+                out.push('\n');
+            }
+        }
+        out
+    }
+
+    /// The header and rows as CSV (RFC 4180 quoting, `\n` line ends); title and notes are left out.
+    pub fn to_csv(&self) -> String {
+        let n = self.width();
+        let mut out = String::new();
+        for row in std::iter::once(&self.columns).chain(&self.rows) {
+            for i in 0..n {
+                if i > 0 {
+                    out.push(',');
+                }
+                out.push_str(&csv_field(row.get(i).map(String::as_str).unwrap_or("")));
+            }
+            out.push('\n');
+        }
+        out
+    }
+}
+
+/// Does a cell read as a number: `-1.5`, `2e-3`, `12%`, `inf`, `NaN`?
+fn looks_numeric(c: &str) -> bool {
+    let c = c.strip_suffix('%').unwrap_or(c).trim();
+    !c.is_empty() && c.parse::<f64>().is_ok()
+}
+
+fn one_line(s: &str) -> String {
+    s.replace("\r\n", " ").replace(['\n', '\r'], " ")
+}
+
+/// A cell made safe for a Markdown table: one line, pipes escaped.
+fn md_cell(s: &str) -> String {
+    one_line(s).replace('|', "\\|")
+}
+
+fn csv_field(s: &str) -> String {
+    if s.contains([',', '"', '\n', '\r']) || s.starts_with(' ') || s.ends_with(' ') {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_owned()
+    }
+}
+
+/// Number formatting helper used by all tables: `decimals` fixed decimals, never `-0.000`
+/// (a value that rounds to zero prints without sign); non-finite values print as
+/// `NaN`, `inf`, `-inf`.
+pub fn fmt_f64(x: f64, decimals: usize) -> String {
+    if x.is_nan() {
+        return "NaN".to_owned();
+    }
+    let s = format!("{x:.decimals$}");
+    match s.strip_prefix('-') {
+        Some(rest) if rest.bytes().all(|b| b == b'0' || b == b'.') => rest.to_owned(),
+        _ => s,
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
+mod tests {
+    use super::*;
+
+    fn s(v: &[&str]) -> Vec<String> {
+        v.iter().map(|x| (*x).to_owned()).collect()
+    }
+
+    #[test]
+    fn render_aligns_text_left_and_numbers_right() {
+        let mut t = Table::new("Gear ratios", ["gear", "teeth", "ratio"]);
+        t.row(s(&["b1", "224", "1.000"]));
+        t.row(s(&["e3", "32", "-0.143"]));
+        t.row(s(&["long name", "", "12.5"]));
+        t.note("ratios relative to b1");
+        let expected = "\
+### Gear ratios
+
+| gear      | teeth |  ratio |
+|:----------|------:|-------:|
+| b1        |   224 |  1.000 |
+| e3        |    32 | -0.143 |
+| long name |       |   12.5 |
+
+- ratios relative to b1
+";
+        assert_eq!(t.render(), expected);
+    }
+
+    #[test]
+    fn render_counts_chars_not_bytes_and_escapes_pipes() {
+        let mut t = Table::new("", vec!["angle (°)".to_owned(), "what".to_owned()]);
+        t.row(s(&["1", "a|b"]));
+        t.row(s(&["2"]));
+        let out = t.render();
+        let lines: Vec<&str> = out.lines().collect();
+        assert_eq!(lines[0], "| angle (°) | what |");
+        assert_eq!(lines[1], "|----------:|:-----|");
+        assert_eq!(lines[2], "|         1 | a\\|b |");
+        assert_eq!(lines[3], "|         2 |      |");
+        let widths: Vec<usize> = lines.iter().map(|l| l.chars().count()).collect();
+        assert!(widths.iter().all(|w| *w == widths[0]), "{out}");
+    }
+
+    #[test]
+    fn empty_table_renders_header() {
+        let columns: &[&str] = &["a", "b"];
+        let t = Table::new("Nothing", columns);
+        assert_eq!(t.render(), "### Nothing\n\n| a   | b   |\n|:----|:----|\n");
+    }
+
+    #[test]
+    fn csv_quotes_when_needed() {
+        let mut t = Table::new("t", ["name", "value"]);
+        t.row(s(&["a, b", "1"]));
+        t.row(s(&["say \"hi\"", "2"]));
+        t.row(s(&["plain"]));
+        assert_eq!(
+            t.to_csv(),
+            "name,value\n\"a, b\",1\n\"say \"\"hi\"\"\",2\nplain,\n"
+        );
+    }
+
+    #[test]
+    fn fmt_f64_has_no_negative_zero() {
+        assert_eq!(fmt_f64(-0.0001, 3), "0.000");
+        assert_eq!(fmt_f64(-0.0, 2), "0.00");
+        assert_eq!(fmt_f64(-0.4, 0), "0");
+        assert_eq!(fmt_f64(-0.0006, 3), "-0.001");
+        assert_eq!(fmt_f64(1.23456, 2), "1.23");
+        assert_eq!(fmt_f64(-12.5, 1), "-12.5");
+        assert_eq!(fmt_f64(f64::NAN, 2), "NaN");
+        assert_eq!(fmt_f64(f64::INFINITY, 2), "inf");
+        assert_eq!(fmt_f64(f64::NEG_INFINITY, 2), "-inf");
+    }
+}
