@@ -1,0 +1,226 @@
+//! Command-line parsing, by hand: four commands and five flags.
+
+use std::path::PathBuf;
+
+/// Seed used when `--seed` is not given.
+pub const DEFAULT_SEED: u64 = 2025;
+
+/// What the command line asks for.
+#[derive(Debug, PartialEq, Eq)]
+pub enum Command {
+    /// No arguments: commands and the table of experiments.
+    Overview,
+    /// `list`: ids one per line.
+    List,
+    /// `help` (no id: usage) or `help <id>`.
+    Help(Option<String>),
+    /// `run <id>... [flags]`.
+    Run(RunArgs),
+}
+
+/// Arguments of `run`.
+#[derive(Debug, PartialEq, Eq)]
+pub struct RunArgs {
+    /// Experiment ids as given (`all` included).
+    pub ids: Vec<String>,
+    /// `--seed`, default [`DEFAULT_SEED`].
+    pub seed: u64,
+    /// `--threads`, at least 1; `None`: available parallelism.
+    pub threads: Option<usize>,
+    /// `--out`; `None`: `<workspace>/results`.
+    pub out: Option<PathBuf>,
+    /// `--config`.
+    pub config: Option<PathBuf>,
+    /// `--set key=value`, in order.
+    pub sets: Vec<(String, String)>,
+}
+
+/// A command line that cannot be parsed: exit status 2.
+#[derive(Debug, PartialEq, Eq)]
+pub enum ArgError {
+    /// Wrong shape (unknown command or flag, missing value): print usage too.
+    Usage(String),
+    /// Right shape, bad value.
+    Value(String),
+}
+
+/// Parses the arguments after the program name.
+pub fn parse(args: &[String]) -> Result<Command, ArgError> {
+    let Some((cmd, rest)) = args.split_first() else {
+        return Ok(Command::Overview);
+    };
+    match cmd.as_str() {
+        "list" => {
+            no_more(cmd, rest)?;
+            Ok(Command::List)
+        }
+        "help" | "--help" | "-h" => match rest {
+            [] => Ok(Command::Help(None)),
+            [id] => Ok(Command::Help(Some(id.clone()))),
+            _ => Err(ArgError::Usage(
+                "help takes at most one experiment id".into(),
+            )),
+        },
+        "run" => parse_run(rest).map(Command::Run),
+        other => Err(ArgError::Usage(format!("unknown command `{other}`"))),
+    }
+}
+
+fn no_more(cmd: &str, rest: &[String]) -> Result<(), ArgError> {
+    match rest.first() {
+        None => Ok(()),
+        Some(extra) => Err(ArgError::Usage(format!(
+            "`{cmd}` takes no arguments (got `{extra}`)"
+        ))),
+    }
+}
+
+fn parse_run(args: &[String]) -> Result<RunArgs, ArgError> {
+    let mut run = RunArgs {
+        ids: Vec::new(),
+        seed: DEFAULT_SEED,
+        threads: None,
+        out: None,
+        config: None,
+        sets: Vec::new(),
+    };
+    let mut it = args.iter();
+    while let Some(arg) = it.next() {
+        if !arg.starts_with('-') {
+            run.ids.push(arg.clone());
+            continue;
+        }
+        let (flag, inline) = match arg.split_once('=') {
+            Some((f, v)) if f.starts_with("--") => (f, Some(v.to_owned())),
+            _ => (arg.as_str(), None),
+        };
+        if !matches!(
+            flag,
+            "--seed" | "--threads" | "--out" | "--config" | "--set"
+        ) {
+            return Err(ArgError::Usage(format!("unknown flag `{arg}`")));
+        }
+        let value = match inline {
+            Some(v) => v,
+            None => match it.next() {
+                Some(v) if !v.starts_with("--") => v.clone(),
+                _ => return Err(ArgError::Usage(format!("{flag} needs a value"))),
+            },
+        };
+        match flag {
+            "--seed" => {
+                run.seed = value.trim().parse().map_err(|_| {
+                    ArgError::Value(format!(
+                        "--seed: must be an integer from 0 to {} (got `{value}`)",
+                        u64::MAX
+                    ))
+                })?;
+            }
+            "--threads" => {
+                let n: usize = value.trim().parse().map_err(|_| {
+                    ArgError::Value(format!(
+                        "--threads: must be a positive integer (got `{value}`)"
+                    ))
+                })?;
+                if n == 0 {
+                    return Err(ArgError::Value(
+                        "--threads: must be at least 1 (got `0`)".into(),
+                    ));
+                }
+                run.threads = Some(n);
+            }
+            "--out" => {
+                if value.is_empty() {
+                    return Err(ArgError::Value("--out: must not be empty".into()));
+                }
+                run.out = Some(PathBuf::from(value));
+            }
+            "--config" => {
+                if value.is_empty() {
+                    return Err(ArgError::Value("--config: must not be empty".into()));
+                }
+                run.config = Some(PathBuf::from(value));
+            }
+            _ => {
+                let Some((key, val)) = value.split_once('=').filter(|(k, _)| !k.trim().is_empty())
+                else {
+                    return Err(ArgError::Usage(format!(
+                        "--set takes KEY=VALUE (got `{value}`)"
+                    )));
+                };
+                run.sets.push((key.trim().to_owned(), val.to_owned()));
+            }
+        }
+    }
+    if run.ids.is_empty() {
+        return Err(ArgError::Usage(
+            "run needs at least one experiment id (or `all`)".into(),
+        ));
+    }
+    Ok(run)
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
+mod tests {
+    use super::*;
+
+    fn p(s: &str) -> Result<Command, ArgError> {
+        let args: Vec<String> = s.split_whitespace().map(str::to_owned).collect();
+        parse(&args)
+    }
+
+    fn run(s: &str) -> RunArgs {
+        match p(s).unwrap() {
+            Command::Run(r) => r,
+            other => panic!("not a run: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn commands() {
+        assert_eq!(p("").unwrap(), Command::Overview);
+        assert_eq!(p("list").unwrap(), Command::List);
+        assert_eq!(p("help").unwrap(), Command::Help(None));
+        assert_eq!(p("help fig2").unwrap(), Command::Help(Some("fig2".into())));
+        assert!(matches!(p("frobnicate"), Err(ArgError::Usage(_))));
+        assert!(matches!(p("list extra"), Err(ArgError::Usage(_))));
+        assert!(matches!(p("run"), Err(ArgError::Usage(_))));
+    }
+
+    #[test]
+    fn run_defaults_and_flags() {
+        let r = run("run fig2");
+        assert_eq!(r.ids, ["fig2"]);
+        assert_eq!(r.seed, DEFAULT_SEED);
+        assert_eq!(r.threads, None);
+        assert_eq!(r.out, None);
+
+        let r = run(
+            "run fig2 --seed 7 fig3 --threads=3 --out /tmp/x --config m.ron --set a=1 --set=b=x=y",
+        );
+        assert_eq!(r.ids, ["fig2", "fig3"]);
+        assert_eq!(r.seed, 7);
+        assert_eq!(r.threads, Some(3));
+        assert_eq!(r.out, Some(PathBuf::from("/tmp/x")));
+        assert_eq!(r.config, Some(PathBuf::from("m.ron")));
+        assert_eq!(
+            r.sets,
+            [("a".into(), "1".into()), ("b".into(), "x=y".into())]
+        );
+        assert_eq!(run("run x --set k=-1").sets, [("k".into(), "-1".into())]);
+    }
+
+    #[test]
+    fn run_refuses_bad_flags() {
+        assert!(matches!(p("run x --threads 0"), Err(ArgError::Value(_))));
+        assert!(matches!(p("run x --threads -1"), Err(ArgError::Value(_))));
+        assert!(matches!(p("run x --seed abc"), Err(ArgError::Value(_))));
+        assert!(matches!(p("run x --seed"), Err(ArgError::Usage(_))));
+        assert!(matches!(p("run x --out --seed 1"), Err(ArgError::Usage(_))));
+        assert!(matches!(p("run x --bogus"), Err(ArgError::Usage(_))));
+        assert!(matches!(p("run x -v"), Err(ArgError::Usage(_))));
+        assert!(matches!(p("run x --set novalue"), Err(ArgError::Usage(_))));
+        assert!(matches!(p("run x --set =1"), Err(ArgError::Usage(_))));
+    }
+}

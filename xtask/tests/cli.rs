@@ -1,0 +1,200 @@
+//! Runs the built `xtask` binary as a user would. These tests work whatever experiments are
+//! registered, none included, and never run one.
+
+#![allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn xtask(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_xtask"))
+        .args(args)
+        .env_remove("RUST_LOG")
+        .output()
+        .unwrap()
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// A path under the system temp dir that does not exist yet (removed on drop).
+struct Scratch(PathBuf);
+
+impl Scratch {
+    fn new(tag: &str) -> Self {
+        let nanos = std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .unwrap()
+            .as_nanos();
+        Scratch(
+            std::env::temp_dir().join(format!("xtask-cli-{tag}-{}-{nanos}", std::process::id())),
+        )
+    }
+    fn out(&self) -> &str {
+        self.0.to_str().unwrap()
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+fn ids() -> Vec<String> {
+    let o = xtask(&["list"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    stdout(&o).lines().map(str::to_owned).collect()
+}
+
+/// An id to run, or `all` when none is registered.
+fn some_id() -> String {
+    ids().into_iter().next().unwrap_or_else(|| "all".into())
+}
+
+#[test]
+fn no_args_lists_commands_and_experiments() {
+    let o = xtask(&[]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    for word in ["run", "list", "help", "--seed", "2025", "Experiments"] {
+        assert!(text.contains(word), "missing {word:?} in:\n{text}");
+    }
+    for id in ids() {
+        assert!(
+            text.contains(&format!("| {id} ")),
+            "missing {id} in:\n{text}"
+        );
+    }
+}
+
+#[test]
+fn list_prints_sorted_ids() {
+    let ids = ids();
+    let mut sorted = ids.clone();
+    sorted.sort();
+    assert_eq!(ids, sorted);
+    assert!(ids.iter().all(|id| !id.is_empty() && !id.contains(' ')));
+}
+
+#[test]
+fn help_describes_each_experiment() {
+    for id in ids() {
+        let o = xtask(&["help", &id]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let text = stdout(&o);
+        assert!(text.starts_with(&format!("{id}: ")), "{text}");
+        assert!(text.contains("Paper item:"), "{text}");
+        assert!(text.contains("Config file"), "{text}");
+    }
+    let o = xtask(&["help", "no-such-experiment"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("unknown experiment `no-such-experiment`"));
+}
+
+#[test]
+fn unknown_id_exits_2_and_writes_nothing() {
+    let scratch = Scratch::new("unknown");
+    let o = xtask(&["run", "no-such-experiment", "--out", scratch.out()]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let err = stderr(&o);
+    assert!(
+        err.contains("unknown experiment `no-such-experiment`"),
+        "{err}"
+    );
+    for id in ids() {
+        assert!(err.contains(&id), "list of known ids missing {id}: {err}");
+    }
+    assert!(stdout(&o).is_empty());
+    assert!(!scratch.0.exists(), "results directory was created");
+}
+
+#[test]
+fn unknown_param_exits_2_and_writes_nothing() {
+    let scratch = Scratch::new("set");
+    let id = some_id();
+    let o = xtask(&["run", &id, "--set", "nonsense=1", "--out", scratch.out()]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("nonsense"), "{}", stderr(&o));
+    assert!(!scratch.0.exists(), "results directory was created");
+}
+
+#[test]
+fn zero_threads_exits_2() {
+    let scratch = Scratch::new("threads");
+    let o = xtask(&["run", "all", "--threads", "0", "--out", scratch.out()]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--threads"));
+    assert!(!scratch.0.exists());
+}
+
+#[test]
+fn bad_command_lines_exit_2_with_usage() {
+    for args in [
+        &["frobnicate"][..],
+        &["run"],
+        &["run", "all", "--bogus"],
+        &["run", "all", "--seed"],
+        &["run", "all", "--set", "novalue"],
+        &["list", "extra"],
+    ] {
+        let o = xtask(args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains("Usage:"), "{args:?}: {}", stderr(&o));
+    }
+    let o = xtask(&["run", "all", "--seed", "minus-one"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("--seed"));
+}
+
+#[test]
+fn unreadable_config_exits_2_naming_the_file() {
+    let scratch = Scratch::new("config");
+    let missing = scratch.0.join("missing.ron");
+    let id = some_id();
+    let o = xtask(&[
+        "run",
+        &id,
+        "--config",
+        missing.to_str().unwrap(),
+        "--out",
+        scratch.out(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("missing.ron"), "{}", stderr(&o));
+    assert!(!scratch.0.exists());
+}
+
+#[test]
+fn config_for_an_experiment_without_one_exits_2() {
+    let scratch = Scratch::new("noconfig");
+    std::fs::create_dir_all(&scratch.0).unwrap();
+    let file = scratch.0.join("c.ron");
+    std::fs::write(&file, "()").unwrap();
+    let out = scratch.0.join("results");
+    let ids = ids();
+    // An experiment that takes no config, or `all` with none registered (nothing takes it).
+    let target = if ids.is_empty() {
+        Some("all".to_owned())
+    } else {
+        ids.into_iter()
+            .find(|id| stdout(&xtask(&["help", id])).contains("takes no --config"))
+    };
+    let Some(id) = target else { return };
+    let o = xtask(&[
+        "run",
+        &id,
+        "--config",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--config"), "{}", stderr(&o));
+    assert!(!out.exists());
+}
