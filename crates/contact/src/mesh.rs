@@ -195,10 +195,6 @@ impl Mesh {
         self.driver.teeth_between(-phi - self.driver.window, -phi + self.driver.window)
     }
 
-    /// Driven teeth whose obstacles can lie in the driven-angle range `[lo, hi]`.
-    pub(crate) fn driven_teeth(&self, lo: f64, hi: f64) -> std::ops::RangeInclusive<i64> {
-        self.driven.teeth_between(lo - self.driven.window, hi + self.driven.window)
-    }
 
     /// The exact obstacle of driver tooth `j` against driven tooth `k` at driver angle φ, or
     /// `None` if no driven angle brings them into contact.
@@ -246,8 +242,17 @@ impl Mesh {
     /// All tooth-pair obstacles at driver angle φ that can reach driven angles in `[lo, hi]`.
     pub fn obstacles(&self, phi: f64, lo: f64, hi: f64, out: &mut Vec<Obstacle>) {
         out.clear();
+        let c2 = self.c2();
+        // Angular half-width, in driven angle, of a driver tooth seen from the driven centre plus
+        // a whole driven tooth: beyond it tooth k cannot touch tooth j.
+        let seen = self.driver.max_gap * self.driver.reach / (self.centre_distance - self.driver.reach).max(1e-9);
+        let margin = self.driven.max_gap + seen;
         for j in self.driver_teeth(phi) {
-            for k in self.driven_teeth(lo, hi) {
+            let tip = self.driver_world(self.driver.tips[self.driver.idx(j)], phi) - c2;
+            // Driven tip k points at this driver tip when θ = t_k + gamma.
+            let gamma = PI - tip.y.atan2(tip.x);
+            let gamma = wrap_pi(gamma);
+            for k in self.driven.teeth_between(lo - gamma - margin, hi - gamma + margin) {
                 if let Some(o) = self.obstacle(phi, j, k) {
                     if o.hi >= lo && o.lo <= hi {
                         out.push(o);

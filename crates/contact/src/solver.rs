@@ -163,14 +163,23 @@ enum Side {
     Ahead,
 }
 
+/// A tooth pair whose obstacle is near θ.
+#[derive(Debug, Clone, Copy)]
+struct Tracked {
+    pair: (i64, i64),
+    side: Side,
+    /// Upper end of the obstacle at the current driver angle.
+    hi: f64,
+}
+
 /// Working state of one run.
 struct Run<'m> {
     mesh: &'m Mesh,
     phi: f64,
     theta: f64,
     held: bool,
-    /// Known tooth pairs and their side of θ.
-    sides: Vec<((i64, i64), Side)>,
+    /// Known tooth pairs, their side of θ and their upper end at the current φ.
+    sides: Vec<Tracked>,
     segments: Vec<Segment>,
     events: Vec<Event>,
     scratch: Vec<Obstacle>,
@@ -213,8 +222,10 @@ impl Mesh {
     }
 
     /// The nearest driven angle ≥ θ that overlaps no driver tooth at φ, or None if the obstacles
-    /// close up over more than a turn of the driven gear.
-    pub fn next_free(&self, phi: f64, theta: f64) -> Option<f64> {
+    /// close up over more than a turn of the driven gear. An obstacle that only touches θ from
+    /// behind does not move it; one that touches it from ahead does when `through` is set (the
+    /// release after a jam: the driven gear is let go to the next position where it is free).
+    pub fn next_free(&self, phi: f64, theta: f64, through: bool) -> Option<f64> {
         let gap = self.driven.max_gap;
         let mut obs = Vec::new();
         let mut reach = 3.0 * gap;
@@ -223,10 +234,9 @@ impl Mesh {
             obs.sort_by(|a, b| a.lo.total_cmp(&b.lo));
             let mut top = theta;
             for o in &obs {
-                if o.lo < top - SIDE_TOL && o.hi > top {
-                    top = o.hi;
-                } else if o.lo <= top + SIDE_TOL && o.hi > top && top > theta {
-                    // Touching obstacles chain only once we are already being carried forward.
+                let carried = through || top > theta;
+                let reaches = if carried { o.lo <= top + SIDE_TOL } else { o.lo < top - SIDE_TOL };
+                if reaches && o.hi > top {
                     top = o.hi;
                 }
             }
@@ -248,7 +258,7 @@ impl Run<'_> {
             Start::Touching(t) => (t, true),
         };
         let phi = self.phi;
-        self.theta = match self.mesh.next_free(phi, guess) {
+        self.theta = match self.mesh.next_free(phi, guess, false) {
             Some(t) if t > guess => t,
             Some(_) if touching => {
                 // Free: turn back until a driver tooth is met (highest upper end below the guess).
@@ -268,16 +278,16 @@ impl Run<'_> {
     /// Re-derive every nearby obstacle's side from scratch, relative to the current θ.
     fn classify_all(&mut self, phi: f64) {
         let gap = self.mesh.driven.max_gap;
-        self.mesh.obstacles(phi, self.theta - 2.0 * gap, self.theta + 2.0 * gap, &mut self.scratch);
+        self.mesh.obstacles(phi, self.theta - gap, self.theta + gap, &mut self.scratch);
         self.sides.clear();
         for o in &self.scratch {
             let side = if o.hi <= self.theta + SIDE_TOL { Side::Behind } else { Side::Ahead };
-            self.sides.push(((o.driver_tooth, o.driven_tooth), side));
+            self.sides.push(Tracked { pair: (o.driver_tooth, o.driven_tooth), side, hi: o.hi });
         }
     }
 
     fn side_of(&self, pair: (i64, i64)) -> Option<Side> {
-        self.sides.iter().find(|(p, _)| *p == pair).map(|&(_, s)| s)
+        self.sides.iter().find(|t| t.pair == pair).map(|t| t.side)
     }
 
     fn push_segment(&mut self, phi_end: f64, theta_end: f64, motion: Motion) {
@@ -307,7 +317,7 @@ impl Run<'_> {
         let phi0 = self.phi;
         let theta0 = self.theta;
         if self.held {
-            match mesh.next_free(phi1, theta0) {
+            match mesh.next_free(phi1, theta0, false) {
                 Some(t) => {
                     self.rest_to(phi1);
                     self.held = false;
@@ -319,39 +329,55 @@ impl Run<'_> {
             return;
         }
 
-        // Obstacles at the end of the step, sided.
+        // Obstacles at the end of the step, with their values there cached.
         let gap = mesh.driven.max_gap;
-        mesh.obstacles(phi1, theta0 - 2.0 * gap, theta0 + 2.0 * gap, &mut self.scratch);
-        let obs = std::mem::take(&mut self.scratch);
-        let mut behind: Vec<(i64, i64)> = Vec::new();
+        mesh.obstacles(phi1, theta0 - gap, theta0 + gap, &mut self.scratch);
+        let obs1 = std::mem::take(&mut self.scratch);
+        let at1 = |pair: (i64, i64)| obs1.iter().find(|o| (o.driver_tooth, o.driven_tooth) == pair);
+        let hi = |p: f64, pair: (i64, i64)| -> f64 {
+            if p == phi1 { at1(pair).map_or(f64::NEG_INFINITY, |o| o.hi) } else { mesh.hi(p, pair) }
+        };
+        let lo = |p: f64, pair: (i64, i64)| -> f64 {
+            if p == phi1 { at1(pair).map_or(f64::INFINITY, |o| o.lo) } else { mesh.lo(p, pair) }
+        };
+
+        // Pushing pairs at the start: those whose upper end is at θ.
+        let pushers: Vec<(i64, i64)> = self
+            .sides
+            .iter()
+            .filter(|t| t.side == Side::Behind && (t.hi - theta0).abs() <= SIDE_TOL)
+            .map(|t| t.pair)
+            .collect();
+
+        let mut behind: Vec<(i64, i64)> = pushers.clone();
         let mut ahead: Vec<(i64, i64)> = Vec::new();
         let mut unsure: Vec<Obstacle> = Vec::new();
-        for o in &obs {
+        for o in &obs1 {
             let pair = (o.driver_tooth, o.driven_tooth);
             match self.side_of(pair) {
-                Some(Side::Behind) => behind.push(pair),
+                Some(Side::Behind) => {
+                    if !behind.contains(&pair) {
+                        behind.push(pair);
+                    }
+                }
                 Some(Side::Ahead) => ahead.push(pair),
                 None if o.hi <= theta0 + SIDE_TOL => behind.push(pair),
                 None => unsure.push(*o),
-            }
-        }
-        // Pairs behind at the start that vanished during the step may still have pushed.
-        for &(pair, side) in &self.sides {
-            if side == Side::Behind && !behind.contains(&pair) {
-                behind.push(pair);
             }
         }
         // A new obstacle not clearly behind: ahead if it lies above where the driven gear can get
         // to in this step, otherwise decide at the angle where it first appeared.
         for o in unsure {
             let pair = (o.driver_tooth, o.driven_tooth);
-            let reach = behind.iter().map(|&p| mesh.hi(phi1, p)).fold(theta0, f64::max);
+            let reach = behind.iter().map(|&p| hi(phi1, p)).fold(theta0, f64::max);
             let side = if o.lo >= reach - SIDE_TOL {
                 Side::Ahead
             } else {
-                let phi_a = bisect(phi0, phi1, |p| mesh.obstacle(p, pair.0, pair.1).is_some());
+                // Last angle without the obstacle; it exists just after.
+                let before = bisect(phi0, phi1, |p| mesh.obstacle(p, pair.0, pair.1).is_none());
+                let phi_a = (before + 4.0 * LOCATE_TOL).min(phi1);
                 let at = mesh.obstacle(phi_a, pair.0, pair.1).map_or(o.lo, |a| 0.5 * (a.lo + a.hi));
-                let theta_a = self.provisional_theta(&behind, phi0, theta0, phi_a);
+                let theta_a = behind.iter().map(|&b| mesh.hi(phi_a, b)).fold(theta0, f64::max);
                 if at <= theta_a + SIDE_TOL { Side::Behind } else { Side::Ahead }
             };
             match side {
@@ -359,31 +385,27 @@ impl Run<'_> {
                 Side::Ahead => ahead.push(pair),
             }
         }
-
-        // Pushing pairs at the start: those whose upper end is at θ.
-        let pushers: Vec<(i64, i64)> = behind
-            .iter()
-            .copied()
-            .filter(|&p| (mesh.hi(phi0, p) - theta0).abs() <= SIDE_TOL * (1.0 + theta0.abs()))
-            .collect();
-        let envelope = |p: f64| behind.iter().map(|&b| mesh.hi(p, b)).fold(f64::NEG_INFINITY, f64::max);
+        let all_behind = behind.clone();
+        // Only obstacles that can reach θ within this step matter to the motion.
+        behind.retain(|&p| pushers.contains(&p) || hi(phi1, p) >= theta0 - 0.25 * gap);
+        let envelope = |p: f64| behind.iter().map(|&b| hi(p, b)).fold(f64::NEG_INFINITY, f64::max);
 
         // Plan the step without the obstacles ahead: (phi_end, theta_end, motion, event).
         let mut plan: Vec<(f64, f64, Motion, Option<Event>)> = Vec::new();
         if !pushers.is_empty() {
             // Is the push continuous through the step? The pushers' envelope must not peak.
-            let push_env = |p: f64| pushers.iter().map(|&b| mesh.hi(p, b)).fold(f64::NEG_INFINITY, f64::max);
+            let push_env = |p: f64| pushers.iter().map(|&b| hi(p, b)).fold(f64::NEG_INFINITY, f64::max);
             let e1 = envelope(phi1);
-            let handed_over = |p: f64| envelope(p) > push_env(p) + SIDE_TOL;
-            if push_env(phi1) >= theta0 && !handed_over(phi1) {
-                plan.push((phi1, push_env(phi1), Motion::Push(pushers.clone()), None));
+            let p1 = push_env(phi1);
+            if p1 >= theta0 && e1 <= p1 + SIDE_TOL {
+                plan.push((phi1, p1, Motion::Push(pushers.clone()), None));
             } else {
                 // Where do the pushers stop rising (peak or vanish)?
                 let phi_pk = golden_max(phi0, phi1, &push_env);
                 let theta_pk = push_env(phi_pk).max(theta0);
                 // Did another behind obstacle take over before that?
                 let others: Vec<(i64, i64)> = behind.iter().copied().filter(|p| !pushers.contains(p)).collect();
-                let other_env = |p: f64| others.iter().map(|&b| mesh.hi(p, b)).fold(f64::NEG_INFINITY, f64::max);
+                let other_env = |p: f64| others.iter().map(|&b| hi(p, b)).fold(f64::NEG_INFINITY, f64::max);
                 if other_env(phi_pk) >= theta_pk - SIDE_TOL {
                     // Continuous handoff: one Push segment over the whole step with every behind pair.
                     plan.push((phi1, e1.max(theta0), Motion::Push(behind.clone()), None));
@@ -401,39 +423,41 @@ impl Run<'_> {
                         driven_tooth: lost.1,
                         theta_after: theta_pk,
                     })));
-                    self.rest_then_maybe_push(&mut plan, &others, phi_pk, theta_pk, phi1);
+                    rest_then_maybe_push(&mut plan, &others, &hi, phi_pk, theta_pk, phi1);
                 }
             }
         } else {
-            self.rest_then_maybe_push(&mut plan, &behind, phi0, theta0, phi1);
+            rest_then_maybe_push(&mut plan, &behind, &hi, phi0, theta0, phi1);
         }
 
         // Jam check against the obstacles ahead, along the planned path.
         let theta_on_plan = |p: f64| -> f64 {
-            let mut from = (phi0, theta0);
+            let mut from = theta0;
             for (end, th, motion, _) in &plan {
                 if p <= *end {
                     return match motion {
-                        Motion::Push(pairs) => pairs.iter().map(|&b| mesh.hi(p, b)).fold(from.1, f64::max).min(*th),
-                        _ => from.1,
+                        Motion::Push(pairs) => pairs.iter().map(|&b| hi(p, b)).fold(from, f64::max).min(*th),
+                        _ => from,
                     };
                 }
-                from = (*end, *th);
+                from = *th;
             }
-            from.1
+            from
         };
-        let front = |p: f64| ahead.iter().map(|&a| mesh.lo(p, a)).fold(f64::INFINITY, f64::min);
+        let theta1 = theta_on_plan(phi1);
+        ahead.retain(|&a| lo(phi1, a) <= theta1 + 0.5 * gap);
+        let front = |p: f64| ahead.iter().map(|&a| lo(p, a)).fold(f64::INFINITY, f64::min);
         let clear_at = |p: f64| front(p) >= theta_on_plan(p) - SIDE_TOL;
-        let jam_at = if ahead.is_empty() || clear_at(phi1) && clear_at(0.5 * (phi0 + phi1)) {
+        let mid = 0.5 * (phi0 + phi1);
+        let jam_at = if ahead.is_empty() || clear_at(phi1) && clear_at(mid) {
             None
         } else if !clear_at(phi0) {
             Some(phi0)
         } else {
-            let end = if clear_at(phi1) { 0.5 * (phi0 + phi1) } else { phi1 };
-            Some(bisect(phi0, end, |p| clear_at(p)))
+            let end = if clear_at(mid) { phi1 } else { mid };
+            Some(bisect(phi0, end, clear_at))
         };
 
-        self.scratch = obs;
         match jam_at {
             None => {
                 for (end, th, motion, event) in plan {
@@ -442,7 +466,13 @@ impl Run<'_> {
                         self.events.push(e);
                     }
                 }
-                self.reside(&behind, &ahead);
+                // Sides for the next step, from the cached values at φ1.
+                self.sides.clear();
+                for o in &obs1 {
+                    let pair = (o.driver_tooth, o.driven_tooth);
+                    let side = if all_behind.contains(&pair) || o.hi <= theta1 + SIDE_TOL { Side::Behind } else { Side::Ahead };
+                    self.sides.push(Tracked { pair, side, hi: o.hi });
+                }
             }
             Some(phi_j) => {
                 let th_j = theta_on_plan(phi_j);
@@ -463,7 +493,7 @@ impl Run<'_> {
                     .copied()
                     .min_by(|&a, &b| mesh.lo(phi_j, a).total_cmp(&mesh.lo(phi_j, b)))
                     .unwrap_or((0, 0));
-                let release = mesh.next_free(phi_j, theta_j);
+                let release = mesh.next_free(phi_j, theta_j, true);
                 self.held = release.is_none();
                 let after = release.unwrap_or(theta_j);
                 self.events.push(Event {
@@ -478,49 +508,26 @@ impl Run<'_> {
                 self.classify_all(phi_j);
             }
         }
+        self.scratch = obs1;
     }
+}
 
-    /// Plan a rest at θ from `phi_a`, re-engaging if an obstacle behind rises to θ before `phi1`.
-    fn rest_then_maybe_push(
-        &self,
-        plan: &mut Vec<(f64, f64, Motion, Option<Event>)>,
-        behind: &[(i64, i64)],
-        phi_a: f64,
-        theta: f64,
-        phi1: f64,
-    ) {
-        let mesh = self.mesh;
-        let env = |p: f64| behind.iter().map(|&b| mesh.hi(p, b)).fold(f64::NEG_INFINITY, f64::max);
-        if env(phi1) > theta + SIDE_TOL {
-            let phi_r = bisect(phi_a, phi1, |p| env(p) < theta);
-            plan.push((phi_r, theta, Motion::Rest, None));
-            plan.push((phi1, env(phi1), Motion::Push(behind.to_vec()), None));
-        } else {
-            plan.push((phi1, theta, Motion::Rest, None));
-        }
-    }
-
-    /// θ at `phi` along the push of `behind` from (phi0, theta0), ignoring events.
-    fn provisional_theta(&self, behind: &[(i64, i64)], _phi0: f64, theta0: f64, phi: f64) -> f64 {
-        behind.iter().map(|&b| self.mesh.hi(phi, b)).fold(theta0, f64::max)
-    }
-
-    /// Record the sides for the next step: everything at or below θ is behind.
-    fn reside(&mut self, behind: &[(i64, i64)], ahead: &[(i64, i64)]) {
-        let phi = self.phi;
-        let theta = self.theta;
-        self.sides.clear();
-        for &p in behind {
-            if self.mesh.obstacle(phi, p.0, p.1).is_some() {
-                self.sides.push((p, Side::Behind));
-            }
-        }
-        for &p in ahead {
-            if let Some(o) = self.mesh.obstacle(phi, p.0, p.1) {
-                let side = if o.hi <= theta + SIDE_TOL { Side::Behind } else { Side::Ahead };
-                self.sides.push((p, side));
-            }
-        }
+/// Plan a rest at θ from `phi_a`, re-engaging if an obstacle behind rises to θ before `phi1`.
+fn rest_then_maybe_push(
+    plan: &mut Vec<(f64, f64, Motion, Option<Event>)>,
+    behind: &[(i64, i64)],
+    hi: &impl Fn(f64, (i64, i64)) -> f64,
+    phi_a: f64,
+    theta: f64,
+    phi1: f64,
+) {
+    let env = |p: f64| behind.iter().map(|&b| hi(p, b)).fold(f64::NEG_INFINITY, f64::max);
+    if env(phi1) > theta + SIDE_TOL {
+        let phi_r = bisect(phi_a, phi1, |p| env(p) < theta);
+        plan.push((phi_r, theta, Motion::Rest, None));
+        plan.push((phi1, env(phi1), Motion::Push(behind.to_vec()), None));
+    } else {
+        plan.push((phi1, theta, Motion::Rest, None));
     }
 }
 
