@@ -1,4 +1,12 @@
-//! Experiments (placeholder).
+//! The paper's tables and figures as experiments, one file each, registered with `inventory`.
+
+pub mod common;
+pub mod paper;
+
+mod clearance;
+mod fig2;
+mod fig3;
+mod pair;
 
 /// Does nothing; calling it makes a binary link this crate, and with it every experiment it registers.
 pub fn link() {}

@@ -1,0 +1,128 @@
+//! Small helpers shared by experiments: units, radii, Theoretical-Difference statistics, plots.
+
+use plotters::prelude::*;
+use registry::{RunError, fmt_f64};
+
+/// Radians to degrees.
+pub fn deg(x: f64) -> f64 {
+    x.to_degrees()
+}
+
+/// Tip radii for a mesh of `n1`:`n2` teeth with measured radii `a`, `b`: the pair closest to the
+/// measurements in least squares with R1/R2 = N1/N2 exactly (the paper keeps the ratio exact).
+pub fn fit_radii(n1: usize, n2: usize, a: f64, b: f64) -> (f64, f64) {
+    let k = n1 as f64 / n2 as f64;
+    let r2 = (k * a + b) / (k * k + 1.0);
+    (k * r2, r2)
+}
+
+/// The paper's pointer statistics of a Theoretical Difference series: standard deviation σ,
+/// largest absolute deviation Dm and mean P (all in the series' unit).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TdStats {
+    /// Standard deviation σ.
+    pub sigma: f64,
+    /// Largest absolute value Dm.
+    pub dm: f64,
+    /// Mean P.
+    pub mean: f64,
+}
+
+/// σ, Dm and P of `td`.
+pub fn td_stats(td: &[f64]) -> TdStats {
+    let n = td.len().max(1) as f64;
+    let mean = td.iter().sum::<f64>() / n;
+    let var = td.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / n;
+    let dm = td.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    TdStats { sigma: var.sqrt(), dm, mean }
+}
+
+/// A value with the paper's beside it (or "-" when the paper gives none).
+pub fn paper_cell(id: &str, quantity: &str, decimals: usize) -> String {
+    crate::paper::get(id, quantity).map_or_else(|| "-".to_string(), |r| fmt_f64(r.value, decimals))
+}
+
+/// One line of a plot.
+pub struct Series<'a> {
+    /// Legend text.
+    pub label: &'a str,
+    /// Points (x, y).
+    pub points: Vec<(f64, f64)>,
+}
+
+/// A line plot as SVG text: title naming the paper item, labelled axes with units, a legend.
+pub fn line_plot(title: &str, x_label: &str, y_label: &str, series: &[Series<'_>]) -> Result<String, RunError> {
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+    for p in series.iter().flat_map(|s| &s.points) {
+        x0 = x0.min(p.0);
+        x1 = x1.max(p.0);
+        y0 = y0.min(p.1);
+        y1 = y1.max(p.1);
+    }
+    if !(x0 < x1) {
+        x1 = x0 + 1.0;
+    }
+    let pad = ((y1 - y0) * 0.05).max(1e-9);
+    let (y0, y1) = (y0 - pad, y1 + pad);
+    let colours = [BLUE, RED, BLACK, GREEN, MAGENTA];
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (800, 480)).into_drawing_area();
+        let plot_err = |e: &dyn std::fmt::Display| RunError::Internal(format!("plot {title}: {e}"));
+        root.fill(&WHITE).map_err(|e| plot_err(&e))?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 18))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(70)
+            .build_cartesian_2d(x0..x1, y0..y1)
+            .map_err(|e| plot_err(&e))?;
+        chart.configure_mesh().x_desc(x_label).y_desc(y_label).draw().map_err(|e| plot_err(&e))?;
+        for (i, s) in series.iter().enumerate() {
+            let colour = colours[i % colours.len()];
+            chart
+                .draw_series(LineSeries::new(s.points.iter().copied(), colour.stroke_width(1)))
+                .map_err(|e| plot_err(&e))?
+                .label(s.label)
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour));
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .draw()
+            .map_err(|e| plot_err(&e))?;
+        root.present().map_err(|e| plot_err(&e))?;
+    }
+    Ok(svg)
+}
+
+/// CSV text from a header and rows of numbers printed with `decimals` decimals.
+pub fn csv(header: &[&str], rows: impl Iterator<Item = Vec<f64>>, decimals: usize) -> String {
+    let mut out = header.join(",");
+    out.push('\n');
+    for r in rows {
+        let cells: Vec<String> = r.iter().map(|x| format!("{x:.decimals$}")).collect();
+        out.push_str(&cells.join(","));
+        out.push('\n');
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fitted_radii_keep_the_ratio_and_stay_close() {
+        let (r1, r2) = fit_radii(64, 38, 15.30, 9.85);
+        assert!((r1 / r2 - 64.0 / 38.0).abs() < 1e-12);
+        assert!((r1 - 15.30).abs() < 0.2 && (r2 - 9.85).abs() < 0.6);
+    }
+
+    #[test]
+    fn td_stats_of_a_known_series() {
+        let s = td_stats(&[1.0, -1.0, 1.0, -1.0]);
+        assert!((s.sigma - 1.0).abs() < 1e-15 && s.mean.abs() < 1e-15 && (s.dm - 1.0).abs() < 1e-15);
+    }
+}
