@@ -10,13 +10,48 @@ use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, 
 use crate::common::{Series, csv, deg, fit_radii, line_plot, paper_cell, td_stats};
 
 const PARAMS: &[Param] = &[
-    Param { name: "driver_teeth", default: "64", unit: "", help: "N1 (default b2 of Freeth 2006)" },
-    Param { name: "driven_teeth", default: "38", unit: "", help: "N2 (default c1)" },
-    Param { name: "driver_radius", default: "15.30", unit: "mm", help: "measured radius of the driver (Freeth 2006, b2)" },
-    Param { name: "driven_radius", default: "9.85", unit: "mm", help: "measured radius of the driven gear (Freeth 2006, c1)" },
-    Param { name: "tooth_height", default: "1.1", unit: "mm", help: "h = R - r for both gears (Efstathiou et al. 2012)" },
-    Param { name: "grid_step", default: "5", unit: "% of h", help: "spacing of the printed sweep" },
-    Param { name: "samples", default: "3600", unit: "", help: "samples of the Theoretical Difference per run" },
+    Param {
+        name: "driver_teeth",
+        default: "64",
+        unit: "",
+        help: "N1 (default b2 of Freeth 2006)",
+    },
+    Param {
+        name: "driven_teeth",
+        default: "38",
+        unit: "",
+        help: "N2 (default c1)",
+    },
+    Param {
+        name: "driver_radius",
+        default: "15.30",
+        unit: "mm",
+        help: "measured radius of the driver (Freeth 2006, b2)",
+    },
+    Param {
+        name: "driven_radius",
+        default: "9.85",
+        unit: "mm",
+        help: "measured radius of the driven gear (Freeth 2006, c1)",
+    },
+    Param {
+        name: "tooth_height",
+        default: "1.1",
+        unit: "mm",
+        help: "h = R - r for both gears (Efstathiou et al. 2012)",
+    },
+    Param {
+        name: "grid_step",
+        default: "5",
+        unit: "% of h",
+        help: "spacing of the printed sweep",
+    },
+    Param {
+        name: "samples",
+        default: "3600",
+        unit: "",
+        help: "samples of the Theoretical Difference per run",
+    },
 ];
 
 registry::inventory::submit! {
@@ -45,7 +80,9 @@ impl Setup {
         let driver = Gear::ideal(self.n1, self.r1, self.r1 - self.h).map_err(bad)?;
         let driven = Gear::ideal(self.n2, self.r2, self.r2 - self.h).map_err(bad)?;
         let d = geometry::centre_distance(self.r1, self.r2, self.h, g);
-        let Ok(mesh) = Mesh::new(driver, driven, d) else { return Ok(None) };
+        let Ok(mesh) = Mesh::new(driver, driven, d) else {
+            return Ok(None);
+        };
         let turn = TAU * self.n1.max(self.n2) as f64 / self.n1 as f64;
         Ok(Some(mesh.run(0.0, turn, Start::Touching(0.0))))
     }
@@ -60,7 +97,11 @@ impl Setup {
 }
 
 /// The boundary in G between `yes_at` and `no_at` of a monotone predicate, to 1e-4 % of h.
-fn boundary(mut yes_at: f64, mut no_at: f64, pred: impl Fn(f64) -> Result<bool, RunError>) -> Result<f64, RunError> {
+fn boundary(
+    mut yes_at: f64,
+    mut no_at: f64,
+    pred: impl Fn(f64) -> Result<bool, RunError>,
+) -> Result<f64, RunError> {
     while (yes_at - no_at).abs() > 1e-4 {
         let m = 0.5 * (yes_at + no_at);
         if pred(m)? { yes_at = m } else { no_at = m }
@@ -74,15 +115,30 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     let h = ctx.f64("tooth_height")?;
     let grid_step = ctx.f64("grid_step")?;
     if !(grid_step >= 0.5 && grid_step <= 50.0) {
-        return Err(RunError::bad("--set", "grid_step", "must be between 0.5 and 50 (% of h)"));
+        return Err(RunError::bad(
+            "--set",
+            "grid_step",
+            "must be between 0.5 and 50 (% of h)",
+        ));
     }
     let samples = ctx.usize("samples")?.max(2);
     let (r1, r2) = fit_radii(n1, n2, a, b);
     let setup = Setup { n1, n2, r1, r2, h };
 
     let mut grid = Table::new(
-        format!("Clearance sweep: {n1}:{n2}, R1 = {} mm, R2 = {} mm, h = {h} mm, one turn of the larger gear", fmt_f64(r1, 4), fmt_f64(r2, 4)),
-        ["G [% of h]", "D [mm]", "jams", "disengagements", "TD sigma [deg]", "TD Dm [deg]"],
+        format!(
+            "Clearance sweep: {n1}:{n2}, R1 = {} mm, R2 = {} mm, h = {h} mm, one turn of the larger gear",
+            fmt_f64(r1, 4),
+            fmt_f64(r2, 4)
+        ),
+        [
+            "G [% of h]",
+            "D [mm]",
+            "jams",
+            "disengagements",
+            "TD sigma [deg]",
+            "TD Dm [deg]",
+        ],
     );
     let mut rows = Vec::new();
     let mut sigma_points = Vec::new();
@@ -96,7 +152,14 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         let d = geometry::centre_distance(r1, r2, h, g);
         match setup.run(g)? {
             None => {
-                grid.row(vec![fmt_f64(g, 2), fmt_f64(d, 4), "overlap at every tooth".into(), "-".into(), "-".into(), "-".into()]);
+                grid.row(vec![
+                    fmt_f64(g, 2),
+                    fmt_f64(d, 4),
+                    "overlap at every tooth".into(),
+                    "-".into(),
+                    "-".into(),
+                    "-".into(),
+                ]);
                 last_jam = Some(g);
                 rows.push(vec![g, d, f64::NAN, f64::NAN, f64::NAN, f64::NAN]);
             }
@@ -122,7 +185,14 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
                 } else if first_dis.is_none() {
                     last_engaged = Some(g);
                 }
-                grid.row(vec![fmt_f64(g, 2), fmt_f64(d, 4), j.to_string(), dis.to_string(), fmt_f64(s.sigma, 5), fmt_f64(s.dm, 5)]);
+                grid.row(vec![
+                    fmt_f64(g, 2),
+                    fmt_f64(d, 4),
+                    j.to_string(),
+                    dis.to_string(),
+                    fmt_f64(s.sigma, 5),
+                    fmt_f64(s.dm, 5),
+                ]);
                 rows.push(vec![g, d, j as f64, dis as f64, s.sigma, s.dm]);
                 if j == 0 && dis == 0 {
                     sigma_points.push((g, s.sigma));
@@ -131,7 +201,10 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         }
     }
 
-    let mut limits = Table::new("Clearance limits (bisection to 1e-4 % of h)", ["limit", "ours [% of h]", "paper [% of h]"]);
+    let mut limits = Table::new(
+        "Clearance limits (bisection to 1e-4 % of h)",
+        ["limit", "ours [% of h]", "paper [% of h]"],
+    );
     let jam_limit = match (last_jam, first_free) {
         (Some(y), Some(n)) if y < n => Some(boundary(y, n, |g| setup.jams(g))?),
         _ => None,
@@ -140,9 +213,18 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         (Some(y), Some(n)) if y > n => Some(boundary(y, n, |g| setup.disengages(g))?),
         _ => None,
     };
-    let show = |x: Option<f64>| x.map_or_else(|| "not found on the grid".to_string(), |v| fmt_f64(v, 4));
-    limits.row(vec!["smallest G running a full turn without a jam".into(), show(jam_limit), paper_cell("clearance", "jam_below", 0)]);
-    limits.row(vec!["largest G running a full turn without a disengagement".into(), show(dis_limit), paper_cell("clearance", "disengage_above", 0)]);
+    let show =
+        |x: Option<f64>| x.map_or_else(|| "not found on the grid".to_string(), |v| fmt_f64(v, 2));
+    limits.row(vec![
+        "smallest G running a full turn without a jam".into(),
+        show(jam_limit),
+        paper_cell("clearance", "jam_below", 0),
+    ]);
+    limits.row(vec![
+        "largest G running a full turn without a disengagement".into(),
+        show(dis_limit),
+        paper_cell("clearance", "disengage_above", 0),
+    ]);
     limits.note("Ours: exact push-model contact; the paper located its limits with an area-intersection program (Appendix II).");
     limits.note("Radii: least-squares fit to the measured radii keeping R1/R2 = N1/N2 exactly; r = R - h; D = R1 + R2 - h + G.");
 
@@ -150,11 +232,28 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         "Clearance sweep (Appendix II, Figure IV style): TD sigma of the driven gear",
         "clearance G [% of tooth height]",
         "standard deviation of the Theoretical Difference [deg]",
-        &[Series { label: "sigma (runs without events)", points: sigma_points }],
+        &[Series {
+            label: "sigma (runs without events)",
+            points: sigma_points,
+        }],
     )?;
-    let data = csv(&["g_percent", "centre_distance_mm", "jams", "disengagements", "td_sigma_deg", "td_dm_deg"], rows.into_iter(), 9);
+    let data = csv(
+        &[
+            "g_percent",
+            "centre_distance_mm",
+            "jams",
+            "disengagements",
+            "td_sigma_deg",
+            "td_dm_deg",
+        ],
+        rows.into_iter(),
+        9,
+    );
     Ok(Report {
         tables: vec![limits, grid],
-        files: vec![OutputFile::new("clearance.csv", data), OutputFile::new("clearance.svg", svg)],
+        files: vec![
+            OutputFile::new("clearance.csv", data),
+            OutputFile::new("clearance.svg", svg),
+        ],
     })
 }

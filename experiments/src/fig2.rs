@@ -10,11 +10,36 @@ use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, 
 use crate::common::{Series, csv, deg, line_plot, paper_cell, td_stats};
 
 const PARAMS: &[Param] = &[
-    Param { name: "teeth", default: "8", unit: "", help: "teeth N of both gears" },
-    Param { name: "tip_radius", default: "200", unit: "length", help: "outer radius R of both gears" },
-    Param { name: "root_radius", default: "100", unit: "length", help: "inner radius r of both gears" },
-    Param { name: "centre_distance", default: "310", unit: "length", help: "centre distance D" },
-    Param { name: "step", default: "0.01", unit: "deg", help: "driver angle between samples" },
+    Param {
+        name: "teeth",
+        default: "8",
+        unit: "",
+        help: "teeth N of both gears",
+    },
+    Param {
+        name: "tip_radius",
+        default: "200",
+        unit: "length",
+        help: "outer radius R of both gears",
+    },
+    Param {
+        name: "root_radius",
+        default: "100",
+        unit: "length",
+        help: "inner radius r of both gears",
+    },
+    Param {
+        name: "centre_distance",
+        default: "310",
+        unit: "length",
+        help: "centre distance D",
+    },
+    Param {
+        name: "step",
+        default: "0.01",
+        unit: "deg",
+        help: "driver angle between samples",
+    },
 ];
 
 registry::inventory::submit! {
@@ -37,11 +62,19 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     if !(step > 0.0 && step <= 10.0) {
         return Err(RunError::bad("--set", "step", "must be in (0, 10] degrees"));
     }
-    let gear = Gear::ideal(n, big_r, small_r).map_err(|e| RunError::bad("--set", e.field, e.rule))?;
-    let mesh = Mesh::new(gear.clone(), gear, d).map_err(|e| RunError::bad("--set", e.field, e.rule))?;
+    let gear =
+        Gear::ideal(n, big_r, small_r).map_err(|e| RunError::bad("--set", e.field, e.rule))?;
+    let mesh =
+        Mesh::new(gear.clone(), gear, d).map_err(|e| RunError::bad("--set", e.field, e.rule))?;
     let teeth = u32::try_from(n).map_err(|_| RunError::bad("--set", "teeth", "too many teeth"))?;
-    let pair = thorndike::Pair::new(teeth, teeth, big_r, small_r, big_r, small_r, d)
-        .map_err(|e| RunError::bad("--set", "centre_distance", format!("closed forms do not apply: {e}")))?;
+    let pair =
+        thorndike::Pair::new(teeth, teeth, big_r, small_r, big_r, small_r, d).map_err(|e| {
+            RunError::bad(
+                "--set",
+                "centre_distance",
+                format!("closed forms do not apply: {e}"),
+            )
+        })?;
 
     // Figure III frame: phi'_o = 0, theta'_o = theta'(0); one full driver turn.
     let traj = mesh.run(0.0, TAU, Start::Touching(0.0));
@@ -58,7 +91,13 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         max_diff = max_diff.max((sim - closed).abs());
         let t = sim - theta0 - ratio * phi;
         td.push(deg(t));
-        rows.push(vec![deg(phi), deg(sim), deg(closed), deg(sim - theta0), deg(t)]);
+        rows.push(vec![
+            deg(phi),
+            deg(sim),
+            deg(closed),
+            deg(sim - theta0),
+            deg(t),
+        ]);
     }
     let stats = td_stats(&td);
 
@@ -66,29 +105,75 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         "Figure 2: N1 = N2 = 8, R = 200, r = 100, D = 310 (G = 10 % of h), one driver turn",
         ["quantity", "ours", "paper", "unit"],
     );
-    table.row(vec!["theta'(0) (Figure III frame)".into(), fmt_f64(deg(theta0), 4), paper_cell("fig2", "theta_prime_0", 2), "deg".into()]);
     table.row(vec![
-        format!("max |theta simulated - theta closed form| over {} samples", samples + 1),
-        format!("{:.1e}", deg(max_diff)),
+        "theta'(0) (Figure III frame)".into(),
+        fmt_f64(deg(theta0), 4),
+        paper_cell("fig2", "theta_prime_0", 2),
+        "deg".into(),
+    ]);
+    table.row(vec![
+        format!(
+            "max |theta simulated - theta closed form| over {} samples",
+            samples + 1
+        ),
+        below_power_of_ten(deg(max_diff)),
         "-".into(),
         "deg".into(),
     ]);
-    table.row(vec!["Phase 1 -> Phase 2 switch phi'".into(), fmt_f64(deg(thorndike::phase_switch(&pair)), 4), "-".into(), "deg".into()]);
-    table.row(vec!["next tooth pair takes over at phi'".into(), fmt_f64(deg(thorndike::handoff(&pair)), 4), "-".into(), "deg".into()]);
-    table.row(vec!["Theoretical Difference sigma".into(), fmt_f64(stats.sigma, 4), "-".into(), "deg".into()]);
-    table.row(vec!["Theoretical Difference mean P".into(), fmt_f64(stats.mean, 4), "-".into(), "deg".into()]);
-    table.row(vec!["Theoretical Difference max |TD| (Dm)".into(), fmt_f64(stats.dm, 4), "-".into(), "deg".into()]);
-    table.row(vec!["jams / disengagements".into(), format!("{} / {}", traj.jams(), traj.disengagements()), "-".into(), "".into()]);
+    table.row(vec![
+        "Phase 1 -> Phase 2 switch phi'".into(),
+        fmt_f64(deg(thorndike::phase_switch(&pair)), 4),
+        "-".into(),
+        "deg".into(),
+    ]);
+    table.row(vec![
+        "next tooth pair takes over at phi'".into(),
+        fmt_f64(deg(thorndike::handoff(&pair)), 4),
+        "-".into(),
+        "deg".into(),
+    ]);
+    table.row(vec![
+        "Theoretical Difference sigma".into(),
+        fmt_f64(stats.sigma, 4),
+        "-".into(),
+        "deg".into(),
+    ]);
+    table.row(vec![
+        "Theoretical Difference mean P".into(),
+        fmt_f64(stats.mean, 4),
+        "-".into(),
+        "deg".into(),
+    ]);
+    table.row(vec![
+        "Theoretical Difference max |TD| (Dm)".into(),
+        fmt_f64(stats.dm, 4),
+        "-".into(),
+        "deg".into(),
+    ]);
+    table.row(vec![
+        "jams / disengagements".into(),
+        format!("{} / {}", traj.jams(), traj.disengagements()),
+        "-".into(),
+        "".into(),
+    ]);
     table.note("Simulated: exact push-model contact solver; closed form: Appendix I expressions [I] and [II] with the switch between them.");
-    table.note("TD = theta(phi) - (N1/N2) phi in the main-text frame (theta measured from theta'_o).");
+    table.note(
+        "TD = theta(phi) - (N1/N2) phi in the main-text frame (theta measured from theta'_o).",
+    );
 
     let plot_a = line_plot(
         "Figure 2 A: driven angle theta(phi), N = 8 pair",
         "driver angle phi [deg]",
         "driven angle theta [deg]",
         &[
-            Series { label: "simulated", points: rows.iter().map(|r| (r[0], r[3])).collect() },
-            Series { label: "ideal (N1/N2) phi, equation [1]", points: rows.iter().map(|r| (r[0], ratio * r[0])).collect() },
+            Series {
+                label: "simulated",
+                points: rows.iter().map(|r| (r[0], r[3])).collect(),
+            },
+            Series {
+                label: "ideal (N1/N2) phi, equation [1]",
+                points: rows.iter().map(|r| (r[0], ratio * r[0])).collect(),
+            },
         ],
     )?;
     let plot_b = line_plot(
@@ -96,12 +181,34 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         "driver angle phi [deg]",
         "Theoretical Difference [deg]",
         &[
-            Series { label: "simulated", points: rows.iter().map(|r| (r[0], r[4])).collect() },
-            Series { label: "closed form [I]/[II]", points: rows.iter().map(|r| (r[0], r[2] - deg(theta0) - ratio * r[0])).collect() },
-            Series { label: "mean P", points: vec![(0.0, stats.mean), (360.0, stats.mean)] },
+            Series {
+                label: "simulated",
+                points: rows.iter().map(|r| (r[0], r[4])).collect(),
+            },
+            Series {
+                label: "closed form [I]/[II]",
+                points: rows
+                    .iter()
+                    .map(|r| (r[0], r[2] - deg(theta0) - ratio * r[0]))
+                    .collect(),
+            },
+            Series {
+                label: "mean P",
+                points: vec![(0.0, stats.mean), (360.0, stats.mean)],
+            },
         ],
     )?;
-    let data = csv(&["phi_deg", "theta_prime_sim_deg", "theta_prime_closed_deg", "theta_deg", "td_deg"], rows.into_iter(), 12);
+    let data = csv(
+        &[
+            "phi_deg",
+            "theta_prime_sim_deg",
+            "theta_prime_closed_deg",
+            "theta_deg",
+            "td_deg",
+        ],
+        rows.into_iter(),
+        12,
+    );
     Ok(Report {
         tables: vec![table],
         files: vec![
@@ -110,4 +217,13 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             OutputFile::new("fig2b.svg", plot_b),
         ],
     })
+}
+
+/// "< 1e-N" for the smallest power of ten above `x`: stable across machines where the last bits of
+/// libm differ, and still a failing number if the agreement were lost.
+fn below_power_of_ten(x: f64) -> String {
+    if x == 0.0 {
+        return "0".into();
+    }
+    format!("< 1e{}", x.log10().floor() as i32 + 1)
 }

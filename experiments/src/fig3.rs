@@ -10,12 +10,42 @@ use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, 
 use crate::common::{Series, csv, deg, line_plot, td_stats};
 
 const PARAMS: &[Param] = &[
-    Param { name: "teeth", default: "8", unit: "", help: "teeth N of both gears" },
-    Param { name: "tip_radius", default: "200", unit: "length", help: "outer radius R of both gears" },
-    Param { name: "root_radius", default: "100", unit: "length", help: "inner radius r of both gears" },
-    Param { name: "centre_distance", default: "310", unit: "length", help: "centre distance D" },
-    Param { name: "pitches", default: "3", unit: "driver teeth", help: "length of each run" },
-    Param { name: "samples", default: "1200", unit: "", help: "samples per run" },
+    Param {
+        name: "teeth",
+        default: "8",
+        unit: "",
+        help: "teeth N of both gears",
+    },
+    Param {
+        name: "tip_radius",
+        default: "200",
+        unit: "length",
+        help: "outer radius R of both gears",
+    },
+    Param {
+        name: "root_radius",
+        default: "100",
+        unit: "length",
+        help: "inner radius r of both gears",
+    },
+    Param {
+        name: "centre_distance",
+        default: "310",
+        unit: "length",
+        help: "centre distance D",
+    },
+    Param {
+        name: "pitches",
+        default: "3",
+        unit: "driver teeth",
+        help: "length of each run",
+    },
+    Param {
+        name: "samples",
+        default: "1200",
+        unit: "",
+        help: "samples per run",
+    },
 ];
 
 registry::inventory::submit! {
@@ -65,7 +95,10 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     // Centred: the first crossing of f through its mean after the minimum, refined by bisection.
     let mut centred = leading;
     for s in 0..SCAN {
-        let (a, b) = (leading + p1 * s as f64 / SCAN as f64, leading + p1 * (s + 1) as f64 / SCAN as f64);
+        let (a, b) = (
+            leading + p1 * s as f64 / SCAN as f64,
+            leading + p1 * (s + 1) as f64 / SCAN as f64,
+        );
         if f(a) <= mean_f && f(b) > mean_f {
             let (mut lo, mut hi) = (a, b);
             for _ in 0..60 {
@@ -78,18 +111,45 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     }
 
     let mut table = Table::new(
-        format!("Figure 3: Theoretical Difference from three initial angles ({pitches} driver teeth each)"),
-        ["initial angle", "phi'_o [deg]", "theta'_o [deg]", "mean P [deg]", "sigma [deg]", "min [deg]", "max [deg]"],
+        format!(
+            "Figure 3: Theoretical Difference from three initial angles ({pitches} driver teeth each)"
+        ),
+        [
+            "initial angle",
+            "phi'_o [deg]",
+            "theta'_o [deg]",
+            "mean P [deg]",
+            "sigma [deg]",
+            "min [deg]",
+            "max [deg]",
+        ],
     );
     let mut series = Vec::new();
     let mut columns: Vec<Vec<f64>> = Vec::new();
-    let phis: Vec<f64> = (0..samples).map(|i| pitches as f64 * p1 * i as f64 / (samples - 1) as f64).collect();
-    for (name, phi_o) in [("A: leading", leading), ("B: centred", centred), ("C: lagging", lagging)] {
-        let t: Trajectory = mesh.run(phi_o, phi_o + pitches as f64 * p1, Start::Touching(long.theta_at(phi_o)));
+    let phis: Vec<f64> = (0..samples)
+        .map(|i| pitches as f64 * p1 * i as f64 / (samples - 1) as f64)
+        .collect();
+    for (name, phi_o) in [
+        ("A: leading", leading),
+        ("B: centred", centred),
+        ("C: lagging", lagging),
+    ] {
+        let t: Trajectory = mesh.run(
+            phi_o,
+            phi_o + pitches as f64 * p1,
+            Start::Touching(long.theta_at(phi_o)),
+        );
         let theta_o = t.theta_at(phi_o);
-        let td: Vec<f64> = phis.iter().map(|&p| deg(t.theta_at(phi_o + p) - theta_o - ratio * p)).collect();
+        let td: Vec<f64> = phis
+            .iter()
+            .map(|&p| deg(t.theta_at(phi_o + p) - theta_o - ratio * p))
+            .collect();
         let s = td_stats(&td);
-        let (mn, mx) = td.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| (a.min(x), b.max(x)));
+        let (mn, mx) = td
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+                (a.min(x), b.max(x))
+            });
         table.row(vec![
             name.into(),
             fmt_f64(deg(phi_o), 4),
@@ -99,7 +159,14 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             fmt_f64(mn, 4),
             fmt_f64(mx, 4),
         ]);
-        series.push(Series { label: name, points: phis.iter().map(|&p| deg(p)).zip(td.iter().copied()).collect() });
+        series.push(Series {
+            label: name,
+            points: phis
+                .iter()
+                .map(|&p| deg(p))
+                .zip(td.iter().copied())
+                .collect(),
+        });
         columns.push(td);
     }
     table.note("The paper's Figure 3 gives no numbers in its text; the three curves are written to fig3.csv and fig3.svg.");
@@ -110,7 +177,23 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         "Theoretical Difference [deg]",
         &series,
     )?;
-    let rows = (0..samples).map(|i| vec![deg(phis[i]), columns[0][i], columns[1][i], columns[2][i]]);
-    let data = csv(&["phi_deg", "td_leading_deg", "td_centred_deg", "td_lagging_deg"], rows, 12);
-    Ok(Report { tables: vec![table], files: vec![OutputFile::new("fig3.csv", data), OutputFile::new("fig3.svg", svg)] })
+    let rows =
+        (0..samples).map(|i| vec![deg(phis[i]), columns[0][i], columns[1][i], columns[2][i]]);
+    let data = csv(
+        &[
+            "phi_deg",
+            "td_leading_deg",
+            "td_centred_deg",
+            "td_lagging_deg",
+        ],
+        rows,
+        12,
+    );
+    Ok(Report {
+        tables: vec![table],
+        files: vec![
+            OutputFile::new("fig3.csv", data),
+            OutputFile::new("fig3.svg", svg),
+        ],
+    })
 }

@@ -8,7 +8,7 @@ use geometry::{Gear, Vec2};
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
 use serde::Deserialize;
 
-use crate::common::{csv, deg, line_plot, td_stats, Series};
+use crate::common::{Series, csv, deg, line_plot, td_stats};
 
 const EXAMPLE: &str = include_str!("../data/pair-example.ron");
 const EXAMPLE_NAME: &str = "experiments/data/pair-example.ron";
@@ -62,15 +62,25 @@ fn default_sample() -> f64 {
 fn gear(file: &str, which: &str, spec: &GearSpec) -> Result<Gear, RunError> {
     let field = |f: &str| format!("{which}.{f}");
     if spec.teeth < 3 {
-        return Err(RunError::bad(file, field("teeth"), format!("must be at least 3 (got {})", spec.teeth)));
+        return Err(RunError::bad(
+            file,
+            field("teeth"),
+            format!("must be at least 3 (got {})", spec.teeth),
+        ));
     }
     let tips = match &spec.tips_deg {
-        None => (0..spec.teeth).map(|k| TAU * k as f64 / spec.teeth as f64).collect(),
+        None => (0..spec.teeth)
+            .map(|k| TAU * k as f64 / spec.teeth as f64)
+            .collect(),
         Some(t) if t.len() != spec.teeth => {
             return Err(RunError::bad(
                 file,
                 field("tips_deg"),
-                format!("must list exactly `teeth` = {} angles (got {})", spec.teeth, t.len()),
+                format!(
+                    "must list exactly `teeth` = {} angles (got {})",
+                    spec.teeth,
+                    t.len()
+                ),
             ));
         }
         Some(t) => t.iter().map(|a| a.to_radians()).collect(),
@@ -79,7 +89,9 @@ fn gear(file: &str, which: &str, spec: &GearSpec) -> Result<Gear, RunError> {
     Gear::new(spec.tip_radius, spec.root_radius, tips, Vec2::new(ex, ey)).map_err(|e| {
         // Name the field as written in the file.
         let f = match e.field.as_str() {
-            "rotation_centre" | "rotation_centre.x" | "rotation_centre.y" => "eccentricity".to_string(),
+            "rotation_centre" | "rotation_centre.x" | "rotation_centre.y" => {
+                "eccentricity".to_string()
+            }
             other if other.starts_with("tips[") => format!("tips_deg{}", &other[4..]),
             other => other.to_string(),
         };
@@ -90,7 +102,11 @@ fn gear(file: &str, which: &str, spec: &GearSpec) -> Result<Gear, RunError> {
 /// Parses and checks a pair file, naming the file, the field (or line and column) and the rule.
 pub fn load(file: &str, text: &str) -> Result<(Mesh, PairFile), RunError> {
     let spec: PairFile = ron::from_str(text).map_err(|e| {
-        RunError::bad(file, format!("line {}, column {}", e.position.line, e.position.col), e.code.to_string())
+        RunError::bad(
+            file,
+            format!("line {}, column {}", e.position.line, e.position.col),
+            e.code.to_string(),
+        )
     })?;
     let driver = gear(file, "driver", &spec.driver)?;
     let driven = gear(file, "driven", &spec.driven)?;
@@ -98,27 +114,51 @@ pub fn load(file: &str, text: &str) -> Result<(Mesh, PairFile), RunError> {
         (Some(d), None) => d,
         (None, Some(g)) => {
             if !(0.0..=100.0).contains(&g) {
-                return Err(RunError::bad(file, "clearance_percent", format!("must be between 0 and 100 (got {g})")));
+                return Err(RunError::bad(
+                    file,
+                    "clearance_percent",
+                    format!("must be between 0 and 100 (got {g})"),
+                ));
             }
             let h = 0.5 * (driver.tooth_height() + driven.tooth_height());
             geometry::centre_distance(driver.tip_radius(), driven.tip_radius(), h, g)
         }
         _ => {
-            return Err(RunError::bad(file, "centre_distance", "give exactly one of centre_distance and clearance_percent"));
+            return Err(RunError::bad(
+                file,
+                "centre_distance",
+                "give exactly one of centre_distance and clearance_percent",
+            ));
         }
     };
     if !(spec.sample_deg > 0.0 && spec.sample_deg.is_finite()) {
-        return Err(RunError::bad(file, "sample_deg", "must be a positive number of degrees"));
+        return Err(RunError::bad(
+            file,
+            "sample_deg",
+            "must be a positive number of degrees",
+        ));
     }
     if !spec.start_deg.is_finite() {
-        return Err(RunError::bad(file, "start_deg", "must be a finite number of degrees"));
+        return Err(RunError::bad(
+            file,
+            "start_deg",
+            "must be a finite number of degrees",
+        ));
     }
     if let Some(r) = spec.run_deg {
         if !(r > 0.0 && r.is_finite() && r <= 360.0 * 1000.0) {
-            return Err(RunError::bad(file, "run_deg", "must be a positive number of degrees, at most 360000"));
+            return Err(RunError::bad(
+                file,
+                "run_deg",
+                "must be a positive number of degrees, at most 360000",
+            ));
         }
         if r / spec.sample_deg > 5.0e6 {
-            return Err(RunError::bad(file, "sample_deg", "too small for run_deg: more than 5 million rows"));
+            return Err(RunError::bad(
+                file,
+                "sample_deg",
+                "too small for run_deg: more than 5 million rows",
+            ));
         }
     }
     let mesh = Mesh::new(driver, driven, d).map_err(|e| RunError::bad(file, e.field, e.rule))?;
@@ -133,7 +173,9 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     let (mesh, spec) = load(&name, text)?;
     let (n1, n2) = (mesh.driver().teeth(), mesh.driven().teeth());
     let ratio = n1 as f64 / n2 as f64;
-    let run_deg = spec.run_deg.unwrap_or(360.0 * n1.max(n2) as f64 / n1 as f64);
+    let run_deg = spec
+        .run_deg
+        .unwrap_or(360.0 * n1.max(n2) as f64 / n1 as f64);
     let phi0 = spec.start_deg.to_radians();
     let phi_end = phi0 + run_deg.to_radians();
     let traj = mesh.run(phi0, phi_end, Start::Touching(0.0));
@@ -143,7 +185,11 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         .map(|i| {
             let phi = (phi0 + (i as f64 * spec.sample_deg).to_radians()).min(phi_end);
             let theta = traj.theta_at(phi) - theta0;
-            vec![deg(phi - phi0), deg(theta), deg(theta - ratio * (phi - phi0))]
+            vec![
+                deg(phi - phi0),
+                deg(theta),
+                deg(theta - ratio * (phi - phi0)),
+            ]
         })
         .collect();
     let td: Vec<f64> = rows.iter().map(|r| r[2]).collect();
@@ -152,16 +198,52 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     let mut summary = Table::new(format!("Mesh from {name}"), ["quantity", "value", "unit"]);
     let rowf = |t: &mut Table, q: &str, v: String, u: &str| t.row(vec![q.into(), v, u.into()]);
     rowf(&mut summary, "teeth N1 : N2", format!("{n1} : {n2}"), "");
-    rowf(&mut summary, "centre distance D", fmt_f64(mesh.centre_distance(), 4), "length");
+    rowf(
+        &mut summary,
+        "centre distance D",
+        fmt_f64(mesh.centre_distance(), 4),
+        "length",
+    );
     rowf(&mut summary, "driver angle run", fmt_f64(run_deg, 3), "deg");
     rowf(&mut summary, "jams", traj.jams().to_string(), "");
-    rowf(&mut summary, "disengagements", traj.disengagements().to_string(), "");
-    rowf(&mut summary, "Theoretical Difference sigma", fmt_f64(s.sigma, 4), "deg");
-    rowf(&mut summary, "Theoretical Difference Dm", fmt_f64(s.dm, 4), "deg");
-    rowf(&mut summary, "Theoretical Difference mean P", fmt_f64(s.mean, 4), "deg");
+    rowf(
+        &mut summary,
+        "disengagements",
+        traj.disengagements().to_string(),
+        "",
+    );
+    rowf(
+        &mut summary,
+        "Theoretical Difference sigma",
+        fmt_f64(s.sigma, 4),
+        "deg",
+    );
+    rowf(
+        &mut summary,
+        "Theoretical Difference Dm",
+        fmt_f64(s.dm, 4),
+        "deg",
+    );
+    rowf(
+        &mut summary,
+        "Theoretical Difference mean P",
+        fmt_f64(s.mean, 4),
+        "deg",
+    );
 
-    let mut events = Table::new("Events", ["phi [deg]", "kind", "driver tooth", "driven tooth", "theta [deg]", "theta after [deg]"]);
-    let mut ev_rows = String::from("phi_deg,kind,driver_tooth,driven_tooth,theta_deg,theta_after_deg\n");
+    let mut events = Table::new(
+        "Events",
+        [
+            "phi [deg]",
+            "kind",
+            "driver tooth",
+            "driven tooth",
+            "theta [deg]",
+            "theta after [deg]",
+        ],
+    );
+    let mut ev_rows =
+        String::from("phi_deg,kind,driver_tooth,driven_tooth,theta_deg,theta_after_deg\n");
     for e in traj.events() {
         let kind = match e.kind {
             EventKind::Jam => "jam",
@@ -191,7 +273,10 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         }
     }
     if traj.events().len() > 20 {
-        events.note(format!("{} more in event-log.csv", traj.events().len() - 20));
+        events.note(format!(
+            "{} more in event-log.csv",
+            traj.events().len() - 20
+        ));
     }
     if traj.events().is_empty() {
         events.note("no jam and no disengagement");
@@ -200,12 +285,19 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         "Theoretical Difference of the mesh (sections 2-3)",
         "driver angle phi [deg]",
         "Theoretical Difference [deg]",
-        &[Series { label: "simulated", points: rows.iter().map(|r| (r[0], r[2])).collect() }],
+        &[Series {
+            label: "simulated",
+            points: rows.iter().map(|r| (r[0], r[2])).collect(),
+        }],
     )?;
     let data = csv(&["phi_deg", "theta_deg", "td_deg"], rows.into_iter(), 9);
     Ok(Report {
         tables: vec![summary, events],
-        files: vec![OutputFile::new("pair.csv", data), OutputFile::new("event-log.csv", ev_rows), OutputFile::new("pair.svg", svg)],
+        files: vec![
+            OutputFile::new("pair.csv", data),
+            OutputFile::new("event-log.csv", ev_rows),
+            OutputFile::new("pair.svg", svg),
+        ],
     })
 }
 
@@ -223,20 +315,41 @@ mod tests {
     fn errors_name_file_field_and_rule() {
         let bad = |text: &str| load("m.ron", text).unwrap_err().to_string();
         let base = |driver: &str, extra: &str| {
-            format!("(driver: {driver}, driven: (teeth: 20, tip_radius: 10.0, root_radius: 9.0), {extra})")
+            format!(
+                "(driver: {driver}, driven: (teeth: 20, tip_radius: 10.0, root_radius: 9.0), {extra})"
+            )
         };
         let ok_driver = "(teeth: 20, tip_radius: 10.0, root_radius: 9.0)";
         assert_eq!(
-            bad(&base("(teeth: 2, tip_radius: 10.0, root_radius: 9.0)", "clearance_percent: Some(40.0)")),
+            bad(&base(
+                "(teeth: 2, tip_radius: 10.0, root_radius: 9.0)",
+                "clearance_percent: Some(40.0)"
+            )),
             "m.ron: driver.teeth: must be at least 3 (got 2)"
         );
-        assert!(bad(&base("(teeth: 20, tip_radius: 10.0, root_radius: 10.0)", "clearance_percent: Some(40.0)"))
-            .starts_with("m.ron: driver.root_radius: must be less than tip_radius"));
-        assert!(bad(&base(ok_driver, "centre_distance: Some(15.0)")).starts_with("m.ron: centre_distance: must exceed"));
+        assert!(
+            bad(&base(
+                "(teeth: 20, tip_radius: 10.0, root_radius: 10.0)",
+                "clearance_percent: Some(40.0)"
+            ))
+            .starts_with("m.ron: driver.root_radius: must be less than tip_radius")
+        );
+        assert!(
+            bad(&base(ok_driver, "centre_distance: Some(15.0)"))
+                .starts_with("m.ron: centre_distance: must exceed")
+        );
         assert!(bad(&base(ok_driver, "")).contains("give exactly one of"));
-        assert!(bad(&base(ok_driver, "clearance_percent: Some(140.0)")).starts_with("m.ron: clearance_percent:"));
+        assert!(
+            bad(&base(ok_driver, "clearance_percent: Some(140.0)"))
+                .starts_with("m.ron: clearance_percent:")
+        );
         assert!(bad("(driver: (teeth: 20,").starts_with("m.ron: line 1, column"));
-        assert!(bad(&base("(teeth: 3, tip_radius: 10.0, root_radius: 9.0, tips_deg: Some([0.0, 10.0]))", "clearance_percent: Some(40.0)"))
-            .starts_with("m.ron: driver.tips_deg: must list exactly"));
+        assert!(
+            bad(&base(
+                "(teeth: 3, tip_radius: 10.0, root_radius: 9.0, tips_deg: Some([0.0, 10.0]))",
+                "clearance_percent: Some(40.0)"
+            ))
+            .starts_with("m.ron: driver.tips_deg: must list exactly")
+        );
     }
 }

@@ -30,7 +30,9 @@ pub fn all() -> &'static [Reference] {
 
 /// The paper's value of `quantity` in experiment `id`.
 pub fn get(id: &str, quantity: &str) -> Option<&'static Reference> {
-    all().iter().find(|r| r.experiment == id && r.quantity == quantity)
+    all()
+        .iter()
+        .find(|r| r.experiment == id && r.quantity == quantity)
 }
 
 #[cfg(test)]

@@ -46,11 +46,22 @@ impl Placed {
         let n = gear.teeth() as i64;
         let tips: Vec<Vec2> = (0..n).map(|k| gear.tip(k) - e).collect();
         let valleys: Vec<Vec2> = (0..n).map(|k| gear.valley(k) - e).collect();
-        let reach = tips.iter().chain(&valleys).map(|v| v.norm()).fold(0.0, f64::max);
+        let reach = tips
+            .iter()
+            .chain(&valleys)
+            .map(|v| v.norm())
+            .fold(0.0, f64::max);
         let max_gap = (0..n)
             .map(|k| gear.tip_angle(k + 1) - gear.tip_angle(k))
             .fold(0.0, f64::max);
-        Self { gear, tips, valleys, reach, max_gap, window: 0.0 }
+        Self {
+            gear,
+            tips,
+            valleys,
+            reach,
+            max_gap,
+            window: 0.0,
+        }
     }
 
     #[inline]
@@ -61,7 +72,11 @@ impl Placed {
     /// Tooth k as (valley k−1, tip k, valley k), relative to the rotation centre.
     #[inline]
     pub fn tooth(&self, k: i64) -> [Vec2; 3] {
-        [self.valleys[self.idx(k - 1)], self.tips[self.idx(k)], self.valleys[self.idx(k)]]
+        [
+            self.valleys[self.idx(k - 1)],
+            self.tips[self.idx(k)],
+            self.valleys[self.idx(k)],
+        ]
     }
 
     /// Unwrapped tooth indices whose tip angle (gear frame) lies in `[lo, hi]`.
@@ -108,7 +123,10 @@ impl Mesh {
     /// eccentricity) that would overlap at every angle; and, for concentric gears, a non-positive
     /// clearance, where every tip reaches below the other gear's valleys.
     pub fn new(driver: Gear, driven: Gear, centre_distance: f64) -> Result<Self, MeshError> {
-        let bad = |rule: String| MeshError { field: "centre_distance".into(), rule };
+        let bad = |rule: String| MeshError {
+            field: "centre_distance".into(),
+            rule,
+        };
         if !centre_distance.is_finite() || centre_distance <= 0.0 {
             return Err(bad("must be a finite positive length".into()));
         }
@@ -133,14 +151,19 @@ impl Mesh {
         let mut driven = Placed::new(driven);
         let lens = |own: f64, other: f64| -> f64 {
             // Angle at this gear's centre to where the two reach circles cross.
-            let c = (centre_distance.powi(2) + own * own - other * other) / (2.0 * centre_distance * own);
+            let c = (centre_distance.powi(2) + own * own - other * other)
+                / (2.0 * centre_distance * own);
             c.clamp(-1.0, 1.0).acos()
         };
         let w1 = lens(driver.reach, driven.reach);
         let w2 = lens(driven.reach, driver.reach);
         driver.window = w1 + driver.max_gap + (e1 / driver.gear.root_radius()).asin() + 1e-6;
         driven.window = w2 + driven.max_gap + (e2 / driven.gear.root_radius()).asin() + 1e-6;
-        Ok(Self { driver, driven, centre_distance })
+        Ok(Self {
+            driver,
+            driven,
+            centre_distance,
+        })
     }
 
     /// The driving gear.
@@ -182,7 +205,11 @@ impl Mesh {
     /// World outlines (closed polygons) of both gears at (φ, θ).
     pub fn world_outlines(&self, phi: f64, theta: f64) -> (Vec<Vec2>, Vec<Vec2>) {
         let outline = |p: &Placed, f: &dyn Fn(Vec2) -> Vec2| -> Vec<Vec2> {
-            p.tips.iter().zip(&p.valleys).flat_map(|(&t, &v)| [f(t), f(v)]).collect()
+            p.tips
+                .iter()
+                .zip(&p.valleys)
+                .flat_map(|(&t, &v)| [f(t), f(v)])
+                .collect()
         };
         (
             outline(&self.driver, &|v| self.driver_world(v, phi)),
@@ -192,9 +219,9 @@ impl Mesh {
 
     /// Driver teeth near the line of centres at driver angle φ.
     pub(crate) fn driver_teeth(&self, phi: f64) -> std::ops::RangeInclusive<i64> {
-        self.driver.teeth_between(-phi - self.driver.window, -phi + self.driver.window)
+        self.driver
+            .teeth_between(-phi - self.driver.window, -phi + self.driver.window)
     }
-
 
     /// The exact obstacle of driver tooth `j` against driven tooth `k` at driver angle φ, or
     /// `None` if no driven angle brings them into contact.
@@ -236,7 +263,12 @@ impl Mesh {
                 });
             }
         }
-        (lo <= hi).then_some(Obstacle { driver_tooth: j, driven_tooth: k, lo, hi })
+        (lo <= hi).then_some(Obstacle {
+            driver_tooth: j,
+            driven_tooth: k,
+            lo,
+            hi,
+        })
     }
 
     /// All tooth-pair obstacles at driver angle φ that can reach driven angles in `[lo, hi]`.
@@ -245,14 +277,18 @@ impl Mesh {
         let c2 = self.c2();
         // Angular half-width, in driven angle, of a driver tooth seen from the driven centre plus
         // a whole driven tooth: beyond it tooth k cannot touch tooth j.
-        let seen = self.driver.max_gap * self.driver.reach / (self.centre_distance - self.driver.reach).max(1e-9);
+        let seen = self.driver.max_gap * self.driver.reach
+            / (self.centre_distance - self.driver.reach).max(1e-9);
         let margin = self.driven.max_gap + seen;
         for j in self.driver_teeth(phi) {
             let tip = self.driver_world(self.driver.tips[self.driver.idx(j)], phi) - c2;
             // Driven tip k points at this driver tip when θ = t_k + gamma.
             let gamma = PI - tip.y.atan2(tip.x);
             let gamma = wrap_pi(gamma);
-            for k in self.driven.teeth_between(lo - gamma - margin, hi - gamma + margin) {
+            for k in self
+                .driven
+                .teeth_between(lo - gamma - margin, hi - gamma + margin)
+            {
                 if let Some(o) = self.obstacle(phi, j, k) {
                     if o.hi >= lo && o.lo <= hi {
                         out.push(o);

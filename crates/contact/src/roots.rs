@@ -28,7 +28,11 @@ pub(crate) fn circle_segment(c: Vec2, rho: f64, a: Vec2, b: Vec2, mut found: imp
     let sq = disc.sqrt();
     // Numerically stable pair of roots of dd t² + 2 fd t + ff = 0.
     let q = -(fd + fd.signum() * sq);
-    let (t1, t2) = if q == 0.0 { (0.0, 0.0) } else { (q / dd, ff / q) };
+    let (t1, t2) = if q == 0.0 {
+        (0.0, 0.0)
+    } else {
+        (q / dd, ff / q)
+    };
     for t in [t1, t2] {
         if (-END_SLACK..=1.0 + END_SLACK).contains(&t) {
             found(a + d * t.clamp(0.0, 1.0));
@@ -44,7 +48,13 @@ mod tests {
     #[test]
     fn unit_circle_crosses_horizontal_segment() {
         let mut pts = Vec::new();
-        circle_segment(Vec2::zeros(), 1.0, Vec2::new(-2.0, 0.0), Vec2::new(2.0, 0.0), |x| pts.push(x));
+        circle_segment(
+            Vec2::zeros(),
+            1.0,
+            Vec2::new(-2.0, 0.0),
+            Vec2::new(2.0, 0.0),
+            |x| pts.push(x),
+        );
         pts.sort_by(|p, q| p.x.total_cmp(&q.x));
         assert_eq!(pts.len(), 2);
         assert!((pts[0].x + 1.0).abs() < 1e-15 && (pts[1].x - 1.0).abs() < 1e-15);
@@ -53,14 +63,26 @@ mod tests {
     #[test]
     fn segment_ending_inside_gives_one_crossing() {
         let mut n = 0;
-        circle_segment(Vec2::zeros(), 1.0, Vec2::new(0.0, 0.0), Vec2::new(2.0, 0.0), |_| n += 1);
+        circle_segment(
+            Vec2::zeros(),
+            1.0,
+            Vec2::new(0.0, 0.0),
+            Vec2::new(2.0, 0.0),
+            |_| n += 1,
+        );
         assert_eq!(n, 1);
     }
 
     #[test]
     fn far_segment_gives_none() {
         let mut n = 0;
-        circle_segment(Vec2::zeros(), 1.0, Vec2::new(-2.0, 3.0), Vec2::new(2.0, 3.0), |_| n += 1);
+        circle_segment(
+            Vec2::zeros(),
+            1.0,
+            Vec2::new(-2.0, 3.0),
+            Vec2::new(2.0, 3.0),
+            |_| n += 1,
+        );
         assert_eq!(n, 0);
     }
 }

@@ -102,7 +102,10 @@ pub struct Trajectory {
 impl Trajectory {
     /// Driven angle at driver angle φ (clamped to the simulated range), exact.
     pub fn theta_at(&self, phi: f64) -> f64 {
-        let i = self.segments.partition_point(|s| s.phi_end < phi).min(self.segments.len() - 1);
+        let i = self
+            .segments
+            .partition_point(|s| s.phi_end < phi)
+            .min(self.segments.len() - 1);
         let s = &self.segments[i];
         match &s.motion {
             Motion::Rest | Motion::Held => s.theta_start,
@@ -148,12 +151,18 @@ impl Trajectory {
 
     /// Number of jams.
     pub fn jams(&self) -> usize {
-        self.events.iter().filter(|e| e.kind == EventKind::Jam).count()
+        self.events
+            .iter()
+            .filter(|e| e.kind == EventKind::Jam)
+            .count()
     }
 
     /// Number of disengagements.
     pub fn disengagements(&self) -> usize {
-        self.events.iter().filter(|e| e.kind == EventKind::Disengagement).count()
+        self.events
+            .iter()
+            .filter(|e| e.kind == EventKind::Disengagement)
+            .count()
     }
 }
 
@@ -208,17 +217,23 @@ impl Mesh {
         if run.segments.is_empty() {
             run.rest_to(phi_end);
         }
-        Trajectory { mesh: self.clone(), segments: run.segments, events: run.events }
+        Trajectory {
+            mesh: self.clone(),
+            segments: run.segments,
+            events: run.events,
+        }
     }
 
     /// Upper end of the (j, k) obstacle at φ, or −∞ when it does not exist.
     fn hi(&self, phi: f64, pair: (i64, i64)) -> f64 {
-        self.obstacle(phi, pair.0, pair.1).map_or(f64::NEG_INFINITY, |o| o.hi)
+        self.obstacle(phi, pair.0, pair.1)
+            .map_or(f64::NEG_INFINITY, |o| o.hi)
     }
 
     /// Lower end of the (j, k) obstacle at φ, or +∞ when it does not exist.
     fn lo(&self, phi: f64, pair: (i64, i64)) -> f64 {
-        self.obstacle(phi, pair.0, pair.1).map_or(f64::INFINITY, |o| o.lo)
+        self.obstacle(phi, pair.0, pair.1)
+            .map_or(f64::INFINITY, |o| o.lo)
     }
 
     /// The nearest driven angle ≥ θ that overlaps no driver tooth at φ, or None if the obstacles
@@ -235,7 +250,11 @@ impl Mesh {
             let mut top = theta;
             for o in &obs {
                 let carried = through || top > theta;
-                let reaches = if carried { o.lo <= top + SIDE_TOL } else { o.lo < top - SIDE_TOL };
+                let reaches = if carried {
+                    o.lo <= top + SIDE_TOL
+                } else {
+                    o.lo < top - SIDE_TOL
+                };
                 if reaches && o.hi > top {
                     top = o.hi;
                 }
@@ -263,8 +282,14 @@ impl Run<'_> {
             Some(_) if touching => {
                 // Free: turn back until a driver tooth is met (highest upper end below the guess).
                 let gap = self.mesh.driven.max_gap;
-                self.mesh.obstacles(phi, guess - 2.0 * gap, guess, &mut self.scratch);
-                self.scratch.iter().map(|o| o.hi).filter(|&h| h <= guess).fold(f64::NEG_INFINITY, f64::max).max(guess - 2.0 * gap)
+                self.mesh
+                    .obstacles(phi, guess - 2.0 * gap, guess, &mut self.scratch);
+                self.scratch
+                    .iter()
+                    .map(|o| o.hi)
+                    .filter(|&h| h <= guess)
+                    .fold(f64::NEG_INFINITY, f64::max)
+                    .max(guess - 2.0 * gap)
             }
             Some(t) => t,
             None => {
@@ -278,11 +303,20 @@ impl Run<'_> {
     /// Re-derive every nearby obstacle's side from scratch, relative to the current θ.
     fn classify_all(&mut self, phi: f64) {
         let gap = self.mesh.driven.max_gap;
-        self.mesh.obstacles(phi, self.theta - gap, self.theta + gap, &mut self.scratch);
+        self.mesh
+            .obstacles(phi, self.theta - gap, self.theta + gap, &mut self.scratch);
         self.sides.clear();
         for o in &self.scratch {
-            let side = if o.hi <= self.theta + SIDE_TOL { Side::Behind } else { Side::Ahead };
-            self.sides.push(Tracked { pair: (o.driver_tooth, o.driven_tooth), side, hi: o.hi });
+            let side = if o.hi <= self.theta + SIDE_TOL {
+                Side::Behind
+            } else {
+                Side::Ahead
+            };
+            self.sides.push(Tracked {
+                pair: (o.driver_tooth, o.driven_tooth),
+                side,
+                hi: o.hi,
+            });
         }
     }
 
@@ -307,7 +341,11 @@ impl Run<'_> {
     }
 
     fn rest_to(&mut self, phi_end: f64) {
-        let motion = if self.held { Motion::Held } else { Motion::Rest };
+        let motion = if self.held {
+            Motion::Held
+        } else {
+            Motion::Rest
+        };
         self.push_segment(phi_end, self.theta, motion);
     }
 
@@ -333,12 +371,23 @@ impl Run<'_> {
         let gap = mesh.driven.max_gap;
         mesh.obstacles(phi1, theta0 - gap, theta0 + gap, &mut self.scratch);
         let obs1 = std::mem::take(&mut self.scratch);
-        let at1 = |pair: (i64, i64)| obs1.iter().find(|o| (o.driver_tooth, o.driven_tooth) == pair);
+        let at1 = |pair: (i64, i64)| {
+            obs1.iter()
+                .find(|o| (o.driver_tooth, o.driven_tooth) == pair)
+        };
         let hi = |p: f64, pair: (i64, i64)| -> f64 {
-            if p == phi1 { at1(pair).map_or(f64::NEG_INFINITY, |o| o.hi) } else { mesh.hi(p, pair) }
+            if p == phi1 {
+                at1(pair).map_or(f64::NEG_INFINITY, |o| o.hi)
+            } else {
+                mesh.hi(p, pair)
+            }
         };
         let lo = |p: f64, pair: (i64, i64)| -> f64 {
-            if p == phi1 { at1(pair).map_or(f64::INFINITY, |o| o.lo) } else { mesh.lo(p, pair) }
+            if p == phi1 {
+                at1(pair).map_or(f64::INFINITY, |o| o.lo)
+            } else {
+                mesh.lo(p, pair)
+            }
         };
 
         // Pushing pairs at the start: those whose upper end is at θ.
@@ -376,9 +425,18 @@ impl Run<'_> {
                 // Last angle without the obstacle; it exists just after.
                 let before = bisect(phi0, phi1, |p| mesh.obstacle(p, pair.0, pair.1).is_none());
                 let phi_a = (before + 4.0 * LOCATE_TOL).min(phi1);
-                let at = mesh.obstacle(phi_a, pair.0, pair.1).map_or(o.lo, |a| 0.5 * (a.lo + a.hi));
-                let theta_a = behind.iter().map(|&b| mesh.hi(phi_a, b)).fold(theta0, f64::max);
-                if at <= theta_a + SIDE_TOL { Side::Behind } else { Side::Ahead }
+                let at = mesh
+                    .obstacle(phi_a, pair.0, pair.1)
+                    .map_or(o.lo, |a| 0.5 * (a.lo + a.hi));
+                let theta_a = behind
+                    .iter()
+                    .map(|&b| mesh.hi(phi_a, b))
+                    .fold(theta0, f64::max);
+                if at <= theta_a + SIDE_TOL {
+                    Side::Behind
+                } else {
+                    Side::Ahead
+                }
             };
             match side {
                 Side::Behind => behind.push(pair),
@@ -388,13 +446,23 @@ impl Run<'_> {
         let all_behind = behind.clone();
         // Only obstacles that can reach θ within this step matter to the motion.
         behind.retain(|&p| pushers.contains(&p) || hi(phi1, p) >= theta0 - 0.25 * gap);
-        let envelope = |p: f64| behind.iter().map(|&b| hi(p, b)).fold(f64::NEG_INFINITY, f64::max);
+        let envelope = |p: f64| {
+            behind
+                .iter()
+                .map(|&b| hi(p, b))
+                .fold(f64::NEG_INFINITY, f64::max)
+        };
 
         // Plan the step without the obstacles ahead: (phi_end, theta_end, motion, event).
         let mut plan: Vec<(f64, f64, Motion, Option<Event>)> = Vec::new();
         if !pushers.is_empty() {
             // Is the push continuous through the step? The pushers' envelope must not peak.
-            let push_env = |p: f64| pushers.iter().map(|&b| hi(p, b)).fold(f64::NEG_INFINITY, f64::max);
+            let push_env = |p: f64| {
+                pushers
+                    .iter()
+                    .map(|&b| hi(p, b))
+                    .fold(f64::NEG_INFINITY, f64::max)
+            };
             let e1 = envelope(phi1);
             let p1 = push_env(phi1);
             if p1 >= theta0 && e1 <= p1 + SIDE_TOL {
@@ -404,8 +472,17 @@ impl Run<'_> {
                 let phi_pk = golden_max(phi0, phi1, &push_env);
                 let theta_pk = push_env(phi_pk).max(theta0);
                 // Did another behind obstacle take over before that?
-                let others: Vec<(i64, i64)> = behind.iter().copied().filter(|p| !pushers.contains(p)).collect();
-                let other_env = |p: f64| others.iter().map(|&b| hi(p, b)).fold(f64::NEG_INFINITY, f64::max);
+                let others: Vec<(i64, i64)> = behind
+                    .iter()
+                    .copied()
+                    .filter(|p| !pushers.contains(p))
+                    .collect();
+                let other_env = |p: f64| {
+                    others
+                        .iter()
+                        .map(|&b| hi(p, b))
+                        .fold(f64::NEG_INFINITY, f64::max)
+                };
                 if other_env(phi_pk) >= theta_pk - SIDE_TOL {
                     // Continuous handoff: one Push segment over the whole step with every behind pair.
                     plan.push((phi1, e1.max(theta0), Motion::Push(behind.clone()), None));
@@ -415,14 +492,19 @@ impl Run<'_> {
                         .copied()
                         .max_by(|&a, &b| mesh.hi(phi_pk, a).total_cmp(&mesh.hi(phi_pk, b)))
                         .unwrap_or(pushers[0]);
-                    plan.push((phi_pk, theta_pk, Motion::Push(pushers.clone()), Some(Event {
-                        phi: phi_pk,
-                        theta: theta_pk,
-                        kind: EventKind::Disengagement,
-                        driver_tooth: lost.0,
-                        driven_tooth: lost.1,
-                        theta_after: theta_pk,
-                    })));
+                    plan.push((
+                        phi_pk,
+                        theta_pk,
+                        Motion::Push(pushers.clone()),
+                        Some(Event {
+                            phi: phi_pk,
+                            theta: theta_pk,
+                            kind: EventKind::Disengagement,
+                            driver_tooth: lost.0,
+                            driven_tooth: lost.1,
+                            theta_after: theta_pk,
+                        }),
+                    ));
                     rest_then_maybe_push(&mut plan, &others, &hi, phi_pk, theta_pk, phi1);
                 }
             }
@@ -436,7 +518,11 @@ impl Run<'_> {
             for (end, th, motion, _) in &plan {
                 if p <= *end {
                     return match motion {
-                        Motion::Push(pairs) => pairs.iter().map(|&b| hi(p, b)).fold(from, f64::max).min(*th),
+                        Motion::Push(pairs) => pairs
+                            .iter()
+                            .map(|&b| hi(p, b))
+                            .fold(from, f64::max)
+                            .min(*th),
                         _ => from,
                     };
                 }
@@ -446,7 +532,12 @@ impl Run<'_> {
         };
         let theta1 = theta_on_plan(phi1);
         ahead.retain(|&a| lo(phi1, a) <= theta1 + 0.5 * gap);
-        let front = |p: f64| ahead.iter().map(|&a| lo(p, a)).fold(f64::INFINITY, f64::min);
+        let front = |p: f64| {
+            ahead
+                .iter()
+                .map(|&a| lo(p, a))
+                .fold(f64::INFINITY, f64::min)
+        };
         let clear_at = |p: f64| front(p) >= theta_on_plan(p) - SIDE_TOL;
         let mid = 0.5 * (phi0 + phi1);
         let jam_at = if ahead.is_empty() || clear_at(phi1) && clear_at(mid) {
@@ -470,8 +561,16 @@ impl Run<'_> {
                 self.sides.clear();
                 for o in &obs1 {
                     let pair = (o.driver_tooth, o.driven_tooth);
-                    let side = if all_behind.contains(&pair) || o.hi <= theta1 + SIDE_TOL { Side::Behind } else { Side::Ahead };
-                    self.sides.push(Tracked { pair, side, hi: o.hi });
+                    let side = if all_behind.contains(&pair) || o.hi <= theta1 + SIDE_TOL {
+                        Side::Behind
+                    } else {
+                        Side::Ahead
+                    };
+                    self.sides.push(Tracked {
+                        pair,
+                        side,
+                        hi: o.hi,
+                    });
                 }
             }
             Some(phi_j) => {
@@ -521,7 +620,12 @@ fn rest_then_maybe_push(
     theta: f64,
     phi1: f64,
 ) {
-    let env = |p: f64| behind.iter().map(|&b| hi(p, b)).fold(f64::NEG_INFINITY, f64::max);
+    let env = |p: f64| {
+        behind
+            .iter()
+            .map(|&b| hi(p, b))
+            .fold(f64::NEG_INFINITY, f64::max)
+    };
     if env(phi1) > theta + SIDE_TOL {
         let phi_r = bisect(phi_a, phi1, |p| env(p) < theta);
         plan.push((phi_r, theta, Motion::Rest, None));
@@ -570,5 +674,8 @@ fn golden_max(mut a: f64, mut b: f64, f: impl Fn(f64) -> f64) -> f64 {
     }
     // The end points may be better than the interior (monotone on the bracket).
     let mid = 0.5 * (a + b);
-    [a, mid, b].into_iter().max_by(|&p, &q| f(p).total_cmp(&f(q))).unwrap_or(mid)
+    [a, mid, b]
+        .into_iter()
+        .max_by(|&p, &q| f(p).total_cmp(&f(q)))
+        .unwrap_or(mid)
 }

@@ -21,21 +21,61 @@ fn initial_contact_is_thorndike_theta_prime_zero() {
 
 #[test]
 fn whole_driver_teeth_give_exact_ratio() {
-    for (n1, n2, r1, r2, g) in [(8, 8, 200.0, 200.0, 10.0), (27, 223, 27.0 * 0.23, 223.0 * 0.23, 40.0), (15, 53, 3.9, 13.78, 40.0), (64, 38, 15.3, 15.3 * 38.0 / 64.0, 60.0)] {
+    for (n1, n2, r1, r2, g) in [
+        (8, 8, 200.0, 200.0, 10.0),
+        (27, 223, 27.0 * 0.23, 223.0 * 0.23, 40.0),
+        (15, 53, 3.9, 13.78, 40.0),
+        (64, 38, 15.3, 15.3 * 38.0 / 64.0, 60.0),
+    ] {
         let h = if n1 == 8 { 100.0 } else { 1.1 };
         let d = geometry::centre_distance(r1, r2, h, g);
-        let m = Mesh::new(Gear::ideal(n1, r1, r1 - h).unwrap(), Gear::ideal(n2, r2, r2 - h).unwrap(), d).unwrap();
+        let m = Mesh::new(
+            Gear::ideal(n1, r1, r1 - h).unwrap(),
+            Gear::ideal(n2, r2, r2 - h).unwrap(),
+            d,
+        )
+        .unwrap();
         let p1 = TAU / n1 as f64;
         let phi0 = 0.3 * p1;
         let t = m.run(phi0, phi0 + TAU, Start::Touching(0.0));
-        assert_eq!(t.jams(), 0, "{n1}:{n2} jams {:?}", &t.events()[..t.events().len().min(3)]);
+        assert_eq!(
+            t.jams(),
+            0,
+            "{n1}:{n2} jams {:?}",
+            &t.events()[..t.events().len().min(3)]
+        );
         assert_eq!(t.disengagements(), 0);
         let th0 = t.theta_at(phi0);
         for m_teeth in 1..=n1 {
             let phi = phi0 + m_teeth as f64 * p1;
             let want = th0 + (n1 as f64 / n2 as f64) * (phi - phi0);
             let got = t.theta_at(phi);
-            assert!((got - want).abs().to_degrees() < 1e-9, "{n1}:{n2} after {m_teeth}: {} vs {}", got.to_degrees(), want.to_degrees());
+            assert!(
+                (got - want).abs().to_degrees() < 1e-9,
+                "{n1}:{n2} after {m_teeth}: {} vs {}",
+                got.to_degrees(),
+                want.to_degrees()
+            );
         }
     }
+}
+
+#[test]
+fn paper_example_matches_appendix_closed_forms_every_hundredth_of_a_degree() {
+    let m = paper_example();
+    let pair = thorndike::Pair::new(8, 8, 200.0, 100.0, 200.0, 100.0, 310.0).unwrap();
+    let t = m.run(0.0, TAU, Start::Touching(0.0));
+    let mut worst: f64 = 0.0;
+    let mut phases = std::collections::BTreeSet::new();
+    for i in 0..=36_000 {
+        let phi = (i as f64 * 0.01).to_radians();
+        worst = worst.max((t.theta_at(phi) - thorndike::theta_prime(&pair, phi)).abs());
+        phases.insert(format!("{:?}", thorndike::contact(&pair, phi).phase));
+    }
+    assert_eq!(phases.len(), 2, "both contact phases visited");
+    assert!(
+        worst.to_degrees() < 1e-9,
+        "max |sim - closed| = {} deg",
+        worst.to_degrees()
+    );
 }

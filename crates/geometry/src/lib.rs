@@ -26,7 +26,10 @@ pub struct GeometryError {
 
 impl GeometryError {
     fn new(field: impl Into<String>, rule: impl Into<String>) -> Self {
-        Self { field: field.into(), rule: rule.into() }
+        Self {
+            field: field.into(),
+            rule: rule.into(),
+        }
     }
 }
 
@@ -44,14 +47,21 @@ pub struct Gear {
 }
 
 fn check_finite(field: &str, x: f64) -> Result<(), GeometryError> {
-    if x.is_finite() { Ok(()) } else { Err(GeometryError::new(field, "must be a finite number")) }
+    if x.is_finite() {
+        Ok(())
+    } else {
+        Err(GeometryError::new(field, "must be a finite number"))
+    }
 }
 
 impl Gear {
     /// An ideal gear: `teeth` tips evenly spaced at `360°·k/N`, rotating about its geometric centre.
     pub fn ideal(teeth: usize, tip_radius: f64, root_radius: f64) -> Result<Self, GeometryError> {
         if teeth < 3 {
-            return Err(GeometryError::new("teeth", format!("must be at least 3 (got {teeth})")));
+            return Err(GeometryError::new(
+                "teeth",
+                format!("must be at least 3 (got {teeth})"),
+            ));
         }
         let pitch = TAU / teeth as f64;
         let tips = (0..teeth).map(|k| pitch * k as f64).collect();
@@ -72,7 +82,10 @@ impl Gear {
         check_finite("tip_radius", tip_radius)?;
         check_finite("root_radius", root_radius)?;
         if tips.len() < 3 {
-            return Err(GeometryError::new("teeth", format!("must be at least 3 (got {})", tips.len())));
+            return Err(GeometryError::new(
+                "teeth",
+                format!("must be at least 3 (got {})", tips.len()),
+            ));
         }
         if root_radius <= 0.0 {
             return Err(GeometryError::new("root_radius", "must be greater than 0"));
@@ -111,11 +124,21 @@ impl Gear {
         let n = tips.len();
         let valleys = (0..n)
             .map(|k| {
-                let next = if k + 1 == n { tips[0] + TAU } else { tips[k + 1] };
+                let next = if k + 1 == n {
+                    tips[0] + TAU
+                } else {
+                    tips[k + 1]
+                };
                 0.5 * (tips[k] + next)
             })
             .collect();
-        Ok(Self { tip_radius, root_radius, tips, valleys, rotation_centre })
+        Ok(Self {
+            tip_radius,
+            root_radius,
+            tips,
+            valleys,
+            rotation_centre,
+        })
     }
 
     /// Number of teeth N.
@@ -178,7 +201,9 @@ impl Gear {
 
     /// The closed outline: tip0, valley0, tip1, valley1, ... (counter-clockwise, gear frame).
     pub fn outline(&self) -> Vec<Vec2> {
-        (0..self.teeth() as i64).flat_map(|k| [self.tip(k), self.valley(k)]).collect()
+        (0..self.teeth() as i64)
+            .flat_map(|k| [self.tip(k), self.valley(k)])
+            .collect()
     }
 
     /// Tooth `k` as the triangle (valley k−1, tip k, valley k), gear frame.

@@ -1,0 +1,101 @@
+//! `cargo xtask run pair --config FILE` with bad files: one line naming file, field and rule,
+//! exit status 2, and no results written.
+#![allow(clippy::unwrap_used, reason = "tests")]
+
+use std::path::PathBuf;
+use std::process::Command;
+
+fn scratch(tag: &str) -> PathBuf {
+    let nanos = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .unwrap()
+        .as_nanos();
+    let dir = std::env::temp_dir().join(format!("xtask-pair-{tag}-{}-{nanos}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Runs `pair` on `text`; returns (exit code, stderr, whether the results dir exists).
+fn run_pair(tag: &str, text: &str) -> (Option<i32>, String, bool) {
+    let dir = scratch(tag);
+    let file = dir.join("mesh.ron");
+    std::fs::write(&file, text).unwrap();
+    let out = dir.join("results");
+    let o = Command::new(env!("CARGO_BIN_EXE_xtask"))
+        .args([
+            "run",
+            "pair",
+            "--config",
+            file.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    let written = out.exists();
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    let _ = std::fs::remove_dir_all(&dir);
+    (o.status.code(), err, written)
+}
+
+fn mesh(driver: &str, extra: &str) -> String {
+    format!("(driver: {driver}, driven: (teeth: 20, tip_radius: 10.0, root_radius: 9.0), {extra})")
+}
+
+const GOOD_DRIVER: &str = "(teeth: 20, tip_radius: 10.0, root_radius: 9.0)";
+
+#[test]
+fn bad_mesh_files_exit_2_naming_field_and_rule_and_write_nothing() {
+    let cases = [
+        (
+            "teeth",
+            mesh(
+                "(teeth: 2, tip_radius: 10.0, root_radius: 9.0)",
+                "clearance_percent: Some(40.0)",
+            ),
+            "driver.teeth: must be at least 3",
+        ),
+        (
+            "radii",
+            mesh(
+                "(teeth: 20, tip_radius: 10.0, root_radius: 11.0)",
+                "clearance_percent: Some(40.0)",
+            ),
+            "driver.root_radius: must be less than tip_radius",
+        ),
+        (
+            "distance",
+            mesh(GOOD_DRIVER, "centre_distance: Some(18.5)"),
+            "centre_distance: must exceed",
+        ),
+        (
+            "syntax",
+            "(driver: (teeth: 20,".to_string(),
+            "line 1, column",
+        ),
+        (
+            "unknown field",
+            mesh(GOOD_DRIVER, "clearance_percent: Some(40.0), colour: 3"),
+            "line 1",
+        ),
+    ];
+    for (tag, text, expected) in cases {
+        let (code, err, written) = run_pair(tag, &text);
+        assert_eq!(code, Some(2), "{tag}: {err}");
+        let line = err
+            .lines()
+            .find(|l| l.contains("mesh.ron"))
+            .unwrap_or_else(|| panic!("{tag}: no line naming the file in {err}"));
+        assert!(line.contains(expected), "{tag}: {line}");
+        assert!(!err.contains("panicked"), "{tag}: {err}");
+        assert!(!written, "{tag}: results were written");
+    }
+}
+
+#[test]
+fn good_mesh_file_writes_results() {
+    let (code, err, written) =
+        run_pair("good", &mesh(GOOD_DRIVER, "clearance_percent: Some(40.0)"));
+    assert_eq!(code, Some(0), "{err}");
+    assert!(written);
+}
