@@ -114,7 +114,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     let (a, b) = (ctx.f64("driver_radius")?, ctx.f64("driven_radius")?);
     let h = ctx.f64("tooth_height")?;
     let grid_step = ctx.f64("grid_step")?;
-    if !(grid_step >= 0.5 && grid_step <= 50.0) {
+    if !(0.5..=50.0).contains(&grid_step) {
         return Err(RunError::bad(
             "--set",
             "grid_step",

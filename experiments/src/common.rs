@@ -73,7 +73,7 @@ pub fn line_plot(
         y0 = y0.min(p.1);
         y1 = y1.max(p.1);
     }
-    if !(x0 < x1) {
+    if x0.partial_cmp(&x1) != Some(std::cmp::Ordering::Less) {
         x1 = x0 + 1.0;
     }
     let pad = ((y1 - y0) * 0.05).max(1e-9);

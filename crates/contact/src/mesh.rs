@@ -241,23 +241,26 @@ impl Mesh {
             lo = lo.min(t);
             hi = hi.max(t);
         };
-        // Driver vertex P on a driven edge: in the driven frame P runs on the circle |P − c2|.
+        // Only flanks bound a tooth: the base chord between its valleys lies inside the gear body,
+        // where a contact would already be an overlap of a neighbouring tooth's flanks.
+        const FLANKS: [(usize, usize); 2] = [(0, 1), (1, 2)];
+        // Driver vertex P on a driven flank: in the driven frame P runs on the circle |P − c2|.
         for p in a {
             let rel = p - c2;
             let rho = rel.norm();
             let base = rel.y.atan2(rel.x);
-            for e in 0..3 {
-                circle_segment(Vec2::zeros(), rho, b[e], b[(e + 1) % 3], |x| {
+            for (s, e) in FLANKS {
+                circle_segment(Vec2::zeros(), rho, b[s], b[e], |x| {
                     add(x.y.atan2(x.x) - base + PI);
                 });
             }
         }
-        // Driven vertex Q on a driver edge: in the world Q runs on the circle |Q| about c2.
+        // Driven vertex Q on a driver flank: in the world Q runs on the circle |Q| about c2.
         for q in b {
             let rho = q.norm();
             let base = q.y.atan2(q.x) + PI;
-            for e in 0..3 {
-                circle_segment(c2, rho, a[e], a[(e + 1) % 3], |x| {
+            for (s, e) in FLANKS {
+                circle_segment(c2, rho, a[s], a[e], |x| {
                     let r = x - c2;
                     add(base - r.y.atan2(r.x));
                 });
@@ -275,20 +278,29 @@ impl Mesh {
     pub fn obstacles(&self, phi: f64, lo: f64, hi: f64, out: &mut Vec<Obstacle>) {
         out.clear();
         let c2 = self.c2();
-        // Angular half-width, in driven angle, of a driver tooth seen from the driven centre plus
-        // a whole driven tooth: beyond it tooth k cannot touch tooth j.
-        let seen = self.driver.max_gap * self.driver.reach
-            / (self.centre_distance - self.driver.reach).max(1e-9);
-        let margin = self.driven.max_gap + seen;
+        let (d1, d2) = (&self.driver, &self.driven);
+        // Half a driven tooth plus the eccentric shift of its angles about the rotation centre.
+        let half_k = 0.5 * d2.max_gap
+            + (d2.gear.rotation_centre().norm() / d2.gear.root_radius()).asin()
+            + 1e-9;
         for j in self.driver_teeth(phi) {
-            let tip = self.driver_world(self.driver.tips[self.driver.idx(j)], phi) - c2;
-            // Driven tip k points at this driver tip when θ = t_k + gamma.
-            let gamma = PI - tip.y.atan2(tip.x);
-            let gamma = wrap_pi(gamma);
-            for k in self
-                .driven
-                .teeth_between(lo - gamma - margin, hi - gamma + margin)
-            {
+            let tooth = d1.tooth(j).map(|v| self.driver_world(v, phi) - c2);
+            // A driver tooth farther from the driven centre than any driven vertex cannot touch.
+            let near =
+                segment_distance(tooth[0], tooth[1]).min(segment_distance(tooth[1], tooth[2]));
+            if near > d2.reach {
+                continue;
+            }
+            // The driver tooth as seen from the driven centre, as driven angles measured like θ − t_k:
+            // tooth k can only touch it when θ − t_k falls within that span widened by half_k.
+            let tip = wrap_pi(PI - tooth[1].y.atan2(tooth[1].x));
+            let (mut a_lo, mut a_hi) = (tip, tip);
+            for v in [tooth[0], tooth[2]] {
+                let a = tip + wrap_pi(PI - v.y.atan2(v.x) - tip);
+                a_lo = a_lo.min(a);
+                a_hi = a_hi.max(a);
+            }
+            for k in d2.teeth_between(lo - a_hi - half_k, hi - a_lo + half_k) {
                 if let Some(o) = self.obstacle(phi, j, k) {
                     if o.hi >= lo && o.lo <= hi {
                         out.push(o);
@@ -297,6 +309,14 @@ impl Mesh {
             }
         }
     }
+}
+
+/// Distance from the origin to the segment [a, b].
+#[inline]
+fn segment_distance(a: Vec2, b: Vec2) -> f64 {
+    let d = b - a;
+    let t = (-a.dot(&d) / d.dot(&d)).clamp(0.0, 1.0);
+    (a + d * t).norm()
 }
 
 /// `x` reduced to (−π, π].

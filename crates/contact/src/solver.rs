@@ -369,7 +369,12 @@ impl Run<'_> {
 
         // Obstacles at the end of the step, with their values there cached.
         let gap = mesh.driven.max_gap;
-        mesh.obstacles(phi1, theta0 - gap, theta0 + gap, &mut self.scratch);
+        mesh.obstacles(
+            phi1,
+            theta0 - 0.4 * gap,
+            theta0 + 0.6 * gap,
+            &mut self.scratch,
+        );
         let obs1 = std::mem::take(&mut self.scratch);
         let at1 = |pair: (i64, i64)| {
             obs1.iter()
@@ -469,7 +474,7 @@ impl Run<'_> {
                 plan.push((phi1, p1, Motion::Push(pushers.clone()), None));
             } else {
                 // Where do the pushers stop rising (peak or vanish)?
-                let phi_pk = golden_max(phi0, phi1, &push_env);
+                let phi_pk = golden_max(phi0, phi1, push_env);
                 let theta_pk = push_env(phi_pk).max(theta0);
                 // Did another behind obstacle take over before that?
                 let others: Vec<(i64, i64)> = behind
