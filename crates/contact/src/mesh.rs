@@ -229,8 +229,18 @@ impl Mesh {
     /// Its ends are contact roots: a vertex of one tooth on a flank of the other (tip on flank is
     /// the paper's Phase 1 or 2; tip on tip is the shared end of both), each solved in closed form.
     pub fn obstacle(&self, phi: f64, j: i64, k: i64) -> Option<Obstacle> {
+        let (s, c) = phi.sin_cos();
+        let a = self
+            .driver
+            .tooth(j)
+            .map(|v| Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y));
+        self.tooth_pair(a, j, k)
+    }
+
+    /// The obstacle of driver tooth `j`, already placed in the world as `a`, against driven tooth `k`.
+    #[inline]
+    fn tooth_pair(&self, a: [Vec2; 3], j: i64, k: i64) -> Option<Obstacle> {
         let c2 = self.c2();
-        let a = self.driver.tooth(j).map(|v| self.driver_world(v, phi));
         let b = self.driven.tooth(k);
         // The obstacle of tooth k sits near θ = t_k: unwrap every root to that neighbourhood.
         let reference = self.driven.gear.tip_angle(k);
@@ -283,8 +293,12 @@ impl Mesh {
         let half_k = 0.5 * d2.max_gap
             + (d2.gear.rotation_centre().norm() / d2.gear.root_radius()).asin()
             + 1e-9;
+        let (s, c) = phi.sin_cos();
         for j in self.driver_teeth(phi) {
-            let tooth = d1.tooth(j).map(|v| self.driver_world(v, phi) - c2);
+            let world = d1
+                .tooth(j)
+                .map(|v| Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y));
+            let tooth = world.map(|v| v - c2);
             // A driver tooth farther from the driven centre than any driven vertex cannot touch.
             let near =
                 segment_distance(tooth[0], tooth[1]).min(segment_distance(tooth[1], tooth[2]));
@@ -301,7 +315,7 @@ impl Mesh {
                 a_hi = a_hi.max(a);
             }
             for k in d2.teeth_between(lo - a_hi - half_k, hi - a_lo + half_k) {
-                if let Some(o) = self.obstacle(phi, j, k) {
+                if let Some(o) = self.tooth_pair(world, j, k) {
                     if o.hi >= lo && o.lo <= hi {
                         out.push(o);
                     }
