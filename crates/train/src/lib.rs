@@ -1,0 +1,565 @@
+//! The Antikythera Mechanism's gearing (Freeth 2006) as data: gears, arbors, meshes, pointers, exact ratios and radii.
+//!
+//! The default gearing is embedded from `data/freeth2006.ron` ([`FREETH2006_RON`]); a user file
+//! in the same format replaces it through [`Gearing::from_ron`] or [`Gearing::load`]. Every
+//! gearing is validated when it is read, so the queries on a [`Gearing`] never fail on
+//! inconsistent data.
+//!
+//! Conventions (the paper's section 3): every angle is positive in its own gear's direction of
+//! rotation, so all ratios are positive; one turn of the input arbor `b` is one year of 365.25
+//! days; in every mesh the tip radii keep `R1/R2 = N1/N2` exactly (see [`Gearing::tip_radii`]
+//! for the least-squares rule that sizes them).
+
+mod ratio;
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::fmt;
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+
+pub use ratio::Ratio;
+
+/// The text of the embedded default gearing, `data/freeth2006.ron`.
+pub const FREETH2006_RON: &str = include_str!("../data/freeth2006.ron");
+
+/// Days in one turn of the input arbor `b` (one year).
+pub const DAYS_PER_TURN: f64 = 365.25;
+
+/// One gear: tooth count, measured radius and where both come from.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct GearData {
+    /// The gear's name (Freeth 2006), e.g. `b2`.
+    pub name: String,
+    /// Number of teeth.
+    pub teeth: u32,
+    /// Measured radius in mm (Freeth 2006: mean of the best-fit inner and outer radius of the
+    /// fragment); `None` for a lost gear, which is sized from its mesh partners.
+    pub measured_radius: Option<f64>,
+    /// Provenance of the tooth count and radius.
+    pub source: String,
+}
+
+/// Gears fixed together on one arbor: they turn as one body.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Arbor {
+    /// The arbor's name, e.g. `b`.
+    pub name: String,
+    /// Names of the gears fixed on it.
+    pub gears: Vec<String>,
+}
+
+/// One external mesh between two gears.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct MeshData {
+    /// The label as the paper writes it, e.g. `b2-c1` (the paper's `n2-o1` has driver `n3`).
+    pub label: String,
+    /// Name of the driving gear.
+    pub driver: String,
+    /// Name of the driven gear.
+    pub driven: String,
+}
+
+/// A pointer: the train of meshes from the input arbor to the pointer's arbor.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Pointer {
+    /// The pointer's name, e.g. `Lunar`.
+    pub name: String,
+    /// Name of the input arbor (`b`, the mean Sun).
+    pub input: String,
+    /// Mesh labels in order from the input arbor to the pointer.
+    pub meshes: Vec<String>,
+    /// Whether the paper converts this pointer's degrees to days.
+    pub days: bool,
+}
+
+/// A gearing file rejected by [`Gearing::from_ron`], displayed as `{file}: {location}: {rule}`.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("{file}: {location}: {rule}")]
+pub struct GearingError {
+    /// The file name given to the reader.
+    pub file: String,
+    /// `line L, column C` for a RON syntax error, otherwise the item: `gear m3`, `mesh b2-c1`,
+    /// `pointer Lunar`, `arbor m`.
+    pub location: String,
+    /// What is wrong.
+    pub rule: String,
+}
+
+/// Dimensions of one mesh for the contact simulation (all lengths in mm).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MeshGeometry {
+    /// The mesh label.
+    pub label: String,
+    /// Teeth of the driver.
+    pub driver_teeth: u32,
+    /// Teeth of the driven gear.
+    pub driven_teeth: u32,
+    /// Tip (outer) radius `R1` of the driver.
+    pub driver_tip_radius: f64,
+    /// Tip (outer) radius `R2` of the driven gear.
+    pub driven_tip_radius: f64,
+    /// Root (inner) radius `r1 = R1 - h` of the driver.
+    pub driver_root_radius: f64,
+    /// Root (inner) radius `r2 = R2 - h` of the driven gear.
+    pub driven_root_radius: f64,
+    /// Tooth height `h`, the same for both gears.
+    pub tooth_height: f64,
+    /// Centre distance `D = R1 + R2 - h + G` with `G = h * clearance_percent / 100`.
+    pub centre_distance: f64,
+}
+
+/// Gears connected by meshes: they share one scale `mu`, with tip radius `R = mu * N`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Component {
+    /// Gear names, in file order.
+    pub gears: Vec<String>,
+    /// Labels of the meshes joining them, in file order (empty for a gear in no mesh).
+    pub meshes: Vec<String>,
+    /// Tip radius per tooth in mm: `mu = sum(N_i a_i) / sum(N_i^2)` over measured gears.
+    pub mu: f64,
+}
+
+/// A validated gearing: gears, the arbors that fix them together, meshes and pointer trains.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct Gearing {
+    gears: Vec<GearData>,
+    arbors: Vec<Arbor>,
+    meshes: Vec<MeshData>,
+    pointers: Vec<Pointer>,
+    #[serde(skip)]
+    components: Vec<Component>,
+}
+
+/// The file format, before validation.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawGearing {
+    gears: Vec<GearData>,
+    arbors: Vec<Arbor>,
+    meshes: Vec<MeshData>,
+    pointers: Vec<Pointer>,
+}
+
+/// Builds [`GearingError`]s for one file.
+struct Errors<'a> {
+    file: &'a str,
+}
+
+impl Errors<'_> {
+    fn at(&self, location: impl fmt::Display, rule: impl fmt::Display) -> GearingError {
+        GearingError {
+            file: self.file.to_owned(),
+            location: location.to_string(),
+            rule: rule.to_string(),
+        }
+    }
+}
+
+/// Finds `x`'s root in a union-find forest, halving paths.
+fn find(parent: &mut [usize], mut x: usize) -> usize {
+    while parent[x] != x {
+        parent[x] = parent[parent[x]];
+        x = parent[x];
+    }
+    x
+}
+
+impl Gearing {
+    /// The Freeth 2006 gearing embedded from `data/freeth2006.ron`.
+    ///
+    /// The embedded file is checked by the crate's tests, so it always parses; should it ever
+    /// not, this returns an empty gearing rather than panicking (use
+    /// `Gearing::from_ron("freeth2006.ron", FREETH2006_RON)` to see the error).
+    #[must_use]
+    pub fn freeth2006() -> Gearing {
+        Gearing::from_ron("freeth2006.ron", FREETH2006_RON).unwrap_or_default()
+    }
+
+    /// Reads a gearing file from disk (see [`Gearing::from_ron`]).
+    ///
+    /// # Errors
+    /// The file cannot be read (location `read`), or [`Gearing::from_ron`] rejects it.
+    pub fn load(path: &Path) -> Result<Gearing, GearingError> {
+        let file = path.display().to_string();
+        match std::fs::read_to_string(path) {
+            Ok(text) => Gearing::from_ron(&file, &text),
+            Err(e) => Err(Errors { file: &file }.at("read", e)),
+        }
+    }
+
+    /// Parses and validates a gearing in RON (the format of `data/freeth2006.ron`).
+    ///
+    /// `file_name` is only used in error messages.
+    ///
+    /// # Errors
+    /// A RON syntax or shape error (location `line L, column C`), or a rule broken by an item
+    /// (location `gear X`, `arbor X`, `mesh X` or `pointer X`): duplicate names; teeth < 3; a
+    /// measured radius that is not positive and finite; an arbor or mesh naming an unknown
+    /// gear; a gear on two arbors or on none; a mesh between two gears of one arbor; a group
+    /// of meshed gears with no measured radius at all (it cannot be sized); a pointer with an
+    /// unknown input arbor or mesh, no meshes, or a chain that does not connect (the first
+    /// driver must be on the input arbor, each next driver on the arbor of the previous
+    /// driven gear).
+    pub fn from_ron(file_name: &str, text: &str) -> Result<Gearing, GearingError> {
+        let errors = Errors { file: file_name };
+        let raw: RawGearing = ron::from_str(text).map_err(|e| {
+            errors.at(
+                format_args!("line {}, column {}", e.position.line, e.position.col),
+                e.code,
+            )
+        })?;
+        let mut gearing = Gearing {
+            gears: raw.gears,
+            arbors: raw.arbors,
+            meshes: raw.meshes,
+            pointers: raw.pointers,
+            components: Vec::new(),
+        };
+        gearing.validate(&errors)?;
+        gearing.components = gearing.find_components(&errors)?;
+        Ok(gearing)
+    }
+
+    fn validate(&self, errors: &Errors<'_>) -> Result<(), GearingError> {
+        // Gears.
+        let mut names = BTreeSet::new();
+        for gear in &self.gears {
+            let at = format!("gear {}", gear.name);
+            if !names.insert(gear.name.as_str()) {
+                return Err(errors.at(at, "duplicate gear name"));
+            }
+            if gear.teeth < 3 {
+                return Err(errors.at(
+                    at,
+                    format_args!("teeth must be at least 3, got {}", gear.teeth),
+                ));
+            }
+            if let Some(a) = gear.measured_radius
+                && !(a.is_finite() && a > 0.0)
+            {
+                return Err(errors.at(
+                    at,
+                    format_args!("measured radius must be positive and finite, got {a}"),
+                ));
+            }
+        }
+
+        // Arbors: each gear on exactly one.
+        let mut arbor_names = BTreeSet::new();
+        let mut arbor_of: BTreeMap<&str, &str> = BTreeMap::new();
+        for arbor in &self.arbors {
+            let at = format!("arbor {}", arbor.name);
+            if !arbor_names.insert(arbor.name.as_str()) {
+                return Err(errors.at(at, "duplicate arbor name"));
+            }
+            if arbor.gears.is_empty() {
+                return Err(errors.at(at, "has no gears"));
+            }
+            for g in &arbor.gears {
+                if !names.contains(g.as_str()) {
+                    return Err(errors.at(at, format_args!("unknown gear {g}")));
+                }
+                if let Some(other) = arbor_of.insert(g, &arbor.name) {
+                    return Err(errors.at(
+                        format_args!("gear {g}"),
+                        format_args!("on two arbors: {other} and {}", arbor.name),
+                    ));
+                }
+            }
+        }
+        for gear in &self.gears {
+            if !arbor_of.contains_key(gear.name.as_str()) {
+                return Err(errors.at(format_args!("gear {}", gear.name), "on no arbor"));
+            }
+        }
+
+        // Meshes.
+        let mut labels = BTreeSet::new();
+        for mesh in &self.meshes {
+            let at = format!("mesh {}", mesh.label);
+            if !labels.insert(mesh.label.as_str()) {
+                return Err(errors.at(at, "duplicate mesh label"));
+            }
+            for g in [&mesh.driver, &mesh.driven] {
+                if !names.contains(g.as_str()) {
+                    return Err(errors.at(at, format_args!("unknown gear {g}")));
+                }
+            }
+            let a1 = arbor_of[mesh.driver.as_str()];
+            let a2 = arbor_of[mesh.driven.as_str()];
+            if a1 == a2 {
+                return Err(errors.at(
+                    at,
+                    format_args!(
+                        "driver {} and driven {} are both on arbor {a1}",
+                        mesh.driver, mesh.driven
+                    ),
+                ));
+            }
+        }
+
+        // Pointers: known input, known meshes, a connected chain.
+        let mut pointer_names = BTreeSet::new();
+        for pointer in &self.pointers {
+            let at = format!("pointer {}", pointer.name);
+            if !pointer_names.insert(pointer.name.as_str()) {
+                return Err(errors.at(at, "duplicate pointer name"));
+            }
+            if !arbor_names.contains(pointer.input.as_str()) {
+                return Err(errors.at(at, format_args!("unknown input arbor {}", pointer.input)));
+            }
+            if pointer.meshes.is_empty() {
+                return Err(errors.at(at, "has no meshes"));
+            }
+            let mut current = pointer.input.as_str();
+            let mut previous: Option<&str> = None;
+            for label in &pointer.meshes {
+                let Some(mesh) = self.mesh(label) else {
+                    return Err(errors.at(at, format_args!("unknown mesh {label}")));
+                };
+                let driver_arbor = arbor_of[mesh.driver.as_str()];
+                if driver_arbor != current {
+                    let want = match previous {
+                        None => format!("the input arbor {current}"),
+                        Some(p) => format!("arbor {current} (driven by mesh {p})"),
+                    };
+                    return Err(errors.at(
+                        at,
+                        format_args!(
+                            "chain does not connect at mesh {label}: its driver {} is on arbor {driver_arbor}, not on {want}",
+                            mesh.driver
+                        ),
+                    ));
+                }
+                current = arbor_of[mesh.driven.as_str()];
+                previous = Some(label);
+            }
+        }
+        Ok(())
+    }
+
+    /// Groups the gears into mesh-connected components and fits one `mu` to each.
+    fn find_components(&self, errors: &Errors<'_>) -> Result<Vec<Component>, GearingError> {
+        let index: BTreeMap<&str, usize> = self
+            .gears
+            .iter()
+            .enumerate()
+            .map(|(i, g)| (g.name.as_str(), i))
+            .collect();
+        let mut parent: Vec<usize> = (0..self.gears.len()).collect();
+        for mesh in &self.meshes {
+            let a = find(&mut parent, index[mesh.driver.as_str()]);
+            let b = find(&mut parent, index[mesh.driven.as_str()]);
+            parent[a.max(b)] = a.min(b);
+        }
+        // Roots in file order of their first gear.
+        let mut by_root: BTreeMap<usize, Component> = BTreeMap::new();
+        for (i, gear) in self.gears.iter().enumerate() {
+            let root = find(&mut parent, i);
+            by_root
+                .entry(root)
+                .or_insert_with(|| Component {
+                    gears: Vec::new(),
+                    meshes: Vec::new(),
+                    mu: 0.0,
+                })
+                .gears
+                .push(gear.name.clone());
+        }
+        for mesh in &self.meshes {
+            let root = find(&mut parent, index[mesh.driver.as_str()]);
+            if let Some(c) = by_root.get_mut(&root) {
+                c.meshes.push(mesh.label.clone());
+            }
+        }
+        let mut components: Vec<Component> = by_root.into_values().collect();
+        for c in &mut components {
+            let (mut na, mut nn) = (0.0_f64, 0.0_f64);
+            for name in &c.gears {
+                let gear = &self.gears[index[name.as_str()]];
+                if let Some(a) = gear.measured_radius {
+                    let n = f64::from(gear.teeth);
+                    na += n * a;
+                    nn += n * n;
+                }
+            }
+            if nn == 0.0 {
+                let gears = c.gears.join(", ");
+                return Err(match c.meshes.first() {
+                    Some(label) => errors.at(
+                        format_args!("mesh {label}"),
+                        format_args!(
+                            "no gear of its mesh component ({gears}) has a measured radius; it cannot be sized"
+                        ),
+                    ),
+                    None => errors.at(
+                        format_args!("gear {gears}"),
+                        "no measured radius and no mesh partner; it cannot be sized",
+                    ),
+                });
+            }
+            c.mu = na / nn;
+        }
+        Ok(components)
+    }
+
+    /// All gears, in file order.
+    #[must_use]
+    pub fn gears(&self) -> &[GearData] {
+        &self.gears
+    }
+
+    /// All arbors, in file order.
+    #[must_use]
+    pub fn arbors(&self) -> &[Arbor] {
+        &self.arbors
+    }
+
+    /// All meshes, in file order (the paper's column order for the default gearing).
+    #[must_use]
+    pub fn meshes(&self) -> &[MeshData] {
+        &self.meshes
+    }
+
+    /// All pointers, in file order.
+    #[must_use]
+    pub fn pointers(&self) -> &[Pointer] {
+        &self.pointers
+    }
+
+    /// The mesh-connected components with their fitted scales (see [`Gearing::tip_radii`]),
+    /// in file order of their first gear.
+    #[must_use]
+    pub fn components(&self) -> &[Component] {
+        &self.components
+    }
+
+    /// The gear called `name`.
+    #[must_use]
+    pub fn gear(&self, name: &str) -> Option<&GearData> {
+        self.gears.iter().find(|g| g.name == name)
+    }
+
+    /// The arbor called `name`.
+    #[must_use]
+    pub fn arbor(&self, name: &str) -> Option<&Arbor> {
+        self.arbors.iter().find(|a| a.name == name)
+    }
+
+    /// The name of the arbor carrying `gear`.
+    #[must_use]
+    pub fn arbor_of(&self, gear: &str) -> Option<&str> {
+        self.arbors
+            .iter()
+            .find(|a| a.gears.iter().any(|g| g == gear))
+            .map(|a| a.name.as_str())
+    }
+
+    /// The mesh labelled `label`.
+    #[must_use]
+    pub fn mesh(&self, label: &str) -> Option<&MeshData> {
+        self.meshes.iter().find(|m| m.label == label)
+    }
+
+    /// The pointer called `name`.
+    #[must_use]
+    pub fn pointer(&self, name: &str) -> Option<&Pointer> {
+        self.pointers.iter().find(|p| p.name == name)
+    }
+
+    /// Turns of the driven gear per turn of the driver: `N_driver / N_driven`, exact.
+    #[must_use]
+    pub fn mesh_ratio(&self, label: &str) -> Option<Ratio> {
+        let mesh = self.mesh(label)?;
+        let driver = self.gear(&mesh.driver)?;
+        let driven = self.gear(&mesh.driven)?;
+        Some(Ratio::new(driver.teeth.into(), driven.teeth.into()))
+    }
+
+    /// Turns of the pointer's arbor per turn of its input arbor: the exact product of
+    /// `N_driver / N_driven` over its meshes (every angle positive in its own gear's direction,
+    /// as in the paper). `None` for an unknown pointer or if the product overflows `u128`.
+    #[must_use]
+    pub fn pointer_ratio(&self, name: &str) -> Option<Ratio> {
+        self.pointer(name)?
+            .meshes
+            .iter()
+            .try_fold(Ratio::ONE, |acc, label| {
+                acc.checked_mul(self.mesh_ratio(label)?)
+            })
+    }
+
+    /// Days shown by one degree of the pointer, `365.25 / (360 * ratio)` with one turn of the
+    /// input arbor being one year of [`DAYS_PER_TURN`] days. `None` for an unknown pointer or
+    /// one whose degrees the paper does not convert to days (`days: false`).
+    ///
+    /// Default gearing: Metonic about 3.855 d per degree, Saros about 4.573 d per degree.
+    #[must_use]
+    pub fn days_per_degree(&self, name: &str) -> Option<f64> {
+        if !self.pointer(name)?.days {
+            return None;
+        }
+        let ratio = self.pointer_ratio(name)?;
+        Some(DAYS_PER_TURN / (360.0 * ratio.to_f64()))
+    }
+
+    /// The tip (outer) radius `R` of `gear` in mm (see [`Gearing::tip_radii`]).
+    #[must_use]
+    pub fn tip_radius(&self, gear: &str) -> Option<f64> {
+        let teeth = self.gear(gear)?.teeth;
+        let c = self
+            .components
+            .iter()
+            .find(|c| c.gears.iter().any(|g| g == gear))?;
+        Some(c.mu * f64::from(teeth))
+    }
+
+    /// Tip (outer) radius `R` of every gear in mm, by name.
+    ///
+    /// The paper keeps `R1/R2 = N1/N2` exactly in every mesh, with `R` as close as possible to
+    /// Freeth's measured radii, one radius per gear (b2 has one radius for both of its meshes)
+    /// and lost gears sized from their partners. The project's rule: the gears connected by
+    /// meshes form one component, and every gear of a component gets `R = mu * N` with one
+    /// `mu` per component, chosen by least squares against the measured radii `a_i` of the
+    /// component's gears: `mu = sum(N_i a_i) / sum(N_i^2)` over the gears with a measured
+    /// radius. A gear in no mesh keeps its measured radius. The measured radius (the mean of the
+    /// fragment's inner and outer radius) is fitted as it is, without a correction of about
+    /// `h/2` towards the tip.
+    #[must_use]
+    pub fn tip_radii(&self) -> BTreeMap<String, f64> {
+        self.gears
+            .iter()
+            .filter_map(|g| Some((g.name.clone(), self.tip_radius(&g.name)?)))
+            .collect()
+    }
+
+    /// Dimensions of mesh `label` with tooth height `tooth_height_mm` (the paper uses 1.1 mm)
+    /// and clearance `G` given as a percentage of the tooth height (the paper's working value
+    /// is 40): tip radii from [`Gearing::tip_radii`], root radii `r = R - h`, centre distance
+    /// `D = R1 + R2 - h + h * G / 100`. `None` for an unknown mesh. The parameters are not
+    /// checked: `h` should be positive and smaller than both tip radii.
+    #[must_use]
+    pub fn mesh_geometry(
+        &self,
+        label: &str,
+        tooth_height_mm: f64,
+        clearance_percent: f64,
+    ) -> Option<MeshGeometry> {
+        let mesh = self.mesh(label)?;
+        let h = tooth_height_mm;
+        let r1 = self.tip_radius(&mesh.driver)?;
+        let r2 = self.tip_radius(&mesh.driven)?;
+        Some(MeshGeometry {
+            label: mesh.label.clone(),
+            driver_teeth: self.gear(&mesh.driver)?.teeth,
+            driven_teeth: self.gear(&mesh.driven)?.teeth,
+            driver_tip_radius: r1,
+            driven_tip_radius: r2,
+            driver_root_radius: r1 - h,
+            driven_root_radius: r2 - h,
+            tooth_height: h,
+            centre_distance: r1 + r2 - h + h * clearance_percent / 100.0,
+        })
+    }
+}

@@ -1,0 +1,233 @@
+//! Every rule of `Gearing::from_ron`, each with a message naming the offending item.
+
+use train::Gearing;
+
+/// A small valid gearing: a -(a1,a2)-, b -(b1,b2)-, c (c1); meshes a1-b1, b2-c1; pointer P.
+const BASE: &str = r#"(
+    gears: [
+        (name: "a1", teeth: 40, measured_radius: Some(10.0), source: "test"),
+        (name: "a2", teeth: 20, measured_radius: Some(5.0), source: "test"),
+        (name: "b1", teeth: 20, measured_radius: Some(5.0), source: "test"),
+        (name: "b2", teeth: 30, measured_radius: None, source: "test"),
+        (name: "c1", teeth: 60, measured_radius: Some(15.0), source: "test"),
+    ],
+    arbors: [
+        (name: "a", gears: ["a1", "a2"]),
+        (name: "b", gears: ["b1", "b2"]),
+        (name: "c", gears: ["c1"]),
+    ],
+    meshes: [
+        (label: "a1-b1", driver: "a1", driven: "b1"),
+        (label: "b2-c1", driver: "b2", driven: "c1"),
+    ],
+    pointers: [
+        (name: "P", input: "a", meshes: ["a1-b1", "b2-c1"], days: true),
+    ],
+)"#;
+
+/// `BASE` with `from` replaced by `to` (which must occur).
+fn edit(from: &str, to: &str) -> String {
+    assert!(BASE.contains(from), "{from}");
+    BASE.replacen(from, to, 1)
+}
+
+/// The error message for `text`, which must be rejected.
+fn error(text: &str) -> String {
+    match Gearing::from_ron("test.ron", text) {
+        Ok(_) => panic!("accepted:\n{text}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+fn assert_error(text: &str, location: &str, words: &str) {
+    let msg = error(text);
+    assert!(
+        msg.starts_with(&format!("test.ron: {location}: ")),
+        "{msg:?} should name {location:?}"
+    );
+    assert!(msg.contains(words), "{msg:?} should contain {words:?}");
+    assert!(!msg.contains('\n'), "{msg:?} is one line");
+}
+
+#[test]
+fn base_is_valid() {
+    let g = match Gearing::from_ron("test.ron", BASE) {
+        Ok(g) => g,
+        Err(e) => panic!("{e}"),
+    };
+    // 40/20 * 30/60 = 1.
+    assert_eq!(
+        g.pointer_ratio("P").map(|r| r.to_string()),
+        Some("1/1".into())
+    );
+    // {a1, b1}, {a2} (in no mesh), {b2, c1}.
+    assert_eq!(g.components().len(), 3);
+    // b2 is lost and sized from c1: 30 * 15/60.
+    assert_eq!(g.tip_radius("b2"), Some(7.5));
+}
+
+#[test]
+fn syntax_error_names_line_and_column() {
+    let text = edit(
+        "teeth: 20, measured_radius: Some(5.0)",
+        "teeth: 20 measured_radius: Some(5.0)",
+    );
+    let msg = error(&text);
+    assert!(msg.starts_with("test.ron: line 4, column "), "{msg}");
+    let msg = error(&edit("teeth: 40", "teeth: \"forty\""));
+    assert!(msg.contains("line 3"), "{msg}");
+}
+
+#[test]
+fn duplicates() {
+    assert_error(
+        &edit("\"a2\", teeth", "\"a1\", teeth"),
+        "gear a1",
+        "duplicate gear",
+    );
+    assert_error(
+        &edit("(name: \"c\", gears", "(name: \"b\", gears"),
+        "arbor b",
+        "duplicate arbor",
+    );
+    assert_error(
+        &edit("(label: \"b2-c1\"", "(label: \"a1-b1\""),
+        "mesh a1-b1",
+        "duplicate mesh",
+    );
+    let text = edit(
+        "days: true),",
+        "days: true), (name: \"P\", input: \"a\", meshes: [\"a1-b1\"], days: false),",
+    );
+    assert_error(&text, "pointer P", "duplicate pointer");
+}
+
+#[test]
+fn gear_rules() {
+    assert_error(
+        &edit("teeth: 40", "teeth: 2"),
+        "gear a1",
+        "teeth must be at least 3",
+    );
+    assert_error(
+        &edit("Some(10.0)", "Some(0.0)"),
+        "gear a1",
+        "positive and finite",
+    );
+    assert_error(
+        &edit("Some(10.0)", "Some(-1.5)"),
+        "gear a1",
+        "positive and finite",
+    );
+    assert_error(
+        &edit("Some(10.0)", "Some(inf)"),
+        "gear a1",
+        "positive and finite",
+    );
+    assert_error(
+        &edit("Some(10.0)", "Some(NaN)"),
+        "gear a1",
+        "positive and finite",
+    );
+}
+
+#[test]
+fn arbor_rules() {
+    assert_error(
+        &edit("[\"c1\"]", "[\"c1\", \"z9\"]"),
+        "arbor c",
+        "unknown gear z9",
+    );
+    assert_error(
+        &edit("[\"c1\"]", "[\"c1\", \"a2\"]"),
+        "gear a2",
+        "two arbors: a and c",
+    );
+    assert_error(
+        &edit("[\"a1\", \"a2\"]", "[\"a1\"]"),
+        "gear a2",
+        "on no arbor",
+    );
+    assert_error(&edit("[\"c1\"]", "[]"), "arbor c", "no gears");
+}
+
+#[test]
+fn mesh_rules() {
+    assert_error(
+        &edit("driven: \"c1\"", "driven: \"z9\""),
+        "mesh b2-c1",
+        "unknown gear z9",
+    );
+    assert_error(
+        &edit("driver: \"a1\"", "driver: \"z9\""),
+        "mesh a1-b1",
+        "unknown gear z9",
+    );
+    assert_error(
+        &edit(
+            "driver: \"b2\", driven: \"c1\"",
+            "driver: \"b2\", driven: \"b1\"",
+        ),
+        "mesh b2-c1",
+        "both on arbor b",
+    );
+}
+
+#[test]
+fn unsizable_component() {
+    let text = edit(
+        "(name: \"c1\", teeth: 60, measured_radius: Some(15.0)",
+        "(name: \"c1\", teeth: 60, measured_radius: None",
+    );
+    assert_error(&text, "mesh b2-c1", "cannot be sized");
+    // A lost gear in no mesh cannot be sized either.
+    let text = edit("(label: \"b2-c1\", driver: \"b2\", driven: \"c1\"),", "");
+    let text = text.replace(", \"b2-c1\"]", "]");
+    assert_error(&text, "gear b2", "cannot be sized");
+}
+
+#[test]
+fn pointer_rules() {
+    assert_error(
+        &edit("input: \"a\"", "input: \"q\""),
+        "pointer P",
+        "unknown input arbor q",
+    );
+    assert_error(
+        &edit("\"a1-b1\", \"b2-c1\"]", "\"a1-b1\", \"x-y\"]"),
+        "pointer P",
+        "unknown mesh x-y",
+    );
+    assert_error(
+        &edit("[\"a1-b1\", \"b2-c1\"]", "[]"),
+        "pointer P",
+        "no meshes",
+    );
+    // First driver not on the input arbor.
+    assert_error(
+        &edit("input: \"a\"", "input: \"c\""),
+        "pointer P",
+        "not on the input arbor c",
+    );
+    // Second mesh does not start where the first ended.
+    assert_error(
+        &edit("[\"a1-b1\", \"b2-c1\"]", "[\"b2-c1\", \"a1-b1\"]"),
+        "pointer P",
+        "chain does not connect at mesh b2-c1",
+    );
+    assert_error(
+        &edit("[\"a1-b1\", \"b2-c1\"]", "[\"a1-b1\", \"a1-b1\"]"),
+        "pointer P",
+        "driver a1 is on arbor a, not on arbor b",
+    );
+}
+
+#[test]
+fn error_display_is_file_location_rule() {
+    let e = train::GearingError {
+        file: "f.ron".into(),
+        location: "gear m3".into(),
+        rule: "bad".into(),
+    };
+    assert_eq!(e.to_string(), "f.ron: gear m3: bad");
+}
