@@ -1,0 +1,276 @@
+//! Whole-train simulation: a pointer's meshes composed in order, each with its own random initial angle.
+//!
+//! The push model is quasi-static: a mesh's driven angle depends only on its driver angle, not on
+//! how fast it turns. So a train is simulated mesh by mesh: the first mesh's driver turns with the
+//! input (b) arbor; each mesh's driven gear turns its arbor, and that arbor's rotation is the next
+//! mesh's driver rotation. Every mesh starts at a uniformly random driver angle within its driver's
+//! pitch (the paper: the maker could not set it), with the driven gear touching.
+
+use std::collections::BTreeMap;
+use std::f64::consts::TAU;
+
+use contact::{EventKind, Mesh, Start, Trajectory};
+use geometry::Gear;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use train::Gearing;
+
+/// Why a mechanism could not be built.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("mesh {mesh}: {rule}")]
+pub struct MechanismError {
+    /// The mesh label.
+    pub mesh: String,
+    /// What went wrong.
+    pub rule: String,
+}
+
+/// The gears of every mesh, ready to run.
+#[derive(Debug, Clone)]
+pub struct Mechanism {
+    gearing: Gearing,
+    meshes: BTreeMap<String, Mesh>,
+}
+
+/// The RNG stream of one trial: depends only on (seed, trial index), never on threads.
+pub fn trial_rng(seed: u64, trial: u64) -> ChaCha8Rng {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    rng.set_stream(trial);
+    rng
+}
+
+impl Mechanism {
+    /// Ideal gears (no manufacturing error) sized as `train` sizes them, tooth height `h` mm and
+    /// clearance `g_percent` of h for every mesh.
+    pub fn ideal(gearing: &Gearing, h: f64, g_percent: f64) -> Result<Self, MechanismError> {
+        Self::build(gearing, h, g_percent, |_label, driver, driven| {
+            Ok((driver, driven))
+        })
+    }
+
+    /// Like [`Mechanism::ideal`], but `make` may replace each mesh's ideal gears (an error model).
+    pub fn build(
+        gearing: &Gearing,
+        h: f64,
+        g_percent: f64,
+        mut make: impl FnMut(&str, Gear, Gear) -> Result<(Gear, Gear), String>,
+    ) -> Result<Self, MechanismError> {
+        let mut meshes = BTreeMap::new();
+        for m in gearing.meshes() {
+            let bad = |rule: String| MechanismError {
+                mesh: m.label.clone(),
+                rule,
+            };
+            let geo = gearing
+                .mesh_geometry(&m.label, h, g_percent)
+                .ok_or_else(|| bad("cannot be sized".into()))?;
+            let driver = Gear::ideal(
+                geo.driver_teeth as usize,
+                geo.driver_tip_radius,
+                geo.driver_tip_radius - h,
+            )
+            .map_err(|e| bad(format!("driver {}: {e}", m.driver)))?;
+            let driven = Gear::ideal(
+                geo.driven_teeth as usize,
+                geo.driven_tip_radius,
+                geo.driven_tip_radius - h,
+            )
+            .map_err(|e| bad(format!("driven {}: {e}", m.driven)))?;
+            let (driver, driven) = make(&m.label, driver, driven).map_err(bad)?;
+            let mesh =
+                Mesh::new(driver, driven, geo.centre_distance).map_err(|e| bad(e.to_string()))?;
+            meshes.insert(m.label.clone(), mesh);
+        }
+        Ok(Self {
+            gearing: gearing.clone(),
+            meshes,
+        })
+    }
+
+    /// The gearing this mechanism was built from.
+    pub fn gearing(&self) -> &Gearing {
+        &self.gearing
+    }
+
+    /// The contact mesh with this label.
+    pub fn mesh(&self, label: &str) -> Option<&Mesh> {
+        self.meshes.get(label)
+    }
+
+    /// Runs a pointer's train for `input_turns` turns of its input arbor, drawing each mesh's
+    /// initial driver angle from `rng`, in chain order.
+    pub fn run_pointer(
+        &self,
+        pointer: &str,
+        input_turns: f64,
+        rng: &mut impl Rng,
+    ) -> Option<PointerRun> {
+        let p = self.gearing.pointer(pointer)?;
+        let ratio = self.gearing.pointer_ratio(pointer)?.to_f64();
+        let mut stages = Vec::with_capacity(p.meshes.len());
+        let mut range = input_turns * TAU;
+        for label in &p.meshes {
+            let mesh = self.meshes.get(label)?;
+            let pitch = TAU / mesh.driver().teeth() as f64;
+            let phi0 = rng.random::<f64>() * pitch;
+            let traj = mesh.run(phi0, phi0 + range, Start::Touching(0.0));
+            let theta0 = traj.theta_at(phi0);
+            range = traj.theta_at(phi0 + range) - theta0;
+            stages.push(Stage {
+                label: label.clone(),
+                phi0,
+                theta0,
+                traj,
+            });
+        }
+        Some(PointerRun {
+            pointer: pointer.to_string(),
+            ratio,
+            input_range: input_turns * TAU,
+            stages,
+        })
+    }
+}
+
+/// One mesh of a pointer's train, as run.
+#[derive(Debug, Clone)]
+pub struct Stage {
+    /// Mesh label.
+    pub label: String,
+    /// Initial driver angle (radians, within the driver's pitch).
+    pub phi0: f64,
+    /// Driven angle at the start.
+    pub theta0: f64,
+    /// The exact run.
+    pub traj: Trajectory,
+}
+
+/// The first jam on a pointer's train.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Stop {
+    /// Label of the mesh that jammed.
+    pub mesh: String,
+    /// Input-arbor angle at the jam (radians from the start).
+    pub input_angle: f64,
+    /// The same in days of the b arbor (one turn = 365.25 d).
+    pub day: f64,
+}
+
+/// A pointer's train after one trial.
+#[derive(Debug, Clone)]
+pub struct PointerRun {
+    /// Pointer name.
+    pub pointer: String,
+    /// Exact pointer ratio as a float (turns of the pointer per input turn).
+    pub ratio: f64,
+    /// Input rotation simulated (radians).
+    pub input_range: f64,
+    /// The meshes in chain order.
+    pub stages: Vec<Stage>,
+}
+
+impl PointerRun {
+    /// Rotation of the output arbor after the input arbor has turned `psi` (radians), through the
+    /// first `upto` meshes.
+    pub fn arbor_angle(&self, psi: f64, upto: usize) -> f64 {
+        let mut x = psi;
+        for s in &self.stages[..upto] {
+            x = s.traj.theta_at(s.phi0 + x) - s.theta0;
+        }
+        x
+    }
+
+    /// Pointer rotation (radians) after the input has turned `psi`.
+    pub fn pointer_angle(&self, psi: f64) -> f64 {
+        self.arbor_angle(psi, self.stages.len())
+    }
+
+    /// Theoretical Difference (radians): pointer rotation minus ratio × input rotation.
+    pub fn theoretical_difference(&self, psi: f64) -> f64 {
+        self.pointer_angle(psi) - self.ratio * psi
+    }
+
+    /// The first jam anywhere on the train, mapped back to the input arbor, if any.
+    pub fn first_stop(&self) -> Option<Stop> {
+        let mut best: Option<Stop> = None;
+        for (i, s) in self.stages.iter().enumerate() {
+            let Some(e) = s.traj.events().iter().find(|e| e.kind == EventKind::Jam) else {
+                continue;
+            };
+            // Input angle at which this mesh's driver arbor reached the jam: the upstream
+            // composition is non-decreasing, so bisect.
+            let target = e.phi - s.phi0;
+            let (mut lo, mut hi) = (0.0, self.input_range);
+            for _ in 0..100 {
+                let mid = 0.5 * (lo + hi);
+                if self.arbor_angle(mid, i) < target {
+                    lo = mid
+                } else {
+                    hi = mid
+                }
+            }
+            if best.as_ref().is_none_or(|b| hi < b.input_angle) {
+                best = Some(Stop {
+                    mesh: s.label.clone(),
+                    input_angle: hi,
+                    day: hi / TAU * stats::DAYS_PER_YEAR,
+                });
+            }
+        }
+        best
+    }
+
+    /// Number of disengagements on every mesh of the train.
+    pub fn disengagements(&self) -> usize {
+        self.stages.iter().map(|s| s.traj.disengagements()).sum()
+    }
+
+    /// σ, Dm and mean P of the Theoretical Difference (degrees) over `samples` input angles spread
+    /// evenly over the run (or up to the first jam).
+    pub fn stats(&self, samples: usize) -> stats::PointerStats {
+        let end = self
+            .first_stop()
+            .map_or(self.input_range, |s| s.input_angle);
+        let n = samples.max(2);
+        let acc: stats::Accumulator = (0..n)
+            .map(|i| {
+                self.theoretical_difference(end * i as f64 / (n - 1) as f64)
+                    .to_degrees()
+            })
+            .collect();
+        acc.stats()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, reason = "tests")]
+    use super::*;
+
+    #[test]
+    fn ideal_pointer_follows_its_exact_ratio_after_whole_turns() {
+        let g = Gearing::freeth2006();
+        let m = Mechanism::ideal(&g, 1.1, 40.0).unwrap();
+        let mut rng = trial_rng(7, 0);
+        let run = m.run_pointer("Metonic", 3.8, &mut rng).unwrap();
+        assert!(run.first_stop().is_none());
+        // After 19 turns of b, every gear of the Metonic train is back at a whole number of teeth
+        // (5 turns of n): the pointer equals the ratio exactly.
+        let run19 = m
+            .run_pointer("Metonic", 19.0, &mut trial_rng(7, 1))
+            .unwrap();
+        let td = run19.theoretical_difference(19.0 * TAU) - run19.theoretical_difference(0.0);
+        assert!(td.to_degrees().abs() < 1e-9, "{}", td.to_degrees());
+        let s = run.stats(2000);
+        assert!(s.sigma > 0.0 && s.sigma < 1.0, "{s:?}");
+    }
+
+    #[test]
+    fn trial_streams_depend_only_on_seed_and_index() {
+        let a: f64 = trial_rng(1, 5).random();
+        let b: f64 = trial_rng(1, 5).random();
+        let c: f64 = trial_rng(1, 6).random();
+        assert_eq!(a.to_bits(), b.to_bits());
+        assert_ne!(a.to_bits(), c.to_bits());
+    }
+}
