@@ -6,7 +6,9 @@ pub mod paper;
 mod clearance;
 mod fig2;
 mod fig3;
+mod gearing;
 mod pair;
+mod table1;
 
 /// Does nothing; calling it makes a binary link this crate, and with it every experiment it registers.
 pub fn link() {}

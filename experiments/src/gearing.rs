@@ -1,0 +1,22 @@
+//! The gearing an experiment runs on: the embedded Freeth 2006 data, or a user's RON file given
+//! with `--set gearing=FILE`.
+
+use registry::{Context, Param, RunError};
+use train::Gearing;
+
+/// The `gearing` parameter every train experiment declares.
+pub const PARAM: Param = Param {
+    name: "gearing",
+    default: "freeth2006",
+    unit: "",
+    help: "gearing RON file (default: the embedded Freeth 2006 data, crates/train/data/freeth2006.ron)",
+};
+
+/// Loads the gearing named by the `gearing` parameter.
+pub fn load(ctx: &Context) -> Result<Gearing, RunError> {
+    let name = ctx.param("gearing")?;
+    if name == PARAM.default {
+        return Ok(Gearing::freeth2006());
+    }
+    Gearing::load(std::path::Path::new(name)).map_err(|e| RunError::bad(e.file, e.location, e.rule))
+}
