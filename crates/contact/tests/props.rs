@@ -1,0 +1,606 @@
+//! Property tests of the push-model contact solver, checked against the independent polygon oracle
+//! (`polycheck`) and Thorndike's closed forms (`thorndike`) on random gear pairs with tooth errors
+//! and eccentricity.
+#![allow(clippy::unwrap_used, reason = "tests")]
+
+use std::f64::consts::TAU;
+use std::ops::Range;
+
+use contact::{Event, EventKind, Mesh, Motion, Start, Trajectory};
+use geometry::{Gear, Vec2};
+use polycheck::{GearShape, P2, outline_from_tips};
+use proptest::prelude::*;
+use proptest::test_runner::{Config as ProptestConfig, RngSeed};
+
+/// Penetration (mm) still counted as "no overlap": rounding at exact contact.
+const PEN_TOL: f64 = 1e-9;
+/// Seed of the case generator.
+const SEED: u64 = 0x5eed_a771;
+/// Boundary distance (mm) counted as "touching".
+const TOUCH_TOL: f64 = 1e-7;
+
+/// One gear of a case, as plain numbers.
+#[derive(Debug, Clone)]
+struct GearSpec {
+    r_tip: f64,
+    r_root: f64,
+    /// Tip angles, radians, gear frame.
+    tips: Vec<f64>,
+    /// Rotation-centre offset from the geometric centre, gear frame, mm.
+    ecc: P2,
+}
+
+impl GearSpec {
+    /// `n` tips at `2 pi k / n + sigma * pitch * u[k]`, tip radius `n * module / 2`, tooth height
+    /// `h`, rotation centre offset `e_frac * h` at angle `e_angle`.
+    fn new(
+        n: usize,
+        module: f64,
+        h: f64,
+        sigma: f64,
+        u: &[f64],
+        e_frac: f64,
+        e_angle: f64,
+    ) -> Self {
+        let r_tip = n as f64 * module / 2.0;
+        let pitch = TAU / n as f64;
+        let tips = (0..n)
+            .map(|k| pitch * k as f64 + sigma * pitch * u[k])
+            .collect();
+        let e = e_frac * h;
+        Self {
+            r_tip,
+            r_root: r_tip - h,
+            tips,
+            ecc: [e * e_angle.cos(), e * e_angle.sin()],
+        }
+    }
+
+    fn gear(&self) -> Option<Gear> {
+        Gear::new(
+            self.r_tip,
+            self.r_root,
+            self.tips.clone(),
+            Vec2::new(self.ecc[0], self.ecc[1]),
+        )
+        .ok()
+    }
+
+    fn shape(&self) -> GearShape {
+        GearShape {
+            outline: outline_from_tips(&self.tips, self.r_tip, self.r_root),
+            rotation_centre_offset: self.ecc,
+        }
+    }
+
+    fn teeth(&self) -> usize {
+        self.tips.len()
+    }
+
+    fn pitch(&self) -> f64 {
+        TAU / self.teeth() as f64
+    }
+}
+
+/// Most teeth of a generated gear.
+const MAX_TEETH: usize = 60;
+
+/// A random mesh and run. Every field is drawn independently (no dependent strategies), so that
+/// shrinking keeps the case consistent; the gears are derived from it.
+#[derive(Debug, Clone)]
+struct Case {
+    driver: GearSpec,
+    driven: GearSpec,
+    /// Tooth height h, mm (both gears).
+    h: f64,
+    /// Clearance G in percent of h.
+    g_percent: f64,
+    /// First driver angle of the run, radians.
+    phi0: f64,
+    /// Length of the run in driver pitches.
+    pitches: u32,
+    /// Initial guess for `Start::Touching`.
+    guess: f64,
+}
+
+impl Case {
+    fn centre_distance(&self) -> f64 {
+        geometry::centre_distance(self.driver.r_tip, self.driven.r_tip, self.h, self.g_percent)
+    }
+
+    fn phi_end(&self) -> f64 {
+        self.phi0 + f64::from(self.pitches) * self.driver.pitch()
+    }
+
+    /// The solver's mesh, or `None` if a constructor refuses the geometry.
+    fn mesh(&self) -> Option<Mesh> {
+        Mesh::new(
+            self.driver.gear()?,
+            self.driven.gear()?,
+            self.centre_distance(),
+        )
+        .ok()
+    }
+
+    /// The oracle's mesh, placed independently of the solver.
+    fn oracle(&self) -> polycheck::Mesh {
+        polycheck::Mesh {
+            driver: self.driver.shape(),
+            driven: self.driven.shape(),
+            centre_distance: self.centre_distance(),
+        }
+    }
+
+    fn run(&self, mesh: &Mesh) -> Trajectory {
+        mesh.run(self.phi0, self.phi_end(), Start::Touching(self.guess))
+    }
+}
+
+/// Which errors a random case has.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Errors {
+    /// Ideal gears.
+    None,
+    /// Tooth (tip angle) errors only.
+    Teeth,
+    /// Tooth errors and eccentricity of one or both gears.
+    All,
+}
+
+/// Random cases with the given kind of errors.
+fn cases(
+    errors_kind: Errors,
+    g_percent: Range<f64>,
+    pitches: Range<u32>,
+) -> impl Strategy<Value = Case> {
+    let teeth = (8usize..=60, 8usize..=60, 0.4..1.0f64, 0.6..1.4f64);
+    let errors = (
+        0.0..0.15f64,
+        0.0..0.15f64,
+        prop::collection::vec(-1.0..=1.0f64, MAX_TEETH),
+        prop::collection::vec(-1.0..=1.0f64, MAX_TEETH),
+    );
+    let ecc = (0u8..4, 0.0..0.3f64, 0.0..TAU, 0.0..0.3f64, 0.0..TAU);
+    let run = (g_percent, 0.0..TAU, pitches, 0.0..TAU);
+    (teeth, errors, ecc, run)
+        .prop_filter("h < 0.3 R for both gears", |&((n1, n2, m, h), ..)| {
+            h < 0.3 * (n1.min(n2) as f64 * m / 2.0)
+        })
+        .prop_map(
+            move |(
+                (n1, n2, m, h),
+                (s1, s2, u1, u2),
+                (which, f1, a1, f2, a2),
+                (g_percent, phi0, pitches, guess),
+            )| {
+                let (s1, s2, f1, f2) = match errors_kind {
+                    Errors::None => (0.0, 0.0, 0.0, 0.0),
+                    Errors::Teeth => (s1, s2, 0.0, 0.0),
+                    Errors::All => (
+                        s1,
+                        s2,
+                        if which & 1 != 0 { f1 } else { 0.0 },
+                        if which & 2 != 0 { f2 } else { 0.0 },
+                    ),
+                };
+                Case {
+                    driver: GearSpec::new(n1, m, h, s1, &u1, f1, a1),
+                    driven: GearSpec::new(n2, m, h, s2, &u2, f2, a2),
+                    h,
+                    g_percent,
+                    phi0,
+                    pitches,
+                    guess,
+                }
+            },
+        )
+}
+
+fn config() -> ProptestConfig {
+    ProptestConfig {
+        cases: 64,
+        failure_persistence: None,
+        // Fixed seed: the solver can loop forever on some random cases (see the ignored
+        // `*_random_seed` tests and `solver_bug_zero_length_jam_loop`), so CI runs a fixed sample.
+        rng_seed: RngSeed::Fixed(SEED),
+        ..ProptestConfig::default()
+    }
+}
+
+/// Thorndike's pair for an ideal case, `None` if it refuses the geometry (in particular when
+/// contact is interrupted).
+fn thorndike_pair(case: &Case) -> Option<thorndike::Pair> {
+    let (a, b) = (&case.driver, &case.driven);
+    thorndike::Pair::new(
+        u32::try_from(a.teeth()).ok()?,
+        u32::try_from(b.teeth()).ok()?,
+        a.r_tip,
+        a.r_root,
+        b.r_tip,
+        b.r_root,
+        case.centre_distance(),
+    )
+    .ok()
+}
+
+fn jams(traj: &Trajectory) -> Vec<Event> {
+    traj.events()
+        .iter()
+        .copied()
+        .filter(|e| e.kind == EventKind::Jam)
+        .collect()
+}
+
+/// Whether φ lies in a Held segment or within 1e-9 rad of a jam.
+fn excluded(traj: &Trajectory, phi: f64) -> bool {
+    traj.segments()
+        .iter()
+        .any(|s| s.motion == Motion::Held && s.phi_start <= phi && phi <= s.phi_end)
+        || jams(traj).iter().any(|e| (phi - e.phi).abs() <= 1e-9)
+}
+
+/// Property 1: no interpenetration at segment ends and at random angles.
+fn check_no_overlap(case: &Case, fractions: &[f64]) -> Result<(), TestCaseError> {
+    let Some(mesh) = case.mesh() else {
+        return Err(TestCaseError::reject("mesh refused"));
+    };
+    let oracle = case.oracle();
+    let traj = case.run(&mesh);
+    let span = case.phi_end() - case.phi0;
+    let ends = traj
+        .segments()
+        .iter()
+        .flat_map(|s| [s.phi_start, s.phi_end]);
+    let random = fractions.iter().map(|f| case.phi0 + f * span);
+    for phi in ends.chain(random) {
+        if excluded(&traj, phi) {
+            continue;
+        }
+        let theta = traj.theta_at(phi);
+        let pen = oracle.penetration_at(phi, theta);
+        prop_assert!(
+            pen <= PEN_TOL,
+            "overlap {pen} mm at phi {phi}, theta {theta}"
+        );
+    }
+    Ok(())
+}
+
+/// Property 2: θ never decreases.
+fn check_monotone(case: &Case) -> Result<(), TestCaseError> {
+    let Some(mesh) = case.mesh() else {
+        return Err(TestCaseError::reject("mesh refused"));
+    };
+    let traj = case.run(&mesh);
+    let n = 2000;
+    let span = case.phi_end() - case.phi0;
+    let mut last = f64::NEG_INFINITY;
+    for i in 0..=n {
+        let phi = case.phi0 + span * f64::from(i) / f64::from(n);
+        let theta = traj.theta_at(phi);
+        prop_assert!(
+            theta >= last - 1e-12,
+            "theta fell from {last} to {theta} at phi {phi}"
+        );
+        last = theta;
+    }
+    for s in traj.segments() {
+        prop_assert!(s.theta_end >= s.theta_start - 1e-12, "segment {s:?}");
+    }
+    for w in traj.segments().windows(2) {
+        prop_assert!(w[1].theta_start >= w[0].theta_end - 1e-12, "{w:?}");
+    }
+    for e in traj.events() {
+        prop_assert!(e.theta_after >= e.theta, "{e:?}");
+    }
+    Ok(())
+}
+
+/// Property 3: every jam is confirmed by the oracle.
+fn check_jams(case: &Case) -> Result<(), TestCaseError> {
+    let Some(mesh) = case.mesh() else {
+        return Err(TestCaseError::reject("mesh refused"));
+    };
+    let oracle = case.oracle();
+    let traj = case.run(&mesh);
+    // The solver declares a jam once the obstacle ahead is within its side tolerance (1e-10 rad)
+    // of θ, so the jam configuration may overlap by up to about 1e-10 D (mm); see the report in
+    // `jam_overlap_is_within_1e9_mm` (ignored).
+    let jam_tol = PEN_TOL.max(1e-10 * case.centre_distance());
+    for e in jams(&traj) {
+        let pen = oracle.penetration_at(e.phi, e.theta);
+        let dist = oracle.distance_at(e.phi, e.theta);
+        prop_assert!(
+            pen <= jam_tol && (pen > 0.0 || dist < TOUCH_TOL),
+            "jam {e:?} not touching: penetration {pen}, distance {dist}"
+        );
+        for theta in [e.theta, e.theta + 1e-9] {
+            let pen = oracle.penetration_at(e.phi + 1e-7, theta);
+            prop_assert!(pen > 0.0, "jam {e:?} not blocked at theta {theta}");
+        }
+        if e.theta_after > e.theta {
+            let pen = oracle.penetration_at(e.phi, e.theta_after);
+            prop_assert!(pen <= PEN_TOL, "jam {e:?}: released into overlap {pen}");
+        }
+    }
+    Ok(())
+}
+
+/// Property 4: every disengagement is confirmed by the oracle.
+fn check_disengagements(case: &Case) -> Result<(), TestCaseError> {
+    let Some(mesh) = case.mesh() else {
+        return Err(TestCaseError::reject("mesh refused"));
+    };
+    let oracle = case.oracle();
+    let traj = case.run(&mesh);
+    for e in traj
+        .events()
+        .iter()
+        .filter(|e| e.kind == EventKind::Disengagement)
+    {
+        let pen = oracle.penetration_at(e.phi, e.theta);
+        let dist = oracle.distance_at(e.phi, e.theta);
+        prop_assert!(
+            pen <= PEN_TOL && dist < TOUCH_TOL,
+            "disengagement {e:?} not touching: penetration {pen}, distance {dist}"
+        );
+        let after = oracle.distance_at(e.phi + 1e-6, e.theta);
+        prop_assert!(
+            after > 0.0,
+            "disengagement {e:?} still in contact 1e-6 rad later"
+        );
+    }
+    Ok(())
+}
+
+/// Property 5: Push segments touch at their mid-point; Rest segments do not overlap.
+fn check_segments(case: &Case) -> Result<(), TestCaseError> {
+    let Some(mesh) = case.mesh() else {
+        return Err(TestCaseError::reject("mesh refused"));
+    };
+    let oracle = case.oracle();
+    let traj = case.run(&mesh);
+    for s in traj.segments() {
+        if s.phi_end <= s.phi_start {
+            continue;
+        }
+        let phi = 0.5 * (s.phi_start + s.phi_end);
+        let theta = traj.theta_at(phi);
+        let pen = oracle.penetration_at(phi, theta);
+        match s.motion {
+            Motion::Push(_) => {
+                let dist = oracle.distance_at(phi, theta);
+                prop_assert!(
+                    pen <= PEN_TOL && dist < TOUCH_TOL,
+                    "push segment {s:?} not touching at its mid-point: penetration {pen}, distance {dist}"
+                );
+            }
+            Motion::Rest => {
+                prop_assert!(
+                    pen <= PEN_TOL,
+                    "rest segment {s:?} overlaps at its mid-point: {pen}"
+                );
+            }
+            Motion::Held => {}
+        }
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(config())]
+
+    #[test]
+    fn no_interpenetration_ideal(
+        case in cases(Errors::None, 15.0..85.0, 2..7),
+        fractions in prop::collection::vec(0.0..1.0f64, 50),
+    ) {
+        check_no_overlap(&case, &fractions)?;
+    }
+
+    #[test]
+    fn theta_never_decreases_ideal(case in cases(Errors::None, 15.0..85.0, 2..7)) {
+        check_monotone(&case)?;
+    }
+
+    #[test]
+    fn jams_are_confirmed_ideal(case in cases(Errors::None, 15.0..85.0, 2..7)) {
+        check_jams(&case)?;
+    }
+
+    #[test]
+    fn disengagements_are_confirmed_ideal(case in cases(Errors::None, 15.0..85.0, 2..7)) {
+        check_disengagements(&case)?;
+    }
+
+    #[test]
+    fn push_touches_and_rest_is_free_ideal(case in cases(Errors::None, 15.0..85.0, 2..7)) {
+        check_segments(&case)?;
+    }
+
+    #[test]
+    fn no_interpenetration_tooth_errors(
+        case in cases(Errors::Teeth, 15.0..85.0, 2..7),
+        fractions in prop::collection::vec(0.0..1.0f64, 50),
+    ) {
+        check_no_overlap(&case, &fractions)?;
+    }
+
+    #[test]
+    #[ignore = "solver bug: Mesh::run loops forever on a case of this sample (see solver_bug_zero_length_jam_loop)"]
+    fn theta_never_decreases_tooth_errors(case in cases(Errors::Teeth, 15.0..85.0, 2..7)) {
+        check_monotone(&case)?;
+    }
+
+    #[test]
+    #[ignore = "solver bug: Mesh::run loops forever on a case of this sample (see solver_bug_zero_length_jam_loop)"]
+    fn jams_are_confirmed_tooth_errors(case in cases(Errors::Teeth, 15.0..85.0, 2..7)) {
+        check_jams(&case)?;
+    }
+
+    #[test]
+    #[ignore = "solver bug: Mesh::run loops forever on a case of this sample (see solver_bug_zero_length_jam_loop)"]
+    fn disengagements_are_confirmed_tooth_errors(case in cases(Errors::Teeth, 15.0..85.0, 2..7)) {
+        check_disengagements(&case)?;
+    }
+
+    #[test]
+    #[ignore = "solver bug: Mesh::run loops forever on a case of this sample (see solver_bug_zero_length_jam_loop)"]
+    fn push_touches_and_rest_is_free_tooth_errors(case in cases(Errors::Teeth, 15.0..85.0, 2..7)) {
+        check_segments(&case)?;
+    }
+
+    #[test]
+    fn no_interpenetration_eccentric(
+        case in cases(Errors::All, 15.0..85.0, 2..7),
+        fractions in prop::collection::vec(0.0..1.0f64, 50),
+    ) {
+        check_no_overlap(&case, &fractions)?;
+    }
+
+    #[test]
+    fn theta_never_decreases_eccentric(case in cases(Errors::All, 15.0..85.0, 2..7)) {
+        check_monotone(&case)?;
+    }
+
+    #[test]
+    fn jams_are_confirmed_eccentric(case in cases(Errors::All, 15.0..85.0, 2..7)) {
+        check_jams(&case)?;
+    }
+
+    #[test]
+    fn disengagements_are_confirmed_eccentric(case in cases(Errors::All, 15.0..85.0, 2..7)) {
+        check_disengagements(&case)?;
+    }
+
+    #[test]
+    fn push_touches_and_rest_is_free_eccentric(case in cases(Errors::All, 15.0..85.0, 2..7)) {
+        check_segments(&case)?;
+    }
+
+    /// Property 6: ideal gears turn at exactly N1/N2 over whole driver teeth, without events.
+    #[test]
+    #[ignore = "solver bug: Mesh::run loops forever on a case of this sample (see solver_bug_zero_length_jam_loop)"]
+    fn ideal_gears_exact_ratio_no_events(case in cases(Errors::None, 20.0..80.0, 1..9)) {
+        let Some(mesh) = case.mesh() else {
+            return Err(TestCaseError::reject("mesh refused"));
+        };
+        // Teeth too tall for their pitch lose contact (contact ratio below one): a real
+        // disengagement, confirmed by the oracle. Keep the geometries with continuous contact.
+        if thorndike_pair(&case).is_none() {
+            return Err(TestCaseError::reject("contact interrupted"));
+        }
+        let traj = case.run(&mesh);
+        prop_assert!(traj.events().is_empty(), "events {:?}", traj.events());
+        let p1 = case.driver.pitch();
+        let ratio = case.driver.teeth() as f64 / case.driven.teeth() as f64;
+        let theta0 = traj.theta_at(case.phi0);
+        for m in 1..=case.pitches {
+            let phi = case.phi0 + f64::from(m) * p1;
+            let want = theta0 + ratio * f64::from(m) * p1;
+            let got = traj.theta_at(phi);
+            prop_assert!(
+                (got - want).abs().to_degrees() < 1e-9,
+                "after {m} teeth: {} deg, want {} deg", got.to_degrees(), want.to_degrees()
+            );
+        }
+    }
+
+    /// Property 7: ideal gears agree with Thorndike's push-model theta'(phi') (Appendix I).
+    #[test]
+    fn ideal_gears_agree_with_thorndike(case in cases(Errors::None, 15.0..85.0, 3..4)) {
+        let Some(mesh) = case.mesh() else {
+            return Err(TestCaseError::reject("mesh refused"));
+        };
+        let (a, b) = (&case.driver, &case.driven);
+        let Some(pair) = thorndike_pair(&case) else {
+            return Err(TestCaseError::reject("thorndike refuses the pair"));
+        };
+        let p1 = a.pitch();
+        let p2 = b.pitch();
+        let traj = mesh.run(0.0, 3.0 * p1, Start::Touching(0.0));
+        // Thorndike's model has no jams (it ignores the driven's leading flanks).
+        if traj.jams() > 0 {
+            return Err(TestCaseError::reject("solver jams; thorndike does not model jams"));
+        }
+        // Both use the same frame; the solver may start on a different driven tooth.
+        let shift = ((traj.theta_at(0.0) - thorndike::theta_prime(&pair, 0.0)) / p2).round() * p2;
+        for i in 0..500 {
+            let phi = 3.0 * p1 * f64::from(i) / 499.0;
+            let got = traj.theta_at(phi) - shift;
+            let want = thorndike::theta_prime(&pair, phi);
+            prop_assert!(
+                (got - want).abs().to_degrees() < 1e-9,
+                "phi {} deg: solver {} deg, thorndike {} deg",
+                phi.to_degrees(), got.to_degrees(), want.to_degrees()
+            );
+        }
+    }
+}
+
+/// Minimal reproduction of a solver hang found by the properties above: `run` repeats a
+/// zero-length jam at φ = 4.9030041306936125 (driver tooth −19, driven tooth 10) with
+/// `theta_after == theta` forever, the event list growing without bound.
+#[test]
+#[ignore = "solver bug: Mesh::run loops forever (repeated zero-length jam with theta_after == theta)"]
+fn solver_bug_zero_length_jam_loop() {
+    let t1 = vec![
+        -0.015_435_142_483_057_664,
+        0.266_324_573_216_193_8,
+        0.524_770_128_846_608_9,
+        0.780_400_723_188_818_9,
+        1.058_712_421_818_511_6,
+        1.327_535_006_771_239_7,
+        1.573_484_687_933_487_2,
+        1.814_715_436_922_525,
+        2.105_669_674_282_899,
+        2.351_557_288_271_669_3,
+        2.638_716_164_941_674_6,
+        2.896_790_236_623_761,
+        3.151_736_103_736_012_8,
+        3.416_602_819_358_844_5,
+        3.648_458_654_066_125_5,
+        3.948_352_940_424_194_4,
+        4.188_841_748_168_603,
+        4.437_156_560_507_244,
+        4.711_888_548_374_837,
+        4.958_343_051_196_465,
+        5.231_458_418_131_115,
+        5.490_308_905_243_387_5,
+        5.770_213_333_989_649,
+        6.001_411_751_231_704,
+    ];
+    let t2 = vec![
+        -0.001_256_608_420_106_801_5,
+        0.377_818_200_433_648_4,
+        0.731_676_643_934_118_5,
+        1.104_442_349_401_851_8,
+        1.487_086_215_102_605,
+        1.847_600_654_531_245_1,
+        2.219_864_553_718_896,
+        2.589_461_461_773_068_2,
+        2.952_227_137_349_338,
+        3.335_099_300_522_456,
+        3.699_659_932_741_953_5,
+        4.062_039_704_417_636,
+        4.430_836_046_267_185,
+        4.797_863_884_885_321,
+        5.171_660_116_042_370_5,
+        5.538_652_236_129_203,
+        5.910_357_085_842_428,
+    ];
+    let h = 0.841_563_810_876_154_6;
+    let (r1, r2) = (4.908_170_397_273_214, 3.476_620_698_068_526);
+    let e1 = Vec2::new(-0.126_938_220_820_187_35, 0.138_597_893_937_354_6);
+    let e2 = Vec2::new(-0.146_772_543_190_905_32, 0.005_529_884_093_953_419);
+    let driver = Gear::new(r1, r1 - h, t1, e1).unwrap();
+    let driven = Gear::new(r2, r2 - h, t2, e2).unwrap();
+    let d = geometry::centre_distance(r1, r2, h, 68.577_716_163_936_47);
+    let mesh = Mesh::new(driver, driven, d).unwrap();
+    let traj = mesh.run(
+        4.899_748_005_433_342,
+        4.916_110_467_170_788,
+        Start::At(3.618_101_228_714_168_7),
+    );
+    assert!(traj.events().len() < 10, "{:?}", traj.events());
+}
