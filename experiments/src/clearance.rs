@@ -1,38 +1,18 @@
 //! `clearance`: for ideal gears of one mesh, the clearance G (as % of the tooth height) below which
 //! the pair jams and above which it disengages within a full turn of the larger gear.
 
-use std::f64::consts::TAU;
-
-use contact::{Mesh, Start, Trajectory};
-use geometry::Gear;
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
 
-use crate::common::{Series, csv, deg, fit_radii, line_plot, paper_cell, td_stats};
+use crate::common::{Series, csv, line_plot, paper_cell};
+use crate::gearing;
+use crate::limits::{IdealPair, boundary};
 
 const PARAMS: &[Param] = &[
     Param {
-        name: "driver_teeth",
-        default: "64",
+        name: "mesh",
+        default: "b2-c1",
         unit: "",
-        help: "N1 (default b2 of Freeth 2006)",
-    },
-    Param {
-        name: "driven_teeth",
-        default: "38",
-        unit: "",
-        help: "N2 (default c1)",
-    },
-    Param {
-        name: "driver_radius",
-        default: "15.30",
-        unit: "mm",
-        help: "measured radius of the driver (Freeth 2006, b2)",
-    },
-    Param {
-        name: "driven_radius",
-        default: "9.85",
-        unit: "mm",
-        help: "measured radius of the driven gear (Freeth 2006, c1)",
+        help: "mesh label in the gearing (radii sized as crates/train sizes them)",
     },
     Param {
         name: "tooth_height",
@@ -52,6 +32,7 @@ const PARAMS: &[Param] = &[
         unit: "",
         help: "samples of the Theoretical Difference per run",
     },
+    gearing::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -65,53 +46,7 @@ registry::inventory::submit! {
     }
 }
 
-struct Setup {
-    n1: usize,
-    n2: usize,
-    r1: f64,
-    r2: f64,
-    h: f64,
-}
-
-impl Setup {
-    /// One full turn of the larger gear, or None when the gears overlap at every tooth.
-    fn run(&self, g: f64) -> Result<Option<Trajectory>, RunError> {
-        let bad = |e: geometry::GeometryError| RunError::bad("--set", e.field, e.rule);
-        let driver = Gear::ideal(self.n1, self.r1, self.r1 - self.h).map_err(bad)?;
-        let driven = Gear::ideal(self.n2, self.r2, self.r2 - self.h).map_err(bad)?;
-        let d = geometry::centre_distance(self.r1, self.r2, self.h, g);
-        let Ok(mesh) = Mesh::new(driver, driven, d) else {
-            return Ok(None);
-        };
-        let turn = TAU * self.n1.max(self.n2) as f64 / self.n1 as f64;
-        Ok(Some(mesh.run(0.0, turn, Start::Touching(0.0))))
-    }
-
-    fn jams(&self, g: f64) -> Result<bool, RunError> {
-        Ok(self.run(g)?.is_none_or(|t| t.jams() > 0))
-    }
-
-    fn disengages(&self, g: f64) -> Result<bool, RunError> {
-        Ok(self.run(g)?.is_some_and(|t| t.disengagements() > 0))
-    }
-}
-
-/// The boundary in G between `yes_at` and `no_at` of a monotone predicate, to 1e-4 % of h.
-fn boundary(
-    mut yes_at: f64,
-    mut no_at: f64,
-    pred: impl Fn(f64) -> Result<bool, RunError>,
-) -> Result<f64, RunError> {
-    while (yes_at - no_at).abs() > 1e-4 {
-        let m = 0.5 * (yes_at + no_at);
-        if pred(m)? { yes_at = m } else { no_at = m }
-    }
-    Ok(no_at)
-}
-
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    let (n1, n2) = (ctx.usize("driver_teeth")?, ctx.usize("driven_teeth")?);
-    let (a, b) = (ctx.f64("driver_radius")?, ctx.f64("driven_radius")?);
     let h = ctx.f64("tooth_height")?;
     let grid_step = ctx.f64("grid_step")?;
     if !(0.5..=50.0).contains(&grid_step) {
@@ -122,12 +57,18 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         ));
     }
     let samples = ctx.usize("samples")?.max(2);
-    let (r1, r2) = fit_radii(n1, n2, a, b);
-    let setup = Setup { n1, n2, r1, r2, h };
+    let g = gearing::load(ctx)?;
+    let label = ctx.param("mesh")?;
+    let geo = g
+        .mesh_geometry(label, h, 40.0)
+        .ok_or_else(|| RunError::bad("--set", "mesh", format!("no mesh `{label}` in the gearing")))?;
+    let (n1, n2) = (geo.driver_teeth as usize, geo.driven_teeth as usize);
+    let (r1, r2) = (geo.driver_tip_radius, geo.driven_tip_radius);
+    let setup = IdealPair { n1, n2, r1, r2, h };
 
     let mut grid = Table::new(
         format!(
-            "Clearance sweep: {n1}:{n2}, R1 = {} mm, R2 = {} mm, h = {h} mm, one turn of the larger gear",
+            "Clearance sweep: {label} ({n1}:{n2}), R1 = {} mm, R2 = {} mm, h = {h} mm, one turn of the larger gear",
             fmt_f64(r1, 4),
             fmt_f64(r2, 4)
         ),
@@ -164,16 +105,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
                 rows.push(vec![g, d, f64::NAN, f64::NAN, f64::NAN, f64::NAN]);
             }
             Some(t) => {
-                let th0 = t.theta_at(0.0);
-                let end = t.phi_end();
-                let ratio = n1 as f64 / n2 as f64;
-                let td: Vec<f64> = (0..samples)
-                    .map(|k| {
-                        let phi = end * k as f64 / (samples - 1) as f64;
-                        deg(t.theta_at(phi) - th0 - ratio * phi)
-                    })
-                    .collect();
-                let s = td_stats(&td);
+                let s = setup.td_sigma(&t, samples);
                 let (j, dis) = (t.jams(), t.disengagements());
                 if j > 0 {
                     last_jam = Some(g);
@@ -206,11 +138,11 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         ["limit", "ours [% of h]", "paper [% of h]"],
     );
     let jam_limit = match (last_jam, first_free) {
-        (Some(y), Some(n)) if y < n => Some(boundary(y, n, |g| setup.jams(g))?),
+        (Some(y), Some(n)) if y < n => Some(boundary(y, n, 1e-4, |g| setup.jams(g))?),
         _ => None,
     };
     let dis_limit = match (first_dis, last_engaged) {
-        (Some(y), Some(n)) if y > n => Some(boundary(y, n, |g| setup.disengages(g))?),
+        (Some(y), Some(n)) if y > n => Some(boundary(y, n, 1e-4, |g| setup.disengages(g))?),
         _ => None,
     };
     let show =
@@ -226,7 +158,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         paper_cell("clearance", "disengage_above", 0),
     ]);
     limits.note("Ours: exact push-model contact; the paper located its limits with an area-intersection program (Appendix II).");
-    limits.note("Radii: least-squares fit to the measured radii keeping R1/R2 = N1/N2 exactly; r = R - h; D = R1 + R2 - h + G.");
+    limits.note("Radii: one least-squares module per group of meshed gears (crates/train), R1/R2 = N1/N2 exactly; r = R - h; D = R1 + R2 - h + G.");
 
     let svg = line_plot(
         "Clearance sweep (Appendix II, Figure IV style): TD sigma of the driven gear",

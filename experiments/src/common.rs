@@ -8,39 +8,6 @@ pub fn deg(x: f64) -> f64 {
     x.to_degrees()
 }
 
-/// Tip radii for a mesh of `n1`:`n2` teeth with measured radii `a`, `b`: the pair closest to the
-/// measurements in least squares with R1/R2 = N1/N2 exactly (the paper keeps the ratio exact).
-pub fn fit_radii(n1: usize, n2: usize, a: f64, b: f64) -> (f64, f64) {
-    let k = n1 as f64 / n2 as f64;
-    let r2 = (k * a + b) / (k * k + 1.0);
-    (k * r2, r2)
-}
-
-/// The paper's pointer statistics of a Theoretical Difference series: standard deviation σ,
-/// largest absolute deviation Dm and mean P (all in the series' unit).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TdStats {
-    /// Standard deviation σ.
-    pub sigma: f64,
-    /// Largest absolute value Dm.
-    pub dm: f64,
-    /// Mean P.
-    pub mean: f64,
-}
-
-/// σ, Dm and P of `td`.
-pub fn td_stats(td: &[f64]) -> TdStats {
-    let n = td.len().max(1) as f64;
-    let mean = td.iter().sum::<f64>() / n;
-    let var = td.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / n;
-    let dm = td.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
-    TdStats {
-        sigma: var.sqrt(),
-        dm,
-        mean,
-    }
-}
-
 /// A value with the paper's beside it (or "-" when the paper gives none).
 pub fn paper_cell(id: &str, quantity: &str, decimals: usize) -> String {
     crate::paper::get(id, quantity).map_or_else(|| "-".to_string(), |r| fmt_f64(r.value, decimals))
@@ -129,27 +96,4 @@ pub fn csv(header: &[&str], rows: impl Iterator<Item = Vec<f64>>, decimals: usiz
         out.push('\n');
     }
     out
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn fitted_radii_keep_the_ratio_and_stay_close() {
-        let (r1, r2) = fit_radii(64, 38, 15.30, 9.85);
-        assert!((r1 / r2 - 64.0 / 38.0).abs() < 1e-12);
-        // Least squares along the line R1 = k R2: moving either way is worse.
-        let k = 64.0 / 38.0;
-        let err = |r2: f64| (k * r2 - 15.30).powi(2) + (r2 - 9.85).powi(2);
-        assert!(err(r2) < err(r2 + 1e-4) && err(r2) < err(r2 - 1e-4));
-    }
-
-    #[test]
-    fn td_stats_of_a_known_series() {
-        let s = td_stats(&[1.0, -1.0, 1.0, -1.0]);
-        assert!(
-            (s.sigma - 1.0).abs() < 1e-15 && s.mean.abs() < 1e-15 && (s.dm - 1.0).abs() < 1e-15
-        );
-    }
 }

@@ -7,7 +7,7 @@ use contact::{Mesh, Start};
 use geometry::Gear;
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
 
-use crate::common::{Series, csv, deg, line_plot, paper_cell, td_stats};
+use crate::common::{Series, csv, deg, line_plot, paper_cell};
 
 const PARAMS: &[Param] = &[
     Param {
@@ -99,7 +99,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             deg(t),
         ]);
     }
-    let stats = td_stats(&td);
+    let stats = stats::pointer_stats(&td);
 
     let mut table = Table::new(
         "Figure 2: N1 = N2 = 8, R = 200, r = 100, D = 310 (G = 10 % of h), one driver turn",

@@ -7,7 +7,7 @@ use contact::{Mesh, Start, Trajectory};
 use geometry::Gear;
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
 
-use crate::common::{Series, csv, deg, line_plot, td_stats};
+use crate::common::{Series, csv, deg, line_plot};
 
 const PARAMS: &[Param] = &[
     Param {
@@ -144,7 +144,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             .iter()
             .map(|&p| deg(t.theta_at(phi_o + p) - theta_o - ratio * p))
             .collect();
-        let s = td_stats(&td);
+        let s = stats::pointer_stats(&td);
         let (mn, mx) = td
             .iter()
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {

@@ -7,6 +7,7 @@ mod clearance;
 mod fig2;
 mod fig3;
 mod gearing;
+mod limits;
 mod pair;
 mod table1;
 

@@ -8,7 +8,7 @@ use geometry::{Gear, Vec2};
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
 use serde::Deserialize;
 
-use crate::common::{Series, csv, deg, line_plot, td_stats};
+use crate::common::{Series, csv, deg, line_plot};
 
 const EXAMPLE: &str = include_str!("../data/pair-example.ron");
 const EXAMPLE_NAME: &str = "experiments/data/pair-example.ron";
@@ -193,7 +193,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         })
         .collect();
     let td: Vec<f64> = rows.iter().map(|r| r[2]).collect();
-    let s = td_stats(&td);
+    let s = stats::pointer_stats(&td);
 
     let mut summary = Table::new(format!("Mesh from {name}"), ["quantity", "value", "unit"]);
     let rowf = |t: &mut Table, q: &str, v: String, u: &str| t.row(vec![q.into(), v, u.into()]);

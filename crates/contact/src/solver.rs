@@ -187,6 +187,8 @@ struct Run<'m> {
     phi: f64,
     theta: f64,
     held: bool,
+    /// Driver angle of the last jam check that found nothing holding the driven gear.
+    unheld_at: Option<f64>,
     /// Known tooth pairs, their side of θ and their upper end at the current φ.
     sides: Vec<Tracked>,
     segments: Vec<Segment>,
@@ -203,6 +205,7 @@ impl Mesh {
             phi: phi_start,
             theta: 0.0,
             held: false,
+            unheld_at: None,
             sides: Vec::new(),
             segments: Vec::new(),
             events: Vec::new(),
@@ -424,7 +427,9 @@ impl Run<'_> {
         for o in unsure {
             let pair = (o.driver_tooth, o.driven_tooth);
             let reach = behind.iter().map(|&p| hi(phi1, p)).fold(theta0, f64::max);
-            let side = if o.lo >= reach - SIDE_TOL {
+            // An obstacle that appeared below θ and rose past it within the step is behind (it
+            // pushed), even though it lies above θ0 now: decide where it first appeared.
+            let side = if o.lo >= reach + mesh.driven.max_gap {
                 Side::Ahead
             } else {
                 // Last angle without the obstacle; it exists just after.
@@ -544,14 +549,19 @@ impl Run<'_> {
                 .fold(f64::INFINITY, f64::min)
         };
         let clear_at = |p: f64| front(p) >= theta_on_plan(p) - SIDE_TOL;
+        // Once a jam is known to lie in the step, locate first contact exactly (no tolerance).
+        let strictly_clear = |p: f64| front(p) > theta_on_plan(p);
         let mid = 0.5 * (phi0 + phi1);
-        let jam_at = if ahead.is_empty() || clear_at(phi1) && clear_at(mid) {
+        let jam_at = if ahead.is_empty()
+            || self.unheld_at == Some(phi0)
+            || clear_at(phi1) && clear_at(mid)
+        {
             None
         } else if !clear_at(phi0) {
             Some(phi0)
         } else {
             let end = if clear_at(mid) { phi1 } else { mid };
-            Some(bisect(phi0, end, clear_at))
+            Some(bisect(phi0, end, strictly_clear))
         };
 
         match jam_at {
@@ -598,6 +608,20 @@ impl Run<'_> {
                     .min_by(|&a, &b| mesh.lo(phi_j, a).total_cmp(&mesh.lo(phi_j, b)))
                     .unwrap_or((0, 0));
                 let release = mesh.next_free(phi_j, theta_j, true);
+                if release.is_some_and(|t| t <= theta_j + SIDE_TOL) {
+                    // Nothing ahead actually holds the driven gear (the closing obstacle only
+                    // touches, or vanished): no jam. Count the pair as behind and go on.
+                    self.classify_all(phi_j);
+                    for t in &mut self.sides {
+                        if t.pair == closing {
+                            t.side = Side::Behind;
+                        }
+                    }
+                    // Guarantee progress: at most one such non-event per driver angle.
+                    self.unheld_at = Some(phi_j);
+                    self.scratch = obs1;
+                    return;
+                }
                 self.held = release.is_none();
                 let after = release.unwrap_or(theta_j);
                 self.events.push(Event {

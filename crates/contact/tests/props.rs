@@ -427,25 +427,21 @@ proptest! {
     }
 
     #[test]
-    #[ignore = "solver bug: Mesh::run loops forever on a case of this sample (see solver_bug_zero_length_jam_loop)"]
     fn theta_never_decreases_tooth_errors(case in cases(Errors::Teeth, 15.0..85.0, 2..7)) {
         check_monotone(&case)?;
     }
 
     #[test]
-    #[ignore = "solver bug: Mesh::run loops forever on a case of this sample (see solver_bug_zero_length_jam_loop)"]
     fn jams_are_confirmed_tooth_errors(case in cases(Errors::Teeth, 15.0..85.0, 2..7)) {
         check_jams(&case)?;
     }
 
     #[test]
-    #[ignore = "solver bug: Mesh::run loops forever on a case of this sample (see solver_bug_zero_length_jam_loop)"]
     fn disengagements_are_confirmed_tooth_errors(case in cases(Errors::Teeth, 15.0..85.0, 2..7)) {
         check_disengagements(&case)?;
     }
 
     #[test]
-    #[ignore = "solver bug: Mesh::run loops forever on a case of this sample (see solver_bug_zero_length_jam_loop)"]
     fn push_touches_and_rest_is_free_tooth_errors(case in cases(Errors::Teeth, 15.0..85.0, 2..7)) {
         check_segments(&case)?;
     }
@@ -480,7 +476,6 @@ proptest! {
 
     /// Property 6: ideal gears turn at exactly N1/N2 over whole driver teeth, without events.
     #[test]
-    #[ignore = "solver bug: Mesh::run loops forever on a case of this sample (see solver_bug_zero_length_jam_loop)"]
     fn ideal_gears_exact_ratio_no_events(case in cases(Errors::None, 20.0..80.0, 1..9)) {
         let Some(mesh) = case.mesh() else {
             return Err(TestCaseError::reject("mesh refused"));
@@ -542,7 +537,7 @@ proptest! {
 /// zero-length jam at φ = 4.9030041306936125 (driver tooth −19, driven tooth 10) with
 /// `theta_after == theta` forever, the event list growing without bound.
 #[test]
-#[ignore = "solver bug: Mesh::run loops forever (repeated zero-length jam with theta_after == theta)"]
+
 fn solver_bug_zero_length_jam_loop() {
     let t1 = vec![
         -0.015_435_142_483_057_664,

@@ -1,0 +1,99 @@
+//! One ideal mesh run over a full turn of its larger gear at a given clearance, and the clearance
+//! limits of a mesh: below the first it jams, above the second it disengages.
+
+use std::f64::consts::TAU;
+
+use contact::{Mesh, Start, Trajectory};
+use geometry::Gear;
+use registry::RunError;
+
+use crate::common::deg;
+
+/// An ideal mesh whose clearance can vary.
+#[derive(Debug, Clone, Copy)]
+pub struct IdealPair {
+    /// Driver teeth N1.
+    pub n1: usize,
+    /// Driven teeth N2.
+    pub n2: usize,
+    /// Driver tip radius R1 (mm).
+    pub r1: f64,
+    /// Driven tip radius R2 (mm).
+    pub r2: f64,
+    /// Tooth height h of both gears (mm).
+    pub h: f64,
+}
+
+impl IdealPair {
+    /// One full turn of the larger gear from driver angle 0 at clearance `g` (% of h), or None
+    /// when the gears overlap at every tooth.
+    pub fn run(&self, g: f64) -> Result<Option<Trajectory>, RunError> {
+        let bad = |e: geometry::GeometryError| RunError::bad("--set", e.field, e.rule);
+        let driver = Gear::ideal(self.n1, self.r1, self.r1 - self.h).map_err(bad)?;
+        let driven = Gear::ideal(self.n2, self.r2, self.r2 - self.h).map_err(bad)?;
+        let d = geometry::centre_distance(self.r1, self.r2, self.h, g);
+        let Ok(mesh) = Mesh::new(driver, driven, d) else {
+            return Ok(None);
+        };
+        let turn = TAU * self.n1.max(self.n2) as f64 / self.n1 as f64;
+        Ok(Some(mesh.run(0.0, turn, Start::Touching(0.0))))
+    }
+
+    /// Whether a full turn at clearance `g` jams (or the gears overlap at every tooth).
+    pub fn jams(&self, g: f64) -> Result<bool, RunError> {
+        Ok(self.run(g)?.is_none_or(|t| t.jams() > 0))
+    }
+
+    /// Whether a full turn at clearance `g` disengages.
+    pub fn disengages(&self, g: f64) -> Result<bool, RunError> {
+        Ok(self.run(g)?.is_some_and(|t| t.disengagements() > 0))
+    }
+
+    /// Standard deviation of the driven gear's Theoretical Difference (degrees) over a run.
+    pub fn td_sigma(&self, t: &Trajectory, samples: usize) -> stats::PointerStats {
+        let th0 = t.theta_at(t.phi_start());
+        let end = t.phi_end();
+        let ratio = self.n1 as f64 / self.n2 as f64;
+        let n = samples.max(2);
+        (0..n)
+            .map(|k| {
+                let phi = end * k as f64 / (n - 1) as f64;
+                deg(t.theta_at(phi) - th0 - ratio * phi)
+            })
+            .collect::<stats::Accumulator>()
+            .stats()
+    }
+
+    /// The clearance limits (% of h), located by bisection to `tol` between grid points 0 and 100:
+    /// (smallest G without a jam, largest G without a disengagement). None where the grid does not
+    /// bracket a limit.
+    pub fn limits(&self, tol: f64) -> Result<(Option<f64>, Option<f64>), RunError> {
+        let mid = 50.0;
+        let jam = if self.jams(mid)? || !self.jams(0.0)? { None } else { Some(boundary(0.0, mid, tol, |g| self.jams(g))?) };
+        let dis = if self.disengages(mid)? || !self.disengages(100.0)? {
+            None
+        } else {
+            Some(boundary(100.0, mid, tol, |g| self.disengages(g))?)
+        };
+        Ok((jam, dis))
+    }
+}
+
+/// The boundary between `yes_at` and `no_at` of a monotone predicate, to `tol`; returns the
+/// side where the predicate is false.
+pub fn boundary(
+    mut yes_at: f64,
+    mut no_at: f64,
+    tol: f64,
+    pred: impl Fn(f64) -> Result<bool, RunError>,
+) -> Result<f64, RunError> {
+    while (yes_at - no_at).abs() > tol {
+        let m = 0.5 * (yes_at + no_at);
+        if pred(m)? {
+            yes_at = m
+        } else {
+            no_at = m
+        }
+    }
+    Ok(no_at)
+}
