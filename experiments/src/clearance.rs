@@ -59,9 +59,9 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     let samples = ctx.usize("samples")?.max(2);
     let g = gearing::load(ctx)?;
     let label = ctx.param("mesh")?;
-    let geo = g
-        .mesh_geometry(label, h, 40.0)
-        .ok_or_else(|| RunError::bad("--set", "mesh", format!("no mesh `{label}` in the gearing")))?;
+    let geo = g.mesh_geometry(label, h, 40.0).ok_or_else(|| {
+        RunError::bad("--set", "mesh", format!("no mesh `{label}` in the gearing"))
+    })?;
     let (n1, n2) = (geo.driver_teeth as usize, geo.driven_teeth as usize);
     let (r1, r2) = (geo.driver_tip_radius, geo.driven_tip_radius);
     let setup = IdealPair { n1, n2, r1, r2, h };

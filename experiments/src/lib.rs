@@ -6,6 +6,8 @@ pub mod paper;
 mod clearance;
 mod fig2;
 mod fig3;
+mod fig4;
+mod fig_iv;
 mod gearing;
 mod limits;
 mod pair;

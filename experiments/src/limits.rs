@@ -69,7 +69,11 @@ impl IdealPair {
     /// bracket a limit.
     pub fn limits(&self, tol: f64) -> Result<(Option<f64>, Option<f64>), RunError> {
         let mid = 50.0;
-        let jam = if self.jams(mid)? || !self.jams(0.0)? { None } else { Some(boundary(0.0, mid, tol, |g| self.jams(g))?) };
+        let jam = if self.jams(mid)? || !self.jams(0.0)? {
+            None
+        } else {
+            Some(boundary(0.0, mid, tol, |g| self.jams(g))?)
+        };
         let dis = if self.disengages(mid)? || !self.disengages(100.0)? {
             None
         } else {
@@ -89,11 +93,7 @@ pub fn boundary(
 ) -> Result<f64, RunError> {
     while (yes_at - no_at).abs() > tol {
         let m = 0.5 * (yes_at + no_at);
-        if pred(m)? {
-            yes_at = m
-        } else {
-            no_at = m
-        }
+        if pred(m)? { yes_at = m } else { no_at = m }
     }
     Ok(no_at)
 }
