@@ -223,6 +223,55 @@ impl Mesh {
             .teeth_between(-phi - self.driver.window, -phi + self.driver.window)
     }
 
+    /// The first driver angle in `(phi0, phi1]` at which a driver tooth touches the driven gear
+    /// standing still at θ, or None. Exact: with θ fixed every contact is a driver vertex (on a
+    /// circle about the driver centre) meeting a driven flank, or a driven vertex meeting a driver
+    /// flank (a circle in the driver's frame), solved like the obstacles.
+    pub fn first_touch(&self, theta: f64, phi0: f64, phi1: f64) -> Option<f64> {
+        let (d1, d2) = (&self.driver, &self.driven);
+        let c2 = self.c2();
+        let lo_j = *self.driver_teeth(phi1).start();
+        let hi_j = *self.driver_teeth(phi0).end();
+        // Driven teeth near the line of centres while the gear stands at θ.
+        let ks = d2.teeth_between(theta - d2.window, theta + d2.window);
+        let (s, c) = (PI - theta).sin_cos();
+        let place = |v: Vec2| c2 + Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y);
+        let mut best = f64::INFINITY;
+        let mut take = |phi: f64| {
+            // The root as an angle after phi0 (the driver turns forwards only).
+            let t = phi0 + (phi - phi0).rem_euclid(TAU);
+            if t > phi0 + 1e-12 && t <= phi1 && t < best {
+                best = t;
+            }
+        };
+        const FLANKS: [(usize, usize); 2] = [(0, 1), (1, 2)];
+        for k in ks {
+            let b = d2.tooth(k).map(place);
+            for j in lo_j..=hi_j {
+                let a = d1.tooth(j);
+                // Driver vertex (turning about the origin) on a fixed driven flank.
+                for p in a {
+                    let base = p.y.atan2(p.x);
+                    for (u, v) in FLANKS {
+                        circle_segment(Vec2::zeros(), p.norm(), b[u], b[v], |x| {
+                            take(x.y.atan2(x.x) - base)
+                        });
+                    }
+                }
+                // Fixed driven vertex on a driver flank: in the driver's frame it turns backwards.
+                for q in b {
+                    let base = q.y.atan2(q.x);
+                    for (u, v) in FLANKS {
+                        circle_segment(Vec2::zeros(), q.norm(), a[u], a[v], |x| {
+                            take(base - x.y.atan2(x.x))
+                        });
+                    }
+                }
+            }
+        }
+        best.is_finite().then_some(best)
+    }
+
     /// The exact obstacle of driver tooth `j` against driven tooth `k` at driver angle φ, or
     /// `None` if no driven angle brings them into contact.
     ///

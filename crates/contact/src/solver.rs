@@ -26,6 +26,8 @@ use crate::mesh::{Mesh, Obstacle};
 const SIDE_TOL: f64 = 1e-10;
 /// Event location accuracy in driver angle (radians): far below the required 1e-6°.
 const LOCATE_TOL: f64 = 1e-13;
+/// How far past a first touch from rest a step ends (radians of driver angle).
+const TOUCH_STEP: f64 = 1e-8;
 /// Steps per driver pitch used to bracket events.
 const STEPS_PER_PITCH: f64 = 16.0;
 
@@ -214,7 +216,12 @@ impl Mesh {
         run.start(start);
         let step = self.driver.max_gap.min(TAU / self.driver.tips.len() as f64) / STEPS_PER_PITCH;
         while run.phi < phi_end {
-            let next = (run.phi + step).min(phi_end);
+            // No sliver of a step at the end: it would only gather rounding noise.
+            let next = if run.phi + step * (1.0 + 1e-6) >= phi_end {
+                phi_end
+            } else {
+                run.phi + step
+            };
             run.advance(next);
         }
         if run.segments.is_empty() {
@@ -353,7 +360,7 @@ impl Run<'_> {
     }
 
     /// Advance from `self.phi` to `phi1`, locating every event in between.
-    fn advance(&mut self, phi1: f64) {
+    fn advance(&mut self, mut phi1: f64) {
         let mesh = self.mesh;
         let phi0 = self.phi;
         let theta0 = self.theta;
@@ -368,6 +375,21 @@ impl Run<'_> {
                 None => self.rest_to(phi1),
             }
             return;
+        }
+
+        // Pushing pairs at the start: those whose upper end is at θ.
+        let pushers: Vec<(i64, i64)> = self
+            .sides
+            .iter()
+            .filter(|t| t.side == Side::Behind && (t.hi - theta0).abs() <= SIDE_TOL)
+            .map(|t| t.pair)
+            .collect();
+        // Standing still, the first touch of any driver tooth is found exactly; end the step just
+        // after it, so that even a brief graze (a tip clipping a tip) is seen at the step's end.
+        if pushers.is_empty() {
+            if let Some(t) = mesh.first_touch(theta0, phi0, phi1) {
+                phi1 = phi1.min(t + TOUCH_STEP);
+            }
         }
 
         // Obstacles at the end of the step, with their values there cached.
@@ -397,14 +419,6 @@ impl Run<'_> {
                 mesh.lo(p, pair)
             }
         };
-
-        // Pushing pairs at the start: those whose upper end is at θ.
-        let pushers: Vec<(i64, i64)> = self
-            .sides
-            .iter()
-            .filter(|t| t.side == Side::Behind && (t.hi - theta0).abs() <= SIDE_TOL)
-            .map(|t| t.pair)
-            .collect();
 
         let mut behind: Vec<(i64, i64)> = pushers.clone();
         let mut ahead: Vec<(i64, i64)> = Vec::new();
@@ -475,8 +489,10 @@ impl Run<'_> {
             };
             let e1 = envelope(phi1);
             let p1 = push_env(phi1);
-            if p1 >= theta0 && e1 <= p1 + SIDE_TOL {
-                plan.push((phi1, p1, Motion::Push(pushers.clone()), None));
+            // Rounding may put the pushers' curve a hair below θ at a step end: that is not a
+            // lost contact.
+            if p1 >= theta0 - SIDE_TOL && e1 <= p1 + SIDE_TOL {
+                plan.push((phi1, p1.max(theta0), Motion::Push(pushers.clone()), None));
             } else {
                 // Where do the pushers stop rising (peak or vanish)?
                 let phi_pk = golden_max(phi0, phi1, push_env);
