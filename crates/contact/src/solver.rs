@@ -491,8 +491,18 @@ impl Run<'_> {
             let p1 = push_env(phi1);
             // Rounding may put the pushers' curve a hair below θ at a step end: that is not a
             // lost contact.
-            if p1 >= theta0 - SIDE_TOL && e1 <= p1 + SIDE_TOL {
-                plan.push((phi1, p1.max(theta0), Motion::Push(pushers.clone()), None));
+            // A curve higher mid-step than at its end has peaked inside the step.
+            // A curve higher mid-step, or just before the end, than at the end has peaked inside
+            // the step.
+            let dphi = 1e-6 * (phi1 - phi0);
+            let mid = 0.5 * (phi0 + phi1);
+            let pushers_hold =
+                p1 >= theta0 - SIDE_TOL && push_env(mid) <= p1 + SIDE_TOL && push_env(phi1 - dphi) <= p1;
+            let all_rising = envelope(mid) <= e1 + SIDE_TOL && envelope(phi1 - dphi) <= e1;
+            if pushers_hold && all_rising {
+                // Every obstacle behind takes part: another tooth pair may carry the driven gear
+                // for part of the step (two pairs in contact at once).
+                plan.push((phi1, e1.max(theta0), Motion::Push(behind.clone()), None));
             } else {
                 // Where do the pushers stop rising (peak or vanish)?
                 let phi_pk = golden_max(phi0, phi1, push_env);
