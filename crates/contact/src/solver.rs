@@ -496,8 +496,9 @@ impl Run<'_> {
             // the step.
             let dphi = 1e-6 * (phi1 - phi0);
             let mid = 0.5 * (phi0 + phi1);
-            let pushers_hold =
-                p1 >= theta0 - SIDE_TOL && push_env(mid) <= p1 + SIDE_TOL && push_env(phi1 - dphi) <= p1;
+            let pushers_hold = p1 >= theta0 - SIDE_TOL
+                && push_env(mid) <= p1 + SIDE_TOL
+                && push_env(phi1 - dphi) <= p1;
             let all_rising = envelope(mid) <= e1 + SIDE_TOL && envelope(phi1 - dphi) <= e1;
             if pushers_hold && all_rising {
                 // Every obstacle behind takes part: another tooth pair may carry the driven gear

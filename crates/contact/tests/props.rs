@@ -203,7 +203,10 @@ fn config() -> ProptestConfig {
         // CI runs a fixed sample so a red run can be replayed; `PROPS_SEED=<n>` explores others
         // (`PROPS_SEED=$RANDOM cargo test -p contact --release --test props`).
         rng_seed: RngSeed::Fixed(
-            std::env::var("PROPS_SEED").ok().and_then(|s| s.parse().ok()).unwrap_or(SEED),
+            std::env::var("PROPS_SEED")
+                .ok()
+                .and_then(|s| s.parse().ok())
+                .unwrap_or(SEED),
         ),
         ..ProptestConfig::default()
     }
