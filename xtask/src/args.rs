@@ -96,7 +96,7 @@ fn parse_run(args: &[String]) -> Result<RunArgs, ArgError> {
         };
         if !matches!(
             flag,
-            "--seed" | "--threads" | "--out" | "--config" | "--set"
+            "--seed" | "--threads" | "--out" | "--config" | "--set" | "--gearing"
         ) {
             return Err(ArgError::Usage(format!("unknown flag `{arg}`")));
         }
@@ -140,6 +140,13 @@ fn parse_run(args: &[String]) -> Result<RunArgs, ArgError> {
                     return Err(ArgError::Value("--config: must not be empty".into()));
                 }
                 run.config = Some(PathBuf::from(value));
+            }
+            // The gearing file of train experiments: the same as `--set gearing=FILE`.
+            "--gearing" => {
+                if value.is_empty() {
+                    return Err(ArgError::Value("--gearing: must not be empty".into()));
+                }
+                run.sets.push(("gearing".to_owned(), value));
             }
             _ => {
                 let Some((key, val)) = value.split_once('=').filter(|(k, _)| !k.trim().is_empty())

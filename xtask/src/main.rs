@@ -144,6 +144,7 @@ Options of run:
   --threads N       worker threads, at least 1 (default: available parallelism, here {})
   --out DIR         where results go (default {})
   --config FILE     RON config file, for experiments that take one (see help <id>)
+  --gearing FILE    gearing RON file for train experiments (same as --set gearing=FILE)
   --set KEY=VALUE   set a parameter (repeatable; see help <id>); with several
                     experiments, each gets the keys it declares
 

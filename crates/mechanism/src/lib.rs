@@ -266,6 +266,38 @@ mod tests {
     }
 
     #[test]
+    fn a_jam_stops_the_train_and_is_dated_in_days() {
+        let g = Gearing::freeth2006();
+        // At 6 % clearance c2-d1 (24-tooth d1) pinches: the Lunar train jams within the year.
+        let m = Mechanism::ideal(&g, 1.1, 6.0).unwrap();
+        let run = m.run_pointer("Lunar", 1.0, &mut trial_rng(3, 0)).unwrap();
+        let stop = run.first_stop().unwrap();
+        assert!(
+            g.pointer("Lunar").unwrap().meshes.contains(&stop.mesh),
+            "{stop:?}"
+        );
+        assert!(stop.day >= 0.0 && stop.day <= 365.25, "{stop:?}");
+        // The jammed mesh's driver arbor had reached the jam angle at that day, not before.
+        let i = run
+            .stages
+            .iter()
+            .position(|s| s.label == stop.mesh)
+            .unwrap();
+        let jam = run.stages[i]
+            .traj
+            .events()
+            .iter()
+            .find(|e| e.kind == EventKind::Jam)
+            .unwrap();
+        let reached = run.arbor_angle(stop.input_angle, i);
+        assert!(
+            (reached - (jam.phi - run.stages[i].phi0)).abs() < 1e-9,
+            "{reached} vs {}",
+            jam.phi
+        );
+    }
+
+    #[test]
     fn trial_streams_depend_only_on_seed_and_index() {
         let a: f64 = trial_rng(1, 5).random();
         let b: f64 = trial_rng(1, 5).random();
