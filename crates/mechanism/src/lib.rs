@@ -10,6 +10,7 @@ use std::collections::BTreeMap;
 use std::f64::consts::TAU;
 
 use contact::{EventKind, Mesh, Start, Trajectory};
+use edmunds::RadialPair;
 use geometry::Gear;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -97,13 +98,25 @@ impl Mechanism {
         self.meshes.get(label)
     }
 
-    /// Runs a pointer's train for `input_turns` turns of its input arbor, drawing each mesh's
-    /// initial driver angle from `rng`, in chain order.
+    /// Runs a pointer's train for `input_turns` turns of its input arbor with triangular teeth,
+    /// drawing each mesh's initial driver angle from `rng`, in chain order.
     pub fn run_pointer(
         &self,
         pointer: &str,
         input_turns: f64,
         rng: &mut impl Rng,
+    ) -> Option<PointerRun> {
+        self.run_pointer_with(pointer, input_turns, rng, Model::Triangular)
+    }
+
+    /// Runs a pointer's train under either contact model. Both draw the same initial angles from
+    /// the same stream, so a trial can be compared model against model on the same gears.
+    pub fn run_pointer_with(
+        &self,
+        pointer: &str,
+        input_turns: f64,
+        rng: &mut impl Rng,
+        model: Model,
     ) -> Option<PointerRun> {
         let p = self.gearing.pointer(pointer)?;
         let ratio = self.gearing.pointer_ratio(pointer)?.to_f64();
@@ -113,14 +126,21 @@ impl Mechanism {
             let mesh = self.meshes.get(label)?;
             let pitch = TAU / mesh.driver().teeth() as f64;
             let phi0 = rng.random::<f64>() * pitch;
-            let traj = mesh.run(phi0, phi0 + range, Start::Touching(0.0));
-            let theta0 = traj.theta_at(phi0);
-            range = traj.theta_at(phi0 + range) - theta0;
+            let run = match model {
+                Model::Triangular => {
+                    StageRun::Triangular(mesh.run(phi0, phi0 + range, Start::Touching(0.0)))
+                }
+                Model::Edmunds => {
+                    StageRun::Radial(RadialPair::new(mesh.driver(), mesh.driven(), phi0))
+                }
+            };
+            let theta0 = run.theta_at(phi0);
+            range = run.theta_at(phi0 + range) - theta0;
             stages.push(Stage {
                 label: label.clone(),
                 phi0,
                 theta0,
-                traj,
+                run,
             });
         }
         Some(PointerRun {
@@ -129,6 +149,42 @@ impl Mechanism {
             input_range: input_turns * TAU,
             stages,
         })
+    }
+}
+
+/// Which contact model a run uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Model {
+    /// Exact push-model contact of triangular teeth (`contact`).
+    Triangular,
+    /// Edmunds' radial-line model (`edmunds`): no tooth shape, no jams.
+    Edmunds,
+}
+
+/// One mesh as run under one model.
+#[derive(Debug, Clone)]
+pub enum StageRun {
+    /// Triangular teeth: the exact trajectory, with its events.
+    Triangular(Trajectory),
+    /// Edmunds' radial lines.
+    Radial(RadialPair),
+}
+
+impl StageRun {
+    /// Driven angle at driver angle φ.
+    pub fn theta_at(&self, phi: f64) -> f64 {
+        match self {
+            StageRun::Triangular(t) => t.theta_at(phi),
+            StageRun::Radial(r) => r.theta(phi),
+        }
+    }
+
+    /// The trajectory, for triangular teeth.
+    pub fn trajectory(&self) -> Option<&Trajectory> {
+        match self {
+            StageRun::Triangular(t) => Some(t),
+            StageRun::Radial(_) => None,
+        }
     }
 }
 
@@ -141,8 +197,8 @@ pub struct Stage {
     pub phi0: f64,
     /// Driven angle at the start.
     pub theta0: f64,
-    /// The exact run.
-    pub traj: Trajectory,
+    /// The run of this mesh.
+    pub run: StageRun,
 }
 
 /// The first jam on a pointer's train.
@@ -175,7 +231,7 @@ impl PointerRun {
     pub fn arbor_angle(&self, psi: f64, upto: usize) -> f64 {
         let mut x = psi;
         for s in &self.stages[..upto] {
-            x = s.traj.theta_at(s.phi0 + x) - s.theta0;
+            x = s.run.theta_at(s.phi0 + x) - s.theta0;
         }
         x
     }
@@ -194,7 +250,11 @@ impl PointerRun {
     pub fn first_stop(&self) -> Option<Stop> {
         let mut best: Option<Stop> = None;
         for (i, s) in self.stages.iter().enumerate() {
-            let Some(e) = s.traj.events().iter().find(|e| e.kind == EventKind::Jam) else {
+            let jam = s
+                .run
+                .trajectory()
+                .and_then(|t| t.events().iter().find(|e| e.kind == EventKind::Jam));
+            let Some(e) = jam else {
                 continue;
             };
             // Input angle at which this mesh's driver arbor reached the jam: the upstream
@@ -222,7 +282,11 @@ impl PointerRun {
 
     /// Number of disengagements on every mesh of the train.
     pub fn disengagements(&self) -> usize {
-        self.stages.iter().map(|s| s.traj.disengagements()).sum()
+        self.stages
+            .iter()
+            .filter_map(|s| s.run.trajectory())
+            .map(Trajectory::disengagements)
+            .sum()
     }
 
     /// σ, Dm and mean P of the Theoretical Difference (degrees) over `samples` input angles spread
@@ -284,7 +348,9 @@ mod tests {
             .position(|s| s.label == stop.mesh)
             .unwrap();
         let jam = run.stages[i]
-            .traj
+            .run
+            .trajectory()
+            .unwrap()
             .events()
             .iter()
             .find(|e| e.kind == EventKind::Jam)
@@ -295,6 +361,33 @@ mod tests {
             "{reached} vs {}",
             jam.phi
         );
+    }
+
+    #[test]
+    fn both_models_agree_for_ideal_gears_after_whole_teeth() {
+        let g = Gearing::freeth2006();
+        let m = Mechanism::ideal(&g, 1.1, 40.0).unwrap();
+        let tri = m
+            .run_pointer_with("Metonic", 19.0, &mut trial_rng(5, 0), Model::Triangular)
+            .unwrap();
+        let rad = m
+            .run_pointer_with("Metonic", 19.0, &mut trial_rng(5, 0), Model::Edmunds)
+            .unwrap();
+        // Same initial angles from the same stream.
+        let phis = |r: &PointerRun| {
+            r.stages
+                .iter()
+                .map(|s| s.phi0.to_bits())
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(phis(&tri), phis(&rad));
+        // Ideal radial lines follow the ratio exactly everywhere.
+        for i in 0..50 {
+            let psi = 19.0 * TAU * f64::from(i) / 49.0;
+            assert!(rad.theoretical_difference(psi).to_degrees().abs() < 1e-9);
+        }
+        let td = tri.theoretical_difference(19.0 * TAU) - tri.theoretical_difference(0.0);
+        assert!(td.to_degrees().abs() < 1e-9);
     }
 
     #[test]
