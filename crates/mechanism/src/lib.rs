@@ -127,9 +127,11 @@ impl Mechanism {
             let pitch = TAU / mesh.driver().teeth() as f64;
             let phi0 = rng.random::<f64>() * pitch;
             let run = match model {
-                Model::Triangular => {
-                    StageRun::Triangular(mesh.run(phi0, phi0 + range, Start::Touching(0.0)))
-                }
+                Model::Triangular => StageRun::Triangular(Box::new(mesh.run(
+                    phi0,
+                    phi0 + range,
+                    Start::Touching(0.0),
+                ))),
                 Model::Edmunds => {
                     StageRun::Radial(RadialPair::new(mesh.driver(), mesh.driven(), phi0))
                 }
@@ -165,7 +167,7 @@ pub enum Model {
 #[derive(Debug, Clone)]
 pub enum StageRun {
     /// Triangular teeth: the exact trajectory, with its events.
-    Triangular(Trajectory),
+    Triangular(Box<Trajectory>),
     /// Edmunds' radial lines.
     Radial(RadialPair),
 }
