@@ -28,6 +28,39 @@ pub fn line_plot(
     y_label: &str,
     series: &[Series<'_>],
 ) -> Result<String, RunError> {
+    plot(title, x_label, y_label, series, false)
+}
+
+/// A semi-logarithmic line plot: `series` hold positive values, drawn on a log10 y axis whose
+/// ticks are labelled with the values themselves.
+pub fn semilog_plot(
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    series: &[Series<'_>],
+) -> Result<String, RunError> {
+    let logged: Vec<Series<'_>> = series
+        .iter()
+        .map(|s| Series {
+            label: s.label,
+            points: s
+                .points
+                .iter()
+                .filter(|p| p.1 > 0.0)
+                .map(|&(x, y)| (x, y.log10()))
+                .collect(),
+        })
+        .collect();
+    plot(title, x_label, y_label, &logged, true)
+}
+
+fn plot(
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    series: &[Series<'_>],
+    log_y: bool,
+) -> Result<String, RunError> {
     let (mut x0, mut x1, mut y0, mut y1) = (
         f64::INFINITY,
         f64::NEG_INFINITY,
@@ -58,10 +91,23 @@ pub fn line_plot(
             .y_label_area_size(70)
             .build_cartesian_2d(x0..x1, y0..y1)
             .map_err(|e| plot_err(&e))?;
+        let decade = |v: &f64| format!("{:.1e}", 10f64.powf(*v));
+        let plain = |v: &f64| {
+            // Six decimals at most, without trailing zeros: 0.1 + 0.2 prints as 0.3.
+            let t = format!("{v:.6}");
+            let t = t.trim_end_matches('0').trim_end_matches('.');
+            if t == "-0" {
+                "0".to_string()
+            } else {
+                t.to_string()
+            }
+        };
+        let y_fmt: &dyn Fn(&f64) -> String = if log_y { &decade } else { &plain };
         chart
             .configure_mesh()
             .x_desc(x_label)
             .y_desc(y_label)
+            .y_label_formatter(y_fmt)
             .draw()
             .map_err(|e| plot_err(&e))?;
         for (i, s) in series.iter().enumerate() {

@@ -4,7 +4,7 @@
 use rayon::prelude::*;
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
 
-use crate::common::{Series, line_plot};
+use crate::common::{Series, semilog_plot};
 use crate::gearing;
 use crate::limits::IdealPair;
 
@@ -167,11 +167,11 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             jam.map_or(String::new(), |v| v.to_string()),
             dis.map_or(String::new(), |v| v.to_string())
         ));
-        // Semi-logarithmic: log10 of sigma, drawn only where the pair runs (between its limits).
+        // Drawn only where the pair runs: between its jam and disengagement limits.
         let points: Vec<(f64, f64)> = clearances
             .iter()
             .zip(col)
-            .filter_map(|(&c, s)| s.filter(|&v| v > 0.0).map(|v| (c, v.log10())))
+            .filter_map(|(&c, s)| s.map(|v| (c, v)))
             .collect();
         series.push(Series {
             label: label.as_str(),
@@ -181,10 +181,10 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     lim.note(
         "The paper (Appendix II): no values below 10 % (jam) and none above 87 % (decoupling).",
     );
-    let svg = line_plot(
+    let svg = semilog_plot(
         "Figure IV: sigma of the driven gear against clearance (semi-logarithmic)",
         "clearance G [% of tooth height]",
-        "log10 of sigma [deg]",
+        "sigma [deg], logarithmic scale",
         &series,
     )?;
     Ok(Report {
