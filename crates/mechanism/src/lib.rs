@@ -44,18 +44,37 @@ impl Mechanism {
     /// Ideal gears (no manufacturing error) sized as `train` sizes them, tooth height `h` mm and
     /// clearance `g_percent` of h for every mesh.
     pub fn ideal(gearing: &Gearing, h: f64, g_percent: f64) -> Result<Self, MechanismError> {
-        Self::build(gearing, h, g_percent, |_label, driver, driven| {
-            Ok((driver, driven))
-        })
+        Self::build(gearing, h, g_percent, |_name, gear| Ok(gear))
     }
 
-    /// Like [`Mechanism::ideal`], but `make` may replace each mesh's ideal gears (an error model).
+    /// Like [`Mechanism::ideal`], but `make` turns each ideal gear into a manufactured one (an
+    /// error model). It is called once per gear, in the gearing's gear order, so a gear in two
+    /// meshes (b2) carries the same errors in both.
     pub fn build(
         gearing: &Gearing,
         h: f64,
         g_percent: f64,
-        mut make: impl FnMut(&str, Gear, Gear) -> Result<(Gear, Gear), String>,
+        mut make: impl FnMut(&str, Gear) -> Result<Gear, String>,
     ) -> Result<Self, MechanismError> {
+        let in_a_mesh = |name: &str| {
+            gearing
+                .meshes()
+                .iter()
+                .any(|m| m.driver == name || m.driven == name)
+        };
+        let mut made: BTreeMap<String, Gear> = BTreeMap::new();
+        for g in gearing.gears().iter().filter(|g| in_a_mesh(&g.name)) {
+            let bad = |rule: String| MechanismError {
+                mesh: format!("(gear {})", g.name),
+                rule,
+            };
+            let radius = gearing
+                .tip_radius(&g.name)
+                .ok_or_else(|| bad("cannot be sized".into()))?;
+            let ideal = Gear::ideal(g.teeth as usize, radius, radius - h)
+                .map_err(|e| bad(e.to_string()))?;
+            made.insert(g.name.clone(), make(&g.name, ideal).map_err(bad)?);
+        }
         let mut meshes = BTreeMap::new();
         for m in gearing.meshes() {
             let bad = |rule: String| MechanismError {
@@ -65,21 +84,13 @@ impl Mechanism {
             let geo = gearing
                 .mesh_geometry(&m.label, h, g_percent)
                 .ok_or_else(|| bad("cannot be sized".into()))?;
-            let driver = Gear::ideal(
-                geo.driver_teeth as usize,
-                geo.driver_tip_radius,
-                geo.driver_tip_radius - h,
-            )
-            .map_err(|e| bad(format!("driver {}: {e}", m.driver)))?;
-            let driven = Gear::ideal(
-                geo.driven_teeth as usize,
-                geo.driven_tip_radius,
-                geo.driven_tip_radius - h,
-            )
-            .map_err(|e| bad(format!("driven {}: {e}", m.driven)))?;
-            let (driver, driven) = make(&m.label, driver, driven).map_err(bad)?;
-            let mesh =
-                Mesh::new(driver, driven, geo.centre_distance).map_err(|e| bad(e.to_string()))?;
+            let gear = |name: &str| {
+                made.get(name)
+                    .cloned()
+                    .ok_or_else(|| bad(format!("gear {name} was not made")))
+            };
+            let mesh = Mesh::new(gear(&m.driver)?, gear(&m.driven)?, geo.centre_distance)
+                .map_err(|e| bad(e.to_string()))?;
             meshes.insert(m.label.clone(), mesh);
         }
         Ok(Self {
