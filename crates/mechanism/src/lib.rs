@@ -303,11 +303,21 @@ impl PointerRun {
     }
 
     /// σ, Dm and mean P of the Theoretical Difference (degrees) over `samples` input angles spread
-    /// evenly over the run (or up to the first jam).
+    /// evenly over the run, up to the first jam.
     pub fn stats(&self, samples: usize) -> stats::PointerStats {
         let end = self
             .first_stop()
             .map_or(self.input_range, |s| s.input_angle);
+        self.stats_until(samples, end)
+    }
+
+    /// The same over the whole run, through any jam: as the paper's program did, a jammed driven
+    /// gear is released to its next free position and the run goes on.
+    pub fn stats_through_jams(&self, samples: usize) -> stats::PointerStats {
+        self.stats_until(samples, self.input_range)
+    }
+
+    fn stats_until(&self, samples: usize, end: f64) -> stats::PointerStats {
         let n = samples.max(2);
         let acc: stats::Accumulator = (0..n)
             .map(|i| {
