@@ -1,0 +1,254 @@
+//! Manufacturing-error hypotheses as plugins: each turns a designed gear into a manufactured one.
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+
+use geometry::Gear;
+
+pub use inventory;
+pub use rand;
+
+mod builtin;
+mod edmunds;
+mod measured;
+mod params;
+
+pub use edmunds::{EdmundsErrors, eccentricity, manufacture};
+pub use measured::{
+    MEASURED_EXAMPLE, MeasuredEntry, MeasuredHypothesis, MeasuredTable, measured_from_ron,
+};
+pub use params::Params;
+
+/// Why a hypothesis could not be looked up, configured or applied: what was wrong and the rule.
+///
+/// Displays on one line as `{what}: {rule}`, e.g.
+/// `edmunds-split: --set split: must be between 0 and 1 (got 1.5)`.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("{what}: {rule}")]
+pub struct HypothesisError {
+    /// The offending item: a hypothesis, a parameter, a gear, a table entry.
+    pub what: String,
+    /// The rule it broke, in words.
+    pub rule: String,
+}
+
+impl HypothesisError {
+    /// An error about `what` breaking `rule`.
+    pub fn new(what: impl Into<String>, rule: impl Into<String>) -> Self {
+        Self {
+            what: what.into(),
+            rule: rule.into(),
+        }
+    }
+}
+
+/// Two hypotheses were registered with the same name.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("error hypothesis name `{0}` is registered twice")]
+pub struct DuplicateName(pub &'static str);
+
+/// One parameter of a hypothesis: a number with a default.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ParamSpec {
+    /// Name used to override it (e.g. `--set random=0.08` in an experiment).
+    pub name: &'static str,
+    /// Value used when it is not overridden.
+    pub default: f64,
+    /// Unit, e.g. "deg" or "pitch"; empty when it has none.
+    pub unit: &'static str,
+    /// One line telling what it does.
+    pub help: &'static str,
+}
+
+/// A manufacturing-error hypothesis: how a designed gear becomes a manufactured one.
+///
+/// It takes a gear, its name, its [`Params`] and a random number generator and returns the gear
+/// as it might have been made: tip angles displaced (valleys stay midway, as
+/// [`geometry::Gear::new`] places them) and the rotation centre moved off the geometric centre
+/// (build the result with [`manufacture`], which checks it). Built-ins, one file each in
+/// `src/builtin/`: `ideal`, `edmunds-split` (the paper's model, section 4), `eccentric-only`,
+/// `sinusoid-only` and `measured` (per-gear values from a RON table; the registered one uses an
+/// embedded table of invented example values).
+pub trait Hypothesis: Sync {
+    /// Unique name, e.g. `edmunds-split`.
+    fn name(&self) -> &'static str;
+    /// One line telling what it models.
+    fn summary(&self) -> &'static str;
+    /// Its parameters with their defaults (may be empty).
+    fn params(&self) -> &'static [ParamSpec];
+    /// The manufactured version of `gear` (named `gear_name`, for errors and per-gear tables).
+    ///
+    /// `params` holds a value for every entry of [`Hypothesis::params`]; randomness comes only
+    /// from `rng`, so the same stream gives the same gear.
+    fn apply(
+        &self,
+        gear: &Gear,
+        gear_name: &str,
+        params: &Params,
+        rng: &mut dyn rand::RngCore,
+    ) -> Result<Gear, HypothesisError>;
+}
+
+/// The `inventory` item a hypothesis registers itself with; adding one is one file and one
+/// registration:
+///
+/// ```ignore
+/// struct ToyShift;
+/// impl hypotheses::Hypothesis for ToyShift { /* name, summary, params, apply */ }
+/// hypotheses::inventory::submit! { hypotheses::Registration(&ToyShift) }
+/// ```
+///
+/// A binary must name the crate that registers it (e.g. [`link`]) or the linker drops it.
+pub struct Registration(pub &'static dyn Hypothesis);
+
+inventory::collect!(Registration);
+
+/// Every registered hypothesis, sorted by name; a name registered twice is an error naming it.
+pub fn hypotheses() -> Result<BTreeMap<&'static str, &'static dyn Hypothesis>, DuplicateName> {
+    collect(inventory::iter::<Registration>.into_iter().map(|r| r.0))
+}
+
+/// Sorts `items` by name, refusing a duplicate.
+fn collect(
+    items: impl Iterator<Item = &'static dyn Hypothesis>,
+) -> Result<BTreeMap<&'static str, &'static dyn Hypothesis>, DuplicateName> {
+    let mut map = BTreeMap::new();
+    for h in items {
+        if map.insert(h.name(), h).is_some() {
+            return Err(DuplicateName(h.name()));
+        }
+    }
+    Ok(map)
+}
+
+/// The registered hypothesis called `name`; an unknown name is an error listing every known one.
+pub fn lookup(name: &str) -> Result<&'static dyn Hypothesis, HypothesisError> {
+    let all = hypotheses().map_err(|e| HypothesisError::new("error hypotheses", e.to_string()))?;
+    all.get(name).copied().ok_or_else(|| {
+        let known: Vec<&str> = all.keys().copied().collect();
+        HypothesisError::new(
+            format!("error hypothesis `{name}`"),
+            format!("unknown; known hypotheses: {}", known.join(", ")),
+        )
+    })
+}
+
+/// A readable table of every registered hypothesis: name, summary, and each parameter with its
+/// default, unit and help (what `cargo xtask hypotheses` prints).
+pub fn listing() -> String {
+    let all = match hypotheses() {
+        Ok(all) => all,
+        Err(e) => return format!("error: {e}\n"),
+    };
+    let mut s = String::from("Manufacturing-error hypotheses\n\n");
+    if all.is_empty() {
+        s.push_str("none registered\n");
+        return s;
+    }
+    // Parameter columns aligned across every hypothesis.
+    let specs = all.values().flat_map(|h| h.params());
+    let defaults: Vec<String> = specs.clone().map(|p| p.default.to_string()).collect();
+    let w_name = specs
+        .clone()
+        .map(|p| p.name.len())
+        .max()
+        .unwrap_or(0)
+        .max(4);
+    let w_def = defaults.iter().map(String::len).max().unwrap_or(0).max(7);
+    let w_unit = specs.map(|p| p.unit.len()).max().unwrap_or(0).max(4);
+    for (i, h) in all.values().enumerate() {
+        if i > 0 {
+            s.push('\n');
+        }
+        let _ = writeln!(s, "{}: {}", h.name(), h.summary());
+        if h.params().is_empty() {
+            s.push_str("  parameters: none\n");
+            continue;
+        }
+        let _ = writeln!(
+            s,
+            "  {:w_name$}  {:>w_def$}  {:w_unit$}  help",
+            "parameter", "default", "unit"
+        );
+        for p in h.params() {
+            let _ = writeln!(
+                s,
+                "  {:w_name$}  {:>w_def$}  {:w_unit$}  {}",
+                p.name,
+                p.default.to_string(),
+                p.unit,
+                p.help
+            );
+        }
+    }
+    s
+}
+
+/// Does nothing; calling it makes a binary link this crate, and with it every built-in
+/// hypothesis it registers.
+pub fn link() {}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
+mod tests {
+    use super::*;
+
+    struct Named(&'static str);
+
+    impl Hypothesis for Named {
+        fn name(&self) -> &'static str {
+            self.0
+        }
+        fn summary(&self) -> &'static str {
+            "test"
+        }
+        fn params(&self) -> &'static [ParamSpec] {
+            &[]
+        }
+        fn apply(
+            &self,
+            gear: &Gear,
+            _: &str,
+            _: &Params,
+            _: &mut dyn rand::RngCore,
+        ) -> Result<Gear, HypothesisError> {
+            Ok(gear.clone())
+        }
+    }
+
+    static A: Named = Named("a");
+    static B: Named = Named("b");
+    static A2: Named = Named("a");
+
+    #[test]
+    fn collect_sorts_by_name() {
+        let map = collect([&B as &dyn Hypothesis, &A].into_iter()).unwrap();
+        assert_eq!(map.keys().copied().collect::<Vec<_>>(), ["a", "b"]);
+    }
+
+    #[test]
+    fn collect_refuses_duplicate_name() {
+        let err = collect([&A as &dyn Hypothesis, &B, &A2].into_iter())
+            .err()
+            .unwrap();
+        assert_eq!(err.0, "a");
+        assert_eq!(
+            err.to_string(),
+            "error hypothesis name `a` is registered twice"
+        );
+    }
+
+    #[test]
+    fn built_ins_are_registered_once() {
+        let all = hypotheses().unwrap();
+        for name in [
+            "ideal",
+            "edmunds-split",
+            "eccentric-only",
+            "sinusoid-only",
+            "measured",
+        ] {
+            assert!(all.contains_key(name), "{name} missing");
+        }
+    }
+}

@@ -1,0 +1,234 @@
+//! Per-gear error values from a RON table (Edmunds' measurements, or anyone's).
+
+use std::collections::BTreeMap;
+
+use geometry::Gear;
+use serde::Deserialize;
+
+use crate::{EdmundsErrors, Hypothesis, HypothesisError, ParamSpec, Params};
+
+/// The example table the registered `measured` hypothesis uses. Its values are INVENTED (the
+/// file says so): Edmunds' per-gear measurements are not public here.
+pub const MEASURED_EXAMPLE: &str = include_str!("../data/measured-example.ron");
+
+/// One gear's measured errors.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MeasuredEntry {
+    /// Random tooth error: sd of a tip's displacement as a fraction of the pitch.
+    pub random: f64,
+    /// Systematic amplitude A, degrees.
+    pub systematic_deg: f64,
+    /// Phase of the sinusoid, degrees; `None`: drawn uniformly.
+    pub phase_deg: Option<f64>,
+    /// Share of A on the sinusoid; `None`: the table's `split`.
+    pub split: Option<f64>,
+}
+
+/// A table of per-gear error values, read by [`measured_from_ron`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeasuredTable {
+    file_name: String,
+    split: f64,
+    gears: BTreeMap<String, MeasuredEntry>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawTable {
+    #[serde(default = "paper_split")]
+    split: f64,
+    gears: Vec<RawEntry>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawEntry {
+    gear: String,
+    random: f64,
+    systematic: f64,
+    #[serde(default)]
+    phase: Option<f64>,
+    #[serde(default)]
+    split: Option<f64>,
+}
+
+fn paper_split() -> f64 {
+    0.5
+}
+
+/// Reads a table of per-gear errors; `file_name` only names the source in errors.
+///
+/// ```text
+/// (
+///     split: 0.5,   // optional: share of each systematic amplitude on the sinusoid (the paper's 50/50)
+///     gears: [
+///         (gear: "b1", random: 0.05, systematic: 0.6, phase: 30.0),   // phase in degrees, optional
+///         (gear: "b2", random: 0.04, systematic: 0.0, split: 1.0),    // split per gear, optional
+///     ],
+/// )
+/// ```
+///
+/// Errors name the file and the gear (or the RON position) and the rule: unknown fields, a gear
+/// listed twice, a negative or non-finite value, a split outside [0, 1].
+pub fn measured_from_ron(file_name: &str, text: &str) -> Result<MeasuredTable, HypothesisError> {
+    let raw: RawTable = ron::Options::default()
+        .with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME)
+        .from_str(text)
+        .map_err(|e| {
+            HypothesisError::new(
+                format!(
+                    "{file_name}: line {}, column {}",
+                    e.position.line, e.position.col
+                ),
+                e.code.to_string(),
+            )
+        })?;
+    if !(0.0..=1.0).contains(&raw.split) {
+        return Err(HypothesisError::new(
+            format!("{file_name}: split"),
+            format!("must be between 0 and 1 (got {})", raw.split),
+        ));
+    }
+    let mut gears = BTreeMap::new();
+    for e in raw.gears {
+        let entry = MeasuredEntry {
+            random: e.random,
+            systematic_deg: e.systematic,
+            phase_deg: e.phase,
+            split: e.split,
+        };
+        errors_of(&entry, raw.split).check(&format!("{file_name}: gear {}", e.gear))?;
+        if gears.insert(e.gear.clone(), entry).is_some() {
+            return Err(HypothesisError::new(
+                format!("{file_name}: gear {}", e.gear),
+                "listed twice",
+            ));
+        }
+    }
+    Ok(MeasuredTable {
+        file_name: file_name.to_owned(),
+        split: raw.split,
+        gears,
+    })
+}
+
+fn errors_of(entry: &MeasuredEntry, table_split: f64) -> EdmundsErrors {
+    EdmundsErrors {
+        random: entry.random,
+        systematic_deg: entry.systematic_deg,
+        split: entry.split.unwrap_or(table_split),
+        phase_deg: entry.phase_deg,
+    }
+}
+
+impl MeasuredTable {
+    /// The file name the table was read from (as given).
+    pub fn file_name(&self) -> &str {
+        &self.file_name
+    }
+
+    /// The table-wide split (0.5 unless the table says otherwise).
+    pub fn split(&self) -> f64 {
+        self.split
+    }
+
+    /// Every gear of the table with its values, sorted by name.
+    pub fn entries(&self) -> impl Iterator<Item = (&str, &MeasuredEntry)> {
+        self.gears.iter().map(|(k, v)| (k.as_str(), v))
+    }
+
+    /// The errors of `gear_name` (split resolved); a gear missing from the table is an error
+    /// naming it.
+    pub fn errors(&self, gear_name: &str) -> Result<EdmundsErrors, HypothesisError> {
+        self.gears
+            .get(gear_name)
+            .map(|e| errors_of(e, self.split))
+            .ok_or_else(|| {
+                HypothesisError::new(
+                    format!("{}: gear {gear_name}", self.file_name),
+                    "missing from the table (every gear the hypothesis is applied to needs a row)",
+                )
+            })
+    }
+
+    /// A hypothesis (named `measured`) applying this table, for an experiment to use with a
+    /// user's file.
+    pub fn hypothesis(&self) -> MeasuredHypothesis {
+        MeasuredHypothesis {
+            table: self.clone(),
+        }
+    }
+
+    /// `gear` with its row's errors, every value scaled by `params`' `scale`.
+    pub(crate) fn apply_scaled(
+        &self,
+        gear: &Gear,
+        gear_name: &str,
+        params: &Params,
+        rng: &mut dyn rand::RngCore,
+    ) -> Result<Gear, HypothesisError> {
+        let scale = params.get("scale");
+        if !(scale.is_finite() && scale >= 0.0) {
+            return Err(HypothesisError::new(
+                "measured: scale",
+                format!("must be a finite number >= 0 (got {scale})"),
+            ));
+        }
+        let mut errors = self.errors(gear_name)?;
+        errors.random *= scale;
+        errors.systematic_deg *= scale;
+        errors.check(&format!(
+            "{}: gear {gear_name} (scaled by {scale})",
+            self.file_name
+        ))?;
+        errors.apply(gear, gear_name, rng)
+    }
+}
+
+/// Parameters of every `measured` hypothesis.
+pub(crate) const MEASURED_PARAMS: &[ParamSpec] = &[ParamSpec {
+    name: "scale",
+    default: 1.0,
+    unit: "",
+    help: "multiplies every random and systematic value of the table",
+}];
+
+/// One-line summary of every `measured` hypothesis.
+pub(crate) const MEASURED_SUMMARY: &str = "per-gear random fraction, systematic amplitude (deg) and optional phase from a RON table, 50/50 split unless it says otherwise; registered with an INVENTED example table (crates/hypotheses/data/measured-example.ron)";
+
+/// The `measured` hypothesis over a given table (see [`MeasuredTable::hypothesis`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeasuredHypothesis {
+    table: MeasuredTable,
+}
+
+impl MeasuredHypothesis {
+    /// Its table.
+    pub fn table(&self) -> &MeasuredTable {
+        &self.table
+    }
+}
+
+impl Hypothesis for MeasuredHypothesis {
+    fn name(&self) -> &'static str {
+        "measured"
+    }
+
+    fn summary(&self) -> &'static str {
+        MEASURED_SUMMARY
+    }
+
+    fn params(&self) -> &'static [ParamSpec] {
+        MEASURED_PARAMS
+    }
+
+    fn apply(
+        &self,
+        gear: &Gear,
+        gear_name: &str,
+        params: &Params,
+        rng: &mut dyn rand::RngCore,
+    ) -> Result<Gear, HypothesisError> {
+        self.table.apply_scaled(gear, gear_name, params, rng)
+    }
+}

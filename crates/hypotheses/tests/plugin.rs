@@ -1,0 +1,65 @@
+//! A hypothesis defined outside the crate with one file and one registration: it is listed,
+//! looked up and applied like a built-in.
+
+#![allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
+
+use geometry::Gear;
+use hypotheses::{Hypothesis, HypothesisError, ParamSpec, Params, Registration, manufacture};
+
+/// Every tip moved by the same angle: the whole toothing turned on its blank.
+struct ToyShift;
+
+impl Hypothesis for ToyShift {
+    fn name(&self) -> &'static str {
+        "toy-shift"
+    }
+
+    fn summary(&self) -> &'static str {
+        "every tip shifted by the same angle (an example plugin)"
+    }
+
+    fn params(&self) -> &'static [ParamSpec] {
+        &[ParamSpec {
+            name: "shift",
+            default: 1.0,
+            unit: "deg",
+            help: "angle added to every tip",
+        }]
+    }
+
+    fn apply(
+        &self,
+        gear: &Gear,
+        gear_name: &str,
+        params: &Params,
+        _rng: &mut dyn hypotheses::rand::RngCore,
+    ) -> Result<Gear, HypothesisError> {
+        let shift = params.get("shift").to_radians();
+        let tips = gear.tip_angles().iter().map(|t| t + shift).collect();
+        manufacture(gear, gear_name, tips, gear.rotation_centre())
+    }
+}
+
+hypotheses::inventory::submit! { Registration(&ToyShift) }
+
+#[test]
+fn a_plugin_is_listed_looked_up_and_applied() {
+    let all = hypotheses::hypotheses().unwrap();
+    assert!(all.contains_key("toy-shift"));
+    assert!(all.contains_key("edmunds-split"), "built-ins still there");
+    let listing = hypotheses::listing();
+    assert!(
+        listing.contains("toy-shift: every tip shifted"),
+        "{listing}"
+    );
+    assert!(listing.contains("shift"), "{listing}");
+
+    let h = hypotheses::lookup("toy-shift").unwrap();
+    let p = Params::new(h, &[("shift".into(), "2".into())]).unwrap();
+    let g = Gear::ideal(20, 5.5, 4.4).unwrap();
+    let mut rng = <rand_chacha::ChaCha8Rng as rand::SeedableRng>::seed_from_u64(1);
+    let made = h.apply(&g, "g2", &p, &mut rng).unwrap();
+    for (m, d) in made.tip_angles().iter().zip(g.tip_angles()) {
+        assert!((m - d - 2.0_f64.to_radians()).abs() < 1e-15);
+    }
+}
