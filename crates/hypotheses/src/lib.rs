@@ -153,7 +153,7 @@ pub fn listing() -> String {
         .map(|p| p.name.len())
         .max()
         .unwrap_or(0)
-        .max(4);
+        .max("parameter".len());
     let w_def = defaults.iter().map(String::len).max().unwrap_or(0).max(7);
     let w_unit = specs.map(|p| p.unit.len()).max().unwrap_or(0).max(4);
     for (i, h) in all.values().enumerate() {
