@@ -1,4 +1,4 @@
-//! Command-line parsing, by hand: four commands and five flags.
+//! Command-line parsing, by hand: five commands and six flags.
 
 use std::path::PathBuf;
 
@@ -12,6 +12,8 @@ pub enum Command {
     Overview,
     /// `list`: ids one per line.
     List,
+    /// `hypotheses`: the manufacturing-error hypotheses and their parameters.
+    Hypotheses,
     /// `help` (no id: usage) or `help <id>`.
     Help(Option<String>),
     /// `run <id>... [flags]`.
@@ -53,6 +55,10 @@ pub fn parse(args: &[String]) -> Result<Command, ArgError> {
         "list" => {
             no_more(cmd, rest)?;
             Ok(Command::List)
+        }
+        "hypotheses" => {
+            no_more(cmd, rest)?;
+            Ok(Command::Hypotheses)
         }
         "help" | "--help" | "-h" => match rest {
             [] => Ok(Command::Help(None)),
@@ -188,6 +194,8 @@ mod tests {
     fn commands() {
         assert_eq!(p("").unwrap(), Command::Overview);
         assert_eq!(p("list").unwrap(), Command::List);
+        assert_eq!(p("hypotheses").unwrap(), Command::Hypotheses);
+        assert!(matches!(p("hypotheses x"), Err(ArgError::Usage(_))));
         assert_eq!(p("help").unwrap(), Command::Help(None));
         assert_eq!(p("help fig2").unwrap(), Command::Help(Some("fig2".into())));
         assert!(matches!(p("frobnicate"), Err(ArgError::Usage(_))));

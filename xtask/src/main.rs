@@ -61,6 +61,7 @@ impl From<RunError> for Failure {
 fn main() -> ExitCode {
     // Names the plugin crate so that its `inventory` registrations are linked in.
     experiments::link();
+    hypotheses::link();
     init_logs();
     let args: Result<Vec<String>, _> = std::env::args_os()
         .skip(1)
@@ -98,6 +99,7 @@ fn dispatch(args: &[String]) -> Result<(), Failure> {
     match cmd {
         Command::Overview => print(&overview(&exps)),
         Command::List => print(&exps.keys().map(|id| format!("{id}\n")).collect::<String>()),
+        Command::Hypotheses => print(&hypotheses::listing()),
         Command::Help(None) => print(&format!("{}\n", usage())),
         Command::Help(Some(id)) => print(&details(lookup(&exps, &id)?)),
         Command::Run(run) => run_all(&exps, &run),
@@ -135,6 +137,7 @@ Usage:
   cargo xtask                   this overview: commands and experiments
   cargo xtask list              experiment ids, one per line
   cargo xtask help <id>         an experiment's paper item, parameters and config file
+  cargo xtask hypotheses        manufacturing-error hypotheses, their parameters and defaults
   cargo xtask run <id>... [options]
                                 run experiments (`all` runs every one), print their
                                 tables and write results to <out>/<id>/

@@ -1,0 +1,41 @@
+//! `cargo xtask hypotheses` lists the registered manufacturing-error hypotheses.
+
+#![allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
+
+use std::process::{Command, Output};
+
+fn xtask(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_xtask"))
+        .args(args)
+        .env_remove("RUST_LOG")
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn hypotheses_lists_the_built_ins_with_their_params() {
+    let o = xtask(&["hypotheses"]);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for name in [
+        "ideal",
+        "edmunds-split",
+        "eccentric-only",
+        "sinusoid-only",
+        "measured",
+    ] {
+        assert!(out.contains(&format!("{name}: ")), "{name} missing:\n{out}");
+    }
+    for param in ["random", "systematic", "split", "scale"] {
+        assert!(out.contains(param), "{param} missing:\n{out}");
+    }
+}
+
+#[test]
+fn hypotheses_takes_no_arguments_and_the_overview_mentions_it() {
+    let o = xtask(&["hypotheses", "extra"]);
+    assert_eq!(o.status.code(), Some(2));
+    let o = xtask(&[]);
+    assert!(o.status.success());
+    assert!(String::from_utf8_lossy(&o.stdout).contains("cargo xtask hypotheses"));
+}
