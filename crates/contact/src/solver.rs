@@ -202,6 +202,18 @@ impl Mesh {
     /// Runs the push model from driver angle `phi_start` to `phi_end` (radians, `phi_end >=
     /// phi_start`).
     pub fn run(&self, phi_start: f64, phi_end: f64, start: Start) -> Trajectory {
+        self.run_until(phi_start, phi_end, start, false)
+    }
+
+    /// Like [`Mesh::run`], but with `stop_at_jam` the run ends at the first jam (a jammed train
+    /// stops): the trajectory then ends there and holds its last angle beyond.
+    pub fn run_until(
+        &self,
+        phi_start: f64,
+        phi_end: f64,
+        start: Start,
+        stop_at_jam: bool,
+    ) -> Trajectory {
         let mut run = Run {
             mesh: self,
             phi: phi_start,
@@ -223,6 +235,9 @@ impl Mesh {
                 run.phi + step
             };
             run.advance(next);
+            if stop_at_jam && run.events.iter().any(|e| e.kind == EventKind::Jam) {
+                break;
+            }
         }
         if run.segments.is_empty() {
             run.rest_to(phi_end);

@@ -28,7 +28,9 @@ fn radial_angles(g: &Gear) -> Vec<f64> {
         let a = v.y.atan2(v.x);
         // Unwrap next to the geometric tip angle (the eccentric shift is far below half a turn).
         let nominal = g.tip_angle(k);
-        out.push(nominal + (a - nominal + std::f64::consts::PI).rem_euclid(TAU) - std::f64::consts::PI);
+        out.push(
+            nominal + (a - nominal + std::f64::consts::PI).rem_euclid(TAU) - std::f64::consts::PI,
+        );
     }
     out
 }
