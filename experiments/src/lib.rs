@@ -4,14 +4,17 @@ pub mod common;
 pub mod paper;
 
 mod clearance;
+mod errors;
 mod fig2;
 mod fig3;
 mod fig4;
+mod fig5;
 mod fig_iv;
 mod gearing;
 mod limits;
 mod pair;
 mod table1;
+mod table2;
 
 /// Does nothing; calling it makes a binary link this crate, and with it every experiment it registers.
 pub fn link() {}

@@ -1,4 +1,4 @@
-//! Command-line parsing, by hand: five commands and six flags.
+//! Command-line parsing, by hand: five commands and eight flags.
 
 use std::path::PathBuf;
 
@@ -102,7 +102,7 @@ fn parse_run(args: &[String]) -> Result<RunArgs, ArgError> {
         };
         if !matches!(
             flag,
-            "--seed" | "--threads" | "--out" | "--config" | "--set" | "--gearing"
+            "--seed" | "--threads" | "--out" | "--config" | "--set" | "--gearing" | "--hypothesis"
         ) {
             return Err(ArgError::Usage(format!("unknown flag `{arg}`")));
         }
@@ -148,6 +148,13 @@ fn parse_run(args: &[String]) -> Result<RunArgs, ArgError> {
                 run.config = Some(PathBuf::from(value));
             }
             // The gearing file of train experiments: the same as `--set gearing=FILE`.
+            // The error hypothesis of experiments that manufacture gears: `--set hypothesis=NAME`.
+            "--hypothesis" => {
+                if value.is_empty() {
+                    return Err(ArgError::Value("--hypothesis: must not be empty".into()));
+                }
+                run.sets.push(("hypothesis".to_owned(), value));
+            }
             "--gearing" => {
                 if value.is_empty() {
                     return Err(ArgError::Value("--gearing: must not be empty".into()));

@@ -148,6 +148,7 @@ Options of run:
   --out DIR         where results go (default {})
   --config FILE     RON config file, for experiments that take one (see help <id>)
   --gearing FILE    gearing RON file for train experiments (same as --set gearing=FILE)
+  --hypothesis NAME error hypothesis for experiments that apply errors (see `hypotheses`)
   --set KEY=VALUE   set a parameter (repeatable; see help <id>); with several
                     experiments, each gets the keys it declares
 

@@ -39,3 +39,26 @@ fn hypotheses_takes_no_arguments_and_the_overview_mentions_it() {
     assert!(o.status.success());
     assert!(String::from_utf8_lossy(&o.stdout).contains("cargo xtask hypotheses"));
 }
+
+#[test]
+fn unknown_hypothesis_lists_the_known_ones_and_exits_2() {
+    let out = std::env::temp_dir().join(format!("xtask-hyp-unknown-{}", std::process::id()));
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_xtask"))
+        .args([
+            "run",
+            "fig5",
+            "--hypothesis",
+            "no-such-thing",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("no-such-thing") && err.contains("edmunds-split") && err.contains("ideal"),
+        "{err}"
+    );
+    assert!(!out.exists());
+}
