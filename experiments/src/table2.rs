@@ -7,6 +7,7 @@ use rayon::prelude::*;
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
 use stats::mean_ci95;
 
+use crate::common::{Series, semilog_plot};
 use crate::errors;
 use crate::gearing;
 use crate::table1::samples_for;
@@ -185,6 +186,9 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             "Saros",
         ],
     );
+    // sigma against the systematic error, per pointer and model, for the plot.
+    let mut curves: std::collections::BTreeMap<String, Vec<(f64, f64)>> =
+        std::collections::BTreeMap::new();
     let mut tri_table = Table::new(
         format!(
             "Triangular teeth on the same gears (G = {clearance} %): triangular minus Edmunds, mean and 95 % interval over trials [deg]"
@@ -229,6 +233,17 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
                 ));
             }
             row.push(cell);
+            let mut add = |label: String, y: Option<f64>| {
+                if let Some(y) = y {
+                    curves.entry(label).or_default().push((systematic, y));
+                }
+            };
+            add(format!("{name}, Edmunds' model (ours)"), Some(es_m.mean));
+            add(
+                format!("{name}, triangular teeth (ours)"),
+                Some(mean_ci95(&ts).mean),
+            );
+            add(format!("{name}, Edmunds' Table 2 (paper)"), paper("sigma"));
             let diff = |a: &[f64], b: &[f64]| {
                 mean_ci95(&a.iter().zip(b).map(|(x, y)| x - y).collect::<Vec<_>>())
             };
@@ -275,8 +290,24 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     edm_table
         .note("Days: from each pointer's exact ratio (Metonic 3.855 d/deg, Saros 4.573 d/deg).");
     tri_table.note("A jam stops the pointer, so a triangular trial that jammed is measured up to its first jam (Edmunds' model never jams).");
+    let series: Vec<Series<'_>> = curves
+        .iter()
+        .map(|(label, points)| Series {
+            label: label.as_str(),
+            points: points.clone(),
+        })
+        .collect();
+    let svg = semilog_plot(
+        "Table 2: pointer sigma against Edmunds' systematic error (Cases A-D)",
+        "systematic error amplitude [deg] (Case A 0, B 0.5, C 1, D 2)",
+        "sigma of the Theoretical Difference [deg], logarithmic scale",
+        &series,
+    )?;
     Ok(Report {
         tables: vec![edm_table, tri_table],
-        files: vec![OutputFile::new("table2-data.csv", csv)],
+        files: vec![
+            OutputFile::new("table2-data.csv", csv),
+            OutputFile::new("table2.svg", svg),
+        ],
     })
 }
