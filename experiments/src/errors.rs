@@ -13,6 +13,15 @@ pub const PARAM: Param = Param {
     help: "error hypothesis (cargo xtask hypotheses lists them)",
 };
 
+/// The `hypothesis_params` parameter: the chosen hypothesis's own parameters, `name=value`
+/// pairs separated by commas (e.g. `--set hypothesis_params=scale=0.5`).
+pub const PARAMS_PARAM: Param = Param {
+    name: "hypothesis_params",
+    default: "",
+    unit: "",
+    help: "parameters of the hypothesis, name=value[,name=value] (cargo xtask hypotheses lists them)",
+};
+
 /// The hypothesis named by the `hypothesis` parameter.
 pub fn chosen(ctx: &Context) -> Result<&'static dyn Hypothesis, RunError> {
     let name = ctx.param("hypothesis")?;
@@ -20,17 +29,38 @@ pub fn chosen(ctx: &Context) -> Result<&'static dyn Hypothesis, RunError> {
 }
 
 /// Parameters for `h`: its defaults, then those of `values` it declares (others are ignored, so
-/// a Case's random and systematic errors can be offered to any hypothesis).
-pub fn params(h: &dyn Hypothesis, values: &[(&str, f64)]) -> Result<Params, RunError> {
-    let overrides: Vec<(String, String)> = values
+/// a Case's random and systematic errors can be offered to any hypothesis), then the user's
+/// `hypothesis_params`, which must all be declared by `h`.
+pub fn params(
+    ctx: &Context,
+    h: &dyn Hypothesis,
+    values: &[(&str, f64)],
+) -> Result<Params, RunError> {
+    let mut overrides: Vec<(String, String)> = values
         .iter()
         .filter(|(k, _)| h.params().iter().any(|p| p.name == *k))
         .map(|(k, v)| ((*k).to_string(), v.to_string()))
         .collect();
+    for pair in ctx
+        .param(PARAMS_PARAM.name)?
+        .split(',')
+        .map(str::trim)
+        .filter(|p| !p.is_empty())
+    {
+        let Some((k, v)) = pair.split_once('=') else {
+            return Err(RunError::bad(
+                "--set",
+                PARAMS_PARAM.name,
+                format!("`{pair}` is not name=value"),
+            ));
+        };
+        overrides.push((k.trim().to_string(), v.trim().to_string()));
+    }
     Params::new(h, &overrides).map_err(|e| RunError::bad("--hypothesis", e.what, e.rule))
 }
 
-/// `gear` as manufactured under `h`.
+/// `gear` as manufactured under `h`. A failure is bad input (a parameter too large for the gear,
+/// a gear missing from a measured table), so it is reported as such, naming the gear.
 pub fn make(
     h: &dyn Hypothesis,
     gear: &Gear,
@@ -39,5 +69,5 @@ pub fn make(
     rng: &mut dyn rand::RngCore,
 ) -> Result<Gear, RunError> {
     h.apply(gear, name, p, rng)
-        .map_err(|e| RunError::Internal(format!("{}: {}", e.what, e.rule)))
+        .map_err(|e| RunError::bad("--hypothesis", e.what, e.rule))
 }

@@ -63,6 +63,7 @@ const PARAMS: &[Param] = &[
         help: "samples over the turn",
     },
     errors::PARAM,
+    errors::PARAMS_PARAM,
 ];
 
 registry::inventory::submit! {
@@ -113,6 +114,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     let mut columns = Vec::new();
     for (name, split) in SPLITS {
         let p = errors::params(
+            ctx,
             h,
             &[
                 ("random", ctx.f64("random")?),

@@ -62,6 +62,7 @@ const PARAMS: &[Param] = &[
         help: "TD samples per engagement of the busiest mesh",
     },
     errors::PARAM,
+    errors::PARAMS_PARAM,
     gearing::PARAM,
 ];
 
@@ -125,6 +126,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     let mut results: Vec<Vec<Trial>> = Vec::new();
     for (ci, &(_, systematic, random)) in CASES.iter().enumerate() {
         let p = errors::params(
+            ctx,
             hyp,
             &[
                 ("random", random),

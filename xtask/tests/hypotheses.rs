@@ -62,3 +62,26 @@ fn unknown_hypothesis_lists_the_known_ones_and_exits_2() {
     );
     assert!(!out.exists());
 }
+
+#[test]
+fn a_bad_hypothesis_parameter_names_it_and_the_known_ones() {
+    let out = std::env::temp_dir().join(format!("xtask-hyp-param-{}", std::process::id()));
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_xtask"))
+        .args([
+            "run",
+            "fig5",
+            "--set",
+            "hypothesis_params=wobble=1",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("wobble") && err.contains("random") && err.contains("systematic"),
+        "{err}"
+    );
+    assert!(!out.exists());
+}
