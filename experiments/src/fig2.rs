@@ -3,37 +3,17 @@
 
 use std::f64::consts::TAU;
 
-use contact::{Mesh, Start};
-use geometry::Gear;
+use contact::Start;
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
 
 use crate::common::{Series, csv, deg, line_plot, paper_cell};
+use crate::equal_pair;
 
 const PARAMS: &[Param] = &[
-    Param {
-        name: "teeth",
-        default: "8",
-        unit: "",
-        help: "teeth N of both gears",
-    },
-    Param {
-        name: "tip_radius",
-        default: "200",
-        unit: "length",
-        help: "outer radius R of both gears",
-    },
-    Param {
-        name: "root_radius",
-        default: "100",
-        unit: "length",
-        help: "inner radius r of both gears",
-    },
-    Param {
-        name: "centre_distance",
-        default: "310",
-        unit: "length",
-        help: "centre distance D",
-    },
+    equal_pair::TEETH,
+    equal_pair::TIP_RADIUS,
+    equal_pair::ROOT_RADIUS,
+    equal_pair::CENTRE_DISTANCE,
     Param {
         name: "step",
         default: "0.01",
@@ -54,18 +34,17 @@ registry::inventory::submit! {
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    let n = ctx.usize("teeth")?;
-    let big_r = ctx.f64("tip_radius")?;
-    let small_r = ctx.f64("root_radius")?;
-    let d = ctx.f64("centre_distance")?;
+    let equal_pair::EqualPair {
+        teeth: n,
+        tip_radius: big_r,
+        root_radius: small_r,
+        centre_distance: d,
+        mesh,
+    } = equal_pair::from_params(ctx)?;
     let step = ctx.f64("step")?;
     if !(step > 0.0 && step <= 10.0) {
         return Err(RunError::bad("--set", "step", "must be in (0, 10] degrees"));
     }
-    let gear =
-        Gear::ideal(n, big_r, small_r).map_err(|e| RunError::bad("--set", e.field, e.rule))?;
-    let mesh =
-        Mesh::new(gear.clone(), gear, d).map_err(|e| RunError::bad("--set", e.field, e.rule))?;
     let teeth = u32::try_from(n).map_err(|_| RunError::bad("--set", "teeth", "too many teeth"))?;
     let pair =
         thorndike::Pair::new(teeth, teeth, big_r, small_r, big_r, small_r, d).map_err(|e| {

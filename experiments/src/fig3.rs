@@ -3,37 +3,17 @@
 
 use std::f64::consts::TAU;
 
-use contact::{Mesh, Start, Trajectory};
-use geometry::Gear;
+use contact::{Start, Trajectory};
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
 
 use crate::common::{Series, csv, deg, line_plot};
+use crate::equal_pair;
 
 const PARAMS: &[Param] = &[
-    Param {
-        name: "teeth",
-        default: "8",
-        unit: "",
-        help: "teeth N of both gears",
-    },
-    Param {
-        name: "tip_radius",
-        default: "200",
-        unit: "length",
-        help: "outer radius R of both gears",
-    },
-    Param {
-        name: "root_radius",
-        default: "100",
-        unit: "length",
-        help: "inner radius r of both gears",
-    },
-    Param {
-        name: "centre_distance",
-        default: "310",
-        unit: "length",
-        help: "centre distance D",
-    },
+    equal_pair::TEETH,
+    equal_pair::TIP_RADIUS,
+    equal_pair::ROOT_RADIUS,
+    equal_pair::CENTRE_DISTANCE,
     Param {
         name: "pitches",
         default: "3",
@@ -63,11 +43,7 @@ registry::inventory::submit! {
 const SCAN: usize = 4000;
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    let n = ctx.usize("teeth")?;
-    let gear = Gear::ideal(n, ctx.f64("tip_radius")?, ctx.f64("root_radius")?)
-        .map_err(|e| RunError::bad("--set", e.field, e.rule))?;
-    let mesh = Mesh::new(gear.clone(), gear, ctx.f64("centre_distance")?)
-        .map_err(|e| RunError::bad("--set", e.field, e.rule))?;
+    let equal_pair::EqualPair { teeth: n, mesh, .. } = equal_pair::from_params(ctx)?;
     let pitches = ctx.usize("pitches")?.max(1);
     let samples = ctx.usize("samples")?.max(2);
     let p1 = TAU / n as f64;

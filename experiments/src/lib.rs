@@ -4,6 +4,7 @@ pub mod common;
 pub mod paper;
 
 mod clearance;
+mod equal_pair;
 mod errors;
 mod fig2;
 mod fig3;

@@ -86,9 +86,38 @@ const POINTERS: [(&str, &str); 5] = [
     ("Exeligmos", "exeligmos_turns"),
 ];
 
+/// (pointer, input turns, TD samples) for each (pointer, run-length parameter), checked.
+pub(crate) fn pointer_runs<'a>(
+    ctx: &Context,
+    g: &train::Gearing,
+    pointers: &[(&'a str, &str)],
+    per: usize,
+) -> Result<Vec<(&'a str, f64, usize)>, RunError> {
+    let mut runs = Vec::new();
+    for &(name, param) in pointers {
+        let turns = ctx.f64(param)?;
+        if !(turns > 0.0 && turns <= 100.0) {
+            return Err(RunError::bad(
+                "--set",
+                param,
+                "must be between 0 and 100 turns",
+            ));
+        }
+        if g.pointer(name).is_none() {
+            return Err(RunError::bad(
+                "gearing",
+                format!("pointer {name}"),
+                "is missing from the gearing",
+            ));
+        }
+        runs.push((name, turns, samples_for(g, name, turns, per)));
+    }
+    Ok(runs)
+}
+
 /// Samples needed so that the busiest mesh of a pointer's train gets `per` samples per tooth
 /// engagement over `turns` input turns.
-pub(crate) fn samples_for(g: &train::Gearing, pointer: &str, turns: f64, per: usize) -> usize {
+fn samples_for(g: &train::Gearing, pointer: &str, turns: f64, per: usize) -> usize {
     let mut arbor_turns = 1.0;
     let mut busiest: f64 = 1.0;
     for label in g
@@ -121,25 +150,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     let per = ctx.usize("samples_per_engagement")?.max(1);
     let mech = Mechanism::ideal(&g, h, clearance)
         .map_err(|e| RunError::bad("gearing", format!("mesh {}", e.mesh), e.rule))?;
-    let mut runs = Vec::new();
-    for (name, param) in POINTERS {
-        let turns = ctx.f64(param)?;
-        if !(turns > 0.0 && turns <= 100.0) {
-            return Err(RunError::bad(
-                "--set",
-                param,
-                "must be between 0 and 100 turns",
-            ));
-        }
-        if g.pointer(name).is_none() {
-            return Err(RunError::bad(
-                "gearing",
-                format!("pointer {name}"),
-                "is missing from the gearing",
-            ));
-        }
-        runs.push((name, turns, samples_for(&g, name, turns, per)));
-    }
+    let runs = pointer_runs(ctx, &g, &POINTERS, per)?;
     let seed = ctx.seed();
     // One RNG stream per trial; trials in parallel, collected (and so reduced) in trial order.
     let per_trial: Vec<Vec<(stats::PointerStats, bool)>> = (0..trials as u64)

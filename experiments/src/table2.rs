@@ -10,7 +10,7 @@ use stats::mean_ci95;
 use crate::common::{Series, semilog_plot};
 use crate::errors;
 use crate::gearing;
-use crate::table1::samples_for;
+use crate::table1::pointer_runs;
 
 const PARAMS: &[Param] = &[
     Param {
@@ -110,18 +110,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         ctx.f64("split")?,
     );
     let per = ctx.usize("samples_per_engagement")?.max(1);
-    let mut runs = Vec::new();
-    for (name, param) in POINTERS {
-        let turns = ctx.f64(param)?;
-        if !(turns > 0.0 && turns <= 100.0) {
-            return Err(RunError::bad(
-                "--set",
-                param,
-                "must be between 0 and 100 turns",
-            ));
-        }
-        runs.push((name, turns, samples_for(&g, name, turns, per)));
-    }
+    let runs = pointer_runs(ctx, &g, &POINTERS, per)?;
     let seed = ctx.seed();
     let mut results: Vec<Vec<Trial>> = Vec::new();
     for (ci, &(_, systematic, random)) in CASES.iter().enumerate() {

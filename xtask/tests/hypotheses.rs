@@ -40,48 +40,33 @@ fn hypotheses_takes_no_arguments_and_the_overview_mentions_it() {
     assert!(String::from_utf8_lossy(&o.stdout).contains("cargo xtask hypotheses"));
 }
 
+/// Runs `fig5` with `args` into a fresh results dir: expects exit 2, nothing written, and returns
+/// stderr.
+fn fig5_refused(tag: &str, args: &[&str]) -> String {
+    let out = std::env::temp_dir().join(format!("xtask-hyp-{tag}-{}", std::process::id()));
+    let mut all = vec!["run", "fig5", "--out", out.to_str().unwrap()];
+    all.extend_from_slice(args);
+    let o = xtask(&all);
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(!out.exists());
+    err
+}
+
 #[test]
 fn unknown_hypothesis_lists_the_known_ones_and_exits_2() {
-    let out = std::env::temp_dir().join(format!("xtask-hyp-unknown-{}", std::process::id()));
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_xtask"))
-        .args([
-            "run",
-            "fig5",
-            "--hypothesis",
-            "no-such-thing",
-            "--out",
-            out.to_str().unwrap(),
-        ])
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(2), "{err}");
+    let err = fig5_refused("unknown", &["--hypothesis", "no-such-thing"]);
     assert!(
         err.contains("no-such-thing") && err.contains("edmunds-split") && err.contains("ideal"),
         "{err}"
     );
-    assert!(!out.exists());
 }
 
 #[test]
 fn a_bad_hypothesis_parameter_names_it_and_the_known_ones() {
-    let out = std::env::temp_dir().join(format!("xtask-hyp-param-{}", std::process::id()));
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_xtask"))
-        .args([
-            "run",
-            "fig5",
-            "--set",
-            "hypothesis_params=wobble=1",
-            "--out",
-            out.to_str().unwrap(),
-        ])
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(2), "{err}");
+    let err = fig5_refused("param", &["--set", "hypothesis_params=wobble=1"]);
     assert!(
         err.contains("wobble") && err.contains("random") && err.contains("systematic"),
         "{err}"
     );
-    assert!(!out.exists());
 }

@@ -1,0 +1,66 @@
+//! The paper's example pair of section 2 (two equal gears, N = 8, R = 200, r = 100, D = 310):
+//! the parameters `fig2` and `fig3` share, and the mesh built from them.
+
+use contact::Mesh;
+use geometry::Gear;
+use registry::{Context, Param, RunError};
+
+/// Teeth N of both gears.
+pub const TEETH: Param = Param {
+    name: "teeth",
+    default: "8",
+    unit: "",
+    help: "teeth N of both gears",
+};
+/// Outer radius R of both gears.
+pub const TIP_RADIUS: Param = Param {
+    name: "tip_radius",
+    default: "200",
+    unit: "length",
+    help: "outer radius R of both gears",
+};
+/// Inner radius r of both gears.
+pub const ROOT_RADIUS: Param = Param {
+    name: "root_radius",
+    default: "100",
+    unit: "length",
+    help: "inner radius r of both gears",
+};
+/// Centre distance D.
+pub const CENTRE_DISTANCE: Param = Param {
+    name: "centre_distance",
+    default: "310",
+    unit: "length",
+    help: "centre distance D",
+};
+
+/// The pair as set by the parameters above.
+pub struct EqualPair {
+    /// Teeth of each gear.
+    pub teeth: usize,
+    /// Tip radius R.
+    pub tip_radius: f64,
+    /// Root radius r.
+    pub root_radius: f64,
+    /// Centre distance D.
+    pub centre_distance: f64,
+    /// The mesh.
+    pub mesh: Mesh,
+}
+
+/// Reads the parameters and builds the mesh; a broken rule names the parameter.
+pub fn from_params(ctx: &Context) -> Result<EqualPair, RunError> {
+    let teeth = ctx.usize(TEETH.name)?;
+    let (tip_radius, root_radius) = (ctx.f64(TIP_RADIUS.name)?, ctx.f64(ROOT_RADIUS.name)?);
+    let centre_distance = ctx.f64(CENTRE_DISTANCE.name)?;
+    let bad = |field: String, rule: String| RunError::bad("--set", field, rule);
+    let gear = Gear::ideal(teeth, tip_radius, root_radius).map_err(|e| bad(e.field, e.rule))?;
+    let mesh = Mesh::new(gear.clone(), gear, centre_distance).map_err(|e| bad(e.field, e.rule))?;
+    Ok(EqualPair {
+        teeth,
+        tip_radius,
+        root_radius,
+        centre_distance,
+        mesh,
+    })
+}
