@@ -14,8 +14,10 @@ mod fig_iv;
 mod gearing;
 mod limits;
 mod pair;
+mod pair_jams;
 mod table1;
 mod table2;
+mod table3;
 
 /// Does nothing; calling it makes a binary link this crate, and with it every experiment it registers.
 pub fn link() {}
