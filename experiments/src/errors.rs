@@ -22,6 +22,14 @@ pub const PARAMS_PARAM: Param = Param {
     help: "parameters of the hypothesis, name=value[,name=value] (cargo xtask hypotheses lists them)",
 };
 
+/// Share of the systematic error put on the sinusoid of tip positions (the rest on the axis).
+pub const SPLIT: Param = Param {
+    name: "split",
+    default: "0.5",
+    unit: "",
+    help: "share of the systematic error on the sinusoid (rest: eccentricity); 0.5 as in the paper",
+};
+
 /// The hypothesis named by the `hypothesis` parameter.
 pub fn chosen(ctx: &Context) -> Result<&'static dyn Hypothesis, RunError> {
     let name = ctx.param("hypothesis")?;

@@ -16,18 +16,8 @@ const PARAMS: &[Param] = &[
         unit: "",
         help: "which trial's random initial angles (stream of the seed)",
     },
-    Param {
-        name: "clearance",
-        default: "40",
-        unit: "% of h",
-        help: "clearance G of every mesh",
-    },
-    Param {
-        name: "tooth_height",
-        default: "1.1",
-        unit: "mm",
-        help: "h of every gear",
-    },
+    gearing::CLEARANCE,
+    gearing::TOOTH_HEIGHT,
     Param {
         name: "samples",
         default: "7200",

@@ -12,12 +12,7 @@ use crate::limits::IdealPair;
 type Limits = (Option<f64>, Option<f64>);
 
 const PARAMS: &[Param] = &[
-    Param {
-        name: "tooth_height",
-        default: "1.1",
-        unit: "mm",
-        help: "h of every gear",
-    },
+    gearing::TOOTH_HEIGHT,
     Param {
         name: "from",
         default: "10",

@@ -12,6 +12,22 @@ pub const PARAM: Param = Param {
     help: "gearing RON file (default: the embedded Freeth 2006 data, crates/train/data/freeth2006.ron)",
 };
 
+/// Clearance G of every mesh of the gearing (the paper's working value, Appendix II).
+pub const CLEARANCE: Param = Param {
+    name: "clearance",
+    default: "40",
+    unit: "% of h",
+    help: "clearance G of every mesh",
+};
+
+/// Tooth height h of every gear.
+pub const TOOTH_HEIGHT: Param = Param {
+    name: "tooth_height",
+    default: "1.1",
+    unit: "mm",
+    help: "h = R - r of every gear (Efstathiou et al. 2012)",
+};
+
 /// Loads the gearing named by the `gearing` parameter.
 pub fn load(ctx: &Context) -> Result<Gearing, RunError> {
     let name = ctx.param("gearing")?;

@@ -15,18 +15,8 @@ const PARAMS: &[Param] = &[
         unit: "",
         help: "trials, each with fresh random initial angles",
     },
-    Param {
-        name: "clearance",
-        default: "40",
-        unit: "% of h",
-        help: "clearance G of every mesh",
-    },
-    Param {
-        name: "tooth_height",
-        default: "1.1",
-        unit: "mm",
-        help: "h of every gear (Efstathiou et al. 2012)",
-    },
+    gearing::CLEARANCE,
+    gearing::TOOTH_HEIGHT,
     Param {
         name: "lunar_turns",
         default: "1",

@@ -19,24 +19,9 @@ const PARAMS: &[Param] = &[
         unit: "",
         help: "trials per case, each with fresh errors and initial angles (Edmunds gives no count)",
     },
-    Param {
-        name: "clearance",
-        default: "40",
-        unit: "% of h",
-        help: "clearance G of every mesh (triangular model)",
-    },
-    Param {
-        name: "tooth_height",
-        default: "1.1",
-        unit: "mm",
-        help: "h of every gear",
-    },
-    Param {
-        name: "split",
-        default: "0.5",
-        unit: "",
-        help: "share of the systematic error on the sinusoid (rest: eccentricity)",
-    },
+    gearing::CLEARANCE,
+    gearing::TOOTH_HEIGHT,
+    errors::SPLIT,
     Param {
         name: "lunar_turns",
         default: "1",
