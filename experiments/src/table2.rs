@@ -263,8 +263,13 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         edm_table.row(row);
     }
     edm_table.note("Each case: every gear gets random tooth errors (sd = random x pitch) and the systematic error split between a sinusoid of tip position and an eccentric axis (split parameter, 0.5 as in the paper).");
-    edm_table
-        .note("Days: from each pointer's exact ratio (Metonic 3.855 d/deg, Saros 4.573 d/deg).");
+    edm_table.note(format!(
+        "Days: from each pointer's exact ratio (Metonic {} d/deg, Saros {} d/deg).",
+        g.days_per_degree("Metonic")
+            .map_or_else(|| "-".into(), |d| fmt_f64(d, 3)),
+        g.days_per_degree("Saros")
+            .map_or_else(|| "-".into(), |d| fmt_f64(d, 3)),
+    ));
     tri_table.note("A jam stops the pointer, so a triangular trial that jammed is measured up to its first jam (Edmunds' model never jams).");
     let series: Vec<Series<'_>> = curves
         .iter()
