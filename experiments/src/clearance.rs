@@ -187,5 +187,6 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             OutputFile::new("clearance.csv", data),
             OutputFile::new("clearance.svg", svg),
         ],
+        ..Default::default()
     })
 }

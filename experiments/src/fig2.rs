@@ -195,6 +195,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             OutputFile::new("fig2a.svg", plot_a),
             OutputFile::new("fig2b.svg", plot_b),
         ],
+        ..Default::default()
     })
 }
 

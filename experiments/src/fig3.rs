@@ -171,5 +171,6 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             OutputFile::new("fig3.csv", data),
             OutputFile::new("fig3.svg", svg),
         ],
+        ..Default::default()
     })
 }

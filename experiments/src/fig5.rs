@@ -212,5 +212,6 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     Ok(Report {
         tables: vec![table],
         files,
+        ..Default::default()
     })
 }

@@ -189,5 +189,6 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             OutputFile::new("figIV-limits.csv", lim_csv),
             OutputFile::new("figIV.svg", svg),
         ],
+        ..Default::default()
     })
 }

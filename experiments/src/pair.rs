@@ -298,6 +298,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             OutputFile::new("event-log.csv", ev_rows),
             OutputFile::new("pair.svg", svg),
         ],
+        ..Default::default()
     })
 }
 

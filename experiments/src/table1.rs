@@ -278,5 +278,6 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     Ok(Report {
         tables: vec![layout, detail, ratios],
         files: vec![OutputFile::new("table1-data.csv", csv)],
+        ..Default::default()
     })
 }

@@ -290,5 +290,6 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             OutputFile::new("table2-data.csv", csv),
             OutputFile::new("table2.svg", svg),
         ],
+        ..Default::default()
     })
 }

@@ -143,5 +143,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     Ok(Report {
         tables: vec![ours],
         files: vec![OutputFile::new("table3-data.csv", csv)],
+        trials: outcomes.len() as u64,
+        agreement: Some(registry::Agreement { inside, outside }),
     })
 }

@@ -30,7 +30,7 @@ mod table;
 
 pub use context::{ConfigFile, Context};
 pub use error::{DuplicateId, RunError};
-pub use output::{OutputFile, Report, write_results};
+pub use output::{Agreement, OutputFile, Report, write_results};
 pub use table::{Table, fmt_f64};
 
 /// One parameter of an experiment, settable from the command line with `--set name=value`.

@@ -16,6 +16,20 @@ pub struct Report {
     pub tables: Vec<Table>,
     /// Other files to store beside the tables (SVG figures, raw data...).
     pub files: Vec<OutputFile>,
+    /// Simulated trials behind the tables (pair turns or train runs); 0 when none are random.
+    pub trials: u64,
+    /// How our numbers compare with the paper's, where the experiment can judge it.
+    pub agreement: Option<Agreement>,
+}
+
+/// Agreement with the paper: how many of the paper's numbers fall inside our 95 % intervals
+/// (or stated tolerance) and how many outside.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
+pub struct Agreement {
+    /// The paper's numbers inside our intervals.
+    pub inside: u64,
+    /// The paper's numbers outside them.
+    pub outside: u64,
 }
 
 impl Report {
@@ -46,7 +60,15 @@ impl Report {
             })
             .collect();
         let files: Vec<&str> = self.files.iter().map(|f| f.name.as_str()).collect();
-        let mut s = format!("{:#}", json!({ "tables": tables, "files": files }));
+        let mut s = format!(
+            "{:#}",
+            json!({
+                "tables": tables,
+                "files": files,
+                "trials": self.trials,
+                "agreement": self.agreement,
+            })
+        );
         s.push('\n');
         s
     }
@@ -257,6 +279,7 @@ mod tests {
         Report {
             tables: vec![t, u, v],
             files: vec![OutputFile::new("fig.svg", "<svg/>")],
+            ..Default::default()
         }
     }
 
