@@ -145,5 +145,6 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         files: vec![OutputFile::new("table3-data.csv", csv)],
         trials: outcomes.len() as u64,
         agreement: Some(registry::Agreement { inside, outside }),
+        ..Default::default()
     })
 }

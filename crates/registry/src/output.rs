@@ -18,6 +18,9 @@ pub struct Report {
     pub files: Vec<OutputFile>,
     /// Simulated trials behind the tables (pair turns or train runs); 0 when none are random.
     pub trials: u64,
+    /// Tooth engagements simulated: for each pair turn or train run, the teeth that passed
+    /// through each mesh (the work measure of `cargo xtask bench`); 0 when not counted.
+    pub engagements: u64,
     /// How our numbers compare with the paper's, where the experiment can judge it.
     pub agreement: Option<Agreement>,
 }
@@ -66,6 +69,7 @@ impl Report {
                 "tables": tables,
                 "files": files,
                 "trials": self.trials,
+                "engagements": self.engagements,
                 "agreement": self.agreement,
             })
         );
