@@ -24,6 +24,22 @@ pub struct MeshError {
     pub rule: String,
 }
 
+/// One tooth as the contact roots need it, cached so that a tooth-pair evaluation does no
+/// index arithmetic and no trigonometry beyond its two `atan2`s.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ToothData {
+    /// (valley k−1, tip k, valley k), relative to the rotation centre.
+    pub v: [Vec2; 3],
+    /// Whether each vertex can ever touch the other gear.
+    pub reaches: [bool; 3],
+    /// 1 / squared length of the flanks (valley k−1 → tip k, tip k → valley k).
+    pub inv_len2: [f64; 2],
+    /// (cos, sin) of the tip angle.
+    pub tip_dir: (f64, f64),
+    /// Tip angle in [first tip angle, first tip angle + 2π).
+    pub tip_angle: f64,
+}
+
 /// One gear as the solver sees it: vertices relative to the rotation centre, cached.
 #[derive(Debug, Clone)]
 pub(crate) struct Placed {
@@ -38,6 +54,12 @@ pub(crate) struct Placed {
     pub max_gap: f64,
     /// Angular window either side of the line of centres in which a tooth can touch the other gear.
     pub window: f64,
+    /// Whether tip k can ever touch the other gear (it comes within the other gear's reach).
+    pub tip_reaches: Vec<bool>,
+    /// Whether valley k can ever touch the other gear.
+    pub valley_reaches: Vec<bool>,
+    /// Per-tooth data for the contact roots (filled in by [`Placed::mark_reaching`]).
+    pub teeth: Vec<ToothData>,
 }
 
 impl Placed {
@@ -61,7 +83,55 @@ impl Placed {
             reach,
             max_gap,
             window: 0.0,
+            tip_reaches: Vec::new(),
+            valley_reaches: Vec::new(),
+            teeth: Vec::new(),
         }
+    }
+
+    /// Marks the vertices that can come within `other_reach` of the other gear's centre, at
+    /// centre distance `d`: a vertex at ρ from its own centre is never nearer it than d − ρ.
+    fn mark_reaching(&mut self, d: f64, other_reach: f64) {
+        // A little slack: a vertex exactly at the limit may graze.
+        let can = |v: &Vec2| d - v.norm() <= other_reach * (1.0 + 1e-9) + 1e-9;
+        self.tip_reaches = self.tips.iter().map(can).collect();
+        self.valley_reaches = self.valleys.iter().map(can).collect();
+        let n = self.tips.len() as i64;
+        self.teeth = (0..n)
+            .map(|k| {
+                let v = self.tooth(k);
+                let (s, c) = self.gear.tip_angle(k).sin_cos();
+                ToothData {
+                    v,
+                    reaches: self.tooth_reaches(k),
+                    inv_len2: [
+                        1.0 / (v[1] - v[0]).norm_squared(),
+                        1.0 / (v[2] - v[1]).norm_squared(),
+                    ],
+                    tip_dir: (c, s),
+                    tip_angle: self.gear.tip_angle(k),
+                }
+            })
+            .collect();
+    }
+
+    /// Tooth k's cached data and the angle of the whole turns that separate k from its index
+    /// in `0..n`.
+    #[inline]
+    pub fn data(&self, k: i64) -> (&ToothData, f64) {
+        let n = self.teeth.len() as i64;
+        let turns = k.div_euclid(n);
+        (&self.teeth[(k - turns * n) as usize], TAU * turns as f64)
+    }
+
+    /// Which vertices of tooth k (as in [`Placed::tooth`]) can touch the other gear.
+    #[inline]
+    pub fn tooth_reaches(&self, k: i64) -> [bool; 3] {
+        [
+            self.valley_reaches[self.idx(k - 1)],
+            self.tip_reaches[self.idx(k)],
+            self.valley_reaches[self.idx(k)],
+        ]
     }
 
     #[inline]
@@ -159,6 +229,8 @@ impl Mesh {
         let w2 = lens(driven.reach, driver.reach);
         driver.window = w1 + driver.max_gap + (e1 / driver.gear.root_radius()).asin() + 1e-6;
         driven.window = w2 + driven.max_gap + (e2 / driven.gear.root_radius()).asin() + 1e-6;
+        driver.mark_reaching(centre_distance, driven.reach);
+        driven.mark_reaching(centre_distance, driver.reach);
         Ok(Self {
             driver,
             driven,
@@ -253,7 +325,7 @@ impl Mesh {
                 for p in a {
                     let base = p.y.atan2(p.x);
                     for (u, v) in FLANKS {
-                        circle_segment(Vec2::zeros(), p.norm(), b[u], b[v], |x| {
+                        circle_segment(Vec2::zeros(), p.norm_squared(), b[u], b[v], 1.0 / (b[v] - b[u]).norm_squared(), |x| {
                             take(x.y.atan2(x.x) - base)
                         });
                     }
@@ -262,7 +334,7 @@ impl Mesh {
                 for q in b {
                     let base = q.y.atan2(q.x);
                     for (u, v) in FLANKS {
-                        circle_segment(Vec2::zeros(), q.norm(), a[u], a[v], |x| {
+                        circle_segment(Vec2::zeros(), q.norm_squared(), a[u], a[v], 1.0 / (a[v] - a[u]).norm_squared(), |x| {
                             take(base - x.y.atan2(x.x))
                         });
                     }
@@ -279,57 +351,75 @@ impl Mesh {
     /// the paper's Phase 1 or 2; tip on tip is the shared end of both), each solved in closed form.
     pub fn obstacle(&self, phi: f64, j: i64, k: i64) -> Option<Obstacle> {
         let (s, c) = phi.sin_cos();
-        let a = self
-            .driver
-            .tooth(j)
-            .map(|v| Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y));
-        self.tooth_pair(a, j, k)
+        let (da, _) = self.driver.data(j);
+        let a = da.v.map(|v| Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y));
+        self.tooth_pair(a, da, j, k)
     }
 
     /// The obstacle of driver tooth `j`, already placed in the world as `a`, against driven tooth `k`.
+    ///
+    /// Every contact root is a point on a circle; its driven angle is the argument of a complex
+    /// product, compared through a pseudo-angle (monotone in the argument, no trigonometry) so
+    /// that only the lowest and highest roots cost an `atan2`.
     #[inline]
-    fn tooth_pair(&self, a: [Vec2; 3], j: i64, k: i64) -> Option<Obstacle> {
+    fn tooth_pair(&self, a: [Vec2; 3], da: &ToothData, j: i64, k: i64) -> Option<Obstacle> {
         let c2 = self.c2();
-        let b = self.driven.tooth(k);
-        // The obstacle of tooth k sits near θ = t_k: unwrap every root to that neighbourhood.
-        let reference = self.driven.gear.tip_angle(k);
-        let mut lo = f64::INFINITY;
-        let mut hi = f64::NEG_INFINITY;
-        let mut add = |theta: f64| {
-            let t = reference + wrap_pi(theta - reference);
-            lo = lo.min(t);
-            hi = hi.max(t);
+        let (db, turns) = self.driven.data(k);
+        let b = db.v;
+        // The obstacle of tooth k sits near θ = t_k: every root is measured from there, as the
+        // argument of u = e^{i(θ − t_k)}, which unwraps it to (t_k − π, t_k + π].
+        let (tc, ts) = db.tip_dir;
+        let mut lo: Option<(f64, Vec2)> = None;
+        let mut hi: Option<(f64, Vec2)> = None;
+        // e^{iθ} is proportional to −v·conj(w) for a vertex v and its root w (see below).
+        let mut add = |v: Vec2, w: Vec2| {
+            let (px, py) = (-(v.x * w.x + v.y * w.y), -(v.y * w.x - v.x * w.y));
+            let u = Vec2::new(px * tc + py * ts, py * tc - px * ts);
+            let p = pseudo_angle(u);
+            if lo.is_none_or(|(q, _)| p < q) {
+                lo = Some((p, u));
+            }
+            if hi.is_none_or(|(q, _)| p > q) {
+                hi = Some((p, u));
+            }
         };
         // Only flanks bound a tooth: the base chord between its valleys lies inside the gear body,
         // where a contact would already be an overlap of a neighbouring tooth's flanks.
         const FLANKS: [(usize, usize); 2] = [(0, 1), (1, 2)];
-        // Driver vertex P on a driven flank: in the driven frame P runs on the circle |P − c2|.
-        for p in a {
+        // Driver vertex P on a driven flank: in the driven frame P runs on the circle |P − c2|
+        // and meets the flank at X when θ = arg X − arg(P − c2) + π.
+        for (p, reaches) in a.into_iter().zip(da.reaches) {
+            if !reaches {
+                continue;
+            }
             let rel = p - c2;
-            let rho = rel.norm();
-            let base = rel.y.atan2(rel.x);
-            for (s, e) in FLANKS {
-                circle_segment(Vec2::zeros(), rho, b[s], b[e], |x| {
-                    add(x.y.atan2(x.x) - base + PI);
+            let rho2 = rel.norm_squared();
+            for (f, (s, e)) in FLANKS.into_iter().enumerate() {
+                circle_segment(Vec2::zeros(), rho2, b[s], b[e], db.inv_len2[f], |x| {
+                    add(x, rel);
                 });
             }
         }
-        // Driven vertex Q on a driver flank: in the world Q runs on the circle |Q| about c2.
-        for q in b {
-            let rho = q.norm();
-            let base = q.y.atan2(q.x) + PI;
-            for (s, e) in FLANKS {
-                circle_segment(c2, rho, a[s], a[e], |x| {
-                    let r = x - c2;
-                    add(base - r.y.atan2(r.x));
-                });
+        // Driven vertex Q on a driver flank: in the world Q runs on the circle |Q| about c2 and
+        // meets the flank at X when θ = arg Q + π − arg(X − c2).
+        for (q, reaches) in b.into_iter().zip(db.reaches) {
+            if !reaches {
+                continue;
+            }
+            let rho2 = q.norm_squared();
+            for (f, (s, e)) in FLANKS.into_iter().enumerate() {
+                circle_segment(c2, rho2, a[s], a[e], da.inv_len2[f], |x| add(q, x - c2));
             }
         }
-        (lo <= hi).then_some(Obstacle {
+        let (Some((_, ul)), Some((_, uh))) = (lo, hi) else {
+            return None;
+        };
+        let reference = db.tip_angle + turns;
+        Some(Obstacle {
             driver_tooth: j,
             driven_tooth: k,
-            lo,
-            hi,
+            lo: reference + ul.y.atan2(ul.x),
+            hi: reference + uh.y.atan2(uh.x),
         })
     }
 
@@ -344,9 +434,8 @@ impl Mesh {
             + 1e-9;
         let (s, c) = phi.sin_cos();
         for j in self.driver_teeth(phi) {
-            let world = d1
-                .tooth(j)
-                .map(|v| Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y));
+            let (da, _) = d1.data(j);
+            let world = da.v.map(|v| Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y));
             let tooth = world.map(|v| v - c2);
             // A driver tooth farther from the driven centre than any driven vertex cannot touch.
             let near =
@@ -364,7 +453,7 @@ impl Mesh {
                 a_hi = a_hi.max(a);
             }
             for k in d2.teeth_between(lo - a_hi - half_k, hi - a_lo + half_k) {
-                if let Some(o) = self.tooth_pair(world, j, k) {
+                if let Some(o) = self.tooth_pair(world, da, j, k) {
                     if o.hi >= lo && o.lo <= hi {
                         out.push(o);
                     }
@@ -380,6 +469,14 @@ fn segment_distance(a: Vec2, b: Vec2) -> f64 {
     let d = b - a;
     let t = (-a.dot(&d) / d.dot(&d)).clamp(0.0, 1.0);
     (a + d * t).norm()
+}
+
+/// A number in (−2, 2] that orders directions like their argument in (−π, π], without
+/// trigonometry (the "diamond angle").
+#[inline]
+fn pseudo_angle(u: Vec2) -> f64 {
+    let t = u.x / (u.x.abs() + u.y.abs());
+    if u.y >= 0.0 { 1.0 - t } else { t - 1.0 }
 }
 
 /// `x` reduced to (−π, π].

@@ -10,35 +10,34 @@ use geometry::Vec2;
 /// adjacent flanks despite rounding.
 const END_SLACK: f64 = 1e-12;
 
-/// Calls `found` with every point X = A + t(B − A), t ∈ [0, 1], with |X − C| = ρ.
+/// Calls `found` with every point X = A + t(B − A), t ∈ [0, 1], with |X − C|² = `rho2`;
+/// `inv_len2` is 1 / |B − A|² (cached by the caller: flanks keep their length as they turn).
 #[inline]
-pub(crate) fn circle_segment(c: Vec2, rho: f64, a: Vec2, b: Vec2, mut found: impl FnMut(Vec2)) {
+pub(crate) fn circle_segment(
+    c: Vec2,
+    rho2: f64,
+    a: Vec2,
+    b: Vec2,
+    inv_len2: f64,
+    mut found: impl FnMut(Vec2),
+) {
     let d = b - a;
     let f = a - c;
-    let dd = d.dot(&d);
-    if dd == 0.0 {
-        return;
-    }
     let fd = f.dot(&d);
-    let ff = f.dot(&f) - rho * rho;
-    let disc = fd * fd - dd * ff;
-    if disc < 0.0 {
+    let ff = f.dot(&f) - rho2;
+    // Roots of |d|² t² + 2 fd t + ff = 0, scaled by 1/|d|².
+    let p = fd * inv_len2;
+    let disc = p * p - ff * inv_len2;
+    if disc < 0.0 || !inv_len2.is_finite() {
         return;
     }
     let sq = disc.sqrt();
-    // Numerically stable pair of roots of dd t² + 2 fd t + ff = 0.
-    let q = -(fd + fd.signum() * sq);
-    let (t1, t2) = if q == 0.0 {
-        (0.0, 0.0)
-    } else {
-        (q / dd, ff / q)
-    };
-    for t in [t1, t2] {
+    // A root outside [0, 1] (with slack) is no contact; test before forming the point.
+    for t in [-p - sq, -p + sq] {
         if (-END_SLACK..=1.0 + END_SLACK).contains(&t) {
             found(a + d * t.clamp(0.0, 1.0));
         }
     }
-    // A tangent circle gives one double root; report it once only when both coincide exactly.
 }
 
 #[cfg(test)]
@@ -53,6 +52,7 @@ mod tests {
             1.0,
             Vec2::new(-2.0, 0.0),
             Vec2::new(2.0, 0.0),
+            0.0625,
             |x| pts.push(x),
         );
         pts.sort_by(|p, q| p.x.total_cmp(&q.x));
@@ -68,6 +68,7 @@ mod tests {
             1.0,
             Vec2::new(0.0, 0.0),
             Vec2::new(2.0, 0.0),
+            0.25,
             |_| n += 1,
         );
         assert_eq!(n, 1);
@@ -81,6 +82,7 @@ mod tests {
             1.0,
             Vec2::new(-2.0, 3.0),
             Vec2::new(2.0, 3.0),
+            0.0625,
             |_| n += 1,
         );
         assert_eq!(n, 0);

@@ -16,6 +16,7 @@
 //! events are located by bisection or golden-section search on those curves to 1e-13 rad.
 //! The driver angle is advanced in steps of a sixteenth of the driver's pitch only to bracket them.
 
+use std::cell::RefCell;
 use std::f64::consts::TAU;
 
 use serde::Serialize;
@@ -214,6 +215,21 @@ impl Mesh {
         start: Start,
         stop_at_jam: bool,
     ) -> Trajectory {
+        self.run_with_steps(phi_start, phi_end, start, stop_at_jam, STEPS_PER_PITCH)
+    }
+
+    /// [`Mesh::run_until`] with the bracketing step set to `1 / steps_per_pitch` of the driver's
+    /// pitch. The result must not depend on it (events are located exactly either way); the
+    /// differential tests run several values against each other.
+    #[doc(hidden)]
+    pub fn run_with_steps(
+        &self,
+        phi_start: f64,
+        phi_end: f64,
+        start: Start,
+        stop_at_jam: bool,
+        steps_per_pitch: f64,
+    ) -> Trajectory {
         let mut run = Run {
             mesh: self,
             phi: phi_start,
@@ -226,7 +242,7 @@ impl Mesh {
             scratch: Vec::new(),
         };
         run.start(start);
-        let step = self.driver.max_gap.min(TAU / self.driver.tips.len() as f64) / STEPS_PER_PITCH;
+        let step = self.driver.max_gap.min(TAU / self.driver.tips.len() as f64) / steps_per_pitch;
         while run.phi < phi_end {
             // No sliver of a step at the end: it would only gather rounding noise.
             let next = if run.phi + step * (1.0 + 1e-6) >= phi_end {
@@ -420,20 +436,26 @@ impl Run<'_> {
             obs1.iter()
                 .find(|o| (o.driver_tooth, o.driven_tooth) == pair)
         };
-        let hi = |p: f64, pair: (i64, i64)| -> f64 {
+        // The checks below ask for the same pair at the same angle several times (mid-step,
+        // just before the end): evaluate each once.
+        let memo: RefCell<Vec<(f64, (i64, i64), Option<Obstacle>)>> = RefCell::new(Vec::new());
+        let eval = |p: f64, pair: (i64, i64)| -> Option<Obstacle> {
             if p == phi1 {
-                at1(pair).map_or(f64::NEG_INFINITY, |o| o.hi)
-            } else {
-                mesh.hi(p, pair)
+                return at1(pair).copied();
             }
-        };
-        let lo = |p: f64, pair: (i64, i64)| -> f64 {
-            if p == phi1 {
-                at1(pair).map_or(f64::INFINITY, |o| o.lo)
-            } else {
-                mesh.lo(p, pair)
+            if let Some(&(_, _, o)) = memo.borrow().iter().find(|m| m.0 == p && m.1 == pair) {
+                return o;
             }
+            let o = mesh.obstacle(p, pair.0, pair.1);
+            let mut m = memo.borrow_mut();
+            if m.len() >= 64 {
+                m.clear();
+            }
+            m.push((p, pair, o));
+            o
         };
+        let hi = |p: f64, pair: (i64, i64)| -> f64 { eval(p, pair).map_or(f64::NEG_INFINITY, |o| o.hi) };
+        let lo = |p: f64, pair: (i64, i64)| -> f64 { eval(p, pair).map_or(f64::INFINITY, |o| o.lo) };
 
         let mut behind: Vec<(i64, i64)> = pushers.clone();
         let mut ahead: Vec<(i64, i64)> = Vec::new();

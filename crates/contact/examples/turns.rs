@@ -1,0 +1,41 @@
+//! Runs full turns of m3-e3 and m2-n1 with random tooth errors, for profiling:
+//! `cargo build --release -p contact --example turns && perf record -g target/release/examples/turns 50`.
+#![allow(missing_docs, clippy::unwrap_used, reason = "profiling harness")]
+
+use std::f64::consts::TAU;
+use std::time::Instant;
+
+use contact::{Mesh, Start};
+use geometry::{Gear, Vec2};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use rand_distr::{Distribution, Normal};
+
+fn gear(n: usize, r_tip: f64, sigma: f64, rng: &mut ChaCha8Rng) -> Gear {
+    let pitch = TAU / n as f64;
+    let normal = Normal::new(0.0, sigma * pitch).unwrap();
+    let tips = (0..n).map(|k| pitch * k as f64 + normal.sample(rng)).collect();
+    Gear::new(r_tip, r_tip - 1.1, tips, Vec2::zeros()).unwrap()
+}
+
+fn main() {
+    let turns: usize = std::env::args().nth(1).map_or(20, |s| s.parse().unwrap());
+    for (name, n1, n2, r1, r2) in [
+        ("m3-e3", 27, 223, 27.0 / 223.0 * 51.95, 51.95),
+        ("m2-n1", 15, 53, 3.85, 53.0 / 15.0 * 3.85),
+    ] {
+        let t0 = Instant::now();
+        let (mut segs, mut events) = (0, 0);
+        for s in 0..turns as u64 {
+            let mut rng = ChaCha8Rng::seed_from_u64(s);
+            let d = geometry::centre_distance(r1, r2, 1.1, 40.0);
+            let m = Mesh::new(gear(n1, r1, 0.04, &mut rng), gear(n2, r2, 0.04, &mut rng), d)
+                .unwrap();
+            let t = m.run(0.0, TAU * n2 as f64 / n1 as f64, Start::Touching(0.0));
+            segs += t.segments().len();
+            events += t.events().len();
+        }
+        let dt = t0.elapsed().as_secs_f64() / turns as f64;
+        println!("{name}: {:.3} ms per turn, {segs} segments, {events} events", dt * 1e3);
+    }
+}
