@@ -13,9 +13,17 @@ use rand_distr::{Distribution, Normal};
 fn gear(n: usize, r_tip: f64, sigma: f64, ecc: f64, rng: &mut ChaCha8Rng) -> Gear {
     let pitch = TAU / n as f64;
     let normal = Normal::new(0.0, sigma * pitch).unwrap();
-    let tips = (0..n).map(|k| pitch * k as f64 + normal.sample(rng)).collect();
+    let tips = (0..n)
+        .map(|k| pitch * k as f64 + normal.sample(rng))
+        .collect();
     let a: f64 = rng.random::<f64>() * TAU;
-    Gear::new(r_tip, r_tip - 1.1, tips, Vec2::new(ecc * a.cos(), ecc * a.sin())).unwrap()
+    Gear::new(
+        r_tip,
+        r_tip - 1.1,
+        tips,
+        Vec2::new(ecc * a.cos(), ecc * a.sin()),
+    )
+    .unwrap()
 }
 
 fn main() {
@@ -53,18 +61,33 @@ fn main() {
             });
         if !same {
             diffs += 1;
-            if (a.jams() > 0) != (b.jams() > 0) || (a.disengagements() > 0) != (b.disengagements() > 0) {
+            if (a.jams() > 0) != (b.jams() > 0)
+                || (a.disengagements() > 0) != (b.disengagements() > 0)
+            {
                 first_diffs += 1;
             }
-            let first = a.events().iter().zip(b.events()).position(|(x, y)| !(x.kind == y.kind && (x.phi - y.phi).abs() < 1e-9 && (x.theta - y.theta).abs() < 1e-9));
+            let first = a.events().iter().zip(b.events()).position(|(x, y)| {
+                !(x.kind == y.kind
+                    && (x.phi - y.phi).abs() < 1e-9
+                    && (x.theta - y.theta).abs() < 1e-9)
+            });
             if let Some(i) = first {
-                println!("  first diff at event {i}: 16: {:?}\n   other: {:?}", a.events()[i], b.events()[i]);
+                println!(
+                    "  first diff at event {i}: 16: {:?}\n   other: {:?}",
+                    a.events()[i],
+                    b.events()[i]
+                );
             }
             println!(
                 "case {s}: n {n1}:{n2} sigma {sigma} ecc {ecc} G {g}: 16 steps {} jams {} dis; {steps} steps {} jams {} dis",
-                a.jams(), a.disengagements(), b.jams(), b.disengagements()
+                a.jams(),
+                a.disengagements(),
+                b.jams(),
+                b.disengagements()
             );
         }
     }
-    println!("{diffs} of {cases} cases differ ({first_diffs} in jammed/disengaged at all); {events} events at 16 steps");
+    println!(
+        "{diffs} of {cases} cases differ ({first_diffs} in jammed/disengaged at all); {events} events at 16 steps"
+    );
 }

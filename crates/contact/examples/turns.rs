@@ -14,7 +14,9 @@ use rand_distr::{Distribution, Normal};
 fn gear(n: usize, r_tip: f64, sigma: f64, rng: &mut ChaCha8Rng) -> Gear {
     let pitch = TAU / n as f64;
     let normal = Normal::new(0.0, sigma * pitch).unwrap();
-    let tips = (0..n).map(|k| pitch * k as f64 + normal.sample(rng)).collect();
+    let tips = (0..n)
+        .map(|k| pitch * k as f64 + normal.sample(rng))
+        .collect();
     Gear::new(r_tip, r_tip - 1.1, tips, Vec2::zeros()).unwrap()
 }
 
@@ -29,13 +31,20 @@ fn main() {
         for s in 0..turns as u64 {
             let mut rng = ChaCha8Rng::seed_from_u64(s);
             let d = geometry::centre_distance(r1, r2, 1.1, 40.0);
-            let m = Mesh::new(gear(n1, r1, 0.04, &mut rng), gear(n2, r2, 0.04, &mut rng), d)
-                .unwrap();
+            let m = Mesh::new(
+                gear(n1, r1, 0.04, &mut rng),
+                gear(n2, r2, 0.04, &mut rng),
+                d,
+            )
+            .unwrap();
             let t = m.run(0.0, TAU * n2 as f64 / n1 as f64, Start::Touching(0.0));
             segs += t.segments().len();
             events += t.events().len();
         }
         let dt = t0.elapsed().as_secs_f64() / turns as f64;
-        println!("{name}: {:.3} ms per turn, {segs} segments, {events} events", dt * 1e3);
+        println!(
+            "{name}: {:.3} ms per turn, {segs} segments, {events} events",
+            dt * 1e3
+        );
     }
 }

@@ -325,18 +325,28 @@ impl Mesh {
                 for p in a {
                     let base = p.y.atan2(p.x);
                     for (u, v) in FLANKS {
-                        circle_segment(Vec2::zeros(), p.norm_squared(), b[u], b[v], 1.0 / (b[v] - b[u]).norm_squared(), |x| {
-                            take(x.y.atan2(x.x) - base)
-                        });
+                        circle_segment(
+                            Vec2::zeros(),
+                            p.norm_squared(),
+                            b[u],
+                            b[v],
+                            1.0 / (b[v] - b[u]).norm_squared(),
+                            |x| take(x.y.atan2(x.x) - base),
+                        );
                     }
                 }
                 // Fixed driven vertex on a driver flank: in the driver's frame it turns backwards.
                 for q in b {
                     let base = q.y.atan2(q.x);
                     for (u, v) in FLANKS {
-                        circle_segment(Vec2::zeros(), q.norm_squared(), a[u], a[v], 1.0 / (a[v] - a[u]).norm_squared(), |x| {
-                            take(base - x.y.atan2(x.x))
-                        });
+                        circle_segment(
+                            Vec2::zeros(),
+                            q.norm_squared(),
+                            a[u],
+                            a[v],
+                            1.0 / (a[v] - a[u]).norm_squared(),
+                            |x| take(base - x.y.atan2(x.x)),
+                        );
                     }
                 }
             }
@@ -352,7 +362,8 @@ impl Mesh {
     pub fn obstacle(&self, phi: f64, j: i64, k: i64) -> Option<Obstacle> {
         let (s, c) = phi.sin_cos();
         let (da, _) = self.driver.data(j);
-        let a = da.v.map(|v| Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y));
+        let a =
+            da.v.map(|v| Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y));
         self.tooth_pair(a, da, j, k)
     }
 
@@ -435,7 +446,8 @@ impl Mesh {
         let (s, c) = phi.sin_cos();
         for j in self.driver_teeth(phi) {
             let (da, _) = d1.data(j);
-            let world = da.v.map(|v| Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y));
+            let world =
+                da.v.map(|v| Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y));
             let tooth = world.map(|v| v - c2);
             // A driver tooth farther from the driven centre than any driven vertex cannot touch.
             let near =

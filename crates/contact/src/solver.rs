@@ -184,6 +184,9 @@ struct Tracked {
     hi: f64,
 }
 
+/// One evaluated tooth pair: (driver angle, (driver tooth, driven tooth), obstacle).
+type Memo = (f64, (i64, i64), Option<Obstacle>);
+
 /// Working state of one run.
 struct Run<'m> {
     mesh: &'m Mesh,
@@ -438,7 +441,7 @@ impl Run<'_> {
         };
         // The checks below ask for the same pair at the same angle several times (mid-step,
         // just before the end): evaluate each once.
-        let memo: RefCell<Vec<(f64, (i64, i64), Option<Obstacle>)>> = RefCell::new(Vec::new());
+        let memo: RefCell<Vec<Memo>> = RefCell::new(Vec::new());
         let eval = |p: f64, pair: (i64, i64)| -> Option<Obstacle> {
             if p == phi1 {
                 return at1(pair).copied();
@@ -454,8 +457,10 @@ impl Run<'_> {
             m.push((p, pair, o));
             o
         };
-        let hi = |p: f64, pair: (i64, i64)| -> f64 { eval(p, pair).map_or(f64::NEG_INFINITY, |o| o.hi) };
-        let lo = |p: f64, pair: (i64, i64)| -> f64 { eval(p, pair).map_or(f64::INFINITY, |o| o.lo) };
+        let hi =
+            |p: f64, pair: (i64, i64)| -> f64 { eval(p, pair).map_or(f64::NEG_INFINITY, |o| o.hi) };
+        let lo =
+            |p: f64, pair: (i64, i64)| -> f64 { eval(p, pair).map_or(f64::INFINITY, |o| o.lo) };
 
         let mut behind: Vec<(i64, i64)> = pushers.clone();
         let mut ahead: Vec<(i64, i64)> = Vec::new();
