@@ -27,6 +27,7 @@ fn main() {
         ("m2-n1", 15, 53, 3.85, 53.0 / 15.0 * 3.85),
     ] {
         let t0 = Instant::now();
+        let evals0 = contact::tooth_pair_evaluations();
         let (mut segs, mut events) = (0, 0);
         for s in 0..turns as u64 {
             let mut rng = ChaCha8Rng::seed_from_u64(s);
@@ -42,6 +43,10 @@ fn main() {
             events += t.events().len();
         }
         let dt = t0.elapsed().as_secs_f64() / turns as f64;
+        println!(
+            "evaluations per driven tooth: {:.1}",
+            (contact::tooth_pair_evaluations() - evals0) as f64 / turns as f64 / n2 as f64
+        );
         println!(
             "{name}: {:.3} ms per turn, {segs} segments, {events} events",
             dt * 1e3

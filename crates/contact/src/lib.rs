@@ -4,5 +4,5 @@ mod mesh;
 mod roots;
 mod solver;
 
-pub use mesh::{Mesh, MeshError, Obstacle};
+pub use mesh::{Mesh, MeshError, Obstacle, tooth_pair_evaluations};
 pub use solver::{Event, EventKind, Motion, Segment, Start, Trajectory};

@@ -374,6 +374,7 @@ impl Mesh {
     /// that only the lowest and highest roots cost an `atan2`.
     #[inline]
     fn tooth_pair(&self, a: [Vec2; 3], da: &ToothData, j: i64, k: i64) -> Option<Obstacle> {
+        EVALS.with(|c| c.set(c.get() + 1));
         let c2 = self.c2();
         let (db, turns) = self.driven.data(k);
         let b = db.v;
@@ -496,4 +497,14 @@ fn pseudo_angle(u: Vec2) -> f64 {
 pub(crate) fn wrap_pi(x: f64) -> f64 {
     let y = x.rem_euclid(TAU);
     if y > PI { y - TAU } else { y }
+}
+
+thread_local! {
+    static EVALS: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+}
+
+/// Tooth-pair obstacle evaluations (the closed-form contact roots of one driver tooth against
+/// one driven tooth) made on this thread so far: the solver's unit of work, read by benchmarks.
+pub fn tooth_pair_evaluations() -> u64 {
+    EVALS.with(std::cell::Cell::get)
 }

@@ -14,7 +14,10 @@
 //!
 //! Between events θ(φ) is the maximum of closed-form contact curves, so it is exact at every φ;
 //! events are located by bisection or golden-section search on those curves to 1e-13 rad.
-//! The driver angle is advanced in steps of a sixteenth of the driver's pitch only to bracket them.
+//! The driver angle is advanced in steps of a quarter of the driver's pitch only to bracket them;
+//! within a step the backlash ahead is sampled at the middle and, wherever the samples say it
+//! could close in between, at finer halvings (see `first_closing`), so a brief tip-on-tip graze
+//! is not stepped over. `tests/differential.rs` checks that a finer step finds the same events.
 
 use std::cell::RefCell;
 use std::f64::consts::TAU;
@@ -29,8 +32,8 @@ const SIDE_TOL: f64 = 1e-10;
 const LOCATE_TOL: f64 = 1e-13;
 /// How far past a first touch from rest a step ends (radians of driver angle).
 const TOUCH_STEP: f64 = 1e-8;
-/// Steps per driver pitch used to bracket events.
-const STEPS_PER_PITCH: f64 = 16.0;
+/// Steps per driver pitch used to bracket events (finer halvings are taken where needed).
+const STEPS_PER_PITCH: f64 = 4.0;
 
 /// What happened at an event.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -617,20 +620,20 @@ impl Run<'_> {
                 .map(|&a| lo(p, a))
                 .fold(f64::INFINITY, f64::min)
         };
-        let clear_at = |p: f64| front(p) >= theta_on_plan(p) - SIDE_TOL;
+        // Backlash: how far the nearest driver tooth ahead is from the driven gear.
+        let backlash = |p: f64| front(p) - theta_on_plan(p);
         // Once a jam is known to lie in the step, locate first contact exactly (no tolerance).
         let strictly_clear = |p: f64| front(p) > theta_on_plan(p);
-        let mid = 0.5 * (phi0 + phi1);
-        let jam_at = if ahead.is_empty()
-            || self.unheld_at == Some(phi0)
-            || clear_at(phi1) && clear_at(mid)
-        {
+        let jam_at = if ahead.is_empty() || self.unheld_at == Some(phi0) {
             None
-        } else if !clear_at(phi0) {
-            Some(phi0)
         } else {
-            let end = if clear_at(mid) { phi1 } else { mid };
-            Some(bisect(phi0, end, strictly_clear))
+            let g0 = backlash(phi0);
+            if g0 < -SIDE_TOL {
+                Some(phi0)
+            } else {
+                first_closing(phi0, phi1, g0, backlash(phi1), &backlash, 0)
+                    .map(|(clear, closed)| bisect(clear, closed, strictly_clear))
+            }
         };
 
         match jam_at {
@@ -707,6 +710,62 @@ impl Run<'_> {
         }
         self.scratch = obs1;
     }
+}
+
+/// Deepest halving of a step when looking for a closing backlash.
+const MAX_REFINE: u32 = 5;
+
+/// The first sub-interval `(clear, closed)` of `[a, b]` at whose right end the backlash `gap` has
+/// closed (below −SIDE_TOL) while it is open at the left end, or None if it stays open.
+///
+/// Samples at the ends and middle; where the samples say the backlash could dip to zero in
+/// between (it is small compared with how much it changes, or the parabola through the three
+/// samples dips below zero), both halves are examined, down to `MAX_REFINE` halvings. So a brief
+/// graze between two samples is not stepped over.
+fn first_closing(
+    a: f64,
+    b: f64,
+    ga: f64,
+    gb: f64,
+    gap: &impl Fn(f64) -> f64,
+    depth: u32,
+) -> Option<(f64, f64)> {
+    let closed = |g: f64| g < -SIDE_TOL;
+    if depth >= MAX_REFINE {
+        return closed(gb).then_some((a, b));
+    }
+    let m = 0.5 * (a + b);
+    let gm = gap(m);
+    if closed(gm) {
+        return first_closing(a, m, ga, gm, gap, depth + 1);
+    }
+    if dip_possible(ga, gm, gb) {
+        return first_closing(a, m, ga, gm, gap, depth + 1)
+            .or_else(|| first_closing(m, b, gm, gb, gap, depth + 1));
+    }
+    if closed(gb) {
+        return first_closing(m, b, gm, gb, gap, depth + 1);
+    }
+    None
+}
+
+/// Whether a function sampled as `ga`, `gm`, `gb` at the start, middle and end of an interval
+/// could dip below zero inside it: the smallest sample is no larger than the change between the
+/// samples (a kinked, tip-on-tip dip between them is as deep as that), or the parabola through
+/// them reaches zero.
+fn dip_possible(ga: f64, gm: f64, gb: f64) -> bool {
+    let least = ga.min(gm).min(gb);
+    if least <= (ga - gm).abs().max((gb - gm).abs()) {
+        return true;
+    }
+    let c = 0.5 * (ga - 2.0 * gm + gb);
+    if c > 0.0 {
+        let x = -(gb - ga) / (4.0 * c);
+        if x.abs() < 1.0 {
+            return gm - (gb - ga) * (gb - ga) / (16.0 * c) <= 0.0;
+        }
+    }
+    false
 }
 
 /// Plan a rest at θ from `phi_a`, re-engaging if an obstacle behind rises to θ before `phi1`.
