@@ -402,15 +402,22 @@ impl Run<'_> {
         let phi0 = self.phi;
         let theta0 = self.theta;
         if self.held {
-            match mesh.next_free(phi1, theta0, false) {
-                Some(t) => {
-                    self.rest_to(phi1);
-                    self.held = false;
-                    self.theta = t;
-                    self.classify_all(phi1);
-                }
-                None => self.rest_to(phi1),
+            if mesh.next_free(phi1, theta0, false).is_none() {
+                self.rest_to(phi1);
+                return;
             }
+            // Freed within the step: the driven gear is let go at the first angle where a free
+            // position appears, located like any event (not at the step's end).
+            let held_until = bisect(phi0, phi1, |p| mesh.next_free(p, theta0, false).is_none());
+            let phi_r = (held_until + LOCATE_TOL).min(phi1);
+            let Some(t) = mesh.next_free(phi_r, theta0, false) else {
+                self.rest_to(phi_r);
+                return;
+            };
+            self.rest_to(phi_r);
+            self.held = false;
+            self.theta = t;
+            self.classify_all(phi_r);
             return;
         }
 
