@@ -1,4 +1,4 @@
-//! Command-line parsing, by hand: five commands and eight flags.
+//! Command-line parsing, by hand: five commands and their flags.
 
 use std::path::PathBuf;
 
@@ -16,7 +16,7 @@ pub enum Command {
     Hypotheses,
     /// `help` (no id: usage) or `help <id>`.
     Help(Option<String>),
-    /// `run <id>... [flags]`.
+    /// `run <id>... [flags]`, or `run all [flags]`.
     Run(RunArgs),
 }
 
@@ -177,7 +177,20 @@ fn parse_run(args: &[String]) -> Result<RunArgs, ArgError> {
             "run needs at least one experiment id (or `all`)".into(),
         ));
     }
+    if run.ids.len() > 1 && run.ids.iter().any(|id| id == "all") {
+        return Err(ArgError::Usage(format!(
+            "`run all` runs every experiment and takes no other ids (got `{}`): give either `all` or experiment ids, not both",
+            run.ids.join(" ")
+        )));
+    }
     Ok(run)
+}
+
+impl RunArgs {
+    /// Is this `run all`?
+    pub fn is_all(&self) -> bool {
+        self.ids.len() == 1 && self.ids[0] == "all"
+    }
 }
 
 #[cfg(test)]
@@ -231,6 +244,18 @@ mod tests {
             [("a".into(), "1".into()), ("b".into(), "x=y".into())]
         );
         assert_eq!(run("run x --set k=-1").sets, [("k".into(), "-1".into())]);
+    }
+
+    #[test]
+    fn run_all_takes_no_other_ids() {
+        assert!(run("run all --seed 3").is_all());
+        assert!(!run("run fig2").is_all());
+        for bad in ["run all fig2", "run fig2 all", "run all all"] {
+            match p(bad) {
+                Err(ArgError::Usage(m)) => assert!(m.contains("`run all`"), "{m}"),
+                other => panic!("{bad}: {other:?}"),
+            }
+        }
     }
 
     #[test]
