@@ -5,7 +5,7 @@
 //! Exit status: 0 success, 1 internal error, 2 bad input (nothing written).
 //!
 //! `run all` runs every experiment even when some fail, then prints a summary table and writes it
-//! to `<out>/summary.md` and `<out>/summary.json`.
+//! to `<out>/summary.md` and `<out>/summary.json`; `bench` times `table5` and `all` in-process.
 
 mod args;
 mod summary;
@@ -19,7 +19,7 @@ use std::time::Instant;
 
 use registry::{ConfigFile, Context, Experiment, RunError, Table};
 
-use crate::args::{ArgError, Command, DEFAULT_SEED, RunArgs};
+use crate::args::{ArgError, BenchArgs, BenchTarget, Command, DEFAULT_SEED, RunArgs};
 
 /// Experiments by id.
 type Registry = BTreeMap<&'static str, &'static Experiment>;
@@ -33,7 +33,7 @@ enum Failure {
     Bad(String),
     /// A bug or an I/O failure: message; exit 1.
     Internal(String),
-    /// Failures already reported on stderr (`run all`): only the exit status is left.
+    /// Failures already reported on stderr (`run all`, `bench`): only the exit status is left.
     Reported(u8),
 }
 
@@ -118,6 +118,7 @@ fn dispatch(args: &[String]) -> Result<(), Failure> {
             }
         }
         Command::Run(run) => run_all(&exps, &run),
+        Command::Bench(b) => bench(&exps, &b),
     }
 }
 
@@ -161,6 +162,9 @@ Usage:
                                 failures; then print a summary (wall time, trials,
                                 tooth engagements, agreement with the paper) and
                                 write it to <out>/summary.md and <out>/summary.json
+  cargo xtask bench [--only table5|all] [--threads 1,2]
+                                time table5 and all at their defaults with each
+                                thread count, in-process; prints a table, writes nothing
 
 Options of run:
   --seed S          seed of every random number generator (default {DEFAULT_SEED})
@@ -423,6 +427,97 @@ fn run_every(
     Ok(rows)
 }
 
+/// `bench`: for each target and thread count, builds a pool, runs the target's experiments at
+/// their defaults (seed [`DEFAULT_SEED`]) in-process, and prints one row: wall time, trials,
+/// tooth engagements and engagements per second. Nothing is written.
+fn bench(exps: &Registry, b: &BenchArgs) -> Result<(), Failure> {
+    let mut t = Table::new(
+        format!(
+            "cargo xtask bench: end-to-end wall time at the defaults (the paper's trial counts), seed {DEFAULT_SEED}"
+        ),
+        [
+            "target",
+            "threads",
+            "wall time [s]",
+            "trials",
+            "tooth engagements",
+            "engagements per second",
+        ],
+    );
+    let mut rows_all = Vec::new();
+    for &target in &b.targets {
+        let chosen: Vec<&'static Experiment> = match target {
+            BenchTarget::Table5 => match exps.get("table5") {
+                Some(e) => vec![*e],
+                None => {
+                    eprintln!("bench: table5 is not registered in this build; skipped");
+                    t.note("table5: not registered in this build; skipped.");
+                    continue;
+                }
+            },
+            BenchTarget::All => exps.values().copied().collect(),
+        };
+        for &threads in &b.threads {
+            eprintln!(
+                "bench: {} with {threads} thread{}...",
+                target.name(),
+                if threads == 1 { "" } else { "s" }
+            );
+            let start = Instant::now();
+            let pool = make_pool(threads)?;
+            let mut rows = Vec::new();
+            for e in &chosen {
+                let ctx = Context::new(e, DEFAULT_SEED, threads, &[], None)?;
+                let (result, seconds) = execute(e, &ctx, &pool);
+                if let Err(err) = &result {
+                    eprintln!("bench: {}: {err}", e.id);
+                    t.note(format!(
+                        "{} with {threads} threads: {} failed: {err}",
+                        target.name(),
+                        e.id
+                    ));
+                }
+                rows.push(summary::Row::new(e.id, seconds, result.as_ref()));
+            }
+            let wall = start.elapsed().as_secs_f64();
+            t.row(bench_row(target.name(), threads, wall, &rows));
+            rows_all.extend(rows);
+        }
+    }
+    t.note(format!(
+        "Wall time: building the pool and running every experiment of the target in this process, results not written; {} threads available here.",
+        default_threads()
+    ));
+    t.note("Tooth engagements: summed over the experiments that count them ('-': none does).");
+    print(&t.render())?;
+    match summary::exit_code(&rows_all) {
+        0 => Ok(()),
+        code => Err(Failure::Reported(code)),
+    }
+}
+
+/// One row of the bench table.
+fn bench_row(target: &str, threads: usize, wall: f64, rows: &[summary::Row]) -> Vec<String> {
+    let trials: u64 = rows.iter().map(|r| r.trials).sum();
+    let engagements: u64 = rows.iter().map(|r| r.engagements).sum();
+    let (eng, rate) = if engagements == 0 {
+        ("-".to_string(), "-".to_string())
+    } else {
+        (
+            engagements.to_string(),
+            registry::fmt_f64(engagements as f64 / wall.max(1e-9), 0),
+        )
+    };
+    vec![
+        target.into(),
+        threads.to_string(),
+        registry::fmt_f64(wall, 2),
+        trials.to_string(),
+        eng,
+        rate,
+    ]
+}
+
 /// Checks everything the user gave, then runs each experiment in turn; stops at the first failure.
 fn run_all(exps: &Registry, run: &RunArgs) -> Result<(), Failure> {
     let chosen = select(exps, &run.ids)?;
@@ -634,5 +729,26 @@ mod tests {
         assert_eq!(e.code(), 2);
         assert!(!out.join("results").exists());
         let _ = std::fs::remove_dir_all(&out);
+    }
+
+    #[test]
+    fn bench_rows_divide_engagements_by_wall_time() {
+        let report = Report {
+            trials: 4,
+            engagements: 1000,
+            ..Default::default()
+        };
+        let rows = vec![
+            summary::Row::new("x", 1.0, Ok(&report)),
+            summary::Row::new("y", 1.0, Ok(&Report::default())),
+        ];
+        assert_eq!(
+            bench_row("all", 2, 2.0, &rows),
+            ["all", "2", "2.00", "4", "1000", "500"]
+        );
+        assert_eq!(
+            bench_row("table5", 1, 2.0, &rows[1..]),
+            ["table5", "1", "2.00", "0", "-", "-"]
+        );
     }
 }
