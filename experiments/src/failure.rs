@@ -6,6 +6,10 @@
 //! errors in both), every one of the gearing's meshes given one random initial angle, and every
 //! mesh simulated once over the horizon, up to its first jam. Trains that share meshes (b2-l1 and
 //! l2-m1 are in both the Metonic/Games and the Saros/Exeligmos trains) share their motion.
+//!
+//! `Report::engagements` counts, for every mesh simulated in every run, the driver's turns over
+//! the simulated stretch (to the horizon or the mesh's first jam) times its teeth: the teeth that
+//! passed through the mesh.
 
 use std::collections::BTreeMap;
 use std::f64::consts::TAU;
