@@ -6,6 +6,7 @@ pub mod paper;
 mod clearance;
 mod equal_pair;
 mod errors;
+mod failure;
 mod fig2;
 mod fig3;
 mod fig4;

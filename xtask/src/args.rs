@@ -1,4 +1,4 @@
-//! Command-line parsing, by hand: five commands and eight flags.
+//! Command-line parsing, by hand: six commands and their flags.
 
 use std::path::PathBuf;
 
@@ -16,8 +16,38 @@ pub enum Command {
     Hypotheses,
     /// `help` (no id: usage) or `help <id>`.
     Help(Option<String>),
-    /// `run <id>... [flags]`.
+    /// `run <id>... [flags]`, or `run all [flags]`.
     Run(RunArgs),
+    /// `bench [--only table5|all] [--threads 1,2]`.
+    Bench(BenchArgs),
+}
+
+/// What `bench` times.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BenchTarget {
+    /// The `table5` experiment alone.
+    Table5,
+    /// Every registered experiment, as `run all` runs them.
+    All,
+}
+
+impl BenchTarget {
+    /// The name used on the command line and in the printed table.
+    pub fn name(self) -> &'static str {
+        match self {
+            BenchTarget::Table5 => "table5",
+            BenchTarget::All => "all",
+        }
+    }
+}
+
+/// Arguments of `bench`.
+#[derive(Debug, PartialEq, Eq)]
+pub struct BenchArgs {
+    /// Targets in order (default: `table5`, then `all`).
+    pub targets: Vec<BenchTarget>,
+    /// Thread counts, each at least 1, in order (default: 1, 2).
+    pub threads: Vec<usize>,
 }
 
 /// Arguments of `run`.
@@ -68,6 +98,7 @@ pub fn parse(args: &[String]) -> Result<Command, ArgError> {
             )),
         },
         "run" => parse_run(rest).map(Command::Run),
+        "bench" => parse_bench(rest).map(Command::Bench),
         other => Err(ArgError::Usage(format!("unknown command `{other}`"))),
     }
 }
@@ -177,7 +208,76 @@ fn parse_run(args: &[String]) -> Result<RunArgs, ArgError> {
             "run needs at least one experiment id (or `all`)".into(),
         ));
     }
+    if run.ids.len() > 1 && run.ids.iter().any(|id| id == "all") {
+        return Err(ArgError::Usage(format!(
+            "`run all` runs every experiment and takes no other ids (got `{}`): give either `all` or experiment ids, not both",
+            run.ids.join(" ")
+        )));
+    }
     Ok(run)
+}
+
+impl RunArgs {
+    /// Is this `run all`?
+    pub fn is_all(&self) -> bool {
+        self.ids.len() == 1 && self.ids[0] == "all"
+    }
+}
+
+fn parse_bench(args: &[String]) -> Result<BenchArgs, ArgError> {
+    let mut bench = BenchArgs {
+        targets: vec![BenchTarget::Table5, BenchTarget::All],
+        threads: vec![1, 2],
+    };
+    let mut it = args.iter();
+    while let Some(arg) = it.next() {
+        let (flag, inline) = match arg.split_once('=') {
+            Some((f, v)) if f.starts_with("--") => (f, Some(v.to_owned())),
+            _ => (arg.as_str(), None),
+        };
+        if !matches!(flag, "--only" | "--threads") {
+            return Err(ArgError::Usage(if arg.starts_with('-') {
+                format!("unknown flag `{arg}` of bench")
+            } else {
+                format!("bench takes no ids (got `{arg}`); use --only table5|all")
+            }));
+        }
+        let value = match inline {
+            Some(v) => v,
+            None => match it.next() {
+                Some(v) if !v.starts_with("--") => v.clone(),
+                _ => return Err(ArgError::Usage(format!("{flag} needs a value"))),
+            },
+        };
+        if flag == "--only" {
+            bench.targets = vec![match value.trim() {
+                "table5" => BenchTarget::Table5,
+                "all" => BenchTarget::All,
+                _ => {
+                    return Err(ArgError::Value(format!(
+                        "--only: must be `table5` or `all` (got `{value}`)"
+                    )));
+                }
+            }];
+        } else {
+            let mut threads = Vec::new();
+            for part in value.split(',') {
+                let n: usize = part.trim().parse().map_err(|_| {
+                    ArgError::Value(format!(
+                        "--threads: must be positive integers separated by commas, e.g. 1,2 (got `{value}`)"
+                    ))
+                })?;
+                if n == 0 {
+                    return Err(ArgError::Value(format!(
+                        "--threads: every count must be at least 1 (got `{value}`)"
+                    )));
+                }
+                threads.push(n);
+            }
+            bench.threads = threads;
+        }
+    }
+    Ok(bench)
 }
 
 #[cfg(test)]
@@ -231,6 +331,59 @@ mod tests {
             [("a".into(), "1".into()), ("b".into(), "x=y".into())]
         );
         assert_eq!(run("run x --set k=-1").sets, [("k".into(), "-1".into())]);
+    }
+
+    #[test]
+    fn run_all_takes_no_other_ids() {
+        assert!(run("run all --seed 3").is_all());
+        assert!(!run("run fig2").is_all());
+        for bad in ["run all fig2", "run fig2 all", "run all all"] {
+            match p(bad) {
+                Err(ArgError::Usage(m)) => assert!(m.contains("`run all`"), "{m}"),
+                other => panic!("{bad}: {other:?}"),
+            }
+        }
+    }
+
+    fn bench(s: &str) -> BenchArgs {
+        match p(s).unwrap() {
+            Command::Bench(b) => b,
+            other => panic!("not a bench: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn bench_defaults_and_flags() {
+        let b = bench("bench");
+        assert_eq!(b.targets, [BenchTarget::Table5, BenchTarget::All]);
+        assert_eq!(b.threads, [1, 2]);
+        let b = bench("bench --only all --threads 2,1,4");
+        assert_eq!(b.targets, [BenchTarget::All]);
+        assert_eq!(b.threads, [2, 1, 4]);
+        let b = bench("bench --threads=1 --only=table5");
+        assert_eq!(b.targets, [BenchTarget::Table5]);
+        assert_eq!(b.threads, [1]);
+        assert_eq!(BenchTarget::Table5.name(), "table5");
+    }
+
+    #[test]
+    fn bench_refuses_bad_flags() {
+        for bad in [
+            "bench --only table6",
+            "bench --threads 0",
+            "bench --threads 1,,2",
+            "bench --threads x",
+        ] {
+            assert!(matches!(p(bad), Err(ArgError::Value(_))), "{bad}");
+        }
+        for bad in [
+            "bench table5",
+            "bench --seed 1",
+            "bench --only",
+            "bench --threads",
+        ] {
+            assert!(matches!(p(bad), Err(ArgError::Usage(_))), "{bad}");
+        }
     }
 
     #[test]

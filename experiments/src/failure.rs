@@ -1,0 +1,930 @@
+//! `failure`: the paper's 30-run study (section 5, after Figure 6): whole mechanisms with
+//! manufacturing errors at G = 40 %, each run until its trains jam; per train the day of the
+//! first jam, the share of runs jamming within a year, and survival curves.
+//!
+//! One run is one mechanism: every gear manufactured once (a gear in two meshes carries the same
+//! errors in both), every one of the gearing's meshes given one random initial angle, and every
+//! mesh simulated once over the horizon, up to its first jam. Trains that share meshes (b2-l1 and
+//! l2-m1 are in both the Metonic/Games and the Saros/Exeligmos trains) share their motion.
+//!
+//! `Report::engagements` counts, for every mesh simulated in every run, the driver's turns over
+//! the simulated stretch (to the horizon or the mesh's first jam) times its teeth: the teeth that
+//! passed through the mesh.
+
+use std::collections::BTreeMap;
+use std::f64::consts::TAU;
+
+use contact::Start;
+use hypotheses::{Hypothesis, MeasuredHypothesis, Params};
+use mechanism::{Mechanism, PointerRun, Stage, StageRun, trial_rng};
+use plotters::prelude::*;
+use rand::Rng;
+use rayon::prelude::*;
+use registry::{
+    Agreement, Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64,
+};
+use stats::{DAYS_PER_YEAR, Proportion, clopper_pearson95, mean_ci95};
+
+use crate::errors;
+use crate::gearing;
+use crate::table2::CASES;
+
+const PARAMS: &[Param] = &[
+    Param {
+        name: "trials",
+        default: "30",
+        unit: "",
+        help: "whole-mechanism runs per input (the paper: 30)",
+    },
+    Param {
+        name: "days",
+        default: "365.25",
+        unit: "days of b",
+        help: "horizon of each run (365.25 d per turn of b); at least one year",
+    },
+    Param {
+        name: "cases",
+        default: "A,B,C,D",
+        unit: "",
+        help: "Edmunds' cases to run, comma-separated (empty: none)",
+    },
+    Param {
+        name: "measured",
+        default: "",
+        unit: "",
+        help: "per-gear error table (RON, as crates/hypotheses/data/measured-example.ron), run with the measured hypothesis; empty: not run",
+    },
+    gearing::CLEARANCE,
+    gearing::TOOTH_HEIGHT,
+    errors::SPLIT,
+    errors::PARAM,
+    errors::PARAMS_PARAM,
+    gearing::PARAM,
+];
+
+registry::inventory::submit! {
+    Experiment {
+        id: "failure",
+        title: "Days to the first jam of each train, whole mechanisms with Edmunds' errors at G = 40 %",
+        paper_item: "Section 5, the 30-run study",
+        params: PARAMS,
+        config: None,
+        run,
+    }
+}
+
+/// The trains the paper reports: (name, the pointers whose meshes make it up).
+const TRAINS: [(&str, &[&str]); 3] = [
+    ("Lunar", &["Lunar"]),
+    ("Metonic/Games", &["Metonic", "Games"]),
+    ("Saros/Exeligmos", &["Saros", "Exeligmos"]),
+];
+
+/// Name of the row that combines every train (a jam anywhere stops the mechanism).
+const MECHANISM: &str = "mechanism (any train)";
+
+/// Stream index of the measured table (the cases use their index in `CASES`).
+const MEASURED_INDEX: u64 = CASES.len() as u64;
+
+/// Points of b at which the survival table is read: degrees of the solar (b) pointer.
+const READ_AT_DEG: [f64; 5] = [30.0, 60.0, 120.0, 180.0, 360.0];
+
+/// One set of error inputs: a case or the measured table.
+struct Input<'a> {
+    /// "A".."D" or "measured".
+    label: String,
+    /// Legend text.
+    legend: String,
+    /// Index selecting its RNG streams.
+    index: u64,
+    /// Where its hypothesis came from, for errors: `--hypothesis` or `--set measured`.
+    source: &'static str,
+    hypothesis: &'a dyn Hypothesis,
+    params: Params,
+}
+
+/// The first jam of a train within the horizon.
+#[derive(Debug, Clone, PartialEq)]
+struct Jam {
+    day: f64,
+    mesh: String,
+}
+
+/// One whole-mechanism run.
+#[derive(Debug, Clone, PartialEq)]
+struct Outcome {
+    /// First jam per train of `TRAINS` (None: none within the horizon).
+    trains: Vec<Option<Jam>>,
+    /// Driver turns times driver teeth, summed over every simulated mesh.
+    engagements: f64,
+    /// The gears could not be placed (bodies overlapping at every angle): the mesh and rule.
+    unplaceable: Option<String>,
+}
+
+impl Outcome {
+    /// First jam anywhere.
+    fn mechanism(&self) -> Option<&Jam> {
+        self.trains
+            .iter()
+            .flatten()
+            .min_by(|a, b| a.day.total_cmp(&b.day))
+    }
+}
+
+fn run(ctx: &Context) -> Result<Report, RunError> {
+    let g = gearing::load(ctx)?;
+    let trials = ctx.u64("trials")?;
+    if trials == 0 {
+        return Err(RunError::bad("--set", "trials", "must be at least 1"));
+    }
+    let days = ctx.f64("days")?;
+    if !(DAYS_PER_YEAR..=100.0 * DAYS_PER_YEAR).contains(&days) {
+        return Err(RunError::bad(
+            "--set",
+            "days",
+            format!(
+                "must be between {DAYS_PER_YEAR} (one year of b: jams are counted within a year) and {} (got {days})",
+                100.0 * DAYS_PER_YEAR
+            ),
+        ));
+    }
+    let (h, clearance, split) = (
+        ctx.f64("tooth_height")?,
+        ctx.f64("clearance")?,
+        ctx.f64("split")?,
+    );
+    // Ideal gears must fit: a clearance or tooth height that breaks every mesh is bad input.
+    Mechanism::ideal(&g, h, clearance)
+        .map_err(|e| RunError::bad("gearing", format!("mesh {}", e.mesh), e.rule))?;
+    for (_, pointers) in TRAINS {
+        for p in pointers {
+            if g.pointer(p).is_none() || g.pointer_ratio(p).is_none() {
+                return Err(RunError::bad(
+                    "gearing",
+                    format!("pointer {p}"),
+                    "is missing from the gearing (the failure study runs every train)",
+                ));
+            }
+        }
+    }
+
+    let hyp = errors::chosen(ctx)?;
+    let measured = measured_table(ctx.param("measured")?)?;
+    let mut inputs: Vec<Input<'_>> = Vec::new();
+    let wanted = parse_cases(ctx.param("cases")?)?;
+    for (ci, &(case, systematic, random)) in CASES.iter().enumerate() {
+        if !wanted.contains(&ci) {
+            continue;
+        }
+        inputs.push(Input {
+            label: case.to_string(),
+            legend: format!("Case {case} (systematic {systematic} deg, random {random})"),
+            index: ci as u64,
+            source: "--hypothesis",
+            hypothesis: hyp,
+            params: errors::params(
+                ctx,
+                hyp,
+                &[
+                    ("random", random),
+                    ("systematic", systematic),
+                    ("split", split),
+                ],
+            )?,
+        });
+    }
+    if let Some((file, m)) = &measured {
+        inputs.push(Input {
+            label: "measured".into(),
+            legend: format!("measured table {file}"),
+            index: MEASURED_INDEX,
+            source: "--set measured",
+            hypothesis: m,
+            params: Params::new(m, &[])
+                .map_err(|e| RunError::bad("--set measured", e.what, e.rule))?,
+        });
+    }
+    if inputs.is_empty() {
+        return Err(RunError::bad(
+            "--set",
+            "cases",
+            "no case and no measured table: nothing to run",
+        ));
+    }
+
+    let horizon = days / DAYS_PER_YEAR * TAU;
+    let seed = ctx.seed();
+    let jobs: Vec<(usize, u64)> = (0..inputs.len())
+        .flat_map(|i| (0..trials).map(move |t| (i, t)))
+        .collect();
+    let outcomes: Result<Vec<Outcome>, RunError> = jobs
+        .par_iter()
+        .map(|&(i, t)| one_run(&g, &inputs[i], h, clearance, seed, t, horizon))
+        .collect();
+    let outcomes = outcomes?;
+    let per_input: Vec<&[Outcome]> = outcomes.chunks(trials as usize).collect();
+
+    let mut report = Report {
+        trials: outcomes.len() as u64,
+        engagements: outcomes.iter().map(|o| o.engagements).sum::<f64>().round() as u64,
+        ..Default::default()
+    };
+    let summaries: Vec<Vec<Summary>> = per_input.iter().map(|runs| summarise(runs, days)).collect();
+    let (paper_table, agreement) = paper_table(&inputs, &summaries, trials, days, clearance);
+    report.tables.push(paper_table);
+    report
+        .tables
+        .push(detail_table(&inputs, &summaries, trials, days));
+    report
+        .tables
+        .push(survival_table(&inputs, per_input.as_slice(), days));
+    report.agreement = agreement;
+    report.files.push(OutputFile::new(
+        "failure-runs.csv",
+        runs_csv(&inputs, &per_input, days),
+    ));
+    for (ti, name) in train_names().enumerate() {
+        let curves: Vec<(String, Vec<(f64, f64)>)> = inputs
+            .iter()
+            .zip(&per_input)
+            .map(|(inp, runs)| {
+                let times: Vec<Option<f64>> =
+                    runs.iter().map(|o| jam_of(o, ti).map(|j| j.day)).collect();
+                (inp.legend.clone(), survival_steps(&times, days))
+            })
+            .collect();
+        let svg = survival_plot(
+            &format!("Section 5, the 30-run study: {name}, runs not yet jammed (Kaplan-Meier)"),
+            days,
+            &curves,
+        )?;
+        report.files.push(OutputFile::new(
+            format!("failure-{}.svg", file_stem(name)),
+            svg,
+        ));
+    }
+    Ok(report)
+}
+
+/// Indices into `CASES` of a comma-separated list of case names.
+fn parse_cases(text: &str) -> Result<Vec<usize>, RunError> {
+    let mut out = Vec::new();
+    for name in text.split(',').map(str::trim).filter(|s| !s.is_empty()) {
+        let Some(i) = CASES.iter().position(|c| c.0.eq_ignore_ascii_case(name)) else {
+            return Err(RunError::bad(
+                "--set",
+                "cases",
+                format!("unknown case `{name}` (known: A, B, C, D)"),
+            ));
+        };
+        if !out.contains(&i) {
+            out.push(i);
+        }
+    }
+    Ok(out)
+}
+
+/// The measured table named by the `measured` parameter, if any: (file as given, hypothesis).
+fn measured_table(file: &str) -> Result<Option<(String, MeasuredHypothesis)>, RunError> {
+    let file = file.trim();
+    if file.is_empty() {
+        return Ok(None);
+    }
+    let text = std::fs::read_to_string(file)
+        .map_err(|e| RunError::bad("--set measured", file, format!("cannot read: {e}")))?;
+    let table = hypotheses::measured_from_ron(file, &text)
+        .map_err(|e| RunError::bad("--set measured", e.what, e.rule))?;
+    Ok(Some((file.to_string(), table.hypothesis())))
+}
+
+/// Train names, then the mechanism row.
+fn train_names() -> impl Iterator<Item = &'static str> {
+    TRAINS.iter().map(|t| t.0).chain(std::iter::once(MECHANISM))
+}
+
+/// The jam of train `ti` (`TRAINS.len()`: the mechanism).
+fn jam_of(o: &Outcome, ti: usize) -> Option<&Jam> {
+    if ti < TRAINS.len() {
+        o.trains[ti].as_ref()
+    } else {
+        o.mechanism()
+    }
+}
+
+fn file_stem(train: &str) -> String {
+    let first = train.split(' ').next().unwrap_or(train);
+    first.to_lowercase().replace('/', "-")
+}
+
+/// One whole-mechanism run: trial `t` of `input`.
+fn one_run(
+    g: &train::Gearing,
+    input: &Input<'_>,
+    h: f64,
+    clearance: f64,
+    seed: u64,
+    t: u64,
+    horizon: f64,
+) -> Result<Outcome, RunError> {
+    // One stream per (input, trial): every gear's errors, then every mesh's initial angle.
+    let mut rng = trial_rng(seed, (input.index << 32) | t);
+    let mut failure = None;
+    let mech = Mechanism::build(g, h, clearance, |name, gear| {
+        input
+            .hypothesis
+            .apply(&gear, name, &input.params, &mut rng)
+            .map_err(|e| {
+                let text = e.to_string();
+                failure = Some(RunError::bad(input.source, e.what, e.rule));
+                text
+            })
+    });
+    let mech = match (mech, failure) {
+        (_, Some(e)) => return Err(e),
+        // The ideal gears fit (checked before), so the errors moved the bodies into each other:
+        // this mechanism cannot turn at all.
+        (Err(e), None) => {
+            return Ok(Outcome {
+                trains: vec![
+                    Some(Jam {
+                        day: 0.0,
+                        mesh: e.mesh.clone(),
+                    });
+                    TRAINS.len()
+                ],
+                engagements: 0.0,
+                unplaceable: Some(e.to_string()),
+            });
+        }
+        (Ok(m), None) => m,
+    };
+    let mut phi0s: BTreeMap<&str, f64> = BTreeMap::new();
+    for m in g.meshes() {
+        let mesh = mech
+            .mesh(&m.label)
+            .ok_or_else(|| RunError::Internal(format!("mesh {} was not built", m.label)))?;
+        let pitch = TAU / mesh.driver().teeth() as f64;
+        phi0s.insert(m.label.as_str(), rng.random::<f64>() * pitch);
+    }
+    // Stages by the chain of meshes leading to them: each mesh is simulated once per run.
+    let mut memo: BTreeMap<String, Stage> = BTreeMap::new();
+    let mut engagements = 0.0;
+    let mut trains = Vec::with_capacity(TRAINS.len());
+    for (_, pointers) in TRAINS {
+        let mut first: Option<Jam> = None;
+        for &p in pointers {
+            let missing = || RunError::Internal(format!("pointer {p} vanished from the gearing"));
+            let chain = g.pointer(p).ok_or_else(missing)?;
+            let ratio = g.pointer_ratio(p).ok_or_else(missing)?.to_f64();
+            let mut range = horizon;
+            let mut key = String::new();
+            let mut stages = Vec::with_capacity(chain.meshes.len());
+            for label in &chain.meshes {
+                key.push_str(label);
+                key.push('>');
+                let stage = match memo.get(&key) {
+                    Some(s) => s.clone(),
+                    None => {
+                        let (Some(mesh), Some(&phi0)) =
+                            (mech.mesh(label), phi0s.get(label.as_str()))
+                        else {
+                            return Err(RunError::Internal(format!("mesh {label} was not built")));
+                        };
+                        let traj = mesh.run_until(phi0, phi0 + range, Start::Touching(0.0), true);
+                        engagements += (traj.phi_end() - traj.phi_start()) / TAU
+                            * mesh.driver().teeth() as f64;
+                        let s = Stage {
+                            label: label.clone(),
+                            phi0,
+                            theta0: traj.theta_at(phi0),
+                            run: StageRun::Triangular(Box::new(traj)),
+                        };
+                        memo.insert(key.clone(), s.clone());
+                        s
+                    }
+                };
+                range = stage.run.theta_at(stage.phi0 + range) - stage.theta0;
+                stages.push(stage);
+            }
+            let run = PointerRun {
+                pointer: p.to_string(),
+                ratio,
+                input_range: horizon,
+                stages,
+            };
+            if let Some(stop) = run.first_stop()
+                && first.as_ref().is_none_or(|f| stop.day < f.day)
+            {
+                first = Some(Jam {
+                    day: stop.day,
+                    mesh: stop.mesh,
+                });
+            }
+        }
+        trains.push(first);
+    }
+    Ok(Outcome {
+        trains,
+        engagements,
+        unplaceable: None,
+    })
+}
+
+/// What is reported of one train (or the mechanism) under one input.
+struct Summary {
+    /// Runs jammed within a year, with the 95 % Clopper-Pearson interval.
+    year: Proportion,
+    /// Days of the first jam of the runs that jammed within the horizon, in trial order.
+    days: Vec<f64>,
+    /// Meshes that jammed first, with their counts, most frequent first.
+    meshes: Vec<(String, usize)>,
+}
+
+/// Per train, then the mechanism.
+fn summarise(runs: &[Outcome], horizon_days: f64) -> Vec<Summary> {
+    (0..=TRAINS.len())
+        .map(|ti| {
+            let jams: Vec<&Jam> = runs
+                .iter()
+                .filter_map(|o| jam_of(o, ti))
+                .filter(|j| j.day <= horizon_days)
+                .collect();
+            let in_year = jams.iter().filter(|j| j.day <= DAYS_PER_YEAR).count() as u64;
+            let mut counts: BTreeMap<&str, usize> = BTreeMap::new();
+            for j in &jams {
+                *counts.entry(j.mesh.as_str()).or_default() += 1;
+            }
+            let mut meshes: Vec<(String, usize)> = counts
+                .into_iter()
+                .map(|(m, c)| (m.to_string(), c))
+                .collect();
+            meshes.sort_by(|a, b| b.1.cmp(&a.1).then_with(|| a.0.cmp(&b.0)));
+            Summary {
+                year: clopper_pearson95(in_year, runs.len() as u64),
+                days: jams.iter().map(|j| j.day).collect(),
+                meshes,
+            }
+        })
+        .collect()
+}
+
+fn median(values: &[f64]) -> Option<f64> {
+    let mut v = values.to_vec();
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    match n {
+        0 => None,
+        _ if n % 2 == 1 => Some(v[n / 2]),
+        _ => Some(0.5 * (v[n / 2 - 1] + v[n / 2])),
+    }
+}
+
+/// Mean of days with its 95 % Student-t interval, clipped to the days a jam can have
+/// (0 to the horizon): with few jams the t interval reaches below day 0.
+fn mean_days(days: &[f64], horizon: f64) -> stats::Estimate {
+    let mut e = mean_ci95(days);
+    e.lo = e.lo.max(0.0);
+    e.hi = e.hi.min(horizon);
+    e
+}
+
+/// "mean [lo .. hi]" of days (no interval for one value, "-" for none).
+fn mean_cell(days: &[f64], horizon: f64) -> String {
+    let e = mean_days(days, horizon);
+    match days.len() {
+        0 => "-".into(),
+        1 => format!("{} (n = 1)", fmt_f64(e.mean, 0)),
+        _ => format!(
+            "{} [{} .. {}]",
+            fmt_f64(e.mean, 0),
+            fmt_f64(e.lo, 0),
+            fmt_f64(e.hi, 0)
+        ),
+    }
+}
+
+fn percent_cell(p: &Proportion) -> String {
+    format!(
+        "{} [{} .. {}]",
+        fmt_f64(100.0 * p.rate(), 0),
+        fmt_f64(100.0 * p.lo, 0),
+        fmt_f64(100.0 * p.hi, 0)
+    )
+}
+
+/// The paper's numbers beside ours, per input; the agreement counts the measured input only.
+fn paper_table(
+    inputs: &[Input<'_>],
+    summaries: &[Vec<Summary>],
+    trials: u64,
+    days: f64,
+    clearance: f64,
+) -> (Table, Option<Agreement>) {
+    let mut header = vec!["quantity".to_string(), "paper".to_string()];
+    header.extend(inputs.iter().map(|i| match i.index {
+        MEASURED_INDEX => "measured table".to_string(),
+        _ => format!("Case {}", i.label),
+    }));
+    let mut table = Table::new(
+        format!(
+            "Section 5, the 30-run study: the paper beside ours (G = {clearance} %, {trials} runs per input, {} days of b): ours [95 % interval]; * where the paper's value is outside it",
+            fmt_f64(days, 2)
+        ),
+        header,
+    );
+    let paper = |q: &str| crate::paper::get("failure", q).map(|r| r.value);
+    let mut agreement = Agreement::default();
+    let mut judged = false;
+    // (label, paper quantity, train index, is the share row)
+    let mut rows: Vec<(String, String, usize, bool)> = vec![(
+        "mechanisms jammed within a year [%]".into(),
+        "mechanisms_jammed".into(),
+        TRAINS.len(),
+        true,
+    )];
+    for (ti, (name, _)) in TRAINS.iter().enumerate() {
+        rows.push((
+            format!("{name}: mean day of the first jam"),
+            format!("{name}.mean_days"),
+            ti,
+            false,
+        ));
+    }
+    for (label, quantity, ti, share) in rows {
+        let p = paper(&quantity);
+        let mut row = vec![label, p.map_or_else(|| "-".into(), |v| fmt_f64(v, 0))];
+        for (inp, s) in inputs.iter().zip(summaries) {
+            let s = &s[ti];
+            let (cell, inside) = if share {
+                let inside = p.map(|v| {
+                    let r = v / 100.0;
+                    s.year.lo <= r && r <= s.year.hi
+                });
+                (percent_cell(&s.year), inside)
+            } else {
+                let e = mean_days(&s.days, days);
+                let inside = p.filter(|_| s.days.len() >= 2).map(|v| e.contains(v));
+                (mean_cell(&s.days, days), inside)
+            };
+            let mark = if inside == Some(false) { " *" } else { "" };
+            row.push(format!("{cell}{mark}"));
+            if inp.index == MEASURED_INDEX
+                && let Some(inside) = inside
+            {
+                judged = true;
+                if inside {
+                    agreement.inside += 1;
+                } else {
+                    agreement.outside += 1;
+                }
+            }
+        }
+        table.row(row);
+    }
+    // The conclusion's "one-third (120 deg)": the median day the mechanism stopped.
+    let third = paper("stop_angle").map(|deg| deg / 360.0 * DAYS_PER_YEAR);
+    let mut row = vec![
+        "median day the mechanism stopped (of the runs that did)".to_string(),
+        third.map_or_else(|| "-".into(), |d| format!("about {}", fmt_f64(d, 0))),
+    ];
+    for s in summaries {
+        row.push(median(&s[TRAINS.len()].days).map_or_else(|| "-".into(), |d| fmt_f64(d, 0)));
+    }
+    table.row(row);
+    table.note("The paper ran Edmunds' measured per-gear errors (its Figure 6), which are not available here: our inputs are Edmunds' Cases A-D until a measured table is given with --set measured=FILE. Only that column is counted as agreement with the paper; the cases are for orientation.");
+    table.note("Shares: runs whose mechanism (any train) jammed within one year of b, 95 % Clopper-Pearson interval. Days: b arbor, 365.25 d per turn; mean over the runs that jammed within the horizon, 95 % Student-t interval clipped to 0 .. horizon (none for fewer than two).");
+    table.note("The paper's horizon is not stated (Table 1 ran 1, 3.8 and 4.5 turns of b); ours is the days parameter. The last row compares with the conclusions: a mechanism with Edmunds' errors 'would generally stop after the solar pointer completed one-third (120 deg)'.");
+    (table, judged.then_some(agreement))
+}
+
+fn detail_table(inputs: &[Input<'_>], summaries: &[Vec<Summary>], trials: u64, days: f64) -> Table {
+    let mut table = Table::new(
+        format!(
+            "Days to the first jam per input and train ({trials} runs each, horizon {} days of b)",
+            fmt_f64(days, 2)
+        ),
+        [
+            "input",
+            "train",
+            "jammed within a year",
+            "95 % interval [%]",
+            "jammed within the horizon",
+            "mean day [95 % interval]",
+            "median day",
+            "meshes that jammed first (runs)",
+        ],
+    );
+    for (inp, s) in inputs.iter().zip(summaries) {
+        for (name, s) in train_names().zip(s) {
+            let meshes: Vec<String> = s
+                .meshes
+                .iter()
+                .take(4)
+                .map(|(m, c)| format!("{m} ({c})"))
+                .collect();
+            table.row(vec![
+                inp.label.clone(),
+                name.into(),
+                format!("{}/{}", s.year.k, s.year.n),
+                format!(
+                    "{} .. {}",
+                    fmt_f64(100.0 * s.year.lo, 0),
+                    fmt_f64(100.0 * s.year.hi, 0)
+                ),
+                format!("{}/{}", s.days.len(), s.year.n),
+                mean_cell(&s.days, days),
+                median(&s.days).map_or_else(|| "-".into(), |d| fmt_f64(d, 0)),
+                if meshes.is_empty() {
+                    "-".into()
+                } else {
+                    meshes.join(", ")
+                },
+            ]);
+        }
+    }
+    for inp in inputs {
+        let p: Vec<String> = inp
+            .params
+            .iter()
+            .map(|(k, v)| format!("{k} = {v}"))
+            .collect();
+        table.note(format!(
+            "{}: hypothesis {} with {}.",
+            inp.label,
+            inp.hypothesis.name(),
+            if p.is_empty() {
+                "no parameters".into()
+            } else {
+                p.join(", ")
+            }
+        ));
+    }
+    table.note("One run is one mechanism: every gear manufactured once, each mesh given one random initial angle, each mesh run once up to its first jam; trains sharing meshes (b2-l1, l2-m1) share their motion. A train's first jam is the earliest jam on any of its pointers' meshes, dated on the b arbor. Trains are counted separately, as the paper did; in the real mechanism any jam stops every train (the mechanism row).");
+    table
+}
+
+/// Share of runs not yet jammed at fixed angles of b.
+fn survival_table(inputs: &[Input<'_>], per_input: &[&[Outcome]], days: f64) -> Table {
+    let mut header = vec!["input".to_string(), "train".to_string()];
+    for deg in READ_AT_DEG {
+        header.push(format!(
+            "{deg} deg of b ({} d)",
+            fmt_f64(deg / 360.0 * DAYS_PER_YEAR, 1)
+        ));
+    }
+    let mut table = Table::new(
+        "Runs not yet jammed [%] at angles of the solar pointer (b arbor)",
+        header,
+    );
+    let mut unplaceable = 0;
+    for (inp, runs) in inputs.iter().zip(per_input) {
+        unplaceable += runs.iter().filter(|o| o.unplaceable.is_some()).count();
+        for (ti, name) in train_names().enumerate() {
+            let times: Vec<Option<f64>> =
+                runs.iter().map(|o| jam_of(o, ti).map(|j| j.day)).collect();
+            let steps = survival_steps(&times, days);
+            let mut row = vec![inp.label.clone(), name.to_string()];
+            for deg in READ_AT_DEG {
+                row.push(fmt_f64(survival_at(&steps, deg / 360.0 * DAYS_PER_YEAR), 0));
+            }
+            table.row(row);
+        }
+    }
+    table.note("Kaplan-Meier estimate; every run is observed to the same horizon, so it is the share of runs whose first jam came later.");
+    if unplaceable > 0 {
+        table.note(format!(
+            "{unplaceable} runs had gears whose bodies overlapped at every angle (errors too large for the clearance): counted as jammed at day 0."
+        ));
+    }
+    table
+}
+
+/// Kaplan-Meier survival [%] as a step curve from day 0 to `horizon`: `times` holds each run's
+/// first-jam day, `None` for a run censored at the horizon. Points come in pairs at each jam day
+/// (before, after), so drawing straight lines between them draws the steps.
+fn survival_steps(times: &[Option<f64>], horizon: f64) -> Vec<(f64, f64)> {
+    let mut jams: Vec<f64> = times
+        .iter()
+        .flatten()
+        .copied()
+        .filter(|&d| d <= horizon)
+        .collect();
+    jams.sort_by(f64::total_cmp);
+    let mut at_risk = times.len() as f64;
+    let mut s = 100.0;
+    let mut points = vec![(0.0, s)];
+    let mut i = 0;
+    while i < jams.len() {
+        let d = jams[i];
+        let mut k = 0;
+        while i < jams.len() && jams[i] == d {
+            k += 1;
+            i += 1;
+        }
+        points.push((d, s));
+        s *= 1.0 - k as f64 / at_risk;
+        at_risk -= k as f64;
+        points.push((d, s));
+    }
+    points.push((horizon, s));
+    points
+}
+
+/// The step curve's value at `day` (after any jam on that very day).
+fn survival_at(steps: &[(f64, f64)], day: f64) -> f64 {
+    steps
+        .iter()
+        .take_while(|p| p.0 <= day)
+        .last()
+        .map_or(100.0, |p| p.1)
+}
+
+fn survival_plot(
+    title: &str,
+    horizon: f64,
+    curves: &[(String, Vec<(f64, f64)>)],
+) -> Result<String, RunError> {
+    let colours = [BLUE, RED, BLACK, GREEN, MAGENTA, CYAN];
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (800, 480)).into_drawing_area();
+        let plot_err = |e: &dyn std::fmt::Display| RunError::Internal(format!("plot {title}: {e}"));
+        root.fill(&WHITE).map_err(|e| plot_err(&e))?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 18))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(70)
+            .build_cartesian_2d(0.0..horizon, 0.0..102.0)
+            .map_err(|e| plot_err(&e))?;
+        chart
+            .configure_mesh()
+            .x_desc("days of the b arbor (solar pointer; 365.25 d per turn)")
+            .y_desc("runs not yet jammed [%]")
+            .x_label_formatter(&|v: &f64| format!("{v:.0}"))
+            .y_label_formatter(&|v: &f64| format!("{v:.0}"))
+            .draw()
+            .map_err(|e| plot_err(&e))?;
+        for (i, (label, points)) in curves.iter().enumerate() {
+            let colour = colours[i % colours.len()];
+            chart
+                .draw_series(LineSeries::new(
+                    points.iter().copied(),
+                    colour.stroke_width(2),
+                ))
+                .map_err(|e| plot_err(&e))?
+                .label(label.as_str())
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour));
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::MiddleRight)
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .draw()
+            .map_err(|e| plot_err(&e))?;
+        root.present().map_err(|e| plot_err(&e))?;
+    }
+    Ok(svg)
+}
+
+/// Per run and train: the day of the first jam, or the horizon and "censored".
+fn runs_csv(inputs: &[Input<'_>], per_input: &[&[Outcome]], days: f64) -> String {
+    let mut csv = String::from("input,trial,train,first_jam_day,status,mesh\n");
+    for (inp, runs) in inputs.iter().zip(per_input) {
+        for (t, o) in runs.iter().enumerate() {
+            for (ti, name) in train_names().enumerate() {
+                let line = match jam_of(o, ti).filter(|j| j.day <= days) {
+                    Some(j) => format!("{},{t},{name},{},jammed,{}\n", inp.label, j.day, j.mesh),
+                    None => format!("{},{t},{name},{days},censored,\n", inp.label),
+                };
+                csv.push_str(&line);
+            }
+        }
+    }
+    csv
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, reason = "tests")]
+    use super::*;
+
+    #[test]
+    fn survival_steps_follow_kaplan_meier() {
+        // 4 runs: jams on days 10 and 10 and 30, one censored at 100.
+        let steps = survival_steps(&[Some(30.0), None, Some(10.0), Some(10.0)], 100.0);
+        assert_eq!(
+            steps,
+            [
+                (0.0, 100.0),
+                (10.0, 100.0),
+                (10.0, 50.0),
+                (30.0, 50.0),
+                (30.0, 25.0),
+                (100.0, 25.0)
+            ]
+        );
+        assert_eq!(survival_at(&steps, 5.0), 100.0);
+        assert_eq!(survival_at(&steps, 10.0), 50.0);
+        assert_eq!(survival_at(&steps, 99.0), 25.0);
+        assert_eq!(
+            survival_steps(&[None, None], 5.0),
+            [(0.0, 100.0), (5.0, 100.0)]
+        );
+    }
+
+    #[test]
+    fn cases_parse_and_refuse_unknown_names() {
+        assert_eq!(parse_cases("A, c,D,a").unwrap(), [0, 2, 3]);
+        assert!(parse_cases("").unwrap().is_empty());
+        let e = parse_cases("A,E").unwrap_err();
+        assert_eq!(e.exit_code(), 2);
+        assert!(e.to_string().contains("`E`"), "{e}");
+    }
+
+    #[test]
+    fn median_of_odd_and_even_counts() {
+        assert_eq!(median(&[]), None);
+        assert_eq!(median(&[3.0, 1.0, 2.0]), Some(2.0));
+        assert_eq!(median(&[4.0, 1.0, 2.0, 3.0]), Some(2.5));
+    }
+
+    fn run_with(threads: usize, sets: &[(&str, &str)]) -> Result<Report, RunError> {
+        crate::link();
+        let map = registry::experiments().unwrap();
+        let overrides: Vec<(String, String)> = sets
+            .iter()
+            .map(|(k, v)| ((*k).to_string(), (*v).to_string()))
+            .collect();
+        let ctx = Context::new(map["failure"], 11, threads, &overrides, None)?;
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| run(&ctx))
+    }
+
+    #[test]
+    fn bad_parameters_are_refused_as_bad_input() {
+        for sets in [
+            &[("days", "100")][..],
+            &[("trials", "0")],
+            &[("cases", "X")],
+            &[("cases", "")],
+            &[("measured", "/no/such/file.ron")],
+        ] {
+            let e = run_with(1, sets).unwrap_err();
+            assert_eq!(e.exit_code(), 2, "{sets:?}: {e}");
+        }
+    }
+
+    #[test]
+    fn case_d_is_identical_with_one_and_two_threads() {
+        // Case D jams early in almost every run, so this is quick.
+        let sets = [("cases", "D"), ("trials", "3")];
+        let one = run_with(1, &sets).unwrap();
+        let two = run_with(2, &sets).unwrap();
+        assert_eq!(one, two);
+        assert_eq!(one.trials, 3);
+        assert!(one.engagements > 0);
+        assert_eq!(
+            one.agreement, None,
+            "cases are not judged against the paper"
+        );
+        let csv = &one.files[0];
+        assert_eq!(csv.name, "failure-runs.csv");
+        // 3 runs x (3 trains + mechanism) + header.
+        assert_eq!(String::from_utf8_lossy(&csv.contents).lines().count(), 13);
+    }
+
+    #[test]
+    fn a_measured_table_is_run_and_judged() {
+        let path =
+            std::env::temp_dir().join(format!("failure-measured-{}.ron", std::process::id()));
+        // Every gear with Case D's errors: quick, and a judged column.
+        let mut text = String::from("(gears: [\n");
+        for g in train::Gearing::freeth2006().gears() {
+            text.push_str(&format!(
+                "(gear: \"{}\", random: 0.08, systematic: 2.0),\n",
+                g.name
+            ));
+        }
+        text.push_str("])\n");
+        std::fs::write(&path, text).unwrap();
+        let r = run_with(
+            2,
+            &[
+                ("cases", ""),
+                ("trials", "2"),
+                ("measured", path.to_str().unwrap()),
+            ],
+        );
+        let _ = std::fs::remove_file(&path);
+        let r = r.unwrap();
+        assert_eq!(r.trials, 2);
+        let a = r.agreement.unwrap();
+        assert!(a.inside + a.outside >= 1, "{a:?}");
+        assert!(r.tables[0].columns.iter().any(|c| c == "measured table"));
+    }
+}

@@ -1,0 +1,51 @@
+//! `cargo xtask bench` on the command line: its arguments (a real bench takes many minutes, so
+//! only refusals, which stop before anything runs, are tested; the parsed values are tested in
+//! `src/args.rs`).
+
+#![allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
+
+use std::process::{Command, Output};
+
+fn xtask(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_xtask"))
+        .args(args)
+        .env_remove("RUST_LOG")
+        .output()
+        .unwrap()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn bench_refuses_bad_arguments() {
+    for (args, usage) in [
+        (&["bench", "--only", "table6"][..], false),
+        (&["bench", "--threads", "0"], false),
+        (&["bench", "--threads", "1,two"], false),
+        (&["bench", "table5"], true),
+        (&["bench", "--seed", "1"], true),
+        (&["bench", "--only"], true),
+    ] {
+        let o = xtask(args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert_eq!(
+            stderr(&o).contains("Usage:"),
+            usage,
+            "{args:?}: {}",
+            stderr(&o)
+        );
+        assert!(o.stdout.is_empty(), "{args:?}: nothing may run");
+    }
+}
+
+#[test]
+fn usage_describes_bench() {
+    let o = xtask(&["help"]);
+    assert!(o.status.success());
+    let text = String::from_utf8_lossy(&o.stdout);
+    for word in ["cargo xtask bench", "--only table5|all", "--threads 1,2"] {
+        assert!(text.contains(word), "missing {word:?} in:\n{text}");
+    }
+}
