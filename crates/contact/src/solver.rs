@@ -30,6 +30,9 @@ use crate::mesh::{Mesh, Obstacle};
 const SIDE_TOL: f64 = 1e-10;
 /// Event location accuracy in driver angle (radians): far below the required 1e-6°.
 const LOCATE_TOL: f64 = 1e-13;
+/// How closely the angle where a new obstacle appeared is located to tell on which side of θ
+/// it appeared (radians of driver angle).
+const SIDE_LOCATE_TOL: f64 = 1e-10;
 /// How far past a first touch from rest a step ends (radians of driver angle).
 const TOUCH_STEP: f64 = 1e-8;
 /// Steps per driver pitch used to bracket events (finer halvings are taken where needed).
@@ -495,12 +498,24 @@ impl Run<'_> {
             let reach = behind.iter().map(|&p| hi(phi1, p)).fold(theta0, f64::max);
             // An obstacle that appeared below θ and rose past it within the step is behind (it
             // pushed), even though it lies above θ0 now: decide where it first appeared.
+            let at_start = eval(phi0, pair);
             let side = if o.lo >= reach + mesh.driven.max_gap {
                 Side::Ahead
+            } else if let Some(a0) = at_start.filter(|a0| a0.hi <= theta0 + SIDE_TOL) {
+                // Already there at the start of the step, behind θ (it only came into the window
+                // of the scan): obstacles do not pass through θ without a jam, so it is behind.
+                let _ = a0;
+                Side::Behind
+            } else if at_start.is_some_and(|a0| a0.lo >= theta0 - SIDE_TOL) {
+                // Already there and ahead at the start.
+                Side::Ahead
             } else {
-                // Last angle without the obstacle; it exists just after.
-                let before = bisect(phi0, phi1, |p| mesh.obstacle(p, pair.0, pair.1).is_none());
-                let phi_a = (before + 4.0 * LOCATE_TOL).min(phi1);
+                // Where it appeared, closely enough to tell its side (not to LOCATE_TOL: the side
+                // is all that is asked).
+                let phi_a = bracket(phi0, phi1, SIDE_LOCATE_TOL, |p| {
+                    mesh.obstacle(p, pair.0, pair.1).is_none()
+                })
+                .1;
                 let at = mesh
                     .obstacle(phi_a, pair.0, pair.1)
                     .map_or(o.lo, |a| 0.5 * (a.lo + a.hi));
@@ -797,6 +812,19 @@ fn rest_then_maybe_push(
     } else {
         plan.push((phi1, theta, Motion::Rest, None));
     }
+}
+
+/// The bracket `(good, bad)`, at most `tol` wide, around the boundary between where `good` holds
+/// (at `a`) and where it fails (at `b`).
+fn bracket(mut a: f64, mut b: f64, tol: f64, good: impl Fn(f64) -> bool) -> (f64, f64) {
+    while b - a > tol {
+        let m = 0.5 * (a + b);
+        if m <= a || m >= b {
+            break;
+        }
+        if good(m) { a = m } else { b = m }
+    }
+    (a, b)
 }
 
 /// The boundary between where `good` holds (at `a`) and where it fails (at `b`), to LOCATE_TOL.
