@@ -25,13 +25,16 @@ pub use inventory;
 
 mod context;
 mod error;
+mod finite;
 mod output;
 mod table;
+mod trials;
 
-pub use context::{ConfigFile, Context};
+pub use context::{ConfigFile, Context, TrialMode};
 pub use error::{DuplicateId, RunError};
 pub use output::{Agreement, OutputFile, Report, write_results};
 pub use table::{Table, fmt_f64};
+pub use trials::{Batch, Records, Shard, ShardRecords, f64_bits, merge_records};
 
 /// One parameter of an experiment, settable from the command line with `--set name=value`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
