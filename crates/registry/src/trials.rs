@@ -19,7 +19,7 @@ use serde_json::Value;
 use crate::RunError;
 
 /// One shard of a run: `index` of `count` (`K/N` on the command line).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Shard {
     index: u64,
     count: u64,
