@@ -18,6 +18,12 @@
 //! The runner (`cargo xtask`) looks experiments up with [`experiments`], builds a [`Context`]
 //! from the command line, calls [`Experiment::run`], prints [`Report::text`] and stores the
 //! results with [`write_results`].
+//!
+//! Experiments run their Monte-Carlo trials with [`Context::trials`] (or
+//! [`Context::trials_whole`]), so that the runner can split a run into shards
+//! (`cargo xtask run <id> --shard K/N`, [`Context::with_shard`]), join the shards' records
+//! ([`merge_records`]) and replay the experiment from them (`cargo xtask merge`,
+//! [`Context::with_replay`]) with the same results, bit for bit.
 
 use std::collections::BTreeMap;
 
