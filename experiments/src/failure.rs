@@ -19,10 +19,10 @@ use hypotheses::{Hypothesis, MeasuredHypothesis, Params};
 use mechanism::{Mechanism, PointerRun, Stage, StageRun, trial_rng};
 use plotters::prelude::*;
 use rand::Rng;
-use rayon::prelude::*;
 use registry::{
     Agreement, Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64,
 };
+use serde::{Deserialize, Serialize};
 use stats::{DAYS_PER_YEAR, Proportion, clopper_pearson95, mean_ci95};
 
 use crate::errors;
@@ -104,14 +104,15 @@ struct Input<'a> {
 }
 
 /// The first jam of a train within the horizon.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 struct Jam {
     day: f64,
     mesh: String,
 }
 
-/// One whole-mechanism run.
-#[derive(Debug, Clone, PartialEq)]
+/// One whole-mechanism run. The default (a run of another shard, see `Context::trials`) has
+/// no trains: it reads as a run that never jammed.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 struct Outcome {
     /// First jam per train of `TRAINS` (None: none within the horizon).
     trains: Vec<Option<Jam>>,
@@ -217,11 +218,17 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     let jobs: Vec<(usize, u64)> = (0..inputs.len())
         .flat_map(|i| (0..trials).map(move |t| (i, t)))
         .collect();
-    let outcomes: Result<Vec<Outcome>, RunError> = jobs
-        .par_iter()
-        .map(|&(i, t)| one_run(&g, &inputs[i], h, clearance, seed, t, horizon))
-        .collect();
-    let outcomes = outcomes?;
+    // One batch of every (input, trial) run, flattened so that all of them share the pool.
+    let outcomes: Vec<Outcome> = ctx.trials(
+        &batch_key(ctx, &inputs, trials, h, clearance, days)?,
+        jobs.len() as u64,
+        |j| {
+            let &(i, t) = jobs
+                .get(j as usize)
+                .ok_or_else(|| RunError::Internal(format!("run {j} of {}", jobs.len())))?;
+            one_run(&g, &inputs[i], h, clearance, seed, t, horizon)
+        },
+    )?;
     let per_input: Vec<&[Outcome]> = outcomes.chunks(trials as usize).collect();
 
     let mut report = Report {
@@ -266,6 +273,36 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     Ok(report)
 }
 
+/// The key of the batch of runs: everything that determines them.
+fn batch_key(
+    ctx: &Context,
+    inputs: &[Input<'_>],
+    trials: u64,
+    h: f64,
+    clearance: f64,
+    days: f64,
+) -> Result<String, RunError> {
+    let inputs: Vec<String> = inputs
+        .iter()
+        .map(|inp| {
+            let p: Vec<String> = inp.params.iter().map(|(k, v)| format!("{k}={v}")).collect();
+            format!(
+                "{} [{}] stream {} {}({})",
+                inp.label,
+                inp.legend,
+                inp.index,
+                inp.hypothesis.name(),
+                p.join(",")
+            )
+        })
+        .collect();
+    Ok(format!(
+        "failure: {trials} runs per input over {days} d, h = {h} mm, G = {clearance} %, gearing {}, inputs: {}",
+        ctx.param("gearing")?,
+        inputs.join("; ")
+    ))
+}
+
 /// Indices into `CASES` of a comma-separated list of case names.
 fn parse_cases(text: &str) -> Result<Vec<usize>, RunError> {
     let mut out = Vec::new();
@@ -305,7 +342,7 @@ fn train_names() -> impl Iterator<Item = &'static str> {
 /// The jam of train `ti` (`TRAINS.len()`: the mechanism).
 fn jam_of(o: &Outcome, ti: usize) -> Option<&Jam> {
     if ti < TRAINS.len() {
-        o.trains[ti].as_ref()
+        o.trains.get(ti).and_then(Option::as_ref)
     } else {
         o.mechanism()
     }

@@ -2,8 +2,8 @@
 //! error) at G = 40 %, averaged over trials with random initial angles.
 
 use mechanism::{Mechanism, trial_rng};
-use rayon::prelude::*;
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use serde::{Deserialize, Serialize};
 use stats::{Estimate, mean_ci95};
 
 use crate::gearing;
@@ -125,6 +125,50 @@ fn samples_for(g: &train::Gearing, pointer: &str, turns: f64, per: usize) -> usi
     ((busiest * turns * per as f64).ceil() as usize).max(100)
 }
 
+/// What one trial gives for one pointer. The statistics of a run that stops at once are NaN,
+/// which JSON cannot carry: they are recorded as bits.
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize)]
+struct PointerTrial {
+    #[serde(with = "registry::f64_bits")]
+    sigma: f64,
+    #[serde(with = "registry::f64_bits")]
+    dm: f64,
+    #[serde(with = "registry::f64_bits")]
+    mean: f64,
+    /// The run jammed (or could not run).
+    stopped: bool,
+}
+
+impl PointerTrial {
+    fn new(s: stats::PointerStats, stopped: bool) -> Self {
+        PointerTrial {
+            sigma: s.sigma,
+            dm: s.dm,
+            mean: s.mean,
+            stopped,
+        }
+    }
+}
+
+/// The key of the trial batch: everything that determines the trials.
+fn batch_key(
+    ctx: &Context,
+    trials: usize,
+    h: f64,
+    clearance: f64,
+    runs: &[(&str, f64, usize)],
+) -> Result<String, RunError> {
+    let runs: Vec<String> = runs
+        .iter()
+        .map(|(name, turns, samples)| format!("{name} {turns} turns {samples} samples"))
+        .collect();
+    Ok(format!(
+        "table1: {trials} trials, ideal teeth, h = {h} mm, G = {clearance} %, gearing {}, pointers: {}",
+        ctx.param("gearing")?,
+        runs.join(", ")
+    ))
+}
+
 fn run(ctx: &Context) -> Result<Report, RunError> {
     let g = gearing::load(ctx)?;
     let trials = ctx.usize("trials")?;
@@ -143,20 +187,24 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     let runs = pointer_runs(ctx, &g, &POINTERS, per)?;
     let seed = ctx.seed();
     // One RNG stream per trial; trials in parallel, collected (and so reduced) in trial order.
-    let per_trial: Vec<Vec<(stats::PointerStats, bool)>> = (0..trials as u64)
-        .into_par_iter()
-        .map(|t| {
+    let per_trial: Vec<Vec<PointerTrial>> = ctx.trials(
+        &batch_key(ctx, trials, h, clearance, &runs)?,
+        trials as u64,
+        |t| {
             let mut rng = trial_rng(seed, t);
-            runs.iter()
+            Ok(runs
+                .iter()
                 .map(
                     |&(name, turns, samples)| match mech.run_pointer(name, turns, &mut rng) {
-                        Some(r) => (r.stats(samples), r.first_stop().is_some()),
-                        None => (stats::PointerStats::NAN, true),
+                        Some(r) => PointerTrial::new(r.stats(samples), r.first_stop().is_some()),
+                        None => PointerTrial::new(stats::PointerStats::NAN, true),
                     },
                 )
-                .collect()
-        })
-        .collect();
+                .collect())
+        },
+    )?;
+    // A trial of another shard (`--shard`) is an empty default: read it as zeros.
+    let at = |t: &[PointerTrial], i: usize| t.get(i).copied().unwrap_or_default();
 
     let mut layout = Table::new(
         format!(
@@ -193,20 +241,20 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         .map(|s| vec![(*s).to_string()])
         .collect();
     for (i, &(name, turns, _)) in runs.iter().enumerate() {
-        jammed += per_trial.iter().filter(|t| t[i].1).count();
+        jammed += per_trial.iter().filter(|t| at(t, i).stopped).count();
         let days = g.days_per_degree(name);
         let columns: [(&str, &str, Vec<f64>); 3] = [
             (
                 "sigma",
                 "sigma",
-                per_trial.iter().map(|t| t[i].0.sigma).collect(),
+                per_trial.iter().map(|t| at(t, i).sigma).collect(),
             ),
-            ("Dm", "dm", per_trial.iter().map(|t| t[i].0.dm).collect()),
+            ("Dm", "dm", per_trial.iter().map(|t| at(t, i).dm).collect()),
             // P: the average absolute value of the oscillation mean (Table 1 caption).
             (
                 "P",
                 "mean",
-                per_trial.iter().map(|t| t[i].0.mean.abs()).collect(),
+                per_trial.iter().map(|t| at(t, i).mean.abs()).collect(),
             ),
         ];
         for (row, (label, key, values)) in columns.into_iter().enumerate() {

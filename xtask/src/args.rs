@@ -1,6 +1,8 @@
-//! Command-line parsing, by hand: six commands and their flags.
+//! Command-line parsing, by hand: seven commands and their flags.
 
 use std::path::PathBuf;
+
+use registry::Shard;
 
 /// Seed used when `--seed` is not given.
 pub const DEFAULT_SEED: u64 = 2025;
@@ -20,6 +22,19 @@ pub enum Command {
     Run(RunArgs),
     /// `bench [--only table5|all] [--threads 1,2]`.
     Bench(BenchArgs),
+    /// `merge DIR|FILE... [--out DIR] [--threads N]`.
+    Merge(MergeArgs),
+}
+
+/// Arguments of `merge`.
+#[derive(Debug, PartialEq, Eq)]
+pub struct MergeArgs {
+    /// Partial files, or directories searched for them, in the order given (at least one).
+    pub inputs: Vec<PathBuf>,
+    /// `--out`; `None`: `<workspace>/results`.
+    pub out: Option<PathBuf>,
+    /// `--threads`, at least 1; `None`: available parallelism.
+    pub threads: Option<usize>,
 }
 
 /// What `bench` times.
@@ -65,6 +80,8 @@ pub struct RunArgs {
     pub config: Option<PathBuf>,
     /// `--set key=value`, in order.
     pub sets: Vec<(String, String)>,
+    /// `--shard K/N`: compute only this shard's trials and write a partial file.
+    pub shard: Option<Shard>,
 }
 
 /// A command line that cannot be parsed: exit status 2.
@@ -99,6 +116,7 @@ pub fn parse(args: &[String]) -> Result<Command, ArgError> {
         },
         "run" => parse_run(rest).map(Command::Run),
         "bench" => parse_bench(rest).map(Command::Bench),
+        "merge" => parse_merge(rest).map(Command::Merge),
         other => Err(ArgError::Usage(format!("unknown command `{other}`"))),
     }
 }
@@ -120,6 +138,7 @@ fn parse_run(args: &[String]) -> Result<RunArgs, ArgError> {
         out: None,
         config: None,
         sets: Vec::new(),
+        shard: None,
     };
     let mut it = args.iter();
     while let Some(arg) = it.next() {
@@ -133,7 +152,14 @@ fn parse_run(args: &[String]) -> Result<RunArgs, ArgError> {
         };
         if !matches!(
             flag,
-            "--seed" | "--threads" | "--out" | "--config" | "--set" | "--gearing" | "--hypothesis"
+            "--seed"
+                | "--threads"
+                | "--out"
+                | "--config"
+                | "--set"
+                | "--gearing"
+                | "--hypothesis"
+                | "--shard"
         ) {
             return Err(ArgError::Usage(format!("unknown flag `{arg}`")));
         }
@@ -153,24 +179,10 @@ fn parse_run(args: &[String]) -> Result<RunArgs, ArgError> {
                     ))
                 })?;
             }
-            "--threads" => {
-                let n: usize = value.trim().parse().map_err(|_| {
-                    ArgError::Value(format!(
-                        "--threads: must be a positive integer (got `{value}`)"
-                    ))
-                })?;
-                if n == 0 {
-                    return Err(ArgError::Value(
-                        "--threads: must be at least 1 (got `0`)".into(),
-                    ));
-                }
-                run.threads = Some(n);
-            }
-            "--out" => {
-                if value.is_empty() {
-                    return Err(ArgError::Value("--out: must not be empty".into()));
-                }
-                run.out = Some(PathBuf::from(value));
+            "--threads" => run.threads = Some(threads(&value)?),
+            "--out" => run.out = Some(out(value)?),
+            "--shard" => {
+                run.shard = Some(Shard::parse(&value).map_err(|e| ArgError::Value(e.to_string()))?);
             }
             "--config" => {
                 if value.is_empty() {
@@ -214,7 +226,79 @@ fn parse_run(args: &[String]) -> Result<RunArgs, ArgError> {
             run.ids.join(" ")
         )));
     }
+    if run.shard.is_some() && (run.ids.len() != 1 || run.is_all()) {
+        return Err(ArgError::Usage(format!(
+            "--shard splits the trials of one experiment: give exactly one experiment id, not `{}` (`run all` and several ids cannot be sharded)",
+            run.ids.join(" ")
+        )));
+    }
     Ok(run)
+}
+
+/// The value of `--threads`: a positive integer.
+fn threads(value: &str) -> Result<usize, ArgError> {
+    let n: usize = value.trim().parse().map_err(|_| {
+        ArgError::Value(format!(
+            "--threads: must be a positive integer (got `{value}`)"
+        ))
+    })?;
+    if n == 0 {
+        return Err(ArgError::Value(
+            "--threads: must be at least 1 (got `0`)".into(),
+        ));
+    }
+    Ok(n)
+}
+
+/// The value of `--out`: not empty.
+fn out(value: String) -> Result<PathBuf, ArgError> {
+    if value.is_empty() {
+        return Err(ArgError::Value("--out: must not be empty".into()));
+    }
+    Ok(PathBuf::from(value))
+}
+
+fn parse_merge(args: &[String]) -> Result<MergeArgs, ArgError> {
+    let mut merge = MergeArgs {
+        inputs: Vec::new(),
+        out: None,
+        threads: None,
+    };
+    let mut it = args.iter();
+    while let Some(arg) = it.next() {
+        if !arg.starts_with('-') {
+            merge.inputs.push(PathBuf::from(arg));
+            continue;
+        }
+        let (flag, inline) = match arg.split_once('=') {
+            Some((f, v)) if f.starts_with("--") => (f, Some(v.to_owned())),
+            _ => (arg.as_str(), None),
+        };
+        if !matches!(flag, "--out" | "--threads") {
+            return Err(ArgError::Usage(format!(
+                "unknown flag `{arg}` of merge (the seed, parameters and config come from the partial files)"
+            )));
+        }
+        let value = match inline {
+            Some(v) => v,
+            None => match it.next() {
+                Some(v) if !v.starts_with("--") => v.clone(),
+                _ => return Err(ArgError::Usage(format!("{flag} needs a value"))),
+            },
+        };
+        if flag == "--out" {
+            merge.out = Some(out(value)?);
+        } else {
+            merge.threads = Some(threads(&value)?);
+        }
+    }
+    if merge.inputs.is_empty() {
+        return Err(ArgError::Usage(
+            "merge needs the partial files of `run <id> --shard K/N`, or directories holding them"
+                .into(),
+        ));
+    }
+    Ok(merge)
 }
 
 impl RunArgs {
@@ -384,6 +468,41 @@ mod tests {
         ] {
             assert!(matches!(p(bad), Err(ArgError::Usage(_))), "{bad}");
         }
+    }
+
+    #[test]
+    fn shard_and_merge() {
+        let r = run("run table5 --shard 2/4");
+        assert_eq!(r.shard, Some(Shard::new(2, 4).unwrap()));
+        assert_eq!(run("run table5").shard, None);
+        assert_eq!(
+            run("run table5 --shard=0/1").shard,
+            Some(Shard::new(0, 1).unwrap())
+        );
+        for bad in ["4/4", "0/0", "x", "1-4", "-1/4"] {
+            match p(&format!("run table5 --shard {bad}")) {
+                Err(ArgError::Value(m)) => assert!(m.starts_with("--shard: "), "{m}"),
+                other => panic!("{bad}: {other:?}"),
+            }
+        }
+        for bad in ["run all --shard 0/2", "run a b --shard 0/2"] {
+            match p(bad) {
+                Err(ArgError::Usage(m)) => assert!(m.contains("exactly one experiment id"), "{m}"),
+                other => panic!("{bad}: {other:?}"),
+            }
+        }
+        match p("merge a b/c --out o --threads=2").unwrap() {
+            Command::Merge(m) => {
+                assert_eq!(m.inputs, [PathBuf::from("a"), PathBuf::from("b/c")]);
+                assert_eq!(m.out, Some(PathBuf::from("o")));
+                assert_eq!(m.threads, Some(2));
+            }
+            other => panic!("{other:?}"),
+        }
+        assert!(matches!(p("merge"), Err(ArgError::Usage(_))));
+        assert!(matches!(p("merge --out o"), Err(ArgError::Usage(_))));
+        assert!(matches!(p("merge a --seed 1"), Err(ArgError::Usage(_))));
+        assert!(matches!(p("merge a --threads 0"), Err(ArgError::Value(_))));
     }
 
     #[test]

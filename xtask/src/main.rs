@@ -6,8 +6,13 @@
 //!
 //! `run all` runs every experiment even when some fail, then prints a summary table and writes it
 //! to `<out>/summary.md` and `<out>/summary.json`; `bench` times `table5` and `all` in-process.
+//!
+//! `run <id> --shard K/N` computes one shard of an experiment's trials (see
+//! [`registry::Context::trials`]) and writes `<out>/<id>/partial-K-of-N.json`; `merge` joins the
+//! partial files of every shard and writes the results a single run would write, bit for bit.
 
 mod args;
+mod shard;
 mod summary;
 
 use std::collections::BTreeMap;
@@ -19,7 +24,7 @@ use std::time::Instant;
 
 use registry::{ConfigFile, Context, Experiment, RunError, Table};
 
-use crate::args::{ArgError, BenchArgs, BenchTarget, Command, DEFAULT_SEED, RunArgs};
+use crate::args::{ArgError, BenchArgs, BenchTarget, Command, DEFAULT_SEED, MergeArgs, RunArgs};
 
 /// Experiments by id.
 type Registry = BTreeMap<&'static str, &'static Experiment>;
@@ -119,6 +124,7 @@ fn dispatch(args: &[String]) -> Result<(), Failure> {
         }
         Command::Run(run) => run_all(&exps, &run),
         Command::Bench(b) => bench(&exps, &b),
+        Command::Merge(m) => merge(&exps, &m),
     }
 }
 
@@ -165,6 +171,16 @@ Usage:
   cargo xtask bench [--only table5|all] [--threads 1,2]
                                 time table5 and all at their defaults with each
                                 thread count, in-process; prints a table, writes nothing
+  cargo xtask run <id> --shard K/N [options]
+                                compute only shard K (0..N-1) of the experiment's
+                                trials, those with index % N == K, e.g. one task
+                                of a cluster job array; writes
+                                <out>/<id>/partial-K-of-N.json, no tables
+  cargo xtask merge DIR|FILE... [--out DIR] [--threads N]
+                                join the partial files of shards 0..N-1 (searched
+                                for in the directories given), check they fit, and
+                                print and write the results as `run` would:
+                                bit-identical to one run without --shard
 
 Options of run:
   --seed S          seed of every random number generator (default {DEFAULT_SEED})
@@ -177,6 +193,8 @@ Options of run:
                     experiments or `all`, each gets the keys it declares, and a
                     key no experiment declares is refused
                     (with `all`, --config likewise goes to those that take one)
+  --shard K/N       run shard K of N of one experiment (not with `all` or several
+                    ids); give every shard the same seed, --set and --config
 
 Exit status: 0 done, 1 internal error, 2 bad input (the failing experiment writes nothing).
 `run all` runs the others after a failure and exits 1 if any failed internally, else 2 if any
@@ -552,6 +570,9 @@ fn run_all(exps: &Registry, run: &RunArgs) -> Result<(), Failure> {
     }
     let pool = make_pool(threads)?;
     let out = run.out.clone().unwrap_or_else(default_out);
+    if let (Some(shard), [e], [ctx]) = (run.shard, chosen.as_slice(), contexts.as_slice()) {
+        return run_shard(e, ctx.clone().with_shard(shard), run, &pool, &out);
+    }
     let several = chosen.len() > 1;
     for (i, (e, ctx)) in chosen.iter().zip(&contexts).enumerate() {
         let report = execute(e, ctx, &pool).0?;
@@ -564,6 +585,114 @@ fn run_all(exps: &Registry, run: &RunArgs) -> Result<(), Failure> {
         registry::write_results(&dir, &report)?;
         eprintln!("results: {}", dir.display());
     }
+    Ok(())
+}
+
+/// `run <id> --shard K/N`: runs the experiment in shard mode, discards its report and writes
+/// the recorded trials to `<out>/<id>/partial-K-of-N.json` (through a temporary file renamed
+/// into place; other files of the directory are left alone, so shards may share it).
+fn run_shard(
+    e: &Experiment,
+    ctx: Context,
+    run: &RunArgs,
+    pool: &rayon::ThreadPool,
+    out: &Path,
+) -> Result<(), Failure> {
+    let registry::TrialMode::Shard(shard) = ctx.trial_mode() else {
+        return Err(Failure::Internal(
+            "internal error: a shard run without a shard".into(),
+        ));
+    };
+    execute(e, &ctx, pool).0?;
+    let mut partial = shard::Partial::new(e.id, run.seed, &run.sets, ctx.config(), shard);
+    partial.batches = ctx.recorded();
+    let text = partial.to_json()?;
+    let dir = out.join(e.id);
+    std::fs::create_dir_all(&dir).map_err(|err| {
+        Failure::Internal(format!(
+            "internal error: cannot create {}: {err}",
+            dir.display()
+        ))
+    })?;
+    let path = dir.join(shard::file_name(shard));
+    write_atomically(&path, &text)?;
+    let (mut here, mut whole) = (0, 0);
+    for b in partial.batches.values() {
+        if b.whole {
+            whole += b.values.len();
+        } else {
+            here += b.values.len();
+        }
+    }
+    let plural =
+        |n: usize, one: &str, more: &str| format!("{n} {}", if n == 1 { one } else { more });
+    eprintln!(
+        "partial: {} (shard {shard} of {}: {}, {} computed here{}); join the {} with `cargo xtask merge`",
+        path.display(),
+        e.id,
+        plural(partial.batches.len(), "trial batch", "trial batches"),
+        plural(here, "trial", "trials"),
+        if whole > 0 {
+            format!(", {whole} more in batches every shard runs whole")
+        } else {
+            String::new()
+        },
+        plural(shard.count() as usize, "shard", "shards")
+    );
+    if partial.batches.is_empty() {
+        eprintln!(
+            "note: {} runs no trials through Context::trials: every shard computes all of it, and the merge computes it again",
+            e.id
+        );
+    }
+    Ok(())
+}
+
+/// `merge`: finds and reads the partial files, checks that they come from one sharded command
+/// and cover every shard once, replays the experiment from their records, then prints and
+/// writes its results as `run` would. Nothing is written unless every check passes.
+fn merge(exps: &Registry, m: &MergeArgs) -> Result<(), Failure> {
+    let files = shard::find(&m.inputs)?;
+    let mut parts = Vec::with_capacity(files.len());
+    for f in files {
+        let (partial, shard) = shard::read(&f)?;
+        parts.push((f, partial, shard));
+    }
+    shard::agree(&parts)?;
+    let header = parts
+        .first()
+        .map(|(_, p, _)| p.clone())
+        .ok_or_else(|| Failure::Internal("internal error: no partial file".into()))?;
+    let e = lookup(exps, &header.experiment)?;
+    let records: Vec<registry::ShardRecords> = parts
+        .into_iter()
+        .map(|(f, p, shard)| registry::ShardRecords {
+            source: f.display().to_string(),
+            shard,
+            records: p.batches,
+        })
+        .collect();
+    let merged = registry::merge_records(&records)?;
+    drop(records);
+    let threads = m.threads.unwrap_or_else(default_threads);
+    let ctx = Context::new(e, header.seed, threads, &header.sets, header.config_file())?
+        .with_replay(merged);
+    let pool = make_pool(threads)?;
+    let report = execute(e, &ctx, &pool).0?;
+    if let Some(batch) = ctx.unclaimed().first() {
+        return Err(Failure::Bad(format!(
+            "merge: batch `{batch}`: was recorded by the shards but not asked for by this run of {}: the shards ran different inputs or a different build",
+            e.id
+        )));
+    }
+    print(&report.text())?;
+    let dir = m.out.clone().unwrap_or_else(default_out).join(e.id);
+    registry::write_results(&dir, &report)?;
+    eprintln!(
+        "results: {} (merged from {} shards)",
+        dir.display(),
+        header.shards
+    );
     Ok(())
 }
 
@@ -659,6 +788,7 @@ mod tests {
                 .iter()
                 .map(|(k, v)| ((*k).to_owned(), (*v).to_owned()))
                 .collect(),
+            shard: None,
         }
     }
 

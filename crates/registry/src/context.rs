@@ -1,8 +1,17 @@
-//! What the runner hands an experiment: seed, thread count, parameters and config file.
+//! What the runner hands an experiment: seed, thread count, parameters and config file, and
+//! the way to run trials ([`Context::trials`]) that the runner can shard and replay.
 
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::PathBuf;
 use std::str::FromStr;
+use std::sync::{Mutex, MutexGuard, PoisonError};
 
+use rayon::prelude::*;
+use serde::Serialize;
+use serde::de::DeserializeOwned;
+use serde_json::Value as Json;
+
+use crate::trials::{Batch, Records, Shard};
 use crate::{Experiment, RunError};
 
 /// A config file given with `--config FILE`, already read.
@@ -23,14 +32,59 @@ struct Value {
     overridden: bool,
 }
 
+/// How [`Context::trials`] runs its trials.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TrialMode {
+    /// Every trial is computed (`cargo xtask run`).
+    Normal,
+    /// Only this shard's trials are computed and recorded; the others are `T::default()`, and
+    /// the report is discarded (`cargo xtask run <id> --shard K/N`).
+    Shard(Shard),
+    /// Every trial's value is read from the merged records (`cargo xtask merge`).
+    Replay,
+}
+
+/// Trial batches of one run: the keys asked for so far, and in shard mode what was recorded.
+#[derive(Debug, Default)]
+struct Ledger {
+    /// Batch keys asked for, to refuse a key used twice.
+    claimed: BTreeSet<String>,
+    /// Shard mode: the recorded batches.
+    recorded: Records,
+}
+
 /// What the runner hands an experiment.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub struct Context {
     id: &'static str,
     seed: u64,
     threads: usize,
     params: Vec<Value>,
     config: Option<ConfigFile>,
+    mode: TrialMode,
+    /// Replay mode: the merged records of every shard.
+    replay: Records,
+    ledger: Mutex<Ledger>,
+}
+
+impl Clone for Context {
+    /// A copy with the same settings and a copy of the batches claimed and recorded so far.
+    fn clone(&self) -> Self {
+        let ledger = self.ledger();
+        Context {
+            id: self.id,
+            seed: self.seed,
+            threads: self.threads,
+            params: self.params.clone(),
+            config: self.config.clone(),
+            mode: self.mode,
+            replay: self.replay.clone(),
+            ledger: Mutex::new(Ledger {
+                claimed: ledger.claimed.clone(),
+                recorded: ledger.recorded.clone(),
+            }),
+        }
+    }
 }
 
 impl Context {
@@ -92,7 +146,32 @@ impl Context {
             threads,
             params,
             config,
+            mode: TrialMode::Normal,
+            replay: Records::new(),
+            ledger: Mutex::new(Ledger::default()),
         })
+    }
+
+    /// This context in shard mode: [`Context::trials`] computes and records only `shard`'s
+    /// trials ([`Context::recorded`] returns them after the run).
+    #[must_use]
+    pub fn with_shard(mut self, shard: Shard) -> Context {
+        self.mode = TrialMode::Shard(shard);
+        self
+    }
+
+    /// This context in replay mode: [`Context::trials`] and [`Context::trials_whole`] take every
+    /// value from `records` (the shards' records joined by [`crate::merge_records`]).
+    #[must_use]
+    pub fn with_replay(mut self, records: Records) -> Context {
+        self.mode = TrialMode::Replay;
+        self.replay = records;
+        self
+    }
+
+    /// How trials are run: normally, as one shard, or replayed from records.
+    pub fn trial_mode(&self) -> TrialMode {
+        self.mode
     }
 
     /// Seed for every random number generator of the run (`--seed`).
@@ -166,6 +245,204 @@ impl Context {
     pub fn config(&self) -> Option<&ConfigFile> {
         self.config.as_ref()
     }
+
+    /// Runs trials `0..n` of a batch: `f(t)` for each `t`, in parallel on the caller's rayon
+    /// pool, collected in trial order. This is how an experiment runs its Monte-Carlo trials,
+    /// so that the runner can split them across machines and join them again.
+    ///
+    /// `f(t)` must depend only on the experiment's inputs, the seed and `t` (draw its random
+    /// numbers from `mechanism::trial_rng(seed, t)` or a stream derived from `t`), never on other
+    /// trials or on the thread it runs on.
+    ///
+    /// `batch` names the batch. It must be unique within the run (a key asked for twice is a
+    /// [`RunError::Internal`]) and should spell out everything that determines its trials: the
+    /// cell's parameters (mesh, case, clearance...), not just a counter, so that records of
+    /// different inputs can never be mistaken for each other.
+    ///
+    /// By [`TrialMode`]:
+    /// - normal: every trial is computed;
+    /// - shard `K/N`: only trials with `t % N == K` are computed; each value is recorded (see
+    ///   [`Context::recorded`]) and the others are `T::default()`, so that the experiment can
+    ///   finish (its report is discarded). The rest of the experiment must therefore not fail
+    ///   or panic on default values, and nothing it decides - which later batches it runs, or
+    ///   their keys or sizes - may depend on this batch's values: use
+    ///   [`Context::trials_whole`] for a stage whose results feed the parameters of later
+    ///   stages;
+    /// - replay: every value is read from the merged records; a batch or trial they do not
+    ///   hold is a [`RunError::BadInput`] ("shards do not cover ..."), never a default.
+    ///
+    /// Recorded values go through JSON: finite floats round-trip bit for bit, but NaN and the
+    /// infinities cannot be carried - a field that can hold one must be stored with
+    /// [`crate::f64_bits`]. A value that holds one, or that does not deserialize back to the
+    /// same JSON, is refused when it is recorded ([`RunError::Internal`]).
+    ///
+    /// Errors: the first error of `f` (in normal and shard mode), or the errors above.
+    pub fn trials<T, F>(&self, batch: &str, n: u64, f: F) -> Result<Vec<T>, RunError>
+    where
+        T: Serialize + DeserializeOwned + Send + Clone + Default,
+        F: Fn(u64) -> Result<T, RunError> + Sync + Send,
+    {
+        self.batch(batch, n, false, f)
+    }
+
+    /// Like [`Context::trials`], but never sharded: every shard computes (and records) the
+    /// whole batch, and a replay takes it from the records (checked identical across shards).
+    ///
+    /// Use it for a stage whose results decide what runs next - which cells a later stage
+    /// runs, their parameters, their batch keys or sizes (e.g. rows of one table chosen from
+    /// another's counts) - so that every shard and the merge run the same later batches. Its
+    /// cost is paid by every shard, so keep such stages small; everything else uses
+    /// [`Context::trials`].
+    pub fn trials_whole<T, F>(&self, batch: &str, n: u64, f: F) -> Result<Vec<T>, RunError>
+    where
+        T: Serialize + DeserializeOwned + Send + Clone + Default,
+        F: Fn(u64) -> Result<T, RunError> + Sync + Send,
+    {
+        self.batch(batch, n, true, f)
+    }
+
+    /// The batches recorded so far in shard mode (empty in the other modes).
+    pub fn recorded(&self) -> Records {
+        self.ledger().recorded.clone()
+    }
+
+    /// Replay mode: the batches of the records that the run never asked for (a merge whose
+    /// records came from a different build or different inputs).
+    pub fn unclaimed(&self) -> Vec<String> {
+        let ledger = self.ledger();
+        self.replay
+            .keys()
+            .filter(|k| !ledger.claimed.contains(*k))
+            .cloned()
+            .collect()
+    }
+
+    fn ledger(&self) -> MutexGuard<'_, Ledger> {
+        // A panic while the lock was held cannot leave the ledger half-updated (each update is
+        // one insert), so a poisoned lock is still usable.
+        self.ledger.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+
+    fn batch<T, F>(&self, batch: &str, n: u64, whole: bool, f: F) -> Result<Vec<T>, RunError>
+    where
+        T: Serialize + DeserializeOwned + Send + Clone + Default,
+        F: Fn(u64) -> Result<T, RunError> + Sync + Send,
+    {
+        if !self.ledger().claimed.insert(batch.to_owned()) {
+            return Err(RunError::Internal(format!(
+                "experiment `{}` ran the trial batch `{batch}` twice: batch keys must be unique within a run",
+                self.id
+            )));
+        }
+        match self.mode {
+            TrialMode::Normal => (0..n).into_par_iter().map(&f).collect(),
+            TrialMode::Shard(shard) => {
+                let owns = |t: u64| whole || shard.owns(t);
+                let done: Vec<Option<(T, Json)>> = (0..n)
+                    .into_par_iter()
+                    .map(|t| {
+                        if !owns(t) {
+                            return Ok(None);
+                        }
+                        let value = f(t)?;
+                        let json = encode(batch, t, &value)?;
+                        Ok(Some((value, json)))
+                    })
+                    .collect::<Result<_, RunError>>()?;
+                let mut values = BTreeMap::new();
+                let mut out = Vec::with_capacity(done.len());
+                for (t, d) in (0..n).zip(done) {
+                    match d {
+                        Some((value, json)) => {
+                            values.insert(t, json);
+                            out.push(value);
+                        }
+                        None => out.push(T::default()),
+                    }
+                }
+                self.ledger().recorded.insert(
+                    batch.to_owned(),
+                    Batch {
+                        trials: n,
+                        whole,
+                        values,
+                    },
+                );
+                Ok(out)
+            }
+            TrialMode::Replay => self.replayed(batch, n, whole),
+        }
+    }
+
+    /// The values of `batch` from the merged records.
+    fn replayed<T: DeserializeOwned>(
+        &self,
+        batch: &str,
+        n: u64,
+        whole: bool,
+    ) -> Result<Vec<T>, RunError> {
+        let uncovered = |what: String| RunError::bad("merge", format!("batch `{batch}`"), what);
+        let Some(rec) = self.replay.get(batch) else {
+            return Err(uncovered(format!(
+                "shards do not cover this batch of {n} trials: no shard recorded it (were the shards run with the same build and inputs?)"
+            )));
+        };
+        if rec.trials != n || rec.whole != whole {
+            return Err(uncovered(format!(
+                "shards do not cover this batch: they recorded {} trials{}, the merge asks for {n}{}",
+                rec.trials,
+                if rec.whole { " (whole)" } else { "" },
+                if whole { " (whole)" } else { "" }
+            )));
+        }
+        (0..n)
+            .map(|t| {
+                let json = rec.values.get(&t).ok_or_else(|| {
+                    RunError::bad(
+                        "merge",
+                        format!("batch `{batch}` trial {t}"),
+                        format!("shards do not cover trial {t} of {n}"),
+                    )
+                })?;
+                T::deserialize(json).map_err(|e| {
+                    RunError::bad(
+                        "merge",
+                        format!("batch `{batch}` trial {t}"),
+                        format!("the recorded value does not fit this build: {e}"),
+                    )
+                })
+            })
+            .collect()
+    }
+}
+
+/// `value` as JSON, checked to come back as it went: no non-finite float, and deserializing it
+/// and serializing the result again gives the same JSON.
+fn encode<T: Serialize + DeserializeOwned>(
+    batch: &str,
+    t: u64,
+    value: &T,
+) -> Result<Json, RunError> {
+    let fail = |what: String| {
+        RunError::Internal(format!(
+            "trial {t} of batch `{batch}` cannot be recorded: {what}"
+        ))
+    };
+    crate::finite::check(value).map_err(|e| {
+        fail(format!(
+            "it {e}, which JSON cannot carry (store such a field with registry::f64_bits)"
+        ))
+    })?;
+    let json = serde_json::to_value(value).map_err(|e| fail(e.to_string()))?;
+    let back = T::deserialize(&json).map_err(|e| fail(format!("it does not read back: {e}")))?;
+    let again = serde_json::to_value(&back).map_err(|e| fail(e.to_string()))?;
+    if again != json {
+        return Err(fail(
+            "it does not read back to the same value (a field skipped or renamed one way only?)"
+                .into(),
+        ));
+    }
+    Ok(json)
 }
 
 #[cfg(test)]

@@ -18,6 +18,12 @@
 //! The runner (`cargo xtask`) looks experiments up with [`experiments`], builds a [`Context`]
 //! from the command line, calls [`Experiment::run`], prints [`Report::text`] and stores the
 //! results with [`write_results`].
+//!
+//! Experiments run their Monte-Carlo trials with [`Context::trials`] (or
+//! [`Context::trials_whole`]), so that the runner can split a run into shards
+//! (`cargo xtask run <id> --shard K/N`, [`Context::with_shard`]), join the shards' records
+//! ([`merge_records`]) and replay the experiment from them (`cargo xtask merge`,
+//! [`Context::with_replay`]) with the same results, bit for bit.
 
 use std::collections::BTreeMap;
 
@@ -25,13 +31,16 @@ pub use inventory;
 
 mod context;
 mod error;
+mod finite;
 mod output;
 mod table;
+mod trials;
 
-pub use context::{ConfigFile, Context};
+pub use context::{ConfigFile, Context, TrialMode};
 pub use error::{DuplicateId, RunError};
 pub use output::{Agreement, OutputFile, Report, write_results};
 pub use table::{Table, fmt_f64};
+pub use trials::{Batch, Records, Shard, ShardRecords, f64_bits, merge_records};
 
 /// One parameter of an experiment, settable from the command line with `--set name=value`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

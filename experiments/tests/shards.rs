@@ -1,0 +1,68 @@
+//! Sharded runs of the converted experiments (`failure`, `table1`), joined and replayed through
+//! the registry, give exactly the report of a single run.
+#![allow(clippy::unwrap_used, reason = "tests")]
+
+use registry::{Context, Report, Shard, ShardRecords, merge_records};
+
+fn context(id: &str, sets: &[(&str, &str)]) -> Context {
+    experiments::link();
+    let map = registry::experiments().unwrap();
+    let overrides: Vec<(String, String)> = sets
+        .iter()
+        .map(|(k, v)| ((*k).to_string(), (*v).to_string()))
+        .collect();
+    Context::new(map[id], 5, 2, &overrides, None).unwrap()
+}
+
+fn run(id: &str, ctx: &Context) -> Report {
+    let map = registry::experiments().unwrap();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
+    pool.install(|| (map[id].run)(ctx)).unwrap()
+}
+
+/// A single run, and `n` shards joined (their records sent through JSON text) and replayed.
+fn single_and_merged(id: &str, sets: &[(&str, &str)], n: u64) -> (Report, Report) {
+    let single = run(id, &context(id, sets));
+    let parts: Vec<ShardRecords> = (0..n)
+        .map(|k| {
+            let shard = Shard::new(k, n).unwrap();
+            let ctx = context(id, sets).with_shard(shard);
+            run(id, &ctx);
+            let text = serde_json::to_string(&ctx.recorded()).unwrap();
+            ShardRecords {
+                source: format!("shard {k}"),
+                shard,
+                records: serde_json::from_str(&text).unwrap(),
+            }
+        })
+        .collect();
+    let replay = context(id, sets).with_replay(merge_records(&parts).unwrap());
+    let merged = run(id, &replay);
+    assert!(replay.unclaimed().is_empty());
+    (single, merged)
+}
+
+#[test]
+fn failure_shards_merge_to_the_single_run() {
+    // Case D jams early in almost every run, so this is quick; 7 runs over 3 shards.
+    let (single, merged) = single_and_merged("failure", &[("cases", "D"), ("trials", "7")], 3);
+    assert_eq!(single, merged);
+}
+
+#[test]
+fn table1_shards_merge_to_the_single_run() {
+    let sets = [
+        ("trials", "5"),
+        ("lunar_turns", "0.1"),
+        ("metonic_turns", "0.1"),
+        ("saros_turns", "0.1"),
+        ("games_turns", "0.1"),
+        ("exeligmos_turns", "0.1"),
+        ("samples_per_engagement", "2"),
+    ];
+    let (single, merged) = single_and_merged("table1", &sets, 2);
+    assert_eq!(single, merged);
+}

@@ -1,0 +1,341 @@
+//! Sharded runs: `run <id> --shard K/N` writes a partial file, `merge` finds, reads and checks
+//! the partial files of every shard.
+//!
+//! A partial file, `<out>/<id>/partial-K-of-N.json`, holds what the merge needs to run the
+//! experiment again exactly as the shards did (the experiment id, seed, `--set` overrides and
+//! config file, K and N, the runner's version) and the trial values the shard recorded
+//! ([`registry::Records`]).
+
+use std::collections::BTreeSet;
+use std::fs;
+use std::path::{Path, PathBuf};
+
+use registry::{ConfigFile, Records, RunError, Shard};
+use serde::{Deserialize, Serialize};
+
+/// The `format` field of a partial file.
+pub const FORMAT: &str = "cargo-xtask-partial/1";
+
+/// The runner's version, recorded in each partial file; a merge refuses another one.
+pub const VERSION: &str = env!("CARGO_PKG_VERSION");
+
+/// Directories below a merge input searched for partial files (`shards/3/table5/partial-...`).
+const SEARCH_DEPTH: usize = 4;
+
+/// The config file given to the sharded run, stored whole so that the merge needs no copy.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Config {
+    /// The path as given on the command line.
+    pub path: String,
+    /// Its contents.
+    pub text: String,
+}
+
+/// The contents of a partial file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Partial {
+    /// [`FORMAT`].
+    pub format: String,
+    /// Experiment id.
+    pub experiment: String,
+    /// `--seed`.
+    pub seed: u64,
+    /// `--set KEY=VALUE` overrides (with `--gearing` and `--hypothesis`), in order.
+    pub sets: Vec<(String, String)>,
+    /// `--config`, if given.
+    pub config: Option<Config>,
+    /// K: which shard.
+    pub shard: u64,
+    /// N: how many shards.
+    pub shards: u64,
+    /// [`VERSION`] of the runner that wrote it.
+    pub version: String,
+    /// The trial batches the shard recorded.
+    pub batches: Records,
+}
+
+impl Partial {
+    /// The header of a shard's partial file, before its batches are known.
+    pub fn new(
+        experiment: &str,
+        seed: u64,
+        sets: &[(String, String)],
+        config: Option<&ConfigFile>,
+        shard: Shard,
+    ) -> Partial {
+        Partial {
+            format: FORMAT.into(),
+            experiment: experiment.into(),
+            seed,
+            sets: sets.to_vec(),
+            config: config.map(|c| Config {
+                path: c.path.display().to_string(),
+                text: c.text.clone(),
+            }),
+            shard: shard.index(),
+            shards: shard.count(),
+            version: VERSION.into(),
+            batches: Records::new(),
+        }
+    }
+
+    /// The config file as the experiment's context takes it.
+    pub fn config_file(&self) -> Option<ConfigFile> {
+        self.config.as_ref().map(|c| ConfigFile {
+            path: PathBuf::from(&c.path),
+            text: c.text.clone(),
+        })
+    }
+
+    /// The file's JSON (one line) and a final newline.
+    pub fn to_json(&self) -> Result<String, RunError> {
+        let mut s = serde_json::to_string(self)
+            .map_err(|e| RunError::Internal(format!("cannot write a partial file: {e}")))?;
+        s.push('\n');
+        Ok(s)
+    }
+}
+
+/// `partial-K-of-N.json`.
+pub fn file_name(shard: Shard) -> String {
+    format!("partial-{}-of-{}.json", shard.index(), shard.count())
+}
+
+/// (K, N) of a file named `partial-K-of-N.json`.
+fn parse_name(name: &str) -> Option<(u64, u64)> {
+    let middle = name.strip_prefix("partial-")?.strip_suffix(".json")?;
+    let (k, n) = middle.split_once("-of-")?;
+    let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
+    if !digits(k) || !digits(n) {
+        return None;
+    }
+    Some((k.parse().ok()?, n.parse().ok()?))
+}
+
+/// The partial files named by `inputs`: each file as given, and every `partial-K-of-N.json`
+/// in and below each directory (up to [`SEARCH_DEPTH`] levels), sorted by path; a file reached
+/// twice counts once.
+///
+/// Errors ([`RunError::BadInput`]): an input that does not exist; no partial file at all.
+pub fn find(inputs: &[PathBuf]) -> Result<Vec<PathBuf>, RunError> {
+    let mut files = Vec::new();
+    for input in inputs {
+        let meta = fs::metadata(input).map_err(|e| {
+            RunError::bad(
+                "merge",
+                input.display().to_string(),
+                format!("cannot read: {e}"),
+            )
+        })?;
+        if meta.is_dir() {
+            let mut found = Vec::new();
+            search(input, SEARCH_DEPTH, &mut found)?;
+            found.sort();
+            files.extend(found);
+        } else {
+            files.push(input.clone());
+        }
+    }
+    let mut seen = BTreeSet::new();
+    files.retain(|f| seen.insert(fs::canonicalize(f).unwrap_or_else(|_| f.clone())));
+    if files.is_empty() {
+        let given: Vec<String> = inputs.iter().map(|p| p.display().to_string()).collect();
+        return Err(RunError::bad(
+            "merge",
+            given.join(" "),
+            "no partial files (partial-K-of-N.json, written by `cargo xtask run <id> --shard K/N`) found",
+        ));
+    }
+    Ok(files)
+}
+
+fn search(dir: &Path, depth: usize, found: &mut Vec<PathBuf>) -> Result<(), RunError> {
+    let entries = fs::read_dir(dir).map_err(|e| {
+        RunError::bad(
+            "merge",
+            dir.display().to_string(),
+            format!("cannot read: {e}"),
+        )
+    })?;
+    for entry in entries {
+        let entry = entry.map_err(|e| {
+            RunError::bad(
+                "merge",
+                dir.display().to_string(),
+                format!("cannot read: {e}"),
+            )
+        })?;
+        let path = entry.path();
+        let Ok(kind) = entry.file_type() else {
+            continue;
+        };
+        if kind.is_dir() {
+            if depth > 0 {
+                search(&path, depth - 1, found)?;
+            }
+        } else if parse_name(&entry.file_name().to_string_lossy()).is_some() {
+            found.push(path);
+        }
+    }
+    Ok(())
+}
+
+/// Reads and checks one partial file: its format, the runner's version, K < N, and that its
+/// name (if it is `partial-K-of-N.json`) says the shard it holds.
+pub fn read(path: &Path) -> Result<(Partial, Shard), RunError> {
+    let source = path.display().to_string();
+    let text = fs::read_to_string(path)
+        .map_err(|e| RunError::bad(&source, "file", format!("cannot read: {e}")))?;
+    let partial: Partial = serde_json::from_str(&text).map_err(|e| {
+        RunError::bad(
+            &source,
+            "contents",
+            format!(
+                "is not a partial file written by `cargo xtask run <id> --shard K/N` (damaged or truncated?): {e}"
+            ),
+        )
+    })?;
+    if partial.format != FORMAT {
+        return Err(RunError::bad(
+            &source,
+            "format",
+            format!("must be `{FORMAT}` (got `{}`)", partial.format),
+        ));
+    }
+    if partial.version != VERSION {
+        return Err(RunError::bad(
+            &source,
+            "version",
+            format!(
+                "was written by xtask {}, this is {VERSION}: merge with the build that ran the shards",
+                partial.version
+            ),
+        ));
+    }
+    let shard = Shard::new(partial.shard, partial.shards).map_err(|_| {
+        RunError::bad(
+            &source,
+            "shard",
+            format!(
+                "{}/{} is not a shard K/N with K < N",
+                partial.shard, partial.shards
+            ),
+        )
+    })?;
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    if let Some((k, n)) = parse_name(&name)
+        && (k, n) != (shard.index(), shard.count())
+    {
+        return Err(RunError::bad(
+            &source,
+            "shard",
+            format!("the file name says shard {k}/{n}, but the file holds shard {shard}"),
+        ));
+    }
+    Ok((partial, shard))
+}
+
+/// Every partial file comes from the same sharded command as the first: same experiment, seed,
+/// `--set` overrides, config file and number of shards.
+pub fn agree(parts: &[(PathBuf, Partial, Shard)]) -> Result<(), RunError> {
+    let Some((first_path, first, _)) = parts.first() else {
+        return Ok(());
+    };
+    for (path, p, _) in &parts[1..] {
+        let differ = |field: &str, this: String, that: String| {
+            RunError::bad(
+                path.display().to_string(),
+                field,
+                format!(
+                    "is {this}, but {} has {that}: all shards must come from the same `cargo xtask run <id> --shard K/N` command with K from 0 to N-1",
+                    first_path.display()
+                ),
+            )
+        };
+        if p.experiment != first.experiment {
+            return Err(differ(
+                "experiment",
+                format!("`{}`", p.experiment),
+                format!("`{}`", first.experiment),
+            ));
+        }
+        if p.seed != first.seed {
+            return Err(differ("seed", p.seed.to_string(), first.seed.to_string()));
+        }
+        if p.sets != first.sets {
+            return Err(differ("--set", sets_text(&p.sets), sets_text(&first.sets)));
+        }
+        if p.config != first.config {
+            let text = |c: &Option<Config>| {
+                c.as_ref().map_or_else(
+                    || "none".to_string(),
+                    |c| format!("`{}` ({} bytes)", c.path, c.text.len()),
+                )
+            };
+            return Err(differ("--config", text(&p.config), text(&first.config)));
+        }
+        if p.shards != first.shards {
+            return Err(differ(
+                "N (number of shards)",
+                p.shards.to_string(),
+                first.shards.to_string(),
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn sets_text(sets: &[(String, String)]) -> String {
+    if sets.is_empty() {
+        "none".into()
+    } else {
+        let s: Vec<String> = sets.iter().map(|(k, v)| format!("{k}={v}")).collect();
+        format!("`{}`", s.join(" "))
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names() {
+        let s = Shard::new(3, 12).unwrap();
+        assert_eq!(file_name(s), "partial-3-of-12.json");
+        assert_eq!(parse_name(&file_name(s)), Some((3, 12)));
+        for bad in [
+            "partial-3-of-12.json.tmp",
+            ".partial-3-of-12.json.tmp-5",
+            "partial--of-2.json",
+            "partial-a-of-2.json",
+            "partial-1-of-+2.json",
+            "table.md",
+        ] {
+            assert_eq!(parse_name(bad), None, "{bad}");
+        }
+    }
+
+    #[test]
+    fn partials_round_trip() {
+        let mut p = Partial::new(
+            "table1",
+            7,
+            &[("trials".into(), "4".into())],
+            Some(&ConfigFile {
+                path: "c.ron".into(),
+                text: "(x: 1)\n".into(),
+            }),
+            Shard::new(1, 2).unwrap(),
+        );
+        p.batches.insert("b".into(), registry::Batch::default());
+        let back: Partial = serde_json::from_str(&p.to_json().unwrap()).unwrap();
+        assert_eq!(back, p);
+        assert_eq!(back.config_file().unwrap().text, "(x: 1)\n");
+    }
+}

@@ -1,0 +1,424 @@
+//! `run <id> --shard K/N` and `merge` on the command line: a sharded, merged run writes exactly
+//! what a single run writes, and a merge refuses partial files that do not fit, writing nothing.
+//! Everything runs reduced experiments (a fraction of a second each).
+
+#![allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
+
+use std::collections::BTreeMap;
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn xtask(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_xtask"))
+        .args(args)
+        .env_remove("RUST_LOG")
+        .output()
+        .unwrap()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// A fresh scratch directory under the system temp dir, removed on drop.
+struct Scratch(PathBuf);
+
+impl Scratch {
+    fn new(tag: &str) -> Self {
+        let nanos = std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .unwrap()
+            .as_nanos();
+        let p =
+            std::env::temp_dir().join(format!("xtask-shard-{tag}-{}-{nanos}", std::process::id()));
+        fs::create_dir_all(&p).unwrap();
+        Scratch(p)
+    }
+    fn path(&self, rel: &str) -> String {
+        self.0.join(rel).to_str().unwrap().to_owned()
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = fs::remove_dir_all(&self.0);
+    }
+}
+
+/// A reduced table1: 5 trials of short runs with few samples.
+const TABLE1: &[&str] = &[
+    "table1",
+    "--set",
+    "trials=5",
+    "--set",
+    "lunar_turns=0.2",
+    "--set",
+    "metonic_turns=0.2",
+    "--set",
+    "saros_turns=0.2",
+    "--set",
+    "games_turns=0.2",
+    "--set",
+    "exeligmos_turns=0.2",
+    "--set",
+    "samples_per_engagement=4",
+];
+
+/// A reduced failure study: Case D (jams early) and Case C, 5 runs each.
+const FAILURE: &[&str] = &["failure", "--set", "cases=D,C", "--set", "trials=5"];
+
+/// `run <experiment...> <extra...>`, which must succeed; returns its stdout.
+fn run(experiment: &[&str], extra: &[&str]) -> Vec<u8> {
+    let mut args = vec!["run"];
+    args.extend_from_slice(experiment);
+    args.extend_from_slice(extra);
+    let o = xtask(&args);
+    assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+    o.stdout
+}
+
+/// `merge <inputs...> --out <out>`, which must succeed; returns its stdout.
+fn merge(inputs: &[String], out: &str) -> Vec<u8> {
+    let mut args = vec!["merge"];
+    args.extend(inputs.iter().map(String::as_str));
+    args.extend(["--out", out]);
+    let o = xtask(&args);
+    assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+    o.stdout
+}
+
+/// Every file of a results directory, by name.
+fn files(dir: &Path) -> BTreeMap<String, Vec<u8>> {
+    fs::read_dir(dir)
+        .unwrap()
+        .map(|e| {
+            let e = e.unwrap();
+            (
+                e.file_name().to_string_lossy().into_owned(),
+                fs::read(e.path()).unwrap(),
+            )
+        })
+        .collect()
+}
+
+fn assert_same_results(a: &Path, b: &Path) {
+    let (fa, fb) = (files(a), files(b));
+    assert_eq!(
+        fa.keys().collect::<Vec<_>>(),
+        fb.keys().collect::<Vec<_>>(),
+        "{} and {} hold different files",
+        a.display(),
+        b.display()
+    );
+    for (name, bytes) in &fa {
+        assert!(
+            bytes == &fb[name],
+            "{name} differs between {} and {}",
+            a.display(),
+            b.display()
+        );
+    }
+    assert!(fa.contains_key("table.md") && fa.keys().any(|n| n.ends_with(".csv")));
+}
+
+/// A single run, then N = 2 shards in their own directories and N = 3 shards sharing one
+/// directory, each merged: the same bytes everywhere.
+fn shards_merge_to_the_single_run(experiment: &[&str]) {
+    let id = experiment[0];
+    let s = Scratch::new(id);
+    let printed = run(experiment, &["--out", &s.path("single")]);
+
+    for k in 0..2 {
+        run(
+            experiment,
+            &[
+                "--shard",
+                &format!("{k}/2"),
+                "--out",
+                &s.path(&format!("two/{k}")),
+            ],
+        );
+    }
+    assert!(
+        !s.0.join(format!("two/0/{id}/table.md")).exists(),
+        "a shard writes no tables"
+    );
+    let merged = merge(&[s.path("two/0"), s.path("two/1")], &s.path("merged2"));
+    assert_eq!(printed, merged, "merge prints what run prints");
+    assert_same_results(&s.0.join("single").join(id), &s.0.join("merged2").join(id));
+
+    for k in [2, 0, 1] {
+        run(
+            experiment,
+            &["--shard", &format!("{k}/3"), "--out", &s.path("three")],
+        );
+    }
+    let mut names: Vec<String> = fs::read_dir(s.0.join("three").join(id))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        [
+            "partial-0-of-3.json",
+            "partial-1-of-3.json",
+            "partial-2-of-3.json"
+        ]
+    );
+    let merged = merge(&[s.path("three")], &s.path("merged3"));
+    assert_eq!(printed, merged);
+    assert_same_results(&s.0.join("single").join(id), &s.0.join("merged3").join(id));
+}
+
+#[test]
+fn table1_shards_merge_to_the_single_run_byte_for_byte() {
+    shards_merge_to_the_single_run(TABLE1);
+}
+
+#[test]
+fn failure_shards_merge_to_the_single_run_byte_for_byte() {
+    // Its trial values are floats (days), so this also checks they survive the partial files.
+    shards_merge_to_the_single_run(FAILURE);
+}
+
+#[test]
+fn one_and_two_threads_write_the_same_results() {
+    let s = Scratch::new("threads");
+    let one = run(TABLE1, &["--threads", "1", "--out", &s.path("one")]);
+    let two = run(TABLE1, &["--threads", "2", "--out", &s.path("two")]);
+    assert_eq!(one, two);
+    assert_same_results(&s.0.join("one/table1"), &s.0.join("two/table1"));
+    // A merge with one thread of shards run with two.
+    for k in 0..2 {
+        run(
+            TABLE1,
+            &[
+                "--threads",
+                "2",
+                "--shard",
+                &format!("{k}/2"),
+                "--out",
+                &s.path("shards"),
+            ],
+        );
+    }
+    let o = xtask(&[
+        "merge",
+        &s.path("shards"),
+        "--threads",
+        "1",
+        "--out",
+        &s.path("merged"),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_same_results(&s.0.join("one/table1"), &s.0.join("merged/table1"));
+}
+
+/// `merge <inputs> --out <out>` must exit 2 naming every word of `words`, print nothing and
+/// write nothing.
+fn refused(s: &Scratch, inputs: &[String], words: &[&str]) {
+    let out = s.0.join("never");
+    let mut args = vec!["merge"];
+    args.extend(inputs.iter().map(String::as_str));
+    args.extend(["--out", out.to_str().unwrap()]);
+    let o = xtask(&args);
+    assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+    let err = stderr(&o);
+    for w in words {
+        assert!(err.contains(w), "{args:?}: missing {w:?} in: {err}");
+    }
+    assert_eq!(err.lines().count(), 1, "one line: {err}");
+    assert!(o.stdout.is_empty(), "{args:?} printed tables");
+    assert!(!out.exists(), "{args:?} wrote results");
+}
+
+#[test]
+fn merge_refuses_partial_files_that_do_not_fit() {
+    let s = Scratch::new("refuse");
+    for k in 0..3 {
+        run(
+            TABLE1,
+            &[
+                "--shard",
+                &format!("{k}/3"),
+                "--out",
+                &s.path(&format!("ok/{k}")),
+            ],
+        );
+    }
+    let ok = |k: u64| s.path(&format!("ok/{k}"));
+    let file = |dir: &str, k: u64, n: u64| format!("{dir}/table1/partial-{k}-of-{n}.json");
+    let shard1 = file(&ok(1), 1, 3);
+
+    // A shard missing.
+    refused(
+        &s,
+        &[ok(0), ok(2)],
+        &["shard 1/3", "missing", "exactly once"],
+    );
+    // A shard given twice (a copy elsewhere).
+    fs::create_dir_all(s.0.join("dup")).unwrap();
+    fs::copy(&shard1, s.0.join("dup/partial-1-of-3.json")).unwrap();
+    refused(
+        &s,
+        &[ok(0), ok(1), ok(2), s.path("dup")],
+        &[
+            "partial-1-of-3.json",
+            "shard 1/3",
+            "given twice",
+            "exactly once",
+        ],
+    );
+    // Shards of different seeds.
+    run(
+        TABLE1,
+        &["--seed", "9", "--shard", "1/3", "--out", &s.path("seed9")],
+    );
+    refused(
+        &s,
+        &[ok(0), s.path("seed9"), ok(2)],
+        &[&file(&s.path("seed9"), 1, 3), "seed", "is 9", "2025"],
+    );
+    // Shards of different parameters.
+    let mut more: Vec<&str> = TABLE1.to_vec();
+    more[2] = "trials=6";
+    run(&more, &["--shard", "1/3", "--out", &s.path("trials6")]);
+    refused(
+        &s,
+        &[ok(0), s.path("trials6"), ok(2)],
+        &["--set", "trials=6", "trials=5"],
+    );
+    // Shards of different experiments.
+    run(
+        &["failure", "--set", "cases=D", "--set", "trials=2"],
+        &["--shard", "1/3", "--out", &s.path("failure")],
+    );
+    refused(
+        &s,
+        &[ok(0), s.path("failure"), ok(2)],
+        &[
+            "failure/partial-1-of-3.json",
+            "experiment",
+            "`failure`",
+            "`table1`",
+        ],
+    );
+    // Different numbers of shards.
+    run(TABLE1, &["--shard", "1/2", "--out", &s.path("of2")]);
+    refused(
+        &s,
+        &[ok(0), s.path("of2"), ok(2)],
+        &["partial-1-of-2.json", "N (number of shards)"],
+    );
+    // A corrupt (truncated) partial file.
+    let text = fs::read_to_string(&shard1).unwrap();
+    fs::create_dir_all(s.0.join("cut")).unwrap();
+    let cut = s.path("cut/partial-1-of-3.json");
+    fs::write(&cut, &text[..text.len() / 2]).unwrap();
+    refused(
+        &s,
+        &[ok(0), cut.clone(), ok(2)],
+        &[&cut, "contents", "not a partial file"],
+    );
+    // A partial file whose records lack a trial.
+    let mut json: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let batch = json["batches"]
+        .as_object_mut()
+        .unwrap()
+        .values_mut()
+        .next()
+        .unwrap();
+    batch["values"].as_object_mut().unwrap().remove("1");
+    let holed = s.path("cut/holed.json");
+    fs::write(&holed, json.to_string()).unwrap();
+    refused(
+        &s,
+        &[ok(0), holed.clone(), ok(2)],
+        &[&holed, "trial 1", "missing"],
+    );
+    // A file named for one shard holding another.
+    let renamed = s.path("cut/partial-2-of-3.json");
+    fs::write(&renamed, &text).unwrap();
+    refused(
+        &s,
+        std::slice::from_ref(&renamed),
+        &[&renamed, "file name says shard 2/3"],
+    );
+    // Nothing to merge.
+    fs::create_dir_all(s.0.join("empty")).unwrap();
+    refused(&s, &[s.path("empty")], &["no partial files"]);
+    refused(
+        &s,
+        &[s.path("no-such-dir")],
+        &["no-such-dir", "cannot read"],
+    );
+}
+
+#[test]
+fn bad_shard_flags_exit_2_and_write_nothing() {
+    let s = Scratch::new("flags");
+    let out = s.path("out");
+    for (args, usage) in [
+        (
+            &["run", "table1", "--shard", "3/3", "--out", &out][..],
+            false,
+        ),
+        (&["run", "table1", "--shard", "0/0", "--out", &out], false),
+        (&["run", "table1", "--shard", "1", "--out", &out], false),
+        (&["run", "table1", "--shard", "a/b", "--out", &out], false),
+        (&["run", "all", "--shard", "0/2", "--out", &out], true),
+        (
+            &["run", "table1", "fig2", "--shard", "0/2", "--out", &out],
+            true,
+        ),
+        (
+            &[
+                "run",
+                "table1",
+                "--shard",
+                "0/2",
+                "--set",
+                "nonsense=1",
+                "--out",
+                &out,
+            ],
+            false,
+        ),
+        (&["merge"], true),
+        (&["merge", &out, "--seed", "1"], true),
+    ] {
+        let o = xtask(args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert_eq!(
+            stderr(&o).contains("Usage:"),
+            usage,
+            "{args:?}: {}",
+            stderr(&o)
+        );
+        assert!(o.stdout.is_empty());
+        assert!(!Path::new(&out).exists(), "{args:?} wrote something");
+    }
+    let o = xtask(&["run", "table1", "--shard", "3/3"]);
+    assert!(
+        stderr(&o).contains("--shard: 3/3: K must be from 0 to N-1 = 2"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
+fn usage_describes_shards_and_merge() {
+    let o = xtask(&[]);
+    assert!(o.status.success());
+    let text = String::from_utf8_lossy(&o.stdout);
+    for word in [
+        "--shard K/N",
+        "cargo xtask merge",
+        "partial-K-of-N.json",
+        "bit-identical",
+    ] {
+        assert!(text.contains(word), "missing {word:?} in:\n{text}");
+    }
+}
