@@ -18,6 +18,9 @@ mod pair_jams;
 mod table1;
 mod table2;
 mod table3;
+mod table4;
+mod table5;
+mod tolerance;
 
 /// Does nothing; calling it makes a binary link this crate, and with it every experiment it registers.
 pub fn link() {}

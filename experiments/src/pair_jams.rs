@@ -20,7 +20,7 @@ use hypotheses::{Hypothesis, Params};
 use mechanism::trial_rng;
 use rand::Rng;
 use rayon::prelude::*;
-use registry::RunError;
+use registry::{RunError, fmt_f64};
 use stats::{Proportion, wilson95};
 use train::Gearing;
 
@@ -392,6 +392,20 @@ pub fn csv_columns(c: &Counts, paper: (Option<u64>, Option<u64>)) -> String {
 pub const CSV_COLUMNS: &str =
     "trials,jams,jam_lo,jam_hi,paper_jams,disengagements,dis_lo,dis_hi,paper_disengagements";
 
+/// A grid value as printed and as keyed in `paper.ron`: at least `min_decimals` decimals, more
+/// if needed to give the value back exactly (0.04 → `0.040` with 3, 0.0375 → `0.0375`).
+pub fn label(v: f64, min_decimals: usize) -> String {
+    for d in min_decimals..=12 {
+        let s = fmt_f64(v, d);
+        if s.parse::<f64>()
+            .is_ok_and(|x| (x - v).abs() <= 1e-12 * v.abs().max(1.0))
+        {
+            return s;
+        }
+    }
+    v.to_string()
+}
+
 #[cfg(test)]
 mod tests {
     #![allow(clippy::unwrap_used, reason = "tests")]
@@ -464,6 +478,14 @@ mod tests {
         assert_eq!(second, rb);
         assert_eq!(rb[0].trials, 3);
         assert_eq!(rb[0].engagements, 3 * 53); // m2-n1: 15 and 53 teeth
+    }
+
+    #[test]
+    fn labels_keep_the_value() {
+        assert_eq!(label(0.04, 3), "0.040");
+        assert_eq!(label(0.0375, 3), "0.0375");
+        assert_eq!(label(1.0, 1), "1.0");
+        assert_eq!(label(40.0, 0), "40");
     }
 
     #[test]
