@@ -20,6 +20,7 @@ mod table2;
 mod table3;
 mod table4;
 mod table5;
+mod table_i;
 mod tolerance;
 
 /// Does nothing; calling it makes a binary link this crate, and with it every experiment it registers.
