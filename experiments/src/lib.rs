@@ -20,6 +20,7 @@ mod table2;
 mod table3;
 mod table4;
 mod table5;
+mod table6;
 mod table_i;
 mod tolerance;
 
