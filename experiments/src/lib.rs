@@ -10,6 +10,7 @@ mod fig2;
 mod fig3;
 mod fig4;
 mod fig5;
+mod fig6;
 mod fig_iv;
 mod gearing;
 mod limits;
