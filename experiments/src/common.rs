@@ -143,3 +143,99 @@ pub fn csv(header: &[&str], rows: impl Iterator<Item = Vec<f64>>, decimals: usiz
     }
     out
 }
+
+/// A chart of values by category (e.g. one per gear) as SVG text: the categories along the x
+/// axis, one marker per value, a marker shape and colour per series (circle, triangle, cross...),
+/// and a legend. `series` points are (category index, value); a category with no value in a
+/// series simply has no marker.
+pub fn category_plot(
+    title: &str,
+    categories: &[String],
+    x_label: &str,
+    y_label: &str,
+    series: &[Series<'_>],
+) -> Result<String, RunError> {
+    let values = series.iter().flat_map(|s| s.points.iter().map(|p| p.1));
+    let (mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY);
+    for y in values {
+        y0 = y0.min(y);
+        y1 = y1.max(y);
+    }
+    if y0 > y1 {
+        (y0, y1) = (0.0, 1.0);
+    }
+    let pad = ((y1 - y0) * 0.1).max(1e-3);
+    let (y0, y1) = ((y0 - pad).max(0.0), y1 + pad);
+    let n = categories.len().max(1) as i32;
+    let colours = [BLUE, RED, BLACK, GREEN, MAGENTA];
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (1000, 480)).into_drawing_area();
+        let plot_err = |e: &dyn std::fmt::Display| RunError::Internal(format!("plot {title}: {e}"));
+        root.fill(&WHITE).map_err(|e| plot_err(&e))?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 18))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(70)
+            .build_cartesian_2d((0..n).into_segmented(), y0..y1)
+            .map_err(|e| plot_err(&e))?;
+        let name = |v: &SegmentValue<i32>| match v {
+            SegmentValue::CenterOf(i) | SegmentValue::Exact(i) => usize::try_from(*i)
+                .ok()
+                .and_then(|i| categories.get(i))
+                .cloned()
+                .unwrap_or_default(),
+            SegmentValue::Last => String::new(),
+        };
+        chart
+            .configure_mesh()
+            .x_desc(x_label)
+            .y_desc(y_label)
+            .x_labels(categories.len() + 1)
+            .x_label_formatter(&name)
+            .disable_x_mesh()
+            .draw()
+            .map_err(|e| plot_err(&e))?;
+        for (k, s) in series.iter().enumerate() {
+            let colour = colours[k % colours.len()];
+            let at = |x: f64, y: f64| (SegmentValue::CenterOf(x.round() as i32), y);
+            let style = colour.stroke_width(2);
+            let drawn = match k % 3 {
+                0 => chart.draw_series(
+                    s.points
+                        .iter()
+                        .map(|&(x, y)| Circle::new(at(x, y), 5, colour.filled())),
+                ),
+                1 => chart.draw_series(
+                    s.points
+                        .iter()
+                        .map(|&(x, y)| TriangleMarker::new(at(x, y), 7, style)),
+                ),
+                _ => chart.draw_series(
+                    s.points
+                        .iter()
+                        .map(|&(x, y)| Cross::new(at(x, y), 6, style)),
+                ),
+            };
+            let shape = k % 3;
+            drawn.map_err(|e| plot_err(&e))?.label(s.label).legend(
+                move |(x, y)| -> DynElement<'static, SVGBackend<'_>, (i32, i32)> {
+                    match shape {
+                        0 => Circle::new((x + 10, y), 5, colour.filled()).into_dyn(),
+                        1 => TriangleMarker::new((x + 10, y), 7, colour.stroke_width(2)).into_dyn(),
+                        _ => Cross::new((x + 10, y), 6, colour.stroke_width(2)).into_dyn(),
+                    }
+                },
+            );
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .draw()
+            .map_err(|e| plot_err(&e))?;
+        root.present().map_err(|e| plot_err(&e))?;
+    }
+    Ok(svg)
+}

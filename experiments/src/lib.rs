@@ -11,6 +11,7 @@ mod fig2;
 mod fig3;
 mod fig4;
 mod fig5;
+mod fig6;
 mod fig_iv;
 mod gearing;
 mod limits;
@@ -19,6 +20,11 @@ mod pair_jams;
 mod table1;
 mod table2;
 mod table3;
+mod table4;
+mod table5;
+mod table6;
+mod table_i;
+mod tolerance;
 
 /// Does nothing; calling it makes a binary link this crate, and with it every experiment it registers.
 pub fn link() {}

@@ -1,87 +1,499 @@
 //! The paper's jam protocol for one mesh on its own: each trial draws both gears' errors and an
 //! initial angle, runs one full turn of the gear with more teeth, and notes whether it jammed and
 //! whether it disengaged at least once.
+//!
+//! [`run_cells`] is the one place where such pair trials run (Tables 3, 4, 5, I and the
+//! tolerances of Table 6 and Figure 6 all go through it). A trial's random stream is derived from
+//! the *content* of its cell (mesh, hypothesis, parameter values, h, G) and the trial index, never
+//! from the cell's position in a table, so the same cell gives the same counts in every
+//! experiment; a process-wide cache then lets an experiment reuse cells another one has run
+//! (`cargo xtask run all`), with the same bits as running them again.
 
+use std::collections::HashMap;
 use std::f64::consts::TAU;
+use std::fmt::Write as _;
+use std::sync::{Mutex, OnceLock};
 
 use contact::{Mesh, Start};
 use geometry::Gear;
 use hypotheses::{Hypothesis, Params};
 use mechanism::trial_rng;
 use rand::Rng;
-use registry::RunError;
+use rayon::prelude::*;
+use registry::{RunError, fmt_f64};
+use stats::{Proportion, wilson95};
 use train::Gearing;
 
 use crate::errors;
 
+/// Trials per cell in the paper's Tables 3, 4, 5 and I: its counts are out of this.
+pub const PAPER_TRIALS: u64 = 200;
+
 /// One mesh under one set of errors: what a cell of Tables 3-5 and I needs.
-pub struct Cell<'a> {
+#[derive(Clone)]
+pub struct CellSpec {
     /// Mesh label.
-    pub mesh: &'a str,
-    /// Error hypothesis and its parameters.
-    pub hypothesis: &'a dyn Hypothesis,
-    /// Parameters of the hypothesis.
-    pub params: &'a Params,
+    pub mesh: String,
+    /// Error hypothesis.
+    pub hypothesis: &'static dyn Hypothesis,
+    /// Parameters of the hypothesis (every declared one has a value).
+    pub params: Params,
     /// Tooth height h (mm).
     pub tooth_height: f64,
     /// Clearance G (% of h).
     pub clearance: f64,
-    /// Index of the cell, which selects its RNG streams.
-    pub index: u64,
 }
 
-/// (jammed at least once, disengaged at least once) for trial `t` of `cell`. Gears whose bodies
-/// would overlap at every angle (a large eccentricity at a small clearance) cannot turn: a jam.
-pub fn trial(g: &Gearing, cell: &Cell<'_>, seed: u64, t: u64) -> Result<(bool, bool), RunError> {
-    let m = g.mesh(cell.mesh).ok_or_else(|| {
+impl CellSpec {
+    /// The cell's content as one line of text, e.g.
+    /// `mesh=b2-c1;hypothesis=edmunds-split;random=0.04;split=0.5;systematic=0.0;h=1.1;G=40.0`:
+    /// parameters sorted by name, numbers in Rust's shortest round-trip form (so two cells have
+    /// the same text exactly when they hold the same values). It names the cell's random streams
+    /// and its cache entry.
+    pub fn canonical(&self) -> String {
+        let mut s = format!("mesh={};hypothesis={}", self.mesh, self.hypothesis.name());
+        for (k, v) in self.params.iter() {
+            let _ = write!(s, ";{k}={v:?}");
+        }
+        let _ = write!(s, ";h={:?};G={:?}", self.tooth_height, self.clearance);
+        s
+    }
+}
+
+/// What the trials of one cell gave.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Counts {
+    /// Trials with at least one jam.
+    pub jams: u64,
+    /// Trials with at least one disengagement.
+    pub disengagements: u64,
+    /// Trials run.
+    pub trials: u64,
+    /// Tooth engagements simulated: each trial engages every tooth of the larger gear once.
+    pub engagements: u64,
+}
+
+impl Counts {
+    /// 95 % Wilson interval of the jam count.
+    pub fn jam_interval(&self) -> Proportion {
+        wilson95(self.jams, self.trials)
+    }
+
+    /// 95 % Wilson interval of the disengagement count.
+    pub fn dis_interval(&self) -> Proportion {
+        wilson95(self.disengagements, self.trials)
+    }
+}
+
+const FNV_OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
+const FNV_PRIME: u64 = 0x0000_0100_0000_01b3;
+
+/// 64-bit FNV-1a of `bytes`, continuing from `hash` (start from [`fnv1a64`]'s offset basis).
+/// Stable across Rust versions and platforms, unlike `std`'s `DefaultHasher`.
+fn fnv1a_from(mut hash: u64, bytes: &[u8]) -> u64 {
+    for &b in bytes {
+        hash ^= u64::from(b);
+        hash = hash.wrapping_mul(FNV_PRIME);
+    }
+    hash
+}
+
+/// 64-bit FNV-1a hash of `bytes`.
+pub fn fnv1a64(bytes: &[u8]) -> u64 {
+    fnv1a_from(FNV_OFFSET, bytes)
+}
+
+/// The RNG stream of trial `t` of the cell whose canonical text is `canonical`: FNV-1a of the
+/// text, continued over the trial index's eight little-endian bytes.
+pub fn stream(canonical: &str, t: u64) -> u64 {
+    fnv1a_from(fnv1a64(canonical.as_bytes()), &t.to_le_bytes())
+}
+
+/// A cell checked and sized, ready for its trials.
+struct Prepared<'a> {
+    spec: &'a CellSpec,
+    canonical: String,
+    driver_name: String,
+    driven_name: String,
+    driver: Gear,
+    driven: Gear,
+    centre_distance: f64,
+    /// Driver rotation for one full turn of the gear with more teeth.
+    turn: f64,
+    larger_teeth: u64,
+}
+
+fn prepare<'a>(g: &Gearing, spec: &'a CellSpec) -> Result<Prepared<'a>, RunError> {
+    let m = g.mesh(&spec.mesh).ok_or_else(|| {
         RunError::bad(
             "--set",
             "mesh",
-            format!("no mesh `{}` in the gearing", cell.mesh),
+            format!("no mesh `{}` in the gearing", spec.mesh),
         )
     })?;
     let geo = g
-        .mesh_geometry(cell.mesh, cell.tooth_height, cell.clearance)
+        .mesh_geometry(&spec.mesh, spec.tooth_height, spec.clearance)
         .ok_or_else(|| {
-            RunError::bad("gearing", format!("mesh {}", cell.mesh), "cannot be sized")
+            RunError::bad("gearing", format!("mesh {}", spec.mesh), "cannot be sized")
         })?;
-    let h = cell.tooth_height;
+    let h = spec.tooth_height;
     let bad = |e: geometry::GeometryError| {
-        RunError::bad("gearing", format!("mesh {}", cell.mesh), e.to_string())
+        RunError::bad("gearing", format!("mesh {}", spec.mesh), e.to_string())
     };
-    let ideal_driver = Gear::ideal(
+    let driver = Gear::ideal(
         geo.driver_teeth as usize,
         geo.driver_tip_radius,
         geo.driver_tip_radius - h,
     )
     .map_err(bad)?;
-    let ideal_driven = Gear::ideal(
+    let driven = Gear::ideal(
         geo.driven_teeth as usize,
         geo.driven_tip_radius,
         geo.driven_tip_radius - h,
     )
     .map_err(bad)?;
-    // One stream per (cell, trial): both gears' errors, then the initial angle.
-    let mut rng = trial_rng(seed, (cell.index << 32) | t);
+    let larger = geo.driver_teeth.max(geo.driven_teeth);
+    Ok(Prepared {
+        spec,
+        canonical: spec.canonical(),
+        driver_name: m.driver.clone(),
+        driven_name: m.driven.clone(),
+        driver,
+        driven,
+        centre_distance: geo.centre_distance,
+        turn: TAU * f64::from(larger) / f64::from(geo.driver_teeth),
+        larger_teeth: u64::from(larger),
+    })
+}
+
+/// (jammed at least once, disengaged at least once) for trial `t` of a cell. Gears whose bodies
+/// would overlap at every angle (a large eccentricity at a small clearance) cannot turn: a jam.
+fn trial(p: &Prepared<'_>, seed: u64, t: u64) -> Result<(bool, bool), RunError> {
+    // One stream per (cell content, trial): both gears' errors, then the initial angle.
+    let mut rng = trial_rng(seed, stream(&p.canonical, t));
+    let spec = p.spec;
     let driver = errors::make(
-        cell.hypothesis,
-        &ideal_driver,
-        &m.driver,
-        cell.params,
+        spec.hypothesis,
+        &p.driver,
+        &p.driver_name,
+        &spec.params,
         &mut rng,
     )?;
     let driven = errors::make(
-        cell.hypothesis,
-        &ideal_driven,
-        &m.driven,
-        cell.params,
+        spec.hypothesis,
+        &p.driven,
+        &p.driven_name,
+        &spec.params,
         &mut rng,
     )?;
     let phi0 = rng.random::<f64>() * TAU / driver.teeth() as f64;
-    let Ok(mesh) = Mesh::new(driver, driven, geo.centre_distance) else {
+    let Ok(mesh) = Mesh::new(driver, driven, p.centre_distance) else {
         return Ok((true, false));
     };
-    let turn = TAU * (geo.driver_teeth.max(geo.driven_teeth) as f64) / geo.driver_teeth as f64;
-    let run = mesh.run(phi0, phi0 + turn, Start::Touching(0.0));
+    let run = mesh.run(phi0, phi0 + p.turn, Start::Touching(0.0));
     Ok((run.jams() > 0, run.disengagements() > 0))
+}
+
+/// Counts of every cell run in this process, by cache key (see [`run_cells`]).
+fn cache() -> &'static Mutex<HashMap<String, Counts>> {
+    static CACHE: OnceLock<Mutex<HashMap<String, Counts>>> = OnceLock::new();
+    CACHE.get_or_init(|| Mutex::new(HashMap::new()))
+}
+
+/// Runs `trials` trials of every cell and returns each cell's counts, in the order of `cells`.
+///
+/// Every (cell, trial) job runs in one flat parallel loop and is collected in order, so the
+/// counts do not depend on the thread count. Trial `t` of a cell draws from
+/// `trial_rng(seed, stream(cell.canonical(), t))`: the same cell gives the same counts in any
+/// experiment. Counts are cached for the life of the process under the cell's canonical text,
+/// the seed, the trial count and a hash of the gearing, so a cell another experiment has already
+/// run (Table 5 reusing Table 4, Table I's G = 40 % rows reusing Table 3) costs nothing and
+/// gives the same bits. [`Counts::engagements`] is counted whether or not the cell came from the
+/// cache, so a report does not depend on what ran before it.
+///
+/// Errors: `trials == 0`; a mesh missing from the gearing; a gear the hypothesis cannot
+/// manufacture (the first such trial in cell and trial order).
+pub fn run_cells(
+    g: &Gearing,
+    cells: &[CellSpec],
+    trials: u64,
+    seed: u64,
+) -> Result<Vec<Counts>, RunError> {
+    run_cells_with(g, cells, trials, seed, true)
+}
+
+fn run_cells_with(
+    g: &Gearing,
+    cells: &[CellSpec],
+    trials: u64,
+    seed: u64,
+    use_cache: bool,
+) -> Result<Vec<Counts>, RunError> {
+    if trials == 0 {
+        return Err(RunError::bad("--set", "trials", "must be at least 1"));
+    }
+    let prepared: Vec<Prepared<'_>> = cells
+        .iter()
+        .map(|c| prepare(g, c))
+        .collect::<Result<_, _>>()?;
+    let gearing_id = fnv1a64(format!("{g:?}").as_bytes());
+    let keys: Vec<String> = prepared
+        .iter()
+        .map(|p| {
+            format!(
+                "{}|seed={seed}|trials={trials}|gearing={gearing_id:016x}",
+                p.canonical
+            )
+        })
+        .collect();
+    let mut known: HashMap<String, Counts> = HashMap::new();
+    if use_cache {
+        let cached = cache().lock().unwrap_or_else(|e| e.into_inner());
+        for k in &keys {
+            if let Some(c) = cached.get(k) {
+                known.insert(k.clone(), *c);
+            }
+        }
+    }
+    // Cells still to run, each once even if listed twice.
+    let mut todo: Vec<usize> = Vec::new();
+    let mut queued: HashMap<&str, ()> = HashMap::new();
+    for (i, k) in keys.iter().enumerate() {
+        if !known.contains_key(k) && queued.insert(k.as_str(), ()).is_none() {
+            todo.push(i);
+        }
+    }
+    let jobs: Vec<(usize, u64)> = todo
+        .iter()
+        .flat_map(|&i| (0..trials).map(move |t| (i, t)))
+        .collect();
+    let outcomes: Vec<Result<(bool, bool), RunError>> = jobs
+        .par_iter()
+        .map(|&(i, t)| trial(&prepared[i], seed, t))
+        .collect();
+    for (n, &i) in todo.iter().enumerate() {
+        let start = n * trials as usize;
+        let mut c = Counts {
+            trials,
+            engagements: trials * prepared[i].larger_teeth,
+            ..Counts::default()
+        };
+        for o in &outcomes[start..start + trials as usize] {
+            let (jam, dis) = o.clone()?;
+            c.jams += u64::from(jam);
+            c.disengagements += u64::from(dis);
+        }
+        known.insert(keys[i].clone(), c);
+    }
+    if use_cache {
+        let mut cached = cache().lock().unwrap_or_else(|e| e.into_inner());
+        for &i in &todo {
+            if let Some(c) = known.get(&keys[i]) {
+                cached.insert(keys[i].clone(), *c);
+            }
+        }
+    }
+    keys.iter()
+        .map(|k| {
+            known
+                .get(k)
+                .copied()
+                .ok_or_else(|| RunError::Internal(format!("cell {k} was not run")))
+        })
+        .collect()
+}
+
+/// The paper's (jams, disengagements) of one cell: `{key}.jam` and `{key}.dis` of experiment `id`
+/// in `paper.ron`, counts out of [`PAPER_TRIALS`].
+pub fn paper_counts(id: &str, key: &str) -> (Option<u64>, Option<u64>) {
+    let get = |q: &str| crate::paper::get(id, &format!("{key}.{q}")).map(|r| r.value as u64);
+    (get("jam"), get("dis"))
+}
+
+/// Is the paper's count (out of [`PAPER_TRIALS`]) inside our interval? Compared as rates, so a
+/// run with another trial count is still judged; no paper value counts as agreeing.
+pub fn agrees(ours: &Proportion, paper: Option<u64>) -> bool {
+    paper.is_none_or(|p| {
+        let rate = p as f64 / PAPER_TRIALS as f64;
+        rate >= ours.lo - 1e-12 && rate <= ours.hi + 1e-12
+    })
+}
+
+/// How many of the paper's cells fall inside our intervals, and how many outside.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Tally {
+    /// Cells whose paper counts (both) are inside our 95 % intervals.
+    pub inside: u64,
+    /// Cells with a paper count outside.
+    pub outside: u64,
+}
+
+impl Tally {
+    /// As the report's agreement.
+    pub fn agreement(&self) -> registry::Agreement {
+        registry::Agreement {
+            inside: self.inside,
+            outside: self.outside,
+        }
+    }
+
+    /// The note printed under a table of cells.
+    pub fn note(&self) -> String {
+        format!(
+            "Cells where the paper's counts lie inside our 95 % Wilson intervals: {}; outside: {}.",
+            self.inside, self.outside
+        )
+    }
+}
+
+/// A printed cell, `jams/dis (paper jams/paper dis)` with `*` when a paper count lies outside our
+/// 95 % interval; the cell's comparison is added to `tally` when the paper gives it.
+pub fn cell_text(c: &Counts, paper: (Option<u64>, Option<u64>), tally: &mut Tally) -> String {
+    let ok = agrees(&c.jam_interval(), paper.0) && agrees(&c.dis_interval(), paper.1);
+    if paper.0.is_some() || paper.1.is_some() {
+        if ok {
+            tally.inside += 1;
+        } else {
+            tally.outside += 1;
+        }
+    }
+    let show = |p: Option<u64>| p.map_or_else(|| "-".to_string(), |v| v.to_string());
+    format!(
+        "{}/{} ({}/{}){}",
+        c.jams,
+        c.disengagements,
+        show(paper.0),
+        show(paper.1),
+        if ok { "" } else { "*" }
+    )
+}
+
+/// CSV columns of one cell's counts, after [`CSV_COLUMNS`]: counts, interval bounds (as counts
+/// out of our trials) and the paper's counts (out of 200; empty when it gives none).
+pub fn csv_columns(c: &Counts, paper: (Option<u64>, Option<u64>)) -> String {
+    let (wj, wd) = (c.jam_interval(), c.dis_interval());
+    let n = c.trials as f64;
+    let show = |p: Option<u64>| p.map_or_else(String::new, |v| v.to_string());
+    format!(
+        "{},{},{},{},{},{},{},{},{}",
+        c.trials,
+        c.jams,
+        wj.lo * n,
+        wj.hi * n,
+        show(paper.0),
+        c.disengagements,
+        wd.lo * n,
+        wd.hi * n,
+        show(paper.1)
+    )
+}
+
+/// Header of [`csv_columns`].
+pub const CSV_COLUMNS: &str =
+    "trials,jams,jam_lo,jam_hi,paper_jams,disengagements,dis_lo,dis_hi,paper_disengagements";
+
+/// A grid value as printed and as keyed in `paper.ron`: at least `min_decimals` decimals, more
+/// if needed to give the value back exactly (0.04 → `0.040` with 3, 0.0375 → `0.0375`).
+pub fn label(v: f64, min_decimals: usize) -> String {
+    for d in min_decimals..=12 {
+        let s = fmt_f64(v, d);
+        if s.parse::<f64>()
+            .is_ok_and(|x| (x - v).abs() <= 1e-12 * v.abs().max(1.0))
+        {
+            return s;
+        }
+    }
+    v.to_string()
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, reason = "tests")]
+    use super::*;
+
+    fn cell(mesh: &str, random: f64) -> CellSpec {
+        let hyp = hypotheses::lookup("edmunds-split").unwrap();
+        let params = Params::new(
+            hyp,
+            &[
+                ("random".into(), random.to_string()),
+                ("systematic".into(), "0.5".into()),
+            ],
+        )
+        .unwrap();
+        CellSpec {
+            mesh: mesh.into(),
+            hypothesis: hyp,
+            params,
+            tooth_height: 1.1,
+            clearance: 40.0,
+        }
+    }
+
+    #[test]
+    fn fnv1a_matches_reference_values() {
+        // Published FNV-1a 64-bit test vectors.
+        assert_eq!(fnv1a64(b""), 0xcbf2_9ce4_8422_2325);
+        assert_eq!(fnv1a64(b"a"), 0xaf63_dc4c_8601_ec8c);
+        assert_eq!(fnv1a64(b"foobar"), 0x8594_4171_f739_67e8);
+    }
+
+    #[test]
+    fn canonical_text_names_the_content() {
+        let c = cell("b2-c1", 0.04);
+        assert_eq!(
+            c.canonical(),
+            "mesh=b2-c1;hypothesis=edmunds-split;random=0.04;split=0.5;systematic=0.5;h=1.1;G=40.0"
+        );
+        assert_ne!(stream(&c.canonical(), 0), stream(&c.canonical(), 1));
+        assert_ne!(
+            stream(&c.canonical(), 0),
+            stream(&cell("b2-c1", 0.045).canonical(), 0)
+        );
+    }
+
+    #[test]
+    fn counts_depend_on_content_not_position_cache_or_threads() {
+        let g = Gearing::freeth2006();
+        let a = [cell("e1-b3", 0.06), cell("m2-n1", 0.06)];
+        let b = [
+            cell("m2-n1", 0.06),
+            cell("c2-d1", 0.05),
+            cell("e1-b3", 0.06),
+        ];
+        let pool = |n: usize| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .unwrap()
+        };
+        let ra = pool(1).install(|| run_cells_with(&g, &a, 3, 11, false).unwrap());
+        let rb = pool(2).install(|| run_cells_with(&g, &b, 3, 11, false).unwrap());
+        assert_eq!(ra[0], rb[2]);
+        assert_eq!(ra[1], rb[0]);
+        // Through the cache (first run fills it, second reads it): the same counts.
+        let first = run_cells(&g, &b, 3, 11).unwrap();
+        let second = run_cells(&g, &b, 3, 11).unwrap();
+        assert_eq!(first, rb);
+        assert_eq!(second, rb);
+        assert_eq!(rb[0].trials, 3);
+        assert_eq!(rb[0].engagements, 3 * 53); // m2-n1: 15 and 53 teeth
+    }
+
+    #[test]
+    fn labels_keep_the_value() {
+        assert_eq!(label(0.04, 3), "0.040");
+        assert_eq!(label(0.0375, 3), "0.0375");
+        assert_eq!(label(1.0, 1), "1.0");
+        assert_eq!(label(40.0, 0), "40");
+    }
+
+    #[test]
+    fn bad_cells_are_bad_input() {
+        let g = Gearing::freeth2006();
+        let e = run_cells(&g, &[cell("x-y", 0.04)], 2, 1).unwrap_err();
+        assert_eq!(e.exit_code(), 2);
+        let e = run_cells(&g, &[cell("b2-c1", 0.04)], 0, 1).unwrap_err();
+        assert_eq!(e.exit_code(), 2);
+    }
 }

@@ -43,4 +43,17 @@ mod tests {
         assert!(parsed.is_ok(), "{parsed:?}");
         assert!(super::get("fig2", "theta_prime_0").is_some());
     }
+
+    #[test]
+    fn every_quantity_is_given_once() {
+        let mut seen = std::collections::BTreeSet::new();
+        for r in super::all() {
+            assert!(
+                seen.insert((r.experiment.as_str(), r.quantity.as_str())),
+                "{} {} twice",
+                r.experiment,
+                r.quantity
+            );
+        }
+    }
 }

@@ -8,6 +8,46 @@ use stats::{Estimate, mean_ci95};
 
 use crate::gearing;
 
+/// Run length of the Lunar pointer.
+pub(crate) const LUNAR_TURNS: Param = Param {
+    name: "lunar_turns",
+    default: "1",
+    unit: "turns of b",
+    help: "run length, Lunar (Table 1 caption: one turn of b2)",
+};
+
+/// Run length of the Metonic pointer.
+pub(crate) const METONIC_TURNS: Param = Param {
+    name: "metonic_turns",
+    default: "3.8",
+    unit: "turns of b",
+    help: "run length, Metonic (caption: 3.8 turns)",
+};
+
+/// Run length of the Saros pointer.
+pub(crate) const SAROS_TURNS: Param = Param {
+    name: "saros_turns",
+    default: "4.5",
+    unit: "turns of b",
+    help: "run length, Saros (caption: 4.5 turns)",
+};
+
+/// Run length of the Games pointer.
+pub(crate) const GAMES_TURNS: Param = Param {
+    name: "games_turns",
+    default: "3.8",
+    unit: "turns of b",
+    help: "run length, Games (caption silent: as Metonic)",
+};
+
+/// Run length of the Exeligmos pointer.
+pub(crate) const EXELIGMOS_TURNS: Param = Param {
+    name: "exeligmos_turns",
+    default: "4.5",
+    unit: "turns of b",
+    help: "run length, Exeligmos (caption silent: as Saros)",
+};
+
 const PARAMS: &[Param] = &[
     Param {
         name: "trials",
@@ -17,36 +57,11 @@ const PARAMS: &[Param] = &[
     },
     gearing::CLEARANCE,
     gearing::TOOTH_HEIGHT,
-    Param {
-        name: "lunar_turns",
-        default: "1",
-        unit: "turns of b",
-        help: "run length, Lunar (Table 1 caption: one turn of b2)",
-    },
-    Param {
-        name: "metonic_turns",
-        default: "3.8",
-        unit: "turns of b",
-        help: "run length, Metonic (caption: 3.8 turns)",
-    },
-    Param {
-        name: "saros_turns",
-        default: "4.5",
-        unit: "turns of b",
-        help: "run length, Saros (caption: 4.5 turns)",
-    },
-    Param {
-        name: "games_turns",
-        default: "3.8",
-        unit: "turns of b",
-        help: "run length, Games (caption silent: as Metonic)",
-    },
-    Param {
-        name: "exeligmos_turns",
-        default: "4.5",
-        unit: "turns of b",
-        help: "run length, Exeligmos (caption silent: as Saros)",
-    },
+    LUNAR_TURNS,
+    METONIC_TURNS,
+    SAROS_TURNS,
+    GAMES_TURNS,
+    EXELIGMOS_TURNS,
     Param {
         name: "samples_per_engagement",
         default: "16",
@@ -68,7 +83,7 @@ registry::inventory::submit! {
 }
 
 /// Pointers in the paper's column order, with the parameter holding each run length.
-const POINTERS: [(&str, &str); 5] = [
+pub(crate) const POINTERS: [(&str, &str); 5] = [
     ("Lunar", "lunar_turns"),
     ("Metonic", "metonic_turns"),
     ("Saros", "saros_turns"),

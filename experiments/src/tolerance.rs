@@ -1,0 +1,188 @@
+//! The paper's tolerance rule (section 5): a mesh tolerates an error when at most `rule` % of its
+//! trials jam (1 % of 200 = 2), and its largest tolerable error is the largest grid value up to
+//! which every grid value passes. Also the grids of Tables 4 and 5 as parameters.
+
+use registry::{Context, Param, RunError};
+
+/// Start of the random-error grid (Table 4's first row).
+pub const RANDOM_FROM: Param = Param {
+    name: "random_from",
+    default: "0.035",
+    unit: "pitch",
+    help: "smallest random error (sd of a tip's displacement / pitch 360/N); the paper's Table 4: 0.035",
+};
+
+/// End of the random-error grid.
+pub const RANDOM_TO: Param = Param {
+    name: "random_to",
+    default: "0.065",
+    unit: "pitch",
+    help: "largest random error of the grid (the paper: 0.065)",
+};
+
+/// Step of the random-error grid.
+pub const RANDOM_STEP: Param = Param {
+    name: "random_step",
+    default: "0.005",
+    unit: "pitch",
+    help: "step of the random-error grid (the paper: 0.005)",
+};
+
+/// Start of the systematic-error grid (Table 5's first row).
+pub const SYSTEMATIC_FROM: Param = Param {
+    name: "systematic_from",
+    default: "0.1",
+    unit: "deg",
+    help: "smallest systematic amplitude A of the grid (the paper's Table 5: 0.1)",
+};
+
+/// End of the systematic-error grid.
+pub const SYSTEMATIC_TO: Param = Param {
+    name: "systematic_to",
+    default: "1.1",
+    unit: "deg",
+    help: "largest systematic amplitude of the grid (the paper: 1.1)",
+};
+
+/// Step of the systematic-error grid.
+pub const SYSTEMATIC_STEP: Param = Param {
+    name: "systematic_step",
+    default: "0.1",
+    unit: "deg",
+    help: "step of the systematic grid (the paper: 0.1)",
+};
+
+/// The failure threshold.
+pub const RULE: Param = Param {
+    name: "rule",
+    default: "1",
+    unit: "%",
+    help: "a value is tolerable when at most this share of trials jam (the paper: 1 %, 2 of 200)",
+};
+
+/// Jams allowed among `trials` trials under a rule of `rule_percent` %: ⌊rule·trials/100⌋.
+pub fn allowed_jams(trials: u64, rule_percent: f64) -> u64 {
+    let x = rule_percent * trials as f64 / 100.0;
+    // A hair above, so 1 % of 200 is 2 even if the product rounds just below.
+    (x + 1e-9).floor().max(0.0) as u64
+}
+
+/// The largest grid value `e` such that every grid value up to `e` has at most
+/// [`allowed_jams`] jams; `None` when even the smallest fails. `grid` holds (value, jams) in any
+/// order.
+pub fn largest_tolerable(grid: &[(f64, u64)], trials: u64, rule_percent: f64) -> Option<f64> {
+    let allowed = allowed_jams(trials, rule_percent);
+    let mut sorted = grid.to_vec();
+    sorted.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut best = None;
+    for (e, jams) in sorted {
+        if jams > allowed {
+            break;
+        }
+        best = Some(e);
+    }
+    best
+}
+
+/// The `rule` parameter, checked: a percentage from 0 to 100.
+pub fn rule(ctx: &Context) -> Result<f64, RunError> {
+    let r = ctx.f64(RULE.name)?;
+    if !(0.0..=100.0).contains(&r) {
+        return Err(RunError::bad(
+            "--set",
+            RULE.name,
+            format!("must be a percentage from 0 to 100 (got {r})"),
+        ));
+    }
+    Ok(r)
+}
+
+/// The values from..=to by step named by three parameters, checked: from >= 0, step > 0,
+/// from <= to, at most 1000 values. Each value is rounded to nine decimals, so 0.1 + 9 × 0.1
+/// is 1.0 and the same grid gives the same cells in every experiment.
+pub fn grid(ctx: &Context, from: &Param, to: &Param, step: &Param) -> Result<Vec<f64>, RunError> {
+    let (a, b, s) = (ctx.f64(from.name)?, ctx.f64(to.name)?, ctx.f64(step.name)?);
+    if a < 0.0 {
+        return Err(RunError::bad(
+            "--set",
+            from.name,
+            format!("must be at least 0 (got {a})"),
+        ));
+    }
+    if s <= 0.0 {
+        return Err(RunError::bad(
+            "--set",
+            step.name,
+            format!("must be greater than 0 (got {s})"),
+        ));
+    }
+    if a > b {
+        return Err(RunError::bad(
+            "--set",
+            to.name,
+            format!("must be at least {} = {a} (got {b})", from.name),
+        ));
+    }
+    let n = ((b - a) / s + 1e-9).floor();
+    if n >= 1000.0 {
+        return Err(RunError::bad(
+            "--set",
+            step.name,
+            format!("gives more than 1000 grid values from {a} to {b}"),
+        ));
+    }
+    Ok((0..=n as u64)
+        .map(|i| ((a + i as f64 * s) * 1e9).round() / 1e9)
+        .collect())
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, reason = "tests")]
+    use super::*;
+
+    #[test]
+    fn one_percent_of_200_is_two() {
+        assert_eq!(allowed_jams(200, 1.0), 2);
+        assert_eq!(allowed_jams(200, 5.0), 10);
+        assert_eq!(allowed_jams(20, 1.0), 0);
+        assert_eq!(allowed_jams(20, 5.0), 1);
+        assert_eq!(allowed_jams(10, 0.0), 0);
+        assert_eq!(allowed_jams(7, 100.0), 7);
+    }
+
+    #[test]
+    fn largest_value_up_to_which_every_value_passes() {
+        // The paper's Table 4, column b2-c1: 0/0/0/1/1/17/20 jams -> 0.055.
+        let col = [
+            (0.035, 0),
+            (0.040, 0),
+            (0.045, 0),
+            (0.050, 1),
+            (0.055, 1),
+            (0.060, 17),
+            (0.065, 20),
+        ];
+        assert_eq!(largest_tolerable(&col, 200, 1.0), Some(0.055));
+        // n2-o1: 0, 0, 0, 1, 0, 4, 17 -> 0.055; m2-n1: 2, 0, 11 -> 0.040.
+        let n2 = [
+            (0.035, 0),
+            (0.04, 0),
+            (0.045, 0),
+            (0.05, 1),
+            (0.055, 0),
+            (0.06, 4),
+        ];
+        assert_eq!(largest_tolerable(&n2, 200, 1.0), Some(0.055));
+        let m2 = [(0.035, 2), (0.04, 0), (0.045, 11), (0.05, 20)];
+        assert_eq!(largest_tolerable(&m2, 200, 1.0), Some(0.04));
+        // A failure hides passes above it; order of the input does not matter.
+        let gap = [(0.05, 0), (0.04, 3), (0.035, 0)];
+        assert_eq!(largest_tolerable(&gap, 200, 1.0), Some(0.035));
+        // Even the first fails.
+        assert_eq!(largest_tolerable(&[(0.035, 3)], 200, 1.0), None);
+        assert_eq!(largest_tolerable(&[], 200, 1.0), None);
+        // A looser rule moves it up.
+        assert_eq!(largest_tolerable(&col, 200, 10.0), Some(0.065));
+    }
+}
