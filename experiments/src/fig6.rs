@@ -7,7 +7,7 @@ use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table};
 use crate::common::{Series, category_plot};
 use crate::errors;
 use crate::gearing;
-use crate::pair_jams::label;
+use crate::pair_jams::{Stage, label};
 use crate::table4::{self, TRIALS};
 use crate::table5::{paper_random, show};
 use crate::tolerance::{self, RANDOM_FROM, RANDOM_STEP, RANDOM_TO, RULE};
@@ -76,7 +76,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     let rule = tolerance::rule(ctx)?;
     let clearance = ctx.f64("clearance")?;
     let measured = measured(ctx)?;
-    let grid = table4::run_grid(ctx, &g, hyp, trials)?;
+    let grid = table4::run_grid(ctx, &g, hyp, trials, Stage::Input)?;
     let tolerable = grid.tolerable(trials, rule);
 
     // Gears in mesh order, first appearance; each with its meshes.

@@ -19,8 +19,7 @@ use geometry::Gear;
 use hypotheses::{Hypothesis, Params};
 use mechanism::trial_rng;
 use rand::Rng;
-use rayon::prelude::*;
-use registry::{RunError, fmt_f64};
+use registry::{Context, RunError, TrialMode, fmt_f64};
 use stats::{Proportion, wilson95};
 use train::Gearing;
 
@@ -200,34 +199,69 @@ fn cache() -> &'static Mutex<HashMap<String, Counts>> {
     CACHE.get_or_init(|| Mutex::new(HashMap::new()))
 }
 
+/// What a set of cells is to the experiment that runs them: its own result, or an input from
+/// which later cells are derived (Table 4's grid inside Table 5, Table 5's inside Table 6).
+///
+/// Under `--shard K/N` an experiment's own cells are split between the shards; its inputs are
+/// computed whole by every shard ([`Context::trials_whole`]), because the cells derived from them
+/// must be the same in every shard.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Stage {
+    /// The experiment's own result (sharded).
+    Own,
+    /// An input to cells run later in the same experiment (never sharded).
+    Input,
+}
+
 /// Runs `trials` trials of every cell and returns each cell's counts, in the order of `cells`.
 ///
-/// Every (cell, trial) job runs in one flat parallel loop and is collected in order, so the
-/// counts do not depend on the thread count. Trial `t` of a cell draws from
-/// `trial_rng(seed, stream(cell.canonical(), t))`: the same cell gives the same counts in any
-/// experiment. Counts are cached for the life of the process under the cell's canonical text,
-/// the seed, the trial count and a hash of the gearing, so a cell another experiment has already
-/// run (Table 5 reusing Table 4, Table I's G = 40 % rows reusing Table 3) costs nothing and
-/// gives the same bits. [`Counts::engagements`] is counted whether or not the cell came from the
-/// cache, so a report does not depend on what ran before it.
+/// Every (cell, trial) job runs in one flat parallel batch through [`Context::trials`] (or
+/// [`Context::trials_whole`] for an [`Stage::Input`]) and is collected in order, so the counts
+/// do not depend on the thread count, and a run split into shards and merged gives the same
+/// counts. Trial `t` of a cell draws from `trial_rng(seed, stream(cell.canonical(), t))`: the
+/// same cell gives the same counts in any experiment. Counts are cached for the life of the
+/// process under the cell's canonical text, the seed, the trial count and a hash of the gearing,
+/// so a cell another experiment has already run (Table 5 reusing Table 4, Table I's G = 40 % rows
+/// reusing Table 3) costs nothing and gives the same bits; a shard's partial counts are never
+/// cached. [`Counts::engagements`] is counted whether or not the cell came from the cache, so a
+/// report does not depend on what ran before it.
 ///
 /// Errors: `trials == 0`; a mesh missing from the gearing; a gear the hypothesis cannot
 /// manufacture (the first such trial in cell and trial order).
 pub fn run_cells(
+    ctx: &Context,
     g: &Gearing,
     cells: &[CellSpec],
     trials: u64,
-    seed: u64,
+    stage: Stage,
 ) -> Result<Vec<Counts>, RunError> {
-    run_cells_with(g, cells, trials, seed, true)
+    let whole = stage == Stage::Input;
+    let partial = matches!(ctx.trial_mode(), TrialMode::Shard(_)) && !whole;
+    run_cells_with(g, cells, trials, ctx.seed(), !partial, |key, n, f| {
+        if whole {
+            ctx.trials_whole(key, n, f)
+        } else {
+            ctx.trials(key, n, f)
+        }
+    })
 }
 
+/// One trial of a flat batch: (jammed at least once, disengaged at least once).
+type Outcome = (bool, bool);
+
+/// [`run_cells`] with the batch runner and the use of the cache given: `run_batch(key, n, f)`
+/// returns `f(t)` for t in 0..n in order.
 fn run_cells_with(
     g: &Gearing,
     cells: &[CellSpec],
     trials: u64,
     seed: u64,
     use_cache: bool,
+    run_batch: impl FnOnce(
+        &str,
+        u64,
+        &(dyn Fn(u64) -> Result<Outcome, RunError> + Sync + Send),
+    ) -> Result<Vec<Outcome>, RunError>,
 ) -> Result<Vec<Counts>, RunError> {
     if trials == 0 {
         return Err(RunError::bad("--set", "trials", "must be at least 1"));
@@ -267,10 +301,26 @@ fn run_cells_with(
         .iter()
         .flat_map(|&i| (0..trials).map(move |t| (i, t)))
         .collect();
-    let outcomes: Vec<Result<(bool, bool), RunError>> = jobs
-        .par_iter()
-        .map(|&(i, t)| trial(&prepared[i], seed, t))
-        .collect();
+    // The batch is named by everything that determines it: the cells' keys, in order.
+    let mut names = String::new();
+    for &i in &todo {
+        names.push_str(&keys[i]);
+        names.push('\n');
+    }
+    let batch = format!(
+        "pair-cells/{}-cells-of-{trials}/{:016x}",
+        todo.len(),
+        fnv1a64(names.as_bytes())
+    );
+    let outcomes: Vec<Outcome> = if jobs.is_empty() {
+        Vec::new()
+    } else {
+        let job = |n: u64| -> Result<Outcome, RunError> {
+            let (i, t) = jobs[n as usize];
+            trial(&prepared[i], seed, t)
+        };
+        run_batch(&batch, jobs.len() as u64, &job)?
+    };
     for (n, &i) in todo.iter().enumerate() {
         let start = n * trials as usize;
         let mut c = Counts {
@@ -278,8 +328,7 @@ fn run_cells_with(
             engagements: trials * prepared[i].larger_teeth,
             ..Counts::default()
         };
-        for o in &outcomes[start..start + trials as usize] {
-            let (jam, dis) = o.clone()?;
+        for &(jam, dis) in &outcomes[start..start + trials as usize] {
             c.jams += u64::from(jam);
             c.disengagements += u64::from(dis);
         }
@@ -452,6 +501,16 @@ mod tests {
         );
     }
 
+    /// The batch runner of a plain run: every trial, in order, over rayon.
+    fn local(
+        _key: &str,
+        n: u64,
+        f: &(dyn Fn(u64) -> Result<Outcome, RunError> + Sync + Send),
+    ) -> Result<Vec<Outcome>, RunError> {
+        use rayon::prelude::*;
+        (0..n).into_par_iter().map(f).collect()
+    }
+
     #[test]
     fn counts_depend_on_content_not_position_cache_or_threads() {
         let g = Gearing::freeth2006();
@@ -467,13 +526,13 @@ mod tests {
                 .build()
                 .unwrap()
         };
-        let ra = pool(1).install(|| run_cells_with(&g, &a, 3, 11, false).unwrap());
-        let rb = pool(2).install(|| run_cells_with(&g, &b, 3, 11, false).unwrap());
+        let ra = pool(1).install(|| run_cells_with(&g, &a, 3, 11, false, local).unwrap());
+        let rb = pool(2).install(|| run_cells_with(&g, &b, 3, 11, false, local).unwrap());
         assert_eq!(ra[0], rb[2]);
         assert_eq!(ra[1], rb[0]);
         // Through the cache (first run fills it, second reads it): the same counts.
-        let first = run_cells(&g, &b, 3, 11).unwrap();
-        let second = run_cells(&g, &b, 3, 11).unwrap();
+        let first = run_cells_with(&g, &b, 3, 11, true, local).unwrap();
+        let second = run_cells_with(&g, &b, 3, 11, true, local).unwrap();
         assert_eq!(first, rb);
         assert_eq!(second, rb);
         assert_eq!(rb[0].trials, 3);
@@ -491,9 +550,9 @@ mod tests {
     #[test]
     fn bad_cells_are_bad_input() {
         let g = Gearing::freeth2006();
-        let e = run_cells(&g, &[cell("x-y", 0.04)], 2, 1).unwrap_err();
+        let e = run_cells_with(&g, &[cell("x-y", 0.04)], 2, 1, true, local).unwrap_err();
         assert_eq!(e.exit_code(), 2);
-        let e = run_cells(&g, &[cell("b2-c1", 0.04)], 0, 1).unwrap_err();
+        let e = run_cells_with(&g, &[cell("b2-c1", 0.04)], 0, 1, true, local).unwrap_err();
         assert_eq!(e.exit_code(), 2);
     }
 }

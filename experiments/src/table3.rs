@@ -6,7 +6,7 @@ use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table};
 use crate::errors;
 use crate::gearing;
 use crate::pair_jams::{
-    CSV_COLUMNS, CellSpec, Tally, cell_text, csv_columns, paper_counts, run_cells,
+    CSV_COLUMNS, CellSpec, Stage, Tally, cell_text, csv_columns, paper_counts, run_cells,
 };
 use crate::table2::CASES;
 
@@ -79,7 +79,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     let clearance = ctx.f64("clearance")?;
     let meshes: Vec<&str> = g.meshes().iter().map(|m| m.label.as_str()).collect();
     let cells = case_cells(ctx, &g, hyp, clearance)?;
-    let counts = run_cells(&g, &cells, trials, ctx.seed())?;
+    let counts = run_cells(ctx, &g, &cells, trials, Stage::Own)?;
 
     let mut header = vec!["case".to_string()];
     header.extend(meshes.iter().map(|m| (*m).to_string()));

@@ -8,7 +8,8 @@ use train::Gearing;
 use crate::errors;
 use crate::gearing;
 use crate::pair_jams::{
-    CSV_COLUMNS, CellSpec, Counts, Tally, cell_text, csv_columns, label, paper_counts, run_cells,
+    CSV_COLUMNS, CellSpec, Counts, Stage, Tally, cell_text, csv_columns, label, paper_counts,
+    run_cells,
 };
 use crate::tolerance::{self, RANDOM_FROM, RANDOM_STEP, RANDOM_TO};
 
@@ -83,6 +84,7 @@ pub(crate) fn run_grid(
     g: &Gearing,
     hyp: &'static dyn Hypothesis,
     trials: u64,
+    stage: Stage,
 ) -> Result<RandomGrid, RunError> {
     let values = tolerance::grid(ctx, &RANDOM_FROM, &RANDOM_TO, &RANDOM_STEP)?;
     let (h, clearance) = (ctx.f64("tooth_height")?, ctx.f64("clearance")?);
@@ -100,7 +102,7 @@ pub(crate) fn run_grid(
             });
         }
     }
-    let flat = run_cells(g, &cells, trials, ctx.seed())?;
+    let flat = run_cells(ctx, g, &cells, trials, stage)?;
     let counts = flat.chunks(meshes.len()).map(<[Counts]>::to_vec).collect();
     Ok(RandomGrid {
         values,
@@ -123,7 +125,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     let hyp = errors::chosen(ctx)?;
     let trials = trials(ctx, TRIALS.name)?;
     let clearance = ctx.f64("clearance")?;
-    let grid = run_grid(ctx, &g, hyp, trials)?;
+    let grid = run_grid(ctx, &g, hyp, trials, Stage::Own)?;
 
     let mut header = vec!["random error".to_string()];
     header.extend(grid.meshes.iter().cloned());

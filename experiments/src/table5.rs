@@ -9,7 +9,7 @@ use train::Gearing;
 use crate::errors;
 use crate::gearing;
 use crate::pair_jams::{
-    CSV_COLUMNS, CellSpec, Counts, PAPER_TRIALS, Tally, cell_text, csv_columns, label,
+    CSV_COLUMNS, CellSpec, Counts, PAPER_TRIALS, Stage, Tally, cell_text, csv_columns, label,
     paper_counts, run_cells,
 };
 use crate::table4::{self, RandomGrid, TRIALS};
@@ -81,6 +81,7 @@ pub(crate) fn derive(
     hyp: &'static dyn Hypothesis,
     trials: u64,
     rule: f64,
+    stage: Stage,
 ) -> Result<Tolerances, RunError> {
     // Every parameter checked before anything runs.
     let sys_values = tolerance::grid(ctx, &SYSTEMATIC_FROM, &SYSTEMATIC_TO, &SYSTEMATIC_STEP)?;
@@ -96,7 +97,7 @@ pub(crate) fn derive(
             format!("must be between 0 and 1 (got {split})"),
         ));
     }
-    let random_grid = table4::run_grid(ctx, g, hyp, trials)?;
+    let random_grid = table4::run_grid(ctx, g, hyp, trials, Stage::Input)?;
     let random = random_grid.tolerable(trials, rule);
     let mut cells = Vec::new();
     let mut index = Vec::new();
@@ -121,7 +122,7 @@ pub(crate) fn derive(
             });
         }
     }
-    let flat = run_cells(g, &cells, trials, ctx.seed())?;
+    let flat = run_cells(ctx, g, &cells, trials, stage)?;
     let n = random_grid.meshes.len();
     let sys_counts: Vec<Vec<Option<Counts>>> = index
         .chunks(n)
@@ -182,7 +183,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     let trials = table4::trials(ctx, TRIALS.name)?;
     let rule = tolerance::rule(ctx)?;
     let (clearance, split) = (ctx.f64("clearance")?, ctx.f64("split")?);
-    let t = derive(ctx, &g, hyp, trials, rule)?;
+    let t = derive(ctx, &g, hyp, trials, rule, Stage::Own)?;
     let meshes = &t.random_grid.meshes;
     let allowed = tolerance::allowed_jams(trials, rule);
 

@@ -12,7 +12,7 @@ use stats::{Estimate, PointerStats, mean_ci95};
 
 use crate::errors;
 use crate::gearing;
-use crate::pair_jams::label;
+use crate::pair_jams::{Stage, label};
 use crate::table1::{
     EXELIGMOS_TURNS, GAMES_TURNS, LUNAR_TURNS, METONIC_TURNS, POINTERS, SAROS_TURNS, pointer_runs,
 };
@@ -96,7 +96,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     );
     let per = ctx.usize("samples_per_engagement")?.max(1);
     let runs = pointer_runs(ctx, &g, &POINTERS, per)?;
-    let tol = table5::derive(ctx, &g, hyp, cell_trials, rule)?;
+    let tol = table5::derive(ctx, &g, hyp, cell_trials, rule, Stage::Input)?;
 
     // Each gear: the tolerances of its mesh; a gear in two meshes (b2) the smaller of each.
     // Below a grid counts as 0 (no error known to be tolerable).

@@ -6,7 +6,7 @@ use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table};
 use crate::errors;
 use crate::gearing;
 use crate::pair_jams::{
-    CSV_COLUMNS, Tally, cell_text, csv_columns, label, paper_counts, run_cells,
+    CSV_COLUMNS, Stage, Tally, cell_text, csv_columns, label, paper_counts, run_cells,
 };
 use crate::table2::CASES;
 use crate::table3::case_cells;
@@ -73,7 +73,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     for &clearance in &gs {
         cells.extend(case_cells(ctx, &g, hyp, clearance)?);
     }
-    let counts = run_cells(&g, &cells, trials, ctx.seed())?;
+    let counts = run_cells(ctx, &g, &cells, trials, Stage::Own)?;
     let per_g = CASES.len() * meshes.len();
 
     let mut header = vec!["case".to_string(), "G [%]".to_string()];

@@ -184,6 +184,28 @@ fn failure_shards_merge_to_the_single_run_byte_for_byte() {
 }
 
 #[test]
+fn table3_shards_merge_to_the_single_run_byte_for_byte() {
+    shards_merge_to_the_single_run(&["table3", "--set", "trials=3"]);
+}
+
+#[test]
+fn table5_shards_merge_to_the_single_run_byte_for_byte() {
+    // Its rows are derived from Table 4's cells, which every shard computes whole; its own
+    // systematic cells are split between the shards.
+    shards_merge_to_the_single_run(&[
+        "table5",
+        "--set",
+        "trials=4",
+        "--set",
+        "random_from=0.05",
+        "--set",
+        "random_to=0.065",
+        "--set",
+        "systematic_to=0.4",
+    ]);
+}
+
+#[test]
 fn one_and_two_threads_write_the_same_results() {
     let s = Scratch::new("threads");
     let one = run(TABLE1, &["--threads", "1", "--out", &s.path("one")]);
