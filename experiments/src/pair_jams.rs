@@ -14,7 +14,7 @@ use std::f64::consts::TAU;
 use std::fmt::Write as _;
 use std::sync::{Mutex, OnceLock};
 
-use contact::{Mesh, Start};
+use contact::{EventKind, Mesh, Start};
 use geometry::Gear;
 use hypotheses::{Hypothesis, Params};
 use mechanism::trial_rng;
@@ -189,8 +189,11 @@ fn trial(p: &Prepared<'_>, seed: u64, t: u64) -> Result<(bool, bool), RunError> 
     let Ok(mesh) = Mesh::new(driver, driven, p.centre_distance) else {
         return Ok((true, false));
     };
-    let run = mesh.run(phi0, phi0 + p.turn, Start::Touching(0.0));
-    Ok((run.jams() > 0, run.disengagements() > 0))
+    // Only the events are counted: the run keeps no segments.
+    let events = mesh.run_events(phi0, phi0 + p.turn, Start::Touching(0.0));
+    let jammed = events.iter().any(|e| e.kind == EventKind::Jam);
+    let disengaged = events.iter().any(|e| e.kind == EventKind::Disengagement);
+    Ok((jammed, disengaged))
 }
 
 /// Counts of every cell run in this process, by cache key (see [`run_cells`]).

@@ -203,7 +203,10 @@ struct Run<'m> {
     unheld_at: Option<f64>,
     /// Known tooth pairs, their side of θ and their upper end at the current φ.
     sides: Vec<Tracked>,
+    /// The segments so far; only the last one when they are not kept.
     segments: Vec<Segment>,
+    /// Whether to keep every segment (for θ at any φ) or only the events.
+    keep_segments: bool,
     events: Vec<Event>,
     scratch: Vec<Obstacle>,
 }
@@ -239,6 +242,37 @@ impl Mesh {
         stop_at_jam: bool,
         steps_per_pitch: f64,
     ) -> Trajectory {
+        let run = self.solve(
+            phi_start,
+            phi_end,
+            start,
+            stop_at_jam,
+            steps_per_pitch,
+            true,
+        );
+        Trajectory {
+            mesh: self.clone(),
+            segments: run.segments,
+            events: run.events,
+        }
+    }
+
+    /// The jams and disengagements of [`Mesh::run`] over the same range, without its segments:
+    /// all that jam statistics need, in memory that does not grow with the range.
+    pub fn run_events(&self, phi_start: f64, phi_end: f64, start: Start) -> Vec<Event> {
+        self.solve(phi_start, phi_end, start, false, STEPS_PER_PITCH, false)
+            .events
+    }
+
+    fn solve(
+        &self,
+        phi_start: f64,
+        phi_end: f64,
+        start: Start,
+        stop_at_jam: bool,
+        steps_per_pitch: f64,
+        keep_segments: bool,
+    ) -> Run<'_> {
         let mut run = Run {
             mesh: self,
             phi: phi_start,
@@ -247,6 +281,7 @@ impl Mesh {
             unheld_at: None,
             sides: Vec::new(),
             segments: Vec::new(),
+            keep_segments,
             events: Vec::new(),
             scratch: Vec::new(),
         };
@@ -267,11 +302,7 @@ impl Mesh {
         if run.segments.is_empty() {
             run.rest_to(phi_end);
         }
-        Trajectory {
-            mesh: self.clone(),
-            segments: run.segments,
-            events: run.events,
-        }
+        run
     }
 
     /// Upper end of the (j, k) obstacle at φ, or −∞ when it does not exist.
@@ -378,6 +409,9 @@ impl Run<'_> {
         if phi_end <= self.phi && !self.segments.is_empty() {
             self.theta = theta_end;
             return;
+        }
+        if !self.keep_segments {
+            self.segments.clear();
         }
         self.segments.push(Segment {
             phi_start: self.phi,

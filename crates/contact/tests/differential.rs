@@ -54,6 +54,12 @@ fn first_events_do_not_depend_on_the_step() {
         let coarse = m.run(phi0, end, Start::Touching(0.0));
         let fine = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 32.0);
         let what = format!("case {case}: {n1}:{n2} teeth, sigma {sigma}, ecc {ecc} mm, G {g} %");
+        // The events-only run (no segments kept) finds exactly the same events.
+        assert_eq!(
+            m.run_events(phi0, end, Start::Touching(0.0)),
+            coarse.events(),
+            "{what}: run_events"
+        );
         assert_eq!(coarse.jams() > 0, fine.jams() > 0, "{what}: jammed at all");
         assert_eq!(
             coarse.disengagements() > 0,
