@@ -274,7 +274,7 @@ impl Context {
         if n > MAX_COUNT {
             return Err(self.reject(
                 self.value(name)?,
-                &format!("must be at most {MAX_COUNT} (the limit on counts)"),
+                &format!("must be at most {MAX_COUNT}, the limit on counts"),
             ));
         }
         Ok(n)

@@ -32,6 +32,7 @@ pub const DAYS_PER_TURN: f64 = 365.25;
 
 /// One gear: tooth count, measured radius and where both come from.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct GearData {
     /// The gear's name (Freeth 2006), e.g. `b2`.
     pub name: String,
@@ -46,6 +47,7 @@ pub struct GearData {
 
 /// Gears fixed together on one arbor: they turn as one body.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Arbor {
     /// The arbor's name, e.g. `b`.
     pub name: String,
@@ -55,6 +57,7 @@ pub struct Arbor {
 
 /// One external mesh between two gears.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct MeshData {
     /// The label as the paper writes it, e.g. `b2-c1` (the paper's `n2-o1` has driver `n3`).
     pub label: String,
@@ -66,6 +69,7 @@ pub struct MeshData {
 
 /// A pointer: the train of meshes from the input arbor to the pointer's arbor.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Pointer {
     /// The pointer's name, e.g. `Lunar`.
     pub name: String,

@@ -262,3 +262,17 @@ fn meshes_closing_a_loop_are_refused() {
     );
     assert_error(&ring, "mesh c1-a2", "arbors c and a are already joined");
 }
+
+#[test]
+fn unknown_fields_of_every_item_are_refused() {
+    for (from, to) in [
+        ("teeth: 40,", "teeth: 40, colour: 3,"),
+        (r#"(name: "a", gears"#, r#"(name: "a", colour: 3, gears"#),
+        (r#"(label: "a1-b1","#, r#"(label: "a1-b1", colour: 3,"#),
+        (r#"(name: "P","#, r#"(name: "P", colour: 3,"#),
+    ] {
+        let msg = error(&edit(from, to));
+        assert!(msg.starts_with("test.ron: line "), "{msg}");
+        assert!(msg.contains("colour"), "{msg}");
+    }
+}
