@@ -560,7 +560,7 @@ mod tests {
             Some(PathBuf::from("e.ron"))
         );
         match p("run a --trials 18446744073709551615") {
-            Err(ArgError::Value(m)) => assert!(m.contains("at most 10000000"), "{m}"),
+            Err(ArgError::Value(m)) => assert!(m.contains("at most 1000000 "), "{m}"),
             other => panic!("{other:?}"),
         }
         for bad in [

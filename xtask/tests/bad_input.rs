@@ -556,13 +556,13 @@ fn enormous_counts() {
             "--trials u64::MAX",
             None,
             "run table1 --trials 18446744073709551615 --out {out}",
-            &["--trials: must be at most 10000000 (the limit on trials"],
+            &["--trials: must be at most 1000000 (the limit on trials"],
         ),
         case(
             "--trials beyond u64",
             None,
             "run table1 --trials 99999999999999999999 --out {out}",
-            &["--trials: must be an integer from 1 to 10000000"],
+            &["--trials: must be an integer from 1 to 1000000"],
         ),
         case(
             "--trials 0",
@@ -580,19 +580,19 @@ fn enormous_counts() {
             "--set trials u64::MAX",
             None,
             "run table3 --set trials=18446744073709551615 --out {out}",
-            &["--set: trials: must be at most 10000000 (the limit on trials"],
+            &["--set: trials: must be at most 1000000 (the limit on trials"],
         ),
         case(
             "--set trials u64::MAX, failure",
             None,
             "run failure --set trials=18446744073709551615 --out {out}",
-            &["--set: trials: must be at most 10000000"],
+            &["--set: trials: must be at most 1000000 "],
         ),
         case(
             "--set trials huge under run all",
             None,
-            "run all --set trials=10000001 --out {out}",
-            &["--set: trials: must be at most 10000000"],
+            "run all --set trials=1000001 --out {out}",
+            &["--set: trials: must be at most 1000000 "],
         ),
         case(
             "--set trials not a number",
@@ -943,7 +943,7 @@ fn partial_files() {
             "trials beyond the limit",
             f(br#"{"format":"cargo-xtask-partial/1","experiment":"table1","seed":1,"sets":[["trials","18446744073709551615"]],"config":null,"shard":0,"shards":1,"version":"0.1.0","batches":{}}"#),
             merge,
-            &["--set: trials: must be at most 10000000"],
+            &["--set: trials: must be at most 1000000 "],
         ),
         case("no partial file", None, "merge /no/such/dir --out {out}", &["merge: /no/such/dir: cannot read"]),
     ];

@@ -16,14 +16,15 @@ use crate::progress::{BatchProgress, Hook, Progress};
 use crate::trials::{Batch, Records, Shard};
 use crate::{Experiment, RunError};
 
-/// The most trials a `trials` parameter may ask for: 10^7 (per cell, case or input, as the
+/// The most trials a `trials` parameter may ask for: 10^6 (per cell, case or input, as the
 /// experiment counts them). By convention an experiment's `trials` parameter is its number of
 /// Monte-Carlo trials; [`Context::new`] refuses a larger value (or one that is not a
 /// non-negative integer) before anything runs, naming this limit. The paper's largest count is
-/// 200; ten million is far beyond what one machine computes in a day, and keeps every
-/// experiment's per-trial bookkeeping well within memory. Split a larger study across runs
-/// with different seeds.
-pub const MAX_TRIALS: u64 = 10_000_000;
+/// 200. Experiments hold a small record per trial of every cell in memory (table3: 60 cells, some
+/// 24 bytes each), so 10^6 keeps even the largest grids within a few gigabytes, and is already
+/// far beyond what one machine computes in a day; split a larger study into runs with different
+/// seeds.
+pub const MAX_TRIALS: u64 = 1_000_000;
 
 /// The largest value [`Context::usize`] accepts: 10^7. Integer parameters read that way are
 /// counts that size the work and its memory (samples, pitches, teeth, trials...); a larger one
@@ -718,10 +719,10 @@ mod tests {
 
     #[test]
     fn trials_are_limited_before_anything_runs() {
-        let ok = Context::new(&COUNTED, 0, 1, &set(&[("trials", "10000000")]), None).unwrap();
+        let ok = Context::new(&COUNTED, 0, 1, &set(&[("trials", "1000000")]), None).unwrap();
         assert_eq!(ok.u64("trials").unwrap(), MAX_TRIALS);
         for (value, words) in [
-            ("10000001", "at most 10000000"),
+            ("1000001", "at most 1000000 "),
             ("18446744073709551615", "the limit on trials"),
             ("99999999999999999999999", "non-negative integer"),
             ("-1", "non-negative integer"),
