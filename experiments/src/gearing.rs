@@ -1,5 +1,5 @@
 //! The gearing an experiment runs on: the embedded Freeth 2006 data, or a user's RON file given
-//! with `--set gearing=FILE`.
+//! with `--set gearing=FILE`; and the gearing-wide parameters declared beside it.
 
 use registry::{Context, Param, RunError};
 use train::Gearing;
@@ -28,11 +28,64 @@ pub const TOOTH_HEIGHT: Param = Param {
     help: "h = R - r of every gear (Efstathiou et al. 2012)",
 };
 
-/// Loads the gearing named by the `gearing` parameter.
+/// Loads the gearing named by the `gearing` parameter, and checks the gearing-wide parameters
+/// the experiment declares beside it ([`check`]).
 pub fn load(ctx: &Context) -> Result<Gearing, RunError> {
     let name = ctx.param("gearing")?;
-    if name == PARAM.default {
-        return Ok(Gearing::freeth2006());
+    let g = if name == PARAM.default {
+        Gearing::freeth2006()
+    } else {
+        Gearing::load(std::path::Path::new(name))
+            .map_err(|e| RunError::bad(e.file, e.location, e.rule))?
+    };
+    check(ctx, &g)?;
+    Ok(g)
+}
+
+/// The gearing-wide parameters, where the experiment declares them: `clearance` G must be
+/// greater than 0 and at most 100 (% of h: at 0 the tips reach the other gear's valleys, at 100
+/// they only touch its tips), and `tooth_height` h must be positive and smaller than the tip
+/// radius of every gear in a mesh (the root radius R - h must stay positive).
+pub fn check(ctx: &Context, g: &Gearing) -> Result<(), RunError> {
+    if ctx.declares(CLEARANCE.name) {
+        let c = ctx.f64(CLEARANCE.name)?;
+        if !(c > 0.0 && c <= 100.0) {
+            return Err(RunError::bad(
+                "--set",
+                CLEARANCE.name,
+                format!(
+                    "must be greater than 0 and at most 100 (% of the tooth height h; got {c})"
+                ),
+            ));
+        }
     }
-    Gearing::load(std::path::Path::new(name)).map_err(|e| RunError::bad(e.file, e.location, e.rule))
+    if ctx.declares(TOOTH_HEIGHT.name) {
+        let h = ctx.f64(TOOTH_HEIGHT.name)?;
+        if h <= 0.0 {
+            return Err(RunError::bad(
+                "--set",
+                TOOTH_HEIGHT.name,
+                format!("must be greater than 0 mm (got {h})"),
+            ));
+        }
+        let meshed = g
+            .meshes()
+            .iter()
+            .flat_map(|m| [m.driver.as_str(), m.driven.as_str()]);
+        let smallest = meshed
+            .filter_map(|name| Some((name, g.tip_radius(name)?)))
+            .min_by(|a, b| a.1.total_cmp(&b.1));
+        if let Some((gear, r)) = smallest
+            && h >= r
+        {
+            return Err(RunError::bad(
+                "--set",
+                TOOTH_HEIGHT.name,
+                format!(
+                    "must be less than the smallest tip radius of the gearing, {r:.3} mm (gear {gear}; got {h})"
+                ),
+            ));
+        }
+    }
+    Ok(())
 }

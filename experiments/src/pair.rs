@@ -68,6 +68,17 @@ fn gear(file: &str, which: &str, spec: &GearSpec) -> Result<Gear, RunError> {
             format!("must be at least 3 (got {})", spec.teeth),
         ));
     }
+    if spec.teeth > geometry::MAX_TEETH {
+        return Err(RunError::bad(
+            file,
+            field("teeth"),
+            format!(
+                "must be at most {} (the limit on teeth; got {})",
+                geometry::MAX_TEETH,
+                spec.teeth
+            ),
+        ));
+    }
     let tips = match &spec.tips_deg {
         None => (0..spec.teeth)
             .map(|k| TAU * k as f64 / spec.teeth as f64)
@@ -345,6 +356,14 @@ mod tests {
                 .starts_with("m.ron: clearance_percent:")
         );
         assert!(bad("(driver: (teeth: 20,").starts_with("m.ron: line 1, column"));
+        assert_eq!(
+            bad(&base(
+                "(teeth: 1000000000, tip_radius: 10.0, root_radius: 9.0)",
+                "clearance_percent: Some(40.0)"
+            )),
+            "m.ron: driver.teeth: must be at most 100000 (the limit on teeth; got 1000000000)"
+        );
+        assert_eq!(train::MAX_TEETH as usize, geometry::MAX_TEETH);
         assert!(
             bad(&base(
                 "(teeth: 3, tip_radius: 10.0, root_radius: 9.0, tips_deg: Some([0.0, 10.0]))",

@@ -123,7 +123,17 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
                 });
                 let mech = match (mech, failure) {
                     (_, Some(e)) => return Err(e),
-                    (Err(e), None) => return Err(RunError::Internal(e.to_string())),
+                    // The errors moved the bodies into each other: these inputs cannot be run.
+                    (Err(e), None) => {
+                        return Err(RunError::bad(
+                            "--hypothesis",
+                            format!("mesh {}", e.mesh),
+                            format!(
+                                "{}: the manufactured gears cannot be placed at this clearance",
+                                e.rule
+                            ),
+                        ));
+                    }
                     (Ok(m), None) => m,
                 };
                 let mut out = Vec::new();

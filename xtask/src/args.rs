@@ -1,11 +1,36 @@
-//! Command-line parsing, by hand: seven commands and their flags.
+//! Command-line parsing, by hand: seven commands, their flags, and `-q` / `-v` anywhere.
 
 use std::path::PathBuf;
 
-use registry::Shard;
+use registry::{MAX_TRIALS, Shard};
 
 /// Seed used when `--seed` is not given.
 pub const DEFAULT_SEED: u64 = 2025;
+
+/// The most worker threads `--threads` may ask for.
+pub const MAX_THREADS: usize = 1024;
+
+/// How much goes to stderr besides errors.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Verbosity {
+    /// `-q`: no progress bars, no logs, no notes; errors only.
+    Quiet,
+    /// The default: progress bars on a terminal, warnings, a note of where results went.
+    Normal,
+    /// `-v`: as normal, plus debug logs (per-experiment timing, per-batch sizes).
+    Verbose,
+}
+
+/// What `run` and `merge` print on stdout (results files are written the same way whatever it is).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    /// The tables as Markdown, as `table.md` holds them.
+    Md,
+    /// Each table as CSV after a `# title` line, tables separated by a blank line.
+    Csv,
+    /// The report as `tables.json` holds it.
+    Json,
+}
 
 /// What the command line asks for.
 #[derive(Debug, PartialEq, Eq)]
@@ -22,7 +47,7 @@ pub enum Command {
     Run(RunArgs),
     /// `bench [--only table5|all] [--threads 1,2]`.
     Bench(BenchArgs),
-    /// `merge DIR|FILE... [--out DIR] [--threads N]`.
+    /// `merge DIR|FILE... [--out DIR] [--threads N] [--format F]`.
     Merge(MergeArgs),
 }
 
@@ -35,6 +60,8 @@ pub struct MergeArgs {
     pub out: Option<PathBuf>,
     /// `--threads`, at least 1; `None`: available parallelism.
     pub threads: Option<usize>,
+    /// `--format`: what is printed.
+    pub format: Format,
 }
 
 /// What `bench` times.
@@ -82,6 +109,17 @@ pub struct RunArgs {
     pub sets: Vec<(String, String)>,
     /// `--shard K/N`: compute only this shard's trials and write a partial file.
     pub shard: Option<Shard>,
+    /// `--trials N`: the `trials` parameter of every experiment that declares one.
+    pub trials: Option<u64>,
+    /// `--gearing FILE`: the `gearing` parameter of every experiment that declares one.
+    pub gearing: Option<PathBuf>,
+    /// `--hypothesis NAME`: the `hypothesis` parameter of every experiment that declares one.
+    pub hypothesis: Option<String>,
+    /// `--errors FILE`: a table of measured per-gear errors, as `measured=FILE` where an
+    /// experiment declares `measured`, else as `hypothesis=measured:FILE`.
+    pub errors: Option<PathBuf>,
+    /// `--format`: what is printed.
+    pub format: Format,
 }
 
 /// A command line that cannot be parsed: exit status 2.
@@ -93,7 +131,31 @@ pub enum ArgError {
     Value(String),
 }
 
-/// Parses the arguments after the program name.
+/// Parses the arguments after the program name: `-q` / `--quiet` and `-v` / `--verbose` may
+/// stand anywhere (at most one of them); the rest is the command ([`parse`]).
+pub fn parse_invocation(args: &[String]) -> Result<(Command, Verbosity), ArgError> {
+    let mut verbosity = Verbosity::Normal;
+    let mut rest = Vec::with_capacity(args.len());
+    for a in args {
+        let v = match a.as_str() {
+            "-q" | "--quiet" => Verbosity::Quiet,
+            "-v" | "--verbose" => Verbosity::Verbose,
+            _ => {
+                rest.push(a.clone());
+                continue;
+            }
+        };
+        if verbosity != Verbosity::Normal && verbosity != v {
+            return Err(ArgError::Usage(
+                "-q (quiet) and -v (verbose) cannot be combined".into(),
+            ));
+        }
+        verbosity = v;
+    }
+    Ok((parse(&rest)?, verbosity))
+}
+
+/// Parses the arguments after the program name (without `-q` / `-v`).
 pub fn parse(args: &[String]) -> Result<Command, ArgError> {
     let Some((cmd, rest)) = args.split_first() else {
         return Ok(Command::Overview);
@@ -139,6 +201,11 @@ fn parse_run(args: &[String]) -> Result<RunArgs, ArgError> {
         config: None,
         sets: Vec::new(),
         shard: None,
+        trials: None,
+        gearing: None,
+        hypothesis: None,
+        errors: None,
+        format: Format::Md,
     };
     let mut it = args.iter();
     while let Some(arg) = it.next() {
@@ -160,6 +227,9 @@ fn parse_run(args: &[String]) -> Result<RunArgs, ArgError> {
                 | "--gearing"
                 | "--hypothesis"
                 | "--shard"
+                | "--trials"
+                | "--errors"
+                | "--format"
         ) {
             return Err(ArgError::Usage(format!("unknown flag `{arg}`")));
         }
@@ -181,6 +251,8 @@ fn parse_run(args: &[String]) -> Result<RunArgs, ArgError> {
             }
             "--threads" => run.threads = Some(threads(&value)?),
             "--out" => run.out = Some(out(value)?),
+            "--format" => run.format = format(&value)?,
+            "--trials" => run.trials = Some(trials(&value)?),
             "--shard" => {
                 run.shard = Some(Shard::parse(&value).map_err(|e| ArgError::Value(e.to_string()))?);
             }
@@ -190,20 +262,11 @@ fn parse_run(args: &[String]) -> Result<RunArgs, ArgError> {
                 }
                 run.config = Some(PathBuf::from(value));
             }
-            // The gearing file of train experiments: the same as `--set gearing=FILE`.
             // The error hypothesis of experiments that manufacture gears: `--set hypothesis=NAME`.
-            "--hypothesis" => {
-                if value.is_empty() {
-                    return Err(ArgError::Value("--hypothesis: must not be empty".into()));
-                }
-                run.sets.push(("hypothesis".to_owned(), value));
-            }
-            "--gearing" => {
-                if value.is_empty() {
-                    return Err(ArgError::Value("--gearing: must not be empty".into()));
-                }
-                run.sets.push(("gearing".to_owned(), value));
-            }
+            "--hypothesis" => run.hypothesis = Some(not_empty(flag, value)?),
+            // The gearing file of train experiments: the same as `--set gearing=FILE`.
+            "--gearing" => run.gearing = Some(PathBuf::from(not_empty(flag, value)?)),
+            "--errors" => run.errors = Some(PathBuf::from(not_empty(flag, value)?)),
             _ => {
                 let Some((key, val)) = value.split_once('=').filter(|(k, _)| !k.trim().is_empty())
                 else {
@@ -226,6 +289,25 @@ fn parse_run(args: &[String]) -> Result<RunArgs, ArgError> {
             run.ids.join(" ")
         )));
     }
+    for (flag, given, key) in [
+        ("--trials", run.trials.is_some(), "trials"),
+        ("--gearing", run.gearing.is_some(), "gearing"),
+        ("--hypothesis", run.hypothesis.is_some(), "hypothesis"),
+        ("--errors", run.errors.is_some(), "hypothesis"),
+        ("--errors", run.errors.is_some(), "measured"),
+    ] {
+        if given && run.sets.iter().any(|(k, _)| k == key) {
+            return Err(ArgError::Usage(format!(
+                "{flag} and --set {key}=... cannot be combined: give one of them"
+            )));
+        }
+    }
+    if run.errors.is_some() && run.hypothesis.is_some() {
+        return Err(ArgError::Usage(
+            "--errors and --hypothesis cannot be combined: --errors chooses the measured hypothesis with your table"
+                .into(),
+        ));
+    }
     if run.shard.is_some() && (run.ids.len() != 1 || run.is_all()) {
         return Err(ArgError::Usage(format!(
             "--shard splits the trials of one experiment: give exactly one experiment id, not `{}` (`run all` and several ids cannot be sharded)",
@@ -235,11 +317,11 @@ fn parse_run(args: &[String]) -> Result<RunArgs, ArgError> {
     Ok(run)
 }
 
-/// The value of `--threads`: a positive integer.
+/// The value of `--threads`: an integer from 1 to [`MAX_THREADS`].
 fn threads(value: &str) -> Result<usize, ArgError> {
     let n: usize = value.trim().parse().map_err(|_| {
         ArgError::Value(format!(
-            "--threads: must be a positive integer (got `{value}`)"
+            "--threads: must be an integer from 1 to {MAX_THREADS} (got `{value}`)"
         ))
     })?;
     if n == 0 {
@@ -247,7 +329,52 @@ fn threads(value: &str) -> Result<usize, ArgError> {
             "--threads: must be at least 1 (got `0`)".into(),
         ));
     }
+    if n > MAX_THREADS {
+        return Err(ArgError::Value(format!(
+            "--threads: must be at most {MAX_THREADS} (got `{value}`)"
+        )));
+    }
     Ok(n)
+}
+
+/// The value of `--trials`: an integer from 1 to [`MAX_TRIALS`].
+fn trials(value: &str) -> Result<u64, ArgError> {
+    let n: u64 = value.trim().parse().map_err(|_| {
+        ArgError::Value(format!(
+            "--trials: must be an integer from 1 to {MAX_TRIALS} (got `{value}`)"
+        ))
+    })?;
+    if n == 0 {
+        return Err(ArgError::Value(
+            "--trials: must be at least 1 (got `0`)".into(),
+        ));
+    }
+    if n > MAX_TRIALS {
+        return Err(ArgError::Value(format!(
+            "--trials: must be at most {MAX_TRIALS} (the limit on trials; got `{value}`)"
+        )));
+    }
+    Ok(n)
+}
+
+/// The value of `--format`: `md`, `csv` or `json`.
+fn format(value: &str) -> Result<Format, ArgError> {
+    match value.trim() {
+        "md" => Ok(Format::Md),
+        "csv" => Ok(Format::Csv),
+        "json" => Ok(Format::Json),
+        _ => Err(ArgError::Value(format!(
+            "--format: must be md, csv or json (got `{value}`)"
+        ))),
+    }
+}
+
+/// A value that must not be empty.
+fn not_empty(flag: &str, value: String) -> Result<String, ArgError> {
+    if value.trim().is_empty() {
+        return Err(ArgError::Value(format!("{flag}: must not be empty")));
+    }
+    Ok(value)
 }
 
 /// The value of `--out`: not empty.
@@ -263,6 +390,7 @@ fn parse_merge(args: &[String]) -> Result<MergeArgs, ArgError> {
         inputs: Vec::new(),
         out: None,
         threads: None,
+        format: Format::Md,
     };
     let mut it = args.iter();
     while let Some(arg) = it.next() {
@@ -274,7 +402,7 @@ fn parse_merge(args: &[String]) -> Result<MergeArgs, ArgError> {
             Some((f, v)) if f.starts_with("--") => (f, Some(v.to_owned())),
             _ => (arg.as_str(), None),
         };
-        if !matches!(flag, "--out" | "--threads") {
+        if !matches!(flag, "--out" | "--threads" | "--format") {
             return Err(ArgError::Usage(format!(
                 "unknown flag `{arg}` of merge (the seed, parameters and config come from the partial files)"
             )));
@@ -286,10 +414,10 @@ fn parse_merge(args: &[String]) -> Result<MergeArgs, ArgError> {
                 _ => return Err(ArgError::Usage(format!("{flag} needs a value"))),
             },
         };
-        if flag == "--out" {
-            merge.out = Some(out(value)?);
-        } else {
-            merge.threads = Some(threads(&value)?);
+        match flag {
+            "--out" => merge.out = Some(out(value)?),
+            "--format" => merge.format = format(&value)?,
+            _ => merge.threads = Some(threads(&value)?),
         }
     }
     if merge.inputs.is_empty() {
@@ -418,6 +546,52 @@ mod tests {
     }
 
     #[test]
+    fn new_run_flags() {
+        let r = run("run a --trials 7 --format csv --gearing g.ron --hypothesis ideal");
+        assert_eq!(r.trials, Some(7));
+        assert_eq!(r.format, Format::Csv);
+        assert_eq!(r.gearing, Some(PathBuf::from("g.ron")));
+        assert_eq!(r.hypothesis.as_deref(), Some("ideal"));
+        assert!(r.sets.is_empty(), "shorthands are kept apart from --set");
+        assert_eq!(run("run a --format=json").format, Format::Json);
+        assert_eq!(run("run a").format, Format::Md);
+        assert_eq!(
+            run("run a --errors e.ron").errors,
+            Some(PathBuf::from("e.ron"))
+        );
+        match p("run a --trials 18446744073709551615") {
+            Err(ArgError::Value(m)) => assert!(m.contains("at most 1000000 "), "{m}"),
+            other => panic!("{other:?}"),
+        }
+        for bad in [
+            "run a --trials 3 --set trials=4",
+            "run a --gearing g.ron --set gearing=h.ron",
+            "run a --hypothesis ideal --set hypothesis=ideal",
+            "run a --errors e.ron --hypothesis ideal",
+            "run a --errors e.ron --set measured=f.ron",
+        ] {
+            assert!(matches!(p(bad), Err(ArgError::Usage(_))), "{bad}");
+        }
+    }
+
+    fn inv(s: &str) -> Result<(Command, Verbosity), ArgError> {
+        let args: Vec<String> = s.split_whitespace().map(str::to_owned).collect();
+        parse_invocation(&args)
+    }
+
+    #[test]
+    fn quiet_and_verbose_stand_anywhere() {
+        assert_eq!(inv("").unwrap(), (Command::Overview, Verbosity::Normal));
+        assert_eq!(inv("-q list").unwrap(), (Command::List, Verbosity::Quiet));
+        assert_eq!(inv("list --verbose").unwrap().1, Verbosity::Verbose);
+        let (cmd, v) = inv("run fig2 -v --seed 3").unwrap();
+        assert_eq!(v, Verbosity::Verbose);
+        assert!(matches!(cmd, Command::Run(r) if r.seed == 3));
+        assert_eq!(inv("-q -q list").unwrap().1, Verbosity::Quiet);
+        assert!(matches!(inv("-q run x -v"), Err(ArgError::Usage(_))));
+    }
+
+    #[test]
     fn run_all_takes_no_other_ids() {
         assert!(run("run all --seed 3").is_all());
         assert!(!run("run fig2").is_all());
@@ -491,11 +665,12 @@ mod tests {
                 other => panic!("{bad}: {other:?}"),
             }
         }
-        match p("merge a b/c --out o --threads=2").unwrap() {
+        match p("merge a b/c --out o --threads=2 --format csv").unwrap() {
             Command::Merge(m) => {
                 assert_eq!(m.inputs, [PathBuf::from("a"), PathBuf::from("b/c")]);
                 assert_eq!(m.out, Some(PathBuf::from("o")));
                 assert_eq!(m.threads, Some(2));
+                assert_eq!(m.format, Format::Csv);
             }
             other => panic!("{other:?}"),
         }
@@ -513,7 +688,15 @@ mod tests {
         assert!(matches!(p("run x --seed"), Err(ArgError::Usage(_))));
         assert!(matches!(p("run x --out --seed 1"), Err(ArgError::Usage(_))));
         assert!(matches!(p("run x --bogus"), Err(ArgError::Usage(_))));
-        assert!(matches!(p("run x -v"), Err(ArgError::Usage(_))));
+        assert!(
+            matches!(p("run x -v"), Err(ArgError::Usage(_))),
+            "-v is not run's"
+        );
+        assert!(matches!(p("run x --threads 1025"), Err(ArgError::Value(_))));
+        assert!(matches!(p("run x --format xml"), Err(ArgError::Value(_))));
+        assert!(matches!(p("run x --trials 0"), Err(ArgError::Value(_))));
+        assert!(matches!(p("run x --trials 2.5"), Err(ArgError::Value(_))));
+        assert!(matches!(p("run x --errors="), Err(ArgError::Value(_))));
         assert!(matches!(p("run x --set novalue"), Err(ArgError::Usage(_))));
         assert!(matches!(p("run x --set =1"), Err(ArgError::Usage(_))));
     }

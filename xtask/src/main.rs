@@ -1,8 +1,9 @@
 //! `cargo xtask`: lists and runs the experiments that reproduce the paper's figures and tables.
 //!
-//! Results go to stdout (the report's tables, exactly as snapshotted) and to
-//! `<out>/<id>/` (see [`registry::write_results`]); logs go to stderr (`RUST_LOG`, default `warn`).
-//! Exit status: 0 success, 1 internal error, 2 bad input (nothing written).
+//! Results go to stdout (the report's tables, exactly as snapshotted, or as CSV or JSON with
+//! `--format`) and to `<out>/<id>/` (see [`registry::write_results`]); logs and progress bars go
+//! to stderr (see [`progress`]). Exit status: 0 success, 1 internal error, 2 bad input (one line
+//! on stderr naming the input and the rule; nothing written).
 //!
 //! `run all` runs every experiment even when some fail, then prints a summary table and writes it
 //! to `<out>/summary.md` and `<out>/summary.json`; `bench` times `table5` and `all` in-process.
@@ -12,6 +13,7 @@
 //! partial files of every shard and writes the results a single run would write, bit for bit.
 
 mod args;
+mod progress;
 mod shard;
 mod summary;
 
@@ -22,9 +24,14 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
-use registry::{ConfigFile, Context, Experiment, RunError, Table};
+use registry::{ConfigFile, Context, Experiment, Report, RunError, Table};
+use serde_json::Value;
 
-use crate::args::{ArgError, BenchArgs, BenchTarget, Command, DEFAULT_SEED, MergeArgs, RunArgs};
+use crate::args::{
+    ArgError, BenchArgs, BenchTarget, Command, DEFAULT_SEED, Format, MAX_THREADS, MergeArgs,
+    RunArgs,
+};
+use crate::progress::note;
 
 /// Experiments by id.
 type Registry = BTreeMap<&'static str, &'static Experiment>;
@@ -74,7 +81,6 @@ fn main() -> ExitCode {
     // Names the plugin crate so that its `inventory` registrations are linked in.
     experiments::link();
     hypotheses::link();
-    init_logs();
     let args: Result<Vec<String>, _> = std::env::args_os()
         .skip(1)
         .map(|a| {
@@ -85,9 +91,13 @@ fn main() -> ExitCode {
     match args.and_then(|a| dispatch(&a)) {
         Ok(()) => ExitCode::SUCCESS,
         Err(f) => {
+            // One line each: what was wrong and the rule (a usage error points to the usage).
             match &f {
-                Failure::Usage(m) => eprintln!("error: {m}\n\n{}", usage()),
-                Failure::Bad(m) | Failure::Internal(m) => eprintln!("{m}"),
+                Failure::Usage(m) => eprintln!(
+                    "error: {} (`cargo xtask help` shows the usage)",
+                    one_line(m)
+                ),
+                Failure::Bad(m) | Failure::Internal(m) => eprintln!("{}", one_line(m)),
                 Failure::Reported(_) => {}
             }
             ExitCode::from(f.code())
@@ -95,19 +105,18 @@ fn main() -> ExitCode {
     }
 }
 
-fn init_logs() {
-    use tracing_subscriber::EnvFilter;
-    let filter = EnvFilter::try_from_default_env().unwrap_or_else(|_| EnvFilter::new("warn"));
-    // A second initialisation cannot happen here; if it did, logging would just stay as it was.
-    let _ = tracing_subscriber::fmt()
-        .with_env_filter(filter)
-        .with_writer(std::io::stderr)
-        .with_target(false)
-        .try_init();
+/// `text` on one line: line breaks become `; `.
+fn one_line(text: &str) -> String {
+    text.lines()
+        .map(str::trim_end)
+        .filter(|l| !l.is_empty())
+        .collect::<Vec<_>>()
+        .join("; ")
 }
 
 fn dispatch(args: &[String]) -> Result<(), Failure> {
-    let cmd = args::parse(args)?;
+    let (cmd, verbosity) = args::parse_invocation(args)?;
+    progress::init(verbosity);
     let exps = registry::experiments().map_err(|e| Failure::Internal(e.to_string()))?;
     match cmd {
         Command::Overview => print(&overview(&exps)),
@@ -117,6 +126,7 @@ fn dispatch(args: &[String]) -> Result<(), Failure> {
         Command::Help(Some(id)) => print(&details(lookup(&exps, &id)?)),
         Command::Run(run) if run.is_all() => {
             let rows = run_every(&exps, &run, &mut |s| print(s))?;
+            tracing::debug!(experiments = rows.len(), "run all done");
             match summary::exit_code(&rows) {
                 0 => Ok(()),
                 code => Err(Failure::Reported(code)),
@@ -156,9 +166,10 @@ fn usage() -> String {
     format!(
         "\
 Usage:
-  cargo xtask                   this overview: commands and experiments
+  cargo xtask                   this overview: commands, experiments, error hypotheses
   cargo xtask list              experiment ids, one per line
-  cargo xtask help <id>         an experiment's paper item, parameters and config file
+  cargo xtask help <id>         what an experiment reproduces, its parameters,
+                                config file and outputs
   cargo xtask hypotheses        manufacturing-error hypotheses, their parameters and defaults
   cargo xtask run <id>... [options]
                                 run experiments, print their tables and write
@@ -176,19 +187,33 @@ Usage:
                                 trials, those with index % N == K, e.g. one task
                                 of a cluster job array; writes
                                 <out>/<id>/partial-K-of-N.json, no tables
-  cargo xtask merge DIR|FILE... [--out DIR] [--threads N]
+  cargo xtask merge DIR|FILE... [--out DIR] [--threads N] [--format F]
                                 join the partial files of shards 0..N-1 (searched
                                 for in the directories given), check they fit, and
                                 print and write the results as `run` would:
                                 bit-identical to one run without --shard
 
 Options of run:
-  --seed S          seed of every random number generator (default {DEFAULT_SEED})
-  --threads N       worker threads, at least 1 (default: available parallelism, here {})
-  --out DIR         where results go (default {})
+  --seed S          seed of every random number generator, 0 to {max_seed}
+                    (default {DEFAULT_SEED})
+  --trials N        the `trials` parameter of every selected experiment that
+                    declares one, 1 to {max_trials} (refused if none does)
+  --threads N       worker threads, 1 to {MAX_THREADS} (default: available
+                    parallelism, here {threads})
+  --out DIR         where results go (default {out})
+  --format F        what is printed on stdout: md (the tables, as table.md),
+                    csv (each table as CSV after a `# title` line, blank line
+                    between tables) or json (the report, as tables.json);
+                    results files are written the same way whatever F is
   --config FILE     RON config file, for experiments that take one (see help <id>)
-  --gearing FILE    gearing RON file for train experiments (same as --set gearing=FILE)
-  --hypothesis NAME error hypothesis for experiments that apply errors (see `hypotheses`)
+  --gearing FILE    gearing RON file for every experiment with a `gearing`
+                    parameter (as --set gearing=FILE); checked before anything runs
+  --hypothesis NAME error hypothesis for every experiment with a `hypothesis`
+                    parameter (see `hypotheses`; measured:FILE reads your table)
+  --errors FILE     a table of measured per-gear errors (the format of
+                    crates/hypotheses/data/measured-example.ron): --set
+                    measured=FILE for experiments with a `measured` parameter,
+                    --hypothesis measured:FILE for the others that apply errors
   --set KEY=VALUE   set a parameter (repeatable; see help <id>); with several
                     experiments or `all`, each gets the keys it declares, and a
                     key no experiment declares is refused
@@ -196,12 +221,21 @@ Options of run:
   --shard K/N       run shard K of N of one experiment (not with `all` or several
                     ids); give every shard the same seed, --set and --config
 
-Exit status: 0 done, 1 internal error, 2 bad input (the failing experiment writes nothing).
+Anywhere on the line:
+  -q, --quiet       no progress bars, no logs, no notes on stderr; errors only
+  -v, --verbose     debug logs on stderr (per-experiment timing, per-batch sizes)
+
+Exit status: 0 done, 1 internal error, 2 bad input (one line on stderr names the file or
+flag, the field and the rule; the failing experiment writes nothing).
 `run all` runs the others after a failure and exits 1 if any failed internally, else 2 if any
 had bad input.
-Logs go to stderr; set RUST_LOG (e.g. RUST_LOG=info) for more.",
-        default_threads(),
-        default_out().display()
+Progress bars (trials done, rate, time left) appear on stderr when it is a terminal and an
+experiment runs longer than a second. Logs go to stderr; set RUST_LOG (e.g. RUST_LOG=info)
+for more.",
+        max_seed = u64::MAX,
+        max_trials = registry::MAX_TRIALS,
+        threads = default_threads(),
+        out = default_out().display()
     )
 }
 
@@ -220,9 +254,31 @@ fn overview(exps: &Registry) -> String {
         }
         s.push_str(&t.render());
     }
+    s.push('\n');
+    match hypotheses::hypotheses() {
+        Ok(all) => {
+            let mut t = Table::new(
+                "Error hypotheses (--hypothesis NAME; `cargo xtask hypotheses` lists their parameters)",
+                ["name", "what it models"],
+            );
+            for h in all.values() {
+                t.row(vec![h.name().into(), h.summary().into()]);
+            }
+            t.row(vec![
+                "measured:FILE".into(),
+                "the measured hypothesis over your own table of per-gear errors (or --errors FILE)"
+                    .into(),
+            ]);
+            s.push_str(&t.render());
+        }
+        Err(e) => s.push_str(&format!("Error hypotheses: {e}\n")),
+    }
     s
 }
 
+/// `help <id>`: what the experiment reproduces, its parameters, the flags that reach it, its
+/// config file and its outputs (with the files of its last run in the default results
+/// directory, when there is one).
 fn details(e: &Experiment) -> String {
     let mut s = format!("{}: {}\nPaper item: {}\n\n", e.id, e.title, e.paper_item);
     if e.params.is_empty() {
@@ -242,10 +298,81 @@ fn details(e: &Experiment) -> String {
         }
         s.push_str(&t.render());
     }
+    let declares = |name: &str| e.params.iter().any(|p| p.name == name);
+    let mut flags = Vec::new();
+    if declares("trials") {
+        flags.push(format!(
+            "--trials N sets `trials` (at most {})",
+            registry::MAX_TRIALS
+        ));
+    }
+    if declares("gearing") {
+        flags.push("--gearing FILE sets `gearing`".to_string());
+    }
+    if declares("hypothesis") {
+        flags.push("--hypothesis NAME sets `hypothesis`".to_string());
+    }
+    if declares("measured") {
+        flags.push("--errors FILE sets `measured`".to_string());
+    } else if declares("hypothesis") {
+        flags.push("--errors FILE sets `hypothesis` to measured:FILE".to_string());
+    }
+    if !flags.is_empty() {
+        s.push_str(&format!("\nShorthands: {}.\n", flags.join("; ")));
+    }
     s.push('\n');
     match e.config {
         Some(text) => s.push_str(&format!("Config file (--config FILE, RON): {text}\n")),
         None => s.push_str("Config file: none (takes no --config).\n"),
+    }
+    s.push_str(&outputs(e, &default_out()));
+    s
+}
+
+/// The outputs part of `help <id>`: the files every run writes, and the experiment's own files
+/// as its last run in `out` listed them (they are only known once it has run).
+fn outputs(e: &Experiment, out: &Path) -> String {
+    let dir = out.join(e.id);
+    let mut s = format!(
+        "\nOutputs, written to <out>/{id}/ (default {dir}), replacing it whole:\n",
+        id = e.id,
+        dir = dir.display()
+    );
+    for line in [
+        "  table.md      the tables as printed",
+        "  tables.json   the tables, the names of the other files, trials, tooth engagements, agreement",
+        "  <title>.csv   one CSV file per table, named after its title",
+        "  and the experiment's own files (figures as SVG, data as CSV), listed under `files` in tables.json.",
+    ] {
+        s.push_str(line);
+        s.push('\n');
+    }
+    let listed = std::fs::read_to_string(dir.join("tables.json"))
+        .ok()
+        .and_then(|text| serde_json::from_str::<Value>(&text).ok())
+        .and_then(|v| {
+            v.get("files")?.as_array().map(|files| {
+                files
+                    .iter()
+                    .filter_map(Value::as_str)
+                    .map(str::to_owned)
+                    .collect::<Vec<_>>()
+            })
+        });
+    match listed {
+        Some(files) if files.is_empty() => s.push_str(&format!(
+            "Its last run ({}) wrote no files of its own.\n",
+            dir.display()
+        )),
+        Some(files) => s.push_str(&format!(
+            "Its last run ({}) wrote: {}.\n",
+            dir.display(),
+            files.join(", ")
+        )),
+        None => s.push_str(&format!(
+            "Its own files are known once it has run (none in {} yet).\n",
+            dir.display()
+        )),
     }
     s
 }
@@ -262,7 +389,7 @@ fn known(exps: &Registry) -> String {
 fn lookup(exps: &Registry, id: &str) -> Result<&'static Experiment, Failure> {
     exps.get(id)
         .copied()
-        .ok_or_else(|| Failure::Bad(format!("unknown experiment `{id}`\n{}", known(exps))))
+        .ok_or_else(|| Failure::Bad(format!("unknown experiment `{id}` ({})", known(exps))))
 }
 
 /// The experiments `ids` names, in order, without repeats (`run all` is handled by [`run_every`]).
@@ -308,12 +435,261 @@ fn check_sets(chosen: &[&'static Experiment], sets: &[(String, String)]) -> Resu
     Ok(())
 }
 
+fn declares(e: &Experiment, name: &str) -> bool {
+    e.params.iter().any(|p| p.name == name)
+}
+
 /// The `--set` pairs `e` declares.
-fn sets_for(e: &Experiment, sets: &[(String, String)]) -> Vec<(String, String)> {
+fn declared_sets(e: &Experiment, sets: &[(String, String)]) -> Vec<(String, String)> {
     sets.iter()
-        .filter(|(k, _)| e.params.iter().any(|p| p.name == k))
+        .filter(|(k, _)| declares(e, k))
         .cloned()
         .collect()
+}
+
+/// The shorthand flags given, as (flag, the parameter it sets in `e`, value) for an experiment
+/// `e`; `None` where `e` declares no parameter the flag sets.
+fn shorthands(e: &Experiment, run: &RunArgs) -> Vec<(&'static str, Option<(String, String)>)> {
+    let mut out = Vec::new();
+    let mut add = |flag: &'static str, key: &str, value: String| {
+        out.push((flag, declares(e, key).then(|| (key.to_owned(), value))));
+    };
+    if let Some(n) = run.trials {
+        add("--trials", "trials", n.to_string());
+    }
+    if let Some(g) = &run.gearing {
+        add("--gearing", "gearing", g.display().to_string());
+    }
+    if let Some(h) = &run.hypothesis {
+        add("--hypothesis", "hypothesis", h.clone());
+    }
+    if let Some(file) = &run.errors {
+        let file = file.display().to_string();
+        if declares(e, "measured") {
+            add("--errors", "measured", file);
+        } else {
+            add("--errors", "hypothesis", format!("measured:{file}"));
+        }
+    }
+    out
+}
+
+/// Every shorthand flag given must reach at least one of `chosen`.
+fn check_shorthands(chosen: &[&'static Experiment], run: &RunArgs) -> Result<(), Failure> {
+    let Some(first) = chosen.first() else {
+        return Ok(());
+    };
+    for (i, (flag, _)) in shorthands(first, run).into_iter().enumerate() {
+        if !chosen.iter().any(|e| shorthands(e, run)[i].1.is_some()) {
+            let wanted = match flag {
+                "--trials" => "a `trials` parameter",
+                "--gearing" => "a `gearing` parameter",
+                "--hypothesis" => "a `hypothesis` parameter",
+                _ => "a `measured` or `hypothesis` parameter",
+            };
+            let ids: Vec<&str> = chosen.iter().map(|e| e.id).collect();
+            return Err(Failure::Bad(format!(
+                "{flag}: no selected experiment has {wanted} (selected: {})",
+                ids.join(", ")
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// One selected experiment, ready to run: its context and the `--set` pairs it was given
+/// (recorded in a shard's partial file).
+struct Planned {
+    e: &'static Experiment,
+    ctx: Context,
+    sets: Vec<(String, String)>,
+}
+
+/// The contexts of `chosen`. `alone`: one experiment named on its own, which gets every `--set`
+/// pair (an unknown key is refused naming its keys); otherwise each gets the keys it declares,
+/// and every key must be someone's. Then the shorthands each declares; the config file goes to
+/// those that take one. Everything the user gave is checked here, before anything runs:
+/// [`preflight`].
+fn plan(
+    chosen: &[&'static Experiment],
+    run: &RunArgs,
+    config: Option<&ConfigFile>,
+    alone: bool,
+    threads: usize,
+) -> Result<Vec<Planned>, Failure> {
+    if !alone {
+        check_sets(chosen, &run.sets)?;
+    }
+    check_shorthands(chosen, run)?;
+    let mut planned = Vec::with_capacity(chosen.len());
+    for &e in chosen {
+        let mut sets = if alone {
+            run.sets.clone()
+        } else {
+            declared_sets(e, &run.sets)
+        };
+        sets.extend(shorthands(e, run).into_iter().filter_map(|(_, s)| s));
+        let file = config.filter(|_| e.config.is_some()).cloned();
+        let ctx = progress::attach(Context::new(e, run.seed, threads, &sets, file)?);
+        planned.push(Planned { e, ctx, sets });
+    }
+    preflight(&planned, run)?;
+    Ok(planned)
+}
+
+/// Checks, before anything runs, what would otherwise fail only when an experiment reaches it
+/// (and with `all`, after others had written their results): `--out` must not be a file, and
+/// every gearing file, error hypothesis and measured-errors table the experiments were given
+/// must read and pass its rules. Each is refused naming the file, the line or item and the rule.
+fn preflight(planned: &[Planned], run: &RunArgs) -> Result<(), Failure> {
+    if let Some(out) = &run.out
+        && out.exists()
+        && !out.is_dir()
+    {
+        return Err(Failure::Bad(format!(
+            "--out: {}: exists and is not a directory",
+            out.display()
+        )));
+    }
+    let mut seen = std::collections::BTreeSet::new();
+    for p in planned {
+        let value = |name: &str| {
+            p.ctx
+                .declares(name)
+                .then(|| p.ctx.param(name).ok().map(str::to_owned))
+                .flatten()
+        };
+        if let Some(g) = value("gearing")
+            && g != "freeth2006"
+            && seen.insert(("gearing", g.clone()))
+        {
+            train::Gearing::load(Path::new(&g)).map_err(|e| Failure::Bad(e.to_string()))?;
+        }
+        let flag = if run.errors.is_some() {
+            "--errors"
+        } else {
+            "--hypothesis"
+        };
+        if let Some(h) = value("hypothesis")
+            && seen.insert(("hypothesis", h.clone()))
+        {
+            hypotheses::lookup(&h).map_err(|e| Failure::Bad(format!("{flag}: {e}")))?;
+        }
+        if let Some(m) = value("measured")
+            && !m.trim().is_empty()
+            && seen.insert(("measured", m.clone()))
+        {
+            let flag = if run.errors.is_some() {
+                "--errors"
+            } else {
+                "--set measured"
+            };
+            hypotheses::measured_file(m.trim())
+                .map_err(|e| Failure::Bad(format!("{flag}: {e}")))?;
+        }
+    }
+    Ok(())
+}
+
+/// Prints reports on stdout (through `out`) as `--format` asks: Markdown or CSV as each
+/// experiment finishes, JSON once at the end when there are several.
+struct Printer<'a> {
+    format: Format,
+    /// Several experiments (or `all`): each is introduced by its id.
+    several: bool,
+    out: &'a mut dyn FnMut(&str) -> Result<(), Failure>,
+    printed: usize,
+    json: serde_json::Map<String, Value>,
+    summary: Option<Value>,
+}
+
+impl<'a> Printer<'a> {
+    fn new(
+        format: Format,
+        several: bool,
+        out: &'a mut dyn FnMut(&str) -> Result<(), Failure>,
+    ) -> Self {
+        Printer {
+            format,
+            several,
+            out,
+            printed: 0,
+            json: serde_json::Map::new(),
+            summary: None,
+        }
+    }
+
+    fn report(&mut self, e: &Experiment, report: &Report) -> Result<(), Failure> {
+        let gap = if self.printed == 0 { "" } else { "\n" };
+        self.printed += 1;
+        match self.format {
+            Format::Md => {
+                if self.several {
+                    (self.out)(&format!("{gap}## {}: {}\n\n", e.id, e.title))?;
+                }
+                (self.out)(&report.text())
+            }
+            Format::Csv => {
+                let prefix = if self.several {
+                    format!("{}: ", e.id)
+                } else {
+                    String::new()
+                };
+                (self.out)(&format!("{gap}{}", csv_tables(&report.tables, &prefix)))
+            }
+            Format::Json if self.several => {
+                self.json
+                    .insert(e.id.to_owned(), json_value(&report.to_json())?);
+                Ok(())
+            }
+            Format::Json => (self.out)(&report.to_json()),
+        }
+    }
+
+    /// The summary of `run all`: a table after the reports, or the `summary` member of the JSON.
+    fn summary(&mut self, rows: &[summary::Row], seed: u64, threads: usize) -> Result<(), Failure> {
+        let table = summary::table(rows);
+        match self.format {
+            Format::Md => (self.out)(&format!("\n{}", table.render())),
+            Format::Csv => (self.out)(&format!(
+                "\n{}",
+                csv_tables(std::slice::from_ref(&table), "")
+            )),
+            Format::Json => {
+                self.summary = Some(json_value(&summary::json(rows, seed, threads))?);
+                Ok(())
+            }
+        }
+    }
+
+    /// Prints what was held back: the JSON of several experiments.
+    fn finish(self) -> Result<(), Failure> {
+        if self.format != Format::Json || !self.several {
+            return Ok(());
+        }
+        let mut doc = serde_json::Map::new();
+        doc.insert("experiments".into(), Value::Object(self.json));
+        if let Some(s) = self.summary {
+            doc.insert("summary".into(), s);
+        }
+        let text = serde_json::to_string_pretty(&Value::Object(doc))
+            .map_err(|e| Failure::Internal(format!("internal error: cannot print JSON: {e}")))?;
+        (self.out)(&format!("{text}\n"))
+    }
+}
+
+/// Each table as CSV after a `# <prefix><title>` line, separated by blank lines.
+fn csv_tables(tables: &[Table], prefix: &str) -> String {
+    tables
+        .iter()
+        .map(|t| format!("# {prefix}{}\n{}", t.title, t.to_csv()))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+fn json_value(text: &str) -> Result<Value, Failure> {
+    serde_json::from_str(text)
+        .map_err(|e| Failure::Internal(format!("internal error: a report's JSON: {e}")))
 }
 
 fn make_pool(threads: usize) -> Result<rayon::ThreadPool, Failure> {
@@ -332,6 +708,7 @@ fn execute(
 ) -> (Result<registry::Report, RunError>, f64) {
     let _span = tracing::info_span!("run", id = e.id).entered();
     tracing::info!(seed = ctx.seed(), threads = ctx.threads(), "start");
+    progress::experiment_starts();
     let start = Instant::now();
     let result = pool
         .install(|| catch_unwind(AssertUnwindSafe(|| (e.run)(ctx))))
@@ -369,11 +746,13 @@ fn write_atomically(path: &Path, text: &str) -> Result<(), Failure> {
 
 /// `run all`: every experiment in id order, each written as `run <id>` writes it; a failing
 /// experiment is reported on stderr and the others still run. Then the summary is printed
-/// (through `out`) and written to `<out>/summary.md` and `<out>/summary.json`.
+/// (through `out`, in the `--format` asked for) and written to `<out>/summary.md` and
+/// `<out>/summary.json`.
 ///
 /// `--set KEY=VALUE` goes to every experiment that declares KEY (a KEY none declares is refused
-/// before anything runs); `--config` goes to every experiment that takes one (refused if none
-/// does). Returns the summary rows; [`summary::exit_code`] turns them into the exit status.
+/// before anything runs), and so do the shorthands (`--trials`, `--gearing`, `--hypothesis`,
+/// `--errors`); `--config` goes to every experiment that takes one (refused if none does).
+/// Returns the summary rows; [`summary::exit_code`] turns them into the exit status.
 fn run_every(
     exps: &Registry,
     run: &RunArgs,
@@ -386,47 +765,37 @@ fn run_every(
             "--config: no experiment takes a config file".into(),
         ));
     }
-    check_sets(&chosen, &run.sets)?;
     if chosen.is_empty() {
-        eprintln!("nothing to run: {}", known(exps));
+        check_sets(&chosen, &run.sets)?;
+        note(&format!("nothing to run: {}", known(exps)));
         return Ok(Vec::new());
     }
     let threads = run.threads.unwrap_or_else(default_threads);
-    let mut contexts = Vec::with_capacity(chosen.len());
-    for e in &chosen {
-        let file = config.clone().filter(|_| e.config.is_some());
-        contexts.push(Context::new(
-            e,
-            run.seed,
-            threads,
-            &sets_for(e, &run.sets),
-            file,
-        )?);
-    }
+    let planned = plan(&chosen, run, config.as_ref(), false, threads)?;
     let pool = make_pool(threads)?;
     let dir = run.out.clone().unwrap_or_else(default_out);
-    let mut rows = Vec::with_capacity(chosen.len());
-    for (i, (e, ctx)) in chosen.iter().zip(&contexts).enumerate() {
-        let (result, seconds) = execute(e, ctx, &pool);
+    let mut printer = Printer::new(run.format, true, out);
+    let mut rows = Vec::with_capacity(planned.len());
+    for p in &planned {
+        let (result, seconds) = execute(p.e, &p.ctx, &pool);
         let result = match result {
             Ok(report) => {
-                let gap = if i == 0 { "" } else { "\n" };
-                out(&format!("{gap}## {}: {}\n\n", e.id, e.title))?;
-                out(&report.text())?;
-                let results = dir.join(e.id);
+                printer.report(p.e, &report)?;
+                let results = dir.join(p.e.id);
                 registry::write_results(&results, &report).map(|()| {
-                    eprintln!("results: {}", results.display());
+                    note(&format!("results: {}", results.display()));
                     report
                 })
             }
             Err(err) => Err(err),
         };
         if let Err(err) = &result {
-            eprintln!("{}: {err}", e.id);
+            eprintln!("{}: {err}", p.e.id);
         }
-        rows.push(summary::Row::new(e.id, seconds, result.as_ref()));
+        rows.push(summary::Row::new(p.e.id, seconds, result.as_ref()));
     }
-    out(&format!("\n{}", summary::table(&rows).render()))?;
+    printer.summary(&rows, run.seed, threads)?;
+    printer.finish()?;
     std::fs::create_dir_all(&dir).map_err(|e| {
         Failure::Internal(format!(
             "internal error: cannot create {}: {e}",
@@ -441,7 +810,7 @@ fn run_every(
         &dir.join("summary.json"),
         &summary::json(&rows, run.seed, threads),
     )?;
-    eprintln!("summary: {}", dir.join("summary.md").display());
+    note(&format!("summary: {}", dir.join("summary.md").display()));
     Ok(rows)
 }
 
@@ -468,7 +837,7 @@ fn bench(exps: &Registry, b: &BenchArgs) -> Result<(), Failure> {
             BenchTarget::Table5 => match exps.get("table5") {
                 Some(e) => vec![*e],
                 None => {
-                    eprintln!("bench: table5 is not registered in this build; skipped");
+                    note("bench: table5 is not registered in this build; skipped");
                     t.note("table5: not registered in this build; skipped.");
                     continue;
                 }
@@ -476,16 +845,16 @@ fn bench(exps: &Registry, b: &BenchArgs) -> Result<(), Failure> {
             BenchTarget::All => exps.values().copied().collect(),
         };
         for &threads in &b.threads {
-            eprintln!(
+            note(&format!(
                 "bench: {} with {threads} thread{}...",
                 target.name(),
                 if threads == 1 { "" } else { "s" }
-            );
+            ));
             let start = Instant::now();
             let pool = make_pool(threads)?;
             let mut rows = Vec::new();
             for e in &chosen {
-                let ctx = Context::new(e, DEFAULT_SEED, threads, &[], None)?;
+                let ctx = progress::attach(Context::new(e, DEFAULT_SEED, threads, &[], None)?);
                 let (result, seconds) = execute(e, &ctx, &pool);
                 if let Err(err) = &result {
                     eprintln!("bench: {}: {err}", e.id);
@@ -543,7 +912,7 @@ fn run_all(exps: &Registry, run: &RunArgs) -> Result<(), Failure> {
     if config.is_some() {
         if let Some(e) = chosen.iter().find(|e| e.config.is_none()) {
             return Err(Failure::Bad(format!(
-                "experiment {} takes no --config",
+                "--config: experiment {} takes no --config",
                 e.id
             )));
         }
@@ -551,60 +920,54 @@ fn run_all(exps: &Registry, run: &RunArgs) -> Result<(), Failure> {
             return Err(Failure::Bad("--config: no experiment to give it to".into()));
         }
     }
-    if chosen.len() != 1 {
-        check_sets(&chosen, &run.sets)?;
-    }
-    let threads = run.threads.unwrap_or_else(default_threads);
-    let mut contexts = Vec::with_capacity(chosen.len());
-    for e in &chosen {
-        let sets: Vec<(String, String)> = if chosen.len() == 1 {
-            run.sets.clone()
-        } else {
-            sets_for(e, &run.sets)
-        };
-        contexts.push(Context::new(e, run.seed, threads, &sets, config.clone())?);
-    }
     if chosen.is_empty() {
-        eprintln!("nothing to run: {}", known(exps));
+        note(&format!("nothing to run: {}", known(exps)));
         return Ok(());
     }
+    let threads = run.threads.unwrap_or_else(default_threads);
+    let planned = plan(&chosen, run, config.as_ref(), chosen.len() == 1, threads)?;
     let pool = make_pool(threads)?;
     let out = run.out.clone().unwrap_or_else(default_out);
-    if let (Some(shard), [e], [ctx]) = (run.shard, chosen.as_slice(), contexts.as_slice()) {
-        return run_shard(e, ctx.clone().with_shard(shard), run, &pool, &out);
+    if let (Some(shard), [p]) = (run.shard, planned.as_slice()) {
+        return run_shard(p, p.ctx.clone().with_shard(shard), run, &pool, &out);
     }
-    let several = chosen.len() > 1;
-    for (i, (e, ctx)) in chosen.iter().zip(&contexts).enumerate() {
-        let report = execute(e, ctx, &pool).0?;
-        if several {
-            let gap = if i == 0 { "" } else { "\n" };
-            print(&format!("{gap}## {}: {}\n\n", e.id, e.title))?;
-        }
-        print(&report.text())?;
-        let dir = out.join(e.id);
+    let mut stdout = |s: &str| print(s);
+    let mut printer = Printer::new(run.format, planned.len() > 1, &mut stdout);
+    for p in &planned {
+        let report = match execute(p.e, &p.ctx, &pool).0 {
+            Ok(r) => r,
+            Err(e) => {
+                // What finished is printed (JSON is held back until the end).
+                printer.finish()?;
+                return Err(e.into());
+            }
+        };
+        printer.report(p.e, &report)?;
+        let dir = out.join(p.e.id);
         registry::write_results(&dir, &report)?;
-        eprintln!("results: {}", dir.display());
+        note(&format!("results: {}", dir.display()));
     }
-    Ok(())
+    printer.finish()
 }
 
 /// `run <id> --shard K/N`: runs the experiment in shard mode, discards its report and writes
 /// the recorded trials to `<out>/<id>/partial-K-of-N.json` (through a temporary file renamed
 /// into place; other files of the directory are left alone, so shards may share it).
 fn run_shard(
-    e: &Experiment,
+    planned: &Planned,
     ctx: Context,
     run: &RunArgs,
     pool: &rayon::ThreadPool,
     out: &Path,
 ) -> Result<(), Failure> {
+    let e = planned.e;
     let registry::TrialMode::Shard(shard) = ctx.trial_mode() else {
         return Err(Failure::Internal(
             "internal error: a shard run without a shard".into(),
         ));
     };
     execute(e, &ctx, pool).0?;
-    let mut partial = shard::Partial::new(e.id, run.seed, &run.sets, ctx.config(), shard);
+    let mut partial = shard::Partial::new(e.id, run.seed, &planned.sets, ctx.config(), shard);
     partial.batches = ctx.recorded();
     let text = partial.to_json()?;
     let dir = out.join(e.id);
@@ -626,7 +989,7 @@ fn run_shard(
     }
     let plural =
         |n: usize, one: &str, more: &str| format!("{n} {}", if n == 1 { one } else { more });
-    eprintln!(
+    note(&format!(
         "partial: {} (shard {shard} of {}: {}, {} computed here{}); join the {} with `cargo xtask merge`",
         path.display(),
         e.id,
@@ -638,12 +1001,12 @@ fn run_shard(
             String::new()
         },
         plural(shard.count() as usize, "shard", "shards")
-    );
+    ));
     if partial.batches.is_empty() {
-        eprintln!(
+        note(&format!(
             "note: {} runs no trials through Context::trials: every shard computes all of it, and the merge computes it again",
             e.id
-        );
+        ));
     }
     Ok(())
 }
@@ -677,6 +1040,15 @@ fn merge(exps: &Registry, m: &MergeArgs) -> Result<(), Failure> {
     let threads = m.threads.unwrap_or_else(default_threads);
     let ctx = Context::new(e, header.seed, threads, &header.sets, header.config_file())?
         .with_replay(merged);
+    if let Some(out) = &m.out
+        && out.exists()
+        && !out.is_dir()
+    {
+        return Err(Failure::Bad(format!(
+            "--out: {}: exists and is not a directory",
+            out.display()
+        )));
+    }
     let pool = make_pool(threads)?;
     let report = execute(e, &ctx, &pool).0?;
     if let Some(batch) = ctx.unclaimed().first() {
@@ -685,14 +1057,15 @@ fn merge(exps: &Registry, m: &MergeArgs) -> Result<(), Failure> {
             e.id
         )));
     }
-    print(&report.text())?;
+    let mut stdout = |s: &str| print(s);
+    Printer::new(m.format, false, &mut stdout).report(e, &report)?;
     let dir = m.out.clone().unwrap_or_else(default_out).join(e.id);
     registry::write_results(&dir, &report)?;
-    eprintln!(
+    note(&format!(
         "results: {} (merged from {} shards)",
         dir.display(),
         header.shards
-    );
+    ));
     Ok(())
 }
 
@@ -700,7 +1073,7 @@ fn merge(exps: &Registry, m: &MergeArgs) -> Result<(), Failure> {
 #[allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
 mod tests {
     use super::*;
-    use registry::{Param, Report};
+    use registry::Param;
 
     fn fine(ctx: &Context) -> Result<Report, RunError> {
         let mut t = Table::new("Fine", ["n"]);
@@ -789,6 +1162,11 @@ mod tests {
                 .map(|(k, v)| ((*k).to_owned(), (*v).to_owned()))
                 .collect(),
             shard: None,
+            trials: None,
+            gearing: None,
+            hypothesis: None,
+            errors: None,
+            format: Format::Md,
         }
     }
 

@@ -30,11 +30,12 @@ fn bench_refuses_bad_arguments() {
     ] {
         let o = xtask(args);
         assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        let err = stderr(&o);
+        assert_eq!(err.lines().count(), 1, "{args:?}: one line: {err}");
         assert_eq!(
-            stderr(&o).contains("Usage:"),
+            err.contains("`cargo xtask help` shows the usage"),
             usage,
-            "{args:?}: {}",
-            stderr(&o)
+            "{args:?}: {err}"
         );
         assert!(o.stdout.is_empty(), "{args:?}: nothing may run");
     }

@@ -134,7 +134,7 @@ fn zero_threads_exits_2() {
 }
 
 #[test]
-fn bad_command_lines_exit_2_with_usage() {
+fn bad_command_lines_exit_2_pointing_to_the_usage() {
     for args in [
         &["frobnicate"][..],
         &["run"],
@@ -144,8 +144,13 @@ fn bad_command_lines_exit_2_with_usage() {
         &["list", "extra"],
     ] {
         let o = xtask(args);
-        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
-        assert!(stderr(&o).contains("Usage:"), "{args:?}: {}", stderr(&o));
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{args:?}: one line: {err}");
+        assert!(
+            err.starts_with("error: ") && err.contains("`cargo xtask help` shows the usage"),
+            "{args:?}: {err}"
+        );
     }
     let o = xtask(&["run", "all", "--seed", "minus-one"]);
     assert_eq!(o.status.code(), Some(2));

@@ -413,11 +413,12 @@ fn bad_shard_flags_exit_2_and_write_nothing() {
     ] {
         let o = xtask(args);
         assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        let err = stderr(&o);
+        assert_eq!(err.lines().count(), 1, "{args:?}: one line: {err}");
         assert_eq!(
-            stderr(&o).contains("Usage:"),
+            err.contains("`cargo xtask help` shows the usage"),
             usage,
-            "{args:?}: {}",
-            stderr(&o)
+            "{args:?}: {err}"
         );
         assert!(o.stdout.is_empty());
         assert!(!Path::new(&out).exists(), "{args:?} wrote something");

@@ -11,6 +11,10 @@ use std::f64::consts::TAU;
 use nalgebra::Vector2;
 use serde::{Deserialize, Serialize};
 
+/// The most teeth a gear may have: 10^5. The mechanism's largest gear has 223; a larger count
+/// is refused (naming this limit) rather than attempted, as every tooth is stored and simulated.
+pub const MAX_TEETH: usize = 100_000;
+
 /// A point or vector in a plane, in millimetres (or any consistent length unit).
 pub type Vec2 = Vector2<f64>;
 
@@ -46,6 +50,13 @@ pub struct Gear {
     rotation_centre: Vec2,
 }
 
+fn too_many(teeth: usize) -> GeometryError {
+    GeometryError::new(
+        "teeth",
+        format!("must be at most {MAX_TEETH} (the limit on teeth; got {teeth})"),
+    )
+}
+
 fn check_finite(field: &str, x: f64) -> Result<(), GeometryError> {
     if x.is_finite() {
         Ok(())
@@ -63,6 +74,9 @@ impl Gear {
                 format!("must be at least 3 (got {teeth})"),
             ));
         }
+        if teeth > MAX_TEETH {
+            return Err(too_many(teeth));
+        }
         let pitch = TAU / teeth as f64;
         let tips = (0..teeth).map(|k| pitch * k as f64).collect();
         Self::new(tip_radius, root_radius, tips, Vec2::zeros())
@@ -70,7 +84,7 @@ impl Gear {
 
     /// A gear with explicit tip angles (radians, gear frame) and rotation centre offset.
     ///
-    /// Rules: at least 3 tips; `0 < root_radius < tip_radius`; every value finite; tips strictly
+    /// Rules: at least 3 tips and at most [`MAX_TEETH`]; `0 < root_radius < tip_radius`; every value finite; tips strictly
     /// increasing and all within one turn of the first (`tips[N-1] < tips[0] + 2π`); the rotation
     /// centre inside the root circle (otherwise the gear could not sit on an arbor).
     pub fn new(
@@ -86,6 +100,9 @@ impl Gear {
                 "teeth",
                 format!("must be at least 3 (got {})", tips.len()),
             ));
+        }
+        if tips.len() > MAX_TEETH {
+            return Err(too_many(tips.len()));
         }
         if root_radius <= 0.0 {
             return Err(GeometryError::new("root_radius", "must be greater than 0"));
@@ -265,6 +282,23 @@ mod tests {
         assert!(e.rule.contains("one turn"));
         let e = Gear::new(10.0, 9.0, vec![0.0, 2.0, 4.0], Vec2::new(9.5, 0.0)).unwrap_err();
         assert_eq!(e.field, "rotation_centre");
+    }
+
+    #[test]
+    fn enormous_tooth_counts_are_refused_before_allocating() {
+        let e = Gear::ideal(1_000_000_000, 10.0, 9.0).unwrap_err();
+        assert_eq!(e.field, "teeth");
+        assert!(e.rule.contains("at most 100000"), "{e}");
+        assert!(Gear::ideal(MAX_TEETH, 1e4, 9.9e3).is_ok());
+        let tips: Vec<f64> = (0..=MAX_TEETH)
+            .map(|k| TAU * k as f64 / (MAX_TEETH + 1) as f64)
+            .collect();
+        assert_eq!(
+            Gear::new(1e4, 9.9e3, tips, Vec2::zeros())
+                .unwrap_err()
+                .field,
+            "teeth"
+        );
     }
 
     #[test]

@@ -15,7 +15,8 @@ mod params;
 
 pub use edmunds::{EdmundsErrors, eccentricity, manufacture};
 pub use measured::{
-    MEASURED_EXAMPLE, MeasuredEntry, MeasuredHypothesis, MeasuredTable, measured_from_ron,
+    MEASURED_EXAMPLE, MeasuredEntry, MeasuredHypothesis, MeasuredTable, measured_file,
+    measured_from_ron,
 };
 pub use params::Params;
 
@@ -121,14 +122,22 @@ fn collect(
     Ok(map)
 }
 
-/// The registered hypothesis called `name`; an unknown name is an error listing every known one.
+/// The registered hypothesis called `name`, or for `measured:FILE` the `measured` hypothesis
+/// over the table in FILE ([`measured_file`]); an unknown name is an error listing every known
+/// one.
 pub fn lookup(name: &str) -> Result<&'static dyn Hypothesis, HypothesisError> {
+    if let Some(path) = name.strip_prefix("measured:") {
+        return measured_file(path).map(|h| h as &'static dyn Hypothesis);
+    }
     let all = hypotheses().map_err(|e| HypothesisError::new("error hypotheses", e.to_string()))?;
     all.get(name).copied().ok_or_else(|| {
         let known: Vec<&str> = all.keys().copied().collect();
         HypothesisError::new(
             format!("error hypothesis `{name}`"),
-            format!("unknown; known hypotheses: {}", known.join(", ")),
+            format!(
+                "unknown; known hypotheses: {}, or measured:FILE (a table of per-gear errors)",
+                known.join(", ")
+            ),
         )
     })
 }

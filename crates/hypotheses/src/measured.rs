@@ -1,6 +1,7 @@
 //! Per-gear error values from a RON table (Edmunds' measurements, or anyone's).
 
 use std::collections::BTreeMap;
+use std::sync::{LazyLock, Mutex, PoisonError};
 
 use geometry::Gear;
 use serde::Deserialize;
@@ -155,6 +156,7 @@ impl MeasuredTable {
     /// user's file.
     pub fn hypothesis(&self) -> MeasuredHypothesis {
         MeasuredHypothesis {
+            name: "measured",
             table: self.clone(),
         }
     }
@@ -196,10 +198,50 @@ pub(crate) const MEASURED_PARAMS: &[ParamSpec] = &[ParamSpec {
 /// One-line summary of every `measured` hypothesis.
 pub(crate) const MEASURED_SUMMARY: &str = "per-gear random fraction, systematic amplitude (deg) and optional phase from a RON table, 50/50 split unless it says otherwise; registered with an INVENTED example table (crates/hypotheses/data/measured-example.ron)";
 
-/// The `measured` hypothesis over a given table (see [`MeasuredTable::hypothesis`]).
+/// The `measured` hypothesis over a given table (see [`MeasuredTable::hypothesis`] and
+/// [`measured_file`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct MeasuredHypothesis {
+    /// `measured`, or `measured:FILE` for a table read by [`measured_file`].
+    name: &'static str,
     table: MeasuredTable,
+}
+
+/// Tables read by [`measured_file`], by (path, contents): each read once per process.
+static LOADED: LazyLock<Mutex<BTreeMap<(String, String), &'static MeasuredHypothesis>>> =
+    LazyLock::new(|| Mutex::new(BTreeMap::new()));
+
+/// The `measured` hypothesis over the table in the file `path` (the format of
+/// [`measured_from_ron`]), named `measured:PATH`; [`crate::lookup`] gives it for that name, so
+/// `--hypothesis measured:FILE` (or the runner's `--errors FILE`) points the `measured`
+/// hypothesis at a user's table instead of the embedded example.
+///
+/// The name carries the path so that results computed with different tables can never be
+/// mistaken for each other (experiments name cells and their random streams after the
+/// hypothesis). A hypothesis is `'static`: each (path, contents) read is kept for the life of
+/// the process (a few kilobytes each).
+///
+/// Errors name the file: it cannot be read (missing, not UTF-8), or [`measured_from_ron`]
+/// refuses it.
+pub fn measured_file(path: &str) -> Result<&'static MeasuredHypothesis, HypothesisError> {
+    if path.trim().is_empty() {
+        return Err(HypothesisError::new(
+            "measured:FILE",
+            "needs a file name after `measured:`",
+        ));
+    }
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| HypothesisError::new(path, format!("cannot read: {e}")))?;
+    let key = (path.to_owned(), text);
+    let mut loaded = LOADED.lock().unwrap_or_else(PoisonError::into_inner);
+    if let Some(h) = loaded.get(&key) {
+        return Ok(h);
+    }
+    let table = measured_from_ron(path, &key.1)?;
+    let name: &'static str = Box::leak(format!("measured:{path}").into_boxed_str());
+    let h: &'static MeasuredHypothesis = Box::leak(Box::new(MeasuredHypothesis { name, table }));
+    loaded.insert(key, h);
+    Ok(h)
 }
 
 impl MeasuredHypothesis {
@@ -211,7 +253,7 @@ impl MeasuredHypothesis {
 
 impl Hypothesis for MeasuredHypothesis {
     fn name(&self) -> &'static str {
-        "measured"
+        self.name
     }
 
     fn summary(&self) -> &'static str {

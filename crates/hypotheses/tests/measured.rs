@@ -164,3 +164,67 @@ fn bad_tables_name_the_file_the_gear_and_the_rule() {
     let e = measured_from_ron("bad.ron", "(gears: [").unwrap_err();
     assert!(e.what.starts_with("bad.ron: line"), "{e}");
 }
+
+#[test]
+fn measured_colon_file_reads_the_users_table() {
+    let dir = std::env::temp_dir().join(format!(
+        "hypotheses-measured-file-{}-{}",
+        std::process::id(),
+        std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .unwrap()
+            .as_nanos()
+    ));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("mine.ron");
+    std::fs::write(
+        &file,
+        r#"(gears: [(gear: "x1", random: 0.0, systematic: 2.0, phase: 30.0)])"#,
+    )
+    .unwrap();
+    let name = format!("measured:{}", file.display());
+    let h = lookup(&name).unwrap();
+    assert_eq!(h.name(), name, "the name carries the file");
+    assert!(
+        std::ptr::eq(
+            h as *const dyn Hypothesis as *const u8,
+            lookup(&name).unwrap() as *const dyn Hypothesis as *const u8
+        ),
+        "read once per process"
+    );
+    let p = Params::new(h, &[]).unwrap();
+    let mut rng = ChaCha8Rng::seed_from_u64(3);
+    let made = h.apply(&gear(60), "x1", &p, &mut rng).unwrap();
+    assert_ne!(made.tip_angles(), gear(60).tip_angles());
+    let e = h.apply(&gear(60), "b1", &p, &mut rng).unwrap_err();
+    assert!(e.to_string().contains("gear b1: missing"), "{e}");
+
+    // Bad files name the file and the rule.
+    let bad = dir.join("bad.ron");
+    std::fs::write(
+        &bad,
+        r#"(gears: [(gear: "x1", random: NaN, systematic: 0.0)])"#,
+    )
+    .unwrap();
+    let e = lookup(&format!("measured:{}", bad.display()))
+        .err()
+        .unwrap();
+    assert!(
+        e.to_string()
+            .starts_with(&format!("{}: gear x1", bad.display())),
+        "{e}"
+    );
+    std::fs::write(&bad, b"(gears: [\xff\xfe").unwrap();
+    let e = lookup(&format!("measured:{}", bad.display()))
+        .err()
+        .unwrap();
+    assert!(e.to_string().contains("cannot read"), "{e}");
+    let e = lookup(&format!("measured:{}", dir.join("missing.ron").display()))
+        .err()
+        .unwrap();
+    assert!(e.to_string().contains("missing.ron: cannot read"), "{e}");
+    assert!(lookup("measured:").is_err());
+    let e = lookup("nonsense").err().unwrap();
+    assert!(e.rule.contains("measured:FILE"), "{e}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

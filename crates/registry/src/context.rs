@@ -4,15 +4,32 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::PathBuf;
 use std::str::FromStr;
-use std::sync::{Mutex, MutexGuard, PoisonError};
+use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
+use std::time::Instant;
 
 use rayon::prelude::*;
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 use serde_json::Value as Json;
 
+use crate::progress::{BatchProgress, Hook, Progress};
 use crate::trials::{Batch, Records, Shard};
 use crate::{Experiment, RunError};
+
+/// The most trials a `trials` parameter may ask for: 10^6 (per cell, case or input, as the
+/// experiment counts them). By convention an experiment's `trials` parameter is its number of
+/// Monte-Carlo trials; [`Context::new`] refuses a larger value (or one that is not a
+/// non-negative integer) before anything runs, naming this limit. The paper's largest count is
+/// 200. Experiments hold a small record per trial of every cell in memory (table3: 60 cells, some
+/// 24 bytes each), so 10^6 keeps even the largest grids within a few gigabytes, and is already
+/// far beyond what one machine computes in a day; split a larger study into runs with different
+/// seeds.
+pub const MAX_TRIALS: u64 = 1_000_000;
+
+/// The largest value [`Context::usize`] accepts: 10^7. Integer parameters read that way are
+/// counts that size the work and its memory (samples, pitches, teeth, trials...); a larger one
+/// is refused, naming this limit, rather than attempted.
+pub const MAX_COUNT: usize = 10_000_000;
 
 /// A config file given with `--config FILE`, already read.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -65,6 +82,8 @@ pub struct Context {
     /// Replay mode: the merged records of every shard.
     replay: Records,
     ledger: Mutex<Ledger>,
+    /// Told about every batch of trials (the runner's progress bars); never changes results.
+    progress: Option<Hook>,
 }
 
 impl Clone for Context {
@@ -83,6 +102,7 @@ impl Clone for Context {
                 claimed: ledger.claimed.clone(),
                 recorded: ledger.recorded.clone(),
             }),
+            progress: self.progress.clone(),
         }
     }
 }
@@ -92,7 +112,8 @@ impl Context {
     /// (from `--set key=value`, later ones winning) replace them.
     ///
     /// Errors ([`RunError::BadInput`]): an unknown key (naming it and listing the known ones);
-    /// `threads == 0`; a config file for an experiment that takes none.
+    /// `threads == 0`; a config file for an experiment that takes none; a `trials` value that
+    /// is not an integer from 0 to [`MAX_TRIALS`].
     pub fn new(
         exp: &Experiment,
         seed: u64,
@@ -133,6 +154,9 @@ impl Context {
                 }
             }
         }
+        if let Some(p) = params.iter().find(|p| p.name == "trials" && p.overridden) {
+            check_trials(&p.value)?;
+        }
         if let (Some(file), None) = (&config, exp.config) {
             return Err(RunError::bad(
                 "--config",
@@ -149,7 +173,21 @@ impl Context {
             mode: TrialMode::Normal,
             replay: Records::new(),
             ledger: Mutex::new(Ledger::default()),
+            progress: None,
         })
+    }
+
+    /// This context with `progress` told about every batch of trials as it runs (see
+    /// [`crate::Progress`]). Results do not depend on it.
+    #[must_use]
+    pub fn with_progress(mut self, progress: Arc<dyn Progress>) -> Context {
+        self.progress = Some(Hook(progress));
+        self
+    }
+
+    /// Does the experiment declare a parameter called `name`?
+    pub fn declares(&self, name: &str) -> bool {
+        self.params.iter().any(|p| p.name == name)
     }
 
     /// This context in shard mode: [`Context::trials`] computes and records only `shard`'s
@@ -231,9 +269,16 @@ impl Context {
         }
     }
 
-    /// A param as a non-negative integer.
+    /// A param as a non-negative integer count, at most [`MAX_COUNT`].
     pub fn usize(&self, name: &str) -> Result<usize, RunError> {
-        self.parse(name, "must be a non-negative integer")
+        let n: usize = self.parse(name, "must be a non-negative integer")?;
+        if n > MAX_COUNT {
+            return Err(self.reject(
+                self.value(name)?,
+                &format!("must be at most {MAX_COUNT}, the limit on counts"),
+            ));
+        }
+        Ok(n)
     }
 
     /// A param as a non-negative 64-bit integer.
@@ -328,23 +373,79 @@ impl Context {
         T: Serialize + DeserializeOwned + Send + Clone + Default,
         F: Fn(u64) -> Result<T, RunError> + Sync + Send,
     {
-        if !self.ledger().claimed.insert(batch.to_owned()) {
-            return Err(RunError::Internal(format!(
-                "experiment `{}` ran the trial batch `{batch}` twice: batch keys must be unique within a run",
-                self.id
-            )));
-        }
+        let index = {
+            let mut ledger = self.ledger();
+            if !ledger.claimed.insert(batch.to_owned()) {
+                return Err(RunError::Internal(format!(
+                    "experiment `{}` ran the trial batch `{batch}` twice: batch keys must be unique within a run",
+                    self.id
+                )));
+            }
+            ledger.claimed.len() - 1
+        };
+        tracing::debug!(
+            experiment = self.id,
+            index,
+            trials = n,
+            whole,
+            mode = ?self.mode,
+            "trial batch `{batch}`"
+        );
+        let start = Instant::now();
+        let result = self.run_batch(batch, index, n, whole, &f);
+        tracing::debug!(
+            experiment = self.id,
+            index,
+            trials = n,
+            seconds = start.elapsed().as_secs_f64(),
+            ok = result.is_ok(),
+            "trial batch done"
+        );
+        result
+    }
+
+    /// [`Context::batch`] after the key is claimed: runs, records or replays the trials.
+    fn run_batch<T, F>(
+        &self,
+        batch: &str,
+        index: usize,
+        n: u64,
+        whole: bool,
+        f: &F,
+    ) -> Result<Vec<T>, RunError>
+    where
+        T: Serialize + DeserializeOwned + Send + Clone + Default,
+        F: Fn(u64) -> Result<T, RunError> + Sync + Send,
+    {
+        // Replayed values are read, not computed: nothing to watch.
+        let watch: Option<Box<dyn BatchProgress>> = match (&self.progress, self.mode) {
+            (Some(hook), TrialMode::Normal | TrialMode::Shard(_)) => {
+                Some(hook.0.batch(self.id, batch, index, n))
+            }
+            _ => None,
+        };
+        // Runs trial `t` and tells the hook; the value is returned untouched.
+        let tick = |t: u64| {
+            let value = f(t);
+            if let Some(w) = &watch {
+                w.done();
+            }
+            value
+        };
         match self.mode {
-            TrialMode::Normal => (0..n).into_par_iter().map(&f).collect(),
+            TrialMode::Normal => (0..n).into_par_iter().map(tick).collect(),
             TrialMode::Shard(shard) => {
                 let owns = |t: u64| whole || shard.owns(t);
                 let done: Vec<Option<(T, Json)>> = (0..n)
                     .into_par_iter()
                     .map(|t| {
                         if !owns(t) {
+                            if let Some(w) = &watch {
+                                w.done();
+                            }
                             return Ok(None);
                         }
-                        let value = f(t)?;
+                        let value = tick(t)?;
                         let json = encode(batch, t, &value)?;
                         Ok(Some((value, json)))
                     })
@@ -414,6 +515,25 @@ impl Context {
             })
             .collect()
     }
+}
+
+/// Checks an overridden `trials` value: an integer from 0 to [`MAX_TRIALS`].
+fn check_trials(value: &str) -> Result<(), RunError> {
+    let n: u64 = value.trim().parse().map_err(|_| {
+        RunError::bad(
+            "--set",
+            "trials",
+            format!("must be a non-negative integer (got `{value}`)"),
+        )
+    })?;
+    if n > MAX_TRIALS {
+        return Err(RunError::bad(
+            "--set",
+            "trials",
+            format!("must be at most {MAX_TRIALS} (the limit on trials; got {n})"),
+        ));
+    }
+    Ok(())
 }
 
 /// `value` as JSON, checked to come back as it went: no non-finite float, and deserializing it
@@ -573,6 +693,65 @@ mod tests {
         assert!(matches!(ctx.usize("broken"), Err(RunError::Internal(_))));
         assert!(matches!(ctx.param("nope"), Err(RunError::Internal(_))));
         assert!(matches!(ctx.f64("nope"), Err(RunError::Internal(_))));
+    }
+
+    static COUNTED: Experiment = Experiment {
+        id: "counted",
+        title: "a trials parameter",
+        paper_item: "Table 0",
+        params: &[
+            Param {
+                name: "trials",
+                default: "30",
+                unit: "",
+                help: "trials",
+            },
+            Param {
+                name: "samples",
+                default: "100",
+                unit: "",
+                help: "samples",
+            },
+        ],
+        config: None,
+        run: nothing,
+    };
+
+    #[test]
+    fn trials_are_limited_before_anything_runs() {
+        let ok = Context::new(&COUNTED, 0, 1, &set(&[("trials", "1000000")]), None).unwrap();
+        assert_eq!(ok.u64("trials").unwrap(), MAX_TRIALS);
+        for (value, words) in [
+            ("1000001", "at most 1000000 "),
+            ("18446744073709551615", "the limit on trials"),
+            ("99999999999999999999999", "non-negative integer"),
+            ("-1", "non-negative integer"),
+            ("1e3", "non-negative integer"),
+        ] {
+            let e = Context::new(&COUNTED, 0, 1, &set(&[("trials", value)]), None).unwrap_err();
+            let (source, field, rule) = field_of(&e);
+            assert_eq!((source, field), ("--set", "trials"), "{value}");
+            assert!(rule.contains(words), "{value}: {rule}");
+        }
+        // Only a parameter named `trials` is checked up front.
+        assert!(Context::new(&EXP, 0, 1, &set(&[("teeth", "99999999999")]), None).is_ok());
+    }
+
+    #[test]
+    fn counts_are_limited() {
+        let ctx = Context::new(&COUNTED, 0, 1, &set(&[("samples", "10000001")]), None).unwrap();
+        let e = ctx.usize("samples").unwrap_err();
+        assert_eq!(field_of(&e).1, "samples");
+        assert!(field_of(&e).2.contains("at most 10000000"), "{e}");
+        let ctx = Context::new(&COUNTED, 0, 1, &set(&[("samples", "10000000")]), None).unwrap();
+        assert_eq!(ctx.usize("samples").unwrap(), MAX_COUNT);
+    }
+
+    #[test]
+    fn declares_names_the_declared_parameters() {
+        let ctx = Context::new(&COUNTED, 0, 1, &[], None).unwrap();
+        assert!(ctx.declares("trials") && ctx.declares("samples"));
+        assert!(!ctx.declares("teeth"));
     }
 
     #[test]

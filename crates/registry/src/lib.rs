@@ -33,12 +33,14 @@ mod context;
 mod error;
 mod finite;
 mod output;
+mod progress;
 mod table;
 mod trials;
 
-pub use context::{ConfigFile, Context, TrialMode};
+pub use context::{ConfigFile, Context, MAX_COUNT, MAX_TRIALS, TrialMode};
 pub use error::{DuplicateId, RunError};
 pub use output::{Agreement, OutputFile, Report, write_results};
+pub use progress::{BatchProgress, Progress};
 pub use table::{Table, fmt_f64};
 pub use trials::{Batch, Records, Shard, ShardRecords, f64_bits, merge_records};
 

@@ -253,3 +253,69 @@ fn a_replay_refuses_what_the_shards_do_not_cover() {
         .unwrap();
     assert_eq!(replay.unclaimed(), ["cell a"]);
 }
+
+/// Counts what the hook is told: batches started and trials done.
+#[derive(Default)]
+struct Counter {
+    batches: std::sync::Mutex<Vec<(String, usize, u64)>>,
+    done: std::sync::Arc<std::sync::atomic::AtomicU64>,
+}
+
+struct CounterBatch(std::sync::Arc<std::sync::atomic::AtomicU64>);
+
+impl registry::BatchProgress for CounterBatch {
+    fn done(&self) {
+        self.0.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    }
+}
+
+impl registry::Progress for Counter {
+    fn batch(
+        &self,
+        experiment: &str,
+        batch: &str,
+        index: usize,
+        n: u64,
+    ) -> Box<dyn registry::BatchProgress> {
+        assert_eq!(experiment, "t");
+        self.batches
+            .lock()
+            .unwrap()
+            .push((batch.to_owned(), index, n));
+        Box::new(CounterBatch(self.done.clone()))
+    }
+}
+
+#[test]
+fn progress_watches_without_changing_results() {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(3)
+        .build()
+        .unwrap();
+    let plain = pool.install(|| ctx().trials("cell a", 50, |t| Ok(value(t))).unwrap());
+    let counter = std::sync::Arc::new(Counter::default());
+    let watched = ctx().with_progress(counter.clone());
+    let seen = pool.install(|| {
+        let a = watched.trials("cell a", 50, |t| Ok(value(t))).unwrap();
+        let b = watched.trials_whole("whole", 7, |t| Ok(t * t)).unwrap();
+        assert_eq!(b, (0..7).map(|t| t * t).collect::<Vec<u64>>());
+        a
+    });
+    assert_eq!(bits(&plain), bits(&seen), "progress changed the results");
+    assert_eq!(
+        *counter.batches.lock().unwrap(),
+        [("cell a".to_string(), 0, 50), ("whole".to_string(), 1, 7)]
+    );
+    assert_eq!(
+        counter.done.load(std::sync::atomic::Ordering::Relaxed),
+        57,
+        "one tick per trial"
+    );
+    // A shard ticks every trial of the batch, its own and the skipped ones.
+    let counter = std::sync::Arc::new(Counter::default());
+    let shard = ctx()
+        .with_shard(Shard::new(1, 3).unwrap())
+        .with_progress(counter.clone());
+    let _ = shard.trials("cell a", 10, |t| Ok(value(t))).unwrap();
+    assert_eq!(counter.done.load(std::sync::atomic::Ordering::Relaxed), 10);
+}

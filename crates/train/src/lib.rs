@@ -23,11 +23,16 @@ pub use ratio::Ratio;
 /// The text of the embedded default gearing, `data/freeth2006.ron`.
 pub const FREETH2006_RON: &str = include_str!("../data/freeth2006.ron");
 
+/// The most teeth a gear of a gearing file may have: 10^5, the limit of `geometry::MAX_TEETH`
+/// (the mechanism's largest gear has 223).
+pub const MAX_TEETH: u32 = 100_000;
+
 /// Days in one turn of the input arbor `b` (one year).
 pub const DAYS_PER_TURN: f64 = 365.25;
 
 /// One gear: tooth count, measured radius and where both come from.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct GearData {
     /// The gear's name (Freeth 2006), e.g. `b2`.
     pub name: String,
@@ -42,6 +47,7 @@ pub struct GearData {
 
 /// Gears fixed together on one arbor: they turn as one body.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Arbor {
     /// The arbor's name, e.g. `b`.
     pub name: String,
@@ -51,6 +57,7 @@ pub struct Arbor {
 
 /// One external mesh between two gears.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct MeshData {
     /// The label as the paper writes it, e.g. `b2-c1` (the paper's `n2-o1` has driver `n3`).
     pub label: String,
@@ -62,6 +69,7 @@ pub struct MeshData {
 
 /// A pointer: the train of meshes from the input arbor to the pointer's arbor.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Pointer {
     /// The pointer's name, e.g. `Lunar`.
     pub name: String,
@@ -194,9 +202,11 @@ impl Gearing {
     ///
     /// # Errors
     /// A RON syntax or shape error (location `line L, column C`), or a rule broken by an item
-    /// (location `gear X`, `arbor X`, `mesh X` or `pointer X`): duplicate names; teeth < 3; a
-    /// measured radius that is not positive and finite; an arbor or mesh naming an unknown
-    /// gear; a gear on two arbors or on none; a mesh between two gears of one arbor; a group
+    /// (location `gear X`, `arbor X`, `mesh X` or `pointer X`): duplicate names; teeth < 3 or
+    /// more than [`MAX_TEETH`]; a measured radius that is not positive and finite; an arbor or
+    /// mesh naming an unknown gear; a gear on two arbors or on none; a mesh between two gears
+    /// of one arbor; a mesh closing a loop of meshes between arbors (two meshes joining the same
+    /// two arbors, or a ring of them: each arbor must be turned along one chain); a group
     /// of meshed gears with no measured radius at all (it cannot be sized); a pointer with an
     /// unknown input arbor or mesh, no meshes, or a chain that does not connect (the first
     /// driver must be on the input arbor, each next driver on the arbor of the previous
@@ -233,6 +243,15 @@ impl Gearing {
                 return Err(errors.at(
                     at,
                     format_args!("teeth must be at least 3, got {}", gear.teeth),
+                ));
+            }
+            if gear.teeth > MAX_TEETH {
+                return Err(errors.at(
+                    at,
+                    format_args!(
+                        "teeth must be at most {MAX_TEETH} (the limit on teeth), got {}",
+                        gear.teeth
+                    ),
                 ));
             }
             if let Some(a) = gear.measured_radius
@@ -297,6 +316,32 @@ impl Gearing {
                     ),
                 ));
             }
+        }
+
+        // No loop of meshes: joined through meshes, the arbors form a forest.
+        let arbor_index: BTreeMap<&str, usize> = self
+            .arbors
+            .iter()
+            .enumerate()
+            .map(|(i, a)| (a.name.as_str(), i))
+            .collect();
+        let mut parent: Vec<usize> = (0..self.arbors.len()).collect();
+        for mesh in &self.meshes {
+            let (a1, a2) = (
+                arbor_of[mesh.driver.as_str()],
+                arbor_of[mesh.driven.as_str()],
+            );
+            let r1 = find(&mut parent, arbor_index[a1]);
+            let r2 = find(&mut parent, arbor_index[a2]);
+            if r1 == r2 {
+                return Err(errors.at(
+                    format_args!("mesh {}", mesh.label),
+                    format_args!(
+                        "closes a loop of meshes: arbors {a1} and {a2} are already joined through other meshes (each arbor must be turned along one chain of meshes)"
+                    ),
+                ));
+            }
+            parent[r1.max(r2)] = r1.min(r2);
         }
 
         // Pointers: known input, known meshes, a connected chain.

@@ -231,3 +231,48 @@ fn error_display_is_file_location_rule() {
     };
     assert_eq!(e.to_string(), "f.ron: gear m3: bad");
 }
+
+#[test]
+fn enormous_tooth_count_is_refused_with_the_limit() {
+    assert_error(
+        &edit("teeth: 40", "teeth: 1000000000"),
+        "gear a1",
+        "at most 100000",
+    );
+    assert_eq!(train::MAX_TEETH, 100_000);
+}
+
+#[test]
+fn meshes_closing_a_loop_are_refused() {
+    // A second mesh between arbors a and b.
+    assert_error(
+        &edit(
+            r#"(label: "b2-c1", driver: "b2", driven: "c1"),"#,
+            r#"(label: "b2-c1", driver: "b2", driven: "c1"),
+        (label: "b1-a2", driver: "b1", driven: "a2"),"#,
+        ),
+        "mesh b1-a2",
+        "closes a loop of meshes: arbors b and a",
+    );
+    // A ring a -> b -> c -> a.
+    let ring = edit(
+        r#"(label: "b2-c1", driver: "b2", driven: "c1"),"#,
+        r#"(label: "b2-c1", driver: "b2", driven: "c1"),
+        (label: "c1-a2", driver: "c1", driven: "a2"),"#,
+    );
+    assert_error(&ring, "mesh c1-a2", "arbors c and a are already joined");
+}
+
+#[test]
+fn unknown_fields_of_every_item_are_refused() {
+    for (from, to) in [
+        ("teeth: 40,", "teeth: 40, colour: 3,"),
+        (r#"(name: "a", gears"#, r#"(name: "a", colour: 3, gears"#),
+        (r#"(label: "a1-b1","#, r#"(label: "a1-b1", colour: 3,"#),
+        (r#"(name: "P","#, r#"(name: "P", colour: 3,"#),
+    ] {
+        let msg = error(&edit(from, to));
+        assert!(msg.starts_with("test.ron: line "), "{msg}");
+        assert!(msg.contains("colour"), "{msg}");
+    }
+}

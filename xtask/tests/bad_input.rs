@@ -1,0 +1,951 @@
+//! Bad input, tried on purpose: malformed and hostile values for every file format the runner
+//! reads (gearing files, measured-error tables, pair configs, shard partial files) and every
+//! flag. Each must be refused with exit status 2 and ONE line on stderr naming the file or flag
+//! (and the line or field where there is one) and the rule, without a panic, and without
+//! writing anything: the `--out` directory stays absent.
+//!
+//! Each test collects every case that misbehaves and fails once, listing them all.
+
+#![allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
+
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// A fresh scratch directory, removed on drop.
+struct Scratch(PathBuf);
+
+impl Scratch {
+    fn new(tag: &str) -> Self {
+        let nanos = std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .unwrap()
+            .as_nanos();
+        let p =
+            std::env::temp_dir().join(format!("xtask-bad-{tag}-{}-{nanos}", std::process::id()));
+        fs::create_dir_all(&p).unwrap();
+        Scratch(p)
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = fs::remove_dir_all(&self.0);
+    }
+}
+
+/// A file to write: its name and bytes.
+type File = Option<(&'static str, Vec<u8>)>;
+
+/// A row of a table of cases: what it is, the file, the words the message must hold.
+type Row<'a> = (&'a str, File, &'a [&'a str]);
+
+/// One hostile input: the file to write (if any), the command line (`{file}` stands for the
+/// file's path, `{out}` for a results directory that must stay absent) and the words its one
+/// line of stderr must hold.
+struct Case {
+    what: String,
+    file: File,
+    args: Vec<String>,
+    words: Vec<String>,
+}
+
+fn case(what: &str, file: File, args: &str, words: &[&str]) -> Case {
+    Case {
+        what: what.to_owned(),
+        file,
+        args: args.split_whitespace().map(str::to_owned).collect(),
+        words: words.iter().map(|w| (*w).to_owned()).collect(),
+    }
+}
+
+/// Runs every case; returns the descriptions of those that misbehaved.
+fn failures(tag: &str, cases: Vec<Case>) -> Vec<String> {
+    let mut bad = Vec::new();
+    for (i, c) in cases.into_iter().enumerate() {
+        let s = Scratch::new(&format!("{tag}-{i}"));
+        let file = c.file.as_ref().map(|(name, bytes)| {
+            let p = s.0.join(name);
+            fs::write(&p, bytes).unwrap();
+            p
+        });
+        let out = s.0.join("out");
+        let args: Vec<String> = c
+            .args
+            .iter()
+            .map(|a| {
+                let a = a.replace("{out}", out.to_str().unwrap());
+                match &file {
+                    Some(f) => a.replace("{file}", f.to_str().unwrap()),
+                    None => a,
+                }
+            })
+            .collect();
+        let o = Command::new(env!("CARGO_BIN_EXE_xtask"))
+            .args(&args)
+            .env_remove("RUST_LOG")
+            .env_remove("RUST_BACKTRACE")
+            .env_remove("XTASK_PROGRESS")
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr).into_owned();
+        let mut wrong = Vec::new();
+        if o.status.code() != Some(2) {
+            wrong.push(format!("exit status {:?}, not 2", o.status.code()));
+        }
+        if err.contains("panicked") {
+            wrong.push("panicked".into());
+        }
+        if err.trim_end().lines().count() != 1 {
+            wrong.push(format!(
+                "{} lines on stderr",
+                err.trim_end().lines().count()
+            ));
+        }
+        for w in &c.words {
+            let w = match &file {
+                Some(f) => w.replace("{file}", f.file_name().unwrap().to_str().unwrap()),
+                None => w.clone(),
+            };
+            if !err.contains(&w) {
+                wrong.push(format!("no {w:?}"));
+            }
+        }
+        if !o.stdout.is_empty() {
+            wrong.push("printed on stdout".into());
+        }
+        if out.exists() && fs::read_dir(&out).map_or(true, |mut d| d.next().is_some()) {
+            wrong.push(format!("wrote into {}", out.display()));
+        }
+        if !wrong.is_empty() {
+            bad.push(format!(
+                "{}: {} [{}] stderr: {}",
+                c.what,
+                wrong.join(", "),
+                args.join(" "),
+                err.trim_end()
+            ));
+        }
+    }
+    bad
+}
+
+fn assert_none(bad: Vec<String>) {
+    assert!(
+        bad.is_empty(),
+        "{} cases misbehaved:\n{}",
+        bad.len(),
+        bad.join("\n")
+    );
+}
+
+fn freeth() -> String {
+    fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../crates/train/data/freeth2006.ron"),
+    )
+    .unwrap()
+}
+
+/// The default gearing with `from` (which must occur) replaced by `to`.
+fn gearing(from: &str, to: &str) -> File {
+    let text = freeth();
+    assert!(text.contains(from), "{from}");
+    Some(("gearing.ron", text.replacen(from, to, 1).into_bytes()))
+}
+
+#[test]
+fn gearing_files() {
+    let text = freeth();
+    let run = "run table1 --gearing {file} --out {out}";
+    let mut cases = vec![
+        case(
+            "truncated",
+            Some(("gearing.ron", text.as_bytes()[..700].to_vec())),
+            run,
+            &["{file}: line "],
+        ),
+        case(
+            "empty",
+            Some(("gearing.ron", Vec::new())),
+            run,
+            &["{file}: line 1"],
+        ),
+        case(
+            "not UTF-8",
+            Some(("gearing.ron", b"(gears: [\xff\xfe\xfd".to_vec())),
+            run,
+            &["{file}: read: ", "UTF-8"],
+        ),
+        case(
+            "unknown field",
+            gearing("teeth: 223,", "teeth: 223, colour: 3,"),
+            run,
+            &["{file}: line 12", "colour"],
+        ),
+        case(
+            "wrong type",
+            gearing("teeth: 223,", "teeth: \"many\","),
+            run,
+            &["{file}: line 12"],
+        ),
+        case(
+            "NaN radius",
+            gearing("Some(64.4)", "Some(NaN)"),
+            run,
+            &["{file}: gear b1: measured radius must be positive and finite"],
+        ),
+        case(
+            "infinite radius",
+            gearing("Some(64.4)", "Some(inf)"),
+            run,
+            &["{file}: gear b1: measured radius must be positive and finite"],
+        ),
+        case(
+            "negative radius",
+            gearing("Some(64.4)", "Some(-64.4)"),
+            run,
+            &["{file}: gear b1: measured radius must be positive"],
+        ),
+        case(
+            "zero radius",
+            gearing("Some(64.4)", "Some(0.0)"),
+            run,
+            &["{file}: gear b1: measured radius must be positive"],
+        ),
+        case(
+            "negative teeth",
+            gearing("teeth: 64,", "teeth: -64,"),
+            run,
+            &["{file}: line 13"],
+        ),
+        case(
+            "zero teeth",
+            gearing("teeth: 64,", "teeth: 0,"),
+            run,
+            &["{file}: gear b2: teeth must be at least 3"],
+        ),
+        case(
+            "a billion teeth",
+            gearing("teeth: 223,", "teeth: 1000000000,"),
+            run,
+            &["{file}: gear b1: teeth must be at most 100000"],
+        ),
+        case(
+            "teeth beyond u32",
+            gearing("teeth: 223,", "teeth: 1000000000000,"),
+            run,
+            &["{file}: line 12"],
+        ),
+        case(
+            "unknown gear",
+            gearing(
+                r#"(label: "b2-c1", driver: "b2", driven: "c1")"#,
+                r#"(label: "b2-c1", driver: "b2", driven: "zz")"#,
+            ),
+            run,
+            &["{file}: mesh b2-c1: unknown gear zz"],
+        ),
+        case(
+            "meshes in a loop",
+            gearing(
+                r#"(label: "h2-i1", driver: "h2", driven: "i1"),"#,
+                r#"(label: "h2-i1", driver: "h2", driven: "i1"),
+        (label: "i1-b1", driver: "i1", driven: "b1"),"#,
+            ),
+            run,
+            &["{file}: mesh i1-b1: closes a loop of meshes"],
+        ),
+        case(
+            "pointer chain breaks",
+            gearing(
+                r#"meshes: ["b2-c1", "c2-d1", "d2-e2""#,
+                r#"meshes: ["b2-c1", "d2-e2", "c2-d1""#,
+            ),
+            run,
+            &["{file}: pointer Lunar: chain does not connect at mesh d2-e2"],
+        ),
+        case(
+            "missing file",
+            None,
+            "run table1 --gearing /no/such/gearing.ron --out {out}",
+            &["/no/such/gearing.ron: read: "],
+        ),
+        case(
+            "bad gearing under run all",
+            gearing("teeth: 64,", "teeth: 0,"),
+            "run all --gearing {file} --out {out}",
+            &["{file}: gear b2: teeth must be at least 3"],
+        ),
+        case(
+            "bad gearing given with --set",
+            gearing("teeth: 64,", "teeth: 2,"),
+            "run all --set gearing={file} --out {out}",
+            &["{file}: gear b2: teeth must be at least 3"],
+        ),
+    ];
+    for (value, words) in [
+        ("150", "at most 100"),
+        ("-10", "greater than 0"),
+        ("0", "greater than 0"),
+        ("NaN", "finite"),
+        ("inf", "finite"),
+    ] {
+        cases.push(case(
+            &format!("clearance {value}"),
+            None,
+            &format!("run table1 --set clearance={value} --out {{out}}"),
+            &["--set: clearance: ", words],
+        ));
+        cases.push(case(
+            &format!("clearance {value} of table3"),
+            None,
+            &format!("run table3 --set clearance={value} --out {{out}}"),
+            &["--set: clearance: ", words],
+        ));
+    }
+    for (value, words) in [
+        ("0", "greater than 0"),
+        ("-1.1", "greater than 0"),
+        ("NaN", "finite"),
+        ("100", "less than the smallest tip radius"),
+    ] {
+        cases.push(case(
+            &format!("tooth height {value}"),
+            None,
+            &format!("run failure --set tooth_height={value} --out {{out}}"),
+            &["--set: tooth_height: ", words],
+        ));
+    }
+    assert_none(failures("gearing", cases));
+}
+
+#[test]
+fn measured_error_tables() {
+    let f = |text: &str| Some(("errors.ron", text.as_bytes().to_vec()));
+    let good = r#"(gears: [(gear: "b1", random: 0.05, systematic: 0.5)])"#;
+    let mut cases = Vec::new();
+    for (run, flag) in [
+        ("run table2 --errors {file} --out {out}", "--errors: "),
+        ("run failure --errors {file} --out {out}", "--errors: "),
+        ("run all --errors {file} --out {out}", "--errors: "),
+        (
+            "run table2 --hypothesis measured:{file} --out {out}",
+            "--hypothesis: ",
+        ),
+        (
+            "run failure --set measured={file} --out {out}",
+            "--set measured: ",
+        ),
+    ] {
+        let rows: [Row<'_>; 10] = [
+            ("truncated", f(&good[..30]), &["{file}: line 1"]),
+            (
+                "not UTF-8",
+                Some(("errors.ron", b"(gears: [\xff".to_vec())),
+                &["{file}: cannot read: ", "UTF-8"],
+            ),
+            (
+                "unknown field",
+                f(r#"(gears: [(gear: "b1", random: 0.05, systematic: 0.5, colour: 1)])"#),
+                &["{file}: line 1", "colour"],
+            ),
+            (
+                "wrong type",
+                f(r#"(gears: [(gear: "b1", random: "lots", systematic: 0.5)])"#),
+                &["{file}: line 1"],
+            ),
+            (
+                "NaN",
+                f(r#"(gears: [(gear: "b1", random: NaN, systematic: 0.5)])"#),
+                &["{file}: gear b1: random", "finite"],
+            ),
+            (
+                "infinite",
+                f(r#"(gears: [(gear: "b1", random: 0.05, systematic: inf)])"#),
+                &["{file}: gear b1: systematic", "finite"],
+            ),
+            (
+                "negative",
+                f(r#"(gears: [(gear: "b1", random: -0.05, systematic: 0.5)])"#),
+                &["{file}: gear b1: random"],
+            ),
+            (
+                "split outside 0-1",
+                f(r#"(split: 1.5, gears: [(gear: "b1", random: 0.05, systematic: 0.5)])"#),
+                &["{file}: split: must be between 0 and 1"],
+            ),
+            (
+                "gear twice",
+                f(
+                    r#"(gears: [(gear: "b1", random: 0.05, systematic: 0.5), (gear: "b1", random: 0.05, systematic: 0.5)])"#,
+                ),
+                &["{file}: gear b1: listed twice"],
+            ),
+            ("empty", f(""), &["{file}: line 1"]),
+        ];
+        for (what, file, words) in rows {
+            let mut words = words.to_vec();
+            words.push(flag);
+            cases.push(case(&format!("{what} ({run})"), file, run, &words));
+        }
+    }
+    cases.push(case(
+        "missing table",
+        None,
+        "run table2 --errors /no/such/errors.ron --out {out}",
+        &["--errors: /no/such/errors.ron: cannot read: "],
+    ));
+    assert_none(failures("errors", cases));
+}
+
+#[test]
+fn pair_configs() {
+    let f = |text: &str| Some(("mesh.ron", text.as_bytes().to_vec()));
+    let mesh = |driver: &str, extra: &str| {
+        f(&format!(
+            "(driver: {driver}, driven: (teeth: 20, tip_radius: 10.0, root_radius: 9.0), {extra})"
+        ))
+    };
+    let good = "(teeth: 20, tip_radius: 10.0, root_radius: 9.0)";
+    let g40 = "clearance_percent: Some(40.0)";
+    let run = "run pair --config {file} --out {out}";
+    let rows: Vec<Row<'_>> = vec![
+        (
+            "truncated",
+            f("(driver: (teeth: 20, tip_radius: 1"),
+            &["{file}: line 1, column"],
+        ),
+        ("empty", f(""), &["{file}: line 1"]),
+        (
+            "not UTF-8",
+            Some(("mesh.ron", b"(driver: (teeth: \xff".to_vec())),
+            &["--config: ", "{file}: cannot read: ", "UTF-8"],
+        ),
+        (
+            "unknown field",
+            mesh(good, "clearance_percent: Some(40.0), colour: 3"),
+            &["{file}: line 1", "colour"],
+        ),
+        (
+            "wrong type",
+            mesh(
+                "(teeth: \"twenty\", tip_radius: 10.0, root_radius: 9.0)",
+                g40,
+            ),
+            &["{file}: line 1"],
+        ),
+        (
+            "NaN radius",
+            mesh("(teeth: 20, tip_radius: NaN, root_radius: 9.0)", g40),
+            &["{file}: driver.tip_radius: must be a finite number"],
+        ),
+        (
+            "infinite radius",
+            mesh("(teeth: 20, tip_radius: inf, root_radius: 9.0)", g40),
+            &["{file}: driver.tip_radius: must be a finite number"],
+        ),
+        (
+            "negative teeth",
+            mesh("(teeth: -20, tip_radius: 10.0, root_radius: 9.0)", g40),
+            &["{file}: line 1"],
+        ),
+        (
+            "zero teeth",
+            mesh("(teeth: 0, tip_radius: 10.0, root_radius: 9.0)", g40),
+            &["{file}: driver.teeth: must be at least 3"],
+        ),
+        (
+            "a billion teeth",
+            mesh(
+                "(teeth: 1000000000, tip_radius: 10.0, root_radius: 9.0)",
+                g40,
+            ),
+            &["{file}: driver.teeth: must be at most 100000"],
+        ),
+        (
+            "negative radius",
+            mesh("(teeth: 20, tip_radius: 10.0, root_radius: -9.0)", g40),
+            &["{file}: driver.root_radius: must be greater than 0"],
+        ),
+        (
+            "zero radius",
+            mesh("(teeth: 20, tip_radius: 10.0, root_radius: 0.0)", g40),
+            &["{file}: driver.root_radius: must be greater than 0"],
+        ),
+        (
+            "root >= tip",
+            mesh("(teeth: 20, tip_radius: 10.0, root_radius: 10.0)", g40),
+            &["{file}: driver.root_radius: must be less than tip_radius"],
+        ),
+        (
+            "clearance 150 %",
+            mesh(good, "clearance_percent: Some(150.0)"),
+            &["{file}: clearance_percent: must be between 0 and 100"],
+        ),
+        (
+            "clearance -1 %",
+            mesh(good, "clearance_percent: Some(-1.0)"),
+            &["{file}: clearance_percent: must be between 0 and 100"],
+        ),
+        (
+            "clearance NaN",
+            mesh(good, "clearance_percent: Some(NaN)"),
+            &["{file}: clearance_percent: must be between 0 and 100"],
+        ),
+        (
+            "no distance",
+            mesh(good, ""),
+            &["{file}: centre_distance: give exactly one of"],
+        ),
+        (
+            "NaN distance",
+            mesh(good, "centre_distance: Some(NaN)"),
+            &["{file}: centre_distance"],
+        ),
+        (
+            "overlapping gears",
+            mesh(good, "centre_distance: Some(15.0)"),
+            &["{file}: centre_distance: must exceed"],
+        ),
+        (
+            "tips miscounted",
+            mesh(
+                "(teeth: 3, tip_radius: 10.0, root_radius: 9.0, tips_deg: Some([0.0, 10.0]))",
+                g40,
+            ),
+            &["{file}: driver.tips_deg: must list exactly"],
+        ),
+        (
+            "tips out of order",
+            mesh(
+                "(teeth: 3, tip_radius: 10.0, root_radius: 9.0, tips_deg: Some([0.0, 200.0, 100.0]))",
+                g40,
+            ),
+            &["{file}: driver.tips_deg[2]"],
+        ),
+        (
+            "axis outside the root",
+            mesh(
+                "(teeth: 20, tip_radius: 10.0, root_radius: 9.0, eccentricity: Some((9.5, 0.0)))",
+                g40,
+            ),
+            &["{file}: driver.eccentricity"],
+        ),
+        (
+            "sample step zero",
+            mesh(good, "clearance_percent: Some(40.0), sample_deg: 0.0"),
+            &["{file}: sample_deg"],
+        ),
+        (
+            "run too long",
+            mesh(good, "clearance_percent: Some(40.0), run_deg: Some(1e12)"),
+            &["{file}: run_deg"],
+        ),
+    ];
+    let cases = rows
+        .into_iter()
+        .map(|(what, file, words)| case(what, file, run, words))
+        .collect();
+    assert_none(failures("pair", cases));
+}
+
+#[test]
+fn enormous_counts() {
+    let cases = vec![
+        case(
+            "--trials u64::MAX",
+            None,
+            "run table1 --trials 18446744073709551615 --out {out}",
+            &["--trials: must be at most 1000000 (the limit on trials"],
+        ),
+        case(
+            "--trials beyond u64",
+            None,
+            "run table1 --trials 99999999999999999999 --out {out}",
+            &["--trials: must be an integer from 1 to 1000000"],
+        ),
+        case(
+            "--trials 0",
+            None,
+            "run table1 --trials 0 --out {out}",
+            &["--trials: must be at least 1"],
+        ),
+        case(
+            "--trials -1",
+            None,
+            "run table1 --trials=-1 --out {out}",
+            &["--trials: must be an integer"],
+        ),
+        case(
+            "--set trials u64::MAX",
+            None,
+            "run table3 --set trials=18446744073709551615 --out {out}",
+            &["--set: trials: must be at most 1000000 (the limit on trials"],
+        ),
+        case(
+            "--set trials u64::MAX, failure",
+            None,
+            "run failure --set trials=18446744073709551615 --out {out}",
+            &["--set: trials: must be at most 1000000 "],
+        ),
+        case(
+            "--set trials huge under run all",
+            None,
+            "run all --set trials=1000001 --out {out}",
+            &["--set: trials: must be at most 1000000 "],
+        ),
+        case(
+            "--set trials not a number",
+            None,
+            "run all --set trials=many --out {out}",
+            &["--set: trials: must be a non-negative integer"],
+        ),
+        case(
+            "a trillion samples",
+            None,
+            "run fig3 --set samples=1000000000000 --out {out}",
+            &["--set: samples: must be at most 10000000, the limit on counts"],
+        ),
+        case(
+            "a billion teeth",
+            None,
+            "run fig2 --set teeth=1000000000 --out {out}",
+            &["--set: teeth: must be at most 10000000"],
+        ),
+        case(
+            "200000 teeth",
+            None,
+            "run fig5 --set teeth=200000 --out {out}",
+            &["teeth: must be at most 100000 (the limit on teeth"],
+        ),
+        case(
+            "a billion pitches",
+            None,
+            "run fig3 --set pitches=1000000000 --out {out}",
+            &["--set: pitches: must be at most 10000000"],
+        ),
+        case(
+            "samples per engagement",
+            None,
+            "run table1 --set samples_per_engagement=1000000000000 --out {out}",
+            &["--set: samples_per_engagement: must be at most 10000000"],
+        ),
+    ];
+    assert_none(failures("counts", cases));
+}
+
+#[test]
+fn names_and_flags() {
+    let cases = vec![
+        case(
+            "unknown experiment",
+            None,
+            "run no-such --out {out}",
+            &["unknown experiment `no-such`", "known experiments: "],
+        ),
+        case(
+            "help of unknown experiment",
+            None,
+            "help no-such",
+            &["unknown experiment `no-such`"],
+        ),
+        case(
+            "unknown hypothesis",
+            None,
+            "run table2 --hypothesis no-such --out {out}",
+            &[
+                "--hypothesis: error hypothesis `no-such`: unknown",
+                "edmunds-split",
+            ],
+        ),
+        case(
+            "unknown hypothesis with --set",
+            None,
+            "run all --set hypothesis=no-such --out {out}",
+            &["error hypothesis `no-such`: unknown"],
+        ),
+        case(
+            "unknown hypothesis parameter",
+            None,
+            "run fig5 --set hypothesis_params=wobble=1 --out {out}",
+            &["wobble", "known keys"],
+        ),
+        case(
+            "unknown case",
+            None,
+            "run failure --set cases=Z --out {out}",
+            &["--set: cases: unknown case `Z`"],
+        ),
+        case(
+            "unknown mesh",
+            None,
+            "run clearance --set mesh=zz-yy --out {out}",
+            &["zz-yy"],
+        ),
+        case(
+            "unknown parameter",
+            None,
+            "run fig2 --set nonsense=1 --out {out}",
+            &["--set: nonsense: unknown parameter of experiment `fig2`"],
+        ),
+        case(
+            "parameter nobody declares",
+            None,
+            "run fig2 fig3 --set nonsense=1 --out {out}",
+            &["--set: nonsense: no selected experiment has this parameter"],
+        ),
+        case(
+            "--set without =",
+            None,
+            "run fig2 --set novalue --out {out}",
+            &["--set takes KEY=VALUE"],
+        ),
+        case(
+            "unknown flag",
+            None,
+            "run fig2 --bogus --out {out}",
+            &["unknown flag `--bogus`"],
+        ),
+        case(
+            "unknown command",
+            None,
+            "frobnicate",
+            &["unknown command `frobnicate`"],
+        ),
+        case(
+            "-q and -v",
+            None,
+            "-q run fig2 -v --out {out}",
+            &["cannot be combined"],
+        ),
+        case(
+            "--seed abc",
+            None,
+            "run fig2 --seed abc --out {out}",
+            &["--seed: must be an integer from 0 to 18446744073709551615"],
+        ),
+        case(
+            "--seed -1",
+            None,
+            "run fig2 --seed=-1 --out {out}",
+            &["--seed: must be an integer"],
+        ),
+        case(
+            "--seed beyond u64",
+            None,
+            "run fig2 --seed 18446744073709551616 --out {out}",
+            &["--seed: must be an integer"],
+        ),
+        case(
+            "--seed 1.5",
+            None,
+            "run fig2 --seed 1.5 --out {out}",
+            &["--seed: "],
+        ),
+        case(
+            "--seed missing",
+            None,
+            "run fig2 --out {out} --seed",
+            &["--seed needs a value"],
+        ),
+        case(
+            "--threads 0",
+            None,
+            "run fig2 --threads 0 --out {out}",
+            &["--threads: must be at least 1"],
+        ),
+        case(
+            "--threads -1",
+            None,
+            "run fig2 --threads=-1 --out {out}",
+            &["--threads: must be an integer from 1 to 1024"],
+        ),
+        case(
+            "--threads huge",
+            None,
+            "run fig2 --threads 1000000 --out {out}",
+            &["--threads: must be at most 1024"],
+        ),
+        case(
+            "--threads abc",
+            None,
+            "run all --threads abc --out {out}",
+            &["--threads: "],
+        ),
+        case(
+            "--format xml",
+            None,
+            "run fig2 --format xml --out {out}",
+            &["--format: must be md, csv or json"],
+        ),
+        case(
+            "--format empty",
+            None,
+            "run fig2 --format= --out {out}",
+            &["--format: must be md, csv or json"],
+        ),
+        case(
+            "--shard K = N",
+            None,
+            "run table1 --shard 3/3 --out {out}",
+            &["--shard: 3/3: K must be from 0 to N-1"],
+        ),
+        case(
+            "--shard N = 0",
+            None,
+            "run table1 --shard 0/0 --out {out}",
+            &["--shard: 0/0: N (the number of shards) must be at least 1"],
+        ),
+        case(
+            "--shard words",
+            None,
+            "run table1 --shard a/b --out {out}",
+            &["--shard: a/b: must be K/N"],
+        ),
+        case(
+            "--shard one number",
+            None,
+            "run table1 --shard 1 --out {out}",
+            &["--shard: 1: must be K/N"],
+        ),
+        case(
+            "--shard negative",
+            None,
+            "run table1 --shard=-1/2 --out {out}",
+            &["--shard: -1/2: must be K/N"],
+        ),
+        case(
+            "--shard with all",
+            None,
+            "run all --shard 0/2 --out {out}",
+            &["--shard splits the trials of one experiment"],
+        ),
+        case(
+            "--trials where none declares it",
+            None,
+            "run fig2 fig3 --trials 5 --out {out}",
+            &["--trials: no selected experiment has a `trials` parameter"],
+        ),
+        case(
+            "--gearing where none declares it",
+            None,
+            "run fig2 --gearing x.ron --out {out}",
+            &["--gearing: no selected experiment has a `gearing` parameter"],
+        ),
+        case(
+            "--errors where none declares it",
+            None,
+            "run fig2 --errors x.ron --out {out}",
+            &["--errors: no selected experiment has a `measured` or `hypothesis` parameter"],
+        ),
+        case(
+            "--errors with --hypothesis",
+            None,
+            "run table2 --errors x.ron --hypothesis ideal --out {out}",
+            &["--errors and --hypothesis cannot be combined"],
+        ),
+        case(
+            "--trials with --set trials",
+            None,
+            "run table1 --trials 3 --set trials=4 --out {out}",
+            &["--trials and --set trials=... cannot be combined"],
+        ),
+        case(
+            "--config for an experiment without one",
+            None,
+            "run fig2 --config x.ron --out {out}",
+            &["--config: "],
+        ),
+        case(
+            "--config missing",
+            None,
+            "run pair --config /no/such/mesh.ron --out {out}",
+            &["--config: /no/such/mesh.ron: cannot read"],
+        ),
+        case(
+            "--out empty",
+            None,
+            "run fig2 --out=",
+            &["--out: must not be empty"],
+        ),
+        case(
+            "--hypothesis empty",
+            None,
+            "run table2 --hypothesis= --out {out}",
+            &["--hypothesis: must not be empty"],
+        ),
+        case(
+            "run all with ids",
+            None,
+            "run all fig2 --out {out}",
+            &["`run all` runs every experiment"],
+        ),
+    ];
+    assert_none(failures("flags", cases));
+}
+
+#[test]
+fn out_that_is_a_file() {
+    let s = Scratch::new("outfile");
+    let file = s.0.join("plain");
+    fs::write(&file, "not a directory").unwrap();
+    for args in [
+        vec!["run", "fig2", "--out", file.to_str().unwrap()],
+        vec!["run", "all", "--out", file.to_str().unwrap()],
+    ] {
+        let o = Command::new(env!("CARGO_BIN_EXE_xtask"))
+            .args(&args)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert_eq!(
+            err.trim_end(),
+            format!("--out: {}: exists and is not a directory", file.display())
+        );
+        assert_eq!(fs::read_to_string(&file).unwrap(), "not a directory");
+    }
+}
+
+#[test]
+fn partial_files() {
+    let f = |bytes: &[u8]| Some(("partial-0-of-1.json", bytes.to_vec()));
+    let merge = "merge {file} --out {out}";
+    let cases = vec![
+        case("truncated", f(br#"{"format":"cargo-xtask-partial/1","experiment":"#), merge, &["{file}: contents: is not a partial file", "EOF"]),
+        case("not UTF-8", f(b"{\"format\":\xff}"), merge, &["{file}: file: cannot read: ", "UTF-8"]),
+        case("empty", f(b""), merge, &["{file}: contents: is not a partial file"]),
+        case(
+            "unknown field",
+            f(br#"{"format":"cargo-xtask-partial/1","experiment":"table1","seed":1,"sets":[],"config":null,"shard":0,"shards":1,"version":"0.1.0","batches":{},"colour":3}"#),
+            merge,
+            &["{file}: contents: ", "colour"],
+        ),
+        case(
+            "wrong type",
+            f(br#"{"format":"cargo-xtask-partial/1","experiment":"table1","seed":"one","sets":[],"config":null,"shard":0,"shards":1,"version":"0.1.0","batches":{}}"#),
+            merge,
+            &["{file}: contents: "],
+        ),
+        case(
+            "shard out of range",
+            Some(("p.json", br#"{"format":"cargo-xtask-partial/1","experiment":"table1","seed":1,"sets":[],"config":null,"shard":5,"shards":2,"version":"0.1.0","batches":{}}"#.to_vec())),
+            merge,
+            &["p.json: shard: 5/2 is not a shard K/N with K < N"],
+        ),
+        case(
+            "unknown experiment",
+            f(br#"{"format":"cargo-xtask-partial/1","experiment":"no-such","seed":1,"sets":[],"config":null,"shard":0,"shards":1,"version":"0.1.0","batches":{}}"#),
+            merge,
+            &["unknown experiment `no-such`"],
+        ),
+        case(
+            "trials beyond the limit",
+            f(br#"{"format":"cargo-xtask-partial/1","experiment":"table1","seed":1,"sets":[["trials","18446744073709551615"]],"config":null,"shard":0,"shards":1,"version":"0.1.0","batches":{}}"#),
+            merge,
+            &["--set: trials: must be at most 1000000 "],
+        ),
+        case("no partial file", None, "merge /no/such/dir --out {out}", &["merge: /no/such/dir: cannot read"]),
+    ];
+    assert_none(failures("partial", cases));
+}
