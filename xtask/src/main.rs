@@ -8,6 +8,7 @@
 //! to `<out>/summary.md` and `<out>/summary.json`; `bench` times `table5` and `all` in-process.
 
 mod args;
+mod provenance;
 mod summary;
 
 use std::collections::BTreeMap;
@@ -396,7 +397,8 @@ fn run_every(
                 out(&format!("{gap}## {}: {}\n\n", e.id, e.title))?;
                 out(&report.text())?;
                 let results = dir.join(e.id);
-                registry::write_results(&results, &report).map(|()| {
+                let stamped = provenance::stamp(&report, e, ctx, run);
+                registry::write_results(&results, &stamped).map(|()| {
                     eprintln!("results: {}", results.display());
                     report
                 })
@@ -561,7 +563,7 @@ fn run_all(exps: &Registry, run: &RunArgs) -> Result<(), Failure> {
         }
         print(&report.text())?;
         let dir = out.join(e.id);
-        registry::write_results(&dir, &report)?;
+        registry::write_results(&dir, &provenance::stamp(&report, e, ctx, run))?;
         eprintln!("results: {}", dir.display());
     }
     Ok(())
