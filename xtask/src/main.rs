@@ -9,6 +9,7 @@
 
 mod args;
 mod provenance;
+mod report;
 mod summary;
 
 use std::collections::BTreeMap;
@@ -103,6 +104,9 @@ fn init_logs() {
 }
 
 fn dispatch(args: &[String]) -> Result<(), Failure> {
+    if let Some(("report", rest)) = args.split_first().map(|(c, r)| (c.as_str(), r)) {
+        return report::command(rest);
+    }
     let cmd = args::parse(args)?;
     let exps = registry::experiments().map_err(|e| Failure::Internal(e.to_string()))?;
     match cmd {
@@ -166,6 +170,9 @@ Usage:
   cargo xtask bench [--only table5|all] [--threads 1,2]
                                 time table5 and all at their defaults with each
                                 thread count, in-process; prints a table, writes nothing
+  cargo xtask report [--out DIR]
+                                write <out>/index.html: one self-contained page with
+                                every experiment's tables, figures and provenance
 
 Options of run:
   --seed S          seed of every random number generator (default {DEFAULT_SEED})
