@@ -164,3 +164,13 @@ fn bad_tables_name_the_file_the_gear_and_the_rule() {
     let e = measured_from_ron("bad.ron", "(gears: [").unwrap_err();
     assert!(e.what.starts_with("bad.ron: line"), "{e}");
 }
+
+/// Found by `cargo xtask fuzz` (docs/fuzzing.md): a name holding a newline made a two-line message.
+#[test]
+fn a_name_with_a_newline_gives_a_one_line_message() {
+    let text = r#"(gears: [(gear: "a\nb", random: 0.1, systematic: 0.0), (gear: "a\nb", random: 0.1, systematic: 0.0)])"#;
+    let e = measured_from_ron("bad.ron", text).unwrap_err();
+    assert_eq!(e.to_string(), "bad.ron: gear a\\nb: listed twice");
+    let e = measured_from_ron("bad\nname.ron", "(gears: [").unwrap_err();
+    assert!(!e.to_string().contains('\n'), "{e}");
+}
