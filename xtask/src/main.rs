@@ -5,9 +5,13 @@
 //! Exit status: 0 success, 1 internal error, 2 bad input (nothing written).
 //!
 //! `run all` runs every experiment even when some fail, then prints a summary table and writes it
-//! to `<out>/summary.md` and `<out>/summary.json`; `bench` times `table5` and `all` in-process.
+//! to `<out>/summary.md` and `<out>/summary.json`; `bench` times `table5` and `all` in-process;
+//! `report` writes `<out>/index.html` from the results; `fuzz` feeds mutated RON files to the
+//! loaders (see `fuzz.rs` and `docs/fuzzing.md`).
 
 mod args;
+mod fuzz;
+mod fuzz_targets;
 mod provenance;
 mod report;
 mod summary;
@@ -104,8 +108,10 @@ fn init_logs() {
 }
 
 fn dispatch(args: &[String]) -> Result<(), Failure> {
-    if let Some(("report", rest)) = args.split_first().map(|(c, r)| (c.as_str(), r)) {
-        return report::command(rest);
+    match args.split_first().map(|(c, r)| (c.as_str(), r)) {
+        Some(("report", rest)) => return report::command(rest),
+        Some(("fuzz", rest)) => return fuzz::command(rest),
+        _ => {}
     }
     let cmd = args::parse(args)?;
     let exps = registry::experiments().map_err(|e| Failure::Internal(e.to_string()))?;
@@ -173,6 +179,10 @@ Usage:
   cargo xtask report [--out DIR]
                                 write <out>/index.html: one self-contained page with
                                 every experiment's tables, figures and provenance
+  cargo xtask fuzz [--seconds N | --execs N] [--seed S] [--findings DIR]
+                                feed mutated RON files to the gearing and measured-
+                                errors loaders (default 60 s); exit 1 on a panic or
+                                a broken promise, inputs saved in DIR
 
 Options of run:
   --seed S          seed of every random number generator (default {DEFAULT_SEED})
