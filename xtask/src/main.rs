@@ -6,14 +6,20 @@
 //! on stderr naming the input and the rule; nothing written).
 //!
 //! `run all` runs every experiment even when some fail, then prints a summary table and writes it
-//! to `<out>/summary.md` and `<out>/summary.json`; `bench` times `table5` and `all` in-process.
+//! to `<out>/summary.md` and `<out>/summary.json`; `bench` times `table5` and `all` in-process;
+//! `report` writes `<out>/index.html` from the results; `fuzz` feeds mutated RON files to the
+//! loaders (see `fuzz.rs` and `docs/fuzzing.md`).
 //!
 //! `run <id> --shard K/N` computes one shard of an experiment's trials (see
 //! [`registry::Context::trials`]) and writes `<out>/<id>/partial-K-of-N.json`; `merge` joins the
 //! partial files of every shard and writes the results a single run would write, bit for bit.
 
 mod args;
+mod fuzz;
+mod fuzz_targets;
 mod progress;
+mod provenance;
+mod report;
 mod shard;
 mod summary;
 
@@ -115,6 +121,11 @@ fn one_line(text: &str) -> String {
 }
 
 fn dispatch(args: &[String]) -> Result<(), Failure> {
+    match args.split_first().map(|(c, r)| (c.as_str(), r)) {
+        Some(("report", rest)) => return report::command(rest),
+        Some(("fuzz", rest)) => return fuzz::command(rest),
+        _ => {}
+    }
     let (cmd, verbosity) = args::parse_invocation(args)?;
     progress::init(verbosity);
     let exps = registry::experiments().map_err(|e| Failure::Internal(e.to_string()))?;
@@ -192,6 +203,13 @@ Usage:
                                 for in the directories given), check they fit, and
                                 print and write the results as `run` would:
                                 bit-identical to one run without --shard
+  cargo xtask report [--out DIR]
+                                write <out>/index.html: one self-contained page with
+                                every experiment's tables, figures and provenance
+  cargo xtask fuzz [--seconds N | --execs N] [--seed S] [--findings DIR]
+                                feed mutated RON files to the gearing and measured-
+                                errors loaders (default 60 s); exit 1 on a panic or
+                                a broken promise, inputs saved in DIR
 
 Options of run:
   --seed S          seed of every random number generator, 0 to {max_seed}
@@ -782,7 +800,9 @@ fn run_every(
             Ok(report) => {
                 printer.report(p.e, &report)?;
                 let results = dir.join(p.e.id);
-                registry::write_results(&results, &report).map(|()| {
+                let stamped =
+                    provenance::stamp(&report, p.e, &p.ctx, &p.sets, run.config.as_deref());
+                registry::write_results(&results, &stamped).map(|()| {
                     note(&format!("results: {}", results.display()));
                     report
                 })
@@ -944,7 +964,8 @@ fn run_all(exps: &Registry, run: &RunArgs) -> Result<(), Failure> {
         };
         printer.report(p.e, &report)?;
         let dir = out.join(p.e.id);
-        registry::write_results(&dir, &report)?;
+        let stamped = provenance::stamp(&report, p.e, &p.ctx, &p.sets, run.config.as_deref());
+        registry::write_results(&dir, &stamped)?;
         note(&format!("results: {}", dir.display()));
     }
     printer.finish()
@@ -1060,7 +1081,9 @@ fn merge(exps: &Registry, m: &MergeArgs) -> Result<(), Failure> {
     let mut stdout = |s: &str| print(s);
     Printer::new(m.format, false, &mut stdout).report(e, &report)?;
     let dir = m.out.clone().unwrap_or_else(default_out).join(e.id);
-    registry::write_results(&dir, &report)?;
+    let config = header.config.as_ref().map(|c| PathBuf::from(&c.path));
+    let stamped = provenance::stamp(&report, e, &ctx, &header.sets, config.as_deref());
+    registry::write_results(&dir, &stamped)?;
     note(&format!(
         "results: {} (merged from {} shards)",
         dir.display(),

@@ -34,13 +34,30 @@ pub struct HypothesisError {
 }
 
 impl HypothesisError {
-    /// An error about `what` breaking `rule`.
+    /// An error about `what` breaking `rule`; control characters in either (a newline in a
+    /// gear's name, say) are escaped so that the message stays one line.
     pub fn new(what: impl Into<String>, rule: impl Into<String>) -> Self {
         Self {
-            what: what.into(),
-            rule: rule.into(),
+            what: one_line(what.into()),
+            rule: one_line(rule.into()),
         }
     }
+}
+
+/// `s` with control characters escaped (`\n`, `\u{1b}`...).
+fn one_line(s: String) -> String {
+    if !s.contains(char::is_control) {
+        return s;
+    }
+    let mut o = String::with_capacity(s.len() + 8);
+    for c in s.chars() {
+        if c.is_control() {
+            o.extend(c.escape_default());
+        } else {
+            o.push(c);
+        }
+    }
+    o
 }
 
 /// Two hypotheses were registered with the same name.

@@ -228,3 +228,13 @@ fn measured_colon_file_reads_the_users_table() {
     assert!(e.rule.contains("measured:FILE"), "{e}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Found by `cargo xtask fuzz` (docs/fuzzing.md): a name holding a newline made a two-line message.
+#[test]
+fn a_name_with_a_newline_gives_a_one_line_message() {
+    let text = r#"(gears: [(gear: "a\nb", random: 0.1, systematic: 0.0), (gear: "a\nb", random: 0.1, systematic: 0.0)])"#;
+    let e = measured_from_ron("bad.ron", text).unwrap_err();
+    assert_eq!(e.to_string(), "bad.ron: gear a\\nb: listed twice");
+    let e = measured_from_ron("bad\nname.ron", "(gears: [").unwrap_err();
+    assert!(!e.to_string().contains('\n'), "{e}");
+}

@@ -157,11 +157,25 @@ struct Errors<'a> {
 impl Errors<'_> {
     fn at(&self, location: impl fmt::Display, rule: impl fmt::Display) -> GearingError {
         GearingError {
-            file: self.file.to_owned(),
-            location: location.to_string(),
-            rule: rule.to_string(),
+            file: one_line(self.file),
+            location: one_line(&location.to_string()),
+            rule: one_line(&rule.to_string()),
         }
     }
+}
+
+/// `s` with control characters (a newline in a name, say) escaped, so a message stays one line.
+fn one_line(s: &str) -> String {
+    s.chars()
+        .flat_map(|c| {
+            let escaped: Vec<char> = if c.is_control() {
+                c.escape_default().collect()
+            } else {
+                vec![c]
+            };
+            escaped
+        })
+        .collect()
 }
 
 /// Finds `x`'s root in a union-find forest, halving paths.
@@ -201,16 +215,18 @@ impl Gearing {
     /// `file_name` is only used in error messages.
     ///
     /// # Errors
-    /// A RON syntax or shape error (location `line L, column C`), or a rule broken by an item
+    /// A RON syntax or shape error (location `line L, column C`; a field name that is not part
+    /// of the format, such as a misspelt `measured_radius`, is one), or a rule broken by an item
     /// (location `gear X`, `arbor X`, `mesh X` or `pointer X`): duplicate names; teeth < 3 or
     /// more than [`MAX_TEETH`]; a measured radius that is not positive and finite; an arbor or
     /// mesh naming an unknown gear; a gear on two arbors or on none; a mesh between two gears
     /// of one arbor; a mesh closing a loop of meshes between arbors (two meshes joining the same
-    /// two arbors, or a ring of them: each arbor must be turned along one chain); a group
-    /// of meshed gears with no measured radius at all (it cannot be sized); a pointer with an
-    /// unknown input arbor or mesh, no meshes, or a chain that does not connect (the first
-    /// driver must be on the input arbor, each next driver on the arbor of the previous
-    /// driven gear).
+    /// two arbors, or a ring of them: each arbor must be turned along one chain); a group of
+    /// meshed gears with no measured radius at all (it cannot be sized), or measured radii so
+    /// large or small that a fitted tip radius is not a positive finite number; a pointer with
+    /// an unknown input arbor or mesh, no meshes, or a chain that does not connect (the first
+    /// driver must be on the input arbor, each next driver on the arbor of the previous driven
+    /// gear). The message is one line: control characters in names are escaped.
     pub fn from_ron(file_name: &str, text: &str) -> Result<Gearing, GearingError> {
         let errors = Errors { file: file_name };
         let raw: RawGearing = ron::from_str(text).map_err(|e| {
@@ -445,6 +461,19 @@ impl Gearing {
                 });
             }
             c.mu = na / nn;
+            // Radii near the ends of the float range overflow to infinity or round to zero.
+            for name in &c.gears {
+                let gear = &self.gears[index[name.as_str()]];
+                let tip = c.mu * f64::from(gear.teeth);
+                if !(tip.is_finite() && tip > 0.0) {
+                    return Err(errors.at(
+                        format_args!("gear {name}"),
+                        format_args!(
+                            "its tip radius, sized from the measured radii of its mesh component, is {tip} mm; measured radii must give a positive finite size"
+                        ),
+                    ));
+                }
+            }
         }
         Ok(components)
     }

@@ -276,3 +276,49 @@ fn unknown_fields_of_every_item_are_refused() {
         assert!(msg.contains("colour"), "{msg}");
     }
 }
+
+// Found by `cargo xtask fuzz` (docs/fuzzing.md).
+
+#[test]
+fn a_misspelt_field_is_refused_not_ignored() {
+    // `measured_radius` misspelt used to leave b1 unmeasured and sized from its partner.
+    let msg = error(&edit(
+        "(name: \"b1\", teeth: 20, measured_radius: Some(5.0)",
+        "(name: \"b1\", teeth: 20, measured_radus: Some(5.0)",
+    ));
+    assert!(msg.starts_with("test.ron: line 5, column "), "{msg}");
+    assert!(msg.contains("measured_radus"), "{msg}");
+    for (from, to) in [
+        ("(name: \"a\", gears:", "(name: \"a\", gear:"),
+        ("(label: \"a1-b1\", driver:", "(label: \"a1-b1\", drive:"),
+        ("days: true", "days: true, day: true"),
+    ] {
+        let msg = error(&edit(from, to));
+        assert!(msg.starts_with("test.ron: line "), "{from}: {msg}");
+    }
+}
+
+#[test]
+fn radii_that_overflow_or_vanish_are_refused() {
+    // a1: 40 teeth * 1e308 mm overflows the fit; a2 (in no mesh): 5e-324 mm, the smallest
+    // float, rounds to a zero tip radius.
+    for (gear, teeth, was, radius) in [("a1", 40, "10.0", "1e308"), ("a2", 20, "5.0", "5e-324")] {
+        let from = format!("(name: \"{gear}\", teeth: {teeth}, measured_radius: Some({was})");
+        let to = format!("(name: \"{gear}\", teeth: {teeth}, measured_radius: Some({radius})");
+        let msg = error(&edit(&from, &to));
+        assert!(
+            msg.starts_with(&format!("test.ron: gear {gear}: its tip radius"))
+                && msg.contains("positive finite"),
+            "{radius}: {msg}"
+        );
+    }
+}
+
+#[test]
+fn a_name_with_a_newline_gives_a_one_line_message() {
+    assert_error(
+        &edit("gears: [\"c1\"]", "gears: [\"c\\n1\"]"),
+        "arbor c",
+        "unknown gear c\\n1",
+    );
+}

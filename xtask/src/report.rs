@@ -1,0 +1,909 @@
+//! `cargo xtask report [--out DIR]`: one self-contained HTML page of every experiment's results.
+//!
+//! Reads each `<out>/<id>/` that holds a `tables.json` (as `run` writes it, see
+//! [`registry::write_results`]) and writes `<out>/index.html`: per experiment, in id order, its
+//! id, title and paper item (from the registry), its tables as HTML tables (cells exactly as
+//! printed, so `ours (paper)` cells and paper columns show the paper's numbers beside ours),
+//! every SVG figure embedded inline, links to its other files, and the provenance recorded in
+//! `run.json` (seed, threads, overrides, toolkit version, date). Registered experiments without
+//! results are listed as "not run". The page needs no network: the CSS is inline and so are the
+//! figures.
+//!
+//! The page is written through a temporary file renamed into place. Results that cannot be read
+//! (malformed `tables.json` or `run.json`, a listed figure missing or empty) are bad input: one
+//! line naming the file, the field and the rule, exit status 2, and no page is written; so is an
+//! `--out` with no results at all.
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::fs;
+use std::path::{Path, PathBuf};
+
+use registry::Table;
+use serde_json::Value;
+
+use crate::provenance::{self, RUN_JSON};
+use crate::{Failure, Registry};
+
+/// The page's file name in `<out>/`.
+pub const INDEX_HTML: &str = "index.html";
+
+/// `report [--out DIR]`: builds the page and writes it to `<out>/index.html`.
+pub fn command(args: &[String]) -> Result<(), Failure> {
+    let out = parse(args)?;
+    let exps = registry::experiments().map_err(|e| Failure::Internal(e.to_string()))?;
+    let page = build(&exps, &out)?;
+    let index = out.join(INDEX_HTML);
+    crate::write_atomically(&index, &page)?;
+    eprintln!("report: {}", index.display());
+    Ok(())
+}
+
+/// The `--out` directory (default `<workspace>/results`).
+fn parse(args: &[String]) -> Result<PathBuf, Failure> {
+    let mut out = None;
+    let mut it = args.iter();
+    while let Some(arg) = it.next() {
+        let value = match arg.split_once('=') {
+            Some(("--out", v)) => v.to_owned(),
+            None if arg == "--out" => match it.next() {
+                Some(v) if !v.starts_with("--") => v.clone(),
+                _ => return Err(Failure::Usage("--out needs a value".into())),
+            },
+            _ => {
+                return Err(Failure::Usage(format!(
+                    "report takes only --out DIR (got `{arg}`)"
+                )));
+            }
+        };
+        if value.is_empty() {
+            return Err(Failure::Bad("--out: must not be empty".into()));
+        }
+        out = Some(PathBuf::from(value));
+    }
+    Ok(out.unwrap_or_else(crate::default_out))
+}
+
+/// One experiment's results as read from `<out>/<id>/`.
+#[derive(Debug)]
+struct Results {
+    tables: Vec<Table>,
+    trials: u64,
+    engagements: u64,
+    /// The paper's numbers inside and outside our intervals.
+    agreement: Option<(u64, u64)>,
+    /// Every file of the directory, sorted.
+    files: Vec<String>,
+    /// SVG figures in the experiment's order: file name and how it is embedded.
+    figures: Vec<(String, Embed)>,
+    run: Option<Provenance>,
+}
+
+/// What `run.json` records.
+#[derive(Debug)]
+struct Provenance {
+    seed: u64,
+    threads: u64,
+    overrides: Vec<(String, String)>,
+    config: Option<String>,
+    version: String,
+    git: String,
+    date: String,
+}
+
+/// How a figure goes into the page.
+#[derive(Debug, PartialEq, Eq)]
+enum Embed {
+    /// The SVG element itself, prolog removed.
+    Inline(String),
+    /// An SVG that carries scripts or is not a bare `<svg>` element: an `<img>` with a
+    /// `data:` URI (still self-contained; an image runs no script).
+    DataUri(String),
+}
+
+fn bad(path: &Path, field: &str, rule: impl std::fmt::Display) -> Failure {
+    if field.is_empty() {
+        Failure::Bad(format!("{}: {rule}", path.display()))
+    } else {
+        Failure::Bad(format!("{}: {field}: {rule}", path.display()))
+    }
+}
+
+/// The HTML page for the results under `out`.
+fn build(exps: &Registry, out: &Path) -> Result<String, Failure> {
+    let found = scan(out)?;
+    if found.is_empty() {
+        return Err(Failure::Bad(format!(
+            "--out: {}: no results (no <id>/tables.json); run `cargo xtask run <id> --out {}` first",
+            out.display(),
+            out.display()
+        )));
+    }
+    let mut results = BTreeMap::new();
+    for (id, dir) in &found {
+        results.insert(id.clone(), read_results(dir)?);
+    }
+    let mut ids: Vec<String> = exps.keys().map(|id| (*id).to_owned()).collect();
+    ids.extend(results.keys().cloned());
+    ids.sort();
+    ids.dedup();
+    Ok(render(exps, &ids, &results))
+}
+
+/// The result directories under `out`: `(id, path)` for each visible subdirectory holding a
+/// `tables.json`, sorted by id.
+fn scan(out: &Path) -> Result<Vec<(String, PathBuf)>, Failure> {
+    let entries = match fs::read_dir(out) {
+        Ok(e) => e,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            return Err(Failure::Bad(format!(
+                "--out: {}: no such directory; run `cargo xtask run <id> --out {}` first",
+                out.display(),
+                out.display()
+            )));
+        }
+        Err(e) => return Err(bad(out, "", format!("cannot read the directory: {e}"))),
+    };
+    let mut found = Vec::new();
+    for entry in entries {
+        let entry = entry.map_err(|e| bad(out, "", format!("cannot read the directory: {e}")))?;
+        let Ok(name) = entry.file_name().into_string() else {
+            continue; // Not an experiment id.
+        };
+        let path = entry.path();
+        if name.starts_with('.') || !path.is_dir() || !path.join("tables.json").is_file() {
+            continue;
+        }
+        found.push((name, path));
+    }
+    found.sort();
+    Ok(found)
+}
+
+fn read_text(path: &Path) -> Result<String, Failure> {
+    let bytes = fs::read(path).map_err(|e| bad(path, "", format!("cannot read: {e}")))?;
+    String::from_utf8(bytes).map_err(|_| bad(path, "", "must be UTF-8 text"))
+}
+
+fn read_json(path: &Path) -> Result<Value, Failure> {
+    serde_json::from_str(&read_text(path)?)
+        .map_err(|e| bad(path, "", format!("not valid JSON: {e}")))
+}
+
+fn strings(v: &Value, path: &Path, field: &str) -> Result<Vec<String>, Failure> {
+    v.as_array()
+        .and_then(|a| a.iter().map(|s| s.as_str().map(str::to_owned)).collect())
+        .ok_or_else(|| bad(path, field, "must be an array of strings"))
+}
+
+fn count(v: &Value, path: &Path, field: &str) -> Result<u64, Failure> {
+    match v {
+        Value::Null => Ok(0),
+        _ => v
+            .as_u64()
+            .ok_or_else(|| bad(path, field, "must be a non-negative integer")),
+    }
+}
+
+/// Reads `dir/tables.json`, `dir/run.json` (if present) and the SVG figures.
+fn read_results(dir: &Path) -> Result<Results, Failure> {
+    let path = dir.join("tables.json");
+    let json = read_json(&path)?;
+    if !json.is_object() {
+        return Err(bad(&path, "", "must be a JSON object"));
+    }
+    let raw_tables = json["tables"]
+        .as_array()
+        .ok_or_else(|| bad(&path, "tables", "must be an array"))?;
+    let mut tables = Vec::new();
+    for (i, t) in raw_tables.iter().enumerate() {
+        let field = |f: &str| format!("tables[{i}].{f}");
+        let title = t["title"]
+            .as_str()
+            .ok_or_else(|| bad(&path, &field("title"), "must be a string"))?;
+        let columns = strings(&t["columns"], &path, &field("columns"))?;
+        let mut table = Table::new(title, columns);
+        let rows = t["rows"]
+            .as_array()
+            .ok_or_else(|| bad(&path, &field("rows"), "must be an array"))?;
+        for (j, row) in rows.iter().enumerate() {
+            table
+                .rows
+                .push(strings(row, &path, &field(&format!("rows[{j}]")))?);
+        }
+        if !t["notes"].is_null() {
+            table.notes = strings(&t["notes"], &path, &field("notes"))?;
+        }
+        tables.push(table);
+    }
+    let listed = match &json["files"] {
+        Value::Null => Vec::new(),
+        v => strings(v, &path, "files")?,
+    };
+    let agreement = match &json["agreement"] {
+        Value::Null => None,
+        a => Some((
+            a["inside"]
+                .as_u64()
+                .ok_or_else(|| bad(&path, "agreement.inside", "must be a non-negative integer"))?,
+            a["outside"]
+                .as_u64()
+                .ok_or_else(|| bad(&path, "agreement.outside", "must be a non-negative integer"))?,
+        )),
+    };
+
+    let mut files = Vec::new();
+    let entries = fs::read_dir(dir).map_err(|e| bad(dir, "", format!("cannot read: {e}")))?;
+    for entry in entries {
+        let entry = entry.map_err(|e| bad(dir, "", format!("cannot read: {e}")))?;
+        if let Ok(name) = entry.file_name().into_string()
+            && !name.starts_with('.')
+            && entry.path().is_file()
+        {
+            files.push(name);
+        }
+    }
+    files.sort();
+    for name in &listed {
+        if !files.contains(name) {
+            return Err(bad(
+                &path,
+                "files",
+                format!("lists {name}, which is not in {}", dir.display()),
+            ));
+        }
+    }
+    // Figures: those tables.json lists, in its order, then any other SVG.
+    let mut svg_names: Vec<&String> = listed.iter().filter(|n| is_svg(n)).collect();
+    svg_names.extend(files.iter().filter(|n| is_svg(n) && !listed.contains(*n)));
+    let mut figures = Vec::new();
+    for name in svg_names {
+        let file = dir.join(name);
+        let text = read_text(&file)?;
+        if !has_drawing(&text) {
+            return Err(bad(
+                &file,
+                "",
+                "must be an SVG drawing something (a path, polyline, polygon or line)",
+            ));
+        }
+        figures.push((name.clone(), embed_svg(&text)));
+    }
+
+    let run_path = dir.join(RUN_JSON);
+    let run = if run_path.is_file() {
+        Some(read_provenance(&run_path)?)
+    } else {
+        None
+    };
+    Ok(Results {
+        tables,
+        trials: count(&json["trials"], &path, "trials")?,
+        engagements: count(&json["engagements"], &path, "engagements")?,
+        agreement,
+        files,
+        figures,
+        run,
+    })
+}
+
+fn read_provenance(path: &Path) -> Result<Provenance, Failure> {
+    let v = read_json(path)?;
+    let text = |field: &str, value: &Value| -> Result<String, Failure> {
+        value
+            .as_str()
+            .map(str::to_owned)
+            .ok_or_else(|| bad(path, field, "must be a string"))
+    };
+    let number = |field: &str| -> Result<u64, Failure> {
+        v[field]
+            .as_u64()
+            .ok_or_else(|| bad(path, field, "must be a non-negative integer"))
+    };
+    let overrides = match &v["overrides"] {
+        Value::Null => Vec::new(),
+        Value::Object(m) => m
+            .iter()
+            .map(|(k, val)| Ok((k.clone(), text(&format!("overrides.{k}"), val)?)))
+            .collect::<Result<_, Failure>>()?,
+        _ => return Err(bad(path, "overrides", "must be an object of strings")),
+    };
+    let config = match &v["config"] {
+        Value::Null => None,
+        c => Some(text("config", c)?),
+    };
+    Ok(Provenance {
+        seed: number("seed")?,
+        threads: number("threads")?,
+        overrides,
+        config,
+        version: text("version.crate", &v["version"]["crate"])?,
+        git: text("version.git", &v["version"]["git"])?,
+        date: text("date", &v["date"])?,
+    })
+}
+
+fn is_svg(name: &str) -> bool {
+    name.to_ascii_lowercase().ends_with(".svg")
+}
+
+/// Does the SVG draw anything: a path, polyline, polygon or line element?
+pub fn has_drawing(svg: &str) -> bool {
+    let lower = svg.to_ascii_lowercase();
+    lower.contains("<svg")
+        && ["<path", "<polyline", "<polygon", "<line"]
+            .iter()
+            .any(|t| lower.contains(t))
+}
+
+/// The SVG element of `text` without XML declaration, doctype or leading comments; inline
+/// unless it could run a script.
+fn embed_svg(text: &str) -> Embed {
+    let mut rest = text.trim_start_matches('\u{feff}');
+    loop {
+        rest = rest.trim_start();
+        let skip = if rest.starts_with("<?") {
+            rest.find("?>").map(|i| i + 2)
+        } else if rest.starts_with("<!--") {
+            rest.find("-->").map(|i| i + 3)
+        } else if rest.len() >= 9 && rest[..9].eq_ignore_ascii_case("<!doctype") {
+            rest.find('>').map(|i| i + 1)
+        } else {
+            break;
+        };
+        match skip {
+            Some(i) => rest = &rest[i..],
+            None => break,
+        }
+    }
+    let lower = rest.to_ascii_lowercase();
+    let scripted = [
+        "<script",
+        "foreignobject",
+        "javascript:",
+        "<iframe",
+        "<!entity",
+    ]
+    .iter()
+    .any(|t| lower.contains(t))
+        || has_event_handler(&lower);
+    if lower.starts_with("<svg") && !scripted {
+        Embed::Inline(rest.trim_end().to_owned())
+    } else {
+        Embed::DataUri(format!(
+            "data:image/svg+xml;base64,{}",
+            base64(text.as_bytes())
+        ))
+    }
+}
+
+/// An attribute `on...=` (an event handler) anywhere in the lower-cased text.
+fn has_event_handler(lower: &str) -> bool {
+    let b = lower.as_bytes();
+    lower.match_indices("on").any(|(i, _)| {
+        let before_ok = i > 0 && b[i - 1].is_ascii_whitespace();
+        let mut j = i + 2;
+        while j < b.len() && b[j].is_ascii_lowercase() {
+            j += 1;
+        }
+        while j < b.len() && b[j].is_ascii_whitespace() {
+            j += 1;
+        }
+        before_ok && j > i + 2 && j < b.len() && b[j] == b'='
+    })
+}
+
+/// Standard base64 with padding.
+fn base64(bytes: &[u8]) -> String {
+    const ALPHABET: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut s = String::with_capacity(bytes.len().div_ceil(3) * 4);
+    for chunk in bytes.chunks(3) {
+        let n = chunk
+            .iter()
+            .enumerate()
+            .fold(0u32, |n, (i, &b)| n | (u32::from(b) << (16 - 8 * i)));
+        for k in 0..4 {
+            if k <= chunk.len() {
+                s.push(char::from(ALPHABET[(n >> (18 - 6 * k)) as usize & 63]));
+            } else {
+                s.push('=');
+            }
+        }
+    }
+    s
+}
+
+/// `s` with `&`, `<`, `>`, `"` and `'` escaped for HTML text and attribute values.
+fn esc(s: &str) -> String {
+    let mut o = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '&' => o.push_str("&amp;"),
+            '<' => o.push_str("&lt;"),
+            '>' => o.push_str("&gt;"),
+            '"' => o.push_str("&quot;"),
+            '\'' => o.push_str("&#39;"),
+            _ => o.push(c),
+        }
+    }
+    o
+}
+
+/// `s` percent-encoded for one segment of a relative URL.
+fn url_part(s: &str) -> String {
+    let mut o = String::new();
+    for b in s.bytes() {
+        if b.is_ascii_alphanumeric() || b"-._~".contains(&b) {
+            o.push(char::from(b));
+        } else {
+            let _ = write!(o, "%{b:02X}");
+        }
+    }
+    o
+}
+
+/// Does the cell read as a number (right-aligned)?
+fn numeric(cell: &str) -> bool {
+    let t = cell.trim_start_matches(['<', '>', '~', '+', '-', '\u{2212}', '\u{2248}', ' ']);
+    t.starts_with(|c: char| c.is_ascii_digit())
+}
+
+const CSS: &str = "
+body { font-family: system-ui, -apple-system, 'Segoe UI', Roboto, sans-serif; margin: 0 auto;
+  max-width: 1200px; padding: 1em 2em 3em; color: #1b1b1b; background: #fff; line-height: 1.4; }
+h1 { font-size: 1.6em; margin-bottom: 0.2em; }
+h2 { font-size: 1.3em; border-bottom: 2px solid #c9d3e0; padding-bottom: 0.2em; margin-top: 2em; }
+.meta { color: #444; margin: 0.2em 0; }
+.meta code, .files code { background: #f2f4f7; padding: 0 0.25em; border-radius: 3px; }
+table { border-collapse: collapse; margin: 0.8em 0; font-size: 0.92em; }
+caption { caption-side: top; text-align: left; font-weight: 600; padding: 0.3em 0; }
+th, td { border: 1px solid #c9d3e0; padding: 0.25em 0.6em; vertical-align: top; }
+th { background: #eef2f7; text-align: left; }
+td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
+th.paper, td.paper { background: #fff7e0; }
+ul.notes { margin: 0.2em 0 1.2em; color: #444; font-size: 0.88em; }
+figure { margin: 1em 0; }
+figure svg, figure img { max-width: 100%; height: auto; border: 1px solid #e3e8ef; }
+figcaption { color: #555; font-size: 0.85em; }
+.not-run .status { color: #a33; font-weight: 600; }
+table.toc td.status-run { color: #1d6b2f; white-space: nowrap; }
+table.toc td.status-not-run { color: #a33; white-space: nowrap; }
+.files { font-size: 0.85em; color: #555; }
+footer { margin-top: 3em; color: #777; font-size: 0.85em; }
+";
+
+/// The whole page.
+fn render(exps: &Registry, ids: &[String], results: &BTreeMap<String, Results>) -> String {
+    let mut h = String::new();
+    let now = provenance::utc_now();
+    let _ = write!(
+        h,
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
+<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n\
+<title>Antikythera gear trains: results</title>\n<style>{CSS}</style>\n</head>\n<body>\n\
+<header>\n<h1>Antikythera gear trains: results</h1>\n\
+<p class=\"meta\">A reproduction of Szigety &amp; Arenas, <i>The Impact of Triangular-Toothed Gears on the \
+Functionality of the Antikythera Mechanism</i>. Our numbers are printed as computed; the paper's numbers \
+appear in columns labelled &ldquo;paper&rdquo; or in parentheses, as in the printed tables.</p>\n\
+<p class=\"meta\">{} of {} experiments have results. Page written {} by xtask {} (git <code>{}</code>).</p>\n\
+</header>\n",
+        results.len(),
+        ids.len(),
+        esc(&now),
+        esc(env!("CARGO_PKG_VERSION")),
+        esc(provenance::git_describe())
+    );
+
+    // Contents.
+    h.push_str("<nav>\n<table class=\"toc\">\n<caption>Experiments</caption>\n<thead><tr><th>id</th><th>paper item</th><th>title</th><th>status</th><th>seed</th><th>paper's numbers inside / outside our intervals</th></tr></thead>\n<tbody>\n");
+    for id in ids {
+        let (title, item) = describe(exps, id);
+        let r = results.get(id);
+        let (status, class) = if r.is_some() {
+            ("run", "status-run")
+        } else {
+            ("not run", "status-not-run")
+        };
+        let seed = r
+            .and_then(|r| r.run.as_ref())
+            .map_or_else(|| "-".to_owned(), |p| p.seed.to_string());
+        let agreement = r
+            .and_then(|r| r.agreement)
+            .map_or_else(|| "-".to_owned(), |(i, o)| format!("{i} / {o}"));
+        let _ = writeln!(
+            h,
+            "<tr><td><a href=\"#exp-{}\">{}</a></td><td>{}</td><td>{}</td><td class=\"{class}\">{status}</td><td class=\"num\">{}</td><td class=\"num\">{}</td></tr>",
+            esc(id),
+            esc(id),
+            esc(item),
+            esc(title),
+            esc(&seed),
+            esc(&agreement)
+        );
+    }
+    h.push_str("</tbody>\n</table>\n</nav>\n<main>\n");
+
+    for id in ids {
+        let (title, item) = describe(exps, id);
+        match results.get(id) {
+            None => {
+                let _ = write!(
+                    h,
+                    "<section id=\"exp-{}\" class=\"experiment not-run\">\n<h2>{}: {}</h2>\n\
+<p class=\"meta\">Paper item: {}</p>\n<p class=\"status\">not run</p>\n</section>\n",
+                    esc(id),
+                    esc(id),
+                    esc(title),
+                    esc(item)
+                );
+            }
+            Some(r) => section(&mut h, id, title, item, r),
+        }
+    }
+    let _ = write!(
+        h,
+        "</main>\n<footer>Generated by <code>cargo xtask report</code> at {}. Each section's files are linked relative to this page.</footer>\n</body>\n</html>\n",
+        esc(&now)
+    );
+    h
+}
+
+/// Title and paper item from the registry.
+fn describe<'a>(exps: &'a Registry, id: &str) -> (&'a str, &'a str) {
+    exps.get(id)
+        .map_or(("(not a registered experiment)", "-"), |e| {
+            (e.title, e.paper_item)
+        })
+}
+
+fn section(h: &mut String, id: &str, title: &str, item: &str, r: &Results) {
+    let _ = write!(
+        h,
+        "<section id=\"exp-{}\" class=\"experiment run\">\n<h2>{}: {}</h2>\n<p class=\"meta\">Paper item: {}</p>\n",
+        esc(id),
+        esc(id),
+        esc(title),
+        esc(item)
+    );
+    match &r.run {
+        Some(p) => {
+            let overrides = if p.overrides.is_empty() {
+                "none (defaults)".to_owned()
+            } else {
+                p.overrides
+                    .iter()
+                    .map(|(k, v)| format!("<code>{}={}</code>", esc(k), esc(v)))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            };
+            let config = p.config.as_ref().map_or_else(String::new, |c| {
+                format!("; config file <code>{}</code>", esc(c))
+            });
+            let _ = writeln!(
+                h,
+                "<p class=\"meta provenance\">Produced with seed <b>{}</b>, {} thread{}, overrides: {overrides}{config}; \
+xtask {} (git <code>{}</code>), {}.</p>",
+                p.seed,
+                p.threads,
+                if p.threads == 1 { "" } else { "s" },
+                esc(&p.version),
+                esc(&p.git),
+                esc(&p.date)
+            );
+        }
+        None => h.push_str(
+            "<p class=\"meta provenance\">Provenance not recorded (no run.json: these results predate it).</p>\n",
+        ),
+    }
+    let mut facts = Vec::new();
+    if r.trials > 0 {
+        facts.push(format!("trials: {}", r.trials));
+    }
+    if r.engagements > 0 {
+        facts.push(format!("tooth engagements: {}", r.engagements));
+    }
+    if let Some((i, o)) = r.agreement {
+        facts.push(format!(
+            "the paper's numbers inside / outside our 95 % intervals: {i} / {o}"
+        ));
+    }
+    if !facts.is_empty() {
+        let _ = writeln!(h, "<p class=\"meta\">{}</p>", esc(&facts.join("; ")));
+    }
+    for t in &r.tables {
+        table(h, t);
+    }
+    for (name, embed) in &r.figures {
+        let file = format!("{id}/{name}");
+        let _ = writeln!(h, "<figure data-file=\"{}\">", esc(&file));
+        match embed {
+            Embed::Inline(svg) => h.push_str(svg),
+            Embed::DataUri(uri) => {
+                let _ = write!(h, "<img src=\"{}\" alt=\"{}\">", esc(uri), esc(name));
+            }
+        }
+        let _ = write!(
+            h,
+            "\n<figcaption><a href=\"{}/{}\">{}</a></figcaption>\n</figure>\n",
+            url_part(id),
+            url_part(name),
+            esc(name)
+        );
+    }
+    let links: Vec<String> = r
+        .files
+        .iter()
+        .map(|f| {
+            format!(
+                "<a href=\"{}/{}\"><code>{}</code></a>",
+                url_part(id),
+                url_part(f),
+                esc(f)
+            )
+        })
+        .collect();
+    let _ = write!(
+        h,
+        "<p class=\"files\">Files: {}</p>\n</section>\n",
+        links.join(" ")
+    );
+}
+
+fn table(h: &mut String, t: &Table) {
+    let paper: Vec<bool> = t
+        .columns
+        .iter()
+        .map(|c| c.to_ascii_lowercase().contains("paper"))
+        .collect();
+    let _ = write!(
+        h,
+        "<table>\n<caption>{}</caption>\n<thead><tr>",
+        esc(&t.title)
+    );
+    for (c, p) in t.columns.iter().zip(&paper) {
+        let class = if *p { " class=\"paper\"" } else { "" };
+        let _ = write!(h, "<th{class}>{}</th>", esc(c));
+    }
+    h.push_str("</tr></thead>\n<tbody>\n");
+    for row in &t.rows {
+        h.push_str("<tr>");
+        for (i, cell) in row.iter().enumerate() {
+            let mut classes = Vec::new();
+            if numeric(cell) {
+                classes.push("num");
+            }
+            if paper.get(i).copied().unwrap_or(false) {
+                classes.push("paper");
+            }
+            if classes.is_empty() {
+                let _ = write!(h, "<td>{}</td>", esc(cell));
+            } else {
+                let _ = write!(h, "<td class=\"{}\">{}</td>", classes.join(" "), esc(cell));
+            }
+        }
+        h.push_str("</tr>\n");
+    }
+    h.push_str("</tbody>\n</table>\n");
+    if !t.notes.is_empty() {
+        h.push_str("<ul class=\"notes\">\n");
+        for n in &t.notes {
+            let _ = writeln!(h, "<li>{}</li>", esc(n));
+        }
+        h.push_str("</ul>\n");
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
+mod tests {
+    use super::*;
+    use registry::{Context, Experiment, OutputFile, Report, RunError};
+
+    fn nothing(_: &Context) -> Result<Report, RunError> {
+        Ok(Report::default())
+    }
+
+    static A: Experiment = Experiment {
+        id: "a",
+        title: "First <one>",
+        paper_item: "Figure 1",
+        params: &[],
+        config: None,
+        run: nothing,
+    };
+    static B: Experiment = Experiment {
+        id: "b",
+        title: "Second",
+        paper_item: "Table 2",
+        params: &[],
+        config: None,
+        run: nothing,
+    };
+
+    fn registry() -> Registry {
+        let mut r: Registry = BTreeMap::new();
+        r.insert(A.id, &A);
+        r.insert(B.id, &B);
+        r
+    }
+
+    struct Scratch(PathBuf);
+    impl Scratch {
+        fn new(tag: &str) -> Self {
+            let nanos = std::time::SystemTime::now()
+                .duration_since(std::time::UNIX_EPOCH)
+                .unwrap()
+                .as_nanos();
+            let p = std::env::temp_dir()
+                .join(format!("xtask-report-{tag}-{}-{nanos}", std::process::id()));
+            fs::create_dir_all(&p).unwrap();
+            Scratch(p)
+        }
+    }
+    impl Drop for Scratch {
+        fn drop(&mut self) {
+            let _ = fs::remove_dir_all(&self.0);
+        }
+    }
+
+    const SVG: &str = "<?xml version=\"1.0\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"10\" height=\"10\"><polyline points=\"0,0 5,5\"/></svg>\n";
+
+    fn write_a(out: &Path) {
+        let mut t = Table::new("Ours & the paper's", ["quantity", "ours", "paper"]);
+        t.row(vec!["x".into(), "1.5 (1.4)".into(), "1.4".into()]);
+        t.note("a <note>");
+        let report = Report {
+            tables: vec![t],
+            files: vec![OutputFile::new("a.svg", SVG)],
+            trials: 30,
+            agreement: Some(registry::Agreement {
+                inside: 3,
+                outside: 1,
+            }),
+            ..Default::default()
+        };
+        let ctx = Context::new(&A, 11, 2, &[], None).unwrap();
+        registry::write_results(
+            &out.join("a"),
+            &provenance::stamp(&report, &A, &ctx, &[], None),
+        )
+        .unwrap();
+    }
+
+    #[test]
+    fn page_has_tables_figures_provenance_and_not_run() {
+        let s = Scratch::new("page");
+        write_a(&s.0);
+        fs::create_dir_all(s.0.join(".a.tmp-1")).unwrap(); // hidden: ignored
+        let page = build(&registry(), &s.0).unwrap();
+        assert!(page.contains("<section id=\"exp-a\" class=\"experiment run\">"));
+        assert!(page.contains("<h2>a: First &lt;one&gt;</h2>"));
+        assert!(page.contains("<caption>Ours &amp; the paper&#39;s</caption>"));
+        assert!(page.contains("<td class=\"num\">1.5 (1.4)</td><td class=\"num paper\">1.4</td>"));
+        assert!(page.contains("<li>a &lt;note&gt;</li>"));
+        assert!(page.contains("<figure data-file=\"a/a.svg\">\n<svg xmlns"));
+        assert!(!page.contains("<?xml"));
+        assert!(page.contains("seed <b>11</b>, 2 threads"));
+        assert!(page.contains("inside / outside our 95 % intervals: 3 / 1"));
+        assert!(page.contains("<section id=\"exp-b\" class=\"experiment not-run\">"));
+        assert!(page.contains("<p class=\"status\">not run</p>"));
+        assert!(!page.contains("tmp-1"));
+        assert!(
+            !page.contains("<link") && !page.contains("<script"),
+            "self-contained"
+        );
+        assert_eq!(page.matches("<svg").count(), 1);
+    }
+
+    #[test]
+    fn command_writes_the_page_atomically() {
+        let s = Scratch::new("command");
+        write_a(&s.0);
+        command(&["--out".into(), s.0.display().to_string()]).unwrap();
+        let page = fs::read_to_string(s.0.join(INDEX_HTML)).unwrap();
+        assert!(page.starts_with("<!DOCTYPE html>"));
+        let names: Vec<String> = fs::read_dir(&s.0)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        assert_eq!(names.len(), 2, "{names:?}");
+    }
+
+    #[test]
+    fn no_results_is_bad_input_and_writes_nothing() {
+        let s = Scratch::new("empty");
+        let e = build(&registry(), &s.0).unwrap_err();
+        assert_eq!(e.code(), 2);
+        assert!(format!("{e:?}").contains("no results"), "{e:?}");
+        let e = command(&["--out".into(), s.0.display().to_string()]).unwrap_err();
+        assert_eq!(e.code(), 2);
+        assert!(!s.0.join(INDEX_HTML).exists());
+        let e = build(&registry(), &s.0.join("missing")).unwrap_err();
+        assert_eq!(e.code(), 2);
+        assert!(format!("{e:?}").contains("no such directory"), "{e:?}");
+    }
+
+    #[test]
+    fn broken_results_name_the_file_and_field() {
+        let cases: [(&str, &str, &str); 6] = [
+            ("tables.json", "{", "not valid JSON"),
+            ("tables.json", "{\"tables\": 3}", "tables: must be an array"),
+            (
+                "tables.json",
+                "{\"tables\": [{\"title\": \"t\", \"columns\": [1], \"rows\": []}]}",
+                "tables[0].columns: must be an array of strings",
+            ),
+            (
+                "tables.json",
+                "{\"tables\": [], \"files\": [\"gone.svg\"]}",
+                "files: lists gone.svg",
+            ),
+            (
+                "run.json",
+                "{\"seed\": -1}",
+                "run.json: seed: must be a non-negative",
+            ),
+            ("a.svg", "<svg></svg>", "a.svg: must be an SVG drawing"),
+        ];
+        for (file, text, want) in cases {
+            let s = Scratch::new("broken");
+            write_a(&s.0);
+            fs::write(s.0.join("a").join(file), text).unwrap();
+            let e = command(&["--out".into(), s.0.display().to_string()]).unwrap_err();
+            assert_eq!(e.code(), 2, "{file}");
+            let msg = format!("{e:?}");
+            assert!(msg.contains(want), "{file}: {msg}");
+            assert!(!s.0.join(INDEX_HTML).exists(), "{file}");
+        }
+    }
+
+    #[test]
+    fn arguments() {
+        assert!(parse(&[]).is_ok());
+        assert_eq!(parse(&["--out=x".into()]).unwrap(), PathBuf::from("x"));
+        assert_eq!(parse(&["--out".into()]).unwrap_err().code(), 2);
+        assert_eq!(parse(&["--out=".into()]).unwrap_err().code(), 2);
+        assert!(matches!(parse(&["fig2".into()]), Err(Failure::Usage(_))));
+    }
+
+    #[test]
+    fn svg_embedding() {
+        assert_eq!(
+            embed_svg(SVG),
+            Embed::Inline(
+                "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"10\" height=\"10\"><polyline points=\"0,0 5,5\"/></svg>"
+                    .into()
+            )
+        );
+        for risky in [
+            "<svg><script>alert(1)</script><path d=\"M0 0\"/></svg>",
+            "<svg onload=\"x()\"><path/></svg>",
+            "<svg><line/></svg><svg onclick = \"x\"/>",
+            "<div><svg><path/></svg></div>",
+        ] {
+            assert!(matches!(embed_svg(risky), Embed::DataUri(_)), "{risky}");
+        }
+        assert!(matches!(
+            embed_svg("<svg><text>one driver turn</text><line/></svg>"),
+            Embed::Inline(_)
+        ));
+        assert!(has_drawing(SVG));
+        assert!(!has_drawing("<svg><rect/></svg>"));
+    }
+
+    #[test]
+    fn helpers() {
+        assert_eq!(base64(b""), "");
+        assert_eq!(base64(b"f"), "Zg==");
+        assert_eq!(base64(b"fo"), "Zm8=");
+        assert_eq!(base64(b"foo"), "Zm9v");
+        assert_eq!(base64(b"foobar"), "Zm9vYmFy");
+        assert_eq!(
+            esc("<a href='x'>&\"</a>"),
+            "&lt;a href=&#39;x&#39;&gt;&amp;&quot;&lt;/a&gt;"
+        );
+        assert_eq!(url_part("fig 2/ä.svg"), "fig%202%2F%C3%A4.svg");
+        assert!(numeric("17.96") && numeric("< 1e-12") && numeric("-0.5") && numeric("0 / 0"));
+        assert!(!numeric("theta") && !numeric("-") && !numeric(""));
+    }
+}
