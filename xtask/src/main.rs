@@ -798,11 +798,12 @@ fn run_every(
         let (result, seconds) = execute(p.e, &p.ctx, &pool);
         let result = match result {
             Ok(report) => {
+                // Printed as written: tables.json lists run.json among the files.
+                let report =
+                    provenance::stamp(&report, p.e, &p.ctx, &p.sets, run.config.as_deref());
                 printer.report(p.e, &report)?;
                 let results = dir.join(p.e.id);
-                let stamped =
-                    provenance::stamp(&report, p.e, &p.ctx, &p.sets, run.config.as_deref());
-                registry::write_results(&results, &stamped).map(|()| {
+                registry::write_results(&results, &report).map(|()| {
                     note(&format!("results: {}", results.display()));
                     report
                 })
@@ -962,10 +963,10 @@ fn run_all(exps: &Registry, run: &RunArgs) -> Result<(), Failure> {
                 return Err(e.into());
             }
         };
+        let report = provenance::stamp(&report, p.e, &p.ctx, &p.sets, run.config.as_deref());
         printer.report(p.e, &report)?;
         let dir = out.join(p.e.id);
-        let stamped = provenance::stamp(&report, p.e, &p.ctx, &p.sets, run.config.as_deref());
-        registry::write_results(&dir, &stamped)?;
+        registry::write_results(&dir, &report)?;
         note(&format!("results: {}", dir.display()));
     }
     printer.finish()
@@ -1078,12 +1079,12 @@ fn merge(exps: &Registry, m: &MergeArgs) -> Result<(), Failure> {
             e.id
         )));
     }
+    let config = header.config.as_ref().map(|c| PathBuf::from(&c.path));
+    let report = provenance::stamp(&report, e, &ctx, &header.sets, config.as_deref());
     let mut stdout = |s: &str| print(s);
     Printer::new(m.format, false, &mut stdout).report(e, &report)?;
     let dir = m.out.clone().unwrap_or_else(default_out).join(e.id);
-    let config = header.config.as_ref().map(|c| PathBuf::from(&c.path));
-    let stamped = provenance::stamp(&report, e, &ctx, &header.sets, config.as_deref());
-    registry::write_results(&dir, &stamped)?;
+    registry::write_results(&dir, &report)?;
     note(&format!(
         "results: {} (merged from {} shards)",
         dir.display(),
