@@ -10,6 +10,10 @@ pub use rand;
 
 mod builtin;
 mod edmunds;
+/// Every file in `src/plugins/`, declared by `build.rs`: a new hypothesis is one file there.
+mod plugins {
+    include!(concat!(env!("OUT_DIR"), "/plugins.rs"));
+}
 mod measured;
 mod params;
 
