@@ -28,3 +28,9 @@ mod tolerance;
 
 /// Does nothing; calling it makes a binary link this crate, and with it every experiment it registers.
 pub fn link() {}
+
+/// Forgets the per-mesh jam cells this process has run (see `pair_jams::run_cells`), so that
+/// the next experiment computes them again: for benchmarks, which must time the work itself.
+pub fn forget_cached_cells() {
+    pair_jams::forget_cache();
+}

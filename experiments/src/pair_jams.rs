@@ -216,6 +216,11 @@ pub enum Stage {
     Input,
 }
 
+/// Empties the cache of cell counts.
+pub(crate) fn forget_cache() {
+    cache().lock().unwrap_or_else(|e| e.into_inner()).clear();
+}
+
 /// Runs `trials` trials of every cell and returns each cell's counts, in the order of `cells`.
 ///
 /// Every (cell, trial) job runs in one flat parallel batch through [`Context::trials`] (or

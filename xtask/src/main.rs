@@ -871,6 +871,8 @@ fn bench(exps: &Registry, b: &BenchArgs) -> Result<(), Failure> {
                 target.name(),
                 if threads == 1 { "" } else { "s" }
             ));
+            // Every timed run does all its own work: nothing from an earlier run is reused.
+            experiments::forget_cached_cells();
             let start = Instant::now();
             let pool = make_pool(threads)?;
             let mut rows = Vec::new();
