@@ -341,6 +341,8 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     Ok(Report {
         tables: vec![layout, detail, ratios],
         files: vec![OutputFile::new("table1-data.csv", csv)],
+        // Mechanisms run (each drives the five pointers).
+        trials: trials as u64,
         ..Default::default()
     })
 }
