@@ -466,10 +466,11 @@ impl Mesh {
                 a_hi = a_hi.max(a);
             }
             for k in d2.teeth_between(lo - a_hi - half_k, hi - a_lo + half_k) {
-                if let Some(o) = self.tooth_pair(world, da, j, k) {
-                    if o.hi >= lo && o.lo <= hi {
-                        out.push(o);
-                    }
+                if let Some(o) = self.tooth_pair(world, da, j, k)
+                    && o.hi >= lo
+                    && o.lo <= hi
+                {
+                    out.push(o);
                 }
             }
         }

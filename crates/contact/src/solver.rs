@@ -467,10 +467,10 @@ impl Run<'_> {
             .collect();
         // Standing still, the first touch of any driver tooth is found exactly; end the step just
         // after it, so that even a brief graze (a tip clipping a tip) is seen at the step's end.
-        if pushers.is_empty() {
-            if let Some(t) = mesh.first_touch(theta0, phi0, phi1) {
-                phi1 = phi1.min(t + TOUCH_STEP);
-            }
+        if pushers.is_empty()
+            && let Some(t) = mesh.first_touch(theta0, phi0, phi1)
+        {
+            phi1 = phi1.min(t + TOUCH_STEP);
         }
 
         // Obstacles at the end of the step, with their values there cached.

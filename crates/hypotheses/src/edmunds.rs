@@ -76,13 +76,13 @@ impl EdmundsErrors {
                 ),
             );
         }
-        if let Some(p) = self.phase_deg {
-            if !p.is_finite() {
-                return bad(
-                    "phase",
-                    format!("must be a finite number of degrees (got {p})"),
-                );
-            }
+        if let Some(p) = self.phase_deg
+            && !p.is_finite()
+        {
+            return bad(
+                "phase",
+                format!("must be a finite number of degrees (got {p})"),
+            );
         }
         Ok(())
     }

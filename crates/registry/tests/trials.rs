@@ -41,9 +41,9 @@ fn value(t: u64) -> Value {
     Value {
         x,
         tiny: f64::MIN_POSITIVE / (t as f64 + 3.0),
-        maybe_nan: if t % 2 == 0 { f64::NAN } else { -0.0 },
+        maybe_nan: if t.is_multiple_of(2) { f64::NAN } else { -0.0 },
         label: format!("trial \"{t}\"\n"),
-        day: (t % 3 != 0).then_some(x * 365.25),
+        day: (!t.is_multiple_of(3)).then_some(x * 365.25),
     }
 }
 
