@@ -360,6 +360,114 @@ fn run_cells_with(
         .collect()
 }
 
+/// Trials `range` (indices, e.g. `40..60`) of one cell: a stretch of a cell's trials, for a
+/// search that adds trials to a cell a batch at a time.
+#[derive(Clone)]
+pub struct CellRange {
+    /// The cell.
+    pub cell: CellSpec,
+    /// Trial indices to run.
+    pub range: std::ops::Range<u64>,
+}
+
+/// Runs trial indices `start..end` of each cell of `ranges` and returns each range's counts, in
+/// the order of `ranges`.
+///
+/// Trial `t` of a cell draws from the same stream as in [`run_cells`], so the counts of ranges
+/// `0..a` and `a..b` of a cell add up to what `run_cells` gives that cell with `b` trials. All
+/// ranges run in one flat batch through [`Context::trials`] (or [`Context::trials_whole`] for an
+/// [`Stage::Input`]: a search that decides from the counts what to run next must use it), named
+/// by every cell's canonical text, the seed, the gearing and the index range. Nothing is
+/// cached.
+///
+/// Errors: an empty range; a mesh missing from the gearing; a gear the hypothesis cannot
+/// manufacture (the first such trial in range and trial order).
+pub fn run_cell_ranges(
+    ctx: &Context,
+    g: &Gearing,
+    ranges: &[CellRange],
+    stage: Stage,
+) -> Result<Vec<Counts>, RunError> {
+    let whole = stage == Stage::Input;
+    run_cell_ranges_with(g, ranges, ctx.seed(), |key, n, f| {
+        if whole {
+            ctx.trials_whole(key, n, f)
+        } else {
+            ctx.trials(key, n, f)
+        }
+    })
+}
+
+/// [`run_cell_ranges`] with the batch runner given (as in [`run_cells_with`]).
+fn run_cell_ranges_with(
+    g: &Gearing,
+    ranges: &[CellRange],
+    seed: u64,
+    run_batch: impl FnOnce(
+        &str,
+        u64,
+        &(dyn Fn(u64) -> Result<Outcome, RunError> + Sync + Send),
+    ) -> Result<Vec<Outcome>, RunError>,
+) -> Result<Vec<Counts>, RunError> {
+    if let Some(r) = ranges.iter().find(|r| r.range.is_empty()) {
+        return Err(RunError::bad(
+            "--set",
+            "trials",
+            format!(
+                "the trial range {}..{} of mesh {} is empty",
+                r.range.start, r.range.end, r.cell.mesh
+            ),
+        ));
+    }
+    let prepared: Vec<Prepared<'_>> = ranges
+        .iter()
+        .map(|r| prepare(g, &r.cell))
+        .collect::<Result<_, _>>()?;
+    let gearing_id = fnv1a64(format!("{g:?}").as_bytes());
+    let mut names = String::new();
+    let mut jobs: Vec<(usize, u64)> = Vec::new();
+    for (i, (r, p)) in ranges.iter().zip(&prepared).enumerate() {
+        let _ = writeln!(
+            names,
+            "{}|seed={seed}|gearing={gearing_id:016x}|trials={}..{}",
+            p.canonical, r.range.start, r.range.end
+        );
+        jobs.extend(r.range.clone().map(|t| (i, t)));
+    }
+    let batch = format!(
+        "pair-ranges/{}-ranges-{}-trials/{:016x}",
+        ranges.len(),
+        jobs.len(),
+        fnv1a64(names.as_bytes())
+    );
+    let outcomes: Vec<Outcome> = if jobs.is_empty() {
+        Vec::new()
+    } else {
+        let job = |n: u64| -> Result<Outcome, RunError> {
+            let (i, t) = jobs[n as usize];
+            trial(&prepared[i], seed, t)
+        };
+        run_batch(&batch, jobs.len() as u64, &job)?
+    };
+    let mut counts: Vec<Counts> = ranges
+        .iter()
+        .zip(&prepared)
+        .map(|(r, p)| {
+            let n = r.range.end - r.range.start;
+            Counts {
+                trials: n,
+                engagements: n * p.larger_teeth,
+                ..Counts::default()
+            }
+        })
+        .collect();
+    for (&(i, _), &(jam, dis)) in jobs.iter().zip(&outcomes) {
+        counts[i].jams += u64::from(jam);
+        counts[i].disengagements += u64::from(dis);
+    }
+    Ok(counts)
+}
+
 /// The paper's (jams, disengagements) of one cell: `{key}.jam` and `{key}.dis` of experiment `id`
 /// in `paper.ron`, counts out of [`PAPER_TRIALS`].
 pub fn paper_counts(id: &str, key: &str) -> (Option<u64>, Option<u64>) {
@@ -545,6 +653,43 @@ mod tests {
         assert_eq!(second, rb);
         assert_eq!(rb[0].trials, 3);
         assert_eq!(rb[0].engagements, 3 * 53); // m2-n1: 15 and 53 teeth
+    }
+
+    #[test]
+    fn ranges_add_up_to_the_whole_cell() {
+        let g = Gearing::freeth2006();
+        let whole = run_cells_with(
+            &g,
+            &[cell("m2-n1", 0.06), cell("e1-b3", 0.07)],
+            5,
+            11,
+            false,
+            local,
+        )
+        .unwrap();
+        let range = |c: CellSpec, r: std::ops::Range<u64>| CellRange { cell: c, range: r };
+        let parts = run_cell_ranges_with(
+            &g,
+            &[
+                range(cell("m2-n1", 0.06), 0..2),
+                range(cell("e1-b3", 0.07), 0..5),
+                range(cell("m2-n1", 0.06), 2..5),
+            ],
+            11,
+            local,
+        )
+        .unwrap();
+        let sum = |a: Counts, b: Counts| Counts {
+            jams: a.jams + b.jams,
+            disengagements: a.disengagements + b.disengagements,
+            trials: a.trials + b.trials,
+            engagements: a.engagements + b.engagements,
+        };
+        assert_eq!(sum(parts[0], parts[2]), whole[0]);
+        assert_eq!(parts[1], whole[1]);
+        let e =
+            run_cell_ranges_with(&g, &[range(cell("m2-n1", 0.06), 3..3)], 1, local).unwrap_err();
+        assert_eq!(e.exit_code(), 2);
     }
 
     #[test]
