@@ -25,6 +25,7 @@ mod table5;
 mod table6;
 mod table_i;
 mod tolerance;
+mod tolerance_search;
 
 /// Does nothing; calling it makes a binary link this crate, and with it every experiment it registers.
 pub fn link() {}
