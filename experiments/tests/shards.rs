@@ -1,5 +1,5 @@
-//! Sharded runs of the converted experiments (`failure`, `table1`), joined and replayed through
-//! the registry, give exactly the report of a single run.
+//! Sharded runs of the converted experiments (`failure`, `table1`, `tolerance`), joined and
+//! replayed through the registry, give exactly the report of a single run.
 #![allow(clippy::unwrap_used, reason = "tests")]
 
 use registry::{Context, Report, Shard, ShardRecords, merge_records};
@@ -64,5 +64,23 @@ fn table1_shards_merge_to_the_single_run() {
         ("samples_per_engagement", "2"),
     ];
     let (single, merged) = single_and_merged("table1", &sets, 2);
+    assert_eq!(single, merged);
+}
+
+#[test]
+fn tolerance_search_shards_merge_to_the_single_run() {
+    // The search decides from its counts what to run next, so its batches are never split:
+    // every shard runs them whole and the merge replays them.
+    let sets = [
+        ("search_lo", "0.03"),
+        ("search_hi", "0.07"),
+        ("resolution", "0.02"),
+        ("batch", "3"),
+        ("cap", "6"),
+        ("rule", "20"),
+        ("random_from", "0.05"),
+        ("random_to", "0.05"),
+    ];
+    let (single, merged) = single_and_merged("tolerance", &sets, 2);
     assert_eq!(single, merged);
 }
