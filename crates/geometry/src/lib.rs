@@ -4,7 +4,8 @@
 //! tip circle). Tip `k` sits at polar angle `tips[k]` and radius `R`; valley `k` sits midway in
 //! angle between tip `k` and tip `k + 1`, at radius `r`; flanks are straight. The gear turns about
 //! its *rotation* centre, which may be offset from the geometric centre (an eccentric gear turns
-//! like a cam). All angles are radians.
+//! like a cam). All angles are radians. [`Gear::with_valleys`] places each valley explicitly
+//! instead (asymmetric teeth), anywhere strictly between its two tips.
 
 use std::f64::consts::TAU;
 
@@ -44,7 +45,8 @@ pub struct Gear {
     root_radius: f64,
     /// Tip angles in the gear frame, strictly increasing, spanning less than one turn.
     tips: Vec<f64>,
-    /// Valley angles, midway between consecutive tips (the last one wraps round).
+    /// Valley angles: valley k strictly between tip k and tip k+1 (the last one wraps round);
+    /// midway unless built by [`Gear::with_valleys`].
     valleys: Vec<f64>,
     /// Rotation centre relative to the geometric centre, in the gear frame.
     rotation_centre: Vec2,
@@ -156,6 +158,52 @@ impl Gear {
             valleys,
             rotation_centre,
         })
+    }
+
+    /// A gear with explicit tip *and* valley angles (asymmetric teeth): like [`Gear::new`], but
+    /// valley `k` sits at `valleys[k]` instead of midway between tip `k` and tip `k + 1`.
+    ///
+    /// Rules: those of [`Gear::new`]; one valley per tooth; every valley finite and strictly
+    /// between its tips, `tips[k] < valleys[k] < tips[k+1]` (for the last valley,
+    /// `tips[N-1] < valleys[N-1] < tips[0] + 2π`).
+    pub fn with_valleys(
+        tip_radius: f64,
+        root_radius: f64,
+        tips: Vec<f64>,
+        valleys: Vec<f64>,
+        rotation_centre: Vec2,
+    ) -> Result<Self, GeometryError> {
+        let mut gear = Self::new(tip_radius, root_radius, tips, rotation_centre)?;
+        let n = gear.teeth();
+        if valleys.len() != n {
+            return Err(GeometryError::new(
+                "valleys",
+                format!(
+                    "must have one valley per tooth ({n} teeth, {} valleys)",
+                    valleys.len()
+                ),
+            ));
+        }
+        for (k, &v) in valleys.iter().enumerate() {
+            let field = format!("valleys[{k}]");
+            check_finite(&field, v)?;
+            let (lo, hi) = (gear.tip_angle(k as i64), gear.tip_angle(k as i64 + 1));
+            if !(lo < v && v < hi) {
+                let next = if k + 1 == n {
+                    "tips[0] + 2π".to_owned()
+                } else {
+                    format!("tips[{}]", k + 1)
+                };
+                return Err(GeometryError::new(
+                    field,
+                    format!(
+                        "must lie strictly between tips[{k}] and {next} ({lo} < valley < {hi}; got {v})"
+                    ),
+                ));
+            }
+        }
+        gear.valleys = valleys;
+        Ok(gear)
     }
 
     /// Number of teeth N.
@@ -282,6 +330,62 @@ mod tests {
         assert!(e.rule.contains("one turn"));
         let e = Gear::new(10.0, 9.0, vec![0.0, 2.0, 4.0], Vec2::new(9.5, 0.0)).unwrap_err();
         assert_eq!(e.field, "rotation_centre");
+    }
+
+    #[test]
+    fn explicit_valleys_are_kept_and_checked() {
+        let tips = vec![0.0, 2.0, 4.0];
+        let g = Gear::with_valleys(10.0, 9.0, tips.clone(), vec![0.5, 3.9, 6.0], Vec2::zeros())
+            .unwrap();
+        assert_eq!(g.valley_angles(), [0.5, 3.9, 6.0]);
+        assert!((g.valley(-1) - polar(9.0, 6.0 - TAU)).norm() < 1e-12);
+        assert_eq!(g.outline()[3], polar(9.0, 3.9));
+        let mid = Gear::new(10.0, 9.0, tips.clone(), Vec2::zeros()).unwrap();
+        let same = Gear::with_valleys(
+            10.0,
+            9.0,
+            tips.clone(),
+            mid.valley_angles().to_vec(),
+            Vec2::zeros(),
+        )
+        .unwrap();
+        assert_eq!(same, mid);
+        let bad = |valleys: Vec<f64>| {
+            Gear::with_valleys(10.0, 9.0, tips.clone(), valleys, Vec2::zeros()).unwrap_err()
+        };
+        let e = bad(vec![0.5, 3.9]);
+        assert_eq!(e.field, "valleys");
+        assert!(e.rule.contains("one valley per tooth"), "{e}");
+        let e = bad(vec![0.5, 2.0, 5.0]);
+        assert_eq!(e.field, "valleys[1]");
+        assert!(
+            e.rule.contains("strictly between tips[1] and tips[2]"),
+            "{e}"
+        );
+        let e = bad(vec![0.5, 3.0, 6.3]);
+        assert_eq!(e.field, "valleys[2]");
+        assert!(e.rule.contains("tips[0] + 2π"), "{e}");
+        assert_eq!(bad(vec![-0.1, 3.0, 5.0]).field, "valleys[0]");
+        assert_eq!(bad(vec![0.5, f64::NAN, 5.0]).field, "valleys[1]");
+        // Tip rules come first, as in `Gear::new`.
+        let e = Gear::with_valleys(10.0, 9.0, vec![0.0, 2.0, 1.0], vec![1.0; 3], Vec2::zeros())
+            .unwrap_err();
+        assert_eq!(e.field, "tips[2]");
+    }
+
+    #[test]
+    fn explicit_valleys_survive_serialization() {
+        let g = Gear::with_valleys(
+            10.0,
+            9.0,
+            vec![0.0, 2.0, 4.0],
+            vec![0.5, 3.9, 6.0],
+            Vec2::zeros(),
+        )
+        .unwrap();
+        let json = serde_json::to_string(&g).unwrap();
+        let back: Gear = serde_json::from_str(&json).unwrap();
+        assert_eq!(back, g);
     }
 
     #[test]
