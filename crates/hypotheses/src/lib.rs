@@ -87,7 +87,9 @@ pub struct ParamSpec {
 /// It takes a gear, its name, its [`Params`] and a random number generator and returns the gear
 /// as it might have been made: tip angles displaced (valleys stay midway, as
 /// [`geometry::Gear::new`] places them) and the rotation centre moved off the geometric centre
-/// (build the result with [`manufacture`], which checks it). Built-ins, one file each in
+/// (build the result with [`manufacture`], which checks it); a plugin may change other things
+/// too (radii in `ratio-mismatch`, valley angles via [`geometry::Gear::with_valleys`] in
+/// `asymmetric-teeth`). Built-ins, one file each in
 /// `src/builtin/`: `ideal`, `edmunds-split` (the paper's model, section 4), `eccentric-only`,
 /// `sinusoid-only` and `measured` (per-gear values from a RON table; the registered one uses an
 /// embedded table of invented example values).
