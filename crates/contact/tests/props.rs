@@ -1,6 +1,6 @@
 //! Property tests of the push-model contact solver, checked against the independent polygon oracle
 //! (`polycheck`) and Thorndike's closed forms (`thorndike`) on random gear pairs with tooth errors
-//! and eccentricity.
+//! and eccentricity, and asymmetric teeth (valleys off-centre between their tips).
 #![allow(clippy::unwrap_used, reason = "tests")]
 
 use std::f64::consts::TAU;
@@ -8,7 +8,7 @@ use std::ops::Range;
 
 use contact::{Event, EventKind, Mesh, Motion, Start, Trajectory};
 use geometry::{Gear, Vec2};
-use polycheck::{GearShape, P2, outline_from_tips};
+use polycheck::{GearShape, P2, outline_from_angles, outline_from_tips};
 use proptest::prelude::*;
 use proptest::test_runner::{Config as ProptestConfig, RngSeed};
 
@@ -28,6 +28,8 @@ struct GearSpec {
     tips: Vec<f64>,
     /// Rotation-centre offset from the geometric centre, gear frame, mm.
     ecc: P2,
+    /// Explicit valley angles (asymmetric teeth), or `None` for valleys midway between tips.
+    valleys: Option<Vec<f64>>,
 }
 
 impl GearSpec {
@@ -53,22 +55,51 @@ impl GearSpec {
             r_root: r_tip - h,
             tips,
             ecc: [e * e_angle.cos(), e * e_angle.sin()],
+            valleys: None,
         }
     }
 
+    /// Valley k moved to the fraction `0.5 + shift * v[k]` of the angular gap from tip k to
+    /// tip k + 1 (the last gap wraps round).
+    fn with_valleys(mut self, shift: f64, v: &[f64]) -> Self {
+        let n = self.teeth();
+        let valleys = (0..n)
+            .map(|k| {
+                let next = if k + 1 < n {
+                    self.tips[k + 1]
+                } else {
+                    self.tips[0] + TAU
+                };
+                self.tips[k] + (0.5 + shift * v[k]) * (next - self.tips[k])
+            })
+            .collect();
+        self.valleys = Some(valleys);
+        self
+    }
+
     fn gear(&self) -> Option<Gear> {
-        Gear::new(
-            self.r_tip,
-            self.r_root,
-            self.tips.clone(),
-            Vec2::new(self.ecc[0], self.ecc[1]),
-        )
+        let centre = Vec2::new(self.ecc[0], self.ecc[1]);
+        match &self.valleys {
+            None => Gear::new(self.r_tip, self.r_root, self.tips.clone(), centre),
+            Some(v) => Gear::with_valleys(
+                self.r_tip,
+                self.r_root,
+                self.tips.clone(),
+                v.clone(),
+                centre,
+            ),
+        }
         .ok()
     }
 
+    /// The oracle's gear, built from the angles of the case (not from the solver's [`Gear`]).
     fn shape(&self) -> GearShape {
+        let outline = match &self.valleys {
+            None => outline_from_tips(&self.tips, self.r_tip, self.r_root),
+            Some(v) => outline_from_angles(&self.tips, v, self.r_tip, self.r_root),
+        };
         GearShape {
-            outline: outline_from_tips(&self.tips, self.r_tip, self.r_root),
+            outline,
             rotation_centre_offset: self.ecc,
         }
     }
@@ -194,6 +225,23 @@ fn cases(
                 }
             },
         )
+}
+
+/// Random cases with tooth errors and eccentricity (as [`Errors::All`]) whose valleys are also
+/// displaced off-centre in their tip gaps, by up to `0.45` of the gap either way (asymmetric
+/// teeth). A separate strategy, so that the cases of the other tests stay as they were.
+fn asymmetric_cases(pitches: Range<u32>) -> impl Strategy<Value = Case> {
+    let shifts = (
+        0.0..0.45f64,
+        0.0..0.45f64,
+        prop::collection::vec(-1.0..=1.0f64, MAX_TEETH),
+        prop::collection::vec(-1.0..=1.0f64, MAX_TEETH),
+    );
+    (cases(Errors::All, 15.0..85.0, pitches), shifts).prop_map(|(mut case, (s1, s2, v1, v2))| {
+        case.driver = case.driver.with_valleys(s1, &v1);
+        case.driven = case.driven.with_valleys(s2, &v2);
+        case
+    })
 }
 
 fn config() -> ProptestConfig {
@@ -476,6 +524,34 @@ proptest! {
 
     #[test]
     fn push_touches_and_rest_is_free_eccentric(case in cases(Errors::All, 15.0..85.0, 2..7)) {
+        check_segments(&case)?;
+    }
+
+    #[test]
+    fn no_interpenetration_asymmetric(
+        case in asymmetric_cases(2..7),
+        fractions in prop::collection::vec(0.0..1.0f64, 50),
+    ) {
+        check_no_overlap(&case, &fractions)?;
+    }
+
+    #[test]
+    fn theta_never_decreases_asymmetric(case in asymmetric_cases(2..7)) {
+        check_monotone(&case)?;
+    }
+
+    #[test]
+    fn jams_are_confirmed_asymmetric(case in asymmetric_cases(2..7)) {
+        check_jams(&case)?;
+    }
+
+    #[test]
+    fn disengagements_are_confirmed_asymmetric(case in asymmetric_cases(2..7)) {
+        check_disengagements(&case)?;
+    }
+
+    #[test]
+    fn push_touches_and_rest_is_free_asymmetric(case in asymmetric_cases(2..7)) {
         check_segments(&case)?;
     }
 

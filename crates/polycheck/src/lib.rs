@@ -54,6 +54,17 @@ pub fn outline_from_tips(tips: &[f64], r_tip: f64, r_root: f64) -> Vec<P2> {
     out
 }
 
+/// Outline from explicit tip and valley angles (asymmetric teeth): tip `k` at `tips[k]` and
+/// radius `r_tip`, valley `k` at `valleys[k]` and radius `r_root`, as `tip0, valley0, tip1, ...`.
+/// The angles are taken as given; valley `k` should lie between tip `k` and tip `k + 1`.
+#[must_use]
+pub fn outline_from_angles(tips: &[f64], valleys: &[f64], r_tip: f64, r_root: f64) -> Vec<P2> {
+    tips.iter()
+        .zip(valleys)
+        .flat_map(|(&t, &v)| [polar(r_tip, t), polar(r_root, v)])
+        .collect()
+}
+
 /// The point at radius `r` and polar angle `a`.
 #[must_use]
 pub fn polar(r: f64, a: f64) -> P2 {
@@ -491,6 +502,13 @@ mod tests {
         let o2 = outline_from_tips(&[0.0, 1.0, 2.0], 2.0, 1.0);
         let last = polar(1.0, 0.5 * (2.0 + TAU));
         assert!((o2[5][0] - last[0]).abs() < 1e-15 && (o2[5][1] - last[1]).abs() < 1e-15);
+        let valleys: Vec<f64> = (0..3).map(|k| 0.5 + f64::from(k)).collect();
+        assert_eq!(
+            outline_from_angles(&[0.0, 1.0, 2.0], &valleys, 2.0, 1.0)[3],
+            polar(1.0, 1.5)
+        );
+        let mid = [0.5, 1.5, 0.5 * (2.0 + TAU)];
+        assert_eq!(outline_from_angles(&[0.0, 1.0, 2.0], &mid, 2.0, 1.0), o2);
     }
 
     #[test]
