@@ -52,6 +52,9 @@ pub(crate) struct Placed {
     pub reach: f64,
     /// Largest angular gap between consecutive tips.
     pub max_gap: f64,
+    /// Largest angle from a tip to either of its valleys: half a tooth, at least half of
+    /// `max_gap` (more when the valleys are off-centre, asymmetric teeth).
+    pub max_half: f64,
     /// Angular window either side of the line of centres in which a tooth can touch the other gear.
     pub window: f64,
     /// Whether tip k can ever touch the other gear (it comes within the other gear's reach).
@@ -76,12 +79,23 @@ impl Placed {
         let max_gap = (0..n)
             .map(|k| gear.tip_angle(k + 1) - gear.tip_angle(k))
             .fold(0.0, f64::max);
+        let valley_angle = |k: i64| {
+            let a = gear.valley_angles();
+            a[k.rem_euclid(n) as usize] + TAU * k.div_euclid(n) as f64
+        };
+        let max_half = (0..n)
+            .map(|k| {
+                let t = gear.tip_angle(k);
+                (t - valley_angle(k - 1)).max(valley_angle(k) - t)
+            })
+            .fold(0.5 * max_gap, f64::max);
         Self {
             gear,
             tips,
             valleys,
             reach,
             max_gap,
+            max_half,
             window: 0.0,
             tip_reaches: Vec::new(),
             valley_reaches: Vec::new(),
@@ -441,9 +455,8 @@ impl Mesh {
         let c2 = self.c2();
         let (d1, d2) = (&self.driver, &self.driven);
         // Half a driven tooth plus the eccentric shift of its angles about the rotation centre.
-        let half_k = 0.5 * d2.max_gap
-            + (d2.gear.rotation_centre().norm() / d2.gear.root_radius()).asin()
-            + 1e-9;
+        let half_k =
+            d2.max_half + (d2.gear.rotation_centre().norm() / d2.gear.root_radius()).asin() + 1e-9;
         let (s, c) = phi.sin_cos();
         for j in self.driver_teeth(phi) {
             let (da, _) = d1.data(j);
