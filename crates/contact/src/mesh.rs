@@ -205,7 +205,9 @@ impl Mesh {
     ///
     /// Refused: a non-finite or non-positive distance; gear bodies (root circles, allowing for
     /// eccentricity) that would overlap at every angle; and, for concentric gears, a non-positive
-    /// clearance, where every tip reaches below the other gear's valleys.
+    /// clearance, where every tip reaches below the other gear's valleys. For a gear that is not
+    /// round ([`Gear::with_radii`]) the body is its smallest valley radius and the clearance is
+    /// taken from its largest tip and smallest valley, so that its deepest tooth still clears.
     pub fn new(driver: Gear, driven: Gear, centre_distance: f64) -> Result<Self, MeshError> {
         let bad = |rule: String| MeshError {
             field: "centre_distance".into(),
@@ -216,15 +218,15 @@ impl Mesh {
         }
         let e1 = driver.rotation_centre().norm();
         let e2 = driven.rotation_centre().norm();
-        let bodies = driver.root_radius() + driven.root_radius() + e1 + e2;
+        let bodies = driver.min_root_radius() + driven.min_root_radius() + e1 + e2;
         if centre_distance <= bodies {
             return Err(bad(format!(
                 "must exceed r1 + r2 + |e1| + |e2| = {bodies}: the gear bodies would overlap at every angle"
             )));
         }
         if e1 == 0.0 && e2 == 0.0 {
-            let deepest = (driver.tip_radius() + driven.root_radius())
-                .max(driven.tip_radius() + driver.root_radius());
+            let deepest = (driver.max_tip_radius() + driven.min_root_radius())
+                .max(driven.max_tip_radius() + driver.min_root_radius());
             if centre_distance <= deepest {
                 return Err(bad(format!(
                     "must exceed {deepest} (clearance G > 0): the tips would reach below the other gear's valleys and the gears overlap at every tooth"
@@ -241,8 +243,8 @@ impl Mesh {
         };
         let w1 = lens(driver.reach, driven.reach);
         let w2 = lens(driven.reach, driver.reach);
-        driver.window = w1 + driver.max_gap + (e1 / driver.gear.root_radius()).asin() + 1e-6;
-        driven.window = w2 + driven.max_gap + (e2 / driven.gear.root_radius()).asin() + 1e-6;
+        driver.window = w1 + driver.max_gap + (e1 / driver.gear.min_root_radius()).asin() + 1e-6;
+        driven.window = w2 + driven.max_gap + (e2 / driven.gear.min_root_radius()).asin() + 1e-6;
         driver.mark_reaching(centre_distance, driven.reach);
         driven.mark_reaching(centre_distance, driver.reach);
         Ok(Self {
@@ -455,8 +457,9 @@ impl Mesh {
         let c2 = self.c2();
         let (d1, d2) = (&self.driver, &self.driven);
         // Half a driven tooth plus the eccentric shift of its angles about the rotation centre.
-        let half_k =
-            d2.max_half + (d2.gear.rotation_centre().norm() / d2.gear.root_radius()).asin() + 1e-9;
+        let half_k = d2.max_half
+            + (d2.gear.rotation_centre().norm() / d2.gear.min_root_radius()).asin()
+            + 1e-9;
         let (s, c) = phi.sin_cos();
         for j in self.driver_teeth(phi) {
             let (da, _) = d1.data(j);

@@ -5,7 +5,9 @@
 //! angle between tip `k` and tip `k + 1`, at radius `r`; flanks are straight. The gear turns about
 //! its *rotation* centre, which may be offset from the geometric centre (an eccentric gear turns
 //! like a cam). All angles are radians. [`Gear::with_valleys`] places each valley explicitly
-//! instead (asymmetric teeth), anywhere strictly between its two tips.
+//! instead (asymmetric teeth), anywhere strictly between its two tips, and [`Gear::with_radii`]
+//! gives each tip and each valley its own radius (a gear that is not round); `R` and `r` then
+//! remain the designed values.
 
 use std::f64::consts::TAU;
 
@@ -50,6 +52,12 @@ pub struct Gear {
     valleys: Vec<f64>,
     /// Rotation centre relative to the geometric centre, in the gear frame.
     rotation_centre: Vec2,
+    /// Radius of each tip when they differ (a gear that is not round); empty: all `tip_radius`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    tip_radii: Vec<f64>,
+    /// Radius of each valley when they differ; empty: all `root_radius`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    root_radii: Vec<f64>,
 }
 
 fn too_many(teeth: usize) -> GeometryError {
@@ -157,6 +165,8 @@ impl Gear {
             tips,
             valleys,
             rotation_centre,
+            tip_radii: Vec::new(),
+            root_radii: Vec::new(),
         })
     }
 
@@ -206,19 +216,128 @@ impl Gear {
         Ok(gear)
     }
 
+    /// This gear with its own radius for every tip and every valley (a gear that is not round:
+    /// radial cutting errors, an out-of-round blank). [`Gear::tip_radius`] and
+    /// [`Gear::root_radius`] keep the designed values; [`Gear::max_tip_radius`] and
+    /// [`Gear::min_root_radius`] give the extremes.
+    ///
+    /// Rules: one radius per tip and one per valley; every radius finite and positive; each
+    /// valley below both of its tips (`root_radii[k] < tip_radii[k]` and
+    /// `root_radii[k] < tip_radii[k+1]`, the last wrapping to `tip_radii[0]`); the rotation centre
+    /// inside the smallest valley radius.
+    pub fn with_radii(
+        mut self,
+        tip_radii: Vec<f64>,
+        root_radii: Vec<f64>,
+    ) -> Result<Self, GeometryError> {
+        let n = self.teeth();
+        for (field, radii) in [("tip_radii", &tip_radii), ("root_radii", &root_radii)] {
+            if radii.len() != n {
+                return Err(GeometryError::new(
+                    field,
+                    format!(
+                        "must have one radius per tooth ({n} teeth, {} radii)",
+                        radii.len()
+                    ),
+                ));
+            }
+            for (k, &r) in radii.iter().enumerate() {
+                let field = format!("{field}[{k}]");
+                check_finite(&field, r)?;
+                if r <= 0.0 {
+                    return Err(GeometryError::new(
+                        field,
+                        format!("must be greater than 0 (got {r})"),
+                    ));
+                }
+            }
+        }
+        for (k, &r) in root_radii.iter().enumerate() {
+            let next = (k + 1) % n;
+            let lowest_tip = tip_radii[k].min(tip_radii[next]);
+            if r >= lowest_tip {
+                return Err(GeometryError::new(
+                    format!("root_radii[{k}]"),
+                    format!(
+                        "a valley must lie below both its tips, tip_radii[{k}] and tip_radii[{next}] ({r} >= {lowest_tip})"
+                    ),
+                ));
+            }
+        }
+        let min_root = root_radii.iter().copied().fold(f64::INFINITY, f64::min);
+        if self.rotation_centre.norm() >= min_root {
+            return Err(GeometryError::new(
+                "rotation_centre",
+                format!(
+                    "must lie inside the smallest valley radius ({min_root}; eccentricity {})",
+                    self.rotation_centre.norm()
+                ),
+            ));
+        }
+        self.tip_radii = tip_radii;
+        self.root_radii = root_radii;
+        Ok(self)
+    }
+
     /// Number of teeth N.
     pub fn teeth(&self) -> usize {
         self.tips.len()
     }
 
-    /// Outer (tip) radius R.
+    /// Outer (tip) radius R, as designed (see [`Gear::max_tip_radius`] for a gear that is not
+    /// round).
     pub fn tip_radius(&self) -> f64 {
         self.tip_radius
     }
 
-    /// Inner (valley) radius r.
+    /// Inner (valley) radius r, as designed (see [`Gear::min_root_radius`] for a gear that is
+    /// not round).
     pub fn root_radius(&self) -> f64 {
         self.root_radius
+    }
+
+    /// Radius of tip `k` (any integer: taken modulo N): [`Gear::tip_radius`] unless set by
+    /// [`Gear::with_radii`].
+    pub fn tip_radius_of(&self, k: i64) -> f64 {
+        if self.tip_radii.is_empty() {
+            self.tip_radius
+        } else {
+            self.tip_radii[self.wrap(k).0]
+        }
+    }
+
+    /// Radius of valley `k` (any integer: taken modulo N): [`Gear::root_radius`] unless set by
+    /// [`Gear::with_radii`].
+    pub fn root_radius_of(&self, k: i64) -> f64 {
+        if self.root_radii.is_empty() {
+            self.root_radius
+        } else {
+            self.root_radii[self.wrap(k).0]
+        }
+    }
+
+    /// The largest tip radius (the designed one for a round gear).
+    pub fn max_tip_radius(&self) -> f64 {
+        if self.tip_radii.is_empty() {
+            self.tip_radius
+        } else {
+            self.tip_radii
+                .iter()
+                .copied()
+                .fold(f64::NEG_INFINITY, f64::max)
+        }
+    }
+
+    /// The smallest valley radius (the designed one for a round gear).
+    pub fn min_root_radius(&self) -> f64 {
+        if self.root_radii.is_empty() {
+            self.root_radius
+        } else {
+            self.root_radii
+                .iter()
+                .copied()
+                .fold(f64::INFINITY, f64::min)
+        }
     }
 
     /// Tooth height h = R − r.
@@ -249,13 +368,13 @@ impl Gear {
     /// Tip `k` (any integer: taken modulo N) in the gear frame, about the geometric centre.
     pub fn tip(&self, k: i64) -> Vec2 {
         let (i, turns) = self.wrap(k);
-        polar(self.tip_radius, self.tips[i] + TAU * turns as f64)
+        polar(self.tip_radius_of(k), self.tips[i] + TAU * turns as f64)
     }
 
     /// Valley `k` (between tip `k` and tip `k+1`) in the gear frame, about the geometric centre.
     pub fn valley(&self, k: i64) -> Vec2 {
         let (i, turns) = self.wrap(k);
-        polar(self.root_radius, self.valleys[i] + TAU * turns as f64)
+        polar(self.root_radius_of(k), self.valleys[i] + TAU * turns as f64)
     }
 
     /// Tip angle of unwrapped tooth index `k` (tooth k + N is tooth k one turn later).
@@ -386,6 +505,45 @@ mod tests {
         let json = serde_json::to_string(&g).unwrap();
         let back: Gear = serde_json::from_str(&json).unwrap();
         assert_eq!(back, g);
+    }
+
+    #[test]
+    fn per_tooth_radii_are_kept_and_checked() {
+        let g = Gear::new(10.0, 9.0, vec![0.0, 2.0, 4.0], Vec2::new(0.5, 0.0)).unwrap();
+        assert_eq!((g.max_tip_radius(), g.min_root_radius()), (10.0, 9.0));
+        assert_eq!(g.tip_radius_of(4), 10.0);
+        let r = g
+            .clone()
+            .with_radii(vec![10.0, 10.5, 9.8], vec![9.1, 8.7, 9.0])
+            .unwrap();
+        assert_eq!((r.tip_radius(), r.root_radius()), (10.0, 9.0));
+        assert_eq!((r.max_tip_radius(), r.min_root_radius()), (10.5, 8.7));
+        assert_eq!((r.tip_radius_of(4), r.root_radius_of(-1)), (10.5, 9.0));
+        assert_eq!(r.outline()[2], polar(10.5, 2.0));
+        assert_eq!(r.valley(1), polar(8.7, 3.0));
+        let back: Gear = serde_json::from_str(&serde_json::to_string(&r).unwrap()).unwrap();
+        assert_eq!(back, r);
+        // A round gear serializes as before (no radii lists).
+        assert!(!serde_json::to_string(&g).unwrap().contains("radii"));
+        let bad = |tips: Vec<f64>, roots: Vec<f64>| g.clone().with_radii(tips, roots).unwrap_err();
+        let e = bad(vec![10.0; 2], vec![9.0; 3]);
+        assert_eq!(e.field, "tip_radii");
+        assert!(e.rule.contains("one radius per tooth"), "{e}");
+        assert_eq!(
+            bad(vec![10.0; 3], vec![9.0, f64::NAN, 9.0]).field,
+            "root_radii[1]"
+        );
+        assert_eq!(
+            bad(vec![10.0, -1.0, 10.0], vec![9.0; 3]).field,
+            "tip_radii[1]"
+        );
+        let e = bad(vec![10.0, 10.0, 8.9], vec![9.0, 9.0, 8.95]);
+        assert_eq!(e.field, "root_radii[1]");
+        assert!(e.rule.contains("tip_radii[2]"), "{e}");
+        let e = bad(vec![8.9, 10.0, 10.0], vec![9.0, 8.0, 8.0]);
+        assert_eq!(e.field, "root_radii[0]");
+        let e = bad(vec![10.0; 3], vec![9.0, 0.4, 9.0]);
+        assert_eq!(e.field, "rotation_centre");
     }
 
     #[test]

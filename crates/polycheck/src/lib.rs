@@ -65,6 +65,23 @@ pub fn outline_from_angles(tips: &[f64], valleys: &[f64], r_tip: f64, r_root: f6
         .collect()
 }
 
+/// Outline from explicit polar vertices (a gear that is not round): tip `k` at radius
+/// `tip_radii[k]` and angle `tips[k]`, valley `k` at radius `root_radii[k]` and angle
+/// `valleys[k]`, as `tip0, valley0, tip1, ...`.
+#[must_use]
+pub fn outline_from_polar(
+    tips: &[f64],
+    tip_radii: &[f64],
+    valleys: &[f64],
+    root_radii: &[f64],
+) -> Vec<P2> {
+    tips.iter()
+        .zip(tip_radii)
+        .zip(valleys.iter().zip(root_radii))
+        .flat_map(|((&t, &rt), (&v, &rv))| [polar(rt, t), polar(rv, v)])
+        .collect()
+}
+
 /// The point at radius `r` and polar angle `a`.
 #[must_use]
 pub fn polar(r: f64, a: f64) -> P2 {
@@ -509,6 +526,12 @@ mod tests {
         );
         let mid = [0.5, 1.5, 0.5 * (2.0 + TAU)];
         assert_eq!(outline_from_angles(&[0.0, 1.0, 2.0], &mid, 2.0, 1.0), o2);
+        assert_eq!(
+            outline_from_polar(&[0.0, 1.0, 2.0], &[2.0; 3], &mid, &[1.0; 3]),
+            o2
+        );
+        let bumpy = outline_from_polar(&[0.0, 1.0, 2.0], &[2.0, 2.5, 2.0], &mid, &[1.0, 0.9, 1.0]);
+        assert_eq!((bumpy[2], bumpy[3]), (polar(2.5, 1.0), polar(0.9, 1.5)));
     }
 
     #[test]
