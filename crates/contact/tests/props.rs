@@ -1,6 +1,7 @@
 //! Property tests of the push-model contact solver, checked against the independent polygon oracle
 //! (`polycheck`) and Thorndike's closed forms (`thorndike`) on random gear pairs with tooth errors
-//! and eccentricity, and asymmetric teeth (valleys off-centre between their tips).
+//! and eccentricity, asymmetric teeth (valleys off-centre between their tips) and gears that are
+//! not round (per-tooth radii, a once-per-turn lobe).
 #![allow(clippy::unwrap_used, reason = "tests")]
 
 use std::f64::consts::TAU;
@@ -8,7 +9,7 @@ use std::ops::Range;
 
 use contact::{Event, EventKind, Mesh, Motion, Start, Trajectory};
 use geometry::{Gear, Vec2};
-use polycheck::{GearShape, P2, outline_from_angles, outline_from_tips};
+use polycheck::{GearShape, P2, outline_from_angles, outline_from_polar, outline_from_tips};
 use proptest::prelude::*;
 use proptest::test_runner::{Config as ProptestConfig, RngSeed};
 
@@ -30,6 +31,9 @@ struct GearSpec {
     ecc: P2,
     /// Explicit valley angles (asymmetric teeth), or `None` for valleys midway between tips.
     valleys: Option<Vec<f64>>,
+    /// Per-tip and per-valley radii (a gear that is not round; only with `valleys`), or `None`
+    /// for `r_tip` and `r_root` throughout.
+    radii: Option<(Vec<f64>, Vec<f64>)>,
 }
 
 impl GearSpec {
@@ -56,7 +60,30 @@ impl GearSpec {
             tips,
             ecc: [e * e_angle.cos(), e * e_angle.sin()],
             valleys: None,
+            radii: None,
         }
+    }
+
+    /// Each tip and valley radius moved by `sd * w` (w from `w_tip`, `w_root`) plus a
+    /// once-per-turn lobe `lobe * cos(angle - lobe_angle)`. Needs explicit valleys.
+    fn with_radii(
+        mut self,
+        sd: f64,
+        w_tip: &[f64],
+        w_root: &[f64],
+        lobe: f64,
+        lobe_angle: f64,
+    ) -> Self {
+        let valleys = self.valleys.clone().unwrap_or_default();
+        let bump = |a: f64| lobe * (a - lobe_angle).cos();
+        let tips = (self.tips.iter().zip(w_tip))
+            .map(|(&a, w)| self.r_tip + sd * w + bump(a))
+            .collect();
+        let roots = (valleys.iter().zip(w_root))
+            .map(|(&a, w)| self.r_root + sd * w + bump(a))
+            .collect();
+        self.radii = Some((tips, roots));
+        self
     }
 
     /// Valley k moved to the fraction `0.5 + shift * v[k]` of the angular gap from tip k to
@@ -79,7 +106,7 @@ impl GearSpec {
 
     fn gear(&self) -> Option<Gear> {
         let centre = Vec2::new(self.ecc[0], self.ecc[1]);
-        match &self.valleys {
+        let gear = match &self.valleys {
             None => Gear::new(self.r_tip, self.r_root, self.tips.clone(), centre),
             Some(v) => Gear::with_valleys(
                 self.r_tip,
@@ -88,15 +115,19 @@ impl GearSpec {
                 v.clone(),
                 centre,
             ),
+        };
+        match &self.radii {
+            None => gear.ok(),
+            Some((tips, roots)) => gear.ok()?.with_radii(tips.clone(), roots.clone()).ok(),
         }
-        .ok()
     }
 
     /// The oracle's gear, built from the angles of the case (not from the solver's [`Gear`]).
     fn shape(&self) -> GearShape {
-        let outline = match &self.valleys {
-            None => outline_from_tips(&self.tips, self.r_tip, self.r_root),
-            Some(v) => outline_from_angles(&self.tips, v, self.r_tip, self.r_root),
+        let outline = match (&self.valleys, &self.radii) {
+            (None, _) => outline_from_tips(&self.tips, self.r_tip, self.r_root),
+            (Some(v), None) => outline_from_angles(&self.tips, v, self.r_tip, self.r_root),
+            (Some(v), Some((tips, roots))) => outline_from_polar(&self.tips, tips, v, roots),
         };
         GearShape {
             outline,
@@ -242,6 +273,29 @@ fn asymmetric_cases(pitches: Range<u32>) -> impl Strategy<Value = Case> {
         case.driven = case.driven.with_valleys(s2, &v2);
         case
     })
+}
+
+/// Asymmetric cases (see [`asymmetric_cases`]) whose gears are also not round: every tip and
+/// valley radius off by up to `0.1 h` times a draw in [−1, 1], plus a once-per-turn lobe of up
+/// to `0.1 h`.
+fn non_circular_cases(pitches: Range<u32>) -> impl Strategy<Value = Case> {
+    let radial = || {
+        (
+            0.0..0.1f64,
+            prop::collection::vec(-1.0..=1.0f64, MAX_TEETH),
+            prop::collection::vec(-1.0..=1.0f64, MAX_TEETH),
+            0.0..0.1f64,
+            0.0..TAU,
+        )
+    };
+    (asymmetric_cases(pitches), radial(), radial()).prop_map(
+        |(mut case, (s1, t1, r1, l1, a1), (s2, t2, r2, l2, a2))| {
+            let h = case.h;
+            case.driver = case.driver.with_radii(s1 * h, &t1, &r1, l1 * h, a1);
+            case.driven = case.driven.with_radii(s2 * h, &t2, &r2, l2 * h, a2);
+            case
+        },
+    )
 }
 
 fn config() -> ProptestConfig {
@@ -552,6 +606,34 @@ proptest! {
 
     #[test]
     fn push_touches_and_rest_is_free_asymmetric(case in asymmetric_cases(2..7)) {
+        check_segments(&case)?;
+    }
+
+    #[test]
+    fn no_interpenetration_non_circular(
+        case in non_circular_cases(2..7),
+        fractions in prop::collection::vec(0.0..1.0f64, 50),
+    ) {
+        check_no_overlap(&case, &fractions)?;
+    }
+
+    #[test]
+    fn theta_never_decreases_non_circular(case in non_circular_cases(2..7)) {
+        check_monotone(&case)?;
+    }
+
+    #[test]
+    fn jams_are_confirmed_non_circular(case in non_circular_cases(2..7)) {
+        check_jams(&case)?;
+    }
+
+    #[test]
+    fn disengagements_are_confirmed_non_circular(case in non_circular_cases(2..7)) {
+        check_disengagements(&case)?;
+    }
+
+    #[test]
+    fn push_touches_and_rest_is_free_non_circular(case in non_circular_cases(2..7)) {
         check_segments(&case)?;
     }
 
