@@ -1,0 +1,150 @@
+//! `non-circular`: gears that are not round (the paper assumes circular gears, assumption (1)).
+//!
+//! Every tip and every valley gets its own radius: the designed one plus `radial_error · z`
+//! (z a standard normal draw, one per vertex, clamped to ±4) plus a once-per-turn out-of-round
+//! `lobe · cos(angle − α)` with α uniform over the turn (one per gear). Tip and valley angles
+//! and the rotation centre are unchanged; the designed radii stay the gear's nominal ones
+//! ([`Gear::tip_radius`], [`Gear::root_radius`]). A draw that puts a valley above one of its
+//! tips, or the axis outside the smallest valley, is an error naming the gear.
+
+use std::f64::consts::TAU;
+
+use geometry::Gear;
+use rand::Rng;
+use rand_distr::{Distribution, StandardNormal};
+
+use crate::{Hypothesis, HypothesisError, ParamSpec, Params, Registration};
+
+/// The hypothesis.
+struct NonCircular;
+
+const RADIAL_ERROR: ParamSpec = ParamSpec {
+    name: "radial_error",
+    default: 0.02,
+    unit: "mm",
+    help: "standard deviation of each tip's and each valley's radius about the design",
+};
+
+const LOBE: ParamSpec = ParamSpec {
+    name: "lobe",
+    default: 0.0,
+    unit: "mm",
+    help: "amplitude of a once-per-turn out-of-round (radius + lobe·cos(angle − α), α random per gear)",
+};
+
+impl Hypothesis for NonCircular {
+    fn name(&self) -> &'static str {
+        "non-circular"
+    }
+
+    fn summary(&self) -> &'static str {
+        "each tip and valley at its own radius, optionally with a once-per-turn lobe (assumption 1); angles unchanged"
+    }
+
+    fn params(&self) -> &'static [ParamSpec] {
+        &[RADIAL_ERROR, LOBE]
+    }
+
+    fn apply(
+        &self,
+        gear: &Gear,
+        gear_name: &str,
+        params: &Params,
+        rng: &mut dyn rand::RngCore,
+    ) -> Result<Gear, HypothesisError> {
+        let param = |spec: &ParamSpec| -> Result<f64, HypothesisError> {
+            let x = params.get(spec.name);
+            if x.is_finite() && x >= 0.0 {
+                Ok(x)
+            } else {
+                Err(HypothesisError::new(
+                    format!("non-circular: parameter `{}`", spec.name),
+                    format!("must be a finite length of at least 0 mm (got {x})"),
+                ))
+            }
+        };
+        let (sd, lobe) = (param(&RADIAL_ERROR)?, param(&LOBE)?);
+        let alpha = rng.random::<f64>() * TAU;
+        let mut radius = |designed: f64, angle: f64| {
+            let z: f64 = StandardNormal.sample(rng);
+            designed + sd * z.clamp(-4.0, 4.0) + lobe * (angle - alpha).cos()
+        };
+        let tips: Vec<f64> = gear
+            .tip_angles()
+            .iter()
+            .map(|&a| radius(gear.tip_radius(), a))
+            .collect();
+        let roots: Vec<f64> = gear
+            .valley_angles()
+            .iter()
+            .map(|&a| radius(gear.root_radius(), a))
+            .collect();
+        gear.clone()
+            .with_radii(tips, roots)
+            .map_err(|e| HypothesisError::new(format!("gear `{gear_name}`: {}", e.field), e.rule))
+    }
+}
+
+inventory::submit! { Registration(&NonCircular) }
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, reason = "tests")]
+
+    use rand::SeedableRng;
+    use rand_chacha::ChaCha8Rng;
+
+    use super::*;
+
+    #[test]
+    fn radii_spread_as_stated_and_angles_stay() {
+        let h = crate::lookup("non-circular").unwrap();
+        let p = Params::new(h, &[]).unwrap();
+        let designed = Gear::ideal(60, 15.0, 13.9).unwrap();
+        let mut rng = ChaCha8Rng::seed_from_u64(11);
+        let (mut sum, mut sum2, mut count) = (0.0, 0.0, 0.0);
+        for _ in 0..100 {
+            let g = h.apply(&designed, "b1", &p, &mut rng).unwrap();
+            assert_eq!(g.tip_angles(), designed.tip_angles());
+            assert_eq!(g.valley_angles(), designed.valley_angles());
+            assert_eq!((g.tip_radius(), g.root_radius()), (15.0, 13.9));
+            for k in 0..60 {
+                for d in [g.tip_radius_of(k) - 15.0, g.root_radius_of(k) - 13.9] {
+                    sum += d;
+                    sum2 += d * d;
+                    count += 1.0;
+                }
+            }
+        }
+        let (mean, sd) = (sum / count, (sum2 / count).sqrt());
+        assert!(mean.abs() < 0.001, "mean radial error {mean}");
+        assert!((sd - 0.02).abs() < 0.001, "sd of the radial error {sd}");
+    }
+
+    #[test]
+    fn a_lobe_alone_is_once_per_turn_and_bad_draws_name_the_gear() {
+        let h = crate::lookup("non-circular").unwrap();
+        let designed = Gear::ideal(40, 15.0, 13.9).unwrap();
+        let mut rng = ChaCha8Rng::seed_from_u64(4);
+        let lobe = Params::new(h, &[("radial_error".into(), "0".into()), ("lobe".into(), "0.1".into())])
+            .unwrap();
+        let g = h.apply(&designed, "a1", &lobe, &mut rng).unwrap();
+        let d: Vec<f64> = (0..40).map(|k| g.tip_radius_of(k) - 15.0).collect();
+        // Opposite tips are off by opposite amounts, spanning the whole lobe.
+        for k in 0..20 {
+            assert!((d[k] + d[k + 20]).abs() < 1e-12, "{d:?}");
+        }
+        let span = d.iter().copied().fold(f64::NEG_INFINITY, f64::max)
+            - d.iter().copied().fold(f64::INFINITY, f64::min);
+        assert!((span - 0.2).abs() < 0.01, "{span}");
+        let none = Params::new(h, &[("radial_error".into(), "0".into())]).unwrap();
+        let round = h.apply(&designed, "a1", &none, &mut rng).unwrap();
+        assert_eq!(round.outline(), designed.outline());
+        let wild = Params::new(h, &[("radial_error".into(), "5".into())]).unwrap();
+        let e = h.apply(&designed, "a1", &wild, &mut rng).unwrap_err();
+        assert!(e.what.starts_with("gear `a1`: "), "{e}");
+        let bad = Params::new(h, &[("lobe".into(), "-1".into())]).unwrap();
+        let e = h.apply(&designed, "a1", &bad, &mut rng).unwrap_err();
+        assert!(e.to_string().contains("`lobe`"), "{e}");
+    }
+}
