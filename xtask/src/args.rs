@@ -317,44 +317,36 @@ fn parse_run(args: &[String]) -> Result<RunArgs, ArgError> {
     Ok(run)
 }
 
-/// The value of `--threads`: an integer from 1 to [`MAX_THREADS`].
-fn threads(value: &str) -> Result<usize, ArgError> {
-    let n: usize = value.trim().parse().map_err(|_| {
+/// The value of a counting flag: an integer from 1 to `max`; `limit` names what the maximum is
+/// (empty when it needs no words).
+fn count(flag: &str, value: &str, max: u64, limit: &str) -> Result<u64, ArgError> {
+    let n: u64 = value.trim().parse().map_err(|_| {
         ArgError::Value(format!(
-            "--threads: must be an integer from 1 to {MAX_THREADS} (got `{value}`)"
+            "{flag}: must be an integer from 1 to {max} (got `{value}`)"
         ))
     })?;
     if n == 0 {
-        return Err(ArgError::Value(
-            "--threads: must be at least 1 (got `0`)".into(),
-        ));
-    }
-    if n > MAX_THREADS {
         return Err(ArgError::Value(format!(
-            "--threads: must be at most {MAX_THREADS} (got `{value}`)"
+            "{flag}: must be at least 1 (got `0`)"
+        )));
+    }
+    if n > max {
+        return Err(ArgError::Value(format!(
+            "{flag}: must be at most {max} ({limit}got `{value}`)"
         )));
     }
     Ok(n)
 }
 
+/// The value of `--threads`: an integer from 1 to [`MAX_THREADS`].
+fn threads(value: &str) -> Result<usize, ArgError> {
+    // MAX_THREADS fits both types, so neither conversion loses anything.
+    count("--threads", value, MAX_THREADS as u64, "").map(|n| n as usize)
+}
+
 /// The value of `--trials`: an integer from 1 to [`MAX_TRIALS`].
 fn trials(value: &str) -> Result<u64, ArgError> {
-    let n: u64 = value.trim().parse().map_err(|_| {
-        ArgError::Value(format!(
-            "--trials: must be an integer from 1 to {MAX_TRIALS} (got `{value}`)"
-        ))
-    })?;
-    if n == 0 {
-        return Err(ArgError::Value(
-            "--trials: must be at least 1 (got `0`)".into(),
-        ));
-    }
-    if n > MAX_TRIALS {
-        return Err(ArgError::Value(format!(
-            "--trials: must be at most {MAX_TRIALS} (the limit on trials; got `{value}`)"
-        )));
-    }
-    Ok(n)
+    count("--trials", value, MAX_TRIALS, "the limit on trials; ")
 }
 
 /// The value of `--format`: `md`, `csv` or `json`.
