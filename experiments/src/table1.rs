@@ -8,6 +8,14 @@ use stats::{Estimate, mean_ci95};
 
 use crate::gearing;
 
+/// How finely the Theoretical Difference is sampled (table1 and table6).
+pub(crate) const SAMPLES_PER_ENGAGEMENT: Param = Param {
+    name: "samples_per_engagement",
+    default: "16",
+    unit: "",
+    help: "TD samples per tooth engagement of the busiest mesh",
+};
+
 /// Run length of the Lunar pointer.
 pub(crate) const LUNAR_TURNS: Param = Param {
     name: "lunar_turns",
@@ -62,12 +70,7 @@ const PARAMS: &[Param] = &[
     SAROS_TURNS,
     GAMES_TURNS,
     EXELIGMOS_TURNS,
-    Param {
-        name: "samples_per_engagement",
-        default: "16",
-        unit: "",
-        help: "TD samples per tooth engagement of the busiest mesh",
-    },
+    SAMPLES_PER_ENGAGEMENT,
     gearing::PARAM,
 ];
 

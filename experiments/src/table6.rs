@@ -14,7 +14,8 @@ use crate::errors;
 use crate::gearing;
 use crate::pair_jams::{Stage, label};
 use crate::table1::{
-    EXELIGMOS_TURNS, GAMES_TURNS, LUNAR_TURNS, METONIC_TURNS, POINTERS, SAROS_TURNS, pointer_runs,
+    EXELIGMOS_TURNS, GAMES_TURNS, LUNAR_TURNS, METONIC_TURNS, POINTERS, SAMPLES_PER_ENGAGEMENT,
+    SAROS_TURNS, pointer_runs,
 };
 use crate::table4;
 use crate::table5::{self, paper_random, paper_systematic, show};
@@ -51,12 +52,7 @@ const PARAMS: &[Param] = &[
     SAROS_TURNS,
     GAMES_TURNS,
     EXELIGMOS_TURNS,
-    Param {
-        name: "samples_per_engagement",
-        default: "16",
-        unit: "",
-        help: "TD samples per tooth engagement of the busiest mesh",
-    },
+    SAMPLES_PER_ENGAGEMENT,
     errors::PARAM,
     errors::PARAMS_PARAM,
     gearing::PARAM,
