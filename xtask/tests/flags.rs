@@ -4,55 +4,17 @@
 
 #![allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
 
-use std::collections::BTreeMap;
 use std::fs;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::Path;
+use std::process::Output;
 
-fn xtask_env(args: &[&str], env: &[(&str, &str)]) -> Output {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_xtask"));
-    c.args(args)
-        .env_remove("RUST_LOG")
-        .env_remove("XTASK_PROGRESS");
-    for (k, v) in env {
-        c.env(k, v);
-    }
-    c.output().unwrap()
-}
-
-fn xtask(args: &[&str]) -> Output {
-    xtask_env(args, &[])
-}
+mod support;
+use support::{Scratch, files, xtask, xtask_env};
 
 fn ok(o: &Output) -> (String, String) {
     let err = String::from_utf8_lossy(&o.stderr).into_owned();
     assert!(o.status.success(), "{err}");
     (String::from_utf8_lossy(&o.stdout).into_owned(), err)
-}
-
-/// A fresh scratch directory, removed on drop.
-struct Scratch(PathBuf);
-
-impl Scratch {
-    fn new(tag: &str) -> Self {
-        let nanos = std::time::SystemTime::now()
-            .duration_since(std::time::UNIX_EPOCH)
-            .unwrap()
-            .as_nanos();
-        let p =
-            std::env::temp_dir().join(format!("xtask-flags-{tag}-{}-{nanos}", std::process::id()));
-        fs::create_dir_all(&p).unwrap();
-        Scratch(p)
-    }
-    fn path(&self, rel: &str) -> String {
-        self.0.join(rel).to_str().unwrap().to_owned()
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = fs::remove_dir_all(&self.0);
-    }
 }
 
 /// A reduced table1 (its trial count comes from `--trials`).
@@ -77,25 +39,6 @@ fn run(ids: &[&str], extra: &[&str], out: &str) -> Output {
     args.extend_from_slice(extra);
     args.extend(["--out", out]);
     xtask(&args)
-}
-
-/// Every results file by name. `run.json` is the run's provenance (date, thread count): it must
-/// be there and name the experiment, but it differs between runs by design.
-fn files(dir: &Path) -> BTreeMap<String, Vec<u8>> {
-    fs::read_dir(dir)
-        .unwrap()
-        .map(|e| {
-            let e = e.unwrap();
-            let name = e.file_name().to_string_lossy().into_owned();
-            let mut bytes = fs::read(e.path()).unwrap();
-            if name == "run.json" {
-                let v: serde_json::Value = serde_json::from_slice(&bytes).unwrap();
-                assert!(v["id"].is_string() && v["date"].is_string(), "{v}");
-                bytes = b"(provenance)".to_vec();
-            }
-            (name, bytes)
-        })
-        .collect()
 }
 
 fn tables_json(dir: &Path) -> serde_json::Value {

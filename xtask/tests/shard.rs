@@ -4,46 +4,15 @@
 
 #![allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
 
-use std::collections::BTreeMap;
 use std::fs;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::Path;
+use std::process::Output;
 
-fn xtask(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_xtask"))
-        .args(args)
-        .env_remove("RUST_LOG")
-        .output()
-        .unwrap()
-}
+mod support;
+use support::{Scratch, files, xtask};
 
 fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-/// A fresh scratch directory under the system temp dir, removed on drop.
-struct Scratch(PathBuf);
-
-impl Scratch {
-    fn new(tag: &str) -> Self {
-        let nanos = std::time::SystemTime::now()
-            .duration_since(std::time::UNIX_EPOCH)
-            .unwrap()
-            .as_nanos();
-        let p =
-            std::env::temp_dir().join(format!("xtask-shard-{tag}-{}-{nanos}", std::process::id()));
-        fs::create_dir_all(&p).unwrap();
-        Scratch(p)
-    }
-    fn path(&self, rel: &str) -> String {
-        self.0.join(rel).to_str().unwrap().to_owned()
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = fs::remove_dir_all(&self.0);
-    }
 }
 
 /// A reduced table1: 5 trials of short runs with few samples.
@@ -89,25 +58,6 @@ fn merge(inputs: &[String], out: &str) -> Vec<u8> {
 }
 
 /// Every file of a results directory, by name.
-/// Every results file by name. `run.json` is the run's provenance (date, thread count): it must
-/// be there and name the experiment, but it differs between runs by design.
-fn files(dir: &Path) -> BTreeMap<String, Vec<u8>> {
-    fs::read_dir(dir)
-        .unwrap()
-        .map(|e| {
-            let e = e.unwrap();
-            let name = e.file_name().to_string_lossy().into_owned();
-            let mut bytes = fs::read(e.path()).unwrap();
-            if name == "run.json" {
-                let v: serde_json::Value = serde_json::from_slice(&bytes).unwrap();
-                assert!(v["id"].is_string() && v["date"].is_string(), "{v}");
-                bytes = b"(provenance)".to_vec();
-            }
-            (name, bytes)
-        })
-        .collect()
-}
-
 fn assert_same_results(a: &Path, b: &Path) {
     let (fa, fb) = (files(a), files(b));
     assert_eq!(
