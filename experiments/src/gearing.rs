@@ -1,4 +1,4 @@
-//! The gearing an experiment runs on: the embedded Freeth 2006 data, or a user's RON file given
+//! The gearing an experiment runs on: the embedded Freeth 2006 (or 2021) data, or a user's RON file given
 //! with `--set gearing=FILE`; and the gearing-wide parameters declared beside it.
 
 use registry::{Context, Param, RunError};
@@ -9,7 +9,7 @@ pub const PARAM: Param = Param {
     name: "gearing",
     default: "freeth2006",
     unit: "",
-    help: "gearing RON file (default: the embedded Freeth 2006 data, crates/train/data/freeth2006.ron)",
+    help: "gearing RON file, or an embedded one: freeth2006 (the default, crates/train/data/freeth2006.ron) or freeth2021 (the same gearing with the outer radii of Freeth et al. 2021)",
 };
 
 /// Clearance G of every mesh of the gearing (the paper's working value, Appendix II).
@@ -32,8 +32,8 @@ pub const TOOTH_HEIGHT: Param = Param {
 /// the experiment declares beside it ([`check`]).
 pub fn load(ctx: &Context) -> Result<Gearing, RunError> {
     let name = ctx.param("gearing")?;
-    let g = if name == PARAM.default {
-        Gearing::freeth2006()
+    let g = if let Some(g) = Gearing::builtin(name) {
+        g
     } else {
         Gearing::load(std::path::Path::new(name))
             .map_err(|e| RunError::bad(e.file, e.location, e.rule))?

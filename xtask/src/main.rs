@@ -578,7 +578,7 @@ fn preflight(planned: &[Planned], run: &RunArgs) -> Result<(), Failure> {
                 .flatten()
         };
         if let Some(g) = value("gearing")
-            && g != "freeth2006"
+            && train::Gearing::builtin(&g).is_none()
             && seen.insert(("gearing", g.clone()))
         {
             train::Gearing::load(Path::new(&g)).map_err(|e| Failure::Bad(e.to_string()))?;

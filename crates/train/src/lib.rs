@@ -23,6 +23,16 @@ pub use ratio::Ratio;
 /// The text of the embedded default gearing, `data/freeth2006.ron`.
 pub const FREETH2006_RON: &str = include_str!("../data/freeth2006.ron");
 
+/// The same gearing with the outer radii of Freeth et al. 2021 (Table S8), `data/freeth2021.ron`:
+/// for asking how much the results depend on the radii the paper took.
+pub const FREETH2021_RON: &str = include_str!("../data/freeth2021.ron");
+
+/// The embedded gearings by name, for `--set gearing=NAME`: (name, file name, text).
+pub const BUILTIN: [(&str, &str, &str); 2] = [
+    ("freeth2006", "freeth2006.ron", FREETH2006_RON),
+    ("freeth2021", "freeth2021.ron", FREETH2021_RON),
+];
+
 /// The most teeth a gear of a gearing file may have: 10^5, the limit of `geometry::MAX_TEETH`
 /// (the mechanism's largest gear has 223).
 pub const MAX_TEETH: u32 = 100_000;
@@ -196,6 +206,17 @@ impl Gearing {
     #[must_use]
     pub fn freeth2006() -> Gearing {
         Gearing::from_ron("freeth2006.ron", FREETH2006_RON).unwrap_or_default()
+    }
+
+    /// The embedded gearing called `name` (see [`BUILTIN`]: `freeth2006`, `freeth2021`), or
+    /// None for any other name. Like [`Gearing::freeth2006`], an embedded file that failed to
+    /// parse would give an empty gearing; the crate's tests parse each one.
+    #[must_use]
+    pub fn builtin(name: &str) -> Option<Gearing> {
+        BUILTIN
+            .iter()
+            .find(|(n, _, _)| *n == name)
+            .map(|(_, file, text)| Gearing::from_ron(file, text).unwrap_or_default())
     }
 
     /// Reads a gearing file from disk (see [`Gearing::from_ron`]).

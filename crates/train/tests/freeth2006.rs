@@ -142,3 +142,45 @@ fn one_wrong_tooth_count_changes_the_lunar_ratio() {
     assert_ne!(lunar, Some(Ratio { num: 254, den: 19 }));
     assert_eq!(lunar, Some(Ratio::new(63 * 48 * 127, 38 * 24 * 32)));
 }
+
+/// The 2021 variant differs from the 2006 gearing in the measured radii only, each by the
+/// difference between the S8 outer radius and the F06 mean radius, and so every sized tip
+/// radius but f1's grows.
+#[test]
+fn freeth2021_differs_from_2006_in_radii_only() {
+    let (a, b) = match (
+        Gearing::builtin("freeth2006"),
+        Gearing::from_ron("freeth2021.ron", train::FREETH2021_RON),
+    ) {
+        (Some(a), Ok(b)) => (a, b),
+        (_, Err(e)) => panic!("embedded 2021 file must parse: {e}"),
+        (None, _) => panic!("freeth2006 is a builtin name"),
+    };
+    assert_eq!(Gearing::builtin("freeth2021"), Some(b.clone()));
+    assert_eq!(Gearing::builtin("freeth1901"), None);
+    assert_eq!(a.meshes(), b.meshes());
+    assert_eq!(a.pointers(), b.pointers());
+    assert_eq!(a.arbors(), b.arbors());
+    let mut larger = 0;
+    for (x, y) in a.gears().iter().zip(b.gears()) {
+        assert_eq!((&x.name, x.teeth), (&y.name, y.teeth));
+        assert_eq!(
+            x.measured_radius.is_none(),
+            y.measured_radius.is_none(),
+            "{}",
+            x.name
+        );
+        if let (Some(r6), Some(r21)) = (x.measured_radius, y.measured_radius) {
+            let moved = r21 - r6;
+            assert!(moved.abs() <= 0.6 + 1e-9, "{}: {moved}", x.name);
+            if x.name != "f1" {
+                assert!(moved >= 0.15 - 1e-9, "{}: {moved}", x.name);
+            }
+        }
+        let (ta, tb) = (a.tip_radius(&x.name), b.tip_radius(&x.name));
+        if x.name != "f1" && x.name != "e4" && ta.zip(tb).is_some_and(|(p, q)| q > p) {
+            larger += 1;
+        }
+    }
+    assert!(larger >= 20, "only {larger} gears grew");
+}
