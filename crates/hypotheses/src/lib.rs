@@ -16,6 +16,7 @@ mod plugins {
 }
 mod measured;
 mod params;
+mod stack;
 
 pub use edmunds::{EdmundsErrors, eccentricity, manufacture};
 pub use measured::{
@@ -23,6 +24,7 @@ pub use measured::{
     measured_from_ron,
 };
 pub use params::Params;
+pub use stack::SEPARATOR;
 
 /// Why a hypothesis could not be looked up, configured or applied: what was wrong and the rule.
 ///
@@ -148,7 +150,19 @@ fn collect(
 /// The registered hypothesis called `name`, or for `measured:FILE` the `measured` hypothesis
 /// over the table in FILE ([`measured_file`]); an unknown name is an error listing every known
 /// one.
+///
+/// Names joined by `+` are a stack, applied in that order to each gear:
+/// `edmunds-split+curved-flanks` is Edmunds' errors on gears whose flanks are then curved. The
+/// stack declares its layers' parameters together (two layers may not declare the same one).
 pub fn lookup(name: &str) -> Result<&'static dyn Hypothesis, HypothesisError> {
+    if name.contains(SEPARATOR) {
+        return stack::lookup_stack(name, lookup_one);
+    }
+    lookup_one(name)
+}
+
+/// [`lookup`] of one hypothesis, not a stack.
+fn lookup_one(name: &str) -> Result<&'static dyn Hypothesis, HypothesisError> {
     if let Some(path) = name.strip_prefix("measured:") {
         return measured_file(path).map(|h| h as &'static dyn Hypothesis);
     }

@@ -115,3 +115,53 @@ fn listing_shows_every_hypothesis_with_its_params() {
     }
     assert!(s.contains("INVENTED"), "{s}");
 }
+
+/// `a+b` applies `a`, then `b` to what `a` made, from the same random stream, and declares both
+/// parameter lists; the stack is built once per name.
+#[test]
+fn a_stack_applies_its_layers_in_order() {
+    use rand::SeedableRng;
+    use rand_chacha::ChaCha8Rng;
+
+    let stack = lookup("edmunds-split+asymmetric-teeth").unwrap();
+    assert_eq!(stack.name(), "edmunds-split+asymmetric-teeth");
+    assert!(std::ptr::addr_eq(
+        stack,
+        lookup("edmunds-split+asymmetric-teeth").unwrap()
+    ));
+    let names: Vec<&str> = stack.params().iter().map(|p| p.name).collect();
+    assert_eq!(names, ["random", "systematic", "split", "valley_shift"]);
+    let p = Params::new(stack, &sets(&[("valley_shift", "0.1"), ("random", "0.08")])).unwrap();
+    let (edm, asym) = (
+        lookup("edmunds-split").unwrap(),
+        lookup("asymmetric-teeth").unwrap(),
+    );
+    let designed = geometry::Gear::ideal(48, 11.0, 9.9).unwrap();
+    let made = stack
+        .apply(&designed, "c2", &p, &mut ChaCha8Rng::seed_from_u64(4))
+        .unwrap();
+    let mut rng = ChaCha8Rng::seed_from_u64(4);
+    let by_hand = edm.apply(&designed, "c2", &p, &mut rng).unwrap();
+    let by_hand = asym.apply(&by_hand, "c2", &p, &mut rng).unwrap();
+    assert_eq!(made, by_hand);
+    // Both layers acted: the tips moved (Edmunds) and the valleys left the midpoints.
+    assert_ne!(made.tip_angles(), designed.tip_angles());
+    let t = made.tip_angles();
+    assert!((0..47).any(|k| (made.valley_angles()[k] - 0.5 * (t[k] + t[k + 1])).abs() > 1e-6));
+}
+
+#[test]
+fn a_stack_with_an_empty_repeated_or_unknown_layer_or_a_shared_parameter_is_refused() {
+    let e = lookup("edmunds-split+").err().unwrap();
+    assert!(e.rule.contains("none of them empty"), "{e}");
+    let e = lookup("ideal+ideal").err().unwrap();
+    assert!(e.rule.contains("twice"), "{e}");
+    let e = lookup("edmunds-split+curly-teeth").err().unwrap();
+    assert!(e.what.contains("`curly-teeth`"), "{e}");
+    let e = lookup("edmunds-split+eccentric-only").err().unwrap();
+    assert!(
+        e.rule
+            .contains("declared by both `edmunds-split` and `eccentric-only`"),
+        "{e}"
+    );
+}
