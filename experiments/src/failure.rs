@@ -74,7 +74,7 @@ registry::inventory::submit! {
 }
 
 /// The trains the paper reports: (name, the pointers whose meshes make it up).
-const TRAINS: [(&str, &[&str]); 3] = [
+pub(crate) const TRAINS: [(&str, &[&str]); 3] = [
     ("Lunar", &["Lunar"]),
     ("Metonic/Games", &["Metonic", "Games"]),
     ("Saros/Exeligmos", &["Saros", "Exeligmos"]),
@@ -90,41 +90,45 @@ const MEASURED_INDEX: u64 = CASES.len() as u64;
 const READ_AT_DEG: [f64; 5] = [30.0, 60.0, 120.0, 180.0, 360.0];
 
 /// One set of error inputs: a case or the measured table.
-struct Input<'a> {
+pub(crate) struct Input<'a> {
     /// "A".."D" or "measured".
-    label: String,
+    pub label: String,
     /// Legend text.
-    legend: String,
+    pub legend: String,
     /// Index selecting its RNG streams.
-    index: u64,
+    pub index: u64,
     /// Where its hypothesis came from, for errors: `--hypothesis` or `--set measured`.
-    source: &'static str,
-    hypothesis: &'a dyn Hypothesis,
-    params: Params,
+    pub source: &'static str,
+    pub hypothesis: &'a dyn Hypothesis,
+    pub params: Params,
 }
 
 /// The first jam of a train within the horizon.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
-struct Jam {
-    day: f64,
-    mesh: String,
+pub(crate) struct Jam {
+    pub day: f64,
+    pub mesh: String,
 }
 
 /// One whole-mechanism run. The default (a run of another shard, see `Context::trials`) has
 /// no trains: it reads as a run that never jammed.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
-struct Outcome {
+pub(crate) struct Outcome {
     /// First jam per train of `TRAINS` (None: none within the horizon).
-    trains: Vec<Option<Jam>>,
+    pub trains: Vec<Option<Jam>>,
     /// Driver turns times driver teeth, summed over every simulated mesh.
-    engagements: f64,
+    pub engagements: f64,
     /// The gears could not be placed (bodies overlapping at every angle): the mesh and rule.
-    unplaceable: Option<String>,
+    pub unplaceable: Option<String>,
+    /// σ of the Lunar pointer's Theoretical Difference [deg] over the run up to its first jam
+    /// (None: it jammed at once, or the gears could not be placed).
+    #[serde(default)]
+    pub lunar_sigma: Option<f64>,
 }
 
 impl Outcome {
     /// First jam anywhere.
-    fn mechanism(&self) -> Option<&Jam> {
+    pub(crate) fn mechanism(&self) -> Option<&Jam> {
         self.trains
             .iter()
             .flatten()
@@ -213,22 +217,14 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         ));
     }
 
-    let horizon = days / DAYS_PER_YEAR * TAU;
-    let seed = ctx.seed();
-    let jobs: Vec<(usize, u64)> = (0..inputs.len())
-        .flat_map(|i| (0..trials).map(move |t| (i, t)))
-        .collect();
-    // One batch of every (input, trial) run, flattened so that all of them share the pool.
-    let outcomes: Vec<Outcome> = ctx.trials(
-        &batch_key(ctx, &inputs, trials, h, clearance, days)?,
-        jobs.len() as u64,
-        |j| {
-            let &(i, t) = jobs
-                .get(j as usize)
-                .ok_or_else(|| RunError::Internal(format!("run {j} of {}", jobs.len())))?;
-            one_run(&g, &inputs[i], h, clearance, seed, t, horizon)
-        },
-    )?;
+    let study = Study {
+        gearing: &g,
+        gearing_name: ctx.param("gearing")?,
+        h,
+        clearance,
+        days,
+    };
+    let outcomes = study.run(ctx, &inputs, trials)?;
     let per_input: Vec<&[Outcome]> = outcomes.chunks(trials as usize).collect();
 
     let mut report = Report {
@@ -273,15 +269,67 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     Ok(report)
 }
 
+/// What every run of a batch shares: the gearing, tooth height, clearance and horizon.
+pub(crate) struct Study<'g> {
+    pub gearing: &'g train::Gearing,
+    /// The gearing as named by the `gearing` parameter (for the batch key).
+    pub gearing_name: &'g str,
+    /// Tooth height h [mm].
+    pub h: f64,
+    /// Clearance G of every mesh [% of h].
+    pub clearance: f64,
+    /// Horizon of each run [days of b].
+    pub days: f64,
+}
+
+impl Study<'_> {
+    /// `trials` whole-mechanism runs of every input, in (input, trial) order: one batch, so that
+    /// all of them share the pool, and one stream per (input index, trial).
+    pub(crate) fn run(
+        &self,
+        ctx: &Context,
+        inputs: &[Input<'_>],
+        trials: u64,
+    ) -> Result<Vec<Outcome>, RunError> {
+        let horizon = self.days / DAYS_PER_YEAR * TAU;
+        let seed = ctx.seed();
+        let jobs: Vec<(usize, u64)> = (0..inputs.len())
+            .flat_map(|i| (0..trials).map(move |t| (i, t)))
+            .collect();
+        let key = batch_key(
+            self.gearing_name,
+            inputs,
+            trials,
+            self.h,
+            self.clearance,
+            self.days,
+        );
+        ctx.trials(&key, jobs.len() as u64, |j| {
+            let &(i, t) = jobs
+                .get(j as usize)
+                .ok_or_else(|| RunError::Internal(format!("run {j} of {}", jobs.len())))?;
+            one_run(
+                self.gearing,
+                &inputs[i],
+                self.h,
+                self.clearance,
+                seed,
+                t,
+                horizon,
+            )
+        })
+    }
+}
+
 /// The key of the batch of runs: everything that determines them.
 fn batch_key(
-    ctx: &Context,
+    gearing: &str,
     inputs: &[Input<'_>],
     trials: u64,
     h: f64,
     clearance: f64,
     days: f64,
-) -> Result<String, RunError> {
+) -> String {
     let inputs: Vec<String> = inputs
         .iter()
         .map(|inp| {
@@ -296,11 +344,10 @@ fn batch_key(
             )
         })
         .collect();
-    Ok(format!(
-        "failure: {trials} runs per input over {days} d, h = {h} mm, G = {clearance} %, gearing {}, inputs: {}",
-        ctx.param("gearing")?,
+    format!(
+        "failure: {trials} runs per input over {days} d, h = {h} mm, G = {clearance} %, gearing {gearing}, inputs: {}",
         inputs.join("; ")
-    ))
+    )
 }
 
 /// Indices into `CASES` of a comma-separated list of case names.
@@ -391,6 +438,7 @@ fn one_run(
                 ],
                 engagements: 0.0,
                 unplaceable: Some(e.to_string()),
+                lunar_sigma: None,
             });
         }
         (Ok(m), None) => m,
@@ -407,6 +455,7 @@ fn one_run(
     let mut memo: BTreeMap<String, Stage> = BTreeMap::new();
     let mut engagements = 0.0;
     let mut trains = Vec::with_capacity(TRAINS.len());
+    let mut lunar_sigma = None;
     for (_, pointers) in TRAINS {
         let mut first: Option<Jam> = None;
         for &p in pointers {
@@ -449,6 +498,15 @@ fn one_run(
                 input_range: horizon,
                 stages,
             };
+            if p == "Lunar" {
+                // As table1 samples it: 8 per tooth engagement of the busiest mesh, up to the
+                // first jam (a run that jams at once has no spread to speak of).
+                let samples = crate::table1::samples_for(g, p, horizon / TAU, 8);
+                lunar_sigma = run
+                    .first_stop()
+                    .is_none_or(|s| s.input_angle > 0.0)
+                    .then(|| run.stats(samples).sigma);
+            }
             if let Some(stop) = run.first_stop()
                 && first.as_ref().is_none_or(|f| stop.day < f.day)
             {
@@ -464,21 +522,22 @@ fn one_run(
         trains,
         engagements,
         unplaceable: None,
+        lunar_sigma,
     })
 }
 
 /// What is reported of one train (or the mechanism) under one input.
-struct Summary {
+pub(crate) struct Summary {
     /// Runs jammed within a year, with the 95 % Clopper-Pearson interval.
-    year: Proportion,
+    pub year: Proportion,
     /// Days of the first jam of the runs that jammed within the horizon, in trial order.
-    days: Vec<f64>,
+    pub days: Vec<f64>,
     /// Meshes that jammed first, with their counts, most frequent first.
-    meshes: Vec<(String, usize)>,
+    pub meshes: Vec<(String, usize)>,
 }
 
 /// Per train, then the mechanism.
-fn summarise(runs: &[Outcome], horizon_days: f64) -> Vec<Summary> {
+pub(crate) fn summarise(runs: &[Outcome], horizon_days: f64) -> Vec<Summary> {
     (0..=TRAINS.len())
         .map(|ti| {
             let jams: Vec<&Jam> = runs
@@ -505,7 +564,7 @@ fn summarise(runs: &[Outcome], horizon_days: f64) -> Vec<Summary> {
         .collect()
 }
 
-fn median(values: &[f64]) -> Option<f64> {
+pub(crate) fn median(values: &[f64]) -> Option<f64> {
     let mut v = values.to_vec();
     v.sort_by(f64::total_cmp);
     let n = v.len();
@@ -526,7 +585,7 @@ fn mean_days(days: &[f64], horizon: f64) -> stats::Estimate {
 }
 
 /// "mean [lo .. hi]" of days (no interval for one value, "-" for none).
-fn mean_cell(days: &[f64], horizon: f64) -> String {
+pub(crate) fn mean_cell(days: &[f64], horizon: f64) -> String {
     let e = mean_days(days, horizon);
     match days.len() {
         0 => "-".into(),
@@ -540,7 +599,7 @@ fn mean_cell(days: &[f64], horizon: f64) -> String {
     }
 }
 
-fn percent_cell(p: &Proportion) -> String {
+pub(crate) fn percent_cell(p: &Proportion) -> String {
     format!(
         "{} [{} .. {}]",
         fmt_f64(100.0 * p.rate(), 0),

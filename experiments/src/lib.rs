@@ -17,6 +17,7 @@ mod gearing;
 mod limits;
 mod pair;
 mod pair_jams;
+mod sensitivity;
 mod table1;
 mod table2;
 mod table3;

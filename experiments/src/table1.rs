@@ -125,7 +125,7 @@ pub(crate) fn pointer_runs<'a>(
 
 /// Samples needed so that the busiest mesh of a pointer's train gets `per` samples per tooth
 /// engagement over `turns` input turns.
-fn samples_for(g: &train::Gearing, pointer: &str, turns: f64, per: usize) -> usize {
+pub(crate) fn samples_for(g: &train::Gearing, pointer: &str, turns: f64, per: usize) -> usize {
     let mut arbor_turns = 1.0;
     let mut busiest: f64 = 1.0;
     for label in g
