@@ -101,7 +101,16 @@ pub(crate) struct Input<'a> {
     pub source: &'static str,
     pub hypothesis: &'a dyn Hypothesis,
     pub params: Params,
+    /// A second hypothesis applied to each gear after the first (a shape change on top of
+    /// Edmunds' errors), drawing from its own stream ([`EXTRA_STREAM`]): the first one's draws
+    /// and the initial angles stay those of the run without it, so the two runs differ by it
+    /// alone.
+    pub extra: Option<(&'a dyn Hypothesis, Params)>,
 }
+
+/// Stream flag of an input's [`Input::extra`] hypothesis: trial t of input i draws its extra
+/// errors from stream `EXTRA_STREAM | i << 32 | t`, apart from stream `i << 32 | t`.
+pub(crate) const EXTRA_STREAM: u64 = 1 << 63;
 
 /// The first jam of a train within the horizon.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
@@ -187,6 +196,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             index: ci as u64,
             source: "--hypothesis",
             hypothesis: hyp,
+            extra: None,
             params: errors::params(
                 ctx,
                 hyp,
@@ -205,6 +215,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             index: MEASURED_INDEX,
             source: "--set measured",
             hypothesis: m,
+            extra: None,
             params: Params::new(m, &[])
                 .map_err(|e| RunError::bad("--set measured", e.what, e.rule))?,
         });
@@ -333,14 +344,22 @@ fn batch_key(
     let inputs: Vec<String> = inputs
         .iter()
         .map(|inp| {
-            let p: Vec<String> = inp.params.iter().map(|(k, v)| format!("{k}={v}")).collect();
+            let p = |params: &Params| -> String {
+                let p: Vec<String> = params.iter().map(|(k, v)| format!("{k}={v}")).collect();
+                p.join(",")
+            };
+            let extra = inp
+                .extra
+                .as_ref()
+                .map(|(h, params)| format!(" then {}({})", h.name(), p(params)))
+                .unwrap_or_default();
             format!(
-                "{} [{}] stream {} {}({})",
+                "{} [{}] stream {} {}({}){extra}",
                 inp.label,
                 inp.legend,
                 inp.index,
                 inp.hypothesis.name(),
-                p.join(",")
+                p(&inp.params)
             )
         })
         .collect();
@@ -412,16 +431,19 @@ fn one_run(
 ) -> Result<Outcome, RunError> {
     // One stream per (input, trial): every gear's errors, then every mesh's initial angle.
     let mut rng = trial_rng(seed, (input.index << 32) | t);
+    let mut extra_rng = trial_rng(seed, EXTRA_STREAM | (input.index << 32) | t);
     let mut failure = None;
     let mech = Mechanism::build(g, h, clearance, |name, gear| {
-        input
-            .hypothesis
-            .apply(&gear, name, &input.params, &mut rng)
-            .map_err(|e| {
-                let text = e.to_string();
-                failure = Some(RunError::bad(input.source, e.what, e.rule));
-                text
-            })
+        let made = input.hypothesis.apply(&gear, name, &input.params, &mut rng);
+        let made = match (&input.extra, made) {
+            (Some((extra, params)), Ok(gear)) => extra.apply(&gear, name, params, &mut extra_rng),
+            (_, made) => made,
+        };
+        made.map_err(|e| {
+            let text = e.to_string();
+            failure = Some(RunError::bad(input.source, e.what, e.rule));
+            text
+        })
     });
     let mech = match (mech, failure) {
         (_, Some(e)) => return Err(e),

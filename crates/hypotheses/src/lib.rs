@@ -102,6 +102,11 @@ pub trait Hypothesis: Sync {
     fn summary(&self) -> &'static str;
     /// Its parameters with their defaults (may be empty).
     fn params(&self) -> &'static [ParamSpec];
+    /// The model in a few sentences: what it changes, how it draws, what it leaves alone, and
+    /// its sources (shown by `cargo xtask help NAME`; empty if the summary says it all).
+    fn details(&self) -> &'static str {
+        ""
+    }
     /// The manufactured version of `gear` (named `gear_name`, for errors and per-gear tables).
     ///
     /// `params` holds a value for every entry of [`Hypothesis::params`]; randomness comes only

@@ -1,10 +1,6 @@
 //! `asymmetric-teeth`: each valley cut off-centre between its two tips, so a tooth's two flanks
 //! differ in slope (the paper assumes symmetric teeth, assumption (3)).
-//!
-//! Valley k is placed at the fraction `0.5 + s·z` of the angular gap from tip k to tip k + 1,
-//! z a standard normal draw and s the parameter `valley_shift`; the fraction is clamped to
-//! 0.05 ..= 0.95 so that the valley stays strictly between its tips (no flank degenerates).
-//! Tips, radii and rotation centre are unchanged.
+//! The model in words is [`DETAILS`] (what `cargo xtask help` prints).
 
 use geometry::Gear;
 use rand_distr::{Distribution, StandardNormal};
@@ -13,6 +9,9 @@ use crate::{Hypothesis, HypothesisError, ParamSpec, Params, Registration};
 
 /// The hypothesis.
 struct AsymmetricTeeth;
+
+/// The model in words, printed by `cargo xtask help`.
+const DETAILS: &str = "Valley k is placed at the fraction `0.5 + s·z` of the angular gap from tip k to tip k + 1, z a standard normal draw and s the parameter `valley_shift`; the fraction is clamped to 0.05 ..= 0.95 so that the valley stays strictly between its tips (no flank degenerates). Tips, radii and rotation centre are unchanged.";
 
 const VALLEY_SHIFT: ParamSpec = ParamSpec {
     name: "valley_shift",
@@ -31,6 +30,10 @@ impl Hypothesis for AsymmetricTeeth {
 
     fn summary(&self) -> &'static str {
         "each valley displaced from midway between its tips, so the teeth lean (assumption 3); tips unchanged"
+    }
+
+    fn details(&self) -> &'static str {
+        DETAILS
     }
 
     fn params(&self) -> &'static [ParamSpec] {

@@ -1,11 +1,5 @@
 //! `non-circular`: gears that are not round (the paper assumes circular gears, assumption (1)).
-//!
-//! Every tip and every valley gets its own radius: the designed one plus `radial_error · z`
-//! (z a standard normal draw, one per vertex, clamped to ±4) plus a once-per-turn out-of-round
-//! `lobe · cos(angle − α)` with α uniform over the turn (one per gear). Tip and valley angles
-//! and the rotation centre are unchanged; the designed radii stay the gear's nominal ones
-//! ([`Gear::tip_radius`], [`Gear::root_radius`]). A draw that puts a valley above one of its
-//! tips, or the axis outside the smallest valley, is an error naming the gear.
+//! The model in words is [`DETAILS`] (what `cargo xtask help` prints).
 
 use std::f64::consts::TAU;
 
@@ -17,6 +11,9 @@ use crate::{Hypothesis, HypothesisError, ParamSpec, Params, Registration};
 
 /// The hypothesis.
 struct NonCircular;
+
+/// The model in words, printed by `cargo xtask help`.
+const DETAILS: &str = "Every tip and every valley gets its own radius: the designed one plus `radial_error · z` (z a standard normal draw, one per vertex, clamped to ±4) plus a once-per-turn out-of-round `lobe · cos(angle − α)` with α uniform over the turn (one per gear). Tip and valley angles and the rotation centre are unchanged; the designed radii stay the gear's nominal ones (Gear::tip_radius, Gear::root_radius). A draw that puts a valley above one of its tips, or the axis outside the smallest valley, is an error naming the gear.";
 
 const RADIAL_ERROR: ParamSpec = ParamSpec {
     name: "radial_error",
@@ -39,6 +36,10 @@ impl Hypothesis for NonCircular {
 
     fn summary(&self) -> &'static str {
         "each tip and valley at its own radius, optionally with a once-per-turn lobe (assumption 1); angles unchanged"
+    }
+
+    fn details(&self) -> &'static str {
+        DETAILS
     }
 
     fn params(&self) -> &'static [ParamSpec] {

@@ -1,12 +1,6 @@
 //! `ratio-mismatch`: each gear cut with its own module, so two meshing gears' radii no longer
 //! stand in the ratio of their tooth counts (the paper's assumption (5), section 6).
-//!
-//! Freeth et al. (2021) report the modules of meshing gears differing by 3.7 % on average and by
-//! up to 7.6 %. Here each gear's module is the designed one times (1 + m·z), z a standard
-//! normal draw, so tip radius and tooth height scale together and the tip angles stay. Two
-//! gears' modules then differ by about 1.13·m on average: m = 3.3 % gives the reported 3.7 %.
-//! The arbors stay where the design puts them, so the clearance of the mesh changes with the
-//! radii (a larger gear reaches deeper).
+//! The model in words is [`DETAILS`] (what `cargo xtask help` prints).
 
 use geometry::Gear;
 use rand_distr::{Distribution, StandardNormal};
@@ -15,6 +9,9 @@ use crate::{Hypothesis, HypothesisError, ParamSpec, Params, Registration};
 
 /// The hypothesis.
 struct RatioMismatch;
+
+/// The model in words, printed by `cargo xtask help`.
+const DETAILS: &str = "Freeth et al. (2021) report the modules of meshing gears differing by 3.7 % on average and by up to 7.6 %. Here each gear's module is the designed one times (1 + m·z), z a standard normal draw, so tip radius and tooth height scale together and the tip angles stay. Two gears' modules then differ by about 1.13·m on average: m = 3.3 % gives the reported 3.7 %. The arbors stay where the design puts them, so the clearance of the mesh changes with the radii (a larger gear reaches deeper).";
 
 const MODULE_SPREAD: ParamSpec = ParamSpec {
     name: "module_spread",
@@ -30,6 +27,10 @@ impl Hypothesis for RatioMismatch {
 
     fn summary(&self) -> &'static str {
         "each gear cut with its own module (radius and tooth height scaled together), so R1/R2 != N1/N2 (assumption 5)"
+    }
+
+    fn details(&self) -> &'static str {
+        DETAILS
     }
 
     fn params(&self) -> &'static [ParamSpec] {
