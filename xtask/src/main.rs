@@ -134,7 +134,14 @@ fn dispatch(args: &[String]) -> Result<(), Failure> {
         Command::List => print(&exps.keys().map(|id| format!("{id}\n")).collect::<String>()),
         Command::Hypotheses => print(&hypotheses::listing()),
         Command::Help(None) => print(&format!("{}\n", usage())),
-        Command::Help(Some(id)) => print(&details(lookup(&exps, &id)?)),
+        Command::Help(Some(id)) => match (exps.get(id.as_str()), hypotheses::lookup(&id)) {
+            (Some(e), _) => print(&details(e)),
+            (None, Ok(h)) => print(&hypothesis_details(h, &exps)),
+            (None, Err(_)) => Err(Failure::Bad(format!(
+                "unknown experiment or error hypothesis `{id}` (known experiments: {}; error hypotheses: cargo xtask hypotheses)",
+                exps.keys().copied().collect::<Vec<_>>().join(", ")
+            ))),
+        },
         Command::Run(run) if run.is_all() => {
             let rows = run_every(&exps, &run, &mut |s| print(s))?;
             tracing::debug!(experiments = rows.len(), "run all done");
@@ -181,6 +188,8 @@ Usage:
   cargo xtask list              experiment ids, one per line
   cargo xtask help <id>         what an experiment reproduces, its parameters,
                                 config file and outputs
+  cargo xtask help <hypothesis> what an error hypothesis models, its parameters
+                                and how to run it (a+b: b applied after a)
   cargo xtask hypotheses        manufacturing-error hypotheses, their parameters and defaults
   cargo xtask run <id>... [options]
                                 run experiments, print their tables and write
@@ -345,6 +354,76 @@ fn details(e: &Experiment) -> String {
     }
     s.push_str(&outputs(e, &default_out()));
     s
+}
+
+/// `help NAME` for an error hypothesis: what it models, its parameters, and how to run it.
+fn hypothesis_details(h: &dyn hypotheses::Hypothesis, exps: &Registry) -> String {
+    let name = h.name();
+    let mut s = format!("{name}: error hypothesis: {}\n", h.summary());
+    if !h.details().is_empty() {
+        s.push('\n');
+        s.push_str(&wrap(h.details(), 96));
+    }
+    s.push('\n');
+    if h.params().is_empty() {
+        s.push_str("Parameters: none.\n");
+    } else {
+        let mut t = Table::new(
+            "Parameters (set with --set hypothesis_params=NAME=VALUE[,NAME=VALUE])",
+            ["name", "default", "unit", "help"],
+        );
+        for p in h.params() {
+            t.row(vec![
+                p.name.into(),
+                p.default.to_string(),
+                p.unit.into(),
+                p.help.into(),
+            ]);
+        }
+        s.push_str(&t.render());
+    }
+    let takes: Vec<&str> = exps
+        .values()
+        .filter(|e| e.params.iter().any(|p| p.name == "hypothesis"))
+        .map(|e| e.id)
+        .collect();
+    let example = h
+        .params()
+        .first()
+        .map(|p| format!(" --set hypothesis_params={}={}", p.name, p.default))
+        .unwrap_or_default();
+    s.push_str(&format!(
+        "\nRun it with any experiment that takes --hypothesis ({}), e.g.\n  cargo xtask run failure --hypothesis {name}{example}\n",
+        takes.join(", ")
+    ));
+    if !name.contains(hypotheses::SEPARATOR) && name != "edmunds-split" {
+        s.push_str(&format!(
+            "On top of Edmunds' errors (applied to each gear after them):\n  cargo xtask run failure --hypothesis edmunds-split+{name}\n"
+        ));
+    }
+    s
+}
+
+/// `text` broken into lines of at most `width` characters, at spaces.
+fn wrap(text: &str, width: usize) -> String {
+    let mut out = String::new();
+    let mut line = String::new();
+    for word in text.split_whitespace() {
+        if !line.is_empty() && line.chars().count() + 1 + word.chars().count() > width {
+            out.push_str(&line);
+            out.push('\n');
+            line.clear();
+        }
+        if !line.is_empty() {
+            line.push(' ');
+        }
+        line.push_str(word);
+    }
+    if !line.is_empty() {
+        out.push_str(&line);
+        out.push('\n');
+    }
+    out
 }
 
 /// The outputs part of `help <id>`: the files every run writes, and the experiment's own files

@@ -94,7 +94,42 @@ fn help_describes_each_experiment() {
     }
     let o = xtask(&["help", "no-such-experiment"]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("unknown experiment `no-such-experiment`"));
+    assert!(stderr(&o).contains("unknown experiment or error hypothesis `no-such-experiment`"));
+}
+
+/// `help NAME` documents every registered error hypothesis (and a stack of them): its model in
+/// words where it gives one, its parameters, and a command that runs it.
+#[test]
+fn help_describes_each_hypothesis() {
+    let all = hypotheses::hypotheses().unwrap();
+    for (name, h) in all {
+        let o = xtask(&["help", name]);
+        assert!(o.status.success(), "{name}: {}", stderr(&o));
+        let text = stdout(&o);
+        assert!(
+            text.starts_with(&format!("{name}: error hypothesis: ")),
+            "{text}"
+        );
+        assert!(
+            text.contains(h.details().split_whitespace().next().unwrap_or("")),
+            "{text}"
+        );
+        for p in h.params() {
+            assert!(
+                text.contains(&format!("| {} ", p.name)),
+                "{name}: {}: {text}",
+                p.name
+            );
+        }
+        assert!(text.contains(&format!("--hypothesis {name}")), "{text}");
+    }
+    let o = xtask(&["help", "edmunds-split+asymmetric-teeth"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    assert!(
+        text.contains("| valley_shift ") && text.contains("| random "),
+        "{text}"
+    );
 }
 
 #[test]
