@@ -27,6 +27,14 @@ fn registered_experiment_ids() {
     pin("experiment-ids", &lines.join("\n"));
 }
 
+/// The registered error hypotheses with their parameters and defaults (`cargo xtask
+/// hypotheses`): a plugin added, removed or with a changed default shows here.
+#[test]
+fn registered_hypotheses() {
+    hypotheses::link();
+    pin("hypotheses", &hypotheses::listing());
+}
+
 #[test]
 fn every_experiment_table_is_pinned() {
     experiments::link();
