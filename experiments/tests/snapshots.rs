@@ -20,9 +20,10 @@ const SEED: u64 = 2025;
 fn registered_experiment_ids() {
     experiments::link();
     let map = registry::experiments().unwrap();
+    let w = map.keys().map(|id| id.len()).max().unwrap_or(0);
     let lines: Vec<String> = map
         .values()
-        .map(|e| format!("{:<10} {}", e.id, e.paper_item))
+        .map(|e| format!("{:<w$} {}", e.id, e.paper_item))
         .collect();
     pin("experiment-ids", &lines.join("\n"));
 }
