@@ -419,7 +419,7 @@ impl Gear {
     /// solves contacts with the arcs themselves.
     pub fn drawn_outline(&self, per_flank: usize) -> Vec<Vec2> {
         let mut out = Vec::new();
-        let mut inside = |flank: Flank, out: &mut Vec<Vec2>| {
+        let inside = |flank: Flank, out: &mut Vec<Vec2>| {
             if let Flank::Arc(arc) = flank {
                 out.extend((1..per_flank).map(|i| arc.point(i as f64 / per_flank as f64)));
             }
