@@ -892,24 +892,29 @@ impl Extremes {
     }
 }
 
-/// Slack, as a fraction of the squared chord, with which a point of an arc's circle just past
-/// the arc's ends still counts as on the arc (so that a vertex-on-vertex contact is found from
-/// both flanks despite rounding, as `roots::END_SLACK` does for segments).
+/// Slack, as a fraction of the chord, with which a point of an arc's circle just past the arc's
+/// ends still counts as on the arc (so that a vertex-on-vertex contact is found from both flanks
+/// despite rounding, as `roots::END_SLACK` does for segments).
 const ARC_SLACK: f64 = 1e-12;
 
-/// Whether `x`, a point of the arc's circle, lies on the arc: on its bulge side of the chord.
+/// Whether `x`, a point of the arc's circle, lies on the arc. Its foot on the chord must fall
+/// within the chord; of the circle's points with such a foot, the arc's lie within |s| ≤ c/4 of
+/// the chord on the bulge side, the others at least 3c/4 from it on the far side (the centre is
+/// at least 3c/8 from the chord when |s| ≤ c/4). So the side is judged with a margin of c/4, and
+/// stays right for a sagitta far below the rounding of the circle's huge radius (s → 0).
 #[inline]
 fn on_arc(arc: &Arc, x: Vec2) -> bool {
     let d = arc.end - arc.start;
     let r = x - arc.start;
-    let cross = d.x * r.y - d.y * r.x;
-    let slack = ARC_SLACK * d.norm_squared();
-    // A convex arc bulges to the right of start → end (negative cross product).
-    if arc.is_convex() {
-        cross <= slack
-    } else {
-        cross >= -slack
+    let len2 = d.norm_squared();
+    let along = r.dot(&d);
+    if along < -ARC_SLACK * len2 || along > (1.0 + ARC_SLACK) * len2 {
+        return false;
     }
+    // A convex arc bulges to the right of start → end (negative cross product).
+    let cross = d.x * r.y - d.y * r.x;
+    let beyond = if arc.is_convex() { -cross } else { cross };
+    beyond >= -0.25 * len2
 }
 
 /// Unit normal to the right of `a → b`: out of the tooth (flanks run counter-clockwise).

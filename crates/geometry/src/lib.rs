@@ -630,14 +630,22 @@ impl Arc {
         self.centre + polar(self.radius, a + t * sweep)
     }
 
-    /// Whether `x`, a point of the arc's circle, lies on the arc: on the bulge side of the chord
-    /// (an arc under a half circle is exactly the part of its circle on that side). `slack` (a
-    /// length) admits points just past the ends, lost to rounding.
+    /// Whether `x`, a point of the arc's circle, lies on the arc: its foot on the chord falls
+    /// within the chord (with `slack`, a length, for points just past the ends, lost to
+    /// rounding), and it is not on the far side of the chord (the circle's other points with
+    /// such a foot lie at least 3c/4 beyond it, as |s| ≤ c/4; the test allows c/4, so that it
+    /// holds however small the sagitta).
     pub fn holds(&self, x: Vec2, slack: f64) -> bool {
         let d = self.end - self.start;
         let r = x - self.start;
+        let len = d.norm();
+        let along = r.dot(&d) / len;
+        if along < -slack || along > len + slack {
+            return false;
+        }
         // cross(d, r) < 0: right of the chord, the convex side.
-        -(d.x * r.y - d.y * r.x) * self.sagitta.signum() >= -slack * d.norm()
+        let beyond = -(d.x * r.y - d.y * r.x) * self.sagitta.signum() / len;
+        beyond >= -0.25 * len
     }
 
     /// The distances from `p` of the arc's nearest and farthest points (exact: along a circle
@@ -836,7 +844,10 @@ mod tests {
                 "{s}: {mid}"
             );
             assert!(arc.holds(mid, 0.0));
-            assert!(!arc.holds(Vec2::new(2.0, s), 0.0));
+            // The circle's point opposite the arc's middle, and one past an end.
+            assert!(!arc.holds(2.0 * arc.centre - mid, 0.0));
+            let past = arc.centre + rotate(arc.start - arc.centre, -0.01 * arc.angular_extent().1);
+            assert!(!arc.holds(past, 0.0), "{s}");
             assert_eq!(arc.is_convex(), s > 0.0);
         }
         // Chord 4, sagitta 1: radius (4 + 1)/2 = 2.5, centre 1.5 above the chord.
