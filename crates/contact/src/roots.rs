@@ -1,8 +1,12 @@
-//! The one exact primitive of the solver: where a circle crosses a straight segment.
+//! The two exact primitives of the solver: where a circle crosses a straight segment, and where
+//! two circles cross.
 //!
 //! Every contact condition of two straight-flanked gears is "a vertex of one gear lies on a flank
 //! of the other". Seen from the gear that turns, the vertex runs on a circle about that gear's
 //! rotation centre, so the contact angles are the crossings of that circle with the flank.
+//! With circular-arc flanks a vertex meets an arc where its circle crosses the arc's circle, and
+//! two arcs (or an arc and a straight flank) touch when the turning arc's centre, which also runs
+//! on a circle, reaches a circle (or an offset segment) about the other: see `mesh.rs`.
 
 use geometry::Vec2;
 
@@ -38,6 +42,35 @@ pub(crate) fn circle_segment(
             found(a + d * t.clamp(0.0, 1.0));
         }
     }
+}
+
+/// Calls `found` with every point X with |X − C|² = `rho2` and |X − `centre`| = `radius` (none
+/// when the circles miss, are concentric or merely graze within rounding, as for a segment).
+#[inline]
+pub(crate) fn circle_circle(
+    c: Vec2,
+    rho2: f64,
+    centre: Vec2,
+    radius: f64,
+    mut found: impl FnMut(Vec2),
+) {
+    let d = centre - c;
+    let d2 = d.norm_squared();
+    if d2 == 0.0 {
+        return;
+    }
+    // X = C + a·d + h·d⊥ with |d| a = (ρ² − r² + |d|²) / (2|d|) along the line of centres;
+    // here both a and h are fractions of d.
+    let a = 0.5 * (rho2 - radius * radius + d2) / d2;
+    let h2 = rho2 / d2 - a * a;
+    if h2.is_nan() || h2 < 0.0 {
+        return;
+    }
+    let h = h2.sqrt();
+    let base = c + d * a;
+    let perp = Vec2::new(-d.y, d.x);
+    found(base + perp * h);
+    found(base - perp * h);
 }
 
 #[cfg(test)]
@@ -85,6 +118,24 @@ mod tests {
             0.0625,
             |_| n += 1,
         );
+        assert_eq!(n, 0);
+    }
+
+    #[test]
+    fn circles_cross_at_the_closed_form_points() {
+        // |X| = 5 and |X − (8, 0)| = 5: X = (4, ±3).
+        let mut pts = Vec::new();
+        circle_circle(Vec2::zeros(), 25.0, Vec2::new(8.0, 0.0), 5.0, |x| {
+            pts.push(x)
+        });
+        pts.sort_by(|p, q| p.y.total_cmp(&q.y));
+        assert_eq!(pts.len(), 2);
+        assert!((pts[0] - Vec2::new(4.0, -3.0)).norm() < 1e-14, "{pts:?}");
+        assert!((pts[1] - Vec2::new(4.0, 3.0)).norm() < 1e-14, "{pts:?}");
+        let mut n = 0;
+        circle_circle(Vec2::zeros(), 1.0, Vec2::new(3.0, 0.0), 1.0, |_| n += 1);
+        circle_circle(Vec2::zeros(), 1.0, Vec2::zeros(), 1.0, |_| n += 1);
+        circle_circle(Vec2::zeros(), 1.0, Vec2::new(0.2, 0.0), 0.5, |_| n += 1);
         assert_eq!(n, 0);
     }
 }

@@ -874,8 +874,20 @@ fn bisect(mut a: f64, mut b: f64, good: impl Fn(f64) -> bool) -> f64 {
 }
 
 /// Where a function that rises and then falls (or ends, −∞) takes its largest value on [a, b].
+///
+/// Where the function ends (an obstacle vanishing as two tips slip apart) its last values may
+/// flicker between finite and −∞ within rounding, as the contact roots graze: should the search
+/// close in on −∞ there, the best finite point it evaluated is returned instead.
 fn golden_max(mut a: f64, mut b: f64, f: impl Fn(f64) -> f64) -> f64 {
     const R: f64 = 0.618_033_988_749_894_8;
+    let best = std::cell::Cell::new((f64::NAN, f64::NEG_INFINITY));
+    let f = |x: f64| {
+        let y = f(x);
+        if y > best.get().1 {
+            best.set((x, y));
+        }
+        y
+    };
     let mut x1 = b - R * (b - a);
     let mut x2 = a + R * (b - a);
     let mut f1 = f(x1);
@@ -900,8 +912,13 @@ fn golden_max(mut a: f64, mut b: f64, f: impl Fn(f64) -> f64) -> f64 {
     }
     // The end points may be better than the interior (monotone on the bracket).
     let mid = 0.5 * (a + b);
-    [a, mid, b]
+    let (top, value) = [a, mid, b]
         .into_iter()
-        .max_by(|&p, &q| f(p).total_cmp(&f(q)))
-        .unwrap_or(mid)
+        .map(|p| (p, f(p)))
+        .max_by(|p, q| p.1.total_cmp(&q.1))
+        .unwrap_or((mid, f64::NEG_INFINITY));
+    match best.get() {
+        (x, y) if value == f64::NEG_INFINITY && y > value => x,
+        _ => top,
+    }
 }

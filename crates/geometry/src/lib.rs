@@ -7,7 +7,8 @@
 //! like a cam). All angles are radians. [`Gear::with_valleys`] places each valley explicitly
 //! instead (asymmetric teeth), anywhere strictly between its two tips, and [`Gear::with_radii`]
 //! gives each tip and each valley its own radius (a gear that is not round); `R` and `r` then
-//! remain the designed values.
+//! remain the designed values. [`Gear::with_flank_sagitta`] curves every flank into a circular
+//! arc through its two vertices (convex or concave teeth); see [`Flank`] and [`Arc`].
 
 use std::f64::consts::TAU;
 
@@ -58,6 +59,19 @@ pub struct Gear {
     /// Radius of each valley when they differ; empty: all `root_radius`.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     root_radii: Vec<f64>,
+    /// Signed sagitta of every flank (mm): 0 straight, > 0 convex, < 0 concave. Omitted from the
+    /// serialized form when 0, so straight-flanked gears serialize as before.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    flank_sagitta: f64,
+}
+
+/// Whether `x` is exactly 0 (serde: a straight-flanked gear omits its sagitta).
+#[expect(
+    clippy::trivially_copy_pass_by_ref,
+    reason = "serde's skip_serializing_if passes a reference"
+)]
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
 }
 
 fn too_many(teeth: usize) -> GeometryError {
@@ -167,6 +181,7 @@ impl Gear {
             rotation_centre,
             tip_radii: Vec::new(),
             root_radii: Vec::new(),
+            flank_sagitta: 0.0,
         })
     }
 
@@ -276,7 +291,146 @@ impl Gear {
         }
         self.tip_radii = tip_radii;
         self.root_radii = root_radii;
+        // Curved flanks were checked against the old vertices: check them again.
+        let s = self.flank_sagitta;
+        self.flank_sagitta = 0.0;
+        self.with_flank_sagitta(s)
+    }
+
+    /// This gear with every flank a circular arc through its two vertices, bulging by the signed
+    /// sagitta `s` (mm, the arc's greatest distance from its chord): `s > 0` convex (the arc bulges
+    /// out of the tooth), `s < 0` concave (hollowed into it), `s = 0` straight. Tips, valleys,
+    /// radii and rotation centre are kept.
+    ///
+    /// Rules, each checked on every flank with the angle `α = 2·atan(2|s|/c)` between a flank's
+    /// chord (of length c) and the arc's tangent at its ends:
+    /// - `s` finite, and `|s| <= c/4` on every flank, so every arc is well under a half circle
+    ///   (α ≤ 2·atan ½ ≈ 53°);
+    /// - concave: each arc stays inside its tooth's triangle (valley k−1, tip k, valley k), and
+    ///   the two flanks of a tooth meet only at the tip: at the tip the two α's together are less
+    ///   than the tooth's angle, and at each valley α is less than the triangle's angle there;
+    /// - convex: the two flanks bulging into the gap at valley k (of teeth k and k + 1) meet
+    ///   only at the valley: their two α's together are less than the gap's opening angle there.
+    ///
+    /// The arc between its chord and its tangents at both ends lies in the triangle those three
+    /// lines bound (a circular segment is convex), so these angle rules keep the outline simple.
+    pub fn with_flank_sagitta(mut self, s: f64) -> Result<Self, GeometryError> {
+        const FIELD: &str = "flank_sagitta";
+        check_finite(FIELD, s)?;
+        if s == 0.0 {
+            self.flank_sagitta = 0.0;
+            return Ok(self);
+        }
+        let n = self.teeth() as i64;
+        // The tangent-chord angle of flank (valley or tip) `a` -> `b`.
+        let alpha = |a: Vec2, b: Vec2| 2.0 * (2.0 * s.abs() / (b - a).norm()).atan();
+        // Unsigned angle at `at` between the directions to `p` and `q`.
+        let angle = |at: Vec2, p: Vec2, q: Vec2| {
+            let (u, w) = (p - at, q - at);
+            (u.x * w.y - u.y * w.x).abs().atan2(u.dot(&w))
+        };
+        let degrees = |x: f64| format!("{:.3}°", x.to_degrees());
+        for k in 0..n {
+            let (v0, t, v1) = (self.valley(k - 1), self.tip(k), self.valley(k));
+            for (f, (a, b)) in [(v0, t), (t, v1)].into_iter().enumerate() {
+                let c = (b - a).norm();
+                if s.abs() > 0.25 * c {
+                    return Err(GeometryError::new(
+                        FIELD,
+                        format!(
+                            "|s| must be at most a quarter of every flank's chord (tooth {k}, flank {f}: chord {c}, |s| = {})",
+                            s.abs()
+                        ),
+                    ));
+                }
+            }
+            let (a0, a1) = (alpha(v0, t), alpha(t, v1));
+            if s < 0.0 {
+                let at_tip = angle(t, v0, v1);
+                if a0 + a1 >= at_tip {
+                    return Err(GeometryError::new(
+                        FIELD,
+                        format!(
+                            "concave flanks of tooth {k} would cross each other: their tangent angles at the tip ({} + {}) must be less than the tooth's angle there ({})",
+                            degrees(a0),
+                            degrees(a1),
+                            degrees(at_tip)
+                        ),
+                    ));
+                }
+                for (f, a, at, other) in [(0, a0, v0, v1), (1, a1, v1, v0)] {
+                    let base = angle(at, t, other);
+                    if a >= base {
+                        return Err(GeometryError::new(
+                            FIELD,
+                            format!(
+                                "concave flank {f} of tooth {k} would cross the tooth's base: its tangent angle at the valley ({}) must be less than the tooth's base angle there ({})",
+                                degrees(a),
+                                degrees(base)
+                            ),
+                        ));
+                    }
+                }
+            } else {
+                let t_next = self.tip(k + 1);
+                let (u, w) = (t - v1, t_next - v1);
+                // The gap's opening: from the next tip clockwise round to this tip, outside the gear.
+                let gap = (w.x * u.y - w.y * u.x).atan2(w.dot(&u));
+                let gap = TAU - gap.rem_euclid(TAU);
+                let both = a1 + alpha(v1, t_next);
+                if both >= gap {
+                    return Err(GeometryError::new(
+                        FIELD,
+                        format!(
+                            "convex flanks at valley {k} would cross each other: their tangent angles there ({}) must be less than the gap's opening ({})",
+                            degrees(both),
+                            degrees(gap)
+                        ),
+                    ));
+                }
+            }
+        }
+        self.flank_sagitta = s;
         Ok(self)
+    }
+
+    /// Signed sagitta of every flank (mm): 0 for straight flanks (see
+    /// [`Gear::with_flank_sagitta`]).
+    pub fn flank_sagitta(&self) -> f64 {
+        self.flank_sagitta
+    }
+
+    /// Flank `f` (0: valley k−1 → tip k, 1: tip k → valley k) of tooth `k` (any integer), gear
+    /// frame, about the geometric centre; directed counter-clockwise round the gear, so the tooth
+    /// lies on its left.
+    pub fn flank(&self, k: i64, f: usize) -> Flank {
+        let [v0, t, v1] = self.tooth(k);
+        let (a, b) = if f == 0 { (v0, t) } else { (t, v1) };
+        if self.flank_sagitta == 0.0 {
+            Flank::Segment { start: a, end: b }
+        } else {
+            Flank::Arc(Arc::through(a, b, self.flank_sagitta))
+        }
+    }
+
+    /// Points along the closed outline for drawing, gear frame: the vertices as in
+    /// [`Gear::outline`], with `per_flank − 1` points added inside every curved flank (none for
+    /// straight flanks). Only for pictures: the contact solver never samples an outline, it
+    /// solves contacts with the arcs themselves.
+    pub fn drawn_outline(&self, per_flank: usize) -> Vec<Vec2> {
+        let mut out = Vec::new();
+        let inside = |flank: Flank, out: &mut Vec<Vec2>| {
+            if let Flank::Arc(arc) = flank {
+                out.extend((1..per_flank).map(|i| arc.point(i as f64 / per_flank as f64)));
+            }
+        };
+        for k in 0..self.teeth() as i64 {
+            out.push(self.tip(k));
+            inside(self.flank(k, 1), &mut out);
+            out.push(self.valley(k));
+            inside(self.flank(k + 1, 0), &mut out);
+        }
+        out
     }
 
     /// Number of teeth N.
@@ -399,6 +553,119 @@ impl Gear {
     fn wrap(&self, k: i64) -> (usize, i64) {
         let n = self.teeth() as i64;
         (k.rem_euclid(n) as usize, k.div_euclid(n))
+    }
+}
+
+/// One flank of a tooth: straight, or a circular arc (see [`Gear::with_flank_sagitta`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Flank {
+    /// A straight flank from `start` to `end`.
+    Segment {
+        /// First vertex (counter-clockwise round the gear).
+        start: Vec2,
+        /// Second vertex.
+        end: Vec2,
+    },
+    /// A circular-arc flank.
+    Arc(Arc),
+}
+
+/// A circular-arc flank: the arc, under a half circle, of the circle about `centre` of radius
+/// `radius` from `start` to `end`, on the side of its chord given by the sign of `sagitta`. The
+/// tooth lies on the left of `start → end`; a positive sagitta bulges to the right (out of the
+/// tooth, convex), a negative one to the left (into it, concave).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Arc {
+    /// First vertex (counter-clockwise round the gear).
+    pub start: Vec2,
+    /// Second vertex.
+    pub end: Vec2,
+    /// Centre of the arc's circle.
+    pub centre: Vec2,
+    /// Radius of the arc's circle, `(c²/4 + s²) / (2|s|)` for chord c and sagitta s.
+    pub radius: f64,
+    /// Signed greatest distance of the arc from its chord: > 0 convex, < 0 concave; never 0.
+    pub sagitta: f64,
+}
+
+impl Arc {
+    /// The arc from `start` to `end` with signed sagitta `sagitta` (non-zero, |s| at most half the
+    /// chord for an arc no more than a half circle).
+    pub fn through(start: Vec2, end: Vec2, sagitta: f64) -> Self {
+        let d = end - start;
+        let c2 = d.norm_squared();
+        // Unit normal to the right of start → end: out of the tooth.
+        let out = Vec2::new(d.y, -d.x) / c2.sqrt();
+        let mid = 0.5 * (start + end);
+        // The centre lies on the chord's perpendicular bisector, (c²/4 − s²)/(2s) from the
+        // chord on the side away from the bulge (both signs of s).
+        let centre = mid - out * ((0.25 * c2 - sagitta * sagitta) / (2.0 * sagitta));
+        let radius = (0.25 * c2 + sagitta * sagitta) / (2.0 * sagitta.abs());
+        Self {
+            start,
+            end,
+            centre,
+            radius,
+            sagitta,
+        }
+    }
+
+    /// Whether the arc bulges out of its tooth.
+    pub fn is_convex(&self) -> bool {
+        self.sagitta > 0.0
+    }
+
+    /// Angle (radians) of `start` seen from the centre, and the signed angle swept from there
+    /// to `end`: counter-clockwise (positive) for a convex arc, clockwise for a concave one;
+    /// its magnitude is `4·atan(2|s|/c)`, under π.
+    pub fn angular_extent(&self) -> (f64, f64) {
+        let r = self.start - self.centre;
+        let half = 2.0 * (2.0 * self.sagitta.abs() / (self.end - self.start).norm()).atan();
+        (r.y.atan2(r.x), 2.0 * half * self.sagitta.signum())
+    }
+
+    /// The point a fraction `t` (0 at `start`, 1 at `end`) of the way along the arc.
+    pub fn point(&self, t: f64) -> Vec2 {
+        let (a, sweep) = self.angular_extent();
+        self.centre + polar(self.radius, a + t * sweep)
+    }
+
+    /// Whether `x`, a point of the arc's circle, lies on the arc: its foot on the chord falls
+    /// within the chord (with `slack`, a length, for points just past the ends, lost to
+    /// rounding), and it is not on the far side of the chord (the circle's other points with
+    /// such a foot lie at least 3c/4 beyond it, as |s| ≤ c/4; the test allows c/4, so that it
+    /// holds however small the sagitta).
+    pub fn holds(&self, x: Vec2, slack: f64) -> bool {
+        let d = self.end - self.start;
+        let r = x - self.start;
+        let len = d.norm();
+        let along = r.dot(&d) / len;
+        if along < -slack || along > len + slack {
+            return false;
+        }
+        // cross(d, r) < 0: right of the chord, the convex side.
+        let beyond = -(d.x * r.y - d.y * r.x) * self.sagitta.signum() / len;
+        beyond >= -0.25 * len
+    }
+
+    /// The distances from `p` of the arc's nearest and farthest points (exact: along a circle
+    /// the distance from `p` has one minimum and one maximum, on the line through `p` and the
+    /// centre; where the arc misses one of them, that extreme is at an end).
+    pub fn distance_range(&self, p: Vec2) -> (f64, f64) {
+        let (ds, de) = ((self.start - p).norm(), (self.end - p).norm());
+        let (mut near, mut far) = (ds.min(de), ds.max(de));
+        let to_centre = self.centre - p;
+        let dist = to_centre.norm();
+        if dist > 0.0 {
+            let u = to_centre / dist;
+            if self.holds(self.centre + u * self.radius, 0.0) {
+                far = far.max(dist + self.radius);
+            }
+            if self.holds(self.centre - u * self.radius, 0.0) {
+                near = near.min((dist - self.radius).abs());
+            }
+        }
+        (near, far)
     }
 }
 
@@ -561,6 +828,110 @@ mod tests {
                 .field,
             "teeth"
         );
+    }
+
+    #[test]
+    fn arc_through_two_points_has_the_stated_sagitta() {
+        let (a, b) = (Vec2::new(0.0, 0.0), Vec2::new(4.0, 0.0));
+        for s in [0.5, -0.5, 1e-9, -1.0] {
+            let arc = Arc::through(a, b, s);
+            assert!(((arc.start - arc.centre).norm() - arc.radius).abs() < 1e-9 * arc.radius);
+            assert!(((arc.end - arc.centre).norm() - arc.radius).abs() < 1e-9 * arc.radius);
+            // The tooth is on the left of a -> b (y > 0): convex bulges to y < 0.
+            let mid = arc.point(0.5);
+            assert!(
+                (mid - Vec2::new(2.0, -s)).norm() < 1e-9 * arc.radius.max(1.0),
+                "{s}: {mid}"
+            );
+            assert!(arc.holds(mid, 0.0));
+            // The circle's point opposite the arc's middle, and one past an end.
+            assert!(!arc.holds(2.0 * arc.centre - mid, 0.0));
+            let past = arc.centre + rotate(arc.start - arc.centre, -0.01 * arc.angular_extent().1);
+            assert!(!arc.holds(past, 0.0), "{s}");
+            assert_eq!(arc.is_convex(), s > 0.0);
+        }
+        // Chord 4, sagitta 1: radius (4 + 1)/2 = 2.5, centre 1.5 above the chord.
+        let arc = Arc::through(a, b, 1.0);
+        assert!((arc.radius - 2.5).abs() < 1e-15);
+        assert!((arc.centre - Vec2::new(2.0, 1.5)).norm() < 1e-15);
+        let (start, sweep) = arc.angular_extent();
+        assert!((start - (-1.5f64).atan2(-2.0)).abs() < 1e-15);
+        assert!((sweep - 2.0 * (0.8f64).asin()).abs() < 1e-12, "{sweep}");
+        // Nearest and farthest points from the centre of the chord's far side.
+        let (near, far) = arc.distance_range(Vec2::new(2.0, 10.0));
+        assert!((near - 10.0f64.hypot(2.0)).abs() < 1e-12, "{near}");
+        assert!((far - 11.0).abs() < 1e-12, "{far}");
+    }
+
+    #[test]
+    fn flank_sagitta_is_kept_checked_and_optional_in_serde() {
+        let g = Gear::new(
+            10.0,
+            8.0,
+            vec![0.0, 1.0, 2.0, 3.0, 4.0, 5.0],
+            Vec2::new(0.3, 0.0),
+        )
+        .unwrap();
+        assert_eq!(g.flank_sagitta(), 0.0);
+        assert!(matches!(g.flank(2, 1), Flank::Segment { .. }));
+        assert_eq!(g.drawn_outline(8), g.outline());
+        let json = serde_json::to_string(&g).unwrap();
+        assert!(!json.contains("sagitta"), "{json}");
+        let c = g.clone().with_flank_sagitta(0.1).unwrap();
+        assert_eq!(c.tip_angles(), g.tip_angles());
+        assert_eq!(c.rotation_centre(), g.rotation_centre());
+        assert_eq!(c.outline(), g.outline());
+        let Flank::Arc(arc) = c.flank(2, 1) else {
+            panic!("a curved flank")
+        };
+        assert_eq!((arc.start, arc.end), (c.tip(2), c.valley(2)));
+        assert_eq!(c.drawn_outline(8).len(), 6 * 2 * 8);
+        assert_eq!(c.drawn_outline(8)[8], c.valley(0));
+        let back: Gear = serde_json::from_str(&serde_json::to_string(&c).unwrap()).unwrap();
+        assert_eq!(back, c);
+        assert_eq!(c.clone().with_flank_sagitta(0.0).unwrap(), g);
+        // Per-tooth radii keep the sagitta, and check it again.
+        let r = c.clone().with_radii(vec![10.0; 6], vec![7.5; 6]).unwrap();
+        assert_eq!(r.flank_sagitta(), 0.1);
+        let e = g.clone().with_flank_sagitta(f64::NAN).unwrap_err();
+        assert_eq!(
+            (e.field.as_str(), e.rule.as_str()),
+            ("flank_sagitta", "must be a finite number")
+        );
+        let e = g.clone().with_flank_sagitta(2.0).unwrap_err();
+        assert_eq!(e.field, "flank_sagitta");
+        assert!(e.rule.contains("quarter of every flank's chord"), "{e}");
+    }
+
+    #[test]
+    fn sagitta_rules_name_what_would_cross() {
+        // Slender teeth: 8 teeth, R = 200, r = 100. The tip angle is about 39°, the valley gap
+        // about 84° and the base angles about 70°.
+        let g = Gear::ideal(8, 200.0, 100.0).unwrap();
+        let chord = (g.tip(0) - g.valley(0)).norm();
+        let at_tip = {
+            let (u, w) = (g.valley(-1) - g.tip(0), g.valley(0) - g.tip(0));
+            (u.dot(&w) / (u.norm() * w.norm())).acos()
+        };
+        // Concave: the tip angle is the binding rule: 2·2·atan(2|s|/c) < tip angle.
+        let limit = 0.5 * chord * (0.25 * at_tip).tan();
+        assert!(g.clone().with_flank_sagitta(-0.99 * limit).is_ok());
+        let e = g.clone().with_flank_sagitta(-1.01 * limit).unwrap_err();
+        assert!(
+            e.rule.contains("concave flanks of tooth 0 would cross"),
+            "{e}"
+        );
+        // Convex: the gap is the binding rule, 2·2·atan(2s/c) < 84°.
+        assert!(g.clone().with_flank_sagitta(0.15 * chord).is_ok());
+        let e = g.clone().with_flank_sagitta(0.25 * chord).unwrap_err();
+        assert!(
+            e.rule.contains("convex flanks at valley 0 would cross"),
+            "{e}"
+        );
+        // A low, wide tooth (3 teeth, R = 10, r = 9.5): base angles of 32.5°, chords of 9.76.
+        let flat = Gear::ideal(3, 10.0, 9.5).unwrap();
+        let e = flat.with_flank_sagitta(-2.0).unwrap_err();
+        assert!(e.rule.contains("cross the tooth's base"), "{e}");
     }
 
     #[test]

@@ -91,7 +91,8 @@ pub struct ParamSpec {
 /// [`geometry::Gear::new`] places them) and the rotation centre moved off the geometric centre
 /// (build the result with [`manufacture`], which checks it); a plugin may change other things
 /// too (radii in `ratio-mismatch`, valley angles via [`geometry::Gear::with_valleys`] in
-/// `asymmetric-teeth`, per-tooth radii via [`geometry::Gear::with_radii`] in `non-circular`). Built-ins, one file each in
+/// `asymmetric-teeth`, per-tooth radii via [`geometry::Gear::with_radii`] in `non-circular`,
+/// arc flanks via [`geometry::Gear::with_flank_sagitta`] in `curved-flanks`). Built-ins, one file each in
 /// `src/builtin/`: `ideal`, `edmunds-split` (the paper's model, section 4), `eccentric-only`,
 /// `sinusoid-only` and `measured` (per-gear values from a RON table; the registered one uses an
 /// embedded table of invented example values).

@@ -20,7 +20,12 @@ fn sets(pairs: &[(&str, &str)]) -> Vec<(String, String)> {
 }
 
 /// Files in `crates/hypotheses/src/plugins/`, found by `build.rs` with no `mod` line anywhere.
-const PLUGINS: [&str; 3] = ["asymmetric-teeth", "non-circular", "ratio-mismatch"];
+const PLUGINS: [&str; 4] = [
+    "asymmetric-teeth",
+    "curved-flanks",
+    "non-circular",
+    "ratio-mismatch",
+];
 
 #[test]
 fn built_ins_are_registered_and_sorted() {
