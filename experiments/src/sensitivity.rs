@@ -1,7 +1,7 @@
 //! `sensitivity`: how the headline numbers move when one of the paper's assumptions is changed:
 //! the share of Case B mechanisms jamming within a year, the day of the first jam and the Lunar
-//! pointer's σ, for each assumption of section 6 that a plugin relaxes, the tooth height and the
-//! Freeth 2021 radii.
+//! pointer's σ, for each assumption of section 6 that a plugin relaxes ((1), (2), (3), (5)), the
+//! tooth height and the Freeth 2021 radii.
 //!
 //! Every row is the `failure` study of Case B (its runs, horizon and clearance), with one thing
 //! changed. A shape hypothesis is applied to each gear after Edmunds' errors (the tips are
@@ -108,6 +108,18 @@ const VARIANTS: &[Variant] = &[
         "non-circular: radial error 0.05 mm and a 0.05 mm lobe",
         "non-circular",
         &[("radial_error", 0.05), ("lobe", 0.05)],
+    ),
+    with_plugin(
+        "(2) straight flanks",
+        "curved flanks: convex, sagitta 0.05 mm",
+        "curved-flanks",
+        &[("sagitta", 0.05), ("sagitta_spread", 0.0)],
+    ),
+    with_plugin(
+        "(2) straight flanks",
+        "curved flanks: concave, sagitta 0.05 mm",
+        "curved-flanks",
+        &[("sagitta", -0.05), ("sagitta_spread", 0.0)],
     ),
     with_plugin(
         "(3) symmetric teeth",

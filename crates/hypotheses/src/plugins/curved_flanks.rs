@@ -1,13 +1,6 @@
 //! `curved-flanks`: tooth flanks that are circular arcs instead of straight lines (the paper
 //! assumes straight flanks, assumption (2)).
-//!
-//! Every flank of a gear becomes the arc through its two vertices with one signed sagitta `s`
-//! (mm, the arc's greatest distance from the chord): `s > 0` bulges out of the tooth (convex,
-//! as a file rounds a tooth), `s < 0` hollows it (concave). Each gear gets
-//! `s = sagitta + sagitta_spread · z`, z a standard normal draw per gear (none is drawn when the
-//! spread is 0). Tips, valleys, radii and rotation centre are kept, so the hypothesis composes
-//! after the others (e.g. `edmunds-split`, then `curved-flanks`). A sagitta too large for a
-//! gear's teeth (see [`geometry::Gear::with_flank_sagitta`]) is an error naming the gear.
+//! The model in words is [`DETAILS`] (what `cargo xtask help` prints).
 
 use geometry::Gear;
 use rand_distr::{Distribution, StandardNormal};
@@ -16,6 +9,9 @@ use crate::{Hypothesis, HypothesisError, ParamSpec, Params, Registration};
 
 /// The hypothesis.
 struct CurvedFlanks;
+
+/// The model in words, printed by `cargo xtask help`.
+const DETAILS: &str = "Every flank of a gear becomes the arc through its two vertices with one signed sagitta `s` (mm, the arc's greatest distance from the chord): `s > 0` bulges out of the tooth (convex, as a file rounds a tooth), `s < 0` hollows it (concave). Each gear gets `s = sagitta + sagitta_spread · z`, z a standard normal draw per gear (none is drawn when the spread is 0). Tips, valleys, radii and rotation centre are kept, so the hypothesis composes after the others (e.g. `edmunds-split`, then `curved-flanks`). A sagitta too large for a gear's teeth (see geometry::Gear::with_flank_sagitta) is an error naming the gear.";
 
 const SAGITTA: ParamSpec = ParamSpec {
     name: "sagitta",
@@ -38,6 +34,10 @@ impl Hypothesis for CurvedFlanks {
 
     fn summary(&self) -> &'static str {
         "every flank a circular arc of a signed sagitta, convex or concave, instead of a straight line (assumption 2); vertices unchanged"
+    }
+
+    fn details(&self) -> &'static str {
+        DETAILS
     }
 
     fn params(&self) -> &'static [ParamSpec] {
