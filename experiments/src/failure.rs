@@ -29,25 +29,34 @@ use crate::errors;
 use crate::gearing;
 use crate::table2::CASES;
 
+/// The `days` parameter: the horizon of each whole-mechanism run.
+pub(crate) const DAYS: Param = Param {
+    name: "days",
+    default: "365.25",
+    unit: "days of b",
+    help: "horizon of each run (365.25 d per turn of b); at least one year",
+};
+
+/// The `cases` parameter: which of Edmunds' cases to run.
+pub(crate) const CASES_PARAM: Param = Param {
+    name: "cases",
+    default: "A,B,C,D",
+    unit: "",
+    help: "Edmunds' cases to run, comma-separated (empty: none)",
+};
+
+/// Whole-mechanism runs per input at the defaults (the paper: 30).
+pub(crate) const RUNS_DEFAULT: &str = "30";
+
 const PARAMS: &[Param] = &[
     Param {
         name: "trials",
-        default: "30",
+        default: RUNS_DEFAULT,
         unit: "",
         help: "whole-mechanism runs per input (the paper: 30)",
     },
-    Param {
-        name: "days",
-        default: "365.25",
-        unit: "days of b",
-        help: "horizon of each run (365.25 d per turn of b); at least one year",
-    },
-    Param {
-        name: "cases",
-        default: "A,B,C,D",
-        unit: "",
-        help: "Edmunds' cases to run, comma-separated (empty: none)",
-    },
+    DAYS,
+    CASES_PARAM,
     Param {
         name: "measured",
         default: "",
@@ -74,7 +83,7 @@ registry::inventory::submit! {
 }
 
 /// The trains the paper reports: (name, the pointers whose meshes make it up).
-const TRAINS: [(&str, &[&str]); 3] = [
+pub(crate) const TRAINS: [(&str, &[&str]); 3] = [
     ("Lunar", &["Lunar"]),
     ("Metonic/Games", &["Metonic", "Games"]),
     ("Saros/Exeligmos", &["Saros", "Exeligmos"]),
@@ -89,18 +98,47 @@ const MEASURED_INDEX: u64 = CASES.len() as u64;
 /// Points of b at which the survival table is read: degrees of the solar (b) pointer.
 const READ_AT_DEG: [f64; 5] = [30.0, 60.0, 120.0, 180.0, 360.0];
 
-/// One set of error inputs: a case or the measured table.
-struct Input<'a> {
+/// The clearance of each mesh of a whole mechanism.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Clearances {
+    /// One clearance (% of h) for every mesh, as in the paper.
+    Uniform(f64),
+    /// A clearance per mesh label; meshes not listed get `default`.
+    PerMesh {
+        /// Clearance of the meshes not in `meshes` (% of h).
+        default: f64,
+        /// Clearance by mesh label (% of h).
+        meshes: BTreeMap<String, f64>,
+    },
+}
+
+impl Clearances {
+    /// The clearance of mesh `label` (% of h).
+    pub(crate) fn of(&self, label: &str) -> f64 {
+        match self {
+            Clearances::Uniform(g) => *g,
+            Clearances::PerMesh { default, meshes } => {
+                meshes.get(label).copied().unwrap_or(*default)
+            }
+        }
+    }
+}
+
+/// One set of error inputs: a case or the measured table, at its clearances.
+pub(crate) struct Input<'a> {
     /// "A".."D" or "measured".
-    label: String,
+    pub(crate) label: String,
     /// Legend text.
-    legend: String,
-    /// Index selecting its RNG streams.
-    index: u64,
+    pub(crate) legend: String,
+    /// Index selecting its RNG streams: inputs with the same index run the same gears and
+    /// initial angles (only the clearances may differ).
+    pub(crate) index: u64,
     /// Where its hypothesis came from, for errors: `--hypothesis` or `--set measured`.
     source: &'static str,
     hypothesis: &'a dyn Hypothesis,
     params: Params,
+    /// The clearance of each mesh.
+    pub(crate) clearances: Clearances,
 }
 
 /// The first jam of a train within the horizon.
@@ -113,11 +151,11 @@ struct Jam {
 /// One whole-mechanism run. The default (a run of another shard, see `Context::trials`) has
 /// no trains: it reads as a run that never jammed.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
-struct Outcome {
+pub(crate) struct Outcome {
     /// First jam per train of `TRAINS` (None: none within the horizon).
     trains: Vec<Option<Jam>>,
     /// Driver turns times driver teeth, summed over every simulated mesh.
-    engagements: f64,
+    pub(crate) engagements: f64,
     /// The gears could not be placed (bodies overlapping at every angle): the mesh and rule.
     unplaceable: Option<String>,
 }
@@ -138,61 +176,17 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     if trials == 0 {
         return Err(RunError::bad("--set", "trials", "must be at least 1"));
     }
-    let days = ctx.f64("days")?;
-    if !(DAYS_PER_YEAR..=100.0 * DAYS_PER_YEAR).contains(&days) {
-        return Err(RunError::bad(
-            "--set",
-            "days",
-            format!(
-                "must be between {DAYS_PER_YEAR} (one year of b: jams are counted within a year) and {} (got {days})",
-                100.0 * DAYS_PER_YEAR
-            ),
-        ));
-    }
-    let (h, clearance, split) = (
-        ctx.f64("tooth_height")?,
-        ctx.f64("clearance")?,
-        ctx.f64("split")?,
-    );
-    // Ideal gears must fit: a clearance or tooth height that breaks every mesh is bad input.
-    Mechanism::ideal(&g, h, clearance)
-        .map_err(|e| RunError::bad("gearing", format!("mesh {}", e.mesh), e.rule))?;
-    for (_, pointers) in TRAINS {
-        for p in pointers {
-            if g.pointer(p).is_none() || g.pointer_ratio(p).is_none() {
-                return Err(RunError::bad(
-                    "gearing",
-                    format!("pointer {p}"),
-                    "is missing from the gearing (the failure study runs every train)",
-                ));
-            }
-        }
-    }
+    let days = days(ctx)?;
+    let (h, clearance) = (ctx.f64("tooth_height")?, ctx.f64("clearance")?);
+    // Read here, before the gearing's checks, as each case reads it again.
+    ctx.f64("split")?;
+    check_study(&g, h, &Clearances::Uniform(clearance))?;
 
     let hyp = errors::chosen(ctx)?;
     let measured = measured_table(ctx.param("measured")?)?;
     let mut inputs: Vec<Input<'_>> = Vec::new();
-    let wanted = parse_cases(ctx.param("cases")?)?;
-    for (ci, &(case, systematic, random)) in CASES.iter().enumerate() {
-        if !wanted.contains(&ci) {
-            continue;
-        }
-        inputs.push(Input {
-            label: case.to_string(),
-            legend: format!("Case {case} (systematic {systematic} deg, random {random})"),
-            index: ci as u64,
-            source: "--hypothesis",
-            hypothesis: hyp,
-            params: errors::params(
-                ctx,
-                hyp,
-                &[
-                    ("random", random),
-                    ("systematic", systematic),
-                    ("split", split),
-                ],
-            )?,
-        });
+    for ci in parse_cases(ctx.param("cases")?)? {
+        inputs.push(case_input(ctx, hyp, ci, Clearances::Uniform(clearance))?);
     }
     if let Some((file, m)) = &measured {
         inputs.push(Input {
@@ -203,6 +197,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             hypothesis: m,
             params: Params::new(m, &[])
                 .map_err(|e| RunError::bad("--set measured", e.what, e.rule))?,
+            clearances: Clearances::Uniform(clearance),
         });
     }
     if inputs.is_empty() {
@@ -213,21 +208,14 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         ));
     }
 
-    let horizon = days / DAYS_PER_YEAR * TAU;
-    let seed = ctx.seed();
-    let jobs: Vec<(usize, u64)> = (0..inputs.len())
-        .flat_map(|i| (0..trials).map(move |t| (i, t)))
-        .collect();
-    // One batch of every (input, trial) run, flattened so that all of them share the pool.
-    let outcomes: Vec<Outcome> = ctx.trials(
+    let outcomes = run_study(
+        ctx,
+        &g,
+        &inputs,
+        trials,
+        h,
+        days,
         &batch_key(ctx, &inputs, trials, h, clearance, days)?,
-        jobs.len() as u64,
-        |j| {
-            let &(i, t) = jobs
-                .get(j as usize)
-                .ok_or_else(|| RunError::Internal(format!("run {j} of {}", jobs.len())))?;
-            one_run(&g, &inputs[i], h, clearance, seed, t, horizon)
-        },
     )?;
     let per_input: Vec<&[Outcome]> = outcomes.chunks(trials as usize).collect();
 
@@ -273,8 +261,106 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     Ok(report)
 }
 
-/// The key of the batch of runs: everything that determines them.
-fn batch_key(
+/// The `days` parameter, checked: at least one year (jams are counted within a year), at most
+/// 100 years.
+pub(crate) fn days(ctx: &Context) -> Result<f64, RunError> {
+    let days = ctx.f64(DAYS.name)?;
+    if !(DAYS_PER_YEAR..=100.0 * DAYS_PER_YEAR).contains(&days) {
+        return Err(RunError::bad(
+            "--set",
+            DAYS.name,
+            format!(
+                "must be between {DAYS_PER_YEAR} (one year of b: jams are counted within a year) and {} (got {days})",
+                100.0 * DAYS_PER_YEAR
+            ),
+        ));
+    }
+    Ok(days)
+}
+
+/// Checks that the study can run on `g`: ideal gears fit at `clearances` and tooth height `h` (a
+/// clearance or tooth height that breaks a mesh is bad input), and every train's pointers are in
+/// the gearing.
+pub(crate) fn check_study(
+    g: &train::Gearing,
+    h: f64,
+    clearances: &Clearances,
+) -> Result<(), RunError> {
+    Mechanism::build_with_clearances(g, h, |m| clearances.of(m), |_name, gear| Ok(gear))
+        .map_err(|e| RunError::bad("gearing", format!("mesh {}", e.mesh), e.rule))?;
+    for (_, pointers) in TRAINS {
+        for p in pointers {
+            if g.pointer(p).is_none() || g.pointer_ratio(p).is_none() {
+                return Err(RunError::bad(
+                    "gearing",
+                    format!("pointer {p}"),
+                    "is missing from the gearing (the failure study runs every train)",
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Case `CASES[ci]` under hypothesis `hyp` (its random and systematic errors, the `split`
+/// parameter) at `clearances`; its RNG streams are selected by `ci`.
+pub(crate) fn case_input<'a>(
+    ctx: &Context,
+    hyp: &'a dyn Hypothesis,
+    ci: usize,
+    clearances: Clearances,
+) -> Result<Input<'a>, RunError> {
+    let (case, systematic, random) = CASES[ci];
+    let split = ctx.f64("split")?;
+    Ok(Input {
+        label: case.to_string(),
+        legend: format!("Case {case} (systematic {systematic} deg, random {random})"),
+        index: ci as u64,
+        source: "--hypothesis",
+        hypothesis: hyp,
+        params: errors::params(
+            ctx,
+            hyp,
+            &[
+                ("random", random),
+                ("systematic", systematic),
+                ("split", split),
+            ],
+        )?,
+        clearances,
+    })
+}
+
+/// Runs `trials` whole mechanisms of every input over `days` of b, all in one batch named
+/// `batch` of [`Context::trials`] (flattened so that every run shares the pool), and returns
+/// the outcomes input by input, each input's in trial order. Run `t` of an input draws from
+/// `trial_rng(seed, (input.index << 32) | t)`: the gears' errors, then the meshes' initial
+/// angles, whatever the clearances.
+pub(crate) fn run_study(
+    ctx: &Context,
+    g: &train::Gearing,
+    inputs: &[Input<'_>],
+    trials: u64,
+    h: f64,
+    days: f64,
+    batch: &str,
+) -> Result<Vec<Outcome>, RunError> {
+    let horizon = days / DAYS_PER_YEAR * TAU;
+    let seed = ctx.seed();
+    let jobs: Vec<(usize, u64)> = (0..inputs.len())
+        .flat_map(|i| (0..trials).map(move |t| (i, t)))
+        .collect();
+    ctx.trials(batch, jobs.len() as u64, |j| {
+        let &(i, t) = jobs
+            .get(j as usize)
+            .ok_or_else(|| RunError::Internal(format!("run {j} of {}", jobs.len())))?;
+        one_run(g, &inputs[i], h, seed, t, horizon)
+    })
+}
+
+/// The key of the batch of runs: everything that determines them. An input with its own
+/// clearances (not `clearance` for every mesh) lists them.
+pub(crate) fn batch_key(
     ctx: &Context,
     inputs: &[Input<'_>],
     trials: u64,
@@ -286,8 +372,16 @@ fn batch_key(
         .iter()
         .map(|inp| {
             let p: Vec<String> = inp.params.iter().map(|(k, v)| format!("{k}={v}")).collect();
+            let own = match &inp.clearances {
+                Clearances::Uniform(g) if *g == clearance => String::new(),
+                Clearances::Uniform(g) => format!(" G = {g} %"),
+                Clearances::PerMesh { default, meshes } => {
+                    let m: Vec<String> = meshes.iter().map(|(k, v)| format!("{k}={v}")).collect();
+                    format!(" G = {default} % except {}", m.join(","))
+                }
+            };
             format!(
-                "{} [{}] stream {} {}({})",
+                "{} [{}] stream {} {}({}){own}",
                 inp.label,
                 inp.legend,
                 inp.index,
@@ -304,7 +398,7 @@ fn batch_key(
 }
 
 /// Indices into `CASES` of a comma-separated list of case names.
-fn parse_cases(text: &str) -> Result<Vec<usize>, RunError> {
+pub(crate) fn parse_cases(text: &str) -> Result<Vec<usize>, RunError> {
     let mut out = Vec::new();
     for name in text.split(',').map(str::trim).filter(|s| !s.is_empty()) {
         let Some(i) = CASES.iter().position(|c| c.0.eq_ignore_ascii_case(name)) else {
@@ -335,7 +429,7 @@ fn measured_table(file: &str) -> Result<Option<(String, MeasuredHypothesis)>, Ru
 }
 
 /// Train names, then the mechanism row.
-fn train_names() -> impl Iterator<Item = &'static str> {
+pub(crate) fn train_names() -> impl Iterator<Item = &'static str> {
     TRAINS.iter().map(|t| t.0).chain(std::iter::once(MECHANISM))
 }
 
@@ -353,12 +447,11 @@ fn file_stem(train: &str) -> String {
     first.to_lowercase().replace('/', "-")
 }
 
-/// One whole-mechanism run: trial `t` of `input`.
+/// One whole-mechanism run: trial `t` of `input`, at the input's clearances.
 fn one_run(
     g: &train::Gearing,
     input: &Input<'_>,
     h: f64,
-    clearance: f64,
     seed: u64,
     t: u64,
     horizon: f64,
@@ -366,16 +459,22 @@ fn one_run(
     // One stream per (input, trial): every gear's errors, then every mesh's initial angle.
     let mut rng = trial_rng(seed, (input.index << 32) | t);
     let mut failure = None;
-    let mech = Mechanism::build(g, h, clearance, |name, gear| {
-        input
-            .hypothesis
-            .apply(&gear, name, &input.params, &mut rng)
-            .map_err(|e| {
-                let text = e.to_string();
-                failure = Some(RunError::bad(input.source, e.what, e.rule));
-                text
-            })
-    });
+    let clearances = &input.clearances;
+    let mech = Mechanism::build_with_clearances(
+        g,
+        h,
+        |m| clearances.of(m),
+        |name, gear| {
+            input
+                .hypothesis
+                .apply(&gear, name, &input.params, &mut rng)
+                .map_err(|e| {
+                    let text = e.to_string();
+                    failure = Some(RunError::bad(input.source, e.what, e.rule));
+                    text
+                })
+        },
+    );
     let mech = match (mech, failure) {
         (_, Some(e)) => return Err(e),
         // The ideal gears fit (checked before), so the errors moved the bodies into each other:
@@ -468,17 +567,17 @@ fn one_run(
 }
 
 /// What is reported of one train (or the mechanism) under one input.
-struct Summary {
+pub(crate) struct Summary {
     /// Runs jammed within a year, with the 95 % Clopper-Pearson interval.
-    year: Proportion,
+    pub(crate) year: Proportion,
     /// Days of the first jam of the runs that jammed within the horizon, in trial order.
-    days: Vec<f64>,
+    pub(crate) days: Vec<f64>,
     /// Meshes that jammed first, with their counts, most frequent first.
-    meshes: Vec<(String, usize)>,
+    pub(crate) meshes: Vec<(String, usize)>,
 }
 
 /// Per train, then the mechanism.
-fn summarise(runs: &[Outcome], horizon_days: f64) -> Vec<Summary> {
+pub(crate) fn summarise(runs: &[Outcome], horizon_days: f64) -> Vec<Summary> {
     (0..=TRAINS.len())
         .map(|ti| {
             let jams: Vec<&Jam> = runs
@@ -505,7 +604,8 @@ fn summarise(runs: &[Outcome], horizon_days: f64) -> Vec<Summary> {
         .collect()
 }
 
-fn median(values: &[f64]) -> Option<f64> {
+/// The median of `values` (`None` for none).
+pub(crate) fn median(values: &[f64]) -> Option<f64> {
     let mut v = values.to_vec();
     v.sort_by(f64::total_cmp);
     let n = v.len();
@@ -526,7 +626,7 @@ fn mean_days(days: &[f64], horizon: f64) -> stats::Estimate {
 }
 
 /// "mean [lo .. hi]" of days (no interval for one value, "-" for none).
-fn mean_cell(days: &[f64], horizon: f64) -> String {
+pub(crate) fn mean_cell(days: &[f64], horizon: f64) -> String {
     let e = mean_days(days, horizon);
     match days.len() {
         0 => "-".into(),
@@ -540,7 +640,8 @@ fn mean_cell(days: &[f64], horizon: f64) -> String {
     }
 }
 
-fn percent_cell(p: &Proportion) -> String {
+/// "rate [lo .. hi]" of a proportion, in whole percent.
+pub(crate) fn percent_cell(p: &Proportion) -> String {
     format!(
         "{} [{} .. {}]",
         fmt_f64(100.0 * p.rate(), 0),
