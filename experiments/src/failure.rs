@@ -143,8 +143,10 @@ pub(crate) struct Input<'a> {
 
 /// The first jam of a train within the horizon.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
-struct Jam {
-    day: f64,
+pub(crate) struct Jam {
+    /// Day of the b arbor.
+    pub(crate) day: f64,
+    /// The mesh that jammed.
     mesh: String,
 }
 
@@ -434,7 +436,7 @@ pub(crate) fn train_names() -> impl Iterator<Item = &'static str> {
 }
 
 /// The jam of train `ti` (`TRAINS.len()`: the mechanism).
-fn jam_of(o: &Outcome, ti: usize) -> Option<&Jam> {
+pub(crate) fn jam_of(o: &Outcome, ti: usize) -> Option<&Jam> {
     if ti < TRAINS.len() {
         o.trains.get(ti).and_then(Option::as_ref)
     } else {
@@ -927,7 +929,7 @@ fn survival_plot(
 }
 
 /// Per run and train: the day of the first jam, or the horizon and "censored".
-fn runs_csv(inputs: &[Input<'_>], per_input: &[&[Outcome]], days: f64) -> String {
+pub(crate) fn runs_csv(inputs: &[Input<'_>], per_input: &[&[Outcome]], days: f64) -> String {
     let mut csv = String::from("input,trial,train,first_jam_day,status,mesh\n");
     for (inp, runs) in inputs.iter().zip(per_input) {
         for (t, o) in runs.iter().enumerate() {
