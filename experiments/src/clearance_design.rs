@@ -551,10 +551,21 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         }
     }
     let used: u64 = searches.iter().map(MeshSearch::trials).sum();
+    let years: Vec<f64> = meshes
+        .iter()
+        .filter_map(|m| years_per_pair_run(&g, m))
+        .collect();
+    let (shortest, longest) = (
+        years.iter().copied().fold(f64::INFINITY, f64::min),
+        years.iter().copied().fold(0.0, f64::max),
+    );
     table.note(format!(
-        "Each pair run: both gears manufactured afresh under the Case ({} hypothesis, split {}), a random initial angle, one full turn of the gear with more teeth (the run of Tables 3, 4 and I); failed: at least one jam or at least one disengagement. One such turn is from a few months to years of the mechanism (the years column: turns of b, through the first pointer train holding the mesh), so these rates are per pair run, not per year.",
+        "Each pair run: both gears manufactured afresh under the Case ({} hypothesis, split {}), a random initial angle, one full turn of the gear with more teeth (the run of Tables 3, 4 and I); failed: at least one jam or at least one disengagement. One such turn is {} to {} years of the mechanism, depending on the mesh (the years column: turns of b, through the first pointer train holding the mesh), so these rates are per pair run, not per year. A step of 5 % of h is {} mm of centre distance.",
         hyp.name(),
         ctx.f64("split")?,
+        fmt_f64(shortest, 2),
+        fmt_f64(longest, 0),
+        fmt_f64(0.05 * h, 3),
     ));
     if s.step > 0.0 {
         let lo = s.grid.first().copied().unwrap_or(s.reference);
