@@ -29,25 +29,34 @@ use crate::errors;
 use crate::gearing;
 use crate::table2::CASES;
 
+/// The `days` parameter: the horizon of each whole-mechanism run.
+pub(crate) const DAYS: Param = Param {
+    name: "days",
+    default: "365.25",
+    unit: "days of b",
+    help: "horizon of each run (365.25 d per turn of b); at least one year",
+};
+
+/// The `cases` parameter: which of Edmunds' cases to run.
+pub(crate) const CASES_PARAM: Param = Param {
+    name: "cases",
+    default: "A,B,C,D",
+    unit: "",
+    help: "Edmunds' cases to run, comma-separated (empty: none)",
+};
+
+/// Whole-mechanism runs per input at the defaults (the paper: 30).
+pub(crate) const RUNS_DEFAULT: &str = "30";
+
 const PARAMS: &[Param] = &[
     Param {
         name: "trials",
-        default: "30",
+        default: RUNS_DEFAULT,
         unit: "",
         help: "whole-mechanism runs per input (the paper: 30)",
     },
-    Param {
-        name: "days",
-        default: "365.25",
-        unit: "days of b",
-        help: "horizon of each run (365.25 d per turn of b); at least one year",
-    },
-    Param {
-        name: "cases",
-        default: "A,B,C,D",
-        unit: "",
-        help: "Edmunds' cases to run, comma-separated (empty: none)",
-    },
+    DAYS,
+    CASES_PARAM,
     Param {
         name: "measured",
         default: "",
@@ -89,23 +98,52 @@ const MEASURED_INDEX: u64 = CASES.len() as u64;
 /// Points of b at which the survival table is read: degrees of the solar (b) pointer.
 const READ_AT_DEG: [f64; 5] = [30.0, 60.0, 120.0, 180.0, 360.0];
 
-/// One set of error inputs: a case or the measured table.
+/// The clearance of each mesh of a whole mechanism.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Clearances {
+    /// One clearance (% of h) for every mesh, as in the paper.
+    Uniform(f64),
+    /// A clearance per mesh label; meshes not listed get `default`.
+    PerMesh {
+        /// Clearance of the meshes not in `meshes` (% of h).
+        default: f64,
+        /// Clearance by mesh label (% of h).
+        meshes: BTreeMap<String, f64>,
+    },
+}
+
+impl Clearances {
+    /// The clearance of mesh `label` (% of h).
+    pub(crate) fn of(&self, label: &str) -> f64 {
+        match self {
+            Clearances::Uniform(g) => *g,
+            Clearances::PerMesh { default, meshes } => {
+                meshes.get(label).copied().unwrap_or(*default)
+            }
+        }
+    }
+}
+
+/// One set of error inputs: a case or the measured table, at its clearances.
 pub(crate) struct Input<'a> {
     /// "A".."D" or "measured".
-    pub label: String,
+    pub(crate) label: String,
     /// Legend text.
-    pub legend: String,
-    /// Index selecting its RNG streams.
-    pub index: u64,
+    pub(crate) legend: String,
+    /// Index selecting its RNG streams: inputs with the same index run the same gears and
+    /// initial angles (only the clearances may differ).
+    pub(crate) index: u64,
     /// Where its hypothesis came from, for errors: `--hypothesis` or `--set measured`.
-    pub source: &'static str,
-    pub hypothesis: &'a dyn Hypothesis,
-    pub params: Params,
+    pub(crate) source: &'static str,
+    pub(crate) hypothesis: &'a dyn Hypothesis,
+    pub(crate) params: Params,
+    /// The clearance of each mesh.
+    pub(crate) clearances: Clearances,
     /// A second hypothesis applied to each gear after the first (a shape change on top of
     /// Edmunds' errors), drawing from its own stream ([`EXTRA_STREAM`]): the first one's draws
     /// and the initial angles stay those of the run without it, so the two runs differ by it
     /// alone.
-    pub extra: Option<(&'a dyn Hypothesis, Params)>,
+    pub(crate) extra: Option<(&'a dyn Hypothesis, Params)>,
 }
 
 /// Stream flag of an input's [`Input::extra`] hypothesis: trial t of input i draws its extra
@@ -115,8 +153,10 @@ pub(crate) const EXTRA_STREAM: u64 = 1 << 63;
 /// The first jam of a train within the horizon.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub(crate) struct Jam {
-    pub day: f64,
-    pub mesh: String,
+    /// Day of the b arbor.
+    pub(crate) day: f64,
+    /// The mesh that jammed.
+    pub(crate) mesh: String,
 }
 
 /// One whole-mechanism run. The default (a run of another shard, see `Context::trials`) has
@@ -124,15 +164,15 @@ pub(crate) struct Jam {
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub(crate) struct Outcome {
     /// First jam per train of `TRAINS` (None: none within the horizon).
-    pub trains: Vec<Option<Jam>>,
+    trains: Vec<Option<Jam>>,
     /// Driver turns times driver teeth, summed over every simulated mesh.
-    pub engagements: f64,
+    pub(crate) engagements: f64,
     /// The gears could not be placed (bodies overlapping at every angle): the mesh and rule.
-    pub unplaceable: Option<String>,
+    unplaceable: Option<String>,
     /// σ of the Lunar pointer's Theoretical Difference [deg] over the run up to its first jam
     /// (None: it jammed at once, or the gears could not be placed).
     #[serde(default)]
-    pub lunar_sigma: Option<f64>,
+    pub(crate) lunar_sigma: Option<f64>,
 }
 
 impl Outcome {
@@ -151,62 +191,17 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     if trials == 0 {
         return Err(RunError::bad("--set", "trials", "must be at least 1"));
     }
-    let days = ctx.f64("days")?;
-    if !(DAYS_PER_YEAR..=100.0 * DAYS_PER_YEAR).contains(&days) {
-        return Err(RunError::bad(
-            "--set",
-            "days",
-            format!(
-                "must be between {DAYS_PER_YEAR} (one year of b: jams are counted within a year) and {} (got {days})",
-                100.0 * DAYS_PER_YEAR
-            ),
-        ));
-    }
-    let (h, clearance, split) = (
-        ctx.f64("tooth_height")?,
-        ctx.f64("clearance")?,
-        ctx.f64("split")?,
-    );
-    // Ideal gears must fit: a clearance or tooth height that breaks every mesh is bad input.
-    Mechanism::ideal(&g, h, clearance)
-        .map_err(|e| RunError::bad("gearing", format!("mesh {}", e.mesh), e.rule))?;
-    for (_, pointers) in TRAINS {
-        for p in pointers {
-            if g.pointer(p).is_none() || g.pointer_ratio(p).is_none() {
-                return Err(RunError::bad(
-                    "gearing",
-                    format!("pointer {p}"),
-                    "is missing from the gearing (the failure study runs every train)",
-                ));
-            }
-        }
-    }
+    let days = days(ctx)?;
+    let (h, clearance) = (ctx.f64("tooth_height")?, ctx.f64("clearance")?);
+    // Read here, before the gearing's checks, as each case reads it again.
+    ctx.f64("split")?;
+    check_study(&g, h, &Clearances::Uniform(clearance))?;
 
     let hyp = errors::chosen(ctx)?;
     let measured = measured_table(ctx.param("measured")?)?;
     let mut inputs: Vec<Input<'_>> = Vec::new();
-    let wanted = parse_cases(ctx.param("cases")?)?;
-    for (ci, &(case, systematic, random)) in CASES.iter().enumerate() {
-        if !wanted.contains(&ci) {
-            continue;
-        }
-        inputs.push(Input {
-            label: case.to_string(),
-            legend: format!("Case {case} (systematic {systematic} deg, random {random})"),
-            index: ci as u64,
-            source: "--hypothesis",
-            hypothesis: hyp,
-            extra: None,
-            params: errors::params(
-                ctx,
-                hyp,
-                &[
-                    ("random", random),
-                    ("systematic", systematic),
-                    ("split", split),
-                ],
-            )?,
-        });
+    for ci in parse_cases(ctx.param("cases")?)? {
+        inputs.push(case_input(ctx, hyp, ci, Clearances::Uniform(clearance))?);
     }
     if let Some((file, m)) = &measured {
         inputs.push(Input {
@@ -215,9 +210,10 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             index: MEASURED_INDEX,
             source: "--set measured",
             hypothesis: m,
-            extra: None,
             params: Params::new(m, &[])
                 .map_err(|e| RunError::bad("--set measured", e.what, e.rule))?,
+            clearances: Clearances::Uniform(clearance),
+            extra: None,
         });
     }
     if inputs.is_empty() {
@@ -228,14 +224,15 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         ));
     }
 
-    let study = Study {
-        gearing: &g,
-        gearing_name: ctx.param("gearing")?,
+    let outcomes = run_study(
+        ctx,
+        &g,
+        &inputs,
+        trials,
         h,
-        clearance,
         days,
-    };
-    let outcomes = study.run(ctx, &inputs, trials)?;
+        &batch_key(ctx, &inputs, trials, h, clearance, days)?,
+    )?;
     let per_input: Vec<&[Outcome]> = outcomes.chunks(trials as usize).collect();
 
     let mut report = Report {
@@ -280,97 +277,153 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     Ok(report)
 }
 
-/// What every run of a batch shares: the gearing, tooth height, clearance and horizon.
-pub(crate) struct Study<'g> {
-    pub gearing: &'g train::Gearing,
-    /// The gearing as named by the `gearing` parameter (for the batch key).
-    pub gearing_name: &'g str,
-    /// Tooth height h [mm].
-    pub h: f64,
-    /// Clearance G of every mesh [% of h].
-    pub clearance: f64,
-    /// Horizon of each run [days of b].
-    pub days: f64,
-}
-
-impl Study<'_> {
-    /// `trials` whole-mechanism runs of every input, in (input, trial) order: one batch, so that
-    /// all of them share the pool, and one stream per (input index, trial).
-    pub(crate) fn run(
-        &self,
-        ctx: &Context,
-        inputs: &[Input<'_>],
-        trials: u64,
-    ) -> Result<Vec<Outcome>, RunError> {
-        let horizon = self.days / DAYS_PER_YEAR * TAU;
-        let seed = ctx.seed();
-        let jobs: Vec<(usize, u64)> = (0..inputs.len())
-            .flat_map(|i| (0..trials).map(move |t| (i, t)))
-            .collect();
-        let key = batch_key(
-            self.gearing_name,
-            inputs,
-            trials,
-            self.h,
-            self.clearance,
-            self.days,
-        );
-        ctx.trials(&key, jobs.len() as u64, |j| {
-            let &(i, t) = jobs
-                .get(j as usize)
-                .ok_or_else(|| RunError::Internal(format!("run {j} of {}", jobs.len())))?;
-            one_run(
-                self.gearing,
-                &inputs[i],
-                self.h,
-                self.clearance,
-                seed,
-                t,
-                horizon,
-            )
-        })
+/// The `days` parameter, checked: at least one year (jams are counted within a year), at most
+/// 100 years.
+pub(crate) fn days(ctx: &Context) -> Result<f64, RunError> {
+    let days = ctx.f64(DAYS.name)?;
+    if !(DAYS_PER_YEAR..=100.0 * DAYS_PER_YEAR).contains(&days) {
+        return Err(RunError::bad(
+            "--set",
+            DAYS.name,
+            format!(
+                "must be between {DAYS_PER_YEAR} (one year of b: jams are counted within a year) and {} (got {days})",
+                100.0 * DAYS_PER_YEAR
+            ),
+        ));
     }
+    Ok(days)
 }
 
-/// The key of the batch of runs: everything that determines them.
-fn batch_key(
-    gearing: &str,
+/// Checks that the study can run on `g`: ideal gears fit at `clearances` and tooth height `h` (a
+/// clearance or tooth height that breaks a mesh is bad input), and every train's pointers are in
+/// the gearing.
+pub(crate) fn check_study(
+    g: &train::Gearing,
+    h: f64,
+    clearances: &Clearances,
+) -> Result<(), RunError> {
+    Mechanism::build_with_clearances(g, h, |m| clearances.of(m), |_name, gear| Ok(gear))
+        .map_err(|e| RunError::bad("gearing", format!("mesh {}", e.mesh), e.rule))?;
+    for (_, pointers) in TRAINS {
+        for p in pointers {
+            if g.pointer(p).is_none() || g.pointer_ratio(p).is_none() {
+                return Err(RunError::bad(
+                    "gearing",
+                    format!("pointer {p}"),
+                    "is missing from the gearing (the failure study runs every train)",
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Case `CASES[ci]` under hypothesis `hyp` (its random and systematic errors, the `split`
+/// parameter) at `clearances`; its RNG streams are selected by `ci`.
+pub(crate) fn case_input<'a>(
+    ctx: &Context,
+    hyp: &'a dyn Hypothesis,
+    ci: usize,
+    clearances: Clearances,
+) -> Result<Input<'a>, RunError> {
+    let (case, systematic, random) = CASES[ci];
+    let split = ctx.f64("split")?;
+    Ok(Input {
+        label: case.to_string(),
+        legend: format!("Case {case} (systematic {systematic} deg, random {random})"),
+        index: ci as u64,
+        source: "--hypothesis",
+        hypothesis: hyp,
+        params: errors::params(
+            ctx,
+            hyp,
+            &[
+                ("random", random),
+                ("systematic", systematic),
+                ("split", split),
+            ],
+        )?,
+        clearances,
+        extra: None,
+    })
+}
+
+/// Runs `trials` whole mechanisms of every input over `days` of b, all in one batch named
+/// `batch` of [`Context::trials`] (flattened so that every run shares the pool), and returns
+/// the outcomes input by input, each input's in trial order. Run `t` of an input draws from
+/// `trial_rng(seed, (input.index << 32) | t)`: the gears' errors, then the meshes' initial
+/// angles, whatever the clearances.
+pub(crate) fn run_study(
+    ctx: &Context,
+    g: &train::Gearing,
+    inputs: &[Input<'_>],
+    trials: u64,
+    h: f64,
+    days: f64,
+    batch: &str,
+) -> Result<Vec<Outcome>, RunError> {
+    let horizon = days / DAYS_PER_YEAR * TAU;
+    let seed = ctx.seed();
+    let jobs: Vec<(usize, u64)> = (0..inputs.len())
+        .flat_map(|i| (0..trials).map(move |t| (i, t)))
+        .collect();
+    ctx.trials(batch, jobs.len() as u64, |j| {
+        let &(i, t) = jobs
+            .get(j as usize)
+            .ok_or_else(|| RunError::Internal(format!("run {j} of {}", jobs.len())))?;
+        one_run(g, &inputs[i], h, seed, t, horizon)
+    })
+}
+
+/// The key of the batch of runs: everything that determines them. An input with its own
+/// clearances (not `clearance` for every mesh) lists them.
+pub(crate) fn batch_key(
+    ctx: &Context,
     inputs: &[Input<'_>],
     trials: u64,
     h: f64,
     clearance: f64,
     days: f64,
-) -> String {
+) -> Result<String, RunError> {
     let inputs: Vec<String> = inputs
         .iter()
         .map(|inp| {
-            let p = |params: &Params| -> String {
-                let p: Vec<String> = params.iter().map(|(k, v)| format!("{k}={v}")).collect();
-                p.join(",")
-            };
+            let p: Vec<String> = inp.params.iter().map(|(k, v)| format!("{k}={v}")).collect();
             let extra = inp
                 .extra
                 .as_ref()
-                .map(|(h, params)| format!(" then {}({})", h.name(), p(params)))
+                .map(|(h, params)| {
+                    let q: Vec<String> = params.iter().map(|(k, v)| format!("{k}={v}")).collect();
+                    format!(" then {}({})", h.name(), q.join(","))
+                })
                 .unwrap_or_default();
+            let own = match &inp.clearances {
+                Clearances::Uniform(g) if *g == clearance => String::new(),
+                Clearances::Uniform(g) => format!(" G = {g} %"),
+                Clearances::PerMesh { default, meshes } => {
+                    let m: Vec<String> = meshes.iter().map(|(k, v)| format!("{k}={v}")).collect();
+                    format!(" G = {default} % except {}", m.join(","))
+                }
+            };
             format!(
-                "{} [{}] stream {} {}({}){extra}",
+                "{} [{}] stream {} {}({}){extra}{own}",
                 inp.label,
                 inp.legend,
                 inp.index,
                 inp.hypothesis.name(),
-                p(&inp.params)
+                p.join(",")
             )
         })
         .collect();
-    format!(
-        "failure: {trials} runs per input over {days} d, h = {h} mm, G = {clearance} %, gearing {gearing}, inputs: {}",
+    Ok(format!(
+        "failure: {trials} runs per input over {days} d, h = {h} mm, G = {clearance} %, gearing {}, inputs: {}",
+        ctx.param("gearing")?,
         inputs.join("; ")
-    )
+    ))
 }
 
 /// Indices into `CASES` of a comma-separated list of case names.
-fn parse_cases(text: &str) -> Result<Vec<usize>, RunError> {
+pub(crate) fn parse_cases(text: &str) -> Result<Vec<usize>, RunError> {
     let mut out = Vec::new();
     for name in text.split(',').map(str::trim).filter(|s| !s.is_empty()) {
         let Some(i) = CASES.iter().position(|c| c.0.eq_ignore_ascii_case(name)) else {
@@ -401,12 +454,12 @@ fn measured_table(file: &str) -> Result<Option<(String, MeasuredHypothesis)>, Ru
 }
 
 /// Train names, then the mechanism row.
-fn train_names() -> impl Iterator<Item = &'static str> {
+pub(crate) fn train_names() -> impl Iterator<Item = &'static str> {
     TRAINS.iter().map(|t| t.0).chain(std::iter::once(MECHANISM))
 }
 
 /// The jam of train `ti` (`TRAINS.len()`: the mechanism).
-fn jam_of(o: &Outcome, ti: usize) -> Option<&Jam> {
+pub(crate) fn jam_of(o: &Outcome, ti: usize) -> Option<&Jam> {
     if ti < TRAINS.len() {
         o.trains.get(ti).and_then(Option::as_ref)
     } else {
@@ -419,12 +472,11 @@ fn file_stem(train: &str) -> String {
     first.to_lowercase().replace('/', "-")
 }
 
-/// One whole-mechanism run: trial `t` of `input`.
+/// One whole-mechanism run: trial `t` of `input`, at the input's clearances.
 fn one_run(
     g: &train::Gearing,
     input: &Input<'_>,
     h: f64,
-    clearance: f64,
     seed: u64,
     t: u64,
     horizon: f64,
@@ -433,18 +485,26 @@ fn one_run(
     let mut rng = trial_rng(seed, (input.index << 32) | t);
     let mut extra_rng = trial_rng(seed, EXTRA_STREAM | (input.index << 32) | t);
     let mut failure = None;
-    let mech = Mechanism::build(g, h, clearance, |name, gear| {
-        let made = input.hypothesis.apply(&gear, name, &input.params, &mut rng);
-        let made = match (&input.extra, made) {
-            (Some((extra, params)), Ok(gear)) => extra.apply(&gear, name, params, &mut extra_rng),
-            (_, made) => made,
-        };
-        made.map_err(|e| {
-            let text = e.to_string();
-            failure = Some(RunError::bad(input.source, e.what, e.rule));
-            text
-        })
-    });
+    let clearances = &input.clearances;
+    let mech = Mechanism::build_with_clearances(
+        g,
+        h,
+        |m| clearances.of(m),
+        |name, gear| {
+            let made = input.hypothesis.apply(&gear, name, &input.params, &mut rng);
+            let made = match (&input.extra, made) {
+                (Some((extra, params)), Ok(gear)) => {
+                    extra.apply(&gear, name, params, &mut extra_rng)
+                }
+                (_, made) => made,
+            };
+            made.map_err(|e| {
+                let text = e.to_string();
+                failure = Some(RunError::bad(input.source, e.what, e.rule));
+                text
+            })
+        },
+    );
     let mech = match (mech, failure) {
         (_, Some(e)) => return Err(e),
         // The ideal gears fit (checked before), so the errors moved the bodies into each other:
@@ -551,11 +611,11 @@ fn one_run(
 /// What is reported of one train (or the mechanism) under one input.
 pub(crate) struct Summary {
     /// Runs jammed within a year, with the 95 % Clopper-Pearson interval.
-    pub year: Proportion,
+    pub(crate) year: Proportion,
     /// Days of the first jam of the runs that jammed within the horizon, in trial order.
-    pub days: Vec<f64>,
+    pub(crate) days: Vec<f64>,
     /// Meshes that jammed first, with their counts, most frequent first.
-    pub meshes: Vec<(String, usize)>,
+    pub(crate) meshes: Vec<(String, usize)>,
 }
 
 /// Per train, then the mechanism.
@@ -586,6 +646,7 @@ pub(crate) fn summarise(runs: &[Outcome], horizon_days: f64) -> Vec<Summary> {
         .collect()
 }
 
+/// The median of `values` (`None` for none).
 pub(crate) fn median(values: &[f64]) -> Option<f64> {
     let mut v = values.to_vec();
     v.sort_by(f64::total_cmp);
@@ -621,6 +682,7 @@ pub(crate) fn mean_cell(days: &[f64], horizon: f64) -> String {
     }
 }
 
+/// "rate [lo .. hi]" of a proportion, in whole percent.
 pub(crate) fn percent_cell(p: &Proportion) -> String {
     format!(
         "{} [{} .. {}]",
@@ -907,7 +969,7 @@ fn survival_plot(
 }
 
 /// Per run and train: the day of the first jam, or the horizon and "censored".
-fn runs_csv(inputs: &[Input<'_>], per_input: &[&[Outcome]], days: f64) -> String {
+pub(crate) fn runs_csv(inputs: &[Input<'_>], per_input: &[&[Outcome]], days: f64) -> String {
     let mut csv = String::from("input,trial,train,first_jam_day,status,mesh\n");
     for (inp, runs) in inputs.iter().zip(per_input) {
         for (t, o) in runs.iter().enumerate() {

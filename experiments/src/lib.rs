@@ -4,6 +4,7 @@ pub mod common;
 pub mod paper;
 
 mod clearance;
+mod clearance_design;
 mod equal_pair;
 mod errors;
 mod failure;

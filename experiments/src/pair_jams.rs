@@ -66,10 +66,23 @@ pub struct Counts {
     pub jams: u64,
     /// Trials with at least one disengagement.
     pub disengagements: u64,
+    /// Trials with at least one jam or at least one disengagement (either failure).
+    pub failures: u64,
     /// Trials run.
     pub trials: u64,
     /// Tooth engagements simulated: each trial engages every tooth of the larger gear once.
     pub engagements: u64,
+}
+
+impl std::ops::AddAssign for Counts {
+    /// Adds the counts of more trials of the same cell (another range of trial indices).
+    fn add_assign(&mut self, more: Counts) {
+        self.jams += more.jams;
+        self.disengagements += more.disengagements;
+        self.failures += more.failures;
+        self.trials += more.trials;
+        self.engagements += more.engagements;
+    }
 }
 
 impl Counts {
@@ -339,6 +352,7 @@ fn run_cells_with(
         for &(jam, dis) in &outcomes[start..start + trials as usize] {
             c.jams += u64::from(jam);
             c.disengagements += u64::from(dis);
+            c.failures += u64::from(jam || dis);
         }
         known.insert(keys[i].clone(), c);
     }
@@ -464,6 +478,7 @@ fn run_cell_ranges_with(
     for (&(i, _), &(jam, dis)) in jobs.iter().zip(&outcomes) {
         counts[i].jams += u64::from(jam);
         counts[i].disengagements += u64::from(dis);
+        counts[i].failures += u64::from(jam || dis);
     }
     Ok(counts)
 }
@@ -682,11 +697,20 @@ mod tests {
         let sum = |a: Counts, b: Counts| Counts {
             jams: a.jams + b.jams,
             disengagements: a.disengagements + b.disengagements,
+            failures: a.failures + b.failures,
             trials: a.trials + b.trials,
             engagements: a.engagements + b.engagements,
         };
         assert_eq!(sum(parts[0], parts[2]), whole[0]);
+        let mut added = parts[0];
+        added += parts[2];
+        assert_eq!(added, whole[0]);
         assert_eq!(parts[1], whole[1]);
+        for c in &whole {
+            // A trial fails when it jams, disengages or both.
+            assert!(c.failures >= c.jams.max(c.disengagements), "{c:?}");
+            assert!(c.failures <= c.jams + c.disengagements, "{c:?}");
+        }
         let e =
             run_cell_ranges_with(&g, &[range(cell("m2-n1", 0.06), 3..3)], 1, local).unwrap_err();
         assert_eq!(e.exit_code(), 2);

@@ -11,12 +11,14 @@
 //! differ by the assumption, not by luck in the draws (common random numbers).
 
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
-use stats::{DAYS_PER_YEAR, mean_ci95};
+use stats::mean_ci95;
 use train::Gearing;
 
 use crate::common::{Series, category_plot};
 use crate::errors;
-use crate::failure::{Input, Outcome, Study, TRAINS, mean_cell, median, percent_cell, summarise};
+use crate::failure::{
+    self, Clearances, Input, Outcome, TRAINS, mean_cell, median, percent_cell, summarise,
+};
 use crate::gearing;
 use crate::table2::CASES;
 
@@ -27,12 +29,7 @@ const PARAMS: &[Param] = &[
         unit: "",
         help: "whole-mechanism runs per row (the paper's failure study: 30)",
     },
-    Param {
-        name: "days",
-        default: "365.25",
-        unit: "days of b",
-        help: "horizon of each run (365.25 d per turn of b); at least one year",
-    },
+    failure::DAYS,
     Param {
         name: "case",
         default: "B",
@@ -181,17 +178,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             "must be at least 2 (an interval needs two runs)",
         ));
     }
-    let days = ctx.f64("days")?;
-    if !(DAYS_PER_YEAR..=100.0 * DAYS_PER_YEAR).contains(&days) {
-        return Err(RunError::bad(
-            "--set",
-            "days",
-            format!(
-                "must be between {DAYS_PER_YEAR} (one year of b: jams are counted within a year) and {} (got {days})",
-                100.0 * DAYS_PER_YEAR
-            ),
-        ));
-    }
+    let days = failure::days(ctx)?;
     let case = ctx.param("case")?.trim();
     let Some(ci) = CASES.iter().position(|c| c.0.eq_ignore_ascii_case(case)) else {
         return Err(RunError::bad(
@@ -249,25 +236,17 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             Some((h, _)) => format!("{}, then {}", base.name(), h.name()),
             None => base.name().to_string(),
         };
-        let (g, gearing_name) = match v.gearing {
-            Some(name) => (
-                embedded
-                    .iter()
-                    .find(|(n, _)| *n == name)
-                    .map(|(_, g)| g)
-                    .ok_or_else(|| RunError::Internal(format!("gearing {name}")))?,
-                name,
-            ),
-            None => (&base_gearing, ctx.param("gearing")?),
+        let g = match v.gearing {
+            Some(name) => embedded
+                .iter()
+                .find(|(n, _)| *n == name)
+                .map(|(_, g)| g)
+                .ok_or_else(|| RunError::Internal(format!("gearing {name}")))?,
+            None => &base_gearing,
         };
         let h = v.tooth_height.unwrap_or(h0);
-        let study = Study {
-            gearing: g,
-            gearing_name,
-            h,
-            clearance,
-            days,
-        };
+        failure::check_study(g, h, &Clearances::Uniform(clearance))?;
+        // The legend names the row, so every row is its own batch.
         let input = Input {
             label: case.to_string(),
             legend: format!("Case {case}, {}", v.label),
@@ -276,13 +255,16 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             source: "--hypothesis",
             hypothesis: base,
             params: base_params.clone(),
+            clearances: Clearances::Uniform(clearance),
             extra,
         };
+        let inputs = std::slice::from_ref(&input);
+        let key = failure::batch_key(ctx, inputs, trials, h, clearance, days)?;
         rows.push(Row {
             variant: v,
             hypotheses,
             h,
-            outcomes: study.run(ctx, std::slice::from_ref(&input), trials)?,
+            outcomes: failure::run_study(ctx, g, inputs, trials, h, days, &key)?,
         });
     }
 

@@ -214,6 +214,7 @@ impl Search {
         };
         p.counts.jams += c.jams;
         p.counts.disengagements += c.disengagements;
+        p.counts.failures += c.failures;
         p.counts.trials += c.trials;
         p.counts.engagements += c.engagements;
         p.decision = decide(p.counts.jams, p.counts.trials, rule, cap);

@@ -1,5 +1,6 @@
-//! Sharded runs of the converted experiments (`failure`, `table1`, `tolerance`), joined and
-//! replayed through the registry, give exactly the report of a single run.
+//! Sharded runs of the converted experiments (`failure`, `table1`, `tolerance`,
+//! `clearance-design`), joined and replayed through the registry, give exactly the report of a
+//! single run.
 #![allow(clippy::unwrap_used, reason = "tests")]
 
 use registry::{Context, Report, Shard, ShardRecords, merge_records};
@@ -82,5 +83,20 @@ fn tolerance_search_shards_merge_to_the_single_run() {
         ("random_to", "0.05"),
     ];
     let (single, merged) = single_and_merged("tolerance", &sets, 2);
+    assert_eq!(single, merged);
+}
+
+#[test]
+fn clearance_design_shards_merge_to_the_single_run() {
+    // The search decides the clearances of the failure study, so its batches are never split;
+    // the failure study's runs are, 5 runs per setting over 2 shards.
+    let sets = [
+        ("cases", "D"),
+        ("grid", "30,50"),
+        ("coarse_trials", "2"),
+        ("refine_trials", "3"),
+        ("runs", "5"),
+    ];
+    let (single, merged) = single_and_merged("clearance-design", &sets, 2);
     assert_eq!(single, merged);
 }

@@ -54,6 +54,19 @@ impl Mechanism {
         gearing: &Gearing,
         h: f64,
         g_percent: f64,
+        make: impl FnMut(&str, Gear) -> Result<Gear, String>,
+    ) -> Result<Self, MechanismError> {
+        Self::build_with_clearances(gearing, h, |_mesh| g_percent, make)
+    }
+
+    /// Like [`Mechanism::build`], but each mesh has its own clearance: `clearance(label)` is the
+    /// clearance (% of h) of the mesh with that label, asked once per mesh in the gearing's mesh
+    /// order. The gears are made exactly as by [`Mechanism::build`] (same calls of `make`, in the
+    /// same order), so with the same `make` only the centre distances differ.
+    pub fn build_with_clearances(
+        gearing: &Gearing,
+        h: f64,
+        mut clearance: impl FnMut(&str) -> f64,
         mut make: impl FnMut(&str, Gear) -> Result<Gear, String>,
     ) -> Result<Self, MechanismError> {
         let in_a_mesh = |name: &str| {
@@ -82,7 +95,7 @@ impl Mechanism {
                 rule,
             };
             let geo = gearing
-                .mesh_geometry(&m.label, h, g_percent)
+                .mesh_geometry(&m.label, h, clearance(&m.label))
                 .ok_or_else(|| bad("cannot be sized".into()))?;
             let gear = |name: &str| {
                 made.get(name)
@@ -434,6 +447,31 @@ mod tests {
         }
         let td = tri.theoretical_difference(19.0 * TAU) - tri.theoretical_difference(0.0);
         assert!(td.to_degrees().abs() < 1e-9);
+    }
+
+    #[test]
+    fn per_mesh_clearances_move_only_their_own_centre_distances() {
+        let g = Gearing::freeth2006();
+        let uniform = Mechanism::ideal(&g, 1.1, 40.0).unwrap();
+        // The same clearance everywhere through the per-mesh builder: the same mechanism.
+        let same = Mechanism::build_with_clearances(&g, 1.1, |_| 40.0, |_, gear| Ok(gear)).unwrap();
+        // One mesh at 30 %, the others at 40 %.
+        let one = Mechanism::build_with_clearances(
+            &g,
+            1.1,
+            |label| if label == "b2-c1" { 30.0 } else { 40.0 },
+            |_, gear| Ok(gear),
+        )
+        .unwrap();
+        let at30 = Mechanism::ideal(&g, 1.1, 30.0).unwrap();
+        let d = |m: &Mechanism, label: &str| m.mesh(label).unwrap().centre_distance();
+        for m in g.meshes() {
+            let l = m.label.as_str();
+            assert_eq!(d(&same, l).to_bits(), d(&uniform, l).to_bits(), "{l}");
+            let want = if l == "b2-c1" { &at30 } else { &uniform };
+            assert_eq!(d(&one, l).to_bits(), d(want, l).to_bits(), "{l}");
+        }
+        assert!(d(&one, "b2-c1") < d(&uniform, "b2-c1"));
     }
 
     #[test]
