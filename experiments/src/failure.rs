@@ -448,6 +448,7 @@ fn one_run(
                 ratio,
                 input_range: horizon,
                 stages,
+                pin_slot: None,
             };
             if let Some(stop) = run.first_stop()
                 && first.as_ref().is_none_or(|f| stop.day < f.day)
