@@ -60,6 +60,7 @@ const PARAMS: &[Param] = &[
     errors::PARAM,
     errors::PARAMS_PARAM,
     gearing::PARAM,
+    gearing::PIN_AND_SLOT,
 ];
 
 registry::inventory::submit! {
@@ -155,8 +156,10 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         ctx.f64("split")?,
     );
     // Ideal gears must fit: a clearance or tooth height that breaks every mesh is bad input.
-    Mechanism::ideal(&g, h, clearance)
+    let ideal = Mechanism::ideal(&g, h, clearance)
         .map_err(|e| RunError::bad("gearing", format!("mesh {}", e.mesh), e.rule))?;
+    let pin_and_slot = gearing::pin_and_slot(ctx)?;
+    gearing::with_pin_and_slot(ctx, ideal, pin_and_slot)?;
     for (_, pointers) in TRAINS {
         for p in pointers {
             if g.pointer(p).is_none() || g.pointer_ratio(p).is_none() {
@@ -220,13 +223,18 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         .collect();
     // One batch of every (input, trial) run, flattened so that all of them share the pool.
     let outcomes: Vec<Outcome> = ctx.trials(
-        &batch_key(ctx, &inputs, trials, h, clearance, days)?,
+        &batch_key(ctx, &inputs, trials, h, clearance, days, pin_and_slot)?,
         jobs.len() as u64,
         |j| {
             let &(i, t) = jobs
                 .get(j as usize)
                 .ok_or_else(|| RunError::Internal(format!("run {j} of {}", jobs.len())))?;
-            one_run(&g, &inputs[i], h, clearance, seed, t, horizon)
+            let build = Build {
+                h,
+                clearance,
+                pin_and_slot,
+            };
+            one_run(&g, &inputs[i], &build, seed, t, horizon)
         },
     )?;
     let per_input: Vec<&[Outcome]> = outcomes.chunks(trials as usize).collect();
@@ -238,6 +246,10 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     };
     let summaries: Vec<Vec<Summary>> = per_input.iter().map(|runs| summarise(runs, days)).collect();
     let (paper_table, agreement) = paper_table(&inputs, &summaries, trials, days, clearance);
+    let mut paper_table = paper_table;
+    if pin_and_slot {
+        paper_table.note("The Lunar train includes the pin-and-slot (--set pin_and_slot=true), beyond the paper: e5-k1 and k2-e6 turn in the frame of the e3 turntable, which turns at its mean rate.");
+    }
     report.tables.push(paper_table);
     report
         .tables
@@ -281,6 +293,7 @@ fn batch_key(
     h: f64,
     clearance: f64,
     days: f64,
+    pin_and_slot: bool,
 ) -> Result<String, RunError> {
     let inputs: Vec<String> = inputs
         .iter()
@@ -296,11 +309,17 @@ fn batch_key(
             )
         })
         .collect();
-    Ok(format!(
+    let key = format!(
         "failure: {trials} runs per input over {days} d, h = {h} mm, G = {clearance} %, gearing {}, inputs: {}",
         ctx.param("gearing")?,
         inputs.join("; ")
-    ))
+    );
+    // With the pin-and-slot left out (the paper) the key is what it always was.
+    Ok(if pin_and_slot {
+        format!("{key}, with the pin-and-slot")
+    } else {
+        key
+    })
 }
 
 /// Indices into `CASES` of a comma-separated list of case names.
@@ -353,12 +372,21 @@ fn file_stem(train: &str) -> String {
     first.to_lowercase().replace('/', "-")
 }
 
+/// How every run's mechanism is built.
+struct Build {
+    /// Tooth height h, mm.
+    h: f64,
+    /// Clearance G, % of h.
+    clearance: f64,
+    /// The Lunar train includes the pin-and-slot.
+    pin_and_slot: bool,
+}
+
 /// One whole-mechanism run: trial `t` of `input`.
 fn one_run(
     g: &train::Gearing,
     input: &Input<'_>,
-    h: f64,
-    clearance: f64,
+    build: &Build,
     seed: u64,
     t: u64,
     horizon: f64,
@@ -366,7 +394,7 @@ fn one_run(
     // One stream per (input, trial): every gear's errors, then every mesh's initial angle.
     let mut rng = trial_rng(seed, (input.index << 32) | t);
     let mut failure = None;
-    let mech = Mechanism::build(g, h, clearance, |name, gear| {
+    let mech = Mechanism::build(g, build.h, build.clearance, |name, gear| {
         input
             .hypothesis
             .apply(&gear, name, &input.params, &mut rng)
@@ -393,7 +421,9 @@ fn one_run(
                 unplaceable: Some(e.to_string()),
             });
         }
-        (Ok(m), None) => m,
+        (Ok(m), None) => m
+            .with_pin_and_slot(build.pin_and_slot)
+            .map_err(|e| RunError::Internal(format!("the pin-and-slot was checked: {e}")))?,
     };
     let mut phi0s: BTreeMap<&str, f64> = BTreeMap::new();
     for m in g.meshes() {
@@ -413,6 +443,28 @@ fn one_run(
             let missing = || RunError::Internal(format!("pointer {p} vanished from the gearing"));
             let chain = g.pointer(p).ok_or_else(missing)?;
             let ratio = g.pointer_ratio(p).ok_or_else(missing)?.to_f64();
+            if mech.pin_slot_for(p).is_some() {
+                // With the pin-and-slot the pointer's meshes on the turntable turn in its frame:
+                // its train is run on its own (no other train shares its meshes).
+                let run = mech
+                    .run_pointer_from(p, horizon / TAU, |label| phi0s.get(label).copied())
+                    .ok_or_else(missing)?;
+                for s in &run.stages {
+                    if let Some(traj) = s.run.trajectory() {
+                        engagements += (traj.phi_end() - traj.phi_start()) / TAU
+                            * traj.mesh().driver().teeth() as f64;
+                    }
+                }
+                if let Some(stop) = run.first_stop()
+                    && first.as_ref().is_none_or(|f| stop.day < f.day)
+                {
+                    first = Some(Jam {
+                        day: stop.day,
+                        mesh: stop.mesh,
+                    });
+                }
+                continue;
+            }
             let mut range = horizon;
             let mut key = String::new();
             let mut stages = Vec::with_capacity(chain.meshes.len());
