@@ -15,6 +15,7 @@ mod fig6;
 mod fig_iv;
 mod gearing;
 mod limits;
+mod lunar_anomaly;
 mod pair;
 mod pair_jams;
 mod table1;

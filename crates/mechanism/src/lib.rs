@@ -42,8 +42,11 @@ pub struct Mechanism {
     pin_and_slot: bool,
 }
 
+/// The generator of a trial's stream (what [`trial_rng`] returns).
+pub type TrialRng = ChaCha8Rng;
+
 /// The RNG stream of one trial: depends only on (seed, trial index), never on threads.
-pub fn trial_rng(seed: u64, trial: u64) -> ChaCha8Rng {
+pub fn trial_rng(seed: u64, trial: u64) -> TrialRng {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     rng.set_stream(trial);
     rng
