@@ -69,6 +69,7 @@ const PARAMS: &[Param] = &[
     errors::PARAM,
     errors::PARAMS_PARAM,
     gearing::PARAM,
+    gearing::PIN_AND_SLOT,
 ];
 
 registry::inventory::submit! {
@@ -139,6 +140,8 @@ pub(crate) struct Input<'a> {
     pub(crate) params: Params,
     /// The clearance of each mesh.
     pub(crate) clearances: Clearances,
+    /// The Lunar train includes the pin-and-slot (beyond the paper; off in the paper's study).
+    pub(crate) pin_and_slot: bool,
     /// A second hypothesis applied to each gear after the first (a shape change on top of
     /// Edmunds' errors), drawing from its own stream ([`EXTRA_STREAM`]): the first one's draws
     /// and the initial angles stay those of the run without it, so the two runs differ by it
@@ -196,6 +199,10 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     // Read here, before the gearing's checks, as each case reads it again.
     ctx.f64("split")?;
     check_study(&g, h, &Clearances::Uniform(clearance))?;
+    let pin_and_slot = gearing::pin_and_slot(ctx)?;
+    let ideal = Mechanism::ideal(&g, h, clearance)
+        .map_err(|e| RunError::bad("gearing", format!("mesh {}", e.mesh), e.rule))?;
+    gearing::with_pin_and_slot(ctx, ideal, pin_and_slot)?;
 
     let hyp = errors::chosen(ctx)?;
     let measured = measured_table(ctx.param("measured")?)?;
@@ -213,8 +220,12 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             params: Params::new(m, &[])
                 .map_err(|e| RunError::bad("--set measured", e.what, e.rule))?,
             clearances: Clearances::Uniform(clearance),
+            pin_and_slot: false,
             extra: None,
         });
+    }
+    for inp in &mut inputs {
+        inp.pin_and_slot = pin_and_slot;
     }
     if inputs.is_empty() {
         return Err(RunError::bad(
@@ -241,7 +252,10 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         ..Default::default()
     };
     let summaries: Vec<Vec<Summary>> = per_input.iter().map(|runs| summarise(runs, days)).collect();
-    let (paper_table, agreement) = paper_table(&inputs, &summaries, trials, days, clearance);
+    let (mut paper_table, agreement) = paper_table(&inputs, &summaries, trials, days, clearance);
+    if pin_and_slot {
+        paper_table.note("The Lunar train includes the pin-and-slot (--set pin_and_slot=true), beyond the paper: e5-k1 and k2-e6 turn in the frame of the e3 turntable, which turns at its mean rate.");
+    }
     report.tables.push(paper_table);
     report
         .tables
@@ -344,6 +358,7 @@ pub(crate) fn case_input<'a>(
             ],
         )?,
         clearances,
+        pin_and_slot: false,
         extra: None,
     })
 }
@@ -405,8 +420,14 @@ pub(crate) fn batch_key(
                     format!(" G = {default} % except {}", m.join(","))
                 }
             };
+            // With the pin-and-slot left out (the paper) the key is what it always was.
+            let pin = if inp.pin_and_slot {
+                ", with the pin-and-slot"
+            } else {
+                ""
+            };
             format!(
-                "{} [{}] stream {} {}({}){extra}{own}",
+                "{} [{}] stream {} {}({}){extra}{own}{pin}",
                 inp.label,
                 inp.legend,
                 inp.index,
@@ -523,7 +544,9 @@ fn one_run(
                 lunar_sigma: None,
             });
         }
-        (Ok(m), None) => m,
+        (Ok(m), None) => m
+            .with_pin_and_slot(input.pin_and_slot)
+            .map_err(|e| RunError::Internal(format!("the pin-and-slot was checked: {e}")))?,
     };
     let mut phi0s: BTreeMap<&str, f64> = BTreeMap::new();
     for m in g.meshes() {
@@ -544,6 +567,31 @@ fn one_run(
             let missing = || RunError::Internal(format!("pointer {p} vanished from the gearing"));
             let chain = g.pointer(p).ok_or_else(missing)?;
             let ratio = g.pointer_ratio(p).ok_or_else(missing)?.to_f64();
+            if mech.pin_slot_for(p).is_some() {
+                // With the pin-and-slot the pointer's meshes on the turntable turn in its frame:
+                // its train is run on its own (no other train shares its meshes).
+                let run = mech
+                    .run_pointer_from(p, horizon / TAU, |label| phi0s.get(label).copied())
+                    .ok_or_else(missing)?;
+                for s in &run.stages {
+                    if let Some(traj) = s.run.trajectory() {
+                        engagements += (traj.phi_end() - traj.phi_start()) / TAU
+                            * traj.mesh().driver().teeth() as f64;
+                    }
+                }
+                if p == "Lunar" {
+                    lunar_sigma = lunar_spread(g, &run, horizon);
+                }
+                if let Some(stop) = run.first_stop()
+                    && first.as_ref().is_none_or(|f| stop.day < f.day)
+                {
+                    first = Some(Jam {
+                        day: stop.day,
+                        mesh: stop.mesh,
+                    });
+                }
+                continue;
+            }
             let mut range = horizon;
             let mut key = String::new();
             let mut stages = Vec::with_capacity(chain.meshes.len());
@@ -579,15 +627,10 @@ fn one_run(
                 ratio,
                 input_range: horizon,
                 stages,
+                pin_slot: None,
             };
             if p == "Lunar" {
-                // As table1 samples it: 8 per tooth engagement of the busiest mesh, up to the
-                // first jam (a run that jams at once has no spread to speak of).
-                let samples = crate::table1::samples_for(g, p, horizon / TAU, 8);
-                lunar_sigma = run
-                    .first_stop()
-                    .is_none_or(|s| s.input_angle > 0.0)
-                    .then(|| run.stats(samples).sigma);
+                lunar_sigma = lunar_spread(g, &run, horizon);
             }
             if let Some(stop) = run.first_stop()
                 && first.as_ref().is_none_or(|f| stop.day < f.day)
@@ -606,6 +649,16 @@ fn one_run(
         unplaceable: None,
         lunar_sigma,
     })
+}
+
+/// σ of a pointer run's Theoretical Difference up to its first jam, sampled as table1 samples
+/// (8 per tooth engagement of the busiest mesh); None for a run that jams at once, which has no
+/// spread to speak of.
+fn lunar_spread(g: &train::Gearing, run: &PointerRun, horizon: f64) -> Option<f64> {
+    let samples = crate::table1::samples_for(g, &run.pointer, horizon / TAU, 8);
+    run.first_stop()
+        .is_none_or(|s| s.input_angle > 0.0)
+        .then(|| run.stats(samples).sigma)
 }
 
 /// What is reported of one train (or the mechanism) under one input.

@@ -28,6 +28,44 @@ pub const TOOTH_HEIGHT: Param = Param {
     help: "h = R - r of every gear (Efstathiou et al. 2012)",
 };
 
+/// Whether the Lunar train includes the pin-and-slot (Freeth 2006's lunar anomaly mechanism).
+pub const PIN_AND_SLOT: Param = Param {
+    name: "pin_and_slot",
+    default: "false",
+    unit: "",
+    help: "true: the Lunar train includes the pin-and-slot (k1's pin in k2's slot on the turning e3 turntable) and its TD is taken against the anomaly-bearing ideal; false: left out, as in the paper",
+};
+
+/// The `pin_and_slot` parameter: `true` or `false`.
+pub fn pin_and_slot(ctx: &Context) -> Result<bool, RunError> {
+    match ctx.param(PIN_AND_SLOT.name)?.trim() {
+        "true" => Ok(true),
+        "false" => Ok(false),
+        other => Err(RunError::bad(
+            "--set",
+            PIN_AND_SLOT.name,
+            format!("must be true or false (got `{other}`)"),
+        )),
+    }
+}
+
+/// `mech` with the pin-and-slot in or out as `on` says; a gearing without a `pin_and_slot`
+/// section cannot have it in (bad input, naming the gearing file).
+pub fn with_pin_and_slot(
+    ctx: &Context,
+    mech: mechanism::Mechanism,
+    on: bool,
+) -> Result<mechanism::Mechanism, RunError> {
+    let file = ctx.param(PARAM.name)?;
+    mech.with_pin_and_slot(on).map_err(|e| {
+        RunError::bad(
+            file,
+            "pin_and_slot",
+            format!("{} (needed by --set pin_and_slot=true)", e.rule),
+        )
+    })
+}
+
 /// Loads the gearing named by the `gearing` parameter, and checks the gearing-wide parameters
 /// the experiment declares beside it ([`check`]).
 pub fn load(ctx: &Context) -> Result<Gearing, RunError> {

@@ -16,6 +16,7 @@ mod fig6;
 mod fig_iv;
 mod gearing;
 mod limits;
+mod lunar_anomaly;
 mod pair;
 mod pair_jams;
 mod sensitivity;

@@ -256,6 +256,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             hypothesis: base,
             params: base_params.clone(),
             clearances: Clearances::Uniform(clearance),
+            pin_and_slot: false,
             extra,
         };
         let inputs = std::slice::from_ref(&input);

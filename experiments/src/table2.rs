@@ -49,6 +49,7 @@ const PARAMS: &[Param] = &[
     errors::PARAM,
     errors::PARAMS_PARAM,
     gearing::PARAM,
+    gearing::PIN_AND_SLOT,
 ];
 
 registry::inventory::submit! {
@@ -95,6 +96,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         ctx.f64("split")?,
     );
     let per = ctx.usize("samples_per_engagement")?.max(1);
+    let pin_and_slot = gearing::pin_and_slot(ctx)?;
     let runs = pointer_runs(ctx, &g, &POINTERS, per)?;
     let seed = ctx.seed();
     let mut results: Vec<Vec<Trial>> = Vec::new();
@@ -134,7 +136,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
                             ),
                         ));
                     }
-                    (Ok(m), None) => m,
+                    (Ok(m), None) => gearing::with_pin_and_slot(ctx, m, pin_and_slot)?,
                 };
                 let mut out = Vec::new();
                 for &(name, turns, samples) in &runs {
@@ -280,6 +282,11 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         g.days_per_degree("Saros")
             .map_or_else(|| "-".into(), |d| fmt_f64(d, 3)),
     ));
+    if pin_and_slot {
+        let note = "Lunar: with the pin-and-slot (--set pin_and_slot=true), beyond the paper; its TD is taken against the anomaly-bearing ideal motion (cargo xtask help lunar-anomaly).";
+        edm_table.note(note);
+        tri_table.note(note);
+    }
     tri_table.note("A jam stops the pointer, so a triangular trial that jammed is measured up to its first jam (Edmunds' model never jams).");
     let series: Vec<Series<'_>> = curves
         .iter()

@@ -5,6 +5,12 @@
 //! input (b) arbor; each mesh's driven gear turns its arbor, and that arbor's rotation is the next
 //! mesh's driver rotation. Every mesh starts at a uniformly random driver angle within its driver's
 //! pitch (the paper: the maker could not set it), with the driven gear touching.
+//!
+//! The pin-and-slot (Freeth 2006's lunar anomaly mechanism, [`pin_slot`]) is left out unless a
+//! mechanism asks for it with [`Mechanism::with_pin_and_slot`]: the paper treats k1 -> k2 as a
+//! rigid arbor and holds the e3 turntable still.
+
+pub mod pin_slot;
 
 use std::collections::BTreeMap;
 use std::f64::consts::TAU;
@@ -15,6 +21,8 @@ use geometry::Gear;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use train::Gearing;
+
+pub use pin_slot::PinSlotTrain;
 
 /// Why a mechanism could not be built.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -31,10 +39,14 @@ pub struct MechanismError {
 pub struct Mechanism {
     gearing: Gearing,
     meshes: BTreeMap<String, Mesh>,
+    pin_and_slot: bool,
 }
 
+/// The generator of a trial's stream (what [`trial_rng`] returns).
+pub type TrialRng = ChaCha8Rng;
+
 /// The RNG stream of one trial: depends only on (seed, trial index), never on threads.
-pub fn trial_rng(seed: u64, trial: u64) -> ChaCha8Rng {
+pub fn trial_rng(seed: u64, trial: u64) -> TrialRng {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     rng.set_stream(trial);
     rng
@@ -109,7 +121,43 @@ impl Mechanism {
         Ok(Self {
             gearing: gearing.clone(),
             meshes,
+            pin_and_slot: false,
         })
+    }
+
+    /// This mechanism with the pin-and-slot in (`true`) or left out (`false`, the paper and the
+    /// default). With it, a pointer whose train runs through the gearing's pin gear (Freeth
+    /// 2006: the Lunar pointer) is run with the pin mesh (e5-k1) and the slot gear's mesh
+    /// (k2-e6) seen from the turntable, which turns at its mean rate from the gear ratios, and
+    /// the pin-and-slot coupling the two ([`PinSlotTrain`]); its Theoretical Difference is taken
+    /// against the anomaly-bearing ideal motion. Other pointers are run as without it.
+    ///
+    /// # Errors
+    /// `true` for a gearing without a `pin_and_slot` section.
+    pub fn with_pin_and_slot(mut self, on: bool) -> Result<Self, MechanismError> {
+        if on && self.gearing.pin_and_slot().is_none() {
+            return Err(MechanismError {
+                mesh: "(pin-and-slot)".into(),
+                rule: "the gearing has no pin_and_slot section".into(),
+            });
+        }
+        self.pin_and_slot = on;
+        Ok(self)
+    }
+
+    /// Whether the pin-and-slot is in (see [`Mechanism::with_pin_and_slot`]).
+    pub fn has_pin_and_slot(&self) -> bool {
+        self.pin_and_slot
+    }
+
+    /// The pin-and-slot in `pointer`'s train as this mechanism runs it: `None` when it is left
+    /// out or the pointer's train does not run through it. The pin starts on the line of centres
+    /// (phase 0).
+    pub fn pin_slot_for(&self, pointer: &str) -> Option<PinSlotTrain> {
+        if !self.pin_and_slot {
+            return None;
+        }
+        PinSlotTrain::new(&self.gearing, pointer, 0.0)
     }
 
     /// The gearing this mechanism was built from.
@@ -144,6 +192,24 @@ impl Mechanism {
     ) -> Option<PointerRun> {
         self.run_chain(pointer, input_turns, rng, Model::Triangular, true)
     }
+
+    /// Runs a pointer's train with triangular teeth, each mesh stopping at its first jam, with
+    /// the initial driver angle of each mesh given by `phi0(label)` instead of drawn: for a
+    /// whole mechanism whose meshes got their angles once for all its pointers.
+    pub fn run_pointer_from(
+        &self,
+        pointer: &str,
+        input_turns: f64,
+        mut phi0: impl FnMut(&str) -> Option<f64>,
+    ) -> Option<PointerRun> {
+        self.chain_from(
+            pointer,
+            input_turns,
+            |label, _| phi0(label),
+            Model::Triangular,
+            true,
+        )
+    }
     /// Runs a pointer's train under either contact model. Both draw the same initial angles from
     /// the same stream, so a trial can be compared model against model on the same gears.
     pub fn run_pointer_with(
@@ -164,18 +230,46 @@ impl Mechanism {
         model: Model,
         stop_at_jam: bool,
     ) -> Option<PointerRun> {
+        self.chain_from(
+            pointer,
+            input_turns,
+            |_, mesh| {
+                let pitch = TAU / mesh.driver().teeth() as f64;
+                Some(rng.random::<f64>() * pitch)
+            },
+            model,
+            stop_at_jam,
+        )
+    }
+
+    /// The chain of `pointer`, mesh `label` starting at driver angle `phi0(label, mesh)`; each
+    /// mesh is run over the range its driver turns, in the frame it turns in (the turntable's,
+    /// for the pin-and-slot's two meshes).
+    fn chain_from(
+        &self,
+        pointer: &str,
+        input_turns: f64,
+        mut phi0: impl FnMut(&str, &Mesh) -> Option<f64>,
+        model: Model,
+        stop_at_jam: bool,
+    ) -> Option<PointerRun> {
         let p = self.gearing.pointer(pointer)?;
         let ratio = self.gearing.pointer_ratio(pointer)?.to_f64();
+        let pin_slot = self.pin_slot_for(pointer);
+        let input_range = input_turns * TAU;
         let mut stages = Vec::with_capacity(p.meshes.len());
-        let mut range = input_turns * TAU;
-        for label in &p.meshes {
+        // The driven arbor's rotation over the run, in the fixed frame, of the previous mesh.
+        let mut range = input_range;
+        for (i, label) in p.meshes.iter().enumerate() {
             let mesh = self.meshes.get(label)?;
-            let pitch = TAU / mesh.driver().teeth() as f64;
-            let phi0 = rng.random::<f64>() * pitch;
+            let phi0 = phi0(label, mesh)?;
+            let run_frame = Frame::of(pin_slot.as_ref(), i);
+            // The most the driver turns in its own frame over the run.
+            let range_in = run_frame.into_range(range, input_range);
             let run = match model {
                 Model::Triangular => StageRun::Triangular(Box::new(mesh.run_until(
                     phi0,
-                    phi0 + range,
+                    phi0 + range_in,
                     Start::Touching(0.0),
                     stop_at_jam,
                 ))),
@@ -184,7 +278,7 @@ impl Mechanism {
                 }
             };
             let theta0 = run.theta_at(phi0);
-            range = run.theta_at(phi0 + range) - theta0;
+            range = run_frame.out_range(run.theta_at(phi0 + range_in) - theta0, input_range);
             stages.push(Stage {
                 label: label.clone(),
                 phi0,
@@ -195,9 +289,73 @@ impl Mechanism {
         Some(PointerRun {
             pointer: pointer.to_string(),
             ratio,
-            input_range: input_turns * TAU,
+            input_range,
             stages,
+            pin_slot,
         })
+    }
+}
+
+/// How a mesh of a train with the pin-and-slot sees its driver and hands on its driven angle.
+#[derive(Debug, Clone, Copy)]
+enum Frame<'a> {
+    /// Fixed frame in and out (every mesh without the pin-and-slot).
+    Fixed,
+    /// The pin mesh: its driver seen from the turntable; the pin gear rides on it.
+    Pin(&'a PinSlotTrain),
+    /// The slot gear's mesh: driven by the pin-and-slot, its driven gear carried back to the
+    /// fixed frame by the turntable.
+    Slot(&'a PinSlotTrain),
+}
+
+impl<'a> Frame<'a> {
+    fn of(pin_slot: Option<&'a PinSlotTrain>, stage: usize) -> Frame<'a> {
+        match pin_slot {
+            Some(p) if stage == p.pin_stage => Frame::Pin(p),
+            Some(p) if stage == p.pin_stage + 1 => Frame::Slot(p),
+            _ => Frame::Fixed,
+        }
+    }
+
+    /// The stage's driver angle, from the previous stage's handed-on angle `x`, at input `psi`.
+    fn into(self, x: f64, psi: f64) -> f64 {
+        match self {
+            Frame::Fixed => x,
+            Frame::Pin(p) => p.into_turntable(x, psi),
+            Frame::Slot(p) => p.slot_change(x),
+        }
+    }
+
+    /// The angle handed on to the next stage, from this stage's driven angle `x`.
+    fn out(self, x: f64, psi: f64) -> f64 {
+        match self {
+            Frame::Slot(p) => p.out_of_turntable(x, psi),
+            Frame::Fixed | Frame::Pin(_) => x,
+        }
+    }
+
+    /// The most the stage's driver turns over an input run of `end`, from the most the previous
+    /// stage hands on, `x`. In the fixed frame that is `x` itself (each stage's angle never
+    /// decreases); seen from the turntable the driver's angle is not monotone (a driver held
+    /// still by tooth play turns back against the turntable, and a train stopped by a jam
+    /// upstream stops while the turntable goes on), so the bound takes the turntable at the
+    /// moment that gives the most. A stage run this far may reach a jam its driver never
+    /// reaches; [`PointerRun::first_stop`] leaves such jams out.
+    fn into_range(self, x: f64, end: f64) -> f64 {
+        match self {
+            Frame::Fixed => x,
+            Frame::Pin(p) => x + (-p.turntable_angle(end)).max(0.0),
+            Frame::Slot(p) => p.slot_change(x),
+        }
+    }
+
+    /// The most the stage hands on over an input run of `end`, from the most its driven gear
+    /// turns, `x` (see [`Frame::into_range`]).
+    fn out_range(self, x: f64, end: f64) -> f64 {
+        match self {
+            Frame::Slot(p) => x + p.turntable_angle(end).max(0.0),
+            Frame::Fixed | Frame::Pin(_) => x,
+        }
     }
 }
 
@@ -209,6 +367,11 @@ pub enum Model {
     /// Edmunds' radial-line model (`edmunds`): no tooth shape, no jams.
     Edmunds,
 }
+
+/// Steps per input turn in which [`PointerRun::first_stop`] looks for the first moment a driver
+/// on the pin-and-slot's turntable reaches a jam (4096: about a sixth of a tooth of e5, which
+/// turns 668 teeth per turn of b, per step).
+pub const REACH_GRID: usize = 4096;
 
 /// One mesh as run under one model.
 #[derive(Debug, Clone)]
@@ -272,17 +435,41 @@ pub struct PointerRun {
     pub input_range: f64,
     /// The meshes in chain order.
     pub stages: Vec<Stage>,
+    /// The pin-and-slot in this train, if the run includes it (see
+    /// [`Mechanism::with_pin_and_slot`]); `None`: every mesh turns in the fixed frame.
+    pub pin_slot: Option<PinSlotTrain>,
 }
 
 impl PointerRun {
     /// Rotation of the output arbor after the input arbor has turned `psi` (radians), through the
-    /// first `upto` meshes.
+    /// first `upto` meshes. With the pin-and-slot, the pin gear's arbor (after the pin mesh) is
+    /// measured relative to the turntable it rides on.
     pub fn arbor_angle(&self, psi: f64, upto: usize) -> f64 {
         let mut x = psi;
-        for s in &self.stages[..upto] {
+        for (i, s) in self.stages[..upto].iter().enumerate() {
+            let frame = Frame::of(self.pin_slot.as_ref(), i);
+            x = frame.into(x, psi);
             x = s.run.theta_at(s.phi0 + x) - s.theta0;
+            x = frame.out(x, psi);
         }
         x
+    }
+
+    /// Rotation of mesh `stage`'s driver from its start, in the frame the mesh turns in (the
+    /// turntable's for the pin-and-slot's two meshes, where the slot gear turns as the pin
+    /// drives it), after the input has turned `psi`: the angle its trajectory is run at.
+    pub fn driver_angle(&self, psi: f64, stage: usize) -> f64 {
+        Frame::of(self.pin_slot.as_ref(), stage).into(self.arbor_angle(psi, stage), psi)
+    }
+
+    /// The pointer's ideal rotation (radians) after the input has turned `psi`: `ratio * psi`,
+    /// or with the pin-and-slot the anomaly-bearing motion of perfect gears
+    /// ([`PinSlotTrain::ideal_pointer_angle`]).
+    pub fn ideal_angle(&self, psi: f64) -> f64 {
+        match &self.pin_slot {
+            Some(p) => p.ideal_pointer_angle(psi),
+            None => self.ratio * psi,
+        }
     }
 
     /// Pointer rotation (radians) after the input has turned `psi`.
@@ -290,9 +477,11 @@ impl PointerRun {
         self.arbor_angle(psi, self.stages.len())
     }
 
-    /// Theoretical Difference (radians): pointer rotation minus ratio × input rotation.
+    /// Theoretical Difference (radians): pointer rotation minus its ideal rotation
+    /// ([`PointerRun::ideal_angle`]: ratio × input rotation, or with the pin-and-slot the
+    /// anomaly-bearing ideal motion).
     pub fn theoretical_difference(&self, psi: f64) -> f64 {
-        self.pointer_angle(psi) - self.ratio * psi
+        self.pointer_angle(psi) - self.ideal_angle(psi)
     }
 
     /// The first jam anywhere on the train, mapped back to the input arbor, if any.
@@ -309,15 +498,9 @@ impl PointerRun {
             // Input angle at which this mesh's driver arbor reached the jam: the upstream
             // composition is non-decreasing, so bisect.
             let target = e.phi - s.phi0;
-            let (mut lo, mut hi) = (0.0, self.input_range);
-            for _ in 0..100 {
-                let mid = 0.5 * (lo + hi);
-                if self.arbor_angle(mid, i) < target {
-                    lo = mid
-                } else {
-                    hi = mid
-                }
-            }
+            let Some(hi) = self.first_reach(i, target) else {
+                continue;
+            };
             if best.as_ref().is_none_or(|b| hi < b.input_angle) {
                 best = Some(Stop {
                     mesh: s.label.clone(),
@@ -327,6 +510,34 @@ impl PointerRun {
             }
         }
         best
+    }
+
+    /// The first input angle at which mesh `stage`'s driver reaches `target` in its own frame,
+    /// or `None` if it never does.
+    ///
+    /// Without the pin-and-slot every driver angle is non-decreasing and the stage was run just
+    /// as far as its driver turns, so bisecting the whole run finds it. With it, a driver seen
+    /// from the turntable can turn back (held by tooth play, or stopped by a jam upstream while
+    /// the turntable goes on) and its mesh was run over a bound on its travel: the first grid
+    /// point ([`REACH_GRID`] steps per input turn) at or past `target` is found, then bisected
+    /// from the point before; a jam no grid point reaches never happens.
+    fn first_reach(&self, stage: usize, target: f64) -> Option<f64> {
+        let (mut lo, mut hi) = (0.0, self.input_range);
+        if self.pin_slot.is_some() {
+            let steps = ((self.input_range / TAU * REACH_GRID as f64).ceil() as usize).max(1);
+            let step = self.input_range / steps as f64;
+            let k = (0..=steps).find(|&k| self.driver_angle(step * k as f64, stage) >= target)?;
+            (lo, hi) = (step * k.saturating_sub(1) as f64, step * k as f64);
+        }
+        for _ in 0..100 {
+            let mid = 0.5 * (lo + hi);
+            if self.driver_angle(mid, stage) < target {
+                lo = mid
+            } else {
+                hi = mid
+            }
+        }
+        Some(hi)
     }
 
     /// Number of disengagements on every mesh of the train.
@@ -447,6 +658,185 @@ mod tests {
         }
         let td = tri.theoretical_difference(19.0 * TAU) - tri.theoretical_difference(0.0);
         assert!(td.to_degrees().abs() < 1e-9);
+    }
+
+    /// Largest |TD| (degrees) of `run` over `n` samples.
+    fn max_td(run: &PointerRun, n: usize) -> f64 {
+        (0..=n)
+            .map(|i| {
+                let psi = run.input_range * i as f64 / n as f64;
+                run.theoretical_difference(psi).to_degrees().abs()
+            })
+            .fold(0.0, f64::max)
+    }
+
+    #[test]
+    fn pin_and_slot_left_out_is_the_rigid_train_bit_for_bit() {
+        let g = Gearing::freeth2006();
+        let m = Mechanism::ideal(&g, 1.1, 40.0).unwrap();
+        let off = m.clone().with_pin_and_slot(false).unwrap();
+        assert!(!off.has_pin_and_slot() && off.pin_slot_for("Lunar").is_none());
+        let a = m.run_pointer("Lunar", 0.5, &mut trial_rng(9, 0)).unwrap();
+        let b = off.run_pointer("Lunar", 0.5, &mut trial_rng(9, 0)).unwrap();
+        assert!(a.pin_slot.is_none() && b.pin_slot.is_none());
+        for i in 0..200 {
+            let psi = a.input_range * f64::from(i) / 199.0;
+            assert_eq!(
+                a.theoretical_difference(psi).to_bits(),
+                b.theoretical_difference(psi).to_bits()
+            );
+        }
+        // A pointer that does not run through it is unchanged even with it in.
+        let on = m.clone().with_pin_and_slot(true).unwrap();
+        let c = m.run_pointer("Saros", 0.5, &mut trial_rng(9, 1)).unwrap();
+        let d = on.run_pointer("Saros", 0.5, &mut trial_rng(9, 1)).unwrap();
+        assert!(d.pin_slot.is_none());
+        assert_eq!(
+            c.theoretical_difference(2.0).to_bits(),
+            d.theoretical_difference(2.0).to_bits()
+        );
+    }
+
+    #[test]
+    fn a_gearing_without_the_section_refuses_the_pin_and_slot() {
+        let text = train::FREETH2006_RON;
+        let cut = text.find("    pin_and_slot:").unwrap();
+        let g = Gearing::from_ron("cut.ron", &format!("{})", &text[..cut])).unwrap();
+        assert!(g.pin_and_slot().is_none());
+        let m = Mechanism::ideal(&g, 1.1, 40.0).unwrap();
+        let e = m.clone().with_pin_and_slot(true).unwrap_err();
+        assert!(e.rule.contains("no pin_and_slot section"), "{e}");
+        assert!(m.with_pin_and_slot(false).is_ok());
+    }
+
+    #[test]
+    fn ideal_gears_with_the_pin_and_slot_follow_the_anomaly_bearing_ideal() {
+        let g = Gearing::freeth2006();
+        let rigid = Mechanism::ideal(&g, 1.1, 40.0).unwrap();
+        let on = rigid.clone().with_pin_and_slot(true).unwrap();
+        for trial in 0..4 {
+            let r = rigid
+                .run_pointer("Lunar", 1.0, &mut trial_rng(11, trial))
+                .unwrap();
+            let p = on
+                .run_pointer("Lunar", 1.0, &mut trial_rng(11, trial))
+                .unwrap();
+            let ps = p.pin_slot.as_ref().unwrap();
+            assert!(r.first_stop().is_none() && p.first_stop().is_none());
+            // The pointer shows the anomaly (about 6.6 degrees) ...
+            let shown = (0..=2000)
+                .map(|i| {
+                    let psi = p.input_range * f64::from(i) / 2000.0;
+                    (p.pointer_angle(psi) - p.ratio * psi).to_degrees().abs()
+                })
+                .fold(0.0, f64::max);
+            assert!(shown > 6.0, "{shown}");
+            // ... and against the anomaly-bearing ideal only the tooth play is left: within the
+            // rigid train's TD (a wrong turntable sign would drift by 2 x 0.11 turns a year, a
+            // wrong anomaly phase by up to 13 degrees).
+            let (td_rigid, td_pin) = (max_td(&r, 4000), max_td(&p, 4000));
+            assert!(td_rigid > 0.1 && td_rigid < 6.0, "{td_rigid}");
+            assert!(td_pin < 1.5 * td_rigid + 0.2, "{td_pin} vs {td_rigid}");
+            // The meshes on the turntable ran in its frame: e5 relative to e3 and the slot's k2.
+            let i = ps.pin_stage;
+            let end = p.input_range;
+            assert!(
+                (p.driver_angle(end, i) - (p.arbor_angle(end, i) - ps.turntable_angle(end))).abs()
+                    < 1e-12
+            );
+            assert!(
+                (p.driver_angle(end, i + 1) - ps.slot_change(p.arbor_angle(end, i + 1))).abs()
+                    < 1e-12
+            );
+        }
+    }
+
+    #[test]
+    fn a_jam_with_the_pin_and_slot_is_dated_where_its_driver_reached_it() {
+        let g = Gearing::freeth2006();
+        // Edmunds' Case D (systematic 2 deg, random 0.08 of the pitch): jams everywhere.
+        let hyp = hypotheses::lookup("edmunds-split").unwrap();
+        let params = hypotheses::Params::new(
+            hyp,
+            &[
+                ("systematic".into(), "2".into()),
+                ("random".into(), "0.08".into()),
+                ("split".into(), "0.5".into()),
+            ],
+        )
+        .unwrap();
+        let mut on_turntable = 0;
+        for trial in 0..6 {
+            let mut rng = trial_rng(3, trial);
+            let m = Mechanism::build(&g, 1.1, 40.0, |name, ideal| {
+                hyp.apply(&ideal, name, &params, &mut rng)
+                    .map_err(|e| e.to_string())
+            })
+            .unwrap()
+            .with_pin_and_slot(true)
+            .unwrap();
+            let run = m.run_pointer("Lunar", 1.0, &mut rng).unwrap();
+            let Some(stop) = run.first_stop() else {
+                continue;
+            };
+            let i = run
+                .stages
+                .iter()
+                .position(|s| s.label == stop.mesh)
+                .unwrap();
+            let jam = run.stages[i]
+                .run
+                .trajectory()
+                .unwrap()
+                .events()
+                .iter()
+                .find(|e| e.kind == EventKind::Jam)
+                .unwrap();
+            // The bisection brackets the moment the driver (in its own frame) reached the jam.
+            let target = jam.phi - run.stages[i].phi0;
+            let before = run.driver_angle(stop.input_angle - 1e-9, i);
+            let after = run.driver_angle(stop.input_angle, i);
+            assert!(
+                before < target + 1e-9 && after > target - 1e-9,
+                "{}: {before} .. {after} vs {target}",
+                stop.mesh
+            );
+            // The turntable's two meshes were run over a bound on their drivers' travel: count
+            // their jams, reached or not.
+            for (k, s) in run.stages.iter().enumerate() {
+                let jammed = s
+                    .run
+                    .trajectory()
+                    .is_some_and(|t| t.events().iter().any(|e| e.kind == EventKind::Jam));
+                on_turntable += usize::from(jammed && (k == 3 || k == 4));
+            }
+        }
+        assert!(on_turntable > 0, "no jam on the turntable's meshes");
+    }
+
+    #[test]
+    fn run_pointer_from_uses_the_given_angles() {
+        let g = Gearing::freeth2006();
+        let m = Mechanism::ideal(&g, 1.1, 40.0)
+            .unwrap()
+            .with_pin_and_slot(true)
+            .unwrap();
+        let drawn = m
+            .run_pointer_to_first_jam("Lunar", 0.3, &mut trial_rng(4, 0))
+            .unwrap();
+        let phis: BTreeMap<String, f64> = drawn
+            .stages
+            .iter()
+            .map(|s| (s.label.clone(), s.phi0))
+            .collect();
+        let given = m
+            .run_pointer_from("Lunar", 0.3, |l| phis.get(l).copied())
+            .unwrap();
+        assert_eq!(
+            drawn.theoretical_difference(1.0).to_bits(),
+            given.theoretical_difference(1.0).to_bits()
+        );
+        assert!(m.run_pointer_from("Lunar", 0.3, |_| None).is_none());
     }
 
     #[test]

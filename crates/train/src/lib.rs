@@ -91,6 +91,31 @@ pub struct Pointer {
     pub days: bool,
 }
 
+/// The pin-and-slot lunar anomaly mechanism (Freeth 2006), an optional section of a gearing file.
+///
+/// Two gears ride on a turntable on axes `axis_offset` mm apart: a pin on the pin gear,
+/// `pin_radius` mm from its axis, engages a radial slot of the slot gear, so that the slot gear
+/// turns at a varying rate while the pin gear turns evenly. In the file the two gears share one
+/// arbor (the rigid coupling that stands in for the pin-and-slot when it is left out, as the
+/// paper does); the simulation may replace that coupling by the pin-and-slot and turn the
+/// turntable at its own rate (see `mechanism::Mechanism::with_pin_and_slot`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PinAndSlot {
+    /// The gear carrying the pin (Freeth 2006: `k1`).
+    pub pin_gear: String,
+    /// The gear with the radial slot (Freeth 2006: `k2`).
+    pub slot_gear: String,
+    /// A gear of the turntable arbor both gears ride on (Freeth 2006: `e3`).
+    pub turntable: String,
+    /// Distance between the pin gear's and the slot gear's axes, mm.
+    pub axis_offset: f64,
+    /// Distance of the pin from the pin gear's axis, mm (greater than `axis_offset`).
+    pub pin_radius: f64,
+    /// Provenance of the geometry.
+    pub source: String,
+}
+
 /// A gearing file rejected by [`Gearing::from_ron`], displayed as `{file}: {location}: {rule}`.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[error("{file}: {location}: {rule}")]
@@ -145,6 +170,7 @@ pub struct Gearing {
     arbors: Vec<Arbor>,
     meshes: Vec<MeshData>,
     pointers: Vec<Pointer>,
+    pin_and_slot: Option<PinAndSlot>,
     #[serde(skip)]
     components: Vec<Component>,
 }
@@ -157,6 +183,9 @@ struct RawGearing {
     arbors: Vec<Arbor>,
     meshes: Vec<MeshData>,
     pointers: Vec<Pointer>,
+    /// Optional: files without it (the format before the pin-and-slot) still load.
+    #[serde(default)]
+    pin_and_slot: Option<PinAndSlot>,
 }
 
 /// Builds [`GearingError`]s for one file.
@@ -247,7 +276,13 @@ impl Gearing {
     /// large or small that a fitted tip radius is not a positive finite number; a pointer with
     /// an unknown input arbor or mesh, no meshes, or a chain that does not connect (the first
     /// driver must be on the input arbor, each next driver on the arbor of the previous driven
-    /// gear). The message is one line: control characters in names are escaped.
+    /// gear); a `pin_and_slot` section (location `pin_and_slot.FIELD`) naming an unknown gear,
+    /// with pin and slot gear not on one arbor or the turntable on theirs, an axis offset or pin
+    /// radius that is not positive and finite or an offset not less than the pin radius, no
+    /// pointer whose train runs through it, or such a pointer whose train enters the arbor by
+    /// another gear than the pin gear, leaves it by another than the slot gear, or has no chain
+    /// of meshes from its input arbor to the turntable. The message is one line: control
+    /// characters in names are escaped.
     pub fn from_ron(file_name: &str, text: &str) -> Result<Gearing, GearingError> {
         let errors = Errors { file: file_name };
         let raw: RawGearing = ron::from_str(text).map_err(|e| {
@@ -261,9 +296,11 @@ impl Gearing {
             arbors: raw.arbors,
             meshes: raw.meshes,
             pointers: raw.pointers,
+            pin_and_slot: raw.pin_and_slot,
             components: Vec::new(),
         };
         gearing.validate(&errors)?;
+        gearing.validate_pin_and_slot(&errors)?;
         gearing.components = gearing.find_components(&errors)?;
         Ok(gearing)
     }
@@ -421,6 +458,128 @@ impl Gearing {
         Ok(())
     }
 
+    /// The rules of the optional `pin_and_slot` section (after [`Gearing::validate`]).
+    fn validate_pin_and_slot(&self, errors: &Errors<'_>) -> Result<(), GearingError> {
+        let Some(ps) = &self.pin_and_slot else {
+            return Ok(());
+        };
+        let at = |field: &str| format!("pin_and_slot.{field}");
+        for (field, name) in [
+            ("pin_gear", &ps.pin_gear),
+            ("slot_gear", &ps.slot_gear),
+            ("turntable", &ps.turntable),
+        ] {
+            if self.gear(name).is_none() {
+                return Err(errors.at(at(field), format_args!("unknown gear {name}")));
+            }
+        }
+        if ps.pin_gear == ps.slot_gear {
+            return Err(errors.at(
+                at("slot_gear"),
+                format_args!("must differ from the pin gear {}", ps.pin_gear),
+            ));
+        }
+        let (Some(pin_arbor), Some(slot_arbor), Some(turntable_arbor)) = (
+            self.arbor_of(&ps.pin_gear),
+            self.arbor_of(&ps.slot_gear),
+            self.arbor_of(&ps.turntable),
+        ) else {
+            return Err(errors.at(at("pin_gear"), "a gear is on no arbor"));
+        };
+        if pin_arbor != slot_arbor {
+            return Err(errors.at(
+                at("slot_gear"),
+                format_args!(
+                    "{} is on arbor {slot_arbor}, not on the pin gear's arbor {pin_arbor} (the rigid coupling the pin-and-slot replaces)",
+                    ps.slot_gear
+                ),
+            ));
+        }
+        if turntable_arbor == pin_arbor {
+            return Err(errors.at(
+                at("turntable"),
+                format_args!(
+                    "{} is on arbor {pin_arbor}, the arbor of the pin and slot gears; the turntable must be another arbor",
+                    ps.turntable
+                ),
+            ));
+        }
+        for (field, v) in [
+            ("axis_offset", ps.axis_offset),
+            ("pin_radius", ps.pin_radius),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(errors.at(
+                    at(field),
+                    format_args!("must be positive and finite (mm), got {v}"),
+                ));
+            }
+        }
+        if ps.axis_offset >= ps.pin_radius {
+            return Err(errors.at(
+                at("axis_offset"),
+                format_args!(
+                    "must be less than the pin radius {} mm (the pin must stay in the slot), got {}",
+                    ps.pin_radius, ps.axis_offset
+                ),
+            ));
+        }
+        let mut through = 0;
+        for pointer in &self.pointers {
+            let Some(i) = pointer.meshes.iter().position(|label| {
+                self.mesh(label)
+                    .and_then(|m| self.arbor_of(&m.driven))
+                    .is_some_and(|a| a == pin_arbor)
+            }) else {
+                continue;
+            };
+            through += 1;
+            let entering = self.mesh(&pointer.meshes[i]).map(|m| m.driven.as_str());
+            if entering != Some(ps.pin_gear.as_str()) {
+                return Err(errors.at(
+                    at("pin_gear"),
+                    format_args!(
+                        "pointer {}'s train enters arbor {pin_arbor} through mesh {}, which does not drive the pin gear {}",
+                        pointer.name, pointer.meshes[i], ps.pin_gear
+                    ),
+                ));
+            }
+            let leaving = pointer
+                .meshes
+                .get(i + 1)
+                .and_then(|label| self.mesh(label))
+                .map(|m| m.driver.as_str());
+            if leaving != Some(ps.slot_gear.as_str()) {
+                return Err(errors.at(
+                    at("slot_gear"),
+                    format_args!(
+                        "pointer {}'s train does not leave arbor {pin_arbor} through a mesh driven by the slot gear {}",
+                        pointer.name, ps.slot_gear
+                    ),
+                ));
+            }
+            if self.mesh_path(&pointer.input, turntable_arbor).is_none() {
+                return Err(errors.at(
+                    at("turntable"),
+                    format_args!(
+                        "no chain of meshes turns the turntable arbor {turntable_arbor} from pointer {}'s input arbor {}",
+                        pointer.name, pointer.input
+                    ),
+                ));
+            }
+        }
+        if through == 0 {
+            return Err(errors.at(
+                at("pin_gear"),
+                format_args!(
+                    "no pointer's train runs through the pin gear {}",
+                    ps.pin_gear
+                ),
+            ));
+        }
+        Ok(())
+    }
+
     /// Groups the gears into mesh-connected components and fits one `mu` to each.
     fn find_components(&self, errors: &Errors<'_>) -> Result<Vec<Component>, GearingError> {
         let index: BTreeMap<&str, usize> = self
@@ -528,6 +687,64 @@ impl Gearing {
     #[must_use]
     pub fn components(&self) -> &[Component] {
         &self.components
+    }
+
+    /// The pin-and-slot section, if the file has one (the default gearing does; the paper's
+    /// simulation leaves the pin-and-slot out).
+    #[must_use]
+    pub fn pin_and_slot(&self) -> Option<&PinAndSlot> {
+        self.pin_and_slot.as_ref()
+    }
+
+    /// The chain of meshes (labels, driver to driven) that turns arbor `to` from arbor `from`:
+    /// empty if they are the same arbor, `None` if no chain joins them that way (or either is
+    /// unknown). Meshes between arbors form a forest, so the chain is unique.
+    #[must_use]
+    pub fn mesh_path(&self, from: &str, to: &str) -> Option<Vec<String>> {
+        self.arbor(from)?;
+        self.arbor(to)?;
+        // Breadth-first from `from`, remembering the mesh that reached each arbor.
+        let mut reached: BTreeMap<&str, Option<&MeshData>> = BTreeMap::new();
+        reached.insert(from, None);
+        let mut queue = std::collections::VecDeque::from([from]);
+        while let Some(arbor) = queue.pop_front() {
+            if arbor == to {
+                break;
+            }
+            for m in &self.meshes {
+                if self.arbor_of(&m.driver) != Some(arbor) {
+                    continue;
+                }
+                if let Some(next) = self.arbor_of(&m.driven)
+                    && !reached.contains_key(next)
+                {
+                    reached.insert(next, Some(m));
+                    queue.push_back(next);
+                }
+            }
+        }
+        let mut path = Vec::new();
+        let mut at = to;
+        while let Some(Some(m)) = reached.get(at).copied() {
+            path.push(m.label.clone());
+            at = self.arbor_of(&m.driver)?;
+        }
+        if at != from || !reached.contains_key(to) {
+            return None;
+        }
+        path.reverse();
+        Some(path)
+    }
+
+    /// Turns of arbor `to` per turn of arbor `from` along [`Gearing::mesh_path`]: the exact
+    /// product of `N_driver / N_driven` (every angle positive in its own gear's direction).
+    #[must_use]
+    pub fn path_ratio(&self, from: &str, to: &str) -> Option<Ratio> {
+        self.mesh_path(from, to)?
+            .iter()
+            .try_fold(Ratio::ONE, |acc, label| {
+                acc.checked_mul(self.mesh_ratio(label)?)
+            })
     }
 
     /// The gear called `name`.

@@ -183,4 +183,36 @@ fn freeth2021_differs_from_2006_in_radii_only() {
         }
     }
     assert!(larger >= 20, "only {larger} gears grew");
+    assert_eq!(a.pin_and_slot(), b.pin_and_slot());
+}
+
+#[test]
+fn pin_and_slot_section_is_read_and_the_turntable_is_reached() {
+    let g = default_gearing();
+    let Some(ps) = g.pin_and_slot() else {
+        panic!("the default gearing has a pin-and-slot section")
+    };
+    assert_eq!(
+        (
+            ps.pin_gear.as_str(),
+            ps.slot_gear.as_str(),
+            ps.turntable.as_str()
+        ),
+        ("k1", "k2", "e3")
+    );
+    assert_eq!((ps.axis_offset, ps.pin_radius), (1.1, 9.6));
+    assert!(!ps.source.is_empty());
+    // The turntable is turned by the Saros train's first three meshes: 64/38 * 53/96 * 27/223.
+    assert_eq!(
+        g.mesh_path("b", "e turntable"),
+        Some(vec!["b2-l1".into(), "l2-m1".into(), "m3-e3".into()])
+    );
+    assert_eq!(
+        g.path_ratio("b", "e turntable"),
+        Some(Ratio::new(64 * 53 * 27, 38 * 96 * 223))
+    );
+    assert_eq!(g.mesh_path("b", "b"), Some(vec![]));
+    // No chain runs against the meshes' direction.
+    assert_eq!(g.mesh_path("e turntable", "b"), None);
+    assert_eq!(g.mesh_path("b", "nowhere"), None);
 }

@@ -322,3 +322,134 @@ fn a_name_with_a_newline_gives_a_one_line_message() {
         "unknown gear c\\n1",
     );
 }
+
+/// `BASE` with a pin-and-slot on arbor b (pin gear b1 driven by a1, slot gear b2 driving c1) and a
+/// turntable arbor t (t1, turned from the input arbor a by mesh a2-t1), and `section` as its
+/// `pin_and_slot` field.
+fn with_pin_and_slot(section: &str) -> String {
+    let text = edit(
+        r#"(name: "c1", teeth: 60, measured_radius: Some(15.0), source: "test"),"#,
+        r#"(name: "c1", teeth: 60, measured_radius: Some(15.0), source: "test"),
+        (name: "t1", teeth: 80, measured_radius: Some(20.0), source: "test"),"#,
+    )
+    .replacen(
+        r#"(name: "c", gears: ["c1"]),"#,
+        r#"(name: "c", gears: ["c1"]),
+        (name: "t", gears: ["t1"]),"#,
+        1,
+    )
+    .replacen(
+        r#"(label: "b2-c1", driver: "b2", driven: "c1"),"#,
+        r#"(label: "b2-c1", driver: "b2", driven: "c1"),
+        (label: "a2-t1", driver: "a2", driven: "t1"),"#,
+        1,
+    );
+    let end = text.rfind(')').unwrap_or(text.len());
+    format!("{}    pin_and_slot: {section},\n)", &text[..end])
+}
+
+const PIN_AND_SLOT: &str = r#"Some((pin_gear: "b1", slot_gear: "b2", turntable: "t1", axis_offset: 1.0, pin_radius: 8.0, source: "test"))"#;
+
+#[test]
+fn pin_and_slot_section_is_optional_and_validated() {
+    // Absent (as in BASE) or None: no pin-and-slot.
+    let none = Gearing::from_ron("test.ron", &with_pin_and_slot("None"));
+    assert!(none.is_ok_and(|g| g.pin_and_slot().is_none()));
+    let g = match Gearing::from_ron("test.ron", &with_pin_and_slot(PIN_AND_SLOT)) {
+        Ok(g) => g,
+        Err(e) => panic!("{e}"),
+    };
+    assert_eq!(g.pin_and_slot().map(|p| p.pin_radius), Some(8.0));
+    assert_eq!(g.mesh_path("a", "t"), Some(vec!["a2-t1".to_string()]));
+    for (from, to, location, words) in [
+        (
+            r#"pin_gear: "b1""#,
+            r#"pin_gear: "x9""#,
+            "pin_and_slot.pin_gear",
+            "unknown gear x9",
+        ),
+        (
+            r#"slot_gear: "b2""#,
+            r#"slot_gear: "b1""#,
+            "pin_and_slot.slot_gear",
+            "must differ",
+        ),
+        (
+            r#"slot_gear: "b2""#,
+            r#"slot_gear: "c1""#,
+            "pin_and_slot.slot_gear",
+            "not on the pin gear's arbor b",
+        ),
+        (
+            r#"turntable: "t1""#,
+            r#"turntable: "b2""#,
+            "pin_and_slot.turntable",
+            "must be another arbor",
+        ),
+        (
+            "axis_offset: 1.0",
+            "axis_offset: 0.0",
+            "pin_and_slot.axis_offset",
+            "positive and finite",
+        ),
+        (
+            "axis_offset: 1.0",
+            "axis_offset: -1.0",
+            "pin_and_slot.axis_offset",
+            "positive and finite",
+        ),
+        (
+            "pin_radius: 8.0",
+            "pin_radius: inf",
+            "pin_and_slot.pin_radius",
+            "positive and finite",
+        ),
+        (
+            "axis_offset: 1.0",
+            "axis_offset: 8.0",
+            "pin_and_slot.axis_offset",
+            "less than the pin radius 8 mm",
+        ),
+        // The slot gear must drive the train on: swap the roles.
+        (
+            r#"pin_gear: "b1", slot_gear: "b2""#,
+            r#"pin_gear: "b2", slot_gear: "b1""#,
+            "pin_and_slot.pin_gear",
+            "does not drive the pin gear b2",
+        ),
+    ] {
+        let section = PIN_AND_SLOT.replacen(from, to, 1);
+        assert_ne!(section, PIN_AND_SLOT, "{from}");
+        assert_error(&with_pin_and_slot(&section), location, words);
+    }
+    // The turntable cannot be turned from the input arbor: t1 driven by nothing the input reaches.
+    let unreachable = with_pin_and_slot(PIN_AND_SLOT).replacen(
+        r#"(label: "a2-t1", driver: "a2", driven: "t1"),"#,
+        r#"(label: "t1-a2", driver: "t1", driven: "a2"),"#,
+        1,
+    );
+    assert_error(
+        &unreachable,
+        "pin_and_slot.turntable",
+        "no chain of meshes turns the turntable arbor t",
+    );
+    // A pin-and-slot no pointer runs through.
+    let idle = with_pin_and_slot(PIN_AND_SLOT).replacen(
+        r#"meshes: ["a1-b1", "b2-c1"]"#,
+        r#"meshes: ["a2-t1"]"#,
+        1,
+    );
+    assert_error(
+        &idle,
+        "pin_and_slot.pin_gear",
+        "no pointer's train runs through",
+    );
+    // Unknown fields of the section are refused, like every other item's.
+    let colour =
+        with_pin_and_slot(&PIN_AND_SLOT.replacen("pin_radius:", "colour: 3, pin_radius:", 1));
+    let msg = error(&colour);
+    assert!(
+        msg.starts_with("test.ron: line ") && msg.contains("colour"),
+        "{msg}"
+    );
+}
