@@ -713,6 +713,23 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
                 })
             })
             .collect();
+        let horizon = if s.days > stats::DAYS_PER_YEAR {
+            let within = |runs: &[Outcome]| {
+                runs.iter()
+                    .filter(|o| failure::jam_of(o, mech).is_some_and(|j| j.day <= s.days))
+                    .count()
+            };
+            format!(
+                " Within the whole horizon ({} days of b): {}/{} at {rl} %, {}/{} at the chosen clearances.",
+                fmt_f64(s.days, 2),
+                within(per_input[2 * k]),
+                s.runs,
+                within(per_input[2 * k + 1]),
+                s.runs,
+            )
+        } else {
+            String::new()
+        };
         let case = CASES[ci].0;
         let question = if case == "B" {
             "Could a careful maker have made Case B work? "
@@ -720,7 +737,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             ""
         };
         study.note(format!(
-            "{question}Case {case}: with {changed} of {} meshes moved off {rl} %, {}/{} mechanisms jammed within a year ({} %, 95 % interval {}-{} %), against {}/{} at {rl} % everywhere ({} %, {}-{} %); paired, {only_ref} runs jammed only at {rl} % and {only_best} only at the chosen clearances (exact p = {}). Meshes still failing in more than {} % of pair runs at their chosen clearance (lower 95 % bound): {}.",
+            "{question}Case {case}: with {changed} of {} meshes moved off {rl} %, {}/{} mechanisms jammed within a year ({} %, 95 % interval {}-{} %), against {}/{} at {rl} % everywhere ({} %, {}-{} %); paired, {only_ref} runs jammed only at {rl} % and {only_best} only at the chosen clearances (exact p = {}). Meshes still failing in more than {} % of pair runs at their chosen clearance (lower 95 % bound): {}.{horizon}",
             meshes.len(),
             b.k,
             b.n,
@@ -981,6 +998,33 @@ mod tests {
         let theirs: Vec<&str> = theirs.lines().skip(1).collect();
         assert_eq!(ours_at_40.len(), 12);
         assert_eq!(ours_at_40, theirs);
+    }
+
+    #[test]
+    fn a_horizon_beyond_a_year_is_counted_whole() {
+        let sets = [
+            ("cases", "D"),
+            ("grid", "40"),
+            ("coarse_trials", "1"),
+            ("refine_trials", "1"),
+            ("refine_step", "0"),
+            ("runs", "2"),
+            ("days", "730.5"),
+        ];
+        let r = run_with(1, &sets).unwrap();
+        let notes = r.tables[2].notes.join("\n");
+        assert!(
+            notes.contains("Within the whole horizon (730.50 days of b): 2/2 at 40 %"),
+            "{notes}"
+        );
+        // At one year (the default) there is no such note.
+        let one_year = run_with(1, &sets[..6]).unwrap();
+        assert!(
+            !one_year.tables[2]
+                .notes
+                .join("\n")
+                .contains("whole horizon")
+        );
     }
 
     #[test]
