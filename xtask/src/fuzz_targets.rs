@@ -54,6 +54,12 @@ const GEARING_FIELDS: &[&str] = &[
     "driven",
     "input",
     "days",
+    "pin_and_slot",
+    "pin_gear",
+    "slot_gear",
+    "turntable",
+    "axis_offset",
+    "pin_radius",
 ];
 
 /// Field names of the measured-errors format (`crates/hypotheses/data/measured-example.ron`).
