@@ -33,6 +33,7 @@ const PARAMS: &[Param] = &[
         help: "samples of the Theoretical Difference per run",
     },
     gearing::PARAM,
+    crate::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -47,6 +48,7 @@ registry::inventory::submit! {
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
+    let rule = crate::events::chosen(ctx)?;
     let h = ctx.f64("tooth_height")?;
     let grid_step = ctx.f64("grid_step")?;
     if !(0.5..=50.0).contains(&grid_step) {
@@ -106,7 +108,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             }
             Some(t) => {
                 let s = setup.td_sigma(&t, samples);
-                let (j, dis) = (t.jams(), t.disengagements());
+                let (j, dis) = crate::events::counts(&rule, &t);
                 if j > 0 {
                     last_jam = Some(g);
                 } else if first_free.is_none() {
@@ -138,11 +140,11 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         ["limit", "ours [% of h]", "paper [% of h]"],
     );
     let jam_limit = match (last_jam, first_free) {
-        (Some(y), Some(n)) if y < n => Some(boundary(y, n, 1e-4, |g| setup.jams(g))?),
+        (Some(y), Some(n)) if y < n => Some(boundary(y, n, 1e-4, |g| setup.jams(g, &rule))?),
         _ => None,
     };
     let dis_limit = match (first_dis, last_engaged) {
-        (Some(y), Some(n)) if y > n => Some(boundary(y, n, 1e-4, |g| setup.disengages(g))?),
+        (Some(y), Some(n)) if y > n => Some(boundary(y, n, 1e-4, |g| setup.disengages(g, &rule))?),
         _ => None,
     };
     let show =

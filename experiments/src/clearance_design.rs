@@ -82,6 +82,7 @@ const PARAMS: &[Param] = &[
     errors::PARAM,
     errors::PARAMS_PARAM,
     gearing::PARAM,
+    crate::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -303,6 +304,7 @@ fn cell(
         params,
         tooth_height: ctx.f64("tooth_height")?,
         clearance: g,
+        events: crate::events::chosen(ctx)?,
     })
 }
 

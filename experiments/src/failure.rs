@@ -70,6 +70,7 @@ const PARAMS: &[Param] = &[
     errors::PARAMS_PARAM,
     gearing::PARAM,
     gearing::PIN_AND_SLOT,
+    crate::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -379,14 +380,17 @@ pub(crate) fn run_study(
 ) -> Result<Vec<Outcome>, RunError> {
     let horizon = days / DAYS_PER_YEAR * TAU;
     let seed = ctx.seed();
+    let events = crate::events::chosen(ctx)?;
+    // The rule decides where a train stops, so it names the batch too.
+    let batch = format!("{batch}|events={}", events.label());
     let jobs: Vec<(usize, u64)> = (0..inputs.len())
         .flat_map(|i| (0..trials).map(move |t| (i, t)))
         .collect();
-    ctx.trials(batch, jobs.len() as u64, |j| {
+    ctx.trials(&batch, jobs.len() as u64, |j| {
         let &(i, t) = jobs
             .get(j as usize)
             .ok_or_else(|| RunError::Internal(format!("run {j} of {}", jobs.len())))?;
-        one_run(g, &inputs[i], h, seed, t, horizon)
+        one_run(g, &inputs[i], h, seed, t, horizon, &events)
     })
 }
 
@@ -501,6 +505,7 @@ fn one_run(
     seed: u64,
     t: u64,
     horizon: f64,
+    events: &rules::Rule,
 ) -> Result<Outcome, RunError> {
     // One stream per (input, trial): every gear's errors, then every mesh's initial angle.
     let mut rng = trial_rng(seed, (input.index << 32) | t);
@@ -545,6 +550,7 @@ fn one_run(
             });
         }
         (Ok(m), None) => m
+            .with_rule(events.clone())
             .with_pin_and_slot(input.pin_and_slot)
             .map_err(|e| RunError::Internal(format!("the pin-and-slot was checked: {e}")))?,
     };
@@ -606,7 +612,9 @@ fn one_run(
                         else {
                             return Err(RunError::Internal(format!("mesh {label} was not built")));
                         };
-                        let traj = mesh.run_until(phi0, phi0 + range, Start::Touching(0.0), true);
+                        let is_jam = |e: &contact::Event| mech.rule().is_jam(e);
+                        let traj =
+                            mesh.run_until(phi0, phi0 + range, Start::Touching(0.0), Some(&is_jam));
                         engagements += (traj.phi_end() - traj.phi_start()) / TAU
                             * mesh.driver().teeth() as f64;
                         let s = Stage {
@@ -628,6 +636,7 @@ fn one_run(
                 input_range: horizon,
                 stages,
                 pin_slot: None,
+                rule: mech.rule().clone(),
             };
             if p == "Lunar" {
                 lunar_sigma = lunar_spread(g, &run, horizon);

@@ -20,6 +20,7 @@ const PARAMS: &[Param] = &[
         unit: "deg",
         help: "driver angle between samples",
     },
+    crate::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -131,7 +132,10 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     ]);
     table.row(vec![
         "jams / disengagements".into(),
-        format!("{} / {}", traj.jams(), traj.disengagements()),
+        {
+            let (j, d) = crate::events::counts(&crate::events::chosen(ctx)?, &traj);
+            format!("{j} / {d}")
+        },
         "-".into(),
         "".into(),
     ]);

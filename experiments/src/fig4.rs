@@ -25,6 +25,7 @@ const PARAMS: &[Param] = &[
         help: "samples over the solar turn",
     },
     gearing::PARAM,
+    crate::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -44,6 +45,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     let g = gearing::load(ctx)?;
     let mech = Mechanism::ideal(&g, ctx.f64("tooth_height")?, ctx.f64("clearance")?)
         .map_err(|e| RunError::bad("gearing", format!("mesh {}", e.mesh), e.rule))?;
+    let mech = crate::events::with_rule(ctx, mech)?;
     let samples = ctx.usize("samples")?.max(2);
     let mut rng = trial_rng(ctx.seed(), ctx.u64("trial")?);
     let psis: Vec<f64> = (0..samples)

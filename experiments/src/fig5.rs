@@ -64,6 +64,7 @@ const PARAMS: &[Param] = &[
     },
     errors::PARAM,
     errors::PARAMS_PARAM,
+    crate::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -84,6 +85,7 @@ const SPLITS: [(&str, f64); 3] = [
 ];
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
+    let rule = crate::events::chosen(ctx)?;
     let n = ctx.usize("teeth")?;
     let (big_r, small_r) = (ctx.f64("tip_radius")?, ctx.f64("root_radius")?);
     let ideal =
@@ -148,8 +150,8 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             fmt_f64(s_rad, 4),
             fmt_f64(s_tri, 4),
             fmt_f64(s_tri / s_rad, 3),
-            tri.jams().to_string(),
-            tri.disengagements().to_string(),
+            crate::events::counts(&rule, &tri).0.to_string(),
+            crate::events::counts(&rule, &tri).1.to_string(),
         ]);
         series.push((name, td_rad.clone(), td_tri.clone()));
         columns.push(td_rad);

@@ -38,6 +38,7 @@ const PARAMS: &[Param] = &[
         help: "TD samples per run",
     },
     gearing::PARAM,
+    crate::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -52,6 +53,7 @@ registry::inventory::submit! {
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
+    let rule = crate::events::chosen(ctx)?;
     let g = gearing::load(ctx)?;
     let h = ctx.f64("tooth_height")?;
     let (from, to, step) = (ctx.f64("from")?, ctx.f64("to")?, ctx.f64("step")?);
@@ -97,7 +99,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
                 .iter()
                 .map(|&c| {
                     Ok(pair.run(c)?.and_then(|t| {
-                        (t.jams() == 0 && t.disengagements() == 0)
+                        (crate::events::counts(&rule, &t) == (0, 0))
                             .then(|| pair.td_sigma(&t, samples).sigma)
                     }))
                 })
@@ -106,7 +108,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         .collect();
     let limits: Vec<Result<Limits, RunError>> = pairs
         .par_iter()
-        .map(|(_, pair)| pair.limits(1e-2))
+        .map(|(_, pair)| pair.limits(1e-2, &rule))
         .collect();
 
     let mut header = vec!["G [% of h]".to_string()];

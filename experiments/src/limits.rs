@@ -8,6 +8,8 @@ use geometry::Gear;
 use registry::RunError;
 
 use crate::common::deg;
+use crate::events::counts;
+use rules::Rule;
 
 /// An ideal mesh whose clearance can vary.
 #[derive(Debug, Clone, Copy)]
@@ -39,14 +41,14 @@ impl IdealPair {
         Ok(Some(mesh.run(0.0, turn, Start::Touching(0.0))))
     }
 
-    /// Whether a full turn at clearance `g` jams (or the gears overlap at every tooth).
-    pub fn jams(&self, g: f64) -> Result<bool, RunError> {
-        Ok(self.run(g)?.is_none_or(|t| t.jams() > 0))
+    /// Whether a full turn at clearance `g` jams by `rule` (or the gears overlap at every tooth).
+    pub fn jams(&self, g: f64, rule: &Rule) -> Result<bool, RunError> {
+        Ok(self.run(g)?.is_none_or(|t| counts(rule, &t).0 > 0))
     }
 
-    /// Whether a full turn at clearance `g` disengages.
-    pub fn disengages(&self, g: f64) -> Result<bool, RunError> {
-        Ok(self.run(g)?.is_some_and(|t| t.disengagements() > 0))
+    /// Whether a full turn at clearance `g` disengages by `rule`.
+    pub fn disengages(&self, g: f64, rule: &Rule) -> Result<bool, RunError> {
+        Ok(self.run(g)?.is_some_and(|t| counts(rule, &t).1 > 0))
     }
 
     /// Standard deviation of the driven gear's Theoretical Difference (degrees) over a run.
@@ -67,17 +69,17 @@ impl IdealPair {
     /// The clearance limits (% of h), located by bisection to `tol` between grid points 0 and 100:
     /// (smallest G without a jam, largest G without a disengagement). None where the grid does not
     /// bracket a limit.
-    pub fn limits(&self, tol: f64) -> Result<(Option<f64>, Option<f64>), RunError> {
+    pub fn limits(&self, tol: f64, rule: &Rule) -> Result<(Option<f64>, Option<f64>), RunError> {
         let mid = 50.0;
-        let jam = if self.jams(mid)? || !self.jams(0.0)? {
+        let jam = if self.jams(mid, rule)? || !self.jams(0.0, rule)? {
             None
         } else {
-            Some(boundary(0.0, mid, tol, |g| self.jams(g))?)
+            Some(boundary(0.0, mid, tol, |g| self.jams(g, rule))?)
         };
-        let dis = if self.disengages(mid)? || !self.disengages(100.0)? {
+        let dis = if self.disengages(mid, rule)? || !self.disengages(100.0, rule)? {
             None
         } else {
-            Some(boundary(100.0, mid, tol, |g| self.disengages(g))?)
+            Some(boundary(100.0, mid, tol, |g| self.disengages(g, rule))?)
         };
         Ok((jam, dis))
     }

@@ -50,6 +50,7 @@ const PARAMS: &[Param] = &[
     errors::PARAM,
     errors::PARAMS_PARAM,
     gearing::PARAM,
+    crate::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -144,6 +145,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     };
     let ideal = Mechanism::ideal(&g, h, clearance)
         .map_err(|e| RunError::bad("gearing", format!("mesh {}", e.mesh), e.rule))?;
+    let ideal = crate::events::with_rule(ctx, ideal)?;
     let ideal_on = gearing::with_pin_and_slot(ctx, ideal.clone(), true)?;
     let Some(train) = ideal_on.pin_slot_for(LUNAR) else {
         return Err(RunError::bad(
@@ -205,6 +207,10 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
                 text
             })
         });
+        let mech = match mech {
+            Ok(m) => Ok(crate::events::with_rule(ctx, m)?),
+            Err(e) => Err(e),
+        };
         match (mech, failure) {
             (_, Some(e)) => Err(e),
             (Err(e), None) => Err(RunError::bad(

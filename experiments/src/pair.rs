@@ -3,9 +3,9 @@
 
 use std::f64::consts::TAU;
 
-use contact::{EventKind, Mesh, Start};
+use contact::{Mesh, Start};
 use geometry::{Gear, Vec2};
-use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use registry::{Context, Experiment, OutputFile, Report, RunError, Table, fmt_f64};
 use serde::Deserialize;
 
 use crate::common::{Series, csv, deg, line_plot};
@@ -18,7 +18,7 @@ registry::inventory::submit! {
         id: "pair",
         title: "One mesh from a RON file: theta(phi), Theoretical Difference, jams and disengagements",
         paper_item: "sections 2-3 (any gear pair, e.g. measured from CT scans)",
-        params: &[] as &[Param],
+        params: &[crate::events::PARAM],
         config: Some("a mesh: driver and driven (teeth, tip_radius, root_radius, optional tips_deg, optional eccentricity), centre_distance or clearance_percent, start_deg, run_deg, sample_deg; see experiments/data/pair-example.ron"),
         run,
     }
@@ -177,6 +177,7 @@ pub fn load(file: &str, text: &str) -> Result<(Mesh, PairFile), RunError> {
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
+    let rule = crate::events::chosen(ctx)?;
     let (name, text) = match ctx.config() {
         Some(c) => (c.path.display().to_string(), c.text.as_str()),
         None => (EXAMPLE_NAME.to_string(), EXAMPLE),
@@ -216,11 +217,12 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         "length",
     );
     rowf(&mut summary, "driver angle run", fmt_f64(run_deg, 3), "deg");
-    rowf(&mut summary, "jams", traj.jams().to_string(), "");
+    let (jams, disengagements) = crate::events::counts(&rule, &traj);
+    rowf(&mut summary, "jams", jams.to_string(), "");
     rowf(
         &mut summary,
         "disengagements",
-        traj.disengagements().to_string(),
+        disengagements.to_string(),
         "",
     );
     rowf(
@@ -256,10 +258,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     let mut ev_rows =
         String::from("phi_deg,kind,driver_tooth,driven_tooth,theta_deg,theta_after_deg\n");
     for e in traj.events() {
-        let kind = match e.kind {
-            EventKind::Jam => "jam",
-            EventKind::Disengagement => "disengagement",
-        };
+        let kind = e.kind.name();
         let j = e.driver_tooth.rem_euclid(n1 as i64);
         let k = e.driven_tooth.rem_euclid(n2 as i64);
         let cells = [

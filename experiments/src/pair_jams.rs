@@ -14,7 +14,7 @@ use std::f64::consts::TAU;
 use std::fmt::Write as _;
 use std::sync::{Mutex, OnceLock};
 
-use contact::{EventKind, Mesh, Start};
+use contact::{Mesh, Start};
 use geometry::Gear;
 use hypotheses::{Hypothesis, Params};
 use mechanism::trial_rng;
@@ -41,6 +41,9 @@ pub struct CellSpec {
     pub tooth_height: f64,
     /// Clearance G (% of h).
     pub clearance: f64,
+    /// Which events count as jams and disengagements. Not part of [`CellSpec::canonical`]: the
+    /// same gears and initial angles are counted under every rule.
+    pub events: rules::Rule,
 }
 
 impl CellSpec {
@@ -204,9 +207,7 @@ fn trial(p: &Prepared<'_>, seed: u64, t: u64) -> Result<(bool, bool), RunError> 
     };
     // Only the events are counted: the run keeps no segments.
     let events = mesh.run_events(phi0, phi0 + p.turn, Start::Touching(0.0));
-    let jammed = events.iter().any(|e| e.kind == EventKind::Jam);
-    let disengaged = events.iter().any(|e| e.kind == EventKind::Disengagement);
-    Ok((jammed, disengaged))
+    Ok(spec.events.tally(&events))
 }
 
 /// Counts of every cell run in this process, by cache key (see [`run_cells`]).
@@ -296,8 +297,9 @@ fn run_cells_with(
         .iter()
         .map(|p| {
             format!(
-                "{}|seed={seed}|trials={trials}|gearing={gearing_id:016x}",
-                p.canonical
+                "{}|events={}|seed={seed}|trials={trials}|gearing={gearing_id:016x}",
+                p.canonical,
+                p.spec.events.label()
             )
         })
         .collect();
@@ -607,6 +609,7 @@ mod tests {
             params,
             tooth_height: 1.1,
             clearance: 40.0,
+            events: rules::Rule::default(),
         }
     }
 

@@ -41,6 +41,7 @@ const PARAMS: &[Param] = &[
     errors::SPLIT,
     errors::PARAM,
     gearing::PARAM,
+    crate::events::PARAM,
 ];
 
 registry::inventory::submit! {

@@ -72,6 +72,7 @@ const PARAMS: &[Param] = &[
     EXELIGMOS_TURNS,
     SAMPLES_PER_ENGAGEMENT,
     gearing::PARAM,
+    crate::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -202,6 +203,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     let per = ctx.usize("samples_per_engagement")?.max(1);
     let mech = Mechanism::ideal(&g, h, clearance)
         .map_err(|e| RunError::bad("gearing", format!("mesh {}", e.mesh), e.rule))?;
+    let mech = crate::events::with_rule(ctx, mech)?;
     let runs = pointer_runs(ctx, &g, &POINTERS, per)?;
     let seed = ctx.seed();
     // One RNG stream per trial; trials in parallel, collected (and so reduced) in trial order.

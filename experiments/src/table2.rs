@@ -50,6 +50,7 @@ const PARAMS: &[Param] = &[
     errors::PARAMS_PARAM,
     gearing::PARAM,
     gearing::PIN_AND_SLOT,
+    crate::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -136,7 +137,11 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
                             ),
                         ));
                     }
-                    (Ok(m), None) => gearing::with_pin_and_slot(ctx, m, pin_and_slot)?,
+                    (Ok(m), None) => gearing::with_pin_and_slot(
+                        ctx,
+                        crate::events::with_rule(ctx, m)?,
+                        pin_and_slot,
+                    )?,
                 };
                 let mut out = Vec::new();
                 for &(name, turns, samples) in &runs {

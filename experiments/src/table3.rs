@@ -4,6 +4,7 @@
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table};
 
 use crate::errors;
+use crate::events;
 use crate::gearing;
 use crate::pair_jams::{
     CSV_COLUMNS, CellSpec, Stage, Tally, cell_text, csv_columns, paper_counts, run_cells,
@@ -23,6 +24,7 @@ const PARAMS: &[Param] = &[
     errors::PARAM,
     errors::PARAMS_PARAM,
     gearing::PARAM,
+    crate::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -63,6 +65,7 @@ pub(crate) fn case_cells(
                 params: params.clone(),
                 tooth_height: h,
                 clearance,
+                events: events::chosen(ctx)?,
             });
         }
     }

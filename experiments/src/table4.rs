@@ -31,6 +31,7 @@ const PARAMS: &[Param] = &[
     errors::PARAM,
     errors::PARAMS_PARAM,
     gearing::PARAM,
+    crate::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -99,6 +100,7 @@ pub(crate) fn run_grid(
                 params: params.clone(),
                 tooth_height: h,
                 clearance,
+                events: crate::events::chosen(ctx)?,
             });
         }
     }

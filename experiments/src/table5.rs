@@ -33,6 +33,7 @@ const PARAMS: &[Param] = &[
     errors::PARAM,
     errors::PARAMS_PARAM,
     gearing::PARAM,
+    crate::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -119,6 +120,7 @@ pub(crate) fn derive(
                 params,
                 tooth_height: h,
                 clearance,
+                events: crate::events::chosen(ctx)?,
             });
         }
     }

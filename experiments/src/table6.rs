@@ -56,6 +56,7 @@ const PARAMS: &[Param] = &[
     errors::PARAM,
     errors::PARAMS_PARAM,
     gearing::PARAM,
+    crate::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -142,7 +143,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             let mech = match (mech, failure) {
                 (_, Some(e)) => return Err(e),
                 (Err(e), None) => return Err(RunError::Internal(e.to_string())),
-                (Ok(m), None) => m,
+                (Ok(m), None) => crate::events::with_rule(ctx, m)?,
             };
             let mut out = Vec::new();
             for &(name, turns, samples) in &runs {

@@ -67,6 +67,7 @@ const PARAMS: &[Param] = &[
     errors::PARAM,
     errors::PARAMS_PARAM,
     gearing::PARAM,
+    crate::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -337,6 +338,7 @@ fn search(
                     params,
                     tooth_height: h,
                     clearance,
+                    events: crate::events::chosen(ctx)?,
                 },
                 range: start..end,
             });

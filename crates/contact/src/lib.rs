@@ -5,4 +5,4 @@ mod roots;
 mod solver;
 
 pub use mesh::{Mesh, MeshError, Obstacle, tooth_pair_evaluations};
-pub use solver::{Event, EventKind, Motion, Segment, Start, Trajectory};
+pub use solver::{Event, EventKind, Motion, Segment, Start, StopAt, Trajectory};

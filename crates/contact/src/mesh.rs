@@ -371,6 +371,64 @@ impl Mesh {
         )
     }
 
+    /// The contact of driver tooth `j` with driven tooth `k` at (φ, θ), where they touch: the
+    /// contact point (world frame) and the unit common normal there, or None where the normal is
+    /// not defined (a vertex on a vertex: tip on tip, or tip in a valley's corner).
+    ///
+    /// The touching features are the vertex-flank pair at the least distance (every vertex of
+    /// each tooth against every flank of the other, arcs as circles); the normal is the flank's.
+    pub fn contact_normal(&self, phi: f64, theta: f64, j: i64, k: i64) -> Option<(Vec2, Vec2)> {
+        let a = self.driver.tooth(j).map(|v| self.driver_world(v, phi));
+        let b = self.driven.tooth(k).map(|v| self.driven_world(v, theta));
+        let fa = self.driver.flank_arcs(j, |v| self.driver_world(v, phi));
+        let fb = self.driven.flank_arcs(k, |v| self.driven_world(v, theta));
+        // (distance, contact point, normal or None at a flank's end)
+        let mut best: (f64, Vec2, Option<Vec2>) = (f64::INFINITY, Vec2::zeros(), None);
+        let mut consider = |p: Vec2, flank: (Vec2, Vec2), arc: Option<Arc>| {
+            let found = match arc {
+                Some(arc) => {
+                    let r = p - arc.centre;
+                    let d = (r.norm() - arc.radius).abs();
+                    let on = arc.holds(arc.centre + r * (arc.radius / r.norm()), 1e-9);
+                    (d, on.then(|| r / r.norm()))
+                }
+                None => {
+                    let (u, v) = flank;
+                    let e = v - u;
+                    let t = (p - u).dot(&e) / e.norm_squared();
+                    let foot = u + e * t.clamp(0.0, 1.0);
+                    let inside = t > 1e-9 && t < 1.0 - 1e-9;
+                    (
+                        (p - foot).norm(),
+                        inside.then(|| Vec2::new(-e.y, e.x) / e.norm()),
+                    )
+                }
+            };
+            if found.0 < best.0 {
+                best = (found.0, p, found.1);
+            }
+        };
+        for f in 0..2 {
+            let flank_a = (a[f], a[f + 1]);
+            let flank_b = (b[f], b[f + 1]);
+            for &q in &b {
+                consider(q, flank_a, fa[f]);
+            }
+            for &p in &a {
+                consider(p, flank_b, fb[f]);
+            }
+        }
+        best.2.map(|n| (best.1, n))
+    }
+
+    /// The angle (0 to π/2) between a line of action through `point` along `normal` and the line
+    /// from `point` to the driven gear's rotation centre.
+    pub fn angle_to_driven_centre(&self, point: Vec2, normal: Vec2) -> f64 {
+        let to_centre = self.c2() - point;
+        let c = normal.dot(&to_centre).abs() / (normal.norm() * to_centre.norm());
+        c.clamp(0.0, 1.0).acos()
+    }
+
     /// Driver teeth near the line of centres at driver angle φ.
     pub(crate) fn driver_teeth(&self, phi: f64) -> std::ops::RangeInclusive<i64> {
         self.driver

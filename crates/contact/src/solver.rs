@@ -28,6 +28,9 @@ use crate::mesh::{Mesh, Obstacle};
 
 /// Relative tolerance (radians) when deciding on which side of θ an obstacle lies.
 const SIDE_TOL: f64 = 1e-10;
+/// How near (radians of driven angle, relative to 1 + |θ|) an obstacle's end must be to θ to
+/// count as a contact when an event is classified: located events are far closer than this.
+const CONTACT_TOL: f64 = 1e-9;
 /// Event location accuracy in driver angle (radians): far below the required 1e-6°.
 const LOCATE_TOL: f64 = 1e-13;
 /// How closely the angle where a new obstacle appeared is located to tell on which side of θ
@@ -38,30 +41,123 @@ const TOUCH_STEP: f64 = 1e-8;
 /// Steps per driver pitch used to bracket events (finer halvings are taken where needed).
 const STEPS_PER_PITCH: f64 = 4.0;
 
-/// What happened at an event.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+/// What happened at an event: its mechanical kind, read off the contact motion alone.
+///
+/// Which kinds a table counts as a "jam" or a "disengagement" is not decided here: that is an
+/// event rule's job (the `rules` crate). [`Trajectory::jams`] and [`Trajectory::disengagements`]
+/// give the `strict` reading (every lock, strike and blocked start is a jam; every gap and slip
+/// a disengagement).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
 pub enum EventKind {
-    /// The clearance interval of the driven gear closed: the driver cannot advance.
-    Jam,
-    /// The pushing tooth slipped past its driven tooth with no other tooth in contact.
-    Disengagement,
+    /// Held from both sides at once: the driven gear is pushed by one driver tooth (a contact
+    /// behind) into another driver tooth ahead (a contact ahead), so no forward position is
+    /// free - the paper's Figure V_A.
+    Lock,
+    /// One-sided: with nothing pushing the driven gear, an incoming driver tooth meets the front
+    /// of a lagging driven tooth, which the push model would have to turn backwards.
+    Strike,
+    /// Hand-over gap: the pushing contact ended (its tips slipped past each other) before another
+    /// driver tooth took over, and drive resumed within one driver pitch, in step.
+    Gap,
+    /// Drive lost for a whole driver pitch or more, or resumed with the driven gear's tooth phase
+    /// against the driver moved by a tooth: synchronisation lost.
+    Slip,
+    /// No free driven position at the start: the teeth overlap wherever the driven gear is put.
+    BlockedAtStart,
 }
 
-/// One jam or disengagement.
+impl EventKind {
+    /// Every kind, in the order above.
+    pub const ALL: [EventKind; 5] = [
+        EventKind::Lock,
+        EventKind::Strike,
+        EventKind::Gap,
+        EventKind::Slip,
+        EventKind::BlockedAtStart,
+    ];
+
+    /// Short name, as the event log prints it (`lock`, `strike`, `gap`, `slip`, `blocked`).
+    pub fn name(self) -> &'static str {
+        match self {
+            EventKind::Lock => "lock",
+            EventKind::Strike => "strike",
+            EventKind::Gap => "gap",
+            EventKind::Slip => "slip",
+            EventKind::BlockedAtStart => "blocked",
+        }
+    }
+
+    /// A contact that stops the driver in the push model (lock, strike, blocked start).
+    pub fn is_contact_stop(self) -> bool {
+        matches!(
+            self,
+            EventKind::Lock | EventKind::Strike | EventKind::BlockedAtStart
+        )
+    }
+
+    /// A loss of drive (gap or slip).
+    pub fn is_loss(self) -> bool {
+        matches!(self, EventKind::Gap | EventKind::Slip)
+    }
+}
+
+/// One event of a run: its kind and its size.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Event {
     /// Driver angle of the event (radians).
     pub phi: f64,
     /// Driven angle at the event, before any release (radians).
     pub theta: f64,
-    /// Jam or disengagement.
+    /// What happened.
     pub kind: EventKind,
-    /// Unwrapped driver tooth of the contact that closed (jam) or was lost (disengagement).
+    /// Unwrapped driver tooth of the contact that closed (lock, strike) or was lost (gap, slip).
     pub driver_tooth: i64,
     /// Unwrapped driven tooth of that contact.
     pub driven_tooth: i64,
-    /// Driven angle to which the gear was released after a jam (equal to `theta` otherwise).
+    /// Driven angle to which the gear was released after a lock or strike (equal to `theta`
+    /// otherwise): the push model lets it go to the next free position, as the paper's program
+    /// let the driven gear "rotate freely ... until movement was possible again".
     pub theta_after: f64,
+    /// Lost motion: driver angle from the event until a driver tooth drives the driven gear
+    /// again, in driver pitches (to the end of the run if drive never resumed).
+    pub lost_motion: f64,
+    /// Whether drive resumed before the end of the run.
+    pub resumed: bool,
+    /// The tooth pair (driver, driven; unwrapped) that drove the driven gear again, if known.
+    pub resumed_by: Option<(i64, i64)>,
+    /// Change of the tooth phase (driver tooth + driven tooth of the driving pair, constant while
+    /// the gears run in step) from the drive before the event to the drive after it: 0 in step,
+    /// ±1 for a tooth lost or gained. 0 when either drive is unknown.
+    pub phase_shift: i64,
+    /// Lag left: how far the driven gear fell behind the ideal ratio between the event and the
+    /// resumed drive, `(N1/N2)·Δφ − Δθ` (radians of driven angle; negative if a release carried it
+    /// ahead).
+    pub lag: f64,
+    /// At a lock or strike, the angle (radians, 0 to π/2) between the line of action at the
+    /// closing contact (its common normal) and the line from the contact point to the driven
+    /// gear's rotation centre: a force along the normal passes this close to the driven arbor.
+    /// NaN for the other kinds, and where the normal is not defined (tip on tip).
+    pub wedge_angle: f64,
+}
+
+impl Event {
+    /// An event of `kind` at (φ, θ) on tooth pair `pair`, with no size yet.
+    fn new(kind: EventKind, phi: f64, theta: f64, pair: (i64, i64)) -> Self {
+        Self {
+            phi,
+            theta,
+            kind,
+            driver_tooth: pair.0,
+            driven_tooth: pair.1,
+            theta_after: theta,
+            lost_motion: 0.0,
+            resumed: false,
+            resumed_by: None,
+            phase_shift: 0,
+            lag: 0.0,
+            wedge_angle: f64::NAN,
+        }
+    }
 }
 
 /// How the driven gear moves over one segment of driver angle.
@@ -89,6 +185,9 @@ pub struct Segment {
     /// The rule.
     pub motion: Motion,
 }
+
+/// Which events end a run early ([`Mesh::run_until`]).
+pub type StopAt<'a> = dyn Fn(&Event) -> bool + 'a;
 
 /// How the driven gear starts.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -158,20 +257,22 @@ impl Trajectory {
         &self.mesh
     }
 
-    /// Number of jams.
+    /// Number of jams in the `strict` reading: locks, strikes and a blocked start.
     pub fn jams(&self) -> usize {
         self.events
             .iter()
-            .filter(|e| e.kind == EventKind::Jam)
+            .filter(|e| e.kind.is_contact_stop())
             .count()
     }
 
-    /// Number of disengagements.
+    /// Number of disengagements in the `strict` reading: gaps and slips.
     pub fn disengagements(&self) -> usize {
-        self.events
-            .iter()
-            .filter(|e| e.kind == EventKind::Disengagement)
-            .count()
+        self.events.iter().filter(|e| e.kind.is_loss()).count()
+    }
+
+    /// Number of events of one kind.
+    pub fn count(&self, kind: EventKind) -> usize {
+        self.events.iter().filter(|e| e.kind == kind).count()
     }
 }
 
@@ -209,25 +310,36 @@ struct Run<'m> {
     keep_segments: bool,
     events: Vec<Event>,
     scratch: Vec<Obstacle>,
+    /// Tooth phase (driver tooth + driven tooth) of the last known driving pair.
+    drive_phase: Option<i64>,
+    /// Events whose size waits for the drive to resume: (index in `events`, phase before).
+    pending: Vec<(usize, Option<i64>)>,
 }
 
 impl Mesh {
     /// Runs the push model from driver angle `phi_start` to `phi_end` (radians, `phi_end >=
     /// phi_start`).
     pub fn run(&self, phi_start: f64, phi_end: f64, start: Start) -> Trajectory {
-        self.run_until(phi_start, phi_end, start, false)
+        self.run_until(phi_start, phi_end, start, None)
     }
 
-    /// Like [`Mesh::run`], but with `stop_at_jam` the run ends at the first jam (a jammed train
-    /// stops): the trajectory then ends there and holds its last angle beyond.
+    /// Like [`Mesh::run`], but the run ends at the first event for which `stop` holds (a jammed
+    /// train stops; which events jam is an event rule's call): the trajectory then ends there and
+    /// holds its last angle beyond. `stop` sees an event as it is recorded, before a later drive
+    /// sizes it (its kind is final except that a gap may still become a slip).
     pub fn run_until(
         &self,
         phi_start: f64,
         phi_end: f64,
         start: Start,
-        stop_at_jam: bool,
+        stop: Option<&StopAt<'_>>,
     ) -> Trajectory {
-        self.run_with_steps(phi_start, phi_end, start, stop_at_jam, STEPS_PER_PITCH)
+        let run = self.solve(phi_start, phi_end, start, stop, STEPS_PER_PITCH, true);
+        Trajectory {
+            mesh: self.clone(),
+            segments: run.segments,
+            events: run.events,
+        }
     }
 
     /// [`Mesh::run_until`] with the bracketing step set to `1 / steps_per_pitch` of the driver's
@@ -242,14 +354,13 @@ impl Mesh {
         stop_at_jam: bool,
         steps_per_pitch: f64,
     ) -> Trajectory {
-        let run = self.solve(
-            phi_start,
-            phi_end,
-            start,
-            stop_at_jam,
-            steps_per_pitch,
-            true,
-        );
+        let contact_stop = |e: &Event| e.kind.is_contact_stop();
+        let stop: Option<&StopAt<'_>> = if stop_at_jam {
+            Some(&contact_stop)
+        } else {
+            None
+        };
+        let run = self.solve(phi_start, phi_end, start, stop, steps_per_pitch, true);
         Trajectory {
             mesh: self.clone(),
             segments: run.segments,
@@ -260,7 +371,7 @@ impl Mesh {
     /// The jams and disengagements of [`Mesh::run`] over the same range, without its segments:
     /// all that jam statistics need, in memory that does not grow with the range.
     pub fn run_events(&self, phi_start: f64, phi_end: f64, start: Start) -> Vec<Event> {
-        self.solve(phi_start, phi_end, start, false, STEPS_PER_PITCH, false)
+        self.solve(phi_start, phi_end, start, None, STEPS_PER_PITCH, false)
             .events
     }
 
@@ -269,7 +380,7 @@ impl Mesh {
         phi_start: f64,
         phi_end: f64,
         start: Start,
-        stop_at_jam: bool,
+        stop: Option<&StopAt<'_>>,
         steps_per_pitch: f64,
         keep_segments: bool,
     ) -> Run<'_> {
@@ -284,8 +395,11 @@ impl Mesh {
             keep_segments,
             events: Vec::new(),
             scratch: Vec::new(),
+            drive_phase: None,
+            pending: Vec::new(),
         };
         run.start(start);
+        let mut seen = 0;
         let step = self.driver.max_gap.min(TAU / self.driver.tips.len() as f64) / steps_per_pitch;
         while run.phi < phi_end {
             // No sliver of a step at the end: it would only gather rounding noise.
@@ -295,13 +409,17 @@ impl Mesh {
                 run.phi + step
             };
             run.advance(next);
-            if stop_at_jam && run.events.iter().any(|e| e.kind == EventKind::Jam) {
-                break;
+            if let Some(stop) = stop {
+                if run.events[seen..].iter().any(stop) {
+                    break;
+                }
+                seen = run.events.len();
             }
         }
         if run.segments.is_empty() {
             run.rest_to(phi_end);
         }
+        run.close_pending();
         run
     }
 
@@ -374,11 +492,99 @@ impl Run<'_> {
             }
             Some(t) => t,
             None => {
+                // No free position: the gears cannot turn from here. Always an event, so that a
+                // mesh too tight to start is never silently counted as running.
                 self.held = true;
+                let gap = self.mesh.driven.max_gap;
+                self.mesh
+                    .obstacles(phi, guess - gap, guess + gap, &mut self.scratch);
+                let pair = self
+                    .scratch
+                    .iter()
+                    .find(|o| o.lo <= guess && guess <= o.hi)
+                    .map_or((0, 0), |o| (o.driver_tooth, o.driven_tooth));
+                self.events
+                    .push(Event::new(EventKind::BlockedAtStart, phi, guess, pair));
                 guess
             }
         };
         self.classify_all(phi);
+        self.drive_phase = self
+            .touching_behind(phi, self.theta, None)
+            .map(|p| p.0 + p.1);
+    }
+
+    /// A tooth pair touching the driven gear from behind at (φ, θ) (its obstacle's upper end is
+    /// at θ), other than `except`: what drives, or would drive, the driven gear there.
+    fn touching_behind(
+        &self,
+        phi: f64,
+        theta: f64,
+        except: Option<(i64, i64)>,
+    ) -> Option<(i64, i64)> {
+        let gap = self.mesh.driven.max_gap;
+        let mut obs = Vec::new();
+        self.mesh.obstacles(phi, theta - gap, theta + gap, &mut obs);
+        obs.iter()
+            .filter(|o| Some((o.driver_tooth, o.driven_tooth)) != except)
+            .filter(|o| (o.hi - theta).abs() <= CONTACT_TOL * (1.0 + theta.abs()))
+            .map(|o| (o.driver_tooth, o.driven_tooth))
+            .next()
+    }
+
+    /// Records an event; every kind but a blocked start is sized when the drive resumes.
+    fn record(&mut self, e: Event, phase_before: Option<i64>) {
+        if e.kind != EventKind::BlockedAtStart {
+            self.pending.push((self.events.len(), phase_before));
+        }
+        self.events.push(e);
+    }
+
+    /// Drive resumed at the current (φ, θ), by the pair among `pairs` carrying the driven gear:
+    /// size the events waiting for it (lost motion, phase shift, lag) and tell a gap from a slip.
+    fn resume_drive(&mut self, pairs: &[(i64, i64)]) {
+        let (phi, theta) = (self.phi, self.theta);
+        let by = pairs
+            .iter()
+            .copied()
+            .map(|p| (self.mesh.hi(phi, p), p))
+            .filter(|(h, _)| h.is_finite())
+            .max_by(|a, b| a.0.total_cmp(&b.0))
+            .map(|(_, p)| p);
+        let phase = by.map(|p| p.0 + p.1);
+        for (i, before) in std::mem::take(&mut self.pending) {
+            let shift = match (before, phase) {
+                (Some(b), Some(a)) => a - b,
+                _ => 0,
+            };
+            self.events[i].resumed_by = by;
+            self.size_event(i, phi, theta, true, shift);
+        }
+        if phase.is_some() {
+            self.drive_phase = phase;
+        }
+    }
+
+    /// Events still waiting at the end of the run: drive never resumed.
+    fn close_pending(&mut self) {
+        let (phi, theta) = (self.phi, self.theta);
+        for (i, _) in std::mem::take(&mut self.pending) {
+            self.size_event(i, phi, theta, false, 0);
+        }
+    }
+
+    fn size_event(&mut self, i: usize, phi: f64, theta: f64, resumed: bool, shift: i64) {
+        let n1 = self.mesh.driver.tips.len() as f64;
+        let n2 = self.mesh.driven.tips.len() as f64;
+        let e = &mut self.events[i];
+        e.lost_motion = (phi - e.phi) * n1 / TAU;
+        e.resumed = resumed;
+        e.phase_shift = shift;
+        e.lag = n1 / n2 * (phi - e.phi) - (theta - e.theta);
+        // A whole driver pitch without drive, or a tooth out of step: synchronisation lost.
+        if e.kind == EventKind::Gap && (e.lost_motion >= 1.0 || shift != 0) {
+            e.kind = EventKind::Slip;
+        }
     }
 
     /// Re-derive every nearby obstacle's side from scratch, relative to the current θ.
@@ -412,6 +618,11 @@ impl Run<'_> {
         }
         if !self.keep_segments {
             self.segments.clear();
+        }
+        if let Motion::Push(pairs) = &motion
+            && !self.pending.is_empty()
+        {
+            self.resume_drive(pairs);
         }
         self.segments.push(Segment {
             phi_start: self.phi,
@@ -634,14 +845,7 @@ impl Run<'_> {
                         phi_pk,
                         theta_pk,
                         Motion::Push(pushers.clone()),
-                        Some(Event {
-                            phi: phi_pk,
-                            theta: theta_pk,
-                            kind: EventKind::Disengagement,
-                            driver_tooth: lost.0,
-                            driven_tooth: lost.1,
-                            theta_after: theta_pk,
-                        }),
+                        Some(Event::new(EventKind::Gap, phi_pk, theta_pk, lost)),
                     ));
                     rest_then_maybe_push(&mut plan, &others, &hi, phi_pk, theta_pk, phi1);
                 }
@@ -697,7 +901,7 @@ impl Run<'_> {
                 for (end, th, motion, event) in plan {
                     self.push_segment(end, th, motion);
                     if let Some(e) = event {
-                        self.events.push(e);
+                        self.record(e, Some(e.driver_tooth + e.driven_tooth));
                     }
                 }
                 // Sides for the next step, from the cached values at φ1.
@@ -722,7 +926,7 @@ impl Run<'_> {
                     if end < phi_j {
                         self.push_segment(end, th, motion);
                         if let Some(e) = event {
-                            self.events.push(e);
+                            self.record(e, Some(e.driver_tooth + e.driven_tooth));
                         }
                     } else {
                         self.push_segment(phi_j, th_j, motion);
@@ -752,14 +956,19 @@ impl Run<'_> {
                 }
                 self.held = release.is_none();
                 let after = release.unwrap_or(theta_j);
-                self.events.push(Event {
-                    phi: phi_j,
-                    theta: theta_j,
-                    kind: EventKind::Jam,
-                    driver_tooth: closing.0,
-                    driven_tooth: closing.1,
-                    theta_after: after,
-                });
+                // Held from both sides (a pair touching behind as the one ahead closes), or
+                // struck from the front with nothing pushing.
+                let behind_pair = self.touching_behind(phi_j, theta_j, Some(closing));
+                let (kind, before) = match behind_pair {
+                    Some(p) => (EventKind::Lock, Some(p.0 + p.1)),
+                    None => (EventKind::Strike, self.drive_phase),
+                };
+                let mut e = Event::new(kind, phi_j, theta_j, closing);
+                e.theta_after = after;
+                e.wedge_angle = mesh
+                    .contact_normal(phi_j, theta_j, closing.0, closing.1)
+                    .map_or(f64::NAN, |(p, n)| mesh.angle_to_driven_centre(p, n));
+                self.record(e, before);
                 self.theta = after;
                 self.classify_all(phi_j);
             }

@@ -8,7 +8,7 @@
 use std::f64::consts::TAU;
 use std::ops::Range;
 
-use contact::{Event, EventKind, Mesh, Motion, Start, Trajectory};
+use contact::{Event, Mesh, Motion, Start, Trajectory};
 use geometry::{Gear, Vec2};
 use polycheck::{
     CurvedShape, GearShape, P2, outline_from_angles, outline_from_polar, outline_from_tips,
@@ -409,7 +409,7 @@ fn jams(traj: &Trajectory) -> Vec<Event> {
     traj.events()
         .iter()
         .copied()
-        .filter(|e| e.kind == EventKind::Jam)
+        .filter(|e| e.kind.is_contact_stop())
         .collect()
 }
 
@@ -515,11 +515,7 @@ fn check_disengagements(case: &Case) -> Result<(), TestCaseError> {
     };
     let oracle = case.oracle();
     let traj = case.run(&mesh);
-    for e in traj
-        .events()
-        .iter()
-        .filter(|e| e.kind == EventKind::Disengagement)
-    {
+    for e in traj.events().iter().filter(|e| e.kind.is_loss()) {
         let pen = oracle.penetration_at(e.phi, e.theta);
         let dist = oracle.distance_at(e.phi, e.theta);
         prop_assert!(

@@ -15,11 +15,12 @@ pub mod pin_slot;
 use std::collections::BTreeMap;
 use std::f64::consts::TAU;
 
-use contact::{EventKind, Mesh, Start, Trajectory};
+use contact::{Mesh, Start, Trajectory};
 use edmunds::RadialPair;
 use geometry::Gear;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use rules::Rule;
 use train::Gearing;
 
 pub use pin_slot::PinSlotTrain;
@@ -40,6 +41,8 @@ pub struct Mechanism {
     gearing: Gearing,
     meshes: BTreeMap<String, Mesh>,
     pin_and_slot: bool,
+    /// Which events stop the train (the jams of an event rule).
+    rule: Rule,
 }
 
 /// The generator of a trial's stream (what [`trial_rng`] returns).
@@ -122,6 +125,7 @@ impl Mechanism {
             gearing: gearing.clone(),
             meshes,
             pin_and_slot: false,
+            rule: Rule::default(),
         })
     }
 
@@ -143,6 +147,18 @@ impl Mechanism {
         }
         self.pin_and_slot = on;
         Ok(self)
+    }
+
+    /// This mechanism with `rule` deciding which events are jams that stop the train (default:
+    /// [`rules::DEFAULT`]).
+    pub fn with_rule(mut self, rule: Rule) -> Self {
+        self.rule = rule;
+        self
+    }
+
+    /// The event rule that decides which events stop the train.
+    pub fn rule(&self) -> &Rule {
+        &self.rule
     }
 
     /// Whether the pin-and-slot is in (see [`Mechanism::with_pin_and_slot`]).
@@ -253,6 +269,9 @@ impl Mechanism {
         model: Model,
         stop_at_jam: bool,
     ) -> Option<PointerRun> {
+        let rule = &self.rule;
+        let is_jam = |e: &contact::Event| rule.is_jam(e);
+        let stop: Option<&contact::StopAt<'_>> = if stop_at_jam { Some(&is_jam) } else { None };
         let p = self.gearing.pointer(pointer)?;
         let ratio = self.gearing.pointer_ratio(pointer)?.to_f64();
         let pin_slot = self.pin_slot_for(pointer);
@@ -271,7 +290,7 @@ impl Mechanism {
                     phi0,
                     phi0 + range_in,
                     Start::Touching(0.0),
-                    stop_at_jam,
+                    stop,
                 ))),
                 Model::Edmunds => {
                     StageRun::Radial(RadialPair::new(mesh.driver(), mesh.driven(), phi0))
@@ -292,6 +311,7 @@ impl Mechanism {
             input_range,
             stages,
             pin_slot,
+            rule: self.rule.clone(),
         })
     }
 }
@@ -438,6 +458,8 @@ pub struct PointerRun {
     /// The pin-and-slot in this train, if the run includes it (see
     /// [`Mechanism::with_pin_and_slot`]); `None`: every mesh turns in the fixed frame.
     pub pin_slot: Option<PinSlotTrain>,
+    /// The event rule deciding which events are jams ([`PointerRun::first_stop`]).
+    pub rule: Rule,
 }
 
 impl PointerRun {
@@ -491,7 +513,7 @@ impl PointerRun {
             let jam = s
                 .run
                 .trajectory()
-                .and_then(|t| t.events().iter().find(|e| e.kind == EventKind::Jam));
+                .and_then(|t| self.rule.first_jam(t.events()));
             let Some(e) = jam else {
                 continue;
             };
@@ -623,7 +645,7 @@ mod tests {
             .unwrap()
             .events()
             .iter()
-            .find(|e| e.kind == EventKind::Jam)
+            .find(|e| e.kind.is_contact_stop())
             .unwrap();
         let reached = run.arbor_angle(stop.input_angle, i);
         assert!(
@@ -790,7 +812,7 @@ mod tests {
                 .unwrap()
                 .events()
                 .iter()
-                .find(|e| e.kind == EventKind::Jam)
+                .find(|e| e.kind.is_contact_stop())
                 .unwrap();
             // The bisection brackets the moment the driver (in its own frame) reached the jam.
             let target = jam.phi - run.stages[i].phi0;
@@ -807,7 +829,7 @@ mod tests {
                 let jammed = s
                     .run
                     .trajectory()
-                    .is_some_and(|t| t.events().iter().any(|e| e.kind == EventKind::Jam));
+                    .is_some_and(|t| t.events().iter().any(|e| e.kind.is_contact_stop()));
                 on_turntable += usize::from(jammed && (k == 3 || k == 4));
             }
         }

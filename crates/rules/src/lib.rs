@@ -1,0 +1,412 @@
+//! Event rules as plugins: which mechanical events (lock, strike, gap, slip, blocked start) a table counts as a jam or a disengagement.
+//!
+//! The contact solver reports what the gears do ([`contact::EventKind`] with its sizes); the
+//! paper prints two columns, jams and disengagements. A rule is the map between them, and
+//! since the paper's words admit more than one reading, each reading is a plugin: one file in
+//! `src/plugins/`, registered with `inventory`, listed by `cargo xtask rules`, chosen with
+//! `--set events=NAME` (parameters as `NAME:key=value,key=value`). A rule looks at one event at
+//! a time and at nothing but the contact motion: never at the clearance formula, never at a
+//! table.
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+
+pub use contact::{Event, EventKind};
+pub use inventory;
+
+/// Every file in `src/plugins/`, declared by `build.rs`: a new rule is one file there.
+mod plugins {
+    include!(concat!(env!("OUT_DIR"), "/plugins.rs"));
+}
+
+/// The rule of the paper's tables unless `--set events=NAME` says otherwise (see the README's
+/// results section for the evidence that chose it).
+pub const DEFAULT: &str = "strict";
+
+/// Why a rule could not be looked up or configured: what was wrong and the rule broken.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("{what}: {rule}")]
+pub struct RuleError {
+    /// The offending item: a rule name or one of its parameters.
+    pub what: String,
+    /// The rule it broke, in words.
+    pub rule: String,
+}
+
+impl RuleError {
+    fn new(what: impl Into<String>, rule: impl Into<String>) -> Self {
+        Self {
+            what: what.into(),
+            rule: rule.into(),
+        }
+    }
+}
+
+/// One parameter of a rule: a number with a default and a range.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ParamSpec {
+    /// Name, as in `friction:mu=0.3`.
+    pub name: &'static str,
+    /// Value when not given.
+    pub default: f64,
+    /// Smallest allowed value.
+    pub min: f64,
+    /// Largest allowed value.
+    pub max: f64,
+    /// Unit, empty when it has none.
+    pub unit: &'static str,
+    /// One line telling what it does.
+    pub help: &'static str,
+}
+
+/// An event rule: which events are jams and which are disengagements.
+pub trait EventRule: Sync {
+    /// Unique name, e.g. `paper`.
+    fn name(&self) -> &'static str;
+    /// One line telling what it counts.
+    fn summary(&self) -> &'static str;
+    /// The reading in a few sentences, with the quoted sentences it rests on (`cargo xtask help
+    /// NAME`).
+    fn details(&self) -> &'static str;
+    /// Its parameters (may be empty).
+    fn params(&self) -> &'static [ParamSpec] {
+        &[]
+    }
+    /// Whether `e` counts as a jam, with `params` holding a value for every declared parameter.
+    fn is_jam(&self, e: &Event, params: &Params) -> bool;
+    /// Whether `e` counts as a disengagement.
+    fn is_disengagement(&self, e: &Event, params: &Params) -> bool;
+}
+
+/// The `inventory` item a rule registers itself with:
+///
+/// ```ignore
+/// struct Mine;
+/// impl rules::EventRule for Mine { /* name, summary, details, is_jam, is_disengagement */ }
+/// rules::inventory::submit! { rules::Registration(&Mine) }
+/// ```
+pub struct Registration(pub &'static dyn EventRule);
+
+inventory::collect!(Registration);
+
+/// Two rules were registered with the same name.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("event rule name `{0}` is registered twice")]
+pub struct DuplicateName(pub &'static str);
+
+/// Every registered rule, sorted by name; a name registered twice is an error naming it.
+pub fn rules() -> Result<BTreeMap<&'static str, &'static dyn EventRule>, DuplicateName> {
+    collect(inventory::iter::<Registration>.into_iter().map(|r| r.0))
+}
+
+fn collect(
+    items: impl Iterator<Item = &'static dyn EventRule>,
+) -> Result<BTreeMap<&'static str, &'static dyn EventRule>, DuplicateName> {
+    let mut map = BTreeMap::new();
+    for r in items {
+        if map.insert(r.name(), r).is_some() {
+            return Err(DuplicateName(r.name()));
+        }
+    }
+    Ok(map)
+}
+
+/// A rule's parameter values, by name: every declared parameter has one.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Params {
+    values: BTreeMap<&'static str, f64>,
+}
+
+impl Params {
+    /// The value of parameter `name`, or NaN if the rule does not declare it (a bug in the rule:
+    /// NaN makes every comparison false rather than panicking in a worker thread).
+    pub fn get(&self, name: &str) -> f64 {
+        self.values.get(name).copied().unwrap_or(f64::NAN)
+    }
+
+    /// Every (name, value), sorted by name.
+    pub fn iter(&self) -> impl Iterator<Item = (&'static str, f64)> + '_ {
+        self.values.iter().map(|(&k, &v)| (k, v))
+    }
+}
+
+/// A rule with its parameter values: what an experiment counts with.
+#[derive(Clone)]
+pub struct Rule {
+    def: &'static dyn EventRule,
+    params: Params,
+}
+
+impl std::fmt::Debug for Rule {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.label())
+    }
+}
+
+impl PartialEq for Rule {
+    fn eq(&self, other: &Self) -> bool {
+        self.label() == other.label()
+    }
+}
+
+impl Rule {
+    /// The rule named by `spec`: `NAME` or `NAME:key=value[,key=value]`. An unknown name lists
+    /// the known ones; an unknown key lists the rule's keys; a value outside its range names it.
+    pub fn parse(spec: &str) -> Result<Self, RuleError> {
+        let (name, args) = match spec.split_once(':') {
+            Some((n, a)) => (n.trim(), Some(a)),
+            None => (spec.trim(), None),
+        };
+        let all = rules().map_err(|e| RuleError::new("event rules", e.to_string()))?;
+        let Some(&def) = all.get(name) else {
+            let known: Vec<&str> = all.keys().copied().collect();
+            return Err(RuleError::new(
+                format!("event rule `{}`", name.escape_debug()),
+                format!("unknown; known rules: {}", known.join(", ")),
+            ));
+        };
+        let mut values: BTreeMap<&'static str, f64> =
+            def.params().iter().map(|p| (p.name, p.default)).collect();
+        for pair in args.into_iter().flat_map(|a| a.split(',')) {
+            let what = |k: &str| format!("event rule {name}: parameter `{}`", k.escape_debug());
+            let keys = || {
+                let names: Vec<&str> = def.params().iter().map(|p| p.name).collect();
+                if names.is_empty() {
+                    format!("{name} takes no parameters")
+                } else {
+                    format!("known keys of {name}: {}", names.join(", "))
+                }
+            };
+            let Some((key, text)) = pair.split_once('=') else {
+                return Err(RuleError::new(
+                    what(pair),
+                    format!("must be key=value ({})", keys()),
+                ));
+            };
+            let key = key.trim();
+            let Some(p) = def.params().iter().find(|p| p.name == key) else {
+                return Err(RuleError::new(
+                    what(key),
+                    format!("unknown key ({})", keys()),
+                ));
+            };
+            let value: f64 = text.trim().parse().map_err(|_| {
+                RuleError::new(
+                    what(key),
+                    format!("must be a number (got `{}`)", text.escape_debug()),
+                )
+            })?;
+            if !(p.min..=p.max).contains(&value) {
+                return Err(RuleError::new(
+                    what(key),
+                    format!("must be between {} and {} (got {value})", p.min, p.max),
+                ));
+            }
+            values.insert(p.name, value);
+        }
+        Ok(Self {
+            def,
+            params: Params { values },
+        })
+    }
+
+    /// The rule's name.
+    pub fn name(&self) -> &'static str {
+        self.def.name()
+    }
+
+    /// The rule's definition.
+    pub fn definition(&self) -> &'static dyn EventRule {
+        self.def
+    }
+
+    /// Its parameter values.
+    pub fn params(&self) -> &Params {
+        &self.params
+    }
+
+    /// The rule as a table names it: `paper`, or `friction(mu=0.2)` with every parameter.
+    pub fn label(&self) -> String {
+        let mut s = self.def.name().to_string();
+        if !self.def.params().is_empty() {
+            let args: Vec<String> = self
+                .params
+                .iter()
+                .map(|(k, v)| format!("{k}={v}"))
+                .collect();
+            let _ = write!(s, "({})", args.join(","));
+        }
+        s
+    }
+
+    /// Whether `e` counts as a jam.
+    pub fn is_jam(&self, e: &Event) -> bool {
+        self.def.is_jam(e, &self.params)
+    }
+
+    /// Whether `e` counts as a disengagement.
+    pub fn is_disengagement(&self, e: &Event) -> bool {
+        self.def.is_disengagement(e, &self.params)
+    }
+
+    /// (at least one jam, at least one disengagement) among `events`: one trial of a table.
+    pub fn tally(&self, events: &[Event]) -> (bool, bool) {
+        (
+            events.iter().any(|e| self.is_jam(e)),
+            events.iter().any(|e| self.is_disengagement(e)),
+        )
+    }
+
+    /// The first event that counts as a jam, if any.
+    pub fn first_jam<'e>(&self, events: &'e [Event]) -> Option<&'e Event> {
+        events.iter().find(|e| self.is_jam(e))
+    }
+}
+
+impl Default for Rule {
+    /// The [`DEFAULT`] rule.
+    fn default() -> Self {
+        #[allow(
+            clippy::expect_used,
+            reason = "the default rule is a built-in plugin, tested"
+        )]
+        Self::parse(DEFAULT).expect("the default event rule is registered")
+    }
+}
+
+/// A readable list of every registered rule: name, summary and parameters (what `cargo xtask
+/// rules` prints, pinned in `snapshots/rules.snap`).
+pub fn listing() -> String {
+    let all = match rules() {
+        Ok(all) => all,
+        Err(e) => return format!("error: {e}\n"),
+    };
+    let mut s = String::from("Event rules (--set events=NAME; default ");
+    let _ = writeln!(s, "{DEFAULT})\n");
+    let w = all.keys().map(|k| k.len()).max().unwrap_or(0);
+    for r in all.values() {
+        let _ = writeln!(s, "{:w$}  {}", r.name(), r.summary());
+        for p in r.params() {
+            let _ = writeln!(
+                s,
+                "{:w$}    {}: default {} {}, {} to {}: {}",
+                "", p.name, p.default, p.unit, p.min, p.max, p.help
+            );
+        }
+    }
+    s.push_str("\nEvent kinds (from the contact motion): ");
+    let kinds: Vec<&str> = EventKind::ALL.iter().map(|k| k.name()).collect();
+    s.push_str(&kinds.join(", "));
+    s.push('\n');
+    s
+}
+
+/// Does nothing; calling it makes a binary link this crate, and with it every rule it registers.
+pub fn link() {}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used, reason = "tests")]
+mod tests {
+    use super::*;
+
+    fn event(kind: EventKind) -> Event {
+        Event {
+            phi: 0.0,
+            theta: 0.0,
+            kind,
+            driver_tooth: 0,
+            driven_tooth: 0,
+            theta_after: 0.0,
+            lost_motion: 0.2,
+            resumed: true,
+            resumed_by: None,
+            phase_shift: 0,
+            lag: 0.0,
+            wedge_angle: f64::NAN,
+        }
+    }
+
+    #[test]
+    fn the_four_readings_are_registered_and_default_exists() {
+        let all = rules().unwrap();
+        for name in ["friction", "paper", "strict", "sync"] {
+            assert!(all.contains_key(name), "{name} missing");
+        }
+        assert_eq!(Rule::default().name(), DEFAULT);
+    }
+
+    #[test]
+    fn collect_refuses_a_duplicate_name() {
+        let a = rules().unwrap()["paper"];
+        let err = collect([a, a].into_iter()).err().unwrap();
+        assert_eq!(
+            err.to_string(),
+            "event rule name `paper` is registered twice"
+        );
+    }
+
+    #[test]
+    fn strict_counts_every_stop_and_every_loss() {
+        let r = Rule::parse("strict").unwrap();
+        for k in EventKind::ALL {
+            assert_eq!(r.is_jam(&event(k)), k.is_contact_stop(), "{k:?}");
+            assert_eq!(r.is_disengagement(&event(k)), k.is_loss(), "{k:?}");
+        }
+    }
+
+    #[test]
+    fn paper_and_sync_ignore_a_hand_over_gap() {
+        for name in ["paper", "sync", "friction"] {
+            let r = Rule::parse(name).unwrap();
+            let gap = event(EventKind::Gap);
+            assert!(!r.is_jam(&gap) && !r.is_disengagement(&gap), "{name}");
+            let slip = event(EventKind::Slip);
+            assert!(r.is_disengagement(&slip), "{name}");
+            assert!(r.is_jam(&event(EventKind::Lock)), "{name}");
+            assert!(r.is_jam(&event(EventKind::BlockedAtStart)), "{name}");
+        }
+    }
+
+    #[test]
+    fn sync_counts_a_strike_only_when_it_moves_the_tooth_phase() {
+        let r = Rule::parse("sync").unwrap();
+        let mut s = event(EventKind::Strike);
+        assert!(!r.is_jam(&s) && !r.is_disengagement(&s));
+        s.phase_shift = 1;
+        assert!(!r.is_jam(&s) && r.is_disengagement(&s));
+    }
+
+    #[test]
+    fn friction_wedges_inside_the_cone_only() {
+        let r = Rule::parse("friction:mu=0.2").unwrap();
+        let mut s = event(EventKind::Strike);
+        s.wedge_angle = 0.1; // inside atan(0.2) = 0.197
+        assert!(r.is_jam(&s));
+        s.wedge_angle = 0.3;
+        assert!(!r.is_jam(&s));
+        let frictionless = Rule::parse("friction:mu=0").unwrap();
+        s.wedge_angle = 1e-6;
+        assert!(!frictionless.is_jam(&s));
+        assert_eq!(r.label(), "friction(mu=0.2)");
+    }
+
+    #[test]
+    fn bad_specs_are_refused_with_the_rule_broken() {
+        let e = Rule::parse("papr").unwrap_err().to_string();
+        assert!(
+            e.contains("unknown; known rules: friction, paper, strict, sync"),
+            "{e}"
+        );
+        let e = Rule::parse("friction:nu=1").unwrap_err().to_string();
+        assert!(
+            e.contains("unknown key (known keys of friction: mu)"),
+            "{e}"
+        );
+        let e = Rule::parse("friction:mu=-1").unwrap_err().to_string();
+        assert!(e.contains("must be between 0 and"), "{e}");
+        let e = Rule::parse("friction:mu").unwrap_err().to_string();
+        assert!(e.contains("must be key=value"), "{e}");
+        let e = Rule::parse("paper:mu=1").unwrap_err().to_string();
+        assert!(e.contains("paper takes no parameters"), "{e}");
+    }
+}

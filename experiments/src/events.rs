@@ -1,0 +1,36 @@
+//! The event rule of the experiments that count jams and disengagements: the `events` parameter
+//! (`--set events=NAME`, `cargo xtask rules` lists them).
+
+use registry::{Context, Param, RunError};
+use rules::Rule;
+
+/// The `events` parameter.
+pub const PARAM: Param = Param {
+    name: "events",
+    default: rules::DEFAULT,
+    unit: "",
+    help: "event rule: which events count as jams and disengagements, NAME or NAME:key=value (cargo xtask rules lists them)",
+};
+
+/// The rule named by the `events` parameter.
+pub fn chosen(ctx: &Context) -> Result<Rule, RunError> {
+    let spec = ctx.param(PARAM.name)?;
+    Rule::parse(spec).map_err(|e| RunError::bad("--set", PARAM.name, e.to_string()))
+}
+
+/// `mech` counting jams by the rule named by the `events` parameter.
+pub fn with_rule(
+    ctx: &Context,
+    mech: mechanism::Mechanism,
+) -> Result<mechanism::Mechanism, RunError> {
+    Ok(mech.with_rule(chosen(ctx)?))
+}
+
+/// (jams, disengagements) of a run, as `rule` counts them.
+pub fn counts(rule: &Rule, traj: &contact::Trajectory) -> (usize, usize) {
+    let events = traj.events();
+    (
+        events.iter().filter(|e| rule.is_jam(e)).count(),
+        events.iter().filter(|e| rule.is_disengagement(e)).count(),
+    )
+}
