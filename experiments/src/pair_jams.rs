@@ -736,3 +736,76 @@ mod tests {
         assert_eq!(e.exit_code(), 2);
     }
 }
+#[cfg(test)]
+mod scratch_kinds {
+    #![allow(clippy::unwrap_used, reason = "tests")]
+    use super::*;
+    #[test]
+    #[ignore]
+    fn tally_kinds() {
+        let g = train::Gearing::freeth2006();
+        let hyp = hypotheses::lookup("edmunds-split").unwrap();
+        for (sys, rnd, gg) in [
+            (0.5, 0.04, 40.0),
+            (2.0, 0.08, 40.0),
+            (0.0, 0.065, 40.0),
+            (0.0, 0.04, 70.0),
+            (1.0, 0.04, 70.0),
+        ] {
+            let params = Params::new(
+                hyp,
+                &[
+                    ("random".into(), rnd.to_string()),
+                    ("systematic".into(), sys.to_string()),
+                ],
+            )
+            .unwrap();
+            let mut tally = std::collections::BTreeMap::new();
+            for m in g.meshes() {
+                let spec = CellSpec {
+                    mesh: m.label.clone(),
+                    hypothesis: hyp,
+                    params: params.clone(),
+                    tooth_height: 1.1,
+                    clearance: gg,
+                    events: rules::Rule::default(),
+                };
+                let p = prepare(&g, &spec).unwrap();
+                for t in 0..40 {
+                    let mut rng = trial_rng(2025, stream(&p.canonical, t));
+                    let driver =
+                        errors::make(hyp, &p.driver, &p.driver_name, &spec.params, &mut rng)
+                            .unwrap();
+                    let driven =
+                        errors::make(hyp, &p.driven, &p.driven_name, &spec.params, &mut rng)
+                            .unwrap();
+                    let phi0 = rng.random::<f64>() * TAU / driver.teeth() as f64;
+                    let Ok(mesh) = Mesh::new(driver, driven, p.centre_distance) else {
+                        continue;
+                    };
+                    let ev = mesh.run_events(phi0, phi0 + p.turn, Start::Touching(0.0));
+                    let mut kinds = std::collections::BTreeSet::new();
+                    for e in &ev {
+                        kinds.insert(format!(
+                            "{:?}{}",
+                            e.kind,
+                            if e.kind == contact::EventKind::Slip {
+                                if e.phase_shift != 0 {
+                                    "/phase"
+                                } else {
+                                    "/long"
+                                }
+                            } else {
+                                ""
+                            }
+                        ));
+                    }
+                    for k in kinds {
+                        *tally.entry(k).or_insert(0) += 1;
+                    }
+                }
+            }
+            println!("sys {sys} rnd {rnd} G {gg}: trials with kind (of 600): {tally:?}");
+        }
+    }
+}
