@@ -48,6 +48,11 @@ registry::inventory::submit! {
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
+    crate::events::label(ctx, counted(ctx)?)
+}
+
+/// The experiment itself; [`run`] names the event rule in its tables' titles.
+fn counted(ctx: &Context) -> Result<Report, RunError> {
     let rule = crate::events::chosen(ctx)?;
     let h = ctx.f64("tooth_height")?;
     let grid_step = ctx.f64("grid_step")?;

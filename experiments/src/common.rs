@@ -28,7 +28,28 @@ pub fn line_plot(
     y_label: &str,
     series: &[Series<'_>],
 ) -> Result<String, RunError> {
-    plot(title, x_label, y_label, series, false)
+    plot(title, x_label, y_label, series, false, &[])
+}
+
+/// A vertical mark on a plot: an event at `x`, labelled (e.g. its kind and size).
+pub struct Mark {
+    /// Where (x axis units).
+    pub x: f64,
+    /// Text written beside the mark.
+    pub label: String,
+    /// Colour group (marks of one kind share a colour).
+    pub group: usize,
+}
+
+/// [`line_plot`] with vertical marks (events), each labelled.
+pub fn marked_plot(
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    series: &[Series<'_>],
+    marks: &[Mark],
+) -> Result<String, RunError> {
+    plot(title, x_label, y_label, series, false, marks)
 }
 
 /// A semi-logarithmic line plot: `series` hold positive values, drawn on a log10 y axis whose
@@ -51,7 +72,7 @@ pub fn semilog_plot(
                 .collect(),
         })
         .collect();
-    plot(title, x_label, y_label, &logged, true)
+    plot(title, x_label, y_label, &logged, true, &[])
 }
 
 fn plot(
@@ -60,6 +81,7 @@ fn plot(
     y_label: &str,
     series: &[Series<'_>],
     log_y: bool,
+    marks: &[Mark],
 ) -> Result<String, RunError> {
     let (mut x0, mut x1, mut y0, mut y1) = (
         f64::INFINITY,
@@ -120,6 +142,25 @@ fn plot(
                 .map_err(|e| plot_err(&e))?
                 .label(s.label)
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour));
+        }
+        let mark_colours = [RED, MAGENTA, CYAN, GREEN, BLACK];
+        for (i, m) in marks.iter().enumerate() {
+            let colour = mark_colours[m.group % mark_colours.len()];
+            chart
+                .draw_series(std::iter::once(PathElement::new(
+                    vec![(m.x, y0), (m.x, y1)],
+                    colour.mix(0.6).stroke_width(1),
+                )))
+                .map_err(|e| plot_err(&e))?;
+            // Labels step down the plot so that neighbouring events stay legible.
+            let y = y1 - (y1 - y0) * (0.04 + 0.06 * (i % 8) as f64);
+            chart
+                .draw_series(std::iter::once(Text::new(
+                    m.label.clone(),
+                    (m.x, y),
+                    ("sans-serif", 11).into_font().color(&colour),
+                )))
+                .map_err(|e| plot_err(&e))?;
         }
         chart
             .configure_series_labels()

@@ -34,3 +34,13 @@ pub fn counts(rule: &Rule, traj: &contact::Trajectory) -> (usize, usize) {
         events.iter().filter(|e| rule.is_disengagement(e)).count(),
     )
 }
+
+/// `report` with every table's title naming the event rule it was counted with (so the printed
+/// table, `table.md` and `tables.json` all say it).
+pub fn label(ctx: &Context, mut report: registry::Report) -> Result<registry::Report, RunError> {
+    let rule = chosen(ctx)?;
+    for t in &mut report.tables {
+        t.title = format!("{} [events: {}]", t.title, rule.label());
+    }
+    Ok(report)
+}

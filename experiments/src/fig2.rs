@@ -35,6 +35,11 @@ registry::inventory::submit! {
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
+    crate::events::label(ctx, counted(ctx)?)
+}
+
+/// The experiment itself; [`run`] names the event rule in its tables' titles.
+fn counted(ctx: &Context) -> Result<Report, RunError> {
     let equal_pair::EqualPair {
         teeth: n,
         tip_radius: big_r,

@@ -42,6 +42,11 @@ registry::inventory::submit! {
 const POINTERS: [(&str, &str); 3] = [("Lunar", "A"), ("Metonic", "B"), ("Saros", "C")];
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
+    crate::events::label(ctx, counted(ctx)?)
+}
+
+/// The experiment itself; [`run`] names the event rule in its tables' titles.
+fn counted(ctx: &Context) -> Result<Report, RunError> {
     let g = gearing::load(ctx)?;
     let mech = Mechanism::ideal(&g, ctx.f64("tooth_height")?, ctx.f64("clearance")?)
         .map_err(|e| RunError::bad("gearing", format!("mesh {}", e.mesh), e.rule))?;

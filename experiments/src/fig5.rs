@@ -85,6 +85,11 @@ const SPLITS: [(&str, f64); 3] = [
 ];
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
+    crate::events::label(ctx, counted(ctx)?)
+}
+
+/// The experiment itself; [`run`] names the event rule in its tables' titles.
+fn counted(ctx: &Context) -> Result<Report, RunError> {
     let rule = crate::events::chosen(ctx)?;
     let n = ctx.usize("teeth")?;
     let (big_r, small_r) = (ctx.f64("tip_radius")?, ctx.f64("root_radius")?);

@@ -71,6 +71,11 @@ fn smaller(a: Option<f64>, b: Option<f64>) -> Option<f64> {
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
+    crate::events::label(ctx, counted(ctx)?)
+}
+
+/// The experiment itself; [`run`] names the event rule in its tables' titles.
+fn counted(ctx: &Context) -> Result<Report, RunError> {
     let g = gearing::load(ctx)?;
     let hyp = errors::chosen(ctx)?;
     let trials = table4::trials(ctx, TRIALS.name)?;

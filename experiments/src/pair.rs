@@ -8,7 +8,7 @@ use geometry::{Gear, Vec2};
 use registry::{Context, Experiment, OutputFile, Report, RunError, Table, fmt_f64};
 use serde::Deserialize;
 
-use crate::common::{Series, csv, deg, line_plot};
+use crate::common::{Mark, Series, csv, deg, marked_plot};
 
 const EXAMPLE: &str = include_str!("../data/pair-example.ron");
 const EXAMPLE_NAME: &str = "experiments/data/pair-example.ron";
@@ -177,6 +177,11 @@ pub fn load(file: &str, text: &str) -> Result<(Mesh, PairFile), RunError> {
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
+    crate::events::label(ctx, counted(ctx)?)
+}
+
+/// The experiment itself; [`run`] names the event rule in its tables' titles.
+fn counted(ctx: &Context) -> Result<Report, RunError> {
     let rule = crate::events::chosen(ctx)?;
     let (name, text) = match ctx.config() {
         Some(c) => (c.path.display().to_string(), c.text.as_str()),
@@ -244,61 +249,16 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         "deg",
     );
 
-    let mut events = Table::new(
-        "Events",
-        [
-            "phi [deg]",
-            "kind",
-            "driver tooth",
-            "driven tooth",
-            "theta [deg]",
-            "theta after [deg]",
-        ],
-    );
-    let mut ev_rows =
-        String::from("phi_deg,kind,driver_tooth,driven_tooth,theta_deg,theta_after_deg\n");
-    for e in traj.events() {
-        let kind = e.kind.name();
-        let j = e.driver_tooth.rem_euclid(n1 as i64);
-        let k = e.driven_tooth.rem_euclid(n2 as i64);
-        let cells = [
-            format!("{:.9}", deg(e.phi - phi0)),
-            kind.to_string(),
-            j.to_string(),
-            k.to_string(),
-            format!("{:.9}", deg(e.theta - theta0)),
-            format!("{:.9}", deg(e.theta_after - theta0)),
-        ];
-        ev_rows.push_str(&cells.join(","));
-        ev_rows.push('\n');
-        if events.rows.len() < 20 {
-            events.row(vec![
-                fmt_f64(deg(e.phi - phi0), 6),
-                kind.into(),
-                j.to_string(),
-                k.to_string(),
-                fmt_f64(deg(e.theta - theta0), 6),
-                fmt_f64(deg(e.theta_after - theta0), 6),
-            ]);
-        }
-    }
-    if traj.events().len() > 20 {
-        events.note(format!(
-            "{} more in event-log.csv",
-            traj.events().len() - 20
-        ));
-    }
-    if traj.events().is_empty() {
-        events.note("no jam and no disengagement");
-    }
-    let svg = line_plot(
-        "Theoretical Difference of the mesh (sections 2-3)",
+    let (events, ev_rows, marks) = event_log(&traj, &rule, (phi0, theta0), (n1, n2));
+    let svg = marked_plot(
+        "Theoretical Difference of the mesh (sections 2-3), events marked with kind and size",
         "driver angle phi [deg]",
         "Theoretical Difference [deg]",
         &[Series {
             label: "simulated",
             points: rows.iter().map(|r| (r[0], r[2])).collect(),
         }],
+        &marks,
     )?;
     let data = csv(&["phi_deg", "theta_deg", "td_deg"], rows.into_iter(), 9);
     Ok(Report {
@@ -310,6 +270,127 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         ],
         ..Default::default()
     })
+}
+
+/// What `rule` counts an event as: `jam`, `disengagement` or `-` (reported, not a failure).
+fn counted_as(rule: &rules::Rule, e: &contact::Event) -> &'static str {
+    if rule.is_jam(e) {
+        "jam"
+    } else if rule.is_disengagement(e) {
+        "disengagement"
+    } else {
+        "-"
+    }
+}
+
+/// An event's size in words: what a reader needs to judge it.
+fn size_text(e: &contact::Event) -> String {
+    use contact::EventKind;
+    match e.kind {
+        EventKind::Lock | EventKind::Strike => {
+            let wedge = if e.wedge_angle.is_nan() {
+                "tip on tip".to_string()
+            } else {
+                format!("wedge {:.1} deg", deg(e.wedge_angle))
+            };
+            format!("jump {:.3} deg, {wedge}", deg(e.theta_after - e.theta))
+        }
+        EventKind::Gap | EventKind::Slip => format!(
+            "lost motion {:.3} pitch{}, lag {:.3} deg, phase {:+}",
+            e.lost_motion,
+            if e.resumed { "" } else { " (not resumed)" },
+            deg(e.lag),
+            e.phase_shift
+        ),
+        EventKind::BlockedAtStart => "no free position".to_string(),
+    }
+}
+
+/// The event table (first 20), `event-log.csv` (every event: kind, what the rule counts it as,
+/// and its sizes) and the marks of `pair.svg`. Angles relative to the start (φ0, θ0); teeth
+/// within one turn.
+fn event_log(
+    traj: &contact::Trajectory,
+    rule: &rules::Rule,
+    (phi0, theta0): (f64, f64),
+    (n1, n2): (usize, usize),
+) -> (Table, String, Vec<Mark>) {
+    let mut events = Table::new(
+        "Events (kind from the contact motion, and what the rule counts it as)",
+        [
+            "phi [deg]",
+            "kind",
+            "counted as",
+            "driver tooth",
+            "driven tooth",
+            "theta [deg]",
+            "theta after [deg]",
+            "size",
+        ],
+    );
+    let mut ev_rows = String::from(
+        "phi_deg,kind,counted_as,driver_tooth,driven_tooth,theta_deg,theta_after_deg,lost_motion_pitches,resumed,phase_shift,lag_deg,wedge_angle_deg\n",
+    );
+    let mut marks = Vec::new();
+    for e in traj.events() {
+        let kind = e.kind.name();
+        let counted = counted_as(rule, e);
+        let j = e.driver_tooth.rem_euclid(n1 as i64);
+        let k = e.driven_tooth.rem_euclid(n2 as i64);
+        let cells = [
+            format!("{:.9}", deg(e.phi - phi0)),
+            kind.to_string(),
+            counted.to_string(),
+            j.to_string(),
+            k.to_string(),
+            format!("{:.9}", deg(e.theta - theta0)),
+            format!("{:.9}", deg(e.theta_after - theta0)),
+            format!("{:.9}", e.lost_motion),
+            e.resumed.to_string(),
+            e.phase_shift.to_string(),
+            format!("{:.9}", deg(e.lag)),
+            if e.wedge_angle.is_nan() {
+                String::new()
+            } else {
+                format!("{:.9}", deg(e.wedge_angle))
+            },
+        ];
+        ev_rows.push_str(&cells.join(","));
+        ev_rows.push('\n');
+        if events.rows.len() < 20 {
+            events.row(vec![
+                fmt_f64(deg(e.phi - phi0), 6),
+                kind.into(),
+                counted.into(),
+                j.to_string(),
+                k.to_string(),
+                fmt_f64(deg(e.theta - theta0), 6),
+                fmt_f64(deg(e.theta_after - theta0), 6),
+                size_text(e),
+            ]);
+        }
+        if marks.len() < 40 {
+            let group = contact::EventKind::ALL
+                .iter()
+                .position(|&x| x == e.kind)
+                .unwrap_or(0);
+            marks.push(Mark {
+                x: deg(e.phi - phi0),
+                label: format!("{kind}: {}", size_text(e)),
+                group,
+            });
+        }
+    }
+    if traj.events().len() > 20 {
+        events.note(format!(
+            "{} more in event-log.csv",
+            traj.events().len() - 20
+        ));
+    }
+    if traj.events().is_empty() {
+        events.note("no event: the driven gear was driven throughout");
+    }
+    (events, ev_rows, marks)
 }
 
 #[cfg(test)]

@@ -170,6 +170,11 @@ struct Row<'v> {
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
+    crate::events::label(ctx, counted(ctx)?)
+}
+
+/// The experiment itself; [`run`] names the event rule in its tables' titles.
+fn counted(ctx: &Context) -> Result<Report, RunError> {
     let base_gearing = gearing::load(ctx)?;
     let trials = ctx.u64("trials")?;
     if trials < 2 {

@@ -81,6 +81,11 @@ const POINTERS: [(&str, &str); 3] = [
 type Trial = Vec<(f64, f64, f64, f64, bool)>;
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
+    crate::events::label(ctx, counted(ctx)?)
+}
+
+/// The experiment itself; [`run`] names the event rule in its tables' titles.
+fn counted(ctx: &Context) -> Result<Report, RunError> {
     let g = gearing::load(ctx)?;
     let hyp = errors::chosen(ctx)?;
     let trials = ctx.usize("trials")?;

@@ -73,6 +73,11 @@ pub(crate) fn case_cells(
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
+    crate::events::label(ctx, counted(ctx)?)
+}
+
+/// The experiment itself; [`run`] names the event rule in its tables' titles.
+fn counted(ctx: &Context) -> Result<Report, RunError> {
     let g = gearing::load(ctx)?;
     let hyp = errors::chosen(ctx)?;
     let trials = ctx.u64("trials")?;

@@ -74,6 +74,11 @@ registry::inventory::submit! {
 type Trial = Vec<(PointerStats, bool, u64)>;
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
+    crate::events::label(ctx, counted(ctx)?)
+}
+
+/// The experiment itself; [`run`] names the event rule in its tables' titles.
+fn counted(ctx: &Context) -> Result<Report, RunError> {
     let g = gearing::load(ctx)?;
     let hyp = errors::chosen(ctx)?;
     let trials = ctx.usize("trials")?;

@@ -70,6 +70,11 @@ pub(crate) fn clearance_list(ctx: &Context, name: &str, max: f64) -> Result<Vec<
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
+    crate::events::label(ctx, counted(ctx)?)
+}
+
+/// The experiment itself; [`run`] names the event rule in its tables' titles.
+fn counted(ctx: &Context) -> Result<Report, RunError> {
     let g = gearing::load(ctx)?;
     let hyp = errors::chosen(ctx)?;
     let trials = table4::trials(ctx, TRIALS.name)?;

@@ -369,6 +369,11 @@ fn show_search(sr: &Search, s: &Settings) -> String {
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
+    crate::events::label(ctx, counted(ctx)?)
+}
+
+/// The experiment itself; [`run`] names the event rule in its tables' titles.
+fn counted(ctx: &Context) -> Result<Report, RunError> {
     let g = gearing::load(ctx)?;
     let hyp = errors::chosen(ctx)?;
     let s = settings(ctx)?;

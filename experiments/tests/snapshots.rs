@@ -36,6 +36,14 @@ fn registered_hypotheses() {
     pin("hypotheses", &hypotheses::listing());
 }
 
+/// The registered event rules with their parameters (`cargo xtask rules`): a rule added,
+/// removed or with a changed default shows here.
+#[test]
+fn registered_rules() {
+    rules::link();
+    pin("rules", &rules::listing());
+}
+
 #[test]
 fn every_experiment_table_is_pinned() {
     experiments::link();

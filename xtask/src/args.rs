@@ -41,6 +41,8 @@ pub enum Command {
     List,
     /// `hypotheses`: the manufacturing-error hypotheses and their parameters.
     Hypotheses,
+    /// `rules`: the event rules.
+    Rules,
     /// `help` (no id: usage) or `help <id>`.
     Help(Option<String>),
     /// `run <id>... [flags]`, or `run all [flags]`.
@@ -168,6 +170,10 @@ pub fn parse(args: &[String]) -> Result<Command, ArgError> {
         "hypotheses" => {
             no_more(cmd, rest)?;
             Ok(Command::Hypotheses)
+        }
+        "rules" => {
+            no_more(cmd, rest)?;
+            Ok(Command::Rules)
         }
         "help" | "--help" | "-h" => match rest {
             [] => Ok(Command::Help(None)),
@@ -506,6 +512,7 @@ mod tests {
         assert_eq!(p("").unwrap(), Command::Overview);
         assert_eq!(p("list").unwrap(), Command::List);
         assert_eq!(p("hypotheses").unwrap(), Command::Hypotheses);
+        assert_eq!(p("rules").unwrap(), Command::Rules);
         assert!(matches!(p("hypotheses x"), Err(ArgError::Usage(_))));
         assert_eq!(p("help").unwrap(), Command::Help(None));
         assert_eq!(p("help fig2").unwrap(), Command::Help(Some("fig2".into())));

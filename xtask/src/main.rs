@@ -87,6 +87,7 @@ fn main() -> ExitCode {
     // Names the plugin crate so that its `inventory` registrations are linked in.
     experiments::link();
     hypotheses::link();
+    rules::link();
     let args: Result<Vec<String>, _> = std::env::args_os()
         .skip(1)
         .map(|a| {
@@ -133,14 +134,18 @@ fn dispatch(args: &[String]) -> Result<(), Failure> {
         Command::Overview => print(&overview(&exps)),
         Command::List => print(&exps.keys().map(|id| format!("{id}\n")).collect::<String>()),
         Command::Hypotheses => print(&hypotheses::listing()),
+        Command::Rules => print(&rules::listing()),
         Command::Help(None) => print(&format!("{}\n", usage())),
         Command::Help(Some(id)) => match (exps.get(id.as_str()), hypotheses::lookup(&id)) {
             (Some(e), _) => print(&details(e)),
             (None, Ok(h)) => print(&hypothesis_details(h, &exps)),
-            (None, Err(_)) => Err(Failure::Bad(format!(
-                "unknown experiment or error hypothesis `{id}` (known experiments: {}; error hypotheses: cargo xtask hypotheses)",
-                exps.keys().copied().collect::<Vec<_>>().join(", ")
-            ))),
+            (None, Err(_)) => match rules::Rule::parse(&id) {
+                Ok(r) => print(&rule_details(&r, &exps)),
+                Err(_) => Err(Failure::Bad(format!(
+                    "unknown experiment, error hypothesis or event rule `{id}` (known experiments: {}; error hypotheses: cargo xtask hypotheses; event rules: cargo xtask rules)",
+                    exps.keys().copied().collect::<Vec<_>>().join(", ")
+                ))),
+            },
         },
         Command::Run(run) if run.is_all() => {
             let rows = run_every(&exps, &run, &mut |s| print(s))?;
@@ -191,6 +196,8 @@ Usage:
   cargo xtask help <hypothesis> what an error hypothesis models, its parameters
                                 and how to run it (a+b: b applied after a)
   cargo xtask hypotheses        manufacturing-error hypotheses, their parameters and defaults
+  cargo xtask rules             event rules: which events count as jams and disengagements
+  cargo xtask help <rule>       what an event rule counts, and the sentences it rests on
   cargo xtask run <id>... [options]
                                 run experiments, print their tables and write
                                 results to <out>/<id>/
@@ -300,6 +307,23 @@ fn overview(exps: &Registry) -> String {
         }
         Err(e) => s.push_str(&format!("Error hypotheses: {e}\n")),
     }
+    s.push('\n');
+    match rules::rules() {
+        Ok(all) => {
+            let mut t = Table::new(
+                format!(
+                    "Event rules (--set events=NAME, default {}; `cargo xtask help NAME` quotes what each rests on)",
+                    rules::DEFAULT
+                ),
+                ["name", "what it counts"],
+            );
+            for r in all.values() {
+                t.row(vec![r.name().into(), r.summary().into()]);
+            }
+            s.push_str(&t.render());
+        }
+        Err(e) => s.push_str(&format!("Event rules: {e}\n")),
+    }
     s
 }
 
@@ -357,6 +381,38 @@ fn details(e: &Experiment) -> String {
 }
 
 /// `help NAME` for an error hypothesis: what it models, its parameters, and how to run it.
+/// `cargo xtask help RULE`: what an event rule counts, its reading, parameters and the
+/// experiments it applies to.
+fn rule_details(r: &rules::Rule, exps: &Registry) -> String {
+    let d = r.definition();
+    let mut s = format!("{} - event rule\n\n{}\n\n", d.name(), d.summary());
+    s.push_str(&wrap(d.details(), 96));
+    s.push_str("\n\n");
+    if d.params().is_empty() {
+        s.push_str("Parameters: none\n");
+    } else {
+        s.push_str("Parameters (--set events=NAME:key=value):\n");
+        for p in d.params() {
+            s.push_str(&format!(
+                "  {} = {} {} ({} to {}): {}\n",
+                p.name, p.default, p.unit, p.min, p.max, p.help
+            ));
+        }
+    }
+    let users: Vec<&str> = exps
+        .values()
+        .filter(|e| e.params.iter().any(|p| p.name == "events"))
+        .map(|e| e.id)
+        .collect();
+    s.push_str(&format!(
+        "\nDefault rule: {}. Experiments that count events (--set events={}): {}\n",
+        rules::DEFAULT,
+        d.name(),
+        users.join(", ")
+    ));
+    s
+}
+
 fn hypothesis_details(h: &dyn hypotheses::Hypothesis, exps: &Registry) -> String {
     let name = h.name();
     let mut s = format!("{name}: error hypothesis: {}\n", h.summary());

@@ -21,7 +21,7 @@ mod plugins {
 
 /// The rule of the paper's tables unless `--set events=NAME` says otherwise (see the README's
 /// results section for the evidence that chose it).
-pub const DEFAULT: &str = "strict";
+pub const DEFAULT: &str = "paper";
 
 /// Why a rule could not be looked up or configured: what was wrong and the rule broken.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -289,8 +289,15 @@ pub fn listing() -> String {
         for p in r.params() {
             let _ = writeln!(
                 s,
-                "{:w$}    {}: default {} {}, {} to {}: {}",
-                "", p.name, p.default, p.unit, p.min, p.max, p.help
+                "{:w$}    {}: default {}{}{}, {} to {}: {}",
+                "",
+                p.name,
+                p.default,
+                if p.unit.is_empty() { "" } else { " " },
+                p.unit,
+                p.min,
+                p.max,
+                p.help
             );
         }
     }
