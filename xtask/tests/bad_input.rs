@@ -647,7 +647,7 @@ fn names_and_flags() {
             "help of unknown experiment",
             None,
             "help no-such",
-            &["unknown experiment or error hypothesis `no-such`"],
+            &["unknown experiment, error hypothesis or event rule `no-such`"],
         ),
         case(
             "unknown hypothesis",

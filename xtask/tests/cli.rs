@@ -94,7 +94,30 @@ fn help_describes_each_experiment() {
     }
     let o = xtask(&["help", "no-such-experiment"]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("unknown experiment or error hypothesis `no-such-experiment`"));
+    assert!(stderr(&o).contains("unknown experiment, error hypothesis or event rule `no-such-experiment`"));
+}
+
+/// `rules` lists every event rule and `help NAME` documents each: its reading, its parameters
+/// and the experiments that count with it.
+#[test]
+fn rules_are_listed_and_documented() {
+    let o = xtask(&["rules"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let listing = stdout(&o);
+    for (name, r) in rules::rules().unwrap() {
+        assert!(listing.contains(name), "{listing}");
+        let o = xtask(&["help", name]);
+        assert!(o.status.success(), "{name}: {}", stderr(&o));
+        let text = stdout(&o);
+        assert!(text.starts_with(&format!("{name} - event rule")), "{text}");
+        assert!(text.contains("table3"), "{text}");
+        for p in r.params() {
+            assert!(text.contains(p.name), "{name}: {}: {text}", p.name);
+        }
+    }
+    let o = xtask(&["run", "fig2", "--set", "events=no-such-rule", "--out", "/nonexistent-dir/x"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("unknown; known rules: friction, paper, strict, sync"), "{}", stderr(&o));
 }
 
 /// `help NAME` documents every registered error hypothesis (and a stack of them): its model in
