@@ -20,7 +20,7 @@ use crate::table1::{POINTERS, samples_for};
 const PARAMS: &[Param] = &[
     Param {
         name: "trials",
-        default: "3",
+        default: "2",
         unit: "",
         help: "Table 1 trials per reading (random initial angles; the same draws for every reading)",
     },
@@ -35,6 +35,12 @@ const PARAMS: &[Param] = &[
         default: "16",
         unit: "",
         help: "TD samples per tooth engagement of the busiest mesh (Table 1's default)",
+    },
+    Param {
+        name: "draws",
+        default: "3",
+        unit: "",
+        help: "Figure IV with Case A errors: manufactured pairs per mesh (each swept over every G)",
     },
     Param {
         name: "samples",
@@ -87,7 +93,7 @@ struct Reading {
 /// The readings that change the gears or their centre distances: they move both Figure IV and
 /// Table 1. (Readings of the sampling, the statistic, the span and the initial angles change
 /// Table 1 only and are run on the first reading's gears.)
-const GEOMETRY: [Reading; 7] = [
+const GEOMETRY: [Reading; 6] = [
     Reading {
         name: "as built: least-squares radii, h = 1.1 mm, D = R1 + R2 - h + G",
         stated: "yes (ours)",
@@ -129,13 +135,6 @@ const GEOMETRY: [Reading; 7] = [
         radii: Radii::LeastSquares,
         tooth_height: 1.1,
         extra_clearance: 5.0,
-    },
-    Reading {
-        name: "D larger by 10 % of h (0.11 mm) on every mesh",
-        stated: "no: not the paper's D",
-        radii: Radii::LeastSquares,
-        tooth_height: 1.1,
-        extra_clearance: 10.0,
     },
 ];
 
@@ -224,7 +223,7 @@ fn mechanism(
 
 /// σ and mean of one pointer's Theoretical Difference in one trial (degrees), under the
 /// sampling readings: σ and mean at the default density, σ at one sample per engagement and at
-/// 64. NaN bits survive the shard records.
+/// twice the default. NaN bits survive the shard records.
 #[derive(Debug, Clone, Copy, Default, Serialize, Deserialize)]
 struct PointerSigma {
     #[serde(with = "registry::f64_bits")]
@@ -237,7 +236,7 @@ struct PointerSigma {
     sigma_fine: f64,
 }
 
-/// A pointer's σ under the three sampling densities (`per`, 1 and 64 per engagement).
+/// A pointer's σ under the three sampling densities (`per`, 1 and `2 per` per engagement).
 fn sigmas(
     g: &Gearing,
     run: Option<PointerRun>,
@@ -258,7 +257,7 @@ fn sigmas(
         sigma: s.sigma,
         mean: s.mean,
         sigma_coarse: run.stats(samples_for(g, name, turns, 1)).sigma,
-        sigma_fine: run.stats(samples_for(g, name, turns, 64)).sigma,
+        sigma_fine: run.stats(samples_for(g, name, turns, 2 * per)).sigma,
     }
 }
 
@@ -338,6 +337,104 @@ fn pooled(trials: &[Vec<PointerSigma>], i: usize) -> f64 {
     v.sqrt()
 }
 
+/// Where a σ(G) curve is smallest, and how deep that minimum is.
+#[derive(Debug, Clone, Copy)]
+struct Minimum {
+    /// The clearance of the smallest σ, % of h.
+    at: f64,
+    /// σ at 40 % over the smallest σ (NaN when 40 % is not on the curve).
+    depth: f64,
+}
+
+impl Minimum {
+    /// The minimum of (G, σ) points; None for no points.
+    fn of(curve: &[(f64, f64)]) -> Option<Minimum> {
+        let (at, smallest) =
+            curve
+                .iter()
+                .copied()
+                .fold(None, |best: Option<(f64, f64)>, (c, s)| match best {
+                    Some((_, b)) if b <= s => best,
+                    _ => Some((c, s)),
+                })?;
+        let at40 = curve
+            .iter()
+            .find(|(c, _)| (c - 40.0).abs() < 1e-9)
+            .map_or(f64::NAN, |&(_, s)| s);
+        Some(Minimum {
+            at,
+            depth: at40 / smallest,
+        })
+    }
+}
+
+/// Figure IV with manufacturing errors: `draws` pairs of mesh `label` manufactured under Case A
+/// (`edmunds-split`, random 0.04 of the pitch, no systematic error), each swept over every
+/// clearance of `grid` with the same gears and initial angle; through jams (the driven gear
+/// released to its next free position, as the paper's program did). Returns the minimum of
+/// the mean σ over the draws. Draw d of mesh i uses stream `1000 i + d` of `seed`.
+fn case_a_minimum(
+    g: &Gearing,
+    index: usize,
+    pair: &IdealPair,
+    grid: &[f64],
+    draws: usize,
+    samples: usize,
+    seed: u64,
+) -> Result<Option<Minimum>, RunError> {
+    use rand::Rng;
+    let Some(m) = g.meshes().get(index) else {
+        return Ok(None);
+    };
+    let hyp = hypotheses::lookup("edmunds-split")
+        .map_err(|e| RunError::Internal(format!("edmunds-split: {}", e.rule)))?;
+    let params = hypotheses::Params::new(
+        hyp,
+        &[
+            ("random".into(), "0.04".into()),
+            ("systematic".into(), "0".into()),
+        ],
+    )
+    .map_err(|e| RunError::Internal(format!("edmunds-split: {}", e.rule)))?;
+    let bad = |e: geometry::GeometryError| RunError::bad("gearing", e.field, e.rule);
+    let h = pair.h;
+    let turn = std::f64::consts::TAU * pair.n1.max(pair.n2) as f64 / pair.n1 as f64;
+    let ratio = pair.n1 as f64 / pair.n2 as f64;
+    let mut sums = vec![0.0; grid.len()];
+    let mut counts = vec![0_usize; grid.len()];
+    for d in 0..draws {
+        let mut rng = trial_rng(seed, 1000 * index as u64 + d as u64);
+        let ideal1 = Gear::ideal(pair.n1, pair.r1, pair.r1 - h).map_err(bad)?;
+        let ideal2 = Gear::ideal(pair.n2, pair.r2, pair.r2 - h).map_err(bad)?;
+        let a = crate::errors::make(hyp, &ideal1, &m.driver, &params, &mut rng)?;
+        let b = crate::errors::make(hyp, &ideal2, &m.driven, &params, &mut rng)?;
+        let phi0 = rng.random::<f64>() * std::f64::consts::TAU / pair.n1 as f64;
+        for (k, &c) in grid.iter().enumerate() {
+            let dist = geometry::centre_distance(pair.r1, pair.r2, h, c);
+            let Ok(mesh) = contact::Mesh::new(a.clone(), b.clone(), dist) else {
+                continue;
+            };
+            let t = mesh.run(phi0, phi0 + turn, contact::Start::Touching(0.0));
+            let th0 = t.theta_at(phi0);
+            let acc: stats::Accumulator = (0..samples)
+                .map(|j| {
+                    let phi = turn * j as f64 / samples as f64;
+                    (t.theta_at(phi0 + phi) - th0 - ratio * phi).to_degrees()
+                })
+                .collect();
+            sums[k] += acc.sigma();
+            counts[k] += 1;
+        }
+    }
+    let curve: Vec<(f64, f64)> = grid
+        .iter()
+        .zip(sums.iter().zip(&counts))
+        .filter(|(_, (_, n))| **n == draws)
+        .map(|(&c, (s, n))| (c, s / *n as f64))
+        .collect();
+    Ok(Minimum::of(&curve))
+}
+
 fn run(ctx: &Context) -> Result<Report, RunError> {
     let g = Gearing::freeth2006();
     let g2021 = Gearing::builtin("freeth2021")
@@ -364,19 +461,25 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     let paper_to = crate::paper::get("sigma-causes", "figIV.minimum_to").map(|r| r.value);
 
     // ---- Figure IV: σ against G for each mesh under each geometry reading. ----
-    let grid: Vec<f64> = (0..=16).map(|i| 10.0 + 5.0 * f64::from(i)).collect();
+    let grid: Vec<f64> = (0..=13).map(|i| 20.0 + 5.0 * f64::from(i)).collect();
     let radii: Vec<BTreeMap<String, f64>> = GEOMETRY
         .iter()
         .map(|r| tip_radii(&g, &g2021, r.radii, r.tooth_height))
         .collect::<Result<_, _>>()?;
+    let draws = ctx.usize("draws")?.max(1);
+    let seed = ctx.seed();
+    // Columns: the geometry readings, then (CASE_A) the first one's gears with Case A errors.
+    let case_a = GEOMETRY.len();
     let mut jobs = Vec::new();
-    for (ri, r) in GEOMETRY.iter().enumerate() {
-        for m in g.meshes() {
-            let radius = |n: &str| radii[ri].get(n).copied().unwrap_or(f64::NAN);
+    for ri in 0..=case_a {
+        let r = &GEOMETRY[if ri == case_a { 0 } else { ri }];
+        let radii = &radii[if ri == case_a { 0 } else { ri }];
+        for (mi, m) in g.meshes().iter().enumerate() {
+            let radius = |n: &str| radii.get(n).copied().unwrap_or(f64::NAN);
             let teeth = |n: &str| g.gear(n).map_or(0, |x| x.teeth as usize);
             jobs.push((
                 ri,
-                m.label.clone(),
+                mi,
                 IdealPair {
                     n1: teeth(&m.driver),
                     n2: teeth(&m.driven),
@@ -387,13 +490,16 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             ));
         }
     }
-    // (reading, mesh) -> (G of the smallest σ, that σ); pairs of identical geometry (b2-c1 and
-    // b2-l1) are run twice, which keeps the code plain.
-    let minima: Vec<Result<Option<(f64, f64)>, RunError>> = jobs
+    // (column, mesh) -> G of the smallest σ; pairs of identical geometry (b2-c1 and b2-l1) are
+    // run twice, which keeps the code plain.
+    let minima: Vec<Result<Option<Minimum>, RunError>> = jobs
         .par_iter()
-        .map(|(ri, _, pair)| {
-            let extra = GEOMETRY[*ri].extra_clearance;
-            let mut best: Option<(f64, f64)> = None;
+        .map(|&(ri, mi, ref pair)| {
+            if ri == case_a {
+                return case_a_minimum(&g, mi, pair, &grid, draws, samples, seed);
+            }
+            let extra = GEOMETRY[ri].extra_clearance;
+            let mut curve = Vec::new();
             for &c in &grid {
                 let Some(t) = pair.run(c + extra)? else {
                     continue;
@@ -401,35 +507,31 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
                 if t.jams() > 0 || t.disengagements() > 0 {
                     continue;
                 }
-                let s = pair.td_sigma(&t, samples).sigma;
-                if best.is_none_or(|(_, b)| s < b) {
-                    best = Some((c, s));
-                }
+                curve.push((c, pair.td_sigma(&t, samples).sigma));
             }
-            Ok(best)
+            Ok(Minimum::of(&curve))
         })
         .collect();
-    let mut at: BTreeMap<(usize, String), Option<(f64, f64)>> = BTreeMap::new();
-    for ((ri, label, _), m) in jobs.iter().zip(minima) {
-        at.insert((*ri, label.clone()), m?);
+    let mut at: BTreeMap<(usize, usize), Option<Minimum>> = BTreeMap::new();
+    for ((ri, mi, _), m) in jobs.iter().zip(minima) {
+        at.insert((*ri, *mi), m?);
     }
+    let columns = case_a + 1;
 
     let mut header = vec!["mesh".to_string()];
-    header.extend((1..=GEOMETRY.len()).map(|i| format!("({i})")));
+    header.extend((1..=columns).map(|i| format!("({i})")));
     let mut fig = Table::new(
-        format!(
-            "Figure IV: the clearance G [% of h] of the smallest sigma of each mesh, under each reading (ideal gears, one turn of the larger gear, G = 10-90 % by 5)"
-        ),
+        "Figure IV: the clearance G [% of h] of the smallest sigma of each mesh under each reading (G = 20-85 % by 5)",
         header,
     );
-    for m in g.meshes() {
+    for (mi, m) in g.meshes().iter().enumerate() {
         let mut row = vec![m.label.clone()];
-        for ri in 0..GEOMETRY.len() {
+        for ri in 0..columns {
             row.push(
-                at.get(&(ri, m.label.clone()))
+                at.get(&(ri, mi))
                     .copied()
                     .flatten()
-                    .map_or_else(|| "-".into(), |(c, _)| fmt_f64(c, 0)),
+                    .map_or_else(|| "-".into(), |m| fmt_f64(m.at, 0)),
             );
         }
         fig.row(row);
@@ -440,13 +542,27 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         paper_to.map_or_else(|| "?".into(), |v| fmt_f64(v, 0))
     )];
     let mut range = vec!["range of the minima".to_string()];
-    for ri in 0..GEOMETRY.len() {
-        let cs: Vec<f64> = g
-            .meshes()
-            .iter()
-            .filter_map(|m| at.get(&(ri, m.label.clone())).copied().flatten())
-            .map(|(c, _)| c)
+    let mut depth = vec!["sigma at 40 % / smallest sigma: median (range)".to_string()];
+    for ri in 0..columns {
+        let found: Vec<Minimum> = (0..g.meshes().len())
+            .filter_map(|mi| at.get(&(ri, mi)).copied().flatten())
             .collect();
+        let cs: Vec<f64> = found.iter().map(|m| m.at).collect();
+        let mut ds: Vec<f64> = found
+            .iter()
+            .map(|m| m.depth)
+            .filter(|d| d.is_finite())
+            .collect();
+        ds.sort_by(f64::total_cmp);
+        depth.push(match (ds.first(), ds.last()) {
+            (Some(lo), Some(hi)) => format!(
+                "{} ({}-{})",
+                fmt_f64(ds[ds.len() / 2], 2),
+                fmt_f64(*lo, 2),
+                fmt_f64(*hi, 2)
+            ),
+            _ => "-".into(),
+        });
         let n_in = match (paper_from, paper_to) {
             (Some(a), Some(b)) => cs.iter().filter(|&&c| a <= c && c <= b).count().to_string(),
             _ => "-".into(),
@@ -458,6 +574,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     }
     fig.row(inside);
     fig.row(range);
+    fig.row(depth);
     for (i, r) in GEOMETRY.iter().enumerate() {
         fig.note(format!(
             "({}) {} [paper's inputs: {}]",
@@ -466,7 +583,11 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             r.stated
         ));
     }
-    fig.note("G is the clearance of the paper's formula, D = R1 + R2 - h + G (readings (6) and (7) add their extra centre distance to it); a mesh's minimum is the grid point of its smallest sigma of the driven gear's Theoretical Difference (figIV's runs: from driver angle 0, '-' where no grid point runs without a jam or disengagement).");
+    fig.note(format!(
+        "({}) the gears of (1) with Case A errors (edmunds-split: random 0.04 of the pitch, no systematic error): mean sigma of {draws} manufactured pairs per mesh, each swept over every G from one random initial angle, through jams [paper's inputs: no: Figure IV is read as ideal]",
+        case_a + 1
+    ));
+    fig.note("G is the clearance of the paper's formula, D = R1 + R2 - h + G (reading (6) adds its extra centre distance to it); a mesh's minimum is the grid point of its smallest sigma of the driven gear's Theoretical Difference over one turn of the larger gear (ideal gears: figIV's runs, from driver angle 0, at grid points that run without a jam or disengagement; '-': none does).");
 
     // ---- Table 1: σ of the five pointers under every reading. ----
     let mut rows: Vec<(String, &'static str, Vec<f64>)> = Vec::new();
@@ -491,7 +612,8 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         }
     }
     let base = baseline.ok_or_else(|| RunError::Internal("no baseline reading".into()))?;
-    let next = GEOMETRY.len() + 1;
+    // (GEOMETRY.len() + 1) is Figure IV's Case A column, not run here.
+    let next = GEOMETRY.len() + 2;
     rows.push((
         format!("({next}) TD sampled once per engagement of the busiest mesh (on (1))"),
         "another reading (paper silent)",
@@ -500,7 +622,11 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             .collect(),
     ));
     rows.push((
-        format!("({}) TD sampled 64 times per engagement (on (1))", next + 1),
+        format!(
+            "({}) TD sampled {} times per engagement (on (1))",
+            next + 1,
+            2 * per
+        ),
         "another reading (paper silent)",
         (0..POINTERS.len())
             .map(|i| mean_of(&base, i, |p| p.sigma_fine))
@@ -515,25 +641,25 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         (0..POINTERS.len()).map(|i| pooled(&base, i)).collect(),
     ));
     let mech = mechanism(&g, &radii[0], &GEOMETRY[0], clearance)?;
-    let doubled = table1_trials(
+    let halved = table1_trials(
         ctx,
         &format!(
-            "sigma-causes: table1 trials, reading (1) with every run twice as long, G = {clearance} %, {per} samples per engagement, random starts"
+            "sigma-causes: table1 trials, reading (1) with every run half as long, G = {clearance} %, {per} samples per engagement, random starts"
         ),
         &g,
         &mech,
         Start::Random,
-        2.0,
+        0.5,
         per,
     )?;
     rows.push((
         format!(
-            "({}) every run twice the caption's length (on (1))",
+            "({}) every run half the caption's length (on (1))",
             next + 3
         ),
         "no: caption's lengths",
         (0..POINTERS.len())
-            .map(|i| mean_of(&doubled, i, |p| p.sigma))
+            .map(|i| mean_of(&halved, i, |p| p.sigma))
             .collect(),
     ));
     let zero = table1_trials(
@@ -564,7 +690,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             .iter()
             .map(|(n, _)| format!("{n} sigma [deg] (ours/paper)")),
     );
-    header.push("Lunar-Games: ours/paper".into());
+    header.push("ours/paper, Lunar to Games".into());
     let mut t1 = Table::new(
         format!(
             "Table 1: sigma of each pointer [deg], mean of {trials} trials (the same draws for every reading), and ours/paper"
@@ -610,7 +736,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     t1.note(format!(
         "Ideal gears, G = {clearance} % (plus the reading's extra centre distance), runs of the caption's length (Lunar 1, Metonic and Games 3.8, Saros and Exeligmos 4.5 turns of b), {per} TD samples per engagement of the busiest mesh unless the reading says otherwise; sigma per trial, then the mean over trials, as table1."
     ));
-    t1.note("Lunar-Games: the smallest and largest ours/paper of the Lunar, Metonic, Saros and Games pointers (the 1.21-1.27 of issue 14; Exeligmos, 1.8, has a cause of its own: see table1's note).");
+    t1.note("Ours/paper, Lunar to Games: the smallest and largest ours/paper of the Lunar, Metonic, Saros and Games pointers (the 1.21-1.27 of issue 14; Exeligmos, 1.8, has a cause of its own: see table1's note).");
     Ok(Report {
         tables: vec![fig, t1],
         trials: (trials * (GEOMETRY.len() + 2)) as u64,
