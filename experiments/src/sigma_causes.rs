@@ -88,18 +88,41 @@ struct Reading {
     tooth_height: f64,
     /// Centre distance added to every mesh, % of h (D = R1 + R2 - h + (G + extra) h / 100).
     extra_clearance: f64,
+    /// G is a percentage of the flank length (the slant height of a tooth, tip to valley; the
+    /// mean of the two gears') instead of the radial height h.
+    per_flank: bool,
+}
+
+impl Reading {
+    /// The clearance in % of h (the paper's formula, ours) that this reading's `g_percent`
+    /// amounts to on a mesh of teeth `n1`, `n2` and tip radii `r1`, `r2`.
+    fn clearance(&self, g_percent: f64, n1: usize, n2: usize, r1: f64, r2: f64) -> f64 {
+        let h = self.tooth_height;
+        let flank = |tip: f64, n: usize| {
+            let root = tip - h;
+            (tip * tip + root * root - 2.0 * tip * root * (std::f64::consts::PI / n as f64).cos())
+                .sqrt()
+        };
+        let scale = if self.per_flank {
+            0.5 * (flank(r1, n1) + flank(r2, n2)) / h
+        } else {
+            1.0
+        };
+        g_percent * scale + self.extra_clearance
+    }
 }
 
 /// The readings that change the gears or their centre distances: they move both Figure IV and
 /// Table 1. (Readings of the sampling, the statistic, the span and the initial angles change
 /// Table 1 only and are run on the first reading's gears.)
-const GEOMETRY: [Reading; 6] = [
+const GEOMETRY: [Reading; 7] = [
     Reading {
         name: "as built: least-squares radii, h = 1.1 mm, D = R1 + R2 - h + G",
         stated: "yes (ours)",
         radii: Radii::LeastSquares,
         tooth_height: 1.1,
         extra_clearance: 0.0,
+        per_flank: false,
     },
     Reading {
         name: "radii: tip = Freeth 2006 radius + h/2 (his radius read as mid-height)",
@@ -107,6 +130,7 @@ const GEOMETRY: [Reading; 6] = [
         radii: Radii::MidHeight,
         tooth_height: 1.1,
         extra_clearance: 0.0,
+        per_flank: false,
     },
     Reading {
         name: "radii: largest gear of each group keeps its Freeth 2006 radius",
@@ -114,6 +138,7 @@ const GEOMETRY: [Reading; 6] = [
         radii: Radii::LargestKept,
         tooth_height: 1.1,
         extra_clearance: 0.0,
+        per_flank: false,
     },
     Reading {
         name: "radii: Freeth 2021 outer radii (Table S8)",
@@ -121,6 +146,7 @@ const GEOMETRY: [Reading; 6] = [
         radii: Radii::Freeth2021,
         tooth_height: 1.1,
         extra_clearance: 0.0,
+        per_flank: false,
     },
     Reading {
         name: "tooth height 0.85 mm",
@@ -128,6 +154,7 @@ const GEOMETRY: [Reading; 6] = [
         radii: Radii::LeastSquares,
         tooth_height: 0.85,
         extra_clearance: 0.0,
+        per_flank: false,
     },
     Reading {
         name: "D larger by 5 % of h (0.055 mm) on every mesh",
@@ -135,6 +162,15 @@ const GEOMETRY: [Reading; 6] = [
         radii: Radii::LeastSquares,
         tooth_height: 1.1,
         extra_clearance: 5.0,
+        per_flank: false,
+    },
+    Reading {
+        name: "G as a percentage of the flank length (tip to valley), not of h",
+        stated: "another reading",
+        radii: Radii::LeastSquares,
+        tooth_height: 1.1,
+        extra_clearance: 0.0,
+        per_flank: true,
     },
 ];
 
@@ -206,12 +242,14 @@ fn mechanism(
     let radius = |name: &str| radii.get(name).copied().unwrap_or(f64::NAN);
     // `Mechanism` places each mesh at train's D for a clearance; ask for the clearance that
     // gives this reading's D on train's radii.
+    let teeth = |name: &str| g.gear(name).map_or(0, |x| x.teeth as usize);
     let equivalent = |label: &str| {
         let (Some(m), Some(base)) = (g.mesh(label), g.mesh_geometry(label, h, 0.0)) else {
             return f64::NAN;
         };
-        let d =
-            radius(&m.driver) + radius(&m.driven) - h + h * (clearance + r.extra_clearance) / 100.0;
+        let (r1, r2) = (radius(&m.driver), radius(&m.driven));
+        let c = r.clearance(clearance, teeth(&m.driver), teeth(&m.driven), r1, r2);
+        let d = r1 + r2 - h + h * c / 100.0;
         (d - base.centre_distance) / h * 100.0
     };
     Mechanism::build_with_clearances(g, h, equivalent, |name, gear| {
@@ -344,6 +382,9 @@ struct Minimum {
     at: f64,
     /// σ at 40 % over the smallest σ (NaN when 40 % is not on the curve).
     depth: f64,
+    /// The largest clearance on the curve (for ideal gears: the largest that runs a full turn
+    /// without a jam or disengagement).
+    last: f64,
 }
 
 impl Minimum {
@@ -361,9 +402,11 @@ impl Minimum {
             .iter()
             .find(|(c, _)| (c - 40.0).abs() < 1e-9)
             .map_or(f64::NAN, |&(_, s)| s);
+        let last = curve.iter().map(|&(c, _)| c).fold(f64::NAN, f64::max);
         Some(Minimum {
             at,
             depth: at40 / smallest,
+            last,
         })
     }
 }
@@ -461,7 +504,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     let paper_to = crate::paper::get("sigma-causes", "figIV.minimum_to").map(|r| r.value);
 
     // ---- Figure IV: σ against G for each mesh under each geometry reading. ----
-    let grid: Vec<f64> = (0..=13).map(|i| 20.0 + 5.0 * f64::from(i)).collect();
+    let grid: Vec<f64> = (0..=16).map(|i| 20.0 + 5.0 * f64::from(i)).collect();
     let radii: Vec<BTreeMap<String, f64>> = GEOMETRY
         .iter()
         .map(|r| tip_radii(&g, &g2021, r.radii, r.tooth_height))
@@ -498,13 +541,20 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             if ri == case_a {
                 return case_a_minimum(&g, mi, pair, &grid, draws, samples, seed);
             }
-            let extra = GEOMETRY[ri].extra_clearance;
+            let reading = &GEOMETRY[ri];
             let mut curve = Vec::new();
             for &c in &grid {
-                let Some(t) = pair.run(c + extra)? else {
+                let ours = reading.clearance(c, pair.n1, pair.n2, pair.r1, pair.r2);
+                let Some(t) = pair.run(ours)? else {
                     continue;
                 };
-                if t.jams() > 0 || t.disengagements() > 0 {
+                // A run counts when it turns the driven gear as the tooth ratio says (tip
+                // circles that do not overlap leave it still, with no event to report).
+                let ratio = pair.n1 as f64 / pair.n2 as f64;
+                let moved = t.theta_at(t.phi_end()) - t.theta_at(t.phi_start());
+                let expected = ratio * (t.phi_end() - t.phi_start());
+                let pitch = std::f64::consts::TAU / pair.n2 as f64;
+                if t.jams() > 0 || t.disengagements() > 0 || (moved - expected).abs() > pitch {
                     continue;
                 }
                 curve.push((c, pair.td_sigma(&t, samples).sigma));
@@ -521,7 +571,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     let mut header = vec!["mesh".to_string()];
     header.extend((1..=columns).map(|i| format!("({i})")));
     let mut fig = Table::new(
-        "Figure IV: the clearance G [% of h] of the smallest sigma of each mesh under each reading (G = 20-85 % by 5)",
+        "Figure IV: the clearance G [% of h] of the smallest sigma of each mesh under each reading (G = 20-100 % by 5)",
         header,
     );
     for (mi, m) in g.meshes().iter().enumerate() {
@@ -543,11 +593,27 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     )];
     let mut range = vec!["range of the minima".to_string()];
     let mut depth = vec!["sigma at 40 % / smallest sigma: median (range)".to_string()];
+    let mut runs = vec![format!(
+        "largest G that runs without a jam or disengagement: median (range) [paper: none above {}]",
+        crate::paper::get("clearance", "disengage_above")
+            .map_or_else(|| "?".into(), |r| fmt_f64(r.value, 0))
+    )];
     for ri in 0..columns {
         let found: Vec<Minimum> = (0..g.meshes().len())
             .filter_map(|mi| at.get(&(ri, mi)).copied().flatten())
             .collect();
         let cs: Vec<f64> = found.iter().map(|m| m.at).collect();
+        let mut lasts: Vec<f64> = found.iter().map(|m| m.last).collect();
+        lasts.sort_by(f64::total_cmp);
+        runs.push(match (ri == case_a, lasts.first(), lasts.last()) {
+            (false, Some(lo), Some(hi)) => format!(
+                "{} ({}-{})",
+                fmt_f64(lasts[lasts.len() / 2], 0),
+                fmt_f64(*lo, 0),
+                fmt_f64(*hi, 0)
+            ),
+            _ => "-".into(),
+        });
         let mut ds: Vec<f64> = found
             .iter()
             .map(|m| m.depth)
@@ -575,6 +641,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     fig.row(inside);
     fig.row(range);
     fig.row(depth);
+    fig.row(runs);
     for (i, r) in GEOMETRY.iter().enumerate() {
         fig.note(format!(
             "({}) {} [paper's inputs: {}]",
@@ -587,7 +654,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         "({}) the gears of (1) with Case A errors (edmunds-split: random 0.04 of the pitch, no systematic error): mean sigma of {draws} manufactured pairs per mesh, each swept over every G from one random initial angle, through jams [paper's inputs: no: Figure IV is read as ideal]",
         case_a + 1
     ));
-    fig.note("G is the clearance of the paper's formula, D = R1 + R2 - h + G (reading (6) adds its extra centre distance to it); a mesh's minimum is the grid point of its smallest sigma of the driven gear's Theoretical Difference over one turn of the larger gear (ideal gears: figIV's runs, from driver angle 0, at grid points that run without a jam or disengagement; '-': none does).");
+    fig.note("G is the clearance of the paper's formula, D = R1 + R2 - h + G (reading (6) adds its extra centre distance to it; reading (7) reads G in % of the flank length); a mesh's minimum is the grid point of its smallest sigma of the driven gear's Theoretical Difference over one turn of the larger gear (ideal gears: figIV's runs, from driver angle 0, at grid points that run without a jam or disengagement; '-': none does).");
 
     // ---- Table 1: σ of the five pointers under every reading. ----
     let mut rows: Vec<(String, &'static str, Vec<f64>)> = Vec::new();
