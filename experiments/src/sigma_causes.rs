@@ -299,9 +299,9 @@ fn sigmas(
     }
 }
 
-/// How a Table 1 trial is run.
+/// How a Table 1 trial sets each mesh's initial angle.
 #[derive(Debug, Clone, Copy, PartialEq)]
-enum Start {
+enum Starts {
     /// Each mesh's initial driver angle uniform within its driver's pitch (the paper, ours).
     Random,
     /// Every mesh starts at driver angle 0.
@@ -314,7 +314,7 @@ fn table1_trials(
     key: &str,
     g: &Gearing,
     mech: &Mechanism,
-    start: Start,
+    start: Starts,
     span: f64,
     per: usize,
 ) -> Result<Vec<Vec<PointerSigma>>, RunError> {
@@ -330,8 +330,8 @@ fn table1_trials(
             .iter()
             .map(|&(name, turns)| {
                 let run = match start {
-                    Start::Random => mech.run_pointer(name, turns, &mut rng),
-                    Start::Zero => mech.run_pointer_from(name, turns, |_| Some(0.0)),
+                    Starts::Random => mech.run_pointer(name, turns, &mut rng),
+                    Starts::Zero => mech.run_pointer_from(name, turns, |_| Some(0.0)),
                 };
                 sigmas(g, run, name, turns, per)
             })
@@ -666,7 +666,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             ri + 1,
             r.name
         );
-        let t = table1_trials(ctx, &key, &g, &mech, Start::Random, 1.0, per)?;
+        let t = table1_trials(ctx, &key, &g, &mech, Starts::Random, 1.0, per)?;
         rows.push((
             format!("({}) {}", ri + 1, r.name),
             r.stated,
@@ -715,7 +715,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         ),
         &g,
         &mech,
-        Start::Random,
+        Starts::Random,
         0.5,
         per,
     )?;
@@ -736,7 +736,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         ),
         &g,
         &mech,
-        Start::Zero,
+        Starts::Zero,
         1.0,
         per,
     )?;
@@ -809,4 +809,103 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         trials: (trials * (GEOMETRY.len() + 2)) as u64,
         ..Default::default()
     })
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, reason = "tests")]
+    use super::*;
+
+    #[test]
+    fn the_first_reading_is_the_trains_own_geometry() {
+        let g = Gearing::freeth2006();
+        let g2021 = Gearing::builtin("freeth2021").unwrap();
+        let r = &GEOMETRY[0];
+        let radii = tip_radii(&g, &g2021, r.radii, r.tooth_height).unwrap();
+        let mech = mechanism(&g, &radii, r, 40.0).unwrap();
+        for m in g.meshes() {
+            let want = g.mesh_geometry(&m.label, 1.1, 40.0).unwrap();
+            let got = mech.mesh(&m.label).unwrap();
+            assert!(
+                (got.centre_distance() - want.centre_distance).abs() < 1e-12,
+                "{}",
+                m.label
+            );
+            assert_eq!(
+                got.driver().tip_radius(),
+                want.driver_tip_radius,
+                "{}",
+                m.label
+            );
+        }
+    }
+
+    #[test]
+    fn five_percent_more_centre_distance_is_0_055_mm() {
+        let g = Gearing::freeth2006();
+        let g2021 = Gearing::builtin("freeth2021").unwrap();
+        let shifted = GEOMETRY.iter().find(|r| r.extra_clearance == 5.0).unwrap();
+        let radii = tip_radii(&g, &g2021, shifted.radii, shifted.tooth_height).unwrap();
+        let mech = mechanism(&g, &radii, shifted, 40.0).unwrap();
+        let base = g.mesh_geometry("b2-c1", 1.1, 40.0).unwrap();
+        let d = mech.mesh("b2-c1").unwrap().centre_distance();
+        assert!((d - base.centre_distance - 0.055).abs() < 1e-12, "{d}");
+    }
+
+    #[test]
+    fn radii_readings_follow_their_rules() {
+        let g = Gearing::freeth2006();
+        let g2021 = Gearing::builtin("freeth2021").unwrap();
+        let lsq = tip_radii(&g, &g2021, Radii::LeastSquares, 1.1).unwrap();
+        let mid = tip_radii(&g, &g2021, Radii::MidHeight, 1.1).unwrap();
+        let kept = tip_radii(&g, &g2021, Radii::LargestKept, 1.1).unwrap();
+        // c2 (48) and d1 (24), both measured: the fitted scale grows by (h/2) ΣN / ΣN².
+        let grow = 0.55 * (48.0 + 24.0) / (48.0 * 48.0 + 24.0 * 24.0);
+        assert!((mid["c2"] - lsq["c2"] - 48.0 * grow).abs() < 1e-12);
+        // b2 (64) is the largest of b2, c1, l1: it keeps its 15.30 mm, its partners follow.
+        assert!((kept["b2"] - 15.30).abs() < 1e-12);
+        assert!((kept["c1"] - 15.30 * 38.0 / 64.0).abs() < 1e-12);
+        assert_eq!(kept["c1"], kept["l1"]);
+    }
+
+    #[test]
+    fn flank_reading_scales_g_by_the_flank_over_h() {
+        // N = 8, R = 200, h = 100 (Figure 2's gears): tip (200, 0), valley at radius 100 and
+        // half a pitch, 22.5 degrees.
+        let r = Reading {
+            name: "",
+            stated: "",
+            radii: Radii::LeastSquares,
+            tooth_height: 100.0,
+            extra_clearance: 0.0,
+            per_flank: true,
+        };
+        let a = 22.5_f64.to_radians();
+        let flank = (200.0 - 100.0 * a.cos()).hypot(100.0 * a.sin());
+        assert!((r.clearance(40.0, 8, 8, 200.0, 200.0) - 40.0 * flank / 100.0).abs() < 1e-9);
+        let plain = Reading {
+            per_flank: false,
+            extra_clearance: 5.0,
+            ..r
+        };
+        assert_eq!(plain.clearance(40.0, 8, 8, 200.0, 200.0), 45.0);
+    }
+
+    #[test]
+    fn pooled_sigma_is_the_sigma_of_all_samples_together() {
+        let a = [0.1, -0.3, 0.25, 0.05];
+        let b = [1.0, 1.2, 0.7, 0.9];
+        let trial = |x: &[f64]| {
+            let s = stats::pointer_stats(x);
+            vec![PointerSigma {
+                sigma: s.sigma,
+                mean: s.mean,
+                ..Default::default()
+            }]
+        };
+        let all: Vec<f64> = a.iter().chain(&b).copied().collect();
+        let want = stats::pointer_stats(&all).sigma;
+        let got = pooled(&[trial(&a), trial(&b)], 0);
+        assert!((got - want).abs() < 1e-12, "{got} vs {want}");
+    }
 }
