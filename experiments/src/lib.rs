@@ -21,6 +21,7 @@ mod lunar_anomaly;
 mod pair;
 mod pair_jams;
 mod sensitivity;
+mod sigma_causes;
 mod table1;
 mod table2;
 mod table3;

@@ -2,11 +2,18 @@
 
 // Contents: `pointer_stats` / `Accumulator` (Table 1's σ, Dm, P, batch or streaming),
 // `mean_ci95` (Student-t interval), `wilson95` / `clopper_pearson95` (binomial counts),
-// `DAYS_PER_YEAR` / `days_per_degree` (degrees of pointer error to days). Quantiles come from
+// `DAYS_PER_YEAR` / `days_per_degree` (degrees of pointer error to days); in `two_sample.rs`,
+// two binomial counts compared (`fisher_exact_two_sided`, `newcombe95`, `consistent`). Quantiles come from
 // `statrs` (`StudentsT`, `Beta`) without default features: it pulls in only `approx` and
 // `num-traits`.
 
 use statrs::distribution::{Beta, ContinuousCDF, StudentsT};
+
+mod two_sample;
+
+pub use two_sample::{
+    Difference, FISHER_RELATIVE_TOLERANCE, consistent, fisher_exact_two_sided, newcombe95,
+};
 
 // ---------------------------------------------------------------------------------------------
 // Pointer statistics (batch).
