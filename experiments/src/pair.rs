@@ -749,6 +749,24 @@ fn labelled_tips(p: &Prepared) -> Vec<(Role, i64, Vec2)> {
     out
 }
 
+/// `s` broken at spaces into lines of at most `width` characters (longer words stay whole).
+fn wrap(s: &str, width: usize) -> Vec<String> {
+    let mut lines = vec![String::new()];
+    for word in s.split(' ') {
+        let last = lines.len() - 1;
+        if !lines[last].is_empty() && lines[last].chars().count() + 1 + word.chars().count() > width
+        {
+            lines.push(String::new());
+        }
+        let last = lines.len() - 1;
+        if !lines[last].is_empty() {
+            lines[last].push(' ');
+        }
+        lines[last].push_str(word);
+    }
+    lines
+}
+
 /// Text safe inside SVG markup.
 fn escape(s: &str) -> String {
     s.replace('&', "&amp;")
@@ -776,7 +794,7 @@ fn check_svg(name: &str, p: &Prepared, traj: &Trajectory) -> String {
     let (width, margin, top) = (1000.0, 30.0, 50.0);
     let k = (width - 2.0 * margin) / (x_max - x_min);
     let legend_top = top + 2.0 * y_max * k + 20.0;
-    let height = legend_top + 8.0 * 18.0 + 10.0;
+    let height = legend_top + 12.0 * 18.0 + 10.0;
     let at = |v: Vec2| (margin + (v.x - x_min) * k, top + (y_max - v.y) * k);
     let pt = |v: Vec2| {
         let (x, y) = at(v);
@@ -828,7 +846,7 @@ fn check_svg(name: &str, p: &Prepared, traj: &Trajectory) -> String {
     head(&mut svg, x_end, Vec2::new(1.0, 0.0), size, "black");
     text(
         &mut svg,
-        x_end + Vec2::new(0.0, -2.5 * size),
+        x_end + Vec2::new(0.0, 1.2 * size),
         "end",
         "black",
         "x: line of centres, driver arbor -> driven arbor",
@@ -883,12 +901,13 @@ fn check_svg(name: &str, p: &Prepared, traj: &Trajectory) -> String {
         );
         head(&mut svg, ray_end, towards, size, colour);
         let (angle, anchor) = match role {
-            Role::Driver => ("phi = 0", "start"),
-            Role::Driven => ("theta = 0", "end"),
+            Role::Driver => ("phi = 0", "end"),
+            Role::Driven => ("theta = 0", "start"),
         };
+        // Beside the centre, clear of the mesh, where the two rays meet.
         text(
             &mut svg,
-            centre + towards * (0.1 * radius) + Vec2::new(0.0, 0.6 * size),
+            centre - towards * (0.05 * radius) - Vec2::new(0.0, 1.8 * size),
             anchor,
             colour,
             &format!("{} zero ray (tips_deg = 0, {angle})", role.name()),
@@ -915,7 +934,7 @@ fn check_svg(name: &str, p: &Prepared, traj: &Trajectory) -> String {
         ));
         text(
             &mut svg,
-            arbor - Vec2::new(0.0, 2.0 * size),
+            arbor - Vec2::new(0.0, 3.8 * size),
             "middle",
             colour,
             &format!("{} arbor (+), tip-circle centre (o)", role.name()),
@@ -941,23 +960,26 @@ fn check_svg(name: &str, p: &Prepared, traj: &Trajectory) -> String {
         let along = (to - from).signum();
         let u = Vec2::new(-end.sin(), end.cos()) * along;
         head(&mut svg, arbor + polar(arc_r, end), u, 1.5 * size, colour);
-        let (turns, sense) = match role {
-            Role::Driver => ("driver turns this way: phi increases", "start"),
-            Role::Driven => ("driven gear turns this way: theta increases", "end"),
+        let turns = match role {
+            Role::Driver => "driver turns this way: phi increases",
+            Role::Driven => "driven gear turns this way: theta increases",
         };
         let mid = (0.5 * (from + to)).to_radians();
         text(
             &mut svg,
             arbor + polar(arc_r + 2.0 * size, mid),
-            sense,
+            "middle",
             colour,
             turns,
         );
     }
+    // Labels of tips in the mesh, where the gears crowd each other, go up or down on leaders of
+    // growing length, the driver's to the left and the driven gear's to the right.
+    let mut stacked = [0.0, 0.0];
     for (role, user, tip) in labelled_tips(p) {
-        let (colour, centre) = match role {
-            Role::Driver => ("#1f4e9c", c1),
-            Role::Driven => ("#a3261f", c2),
+        let (colour, centre, other, other_r) = match role {
+            Role::Driver => ("#1f4e9c", c1, c2, r2),
+            Role::Driven => ("#a3261f", c2, c1, r1),
         };
         let out = (tip - centre).normalize();
         let (x, y) = at(tip);
@@ -965,12 +987,29 @@ fn check_svg(name: &str, p: &Prepared, traj: &Trajectory) -> String {
             "<circle id=\"{}-tooth-{user}\" cx=\"{x:.2}\" cy=\"{y:.2}\" r=\"4\" fill=\"{colour}\"/>\n",
             role.name()
         ));
-        let label = tip + out * (3.0 * size);
+        let radial = tip + out * (3.0 * size);
+        let (label, anchor) = if (radial - other).norm() < other_r + 3.0 * size {
+            let up = tip.y > 0.0 || (tip.y == 0.0 && role == Role::Driver);
+            let slot = &mut stacked[usize::from(!up)];
+            *slot += 1.0;
+            let dy = (2.0 + 2.5 * *slot) * size;
+            let anchor = match role {
+                Role::Driver => "end",
+                Role::Driven => "start",
+            };
+            (tip + Vec2::new(0.0, if up { dy } else { -dy }), anchor)
+        } else {
+            (radial, if out.x >= 0.0 { "start" } else { "end" })
+        };
         line(&mut svg, tip, label, colour, "stroke-width=\"1\"");
-        let anchor = if out.x >= 0.0 { "start" } else { "end" };
+        // A little clear of the leader, on the side the text runs to.
+        let nudge = match anchor {
+            "end" => -0.5 * size,
+            _ => 0.5 * size,
+        };
         text(
             &mut svg,
-            label,
+            label + Vec2::new(nudge, 0.0),
             anchor,
             colour,
             &format!("{} tooth {user}", role.name()),
@@ -1033,7 +1072,8 @@ fn check_svg(name: &str, p: &Prepared, traj: &Trajectory) -> String {
         fmt_f64(deg(traj.theta_at(phi0)), 6),
         fmt_f64(d, 4)
     ));
-    for (i, l) in lines.iter().enumerate() {
+    let wrapped: Vec<String> = lines.iter().flat_map(|l| wrap(l, 150)).collect();
+    for (i, l) in wrapped.iter().enumerate() {
         svg.push_str(&format!(
             "<text x=\"{margin}\" y=\"{:.0}\" font-size=\"12\">{}</text>\n",
             legend_top + 18.0 * i as f64,
