@@ -1655,4 +1655,46 @@ mod tests {
         assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
         assert_eq!(svg.matches("<polygon id=").count(), 2);
     }
+
+    /// The ```ron block after `marker` in the README, without its `driven: ` and final comma.
+    fn readme_block(marker: &str) -> String {
+        let readme = include_str!("../../README.md");
+        let at = readme.find(marker).unwrap();
+        let body = &readme[at..];
+        let start = body.find("```ron\n").unwrap() + "```ron\n".len();
+        let end = start + body[start..].find("```").unwrap();
+        let block = body[start..end].trim();
+        block
+            .strip_prefix("driven: ")
+            .unwrap()
+            .strip_suffix(',')
+            .unwrap()
+            .to_string()
+    }
+
+    #[test]
+    fn the_readmes_measured_wheel_is_one_gear_in_both_spellings() {
+        let file = |driven: String| {
+            format!(
+                "(driver: (teeth: 30, tip_radius: 26.4, root_radius: 25.3), driven: {driven}, clearance_percent: Some(40.0))"
+            )
+        };
+        let own = prepare(
+            "README.md",
+            &file(readme_block("<!-- measured wheel: own sense -->")),
+        )
+        .unwrap();
+        let driver = prepare(
+            "README.md",
+            &file(readme_block("<!-- measured wheel: driver sense -->")),
+        )
+        .unwrap();
+        let (a, b) = (own.mesh.driven(), driver.mesh.driven());
+        assert_eq!(a.tip_angles(), b.tip_angles());
+        let gap = (a.rotation_centre() - b.rotation_centre()).norm();
+        assert!(gap < 1e-6, "the arbors are {gap} apart");
+        // The scan's tooth 0 is the driver-sense spelling's tooth 14.
+        assert_eq!(own.driven.user(driver.driven.solver(14)), 0);
+        assert_eq!(own.driven.user(driver.driven.solver(0)), 14);
+    }
 }
