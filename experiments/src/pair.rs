@@ -789,7 +789,9 @@ fn check_svg(name: &str, p: &Prepared, traj: &Trajectory) -> String {
     let c1 = -g1.rotation_centre();
     let c2 = arbor2 + rotate(-g2.rotation_centre(), PI);
     let (r1, r2) = (g1.max_tip_radius(), g2.max_tip_radius());
-    let (x_min, x_max) = (c1.x - 1.15 * r1, c2.x + 1.15 * r2);
+    // Room beyond the driven gear for the labels of its zero ray and turning sense, which run
+    // outwards from it whatever its size.
+    let (x_min, x_max) = (c1.x - 1.15 * r1, c2.x + 1.15 * r2 + 0.3 * r1.max(r2));
     let y_max = 1.15 * r1.max(r2);
     let (width, margin, top) = (1000.0, 30.0, 50.0);
     let k = (width - 2.0 * margin) / (x_max - x_min);
@@ -1417,6 +1419,13 @@ mod tests {
         p.mesh.obstacles(0.0, theta0 - 0.1, theta0 + 0.1, &mut obs);
         assert!(obs.iter().any(|o| o.hi == theta0), "{obs:?}");
         assert_eq!(p.mesh.next_free(0.0, theta0, false), Some(theta0));
+        // A file written before the conventions existed keeps its meaning, bit for bit: the
+        // example's gears are the ones the loader built then.
+        let ideal: Vec<f64> = (0..50).map(|k| TAU * f64::from(k) / 50.0).collect();
+        let then = |e: Vec2| Gear::new(200.0, 180.0, ideal.clone(), e).unwrap();
+        assert_eq!(p.mesh.driver(), &then(Vec2::zeros()));
+        assert_eq!(p.mesh.driven(), &then(Vec2::new(1.5, 0.5)));
+        assert_eq!(p.driven.user(7), 7);
         // Written out, `touching` is the default.
         let q = prepare("x.ron", &example_with("start: touching")).unwrap();
         assert_eq!(q.start, Start::Touching(0.0));
