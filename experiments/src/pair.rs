@@ -46,9 +46,9 @@ the first; tooth k is the k-th angle of your list, and every output numbers teet
   - sense: driver (the default) means tips_deg increase in the direction the driver turns, \
 own that they increase in the direction this gear turns; for the driver the two are the same, \
 for the driven gear they are mirror images (own: clockwise in the view above).
-  - eccentricity: (x, y) is the arbor minus the tip-circle centre, in the frame named by \
-eccentricity_frame; arbor: (offset, angle_deg) gives the same point in polar form (offset from \
-the tip-circle centre, angle from that frame's x axis towards its y axis); give at most one.
+  - eccentricity: Some((x, y)) is the arbor minus the tip-circle centre, in the frame named by \
+eccentricity_frame; arbor: Some((offset: L, angle_deg: A)) gives the same point in polar form \
+(L from the tip-circle centre, A from that frame's x axis towards its y axis); give at most one.
   - eccentricity_frame: tips (the default) has x along the gear's zero ray and y 90 deg from it in \
 the sense of its tips_deg; world is the view's frame (x along the line of centres towards the \
 driven gear, y 90 deg counter-clockwise) with the gears at phi = 0 and theta = 0.
@@ -57,8 +57,8 @@ driven gear, y 90 deg counter-clockwise) with the gears at phi = 0 and theta = 0
 first free position if it overlaps a driver tooth, else turned back until one of its teeth rests \
 against a driver tooth; at_rest(theta_deg: T) starts it standing still at theta = T until the \
 driver reaches it (refused if it overlaps the driver there); teeth(driver: j, driven: k) \
-starts it with its tooth k resting against driver tooth j, being pushed (refused if they cannot \
-touch at start_deg or the position overlaps another tooth).
+starts it with its tooth k resting against driver tooth j, being pushed, at the theta within half \
+a turn of 0 (refused if they cannot touch at start_deg or the position overlaps another tooth).
   - pair.csv: phi_deg and theta_deg are phi - phi0 and theta - theta0 (phi0 = start_deg, theta0 \
 the driven angle at the start), td_deg = theta_deg - (N1/N2) phi_deg, and phi_abs_deg, \
 theta_abs_deg are phi and theta themselves.
