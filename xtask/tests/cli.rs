@@ -94,7 +94,10 @@ fn help_describes_each_experiment() {
     }
     let o = xtask(&["help", "no-such-experiment"]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("unknown experiment, error hypothesis or event rule `no-such-experiment`"));
+    assert!(
+        stderr(&o)
+            .contains("unknown experiment, error hypothesis or event rule `no-such-experiment`")
+    );
 }
 
 /// `rules` lists every event rule and `help NAME` documents each: its reading, its parameters
@@ -115,9 +118,20 @@ fn rules_are_listed_and_documented() {
             assert!(text.contains(p.name), "{name}: {}: {text}", p.name);
         }
     }
-    let o = xtask(&["run", "fig2", "--set", "events=no-such-rule", "--out", "/nonexistent-dir/x"]);
+    let o = xtask(&[
+        "run",
+        "fig2",
+        "--set",
+        "events=no-such-rule",
+        "--out",
+        "/nonexistent-dir/x",
+    ]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("unknown; known rules: friction, paper, strict, sync"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("unknown; known rules: friction, paper, strict, sync"),
+        "{}",
+        stderr(&o)
+    );
 }
 
 /// `help NAME` documents every registered error hypothesis (and a stack of them): its model in

@@ -1,0 +1,146 @@
+//! `pair` as a user with measurements meets it: `help pair` states every convention of the file,
+//! a run writes the check picture and the absolute angles, and the user's tooth numbers come
+//! back as written.
+#![allow(clippy::unwrap_used, reason = "tests")]
+
+mod support;
+
+use support::{Scratch, xtask};
+
+#[test]
+fn help_states_every_convention_of_the_pair_file() {
+    let o = xtask(&["help", "pair"]);
+    assert!(o.status.success());
+    let text = String::from_utf8_lossy(&o.stdout).into_owned();
+    for words in [
+        "driver turns counter-clockwise",
+        "Zero ray: each gear's tips_deg = 0",
+        "phi (driver angle) is how far the driver has turned counter-clockwise",
+        "theta (driven angle) is how far the driven gear has turned clockwise",
+        "about the tip-circle centre",
+        "not the arbor",
+        "sense: driver (the default)",
+        "own that they increase in the direction this gear turns",
+        "eccentricity: Some((x, y)) is the arbor minus the tip-circle centre",
+        "arbor: Some((offset: L, angle_deg: A))",
+        "eccentricity_frame: tips (the default)",
+        "world is the view's frame",
+        "start_deg is phi at the start",
+        "start: touching (the default)",
+        "at_rest(theta_deg: T)",
+        "teeth(driver: j, driven: k)",
+        "phi_abs_deg, theta_abs_deg are phi and theta themselves",
+        "tooth numbers as in your file",
+        "pair-check.svg draws both gears at phi = 0 and theta = 0",
+    ] {
+        assert!(
+            text.contains(words),
+            "`{words}` missing from help pair:\n{text}"
+        );
+    }
+}
+
+/// A 20-tooth driver and a 5-tooth driven wheel, measured in its own sense, eccentric, started on
+/// a named tooth pair.
+const OWN_SENSE: &str = "(
+    driver: (teeth: 20, tip_radius: 20.0, root_radius: 18.0),
+    driven: (
+        teeth: 5,
+        tip_radius: 5.0,
+        root_radius: 3.0,
+        sense: own,
+        tips_deg: Some([0.0, 71.0, 145.0, 215.0, 290.0]),
+        arbor: Some((offset: 0.3, angle_deg: 30.0)),
+        eccentricity_frame: tips,
+    ),
+    clearance_percent: Some(30.0),
+    start_deg: 0.0,
+    start: teeth(driver: 0, driven: 0),
+    run_deg: Some(40.0),
+)";
+
+#[test]
+fn a_run_writes_the_check_picture_absolute_angles_and_the_users_tooth_numbers() {
+    let s = Scratch::new("pair-conventions");
+    std::fs::write(s.path("mesh.ron"), OWN_SENSE).unwrap();
+    let o = xtask(&[
+        "run",
+        "pair",
+        "-q",
+        "--config",
+        &s.path("mesh.ron"),
+        "--out",
+        &s.path("out"),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let read = |f: &str| std::fs::read_to_string(s.0.join("out/pair").join(f)).unwrap();
+    let check = read("pair-check.svg");
+    assert!(check.contains("<polygon id=\"driven-outline\""), "{check}");
+    assert!(check.contains("tips_deg run clockwise here (sense: own)"));
+    assert!(check.contains("(start: teeth(driver: 0, driven: 0))"));
+    // Absolute angles beside the relative ones: their difference is the start, on every row.
+    let csv = read("pair.csv");
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next(),
+        Some("phi_deg,theta_deg,td_deg,phi_abs_deg,theta_abs_deg")
+    );
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|c| c.parse().unwrap()).collect())
+        .collect();
+    let theta0 = rows[0][4];
+    assert_eq!(rows[0][1], 0.0);
+    for r in &rows {
+        assert!((r[3] - r[0]).abs() < 1e-9, "{r:?}");
+        assert!((r[4] - r[1] - theta0).abs() < 1e-8, "{r:?}");
+    }
+    // A 5-tooth wheel on a 20-tooth driver loses contact tooth by tooth: every event names a
+    // driven tooth as written in the file, and the first is the tooth the run started on.
+    let log = read("event-log.csv");
+    let mut events = log.lines();
+    assert_eq!(
+        events.next(),
+        Some(
+            "phi_deg,kind,driver_tooth,driven_tooth,theta_deg,theta_after_deg,phi_abs_deg,theta_abs_deg,theta_after_abs_deg"
+        )
+    );
+    let first: Vec<&str> = events.next().unwrap().split(',').collect();
+    assert_eq!(
+        (first[1], first[2], first[3]),
+        ("disengagement", "0", "0"),
+        "{log}"
+    );
+}
+
+#[test]
+fn a_start_that_cannot_be_taken_is_refused_naming_the_field() {
+    let cases = [
+        (
+            "start: teeth(driver: 1, driven: 0)",
+            "mesh.ron: start: driver tooth 1 cannot touch driven tooth 0 at start_deg = 0 (driver teeth that can touch there: 0)",
+        ),
+        (
+            "start: at_rest(theta_deg: 10.0)",
+            "mesh.ron: start.theta_deg: the driven gear at rest at theta = 10 deg overlaps a driver tooth at start_deg = 0: the nearest free driven angle ahead is 16.96",
+        ),
+    ];
+    for (start, expected) in cases {
+        let s = Scratch::new("pair-start");
+        let text = OWN_SENSE.replace("start: teeth(driver: 0, driven: 0)", start);
+        std::fs::write(s.path("mesh.ron"), text).unwrap();
+        let o = xtask(&[
+            "run",
+            "pair",
+            "--config",
+            &s.path("mesh.ron"),
+            "--out",
+            &s.path("out"),
+        ]);
+        assert_eq!(o.status.code(), Some(2), "{start}");
+        let err = String::from_utf8_lossy(&o.stderr).into_owned();
+        let line = err.lines().find(|l| l.contains("mesh.ron")).unwrap();
+        assert!(line.contains(expected), "{start}: {err}");
+        assert!(!err.contains("panicked"), "{err}");
+        assert!(!s.0.join("out").exists(), "{start}: results were written");
+    }
+}
