@@ -6,7 +6,7 @@ use std::f64::consts::TAU;
 use contact::Start;
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
 
-use crate::common::{Series, csv, deg, line_plot, paper_cell};
+use crate::common::{MAX_DATA_ROWS, Series, csv, deg, line_plot, paper_cell};
 use crate::equal_pair;
 
 const PARAMS: &[Param] = &[
@@ -44,6 +44,17 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     let step = ctx.f64("step")?;
     if !(step > 0.0 && step <= 10.0) {
         return Err(RunError::bad("--set", "step", "must be in (0, 10] degrees"));
+    }
+    if 360.0 / step > MAX_DATA_ROWS as f64 {
+        return Err(RunError::bad(
+            "--set",
+            "step",
+            format!(
+                "must be at least {} degrees: one driver turn in steps of {} would be more than {MAX_DATA_ROWS} rows of data, the limit",
+                360.0 / MAX_DATA_ROWS as f64,
+                registry::fmt_number(step)
+            ),
+        ));
     }
     let teeth = u32::try_from(n).map_err(|_| RunError::bad("--set", "teeth", "too many teeth"))?;
     let pair =

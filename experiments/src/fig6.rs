@@ -48,7 +48,7 @@ fn measured(ctx: &Context) -> Result<Option<(String, hypotheses::MeasuredTable)>
     if path == "none" || path.is_empty() {
         return Ok(None);
     }
-    let text = std::fs::read_to_string(path)
+    let text = input_file::read_to_string(std::path::Path::new(path), input_file::MAX_INPUT_BYTES)
         .map_err(|e| RunError::bad("--set", "measured", format!("cannot read {path}: {e}")))?;
     let table = hypotheses::measured_from_ron(path, &text).map_err(|e| {
         let what = e

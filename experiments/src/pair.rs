@@ -5,10 +5,12 @@ use std::f64::consts::TAU;
 
 use contact::{EventKind, Mesh, Start};
 use geometry::{Gear, Vec2};
-use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use registry::{
+    Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64, fmt_number,
+};
 use serde::Deserialize;
 
-use crate::common::{Series, csv, deg, line_plot};
+use crate::common::{MAX_DATA_ROWS, Series, csv, deg, line_plot};
 
 const EXAMPLE: &str = include_str!("../data/pair-example.ron");
 const EXAMPLE_NAME: &str = "experiments/data/pair-example.ron";
@@ -57,6 +59,11 @@ pub struct PairFile {
 
 fn default_sample() -> f64 {
     0.1
+}
+
+/// The driver angle run when `run_deg` is not given: one turn of the gear with more teeth.
+fn default_run_deg(driver_teeth: usize, driven_teeth: usize) -> f64 {
+    360.0 * driver_teeth.max(driven_teeth) as f64 / driver_teeth as f64
 }
 
 fn gear(file: &str, which: &str, spec: &GearSpec) -> Result<Gear, RunError> {
@@ -124,11 +131,14 @@ pub fn load(file: &str, text: &str) -> Result<(Mesh, PairFile), RunError> {
     let d = match (spec.centre_distance, spec.clearance_percent) {
         (Some(d), None) => d,
         (None, Some(g)) => {
-            if !(0.0..=100.0).contains(&g) {
+            if !(g > 0.0 && g < 100.0) {
                 return Err(RunError::bad(
                     file,
                     "clearance_percent",
-                    format!("must be between 0 and 100 (got {g})"),
+                    format!(
+                        "must be more than 0 and less than 100 (got {}): at 0 the tips reach the other gear's valleys, at 100 they only graze its tips",
+                        fmt_number(g)
+                    ),
                 ));
             }
             let h = 0.5 * (driver.tooth_height() + driven.tooth_height());
@@ -156,21 +166,51 @@ pub fn load(file: &str, text: &str) -> Result<(Mesh, PairFile), RunError> {
             "must be a finite number of degrees",
         ));
     }
-    if let Some(r) = spec.run_deg {
-        if !(r > 0.0 && r.is_finite() && r <= 360.0 * 1000.0) {
-            return Err(RunError::bad(
-                file,
-                "run_deg",
-                "must be a positive number of degrees, at most 360000",
-            ));
-        }
-        if r / spec.sample_deg > 5.0e6 {
-            return Err(RunError::bad(
-                file,
-                "sample_deg",
-                "too small for run_deg: more than 5 million rows",
-            ));
-        }
+    if let Some(r) = spec.run_deg
+        && !(r > 0.0 && r.is_finite() && r <= 360.0 * 1000.0)
+    {
+        return Err(RunError::bad(
+            file,
+            "run_deg",
+            "must be a positive number of degrees, at most 360000",
+        ));
+    }
+    let run_deg = spec
+        .run_deg
+        .unwrap_or_else(|| default_run_deg(spec.driver.teeth, spec.driven.teeth));
+    if run_deg / spec.sample_deg > MAX_DATA_ROWS as f64 {
+        return Err(RunError::bad(
+            file,
+            "sample_deg",
+            format!(
+                "must be at least {} degrees: {} degrees of driver angle in steps of {} would be more than {MAX_DATA_ROWS} rows of pair.csv, the limit",
+                fmt_number(run_deg / MAX_DATA_ROWS as f64),
+                fmt_number(run_deg),
+                fmt_number(spec.sample_deg)
+            ),
+        ));
+    }
+    // Gears that never touch: every tip of a gear lies within its largest tip radius of its
+    // geometric centre, which is |e| from its rotation centre.
+    let reach = driver.max_tip_radius()
+        + driven.max_tip_radius()
+        + driver.rotation_centre().norm()
+        + driven.rotation_centre().norm();
+    if d >= reach {
+        let field = if spec.centre_distance.is_some() {
+            "centre_distance"
+        } else {
+            "clearance_percent"
+        };
+        return Err(RunError::bad(
+            file,
+            field,
+            format!(
+                "the gears never touch: the centre distance {} is at least R1 + R2 + |e1| + |e2| = {}, so no tip reaches the other gear",
+                fmt_number(d),
+                fmt_number(reach)
+            ),
+        ));
     }
     let mesh = Mesh::new(driver, driven, d).map_err(|e| RunError::bad(file, e.field, e.rule))?;
     Ok((mesh, spec))
@@ -184,9 +224,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     let (mesh, spec) = load(&name, text)?;
     let (n1, n2) = (mesh.driver().teeth(), mesh.driven().teeth());
     let ratio = n1 as f64 / n2 as f64;
-    let run_deg = spec
-        .run_deg
-        .unwrap_or(360.0 * n1.max(n2) as f64 / n1 as f64);
+    let run_deg = spec.run_deg.unwrap_or_else(|| default_run_deg(n1, n2));
     let phi0 = spec.start_deg.to_radians();
     let phi_end = phi0 + run_deg.to_radians();
     let traj = mesh.run(phi0, phi_end, Start::Touching(0.0));

@@ -123,6 +123,12 @@ fn one_line(text: &str) -> String {
 fn dispatch(args: &[String]) -> Result<(), Failure> {
     match args.split_first().map(|(c, r)| (c.as_str(), r)) {
         Some(("report", rest)) => return report::command(rest),
+        // `-q` goes anywhere on the line, as the usage says: `cargo xtask -q report`.
+        Some(("-q" | "--quiet", rest)) if rest.first().is_some_and(|c| c == "report") => {
+            let mut rest = rest[1..].to_vec();
+            rest.push("-q".into());
+            return report::command(&rest);
+        }
         Some(("fuzz", rest)) => return fuzz::command(rest),
         _ => {}
     }
@@ -506,9 +512,10 @@ fn read_config(run: &RunArgs) -> Result<Option<ConfigFile>, Failure> {
     match &run.config {
         None => Ok(None),
         Some(path) => {
-            let text = std::fs::read_to_string(path).map_err(|e| {
-                Failure::Bad(format!("--config: {}: cannot read: {e}", path.display()))
-            })?;
+            let text =
+                input_file::read_to_string(path, input_file::MAX_INPUT_BYTES).map_err(|e| {
+                    Failure::Bad(format!("--config: {}: cannot read: {e}", path.display()))
+                })?;
             Ok(Some(ConfigFile {
                 path: path.clone(),
                 text,
@@ -639,15 +646,7 @@ fn plan(
 /// every gearing file, error hypothesis and measured-errors table the experiments were given
 /// must read and pass its rules. Each is refused naming the file, the line or item and the rule.
 fn preflight(planned: &[Planned], run: &RunArgs) -> Result<(), Failure> {
-    if let Some(out) = &run.out
-        && out.exists()
-        && !out.is_dir()
-    {
-        return Err(Failure::Bad(format!(
-            "--out: {}: exists and is not a directory",
-            out.display()
-        )));
-    }
+    check_out(&run.out.clone().unwrap_or_else(default_out))?;
     let mut seen = std::collections::BTreeSet::new();
     for p in planned {
         let value = |name: &str| {
@@ -684,7 +683,111 @@ fn preflight(planned: &[Planned], run: &RunArgs) -> Result<(), Failure> {
             hypotheses::measured_file(m.trim())
                 .map_err(|e| Failure::Bad(format!("{flag}: {e}")))?;
         }
+        measured_gears_in_gearing(p, run)?;
     }
+    Ok(())
+}
+
+/// A measured-errors table given to an experiment that builds a gearing must name only gears of
+/// that gearing: a row for another gear (a typo, another gearing's name) would be silently
+/// unused. Refused naming the flag, the file, the gear and the gearing.
+fn measured_gears_in_gearing(p: &Planned, run: &RunArgs) -> Result<(), Failure> {
+    let value = |name: &str| {
+        p.ctx
+            .declares(name)
+            .then(|| p.ctx.param(name).ok().map(str::to_owned))
+            .flatten()
+    };
+    let Some(gearing_name) = value("gearing") else {
+        return Ok(());
+    };
+    let from_hypothesis = value("hypothesis").and_then(|h| {
+        h.split(hypotheses::SEPARATOR)
+            .find_map(|layer| layer.strip_prefix("measured:").map(str::to_owned))
+    });
+    let (file, flag) = match (from_hypothesis, value("measured")) {
+        (Some(f), _) => (
+            f,
+            if run.errors.is_some() {
+                "--errors"
+            } else {
+                "--hypothesis"
+            },
+        ),
+        (None, Some(m)) if !m.trim().is_empty() => (
+            m.trim().to_owned(),
+            if run.errors.is_some() {
+                "--errors"
+            } else {
+                "--set measured"
+            },
+        ),
+        _ => return Ok(()),
+    };
+    let Ok(h) = hypotheses::measured_file(&file) else {
+        return Ok(()); // refused above with its own message
+    };
+    let gearing = match train::Gearing::builtin(&gearing_name) {
+        Some(g) => g,
+        None => train::Gearing::load(Path::new(&gearing_name))
+            .map_err(|e| Failure::Bad(e.to_string()))?,
+    };
+    for (gear, _) in h.table().entries() {
+        if gearing.gear(gear).is_none() {
+            return Err(Failure::Bad(format!(
+                "{flag}: {file}: gear {gear}: is not a gear of the gearing `{gearing_name}` ({} gears, e.g. {}), so its row would be silently unused",
+                gearing.gears().len(),
+                gearing
+                    .gears()
+                    .iter()
+                    .take(3)
+                    .map(|g| g.name.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Checks, before anything is computed, that results can be written under `out` (`--out`):
+/// it is a directory, or can be created as one, and a folder can be created in it. Then puts
+/// back results a killed run left moved aside ([`registry::tidy`]). Refused (exit 2) naming
+/// `--out` and the reason; nothing is left behind by the check.
+fn check_out(out: &Path) -> Result<(), Failure> {
+    let refuse = |why: String| Failure::Bad(format!("--out: {}: {why}", out.display()));
+    if out.exists() && !out.is_dir() {
+        return Err(refuse("exists and is not a directory".into()));
+    }
+    // The nearest folder that exists: where the first thing would be created.
+    let mut base = out.to_path_buf();
+    while !base.as_os_str().is_empty() && std::fs::symlink_metadata(&base).is_err() {
+        base = base.parent().map(Path::to_path_buf).unwrap_or_default();
+    }
+    if base.as_os_str().is_empty() {
+        base = PathBuf::from(".");
+    }
+    if !base.is_dir() {
+        return Err(refuse(format!(
+            "cannot be created: {} is not a directory",
+            base.display()
+        )));
+    }
+    let probe = base.join(format!(
+        ".xtask-out-check.tmp-{}-{}",
+        std::process::id(),
+        std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .map_or(0, |d| d.subsec_nanos())
+    ));
+    std::fs::create_dir(&probe).map_err(|e| {
+        refuse(format!(
+            "cannot write results there (creating a folder in {} fails: {e})",
+            base.display()
+        ))
+    })?;
+    let _ = std::fs::remove_dir(&probe);
+    registry::tidy(out)?;
     Ok(())
 }
 
@@ -1080,6 +1183,7 @@ fn run_shard(
             dir.display()
         ))
     })?;
+    registry::tidy(&dir)?;
     let path = dir.join(shard::file_name(shard));
     write_atomically(&path, &text)?;
     let (mut here, mut whole) = (0, 0);
@@ -1120,7 +1224,7 @@ fn run_shard(
 fn merge(exps: &Registry, m: &MergeArgs) -> Result<(), Failure> {
     let files = shard::find(&m.inputs)?;
     let mut parts = Vec::with_capacity(files.len());
-    for f in files {
+    for f in files.clone() {
         let (partial, shard) = shard::read(&f)?;
         parts.push((f, partial, shard));
     }
@@ -1143,15 +1247,9 @@ fn merge(exps: &Registry, m: &MergeArgs) -> Result<(), Failure> {
     let threads = m.threads.unwrap_or_else(default_threads);
     let ctx = Context::new(e, header.seed, threads, &header.sets, header.config_file())?
         .with_replay(merged);
-    if let Some(out) = &m.out
-        && out.exists()
-        && !out.is_dir()
-    {
-        return Err(Failure::Bad(format!(
-            "--out: {}: exists and is not a directory",
-            out.display()
-        )));
-    }
+    let out = m.out.clone().unwrap_or_else(default_out);
+    check_out(&out)?;
+    keeps_partials(&out.join(e.id), &files, m.out.is_some())?;
     let pool = make_pool(threads)?;
     let report = execute(e, &ctx, &pool).0?;
     if let Some(batch) = ctx.unclaimed().first() {
@@ -1164,13 +1262,39 @@ fn merge(exps: &Registry, m: &MergeArgs) -> Result<(), Failure> {
     let report = provenance::stamp(&report, e, &ctx, &header.sets, config.as_deref());
     let mut stdout = |s: &str| print(s);
     Printer::new(m.format, false, &mut stdout).report(e, &report)?;
-    let dir = m.out.clone().unwrap_or_else(default_out).join(e.id);
+    let dir = out.join(e.id);
     registry::write_results(&dir, &report)?;
     note(&format!(
         "results: {} (merged from {} shards)",
         dir.display(),
         header.shards
     ));
+    Ok(())
+}
+
+/// A merge replaces `dir` (`<out>/<id>`) whole: refused (exit 2) when it holds one of the
+/// partial files being merged, which the replacement would delete.
+fn keeps_partials(dir: &Path, partials: &[PathBuf], out_given: bool) -> Result<(), Failure> {
+    let Ok(dir) = std::fs::canonicalize(dir) else {
+        return Ok(());
+    };
+    for f in partials {
+        if let Ok(f) = std::fs::canonicalize(f)
+            && f.starts_with(&dir)
+        {
+            return Err(Failure::Bad(format!(
+                "--out: {}: the merge would replace {}, which holds the partial file {} being merged; give another --out{}",
+                dir.parent().unwrap_or(&dir).display(),
+                dir.display(),
+                f.display(),
+                if out_given {
+                    ""
+                } else {
+                    " (the shards wrote into the default results folder)"
+                }
+            )));
+        }
+    }
     Ok(())
 }
 

@@ -30,20 +30,33 @@ pub const INDEX_HTML: &str = "index.html";
 
 /// `report [--out DIR]`: builds the page and writes it to `<out>/index.html`.
 pub fn command(args: &[String]) -> Result<(), Failure> {
-    let out = parse(args)?;
+    let (out, quiet) = parse(args)?;
     let exps = registry::experiments().map_err(|e| Failure::Internal(e.to_string()))?;
+    // Results a killed run left moved aside are put back before they are read.
+    registry::tidy(&out)?;
     let page = build(&exps, &out)?;
     let index = out.join(INDEX_HTML);
     crate::write_atomically(&index, &page)?;
-    eprintln!("report: {}", index.display());
+    if !quiet {
+        eprintln!("report: {}", index.display());
+    }
     Ok(())
 }
 
-/// The `--out` directory (default `<workspace>/results`).
-fn parse(args: &[String]) -> Result<PathBuf, Failure> {
+/// The `--out` directory (default `<workspace>/results`), and whether `-q`/`--quiet` was
+/// given (no note on stderr).
+fn parse(args: &[String]) -> Result<(PathBuf, bool), Failure> {
     let mut out = None;
+    let mut quiet = false;
     let mut it = args.iter();
     while let Some(arg) = it.next() {
+        if arg == "-q" || arg == "--quiet" {
+            quiet = true;
+            continue;
+        }
+        if out.is_some() && (arg == "--out" || arg.starts_with("--out=")) {
+            return Err(Failure::Usage("--out given twice".into()));
+        }
         let value = match arg.split_once('=') {
             Some(("--out", v)) => v.to_owned(),
             None if arg == "--out" => match it.next() {
@@ -52,7 +65,7 @@ fn parse(args: &[String]) -> Result<PathBuf, Failure> {
             },
             _ => {
                 return Err(Failure::Usage(format!(
-                    "report takes only --out DIR (got `{arg}`)"
+                    "report takes only --out DIR and -q (got `{arg}`)"
                 )));
             }
         };
@@ -61,7 +74,7 @@ fn parse(args: &[String]) -> Result<PathBuf, Failure> {
         }
         out = Some(PathBuf::from(value));
     }
-    Ok(out.unwrap_or_else(crate::default_out))
+    Ok((out.unwrap_or_else(crate::default_out), quiet))
 }
 
 /// One experiment's results as read from `<out>/<id>/`.
@@ -160,9 +173,17 @@ fn scan(out: &Path) -> Result<Vec<(String, PathBuf)>, Failure> {
     Ok(found)
 }
 
+/// The largest results file (`tables.json`, `run.json`, a figure) the report reads: 256 MiB.
+const MAX_RESULT_FILE_BYTES: u64 = 256 * 1024 * 1024;
+
 fn read_text(path: &Path) -> Result<String, Failure> {
-    let bytes = fs::read(path).map_err(|e| bad(path, "", format!("cannot read: {e}")))?;
-    String::from_utf8(bytes).map_err(|_| bad(path, "", "must be UTF-8 text"))
+    input_file::read_to_string(path, MAX_RESULT_FILE_BYTES).map_err(|e| {
+        if e.to_string().contains("UTF-8") {
+            bad(path, "", "must be UTF-8 text")
+        } else {
+            bad(path, "", format!("cannot read: {e}"))
+        }
+    })
 }
 
 fn read_json(path: &Path) -> Result<Value, Failure> {
@@ -860,7 +881,20 @@ mod tests {
     #[test]
     fn arguments() {
         assert!(parse(&[]).is_ok());
-        assert_eq!(parse(&["--out=x".into()]).unwrap(), PathBuf::from("x"));
+        assert_eq!(
+            parse(&["--out=x".into()]).unwrap(),
+            (PathBuf::from("x"), false)
+        );
+        assert_eq!(
+            parse(&["-q".into(), "--out".into(), "y".into()]).unwrap(),
+            (PathBuf::from("y"), true)
+        );
+        assert_eq!(
+            parse(&["--out=x".into(), "--out=y".into()])
+                .unwrap_err()
+                .code(),
+            2
+        );
         assert_eq!(parse(&["--out".into()]).unwrap_err().code(), 2);
         assert_eq!(parse(&["--out=".into()]).unwrap_err().code(), 2);
         assert!(matches!(parse(&["fig2".into()]), Err(Failure::Usage(_))));
