@@ -9,6 +9,9 @@ use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, 
 use crate::common::{MAX_DATA_ROWS, Series, csv, deg, line_plot, paper_cell};
 use crate::equal_pair;
 
+/// The most teeth fig2 simulates over a whole driver turn: 500 (a few minutes).
+const MAX_TEETH: usize = 500;
+
 const PARAMS: &[Param] = &[
     equal_pair::TEETH,
     equal_pair::TIP_RADIUS,
@@ -34,6 +37,17 @@ registry::inventory::submit! {
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
+    // Refused before the mesh is built: the work of a driver turn grows as teeth squared.
+    let asked = ctx.usize(equal_pair::TEETH.name)?;
+    if asked > MAX_TEETH {
+        return Err(RunError::bad(
+            "--set",
+            "teeth",
+            format!(
+                "must be at most {MAX_TEETH} for fig2 (got {asked}): the work of one driver turn grows as the square of the teeth, and 300 teeth already take about a minute"
+            ),
+        ));
+    }
     let equal_pair::EqualPair {
         teeth: n,
         tip_radius: big_r,

@@ -910,14 +910,15 @@ fn execute(
     tracing::info!(seed = ctx.seed(), threads = ctx.threads(), "start");
     progress::experiment_starts();
     let start = Instant::now();
-    let result = pool
-        .install(|| catch_unwind(AssertUnwindSafe(|| (e.run)(ctx))))
-        .unwrap_or_else(|_| {
-            Err(RunError::Internal(format!(
-                "experiment `{}` panicked",
-                e.id
-            )))
-        });
+    let result = progress::watch(e.id, || {
+        pool.install(|| catch_unwind(AssertUnwindSafe(|| (e.run)(ctx))))
+    })
+    .unwrap_or_else(|_| {
+        Err(RunError::Internal(format!(
+            "experiment `{}` panicked",
+            e.id
+        )))
+    });
     let seconds = start.elapsed().as_secs_f64();
     tracing::info!(seconds, "done");
     (result, seconds)

@@ -776,6 +776,12 @@ fn enormous_counts() {
             &["--set: teeth: must be at most 10000000"],
         ),
         case(
+            "fig2 with 100000 teeth (ran for months, silently)",
+            None,
+            "run fig2 --set teeth=100000 --out {out}",
+            &["--set: teeth: must be at most 500 for fig2 (got 100000)"],
+        ),
+        case(
             "200000 teeth",
             None,
             "run fig5 --set teeth=200000 --out {out}",
