@@ -61,6 +61,10 @@ fn default_sample() -> f64 {
     0.1
 }
 
+/// The most work a pair run is given: driver pitches run times the larger tooth count, 4·10^6
+/// (a turn of two 2000-tooth gears, a few minutes).
+const MAX_WORK: f64 = 4.0e6;
+
 /// The driver angle run when `run_deg` is not given: one turn of the gear with more teeth.
 fn default_run_deg(driver_teeth: usize, driven_teeth: usize) -> f64 {
     360.0 * driver_teeth.max(driven_teeth) as f64 / driver_teeth as f64
@@ -187,6 +191,22 @@ pub fn load(file: &str, text: &str) -> Result<(Mesh, PairFile), RunError> {
                 fmt_number(run_deg / MAX_DATA_ROWS as f64),
                 fmt_number(run_deg),
                 fmt_number(spec.sample_deg)
+            ),
+        ));
+    }
+    // The solver's work grows with the driver pitches run times the teeth in play: a turn of
+    // two 500-tooth gears takes some 20 s, of two 2000-tooth gears minutes.
+    let (n1, n2) = (spec.driver.teeth as f64, spec.driven.teeth as f64);
+    let work = run_deg / 360.0 * n1 * n1.max(n2);
+    if work > MAX_WORK {
+        return Err(RunError::bad(
+            file,
+            "run_deg",
+            format!(
+                "{} degrees of a {n1}-tooth driver against {} teeth is {} driver pitches times teeth, more than the limit of {MAX_WORK} (minutes of computing; it grows as the square of the teeth per turn): give a shorter run_deg",
+                fmt_number(run_deg),
+                n1.max(n2),
+                fmt_number(work.round())
             ),
         ));
     }

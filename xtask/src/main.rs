@@ -222,9 +222,9 @@ Usage:
                                 write <out>/index.html: one self-contained page with
                                 every experiment's tables, figures and provenance
   cargo xtask fuzz [--seconds N | --execs N] [--seed S] [--findings DIR]
-                                feed mutated RON files to the gearing and measured-
-                                errors loaders (default 60 s); exit 1 on a panic or
-                                a broken promise, inputs saved in DIR
+                                feed mutated RON files to the gearing, measured-
+                                errors and pair config loaders (default 60 s); exit 1
+                                on a panic or a broken promise, inputs saved in DIR
 
 Options of run:
   --seed S          seed of every random number generator, 0 to {max_seed}

@@ -603,6 +603,17 @@ fn pair_configs() {
             &["{file}: sample_deg: must be at least 0.00036 degrees"],
         ),
         (
+            "a turn of a 65535-tooth driver (18 hours, silently)",
+            mesh(
+                "(teeth: 65535, tip_radius: 10.0, root_radius: 9.0)",
+                "clearance_percent: Some(40.0), sample_deg: 0.01",
+            ),
+            &[
+                "{file}: run_deg: 360 degrees of a 65535-tooth driver against 65535 teeth",
+                "more than the limit of 4000000",
+            ],
+        ),
+        (
             "gears that never touch",
             mesh(good, "centre_distance: Some(25.0)"),
             &["{file}: centre_distance: the gears never touch", "= 20,"],
