@@ -785,6 +785,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         engagements: pair_engagements
             + outcomes.iter().map(|o| o.engagements).sum::<f64>().round() as u64,
         agreement: None,
+        ..Default::default()
     })
 }
 

@@ -211,6 +211,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         trials: grid.all().map(|c| c.trials).sum(),
         engagements: grid.all().map(|c| c.engagements).sum(),
         agreement: Some(registry::Agreement { inside, outside }),
+        ..Default::default()
     })
 }
 

@@ -156,5 +156,6 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         trials: grid.all().map(|c| c.trials).sum(),
         engagements: grid.all().map(|c| c.engagements).sum(),
         agreement: Some(tally.agreement()),
+        ..Default::default()
     })
 }

@@ -322,5 +322,6 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         trials: cells().map(|c| c.trials).sum::<u64>() + trains,
         engagements: cells().map(|c| c.engagements).sum::<u64>() + train_engagements,
         agreement: Some(registry::Agreement { inside, outside }),
+        ..Default::default()
     })
 }

@@ -138,5 +138,6 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         trials: counts.iter().map(|c| c.trials).sum(),
         engagements: counts.iter().map(|c| c.engagements).sum(),
         agreement: Some(tally.agreement()),
+        ..Default::default()
     })
 }

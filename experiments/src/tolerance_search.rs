@@ -501,6 +501,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         trials,
         engagements,
         agreement: Some(registry::Agreement { inside, outside }),
+        ..Default::default()
     })
 }
 

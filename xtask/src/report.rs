@@ -34,13 +34,21 @@ pub fn command(args: &[String]) -> Result<(), Failure> {
     let exps = registry::experiments().map_err(|e| Failure::Internal(e.to_string()))?;
     // Results a killed run left moved aside are put back before they are read.
     registry::tidy(&out)?;
-    let page = build(&exps, &out)?;
+    let page = build(&exps, &out, quiet)?;
     let index = out.join(INDEX_HTML);
     crate::write_atomically(&index, &page)?;
     if !quiet {
         eprintln!("report: {}", index.display());
     }
     Ok(())
+}
+
+/// The message of a failure, for a note.
+fn one_line_of(f: &Failure) -> String {
+    match f {
+        Failure::Usage(m) | Failure::Bad(m) | Failure::Internal(m) => m.clone(),
+        Failure::Reported(code) => format!("exit status {code}"),
+    }
 }
 
 /// The `--out` directory (default `<workspace>/results`), and whether `-q`/`--quiet` was
@@ -123,7 +131,7 @@ fn bad(path: &Path, field: &str, rule: impl std::fmt::Display) -> Failure {
 }
 
 /// The HTML page for the results under `out`.
-fn build(exps: &Registry, out: &Path) -> Result<String, Failure> {
+fn build(exps: &Registry, out: &Path, quiet: bool) -> Result<String, Failure> {
     let found = scan(out)?;
     if found.is_empty() {
         return Err(Failure::Bad(format!(
@@ -134,7 +142,23 @@ fn build(exps: &Registry, out: &Path) -> Result<String, Failure> {
     }
     let mut results = BTreeMap::new();
     for (id, dir) in &found {
-        results.insert(id.clone(), read_results(dir)?);
+        match read_results(dir) {
+            Ok(r) => {
+                results.insert(id.clone(), r);
+            }
+            // A folder that is no experiment of this build (a stray copy, an old id) is
+            // skipped when unreadable rather than failing the whole page.
+            Err(e) if !exps.contains_key(id.as_str()) => {
+                if !quiet {
+                    eprintln!(
+                        "report: skipped {}: not an experiment of this build and unreadable: {}",
+                        dir.display(),
+                        one_line_of(&e)
+                    );
+                }
+            }
+            Err(e) => return Err(e),
+        }
     }
     let mut ids: Vec<String> = exps.keys().map(|id| (*id).to_owned()).collect();
     ids.extend(results.keys().cloned());
@@ -578,6 +602,13 @@ fn describe<'a>(exps: &'a Registry, id: &str) -> (&'a str, &'a str) {
 }
 
 fn section(h: &mut String, id: &str, title: &str, item: &str, r: &Results) {
+    // The registered title states the defaults ("200 trials per cell"); a run that changed
+    // them is headed by its first table's title, which states what was run.
+    let changed = r.run.as_ref().is_some_and(|p| !p.overrides.is_empty());
+    let title = match r.tables.first() {
+        Some(t) if changed => t.title.as_str(),
+        _ => title,
+    };
     let _ = write!(
         h,
         "<section id=\"exp-{}\" class=\"experiment run\">\n<h2>{}: {}</h2>\n<p class=\"meta\">Paper item: {}</p>\n",
@@ -796,7 +827,7 @@ mod tests {
         let s = Scratch::new("page");
         write_a(&s.0);
         fs::create_dir_all(s.0.join(".a.tmp-1")).unwrap(); // hidden: ignored
-        let page = build(&registry(), &s.0).unwrap();
+        let page = build(&registry(), &s.0, true).unwrap();
         assert!(page.contains("<section id=\"exp-a\" class=\"experiment run\">"));
         assert!(page.contains("<h2>a: First &lt;one&gt;</h2>"));
         assert!(page.contains("<caption>Ours &amp; the paper&#39;s</caption>"));
@@ -833,13 +864,13 @@ mod tests {
     #[test]
     fn no_results_is_bad_input_and_writes_nothing() {
         let s = Scratch::new("empty");
-        let e = build(&registry(), &s.0).unwrap_err();
+        let e = build(&registry(), &s.0, true).unwrap_err();
         assert_eq!(e.code(), 2);
         assert!(format!("{e:?}").contains("no results"), "{e:?}");
         let e = command(&["--out".into(), s.0.display().to_string()]).unwrap_err();
         assert_eq!(e.code(), 2);
         assert!(!s.0.join(INDEX_HTML).exists());
-        let e = build(&registry(), &s.0.join("missing")).unwrap_err();
+        let e = build(&registry(), &s.0.join("missing"), true).unwrap_err();
         assert_eq!(e.code(), 2);
         assert!(format!("{e:?}").contains("no such directory"), "{e:?}");
     }
@@ -869,7 +900,9 @@ mod tests {
         for (file, text, want) in cases {
             let s = Scratch::new("broken");
             write_a(&s.0);
-            fs::write(s.0.join("a").join(file), text).unwrap();
+            // Under a registered id: an unreadable folder of no experiment is skipped instead.
+            fs::rename(s.0.join("a"), s.0.join("fig2")).unwrap();
+            fs::write(s.0.join("fig2").join(file), text).unwrap();
             let e = command(&["--out".into(), s.0.display().to_string()]).unwrap_err();
             assert_eq!(e.code(), 2, "{file}");
             let msg = format!("{e:?}");

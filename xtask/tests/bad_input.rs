@@ -390,6 +390,12 @@ fn measured_error_tables() {
         }
     }
     cases.push(case(
+        "a gear missing from --errors (blamed --hypothesis)",
+        f(r#"(gears: [(gear: "driver", random: 0.05, systematic: 0.5)])"#),
+        "run fig5 --errors {file} --out {out}",
+        &["--errors: ", "{file}: gear driven: missing from the table"],
+    ));
+    cases.push(case(
         "missing table",
         None,
         "run table2 --errors /no/such/errors.ron --out {out}",
@@ -737,6 +743,12 @@ fn enormous_counts() {
             None,
             "run table1 --trials 99999999999999999999 --out {out}",
             &["--trials: must be an integer from 1 to 1000000"],
+        ),
+        case(
+            "--trials 1 where the experiment needs 2 (blamed --set)",
+            None,
+            "run table1 --trials 1 --out {out}",
+            &["--trials: table1: must be at least 2 (an interval needs two trials)"],
         ),
         case(
             "--trials 0",

@@ -23,6 +23,9 @@ pub struct Report {
     pub engagements: u64,
     /// How our numbers compare with the paper's, where the experiment can judge it.
     pub agreement: Option<Agreement>,
+    /// The inputs the tables depend on, by parameter name (hypothesis, rule, gearing, measured
+    /// errors...), as the runner records them; stored in `tables.json` as `inputs`.
+    pub inputs: std::collections::BTreeMap<String, String>,
 }
 
 /// Agreement with the paper: how many of the paper's numbers fall inside our 95 % intervals
@@ -47,8 +50,9 @@ impl Report {
     }
 
     /// The tables as pretty-printed JSON:
-    /// `{"tables": [{"title", "columns", "rows", "notes"}], "files": [names]}`; cells stay strings,
-    /// exactly as printed.
+    /// `{"tables": [{"title", "columns", "rows", "notes"}], "files": [names], "trials",
+    /// "engagements", "agreement", "inputs": {name: value}}`; cells stay strings, exactly as
+    /// printed.
     pub fn to_json(&self) -> String {
         let tables: Vec<Value> = self
             .tables
@@ -71,6 +75,7 @@ impl Report {
                 "trials": self.trials,
                 "engagements": self.engagements,
                 "agreement": self.agreement,
+                "inputs": self.inputs,
             })
         );
         s.push('\n');
