@@ -146,7 +146,20 @@ pub fn load(file: &str, text: &str) -> Result<(Mesh, PairFile), RunError> {
                 ));
             }
             let h = 0.5 * (driver.tooth_height() + driven.tooth_height());
-            geometry::centre_distance(driver.tip_radius(), driven.tip_radius(), h, g)
+            let d = geometry::centre_distance(driver.tip_radius(), driven.tip_radius(), h, g);
+            if !d.is_finite() {
+                let which = if driver.tip_radius() >= driven.tip_radius() {
+                    "driver"
+                } else {
+                    "driven"
+                };
+                return Err(RunError::bad(
+                    file,
+                    format!("{which}.tip_radius"),
+                    "is too large: the centre distance it gives with clearance_percent is not a finite number",
+                ));
+            }
+            d
         }
         _ => {
             return Err(RunError::bad(

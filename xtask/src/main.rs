@@ -111,13 +111,57 @@ fn main() -> ExitCode {
     }
 }
 
-/// `text` on one line: line breaks become `; `.
+/// `text` on one line: line breaks become `; `, and numbers printed with dozens of digits
+/// (see [`short_numbers`]) in exponent form.
 fn one_line(text: &str) -> String {
-    text.lines()
-        .map(str::trim_end)
-        .filter(|l| !l.is_empty())
-        .collect::<Vec<_>>()
-        .join("; ")
+    short_numbers(
+        &text
+            .lines()
+            .map(str::trim_end)
+            .filter(|l| !l.is_empty())
+            .collect::<Vec<_>>()
+            .join("; "),
+    )
+}
+
+/// `text` with every number of more than 30 digits (a float such as 1e308 printed in full,
+/// which no one can read; integer limits such as 2^64 - 1 have 20) in exponent form: `1e308`. Only numbers standing on their own are
+/// touched (after a space, `(`, `=` or the start, before a space, punctuation or the end), not
+/// digits inside a path or a name.
+fn short_numbers(text: &str) -> String {
+    let b = text.as_bytes();
+    let mut out = String::with_capacity(text.len());
+    let mut i = 0;
+    while i < b.len() {
+        let starts = (i == 0 || matches!(b[i - 1], b' ' | b'(' | b'=' | b'[')) && {
+            let d = usize::from(b[i] == b'-');
+            b.get(i + d).is_some_and(u8::is_ascii_digit)
+        };
+        if starts {
+            let mut j = i + usize::from(b[i] == b'-');
+            let mut digits = 0;
+            while j < b.len() && (b[j].is_ascii_digit() || b[j] == b'.') {
+                digits += usize::from(b[j].is_ascii_digit());
+                j += 1;
+            }
+            let ends = j == b.len() || matches!(b[j], b' ' | b',' | b';' | b')' | b']' | b':');
+            if digits > 30
+                && ends
+                && let Ok(x) = text[i..j].parse::<f64>()
+            {
+                out.push_str(&format!("{x:e}"));
+                i = j;
+                continue;
+            }
+            out.push_str(&text[i..j]);
+            i = j;
+            continue;
+        }
+        let c = text[i..].chars().next().unwrap_or(' ');
+        out.push(c);
+        i += c.len_utf8();
+    }
+    out
 }
 
 fn dispatch(args: &[String]) -> Result<(), Failure> {
@@ -1499,6 +1543,29 @@ mod tests {
         assert_eq!(e.code(), 2);
         assert!(!out.join("results").exists());
         let _ = std::fs::remove_dir_all(&out);
+    }
+
+    #[test]
+    fn numbers_of_hundreds_of_digits_are_shortened_and_nothing_else() {
+        let huge = format!("{}", 1e308);
+        assert!(huge.len() > 300);
+        assert_eq!(
+            one_line(&format!(
+                "m.ron: centre_distance: must exceed {huge} (got 5)"
+            )),
+            "m.ron: centre_distance: must exceed 1e308 (got 5)"
+        );
+        assert_eq!(
+            short_numbers(&format!("= {huge}.5, and -{huge}")),
+            "= 1e308, and -1e308"
+        );
+        for kept in [
+            "/tmp/xtask-bad-1795543045569589936/e.ron: x",
+            "seed 18446744073709551615 is fine",
+            "gear b1: 0.25 é",
+        ] {
+            assert_eq!(short_numbers(kept), kept);
+        }
     }
 
     #[test]

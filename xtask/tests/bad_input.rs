@@ -237,6 +237,12 @@ fn gearing_files() {
             &["{file}: line 12"],
         ),
         case(
+            "c1 with 100000 teeth (blamed tooth_height and gear b2)",
+            gearing("teeth: 38,", "teeth: 100000,"),
+            run,
+            &["{file}: gear c1: 100000 teeth do not fit its measured radius 9.85 mm"],
+        ),
+        case(
             "unknown gear",
             gearing(
                 r#"(label: "b2-c1", driver: "b2", driven: "c1")"#,
@@ -618,6 +624,19 @@ fn pair_configs() {
                 "{file}: run_deg: 360 degrees of a 65535-tooth driver against 65535 teeth",
                 "more than the limit of 4000000",
             ],
+        ),
+        (
+            "tip radius 1e308 with a clearance (blamed centre_distance)",
+            mesh("(teeth: 20, tip_radius: 1e308, root_radius: 9.0)", g40),
+            &["{file}: driver.tip_radius: is too large"],
+        ),
+        (
+            "tip radius 1e308 with a distance (printed 309 digits)",
+            mesh(
+                "(teeth: 20, tip_radius: 1e308, root_radius: 9.0)",
+                "centre_distance: Some(25.0)",
+            ),
+            &["{file}: centre_distance: must exceed 1e308 (clearance G > 0)"],
         ),
         (
             "gears that never touch",
