@@ -127,7 +127,7 @@ pub fn load(file: &str, text: &str) -> Result<(Mesh, PairFile), RunError> {
         RunError::bad(
             file,
             format!("line {}, column {}", e.position.line, e.position.col),
-            e.code.to_string(),
+            input_file::ron_rule(&e.code),
         )
     })?;
     let driver = gear(file, "driver", &spec.driver)?;

@@ -183,6 +183,12 @@ fn gearing_files() {
             &["{file}: line 12", "colour"],
         ),
         case(
+            "unknown field, named without a Rust type (was `colour`in `GearData`)",
+            gearing("teeth: 223,", "teeth: 223, colour: 3,"),
+            run,
+            &["Unexpected field named `colour`, expected one of `name`, `teeth`"],
+        ),
+        case(
             "wrong type",
             gearing("teeth: 223,", "teeth: \"many\","),
             run,
@@ -485,6 +491,11 @@ fn pair_configs() {
             "unknown field",
             mesh(good, "clearance_percent: Some(40.0), colour: 3"),
             &["{file}: line 1", "colour"],
+        ),
+        (
+            "unknown field, named without a Rust type (was `colour`in `PairFile`)",
+            mesh(good, "clearance_percent: Some(40.0), colour: 3"),
+            &["Unexpected field named `colour`, expected one of `driver`, `driven`"],
         ),
         (
             "wrong type",

@@ -81,7 +81,7 @@ pub fn measured_from_ron(file_name: &str, text: &str) -> Result<MeasuredTable, H
                     "{file_name}: line {}, column {}",
                     e.position.line, e.position.col
                 ),
-                e.code.to_string(),
+                input_file::ron_rule(&e.code),
             )
         })?;
     if !(0.0..=1.0).contains(&raw.split) {

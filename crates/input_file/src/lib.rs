@@ -36,10 +36,57 @@ pub fn read_to_string(path: &Path, limit: u64) -> std::io::Result<String> {
     })
 }
 
+/// A RON parse error's rule in the user's words: ron names the Rust type a misspelt field was
+/// meant for (`Unexpected field named `colour`in `GearData`, ...`, with no space before `in`);
+/// the reader never wrote that type, so it is left out:
+/// `Unexpected field named `colour`, expected one of `name`, `teeth` instead`.
+pub fn ron_rule(code: &ron::Error) -> String {
+    use ron::Error as E;
+    let plain = match code.clone() {
+        E::NoSuchStructField {
+            expected, found, ..
+        } => E::NoSuchStructField {
+            expected,
+            found,
+            outer: None,
+        },
+        E::NoSuchEnumVariant {
+            expected, found, ..
+        } => E::NoSuchEnumVariant {
+            expected,
+            found,
+            outer: None,
+        },
+        E::MissingStructField { field, .. } => E::MissingStructField { field, outer: None },
+        E::DuplicateStructField { field, .. } => E::DuplicateStructField { field, outer: None },
+        other => other,
+    };
+    plain.to_string()
+}
+
 #[cfg(test)]
 #[allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
 mod tests {
     use super::*;
+
+    #[test]
+    fn ron_rules_name_no_rust_type() {
+        #[derive(Debug, serde::Deserialize)]
+        #[serde(deny_unknown_fields)]
+        #[allow(dead_code)] // Reason: only the error matters.
+        struct GearData {
+            teeth: u32,
+        }
+        let e = ron::from_str::<GearData>("(teeth: 3, colour: 1)").unwrap_err();
+        assert!(e.code.to_string().contains("`colour`in `GearData`"));
+        let rule = ron_rule(&e.code);
+        assert_eq!(
+            rule,
+            "Unexpected field named `colour`, expected `teeth` instead"
+        );
+        let e = ron::from_str::<GearData>("()").unwrap_err();
+        assert_eq!(ron_rule(&e.code), "Unexpected missing field `teeth`");
+    }
 
     #[test]
     fn endless_files_are_refused_at_the_limit() {

@@ -288,7 +288,7 @@ impl Gearing {
         let raw: RawGearing = ron::from_str(text).map_err(|e| {
             errors.at(
                 format_args!("line {}, column {}", e.position.line, e.position.col),
-                e.code,
+                input_file::ron_rule(&e.code),
             )
         })?;
         let mut gearing = Gearing {
