@@ -1097,6 +1097,38 @@ fn names_and_flags() {
             &["--hypothesis: must not be empty"],
         ),
         case(
+            "--seed twice (the last silently won)",
+            None,
+            "run fig2 --seed 1 --seed 2 --out {out}",
+            &["--seed given twice: give it once"],
+        ),
+        case(
+            "--set of one key twice",
+            None,
+            "run fig2 --set step=1 --set step=2 --out {out}",
+            &["--set step=... given twice"],
+        ),
+        case(
+            "merge --out twice",
+            None,
+            "merge /no/such --out {out} --out {out}",
+            &["--out given twice"],
+        ),
+        case(
+            "report --out twice",
+            None,
+            "report --out {out} --out {out}",
+            &["--out given twice"],
+        ),
+        case(
+            "hypothesis_params and a plain --set of one parameter",
+            None,
+            "run fig5 --set random=0.03 --set hypothesis_params=random=0.04 --out {out}",
+            &[
+                "--set: hypothesis_params: `random` is also set with --set random=0.03: give one of them",
+            ],
+        ),
+        case(
             "run all with ids",
             None,
             "run all fig2 --out {out}",

@@ -54,14 +54,35 @@ impl Report {
     /// "engagements", "agreement", "inputs": {name: value}}`; cells stay strings, exactly as
     /// printed.
     pub fn to_json(&self) -> String {
-        let tables: Vec<Value> = self
+        // The cells again, numbers as JSON numbers (a cell that is one finite number), the
+        // others as printed.
+        let values: Vec<Value> = self
             .tables
             .iter()
             .map(|t| {
+                t.rows
+                    .iter()
+                    .map(|row| {
+                        row.iter()
+                            .map(|cell| match cell.trim().parse::<f64>() {
+                                Ok(x) if x.is_finite() => json!(x),
+                                _ => json!(cell),
+                            })
+                            .collect::<Vec<Value>>()
+                    })
+                    .collect()
+            })
+            .collect();
+        let tables: Vec<Value> = self
+            .tables
+            .iter()
+            .zip(values)
+            .map(|(t, values)| {
                 json!({
                     "title": t.title,
                     "columns": t.columns,
                     "rows": t.rows,
+                    "values": values,
                     "notes": t.notes,
                 })
             })
@@ -105,7 +126,8 @@ impl OutputFile {
 const TABLE_MD: &str = "table.md";
 const TABLES_JSON: &str = "tables.json";
 
-/// Lowercase ASCII letters and digits, other runs of characters made one `-`.
+/// Lowercase ASCII letters and digits, other runs of characters made one `-`; at most 80
+/// characters, cut at the end of a word (a single word longer than that is cut at 80).
 fn slug(title: &str) -> String {
     let mut s = String::new();
     for c in title.chars() {
@@ -118,7 +140,15 @@ fn slug(title: &str) -> String {
     while s.ends_with('-') {
         s.pop();
     }
-    s.truncate(80);
+    if s.len() > 80 {
+        // Cut where a word ends: at a `-` (the 81st character being one means the 80 end a word).
+        let cut = if s.as_bytes()[80] == b'-' {
+            80
+        } else {
+            s[..80].rfind('-').unwrap_or(80)
+        };
+        s.truncate(cut);
+    }
     while s.ends_with('-') {
         s.pop();
     }
@@ -401,6 +431,11 @@ mod tests {
         let json: Value =
             serde_json::from_str(&fs::read_to_string(dir.join("tables.json")).unwrap()).unwrap();
         assert_eq!(json["tables"][0]["rows"][0][1], "0.25");
+        assert_eq!(
+            json["tables"][0]["values"][0][1], 0.25,
+            "numbers as numbers"
+        );
+        assert_eq!(json["tables"][1]["values"][0][0], "x");
         assert_eq!(json["files"][0], "fig.svg");
         // Only the results directory is left in out/.
         assert_eq!(
@@ -555,5 +590,25 @@ mod tests {
         assert_eq!(slug("Mesh error (deg), N=24"), "mesh-error-deg-n-24");
         assert_eq!(slug("  ---  "), "");
         assert_eq!(slug("Ångström"), "ngstr-m");
+        // Cut at the end of a word, never inside one.
+        let long = "Table 3: trials (of 200) with at least one jam / disengagement, G = 40 %: ours (paper)";
+        let s = slug(long);
+        assert_eq!(
+            s,
+            "table-3-trials-of-200-with-at-least-one-jam-disengagement-g-40-ours-paper"
+        );
+        let longer = format!("{long} and more words beyond the limit");
+        let s = slug(&longer);
+        assert!(s.len() <= 80, "{s}");
+        assert!(
+            longer
+                .to_lowercase()
+                .contains(&s.replace('-', " ").split(' ').last().unwrap().to_string())
+        );
+        assert_eq!(
+            s,
+            "table-3-trials-of-200-with-at-least-one-jam-disengagement-g-40-ours-paper-and"
+        );
+        assert_eq!(slug(&"x".repeat(100)).len(), 80);
     }
 }
