@@ -792,6 +792,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         engagements: pair_engagements
             + outcomes.iter().map(|o| o.engagements).sum::<f64>().round() as u64,
         agreement: None,
+        ..Default::default()
     })
 }
 

@@ -75,6 +75,46 @@ pub fn semilog_plot(
     plot(title, x_label, y_label, &logged, true, &[])
 }
 
+/// The most rows of a data file (CSV) an experiment writes: 10^6, some 40-80 MB. A sampling
+/// step that would give more (`pair`'s `sample_deg`, `fig2`'s `step`) is refused before
+/// anything runs, naming the smallest step allowed.
+pub const MAX_DATA_ROWS: usize = 1_000_000;
+
+/// The most points of one series a figure draws: 50 000 (the default runs draw at most 36 001).
+/// A longer series is thinned to the first, smallest, largest and last point of each of 12 500
+/// runs of consecutive points, so the drawn envelope is the data's and the SVG stays a few MB.
+pub const MAX_PLOT_POINTS: usize = 50_000;
+
+/// `points` thinned as [`MAX_PLOT_POINTS`] says; unchanged when there are not more.
+fn thinned(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
+    if points.len() <= MAX_PLOT_POINTS {
+        return points.to_vec();
+    }
+    let run = points.len().div_ceil(MAX_PLOT_POINTS / 4);
+    let mut out = Vec::with_capacity(MAX_PLOT_POINTS);
+    for chunk in points.chunks(run) {
+        let (mut lo, mut hi) = (0, 0);
+        for (i, p) in chunk.iter().enumerate() {
+            if p.1 < chunk[lo].1 {
+                lo = i;
+            }
+            if p.1 > chunk[hi].1 {
+                hi = i;
+            }
+        }
+        let mut keep = [0, lo.min(hi), lo.max(hi), chunk.len() - 1];
+        keep.sort_unstable();
+        let mut last = None;
+        for k in keep {
+            if last != Some(k) {
+                out.push(chunk[k]);
+                last = Some(k);
+            }
+        }
+    }
+    out
+}
+
 fn plot(
     title: &str,
     x_label: &str,
@@ -135,10 +175,7 @@ fn plot(
         for (i, s) in series.iter().enumerate() {
             let colour = colours[i % colours.len()];
             chart
-                .draw_series(LineSeries::new(
-                    s.points.iter().copied(),
-                    colour.stroke_width(1),
-                ))
+                .draw_series(LineSeries::new(thinned(&s.points), colour.stroke_width(1)))
                 .map_err(|e| plot_err(&e))?
                 .label(s.label)
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour));

@@ -62,6 +62,23 @@ pub fn params(
                 format!("`{pair}` is not name=value"),
             ));
         };
+        // The same value set twice, as the experiment's parameter and the hypothesis's: which
+        // one was meant? Refused like `--trials` with `--set trials`.
+        if let Some((_, plain)) = ctx
+            .changed()
+            .into_iter()
+            .find(|(name, _)| *name == k.trim())
+        {
+            return Err(RunError::bad(
+                "--set",
+                PARAMS_PARAM.name,
+                format!(
+                    "`{}` is also set with --set {}={plain}: give one of them",
+                    k.trim(),
+                    k.trim()
+                ),
+            ));
+        }
         overrides.push((k.trim().to_string(), v.trim().to_string()));
     }
     Params::new(h, &overrides).map_err(|e| RunError::bad("--hypothesis", e.what, e.rule))

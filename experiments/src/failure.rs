@@ -476,7 +476,7 @@ fn measured_table(file: &str) -> Result<Option<(String, MeasuredHypothesis)>, Ru
     if file.is_empty() {
         return Ok(None);
     }
-    let text = std::fs::read_to_string(file)
+    let text = input_file::read_to_string(std::path::Path::new(file), input_file::MAX_INPUT_BYTES)
         .map_err(|e| RunError::bad("--set measured", file, format!("cannot read: {e}")))?;
     let table = hypotheses::measured_from_ron(file, &text)
         .map_err(|e| RunError::bad("--set measured", e.what, e.rule))?;

@@ -6,8 +6,11 @@ use std::f64::consts::TAU;
 use contact::Start;
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
 
-use crate::common::{Series, csv, deg, line_plot, paper_cell};
+use crate::common::{MAX_DATA_ROWS, Series, csv, deg, line_plot, paper_cell};
 use crate::equal_pair;
+
+/// The most teeth fig2 simulates over a whole driver turn: 500 (a few minutes).
+const MAX_TEETH: usize = 500;
 
 const PARAMS: &[Param] = &[
     equal_pair::TEETH,
@@ -40,6 +43,17 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
+    // Refused before the mesh is built: the work of a driver turn grows as teeth squared.
+    let asked = ctx.usize(equal_pair::TEETH.name)?;
+    if asked > MAX_TEETH {
+        return Err(RunError::bad(
+            "--set",
+            "teeth",
+            format!(
+                "must be at most {MAX_TEETH} for fig2 (got {asked}): the work of one driver turn grows as the square of the teeth, and 300 teeth already take about a minute"
+            ),
+        ));
+    }
     let equal_pair::EqualPair {
         teeth: n,
         tip_radius: big_r,
@@ -50,6 +64,17 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let step = ctx.f64("step")?;
     if !(step > 0.0 && step <= 10.0) {
         return Err(RunError::bad("--set", "step", "must be in (0, 10] degrees"));
+    }
+    if 360.0 / step > MAX_DATA_ROWS as f64 {
+        return Err(RunError::bad(
+            "--set",
+            "step",
+            format!(
+                "must be at least {} degrees: one driver turn in steps of {} would be more than {MAX_DATA_ROWS} rows of data, the limit",
+                360.0 / MAX_DATA_ROWS as f64,
+                registry::fmt_number(step)
+            ),
+        ));
     }
     let teeth = u32::try_from(n).map_err(|_| RunError::bad("--set", "teeth", "too many teeth"))?;
     let pair =

@@ -49,7 +49,7 @@ fn measured(ctx: &Context) -> Result<Option<(String, hypotheses::MeasuredTable)>
     if path == "none" || path.is_empty() {
         return Ok(None);
     }
-    let text = std::fs::read_to_string(path)
+    let text = input_file::read_to_string(std::path::Path::new(path), input_file::MAX_INPUT_BYTES)
         .map_err(|e| RunError::bad("--set", "measured", format!("cannot read {path}: {e}")))?;
     let table = hypotheses::measured_from_ron(path, &text).map_err(|e| {
         let what = e
@@ -217,6 +217,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         trials: grid.all().map(|c| c.trials).sum(),
         engagements: grid.all().map(|c| c.engagements).sum(),
         agreement: Some(registry::Agreement { inside, outside }),
+        ..Default::default()
     })
 }
 

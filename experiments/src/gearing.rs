@@ -116,6 +116,40 @@ pub fn check(ctx: &Context, g: &Gearing) -> Result<(), RunError> {
         if let Some((gear, r)) = smallest
             && h >= r
         {
+            // A gear whose tooth count does not fit its measured radius (its own module,
+            // radius per tooth, far from the others') shrinks the radii fitted to its whole
+            // meshed group: blame it, in the file that holds it.
+            let modules: Vec<(&train::GearData, f64)> = g
+                .gears()
+                .iter()
+                .filter_map(|d| Some((d, d.measured_radius? / f64::from(d.teeth))))
+                .filter(|(_, m)| m.is_finite() && *m > 0.0)
+                .collect();
+            let mut logs: Vec<f64> = modules.iter().map(|(_, m)| m.ln()).collect();
+            logs.sort_by(f64::total_cmp);
+            let median = logs.get(logs.len() / 2).copied().unwrap_or(0.0);
+            let outlier = modules.iter().max_by(|a, b| {
+                (a.1.ln() - median)
+                    .abs()
+                    .total_cmp(&(b.1.ln() - median).abs())
+            });
+            if let Some(&(d, module)) = outlier
+                && (module.ln() - median).abs() > 2f64.ln()
+                && ctx.declares(PARAM.name)
+            {
+                return Err(RunError::bad(
+                    ctx.param(PARAM.name)?,
+                    format!("gear {}", d.name),
+                    format!(
+                        "{} teeth do not fit its measured radius {} mm ({} mm per tooth, where the gears' median is {} mm): the radii fitted with it make gear {gear}'s tip radius {} mm, less than the tooth height {h} mm",
+                        d.teeth,
+                        registry::fmt_number(d.measured_radius.unwrap_or(f64::NAN)),
+                        registry::fmt_number(module),
+                        registry::fmt_number(median.exp()),
+                        registry::fmt_number(r)
+                    ),
+                ));
+            }
             return Err(RunError::bad(
                 "--set",
                 TOOTH_HEIGHT.name,

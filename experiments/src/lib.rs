@@ -18,7 +18,7 @@ mod fig_iv;
 mod gearing;
 mod limits;
 mod lunar_anomaly;
-mod pair;
+pub mod pair;
 mod pair_jams;
 mod sensitivity;
 mod sigma_causes;

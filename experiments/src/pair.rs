@@ -5,10 +5,10 @@ use std::f64::consts::{PI, TAU};
 
 use contact::{Mesh, Start, Trajectory};
 use geometry::{Gear, Vec2, polar, rotate};
-use registry::{Context, Experiment, OutputFile, Report, RunError, Table, fmt_f64};
+use registry::{Context, Experiment, OutputFile, Report, RunError, Table, fmt_f64, fmt_number};
 use serde::Deserialize;
 
-use crate::common::{Mark, Series, csv, deg, marked_plot};
+use crate::common::{MAX_DATA_ROWS, Mark, Series, csv, deg, marked_plot};
 
 const EXAMPLE: &str = include_str!("../data/pair-example.ron");
 const EXAMPLE_NAME: &str = "experiments/data/pair-example.ron";
@@ -213,6 +213,15 @@ fn default_sample() -> f64 {
     0.1
 }
 
+/// The most work a pair run is given: driver pitches run times the larger tooth count, 4·10^6
+/// (a turn of two 2000-tooth gears, a few minutes).
+const MAX_WORK: f64 = 4.0e6;
+
+/// The driver angle run when `run_deg` is not given: one turn of the gear with more teeth.
+fn default_run_deg(driver_teeth: usize, driven_teeth: usize) -> f64 {
+    360.0 * driver_teeth.max(driven_teeth) as f64 / driver_teeth as f64
+}
+
 fn gear(file: &str, role: Role, spec: &GearSpec) -> Result<Gear, RunError> {
     let which = role.name();
     let field = |f: &str| format!("{which}.{f}");
@@ -338,7 +347,7 @@ pub fn load(file: &str, text: &str) -> Result<(Mesh, PairFile), RunError> {
         RunError::bad(
             file,
             format!("line {}, column {}", e.position.line, e.position.col),
-            e.code.to_string(),
+            input_file::ron_rule(&e.code),
         )
     })?;
     let driver = gear(file, Role::Driver, &spec.driver)?;
@@ -346,15 +355,31 @@ pub fn load(file: &str, text: &str) -> Result<(Mesh, PairFile), RunError> {
     let d = match (spec.centre_distance, spec.clearance_percent) {
         (Some(d), None) => d,
         (None, Some(g)) => {
-            if !(0.0..=100.0).contains(&g) {
+            if !(g > 0.0 && g < 100.0) {
                 return Err(RunError::bad(
                     file,
                     "clearance_percent",
-                    format!("must be between 0 and 100 (got {g})"),
+                    format!(
+                        "must be more than 0 and less than 100 (got {}): at 0 the tips reach the other gear's valleys, at 100 they only graze its tips",
+                        fmt_number(g)
+                    ),
                 ));
             }
             let h = 0.5 * (driver.tooth_height() + driven.tooth_height());
-            geometry::centre_distance(driver.tip_radius(), driven.tip_radius(), h, g)
+            let d = geometry::centre_distance(driver.tip_radius(), driven.tip_radius(), h, g);
+            if !d.is_finite() {
+                let which = if driver.tip_radius() >= driven.tip_radius() {
+                    "driver"
+                } else {
+                    "driven"
+                };
+                return Err(RunError::bad(
+                    file,
+                    format!("{which}.tip_radius"),
+                    "is too large: the centre distance it gives with clearance_percent is not a finite number",
+                ));
+            }
+            d
         }
         _ => {
             return Err(RunError::bad(
@@ -378,21 +403,67 @@ pub fn load(file: &str, text: &str) -> Result<(Mesh, PairFile), RunError> {
             "must be a finite number of degrees",
         ));
     }
-    if let Some(r) = spec.run_deg {
-        if !(r > 0.0 && r.is_finite() && r <= 360.0 * 1000.0) {
-            return Err(RunError::bad(
-                file,
-                "run_deg",
-                "must be a positive number of degrees, at most 360000",
-            ));
-        }
-        if r / spec.sample_deg > 5.0e6 {
-            return Err(RunError::bad(
-                file,
-                "sample_deg",
-                "too small for run_deg: more than 5 million rows",
-            ));
-        }
+    if let Some(r) = spec.run_deg
+        && !(r > 0.0 && r.is_finite() && r <= 360.0 * 1000.0)
+    {
+        return Err(RunError::bad(
+            file,
+            "run_deg",
+            "must be a positive number of degrees, at most 360000",
+        ));
+    }
+    let run_deg = spec
+        .run_deg
+        .unwrap_or_else(|| default_run_deg(spec.driver.teeth, spec.driven.teeth));
+    if run_deg / spec.sample_deg > MAX_DATA_ROWS as f64 {
+        return Err(RunError::bad(
+            file,
+            "sample_deg",
+            format!(
+                "must be at least {} degrees: {} degrees of driver angle in steps of {} would be more than {MAX_DATA_ROWS} rows of pair.csv, the limit",
+                fmt_number(run_deg / MAX_DATA_ROWS as f64),
+                fmt_number(run_deg),
+                fmt_number(spec.sample_deg)
+            ),
+        ));
+    }
+    // The solver's work grows with the driver pitches run times the teeth in play: a turn of
+    // two 500-tooth gears takes some 20 s, of two 2000-tooth gears minutes.
+    let (n1, n2) = (spec.driver.teeth as f64, spec.driven.teeth as f64);
+    let work = run_deg / 360.0 * n1 * n1.max(n2);
+    if work > MAX_WORK {
+        return Err(RunError::bad(
+            file,
+            "run_deg",
+            format!(
+                "{} degrees of a {n1}-tooth driver against {} teeth is {} driver pitches times teeth, more than the limit of {MAX_WORK} (minutes of computing; it grows as the square of the teeth per turn): give a shorter run_deg",
+                fmt_number(run_deg),
+                n1.max(n2),
+                fmt_number(work.round())
+            ),
+        ));
+    }
+    // Gears that never touch: every tip of a gear lies within its largest tip radius of its
+    // geometric centre, which is |e| from its rotation centre.
+    let reach = driver.max_tip_radius()
+        + driven.max_tip_radius()
+        + driver.rotation_centre().norm()
+        + driven.rotation_centre().norm();
+    if d >= reach {
+        let field = if spec.centre_distance.is_some() {
+            "centre_distance"
+        } else {
+            "clearance_percent"
+        };
+        return Err(RunError::bad(
+            file,
+            field,
+            format!(
+                "the gears never touch: the centre distance {} is at least R1 + R2 + |e1| + |e2| = {}, so no tip reaches the other gear",
+                fmt_number(d),
+                fmt_number(reach)
+            ),
+        ));
     }
     let mesh = Mesh::new(driver, driven, d).map_err(|e| RunError::bad(file, e.field, e.rule))?;
     Ok((mesh, spec))
@@ -568,9 +639,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let (mesh, spec) = (&prepared.mesh, &prepared.spec);
     let (n1, n2) = (mesh.driver().teeth(), mesh.driven().teeth());
     let ratio = n1 as f64 / n2 as f64;
-    let run_deg = spec
-        .run_deg
-        .unwrap_or(360.0 * n1.max(n2) as f64 / n1 as f64);
+    let run_deg = spec.run_deg.unwrap_or_else(|| default_run_deg(n1, n2));
     let phi0 = spec.start_deg.to_radians();
     let phi_end = phi0 + run_deg.to_radians();
     let traj = mesh.run(phi0, phi_end, prepared.start);

@@ -72,6 +72,14 @@ pub(crate) fn case_cells(
     Ok(cells)
 }
 
+/// Whether Edmunds' Cases (a random and a systematic error each) reach `hyp`: it declares
+/// `random` or `systematic` (a stack: any of its layers).
+pub(crate) fn cases_apply(hyp: &dyn hypotheses::Hypothesis) -> bool {
+    hyp.params()
+        .iter()
+        .any(|p| p.name == "random" || p.name == "systematic")
+}
+
 fn run(ctx: &Context) -> Result<Report, RunError> {
     crate::events::label(ctx, counted(ctx)?)
 }
@@ -86,7 +94,13 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     }
     let clearance = ctx.f64("clearance")?;
     let meshes: Vec<&str> = g.meshes().iter().map(|m| m.label.as_str()).collect();
-    let cells = case_cells(ctx, &g, hyp, clearance)?;
+    let mut cells = case_cells(ctx, &g, hyp, clearance)?;
+    // A hypothesis that takes neither a random nor a systematic error (ideal, measured, a
+    // shape-only one) makes the four Cases the same cells: one row, compared with no Case.
+    let cases_apply = cases_apply(hyp);
+    if !cases_apply {
+        cells.truncate(meshes.len());
+    }
     let counts = run_cells(ctx, &g, &cells, trials, Stage::Own)?;
 
     let mut header = vec!["case".to_string()];
@@ -99,11 +113,23 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     );
     let mut csv = format!("case,mesh,{CSV_COLUMNS}\n");
     let mut tally = Tally::default();
-    for (c, &(case, _, _)) in CASES.iter().enumerate() {
-        let mut row = vec![case.to_string()];
+    let rows: Vec<String> = if cases_apply {
+        CASES.iter().map(|c| c.0.to_string()).collect()
+    } else {
+        vec![format!(
+            "Cases A-D alike ({} takes no random or systematic error)",
+            hyp.name()
+        )]
+    };
+    for (c, case) in rows.iter().enumerate() {
+        let mut row = vec![case.clone()];
         for (m, mesh) in meshes.iter().enumerate() {
             let n = &counts[c * meshes.len() + m];
-            let paper = paper_counts("table3", &format!("{case}.{mesh}"));
+            let paper = if cases_apply {
+                paper_counts("table3", &format!("{case}.{mesh}"))
+            } else {
+                (None, None)
+            };
             row.push(cell_text(n, paper, &mut tally));
             csv.push_str(&format!("{case},{mesh},{}\n", csv_columns(n, paper)));
         }
@@ -117,5 +143,6 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         trials: counts.iter().map(|c| c.trials).sum(),
         engagements: counts.iter().map(|c| c.engagements).sum(),
         agreement: Some(tally.agreement()),
+        ..Default::default()
     })
 }

@@ -163,5 +163,6 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         trials: grid.all().map(|c| c.trials).sum(),
         engagements: grid.all().map(|c| c.engagements).sum(),
         agreement: Some(tally.agreement()),
+        ..Default::default()
     })
 }

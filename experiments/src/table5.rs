@@ -289,6 +289,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         trials: t.all().map(|c| c.trials).sum(),
         engagements: t.all().map(|c| c.engagements).sum(),
         agreement: Some(tally.agreement()),
+        ..Default::default()
     })
 }
 

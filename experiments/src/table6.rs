@@ -328,5 +328,6 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         trials: cells().map(|c| c.trials).sum::<u64>() + trains,
         engagements: cells().map(|c| c.engagements).sum::<u64>() + train_engagements,
         agreement: Some(registry::Agreement { inside, outside }),
+        ..Default::default()
     })
 }

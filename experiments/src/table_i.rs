@@ -144,5 +144,6 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         trials: counts.iter().map(|c| c.trials).sum(),
         engagements: counts.iter().map(|c| c.engagements).sum(),
         agreement: Some(tally.agreement()),
+        ..Default::default()
     })
 }

@@ -508,6 +508,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         trials,
         engagements,
         agreement: Some(registry::Agreement { inside, outside }),
+        ..Default::default()
     })
 }
 

@@ -198,6 +198,24 @@ fn no_more(cmd: &str, rest: &[String]) -> Result<(), ArgError> {
     }
 }
 
+/// Refuses a flag given twice (`--seed 1 --seed 2`: which one was meant?), and `--set` of the
+/// same key twice; `seen` holds what was given so far.
+fn once(seen: &mut Vec<String>, flag: &str, value: &str) -> Result<(), ArgError> {
+    let what = if flag == "--set" {
+        match value.split_once('=') {
+            Some((key, _)) => format!("--set {}=...", key.trim()),
+            None => return Ok(()),
+        }
+    } else {
+        flag.to_owned()
+    };
+    if seen.contains(&what) {
+        return Err(ArgError::Usage(format!("{what} given twice: give it once")));
+    }
+    seen.push(what);
+    Ok(())
+}
+
 fn parse_run(args: &[String]) -> Result<RunArgs, ArgError> {
     let mut run = RunArgs {
         ids: Vec::new(),
@@ -213,6 +231,7 @@ fn parse_run(args: &[String]) -> Result<RunArgs, ArgError> {
         errors: None,
         format: Format::Md,
     };
+    let mut seen = Vec::new();
     let mut it = args.iter();
     while let Some(arg) = it.next() {
         if !arg.starts_with('-') {
@@ -246,6 +265,7 @@ fn parse_run(args: &[String]) -> Result<RunArgs, ArgError> {
                 _ => return Err(ArgError::Usage(format!("{flag} needs a value"))),
             },
         };
+        once(&mut seen, flag, &value)?;
         match flag {
             "--seed" => {
                 run.seed = value.trim().parse().map_err(|_| {
@@ -390,6 +410,7 @@ fn parse_merge(args: &[String]) -> Result<MergeArgs, ArgError> {
         threads: None,
         format: Format::Md,
     };
+    let mut seen = Vec::new();
     let mut it = args.iter();
     while let Some(arg) = it.next() {
         if !arg.starts_with('-') {
@@ -412,6 +433,7 @@ fn parse_merge(args: &[String]) -> Result<MergeArgs, ArgError> {
                 _ => return Err(ArgError::Usage(format!("{flag} needs a value"))),
             },
         };
+        once(&mut seen, flag, &value)?;
         match flag {
             "--out" => merge.out = Some(out(value)?),
             "--format" => merge.format = format(&value)?,

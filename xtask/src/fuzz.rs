@@ -253,7 +253,6 @@ impl Summary {
             ]);
         }
         t.note("Findings: panics, broken promises (see xtask/src/fuzz_targets.rs) and inputs slower than 2 s; each kind and message once.");
-        t.note("The pair config loader (experiments/src/pair.rs) is not fuzzed: its module is private to the experiments crate.");
         t
     }
 }
@@ -334,6 +333,8 @@ const EDGE_CASES: &[&str] = &[
     "(split: 0.5, gears: [])",
     "(split: NaN, gears: [(gear: \"b1\", random: inf, systematic: -0.0)])",
     "(gears: [(name: \"a\", teeth: 4294967295, measured_radius: Some(1e308), source: \"\")], arbors: [(name: \"x\", gears: [\"a\"])], meshes: [], pointers: [])",
+    "(driver: (teeth: 3, tip_radius: 1e308, root_radius: 5e-324), driven: (teeth: 100000, tip_radius: 10.0, root_radius: 9.0), centre_distance: Some(1e308))",
+    "(driver: (teeth: 20, tip_radius: 10.0, root_radius: 9.0), driven: (teeth: 20, tip_radius: 10.0, root_radius: 9.0), clearance_percent: Some(99.999999), sample_deg: 1e-300, run_deg: Some(360000.0))",
 ];
 
 /// Byte strings that are not UTF-8.

@@ -11,10 +11,11 @@
 //! - an accepted gearing answers every query (`tip_radius` of every gear positive and finite,
 //!   `mesh_ratio` and `mesh_geometry` of every mesh, `days_per_degree` finite where given);
 //! - an accepted measured table holds only values its own checks accept, and applying each row
-//!   to an ideal gear returns a gear or an error.
-//!
-//! The pair config loader (`experiments/src/pair.rs`, `load`) is not here: its module is private
-//! to the `experiments` crate.
+//!   to an ideal gear returns a gear or an error;
+//! - an accepted pair config (`experiments::pair::load`) gives a mesh with at least 3 and at most
+//!   `geometry::MAX_TEETH` teeth per gear, finite radii and a finite positive centre distance
+//!   at which the gears can touch, and (for gears of at most 2000 teeth, so that an input stays
+//!   fast) the mesh runs one driver pitch to a finite driven angle.
 
 use std::collections::BTreeSet;
 
@@ -37,6 +38,26 @@ pub type Target = fn(&str) -> Result<Outcome, String>;
 pub const TARGETS: &[(&str, Target, &str)] = &[
     ("gearing", gearing, train::FREETH2006_RON),
     ("measured", measured, hypotheses::MEASURED_EXAMPLE),
+    ("pair", pair, PAIR_EXAMPLE),
+];
+
+/// The shipped pair config, `experiments/data/pair-example.ron`.
+const PAIR_EXAMPLE: &str = include_str!("../../experiments/data/pair-example.ron");
+
+/// Field names of the pair config format (`experiments/data/pair-example.ron`).
+const PAIR_FIELDS: &[&str] = &[
+    "driver",
+    "driven",
+    "teeth",
+    "tip_radius",
+    "root_radius",
+    "tips_deg",
+    "eccentricity",
+    "centre_distance",
+    "clearance_percent",
+    "start_deg",
+    "run_deg",
+    "sample_deg",
 ];
 
 /// Field names of the gearing format (`crates/train/data/freeth2006.ron`).
@@ -248,6 +269,48 @@ pub fn measured(text: &str) -> Result<Outcome, String> {
         {
             return Err(format!("gear {name} manufactured with non-finite tips"));
         }
+    }
+    Ok(Outcome::Accepted)
+}
+
+/// `experiments::pair::load`, then the accepted mesh checked and run over one driver pitch.
+pub fn pair(text: &str) -> Result<Outcome, String> {
+    let (mesh, _) = match experiments::pair::load(FILE, text) {
+        Ok(m) => m,
+        Err(e) => return check_refusal(e.to_string()),
+    };
+    check_fields(text, PAIR_FIELDS)?;
+    let d = mesh.centre_distance();
+    if !(d.is_finite() && d > 0.0) {
+        return Err(format!("accepted centre distance {d}"));
+    }
+    let mut reach = d;
+    for (which, g) in [("driver", mesh.driver()), ("driven", mesh.driven())] {
+        if !(3..=geometry::MAX_TEETH).contains(&g.teeth()) {
+            return Err(format!("accepted {which} with {} teeth", g.teeth()));
+        }
+        if !(g.tip_radius().is_finite() && g.root_radius().is_finite()) {
+            return Err(format!(
+                "accepted {which} with radii {} and {}",
+                g.tip_radius(),
+                g.root_radius()
+            ));
+        }
+        reach -= g.max_tip_radius() + g.rotation_centre().norm();
+    }
+    if reach >= 0.0 {
+        return Err(format!(
+            "accepted gears that never touch (centre distance {d} exceeds their reach by {reach})"
+        ));
+    }
+    if mesh.driver().teeth().max(mesh.driven().teeth()) > 2000 {
+        return Ok(Outcome::Accepted);
+    }
+    let pitch = std::f64::consts::TAU / mesh.driver().teeth() as f64;
+    let traj = mesh.run(0.0, pitch, contact::Start::Touching(0.0));
+    let theta = traj.theta_at(pitch);
+    if !theta.is_finite() {
+        return Err(format!("the accepted mesh ran to driven angle {theta}"));
     }
     Ok(Outcome::Accepted)
 }

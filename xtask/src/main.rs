@@ -112,18 +112,68 @@ fn main() -> ExitCode {
     }
 }
 
-/// `text` on one line: line breaks become `; `.
+/// `text` on one line: line breaks become `; `, and numbers printed with dozens of digits
+/// (see [`short_numbers`]) in exponent form.
 fn one_line(text: &str) -> String {
-    text.lines()
-        .map(str::trim_end)
-        .filter(|l| !l.is_empty())
-        .collect::<Vec<_>>()
-        .join("; ")
+    short_numbers(
+        &text
+            .lines()
+            .map(str::trim_end)
+            .filter(|l| !l.is_empty())
+            .collect::<Vec<_>>()
+            .join("; "),
+    )
+}
+
+/// `text` with every number of more than 30 digits (a float such as 1e308 printed in full,
+/// which no one can read; integer limits such as 2^64 - 1 have 20) in exponent form: `1e308`. Only numbers standing on their own are
+/// touched (after a space, `(`, `=` or the start, before a space, punctuation or the end), not
+/// digits inside a path or a name.
+fn short_numbers(text: &str) -> String {
+    let b = text.as_bytes();
+    let mut out = String::with_capacity(text.len());
+    let mut i = 0;
+    while i < b.len() {
+        let starts = (i == 0 || matches!(b[i - 1], b' ' | b'(' | b'=' | b'[')) && {
+            let d = usize::from(b[i] == b'-');
+            b.get(i + d).is_some_and(u8::is_ascii_digit)
+        };
+        if starts {
+            let mut j = i + usize::from(b[i] == b'-');
+            let mut digits = 0;
+            while j < b.len() && (b[j].is_ascii_digit() || b[j] == b'.') {
+                digits += usize::from(b[j].is_ascii_digit());
+                j += 1;
+            }
+            let ends = j == b.len() || matches!(b[j], b' ' | b',' | b';' | b')' | b']' | b':');
+            if digits > 30
+                && ends
+                && let Ok(x) = text[i..j].parse::<f64>()
+            {
+                out.push_str(&format!("{x:e}"));
+                i = j;
+                continue;
+            }
+            out.push_str(&text[i..j]);
+            i = j;
+            continue;
+        }
+        let c = text[i..].chars().next().unwrap_or(' ');
+        out.push(c);
+        i += c.len_utf8();
+    }
+    out
 }
 
 fn dispatch(args: &[String]) -> Result<(), Failure> {
     match args.split_first().map(|(c, r)| (c.as_str(), r)) {
         Some(("report", rest)) => return report::command(rest),
+        // `-q` goes anywhere on the line, as the usage says: `cargo xtask -q report`.
+        Some(("-q" | "--quiet", rest)) if rest.first().is_some_and(|c| c == "report") => {
+            let mut rest = rest[1..].to_vec();
+            rest.push("-q".into());
+            return report::command(&rest);
+        }
         Some(("fuzz", rest)) => return fuzz::command(rest),
         _ => {}
     }
@@ -223,9 +273,9 @@ Usage:
                                 write <out>/index.html: one self-contained page with
                                 every experiment's tables, figures and provenance
   cargo xtask fuzz [--seconds N | --execs N] [--seed S] [--findings DIR]
-                                feed mutated RON files to the gearing and measured-
-                                errors loaders (default 60 s); exit 1 on a panic or
-                                a broken promise, inputs saved in DIR
+                                feed mutated RON files to the gearing, measured-
+                                errors and pair config loaders (default 60 s); exit 1
+                                on a panic or a broken promise, inputs saved in DIR
 
 Options of run:
   --seed S          seed of every random number generator, 0 to {max_seed}
@@ -562,9 +612,10 @@ fn read_config(run: &RunArgs) -> Result<Option<ConfigFile>, Failure> {
     match &run.config {
         None => Ok(None),
         Some(path) => {
-            let text = std::fs::read_to_string(path).map_err(|e| {
-                Failure::Bad(format!("--config: {}: cannot read: {e}", path.display()))
-            })?;
+            let text =
+                input_file::read_to_string(path, input_file::MAX_INPUT_BYTES).map_err(|e| {
+                    Failure::Bad(format!("--config: {}: cannot read: {e}", path.display()))
+                })?;
             Ok(Some(ConfigFile {
                 path: path.clone(),
                 text,
@@ -695,15 +746,7 @@ fn plan(
 /// every gearing file, error hypothesis and measured-errors table the experiments were given
 /// must read and pass its rules. Each is refused naming the file, the line or item and the rule.
 fn preflight(planned: &[Planned], run: &RunArgs) -> Result<(), Failure> {
-    if let Some(out) = &run.out
-        && out.exists()
-        && !out.is_dir()
-    {
-        return Err(Failure::Bad(format!(
-            "--out: {}: exists and is not a directory",
-            out.display()
-        )));
-    }
+    check_out(&run.out.clone().unwrap_or_else(default_out))?;
     let mut seen = std::collections::BTreeSet::new();
     for p in planned {
         let value = |name: &str| {
@@ -740,7 +783,111 @@ fn preflight(planned: &[Planned], run: &RunArgs) -> Result<(), Failure> {
             hypotheses::measured_file(m.trim())
                 .map_err(|e| Failure::Bad(format!("{flag}: {e}")))?;
         }
+        measured_gears_in_gearing(p, run)?;
     }
+    Ok(())
+}
+
+/// A measured-errors table given to an experiment that builds a gearing must name only gears of
+/// that gearing: a row for another gear (a typo, another gearing's name) would be silently
+/// unused. Refused naming the flag, the file, the gear and the gearing.
+fn measured_gears_in_gearing(p: &Planned, run: &RunArgs) -> Result<(), Failure> {
+    let value = |name: &str| {
+        p.ctx
+            .declares(name)
+            .then(|| p.ctx.param(name).ok().map(str::to_owned))
+            .flatten()
+    };
+    let Some(gearing_name) = value("gearing") else {
+        return Ok(());
+    };
+    let from_hypothesis = value("hypothesis").and_then(|h| {
+        h.split(hypotheses::SEPARATOR)
+            .find_map(|layer| layer.strip_prefix("measured:").map(str::to_owned))
+    });
+    let (file, flag) = match (from_hypothesis, value("measured")) {
+        (Some(f), _) => (
+            f,
+            if run.errors.is_some() {
+                "--errors"
+            } else {
+                "--hypothesis"
+            },
+        ),
+        (None, Some(m)) if !m.trim().is_empty() => (
+            m.trim().to_owned(),
+            if run.errors.is_some() {
+                "--errors"
+            } else {
+                "--set measured"
+            },
+        ),
+        _ => return Ok(()),
+    };
+    let Ok(h) = hypotheses::measured_file(&file) else {
+        return Ok(()); // refused above with its own message
+    };
+    let gearing = match train::Gearing::builtin(&gearing_name) {
+        Some(g) => g,
+        None => train::Gearing::load(Path::new(&gearing_name))
+            .map_err(|e| Failure::Bad(e.to_string()))?,
+    };
+    for (gear, _) in h.table().entries() {
+        if gearing.gear(gear).is_none() {
+            return Err(Failure::Bad(format!(
+                "{flag}: {file}: gear {gear}: is not a gear of the gearing `{gearing_name}` ({} gears, e.g. {}), so its row would be silently unused",
+                gearing.gears().len(),
+                gearing
+                    .gears()
+                    .iter()
+                    .take(3)
+                    .map(|g| g.name.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Checks, before anything is computed, that results can be written under `out` (`--out`):
+/// it is a directory, or can be created as one, and a folder can be created in it. Then puts
+/// back results a killed run left moved aside ([`registry::tidy`]). Refused (exit 2) naming
+/// `--out` and the reason; nothing is left behind by the check.
+fn check_out(out: &Path) -> Result<(), Failure> {
+    let refuse = |why: String| Failure::Bad(format!("--out: {}: {why}", out.display()));
+    if out.exists() && !out.is_dir() {
+        return Err(refuse("exists and is not a directory".into()));
+    }
+    // The nearest folder that exists: where the first thing would be created.
+    let mut base = out.to_path_buf();
+    while !base.as_os_str().is_empty() && std::fs::symlink_metadata(&base).is_err() {
+        base = base.parent().map(Path::to_path_buf).unwrap_or_default();
+    }
+    if base.as_os_str().is_empty() {
+        base = PathBuf::from(".");
+    }
+    if !base.is_dir() {
+        return Err(refuse(format!(
+            "cannot be created: {} is not a directory",
+            base.display()
+        )));
+    }
+    let probe = base.join(format!(
+        ".xtask-out-check.tmp-{}-{}",
+        std::process::id(),
+        std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .map_or(0, |d| d.subsec_nanos())
+    ));
+    std::fs::create_dir(&probe).map_err(|e| {
+        refuse(format!(
+            "cannot write results there (creating a folder in {} fails: {e})",
+            base.display()
+        ))
+    })?;
+    let _ = std::fs::remove_dir(&probe);
+    registry::tidy(out)?;
     Ok(())
 }
 
@@ -863,14 +1010,15 @@ fn execute(
     tracing::info!(seed = ctx.seed(), threads = ctx.threads(), "start");
     progress::experiment_starts();
     let start = Instant::now();
-    let result = pool
-        .install(|| catch_unwind(AssertUnwindSafe(|| (e.run)(ctx))))
-        .unwrap_or_else(|_| {
-            Err(RunError::Internal(format!(
-                "experiment `{}` panicked",
-                e.id
-            )))
-        });
+    let result = progress::watch(e.id, || {
+        pool.install(|| catch_unwind(AssertUnwindSafe(|| (e.run)(ctx))))
+    })
+    .unwrap_or_else(|_| {
+        Err(RunError::Internal(format!(
+            "experiment `{}` panicked",
+            e.id
+        )))
+    });
     let seconds = start.elapsed().as_secs_f64();
     tracing::info!(seconds, "done");
     (result, seconds)
@@ -943,7 +1091,7 @@ fn run_every(
                     report
                 })
             }
-            Err(err) => Err(err),
+            Err(err) => Err(as_typed(err, p.e.id, run)),
         };
         if let Err(err) = &result {
             eprintln!("{}: {err}", p.e.id);
@@ -1097,7 +1245,7 @@ fn run_all(exps: &Registry, run: &RunArgs) -> Result<(), Failure> {
             Err(e) => {
                 // What finished is printed (JSON is held back until the end).
                 printer.finish()?;
-                return Err(e.into());
+                return Err(as_typed(e, p.e.id, run).into());
             }
         };
         let report = provenance::stamp(&report, p.e, &p.ctx, &p.sets, run.config.as_deref());
@@ -1107,6 +1255,35 @@ fn run_all(exps: &Registry, run: &RunArgs) -> Result<(), Failure> {
         note(&format!("results: {}", dir.display()));
     }
     printer.finish()
+}
+
+/// `e` (of experiment `id`) as the user typed it: a refusal reached through a shorthand names
+/// the shorthand (`--trials`, `--gearing`, `--errors`), not the `--set` or `--hypothesis` it
+/// stands for.
+fn as_typed(e: RunError, id: &str, run: &RunArgs) -> RunError {
+    let RunError::BadInput {
+        source,
+        field,
+        rule,
+    } = e
+    else {
+        return e;
+    };
+    let shorthand = match (source.as_str(), field.as_str()) {
+        ("--hypothesis", _) if run.errors.is_some() => Some(("--errors", field.clone())),
+        ("--set", "trials") if run.trials.is_some() => Some(("--trials", id.to_owned())),
+        ("--set", "gearing") if run.gearing.is_some() => Some(("--gearing", id.to_owned())),
+        ("--set", "measured") if run.errors.is_some() => Some(("--errors", id.to_owned())),
+        _ => None,
+    };
+    match shorthand {
+        Some((flag, field)) => RunError::bad(flag, field, rule),
+        None => RunError::BadInput {
+            source,
+            field,
+            rule,
+        },
+    }
 }
 
 /// `run <id> --shard K/N`: runs the experiment in shard mode, discards its report and writes
@@ -1125,7 +1302,9 @@ fn run_shard(
             "internal error: a shard run without a shard".into(),
         ));
     };
-    execute(e, &ctx, pool).0?;
+    execute(e, &ctx, pool)
+        .0
+        .map_err(|err| as_typed(err, e.id, run))?;
     let mut partial = shard::Partial::new(e.id, run.seed, &planned.sets, ctx.config(), shard);
     partial.batches = ctx.recorded();
     let text = partial.to_json()?;
@@ -1136,6 +1315,7 @@ fn run_shard(
             dir.display()
         ))
     })?;
+    registry::tidy(&dir)?;
     let path = dir.join(shard::file_name(shard));
     write_atomically(&path, &text)?;
     let (mut here, mut whole) = (0, 0);
@@ -1163,7 +1343,7 @@ fn run_shard(
     ));
     if partial.batches.is_empty() {
         note(&format!(
-            "note: {} runs no trials through Context::trials: every shard computes all of it, and the merge computes it again",
+            "note: {} runs no trials that shards can split: every shard computes all of it, and the merge computes it again",
             e.id
         ));
     }
@@ -1176,7 +1356,7 @@ fn run_shard(
 fn merge(exps: &Registry, m: &MergeArgs) -> Result<(), Failure> {
     let files = shard::find(&m.inputs)?;
     let mut parts = Vec::with_capacity(files.len());
-    for f in files {
+    for f in files.clone() {
         let (partial, shard) = shard::read(&f)?;
         parts.push((f, partial, shard));
     }
@@ -1199,15 +1379,9 @@ fn merge(exps: &Registry, m: &MergeArgs) -> Result<(), Failure> {
     let threads = m.threads.unwrap_or_else(default_threads);
     let ctx = Context::new(e, header.seed, threads, &header.sets, header.config_file())?
         .with_replay(merged);
-    if let Some(out) = &m.out
-        && out.exists()
-        && !out.is_dir()
-    {
-        return Err(Failure::Bad(format!(
-            "--out: {}: exists and is not a directory",
-            out.display()
-        )));
-    }
+    let out = m.out.clone().unwrap_or_else(default_out);
+    check_out(&out)?;
+    keeps_partials(&out.join(e.id), &files, m.out.is_some())?;
     let pool = make_pool(threads)?;
     let report = execute(e, &ctx, &pool).0?;
     if let Some(batch) = ctx.unclaimed().first() {
@@ -1220,13 +1394,39 @@ fn merge(exps: &Registry, m: &MergeArgs) -> Result<(), Failure> {
     let report = provenance::stamp(&report, e, &ctx, &header.sets, config.as_deref());
     let mut stdout = |s: &str| print(s);
     Printer::new(m.format, false, &mut stdout).report(e, &report)?;
-    let dir = m.out.clone().unwrap_or_else(default_out).join(e.id);
+    let dir = out.join(e.id);
     registry::write_results(&dir, &report)?;
     note(&format!(
         "results: {} (merged from {} shards)",
         dir.display(),
         header.shards
     ));
+    Ok(())
+}
+
+/// A merge replaces `dir` (`<out>/<id>`) whole: refused (exit 2) when it holds one of the
+/// partial files being merged, which the replacement would delete.
+fn keeps_partials(dir: &Path, partials: &[PathBuf], out_given: bool) -> Result<(), Failure> {
+    let Ok(dir) = std::fs::canonicalize(dir) else {
+        return Ok(());
+    };
+    for f in partials {
+        if let Ok(f) = std::fs::canonicalize(f)
+            && f.starts_with(&dir)
+        {
+            return Err(Failure::Bad(format!(
+                "--out: {}: the merge would replace {}, which holds the partial file {} being merged; give another --out{}",
+                dir.parent().unwrap_or(&dir).display(),
+                dir.display(),
+                f.display(),
+                if out_given {
+                    ""
+                } else {
+                    " (the shards wrote into the default results folder)"
+                }
+            )));
+        }
+    }
     Ok(())
 }
 
@@ -1358,7 +1558,8 @@ mod tests {
         assert!(!out.join("b-bad").exists());
         assert!(!out.join("c-panic").exists());
         let md = std::fs::read_to_string(out.join("summary.md")).unwrap();
-        assert!(md.contains("| a-fine ") && md.contains("2 / 1"), "{md}");
+        // n = 7 is not the default, so no agreement with the paper is judged.
+        assert!(md.contains("| a-fine ") && !md.contains("2 / 1"), "{md}");
         let json: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
                 .unwrap();
@@ -1398,6 +1599,29 @@ mod tests {
         assert_eq!(e.code(), 2);
         assert!(!out.join("results").exists());
         let _ = std::fs::remove_dir_all(&out);
+    }
+
+    #[test]
+    fn numbers_of_hundreds_of_digits_are_shortened_and_nothing_else() {
+        let huge = format!("{}", 1e308);
+        assert!(huge.len() > 300);
+        assert_eq!(
+            one_line(&format!(
+                "m.ron: centre_distance: must exceed {huge} (got 5)"
+            )),
+            "m.ron: centre_distance: must exceed 1e308 (got 5)"
+        );
+        assert_eq!(
+            short_numbers(&format!("= {huge}.5, and -{huge}")),
+            "= 1e308, and -1e308"
+        );
+        for kept in [
+            "/tmp/xtask-bad-1795543045569589936/e.ron: x",
+            "seed 18446744073709551615 is fine",
+            "gear b1: 0.25 é",
+        ] {
+            assert_eq!(short_numbers(kept), kept);
+        }
     }
 
     #[test]

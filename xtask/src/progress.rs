@@ -10,6 +10,12 @@
 //! `XTASK_PROGRESS=always` makes them even when stderr is not a terminal (where indicatif draws
 //! nothing), from the first trial on, so that tests run the same code with and without them;
 //! `XTASK_PROGRESS=never` turns them off.
+//!
+//! When stderr is not a terminal (a log file, a pipe, a cluster job's output) and `-q` is not
+//! given, a running experiment instead prints a plain progress line every [`LINE_PERIOD`]
+//! (every second, the first after half a second, with `XTASK_PROGRESS=always`): how long it has run and, for
+//! the batch of trials under way, the trials done, their rate and the time left. A long run
+//! is never silent in a log; like the bars, the lines only watch.
 
 use std::io::IsTerminal;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
@@ -32,6 +38,12 @@ use crate::args::Verbosity;
 /// How long an experiment runs before its batches get progress bars.
 pub const DELAY: Duration = Duration::from_secs(1);
 
+/// How often a progress line is printed when stderr is not a terminal.
+pub const LINE_PERIOD: Duration = Duration::from_secs(10);
+
+/// The progress lines of this process, if stderr gets them.
+static LINES: OnceLock<Arc<Lines>> = OnceLock::new();
+
 /// The bars of this process, if stderr gets them.
 static BARS: OnceLock<Arc<Bars>> = OnceLock::new();
 
@@ -48,11 +60,27 @@ pub fn init(verbosity: Verbosity) {
             EnvFilter::try_from_default_env().unwrap_or_else(|_| EnvFilter::new("warn"))
         }
     };
-    let (wanted, delay) = match std::env::var("XTASK_PROGRESS").as_deref() {
+    let setting = std::env::var("XTASK_PROGRESS");
+    let (wanted, delay) = match setting.as_deref() {
         Ok("always") => (true, Duration::ZERO),
         Ok("never") => (false, DELAY),
         _ => (std::io::stderr().is_terminal(), DELAY),
     };
+    if verbosity != Verbosity::Quiet
+        && !std::io::stderr().is_terminal()
+        && setting.as_deref() != Ok("never")
+    {
+        let (first, period) = if setting.as_deref() == Ok("always") {
+            (Duration::from_millis(500), Duration::from_secs(1))
+        } else {
+            (LINE_PERIOD, LINE_PERIOD)
+        };
+        let _ = LINES.set(Arc::new(Lines {
+            first,
+            period,
+            current: Mutex::new(None),
+        }));
+    }
     // Colours only for a person at a terminal, not in files and pipes.
     let colour = std::io::stderr().is_terminal();
     // A second initialisation cannot happen here; if it did, logging would just stay as it was.
@@ -88,11 +116,155 @@ pub fn note(text: &str) {
     }
 }
 
-/// `ctx` with the progress bars attached, if stderr gets them.
+/// `ctx` with the progress bars and lines attached, where stderr gets them.
 pub fn attach(ctx: Context) -> Context {
-    match BARS.get() {
-        Some(bars) => ctx.with_progress(bars.clone()),
-        None => ctx,
+    match (BARS.get(), LINES.get()) {
+        (Some(bars), Some(lines)) => ctx.with_progress(Arc::new(Both(bars.clone(), lines.clone()))),
+        (Some(bars), None) => ctx.with_progress(bars.clone()),
+        (None, Some(lines)) => ctx.with_progress(lines.clone()),
+        (None, None) => ctx,
+    }
+}
+
+/// Runs `f` (experiment `id`), printing a progress line on stderr every period while it runs
+/// when stderr gets them (not a terminal, no `-q`); otherwise just runs `f`.
+pub fn watch<T>(id: &str, f: impl FnOnce() -> T) -> T {
+    let Some(lines) = LINES.get() else {
+        return f();
+    };
+    let start = Instant::now();
+    let (stop, stopped) = std::sync::mpsc::channel::<()>();
+    std::thread::scope(|s| {
+        s.spawn(move || {
+            let mut wait = lines.first;
+            loop {
+                match stopped.recv_timeout(wait) {
+                    Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {
+                        eprintln!("{}", lines.line(id, start.elapsed()));
+                        wait = lines.period;
+                    }
+                    _ => return,
+                }
+            }
+        });
+        let out = f();
+        drop(stop);
+        out
+    })
+}
+
+/// A duration as a person reads it: `45s`, `3m 05s`, `2h 10m`, `4d 3h`.
+pub fn human(d: Duration) -> String {
+    let s = d.as_secs();
+    match s {
+        0..60 => format!("{s}s"),
+        60..3600 => format!("{}m {:02}s", s / 60, s % 60),
+        3600..86400 => format!("{}h {:02}m", s / 3600, (s % 3600) / 60),
+        _ => format!("{}d {}h", s / 86400, (s % 86400) / 3600),
+    }
+}
+
+/// Plain progress lines for a log: the batch under way, watched.
+struct Lines {
+    /// When the first line is printed, from the experiment's start.
+    first: Duration,
+    /// Time between lines.
+    period: Duration,
+    current: Mutex<Option<Arc<Watched>>>,
+}
+
+/// A batch of trials as the lines see it.
+struct Watched {
+    label: String,
+    trials: u64,
+    started: Instant,
+    done: AtomicU64,
+}
+
+impl Lines {
+    /// The line for an experiment that has run for `elapsed`.
+    fn line(&self, id: &str, elapsed: Duration) -> String {
+        let current = self
+            .current
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+            .clone();
+        let mut s = format!("progress: {id}: running for {}", human(elapsed));
+        if let Some(b) = current {
+            let done = b.done.load(Ordering::Relaxed).min(b.trials);
+            s.push_str(&format!(
+                "; {}: {done} of {} trials done",
+                b.label, b.trials
+            ));
+            s.push_str(&rate_and_left(done, b.trials, b.started.elapsed()));
+        }
+        s
+    }
+}
+
+/// `, R trials/s, about T left` for `done` of `trials` in `elapsed`; nothing to say before the
+/// first trial is done.
+fn rate_and_left(done: u64, trials: u64, elapsed: Duration) -> String {
+    let secs = elapsed.as_secs_f64();
+    if done == 0 || secs <= 0.0 {
+        return ", none finished yet".into();
+    }
+    let rate = done as f64 / secs;
+    let left = Duration::from_secs_f64(((trials - done) as f64 / rate).min(1e9));
+    format!(
+        ", {} trials/s, about {} left",
+        registry::fmt_f64(rate, 2),
+        human(left)
+    )
+}
+
+impl Progress for Lines {
+    fn batch(
+        &self,
+        experiment: &str,
+        _batch: &str,
+        index: usize,
+        n: u64,
+    ) -> Box<dyn BatchProgress> {
+        let w = Arc::new(Watched {
+            label: format!("batch {}", index + 1),
+            trials: n,
+            started: Instant::now(),
+            done: AtomicU64::new(0),
+        });
+        let _ = experiment;
+        *self.current.lock().unwrap_or_else(PoisonError::into_inner) = Some(w.clone());
+        Box::new(LineTick(w))
+    }
+}
+
+/// One batch's counter for the lines.
+struct LineTick(Arc<Watched>);
+
+impl BatchProgress for LineTick {
+    fn done(&self) {
+        self.0.done.fetch_add(1, Ordering::Relaxed);
+    }
+}
+
+/// Bars and lines both watching.
+struct Both(Arc<Bars>, Arc<Lines>);
+
+impl Progress for Both {
+    fn batch(&self, experiment: &str, batch: &str, index: usize, n: u64) -> Box<dyn BatchProgress> {
+        Box::new(BothTicks(
+            self.0.batch(experiment, batch, index, n),
+            self.1.batch(experiment, batch, index, n),
+        ))
+    }
+}
+
+struct BothTicks(Box<dyn BatchProgress>, Box<dyn BatchProgress>);
+
+impl BatchProgress for BothTicks {
+    fn done(&self) {
+        self.0.done();
+        self.1.done();
     }
 }
 
@@ -197,5 +369,48 @@ impl BatchProgress for Bar {
             // Never backwards: a tick that lost the race to a later one draws nothing.
             span.pb_set_position(done);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn durations_read_as_a_person_reads_them() {
+        assert_eq!(human(Duration::from_secs(45)), "45s");
+        assert_eq!(human(Duration::from_secs(185)), "3m 05s");
+        assert_eq!(human(Duration::from_secs(7800)), "2h 10m");
+        assert_eq!(human(Duration::from_secs(4 * 86400 + 3 * 3600)), "4d 3h");
+    }
+
+    #[test]
+    fn rate_and_time_left_come_from_the_trials_done_so_far() {
+        // 30 of 200 trials in 60 s: 0.5 per second, 170 left take 340 s.
+        assert_eq!(
+            rate_and_left(30, 200, Duration::from_secs(60)),
+            ", 0.50 trials/s, about 5m 40s left"
+        );
+        assert_eq!(
+            rate_and_left(0, 2, Duration::from_secs(60)),
+            ", none finished yet"
+        );
+        let lines = Lines {
+            first: Duration::ZERO,
+            period: Duration::ZERO,
+            current: Mutex::new(None),
+        };
+        assert_eq!(
+            lines.line("fig2", Duration::from_secs(70)),
+            "progress: fig2: running for 1m 10s"
+        );
+        let tick = lines.batch("table1", "key", 2, 10);
+        tick.done();
+        tick.done();
+        let line = lines.line("table1", Duration::from_secs(5));
+        assert!(
+            line.starts_with("progress: table1: running for 5s; batch 3: 2 of 10 trials done, "),
+            "{line}"
+        );
     }
 }

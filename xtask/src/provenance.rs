@@ -1,5 +1,6 @@
 //! `run.json`: what produced a results directory (id, seed, threads, overrides, config file,
-//! toolkit version, date), stored beside its tables so that `cargo xtask report` can show it.
+//! every input file with the SHA-256 of its contents, toolkit version, date), stored beside its
+//! tables so that `cargo xtask report` can show it.
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -40,6 +41,7 @@ pub fn stamp(
             "threads": ctx.threads(),
             "overrides": overrides,
             "config": config,
+            "inputs": inputs(ctx),
             "version": {
                 "crate": env!("CARGO_PKG_VERSION"),
                 "git": git_describe(),
@@ -49,9 +51,135 @@ pub fn stamp(
     );
     text.push('\n');
     let mut stamped = report.clone();
+    stamped.inputs = recorded_inputs(ctx);
+    label_departures(&mut stamped, ctx);
     stamped.files.retain(|f| f.name != RUN_JSON);
     stamped.files.push(OutputFile::new(RUN_JSON, text));
     stamped
+}
+
+/// The parameters `tables.json` names whatever their value (those an experiment declares):
+/// what the numbers depend on beyond counts.
+const NAMED_INPUTS: &[&str] = &[
+    "hypothesis",
+    "hypothesis_params",
+    "rule",
+    "gearing",
+    "measured",
+    "clearance",
+    "tooth_height",
+    "split",
+    "trials",
+];
+
+/// The inputs `tables.json` records: every declared parameter of [`NAMED_INPUTS`] with its
+/// value, every other parameter set away from its default, and `errors`, the measured-errors
+/// file of a `measured:FILE` hypothesis.
+fn recorded_inputs(ctx: &Context) -> BTreeMap<String, String> {
+    let mut inputs = BTreeMap::new();
+    for name in NAMED_INPUTS {
+        if ctx.declares(name)
+            && let Ok(v) = ctx.param(name)
+        {
+            inputs.insert((*name).to_owned(), v.to_owned());
+        }
+    }
+    for (name, v) in ctx.changed() {
+        inputs.insert(name.to_owned(), v.to_owned());
+    }
+    if let Some(h) = inputs.get("hypothesis").cloned() {
+        for layer in h.split(hypotheses::SEPARATOR) {
+            if let Some(f) = layer.strip_prefix("measured:") {
+                inputs.insert("errors".to_owned(), f.to_owned());
+            }
+        }
+    }
+    inputs
+}
+
+/// A run whose inputs differ from the defaults (the paper's) says so in every table's title,
+/// labels the paper's numbers as coming from other inputs, and judges no agreement with the
+/// paper (the summary shows `-`). Runs at the defaults are left exactly as they print.
+fn label_departures(report: &mut Report, ctx: &Context) {
+    let changed = ctx.changed();
+    if changed.is_empty() {
+        return;
+    }
+    let list = changed
+        .iter()
+        .map(|(k, v)| format!("{k}={v}"))
+        .collect::<Vec<_>>()
+        .join(", ");
+    let compares = report.agreement.is_some()
+        || report
+            .tables
+            .iter()
+            .any(|t| t.title.contains("paper") || t.columns.iter().any(|c| c.contains("paper")));
+    for t in &mut report.tables {
+        t.title = format!("{} [inputs differ from the defaults: {list}]", t.title);
+        if compares {
+            t.note(format!(
+                "This run's inputs differ from the paper's ({list}): the paper's numbers shown beside ours come from its own inputs, for reference, not as a check of these."
+            ));
+        }
+    }
+    report.agreement = None;
+}
+
+/// SHA-256 of `bytes`, in lowercase hex.
+pub fn sha256(bytes: &[u8]) -> String {
+    use sha2::Digest;
+    sha2::Sha256::digest(bytes)
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect()
+}
+
+/// Every file the run read, as `{"role", "path", "sha256"}`: the config file, a gearing file
+/// (not an embedded gearing), a measured-errors table (`--errors`, `measured:FILE`, `--set
+/// measured=FILE`). The path is as typed; the hash is of the contents, so two runs of the same
+/// path with different files are told apart. A file that can no longer be read gets
+/// `"sha256": null`.
+fn inputs(ctx: &Context) -> Vec<serde_json::Value> {
+    let mut out = Vec::new();
+    if let Some(c) = ctx.config() {
+        out.push(json!({
+            "role": "config",
+            "path": c.path.display().to_string(),
+            "sha256": sha256(c.text.as_bytes()),
+        }));
+    }
+    let value = |name: &str| {
+        ctx.declares(name)
+            .then(|| ctx.param(name).ok().map(str::to_owned))
+            .flatten()
+    };
+    let mut files: Vec<(&str, String)> = Vec::new();
+    if let Some(g) = value("gearing")
+        && train::Gearing::builtin(&g).is_none()
+    {
+        files.push(("gearing", g));
+    }
+    if let Some(h) = value("hypothesis") {
+        for layer in h.split(hypotheses::SEPARATOR) {
+            if let Some(f) = layer.strip_prefix("measured:") {
+                files.push(("measured errors", f.to_owned()));
+            }
+        }
+    }
+    if let Some(m) = value("measured")
+        && !m.trim().is_empty()
+        && m.trim() != "none"
+    {
+        files.push(("measured errors", m.trim().to_owned()));
+    }
+    for (role, path) in files {
+        let hash = input_file::read_to_string(Path::new(&path), input_file::MAX_INPUT_BYTES)
+            .ok()
+            .map(|text| sha256(text.as_bytes()));
+        out.push(json!({ "role": role, "path": path, "sha256": hash }));
+    }
+    out
 }
 
 /// `git describe --always --dirty` of the workspace this binary was built from, once per
@@ -135,6 +263,60 @@ mod tests {
         run: nothing,
     };
 
+    static G: Experiment = Experiment {
+        id: "g",
+        title: "t",
+        paper_item: "p",
+        params: &[
+            Param {
+                name: "gearing",
+                default: "freeth2006",
+                unit: "",
+                help: "h",
+            },
+            Param {
+                name: "hypothesis",
+                default: "edmunds-split",
+                unit: "",
+                help: "h",
+            },
+        ],
+        config: None,
+        run: nothing,
+    };
+
+    #[test]
+    fn run_json_hashes_every_input_file() {
+        let dir = std::env::temp_dir().join(format!("provenance-test-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let gearing = dir.join("g.ron");
+        let errors = dir.join("e.ron");
+        std::fs::write(&gearing, "gearing text").unwrap();
+        std::fs::write(&errors, "errors text").unwrap();
+        let sets = vec![
+            ("gearing".to_string(), gearing.display().to_string()),
+            (
+                "hypothesis".to_string(),
+                format!("measured:{}", errors.display()),
+            ),
+        ];
+        let ctx = Context::new(&G, 1, 1, &sets, None).unwrap();
+        let r = stamp(&Report::default(), &G, &ctx, &sets, None);
+        let v: serde_json::Value = serde_json::from_slice(&r.files[0].contents).unwrap();
+        assert_eq!(
+            v["inputs"],
+            json!([
+                {"role": "gearing", "path": gearing.display().to_string(), "sha256": sha256(b"gearing text")},
+                {"role": "measured errors", "path": errors.display().to_string(), "sha256": sha256(b"errors text")},
+            ])
+        );
+        assert_eq!(
+            sha256(b"abc"),
+            "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad"
+        );
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
     #[test]
     fn dates() {
         assert_eq!(utc(0), "1970-01-01T00:00:00Z");
@@ -168,6 +350,7 @@ mod tests {
         assert_eq!(v["threads"], 3);
         assert_eq!(v["overrides"], json!({"n": "5"}));
         assert_eq!(v["config"], serde_json::Value::Null, "E takes no config");
+        assert_eq!(v["inputs"], json!([]));
         assert_eq!(v["version"]["crate"], env!("CARGO_PKG_VERSION"));
         assert!(!v["version"]["git"].as_str().unwrap().is_empty());
         assert_eq!(v["date"].as_str().unwrap().len(), 20);

@@ -30,20 +30,41 @@ pub const INDEX_HTML: &str = "index.html";
 
 /// `report [--out DIR]`: builds the page and writes it to `<out>/index.html`.
 pub fn command(args: &[String]) -> Result<(), Failure> {
-    let out = parse(args)?;
+    let (out, quiet) = parse(args)?;
     let exps = registry::experiments().map_err(|e| Failure::Internal(e.to_string()))?;
-    let page = build(&exps, &out)?;
+    // Results a killed run left moved aside are put back before they are read.
+    registry::tidy(&out)?;
+    let page = build(&exps, &out, quiet)?;
     let index = out.join(INDEX_HTML);
     crate::write_atomically(&index, &page)?;
-    eprintln!("report: {}", index.display());
+    if !quiet {
+        eprintln!("report: {}", index.display());
+    }
     Ok(())
 }
 
-/// The `--out` directory (default `<workspace>/results`).
-fn parse(args: &[String]) -> Result<PathBuf, Failure> {
+/// The message of a failure, for a note.
+fn one_line_of(f: &Failure) -> String {
+    match f {
+        Failure::Usage(m) | Failure::Bad(m) | Failure::Internal(m) => m.clone(),
+        Failure::Reported(code) => format!("exit status {code}"),
+    }
+}
+
+/// The `--out` directory (default `<workspace>/results`), and whether `-q`/`--quiet` was
+/// given (no note on stderr).
+fn parse(args: &[String]) -> Result<(PathBuf, bool), Failure> {
     let mut out = None;
+    let mut quiet = false;
     let mut it = args.iter();
     while let Some(arg) = it.next() {
+        if arg == "-q" || arg == "--quiet" {
+            quiet = true;
+            continue;
+        }
+        if out.is_some() && (arg == "--out" || arg.starts_with("--out=")) {
+            return Err(Failure::Usage("--out given twice".into()));
+        }
         let value = match arg.split_once('=') {
             Some(("--out", v)) => v.to_owned(),
             None if arg == "--out" => match it.next() {
@@ -52,7 +73,7 @@ fn parse(args: &[String]) -> Result<PathBuf, Failure> {
             },
             _ => {
                 return Err(Failure::Usage(format!(
-                    "report takes only --out DIR (got `{arg}`)"
+                    "report takes only --out DIR and -q (got `{arg}`)"
                 )));
             }
         };
@@ -61,7 +82,7 @@ fn parse(args: &[String]) -> Result<PathBuf, Failure> {
         }
         out = Some(PathBuf::from(value));
     }
-    Ok(out.unwrap_or_else(crate::default_out))
+    Ok((out.unwrap_or_else(crate::default_out), quiet))
 }
 
 /// One experiment's results as read from `<out>/<id>/`.
@@ -110,7 +131,7 @@ fn bad(path: &Path, field: &str, rule: impl std::fmt::Display) -> Failure {
 }
 
 /// The HTML page for the results under `out`.
-fn build(exps: &Registry, out: &Path) -> Result<String, Failure> {
+fn build(exps: &Registry, out: &Path, quiet: bool) -> Result<String, Failure> {
     let found = scan(out)?;
     if found.is_empty() {
         return Err(Failure::Bad(format!(
@@ -121,7 +142,23 @@ fn build(exps: &Registry, out: &Path) -> Result<String, Failure> {
     }
     let mut results = BTreeMap::new();
     for (id, dir) in &found {
-        results.insert(id.clone(), read_results(dir)?);
+        match read_results(dir) {
+            Ok(r) => {
+                results.insert(id.clone(), r);
+            }
+            // A folder that is no experiment of this build (a stray copy, an old id) is
+            // skipped when unreadable rather than failing the whole page.
+            Err(e) if !exps.contains_key(id.as_str()) => {
+                if !quiet {
+                    eprintln!(
+                        "report: skipped {}: not an experiment of this build and unreadable: {}",
+                        dir.display(),
+                        one_line_of(&e)
+                    );
+                }
+            }
+            Err(e) => return Err(e),
+        }
     }
     let mut ids: Vec<String> = exps.keys().map(|id| (*id).to_owned()).collect();
     ids.extend(results.keys().cloned());
@@ -160,9 +197,17 @@ fn scan(out: &Path) -> Result<Vec<(String, PathBuf)>, Failure> {
     Ok(found)
 }
 
+/// The largest results file (`tables.json`, `run.json`, a figure) the report reads: 256 MiB.
+const MAX_RESULT_FILE_BYTES: u64 = 256 * 1024 * 1024;
+
 fn read_text(path: &Path) -> Result<String, Failure> {
-    let bytes = fs::read(path).map_err(|e| bad(path, "", format!("cannot read: {e}")))?;
-    String::from_utf8(bytes).map_err(|_| bad(path, "", "must be UTF-8 text"))
+    input_file::read_to_string(path, MAX_RESULT_FILE_BYTES).map_err(|e| {
+        if e.to_string().contains("UTF-8") {
+            bad(path, "", "must be UTF-8 text")
+        } else {
+            bad(path, "", format!("cannot read: {e}"))
+        }
+    })
 }
 
 fn read_json(path: &Path) -> Result<Value, Failure> {
@@ -557,6 +602,13 @@ fn describe<'a>(exps: &'a Registry, id: &str) -> (&'a str, &'a str) {
 }
 
 fn section(h: &mut String, id: &str, title: &str, item: &str, r: &Results) {
+    // The registered title states the defaults ("200 trials per cell"); a run that changed
+    // them is headed by its first table's title, which states what was run.
+    let changed = r.run.as_ref().is_some_and(|p| !p.overrides.is_empty());
+    let title = match r.tables.first() {
+        Some(t) if changed => t.title.as_str(),
+        _ => title,
+    };
     let _ = write!(
         h,
         "<section id=\"exp-{}\" class=\"experiment run\">\n<h2>{}: {}</h2>\n<p class=\"meta\">Paper item: {}</p>\n",
@@ -775,7 +827,7 @@ mod tests {
         let s = Scratch::new("page");
         write_a(&s.0);
         fs::create_dir_all(s.0.join(".a.tmp-1")).unwrap(); // hidden: ignored
-        let page = build(&registry(), &s.0).unwrap();
+        let page = build(&registry(), &s.0, true).unwrap();
         assert!(page.contains("<section id=\"exp-a\" class=\"experiment run\">"));
         assert!(page.contains("<h2>a: First &lt;one&gt;</h2>"));
         assert!(page.contains("<caption>Ours &amp; the paper&#39;s</caption>"));
@@ -812,13 +864,13 @@ mod tests {
     #[test]
     fn no_results_is_bad_input_and_writes_nothing() {
         let s = Scratch::new("empty");
-        let e = build(&registry(), &s.0).unwrap_err();
+        let e = build(&registry(), &s.0, true).unwrap_err();
         assert_eq!(e.code(), 2);
         assert!(format!("{e:?}").contains("no results"), "{e:?}");
         let e = command(&["--out".into(), s.0.display().to_string()]).unwrap_err();
         assert_eq!(e.code(), 2);
         assert!(!s.0.join(INDEX_HTML).exists());
-        let e = build(&registry(), &s.0.join("missing")).unwrap_err();
+        let e = build(&registry(), &s.0.join("missing"), true).unwrap_err();
         assert_eq!(e.code(), 2);
         assert!(format!("{e:?}").contains("no such directory"), "{e:?}");
     }
@@ -848,7 +900,9 @@ mod tests {
         for (file, text, want) in cases {
             let s = Scratch::new("broken");
             write_a(&s.0);
-            fs::write(s.0.join("a").join(file), text).unwrap();
+            // Under a registered id: an unreadable folder of no experiment is skipped instead.
+            fs::rename(s.0.join("a"), s.0.join("fig2")).unwrap();
+            fs::write(s.0.join("fig2").join(file), text).unwrap();
             let e = command(&["--out".into(), s.0.display().to_string()]).unwrap_err();
             assert_eq!(e.code(), 2, "{file}");
             let msg = format!("{e:?}");
@@ -860,7 +914,20 @@ mod tests {
     #[test]
     fn arguments() {
         assert!(parse(&[]).is_ok());
-        assert_eq!(parse(&["--out=x".into()]).unwrap(), PathBuf::from("x"));
+        assert_eq!(
+            parse(&["--out=x".into()]).unwrap(),
+            (PathBuf::from("x"), false)
+        );
+        assert_eq!(
+            parse(&["-q".into(), "--out".into(), "y".into()]).unwrap(),
+            (PathBuf::from("y"), true)
+        );
+        assert_eq!(
+            parse(&["--out=x".into(), "--out=y".into()])
+                .unwrap_err()
+                .code(),
+            2
+        );
         assert_eq!(parse(&["--out".into()]).unwrap_err().code(), 2);
         assert_eq!(parse(&["--out=".into()]).unwrap_err().code(), 2);
         assert!(matches!(parse(&["fig2".into()]), Err(Failure::Usage(_))));

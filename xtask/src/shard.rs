@@ -22,6 +22,10 @@ pub const VERSION: &str = env!("CARGO_PKG_VERSION");
 /// Directories below a merge input searched for partial files (`shards/3/table5/partial-...`).
 const SEARCH_DEPTH: usize = 4;
 
+/// The largest partial file a merge reads: 4 GiB (a shard of 10^6 trials in each of a table's
+/// cells records a few hundred megabytes).
+const MAX_PARTIAL_BYTES: u64 = 4 * 1024 * 1024 * 1024;
+
 /// The config file given to the sharded run, stored whole so that the merge needs no copy.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -54,6 +58,23 @@ pub struct Partial {
     pub version: String,
     /// The trial batches the shard recorded.
     pub batches: Records,
+    /// SHA-256 of the file's other members ([`checksum`]), so that a damaged or edited value
+    /// is refused by the merge rather than merged.
+    #[serde(default)]
+    pub checksum: String,
+}
+
+/// The checksum of a partial file's JSON: SHA-256, in lowercase hex, of its value without the
+/// `checksum` member, written compactly with object keys in the order serde_json gives them.
+/// Any value changed after the shard wrote the file changes it.
+pub fn checksum(json: &serde_json::Value) -> String {
+    use sha2::Digest;
+    let mut v = json.clone();
+    if let Some(o) = v.as_object_mut() {
+        o.remove("checksum");
+    }
+    let digest = sha2::Sha256::digest(v.to_string().as_bytes());
+    digest.iter().map(|b| format!("{b:02x}")).collect()
 }
 
 impl Partial {
@@ -78,6 +99,7 @@ impl Partial {
             shards: shard.count(),
             version: VERSION.into(),
             batches: Records::new(),
+            checksum: String::new(),
         }
     }
 
@@ -89,10 +111,14 @@ impl Partial {
         })
     }
 
-    /// The file's JSON (one line) and a final newline.
+    /// The file's JSON (one line), with its [`checksum`], and a final newline.
     pub fn to_json(&self) -> Result<String, RunError> {
-        let mut s = serde_json::to_string(self)
-            .map_err(|e| RunError::Internal(format!("cannot write a partial file: {e}")))?;
+        let fail =
+            |e: serde_json::Error| RunError::Internal(format!("cannot write a partial file: {e}"));
+        let value = serde_json::to_value(self).map_err(fail)?;
+        let mut sealed = self.clone();
+        sealed.checksum = checksum(&value);
+        let mut s = serde_json::to_string(&sealed).map_err(fail)?;
         s.push('\n');
         Ok(s)
     }
@@ -186,7 +212,16 @@ fn search(dir: &Path, depth: usize, found: &mut Vec<PathBuf>) -> Result<(), RunE
 /// name (if it is `partial-K-of-N.json`) says the shard it holds.
 pub fn read(path: &Path) -> Result<(Partial, Shard), RunError> {
     let source = path.display().to_string();
-    let text = fs::read_to_string(path)
+    if let Ok(meta) = fs::metadata(path)
+        && !meta.is_file()
+    {
+        return Err(RunError::bad(
+            &source,
+            "file",
+            "must be a regular file written by `cargo xtask run <id> --shard K/N`",
+        ));
+    }
+    let text = input_file::read_to_string(path, MAX_PARTIAL_BYTES)
         .map_err(|e| RunError::bad(&source, "file", format!("cannot read: {e}")))?;
     let partial: Partial = serde_json::from_str(&text).map_err(|e| {
         RunError::bad(
@@ -235,6 +270,22 @@ pub fn read(path: &Path) -> Result<(Partial, Shard), RunError> {
             &source,
             "shard",
             format!("the file name says shard {k}/{n}, but the file holds shard {shard}"),
+        ));
+    }
+    let value: serde_json::Value = serde_json::from_str(&text)
+        .map_err(|e| RunError::bad(&source, "contents", format!("is not JSON: {e}")))?;
+    if partial.checksum.is_empty() {
+        return Err(RunError::bad(
+            &source,
+            "checksum",
+            "is missing: every partial file written by `cargo xtask run <id> --shard K/N` carries one; run the shard again",
+        ));
+    }
+    if checksum(&value) != partial.checksum {
+        return Err(RunError::bad(
+            &source,
+            "checksum",
+            "does not match the contents: the file was changed or damaged after the shard wrote it; run the shard again",
         ));
     }
     Ok((partial, shard))
@@ -335,6 +386,12 @@ mod tests {
         );
         p.batches.insert("b".into(), registry::Batch::default());
         let back: Partial = serde_json::from_str(&p.to_json().unwrap()).unwrap();
+        assert_eq!(back.checksum.len(), 64);
+        assert_eq!(
+            back.checksum,
+            checksum(&serde_json::from_str(&p.to_json().unwrap()).unwrap())
+        );
+        p.checksum.clone_from(&back.checksum);
         assert_eq!(back, p);
         assert_eq!(back.config_file().unwrap().text, "(x: 1)\n");
     }

@@ -183,6 +183,12 @@ fn gearing_files() {
             &["{file}: line 12", "colour"],
         ),
         case(
+            "unknown field, named without a Rust type (was `colour`in `GearData`)",
+            gearing("teeth: 223,", "teeth: 223, colour: 3,"),
+            run,
+            &["Unexpected field named `colour`, expected one of `name`, `teeth`"],
+        ),
+        case(
             "wrong type",
             gearing("teeth: 223,", "teeth: \"many\","),
             run,
@@ -235,6 +241,12 @@ fn gearing_files() {
             gearing("teeth: 223,", "teeth: 1000000000000,"),
             run,
             &["{file}: line 12"],
+        ),
+        case(
+            "c1 with 100000 teeth (blamed tooth_height and gear b2)",
+            gearing("teeth: 38,", "teeth: 100000,"),
+            run,
+            &["{file}: gear c1: 100000 teeth do not fit its measured radius 9.85 mm"],
         ),
         case(
             "unknown gear",
@@ -390,11 +402,65 @@ fn measured_error_tables() {
         }
     }
     cases.push(case(
+        "a gear missing from --errors (blamed --hypothesis)",
+        f(r#"(gears: [(gear: "driver", random: 0.05, systematic: 0.5)])"#),
+        "run fig5 --errors {file} --out {out}",
+        &["--errors: ", "{file}: gear driven: missing from the table"],
+    ));
+    cases.push(case(
         "missing table",
         None,
         "run table2 --errors /no/such/errors.ron --out {out}",
         &["--errors: /no/such/errors.ron: cannot read: "],
     ));
+    // Silent wrong answers: a row for a gear the gearing does not have (was unused), and a
+    // random error large enough that only some draws failed (passed with 2 trials, not 50).
+    let stray = f(
+        r#"(gears: [(gear: "b1", random: 0.05, systematic: 0.5), (gear: "zz9", random: 0.05, systematic: 0.5)])"#,
+    );
+    for (run, flag) in [
+        (
+            "run table3 --errors {file} --trials 2 --out {out}",
+            "--errors: ",
+        ),
+        (
+            "run failure --errors {file} --trials 2 --out {out}",
+            "--errors: ",
+        ),
+        (
+            "run failure --set measured={file} --trials 2 --out {out}",
+            "--set measured: ",
+        ),
+        (
+            "run table3 --hypothesis measured:{file} --trials 2 --out {out}",
+            "--hypothesis: ",
+        ),
+    ] {
+        cases.push(case(
+            &format!("a gear not in the gearing ({run})"),
+            stray.clone(),
+            run,
+            &[
+                flag,
+                "{file}: gear zz9: is not a gear of the gearing `freeth2006`",
+            ],
+        ));
+    }
+    for run in [
+        "run table3 --errors {file} --trials 2 --out {out}",
+        "run table2 --errors {file} --trials 2 --out {out}",
+        "run failure --errors {file} --trials 2 --out {out}",
+    ] {
+        cases.push(case(
+            &format!("random 0.2 of the pitch with 2 trials ({run})"),
+            f(r#"(gears: [(gear: "b1", random: 0.2, systematic: 0.5)])"#),
+            run,
+            &[
+                "--errors: ",
+                "{file}: gear b1: random: must be at most 0.1 of the pitch",
+            ],
+        ));
+    }
     assert_none(failures("errors", cases));
 }
 
@@ -425,6 +491,11 @@ fn pair_configs() {
             "unknown field",
             mesh(good, "clearance_percent: Some(40.0), colour: 3"),
             &["{file}: line 1", "colour"],
+        ),
+        (
+            "unknown field, named without a Rust type (was `colour`in `PairFile`)",
+            mesh(good, "clearance_percent: Some(40.0), colour: 3"),
+            &["Unexpected field named `colour`, expected one of `driver`, `driven`"],
         ),
         (
             "wrong type",
@@ -480,17 +551,17 @@ fn pair_configs() {
         (
             "clearance 150 %",
             mesh(good, "clearance_percent: Some(150.0)"),
-            &["{file}: clearance_percent: must be between 0 and 100"],
+            &["{file}: clearance_percent: must be more than 0 and less than 100"],
         ),
         (
             "clearance -1 %",
             mesh(good, "clearance_percent: Some(-1.0)"),
-            &["{file}: clearance_percent: must be between 0 and 100"],
+            &["{file}: clearance_percent: must be more than 0 and less than 100"],
         ),
         (
             "clearance NaN",
             mesh(good, "clearance_percent: Some(NaN)"),
-            &["{file}: clearance_percent: must be between 0 and 100"],
+            &["{file}: clearance_percent: must be more than 0 and less than 100"],
         ),
         (
             "no distance",
@@ -541,6 +612,71 @@ fn pair_configs() {
             mesh(good, "clearance_percent: Some(40.0), run_deg: Some(1e12)"),
             &["{file}: run_deg"],
         ),
+        (
+            "sample step 1e-12 without run_deg (aborted on allocation)",
+            mesh(good, "clearance_percent: Some(40.0), sample_deg: 1e-12"),
+            &[
+                "{file}: sample_deg: must be at least 0.00036 degrees",
+                "more than 1000000 rows",
+            ],
+        ),
+        (
+            "sample step 1e-4 (a 143 MB CSV)",
+            mesh(good, "clearance_percent: Some(40.0), sample_deg: 1e-4"),
+            &["{file}: sample_deg: must be at least 0.00036 degrees"],
+        ),
+        (
+            "a turn of a 65535-tooth driver (18 hours, silently)",
+            mesh(
+                "(teeth: 65535, tip_radius: 10.0, root_radius: 9.0)",
+                "clearance_percent: Some(40.0), sample_deg: 0.01",
+            ),
+            &[
+                "{file}: run_deg: 360 degrees of a 65535-tooth driver against 65535 teeth",
+                "more than the limit of 4000000",
+            ],
+        ),
+        (
+            "tip radius 1e308 with a clearance (blamed centre_distance)",
+            mesh("(teeth: 20, tip_radius: 1e308, root_radius: 9.0)", g40),
+            &["{file}: driver.tip_radius: is too large"],
+        ),
+        (
+            "tip radius 1e308 with a distance (printed 309 digits)",
+            mesh(
+                "(teeth: 20, tip_radius: 1e308, root_radius: 9.0)",
+                "centre_distance: Some(25.0)",
+            ),
+            &["{file}: centre_distance: must exceed 1e308 (clearance G > 0)"],
+        ),
+        (
+            "gears that never touch",
+            mesh(good, "centre_distance: Some(25.0)"),
+            &["{file}: centre_distance: the gears never touch", "= 20,"],
+        ),
+        (
+            "gears just out of reach",
+            mesh(good, "centre_distance: Some(20.0)"),
+            &["{file}: centre_distance: the gears never touch"],
+        ),
+        (
+            "eccentric gears out of reach",
+            mesh(
+                "(teeth: 20, tip_radius: 10.0, root_radius: 9.0, eccentricity: Some((0.5, 0.0)))",
+                "centre_distance: Some(20.6)",
+            ),
+            &["{file}: centre_distance: the gears never touch", "= 20.5,"],
+        ),
+        (
+            "clearance 100 % (tips only graze)",
+            mesh(good, "clearance_percent: Some(100.0)"),
+            &["{file}: clearance_percent: must be more than 0 and less than 100 (got 100)"],
+        ),
+        (
+            "clearance 0 % (refused by a rule naming 0 as allowed)",
+            mesh(good, "clearance_percent: Some(0.0)"),
+            &["{file}: clearance_percent: must be more than 0 and less than 100 (got 0)"],
+        ),
     ];
     let cases = rows
         .into_iter()
@@ -549,9 +685,83 @@ fn pair_configs() {
     assert_none(failures("pair", cases));
 }
 
+/// Files that never end or are far too large: read up to a stated limit, then refused.
+#[test]
+fn endless_and_huge_files() {
+    let huge = || Some(("huge.ron", vec![b' '; 17 * 1024 * 1024]));
+    let cases = vec![
+        case(
+            "--config /dev/zero (grew past 2 GB)",
+            None,
+            "run pair --config /dev/zero --out {out}",
+            &[
+                "--config: /dev/zero: cannot read: is larger than 16777216 bytes, the limit on input files",
+            ],
+        ),
+        case(
+            "--config /dev/urandom (hung)",
+            None,
+            "run pair --config /dev/urandom --out {out}",
+            &["--config: /dev/urandom: cannot read: is larger than 16777216 bytes"],
+        ),
+        case(
+            "--config of 17 MiB",
+            huge(),
+            "run pair --config {file} --out {out}",
+            &[
+                "--config: ",
+                "{file}: cannot read: is larger than 16777216 bytes",
+            ],
+        ),
+        case(
+            "--gearing /dev/zero",
+            None,
+            "run table1 --gearing /dev/zero --out {out}",
+            &["/dev/zero: read: ", "is larger than 16777216 bytes"],
+        ),
+        case(
+            "--gearing of 17 MiB",
+            huge(),
+            "run table1 --gearing {file} --out {out}",
+            &["{file}: read: ", "is larger than 16777216 bytes"],
+        ),
+        case(
+            "--errors /dev/urandom",
+            None,
+            "run table2 --errors /dev/urandom --out {out}",
+            &["--errors: /dev/urandom: cannot read: is larger than 16777216 bytes"],
+        ),
+        case(
+            "--set measured=/dev/zero",
+            None,
+            "run failure --set measured=/dev/zero --out {out}",
+            &["--set measured: /dev/zero: cannot read: is larger than 16777216 bytes"],
+        ),
+        case(
+            "fig6 --set measured=/dev/zero",
+            None,
+            "run fig6 --set measured=/dev/zero --out {out}",
+            &["/dev/zero", "is larger than 16777216 bytes"],
+        ),
+        case(
+            "merge /dev/zero",
+            None,
+            "merge /dev/zero --out {out}",
+            &["/dev/zero: file: must be a regular file"],
+        ),
+    ];
+    assert_none(failures("endless", cases));
+}
+
 #[test]
 fn enormous_counts() {
     let cases = vec![
+        case(
+            "fig2 step 1e-9 (aborted on allocation)",
+            None,
+            "run fig2 --set step=1e-9 --out {out}",
+            &["--set: step: must be at least 0.00036 degrees", "1e-9"],
+        ),
         case(
             "--trials u64::MAX",
             None,
@@ -563,6 +773,12 @@ fn enormous_counts() {
             None,
             "run table1 --trials 99999999999999999999 --out {out}",
             &["--trials: must be an integer from 1 to 1000000"],
+        ),
+        case(
+            "--trials 1 where the experiment needs 2 (blamed --set)",
+            None,
+            "run table1 --trials 1 --out {out}",
+            &["--trials: table1: must be at least 2 (an interval needs two trials)"],
         ),
         case(
             "--trials 0",
@@ -611,6 +827,12 @@ fn enormous_counts() {
             None,
             "run fig2 --set teeth=1000000000 --out {out}",
             &["--set: teeth: must be at most 10000000"],
+        ),
+        case(
+            "fig2 with 100000 teeth (ran for months, silently)",
+            None,
+            "run fig2 --set teeth=100000 --out {out}",
+            &["--set: teeth: must be at most 500 for fig2 (got 100000)"],
         ),
         case(
             "200000 teeth",
@@ -875,6 +1097,38 @@ fn names_and_flags() {
             &["--hypothesis: must not be empty"],
         ),
         case(
+            "--seed twice (the last silently won)",
+            None,
+            "run fig2 --seed 1 --seed 2 --out {out}",
+            &["--seed given twice: give it once"],
+        ),
+        case(
+            "--set of one key twice",
+            None,
+            "run fig2 --set step=1 --set step=2 --out {out}",
+            &["--set step=... given twice"],
+        ),
+        case(
+            "merge --out twice",
+            None,
+            "merge /no/such --out {out} --out {out}",
+            &["--out given twice"],
+        ),
+        case(
+            "report --out twice",
+            None,
+            "report --out {out} --out {out}",
+            &["--out given twice"],
+        ),
+        case(
+            "hypothesis_params and a plain --set of one parameter",
+            None,
+            "run fig5 --set random=0.03 --set hypothesis_params=random=0.04 --out {out}",
+            &[
+                "--set: hypothesis_params: `random` is also set with --set random=0.03: give one of them",
+            ],
+        ),
+        case(
             "run all with ids",
             None,
             "run all fig2 --out {out}",
@@ -907,9 +1161,33 @@ fn out_that_is_a_file() {
     }
 }
 
+/// A partial file's JSON with the checksum the runner would give it: SHA-256 of the JSON
+/// without its `checksum` member, written compactly.
+fn sealed(json: &str) -> Vec<u8> {
+    use sha2::Digest;
+    let mut v: serde_json::Value = serde_json::from_str(json).unwrap();
+    let o = v.as_object_mut().unwrap();
+    o.remove("checksum");
+    let sum: String = sha2::Sha256::digest(v.to_string().as_bytes())
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect();
+    v.as_object_mut()
+        .unwrap()
+        .insert("checksum".into(), sum.into());
+    v.to_string().into_bytes()
+}
+
 #[test]
 fn partial_files() {
     let f = |bytes: &[u8]| Some(("partial-0-of-1.json", bytes.to_vec()));
+    let with_values = r#"{"format":"cargo-xtask-partial/1","experiment":"table1","seed":1,"sets":[],"config":null,"shard":0,"shards":1,"version":"0.1.0","batches":{"b":{"trials":2,"whole":false,"values":{"0":0.25,"1":0.5}}}}"#;
+    let good = sealed(with_values);
+    let flipped = String::from_utf8(good.clone())
+        .unwrap()
+        .replace("0.25", "0.75")
+        .into_bytes();
+    assert_ne!(flipped, good);
     let merge = "merge {file} --out {out}";
     let cases = vec![
         case("truncated", f(br#"{"format":"cargo-xtask-partial/1","experiment":"#), merge, &["{file}: contents: is not a partial file", "EOF"]),
@@ -935,17 +1213,29 @@ fn partial_files() {
         ),
         case(
             "unknown experiment",
-            f(br#"{"format":"cargo-xtask-partial/1","experiment":"no-such","seed":1,"sets":[],"config":null,"shard":0,"shards":1,"version":"0.1.0","batches":{}}"#),
+            f(&sealed(r#"{"format":"cargo-xtask-partial/1","experiment":"no-such","seed":1,"sets":[],"config":null,"shard":0,"shards":1,"version":"0.1.0","batches":{}}"#)),
             merge,
             &["unknown experiment `no-such`"],
         ),
         case(
             "trials beyond the limit",
-            f(br#"{"format":"cargo-xtask-partial/1","experiment":"table1","seed":1,"sets":[["trials","18446744073709551615"]],"config":null,"shard":0,"shards":1,"version":"0.1.0","batches":{}}"#),
+            f(&sealed(r#"{"format":"cargo-xtask-partial/1","experiment":"table1","seed":1,"sets":[["trials","18446744073709551615"]],"config":null,"shard":0,"shards":1,"version":"0.1.0","batches":{}}"#)),
             merge,
             &["--set: trials: must be at most 1000000 "],
         ),
         case("no partial file", None, "merge /no/such/dir --out {out}", &["merge: /no/such/dir: cannot read"]),
+        case(
+            "a value flipped after the shard wrote it (was merged)",
+            f(&flipped),
+            merge,
+            &["{file}: checksum: does not match the contents"],
+        ),
+        case(
+            "no checksum",
+            f(with_values.as_bytes()),
+            merge,
+            &["{file}: checksum: is missing"],
+        ),
     ];
     assert_none(failures("partial", cases));
 }

@@ -194,6 +194,35 @@ fn one_and_two_threads_write_the_same_results() {
     assert_same_results(&s.0.join("one/table1"), &s.0.join("merged/table1"));
 }
 
+/// `json` (a partial file's value) with the checksum the runner gives it: SHA-256 of the JSON
+/// without its `checksum` member, written compactly.
+fn sealed(mut json: serde_json::Value) -> String {
+    use sha2::Digest;
+    json.as_object_mut().unwrap().remove("checksum");
+    let sum: String = sha2::Sha256::digest(json.to_string().as_bytes())
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect();
+    json.as_object_mut()
+        .unwrap()
+        .insert("checksum".into(), sum.into());
+    json.to_string()
+}
+
+/// Adds 1 to the first number found in `v` (depth first).
+fn flip_first_number(v: &mut serde_json::Value) -> bool {
+    match v {
+        serde_json::Value::Number(n) => {
+            let x = n.as_f64().unwrap() + 1.0;
+            *v = serde_json::json!(x);
+            true
+        }
+        serde_json::Value::Array(a) => a.iter_mut().any(flip_first_number),
+        serde_json::Value::Object(o) => o.values_mut().any(flip_first_number),
+        _ => false,
+    }
+}
+
 /// `merge <inputs> --out <out>` must exit 2 naming every word of `words`, print nothing and
 /// write nothing.
 fn refused(s: &Scratch, inputs: &[String], words: &[&str]) {
@@ -310,11 +339,35 @@ fn merge_refuses_partial_files_that_do_not_fit() {
         .unwrap();
     batch["values"].as_object_mut().unwrap().remove("1");
     let holed = s.path("cut/holed.json");
-    fs::write(&holed, json.to_string()).unwrap();
+    // Sealed again, as a shard that recorded too little would have sealed it.
+    fs::write(&holed, sealed(json)).unwrap();
     refused(
         &s,
         &[ok(0), holed.clone(), ok(2)],
         &[&holed, "trial 1", "missing"],
+    );
+    // One value changed after the shard wrote the file: the checksum no longer matches.
+    let mut json: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let value = json["batches"]
+        .as_object_mut()
+        .unwrap()
+        .values_mut()
+        .next()
+        .unwrap()["values"]
+        .as_object_mut()
+        .unwrap()
+        .values_mut()
+        .next()
+        .unwrap();
+    let before = value.to_string();
+    flip_first_number(value);
+    assert_ne!(value.to_string(), before, "a value was changed");
+    let flipped = s.path("cut/flipped.json");
+    fs::write(&flipped, json.to_string()).unwrap();
+    refused(
+        &s,
+        &[ok(0), flipped.clone(), ok(2)],
+        &[&flipped, "checksum", "does not match"],
     );
     // A file named for one shard holding another.
     let renamed = s.path("cut/partial-2-of-3.json");

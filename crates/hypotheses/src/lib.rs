@@ -18,7 +18,7 @@ mod measured;
 mod params;
 mod stack;
 
-pub use edmunds::{EdmundsErrors, eccentricity, manufacture};
+pub use edmunds::{EdmundsErrors, MAX_RANDOM, eccentricity, manufacture};
 pub use measured::{
     MEASURED_EXAMPLE, MeasuredEntry, MeasuredHypothesis, MeasuredTable, measured_file,
     measured_from_ron,

@@ -81,7 +81,7 @@ pub fn measured_from_ron(file_name: &str, text: &str) -> Result<MeasuredTable, H
                     "{file_name}: line {}, column {}",
                     e.position.line, e.position.col
                 ),
-                e.code.to_string(),
+                input_file::ron_rule(&e.code),
             )
         })?;
     if !(0.0..=1.0).contains(&raw.split) {
@@ -230,7 +230,7 @@ pub fn measured_file(path: &str) -> Result<&'static MeasuredHypothesis, Hypothes
             "needs a file name after `measured:`",
         ));
     }
-    let text = std::fs::read_to_string(path)
+    let text = input_file::read_to_string(std::path::Path::new(path), input_file::MAX_INPUT_BYTES)
         .map_err(|e| HypothesisError::new(path, format!("cannot read: {e}")))?;
     let key = (path.to_owned(), text);
     let mut loaded = LOADED.lock().unwrap_or_else(PoisonError::into_inner);

@@ -305,14 +305,37 @@ fn ideal_returns_the_gear_unchanged() {
 
 #[test]
 fn a_draw_that_reorders_tips_is_an_error_naming_the_gear() {
-    // 0.6 of a pitch on 223 teeth: two neighbours surely swap.
-    let h = lookup("edmunds-split").unwrap();
-    let p = params(h, &[("random", "0.6")]);
+    // A sinusoid of 90 degrees on 223 teeth: where it falls fastest, neighbours swap.
+    let h = lookup("sinusoid-only").unwrap();
+    let p = params(h, &[("systematic", "90")]);
     let e = h
         .apply(&gear(223), "e3", &p, &mut ChaCha8Rng::seed_from_u64(11))
         .unwrap_err();
     assert!(e.what.starts_with("gear `e3`: tips["), "{e}");
     assert!(e.rule.contains("strictly increasing"), "{e}");
+}
+
+#[test]
+fn a_random_error_that_would_reorder_tips_in_some_draws_is_refused_on_every_draw() {
+    // 0.2 of a pitch used to pass or fail by luck (by the number of trials); now it is refused
+    // whatever the draw, naming the rule; 0.1 passes.
+    let h = lookup("edmunds-split").unwrap();
+    for seed in 0..20 {
+        let p = params(h, &[("random", "0.2")]);
+        let e = h
+            .apply(&gear(15), "h2", &p, &mut ChaCha8Rng::seed_from_u64(seed))
+            .unwrap_err();
+        assert!(e.what.ends_with("random"), "{e}");
+        assert!(
+            e.rule.starts_with("must be at most 0.1 of the pitch"),
+            "{e}"
+        );
+        let p = params(h, &[("random", "0.1")]);
+        assert!(
+            h.apply(&gear(15), "h2", &p, &mut ChaCha8Rng::seed_from_u64(seed))
+                .is_ok()
+        );
+    }
 }
 
 #[test]

@@ -84,6 +84,8 @@ pub struct Context {
     ledger: Mutex<Ledger>,
     /// Told about every batch of trials (the runner's progress bars); never changes results.
     progress: Option<Hook>,
+    /// Each parameter's default, in declaration order.
+    defaults: Vec<&'static str>,
 }
 
 impl Clone for Context {
@@ -103,6 +105,7 @@ impl Clone for Context {
                 recorded: ledger.recorded.clone(),
             }),
             progress: self.progress.clone(),
+            defaults: self.defaults.clone(),
         }
     }
 }
@@ -174,6 +177,7 @@ impl Context {
             replay: Records::new(),
             ledger: Mutex::new(Ledger::default()),
             progress: None,
+            defaults: exp.params.iter().map(|p| p.default).collect(),
         })
     }
 
@@ -183,6 +187,18 @@ impl Context {
     pub fn with_progress(mut self, progress: Arc<dyn Progress>) -> Context {
         self.progress = Some(Hook(progress));
         self
+    }
+
+    /// The parameters set (with `--set` or a shorthand) to something other than their default,
+    /// as (name, value), in declaration order: how this run's inputs differ from the defaults,
+    /// which are the paper's.
+    pub fn changed(&self) -> Vec<(&'static str, &str)> {
+        self.params
+            .iter()
+            .zip(&self.defaults)
+            .filter(|(p, default)| p.overridden && p.value.trim() != default.trim())
+            .map(|(p, _)| (p.name, p.value.as_str()))
+            .collect()
     }
 
     /// Does the experiment declare a parameter called `name`?

@@ -39,9 +39,9 @@ mod trials;
 
 pub use context::{ConfigFile, Context, MAX_COUNT, MAX_TRIALS, TrialMode};
 pub use error::{DuplicateId, RunError};
-pub use output::{Agreement, OutputFile, Report, write_results};
+pub use output::{Agreement, OutputFile, Report, tidy, write_results};
 pub use progress::{BatchProgress, Progress};
-pub use table::{Table, fmt_f64};
+pub use table::{Table, fmt_f64, fmt_number};
 pub use trials::{Batch, Records, Shard, ShardRecords, f64_bits, merge_records};
 
 /// One parameter of an experiment, settable from the command line with `--set name=value`.

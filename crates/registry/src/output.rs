@@ -23,6 +23,9 @@ pub struct Report {
     pub engagements: u64,
     /// How our numbers compare with the paper's, where the experiment can judge it.
     pub agreement: Option<Agreement>,
+    /// The inputs the tables depend on, by parameter name (hypothesis, rule, gearing, measured
+    /// errors...), as the runner records them; stored in `tables.json` as `inputs`.
+    pub inputs: std::collections::BTreeMap<String, String>,
 }
 
 /// Agreement with the paper: how many of the paper's numbers fall inside our 95 % intervals
@@ -47,17 +50,39 @@ impl Report {
     }
 
     /// The tables as pretty-printed JSON:
-    /// `{"tables": [{"title", "columns", "rows", "notes"}], "files": [names]}`; cells stay strings,
-    /// exactly as printed.
+    /// `{"tables": [{"title", "columns", "rows", "notes"}], "files": [names], "trials",
+    /// "engagements", "agreement", "inputs": {name: value}}`; cells stay strings, exactly as
+    /// printed.
     pub fn to_json(&self) -> String {
-        let tables: Vec<Value> = self
+        // The cells again, numbers as JSON numbers (a cell that is one finite number), the
+        // others as printed.
+        let values: Vec<Value> = self
             .tables
             .iter()
             .map(|t| {
+                t.rows
+                    .iter()
+                    .map(|row| {
+                        row.iter()
+                            .map(|cell| match cell.trim().parse::<f64>() {
+                                Ok(x) if x.is_finite() => json!(x),
+                                _ => json!(cell),
+                            })
+                            .collect::<Vec<Value>>()
+                    })
+                    .collect()
+            })
+            .collect();
+        let tables: Vec<Value> = self
+            .tables
+            .iter()
+            .zip(values)
+            .map(|(t, values)| {
                 json!({
                     "title": t.title,
                     "columns": t.columns,
                     "rows": t.rows,
+                    "values": values,
                     "notes": t.notes,
                 })
             })
@@ -71,6 +96,7 @@ impl Report {
                 "trials": self.trials,
                 "engagements": self.engagements,
                 "agreement": self.agreement,
+                "inputs": self.inputs,
             })
         );
         s.push('\n');
@@ -100,7 +126,8 @@ impl OutputFile {
 const TABLE_MD: &str = "table.md";
 const TABLES_JSON: &str = "tables.json";
 
-/// Lowercase ASCII letters and digits, other runs of characters made one `-`.
+/// Lowercase ASCII letters and digits, other runs of characters made one `-`; at most 80
+/// characters, cut at the end of a word (a single word longer than that is cut at 80).
 fn slug(title: &str) -> String {
     let mut s = String::new();
     for c in title.chars() {
@@ -113,7 +140,15 @@ fn slug(title: &str) -> String {
     while s.ends_with('-') {
         s.pop();
     }
-    s.truncate(80);
+    if s.len() > 80 {
+        // Cut where a word ends: at a `-` (the 81st character being one means the 80 end a word).
+        let cut = if s.as_bytes()[80] == b'-' {
+            80
+        } else {
+            s[..80].rfind('-').unwrap_or(80)
+        };
+        s.truncate(cut);
+    }
     while s.ends_with('-') {
         s.pop();
     }
@@ -185,6 +220,80 @@ fn io_err(what: &str, path: &Path, e: std::io::Error) -> RunError {
     RunError::Internal(format!("{what} {}: {e}", path.display()))
 }
 
+/// The process id in the name of a leftover: `.NAME.tmp-PID...` or `.NAME.old-PID...`
+/// (results being written or moved aside by [`write_results`], or a file being written through
+/// a temporary sibling), with NAME and whether it is an `old` one; `None` for any other name.
+fn leftover(file_name: &str) -> Option<(&str, u32, bool)> {
+    let rest = file_name.strip_prefix('.')?;
+    let (name, after, old) = match (rest.rfind(".tmp-"), rest.rfind(".old-")) {
+        (Some(t), Some(o)) if o > t => (&rest[..o], &rest[o + 5..], true),
+        (Some(t), _) => (&rest[..t], &rest[t + 5..], false),
+        (None, Some(o)) => (&rest[..o], &rest[o + 5..], true),
+        (None, None) => return None,
+    };
+    let digits = after.split('-').next()?;
+    if name.is_empty() || digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    Some((name, digits.parse().ok()?, old))
+}
+
+/// Whether the process that left `path` has ended: on Linux, no `/proc/PID`; elsewhere, the
+/// leftover is more than a day old. This process's own leftovers are never ended ones.
+fn abandoned(path: &Path, pid: u32) -> bool {
+    if pid == std::process::id() {
+        return false;
+    }
+    if Path::new("/proc/self").exists() {
+        return !Path::new("/proc").join(pid.to_string()).exists();
+    }
+    fs::symlink_metadata(path)
+        .and_then(|m| m.modified())
+        .ok()
+        .and_then(|t| t.elapsed().ok())
+        .is_some_and(|age| age.as_secs() > 24 * 3600)
+}
+
+/// Cleans up after runs that were killed while writing into `parent` (an `--out` directory,
+/// or a results directory shards share): removes the hidden temporary folders and files they
+/// left (`.ID.tmp-PID-...`, with up to the whole results in them), and where a kill fell
+/// between the two renames of [`write_results`] - `ID` gone, its previous results still
+/// moved aside as `.ID.old-PID-...` - puts those back as `ID`. Leftovers of processes still
+/// running (a concurrent run) are left alone. A `parent` that does not exist is fine.
+///
+/// Errors: an I/O failure while removing or renaming ([`RunError::Internal`]).
+pub fn tidy(parent: &Path) -> Result<(), RunError> {
+    let Ok(entries) = fs::read_dir(parent) else {
+        return Ok(());
+    };
+    let mut found: Vec<(PathBuf, String, bool)> = Vec::new();
+    for entry in entries.flatten() {
+        let file_name = entry.file_name().to_string_lossy().into_owned();
+        let path = entry.path();
+        if let Some((name, pid, old)) = leftover(&file_name)
+            && abandoned(&path, pid)
+        {
+            found.push((path, name.to_owned(), old));
+        }
+    }
+    found.sort();
+    for (path, name, old) in found {
+        let target = parent.join(&name);
+        if old && fs::symlink_metadata(&target).is_err() {
+            fs::rename(&path, &target)
+                .map_err(|e| io_err("cannot put back the previous results", &target, e))?;
+            continue;
+        }
+        let removed = if fs::symlink_metadata(&path).is_ok_and(|m| m.is_dir()) {
+            fs::remove_dir_all(&path)
+        } else {
+            fs::remove_file(&path)
+        };
+        removed.map_err(|e| io_err("cannot remove the leftover", &path, e))?;
+    }
+    Ok(())
+}
+
 /// Writes `report` into `dir` (= `<out>/<id>`) atomically.
 ///
 /// Writes every [`OutputFile`] plus `table.md` ([`Report::text`]), `tables.json`
@@ -193,6 +302,8 @@ fn io_err(what: &str, path: &Path, e: std::io::Error) -> RunError {
 /// temporary directory first, which is then renamed over `dir` (a previous `dir` is replaced
 /// whole, so no stale file survives). The parent of `dir` is created if missing.
 ///
+/// Leftovers of killed runs beside `dir` are cleaned up first ([`tidy`]).
+///
 /// On any error ([`RunError::Internal`]: a file name that is not a plain name or is used
 /// twice, or an I/O failure) no temporary directory remains and `dir` is as it was before:
 /// absent if it was absent, the previous results if there were some.
@@ -200,6 +311,7 @@ pub fn write_results(dir: &Path, report: &Report) -> Result<(), RunError> {
     let files = plan(report)?;
     if let Some(parent) = dir.parent().filter(|p| !p.as_os_str().is_empty()) {
         fs::create_dir_all(parent).map_err(|e| io_err("cannot create", parent, e))?;
+        tidy(parent)?;
     }
     let tmp = sibling(dir, "tmp")?;
     fs::create_dir(&tmp).map_err(|e| io_err("cannot create", &tmp, e))?;
@@ -319,6 +431,11 @@ mod tests {
         let json: Value =
             serde_json::from_str(&fs::read_to_string(dir.join("tables.json")).unwrap()).unwrap();
         assert_eq!(json["tables"][0]["rows"][0][1], "0.25");
+        assert_eq!(
+            json["tables"][0]["values"][0][1], 0.25,
+            "numbers as numbers"
+        );
+        assert_eq!(json["tables"][1]["values"][0][0], "x");
         assert_eq!(json["files"][0], "fig.svg");
         // Only the results directory is left in out/.
         assert_eq!(
@@ -394,6 +511,69 @@ mod tests {
         assert_eq!(tmp.entries(), ["fig2", "plain-file"]);
     }
 
+    /// A pid no process has: above the kernel's largest (2^22).
+    const DEAD: u32 = 4_999_999;
+
+    #[test]
+    fn leftovers_of_killed_runs_are_removed() {
+        let tmp = TempDir::new("leftover");
+        let dir = tmp.0.join("pair");
+        write_results(&dir, &report()).unwrap();
+        // A run killed while writing: its temporary folder, holding large files.
+        let killed = tmp.0.join(format!(".pair.tmp-{DEAD}-0-123"));
+        fs::create_dir_all(&killed).unwrap();
+        fs::write(killed.join("pair.csv"), vec![b'1'; 1000]).unwrap();
+        // A shard killed while writing its partial file.
+        fs::write(tmp.0.join(format!(".summary.md.tmp-{DEAD}")), "x").unwrap();
+        // A concurrent run still writing (this test's own process): left alone.
+        let alive = tmp.0.join(format!(".pair.tmp-{}-0-1", std::process::id()));
+        fs::create_dir_all(&alive).unwrap();
+        write_results(&dir, &report()).unwrap();
+        assert_eq!(
+            tmp.entries(),
+            [
+                alive.file_name().unwrap().to_string_lossy().into(),
+                "pair".to_string()
+            ]
+        );
+    }
+
+    #[test]
+    fn a_kill_between_the_renames_loses_no_results() {
+        // Killed after the previous results were moved aside and before the new ones were
+        // renamed in: `fig2` is missing. Tidying puts the previous results back.
+        let tmp = TempDir::new("between");
+        let dir = tmp.0.join("fig2");
+        write_results(&dir, &report()).unwrap();
+        fs::rename(&dir, tmp.0.join(format!(".fig2.old-{DEAD}-0-9"))).unwrap();
+        fs::create_dir_all(tmp.0.join(format!(".fig2.tmp-{DEAD}-1-9"))).unwrap();
+        tidy(&tmp.0).unwrap();
+        assert_eq!(tmp.entries(), ["fig2"]);
+        assert!(dir.join("fig.svg").exists());
+        // Nothing to do for a folder that does not exist.
+        tidy(&tmp.0.join("absent")).unwrap();
+    }
+
+    #[test]
+    fn leftover_names() {
+        assert_eq!(leftover(".pair.tmp-12-0-5"), Some(("pair", 12, false)));
+        assert_eq!(leftover(".a.b.old-7-1-2"), Some(("a.b", 7, true)));
+        assert_eq!(
+            leftover(".partial-0-of-2.json.tmp-42"),
+            Some(("partial-0-of-2.json", 42, false))
+        );
+        for other in [
+            "pair",
+            ".pair",
+            ".pair.tmp-",
+            ".pair.tmp-x1",
+            ".tmp-3",
+            "table.md",
+        ] {
+            assert_eq!(leftover(other), None, "{other}");
+        }
+    }
+
     #[test]
     fn text_separates_tables_by_blank_lines() {
         let r = report();
@@ -410,5 +590,25 @@ mod tests {
         assert_eq!(slug("Mesh error (deg), N=24"), "mesh-error-deg-n-24");
         assert_eq!(slug("  ---  "), "");
         assert_eq!(slug("Ångström"), "ngstr-m");
+        // Cut at the end of a word, never inside one.
+        let long = "Table 3: trials (of 200) with at least one jam / disengagement, G = 40 %: ours (paper)";
+        let s = slug(long);
+        assert_eq!(
+            s,
+            "table-3-trials-of-200-with-at-least-one-jam-disengagement-g-40-ours-paper"
+        );
+        let longer = format!("{long} and more words beyond the limit");
+        let s = slug(&longer);
+        assert!(s.len() <= 80, "{s}");
+        assert!(
+            longer
+                .to_lowercase()
+                .contains(&s.replace('-', " ").split(' ').last().unwrap().to_string())
+        );
+        assert_eq!(
+            s,
+            "table-3-trials-of-200-with-at-least-one-jam-disengagement-g-40-ours-paper-and"
+        );
+        assert_eq!(slug(&"x".repeat(100)).len(), 80);
     }
 }

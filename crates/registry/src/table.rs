@@ -207,10 +207,30 @@ pub fn fmt_f64(x: f64, decimals: usize) -> String {
     }
 }
 
+/// A number for a message: as typed (`{x}`, the shortest form that reads back the same) from
+/// 10^-6 to 10^12, in exponent form outside (`1e308`, never 309 digits).
+pub fn fmt_number(x: f64) -> String {
+    let a = x.abs();
+    if !x.is_finite() || a == 0.0 || (1e-6..1e12).contains(&a) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
 #[cfg(test)]
 #[allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
 mod tests {
     use super::*;
+
+    #[test]
+    fn numbers_in_messages_stay_short() {
+        assert_eq!(fmt_number(1e308), "1e308");
+        assert_eq!(fmt_number(-2.5e-300), "-2.5e-300");
+        assert_eq!(fmt_number(20.000000001), "20.000000001");
+        assert_eq!(fmt_number(0.0), "0");
+        assert_eq!(fmt_number(f64::NAN), "NaN");
+    }
 
     fn s(v: &[&str]) -> Vec<String> {
         v.iter().map(|x| (*x).to_owned()).collect()

@@ -254,7 +254,7 @@ impl Gearing {
     /// The file cannot be read (location `read`), or [`Gearing::from_ron`] rejects it.
     pub fn load(path: &Path) -> Result<Gearing, GearingError> {
         let file = path.display().to_string();
-        match std::fs::read_to_string(path) {
+        match input_file::read_to_string(path, input_file::MAX_INPUT_BYTES) {
             Ok(text) => Gearing::from_ron(&file, &text),
             Err(e) => Err(Errors { file: &file }.at("read", e)),
         }
@@ -288,7 +288,7 @@ impl Gearing {
         let raw: RawGearing = ron::from_str(text).map_err(|e| {
             errors.at(
                 format_args!("line {}, column {}", e.position.line, e.position.col),
-                e.code,
+                input_file::ron_rule(&e.code),
             )
         })?;
         let mut gearing = Gearing {

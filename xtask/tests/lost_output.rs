@@ -1,0 +1,161 @@
+//! Results are never lost or left stale (issue 16, item 4): what a killed run leaves behind is
+//! cleaned up by the next run, results a kill left moved aside are put back, a merge never
+//! replaces the folder holding the partial files it merges, and an `--out` that cannot be
+//! written is refused before anything is computed.
+
+#![allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
+
+use std::fs;
+use std::time::Instant;
+
+mod support;
+use support::{Scratch, xtask};
+
+/// The id of a process that has ended.
+fn dead_pid() -> u32 {
+    let mut child = std::process::Command::new("true").spawn().unwrap();
+    let pid = child.id();
+    child.wait().unwrap();
+    pid
+}
+
+#[test]
+fn a_killed_runs_leftovers_are_cleaned_and_its_moved_aside_results_put_back() {
+    let s = Scratch::new("leftovers");
+    let out = s.0.join("out");
+    let dead = dead_pid();
+    // `pair` killed while writing: a hidden temporary folder with a large file in it.
+    let tmp = out.join(format!(".pair.tmp-{dead}-0-17"));
+    fs::create_dir_all(&tmp).unwrap();
+    fs::write(tmp.join("pair.csv"), vec![b'0'; 1 << 20]).unwrap();
+    // `fig3` killed between the two renames: fig3 is gone, its results moved aside.
+    let aside = out.join(format!(".fig3.old-{dead}-0-18"));
+    fs::create_dir_all(&aside).unwrap();
+    fs::write(aside.join("table.md"), "previous fig3 results").unwrap();
+    // A shard killed while writing its partial file.
+    fs::create_dir_all(out.join("table1")).unwrap();
+    let partial_tmp = out.join(format!("table1/.partial-0-of-2.json.tmp-{dead}"));
+    fs::write(&partial_tmp, "{").unwrap();
+
+    let o = xtask(&["run", "pair", "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        !tmp.exists(),
+        "the killed run's temporary folder is still there"
+    );
+    assert!(!aside.exists(), "the moved-aside results were not put back");
+    assert_eq!(
+        fs::read_to_string(out.join("fig3/table.md")).unwrap(),
+        "previous fig3 results"
+    );
+    assert!(out.join("pair/pair.csv").exists());
+
+    let o = xtask(&[
+        "run",
+        "table1",
+        "--shard",
+        "0/2",
+        "--set",
+        "trials=2",
+        "--set",
+        "lunar_turns=0.05",
+        "--set",
+        "metonic_turns=0.05",
+        "--set",
+        "saros_turns=0.05",
+        "--set",
+        "games_turns=0.05",
+        "--set",
+        "exeligmos_turns=0.05",
+        "--set",
+        "samples_per_engagement=2",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(!partial_tmp.exists(), "the killed shard's temporary file");
+    let hidden: Vec<String> = fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with('.'))
+        .collect();
+    assert!(hidden.is_empty(), "{hidden:?}");
+}
+
+#[test]
+fn a_merge_never_replaces_the_folder_holding_its_partial_files() {
+    let s = Scratch::new("merge-into-shards");
+    let sh = s.path("sh");
+    for k in 0..2 {
+        let o = xtask(&[
+            "run",
+            "table1",
+            "--shard",
+            &format!("{k}/2"),
+            "--set",
+            "trials=2",
+            "--set",
+            "lunar_turns=0.05",
+            "--set",
+            "metonic_turns=0.05",
+            "--set",
+            "saros_turns=0.05",
+            "--set",
+            "games_turns=0.05",
+            "--set",
+            "exeligmos_turns=0.05",
+            "--set",
+            "samples_per_engagement=2",
+            "--out",
+            &sh,
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+    let o = xtask(&["merge", &sh, "--out", &sh]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("--out: ") && err.contains("holds the partial file"),
+        "{err}"
+    );
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    for k in 0..2 {
+        assert!(
+            s.0.join(format!("sh/table1/partial-{k}-of-2.json"))
+                .exists(),
+            "partial file {k} was lost"
+        );
+    }
+    // Into another folder the merge goes through.
+    let o = xtask(&["merge", &sh, "--out", &s.path("merged")]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+#[test]
+fn an_unwritable_out_is_refused_before_anything_is_computed() {
+    let s = Scratch::new("unwritable");
+    let file = s.0.join("plain");
+    fs::write(&file, "x").unwrap();
+    let below_a_file = file.join("out");
+    for out in ["/proc/xtask-no-such/out", below_a_file.to_str().unwrap()] {
+        for cmd in [
+            vec!["run", "table1", "--trials", "200", "--out", out],
+            vec!["run", "all", "--out", out],
+        ] {
+            let start = Instant::now();
+            let o = xtask(&cmd);
+            let err = String::from_utf8_lossy(&o.stderr);
+            assert_eq!(o.status.code(), Some(2), "{cmd:?}: {err}");
+            assert!(
+                err.starts_with(&format!("--out: {out}: ")),
+                "{cmd:?}: {err}"
+            );
+            assert_eq!(err.trim_end().lines().count(), 1, "{cmd:?}: {err}");
+            assert!(
+                start.elapsed().as_secs() < 5,
+                "{cmd:?}: refused only after {:?} of computing",
+                start.elapsed()
+            );
+        }
+    }
+}
