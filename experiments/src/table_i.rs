@@ -80,13 +80,18 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let trials = table4::trials(ctx, TRIALS.name)?;
     let gs = clearances(ctx)?;
     let meshes: Vec<String> = g.meshes().iter().map(|m| m.label.clone()).collect();
-    // All cells in one call: Cases by clearance, as case_cells lays them out.
+    // All cells in one call: Cases by clearance, as case_cells lays them out. A hypothesis the
+    // Cases do not reach makes them the same cells: Case A's alone, in one row per clearance.
+    let cases_apply = crate::table3::cases_apply(hyp);
+    let cases = if cases_apply { CASES.len() } else { 1 };
     let mut cells = Vec::new();
     for &clearance in &gs {
-        cells.extend(case_cells(ctx, &g, hyp, clearance)?);
+        let mut these = case_cells(ctx, &g, hyp, clearance)?;
+        these.truncate(cases * meshes.len());
+        cells.extend(these);
     }
     let counts = run_cells(ctx, &g, &cells, trials, Stage::Own)?;
-    let per_g = CASES.len() * meshes.len();
+    let per_g = cases * meshes.len();
 
     let mut header = vec!["case".to_string(), "G [%]".to_string()];
     header.extend(meshes.iter().cloned());
@@ -98,7 +103,12 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     );
     let mut csv = format!("case,clearance,mesh,{CSV_COLUMNS}\n");
     let mut tally = Tally::default();
-    for (c, &(case, _, _)) in CASES.iter().enumerate() {
+    let alike = format!(
+        "Cases A-D alike ({} takes no random or systematic error)",
+        hyp.name()
+    );
+    for (c, &(case, _, _)) in CASES.iter().enumerate().take(cases) {
+        let case = if cases_apply { case } else { alike.as_str() };
         for (k, &clearance) in gs.iter().enumerate() {
             let gl = label(clearance, 0);
             let mut row = vec![
@@ -111,7 +121,11 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             ];
             for (m, mesh) in meshes.iter().enumerate() {
                 let n = &counts[k * per_g + c * meshes.len() + m];
-                let paper = paper_counts("tableI", &format!("{case}.{gl}.{mesh}"));
+                let paper = if cases_apply {
+                    paper_counts("tableI", &format!("{case}.{gl}.{mesh}"))
+                } else {
+                    (None, None)
+                };
                 row.push(cell_text(n, paper, &mut tally));
                 csv.push_str(&format!("{case},{gl},{mesh},{}\n", csv_columns(n, paper)));
             }

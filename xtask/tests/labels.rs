@@ -47,6 +47,23 @@ fn table3_with_an_errors_file_prints_one_row_and_names_its_inputs() {
         &out,
     ]);
     check_table3(&printed, &out, &errors);
+    // tableI: one row per clearance, not four Cases per clearance.
+    let printed = ok(&[
+        "run",
+        "tableI",
+        "--errors",
+        errors.to_str().unwrap(),
+        "--trials",
+        "2",
+        "--out",
+        &out,
+    ]);
+    let body: Vec<&str> = printed
+        .lines()
+        .filter(|l| l.starts_with("| ") && !l.starts_with("| case"))
+        .collect();
+    assert_eq!(body.len(), 3, "{printed}");
+    assert!(body[0].contains("Cases A-D alike"), "{printed}");
 }
 
 fn check_table3(printed: &str, out: &str, errors: &std::path::Path) {
