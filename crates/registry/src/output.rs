@@ -603,7 +603,7 @@ mod tests {
         assert!(
             longer
                 .to_lowercase()
-                .contains(&s.replace('-', " ").split(' ').last().unwrap().to_string())
+                .contains(&s.replace('-', " ").split(' ').next_back().unwrap().to_string())
         );
         assert_eq!(
             s,
