@@ -763,11 +763,10 @@ fn size_text(e: &contact::Event) -> String {
     use contact::EventKind;
     match e.kind {
         EventKind::Lock | EventKind::Strike => {
-            let wedge = if e.wedge_angle.is_nan() {
-                "tip on tip".to_string()
-            } else {
-                format!("wedge {:.1} deg", deg(e.wedge_angle))
-            };
+            let wedge = e.wedge_angle.map_or_else(
+                || "tip on tip".to_string(),
+                |a| format!("wedge {:.1} deg", deg(a)),
+            );
             format!("jump {:.3} deg, {wedge}", deg(e.theta_after - e.theta))
         }
         EventKind::Gap | EventKind::Slip => format!(
@@ -826,11 +825,8 @@ fn event_log(
             e.resumed.to_string(),
             e.phase_shift.to_string(),
             format!("{:.9}", deg(e.lag)),
-            if e.wedge_angle.is_nan() {
-                String::new()
-            } else {
-                format!("{:.9}", deg(e.wedge_angle))
-            },
+            e.wedge_angle
+                .map_or_else(String::new, |a| format!("{:.9}", deg(a))),
             format!("{:.9}", deg(e.phi)),
             format!("{:.9}", deg(e.theta)),
             format!("{:.9}", deg(e.theta_after)),

@@ -136,8 +136,8 @@ pub struct Event {
     /// At a lock or strike, the angle (radians, 0 to π/2) between the line of action at the
     /// closing contact (its common normal) and the line from the contact point to the driven
     /// gear's rotation centre: a force along the normal passes this close to the driven arbor.
-    /// NaN for the other kinds, and where the normal is not defined (tip on tip).
-    pub wedge_angle: f64,
+    /// None for the other kinds, and where the normal is not defined (tip on tip).
+    pub wedge_angle: Option<f64>,
 }
 
 impl Event {
@@ -155,7 +155,7 @@ impl Event {
             resumed_by: None,
             phase_shift: 0,
             lag: 0.0,
-            wedge_angle: f64::NAN,
+            wedge_angle: None,
         }
     }
 }
@@ -967,7 +967,7 @@ impl Run<'_> {
                 e.theta_after = after;
                 e.wedge_angle = mesh
                     .contact_normal(phi_j, theta_j, closing.0, closing.1)
-                    .map_or(f64::NAN, |(p, n)| mesh.angle_to_driven_centre(p, n));
+                    .map(|(p, n)| mesh.angle_to_driven_centre(p, n));
                 self.record(e, before);
                 self.theta = after;
                 self.classify_all(phi_j);

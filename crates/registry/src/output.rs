@@ -601,9 +601,13 @@ mod tests {
         let s = slug(&longer);
         assert!(s.len() <= 80, "{s}");
         assert!(
-            longer
-                .to_lowercase()
-                .contains(&s.replace('-', " ").split(' ').next_back().unwrap().to_string())
+            longer.to_lowercase().contains(
+                &s.replace('-', " ")
+                    .split(' ')
+                    .next_back()
+                    .unwrap()
+                    .to_string()
+            )
         );
         assert_eq!(
             s,

@@ -329,7 +329,7 @@ mod tests {
             resumed_by: None,
             phase_shift: 0,
             lag: 0.0,
-            wedge_angle: f64::NAN,
+            wedge_angle: None,
         }
     }
 
@@ -387,12 +387,12 @@ mod tests {
     fn friction_wedges_inside_the_cone_only() {
         let r = Rule::parse("friction:mu=0.2").unwrap();
         let mut s = event(EventKind::Strike);
-        s.wedge_angle = 0.1; // inside atan(0.2) = 0.197
+        s.wedge_angle = Some(0.1); // inside atan(0.2) = 0.197
         assert!(r.is_jam(&s));
-        s.wedge_angle = 0.3;
+        s.wedge_angle = Some(0.3);
         assert!(!r.is_jam(&s));
         let frictionless = Rule::parse("friction:mu=0").unwrap();
-        s.wedge_angle = 1e-6;
+        s.wedge_angle = Some(1e-6);
         assert!(!frictionless.is_jam(&s));
         assert_eq!(r.label(), "friction(mu=0.2)");
     }

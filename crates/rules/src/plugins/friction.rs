@@ -16,9 +16,9 @@ const PARAMS: &[ParamSpec] = &[ParamSpec {
 
 /// Whether a strike wedges: the line from the contact point to the driven gear's centre lies
 /// inside the friction cone (half-angle atan μ) about the contact normal. A tip meeting a tip
-/// has no normal (NaN): any line lies in its cone of normals, so it wedges.
+/// has no normal (None): any line lies in its cone of normals, so it wedges.
 fn wedges(e: &Event, mu: f64) -> bool {
-    e.wedge_angle.is_nan() || e.wedge_angle <= mu.atan()
+    e.wedge_angle.is_none_or(|a| a <= mu.atan())
 }
 
 impl EventRule for Friction {
