@@ -405,11 +405,13 @@ fn thorndike_pair(case: &Case) -> Option<thorndike::Pair> {
     .ok()
 }
 
+/// The locks and strikes of a run: the jams found by a closing contact (a blocked start, which
+/// overlaps from the first moment, has its own property).
 fn jams(traj: &Trajectory) -> Vec<Event> {
     traj.events()
         .iter()
         .copied()
-        .filter(|e| e.kind.is_contact_stop())
+        .filter(|e| matches!(e.kind, EventKind::Lock | EventKind::Strike))
         .collect()
 }
 
