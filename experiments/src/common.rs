@@ -317,3 +317,34 @@ pub fn category_plot(
     }
     Ok(svg)
 }
+
+#[cfg(test)]
+mod plot_tests {
+    use super::*;
+
+    #[test]
+    fn long_series_are_thinned_to_their_envelope() {
+        let short: Vec<(f64, f64)> = (0..36_001).map(|i| (i as f64, (i % 7) as f64)).collect();
+        assert_eq!(
+            thinned(&short),
+            short,
+            "the default runs' curves are drawn whole"
+        );
+        // 3.6 million points (pair at sample_deg 1e-4 drew them all: a 27 MB SVG).
+        let long: Vec<(f64, f64)> = (0..3_600_000)
+            .map(|i| {
+                (
+                    i as f64,
+                    ((i as f64) * 0.001).sin() + if i == 1_234_567 { 5.0 } else { 0.0 },
+                )
+            })
+            .collect();
+        let t = thinned(&long);
+        assert!(t.len() <= MAX_PLOT_POINTS, "{}", t.len());
+        assert_eq!(t.first(), long.first());
+        assert_eq!(t.last(), long.last());
+        assert!(t.windows(2).all(|w| w[0].0 < w[1].0), "in order");
+        let peak = t.iter().map(|p| p.1).fold(f64::MIN, f64::max);
+        assert!(peak > 5.0, "a one-point spike survives: {peak}");
+    }
+}

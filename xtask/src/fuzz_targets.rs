@@ -58,6 +58,15 @@ const PAIR_FIELDS: &[&str] = &[
     "start_deg",
     "run_deg",
     "sample_deg",
+    "sense",
+    "eccentricity_frame",
+    "arbor",
+    "offset",
+    "angle_deg",
+    "start",
+    "touching",
+    "at_rest",
+    "theta_deg",
 ];
 
 /// Field names of the gearing format (`crates/train/data/freeth2006.ron`).

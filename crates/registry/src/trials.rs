@@ -224,7 +224,8 @@ pub fn merge_records(parts: &[ShardRecords]) -> Result<Records, RunError> {
 
 /// `p` recorded exactly the batches `first` did.
 fn same_batches(first: &ShardRecords, p: &ShardRecords) -> Result<(), RunError> {
-    let hint = "the shards ran different batches; a stage whose results decide later batches must use Context::trials_whole";
+    // In the user's words: what to check, and what it means if the check passes.
+    let hint = "the shards ran different batches of trials: run every shard with the same seed, --set values, config file and build; if they were, the experiment lets earlier shard results decide later batches, a bug to report";
     if let Some(key) = first.records.keys().find(|k| !p.records.contains_key(*k)) {
         return Err(RunError::bad(
             &p.source,
@@ -443,7 +444,12 @@ mod tests {
         lacking.records.remove("whole");
         refused(
             &[part(0, 2, 7, &[]), lacking],
-            &["p1.json", "batch `whole`", "missing here", "trials_whole"],
+            &[
+                "p1.json",
+                "batch `whole`",
+                "missing here",
+                "same seed, --set values",
+            ],
         );
         let mut extra = part(1, 2, 7, &[]);
         extra.records.insert("more".into(), Batch::default());
