@@ -5,12 +5,17 @@
 //! interval `[lo, hi]` of driven angles at which the two teeth overlap (see [`Mesh::obstacle`]).
 //! The driven angle θ never lies strictly inside one. Obstacles *behind* θ (hi ≤ θ) push it: θ is
 //! the running maximum of their upper ends. Obstacles *ahead* (lo ≥ θ) are driver teeth the driven
-//! tooth is moving towards. Hence the two events:
+//! tooth is moving towards. Hence the events, each classified from the contact motion:
 //!
-//! - **jam**: an obstacle ahead reaches θ: the driven gear is held on both sides (or, having slack
-//!   behind it, would have to turn backwards, which the push model forbids);
-//! - **disengagement**: the pushing obstacle stops rising (its tips slip past each other) while no
-//!   other driver tooth touches: the driven gear is left behind.
+//! - an obstacle ahead reaches θ: a **lock** if a pair touches behind at that moment (held on both
+//!   sides), a **strike** if nothing does (the push model would have to turn it backwards);
+//! - the pushing obstacle stops rising (its tips slip past each other) while no other driver tooth
+//!   touches: a **gap**, sized when drive resumes and called a **slip** if it lasted a driver
+//!   pitch or more or moved the tooth phase;
+//! - no free driven position at the start: **blocked at start**.
+//!
+//! Which of these a table counts as a jam or a disengagement is an event rule's call (the `rules`
+//! crate), not the solver's.
 //!
 //! Between events θ(φ) is the maximum of closed-form contact curves, so it is exact at every φ;
 //! events are located by bisection or golden-section search on those curves to 1e-13 rad.
