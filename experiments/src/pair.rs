@@ -866,7 +866,8 @@ fn event_log(
     if traj.events().is_empty() {
         events.note("no event: the driven gear was driven throughout");
     }
-    (events, ev_rows, marks)
+    // The table is an excerpt of event-log.csv: the run writes the events once.
+    (events.data_in("event-log.csv"), ev_rows, marks)
 }
 
 /// The note under the summary table: the frames of the absolute angles.

@@ -74,6 +74,22 @@ fn a_run_writes_the_check_picture_absolute_angles_and_the_users_tooth_numbers() 
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let read = |f: &str| std::fs::read_to_string(s.0.join("out/pair").join(f)).unwrap();
+    // One file of events: the event table in table.md is an excerpt of event-log.csv, not a
+    // second CSV with fewer columns.
+    let mut csvs: Vec<String> = std::fs::read_dir(s.0.join("out/pair"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".csv"))
+        .collect();
+    csvs.sort();
+    let others: Vec<&String> = csvs
+        .iter()
+        .filter(|n| !matches!(n.as_str(), "event-log.csv" | "pair.csv"))
+        .collect();
+    assert!(
+        csvs.len() == 3 && others.len() == 1 && others[0].starts_with("mesh-from-"),
+        "the summary, pair.csv and event-log.csv only: {csvs:?}"
+    );
     let check = read("pair-check.svg");
     assert!(check.contains("<polygon id=\"driven-outline\""), "{check}");
     assert!(check.contains("tips_deg run clockwise here (sense: own)"));

@@ -185,6 +185,16 @@ fn plan(report: &Report) -> Result<Vec<(String, Vec<u8>)>, RunError> {
     files.push((TABLE_MD.to_owned(), report.text().into_bytes()));
     files.push((TABLES_JSON.to_owned(), report.to_json().into_bytes()));
     for (i, t) in report.tables.iter().enumerate() {
+        if let Some(data) = &t.data_file {
+            // An excerpt: its data is written once, in the file it names.
+            if !report.files.iter().any(|f| &f.name == data) {
+                return Err(RunError::Internal(format!(
+                    "table {:?} names data file {data:?}, which the report does not write",
+                    t.title
+                )));
+            }
+            continue;
+        }
         let mut base = slug(&t.title);
         if base.is_empty() {
             base = format!("table-{}", i + 1);
@@ -443,6 +453,45 @@ mod tests {
             1,
             "temporary directory left behind"
         );
+    }
+
+    #[test]
+    fn an_excerpt_table_has_no_csv_of_its_own() {
+        let tmp = TempDir::new("excerpt");
+        let dir = tmp.0.join("pair");
+        let mut r = report();
+        r.files.push(OutputFile::new("log.csv", "a\n1\n2\n"));
+        let mut excerpt = Table::new("Log excerpt", ["a"]);
+        excerpt.row(vec!["first".into()]);
+        r.tables[1] = excerpt.data_in("log.csv");
+        write_results(&dir, &r).unwrap();
+        let mut names: Vec<String> = fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        names.sort();
+        assert_eq!(
+            names,
+            [
+                "fig.svg",
+                "log.csv",
+                "mesh-error-deg.csv",
+                "table-3.csv",
+                "table.md",
+                "tables.json"
+            ]
+        );
+        // The excerpt is still shown.
+        let md = fs::read_to_string(dir.join("table.md")).unwrap();
+        assert!(
+            md.contains("### Log excerpt") && md.contains("first"),
+            "{md}"
+        );
+        // Naming a file the report does not write is a programming error, caught before writing.
+        let mut bad = report();
+        bad.tables[0] = Table::new("Log excerpt", ["a"]).data_in("nope.csv");
+        assert!(write_results(&tmp.0.join("bad"), &bad).is_err());
+        assert!(!tmp.0.join("bad").exists());
     }
 
     #[test]

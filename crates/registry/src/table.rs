@@ -12,6 +12,10 @@ pub struct Table {
     pub rows: Vec<Vec<String>>,
     /// Notes rendered below the table, one bullet each.
     pub notes: Vec<String>,
+    /// The report file that holds this table's full data (see [`Table::data_in`]); such a
+    /// table is shown in `table.md` and `tables.json` but gets no CSV file of its own, so a run
+    /// writes each kind of data once.
+    pub data_file: Option<String>,
 }
 
 impl Table {
@@ -26,7 +30,15 @@ impl Table {
             columns: columns.into_iter().map(|c| c.as_ref().to_owned()).collect(),
             rows: Vec::new(),
             notes: Vec::new(),
+            data_file: None,
         }
+    }
+
+    /// Marks the table as an excerpt of the report file `name` (which must be among the report's
+    /// files): no `<slug>.csv` is written for it.
+    pub fn data_in(mut self, name: impl Into<String>) -> Self {
+        self.data_file = Some(name.into());
+        self
     }
 
     /// Appends a row. A row shorter than the header is padded with empty cells when rendered.
