@@ -820,9 +820,9 @@ fn paper_table(
             {
                 judged = true;
                 if inside {
-                    agreement.inside += 1;
+                    agreement.consistent += 1;
                 } else {
-                    agreement.outside += 1;
+                    agreement.differ += 1;
                 }
             }
         }
@@ -1171,7 +1171,7 @@ mod tests {
         let r = r.unwrap();
         assert_eq!(r.trials, 2);
         let a = r.agreement.unwrap();
-        assert!(a.inside + a.outside >= 1, "{a:?}");
+        assert!(a.consistent + a.differ >= 1, "{a:?}");
         assert!(r.tables[0].columns.iter().any(|c| c == "measured table"));
     }
 }

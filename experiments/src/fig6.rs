@@ -216,7 +216,10 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         ],
         trials: grid.all().map(|c| c.trials).sum(),
         engagements: grid.all().map(|c| c.engagements).sum(),
-        agreement: Some(registry::Agreement { inside, outside }),
+        agreement: Some(registry::Agreement {
+            consistent: inside,
+            differ: outside,
+        }),
         ..Default::default()
     })
 }

@@ -7,6 +7,7 @@ mod clearance;
 mod clearance_design;
 mod equal_pair;
 mod errors;
+mod event_rules;
 mod events;
 mod failure;
 mod fig2;

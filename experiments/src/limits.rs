@@ -8,8 +8,11 @@ use geometry::Gear;
 use registry::RunError;
 
 use crate::common::deg;
-use crate::events::counts;
 use rules::Rule;
+
+/// A mesh's clearance limits (% of h): (smallest G without a jam, largest G without a
+/// disengagement); `None` where 0-100 % does not bracket one.
+pub type Limits = (Option<f64>, Option<f64>);
 
 /// An ideal mesh whose clearance can vary.
 #[derive(Debug, Clone, Copy)]
@@ -41,14 +44,28 @@ impl IdealPair {
         Ok(Some(mesh.run(0.0, turn, Start::Touching(0.0))))
     }
 
+    /// The events of [`IdealPair::run`] alone (no segments kept: cheaper), or None when the
+    /// gears overlap at every tooth.
+    fn events(&self, g: f64) -> Result<Option<Vec<contact::Event>>, RunError> {
+        let bad = |e: geometry::GeometryError| RunError::bad("--set", e.field, e.rule);
+        let driver = Gear::ideal(self.n1, self.r1, self.r1 - self.h).map_err(bad)?;
+        let driven = Gear::ideal(self.n2, self.r2, self.r2 - self.h).map_err(bad)?;
+        let d = geometry::centre_distance(self.r1, self.r2, self.h, g);
+        let Ok(mesh) = Mesh::new(driver, driven, d) else {
+            return Ok(None);
+        };
+        let turn = TAU * self.n1.max(self.n2) as f64 / self.n1 as f64;
+        Ok(Some(mesh.run_events(0.0, turn, Start::Touching(0.0))))
+    }
+
     /// Whether a full turn at clearance `g` jams by `rule` (or the gears overlap at every tooth).
     pub fn jams(&self, g: f64, rule: &Rule) -> Result<bool, RunError> {
-        Ok(self.run(g)?.is_none_or(|t| counts(rule, &t).0 > 0))
+        Ok(self.events(g)?.is_none_or(|e| rule.tally(&e).0))
     }
 
     /// Whether a full turn at clearance `g` disengages by `rule`.
     pub fn disengages(&self, g: f64, rule: &Rule) -> Result<bool, RunError> {
-        Ok(self.run(g)?.is_some_and(|t| counts(rule, &t).1 > 0))
+        Ok(self.events(g)?.is_some_and(|e| rule.tally(&e).1))
     }
 
     /// Standard deviation of the driven gear's Theoretical Difference (degrees) over a run.
@@ -69,19 +86,44 @@ impl IdealPair {
     /// The clearance limits (% of h), located by bisection to `tol` between grid points 0 and 100:
     /// (smallest G without a jam, largest G without a disengagement). None where the grid does not
     /// bracket a limit.
-    pub fn limits(&self, tol: f64, rule: &Rule) -> Result<(Option<f64>, Option<f64>), RunError> {
-        let mid = 50.0;
-        let jam = if self.jams(mid, rule)? || !self.jams(0.0, rule)? {
-            None
-        } else {
-            Some(boundary(0.0, mid, tol, |g| self.jams(g, rule))?)
+    pub fn limits(&self, tol: f64, rule: &Rule) -> Result<Limits, RunError> {
+        Ok(self.limits_under(tol, std::slice::from_ref(rule))?[0])
+    }
+
+    /// [`IdealPair::limits`] under each of `rules`, in their order. A run at a given G is made
+    /// once and counted under every rule (the searches of rules that agree visit the same G).
+    pub fn limits_under(&self, tol: f64, rules: &[Rule]) -> Result<Vec<Limits>, RunError> {
+        type Events = Option<std::rc::Rc<Vec<contact::Event>>>;
+        let memo: std::cell::RefCell<std::collections::HashMap<u64, Events>> =
+            std::cell::RefCell::default();
+        let at = |g: f64| -> Result<Events, RunError> {
+            if let Some(e) = memo.borrow().get(&g.to_bits()) {
+                return Ok(e.clone());
+            }
+            let e = self.events(g)?.map(std::rc::Rc::new);
+            memo.borrow_mut().insert(g.to_bits(), e.clone());
+            Ok(e)
         };
-        let dis = if self.disengages(mid, rule)? || !self.disengages(100.0, rule)? {
-            None
-        } else {
-            Some(boundary(100.0, mid, tol, |g| self.disengages(g, rule))?)
-        };
-        Ok((jam, dis))
+        rules
+            .iter()
+            .map(|rule| {
+                // Overlapping at every tooth counts as a jam.
+                let jams = |g: f64| Ok(at(g)?.is_none_or(|e| rule.tally(&e).0));
+                let disengages = |g: f64| Ok(at(g)?.is_some_and(|e| rule.tally(&e).1));
+                let mid = 50.0;
+                let jam = if jams(mid)? || !jams(0.0)? {
+                    None
+                } else {
+                    Some(boundary(0.0, mid, tol, jams)?)
+                };
+                let dis = if disengages(mid)? || !disengages(100.0)? {
+                    None
+                } else {
+                    Some(boundary(100.0, mid, tol, disengages)?)
+                };
+                Ok((jam, dis))
+            })
+            .collect()
     }
 }
 

@@ -183,7 +183,10 @@ fn prepare<'a>(g: &Gearing, spec: &'a CellSpec) -> Result<Prepared<'a>, RunError
 
 /// (jammed at least once, disengaged at least once) for trial `t` of a cell. Gears whose bodies
 /// would overlap at every angle (a large eccentricity at a small clearance) cannot turn: a jam.
-fn trial(p: &Prepared<'_>, seed: u64, t: u64) -> Result<(bool, bool), RunError> {
+/// One trial of cell `p`, counted under every rule of `rules` (at most [`MAX_RULES`]): bit `2r`
+/// of the result is "jammed at least once by rule r", bit `2r + 1` "disengaged at least once".
+/// The gears and the run do not depend on the rules: only the counting does.
+fn trial(p: &Prepared<'_>, seed: u64, t: u64, rules: &[rules::Rule]) -> Result<Outcome, RunError> {
     // One stream per (cell content, trial): both gears' errors, then the initial angle.
     let mut rng = trial_rng(seed, stream(&p.canonical, t));
     let spec = p.spec;
@@ -203,11 +206,26 @@ fn trial(p: &Prepared<'_>, seed: u64, t: u64) -> Result<(bool, bool), RunError> 
     )?;
     let phi0 = rng.random::<f64>() * TAU / driver.teeth() as f64;
     let Ok(mesh) = Mesh::new(driver, driven, p.centre_distance) else {
-        return Ok((true, false));
+        // Gears that overlap at every tooth are jammed under any rule.
+        return Ok((0..rules.len()).fold(0, |acc, r| acc | 1 << (2 * r)));
     };
     // Only the events are counted: the run keeps no segments.
     let events = mesh.run_events(phi0, phi0 + p.turn, Start::Touching(0.0));
-    Ok(spec.events.tally(&events))
+    Ok(rules.iter().enumerate().fold(0, |acc, (r, rule)| {
+        let (jam, dis) = rule.tally(&events);
+        acc | u64::from(jam) << (2 * r) | u64::from(dis) << (2 * r + 1)
+    }))
+}
+
+/// One trial of a flat batch under several rules: see [`trial`].
+type Outcome = u64;
+
+/// Most rules one batch counts under (two bits each in an [`Outcome`]).
+pub const MAX_RULES: usize = 32;
+
+/// Rule `r`'s (jammed, disengaged) in an [`Outcome`].
+fn under(o: Outcome, r: usize) -> (bool, bool) {
+    (o >> (2 * r) & 1 == 1, o >> (2 * r + 1) & 1 == 1)
 }
 
 /// Counts of every cell run in this process, by cache key (see [`run_cells`]).
@@ -257,123 +275,207 @@ pub fn run_cells(
     trials: u64,
     stage: Stage,
 ) -> Result<Vec<Counts>, RunError> {
+    let per_rule = run_cells_by_rule(ctx, g, cells, None, trials, stage)?;
+    Ok(per_rule.into_iter().map(|mut c| c.swap_remove(0)).collect())
+}
+
+/// [`run_cells`] counted under each of `rules` at once (the cells' own `events` rules are then
+/// ignored; `None`: each cell's own): `result[cell][rule]`. Each trial runs once whatever the
+/// number of rules, and every (cell, rule) count is cached, so an experiment run afterwards
+/// under one of the rules finds its cells already run.
+///
+/// Errors: those of [`run_cells`]; more than [`MAX_RULES`] rules.
+pub fn run_cells_by_rule(
+    ctx: &Context,
+    g: &Gearing,
+    cells: &[CellSpec],
+    rules: Option<&[rules::Rule]>,
+    trials: u64,
+    stage: Stage,
+) -> Result<Vec<Vec<Counts>>, RunError> {
     let whole = stage == Stage::Input;
     let partial = matches!(ctx.trial_mode(), TrialMode::Shard(_)) && !whole;
-    run_cells_with(g, cells, trials, ctx.seed(), !partial, |key, n, f| {
+    let batch = |key: &str, n, f: &(dyn Fn(u64) -> Result<Outcome, RunError> + Sync + Send)| {
         if whole {
             ctx.trials_whole(key, n, f)
         } else {
             ctx.trials(key, n, f)
         }
-    })
+    };
+    run_cells_under(g, cells, rules, trials, ctx.seed(), !partial, batch)
 }
 
-/// One trial of a flat batch: (jammed at least once, disengaged at least once).
-type Outcome = (bool, bool);
+/// A batch runner: `run_batch(key, n, f)` returns `f(t)` for t in 0..n in order.
+trait RunBatch:
+    FnOnce(
+    &str,
+    u64,
+    &(dyn Fn(u64) -> Result<Outcome, RunError> + Sync + Send),
+) -> Result<Vec<Outcome>, RunError>
+{
+}
 
-/// [`run_cells`] with the batch runner and the use of the cache given: `run_batch(key, n, f)`
-/// returns `f(t)` for t in 0..n in order.
+impl<F> RunBatch for F where
+    F: FnOnce(
+        &str,
+        u64,
+        &(dyn Fn(u64) -> Result<Outcome, RunError> + Sync + Send),
+    ) -> Result<Vec<Outcome>, RunError>
+{
+}
+
+/// [`run_cells`] with the batch runner and the use of the cache given.
+#[cfg(test)]
 fn run_cells_with(
     g: &Gearing,
     cells: &[CellSpec],
     trials: u64,
     seed: u64,
     use_cache: bool,
-    run_batch: impl FnOnce(
-        &str,
-        u64,
-        &(dyn Fn(u64) -> Result<Outcome, RunError> + Sync + Send),
-    ) -> Result<Vec<Outcome>, RunError>,
+    run_batch: impl RunBatch,
 ) -> Result<Vec<Counts>, RunError> {
+    let per_rule = run_cells_under(g, cells, None, trials, seed, use_cache, run_batch)?;
+    Ok(per_rule.into_iter().map(|mut c| c.swap_remove(0)).collect())
+}
+
+/// [`run_cells_by_rule`] with the batch runner and the use of the cache given.
+fn run_cells_under(
+    g: &Gearing,
+    cells: &[CellSpec],
+    rules: Option<&[rules::Rule]>,
+    trials: u64,
+    seed: u64,
+    use_cache: bool,
+    run_batch: impl RunBatch,
+) -> Result<Vec<Vec<Counts>>, RunError> {
     if trials == 0 {
         return Err(RunError::bad("--set", "trials", "must be at least 1"));
+    }
+    if rules.is_some_and(|r| r.is_empty() || r.len() > MAX_RULES) {
+        return Err(RunError::Internal(format!(
+            "cells are counted under 1 to {MAX_RULES} rules at once"
+        )));
     }
     let prepared: Vec<Prepared<'_>> = cells
         .iter()
         .map(|c| prepare(g, c))
         .collect::<Result<_, _>>()?;
-    let gearing_id = fnv1a64(format!("{g:?}").as_bytes());
-    let keys: Vec<String> = prepared
+    let rules_of: Vec<Vec<rules::Rule>> = cells
         .iter()
-        .map(|p| {
-            format!(
-                "{}|events={}|seed={seed}|trials={trials}|gearing={gearing_id:016x}",
-                p.canonical,
-                p.spec.events.label()
-            )
+        .map(|c| rules.map_or_else(|| vec![c.events.clone()], <[_]>::to_vec))
+        .collect();
+    let gearing_id = fnv1a64(format!("{g:?}").as_bytes());
+    // One key per (cell, rule): what the cache holds.
+    let keys: Vec<Vec<String>> = prepared
+        .iter()
+        .zip(&rules_of)
+        .map(|(p, rs)| {
+            rs.iter()
+                .map(|r| {
+                    format!(
+                        "{}|events={}|seed={seed}|trials={trials}|gearing={gearing_id:016x}",
+                        p.canonical,
+                        r.label()
+                    )
+                })
+                .collect()
         })
         .collect();
     let mut known: HashMap<String, Counts> = HashMap::new();
     if use_cache {
         let cached = cache().lock().unwrap_or_else(|e| e.into_inner());
-        for k in &keys {
+        for k in keys.iter().flatten() {
             if let Some(c) = cached.get(k) {
                 known.insert(k.clone(), *c);
             }
         }
     }
-    // Cells still to run, each once even if listed twice.
+    // Cells with a count still missing, each once even if listed twice (same keys).
     let mut todo: Vec<usize> = Vec::new();
-    let mut queued: HashMap<&str, ()> = HashMap::new();
-    for (i, k) in keys.iter().enumerate() {
-        if !known.contains_key(k) && queued.insert(k.as_str(), ()).is_none() {
+    let mut queued: HashMap<String, ()> = HashMap::new();
+    for (i, ks) in keys.iter().enumerate() {
+        let missing = ks.iter().any(|k| !known.contains_key(k));
+        if missing && queued.insert(ks.join("\n"), ()).is_none() {
             todo.push(i);
         }
     }
+    let outcomes = run_todo(&prepared, &rules_of, &keys, &todo, trials, seed, run_batch)?;
+    for (n, &i) in todo.iter().enumerate() {
+        let start = n * trials as usize;
+        for (r, k) in keys[i].iter().enumerate() {
+            let mut c = Counts {
+                trials,
+                engagements: trials * prepared[i].larger_teeth,
+                ..Counts::default()
+            };
+            for &o in &outcomes[start..start + trials as usize] {
+                let (jam, dis) = under(o, r);
+                c.jams += u64::from(jam);
+                c.disengagements += u64::from(dis);
+                c.failures += u64::from(jam || dis);
+            }
+            known.insert(k.clone(), c);
+        }
+    }
+    if use_cache {
+        let mut cached = cache().lock().unwrap_or_else(|e| e.into_inner());
+        for &i in &todo {
+            for k in &keys[i] {
+                if let Some(c) = known.get(k) {
+                    cached.insert(k.clone(), *c);
+                }
+            }
+        }
+    }
+    keys.iter()
+        .map(|ks| {
+            ks.iter()
+                .map(|k| {
+                    known
+                        .get(k)
+                        .copied()
+                        .ok_or_else(|| RunError::Internal(format!("cell {k} was not run")))
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Runs every trial of the cells `todo` in one flat batch named by everything that determines
+/// it (the cells' keys, in order); the outcomes in (cell, trial) order.
+fn run_todo(
+    prepared: &[Prepared<'_>],
+    rules_of: &[Vec<rules::Rule>],
+    keys: &[Vec<String>],
+    todo: &[usize],
+    trials: u64,
+    seed: u64,
+    run_batch: impl RunBatch,
+) -> Result<Vec<Outcome>, RunError> {
     let jobs: Vec<(usize, u64)> = todo
         .iter()
         .flat_map(|&i| (0..trials).map(move |t| (i, t)))
         .collect();
-    // The batch is named by everything that determines it: the cells' keys, in order.
+    if jobs.is_empty() {
+        return Ok(Vec::new());
+    }
     let mut names = String::new();
-    for &i in &todo {
-        names.push_str(&keys[i]);
-        names.push('\n');
+    for &i in todo {
+        for k in &keys[i] {
+            names.push_str(k);
+            names.push('\n');
+        }
     }
     let batch = format!(
         "pair-cells/{}-cells-of-{trials}/{:016x}",
         todo.len(),
         fnv1a64(names.as_bytes())
     );
-    let outcomes: Vec<Outcome> = if jobs.is_empty() {
-        Vec::new()
-    } else {
-        let job = |n: u64| -> Result<Outcome, RunError> {
-            let (i, t) = jobs[n as usize];
-            trial(&prepared[i], seed, t)
-        };
-        run_batch(&batch, jobs.len() as u64, &job)?
+    let job = |n: u64| -> Result<Outcome, RunError> {
+        let (i, t) = jobs[n as usize];
+        trial(&prepared[i], seed, t, &rules_of[i])
     };
-    for (n, &i) in todo.iter().enumerate() {
-        let start = n * trials as usize;
-        let mut c = Counts {
-            trials,
-            engagements: trials * prepared[i].larger_teeth,
-            ..Counts::default()
-        };
-        for &(jam, dis) in &outcomes[start..start + trials as usize] {
-            c.jams += u64::from(jam);
-            c.disengagements += u64::from(dis);
-            c.failures += u64::from(jam || dis);
-        }
-        known.insert(keys[i].clone(), c);
-    }
-    if use_cache {
-        let mut cached = cache().lock().unwrap_or_else(|e| e.into_inner());
-        for &i in &todo {
-            if let Some(c) = known.get(&keys[i]) {
-                cached.insert(keys[i].clone(), *c);
-            }
-        }
-    }
-    keys.iter()
-        .map(|k| {
-            known
-                .get(k)
-                .copied()
-                .ok_or_else(|| RunError::Internal(format!("cell {k} was not run")))
-        })
-        .collect()
+    run_batch(&batch, jobs.len() as u64, &job)
 }
 
 /// Trials `range` (indices, e.g. `40..60`) of one cell: a stretch of a cell's trials, for a
@@ -419,11 +521,7 @@ fn run_cell_ranges_with(
     g: &Gearing,
     ranges: &[CellRange],
     seed: u64,
-    run_batch: impl FnOnce(
-        &str,
-        u64,
-        &(dyn Fn(u64) -> Result<Outcome, RunError> + Sync + Send),
-    ) -> Result<Vec<Outcome>, RunError>,
+    run_batch: impl RunBatch,
 ) -> Result<Vec<Counts>, RunError> {
     if let Some(r) = ranges.iter().find(|r| r.range.is_empty()) {
         return Err(RunError::bad(
@@ -461,7 +559,12 @@ fn run_cell_ranges_with(
     } else {
         let job = |n: u64| -> Result<Outcome, RunError> {
             let (i, t) = jobs[n as usize];
-            trial(&prepared[i], seed, t)
+            trial(
+                &prepared[i],
+                seed,
+                t,
+                std::slice::from_ref(&prepared[i].spec.events),
+            )
         };
         run_batch(&batch, jobs.len() as u64, &job)?
     };
@@ -477,7 +580,8 @@ fn run_cell_ranges_with(
             }
         })
         .collect();
-    for (&(i, _), &(jam, dis)) in jobs.iter().zip(&outcomes) {
+    for (&(i, _), &o) in jobs.iter().zip(&outcomes) {
+        let (jam, dis) = under(o, 0);
         counts[i].jams += u64::from(jam);
         counts[i].disengagements += u64::from(dis);
         counts[i].failures += u64::from(jam || dis);
@@ -492,87 +596,127 @@ pub fn paper_counts(id: &str, key: &str) -> (Option<u64>, Option<u64>) {
     (get("jam"), get("dis"))
 }
 
-/// Is the paper's count (out of [`PAPER_TRIALS`]) inside our interval? Compared as rates, so a
-/// run with another trial count is still judged; no paper value counts as agreeing.
-pub fn agrees(ours: &Proportion, paper: Option<u64>) -> bool {
-    paper.is_none_or(|p| {
-        let rate = p as f64 / PAPER_TRIALS as f64;
-        rate >= ours.lo - 1e-12 && rate <= ours.hi + 1e-12
-    })
+/// Is the paper's count (out of [`PAPER_TRIALS`]) consistent with ours (`k` of `n`)? The paper's
+/// count is a sample of 200 trials too, so the two are compared as two samples: consistent
+/// unless Fisher's exact two-sided test separates them at 5 % ([`stats::consistent`]). A run
+/// with another trial count is judged the same way. No paper value counts as consistent.
+pub fn consistent_with_paper(k: u64, n: u64, paper: Option<u64>) -> bool {
+    paper.is_none_or(|p| stats::consistent(k, n, p.min(PAPER_TRIALS), PAPER_TRIALS))
 }
 
-/// How many of the paper's cells fall inside our intervals, and how many outside.
-#[derive(Debug, Clone, Copy, Default)]
+/// Two-sided p-value of Fisher's exact test between our `k` of `n` and the paper's count of 200.
+pub fn paper_p_value(k: u64, n: u64, paper: Option<u64>) -> Option<f64> {
+    paper.map(|p| stats::fisher_exact_two_sided(k, n, p.min(PAPER_TRIALS), PAPER_TRIALS))
+}
+
+/// How many of the paper's counts are consistent with ours, jams and disengagements apart.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct Tally {
-    /// Cells whose paper counts (both) are inside our 95 % intervals.
-    pub inside: u64,
-    /// Cells with a paper count outside.
-    pub outside: u64,
+    /// The paper's jam counts consistent with ours.
+    pub jams_consistent: u64,
+    /// The paper's jam counts compared.
+    pub jams_compared: u64,
+    /// The paper's disengagement counts consistent with ours.
+    pub dis_consistent: u64,
+    /// The paper's disengagement counts compared.
+    pub dis_compared: u64,
 }
 
 impl Tally {
-    /// As the report's agreement.
+    /// Adds the comparison of one cell with the paper's counts (those it gives).
+    pub fn add(&mut self, c: &Counts, paper: (Option<u64>, Option<u64>)) {
+        if paper.0.is_some() {
+            self.jams_compared += 1;
+            self.jams_consistent += u64::from(consistent_with_paper(c.jams, c.trials, paper.0));
+        }
+        if paper.1.is_some() {
+            self.dis_compared += 1;
+            self.dis_consistent +=
+                u64::from(consistent_with_paper(c.disengagements, c.trials, paper.1));
+        }
+    }
+
+    /// As the report's agreement: every paper count compared, jams and disengagements alike.
     pub fn agreement(&self) -> registry::Agreement {
+        let consistent = self.jams_consistent + self.dis_consistent;
         registry::Agreement {
-            inside: self.inside,
-            outside: self.outside,
+            consistent,
+            differ: self.jams_compared + self.dis_compared - consistent,
         }
     }
 
     /// The note printed under a table of cells.
     pub fn note(&self) -> String {
         format!(
-            "Cells where the paper's counts lie inside our 95 % Wilson intervals: {}; outside: {}.",
-            self.inside, self.outside
+            "The paper's counts consistent with ours by Fisher's exact two-sample test (both are samples: ours of this run's trials, the paper's of 200; separated at 5 %): jams {}, disengagements {}. `*` after one of our counts: the test separates it from the paper's.",
+            share(self.jams_consistent, self.jams_compared),
+            share(self.dis_consistent, self.dis_compared),
         )
     }
 }
 
-/// A printed cell, `jams/dis (paper jams/paper dis)` with `*` when a paper count lies outside our
-/// 95 % interval; the cell's comparison is added to `tally` when the paper gives it.
-pub fn cell_text(c: &Counts, paper: (Option<u64>, Option<u64>), tally: &mut Tally) -> String {
-    let ok = agrees(&c.jam_interval(), paper.0) && agrees(&c.dis_interval(), paper.1);
-    if paper.0.is_some() || paper.1.is_some() {
-        if ok {
-            tally.inside += 1;
-        } else {
-            tally.outside += 1;
-        }
+/// `k of n (p %)`, or `none compared`.
+pub fn share(k: u64, n: u64) -> String {
+    if n == 0 {
+        "none compared".into()
+    } else {
+        format!("{k} of {n} ({} %)", fmt_f64(100.0 * k as f64 / n as f64, 0))
     }
+}
+
+/// A printed cell, `jams/dis (paper jams/paper dis)`, with `*` after each of our counts that
+/// the two-sample test separates from the paper's ([`consistent_with_paper`]); the cell's
+/// comparison is added to `tally`.
+pub fn cell_text(c: &Counts, paper: (Option<u64>, Option<u64>), tally: &mut Tally) -> String {
+    tally.add(c, paper);
+    let mark = |k: u64, p: Option<u64>| {
+        if consistent_with_paper(k, c.trials, p) {
+            ""
+        } else {
+            "*"
+        }
+    };
     let show = |p: Option<u64>| p.map_or_else(|| "-".to_string(), |v| v.to_string());
     format!(
-        "{}/{} ({}/{}){}",
+        "{}{}/{}{} ({}/{})",
         c.jams,
+        mark(c.jams, paper.0),
         c.disengagements,
+        mark(c.disengagements, paper.1),
         show(paper.0),
         show(paper.1),
-        if ok { "" } else { "*" }
     )
 }
 
 /// CSV columns of one cell's counts, after [`CSV_COLUMNS`]: counts, interval bounds (as counts
-/// out of our trials) and the paper's counts (out of 200; empty when it gives none).
+/// out of our trials), the paper's counts (out of 200; empty when it gives none) and the
+/// two-sample test's p-values.
 pub fn csv_columns(c: &Counts, paper: (Option<u64>, Option<u64>)) -> String {
     let (wj, wd) = (c.jam_interval(), c.dis_interval());
     let n = c.trials as f64;
     let show = |p: Option<u64>| p.map_or_else(String::new, |v| v.to_string());
+    let p_value = |k: u64, p: Option<u64>| {
+        paper_p_value(k, c.trials, p).map_or_else(String::new, |v| format!("{v:.4}"))
+    };
     format!(
-        "{},{},{},{},{},{},{},{},{}",
+        "{},{},{},{},{},{},{},{},{},{},{}",
         c.trials,
         c.jams,
         wj.lo * n,
         wj.hi * n,
         show(paper.0),
+        p_value(c.jams, paper.0),
         c.disengagements,
         wd.lo * n,
         wd.hi * n,
-        show(paper.1)
+        show(paper.1),
+        p_value(c.disengagements, paper.1),
     )
 }
 
-/// Header of [`csv_columns`].
-pub const CSV_COLUMNS: &str =
-    "trials,jams,jam_lo,jam_hi,paper_jams,disengagements,dis_lo,dis_hi,paper_disengagements";
+/// Header of [`csv_columns`]: `*_p_fisher` is the two-sided p-value of Fisher's exact test of
+/// our count against the paper's (empty where the paper gives none).
+pub const CSV_COLUMNS: &str = "trials,jams,jam_lo,jam_hi,paper_jams,jam_p_fisher,disengagements,dis_lo,dis_hi,paper_disengagements,dis_p_fisher";
 
 /// A grid value as printed and as keyed in `paper.ron`: at least `min_decimals` decimals, more
 /// if needed to give the value back exactly (0.04 → `0.040` with 3, 0.0375 → `0.0375`).
@@ -611,6 +755,123 @@ mod tests {
             clearance: 40.0,
             events: rules::Rule::default(),
         }
+    }
+
+    #[test]
+    fn cells_are_marked_by_the_two_sample_test_not_by_our_interval() {
+        let c = |jams: u64, dis: u64| Counts {
+            jams,
+            disengagements: dis,
+            trials: 200,
+            ..Counts::default()
+        };
+        // 40 of 200 against the paper's 55: outside our Wilson interval (14.9-26.2 %, 27.5 % is
+        // above it), but as two samples of 200 not separated at 5 % (Fisher p = 0.100).
+        assert!(!c(40, 0).jam_interval().contains_count(55));
+        assert!(consistent_with_paper(40, 200, Some(55)));
+        // 40 against 70 is separated (p = 0.0011).
+        assert!(!consistent_with_paper(40, 200, Some(70)));
+        // No paper value: nothing to separate.
+        assert!(consistent_with_paper(3, 200, None));
+        let mut tally = Tally::default();
+        assert_eq!(
+            cell_text(&c(40, 5), (Some(55), Some(30)), &mut tally),
+            "40/5* (55/30)"
+        );
+        assert_eq!(
+            cell_text(&c(40, 30), (Some(70), None), &mut tally),
+            "40*/30 (70/-)"
+        );
+        assert_eq!(
+            tally,
+            Tally {
+                jams_consistent: 1,
+                jams_compared: 2,
+                dis_consistent: 0,
+                dis_compared: 1,
+            }
+        );
+        assert_eq!(
+            tally.agreement(),
+            registry::Agreement {
+                consistent: 1,
+                differ: 2
+            }
+        );
+        assert!(
+            tally
+                .note()
+                .contains("jams 1 of 2 (50 %), disengagements 0 of 1 (0 %)")
+        );
+        // A run of another size is compared as a sample of its own size.
+        assert!(consistent_with_paper(4, 20, Some(55)));
+        assert!(!consistent_with_paper(20, 20, Some(55)));
+    }
+
+    #[test]
+    fn counting_under_several_rules_gives_each_rules_own_counts() {
+        let g = Gearing::freeth2006();
+        let strict = rules::Rule::parse("strict").unwrap();
+        let paper = rules::Rule::parse("paper").unwrap();
+        // Case D-like errors at a wide clearance: gaps and slips happen, so the rules differ.
+        let mut cells = vec![cell("m3-e3", 0.08), cell("b2-c1", 0.08)];
+        for c in &mut cells {
+            c.clearance = 70.0;
+        }
+        let both = run_cells_under(
+            &g,
+            &cells,
+            Some(&[strict.clone(), paper.clone()]),
+            6,
+            11,
+            false,
+            local,
+        )
+        .unwrap();
+        for (r, rule) in [strict, paper].iter().enumerate() {
+            let own: Vec<CellSpec> = cells
+                .iter()
+                .map(|c| CellSpec {
+                    events: rule.clone(),
+                    ..c.clone()
+                })
+                .collect();
+            let alone = run_cells_with(&g, &own, 6, 11, false, local).unwrap();
+            for (i, a) in alone.iter().enumerate() {
+                assert_eq!(both[i][r], *a, "cell {i} under {}", rule.label());
+            }
+        }
+        // The rules must differ somewhere here, or the test shows nothing.
+        assert!(
+            both.iter().any(|c| c[0] != c[1]),
+            "strict and paper count alike: {both:?}"
+        );
+        // Counted under both, then read from the cache under one: the same counts.
+        forget_cache();
+        let filled = run_cells_under(
+            &g,
+            &cells[..1],
+            Some(&[
+                rules::Rule::parse("strict").unwrap(),
+                rules::Rule::parse("paper").unwrap(),
+            ]),
+            6,
+            11,
+            true,
+            local,
+        )
+        .unwrap();
+        let mut paper_cell = cells[0].clone();
+        paper_cell.events = rules::Rule::parse("paper").unwrap();
+        let never = |_: &str,
+                     _: u64,
+                     _: &(dyn Fn(u64) -> Result<Outcome, RunError> + Sync + Send)|
+         -> Result<Vec<Outcome>, RunError> {
+            panic!("the cell should come from the cache")
+        };
+        let cached = run_cells_with(&g, &[paper_cell], 6, 11, true, never).unwrap();
+        assert_eq!(cached[0], filled[0][1]);
+        forget_cache();
     }
 
     #[test]

@@ -107,7 +107,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     header.extend(meshes.iter().map(|m| (*m).to_string()));
     let mut ours = Table::new(
         format!(
-            "Table 3: trials (of {trials}) with at least one jam / disengagement, G = {clearance} %: ours (paper); * where the paper's count is outside our 95 % interval"
+            "Table 3: trials (of {trials}) with at least one jam / disengagement, G = {clearance} %: ours (paper); * where a two-sample test separates our count from the paper's"
         ),
         header,
     );

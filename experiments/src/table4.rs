@@ -138,7 +138,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     header.extend(grid.meshes.iter().cloned());
     let mut table = Table::new(
         format!(
-            "Table 4: trials (of {trials}) with at least one jam / disengagement, random error only, G = {clearance} %: ours (paper); * where the paper's count is outside our 95 % interval"
+            "Table 4: trials (of {trials}) with at least one jam / disengagement, random error only, G = {clearance} %: ours (paper); * where a two-sample test separates our count from the paper's"
         ),
         header,
     );

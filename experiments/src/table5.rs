@@ -18,9 +18,48 @@ use crate::tolerance::{
     SYSTEMATIC_TO,
 };
 
+/// Where each mesh's random error comes from: derived, as the paper did, or the paper's own row.
+pub(crate) const EMAX: Param = Param {
+    name: "emax",
+    default: "derived",
+    unit: "",
+    help: "each mesh's random error (row E. max): `derived` from Table 4's grid by the rule, as the paper did, or `paper`, the paper's own E. max row, so that every cell is run on the paper's inputs and compared like for like",
+};
+
+/// The `emax` parameter: `true` for the paper's own E. max row.
+pub(crate) fn emax_from_paper(ctx: &Context) -> Result<bool, RunError> {
+    match ctx.param(EMAX.name)? {
+        "derived" => Ok(false),
+        "paper" => Ok(true),
+        other => Err(RunError::bad(
+            "--set",
+            EMAX.name,
+            format!("must be `derived` or `paper` (got `{other}`)"),
+        )),
+    }
+}
+
+/// Each mesh's random error from the paper's E. max row; an error naming the first mesh the
+/// paper gives none for (a custom gearing).
+fn paper_emax_row(meshes: &[String]) -> Result<Vec<Option<f64>>, RunError> {
+    meshes
+        .iter()
+        .map(|m| {
+            paper_random(m).map(Some).ok_or_else(|| {
+                RunError::bad(
+                    "--set",
+                    EMAX.name,
+                    format!("`paper` needs the paper's E. max of every mesh, and it gives none for mesh {m}"),
+                )
+            })
+        })
+        .collect()
+}
+
 const PARAMS: &[Param] = &[
     TRIALS,
     RULE,
+    EMAX,
     RANDOM_FROM,
     RANDOM_TO,
     RANDOM_STEP,
@@ -76,6 +115,9 @@ impl Tolerances {
 /// the systematic grid on top of it (split by the `split` parameter) and derives the largest
 /// tolerable systematic amplitude the same way. Every cell goes through the shared runner, so
 /// cells Table 4 or Table 5 already ran in this process are not run again.
+///
+/// With `--set emax=paper` the random errors are the paper's own E. max row instead and Table
+/// 4's grid is not run (`random_grid` then has the grid's values but no counts).
 pub(crate) fn derive(
     ctx: &Context,
     g: &Gearing,
@@ -98,8 +140,21 @@ pub(crate) fn derive(
             format!("must be between 0 and 1 (got {split})"),
         ));
     }
-    let random_grid = table4::run_grid(ctx, g, hyp, trials, Stage::Input)?;
-    let random = random_grid.tolerable(trials, rule);
+    let (random_grid, random) = if emax_from_paper(ctx)? {
+        let meshes: Vec<String> = g.meshes().iter().map(|m| m.label.clone()).collect();
+        let random = paper_emax_row(&meshes)?;
+        let values = tolerance::grid(ctx, &RANDOM_FROM, &RANDOM_TO, &RANDOM_STEP)?;
+        let grid = RandomGrid {
+            values,
+            meshes,
+            counts: Vec::new(),
+        };
+        (grid, random)
+    } else {
+        let grid = table4::run_grid(ctx, g, hyp, trials, Stage::Input)?;
+        let random = grid.tolerable(trials, rule);
+        (grid, random)
+    };
     let mut cells = Vec::new();
     let mut index = Vec::new();
     for &s in &sys_values {
@@ -191,6 +246,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let rule = tolerance::rule(ctx)?;
     let (clearance, split) = (ctx.f64("clearance")?, ctx.f64("split")?);
     let t = derive(ctx, &g, hyp, trials, rule, Stage::Own)?;
+    let given = emax_from_paper(ctx)?;
     let meshes = &t.random_grid.meshes;
     let allowed = tolerance::allowed_jams(trials, rule);
 
@@ -198,7 +254,12 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     header.extend(meshes.iter().cloned());
     let mut table = Table::new(
         format!(
-            "Table 5: trials (of {trials}) with at least one jam / disengagement against the systematic error (share {split} on the sinusoid, the rest on the axis) at each mesh's largest tolerable random error (row E. max), G = {clearance} %: ours (paper); * where the paper's value is outside our 95 % interval (E. max: differs)"
+            "Table 5: trials (of {trials}) with at least one jam / disengagement against the systematic error (share {split} on the sinusoid, the rest on the axis) at each mesh's largest tolerable random error (row E. max{}), G = {clearance} %: ours (paper); * where a two-sample test separates our count from the paper's (E. max: differs)",
+            if given {
+                ": the paper's own, emax=paper"
+            } else {
+                ""
+            }
         ),
         header,
     );
@@ -265,7 +326,10 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     }
     table.row(row);
     table.note(tally.note());
-    table.note(format!(
+    if given {
+        table.note("E. max (random): the paper's own row (emax=paper), not derived from Table 4: every cell runs on the paper's inputs, so all of them are compared like for like.");
+    } else {
+        table.note(format!(
         "E. max (random): the largest random error of Table 4's grid up to which every value has at most {allowed} of {trials} trials jammed (rule {rule} %); ours agree with the paper's row for {same} of {} meshes. Below the grid: `< {}`, and the column is not run.",
         meshes.len(),
         t.random_grid
@@ -273,6 +337,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             .first()
             .map_or_else(|| "-".into(), |v| label(*v, 3)),
     ));
+    }
     table.note(format!(
         "E. max (systematic): the same rule on this table's jams (disengagements are not counted, as in the paper); in brackets the value the paper's own counts give by that rule (its text: e1-b3 up to 0.6, d2-e2 up to 0.1). `< {}`: even the smallest amplitude fails.",
         t.sys_values
@@ -317,6 +382,47 @@ mod tests {
         let ctx = Context::new(exp, 2025, 2, &overrides, None).unwrap();
         let report = (exp.run)(&ctx).unwrap();
         report.tables[0].rows[0].clone()
+    }
+
+    #[test]
+    fn emax_paper_runs_on_the_papers_own_row() {
+        crate::link();
+        let map = registry::experiments().unwrap();
+        let exp = map["table5"];
+        let set = |k: &str, v: &str| (k.to_string(), v.to_string());
+        let overrides = [
+            set("trials", "4"),
+            set("emax", "paper"),
+            set("systematic_from", "0.1"),
+            set("systematic_to", "0.1"),
+        ];
+        let ctx = Context::new(exp, 2025, 2, &overrides, None).unwrap();
+        let report = (exp.run)(&ctx).unwrap();
+        let t = &report.tables[0];
+        assert!(
+            t.title.contains("the paper's own, emax=paper"),
+            "{}",
+            t.title
+        );
+        // Every mesh's E. max is the paper's: printed beside itself, never marked.
+        for (cell, mesh) in t.rows[0].iter().skip(1).zip(t.columns.iter().skip(1)) {
+            let paper = super::paper_random(mesh).unwrap();
+            assert_eq!(
+                cell,
+                &format!("{} ({})", super::label(paper, 3), super::label(paper, 3)),
+                "{mesh}"
+            );
+        }
+        // No Table 4 grid was run: only the systematic row's 15 cells of 4 trials.
+        assert_eq!(report.trials, 15 * 4);
+        let bad = [set("emax", "derive")];
+        let ctx = Context::new(exp, 2025, 2, &bad, None).unwrap();
+        let e = (exp.run)(&ctx).err().unwrap();
+        assert_eq!(e.exit_code(), 2);
+        assert!(
+            e.to_string().contains("must be `derived` or `paper`"),
+            "{e}"
+        );
     }
 
     #[test]

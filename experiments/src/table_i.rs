@@ -97,7 +97,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     header.extend(meshes.iter().cloned());
     let mut table = Table::new(
         format!(
-            "Table I: trials (of {trials}) with at least one jam / disengagement, Cases A-D at several clearances: ours (paper); * where the paper's count is outside our 95 % interval"
+            "Table I: trials (of {trials}) with at least one jam / disengagement, Cases A-D at several clearances: ours (paper); * where a two-sample test separates our count from the paper's"
         ),
         header,
     );

@@ -507,7 +507,10 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         ],
         trials,
         engagements,
-        agreement: Some(registry::Agreement { inside, outside }),
+        agreement: Some(registry::Agreement {
+            consistent: inside,
+            differ: outside,
+        }),
         ..Default::default()
     })
 }

@@ -1444,8 +1444,8 @@ mod tests {
             trials: ctx.u64("n")?,
             engagements: 10,
             agreement: Some(registry::Agreement {
-                inside: 2,
-                outside: 1,
+                consistent: 2,
+                differ: 1,
             }),
             ..Default::default()
         })

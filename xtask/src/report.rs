@@ -91,7 +91,7 @@ struct Results {
     tables: Vec<Table>,
     trials: u64,
     engagements: u64,
-    /// The paper's numbers inside and outside our intervals.
+    /// The paper's numbers consistent with ours, and those that differ.
     agreement: Option<(u64, u64)>,
     /// Every file of the directory, sorted.
     files: Vec<String>,
@@ -268,12 +268,16 @@ fn read_results(dir: &Path) -> Result<Results, Failure> {
     let agreement = match &json["agreement"] {
         Value::Null => None,
         a => Some((
-            a["inside"]
+            a["consistent"].as_u64().ok_or_else(|| {
+                bad(
+                    &path,
+                    "agreement.consistent",
+                    "must be a non-negative integer",
+                )
+            })?,
+            a["differ"]
                 .as_u64()
-                .ok_or_else(|| bad(&path, "agreement.inside", "must be a non-negative integer"))?,
-            a["outside"]
-                .as_u64()
-                .ok_or_else(|| bad(&path, "agreement.outside", "must be a non-negative integer"))?,
+                .ok_or_else(|| bad(&path, "agreement.differ", "must be a non-negative integer"))?,
         )),
     };
 
@@ -540,7 +544,7 @@ appear in columns labelled &ldquo;paper&rdquo; or in parentheses, as in the prin
     );
 
     // Contents.
-    h.push_str("<nav>\n<table class=\"toc\">\n<caption>Experiments</caption>\n<thead><tr><th>id</th><th>paper item</th><th>title</th><th>status</th><th>seed</th><th>paper's numbers inside / outside our intervals</th></tr></thead>\n<tbody>\n");
+    h.push_str("<nav>\n<table class=\"toc\">\n<caption>Experiments</caption>\n<thead><tr><th>id</th><th>paper item</th><th>title</th><th>status</th><th>seed</th><th>paper's numbers consistent / differing (two-sample test for counts)</th></tr></thead>\n<tbody>\n");
     for id in ids {
         let (title, item) = describe(exps, id);
         let r = results.get(id);
@@ -656,7 +660,7 @@ xtask {} (git <code>{}</code>), {}.</p>",
     }
     if let Some((i, o)) = r.agreement {
         facts.push(format!(
-            "the paper's numbers inside / outside our 95 % intervals: {i} / {o}"
+            "the paper's numbers consistent with ours / differing: {i} / {o}"
         ));
     }
     if !facts.is_empty() {
@@ -809,8 +813,8 @@ mod tests {
             files: vec![OutputFile::new("a.svg", SVG)],
             trials: 30,
             agreement: Some(registry::Agreement {
-                inside: 3,
-                outside: 1,
+                consistent: 3,
+                differ: 1,
             }),
             ..Default::default()
         };
@@ -836,7 +840,7 @@ mod tests {
         assert!(page.contains("<figure data-file=\"a/a.svg\">\n<svg xmlns"));
         assert!(!page.contains("<?xml"));
         assert!(page.contains("seed <b>11</b>, 2 threads"));
-        assert!(page.contains("inside / outside our 95 % intervals: 3 / 1"));
+        assert!(page.contains("consistent with ours / differing: 3 / 1"));
         assert!(page.contains("<section id=\"exp-b\" class=\"experiment not-run\">"));
         assert!(page.contains("<p class=\"status\">not run</p>"));
         assert!(!page.contains("tmp-1"));

@@ -86,13 +86,16 @@ fn total_agreement(rows: &[Row]) -> Option<Agreement> {
     rows.iter()
         .filter_map(|r| r.agreement)
         .reduce(|a, b| Agreement {
-            inside: a.inside + b.inside,
-            outside: a.outside + b.outside,
+            consistent: a.consistent + b.consistent,
+            differ: a.differ + b.differ,
         })
 }
 
 fn agreement_cell(a: Option<Agreement>) -> String {
-    a.map_or_else(|| "-".into(), |a| format!("{} / {}", a.inside, a.outside))
+    a.map_or_else(
+        || "-".into(),
+        |a| format!("{} / {}", a.consistent, a.differ),
+    )
 }
 
 fn count_cell(n: u64) -> String {
@@ -108,7 +111,7 @@ pub fn table(rows: &[Row]) -> Table {
             "wall time [s]",
             "trials",
             "tooth engagements",
-            "paper inside / outside",
+            "paper consistent / differ",
             "status",
         ],
     );
@@ -132,7 +135,7 @@ pub fn table(rows: &[Row]) -> Table {
         format!("{} ok, {failed} failed", rows.len() - failed),
     ]);
     t.note("Wall time: the experiment's run (computing its report), not writing results. Trials: simulated pair turns or train runs (0: none random). Tooth engagements: teeth passed through each mesh over the runs ('-': not counted).");
-    t.note("Paper inside / outside: how many of the paper's numbers lie inside / outside our 95 % intervals; '-': the experiment does not judge it.");
+    t.note("Paper consistent / differ: how many of the paper's numbers are consistent with ours and how many differ (counts of trials, the paper's being samples of 200 too: Fisher's exact two-sample test at 5 %; other values: inside our 95 % interval); '-': the experiment does not judge it.");
     for r in rows {
         if let Some(m) = r.status.message() {
             t.note(format!("{} failed: {m}", r.id));
@@ -151,7 +154,7 @@ pub fn markdown(rows: &[Row], seed: u64, threads: usize) -> String {
 }
 
 /// `summary.json`: `{seed, threads, experiments: [{id, seconds, trials, engagements,
-/// agreement: {inside, outside} | null, status, error}], total: {...}}`.
+/// agreement: {consistent, differ} | null, status, error}], total: {...}}`.
 pub fn json(rows: &[Row], seed: u64, threads: usize) -> String {
     let experiments: Vec<Value> = rows
         .iter()
@@ -210,8 +213,8 @@ mod tests {
             trials: 800,
             engagements: 0,
             agreement: Some(Agreement {
-                inside: 17,
-                outside: 43,
+                consistent: 17,
+                differ: 43,
             }),
             ..Default::default()
         };
@@ -219,8 +222,8 @@ mod tests {
             trials: 120,
             engagements: 1_234_567,
             agreement: Some(Agreement {
-                inside: 1,
-                outside: 3,
+                consistent: 1,
+                differ: 3,
             }),
             ..Default::default()
         };
@@ -242,16 +245,16 @@ mod tests {
         let expected = "\
 ### Summary of run all
 
-| experiment | wall time [s] | trials | tooth engagements | paper inside / outside | status         |
-|:-----------|--------------:|-------:|------------------:|:-----------------------|:---------------|
-| fig2       |          0.25 |      0 |                 - | -                      | ok             |
-| table3     |         61.00 |    800 |                 - | 17 / 43                | ok             |
-| failure    |         40.50 |    120 |           1234567 | 1 / 3                  | ok             |
-| pair       |          0.01 |      0 |                 - | -                      | bad input      |
-| total      |        101.76 |    920 |           1234567 | 18 / 46                | 3 ok, 1 failed |
+| experiment | wall time [s] | trials | tooth engagements | paper consistent / differ | status         |
+|:-----------|--------------:|-------:|------------------:|:--------------------------|:---------------|
+| fig2       |          0.25 |      0 |                 - | -                         | ok             |
+| table3     |         61.00 |    800 |                 - | 17 / 43                   | ok             |
+| failure    |         40.50 |    120 |           1234567 | 1 / 3                     | ok             |
+| pair       |          0.01 |      0 |                 - | -                         | bad input      |
+| total      |        101.76 |    920 |           1234567 | 18 / 46                   | 3 ok, 1 failed |
 
 - Wall time: the experiment's run (computing its report), not writing results. Trials: simulated pair turns or train runs (0: none random). Tooth engagements: teeth passed through each mesh over the runs ('-': not counted).
-- Paper inside / outside: how many of the paper's numbers lie inside / outside our 95 % intervals; '-': the experiment does not judge it.
+- Paper consistent / differ: how many of the paper's numbers are consistent with ours and how many differ (counts of trials, the paper's being samples of 200 too: Fisher's exact two-sample test at 5 %; other values: inside our 95 % interval); '-': the experiment does not judge it.
 - pair failed: --set: days: must be at least 1
 ";
         assert_eq!(text, expected);
@@ -274,7 +277,7 @@ mod tests {
         assert_eq!(v["seed"], 2025);
         assert_eq!(v["threads"], 2);
         assert_eq!(v["experiments"].as_array().unwrap().len(), 4);
-        assert_eq!(v["experiments"][1]["agreement"]["inside"], 17);
+        assert_eq!(v["experiments"][1]["agreement"]["consistent"], 17);
         assert_eq!(v["experiments"][0]["agreement"], Value::Null);
         assert_eq!(v["experiments"][3]["status"], "bad input");
         assert_eq!(
@@ -283,7 +286,7 @@ mod tests {
         );
         assert_eq!(v["total"]["trials"], 920);
         assert_eq!(v["total"]["engagements"], 1_234_567);
-        assert_eq!(v["total"]["agreement"]["outside"], 46);
+        assert_eq!(v["total"]["agreement"]["differ"], 46);
         assert_eq!(v["total"]["failed"], 1);
         let md = markdown(&rows, 2025, 2);
         assert!(md.starts_with("# cargo xtask run all\n\nSeed 2025, 2 threads.\n\n### Summary"));

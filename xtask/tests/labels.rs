@@ -122,3 +122,16 @@ fn default_runs_print_as_before_and_changed_runs_head_the_report_with_what_ran()
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(o.stderr.is_empty(), "-q: nothing on stderr");
 }
+
+#[test]
+fn a_reading_of_the_paper_is_not_an_input_that_differs() {
+    // The event rule (and `emax=paper`) choose how the paper is read; the run is still on the
+    // paper's inputs, named in the title, and still compared.
+    let s = Scratch::new("labels-reading");
+    let out = s.path("out");
+    let text = ok(&["run", "clearance", "--set", "events=strict", "--out", &out]);
+    assert!(text.contains("[events: strict]"), "{text}");
+    assert!(!text.contains("inputs differ"), "{text}");
+    let tables = json(&s.0.join("out/clearance/tables.json"));
+    assert_eq!(tables["inputs"]["events"], "strict", "{tables}");
+}

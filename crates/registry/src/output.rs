@@ -28,14 +28,16 @@ pub struct Report {
     pub inputs: std::collections::BTreeMap<String, String>,
 }
 
-/// Agreement with the paper: how many of the paper's numbers fall inside our 95 % intervals
-/// (or stated tolerance) and how many outside.
+/// Agreement with the paper: how many of the paper's numbers are consistent with ours and how
+/// many differ. Counts out of trials (the paper's are samples of 200 too) are compared by a
+/// two-sample test (Fisher's exact, 5 %); other numbers by whether the paper's lies inside our
+/// 95 % interval (or stated tolerance). Each experiment's note says which.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
 pub struct Agreement {
-    /// The paper's numbers inside our intervals.
-    pub inside: u64,
-    /// The paper's numbers outside them.
-    pub outside: u64,
+    /// The paper's numbers consistent with ours.
+    pub consistent: u64,
+    /// The paper's numbers that differ from ours.
+    pub differ: u64,
 }
 
 impl Report {
