@@ -44,6 +44,38 @@ impl IdealPair {
         Ok(Some(mesh.run(0.0, turn, Start::Touching(0.0))))
     }
 
+    /// One full turn of the larger gear from driver angle 0 at clearance `g` with the driven
+    /// gear at rest `frac` of the way through the backlash: 0 touching the driver tooth behind
+    /// it (as [`IdealPair::run`]), 1 touching the one ahead; it stays put until a driver tooth
+    /// takes it up. None when the gears overlap at every tooth.
+    pub fn run_in_backlash(&self, g: f64, frac: f64) -> Result<Option<Trajectory>, RunError> {
+        let bad = |e: geometry::GeometryError| RunError::bad("--set", e.field, e.rule);
+        let driver = Gear::ideal(self.n1, self.r1, self.r1 - self.h).map_err(bad)?;
+        let driven = Gear::ideal(self.n2, self.r2, self.r2 - self.h).map_err(bad)?;
+        let d = geometry::centre_distance(self.r1, self.r2, self.h, g);
+        let Ok(mesh) = Mesh::new(driver, driven, d) else {
+            return Ok(None);
+        };
+        let touching = mesh.run(0.0, 0.0, Start::Touching(0.0)).theta_at(0.0);
+        // The nearest driver tooth ahead of the driven gear: where the backlash ends.
+        let mut obstacles = Vec::new();
+        let pitch = TAU / self.n2 as f64;
+        mesh.obstacles(0.0, touching, touching + 2.0 * pitch, &mut obstacles);
+        let ahead = obstacles
+            .iter()
+            .map(|o| o.lo)
+            .filter(|&lo| lo > touching + 1e-9)
+            .fold(f64::INFINITY, f64::min);
+        let backlash = if ahead.is_finite() {
+            ahead - touching
+        } else {
+            0.0
+        };
+        let start = touching + frac.clamp(0.0, 1.0) * backlash;
+        let turn = TAU * self.n1.max(self.n2) as f64 / self.n1 as f64;
+        Ok(Some(mesh.run(0.0, turn, Start::At(start))))
+    }
+
     /// The events of [`IdealPair::run`] alone (no segments kept: cheaper), or None when the
     /// gears overlap at every tooth.
     fn events(&self, g: f64) -> Result<Option<Vec<contact::Event>>, RunError> {

@@ -511,12 +511,15 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         .collect::<Result<_, _>>()?;
     let draws = ctx.usize("draws")?.max(1);
     let seed = ctx.seed();
-    // Columns: the geometry readings, then (CASE_A) the first one's gears with Case A errors.
+    // Columns: the geometry readings, then (CASE_A) the first one's gears with Case A errors,
+    // then (IN_BACKLASH) its ideal gears started at rest half-way through the backlash.
     let case_a = GEOMETRY.len();
+    let in_backlash = case_a + 1;
     let mut jobs = Vec::new();
-    for ri in 0..=case_a {
-        let r = &GEOMETRY[if ri == case_a { 0 } else { ri }];
-        let radii = &radii[if ri == case_a { 0 } else { ri }];
+    for ri in 0..=in_backlash {
+        let geometry = if ri >= case_a { 0 } else { ri };
+        let r = &GEOMETRY[geometry];
+        let radii = &radii[geometry];
         for (mi, m) in g.meshes().iter().enumerate() {
             let radius = |n: &str| radii.get(n).copied().unwrap_or(f64::NAN);
             let teeth = |n: &str| g.gear(n).map_or(0, |x| x.teeth as usize);
@@ -541,11 +544,16 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             if ri == case_a {
                 return case_a_minimum(&g, mi, pair, &grid, draws, samples, seed);
             }
-            let reading = &GEOMETRY[ri];
+            let reading = &GEOMETRY[if ri == in_backlash { 0 } else { ri }];
             let mut curve = Vec::new();
             for &c in &grid {
                 let ours = reading.clearance(c, pair.n1, pair.n2, pair.r1, pair.r2);
-                let Some(t) = pair.run(ours)? else {
+                let run = if ri == in_backlash {
+                    pair.run_in_backlash(ours, 0.5)?
+                } else {
+                    pair.run(ours)?
+                };
+                let Some(t) = run else {
                     continue;
                 };
                 // A run counts when it turns the driven gear as the tooth ratio says (tip
@@ -566,7 +574,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     for ((ri, mi, _), m) in jobs.iter().zip(minima) {
         at.insert((*ri, *mi), m?);
     }
-    let columns = case_a + 1;
+    let columns = in_backlash + 1;
 
     let mut header = vec!["mesh".to_string()];
     header.extend((1..=columns).map(|i| format!("({i})")));
@@ -654,6 +662,10 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         "({}) the gears of (1) with Case A errors (edmunds-split: random 0.04 of the pitch, no systematic error): mean sigma of {draws} manufactured pairs per mesh, each swept over every G from one random initial angle, through jams [paper's inputs: no: Figure IV is read as ideal]",
         case_a + 1
     ));
+    fig.note(format!(
+        "({}) the gears of (1), ideal, with the driven gear at rest half-way through the backlash at the start (not touching): it waits until a driver tooth takes it up, and that lost motion is part of the run [paper's inputs: another reading (the paper's initial angles are drawn; this one puts the driven gear mid-way)]",
+        in_backlash + 1
+    ));
     fig.note("G is the clearance of the paper's formula, D = R1 + R2 - h + G (reading (6) adds its extra centre distance to it; reading (7) reads G in % of the flank length); a mesh's minimum is the grid point of its smallest sigma of the driven gear's Theoretical Difference over one turn of the larger gear (ideal gears: figIV's runs, from driver angle 0, at grid points that run without a jam or disengagement; '-': none does).");
 
     // ---- Table 1: σ of the five pointers under every reading. ----
@@ -679,8 +691,8 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         }
     }
     let base = baseline.ok_or_else(|| RunError::Internal("no baseline reading".into()))?;
-    // (GEOMETRY.len() + 1) is Figure IV's Case A column, not run here.
-    let next = GEOMETRY.len() + 2;
+    // (GEOMETRY.len() + 1) and (+ 2) are Figure IV's Case A and backlash columns, not run here.
+    let next = GEOMETRY.len() + 3;
     rows.push((
         format!("({next}) TD sampled once per engagement of the busiest mesh (on (1))"),
         "another reading (paper silent)",

@@ -51,37 +51,42 @@ fn every_experiment_table_is_pinned() {
         let ctx = Context::new(exp, SEED, 1, &[], None).unwrap();
         let report = (exp.run)(&ctx).unwrap_or_else(|e| panic!("{id}: {e}"));
         pin(id, &report.text());
-        if id == "sensitivity" {
-            readme_carries(&report.tables[0].render());
+        // The README's results section shows these tables as computed here.
+        if id == "sensitivity" || id == "event-rules" {
+            readme_carries(id, &report.tables[0].render());
         }
     }
 }
 
-/// Marks the start of the computed block in README.md (the sensitivity table).
-const README_START: &str = "<!-- sensitivity table: written by experiments/tests/snapshots.rs -->";
-/// Marks its end.
-const README_END: &str = "<!-- end of the sensitivity table -->";
+/// The marks around experiment `id`'s computed block in README.md.
+fn readme_marks(id: &str) -> (String, String) {
+    (
+        format!("<!-- {id} table: written by experiments/tests/snapshots.rs -->"),
+        format!("<!-- end of the {id} table -->"),
+    )
+}
 
-/// The README's results section shows the sensitivity table as this pinned run computes it. With
-/// `UPDATE_README=1` the block is rewritten; otherwise a difference fails, so the README cannot
-/// drift from the snapshot.
-fn readme_carries(table: &str) {
+/// The README's results section shows experiment `id`'s first table as this pinned run computes
+/// it. With `UPDATE_README=1` the block is rewritten; otherwise a difference fails, so the README
+/// cannot drift from the snapshot.
+fn readme_carries(id: &str, table: &str) {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../README.md");
     let text = std::fs::read_to_string(path).unwrap();
-    let (Some(a), Some(b)) = (text.find(README_START), text.find(README_END)) else {
-        panic!("README.md has no block between `{README_START}` and `{README_END}`");
+    let (start, end) = readme_marks(id);
+    let (Some(a), Some(b)) = (text.find(&start), text.find(&end)) else {
+        panic!("README.md has no block between `{start}` and `{end}`");
     };
     let block = format!("\n\n{}\n\n", table.trim());
-    let current = &text[a + README_START.len()..b];
+    let current = &text[a + start.len()..b];
     if current == block {
         return;
     }
     if std::env::var_os("UPDATE_README").is_some() {
-        let updated = format!("{}{block}{}", &text[..a + README_START.len()], &text[b..]);
+        let updated = format!("{}{block}{}", &text[..a + start.len()], &text[b..]);
         std::fs::write(path, updated).unwrap();
     } else {
         panic!(
-            "README.md's sensitivity table is not the computed one; rerun with UPDATE_README=1 and review `git diff README.md`.\ncomputed:\n{table}"
+            "README.md's {id} table is not the computed one; rerun with UPDATE_README=1 and review `git diff README.md`.\ncomputed:\n{table}"
         );
     }
 }
