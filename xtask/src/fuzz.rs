@@ -783,8 +783,13 @@ mod tests {
 
     #[test]
     fn mutations_stay_in_bounds() {
+        // One mutation grows an input by at most the deepest nesting it inserts (100 000
+        // `Some(`) or a copy of one of its lines (at most its length), changes the input most of
+        // the time, and does reach the deep nests and long repeats that stress the loaders.
+        const MOST_GROWTH: usize = 100_000 * b"Some(".len();
         let mut rng = Rng(1);
         let pool = vec![b"(a: 1)".to_vec(), Vec::new()];
+        let (mut mutations, mut changed, mut largest_growth) = (0, 0, 0);
         for _ in 0..20_000 {
             let mut input = if rng.chance(2) {
                 b"(x: \"s\", y: -1.5e3)\n(z: [1, 2])".to_vec()
@@ -792,12 +797,24 @@ mod tests {
                 Vec::new()
             };
             for _ in 0..4 {
+                let before = input.clone();
                 mutate(&mut rng, &mut input, &pool);
+                let growth = input.len().saturating_sub(before.len());
+                let bound = MOST_GROWTH.max(before.len() + 1);
+                assert!(growth <= bound, "one mutation grew the input by {growth}");
+                largest_growth = largest_growth.max(growth);
+                mutations += 1;
+                changed += usize::from(input != before);
                 if input.len() > 4_000_000 {
                     input.truncate(1000);
                 }
             }
         }
+        assert!(
+            changed * 2 > mutations,
+            "{changed} of {mutations} mutations changed the input"
+        );
+        assert!(largest_growth > 100_000, "largest growth {largest_growth}");
     }
 
     #[test]
