@@ -206,8 +206,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     ctx.f64("split")?;
     check_study(&g, h, &Clearances::Uniform(clearance))?;
     let pin_and_slot = gearing::pin_and_slot(ctx)?;
-    let ideal = Mechanism::ideal(&g, h, clearance)
-        .map_err(|e| RunError::bad("gearing", format!("mesh {}", e.mesh), e.rule))?;
+    let ideal = Mechanism::ideal(&g, h, clearance).map_err(crate::gearing::mechanism_error)?;
     gearing::with_pin_and_slot(ctx, ideal, pin_and_slot)?;
 
     let hyp = errors::chosen(ctx)?;
@@ -323,7 +322,7 @@ pub(crate) fn check_study(
     clearances: &Clearances,
 ) -> Result<(), RunError> {
     Mechanism::build_with_clearances(g, h, |m| clearances.of(m), |_name, gear| Ok(gear))
-        .map_err(|e| RunError::bad("gearing", format!("mesh {}", e.mesh), e.rule))?;
+        .map_err(crate::gearing::mechanism_error)?;
     for (_, pointers) in TRAINS {
         for p in pointers {
             if g.pointer(p).is_none() || g.pointer_ratio(p).is_none() {

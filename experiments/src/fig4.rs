@@ -49,7 +49,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
 fn counted(ctx: &Context) -> Result<Report, RunError> {
     let g = gearing::load(ctx)?;
     let mech = Mechanism::ideal(&g, ctx.f64("tooth_height")?, ctx.f64("clearance")?)
-        .map_err(|e| RunError::bad("gearing", format!("mesh {}", e.mesh), e.rule))?;
+        .map_err(crate::gearing::mechanism_error)?;
     let mech = crate::events::with_rule(ctx, mech)?;
     let samples = ctx.usize("samples")?.max(2);
     let mut rng = trial_rng(ctx.seed(), ctx.u64("trial")?);

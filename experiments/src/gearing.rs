@@ -36,6 +36,12 @@ pub const PIN_AND_SLOT: Param = Param {
     help: "true: the Lunar train includes the pin-and-slot (k1's pin in k2's slot on the turning e3 turntable) and its TD is taken against the anomaly-bearing ideal; false: left out, as in the paper",
 };
 
+/// A mechanism the gearing could not build, as the user's error: the gearing, the mesh and the
+/// rule it broke (one mapping for every experiment that builds a mechanism).
+pub fn mechanism_error(e: mechanism::MechanismError) -> RunError {
+    RunError::bad("gearing", format!("mesh {}", e.mesh), e.rule)
+}
+
 /// The `pin_and_slot` parameter: `true` or `false`.
 pub fn pin_and_slot(ctx: &Context) -> Result<bool, RunError> {
     match ctx.param(PIN_AND_SLOT.name)?.trim() {

@@ -148,8 +148,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let &[(_, turns, samples)] = runs.as_slice() else {
         return Err(RunError::Internal("one Lunar run expected".into()));
     };
-    let ideal = Mechanism::ideal(&g, h, clearance)
-        .map_err(|e| RunError::bad("gearing", format!("mesh {}", e.mesh), e.rule))?;
+    let ideal = Mechanism::ideal(&g, h, clearance).map_err(crate::gearing::mechanism_error)?;
     let ideal = crate::events::with_rule(ctx, ideal)?;
     let ideal_on = gearing::with_pin_and_slot(ctx, ideal.clone(), true)?;
     let Some(train) = ideal_on.pin_slot_for(LUNAR) else {

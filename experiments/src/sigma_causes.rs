@@ -256,7 +256,7 @@ fn mechanism(
         let tip = radius(name);
         Gear::ideal(gear.teeth(), tip, tip - h).map_err(|e| e.to_string())
     })
-    .map_err(|e| RunError::bad("gearing", format!("mesh {}", e.mesh), e.rule))
+    .map_err(crate::gearing::mechanism_error)
 }
 
 /// σ and mean of one pointer's Theoretical Difference in one trial (degrees), under the

@@ -206,8 +206,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let h = ctx.f64("tooth_height")?;
     let clearance = ctx.f64("clearance")?;
     let per = ctx.usize("samples_per_engagement")?.max(1);
-    let mech = Mechanism::ideal(&g, h, clearance)
-        .map_err(|e| RunError::bad("gearing", format!("mesh {}", e.mesh), e.rule))?;
+    let mech = Mechanism::ideal(&g, h, clearance).map_err(crate::gearing::mechanism_error)?;
     let mech = crate::events::with_rule(ctx, mech)?;
     let runs = pointer_runs(ctx, &g, &POINTERS, per)?;
     let seed = ctx.seed();

@@ -3,7 +3,6 @@
 //! 95 % interval.
 
 use mechanism::{Mechanism, Model, trial_rng};
-use rayon::prelude::*;
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
 use stats::mean_ci95;
 
@@ -80,6 +79,22 @@ const POINTERS: [(&str, &str); 3] = [
 /// One trial of one case: per pointer, (Edmunds σ, Edmunds Dm, triangular σ, triangular Dm, jammed).
 type Trial = Vec<(f64, f64, f64, f64, bool)>;
 
+/// One pointer of one trial as [`Context::trials`] records it (for shards and their merge):
+/// Edmunds' and the triangular σ and Dm, and whether the triangular run jammed. A run that
+/// stops at once has NaN statistics, which JSON cannot carry: they are recorded as bits.
+#[derive(Debug, Clone, Copy, Default, serde::Serialize, serde::Deserialize)]
+struct Recorded {
+    #[serde(with = "registry::f64_bits")]
+    edmunds_sigma: f64,
+    #[serde(with = "registry::f64_bits")]
+    edmunds_dm: f64,
+    #[serde(with = "registry::f64_bits")]
+    triangular_sigma: f64,
+    #[serde(with = "registry::f64_bits")]
+    triangular_dm: f64,
+    jammed: bool,
+}
+
 fn run(ctx: &Context) -> Result<Report, RunError> {
     crate::events::label(ctx, counted(ctx)?)
 }
@@ -106,7 +121,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let runs = pointer_runs(ctx, &g, &POINTERS, per)?;
     let seed = ctx.seed();
     let mut results: Vec<Vec<Trial>> = Vec::new();
-    for (ci, &(_, systematic, random)) in CASES.iter().enumerate() {
+    for (ci, &(case, systematic, random)) in CASES.iter().enumerate() {
         let p = errors::params(
             ctx,
             hyp,
@@ -116,59 +131,89 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
                 ("split", split),
             ],
         )?;
-        let per_trial: Result<Vec<Trial>, RunError> = (0..trials as u64)
-            .into_par_iter()
-            .map(|t| {
-                // One stream per (case, trial): errors first, then initial angles.
-                let mut rng = trial_rng(seed, ((ci as u64) << 32) | t);
-                let mut failure = None;
-                let mech = Mechanism::build(&g, h, clearance, |name, gear| {
-                    errors::make(hyp, &gear, name, &p, &mut rng).map_err(|e| {
-                        let text = e.to_string();
-                        failure = Some(e);
-                        text
-                    })
-                });
-                let mech = match (mech, failure) {
-                    (_, Some(e)) => return Err(e),
-                    // The errors moved the bodies into each other: these inputs cannot be run.
-                    (Err(e), None) => {
-                        return Err(RunError::bad(
-                            "--hypothesis",
-                            format!("mesh {}", e.mesh),
-                            format!(
-                                "{}: the manufactured gears cannot be placed at this clearance",
-                                e.rule
-                            ),
-                        ));
-                    }
-                    (Ok(m), None) => gearing::with_pin_and_slot(
-                        ctx,
-                        crate::events::with_rule(ctx, m)?,
-                        pin_and_slot,
-                    )?,
-                };
-                let mut out = Vec::new();
-                for &(name, turns, samples) in &runs {
-                    // The same initial angles for both models.
-                    let mut rng_edmunds = rng.clone();
-                    let edm = mech.run_pointer_with(name, turns, &mut rng_edmunds, Model::Edmunds);
-                    let tri = mech.run_pointer_to_first_jam(name, turns, &mut rng);
-                    let (Some(edm), Some(tri)) = (edm, tri) else {
-                        return Err(RunError::bad(
-                            "gearing",
-                            format!("pointer {name}"),
-                            "is missing",
-                        ));
-                    };
-                    // A jam stops the pointer: triangular statistics run up to it.
-                    let (se, st) = (edm.stats_through_jams(samples), tri.stats(samples));
-                    out.push((se.sigma, se.dm, st.sigma, st.dm, tri.first_stop().is_some()));
+        // Named by everything that determines the trials, so shards run and merge them.
+        let key = format!(
+            "table2: case {case} ({} {:?}), {trials} trials, h = {h} mm, G = {clearance} %, gearing {}, pin_and_slot {pin_and_slot}, events {}, pointers {:?}",
+            hyp.name(),
+            p.iter().collect::<Vec<_>>(),
+            ctx.param("gearing")?,
+            crate::events::chosen(ctx)?.label(),
+            runs,
+        );
+        let per_trial: Vec<Vec<Recorded>> = ctx.trials(&key, trials as u64, |t| {
+            // One stream per (case, trial): errors first, then initial angles.
+            let mut rng = trial_rng(seed, ((ci as u64) << 32) | t);
+            let mut failure = None;
+            let mech = Mechanism::build(&g, h, clearance, |name, gear| {
+                errors::make(hyp, &gear, name, &p, &mut rng).map_err(|e| {
+                    let text = e.to_string();
+                    failure = Some(e);
+                    text
+                })
+            });
+            let mech = match (mech, failure) {
+                (_, Some(e)) => return Err(e),
+                // The errors moved the bodies into each other: these inputs cannot be run.
+                (Err(e), None) => {
+                    return Err(RunError::bad(
+                        "--hypothesis",
+                        format!("mesh {}", e.mesh),
+                        format!(
+                            "{}: the manufactured gears cannot be placed at this clearance",
+                            e.rule
+                        ),
+                    ));
                 }
-                Ok(out)
-            })
-            .collect();
-        results.push(per_trial?);
+                (Ok(m), None) => gearing::with_pin_and_slot(
+                    ctx,
+                    crate::events::with_rule(ctx, m)?,
+                    pin_and_slot,
+                )?,
+            };
+            let mut out = Vec::new();
+            for &(name, turns, samples) in &runs {
+                // The same initial angles for both models.
+                let mut rng_edmunds = rng.clone();
+                let edm = mech.run_pointer_with(name, turns, &mut rng_edmunds, Model::Edmunds);
+                let tri = mech.run_pointer_to_first_jam(name, turns, &mut rng);
+                let (Some(edm), Some(tri)) = (edm, tri) else {
+                    return Err(RunError::bad(
+                        "gearing",
+                        format!("pointer {name}"),
+                        "is missing",
+                    ));
+                };
+                // A jam stops the pointer: triangular statistics run up to it.
+                let (se, st) = (edm.stats_through_jams(samples), tri.stats(samples));
+                out.push(Recorded {
+                    edmunds_sigma: se.sigma,
+                    edmunds_dm: se.dm,
+                    triangular_sigma: st.sigma,
+                    triangular_dm: st.dm,
+                    jammed: tri.first_stop().is_some(),
+                });
+            }
+            Ok(out)
+        })?;
+        results.push(
+            per_trial
+                .into_iter()
+                .map(|trial| {
+                    trial
+                        .into_iter()
+                        .map(|r| {
+                            (
+                                r.edmunds_sigma,
+                                r.edmunds_dm,
+                                r.triangular_sigma,
+                                r.triangular_dm,
+                                r.jammed,
+                            )
+                        })
+                        .collect()
+                })
+                .collect(),
+        );
     }
 
     let mut edm_table = Table::new(

@@ -6,7 +6,6 @@ use std::f64::consts::TAU;
 
 use hypotheses::Params;
 use mechanism::{Mechanism, trial_rng};
-use rayon::prelude::*;
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
 use stats::{Estimate, PointerStats, mean_ci95};
 
@@ -74,6 +73,20 @@ registry::inventory::submit! {
 /// One trial: per pointer (statistics up to the first jam, jammed, tooth engagements).
 type Trial = Vec<(PointerStats, bool, u64)>;
 
+/// One pointer of one trial as [`Context::trials`] records it (for shards and their merge); NaN
+/// statistics (a run that stops at once) are recorded as bits.
+#[derive(Debug, Clone, Copy, Default, serde::Serialize, serde::Deserialize)]
+struct Recorded {
+    #[serde(with = "registry::f64_bits")]
+    sigma: f64,
+    #[serde(with = "registry::f64_bits")]
+    dm: f64,
+    #[serde(with = "registry::f64_bits")]
+    mean: f64,
+    jammed: bool,
+    engaged: u64,
+}
+
 fn run(ctx: &Context) -> Result<Report, RunError> {
     crate::events::label(ctx, counted(ctx)?)
 }
@@ -130,54 +143,86 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     }
 
     let seed = ctx.seed();
-    let per_trial: Result<Vec<Trial>, RunError> = (0..trials as u64)
-        .into_par_iter()
-        .map(|t| {
-            // One stream per trial: every gear's errors, then the initial angles.
-            let mut rng = trial_rng(seed, t);
-            let mut failure = None;
-            let mech = Mechanism::build(&g, h, clearance, |name, gear| {
-                let Some(p) = params.get(name) else {
-                    return Err(format!("gear {name} has no tolerance"));
-                };
-                errors::make(hyp, &gear, name, p, &mut rng).map_err(|e| {
-                    let text = e.to_string();
-                    failure = Some(e);
-                    text
-                })
-            });
-            let mech = match (mech, failure) {
-                (_, Some(e)) => return Err(e),
-                (Err(e), None) => return Err(RunError::Internal(e.to_string())),
-                (Ok(m), None) => crate::events::with_rule(ctx, m)?,
+    // Named by everything that determines the trials (the tolerances are derived from the
+    // parameters, so naming those names them), so shards run and merge them.
+    let key = format!(
+        "table6: {trials} trials, hypothesis {}, tolerances {:?}, h = {h} mm, G = {clearance} %, gearing {}, events {}, pointers {:?}",
+        hyp.name(),
+        params
+            .iter()
+            .map(|(gear, p)| (gear.as_str(), p.iter().collect::<Vec<_>>()))
+            .collect::<Vec<_>>(),
+        ctx.param("gearing")?,
+        crate::events::chosen(ctx)?.label(),
+        runs,
+    );
+    let recorded: Vec<Vec<Recorded>> = ctx.trials(&key, trials as u64, |t| {
+        // One stream per trial: every gear's errors, then the initial angles.
+        let mut rng = trial_rng(seed, t);
+        let mut failure = None;
+        let mech = Mechanism::build(&g, h, clearance, |name, gear| {
+            let Some(p) = params.get(name) else {
+                return Err(format!("gear {name} has no tolerance"));
             };
-            let mut out = Vec::new();
-            for &(name, turns, samples) in &runs {
-                let Some(run) = mech.run_pointer_to_first_jam(name, turns, &mut rng) else {
-                    return Err(RunError::bad(
-                        "gearing",
-                        format!("pointer {name}"),
-                        "is missing",
-                    ));
-                };
-                // A jam stops the pointer: statistics up to it (as table2 does).
-                let stop = run.first_stop();
-                let end = stop.as_ref().map_or(run.input_range, |s| s.input_angle);
-                let engaged: f64 = run
-                    .stages
-                    .iter()
-                    .enumerate()
-                    .map(|(i, s)| {
-                        let teeth = mech.mesh(&s.label).map_or(0, |m| m.driver().teeth());
-                        run.arbor_angle(end, i).abs() / TAU * teeth as f64
-                    })
-                    .sum();
-                out.push((run.stats(samples), stop.is_some(), engaged.round() as u64));
-            }
-            Ok(out)
+            errors::make(hyp, &gear, name, p, &mut rng).map_err(|e| {
+                let text = e.to_string();
+                failure = Some(e);
+                text
+            })
+        });
+        let mech = match (mech, failure) {
+            (_, Some(e)) => return Err(e),
+            (Err(e), None) => return Err(RunError::Internal(e.to_string())),
+            (Ok(m), None) => crate::events::with_rule(ctx, m)?,
+        };
+        let mut out = Vec::new();
+        for &(name, turns, samples) in &runs {
+            let Some(run) = mech.run_pointer_to_first_jam(name, turns, &mut rng) else {
+                return Err(RunError::bad(
+                    "gearing",
+                    format!("pointer {name}"),
+                    "is missing",
+                ));
+            };
+            // A jam stops the pointer: statistics up to it (as table2 does).
+            let stop = run.first_stop();
+            let end = stop.as_ref().map_or(run.input_range, |s| s.input_angle);
+            let engaged: f64 = run
+                .stages
+                .iter()
+                .enumerate()
+                .map(|(i, s)| {
+                    let teeth = mech.mesh(&s.label).map_or(0, |m| m.driver().teeth());
+                    run.arbor_angle(end, i).abs() / TAU * teeth as f64
+                })
+                .sum();
+            let s = run.stats(samples);
+            out.push(Recorded {
+                sigma: s.sigma,
+                dm: s.dm,
+                mean: s.mean,
+                jammed: stop.is_some(),
+                engaged: engaged.round() as u64,
+            });
+        }
+        Ok(out)
+    })?;
+    let per_trial: Vec<Trial> = recorded
+        .into_iter()
+        .map(|trial| {
+            trial
+                .into_iter()
+                .map(|r| {
+                    let s = PointerStats {
+                        sigma: r.sigma,
+                        dm: r.dm,
+                        mean: r.mean,
+                    };
+                    (s, r.jammed, r.engaged)
+                })
+                .collect()
         })
         .collect();
-    let per_trial = per_trial?;
 
     let mut layout = Table::new(
         format!(

@@ -871,7 +871,8 @@ impl Gearing {
             driver_root_radius: r1 - h,
             driven_root_radius: r2 - h,
             tooth_height: h,
-            centre_distance: r1 + r2 - h + h * clearance_percent / 100.0,
+            // The paper's D = R1 + R2 - h + G, written once, in geometry.
+            centre_distance: geometry::centre_distance(r1, r2, h, clearance_percent),
         })
     }
 }
