@@ -677,10 +677,10 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
                 name.to_string(),
                 share_cell(&r.year),
                 failure::mean_cell(&r.days, s.days),
-                failure::median(&r.days).map_or_else(|| "-".into(), |d| fmt_f64(d, 0)),
+                stats::median(&r.days).map_or_else(|| "-".into(), |d| fmt_f64(d, 0)),
                 share_cell(&b.year),
                 failure::mean_cell(&b.days, s.days),
-                failure::median(&b.days).map_or_else(|| "-".into(), |d| fmt_f64(d, 0)),
+                stats::median(&b.days).map_or_else(|| "-".into(), |d| fmt_f64(d, 0)),
                 if first.is_empty() {
                     "-".into()
                 } else {

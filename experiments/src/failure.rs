@@ -280,7 +280,10 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             .map(|(inp, runs)| {
                 let times: Vec<Option<f64>> =
                     runs.iter().map(|o| jam_of(o, ti).map(|j| j.day)).collect();
-                (inp.legend.clone(), survival_steps(&times, days))
+                (
+                    inp.legend.clone(),
+                    stats::step_points(&stats::kaplan_meier(&times, days), days),
+                )
             })
             .collect();
         let svg = survival_plot(
@@ -712,18 +715,6 @@ pub(crate) fn summarise(runs: &[Outcome], horizon_days: f64) -> Vec<Summary> {
         .collect()
 }
 
-/// The median of `values` (`None` for none).
-pub(crate) fn median(values: &[f64]) -> Option<f64> {
-    let mut v = values.to_vec();
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    match n {
-        0 => None,
-        _ if n % 2 == 1 => Some(v[n / 2]),
-        _ => Some(0.5 * (v[n / 2 - 1] + v[n / 2])),
-    }
-}
-
 /// Mean of days with its 95 % Student-t interval, clipped to the days a jam can have
 /// (0 to the horizon): with few jams the t interval reaches below day 0.
 fn mean_days(days: &[f64], horizon: f64) -> stats::Estimate {
@@ -834,7 +825,9 @@ fn paper_table(
         third.map_or_else(|| "-".into(), |d| format!("about {}", fmt_f64(d, 0))),
     ];
     for s in summaries {
-        row.push(median(&s[TRAINS.len()].days).map_or_else(|| "-".into(), |d| fmt_f64(d, 0)));
+        row.push(
+            stats::median(&s[TRAINS.len()].days).map_or_else(|| "-".into(), |d| fmt_f64(d, 0)),
+        );
     }
     table.row(row);
     table.note("The paper ran Edmunds' measured per-gear errors (its Figure 6), which are not available here: our inputs are Edmunds' Cases A-D until a measured table is given with --set measured=FILE. Only that column is counted as agreement with the paper; the cases are for orientation.");
@@ -879,7 +872,7 @@ fn detail_table(inputs: &[Input<'_>], summaries: &[Vec<Summary>], trials: u64, d
                 ),
                 format!("{}/{}", s.days.len(), s.year.n),
                 mean_cell(&s.days, days),
-                median(&s.days).map_or_else(|| "-".into(), |d| fmt_f64(d, 0)),
+                stats::median(&s.days).map_or_else(|| "-".into(), |d| fmt_f64(d, 0)),
                 if meshes.is_empty() {
                     "-".into()
                 } else {
@@ -928,15 +921,15 @@ fn survival_table(inputs: &[Input<'_>], per_input: &[&[Outcome]], days: f64) -> 
         for (ti, name) in train_names().enumerate() {
             let times: Vec<Option<f64>> =
                 runs.iter().map(|o| jam_of(o, ti).map(|j| j.day)).collect();
-            let steps = survival_steps(&times, days);
+            let steps = stats::kaplan_meier(&times, days);
             let mut row = vec![inp.label.clone(), name.to_string()];
             for deg in READ_AT_DEG {
-                row.push(fmt_f64(survival_at(&steps, deg / 360.0 * DAYS_PER_YEAR), 0));
+                row.push(survival_cell(&steps, deg / 360.0 * DAYS_PER_YEAR));
             }
             table.row(row);
         }
     }
-    table.note("Kaplan-Meier estimate; every run is observed to the same horizon, so it is the share of runs whose first jam came later.");
+    table.note("Kaplan-Meier estimate [95 % band]; every run is observed to the same horizon, so it is the share of runs whose first jam came later, and the band is that share's exact (Clopper-Pearson) interval.");
     if unplaceable > 0 {
         table.note(format!(
             "{unplaceable} runs had gears whose bodies overlapped at every angle (errors too large for the clearance): counted as jammed at day 0."
@@ -945,44 +938,25 @@ fn survival_table(inputs: &[Input<'_>], per_input: &[&[Outcome]], days: f64) -> 
     table
 }
 
-/// Kaplan-Meier survival [%] as a step curve from day 0 to `horizon`: `times` holds each run's
-/// first-jam day, `None` for a run censored at the horizon. Points come in pairs at each jam day
-/// (before, after), so drawing straight lines between them draws the steps.
-fn survival_steps(times: &[Option<f64>], horizon: f64) -> Vec<(f64, f64)> {
-    let mut jams: Vec<f64> = times
+/// A survival share [%] at `day` with its 95 % band: `50 [33 .. 70]`.
+fn survival_cell(steps: &[stats::Step], day: f64) -> String {
+    let at = steps
         .iter()
-        .flatten()
-        .copied()
-        .filter(|&d| d <= horizon)
-        .collect();
-    jams.sort_by(f64::total_cmp);
-    let mut at_risk = times.len() as f64;
-    let mut s = 100.0;
-    let mut points = vec![(0.0, s)];
-    let mut i = 0;
-    while i < jams.len() {
-        let d = jams[i];
-        let mut k = 0;
-        while i < jams.len() && jams[i] == d {
-            k += 1;
-            i += 1;
-        }
-        points.push((d, s));
-        s *= 1.0 - k as f64 / at_risk;
-        at_risk -= k as f64;
-        points.push((d, s));
-    }
-    points.push((horizon, s));
-    points
-}
-
-/// The step curve's value at `day` (after any jam on that very day).
-fn survival_at(steps: &[(f64, f64)], day: f64) -> f64 {
-    steps
-        .iter()
-        .take_while(|p| p.0 <= day)
+        .take_while(|p| p.day <= day)
         .last()
-        .map_or(100.0, |p| p.1)
+        .copied()
+        .unwrap_or(stats::Step {
+            day: 0.0,
+            survival: 100.0,
+            lo: 100.0,
+            hi: 100.0,
+        });
+    format!(
+        "{} [{} .. {}]",
+        fmt_f64(at.survival, 0),
+        fmt_f64(at.lo, 0),
+        fmt_f64(at.hi, 0)
+    )
 }
 
 fn survival_plot(
@@ -1057,26 +1031,15 @@ mod tests {
     use super::*;
 
     #[test]
-    fn survival_steps_follow_kaplan_meier() {
-        // 4 runs: jams on days 10 and 10 and 30, one censored at 100.
-        let steps = survival_steps(&[Some(30.0), None, Some(10.0), Some(10.0)], 100.0);
+    fn survival_cells_carry_their_band() {
+        let steps = stats::kaplan_meier(&[Some(30.0), None, Some(10.0), Some(10.0)], 100.0);
+        assert_eq!(survival_cell(&steps, 5.0), "100 [100 .. 100]");
+        let at_10 = survival_cell(&steps, 10.0);
+        assert!(at_10.starts_with("50 ["), "{at_10}");
         assert_eq!(
-            steps,
-            [
-                (0.0, 100.0),
-                (10.0, 100.0),
-                (10.0, 50.0),
-                (30.0, 50.0),
-                (30.0, 25.0),
-                (100.0, 25.0)
-            ]
-        );
-        assert_eq!(survival_at(&steps, 5.0), 100.0);
-        assert_eq!(survival_at(&steps, 10.0), 50.0);
-        assert_eq!(survival_at(&steps, 99.0), 25.0);
-        assert_eq!(
-            survival_steps(&[None, None], 5.0),
-            [(0.0, 100.0), (5.0, 100.0)]
+            stats::survival_at(&steps, 99.0),
+            25.0,
+            "the cell reads the same curve"
         );
     }
 
@@ -1087,13 +1050,6 @@ mod tests {
         let e = parse_cases("A,E").unwrap_err();
         assert_eq!(e.exit_code(), 2);
         assert!(e.to_string().contains("`E`"), "{e}");
-    }
-
-    #[test]
-    fn median_of_odd_and_even_counts() {
-        assert_eq!(median(&[]), None);
-        assert_eq!(median(&[3.0, 1.0, 2.0]), Some(2.0));
-        assert_eq!(median(&[4.0, 1.0, 2.0, 3.0]), Some(2.5));
     }
 
     fn run_with(threads: usize, sets: &[(&str, &str)]) -> Result<Report, RunError> {

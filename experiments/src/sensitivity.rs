@@ -17,7 +17,7 @@ use train::Gearing;
 use crate::common::{Series, category_plot};
 use crate::errors;
 use crate::failure::{
-    self, Clearances, Input, Outcome, TRAINS, mean_cell, median, percent_cell, summarise,
+    self, Clearances, Input, Outcome, TRAINS, mean_cell, percent_cell, summarise,
 };
 use crate::gearing;
 use crate::table2::CASES;
@@ -359,7 +359,7 @@ fn headline_table(
             format!("{}/{}", m.year.k, m.year.n),
             percent_cell(&m.year),
             mean_cell(&m.days, days),
-            median(&m.days).map_or("-".into(), |d| fmt_f64(d, 0)),
+            stats::median(&m.days).map_or("-".into(), |d| fmt_f64(d, 0)),
             sigma,
             if first.is_empty() {
                 "-".into()

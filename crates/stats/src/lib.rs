@@ -3,13 +3,17 @@
 // Contents: `pointer_stats` / `Accumulator` (Table 1's σ, Dm, P, batch or streaming),
 // `mean_ci95` (Student-t interval), `wilson95` / `clopper_pearson95` (binomial counts),
 // `DAYS_PER_YEAR` / `days_per_degree` (degrees of pointer error to days); in `two_sample.rs`,
-// two binomial counts compared (`fisher_exact_two_sided`, `newcombe95`, `consistent`). Quantiles come from
+// two binomial counts compared (`fisher_exact_two_sided`, `newcombe95`, `consistent`); in
+// `survival.rs`, times to an event (`median`, `kaplan_meier` with its exact band). Quantiles come from
 // `statrs` (`StudentsT`, `Beta`) without default features: it pulls in only `approx` and
 // `num-traits`.
 
 use statrs::distribution::{Beta, ContinuousCDF, StudentsT};
 
+mod survival;
 mod two_sample;
+
+pub use survival::{Step, kaplan_meier, median, step_points, survival_at};
 
 pub use two_sample::{
     Difference, FISHER_RELATIVE_TOLERANCE, consistent, fisher_exact_two_sided, newcombe95,
