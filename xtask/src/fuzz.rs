@@ -19,7 +19,7 @@ use std::time::{Duration, Instant};
 
 use registry::Table;
 
-use crate::Failure;
+use crate::failure::Failure;
 use crate::fuzz_targets::{Outcome, TARGETS, Target};
 
 /// Default run time.

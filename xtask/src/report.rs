@@ -22,8 +22,9 @@ use std::path::{Path, PathBuf};
 use registry::Table;
 use serde_json::Value;
 
+use crate::Registry;
+use crate::failure::Failure;
 use crate::provenance::{self, RUN_JSON};
-use crate::{Failure, Registry};
 
 /// The page's file name in `<out>/`.
 pub const INDEX_HTML: &str = "index.html";
@@ -36,7 +37,7 @@ pub fn command(args: &[String]) -> Result<(), Failure> {
     registry::tidy(&out)?;
     let page = build(&exps, &out, quiet)?;
     let index = out.join(INDEX_HTML);
-    crate::write_atomically(&index, &page)?;
+    crate::execute::write_atomically(&index, &page)?;
     if !quiet {
         eprintln!("report: {}", index.display());
     }

@@ -1,0 +1,220 @@
+//! Running experiments: the thread pool, one run caught if it panics, `run <id>...` and `run all` with its summary.
+
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::path::Path;
+use std::time::Instant;
+
+use registry::{Context, Experiment, RunError};
+
+use crate::args::RunArgs;
+use crate::failure::Failure;
+use crate::help::known;
+use crate::merge::run_shard;
+use crate::plan::{check_sets, plan, read_config, select};
+use crate::print::Printer;
+use crate::progress;
+use crate::progress::note;
+use crate::provenance;
+use crate::summary;
+use crate::{Registry, default_out, default_threads, print};
+
+pub(crate) fn make_pool(threads: usize) -> Result<rayon::ThreadPool, Failure> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .thread_name(|i| format!("xtask-worker-{i}"))
+        .build()
+        .map_err(|e| Failure::Internal(format!("cannot start {threads} threads: {e}")))
+}
+
+/// Runs `e` in `pool`: its report (a panic is an internal error) and the wall time in seconds.
+pub(crate) fn execute(
+    e: &Experiment,
+    ctx: &Context,
+    pool: &rayon::ThreadPool,
+) -> (Result<registry::Report, RunError>, f64) {
+    let _span = tracing::info_span!("run", id = e.id).entered();
+    tracing::info!(seed = ctx.seed(), threads = ctx.threads(), "start");
+    progress::experiment_starts();
+    let start = Instant::now();
+    let result = progress::watch(e.id, || {
+        pool.install(|| catch_unwind(AssertUnwindSafe(|| (e.run)(ctx))))
+    })
+    .unwrap_or_else(|_| {
+        Err(RunError::Internal(format!(
+            "experiment `{}` panicked",
+            e.id
+        )))
+    });
+    let seconds = start.elapsed().as_secs_f64();
+    tracing::info!(seconds, "done");
+    (result, seconds)
+}
+
+/// Writes `text` to `path` through a temporary sibling renamed into place.
+pub(crate) fn write_atomically(path: &Path, text: &str) -> Result<(), Failure> {
+    let tmp = path.with_file_name(format!(
+        ".{}.tmp-{}",
+        path.file_name()
+            .map_or_else(|| "summary".into(), |n| n.to_string_lossy().into_owned()),
+        std::process::id()
+    ));
+    let fail = |what: &str, e: std::io::Error| {
+        Failure::Internal(format!(
+            "internal error: cannot {what} {}: {e}",
+            path.display()
+        ))
+    };
+    std::fs::write(&tmp, text).map_err(|e| fail("write", e))?;
+    std::fs::rename(&tmp, path).map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        fail("rename into", e)
+    })
+}
+
+/// `run all`: every experiment in id order, each written as `run <id>` writes it; a failing
+/// experiment is reported on stderr and the others still run. Then the summary is printed
+/// (through `out`, in the `--format` asked for) and written to `<out>/summary.md` and
+/// `<out>/summary.json`.
+///
+/// `--set KEY=VALUE` goes to every experiment that declares KEY (a KEY none declares is refused
+/// before anything runs), and so do the shorthands (`--trials`, `--gearing`, `--hypothesis`,
+/// `--errors`); `--config` goes to every experiment that takes one (refused if none does).
+/// Returns the summary rows; [`summary::exit_code`] turns them into the exit status.
+pub(crate) fn run_every(
+    exps: &Registry,
+    run: &RunArgs,
+    out: &mut dyn FnMut(&str) -> Result<(), Failure>,
+) -> Result<Vec<summary::Row>, Failure> {
+    let chosen: Vec<&'static Experiment> = exps.values().copied().collect();
+    let config = read_config(run)?;
+    if config.is_some() && !chosen.iter().any(|e| e.config.is_some()) {
+        return Err(Failure::Bad(
+            "--config: no experiment takes a config file".into(),
+        ));
+    }
+    if chosen.is_empty() {
+        check_sets(&chosen, &run.sets)?;
+        note(&format!("nothing to run: {}", known(exps)));
+        return Ok(Vec::new());
+    }
+    let threads = run.threads.unwrap_or_else(default_threads);
+    let planned = plan(&chosen, run, config.as_ref(), false, threads)?;
+    let pool = make_pool(threads)?;
+    let dir = run.out.clone().unwrap_or_else(default_out);
+    let mut printer = Printer::new(run.format, true, out);
+    let mut rows = Vec::with_capacity(planned.len());
+    for p in &planned {
+        let (result, seconds) = execute(p.e, &p.ctx, &pool);
+        let result = match result {
+            Ok(report) => {
+                // Printed as written: tables.json lists run.json among the files.
+                let report =
+                    provenance::stamp(&report, p.e, &p.ctx, &p.sets, run.config.as_deref());
+                printer.report(p.e, &report)?;
+                let results = dir.join(p.e.id);
+                registry::write_results(&results, &report).map(|()| {
+                    note(&format!("results: {}", results.display()));
+                    report
+                })
+            }
+            Err(err) => Err(as_typed(err, p.e.id, run)),
+        };
+        if let Err(err) = &result {
+            eprintln!("{}: {err}", p.e.id);
+        }
+        rows.push(summary::Row::new(p.e.id, seconds, result.as_ref()));
+    }
+    printer.summary(&rows, run.seed, threads)?;
+    printer.finish()?;
+    std::fs::create_dir_all(&dir).map_err(|e| {
+        Failure::Internal(format!(
+            "internal error: cannot create {}: {e}",
+            dir.display()
+        ))
+    })?;
+    write_atomically(
+        &dir.join("summary.md"),
+        &summary::markdown(&rows, run.seed, threads),
+    )?;
+    write_atomically(
+        &dir.join("summary.json"),
+        &summary::json(&rows, run.seed, threads),
+    )?;
+    note(&format!("summary: {}", dir.join("summary.md").display()));
+    Ok(rows)
+}
+
+/// Checks everything the user gave, then runs each experiment in turn; stops at the first failure.
+pub(crate) fn run_all(exps: &Registry, run: &RunArgs) -> Result<(), Failure> {
+    let chosen = select(exps, &run.ids)?;
+    let config = read_config(run)?;
+    if config.is_some() {
+        if let Some(e) = chosen.iter().find(|e| e.config.is_none()) {
+            return Err(Failure::Bad(format!(
+                "--config: experiment {} takes no --config",
+                e.id
+            )));
+        }
+        if chosen.is_empty() {
+            return Err(Failure::Bad("--config: no experiment to give it to".into()));
+        }
+    }
+    if chosen.is_empty() {
+        note(&format!("nothing to run: {}", known(exps)));
+        return Ok(());
+    }
+    let threads = run.threads.unwrap_or_else(default_threads);
+    let planned = plan(&chosen, run, config.as_ref(), chosen.len() == 1, threads)?;
+    let pool = make_pool(threads)?;
+    let out = run.out.clone().unwrap_or_else(default_out);
+    if let (Some(shard), [p]) = (run.shard, planned.as_slice()) {
+        return run_shard(p, p.ctx.clone().with_shard(shard), run, &pool, &out);
+    }
+    let mut stdout = |s: &str| print(s);
+    let mut printer = Printer::new(run.format, planned.len() > 1, &mut stdout);
+    for p in &planned {
+        let report = match execute(p.e, &p.ctx, &pool).0 {
+            Ok(r) => r,
+            Err(e) => {
+                // What finished is printed (JSON is held back until the end).
+                printer.finish()?;
+                return Err(as_typed(e, p.e.id, run).into());
+            }
+        };
+        let report = provenance::stamp(&report, p.e, &p.ctx, &p.sets, run.config.as_deref());
+        printer.report(p.e, &report)?;
+        let dir = out.join(p.e.id);
+        registry::write_results(&dir, &report)?;
+        note(&format!("results: {}", dir.display()));
+    }
+    printer.finish()
+}
+
+/// `e` (of experiment `id`) as the user typed it: a refusal reached through a shorthand names
+/// the shorthand (`--trials`, `--gearing`, `--errors`), not the `--set` or `--hypothesis` it
+/// stands for.
+pub(crate) fn as_typed(e: RunError, id: &str, run: &RunArgs) -> RunError {
+    let RunError::BadInput {
+        source,
+        field,
+        rule,
+    } = e
+    else {
+        return e;
+    };
+    let shorthand = match (source.as_str(), field.as_str()) {
+        ("--hypothesis", _) if run.errors.is_some() => Some(("--errors", field.clone())),
+        ("--set", "trials") if run.trials.is_some() => Some(("--trials", id.to_owned())),
+        ("--set", "gearing") if run.gearing.is_some() => Some(("--gearing", id.to_owned())),
+        ("--set", "measured") if run.errors.is_some() => Some(("--errors", id.to_owned())),
+        _ => None,
+    };
+    match shorthand {
+        Some((flag, field)) => RunError::bad(flag, field, rule),
+        None => RunError::BadInput {
+            source,
+            field,
+            rule,
+        },
+    }
+}

@@ -1,0 +1,322 @@
+//! Choosing what to run and checking it first: experiment ids, `--set` and its shorthands, the config file, the inputs a run will read, `--out`.
+
+use std::path::{Path, PathBuf};
+
+use registry::{ConfigFile, Context, Experiment};
+
+use crate::args::RunArgs;
+use crate::failure::Failure;
+use crate::help::known;
+use crate::progress;
+use crate::{Registry, default_out};
+
+pub(crate) fn lookup(exps: &Registry, id: &str) -> Result<&'static Experiment, Failure> {
+    exps.get(id)
+        .copied()
+        .ok_or_else(|| Failure::Bad(format!("unknown experiment `{id}` ({})", known(exps))))
+}
+
+/// The experiments `ids` names, in order, without repeats (`run all` is handled by [`crate::execute::run_every`]).
+pub(crate) fn select(exps: &Registry, ids: &[String]) -> Result<Vec<&'static Experiment>, Failure> {
+    let mut chosen: Vec<&'static Experiment> = Vec::new();
+    for id in ids {
+        let e = lookup(exps, id)?;
+        if !chosen.iter().any(|c| c.id == e.id) {
+            chosen.push(e);
+        }
+    }
+    Ok(chosen)
+}
+
+/// The file given with `--config`, read.
+pub(crate) fn read_config(run: &RunArgs) -> Result<Option<ConfigFile>, Failure> {
+    match &run.config {
+        None => Ok(None),
+        Some(path) => {
+            let text =
+                input_file::read_to_string(path, input_file::MAX_INPUT_BYTES).map_err(|e| {
+                    Failure::Bad(format!("--config: {}: cannot read: {e}", path.display()))
+                })?;
+            Ok(Some(ConfigFile {
+                path: path.clone(),
+                text,
+            }))
+        }
+    }
+}
+
+/// With several experiments each gets the `--set` keys it declares, but every key must be someone's.
+pub(crate) fn check_sets(
+    chosen: &[&'static Experiment],
+    sets: &[(String, String)],
+) -> Result<(), Failure> {
+    for (key, _) in sets {
+        if !chosen
+            .iter()
+            .any(|e| e.params.iter().any(|p| p.name == key))
+        {
+            return Err(Failure::Bad(format!(
+                "--set: {key}: no selected experiment has this parameter"
+            )));
+        }
+    }
+    Ok(())
+}
+
+pub(crate) fn declares(e: &Experiment, name: &str) -> bool {
+    e.params.iter().any(|p| p.name == name)
+}
+
+/// The `--set` pairs `e` declares.
+pub(crate) fn declared_sets(e: &Experiment, sets: &[(String, String)]) -> Vec<(String, String)> {
+    sets.iter()
+        .filter(|(k, _)| declares(e, k))
+        .cloned()
+        .collect()
+}
+
+/// The shorthand flags given, as (flag, the parameter it sets in `e`, value) for an experiment
+/// `e`; `None` where `e` declares no parameter the flag sets.
+pub(crate) fn shorthands(
+    e: &Experiment,
+    run: &RunArgs,
+) -> Vec<(&'static str, Option<(String, String)>)> {
+    let mut out = Vec::new();
+    let mut add = |flag: &'static str, key: &str, value: String| {
+        out.push((flag, declares(e, key).then(|| (key.to_owned(), value))));
+    };
+    if let Some(n) = run.trials {
+        add("--trials", "trials", n.to_string());
+    }
+    if let Some(g) = &run.gearing {
+        add("--gearing", "gearing", g.display().to_string());
+    }
+    if let Some(h) = &run.hypothesis {
+        add("--hypothesis", "hypothesis", h.clone());
+    }
+    if let Some(file) = &run.errors {
+        let file = file.display().to_string();
+        if declares(e, "measured") {
+            add("--errors", "measured", file);
+        } else {
+            add("--errors", "hypothesis", format!("measured:{file}"));
+        }
+    }
+    out
+}
+
+/// Every shorthand flag given must reach at least one of `chosen`.
+pub(crate) fn check_shorthands(
+    chosen: &[&'static Experiment],
+    run: &RunArgs,
+) -> Result<(), Failure> {
+    let Some(first) = chosen.first() else {
+        return Ok(());
+    };
+    for (i, (flag, _)) in shorthands(first, run).into_iter().enumerate() {
+        if !chosen.iter().any(|e| shorthands(e, run)[i].1.is_some()) {
+            let wanted = match flag {
+                "--trials" => "a `trials` parameter",
+                "--gearing" => "a `gearing` parameter",
+                "--hypothesis" => "a `hypothesis` parameter",
+                _ => "a `measured` or `hypothesis` parameter",
+            };
+            let ids: Vec<&str> = chosen.iter().map(|e| e.id).collect();
+            return Err(Failure::Bad(format!(
+                "{flag}: no selected experiment has {wanted} (selected: {})",
+                ids.join(", ")
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// One selected experiment, ready to run: its context and the `--set` pairs it was given
+/// (recorded in a shard's partial file).
+pub(crate) struct Planned {
+    pub(crate) e: &'static Experiment,
+    pub(crate) ctx: Context,
+    pub(crate) sets: Vec<(String, String)>,
+}
+
+/// The contexts of `chosen`. `alone`: one experiment named on its own, which gets every `--set`
+/// pair (an unknown key is refused naming its keys); otherwise each gets the keys it declares,
+/// and every key must be someone's. Then the shorthands each declares; the config file goes to
+/// those that take one. Everything the user gave is checked here, before anything runs:
+/// [`preflight`].
+pub(crate) fn plan(
+    chosen: &[&'static Experiment],
+    run: &RunArgs,
+    config: Option<&ConfigFile>,
+    alone: bool,
+    threads: usize,
+) -> Result<Vec<Planned>, Failure> {
+    if !alone {
+        check_sets(chosen, &run.sets)?;
+    }
+    check_shorthands(chosen, run)?;
+    let mut planned = Vec::with_capacity(chosen.len());
+    for &e in chosen {
+        let mut sets = if alone {
+            run.sets.clone()
+        } else {
+            declared_sets(e, &run.sets)
+        };
+        sets.extend(shorthands(e, run).into_iter().filter_map(|(_, s)| s));
+        let file = config.filter(|_| e.config.is_some()).cloned();
+        let ctx = progress::attach(Context::new(e, run.seed, threads, &sets, file)?);
+        planned.push(Planned { e, ctx, sets });
+    }
+    preflight(&planned, run)?;
+    Ok(planned)
+}
+
+/// Checks, before anything runs, what would otherwise fail only when an experiment reaches it
+/// (and with `all`, after others had written their results): `--out` must not be a file, and
+/// every gearing file, error hypothesis and measured-errors table the experiments were given
+/// must read and pass its rules. Each is refused naming the file, the line or item and the rule.
+pub(crate) fn preflight(planned: &[Planned], run: &RunArgs) -> Result<(), Failure> {
+    check_out(&run.out.clone().unwrap_or_else(default_out))?;
+    let mut seen = std::collections::BTreeSet::new();
+    for p in planned {
+        let value = |name: &str| {
+            p.ctx
+                .declares(name)
+                .then(|| p.ctx.param(name).ok().map(str::to_owned))
+                .flatten()
+        };
+        if let Some(g) = value("gearing")
+            && train::Gearing::builtin(&g).is_none()
+            && seen.insert(("gearing", g.clone()))
+        {
+            train::Gearing::load(Path::new(&g)).map_err(|e| Failure::Bad(e.to_string()))?;
+        }
+        let flag = if run.errors.is_some() {
+            "--errors"
+        } else {
+            "--hypothesis"
+        };
+        if let Some(h) = value("hypothesis")
+            && seen.insert(("hypothesis", h.clone()))
+        {
+            hypotheses::lookup(&h).map_err(|e| Failure::Bad(format!("{flag}: {e}")))?;
+        }
+        if let Some(m) = value("measured")
+            && !m.trim().is_empty()
+            && seen.insert(("measured", m.clone()))
+        {
+            let flag = if run.errors.is_some() {
+                "--errors"
+            } else {
+                "--set measured"
+            };
+            hypotheses::measured_file(m.trim())
+                .map_err(|e| Failure::Bad(format!("{flag}: {e}")))?;
+        }
+        measured_gears_in_gearing(p, run)?;
+    }
+    Ok(())
+}
+
+/// A measured-errors table given to an experiment that builds a gearing must name only gears of
+/// that gearing: a row for another gear (a typo, another gearing's name) would be silently
+/// unused. Refused naming the flag, the file, the gear and the gearing.
+pub(crate) fn measured_gears_in_gearing(p: &Planned, run: &RunArgs) -> Result<(), Failure> {
+    let value = |name: &str| {
+        p.ctx
+            .declares(name)
+            .then(|| p.ctx.param(name).ok().map(str::to_owned))
+            .flatten()
+    };
+    let Some(gearing_name) = value("gearing") else {
+        return Ok(());
+    };
+    let from_hypothesis = value("hypothesis").and_then(|h| {
+        h.split(hypotheses::SEPARATOR)
+            .find_map(|layer| layer.strip_prefix("measured:").map(str::to_owned))
+    });
+    let (file, flag) = match (from_hypothesis, value("measured")) {
+        (Some(f), _) => (
+            f,
+            if run.errors.is_some() {
+                "--errors"
+            } else {
+                "--hypothesis"
+            },
+        ),
+        (None, Some(m)) if !m.trim().is_empty() => (
+            m.trim().to_owned(),
+            if run.errors.is_some() {
+                "--errors"
+            } else {
+                "--set measured"
+            },
+        ),
+        _ => return Ok(()),
+    };
+    let Ok(h) = hypotheses::measured_file(&file) else {
+        return Ok(()); // refused above with its own message
+    };
+    let gearing = match train::Gearing::builtin(&gearing_name) {
+        Some(g) => g,
+        None => train::Gearing::load(Path::new(&gearing_name))
+            .map_err(|e| Failure::Bad(e.to_string()))?,
+    };
+    for (gear, _) in h.table().entries() {
+        if gearing.gear(gear).is_none() {
+            return Err(Failure::Bad(format!(
+                "{flag}: {file}: gear {gear}: is not a gear of the gearing `{gearing_name}` ({} gears, e.g. {}), so its row would be silently unused",
+                gearing.gears().len(),
+                gearing
+                    .gears()
+                    .iter()
+                    .take(3)
+                    .map(|g| g.name.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Checks, before anything is computed, that results can be written under `out` (`--out`):
+/// it is a directory, or can be created as one, and a folder can be created in it. Then puts
+/// back results a killed run left moved aside ([`registry::tidy`]). Refused (exit 2) naming
+/// `--out` and the reason; nothing is left behind by the check.
+pub(crate) fn check_out(out: &Path) -> Result<(), Failure> {
+    let refuse = |why: String| Failure::Bad(format!("--out: {}: {why}", out.display()));
+    if out.exists() && !out.is_dir() {
+        return Err(refuse("exists and is not a directory".into()));
+    }
+    // The nearest folder that exists: where the first thing would be created.
+    let mut base = out.to_path_buf();
+    while !base.as_os_str().is_empty() && std::fs::symlink_metadata(&base).is_err() {
+        base = base.parent().map(Path::to_path_buf).unwrap_or_default();
+    }
+    if base.as_os_str().is_empty() {
+        base = PathBuf::from(".");
+    }
+    if !base.is_dir() {
+        return Err(refuse(format!(
+            "cannot be created: {} is not a directory",
+            base.display()
+        )));
+    }
+    let probe = base.join(format!(
+        ".xtask-out-check.tmp-{}-{}",
+        std::process::id(),
+        std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .map_or(0, |d| d.subsec_nanos())
+    ));
+    std::fs::create_dir(&probe).map_err(|e| {
+        refuse(format!(
+            "cannot write results there (creating a folder in {} fails: {e})",
+            base.display()
+        ))
+    })?;
+    let _ = std::fs::remove_dir(&probe);
+    registry::tidy(out)?;
+    Ok(())
+}
