@@ -22,8 +22,8 @@ use crate::common::{Series, line_plot};
 use crate::errors;
 use crate::failure::{self, Clearances, Input, Outcome, Summary};
 use crate::gearing;
+use crate::gearing::clearance_list;
 use crate::pair_jams::{CellRange, CellSpec, Counts, Stage, label, run_cell_ranges, run_cells};
-use crate::table_i::clearance_list;
 use crate::table2::CASES;
 
 const GRID: Param = Param {

@@ -110,7 +110,7 @@ fn all_cells(
 ) -> Result<Vec<(CellSpec, PaperCell)>, RunError> {
     let clearance = ctx.f64("clearance")?;
     let split = ctx.f64("split")?;
-    let clearances = clearance_list(ctx)?;
+    let clearances = gearing::clearance_list(ctx, "clearances", 200.0)?;
     let randoms = tolerance::grid(ctx, &RANDOM_FROM, &RANDOM_TO, &RANDOM_STEP)?;
     let meshes: Vec<&str> = g.meshes().iter().map(|m| m.label.as_str()).collect();
     let mut out = Vec::new();
@@ -170,32 +170,6 @@ fn all_cells(
         }
     }
     Ok(out)
-}
-
-/// The `clearances` parameter: comma-separated, each above 0 and at most 200 % of h.
-fn clearance_list(ctx: &Context) -> Result<Vec<f64>, RunError> {
-    let text = ctx.param("clearances")?;
-    text.split(',')
-        .map(str::trim)
-        .map(|part| {
-            let g: f64 = part.parse().map_err(|_| {
-                RunError::bad(
-                    "--set",
-                    "clearances",
-                    format!("`{part}` is not a number (give e.g. 10,40,70)"),
-                )
-            })?;
-            if g.is_finite() && g > 0.0 && g <= 200.0 {
-                Ok(g)
-            } else {
-                Err(RunError::bad(
-                    "--set",
-                    "clearances",
-                    format!("each must be above 0 and at most 200 % of h (got {part})"),
-                ))
-            }
-        })
-        .collect()
 }
 
 /// Per rule, per table: the tally of the paper's counts against ours.

@@ -167,3 +167,28 @@ pub fn check(ctx: &Context, g: &Gearing) -> Result<(), RunError> {
     }
     Ok(())
 }
+
+/// A parameter `name` holding a comma-separated list of clearances (% of h), each above 0 and
+/// at most `max`.
+pub fn clearance_list(ctx: &Context, name: &str, max: f64) -> Result<Vec<f64>, RunError> {
+    let text = ctx.param(name)?;
+    let mut out = Vec::new();
+    for part in text.split(',').map(str::trim) {
+        let g: f64 = part.parse().map_err(|_| {
+            RunError::bad(
+                "--set",
+                name,
+                format!("`{part}` is not a number (give e.g. 10,40,70)"),
+            )
+        })?;
+        if !(g.is_finite() && g > 0.0 && g <= max) {
+            return Err(RunError::bad(
+                "--set",
+                name,
+                format!("each must be above 0 and at most {max} % of h (got {part})"),
+            ));
+        }
+        out.push(g);
+    }
+    Ok(out)
+}

@@ -30,18 +30,26 @@ pub struct IdealPair {
 }
 
 impl IdealPair {
-    /// One full turn of the larger gear from driver angle 0 at clearance `g` (% of h), or None
-    /// when the gears overlap at every tooth.
-    pub fn run(&self, g: f64) -> Result<Option<Trajectory>, RunError> {
+    /// The ideal mesh at clearance `g` (% of h), or None when the gears overlap at every tooth.
+    fn mesh(&self, g: f64) -> Result<Option<Mesh>, RunError> {
         let bad = |e: geometry::GeometryError| RunError::bad("--set", e.field, e.rule);
         let driver = Gear::ideal(self.n1, self.r1, self.r1 - self.h).map_err(bad)?;
         let driven = Gear::ideal(self.n2, self.r2, self.r2 - self.h).map_err(bad)?;
         let d = geometry::centre_distance(self.r1, self.r2, self.h, g);
-        let Ok(mesh) = Mesh::new(driver, driven, d) else {
-            return Ok(None);
-        };
-        let turn = TAU * self.n1.max(self.n2) as f64 / self.n1 as f64;
-        Ok(Some(mesh.run(0.0, turn, Start::Touching(0.0))))
+        Ok(Mesh::new(driver, driven, d).ok())
+    }
+
+    /// Driver rotation for one full turn of the larger gear.
+    fn turn(&self) -> f64 {
+        TAU * self.n1.max(self.n2) as f64 / self.n1 as f64
+    }
+
+    /// One full turn of the larger gear from driver angle 0 at clearance `g` (% of h), or None
+    /// when the gears overlap at every tooth.
+    pub fn run(&self, g: f64) -> Result<Option<Trajectory>, RunError> {
+        Ok(self
+            .mesh(g)?
+            .map(|mesh| mesh.run(0.0, self.turn(), Start::Touching(0.0))))
     }
 
     /// One full turn of the larger gear from driver angle 0 at clearance `g` with the driven
@@ -49,11 +57,7 @@ impl IdealPair {
     /// it (as [`IdealPair::run`]), 1 touching the one ahead; it stays put until a driver tooth
     /// takes it up. None when the gears overlap at every tooth.
     pub fn run_in_backlash(&self, g: f64, frac: f64) -> Result<Option<Trajectory>, RunError> {
-        let bad = |e: geometry::GeometryError| RunError::bad("--set", e.field, e.rule);
-        let driver = Gear::ideal(self.n1, self.r1, self.r1 - self.h).map_err(bad)?;
-        let driven = Gear::ideal(self.n2, self.r2, self.r2 - self.h).map_err(bad)?;
-        let d = geometry::centre_distance(self.r1, self.r2, self.h, g);
-        let Ok(mesh) = Mesh::new(driver, driven, d) else {
+        let Some(mesh) = self.mesh(g)? else {
             return Ok(None);
         };
         let touching = mesh.run(0.0, 0.0, Start::Touching(0.0)).theta_at(0.0);
@@ -72,22 +76,15 @@ impl IdealPair {
             0.0
         };
         let start = touching + frac.clamp(0.0, 1.0) * backlash;
-        let turn = TAU * self.n1.max(self.n2) as f64 / self.n1 as f64;
-        Ok(Some(mesh.run(0.0, turn, Start::At(start))))
+        Ok(Some(mesh.run(0.0, self.turn(), Start::At(start))))
     }
 
     /// The events of [`IdealPair::run`] alone (no segments kept: cheaper), or None when the
     /// gears overlap at every tooth.
     fn events(&self, g: f64) -> Result<Option<Vec<contact::Event>>, RunError> {
-        let bad = |e: geometry::GeometryError| RunError::bad("--set", e.field, e.rule);
-        let driver = Gear::ideal(self.n1, self.r1, self.r1 - self.h).map_err(bad)?;
-        let driven = Gear::ideal(self.n2, self.r2, self.r2 - self.h).map_err(bad)?;
-        let d = geometry::centre_distance(self.r1, self.r2, self.h, g);
-        let Ok(mesh) = Mesh::new(driver, driven, d) else {
-            return Ok(None);
-        };
-        let turn = TAU * self.n1.max(self.n2) as f64 / self.n1 as f64;
-        Ok(Some(mesh.run_events(0.0, turn, Start::Touching(0.0))))
+        Ok(self
+            .mesh(g)?
+            .map(|mesh| mesh.run_events(0.0, self.turn(), Start::Touching(0.0))))
     }
 
     /// Whether a full turn at clearance `g` jams by `rule` (or the gears overlap at every tooth).
