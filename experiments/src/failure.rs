@@ -1033,7 +1033,8 @@ mod tests {
     #[test]
     fn survival_cells_carry_their_band() {
         let steps = stats::kaplan_meier(&[Some(30.0), None, Some(10.0), Some(10.0)], 100.0);
-        assert_eq!(survival_cell(&steps, 5.0), "100 [100 .. 100]");
+        // 4 of 4 not yet jammed: the exact interval still reaches down to 40 %.
+        assert_eq!(survival_cell(&steps, 5.0), "100 [40 .. 100]");
         let at_10 = survival_cell(&steps, 10.0);
         assert!(at_10.starts_with("50 ["), "{at_10}");
         assert_eq!(
