@@ -474,10 +474,9 @@ pub(crate) fn parse_cases(text: &str) -> Result<Vec<usize>, RunError> {
 
 /// The measured table named by the `measured` parameter, if any: (file as given, hypothesis).
 fn measured_table(file: &str) -> Result<Option<(String, MeasuredHypothesis)>, RunError> {
-    let file = file.trim();
-    if file.is_empty() {
+    let Some(file) = hypotheses::measured_file_given(file) else {
         return Ok(None);
-    }
+    };
     let text = input_file::read_to_string(std::path::Path::new(file), input_file::MAX_INPUT_BYTES)
         .map_err(|e| RunError::bad("--set measured", file, format!("cannot read: {e}")))?;
     let table = hypotheses::measured_from_ron(file, &text)

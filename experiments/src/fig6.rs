@@ -20,9 +20,9 @@ const PARAMS: &[Param] = &[
     RANDOM_STEP,
     Param {
         name: "measured",
-        default: "none",
+        default: "",
         unit: "",
-        help: "RON table of measured per-gear errors (the `measured` hypothesis' format) to draw beside ours; none: no measured values",
+        help: "RON table of measured per-gear errors (the `measured` hypothesis' format) to draw beside ours; empty (or none): no measured values",
     },
     gearing::CLEARANCE,
     gearing::TOOTH_HEIGHT,
@@ -45,10 +45,9 @@ registry::inventory::submit! {
 
 /// The measured table named by the `measured` parameter, if any: (file name, table).
 fn measured(ctx: &Context) -> Result<Option<(String, hypotheses::MeasuredTable)>, RunError> {
-    let path = ctx.param("measured")?;
-    if path == "none" || path.is_empty() {
+    let Some(path) = hypotheses::measured_file_given(ctx.param("measured")?) else {
         return Ok(None);
-    }
+    };
     let text = input_file::read_to_string(std::path::Path::new(path), input_file::MAX_INPUT_BYTES)
         .map_err(|e| RunError::bad("--set", "measured", format!("cannot read {path}: {e}")))?;
     let table = hypotheses::measured_from_ron(path, &text).map_err(|e| {

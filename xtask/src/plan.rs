@@ -202,7 +202,7 @@ pub(crate) fn preflight(planned: &[Planned], run: &RunArgs) -> Result<(), Failur
             hypotheses::lookup(&h).map_err(|e| Failure::Bad(format!("{flag}: {e}")))?;
         }
         if let Some(m) = value("measured")
-            && !m.trim().is_empty()
+            && hypotheses::measured_file_given(&m).is_some()
             && seen.insert(("measured", m.clone()))
         {
             let flag = if run.errors.is_some() {
@@ -244,7 +244,7 @@ pub(crate) fn measured_gears_in_gearing(p: &Planned, run: &RunArgs) -> Result<()
                 "--hypothesis"
             },
         ),
-        (None, Some(m)) if !m.trim().is_empty() => (
+        (None, Some(m)) if hypotheses::measured_file_given(&m).is_some() => (
             m.trim().to_owned(),
             if run.errors.is_some() {
                 "--errors"

@@ -67,3 +67,41 @@ fn usage_describes_run_all() {
         assert!(text.contains(word), "missing {word:?} in:\n{text}");
     }
 }
+
+#[test]
+fn a_file_parameter_at_its_default_is_not_read_as_a_file() {
+    // fig6's `measured` default, "no table", was once read as a file name by the checks made
+    // before anything runs, which refused `run fig6` and so `run all` at their defaults.
+    let dir = scratch("defaults");
+    let out = dir.join("out");
+    let o = xtask(&[
+        "run",
+        "fig6",
+        "-q",
+        "--set",
+        "trials=1",
+        "--set",
+        "random_from=0.04",
+        "--set",
+        "random_to=0.04",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = xtask(&[
+        "run",
+        "fig6",
+        "-q",
+        "--set",
+        "trials=1",
+        "--set",
+        "random_from=0.04",
+        "--set",
+        "random_to=0.04",
+        "--set",
+        "measured=none",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "measured=none: {}", stderr(&o));
+}

@@ -21,7 +21,7 @@ mod stack;
 pub use edmunds::{EdmundsErrors, MAX_RANDOM, eccentricity, manufacture};
 pub use measured::{
     MEASURED_EXAMPLE, MeasuredEntry, MeasuredHypothesis, MeasuredTable, measured_file,
-    measured_from_ron,
+    measured_file_given, measured_from_ron,
 };
 pub use params::Params;
 pub use stack::SEPARATOR;

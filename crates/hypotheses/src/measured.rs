@@ -211,6 +211,15 @@ pub struct MeasuredHypothesis {
 static LOADED: LazyLock<Mutex<BTreeMap<(String, String), &'static MeasuredHypothesis>>> =
     LazyLock::new(|| Mutex::new(BTreeMap::new()));
 
+/// The measured-errors file a `measured` parameter names, if it names one: the value trimmed,
+/// `None` when it is empty or `none` (the way every experiment with the parameter spells "no
+/// measured table", so the runner's checks and the experiments agree).
+#[must_use]
+pub fn measured_file_given(value: &str) -> Option<&str> {
+    let v = value.trim();
+    (!v.is_empty() && v != "none").then_some(v)
+}
+
 /// The `measured` hypothesis over the table in the file `path` (the format of
 /// [`measured_from_ron`]), named `measured:PATH`; [`crate::lookup`] gives it for that name, so
 /// `--hypothesis measured:FILE` (or the runner's `--errors FILE`) points the `measured`
