@@ -21,6 +21,7 @@ mod limits;
 mod lunar_anomaly;
 pub mod pair;
 mod pair_jams;
+pub mod replay;
 mod sensitivity;
 mod sigma_causes;
 mod table1;

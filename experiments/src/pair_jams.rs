@@ -181,12 +181,36 @@ fn prepare<'a>(g: &Gearing, spec: &'a CellSpec) -> Result<Prepared<'a>, RunError
     })
 }
 
-/// (jammed at least once, disengaged at least once) for trial `t` of a cell. Gears whose bodies
-/// would overlap at every angle (a large eccentricity at a small clearance) cannot turn: a jam.
-/// One trial of cell `p`, counted under every rule of `rules` (at most [`MAX_RULES`]): bit `2r`
-/// of the result is "jammed at least once by rule r", bit `2r + 1` "disengaged at least once".
-/// The gears and the run do not depend on the rules: only the counting does.
-fn trial(p: &Prepared<'_>, seed: u64, t: u64, rules: &[rules::Rule]) -> Result<Outcome, RunError> {
+/// Trial `t` of a cell rebuilt from its stream, as every table ran it.
+pub struct Rebuilt {
+    /// The meshed gears (with their errors), or `None` when their bodies would overlap at every
+    /// angle (a large eccentricity at a small clearance): they cannot turn, which is a jam.
+    pub mesh: Option<Mesh>,
+    /// The driver's initial angle φ0 (radians).
+    pub phi0: f64,
+    /// The driver rotation of the trial: one full turn of the gear with more teeth.
+    pub turn: f64,
+}
+
+impl Rebuilt {
+    /// The trial's events (none for gears that cannot turn: see [`Rebuilt::mesh`]).
+    pub fn events(&self) -> Vec<contact::Event> {
+        self.mesh.as_ref().map_or_else(Vec::new, |mesh| {
+            mesh.run_events(self.phi0, self.phi0 + self.turn, Start::Touching(0.0))
+        })
+    }
+}
+
+/// Rebuilds trial `t` of `cell` under `seed` exactly as the tables ran it: the same stream (named
+/// by the cell's content and `t`), both gears' errors, then the initial angle. [`trial`] is built
+/// on it, so a replayed trial cannot drift from the one a table counted.
+///
+/// Errors: a mesh missing from the gearing; a gear the hypothesis cannot manufacture.
+pub fn rebuild(g: &Gearing, cell: &CellSpec, seed: u64, t: u64) -> Result<Rebuilt, RunError> {
+    rebuild_prepared(&prepare(g, cell)?, seed, t)
+}
+
+fn rebuild_prepared(p: &Prepared<'_>, seed: u64, t: u64) -> Result<Rebuilt, RunError> {
     // One stream per (cell content, trial): both gears' errors, then the initial angle.
     let mut rng = trial_rng(seed, stream(&p.canonical, t));
     let spec = p.spec;
@@ -205,12 +229,24 @@ fn trial(p: &Prepared<'_>, seed: u64, t: u64, rules: &[rules::Rule]) -> Result<O
         &mut rng,
     )?;
     let phi0 = rng.random::<f64>() * TAU / driver.teeth() as f64;
-    let Ok(mesh) = Mesh::new(driver, driven, p.centre_distance) else {
+    Ok(Rebuilt {
+        mesh: Mesh::new(driver, driven, p.centre_distance).ok(),
+        phi0,
+        turn: p.turn,
+    })
+}
+
+/// One trial of cell `p`, counted under every rule of `rules` (at most [`MAX_RULES`]): bit `2r`
+/// of the result is "jammed at least once by rule r", bit `2r + 1` "disengaged at least once".
+/// The gears and the run do not depend on the rules: only the counting does.
+fn trial(p: &Prepared<'_>, seed: u64, t: u64, rules: &[rules::Rule]) -> Result<Outcome, RunError> {
+    let rebuilt = rebuild_prepared(p, seed, t)?;
+    if rebuilt.mesh.is_none() {
         // Gears that overlap at every tooth are jammed under any rule.
         return Ok((0..rules.len()).fold(0, |acc, r| acc | 1 << (2 * r)));
-    };
+    }
     // Only the events are counted: the run keeps no segments.
-    let events = mesh.run_events(phi0, phi0 + p.turn, Start::Touching(0.0));
+    let events = rebuilt.events();
     Ok(rules.iter().enumerate().fold(0, |acc, (r, rule)| {
         let (jam, dis) = rule.tally(&events);
         acc | u64::from(jam) << (2 * r) | u64::from(dis) << (2 * r + 1)

@@ -137,6 +137,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     }
     ours.note(tally.note());
     ours.note("Each trial: both gears manufactured afresh (hypothesis and Case), a random initial angle, one full turn of the gear with more teeth.");
+    ours.note("See a failed trial: `cargo xtask replay table3 B/m3-e3` lists the trials of that cell that jammed or disengaged; `cargo xtask replay table3 B/m3-e3 TRIAL` rebuilds one from its random stream, prints its events and writes a pair file to rerun it (same --seed and --set as this run).");
     Ok(Report {
         tables: vec![ours],
         files: vec![OutputFile::new("table3-data.csv", csv)],

@@ -156,6 +156,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     }
     table.note(tally.note());
     table.note("Random error: sd of each tip's displacement as a fraction of the pitch 360/N (Edmunds' tooth error; Case A's 0.04). No systematic error. Each trial: both gears manufactured afresh, a random initial angle, one full turn of the gear with more teeth.");
+    table.note("See a failed trial: `cargo xtask replay table4 0.065/m3-e3` lists the trials of that cell that jammed or disengaged; `cargo xtask replay table4 0.065/m3-e3 TRIAL` rebuilds one from its random stream, prints its events and writes a pair file to rerun it (same --seed and --set as this run).");
     table.note("The paper's text says the error went from 0.04 to 0.65 by 0.005; its table shows 0.035 to 0.065, which is what we run.");
     Ok(Report {
         tables: vec![table],

@@ -109,6 +109,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     }
     table.note(tally.note());
     table.note("Each trial: both gears manufactured afresh (hypothesis and Case), a random initial angle, one full turn of the gear with more teeth. The 40 % rows are the cells of table3 (same streams, so the same counts).");
+    table.note("See a failed trial: `cargo xtask replay tableI B/70/m3-e3` lists the trials of that cell that jammed or disengaged; `cargo xtask replay tableI B/70/m3-e3 TRIAL` rebuilds one from its random stream, prints its events and writes a pair file to rerun it (same --seed and --set as this run).");
     // The paper's own two printings of the 40 % cells, compared.
     let mut differ = Vec::new();
     for &(case, _, _) in &CASES {

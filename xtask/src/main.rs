@@ -32,6 +32,7 @@ mod plan;
 mod print;
 mod progress;
 mod provenance;
+mod replay;
 mod report;
 mod shard;
 mod summary;
@@ -90,6 +91,10 @@ fn dispatch(args: &[String]) -> Result<(), Failure> {
             return report::command(&rest);
         }
         Some(("fuzz", rest)) => return fuzz::command(rest),
+        Some(("replay", rest)) => {
+            progress::init(args::Verbosity::Normal);
+            return replay::command(rest);
+        }
         _ => {}
     }
     let (cmd, verbosity) = args::parse_invocation(args)?;

@@ -1,0 +1,444 @@
+//! One trial of a per-mesh jam table rebuilt from its random stream (`cargo xtask replay`): its
+//! gears, initial angle and events, and the pair file that reruns it with `run pair`.
+//!
+//! A cell is named as its table prints it: `table3 B/m3-e3` (Case / mesh), `tableI B/70/m3-e3`
+//! (Case / G / mesh), `table4 0.050/m3-e3` (random error / mesh). The cell is built from the
+//! experiment's own parameters (`--set` reaches them as in `run`), so the trial is the one the
+//! table counted, in any run, sharded or not: a trial's stream depends only on the cell's content,
+//! the seed and the trial index.
+
+use std::f64::consts::TAU;
+use std::fmt::Write as _;
+
+use registry::{Context, OutputFile, Report, RunError, Table, fmt_f64};
+use train::Gearing;
+
+use crate::errors;
+use crate::gearing;
+use crate::pair_jams::{CellSpec, Rebuilt, rebuild};
+use crate::table2::CASES;
+
+/// The experiments whose trials can be replayed, with the form of their cells.
+pub const REPLAYABLE: [(&str, &str); 3] = [
+    ("table3", "CASE/MESH, e.g. B/m3-e3"),
+    ("tableI", "CASE/G/MESH, e.g. B/70/m3-e3"),
+    ("table4", "RANDOM/MESH, e.g. 0.050/m3-e3"),
+];
+
+/// How many failing trials a listing shows of each kind.
+const LISTED: usize = 20;
+
+fn bad_cell(id: &str, cell: &str, rule: impl Into<String>) -> RunError {
+    RunError::bad("replay", format!("cell `{cell}` of {id}"), rule)
+}
+
+/// The form of `id`'s cells, or an error naming the experiments that can be replayed.
+fn form(id: &str) -> Result<&'static str, RunError> {
+    REPLAYABLE
+        .iter()
+        .find(|(e, _)| *e == id)
+        .map(|(_, f)| *f)
+        .ok_or_else(|| {
+            let known: Vec<String> = REPLAYABLE
+                .iter()
+                .map(|(e, f)| format!("{e} ({f})"))
+                .collect();
+            RunError::bad(
+                "replay",
+                format!("experiment `{id}`"),
+                format!("has no replayable trials; these do: {}", known.join(", ")),
+            )
+        })
+}
+
+/// Case `name`'s (systematic, random) errors.
+fn case_errors(id: &str, cell: &str, name: &str) -> Result<(f64, f64), RunError> {
+    CASES
+        .iter()
+        .find(|(c, _, _)| c.eq_ignore_ascii_case(name))
+        .map(|&(_, s, r)| (s, r))
+        .ok_or_else(|| bad_cell(id, cell, format!("`{name}` is not a Case (A, B, C or D)")))
+}
+
+fn number(id: &str, cell: &str, what: &str, text: &str) -> Result<f64, RunError> {
+    text.trim()
+        .parse::<f64>()
+        .ok()
+        .filter(|v| v.is_finite() && *v >= 0.0)
+        .ok_or_else(|| bad_cell(id, cell, format!("{what} `{text}` is not a number ≥ 0")))
+}
+
+/// The cell `cell` of experiment `id`, built from the experiment's parameters in `ctx`.
+pub fn cell_spec(ctx: &Context, g: &Gearing, id: &str, cell: &str) -> Result<CellSpec, RunError> {
+    let form = form(id)?;
+    let parts: Vec<&str> = cell.split('/').collect();
+    let wrong = || bad_cell(id, cell, format!("must be {form}"));
+    let hyp = errors::chosen(ctx)?;
+    let (mesh, errors, clearance) = match (id, parts.as_slice()) {
+        ("table3", [case, mesh]) => {
+            let (sys, random) = case_errors(id, cell, case)?;
+            let split = ctx.f64("split")?;
+            let e = vec![("random", random), ("systematic", sys), ("split", split)];
+            (*mesh, e, ctx.f64("clearance")?)
+        }
+        ("tableI", [case, g_text, mesh]) => {
+            let (sys, random) = case_errors(id, cell, case)?;
+            let split = ctx.f64("split")?;
+            let e = vec![("random", random), ("systematic", sys), ("split", split)];
+            (*mesh, e, number(id, cell, "G", g_text)?)
+        }
+        ("table4", [random, mesh]) => {
+            let e = vec![
+                ("random", number(id, cell, "random error", random)?),
+                ("systematic", 0.0),
+            ];
+            (*mesh, e, ctx.f64("clearance")?)
+        }
+        _ => return Err(wrong()),
+    };
+    if g.mesh(mesh).is_none() {
+        let meshes: Vec<&str> = g.meshes().iter().map(|m| m.label.as_str()).collect();
+        return Err(bad_cell(
+            id,
+            cell,
+            format!(
+                "no mesh `{mesh}` in the gearing (its meshes: {})",
+                meshes.join(", ")
+            ),
+        ));
+    }
+    Ok(CellSpec {
+        mesh: mesh.to_owned(),
+        hypothesis: hyp,
+        params: errors::params(ctx, hyp, &errors)?,
+        tooth_height: ctx.f64("tooth_height")?,
+        clearance,
+        events: crate::events::chosen(ctx)?,
+    })
+}
+
+/// Replays trial `trial` of `cell` of experiment `id` (its events and the pair file that reruns
+/// it), or, with no trial, lists which of the experiment's trials of that cell failed.
+///
+/// Errors: an experiment without replayable trials, a malformed cell, a mesh not in the
+/// gearing, a trial index at or beyond the experiment's trial count.
+pub fn replay(ctx: &Context, id: &str, cell: &str, trial: Option<u64>) -> Result<Report, RunError> {
+    form(id)?;
+    let g = gearing::load(ctx)?;
+    let spec = cell_spec(ctx, &g, id, cell)?;
+    let trials = ctx.u64("trials")?;
+    match trial {
+        Some(t) if t >= trials => Err(RunError::bad(
+            "replay",
+            format!("trial {t}"),
+            format!(
+                "must be below {id}'s {trials} trials (0 to {})",
+                trials.saturating_sub(1)
+            ),
+        )),
+        Some(t) => one_trial(&g, &spec, ctx.seed(), id, cell, t),
+        None => listing(&g, &spec, ctx.seed(), id, cell, trials),
+    }
+}
+
+/// The events of one trial, and its pair file.
+fn one_trial(
+    g: &Gearing,
+    spec: &CellSpec,
+    seed: u64,
+    id: &str,
+    cell: &str,
+    t: u64,
+) -> Result<Report, RunError> {
+    let rebuilt = rebuild(g, spec, seed, t)?;
+    let events = rebuilt.events();
+    let (jam, dis) = if rebuilt.mesh.is_none() {
+        (true, false)
+    } else {
+        spec.events.tally(&events)
+    };
+    let mut table = Table::new(
+        format!(
+            "{id} {cell}, trial {t} (seed {seed}): {} [events: {}]",
+            verdict(jam, dis),
+            spec.events.label()
+        ),
+        [
+            "phi [deg]",
+            "kind",
+            "counted as",
+            "driver tooth",
+            "driven tooth",
+            "theta [deg]",
+        ],
+    );
+    let (n1, n2) = rebuilt.mesh.as_ref().map_or((1, 1), |m| {
+        (m.driver().teeth() as i64, m.driven().teeth() as i64)
+    });
+    for e in &events {
+        let counted = if spec.events.is_jam(e) {
+            "jam"
+        } else if spec.events.is_disengagement(e) {
+            "disengagement"
+        } else {
+            "-"
+        };
+        table.row(vec![
+            fmt_f64(e.phi.to_degrees(), 6),
+            e.kind.name().into(),
+            counted.into(),
+            e.driver_tooth.rem_euclid(n1).to_string(),
+            e.driven_tooth.rem_euclid(n2).to_string(),
+            fmt_f64(e.theta.to_degrees(), 6),
+        ]);
+    }
+    table.note(format!(
+        "Cell: {}. Initial driver angle {} deg; one full turn of the gear with more teeth ({} deg of the driver). Angles are absolute (the solver's frame), teeth numbered 0 to N - 1 as in pair.ron's tips_deg.",
+        spec.canonical(),
+        fmt_f64(rebuilt.phi0.to_degrees(), 9),
+        fmt_f64(rebuilt.turn.to_degrees(), 6),
+    ));
+    let mut files = Vec::new();
+    match pair_file(&rebuilt) {
+        Ok(ron) => {
+            table.note("pair.ron rebuilds this trial for `cargo xtask run pair --config pair.ron` (edit it to change one thing and rerun).");
+            files.push(OutputFile::new("pair.ron", ron));
+        }
+        Err(why) => table.note(format!("No pair file: {why}.")),
+    }
+    Ok(Report {
+        tables: vec![table],
+        files,
+        ..Default::default()
+    })
+}
+
+fn verdict(jam: bool, dis: bool) -> &'static str {
+    match (jam, dis) {
+        (true, true) => "jammed and disengaged",
+        (true, false) => "jammed",
+        (false, true) => "disengaged",
+        (false, false) => "neither jammed nor disengaged",
+    }
+}
+
+/// The trials of the cell that failed, by kind (the first [`LISTED`] of each).
+fn listing(
+    g: &Gearing,
+    spec: &CellSpec,
+    seed: u64,
+    id: &str,
+    cell: &str,
+    trials: u64,
+) -> Result<Report, RunError> {
+    use rayon::prelude::*;
+    let outcomes: Vec<(bool, bool)> = (0..trials)
+        .into_par_iter()
+        .map(|t| {
+            let r = rebuild(g, spec, seed, t)?;
+            Ok(if r.mesh.is_none() {
+                (true, false)
+            } else {
+                spec.events.tally(&r.events())
+            })
+        })
+        .collect::<Result<_, RunError>>()?;
+    let which = |f: fn(&(bool, bool)) -> bool| -> (usize, String) {
+        let all: Vec<String> = outcomes
+            .iter()
+            .enumerate()
+            .filter(|(_, o)| f(o))
+            .map(|(t, _)| t.to_string())
+            .collect();
+        let mut s = all
+            .iter()
+            .take(LISTED)
+            .cloned()
+            .collect::<Vec<_>>()
+            .join(", ");
+        if all.len() > LISTED {
+            let _ = write!(s, ", ... ({} more)", all.len() - LISTED);
+        }
+        (all.len(), if s.is_empty() { "-".into() } else { s })
+    };
+    let (jams, jam_list) = which(|o| o.0);
+    let (dis, dis_list) = which(|o| o.1);
+    let mut table = Table::new(
+        format!(
+            "{id} {cell}: the trials that failed, of {trials} (seed {seed}) [events: {}]",
+            spec.events.label()
+        ),
+        ["failure", "trials", "trial indices"],
+    );
+    table.row(vec!["jam".into(), jams.to_string(), jam_list]);
+    table.row(vec!["disengagement".into(), dis.to_string(), dis_list]);
+    table.note(format!(
+        "Replay one: cargo xtask replay {id} {cell} TRIAL (with the same --seed and --set as the table's run)."
+    ));
+    Ok(Report {
+        tables: vec![table],
+        trials,
+        ..Default::default()
+    })
+}
+
+/// The trial as a `pair` file: explicit tip angles and arbor offsets in the solver's frame
+/// (the driver's sense, the tips frame), the centre distance, the initial driver angle and the
+/// run's length. Gears the pair format cannot describe (per-tooth radii, curved flanks, valleys
+/// off the middle) give the reason instead.
+fn pair_file(r: &Rebuilt) -> Result<String, String> {
+    let mesh = r
+        .mesh
+        .as_ref()
+        .ok_or("the gears overlap at every angle, so there is no run to rerun")?;
+    let mut s =
+        String::from("// Rebuilt by `cargo xtask replay`: one trial of a per-mesh table.\n(\n");
+    for (name, gear) in [("driver", mesh.driver()), ("driven", mesh.driven())] {
+        describable(name, gear)?;
+        let tips: Vec<String> = gear
+            .tip_angles()
+            .iter()
+            .map(|a| format!("{:?}", a.to_degrees()))
+            .collect();
+        let c = gear.rotation_centre();
+        let _ = writeln!(
+            s,
+            "    {name}: (\n        teeth: {},\n        tip_radius: {:?},\n        root_radius: {:?},\n        tips_deg: Some([{}]),\n        eccentricity: Some(({:?}, {:?})),\n    ),",
+            gear.teeth(),
+            gear.tip_radius(),
+            gear.root_radius(),
+            tips.join(", "),
+            c.x,
+            c.y
+        );
+    }
+    let _ = writeln!(
+        s,
+        "    centre_distance: Some({:?}),\n    start_deg: {:?},\n    run_deg: Some({:?}),\n    start: touching,\n)",
+        mesh.centre_distance(),
+        r.phi0.to_degrees(),
+        r.turn.to_degrees()
+    );
+    Ok(s)
+}
+
+/// Whether the pair format can describe `gear`: one tip and one root radius, straight flanks,
+/// each valley half-way between its tips.
+fn describable(name: &str, gear: &geometry::Gear) -> Result<(), String> {
+    let n = gear.teeth() as i64;
+    let round = (0..n).all(|k| {
+        gear.tip_radius_of(k) == gear.tip_radius() && gear.root_radius_of(k) == gear.root_radius()
+    });
+    if !round {
+        return Err(format!("the {name} has teeth of different heights"));
+    }
+    if gear.flank_sagitta() != 0.0 {
+        return Err(format!("the {name}'s flanks are curved"));
+    }
+    let mid = gear
+        .tip_angles()
+        .iter()
+        .zip(gear.valley_angles())
+        .enumerate()
+        .all(|(k, (&a, &v))| {
+            let next = if k + 1 < gear.teeth() {
+                gear.tip_angles()[k + 1]
+            } else {
+                gear.tip_angles()[0] + TAU
+            };
+            (v - 0.5 * (a + next)).abs() < 1e-12
+        });
+    if !mid {
+        return Err(format!(
+            "the {name}'s valleys are not half-way between its tips"
+        ));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, reason = "tests")]
+    use super::*;
+    use crate::pair_jams::{Stage, run_cells};
+
+    fn ctx(id: &str, sets: &[(&str, &str)]) -> Context {
+        crate::link();
+        let map = registry::experiments().unwrap();
+        let sets: Vec<(String, String)> = sets
+            .iter()
+            .map(|(k, v)| ((*k).to_owned(), (*v).to_owned()))
+            .collect();
+        Context::new(map[id], 2025, 2, &sets, None).unwrap()
+    }
+
+    /// The first cell of the listing's row `row`: the count of failed trials.
+    fn listed(report: &Report, row: usize) -> u64 {
+        report.tables[0].rows[row][1].parse().unwrap()
+    }
+
+    #[test]
+    fn replayed_trials_are_the_ones_the_table_counted() {
+        for (id, cell) in [
+            ("table3", "B/m3-e3"),
+            ("tableI", "D/70/l2-m1"),
+            ("table4", "0.065/m2-n1"),
+        ] {
+            // Fewer trials than a listing shows, so every failed one is named.
+            let ctx = ctx(id, &[("trials", "16")]);
+            let g = gearing::load(&ctx).unwrap();
+            let spec = cell_spec(&ctx, &g, id, cell).unwrap();
+            let counts =
+                run_cells(&ctx, &g, std::slice::from_ref(&spec), 16, Stage::Own).unwrap()[0];
+            let listing = replay(&ctx, id, cell, None).unwrap();
+            assert_eq!(listed(&listing, 0), counts.jams, "{id} {cell}: jams");
+            assert_eq!(
+                listed(&listing, 1),
+                counts.disengagements,
+                "{id} {cell}: disengagements"
+            );
+            assert!(
+                counts.jams > 0,
+                "{id} {cell}: the cell must jam for the test to show anything"
+            );
+            // Each trial the listing names as jammed replays as a jam, and one it does not name
+            // does not.
+            let jammed: Vec<u64> = listing.tables[0].rows[0][2]
+                .split(", ")
+                .filter_map(|t| t.parse().ok())
+                .collect();
+            for t in 0..16 {
+                let one = replay(&ctx, id, cell, Some(t)).unwrap();
+                let title = &one.tables[0].title;
+                assert_eq!(
+                    title.contains(": jammed"),
+                    jammed.contains(&t),
+                    "{id} {cell} trial {t}: {title}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn bad_cells_and_trials_are_named() {
+        let ctx3 = ctx("table3", &[("trials", "10")]);
+        for (cell, words) in [
+            ("B", "must be CASE/MESH"),
+            ("E/m3-e3", "`E` is not a Case"),
+            ("B/x-y", "no mesh `x-y`"),
+        ] {
+            let e = replay(&ctx3, "table3", cell, Some(0)).err().unwrap();
+            assert_eq!(e.exit_code(), 2);
+            assert!(e.to_string().contains(words), "{cell}: {e}");
+        }
+        let e = replay(&ctx3, "table3", "B/m3-e3", Some(10)).err().unwrap();
+        assert!(
+            e.to_string().contains("must be below table3's 10 trials"),
+            "{e}"
+        );
+        let e = replay(&ctx("fig2", &[]), "fig2", "x", Some(0))
+            .err()
+            .unwrap();
+        assert!(e.to_string().contains("has no replayable trials"), "{e}");
+    }
+}

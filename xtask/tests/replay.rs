@@ -1,0 +1,160 @@
+//! `replay` as a reader of Table 3 uses it: the failed trials of a cell are the ones a sharded and
+//! merged run counted, a replayed jam happens at the same driver angle when the written pair file
+//! is rerun with `run pair`, and bad arguments are refused with one line.
+#![allow(clippy::unwrap_used, reason = "tests")]
+
+mod support;
+
+use support::{Scratch, xtask};
+
+fn ok(args: &[&str]) -> String {
+    let o = xtask(args);
+    assert!(
+        o.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    String::from_utf8(o.stdout).unwrap()
+}
+
+/// The number in the `trials` column of a listing row (`| jam | 7 | 1, 2, ... |`).
+fn listed(text: &str, failure: &str) -> (u64, Vec<u64>) {
+    let row = text
+        .lines()
+        .find(|l| l.starts_with(&format!("| {failure} ")))
+        .unwrap();
+    let cells: Vec<&str> = row.split('|').map(str::trim).collect();
+    let indices = cells[3]
+        .split(", ")
+        .filter_map(|t| t.parse().ok())
+        .collect();
+    (cells[2].parse().unwrap(), indices)
+}
+
+#[test]
+fn failed_trials_are_the_ones_a_sharded_run_counted_and_rerun_as_pairs() {
+    let s = Scratch::new("replay");
+    let out = s.path("out");
+    // Table 3 at 12 trials per cell, in two shards merged.
+    for k in ["0/2", "1/2"] {
+        ok(&[
+            "run",
+            "table3",
+            "-q",
+            "--set",
+            "trials=12",
+            "--shard",
+            k,
+            "--out",
+            &out,
+        ]);
+    }
+    let merged = ok(&[
+        "merge",
+        &s.path("out/table3"),
+        "-q",
+        "--out",
+        &s.path("merged"),
+    ]);
+    // Case B, m3-e3: `141/0 (168/0)` at 200 trials; here some count of 12.
+    let row = merged.lines().find(|l| l.starts_with("| B ")).unwrap();
+    let header = merged.lines().find(|l| l.starts_with("| case ")).unwrap();
+    let column = header
+        .split('|')
+        .map(str::trim)
+        .position(|c| c == "m3-e3")
+        .unwrap();
+    let cell = row.split('|').map(str::trim).nth(column).unwrap();
+    let jams: u64 = cell
+        .split('/')
+        .next()
+        .unwrap()
+        .trim_end_matches('*')
+        .parse()
+        .unwrap();
+    let listing = ok(&[
+        "replay",
+        "table3",
+        "B/m3-e3",
+        "-q",
+        "--set",
+        "trials=12",
+        "--out",
+        &out,
+    ]);
+    let (count, trials) = listed(&listing, "jam");
+    assert_eq!(count, jams, "{listing}\n{merged}");
+    assert!(!trials.is_empty(), "no jam to replay: {listing}");
+    // The first jammed trial: its jam, then the same gears rerun from pair.ron by `run pair`.
+    let t = trials[0].to_string();
+    let one = ok(&[
+        "replay",
+        "table3",
+        "B/m3-e3",
+        &t,
+        "-q",
+        "--set",
+        "trials=12",
+        "--out",
+        &out,
+    ]);
+    assert!(one.contains(": jammed"), "{one}");
+    let jam_row = one.lines().find(|l| l.contains("| jam ")).unwrap();
+    let phi: f64 = jam_row.split('|').nth(1).unwrap().trim().parse().unwrap();
+    let pair_file = s.0.join(format!("out/replay-table3-B-m3-e3-{t}/pair.ron"));
+    let start_deg: f64 = std::fs::read_to_string(&pair_file)
+        .unwrap()
+        .lines()
+        .find_map(|l| l.trim().strip_prefix("start_deg: "))
+        .unwrap()
+        .trim_end_matches(',')
+        .parse()
+        .unwrap();
+    let rerun = ok(&[
+        "run",
+        "pair",
+        "-q",
+        "--config",
+        pair_file.to_str().unwrap(),
+        "--out",
+        &out,
+    ]);
+    let first_jam = rerun
+        .lines()
+        .skip_while(|l| !l.starts_with("### Events"))
+        .find(|l| l.contains("| jam "))
+        .unwrap();
+    // pair prints phi from the start; the replay prints it absolute.
+    let rerun_phi: f64 = first_jam.split('|').nth(1).unwrap().trim().parse().unwrap();
+    assert!(
+        (rerun_phi + start_deg - phi).abs() < 1e-5,
+        "replay {phi} deg, pair {rerun_phi} + {start_deg} deg"
+    );
+}
+
+#[test]
+fn bad_arguments_are_refused_in_one_line() {
+    for (args, words) in [
+        (
+            &["replay", "fig2", "x", "0"][..],
+            "has no replayable trials",
+        ),
+        (&["replay", "table3", "B"], "must be CASE/MESH"),
+        (
+            &["replay", "table3", "B/m3-e3", "200"],
+            "must be below table3's 200 trials",
+        ),
+        (
+            &["replay", "table3", "B/m3-e3", "x"],
+            "is not a trial index",
+        ),
+        (&["replay", "table3"], "usage: cargo xtask replay"),
+        (&["replay", "nope", "B/m3-e3", "0"], "nope"),
+    ] {
+        let o = xtask(args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains(words), "{args:?}: {err}");
+        assert!(o.stdout.is_empty(), "{args:?}: nothing on stdout");
+    }
+}
