@@ -20,6 +20,7 @@ mod gearing;
 mod limits;
 mod lunar_anomaly;
 pub mod pair;
+mod pair_html;
 mod pair_jams;
 pub mod replay;
 mod sensitivity;

@@ -65,7 +65,10 @@ theta_abs_deg are phi and theta themselves.
   - event-log.csv: the same relative angles, then the absolute ones, and tooth numbers as in your \
 file.
   - pair-check.svg draws both gears at phi = 0 and theta = 0 with the axes, each zero ray, teeth 0 \
-and 1 of each gear and the turning senses, so you can check your entry against your scan.";
+and 1 of each gear and the turning senses, so you can check your entry against your scan.
+  - pair.html: the run on one self-contained page - both gears turning with a slider over phi and \
+a play button, the Theoretical Difference beneath with a cursor, every event a link that jumps \
+there and zooms on the mesh (open it from disk; `#phi=X` opens it at phi - phi0 = X deg).";
 
 /// Which way a gear's `tips_deg` (and the y axis of its tips frame) run.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
@@ -742,6 +745,12 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             OutputFile::new("event-log.csv", ev_rows),
             OutputFile::new("pair.svg", svg),
             OutputFile::new("pair-check.svg", check),
+            OutputFile::new(
+                "pair.html",
+                crate::pair_html::page(&format!("Mesh from {name}"), &traj, &|e| {
+                    counted_as(&rule, e)
+                }),
+            ),
         ],
         ..Default::default()
     })

@@ -199,6 +199,27 @@ fn one_trial(
         fmt_f64(rebuilt.turn.to_degrees(), 6),
     ));
     let mut files = Vec::new();
+    if let Some(mesh) = &rebuilt.mesh {
+        let traj = mesh.run(
+            rebuilt.phi0,
+            rebuilt.phi0 + rebuilt.turn,
+            contact::Start::Touching(0.0),
+        );
+        let counted = |e: &contact::Event| {
+            if spec.events.is_jam(e) {
+                "jam"
+            } else if spec.events.is_disengagement(e) {
+                "disengagement"
+            } else {
+                "-"
+            }
+        };
+        let title = format!("{id} {cell}, trial {t} (seed {seed})");
+        files.push(OutputFile::new(
+            "pair.html",
+            crate::pair_html::page(&title, &traj, &counted),
+        ));
+    }
     match pair_file(&rebuilt) {
         Ok(ron) => {
             table.note("pair.ron rebuilds this trial for `cargo xtask run pair --config pair.ron` (edit it to change one thing and rerun).");

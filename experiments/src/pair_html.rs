@@ -1,0 +1,234 @@
+//! `pair.html`: one self-contained page (no network, works from `file://`) on which a run of one
+//! mesh moves: both gears drawn from their real outlines at the centre distance, a slider over the
+//! driver angle and a play button, θ and the Theoretical Difference beneath with a cursor, and the
+//! events listed, each a link that jumps there and zooms on the mesh.
+//!
+//! Each outline is written once, in its gear's frame at φ = 0 (θ = 0); moving the slider only
+//! changes two `rotate` transforms (the driver about its arbor at the origin by φ, the driven gear
+//! about its arbor at (D, 0) by −θ, as `contact::Mesh::world_outlines` places them), so a
+//! 223-tooth gear stays smooth. `#phi=X` in the address (X: φ − φ0 in degrees, as in `pair.csv`)
+//! opens the page there.
+
+use std::fmt::Write as _;
+
+use contact::Trajectory;
+use geometry::Vec2;
+
+/// Most samples of θ(φ) carried by the page (the slider's steps).
+const MAX_SAMPLES: usize = 4000;
+
+/// The samples of the page: (φ − φ0, θ absolute, TD), degrees, at `n` equal steps over the run.
+fn samples(traj: &Trajectory, n: usize) -> Vec<(f64, f64, f64)> {
+    let (a, b) = (traj.phi_start(), traj.phi_end());
+    let mesh = traj.mesh();
+    let ratio = mesh.driver().teeth() as f64 / mesh.driven().teeth() as f64;
+    let theta0 = traj.theta_at(a);
+    (0..=n)
+        .map(|i| {
+            let phi = a + (b - a) * i as f64 / n as f64;
+            let theta = traj.theta_at(phi);
+            let td = (theta - theta0) - ratio * (phi - a);
+            ((phi - a).to_degrees(), theta.to_degrees(), td.to_degrees())
+        })
+        .collect()
+}
+
+fn points(outline: &[Vec2]) -> String {
+    let mut s = String::new();
+    for v in outline {
+        let _ = write!(s, "{:.5},{:.5} ", v.x, v.y);
+    }
+    s.trim_end().to_owned()
+}
+
+fn escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// The page for `traj` (one mesh's run), titled `title`; `counted(e)` says what the event rule
+/// counts an event as (`jam`, `disengagement` or `-`).
+pub fn page(
+    title: &str,
+    traj: &Trajectory,
+    counted: &dyn Fn(&contact::Event) -> &'static str,
+) -> String {
+    let mesh = traj.mesh();
+    let (driver, driven) = mesh.world_outlines(0.0, 0.0);
+    let d = mesh.centre_distance();
+    let (r1, r2) = (
+        mesh.driver().max_tip_radius(),
+        mesh.driven().max_tip_radius(),
+    );
+    let n = MAX_SAMPLES;
+    let data = samples(traj, n);
+    let phi0 = traj.phi_start();
+    let mut json = String::from("[");
+    for (i, (p, t, td)) in data.iter().enumerate() {
+        let _ = write!(
+            json,
+            "{}[{p:.9},{t:.9},{td:.9}]",
+            if i == 0 { "" } else { "," }
+        );
+    }
+    json.push(']');
+    let mut events = String::new();
+    for e in traj.events() {
+        let at = (e.phi - phi0).to_degrees();
+        let _ = writeln!(
+            events,
+            "<li class=\"{kind}\"><a href=\"#phi={at:.9}\">{at:.4} deg: {kind} ({counted}), driver tooth {j}, driven tooth {k}</a></li>",
+            kind = e.kind.name(),
+            counted = counted(e),
+            j = e.driver_tooth.rem_euclid(mesh.driver().teeth() as i64),
+            k = e.driven_tooth.rem_euclid(mesh.driven().teeth() as i64),
+        );
+    }
+    if events.is_empty() {
+        events.push_str("<li>no event: the driven gear was driven throughout</li>\n");
+    }
+    // The whole mesh in view; the zoom frames the region where the teeth meet.
+    let (x0, x1) = (-1.05 * r1, d + 1.05 * r2);
+    let half = 1.05 * r1.max(r2);
+    let mesh_x = d * r1 / (r1 + r2);
+    let zoom = 3.0
+        * (mesh
+            .driver()
+            .tooth_height()
+            .max(mesh.driven().tooth_height()));
+    format!(
+        r##"<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8"><title>{title}</title>
+<style>
+body {{ font-family: sans-serif; margin: 1em; }}
+#mesh {{ border: 1px solid #ccc; width: 900px; height: 480px; }}
+#plot {{ border: 1px solid #ccc; width: 900px; height: 200px; }}
+li.lock a, li.strike a, li.blocked a {{ color: #b00; }}
+li.gap a, li.slip a {{ color: #06c; }}
+</style></head>
+<body>
+<h1>{title}</h1>
+<p><input id="slider" type="range" min="0" max="{n}" value="0" step="1" style="width: 900px">
+<br><button id="play">play</button> <button id="zoom">zoom on the mesh</button>
+phi - phi0 = <span id="phi">0</span> deg, theta = <span id="theta"></span> deg,
+TD = <span id="td"></span> deg</p>
+<svg id="mesh" viewBox="{vx:.5} {vy:.5} {vw:.5} {vh:.5}" data-full="{vx:.5} {vy:.5} {vw:.5} {vh:.5}" data-zoom="{zx:.5} {zy:.5} {zw:.5} {zw:.5}">
+<g transform="scale(1,-1)">
+<g id="driver" transform="rotate(0 0 0)"><polygon points="{driver}" fill="#dde" stroke="#226" stroke-width="{sw:.5}"/></g>
+<g id="driven" transform="rotate(0 {d:.9} 0)" data-theta-deg=""><polygon points="{driven}" fill="#ede" stroke="#626" stroke-width="{sw:.5}"/></g>
+<circle cx="0" cy="0" r="{dot:.5}" fill="#226"/><circle cx="{d:.9}" cy="0" r="{dot:.5}" fill="#626"/>
+</g></svg>
+<svg id="plot" viewBox="0 0 900 200"><polyline id="td-line" fill="none" stroke="#333" stroke-width="1" points=""/>
+<line id="cursor" x1="0" y1="0" x2="0" y2="200" stroke="#c00"/></svg>
+<h2>Events</h2>
+<ol id="events">
+{events}</ol>
+<p id="status">loading</p>
+<script>
+"use strict";
+const S = {json};
+const slider = document.getElementById("slider");
+const driver = document.getElementById("driver");
+const driven = document.getElementById("driven");
+const cursor = document.getElementById("cursor");
+const meshSvg = document.getElementById("mesh");
+const tdMin = Math.min(...S.map(s => s[2])), tdMax = Math.max(...S.map(s => s[2]));
+const phiMax = S[S.length - 1][0] || 1;
+const px = p => 900 * p / phiMax;
+const py = t => tdMax > tdMin ? 190 - 180 * (t - tdMin) / (tdMax - tdMin) : 100;
+document.getElementById("td-line").setAttribute("points", S.map(s => px(s[0]).toFixed(2) + "," + py(s[2]).toFixed(2)).join(" "));
+function show(i) {{
+  const s = S[i];
+  // Driver about its arbor (the origin) by phi; driven about (D, 0) by -theta.
+  driver.setAttribute("transform", "rotate(" + (s[0] + {phi0_deg:.12}) + " 0 0)");
+  driven.setAttribute("transform", "rotate(" + (-s[1]) + " {d:.9} 0)");
+  driven.setAttribute("data-theta-deg", String(s[1]));
+  driven.setAttribute("data-phi-deg", String(s[0]));
+  document.getElementById("phi").textContent = s[0].toFixed(4);
+  document.getElementById("theta").textContent = s[1].toFixed(4);
+  document.getElementById("td").textContent = s[2].toFixed(5);
+  cursor.setAttribute("x1", px(s[0])); cursor.setAttribute("x2", px(s[0]));
+}}
+function nearest(phi) {{
+  let best = 0;
+  for (let i = 1; i < S.length; i++) if (Math.abs(S[i][0] - phi) < Math.abs(S[best][0] - phi)) best = i;
+  return best;
+}}
+function fromHash() {{
+  const m = /phi=(-?[0-9.eE+-]+)/.exec(location.hash);
+  if (m) {{ slider.value = nearest(parseFloat(m[1])); meshSvg.setAttribute("viewBox", meshSvg.dataset.zoom); }}
+  show(Number(slider.value));
+}}
+slider.addEventListener("input", () => show(Number(slider.value)));
+window.addEventListener("hashchange", fromHash);
+let timer = null;
+document.getElementById("play").addEventListener("click", () => {{
+  if (timer) {{ clearInterval(timer); timer = null; return; }}
+  timer = setInterval(() => {{
+    const i = (Number(slider.value) + 1) % S.length;
+    slider.value = i; show(i);
+  }}, 30);
+}});
+document.getElementById("zoom").addEventListener("click", () => {{
+  const full = meshSvg.dataset.full;
+  meshSvg.setAttribute("viewBox", meshSvg.getAttribute("viewBox") === full ? meshSvg.dataset.zoom : full);
+}});
+fromHash();
+document.getElementById("status").textContent = "ok";
+</script>
+</body></html>
+"##,
+        title = escape(title),
+        vx = x0,
+        vy = -half,
+        vw = x1 - x0,
+        vh = 2.0 * half,
+        zx = mesh_x - zoom,
+        zy = -zoom,
+        zw = 2.0 * zoom,
+        driver = points(&driver),
+        driven = points(&driven),
+        sw = 0.002 * (x1 - x0),
+        dot = 0.01 * r1.min(r2),
+        phi0_deg = phi0.to_degrees(),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, reason = "tests")]
+    use super::*;
+    use contact::{Mesh, Start};
+    use geometry::Gear;
+
+    #[test]
+    fn the_page_turns_the_gears_as_the_mesh_places_them() {
+        let mesh = Mesh::new(
+            Gear::ideal(20, 20.0, 18.9).unwrap(),
+            Gear::ideal(30, 30.0, 28.9).unwrap(),
+            20.0 + 30.0 - 1.1 + 0.44,
+        )
+        .unwrap();
+        // The page rotates the θ = 0 outline by −θ about (D, 0): what world_outlines draws.
+        let (_, at0) = mesh.world_outlines(0.0, 0.0);
+        let theta: f64 = 0.3;
+        let (_, at) = mesh.world_outlines(0.0, theta);
+        let c = Vec2::new(mesh.centre_distance(), 0.0);
+        for (a, b) in at0.iter().zip(&at) {
+            let r = a - c;
+            let turned = c + Vec2::new(
+                r.x * theta.cos() + r.y * theta.sin(),
+                -r.x * theta.sin() + r.y * theta.cos(),
+            );
+            assert!((turned - b).norm() < 1e-9);
+        }
+        let traj = mesh.run(0.1, 1.0, Start::Touching(0.0));
+        let html = page("a <test>", &traj, &|_| "-");
+        assert!(html.contains("<title>a &lt;test&gt;</title>"));
+        assert!(html.contains("id=\"driven\"") && html.contains("id=\"status\""));
+        // Nothing is fetched: no address of any kind in the page.
+        assert!(!html.contains("http"), "the page must work offline");
+    }
+}

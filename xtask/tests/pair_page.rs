@@ -1,0 +1,138 @@
+//! `pair.html` in a real browser: headless Chromium opens the page at a driver angle
+//! (`#phi=X`), runs its script, and the driven gear it draws is turned by θ at that angle as
+//! `pair.csv` gives it; the script ran to its end (no error stopped it). Skipped when Chromium is
+//! missing, unless `CI=true` (`.ci/run` installs it).
+#![allow(clippy::unwrap_used, reason = "tests")]
+
+mod support;
+
+use std::path::PathBuf;
+use std::process::{Command, Stdio};
+use std::time::Duration;
+
+use support::{Scratch, xtask};
+
+fn chromium() -> Option<PathBuf> {
+    std::env::var_os("CHROMIUM")
+        .map(PathBuf::from)
+        .or_else(|| Some(PathBuf::from("/usr/bin/chromium")))
+        .filter(|p| p.is_file())
+}
+
+/// The DOM after the page's script ran (`--dump-dom`).
+fn dom(chrome: &PathBuf, dir: &std::path::Path, url: &str) -> String {
+    let child = Command::new(chrome)
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            "--dump-dom",
+        ])
+        .arg(format!(
+            "--user-data-dir={}",
+            dir.join(".chromium-profile").display()
+        ))
+        .arg(url)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    // Read the DOM while Chromium writes it (a full pipe would stall it), with a time limit.
+    let pid = child.id();
+    let (done, got) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let _ = done.send(child.wait_with_output());
+    });
+    let out = got
+        .recv_timeout(Duration::from_secs(90))
+        .unwrap_or_else(|_| {
+            let _ = Command::new("kill").arg(pid.to_string()).status();
+            panic!("chromium took more than 90 s")
+        })
+        .unwrap();
+    String::from_utf8(out.stdout).unwrap()
+}
+
+/// The value of attribute `name` in the tag that starts at `tag`.
+fn attribute(html: &str, tag: &str, name: &str) -> String {
+    let start = html
+        .find(tag)
+        .unwrap_or_else(|| panic!("no {tag} in the page"));
+    let rest = &html[start..start + html[start..].find('>').unwrap()];
+    let at = rest.find(&format!("{name}=\"")).unwrap() + name.len() + 2;
+    rest[at..at + rest[at..].find('"').unwrap()].to_owned()
+}
+
+/// θ (absolute, degrees) at φ − φ0 = `phi` from pair.csv, linearly between its rows.
+fn csv_theta(csv: &str, phi: f64) -> f64 {
+    let rows: Vec<Vec<f64>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|c| c.parse().unwrap()).collect())
+        .collect();
+    let i = rows.iter().position(|r| r[0] >= phi).unwrap().max(1);
+    let (a, b) = (&rows[i - 1], &rows[i]);
+    let w = (phi - a[0]) / (b[0] - a[0]);
+    a[4] + w * (b[4] - a[4])
+}
+
+#[test]
+fn the_page_draws_the_driven_gear_at_theta_of_phi() {
+    let Some(chrome) = chromium() else {
+        assert!(
+            std::env::var("CI").map_or(true, |v| v != "true"),
+            "CI=true and no Chromium: .ci/run installs it (scripts/check-report.sh install)"
+        );
+        eprintln!("skipped: no Chromium (set CHROMIUM or install it)");
+        return;
+    };
+    let s = Scratch::new("pair-page");
+    let o = xtask(&["run", "pair", "-q", "--out", &s.path("out")]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let dir = s.0.join("out/pair");
+    let csv = std::fs::read_to_string(dir.join("pair.csv")).unwrap();
+    for phi in [10.0, 95.5] {
+        let page = dom(
+            &chrome,
+            &s.0,
+            &format!("file://{}#phi={phi}", dir.join("pair.html").display()),
+        );
+        assert!(
+            page.contains("<p id=\"status\">ok</p>"),
+            "the script did not finish:\n{page}"
+        );
+        let shown_phi: f64 = attribute(&page, "<g id=\"driven\"", "data-phi-deg")
+            .parse()
+            .unwrap();
+        let theta: f64 = attribute(&page, "<g id=\"driven\"", "data-theta-deg")
+            .parse()
+            .unwrap();
+        let transform = attribute(&page, "<g id=\"driven\"", "transform");
+        // The slider lands on the page's sample nearest the address's angle.
+        assert!((shown_phi - phi).abs() < 0.1, "{phi} -> {shown_phi}");
+        // The drawn rotation is −θ about the driven arbor...
+        let angle: f64 = transform
+            .strip_prefix("rotate(")
+            .unwrap()
+            .split(' ')
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap();
+        assert!(
+            (angle + theta).abs() < 1e-9,
+            "{transform} against theta {theta}"
+        );
+        // ... and θ is pair.csv's at that angle: within 0.01 deg, far less than a pixel at the
+        // page's scale for this mesh (about 0.1 deg per pixel at the driven gear's tips).
+        let expected = csv_theta(&csv, shown_phi);
+        assert!(
+            (theta - expected).abs() < 0.01,
+            "phi {shown_phi}: page {theta}, pair.csv {expected}"
+        );
+    }
+}
