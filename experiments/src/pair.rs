@@ -751,10 +751,21 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
                     counted_as(&rule, e)
                 }),
             ),
-        ],
+        ]
+        .into_iter()
+        .chain(
+            crate::pair_html::event_pictures(&traj, &|e| counted_as(&rule, e), EVENT_PICTURES)
+                .into_iter()
+                .map(|(n, svg)| OutputFile::new(n, svg)),
+        )
+        .collect(),
         ..Default::default()
     })
 }
+
+/// How many events get a picture of their own (`event-<n>-<kind>.svg`): as many as the event
+/// table shows.
+const EVENT_PICTURES: usize = 20;
 
 /// What `rule` counts an event as: `jam`, `disengagement` or `-` (reported, not a failure).
 fn counted_as(rule: &rules::Rule, e: &contact::Event) -> &'static str {

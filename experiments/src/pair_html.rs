@@ -196,6 +196,99 @@ document.getElementById("status").textContent = "ok";
     )
 }
 
+/// A picture of the mesh at event `e`, zoomed on the two teeth involved (driver tooth
+/// `e.driver_tooth`, driven tooth `e.driven_tooth`), like the paper's Figures V_A (a jam) and
+/// V_B (a decoupling): both outlines at (φ, θ) of the event, the contact point and its normal
+/// where the contact has one. `counted` is what the event rule counts it as.
+pub fn event_svg(traj: &Trajectory, e: &contact::Event, counted: &str) -> String {
+    let mesh = traj.mesh();
+    let (driver, driven) = mesh.world_outlines(e.phi, e.theta);
+    let (n1, n2) = (mesh.driver().teeth() as i64, mesh.driven().teeth() as i64);
+    let (j, k) = (e.driver_tooth.rem_euclid(n1), e.driven_tooth.rem_euclid(n2));
+    // Outlines alternate tip, valley: tooth j's tip is vertex 2j.
+    let tip1 = driver[2 * j as usize];
+    let tip2 = driven[2 * k as usize];
+    let contact = mesh.contact_normal(e.phi, e.theta, e.driver_tooth, e.driven_tooth);
+    let centre = contact.map_or((tip1 + tip2) * 0.5, |(p, _)| p);
+    let h = mesh
+        .driver()
+        .tooth_height()
+        .max(mesh.driven().tooth_height());
+    let half = 2.5 * h;
+    let (x0, y0) = (centre.x - half, -centre.y - half);
+    let sw = half / 200.0;
+    let mut svg = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"600\" height=\"640\" viewBox=\"{x0:.6} {y0:.6} {w:.6} {hh:.6}\" font-family=\"sans-serif\">\n<rect x=\"{x0:.6}\" y=\"{y0:.6}\" width=\"{w:.6}\" height=\"{hh:.6}\" fill=\"white\"/>\n<g transform=\"scale(1,-1)\">\n<polygon points=\"{}\" fill=\"#dde\" stroke=\"#226\" stroke-width=\"{sw:.6}\"/>\n<polygon points=\"{}\" fill=\"#ede\" stroke=\"#626\" stroke-width=\"{sw:.6}\"/>\n",
+        points(&driver),
+        points(&driven),
+        w = 2.0 * half,
+        hh = 2.0 * half * 640.0 / 600.0,
+    );
+    let dot = half / 60.0;
+    for (p, colour) in [(tip1, "#226"), (tip2, "#626")] {
+        let _ = writeln!(
+            svg,
+            "<circle cx=\"{:.6}\" cy=\"{:.6}\" r=\"{dot:.6}\" fill=\"{colour}\"/>",
+            p.x, p.y
+        );
+    }
+    if let Some((p, n)) = contact {
+        let end = p + n * (0.6 * h);
+        let _ = writeln!(
+            svg,
+            "<circle cx=\"{:.6}\" cy=\"{:.6}\" r=\"{:.6}\" fill=\"#c00\"/>\n<line x1=\"{:.6}\" y1=\"{:.6}\" x2=\"{:.6}\" y2=\"{:.6}\" stroke=\"#c00\" stroke-width=\"{:.6}\"/>",
+            p.x,
+            p.y,
+            1.5 * dot,
+            p.x,
+            p.y,
+            end.x,
+            end.y,
+            2.0 * sw
+        );
+    }
+    svg.push_str("</g>\n");
+    let label = format!(
+        "{} ({counted}) at phi - phi0 = {:.4} deg: driver tooth {j} (dot, blue), driven tooth {k} (dot, purple){}",
+        e.kind.name(),
+        (e.phi - traj.phi_start()).to_degrees(),
+        if contact.is_some() {
+            "; red: contact point and normal"
+        } else {
+            ""
+        }
+    );
+    let _ = writeln!(
+        svg,
+        "<text x=\"{:.6}\" y=\"{:.6}\" font-size=\"{:.6}\">{}</text>\n</svg>",
+        x0 + 0.02 * half,
+        y0 + 2.0 * half * 640.0 / 600.0 - 0.03 * half,
+        half / 34.0,
+        escape(&label)
+    );
+    svg
+}
+
+/// The event pictures of a run, for its first `most` events: `(file name, SVG)`, named
+/// `event-<n>-<kind>.svg` in event order.
+pub fn event_pictures(
+    traj: &Trajectory,
+    counted: &dyn Fn(&contact::Event) -> &'static str,
+    most: usize,
+) -> Vec<(String, String)> {
+    traj.events()
+        .iter()
+        .take(most)
+        .enumerate()
+        .map(|(i, e)| {
+            (
+                format!("event-{}-{}.svg", i + 1, e.kind.name()),
+                event_svg(traj, e, counted(e)),
+            )
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     #![allow(clippy::unwrap_used, reason = "tests")]
@@ -230,5 +323,30 @@ mod tests {
         assert!(html.contains("id=\"driven\"") && html.contains("id=\"status\""));
         // Nothing is fetched: no address of any kind in the page.
         assert!(!html.contains("http"), "the page must work offline");
+    }
+
+    #[test]
+    fn an_event_picture_shows_both_teeth_and_the_contact() {
+        // Gears so far apart that the tips slip past each other: the run loses drive.
+        let mesh = Mesh::new(
+            Gear::ideal(20, 20.0, 18.9).unwrap(),
+            Gear::ideal(30, 30.0, 28.9).unwrap(),
+            20.0 + 30.0 - 1.1 + 1.09,
+        )
+        .unwrap();
+        let traj = mesh.run(0.0, std::f64::consts::TAU * 1.5, Start::Touching(0.0));
+        let pictures = event_pictures(&traj, &|_| "jam", 5);
+        assert!(!pictures.is_empty(), "the close mesh must have an event");
+        let (name, svg) = &pictures[0];
+        let e = &traj.events()[0];
+        assert_eq!(name, &format!("event-1-{}.svg", e.kind.name()));
+        assert_eq!(svg.matches("<polygon").count(), 2);
+        assert!(svg.contains(&format!("{} (jam)", e.kind.name())), "{svg}");
+        if mesh
+            .contact_normal(e.phi, e.theta, e.driver_tooth, e.driven_tooth)
+            .is_some()
+        {
+            assert!(svg.contains("contact point and normal"));
+        }
     }
 }

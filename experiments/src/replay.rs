@@ -219,6 +219,9 @@ fn one_trial(
             "pair.html",
             crate::pair_html::page(&title, &traj, &counted),
         ));
+        for (name, svg) in crate::pair_html::event_pictures(&traj, &counted, 20) {
+            files.push(OutputFile::new(name, svg));
+        }
     }
     match pair_file(&rebuilt) {
         Ok(ron) => {
