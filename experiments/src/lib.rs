@@ -15,6 +15,7 @@ mod fig3;
 mod fig4;
 mod fig5;
 mod fig6;
+mod fig_events;
 mod fig_iv;
 mod gearing;
 mod limits;
