@@ -116,8 +116,8 @@ phi - phi0 = <span id="phi">0</span> deg, theta = <span id="theta"></span> deg,
 TD = <span id="td"></span> deg</p>
 <svg id="mesh" viewBox="{vx:.5} {vy:.5} {vw:.5} {vh:.5}" data-full="{vx:.5} {vy:.5} {vw:.5} {vh:.5}" data-zoom="{zx:.5} {zy:.5} {zw:.5} {zw:.5}">
 <g transform="scale(1,-1)">
-<g id="driver" transform="rotate(0 0 0)"><polygon points="{driver}" fill="#dde" stroke="#226" stroke-width="{sw:.5}"/></g>
-<g id="driven" transform="rotate(0 {d:.9} 0)" data-theta-deg=""><polygon points="{driven}" fill="#ede" stroke="#626" stroke-width="{sw:.5}"/></g>
+<g id="driver" transform="rotate(0 0 0)"><polygon points="{driver}" fill="#dde" stroke="#226" stroke-width="1.2" vector-effect="non-scaling-stroke"/></g>
+<g id="driven" transform="rotate(0 {d:.9} 0)" data-theta-deg=""><polygon points="{driven}" fill="#ede" stroke="#626" stroke-width="1.2" vector-effect="non-scaling-stroke"/></g>
 <circle cx="0" cy="0" r="{dot:.5}" fill="#226"/><circle cx="{d:.9}" cy="0" r="{dot:.5}" fill="#626"/>
 </g></svg>
 <svg id="plot" viewBox="0 0 900 200"><polyline id="td-line" fill="none" stroke="#333" stroke-width="1" points=""/>
@@ -190,7 +190,6 @@ document.getElementById("status").textContent = "ok";
         zw = 2.0 * zoom,
         driver = points(&driver),
         driven = points(&driven),
-        sw = 0.002 * (x1 - x0),
         dot = 0.01 * r1.min(r2),
         phi0_deg = phi0.to_degrees(),
     )
