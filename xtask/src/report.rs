@@ -133,7 +133,7 @@ fn bad(path: &Path, field: &str, rule: impl std::fmt::Display) -> Failure {
 
 /// The HTML page for the results under `out`.
 fn build(exps: &Registry, out: &Path, quiet: bool) -> Result<String, Failure> {
-    let found = scan(out)?;
+    let (found, replays) = split_replays(scan(out)?);
     if found.is_empty() {
         return Err(Failure::Bad(format!(
             "--out: {}: no results (no <id>/tables.json); run `cargo xtask run <id> --out {}` first",
@@ -165,8 +165,36 @@ fn build(exps: &Registry, out: &Path, quiet: bool) -> Result<String, Failure> {
     ids.extend(results.keys().cloned());
     ids.sort();
     ids.dedup();
-    Ok(render(exps, &ids, &results))
+    Ok(render(exps, &ids, &results, &replays))
 }
+
+/// The replayed trials among the result folders (`replay-<id>-<cell>-<trial>/`, written by
+/// `cargo xtask replay`), by the experiment they come from, and the other folders. A replay is
+/// linked from its experiment's section (its `pair.html` where it has one), not shown as an
+/// experiment of its own.
+fn split_replays(found: Vec<(String, PathBuf)>) -> (Vec<(String, PathBuf)>, Replays) {
+    let mut replays = Replays::new();
+    let mut rest = Vec::new();
+    for (name, path) in found {
+        let from = name.strip_prefix("replay-").and_then(|r| {
+            experiments::replay::REPLAYABLE
+                .iter()
+                .map(|(id, _)| *id)
+                .find(|id| r.starts_with(&format!("{id}-")))
+        });
+        match from {
+            Some(id) => {
+                let page = path.join("pair.html").is_file();
+                replays.entry(id.to_owned()).or_default().push((name, page));
+            }
+            None => rest.push((name, path)),
+        }
+    }
+    (rest, replays)
+}
+
+/// Replayed trials by experiment id: (folder name, whether it has a `pair.html`).
+type Replays = BTreeMap<String, Vec<(String, bool)>>;
 
 /// The result directories under `out`: `(id, path)` for each visible subdirectory holding a
 /// `tables.json`, sorted by id.
@@ -523,7 +551,12 @@ footer { margin-top: 3em; color: #777; font-size: 0.85em; }
 ";
 
 /// The whole page.
-fn render(exps: &Registry, ids: &[String], results: &BTreeMap<String, Results>) -> String {
+fn render(
+    exps: &Registry,
+    ids: &[String],
+    results: &BTreeMap<String, Results>,
+    replays: &Replays,
+) -> String {
     let mut h = String::new();
     let now = provenance::utc_now();
     let _ = write!(
@@ -587,7 +620,10 @@ appear in columns labelled &ldquo;paper&rdquo; or in parentheses, as in the prin
                     esc(item)
                 );
             }
-            Some(r) => section(&mut h, id, title, item, r),
+            Some(r) => {
+                section(&mut h, id, title, item, r);
+                replay_links(&mut h, replays.get(id.as_str()).map_or(&[], Vec::as_slice));
+            }
         }
     }
     let _ = write!(
@@ -604,6 +640,30 @@ fn describe<'a>(exps: &'a Registry, id: &str) -> (&'a str, &'a str) {
         .map_or(("(not a registered experiment)", "-"), |e| {
             (e.title, e.paper_item)
         })
+}
+
+/// Links to an experiment's replayed trials (after its section): each trial's moving page, or
+/// its folder when it has none.
+fn replay_links(h: &mut String, replays: &[(String, bool)]) {
+    if replays.is_empty() {
+        return;
+    }
+    let links: Vec<String> = replays
+        .iter()
+        .map(|(folder, page)| {
+            let target = if *page {
+                format!("{}/pair.html", url_part(folder))
+            } else {
+                format!("{}/table.md", url_part(folder))
+            };
+            format!("<a href=\"{target}\">{}</a>", esc(folder))
+        })
+        .collect();
+    let _ = writeln!(
+        h,
+        "<p class=\"replays\">Replayed trials (<code>cargo xtask replay</code>; each page shows the gears moving through the trial): {}</p>",
+        links.join(" ")
+    );
 }
 
 fn section(h: &mut String, id: &str, title: &str, item: &str, r: &Results) {
@@ -850,6 +910,35 @@ mod tests {
             "self-contained"
         );
         assert_eq!(page.matches("<svg").count(), 1);
+    }
+
+    #[test]
+    fn replayed_trials_are_linked_from_their_experiment_not_shown_as_one() {
+        let s = Scratch::new("replays");
+        let mut t = Table::new("Table 3", ["case", "m3-e3"]);
+        t.row(vec!["B".into(), "141/0".into()]);
+        let report = Report {
+            tables: vec![t],
+            ..Default::default()
+        };
+        registry::write_results(&s.0.join("table3"), &report).unwrap();
+        let replay = Report {
+            tables: vec![Table::new("table3 B/m3-e3, trial 1", ["phi"])],
+            files: vec![OutputFile::new("pair.html", "<!DOCTYPE html>")],
+            ..Default::default()
+        };
+        registry::write_results(&s.0.join("replay-table3-B-m3-e3-1"), &replay).unwrap();
+        let page = build(&registry(), &s.0, true).unwrap();
+        assert!(
+            page.contains(
+                "<a href=\"replay-table3-B-m3-e3-1/pair.html\">replay-table3-B-m3-e3-1</a>"
+            ),
+            "{page}"
+        );
+        assert!(
+            !page.contains("id=\"exp-replay-"),
+            "a replay is no experiment of its own"
+        );
     }
 
     #[test]
