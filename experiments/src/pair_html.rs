@@ -79,7 +79,7 @@ pub fn page(
         let at = (e.phi - phi0).to_degrees();
         let _ = writeln!(
             events,
-            "<li class=\"{kind}\"><a href=\"#phi={at:.9}\">{at:.4} deg: {kind} ({counted}), driver tooth {j}, driven tooth {k}</a></li>",
+            "<li class=\"{kind}\"><a href=\"#phi={at:.9}\" data-phi=\"{at:.9}\">{at:.4} deg: {kind} ({counted}), driver tooth {j}, driven tooth {k}</a></li>",
             kind = e.kind.name(),
             counted = counted(e),
             j = e.driver_tooth.rem_euclid(mesh.driver().teeth() as i64),
@@ -126,8 +126,11 @@ TD = <span id="td"></span> deg</p>
 <ol id="events">
 {events}</ol>
 <p id="status">loading</p>
+<p id="selftest-slider"></p><p id="selftest-event"></p>
 <script>
 "use strict";
+// Any error after this point is written on the page (a test reads it back).
+window.addEventListener("error", e => {{ document.getElementById("status").textContent = "error: " + e.message; }});
 const S = {json};
 const slider = document.getElementById("slider");
 const driver = document.getElementById("driver");
@@ -156,10 +159,32 @@ function nearest(phi) {{
   for (let i = 1; i < S.length; i++) if (Math.abs(S[i][0] - phi) < Math.abs(S[best][0] - phi)) best = i;
   return best;
 }}
+function jumpTo(phi) {{
+  slider.value = nearest(phi);
+  meshSvg.setAttribute("viewBox", meshSvg.dataset.zoom);
+  show(Number(slider.value));
+}}
 function fromHash() {{
   const m = /phi=(-?[0-9.eE+-]+)/.exec(location.hash);
-  if (m) {{ slider.value = nearest(parseFloat(m[1])); meshSvg.setAttribute("viewBox", meshSvg.dataset.zoom); }}
-  show(Number(slider.value));
+  if (m) jumpTo(parseFloat(m[1])); else show(Number(slider.value));
+}}
+for (const a of document.querySelectorAll("#events a")) {{
+  a.addEventListener("click", () => jumpTo(parseFloat(a.dataset.phi)));
+}}
+// `#selftest`: drive the page as a reader would - move the slider, click the first event - and
+// write down what it then draws, for a headless browser to read back.
+function record(id) {{
+  const p = document.getElementById(id);
+  p.dataset.phi = driven.dataset.phiDeg;
+  p.dataset.theta = driven.dataset.thetaDeg;
+  p.dataset.transform = driven.getAttribute("transform");
+}}
+function selftest() {{
+  slider.value = Math.floor(S.length / 3);
+  slider.dispatchEvent(new Event("input"));
+  record("selftest-slider");
+  const link = document.querySelector("#events a");
+  if (link) {{ link.click(); record("selftest-event"); }}
 }}
 slider.addEventListener("input", () => show(Number(slider.value)));
 window.addEventListener("hashchange", fromHash);
@@ -176,7 +201,8 @@ document.getElementById("zoom").addEventListener("click", () => {{
   meshSvg.setAttribute("viewBox", meshSvg.getAttribute("viewBox") === full ? meshSvg.dataset.zoom : full);
 }});
 fromHash();
-document.getElementById("status").textContent = "ok";
+if (location.hash.includes("selftest")) selftest();
+if (document.getElementById("status").textContent === "loading") document.getElementById("status").textContent = "ok";
 </script>
 </body></html>
 "##,

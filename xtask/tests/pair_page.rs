@@ -1,7 +1,8 @@
 //! `pair.html` in a real browser: headless Chromium opens the page at a driver angle
-//! (`#phi=X`), runs its script, and the driven gear it draws is turned by θ at that angle as
-//! `pair.csv` gives it; the script ran to its end (no error stopped it). Skipped when Chromium is
-//! missing, unless `CI=true` (`.ci/run` installs it).
+//! (`#phi=X`), or lets the page drive itself as a reader would (`#selftest`: the slider moved,
+//! the first event clicked), and the driven gear it draws is turned by θ at that angle as
+//! `pair.csv` gives it; no script error occurred (the page writes any on itself); a screenshot is
+//! not blank. Skipped when Chromium is missing, unless `CI=true` (`.ci/run` installs it).
 #![allow(clippy::unwrap_used, reason = "tests")]
 
 mod support;
@@ -55,6 +56,47 @@ fn dom(chrome: &PathBuf, dir: &std::path::Path, url: &str) -> String {
         })
         .unwrap();
     String::from_utf8(out.stdout).unwrap()
+}
+
+/// A mesh far enough apart that its tips slip past each other: a run with events.
+const SLIPPING: &str = "(
+    driver: (teeth: 20, tip_radius: 20.0, root_radius: 18.9),
+    driven: (teeth: 30, tip_radius: 30.0, root_radius: 28.9),
+    clearance_percent: Some(97.0),
+)";
+
+/// Headless screenshot of `url` into `png`, which must then be a picture with more than one colour.
+fn screenshot_not_blank(chrome: &PathBuf, dir: &std::path::Path, url: &str, png: &std::path::Path) {
+    let status = Command::new(chrome)
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--no-first-run",
+            "--hide-scrollbars",
+            "--window-size=960,1000",
+        ])
+        .arg(format!(
+            "--user-data-dir={}",
+            dir.join(".chromium-shot").display()
+        ))
+        .arg(format!("--screenshot={}", png.display()))
+        .arg(url)
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .status()
+        .unwrap();
+    assert!(status.success(), "chromium failed to screenshot {url}");
+    let bytes = std::fs::read(png).unwrap();
+    let mut decoder = png::Decoder::new(std::io::Cursor::new(bytes));
+    decoder.set_transformations(png::Transformations::normalize_to_color8());
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    let pixels = &buf[..info.buffer_size()];
+    let first = &pixels[..3];
+    let differing = pixels.chunks(3).filter(|p| p != &first).count();
+    assert!(differing > 1000, "the screenshot of {url} is blank");
 }
 
 /// The value of attribute `name` in the tag that starts at `tag`.
@@ -135,4 +177,79 @@ fn the_page_draws_the_driven_gear_at_theta_of_phi() {
             "phi {shown_phi}: page {theta}, pair.csv {expected}"
         );
     }
+}
+
+#[test]
+fn a_reader_moving_the_slider_and_clicking_an_event_sees_theta_of_phi() {
+    let Some(chrome) = chromium() else {
+        assert!(
+            std::env::var("CI").map_or(true, |v| v != "true"),
+            "CI=true and no Chromium: .ci/run installs it (scripts/check-report.sh install)"
+        );
+        eprintln!("skipped: no Chromium (set CHROMIUM or install it)");
+        return;
+    };
+    let s = Scratch::new("pair-page-selftest");
+    std::fs::write(s.path("slip.ron"), SLIPPING).unwrap();
+    let o = xtask(&[
+        "run",
+        "pair",
+        "-q",
+        "--config",
+        &s.path("slip.ron"),
+        "--out",
+        &s.path("out"),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let dir = s.0.join("out/pair");
+    let csv = std::fs::read_to_string(dir.join("pair.csv")).unwrap();
+    let log = std::fs::read_to_string(dir.join("event-log.csv")).unwrap();
+    let first_event: f64 = log
+        .lines()
+        .nth(1)
+        .expect("the mesh must have an event")
+        .split(',')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    let url = format!("file://{}#selftest", dir.join("pair.html").display());
+    let page = dom(&chrome, &s.0, &url);
+    assert!(
+        page.contains("<p id=\"status\">ok</p>"),
+        "a script error or an unfinished script:\n{page}"
+    );
+    for (what, near) in [
+        ("selftest-slider", None),
+        ("selftest-event", Some(first_event)),
+    ] {
+        let tag = format!("<p id=\"{what}\"");
+        let phi: f64 = attribute(&page, &tag, "data-phi").parse().unwrap();
+        let theta: f64 = attribute(&page, &tag, "data-theta").parse().unwrap();
+        let transform = attribute(&page, &tag, "data-transform");
+        let angle: f64 = transform
+            .strip_prefix("rotate(")
+            .unwrap()
+            .split(' ')
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap();
+        assert!(
+            (angle + theta).abs() < 1e-9,
+            "{what}: {transform} against theta {theta}"
+        );
+        assert!(
+            (theta - csv_theta(&csv, phi)).abs() < 0.01,
+            "{what}: phi {phi}, theta {theta}"
+        );
+        if let Some(event_phi) = near {
+            // The click lands on the page's sample nearest the event (4000 samples a run).
+            assert!(
+                (phi - event_phi).abs() < 0.2,
+                "clicked the event at {event_phi}, shown {phi}"
+            );
+        }
+    }
+    screenshot_not_blank(&chrome, &s.0, &url, &s.0.join("page.png"));
 }
