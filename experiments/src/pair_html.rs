@@ -77,9 +77,14 @@ pub fn page(
     let mut events = String::new();
     for e in traj.events() {
         let at = (e.phi - phi0).to_degrees();
+        let (p, n) = contact_of(traj, e);
         let _ = writeln!(
             events,
-            "<li class=\"{kind}\"><a href=\"#phi={at:.9}\" data-phi=\"{at:.9}\">{at:.4} deg: {kind} ({counted}), driver tooth {j}, driven tooth {k}</a></li>",
+            "<li class=\"{kind}\"><a href=\"#phi={at:.9}\" data-phi=\"{at:.9}\" data-x=\"{:.9}\" data-y=\"{:.9}\" data-nx=\"{:.9}\" data-ny=\"{:.9}\">{at:.4} deg: {kind} ({counted}), driver tooth {j}, driven tooth {k}</a></li>",
+            p.x,
+            p.y,
+            n.x,
+            n.y,
             kind = e.kind.name(),
             counted = counted(e),
             j = e.driver_tooth.rem_euclid(mesh.driver().teeth() as i64),
@@ -119,6 +124,7 @@ TD = <span id="td"></span> deg</p>
 <g id="driver" transform="rotate(0 0 0)"><polygon points="{driver}" fill="#dde" stroke="#226" stroke-width="1.2" vector-effect="non-scaling-stroke"/></g>
 <g id="driven" transform="rotate(0 {d:.9} 0)" data-theta-deg=""><polygon points="{driven}" fill="#ede" stroke="#626" stroke-width="1.2" vector-effect="non-scaling-stroke"/></g>
 <circle cx="0" cy="0" r="{dot:.5}" fill="#226"/><circle cx="{d:.9}" cy="0" r="{dot:.5}" fill="#626"/>
+<g id="contact" visibility="hidden"><circle id="contact-point" cx="0" cy="0" r="{cdot:.5}" fill="#c00"/><line id="contact-normal" x1="0" y1="0" x2="0" y2="0" stroke="#c00" stroke-width="2" vector-effect="non-scaling-stroke"/></g>
 </g></svg>
 <svg id="plot" viewBox="0 0 900 200"><polyline id="td-line" fill="none" stroke="#333" stroke-width="1" points=""/>
 <line id="cursor" x1="0" y1="0" x2="0" y2="200" stroke="#c00"/></svg>
@@ -159,17 +165,30 @@ function nearest(phi) {{
   for (let i = 1; i < S.length; i++) if (Math.abs(S[i][0] - phi) < Math.abs(S[best][0] - phi)) best = i;
   return best;
 }}
-function jumpTo(phi) {{
+const contact = document.getElementById("contact");
+// Jump to an event: the slider to its angle, the view zoomed on its contact point (the teeth
+// involved), the contact point and its normal drawn until the slider moves again.
+function jumpTo(phi, a) {{
   slider.value = nearest(phi);
-  meshSvg.setAttribute("viewBox", meshSvg.dataset.zoom);
   show(Number(slider.value));
+  if (!a) {{ meshSvg.setAttribute("viewBox", meshSvg.dataset.zoom); return; }}
+  const x = parseFloat(a.dataset.x), y = parseFloat(a.dataset.y);
+  const nx = parseFloat(a.dataset.nx), ny = parseFloat(a.dataset.ny);
+  const z = parseFloat(meshSvg.dataset.zoom.split(" ")[2]);
+  meshSvg.setAttribute("viewBox", (x - z / 2) + " " + (-y - z / 2) + " " + z + " " + z);
+  document.getElementById("contact-point").setAttribute("cx", x);
+  document.getElementById("contact-point").setAttribute("cy", y);
+  const line = document.getElementById("contact-normal");
+  line.setAttribute("x1", x); line.setAttribute("y1", y);
+  line.setAttribute("x2", x + nx * z / 4); line.setAttribute("y2", y + ny * z / 4);
+  contact.setAttribute("visibility", "visible");
 }}
 function fromHash() {{
   const m = /phi=(-?[0-9.eE+-]+)/.exec(location.hash);
   if (m) jumpTo(parseFloat(m[1])); else show(Number(slider.value));
 }}
 for (const a of document.querySelectorAll("#events a")) {{
-  a.addEventListener("click", () => jumpTo(parseFloat(a.dataset.phi)));
+  a.addEventListener("click", () => jumpTo(parseFloat(a.dataset.phi), a));
 }}
 // `#selftest`: drive the page as a reader would - move the slider, click the first event - and
 // write down what it then draws, for a headless browser to read back.
@@ -186,7 +205,7 @@ function selftest() {{
   const link = document.querySelector("#events a");
   if (link) {{ link.click(); record("selftest-event"); }}
 }}
-slider.addEventListener("input", () => show(Number(slider.value)));
+slider.addEventListener("input", () => {{ contact.setAttribute("visibility", "hidden"); show(Number(slider.value)); }});
 window.addEventListener("hashchange", fromHash);
 let timer = null;
 document.getElementById("play").addEventListener("click", () => {{
@@ -217,8 +236,24 @@ if (document.getElementById("status").textContent === "loading") document.getEle
         driver = points(&driver),
         driven = points(&driven),
         dot = 0.01 * r1.min(r2),
+        cdot = 0.025 * zoom,
         phi0_deg = phi0.to_degrees(),
     )
+}
+
+/// Where event `e` happens: the contact point of its two teeth and the unit normal there (world
+/// frame), or, where the contact has no normal (a vertex on a vertex), the point half-way between
+/// the two tips and the line of centres' direction.
+fn contact_of(traj: &Trajectory, e: &contact::Event) -> (Vec2, Vec2) {
+    let mesh = traj.mesh();
+    if let Some(c) = mesh.contact_normal(e.phi, e.theta, e.driver_tooth, e.driven_tooth) {
+        return c;
+    }
+    let (driver, driven) = mesh.world_outlines(e.phi, e.theta);
+    let (n1, n2) = (mesh.driver().teeth() as i64, mesh.driven().teeth() as i64);
+    let tip1 = driver[2 * e.driver_tooth.rem_euclid(n1) as usize];
+    let tip2 = driven[2 * e.driven_tooth.rem_euclid(n2) as usize];
+    ((tip1 + tip2) * 0.5, Vec2::new(1.0, 0.0))
 }
 
 /// A picture of the mesh at event `e`, zoomed on the two teeth involved (driver tooth
