@@ -9,30 +9,10 @@
 #![allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
 
 use std::fs;
-use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::path::Path;
 
-/// A fresh scratch directory, removed on drop.
-struct Scratch(PathBuf);
-
-impl Scratch {
-    fn new(tag: &str) -> Self {
-        let nanos = std::time::SystemTime::now()
-            .duration_since(std::time::UNIX_EPOCH)
-            .unwrap()
-            .as_nanos();
-        let p =
-            std::env::temp_dir().join(format!("xtask-bad-{tag}-{}-{nanos}", std::process::id()));
-        fs::create_dir_all(&p).unwrap();
-        Scratch(p)
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = fs::remove_dir_all(&self.0);
-    }
-}
+mod support;
+use support::{Scratch, sealed, stderr, xtask};
 
 /// A file to write: its name and bytes.
 type File = Option<(&'static str, Vec<u8>)>;
@@ -63,7 +43,7 @@ fn case(what: &str, file: File, args: &str, words: &[&str]) -> Case {
 fn failures(tag: &str, cases: Vec<Case>) -> Vec<String> {
     let mut bad = Vec::new();
     for (i, c) in cases.into_iter().enumerate() {
-        let s = Scratch::new(&format!("{tag}-{i}"));
+        let s = Scratch::new(&format!("bad-{tag}-{i}"));
         let file = c.file.as_ref().map(|(name, bytes)| {
             let p = s.0.join(name);
             fs::write(&p, bytes).unwrap();
@@ -81,14 +61,8 @@ fn failures(tag: &str, cases: Vec<Case>) -> Vec<String> {
                 }
             })
             .collect();
-        let o = Command::new(env!("CARGO_BIN_EXE_xtask"))
-            .args(&args)
-            .env_remove("RUST_LOG")
-            .env_remove("RUST_BACKTRACE")
-            .env_remove("XTASK_PROGRESS")
-            .output()
-            .unwrap();
-        let err = String::from_utf8_lossy(&o.stderr).into_owned();
+        let o = xtask(&args.iter().map(String::as_str).collect::<Vec<_>>());
+        let err = stderr(&o);
         let mut wrong = Vec::new();
         if o.status.code() != Some(2) {
             wrong.push(format!("exit status {:?}, not 2", o.status.code()));
@@ -1140,18 +1114,15 @@ fn names_and_flags() {
 
 #[test]
 fn out_that_is_a_file() {
-    let s = Scratch::new("outfile");
+    let s = Scratch::new("bad-outfile");
     let file = s.0.join("plain");
     fs::write(&file, "not a directory").unwrap();
     for args in [
         vec!["run", "fig2", "--out", file.to_str().unwrap()],
         vec!["run", "all", "--out", file.to_str().unwrap()],
     ] {
-        let o = Command::new(env!("CARGO_BIN_EXE_xtask"))
-            .args(&args)
-            .output()
-            .unwrap();
-        let err = String::from_utf8_lossy(&o.stderr);
+        let o = xtask(&args);
+        let err = stderr(&o);
         assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
         assert_eq!(
             err.trim_end(),
@@ -1161,28 +1132,13 @@ fn out_that_is_a_file() {
     }
 }
 
-/// A partial file's JSON with the checksum the runner would give it: SHA-256 of the JSON
-/// without its `checksum` member, written compactly.
-fn sealed(json: &str) -> Vec<u8> {
-    use sha2::Digest;
-    let mut v: serde_json::Value = serde_json::from_str(json).unwrap();
-    let o = v.as_object_mut().unwrap();
-    o.remove("checksum");
-    let sum: String = sha2::Sha256::digest(v.to_string().as_bytes())
-        .iter()
-        .map(|b| format!("{b:02x}"))
-        .collect();
-    v.as_object_mut()
-        .unwrap()
-        .insert("checksum".into(), sum.into());
-    v.to_string().into_bytes()
-}
-
 #[test]
 fn partial_files() {
     let f = |bytes: &[u8]| Some(("partial-0-of-1.json", bytes.to_vec()));
+    // A partial file's JSON with the checksum the runner would give it.
+    let seal = |json: &str| sealed(serde_json::from_str(json).unwrap()).into_bytes();
     let with_values = r#"{"format":"cargo-xtask-partial/1","experiment":"table1","seed":1,"sets":[],"config":null,"shard":0,"shards":1,"version":"0.1.0","batches":{"b":{"trials":2,"whole":false,"values":{"0":0.25,"1":0.5}}}}"#;
-    let good = sealed(with_values);
+    let good = seal(with_values);
     let flipped = String::from_utf8(good.clone())
         .unwrap()
         .replace("0.25", "0.75")
@@ -1213,13 +1169,13 @@ fn partial_files() {
         ),
         case(
             "unknown experiment",
-            f(&sealed(r#"{"format":"cargo-xtask-partial/1","experiment":"no-such","seed":1,"sets":[],"config":null,"shard":0,"shards":1,"version":"0.1.0","batches":{}}"#)),
+            f(&seal(r#"{"format":"cargo-xtask-partial/1","experiment":"no-such","seed":1,"sets":[],"config":null,"shard":0,"shards":1,"version":"0.1.0","batches":{}}"#)),
             merge,
             &["unknown experiment `no-such`"],
         ),
         case(
             "trials beyond the limit",
-            f(&sealed(r#"{"format":"cargo-xtask-partial/1","experiment":"table1","seed":1,"sets":[["trials","18446744073709551615"]],"config":null,"shard":0,"shards":1,"version":"0.1.0","batches":{}}"#)),
+            f(&seal(r#"{"format":"cargo-xtask-partial/1","experiment":"table1","seed":1,"sets":[["trials","18446744073709551615"]],"config":null,"shard":0,"shards":1,"version":"0.1.0","batches":{}}"#)),
             merge,
             &["--set: trials: must be at most 1000000 "],
         ),

@@ -4,19 +4,8 @@
 
 #![allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
 
-use std::process::{Command, Output};
-
-fn xtask(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_xtask"))
-        .args(args)
-        .env_remove("RUST_LOG")
-        .output()
-        .unwrap()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+mod support;
+use support::{stderr, stdout, xtask};
 
 #[test]
 fn bench_refuses_bad_arguments() {
@@ -45,7 +34,7 @@ fn bench_refuses_bad_arguments() {
 fn usage_describes_bench() {
     let o = xtask(&["help"]);
     assert!(o.status.success());
-    let text = String::from_utf8_lossy(&o.stdout);
+    let text = stdout(&o);
     for word in ["cargo xtask bench", "--only table5|all", "--threads 1,2"] {
         assert!(text.contains(word), "missing {word:?} in:\n{text}");
     }

@@ -3,48 +3,10 @@
 
 #![allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
+use std::path::Path;
 
-fn xtask(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_xtask"))
-        .args(args)
-        .env_remove("RUST_LOG")
-        .output()
-        .unwrap()
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-/// A path under the system temp dir that does not exist yet (removed on drop).
-struct Scratch(PathBuf);
-
-impl Scratch {
-    fn new(tag: &str) -> Self {
-        let nanos = std::time::SystemTime::now()
-            .duration_since(std::time::UNIX_EPOCH)
-            .unwrap()
-            .as_nanos();
-        Scratch(
-            std::env::temp_dir().join(format!("xtask-cli-{tag}-{}-{nanos}", std::process::id())),
-        )
-    }
-    fn out(&self) -> &str {
-        self.0.to_str().unwrap()
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
+mod support;
+use support::{Scratch, stderr, stdout, xtask};
 
 fn ids() -> Vec<String> {
     let o = xtask(&["list"]);
@@ -171,8 +133,9 @@ fn help_describes_each_hypothesis() {
 
 #[test]
 fn unknown_id_exits_2_and_writes_nothing() {
-    let scratch = Scratch::new("unknown");
-    let o = xtask(&["run", "no-such-experiment", "--out", scratch.out()]);
+    let scratch = Scratch::new("cli-unknown");
+    let out = scratch.path("out");
+    let o = xtask(&["run", "no-such-experiment", "--out", &out]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     let err = stderr(&o);
     assert!(
@@ -183,26 +146,28 @@ fn unknown_id_exits_2_and_writes_nothing() {
         assert!(err.contains(&id), "list of known ids missing {id}: {err}");
     }
     assert!(stdout(&o).is_empty());
-    assert!(!scratch.0.exists(), "results directory was created");
+    assert!(!Path::new(&out).exists(), "results directory was created");
 }
 
 #[test]
 fn unknown_param_exits_2_and_writes_nothing() {
-    let scratch = Scratch::new("set");
+    let scratch = Scratch::new("cli-set");
+    let out = scratch.path("out");
     let id = some_id();
-    let o = xtask(&["run", &id, "--set", "nonsense=1", "--out", scratch.out()]);
+    let o = xtask(&["run", &id, "--set", "nonsense=1", "--out", &out]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("nonsense"), "{}", stderr(&o));
-    assert!(!scratch.0.exists(), "results directory was created");
+    assert!(!Path::new(&out).exists(), "results directory was created");
 }
 
 #[test]
 fn zero_threads_exits_2() {
-    let scratch = Scratch::new("threads");
-    let o = xtask(&["run", "all", "--threads", "0", "--out", scratch.out()]);
+    let scratch = Scratch::new("cli-threads");
+    let out = scratch.path("out");
+    let o = xtask(&["run", "all", "--threads", "0", "--out", &out]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("--threads"));
-    assert!(!scratch.0.exists());
+    assert!(!Path::new(&out).exists());
 }
 
 #[test]
@@ -231,8 +196,9 @@ fn bad_command_lines_exit_2_pointing_to_the_usage() {
 
 #[test]
 fn unreadable_config_exits_2_naming_the_file() {
-    let scratch = Scratch::new("config");
+    let scratch = Scratch::new("cli-config");
     let missing = scratch.0.join("missing.ron");
+    let out = scratch.path("out");
     let id = some_id();
     let o = xtask(&[
         "run",
@@ -240,17 +206,16 @@ fn unreadable_config_exits_2_naming_the_file() {
         "--config",
         missing.to_str().unwrap(),
         "--out",
-        scratch.out(),
+        &out,
     ]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("missing.ron"), "{}", stderr(&o));
-    assert!(!scratch.0.exists());
+    assert!(!Path::new(&out).exists());
 }
 
 #[test]
 fn config_for_an_experiment_without_one_exits_2() {
-    let scratch = Scratch::new("noconfig");
-    std::fs::create_dir_all(&scratch.0).unwrap();
+    let scratch = Scratch::new("cli-noconfig");
     let file = scratch.0.join("c.ron");
     std::fs::write(&file, "()").unwrap();
     let out = scratch.0.join("results");

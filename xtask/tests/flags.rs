@@ -9,13 +9,7 @@ use std::path::Path;
 use std::process::Output;
 
 mod support;
-use support::{Scratch, files, xtask, xtask_env};
-
-fn ok(o: &Output) -> (String, String) {
-    let err = String::from_utf8_lossy(&o.stderr).into_owned();
-    assert!(o.status.success(), "{err}");
-    (String::from_utf8_lossy(&o.stdout).into_owned(), err)
-}
+use support::{Scratch, files, stderr, succeeded_output, xtask, xtask_env};
 
 /// A reduced table1 (its trial count comes from `--trials`).
 const TABLE1: &[&str] = &[
@@ -48,7 +42,7 @@ fn tables_json(dir: &Path) -> serde_json::Value {
 #[test]
 fn format_json_prints_tables_json() {
     let s = Scratch::new("json");
-    let (out, _) = ok(&run(&["fig2"], &["--format", "json"], &s.path("r")));
+    let (out, _) = succeeded_output(&run(&["fig2"], &["--format", "json"], &s.path("r")));
     let file = fs::read_to_string(s.0.join("r/fig2/tables.json")).unwrap();
     assert_eq!(out, file, "stdout is tables.json");
     assert!(
@@ -56,7 +50,7 @@ fn format_json_prints_tables_json() {
         "results written as ever"
     );
 
-    let (out, _) = ok(&run(&["fig2", "fig3"], &["--format=json"], &s.path("two")));
+    let (out, _) = succeeded_output(&run(&["fig2", "fig3"], &["--format=json"], &s.path("two")));
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
     for id in ["fig2", "fig3"] {
         assert_eq!(
@@ -70,7 +64,7 @@ fn format_json_prints_tables_json() {
 #[test]
 fn format_csv_prints_each_table_after_its_title() {
     let s = Scratch::new("csv");
-    let (out, _) = ok(&run(&["fig2"], &["--format", "csv"], &s.path("r")));
+    let (out, _) = succeeded_output(&run(&["fig2"], &["--format", "csv"], &s.path("r")));
     let dir = s.0.join("r/fig2");
     let titles: Vec<String> = tables_json(&dir)["tables"]
         .as_array()
@@ -95,7 +89,7 @@ fn format_csv_prints_each_table_after_its_title() {
         );
     }
     // Several experiments: titles name the experiment.
-    let (out, _) = ok(&run(
+    let (out, _) = succeeded_output(&run(
         &["fig2", "fig3"],
         &["--format", "csv"],
         &s.path("two"),
@@ -109,12 +103,12 @@ fn trials_reaches_every_experiment_that_declares_it() {
     let s = Scratch::new("trials");
     let mut extra = vec!["--trials", "3"];
     extra.extend_from_slice(TABLE1);
-    let (out, _) = ok(&run(&["table1", "fig2"], &extra, &s.path("r")));
+    let (out, _) = succeeded_output(&run(&["table1", "fig2"], &extra, &s.path("r")));
     assert!(out.contains("3 trials"), "{out}");
     // A shard records it with its other parameters, so that the merge replays it.
     let mut extra = vec!["--trials", "3", "--shard", "0/1"];
     extra.extend_from_slice(TABLE1);
-    ok(&run(&["table1"], &extra, &s.path("shard")));
+    succeeded_output(&run(&["table1"], &extra, &s.path("shard")));
     let partial = fs::read_to_string(s.0.join("shard/table1/partial-0-of-1.json")).unwrap();
     assert!(partial.contains(r#"["trials","3"]"#), "{partial}");
 }
@@ -122,13 +116,13 @@ fn trials_reaches_every_experiment_that_declares_it() {
 #[test]
 fn quiet_prints_nothing_on_stderr_and_verbose_logs_batches() {
     let s = Scratch::new("quiet");
-    let (_, err) = ok(&run(&["fig2"], &[], &s.path("a")));
+    let (_, err) = succeeded_output(&run(&["fig2"], &[], &s.path("a")));
     assert!(err.contains("results: "), "{err}");
-    let (_, err) = ok(&run(&["fig2"], &["-q"], &s.path("b")));
+    let (_, err) = succeeded_output(&run(&["fig2"], &["-q"], &s.path("b")));
     assert_eq!(err, "", "-q: errors only");
     let mut extra = vec!["--trials", "2", "-v"];
     extra.extend_from_slice(TABLE1);
-    let (_, err) = ok(&run(&["table1"], &extra, &s.path("c")));
+    let (_, err) = succeeded_output(&run(&["table1"], &extra, &s.path("c")));
     assert!(
         err.contains("DEBUG") && err.contains("trial batch"),
         "{err}"
@@ -149,7 +143,7 @@ fn progress_bars_leave_results_untouched() {
         args.extend_from_slice(TABLE1);
         args.extend_from_slice(extra);
         args.extend(["--out", out]);
-        ok(&xtask_env(&args, env))
+        succeeded_output(&xtask_env(&args, env))
     };
     let (with, err) = reduced(&s.path("with"), &["-v"], &[("XTASK_PROGRESS", "always")]);
     assert!(err.contains("progress bar shown"), "the bars ran: {err}");
@@ -177,10 +171,10 @@ fn errors_points_the_measured_hypothesis_at_a_table() {
     )
     .unwrap();
     let file = table.to_str().unwrap();
-    let (by_errors, _) = ok(&run(&["fig5"], &["--errors", file], &s.path("a")));
+    let (by_errors, _) = succeeded_output(&run(&["fig5"], &["--errors", file], &s.path("a")));
     let name = format!("measured:{file}");
-    let (by_name, _) = ok(&run(&["fig5"], &["--hypothesis", &name], &s.path("b")));
-    let (default, _) = ok(&run(&["fig5"], &[], &s.path("c")));
+    let (by_name, _) = succeeded_output(&run(&["fig5"], &["--hypothesis", &name], &s.path("b")));
+    let (default, _) = succeeded_output(&run(&["fig5"], &[], &s.path("c")));
     assert_eq!(by_errors, by_name);
     assert_ne!(by_errors, default, "the table's errors were applied");
     // A gear the table lacks is named.
@@ -190,7 +184,7 @@ fn errors_points_the_measured_hypothesis_at_a_table() {
     )
     .unwrap();
     let o = run(&["fig5"], &["--errors", file], &s.path("d"));
-    let err = String::from_utf8_lossy(&o.stderr);
+    let err = stderr(&o);
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert!(err.contains("gear driven: missing from the table"), "{err}");
     assert!(!s.0.join("d").exists());
@@ -198,7 +192,7 @@ fn errors_points_the_measured_hypothesis_at_a_table() {
 
 #[test]
 fn overview_and_help_describe_hypotheses_flags_and_outputs() {
-    let (out, _) = ok(&xtask(&[]));
+    let (out, _) = succeeded_output(&xtask(&[]));
     for word in [
         "Error hypotheses",
         "edmunds-split",
@@ -211,7 +205,7 @@ fn overview_and_help_describe_hypotheses_flags_and_outputs() {
     ] {
         assert!(out.contains(word), "overview lacks {word:?}");
     }
-    let (out, _) = ok(&xtask(&["help", "failure"]));
+    let (out, _) = succeeded_output(&xtask(&["help", "failure"]));
     for word in [
         "Paper item: Section 5",
         "| trials ",
@@ -224,11 +218,11 @@ fn overview_and_help_describe_hypotheses_flags_and_outputs() {
     ] {
         assert!(out.contains(word), "help failure lacks {word:?}:\n{out}");
     }
-    let (out, _) = ok(&xtask(&["help", "table2"]));
+    let (out, _) = succeeded_output(&xtask(&["help", "table2"]));
     assert!(
         out.contains("--errors FILE sets `hypothesis` to measured:FILE"),
         "{out}"
     );
-    let (out, _) = ok(&xtask(&["help", "fig2"]));
+    let (out, _) = succeeded_output(&xtask(&["help", "fig2"]));
     assert!(!out.contains("Shorthands"), "{out}");
 }

@@ -2,38 +2,17 @@
 //! exit status 2, nothing written.
 #![allow(clippy::unwrap_used, reason = "tests")]
 
-use std::process::Command;
+mod support;
+use support::{Scratch, run_with_file, succeeded_output, xtask};
 
+/// Runs `table1` with the gearing `text`; returns (exit code, stderr, whether the results dir
+/// exists).
 fn run_table1(tag: &str, text: &str) -> (Option<i32>, String, bool) {
-    let nanos = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .unwrap()
-        .as_nanos();
-    let dir = std::env::temp_dir().join(format!(
-        "xtask-gearing-{tag}-{}-{nanos}",
-        std::process::id()
-    ));
-    std::fs::create_dir_all(&dir).unwrap();
-    let file = dir.join("gearing.ron");
-    std::fs::write(&file, text).unwrap();
-    let out = dir.join("results");
-    let o = Command::new(env!("CARGO_BIN_EXE_xtask"))
-        .args([
-            "run",
-            "table1",
-            "--set",
-            &format!("gearing={}", file.display()),
-            "--out",
-            out.to_str().unwrap(),
-        ])
-        .output()
-        .unwrap();
-    let written = out.exists();
-    let _ = std::fs::remove_dir_all(&dir);
-    (
-        o.status.code(),
-        String::from_utf8_lossy(&o.stderr).into_owned(),
-        written,
+    run_with_file(
+        &format!("gearing-{tag}"),
+        "gearing.ron",
+        text,
+        &["run", "table1", "--set", "gearing={file}", "--out", "{out}"],
     )
 }
 
@@ -60,16 +39,8 @@ fn gearing_with_an_unknown_gear_names_the_mesh() {
 
 #[test]
 fn one_wrong_tooth_count_changes_the_ratio_checks() {
-    let nanos = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .unwrap()
-        .as_nanos();
-    let dir = std::env::temp_dir().join(format!(
-        "xtask-gearing-ratio-{}-{nanos}",
-        std::process::id()
-    ));
-    std::fs::create_dir_all(&dir).unwrap();
-    let file = dir.join("wrong.ron");
+    let s = Scratch::new("gearing-ratio");
+    let file = s.path("wrong.ron");
     let original = "(name: \"b2\", teeth: 64,";
     assert!(train::FREETH2006_RON.contains(original));
     std::fs::write(
@@ -93,27 +64,17 @@ fn one_wrong_tooth_count_changes_the_ratio_checks() {
         "--set",
         "samples_per_engagement=2",
     ];
-    let run = |gearing: Option<&std::path::Path>| {
-        let mut args = vec![
-            "run".to_string(),
-            "table1".into(),
-            "--out".into(),
-            dir.join("out").display().to_string(),
-        ];
-        args.extend(short.iter().map(|s| s.to_string()));
+    let out = s.path("out");
+    let run = |gearing: Option<&str>| {
+        let mut args = vec!["run", "table1", "--out", &out];
+        args.extend(short);
         if let Some(g) = gearing {
-            args.extend(["--gearing".to_string(), g.display().to_string()]);
+            args.extend(["--gearing", g]);
         }
-        let o = Command::new(env!("CARGO_BIN_EXE_xtask"))
-            .args(&args)
-            .output()
-            .unwrap();
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        String::from_utf8_lossy(&o.stdout).into_owned()
+        succeeded_output(&xtask(&args)).0
     };
     let default = run(None);
     let wrong = run(Some(&file));
-    let _ = std::fs::remove_dir_all(&dir);
     assert!(
         default.contains("| Lunar     |      6 | 254/19"),
         "{default}"

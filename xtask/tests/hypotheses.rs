@@ -2,21 +2,16 @@
 
 #![allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
 
-use std::process::{Command, Output};
+use std::path::Path;
 
-fn xtask(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_xtask"))
-        .args(args)
-        .env_remove("RUST_LOG")
-        .output()
-        .unwrap()
-}
+mod support;
+use support::{Scratch, stderr, stdout, xtask};
 
 #[test]
 fn hypotheses_lists_the_built_ins_with_their_params() {
     let o = xtask(&["hypotheses"]);
-    let out = String::from_utf8_lossy(&o.stdout);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let out = stdout(&o);
+    assert!(o.status.success(), "{}", stderr(&o));
     for name in [
         "ideal",
         "edmunds-split",
@@ -37,19 +32,20 @@ fn hypotheses_takes_no_arguments_and_the_overview_mentions_it() {
     assert_eq!(o.status.code(), Some(2));
     let o = xtask(&[]);
     assert!(o.status.success());
-    assert!(String::from_utf8_lossy(&o.stdout).contains("cargo xtask hypotheses"));
+    assert!(stdout(&o).contains("cargo xtask hypotheses"));
 }
 
 /// Runs `fig5` with `args` into a fresh results dir: expects exit 2, nothing written, and returns
 /// stderr.
 fn fig5_refused(tag: &str, args: &[&str]) -> String {
-    let out = std::env::temp_dir().join(format!("xtask-hyp-{tag}-{}", std::process::id()));
-    let mut all = vec!["run", "fig5", "--out", out.to_str().unwrap()];
+    let s = Scratch::new(&format!("hyp-{tag}"));
+    let out = s.path("out");
+    let mut all = vec!["run", "fig5", "--out", &out];
     all.extend_from_slice(args);
     let o = xtask(&all);
-    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    let err = stderr(&o);
     assert_eq!(o.status.code(), Some(2), "{err}");
-    assert!(!out.exists());
+    assert!(!Path::new(&out).exists());
     err
 }
 

@@ -9,17 +9,7 @@
 use std::fs;
 
 mod support;
-use support::{Scratch, xtask};
-
-fn ok(args: &[&str]) -> String {
-    let o = xtask(args);
-    assert!(
-        o.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    String::from_utf8(o.stdout).unwrap()
-}
+use support::{Scratch, stderr, succeeded, xtask};
 
 fn json(path: &std::path::Path) -> serde_json::Value {
     serde_json::from_str(&fs::read_to_string(path).unwrap()).unwrap()
@@ -36,7 +26,7 @@ fn table3_with_an_errors_file_prints_one_row_and_names_its_inputs() {
         .collect();
     fs::write(&errors, format!("(gears: [{}])", rows.join(", "))).unwrap();
     let out = s.path("out");
-    let printed = ok(&[
+    let printed = succeeded(&[
         "run",
         "table3",
         "--errors",
@@ -48,7 +38,7 @@ fn table3_with_an_errors_file_prints_one_row_and_names_its_inputs() {
     ]);
     check_table3(&printed, &out, &errors);
     // tableI: one row per clearance, not four Cases per clearance.
-    let printed = ok(&[
+    let printed = succeeded(&[
         "run",
         "tableI",
         "--errors",
@@ -100,16 +90,16 @@ fn check_table3(printed: &str, out: &str, errors: &std::path::Path) {
 fn default_runs_print_as_before_and_changed_runs_head_the_report_with_what_ran() {
     let s = Scratch::new("labels-report");
     let out = s.path("out");
-    let plain = ok(&["run", "fig3", "--out", &out]);
+    let plain = succeeded(&["run", "fig3", "--out", &out]);
     assert!(!plain.contains("inputs differ"), "{plain}");
     let tables = json(&s.0.join("out/fig3/tables.json"));
     assert!(tables["inputs"].is_object(), "{tables}");
-    let changed = ok(&["run", "fig2", "--set", "step=0.5", "--out", &out]);
+    let changed = succeeded(&["run", "fig2", "--set", "step=0.5", "--out", &out]);
     assert!(
         changed.contains("[inputs differ from the defaults: step=0.5]"),
         "{changed}"
     );
-    ok(&["report", "--out", &out, "-q"]);
+    succeeded(&["report", "--out", &out, "-q"]);
     let page = fs::read_to_string(s.0.join("out/index.html")).unwrap();
     assert!(
         page.contains("<h2>fig2: Figure 2: N1 = N2 = 8") && page.contains("step=0.5]</h2>"),
@@ -119,7 +109,7 @@ fn default_runs_print_as_before_and_changed_runs_head_the_report_with_what_ran()
     fs::create_dir_all(s.0.join("out/old-copy")).unwrap();
     fs::write(s.0.join("out/old-copy/tables.json"), "{ damaged").unwrap();
     let o = xtask(&["-q", "report", "--out", &out]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "{}", stderr(&o));
     assert!(o.stderr.is_empty(), "-q: nothing on stderr");
 }
 
@@ -129,7 +119,7 @@ fn a_reading_of_the_paper_is_not_an_input_that_differs() {
     // paper's inputs, named in the title, and still compared.
     let s = Scratch::new("labels-reading");
     let out = s.path("out");
-    let text = ok(&["run", "clearance", "--set", "events=strict", "--out", &out]);
+    let text = succeeded(&["run", "clearance", "--set", "events=strict", "--out", &out]);
     assert!(text.contains("[events: strict]"), "{text}");
     assert!(!text.contains("inputs differ"), "{text}");
     let tables = json(&s.0.join("out/clearance/tables.json"));

@@ -9,7 +9,7 @@ use std::fs;
 use std::time::Instant;
 
 mod support;
-use support::{Scratch, xtask};
+use support::{Scratch, stderr, xtask};
 
 /// The id of a process that has ended.
 fn dead_pid() -> u32 {
@@ -38,7 +38,7 @@ fn a_killed_runs_leftovers_are_cleaned_and_its_moved_aside_results_put_back() {
     fs::write(&partial_tmp, "{").unwrap();
 
     let o = xtask(&["run", "pair", "--out", out.to_str().unwrap()]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "{}", stderr(&o));
     assert!(
         !tmp.exists(),
         "the killed run's temporary folder is still there"
@@ -72,7 +72,7 @@ fn a_killed_runs_leftovers_are_cleaned_and_its_moved_aside_results_put_back() {
         "--out",
         out.to_str().unwrap(),
     ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "{}", stderr(&o));
     assert!(!partial_tmp.exists(), "the killed shard's temporary file");
     let hidden: Vec<String> = fs::read_dir(&out)
         .unwrap()
@@ -109,10 +109,10 @@ fn a_merge_never_replaces_the_folder_holding_its_partial_files() {
             "--out",
             &sh,
         ]);
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        assert!(o.status.success(), "{}", stderr(&o));
     }
     let o = xtask(&["merge", &sh, "--out", &sh]);
-    let err = String::from_utf8_lossy(&o.stderr);
+    let err = stderr(&o);
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert!(
         err.contains("--out: ") && err.contains("holds the partial file"),
@@ -128,7 +128,7 @@ fn a_merge_never_replaces_the_folder_holding_its_partial_files() {
     }
     // Into another folder the merge goes through.
     let o = xtask(&["merge", &sh, "--out", &s.path("merged")]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "{}", stderr(&o));
 }
 
 #[test]
@@ -144,7 +144,7 @@ fn an_unwritable_out_is_refused_before_anything_is_computed() {
         ] {
             let start = Instant::now();
             let o = xtask(&cmd);
-            let err = String::from_utf8_lossy(&o.stderr);
+            let err = stderr(&o);
             assert_eq!(o.status.code(), Some(2), "{cmd:?}: {err}");
             assert!(
                 err.starts_with(&format!("--out: {out}: ")),

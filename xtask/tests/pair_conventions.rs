@@ -5,13 +5,13 @@
 
 mod support;
 
-use support::{Scratch, xtask};
+use support::{Scratch, stderr, stdout, xtask};
 
 #[test]
 fn help_states_every_convention_of_the_pair_file() {
     let o = xtask(&["help", "pair"]);
     assert!(o.status.success());
-    let text = String::from_utf8_lossy(&o.stdout).into_owned();
+    let text = stdout(&o);
     for words in [
         "driver turns counter-clockwise",
         "Zero ray: each gear's tips_deg = 0",
@@ -72,7 +72,7 @@ fn a_run_writes_the_check_picture_absolute_angles_and_the_users_tooth_numbers() 
         "--out",
         &s.path("out"),
     ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "{}", stderr(&o));
     let read = |f: &str| std::fs::read_to_string(s.0.join("out/pair").join(f)).unwrap();
     // One file of events: the event table in table.md is an excerpt of event-log.csv, not a
     // second CSV with fewer columns.
@@ -151,7 +151,7 @@ fn a_start_that_cannot_be_taken_is_refused_naming_the_field() {
             &s.path("out"),
         ]);
         assert_eq!(o.status.code(), Some(2), "{start}");
-        let err = String::from_utf8_lossy(&o.stderr).into_owned();
+        let err = stderr(&o);
         let line = err.lines().find(|l| l.contains("mesh.ron")).unwrap();
         assert!(line.contains(expected), "{start}: {err}");
         assert!(!err.contains("panicked"), "{err}");

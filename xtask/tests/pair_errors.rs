@@ -2,40 +2,17 @@
 //! exit status 2, and no results written.
 #![allow(clippy::unwrap_used, reason = "tests")]
 
-use std::path::PathBuf;
-use std::process::Command;
-
-fn scratch(tag: &str) -> PathBuf {
-    let nanos = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .unwrap()
-        .as_nanos();
-    let dir = std::env::temp_dir().join(format!("xtask-pair-{tag}-{}-{nanos}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
+mod support;
+use support::run_with_file;
 
 /// Runs `pair` on `text`; returns (exit code, stderr, whether the results dir exists).
 fn run_pair(tag: &str, text: &str) -> (Option<i32>, String, bool) {
-    let dir = scratch(tag);
-    let file = dir.join("mesh.ron");
-    std::fs::write(&file, text).unwrap();
-    let out = dir.join("results");
-    let o = Command::new(env!("CARGO_BIN_EXE_xtask"))
-        .args([
-            "run",
-            "pair",
-            "--config",
-            file.to_str().unwrap(),
-            "--out",
-            out.to_str().unwrap(),
-        ])
-        .output()
-        .unwrap();
-    let written = out.exists();
-    let err = String::from_utf8_lossy(&o.stderr).into_owned();
-    let _ = std::fs::remove_dir_all(&dir);
-    (o.status.code(), err, written)
+    run_with_file(
+        &format!("pair-{tag}"),
+        "mesh.ron",
+        text,
+        &["run", "pair", "--config", "{file}", "--out", "{out}"],
+    )
 }
 
 fn mesh(driver: &str, extra: &str) -> String {

@@ -11,13 +11,19 @@ use std::path::PathBuf;
 use std::process::{Command, Stdio};
 use std::time::Duration;
 
-use support::{Scratch, xtask};
+use support::{Scratch, chromium, stderr, xtask};
 
-fn chromium() -> Option<PathBuf> {
-    std::env::var_os("CHROMIUM")
-        .map(PathBuf::from)
-        .or_else(|| Some(PathBuf::from("/usr/bin/chromium")))
-        .filter(|p| p.is_file())
+/// Chromium, or `None` after saying the test is skipped; with `CI=true` a missing Chromium fails.
+fn chromium_or_skip() -> Option<PathBuf> {
+    let chrome = chromium();
+    if chrome.is_none() {
+        assert!(
+            std::env::var("CI").map_or(true, |v| v != "true"),
+            "CI=true and no Chromium: .ci/run installs it (scripts/check-report.sh install)"
+        );
+        eprintln!("skipped: no Chromium (set CHROMIUM or install it)");
+    }
+    chrome
 }
 
 /// The DOM after the page's script ran (`--dump-dom`).
@@ -110,6 +116,18 @@ fn attribute(html: &str, tag: &str, name: &str) -> String {
 }
 
 /// θ (absolute, degrees) at φ − φ0 = `phi` from pair.csv, linearly between its rows.
+/// The angle of an SVG `rotate(A X Y)` transform.
+fn rotation(transform: &str) -> f64 {
+    transform
+        .strip_prefix("rotate(")
+        .unwrap()
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap()
+}
+
 fn csv_theta(csv: &str, phi: f64) -> f64 {
     let rows: Vec<Vec<f64>> = csv
         .lines()
@@ -124,17 +142,12 @@ fn csv_theta(csv: &str, phi: f64) -> f64 {
 
 #[test]
 fn the_page_draws_the_driven_gear_at_theta_of_phi() {
-    let Some(chrome) = chromium() else {
-        assert!(
-            std::env::var("CI").map_or(true, |v| v != "true"),
-            "CI=true and no Chromium: .ci/run installs it (scripts/check-report.sh install)"
-        );
-        eprintln!("skipped: no Chromium (set CHROMIUM or install it)");
+    let Some(chrome) = chromium_or_skip() else {
         return;
     };
     let s = Scratch::new("pair-page");
     let o = xtask(&["run", "pair", "-q", "--out", &s.path("out")]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "{}", stderr(&o));
     let dir = s.0.join("out/pair");
     let csv = std::fs::read_to_string(dir.join("pair.csv")).unwrap();
     for phi in [10.0, 95.5] {
@@ -157,14 +170,7 @@ fn the_page_draws_the_driven_gear_at_theta_of_phi() {
         // The slider lands on the page's sample nearest the address's angle.
         assert!((shown_phi - phi).abs() < 0.1, "{phi} -> {shown_phi}");
         // The drawn rotation is −θ about the driven arbor...
-        let angle: f64 = transform
-            .strip_prefix("rotate(")
-            .unwrap()
-            .split(' ')
-            .next()
-            .unwrap()
-            .parse()
-            .unwrap();
+        let angle = rotation(&transform);
         assert!(
             (angle + theta).abs() < 1e-9,
             "{transform} against theta {theta}"
@@ -181,12 +187,7 @@ fn the_page_draws_the_driven_gear_at_theta_of_phi() {
 
 #[test]
 fn a_reader_moving_the_slider_and_clicking_an_event_sees_theta_of_phi() {
-    let Some(chrome) = chromium() else {
-        assert!(
-            std::env::var("CI").map_or(true, |v| v != "true"),
-            "CI=true and no Chromium: .ci/run installs it (scripts/check-report.sh install)"
-        );
-        eprintln!("skipped: no Chromium (set CHROMIUM or install it)");
+    let Some(chrome) = chromium_or_skip() else {
         return;
     };
     let s = Scratch::new("pair-page-selftest");
@@ -200,7 +201,7 @@ fn a_reader_moving_the_slider_and_clicking_an_event_sees_theta_of_phi() {
         "--out",
         &s.path("out"),
     ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "{}", stderr(&o));
     let dir = s.0.join("out/pair");
     let csv = std::fs::read_to_string(dir.join("pair.csv")).unwrap();
     let log = std::fs::read_to_string(dir.join("event-log.csv")).unwrap();
@@ -227,14 +228,7 @@ fn a_reader_moving_the_slider_and_clicking_an_event_sees_theta_of_phi() {
         let phi: f64 = attribute(&page, &tag, "data-phi").parse().unwrap();
         let theta: f64 = attribute(&page, &tag, "data-theta").parse().unwrap();
         let transform = attribute(&page, &tag, "data-transform");
-        let angle: f64 = transform
-            .strip_prefix("rotate(")
-            .unwrap()
-            .split(' ')
-            .next()
-            .unwrap()
-            .parse()
-            .unwrap();
+        let angle = rotation(&transform);
         assert!(
             (angle + theta).abs() < 1e-9,
             "{what}: {transform} against theta {theta}"

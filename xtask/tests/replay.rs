@@ -5,17 +5,7 @@
 
 mod support;
 
-use support::{Scratch, xtask};
-
-fn ok(args: &[&str]) -> String {
-    let o = xtask(args);
-    assert!(
-        o.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    String::from_utf8(o.stdout).unwrap()
-}
+use support::{Scratch, stderr, succeeded, xtask};
 
 /// The number in the `trials` column of a listing row (`| jam | 7 | 1, 2, ... |`).
 fn listed(text: &str, failure: &str) -> (u64, Vec<u64>) {
@@ -37,7 +27,7 @@ fn failed_trials_are_the_ones_a_sharded_run_counted_and_rerun_as_pairs() {
     let out = s.path("out");
     // Table 3 at 12 trials per cell, in two shards merged.
     for k in ["0/2", "1/2"] {
-        ok(&[
+        succeeded(&[
             "run",
             "table3",
             "-q",
@@ -49,7 +39,7 @@ fn failed_trials_are_the_ones_a_sharded_run_counted_and_rerun_as_pairs() {
             &out,
         ]);
     }
-    let merged = ok(&[
+    let merged = succeeded(&[
         "merge",
         &s.path("out/table3"),
         "-q",
@@ -72,7 +62,7 @@ fn failed_trials_are_the_ones_a_sharded_run_counted_and_rerun_as_pairs() {
         .trim_end_matches('*')
         .parse()
         .unwrap();
-    let listing = ok(&[
+    let listing = succeeded(&[
         "replay",
         "table3",
         "B/m3-e3",
@@ -87,7 +77,7 @@ fn failed_trials_are_the_ones_a_sharded_run_counted_and_rerun_as_pairs() {
     assert!(!trials.is_empty(), "no jam to replay: {listing}");
     // The first jammed trial: its jam, then the same gears rerun from pair.ron by `run pair`.
     let t = trials[0].to_string();
-    let one = ok(&[
+    let one = succeeded(&[
         "replay",
         "table3",
         "B/m3-e3",
@@ -110,7 +100,7 @@ fn failed_trials_are_the_ones_a_sharded_run_counted_and_rerun_as_pairs() {
         .trim_end_matches(',')
         .parse()
         .unwrap();
-    let rerun = ok(&[
+    let rerun = succeeded(&[
         "run",
         "pair",
         "-q",
@@ -153,7 +143,7 @@ fn bad_arguments_are_refused_in_one_line() {
     ] {
         let o = xtask(args);
         assert_eq!(o.status.code(), Some(2), "{args:?}");
-        let err = String::from_utf8_lossy(&o.stderr);
+        let err = stderr(&o);
         assert!(err.contains(words), "{args:?}: {err}");
         assert!(o.stdout.is_empty(), "{args:?}: nothing on stdout");
     }

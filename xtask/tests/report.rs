@@ -11,50 +11,14 @@
 #![allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
+use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
+
+mod support;
+use support::{Scratch, chromium, stderr, stdout, xtask};
 
 /// The cheap experiments whose results the page is built from.
 const RUN: [&str; 2] = ["fig2", "fig3"];
-
-fn xtask(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_xtask"))
-        .args(args)
-        .env_remove("RUST_LOG")
-        .output()
-        .unwrap()
-}
-
-fn text(b: &[u8]) -> String {
-    String::from_utf8_lossy(b).into_owned()
-}
-
-/// A directory under the system temp dir, removed on drop unless kept.
-struct Scratch {
-    path: PathBuf,
-    keep: bool,
-}
-
-impl Scratch {
-    fn new(tag: &str) -> Self {
-        let nanos = std::time::SystemTime::now()
-            .duration_since(std::time::UNIX_EPOCH)
-            .unwrap()
-            .as_nanos();
-        let path =
-            std::env::temp_dir().join(format!("xtask-report-{tag}-{}-{nanos}", std::process::id()));
-        std::fs::create_dir_all(&path).unwrap();
-        Scratch { path, keep: false }
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        if !self.keep {
-            let _ = std::fs::remove_dir_all(&self.path);
-        }
-    }
-}
 
 /// Does the SVG draw anything (the same rule as the report's)?
 fn draws(svg: &str) -> bool {
@@ -90,8 +54,8 @@ fn check_page(out: &Path, run: &[&str]) {
 
     // A section for every registered experiment: a run one for each we ran.
     let list = xtask(&["list"]);
-    assert!(list.status.success(), "{}", text(&list.stderr));
-    for id in text(&list.stdout).lines() {
+    assert!(list.status.success(), "{}", stderr(&list));
+    for id in stdout(&list).lines() {
         assert!(
             page.contains(&format!("<section id=\"exp-{id}\" class=\"experiment")),
             "no section for {id}"
@@ -142,14 +106,6 @@ fn check_page(out: &Path, run: &[&str]) {
         figs.len(),
         "every <svg> or <img> of the page is one of the figures"
     );
-}
-
-/// Chromium's path: `$CHROMIUM`, else `/usr/bin/chromium` if present.
-fn chromium() -> Option<PathBuf> {
-    std::env::var_os("CHROMIUM")
-        .map(PathBuf::from)
-        .or_else(|| Some(PathBuf::from("/usr/bin/chromium")))
-        .filter(|p| p.is_file())
 }
 
 /// Takes a 1280x4000 headless screenshot of `out/index.html` into `out/report.png`.
@@ -256,25 +212,25 @@ fn report_page_shows_every_experiment_and_its_figures() {
         }
         return;
     }
-    let mut scratch = Scratch::new("page");
-    let out = scratch.path.clone();
+    let mut scratch = Scratch::new("report-page");
+    let out = scratch.0.clone();
     let o = out.to_str().unwrap();
     let mut args = vec!["run"];
     args.extend(RUN);
     args.extend(["--threads", "1", "--out", o]);
     let ran = xtask(&args);
-    assert!(ran.status.success(), "{}", text(&ran.stderr));
+    assert!(ran.status.success(), "{}", stderr(&ran));
     let rep = xtask(&["report", "--out", o]);
-    assert!(rep.status.success(), "{}", text(&rep.stderr));
-    assert!(text(&rep.stderr).contains("index.html"));
+    assert!(rep.status.success(), "{}", stderr(&rep));
+    assert!(stderr(&rep).contains("index.html"));
     check_page(&out, &RUN);
 
     match chromium() {
         Some(chrome) => {
-            scratch.keep = true; // Kept while checking, for a failure to be looked at.
+            scratch.keep(true); // Kept while checking, for a failure to be looked at.
             let png = screenshot(&chrome, &out);
             check_png(&png);
-            scratch.keep = false;
+            scratch.keep(false);
         }
         None if std::env::var("CI").is_ok_and(|v| v == "true") => panic!(
             "CI=true but Chromium is not installed (/usr/bin/chromium or $CHROMIUM): run `scripts/check-report.sh install`"
@@ -287,21 +243,21 @@ fn report_page_shows_every_experiment_and_its_figures() {
 
 #[test]
 fn report_without_results_is_refused_and_writes_nothing() {
-    let scratch = Scratch::new("empty");
-    let o = scratch.path.to_str().unwrap();
+    let scratch = Scratch::new("report-empty");
+    let o = scratch.0.to_str().unwrap();
     let rep = xtask(&["report", "--out", o]);
-    assert_eq!(rep.status.code(), Some(2), "{}", text(&rep.stderr));
-    let err = text(&rep.stderr);
+    assert_eq!(rep.status.code(), Some(2), "{}", stderr(&rep));
+    let err = stderr(&rep);
     assert!(err.contains("no results") && err.contains(o), "{err}");
-    assert!(!scratch.path.join("index.html").exists());
+    assert!(!scratch.0.join("index.html").exists());
     let rep = xtask(&["report", "--out", &format!("{o}/missing")]);
     assert_eq!(rep.status.code(), Some(2));
-    assert!(text(&rep.stderr).contains("no such directory"));
+    assert!(stderr(&rep).contains("no such directory"));
 }
 
 #[test]
 fn usage_lists_report() {
     let o = xtask(&[]);
     assert!(o.status.success());
-    assert!(text(&o.stdout).contains("cargo xtask report [--out DIR]"));
+    assert!(stdout(&o).contains("cargo xtask report [--out DIR]"));
 }

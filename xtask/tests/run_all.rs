@@ -4,28 +4,10 @@
 
 #![allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
+use std::path::Path;
 
-fn xtask(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_xtask"))
-        .args(args)
-        .env_remove("RUST_LOG")
-        .output()
-        .unwrap()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn scratch(tag: &str) -> PathBuf {
-    let nanos = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .unwrap()
-        .as_nanos();
-    std::env::temp_dir().join(format!("xtask-all-{tag}-{}-{nanos}", std::process::id()))
-}
+mod support;
+use support::{Scratch, stderr, stdout, xtask};
 
 #[test]
 fn run_all_with_ids_is_refused() {
@@ -43,26 +25,20 @@ fn run_all_with_ids_is_refused() {
 
 #[test]
 fn run_all_refuses_a_key_no_experiment_declares() {
-    let out = scratch("key");
-    let o = xtask(&[
-        "run",
-        "all",
-        "--set",
-        "no_such_key=1",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let s = Scratch::new("all-key");
+    let out = s.path("out");
+    let o = xtask(&["run", "all", "--set", "no_such_key=1", "--out", &out]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("no_such_key"), "{}", stderr(&o));
     assert!(o.stdout.is_empty());
-    assert!(!out.exists(), "nothing may be written");
+    assert!(!Path::new(&out).exists(), "nothing may be written");
 }
 
 #[test]
 fn usage_describes_run_all() {
     let o = xtask(&["help"]);
     assert!(o.status.success());
-    let text = String::from_utf8_lossy(&o.stdout);
+    let text = stdout(&o);
     for word in ["run all", "summary.md", "summary.json"] {
         assert!(text.contains(word), "missing {word:?} in:\n{text}");
     }
@@ -72,8 +48,8 @@ fn usage_describes_run_all() {
 fn a_file_parameter_at_its_default_is_not_read_as_a_file() {
     // fig6's `measured` default, "no table", was once read as a file name by the checks made
     // before anything runs, which refused `run fig6` and so `run all` at their defaults.
-    let dir = scratch("defaults");
-    let out = dir.join("out");
+    let s = Scratch::new("all-defaults");
+    let out = s.path("out");
     let o = xtask(&[
         "run",
         "fig6",
@@ -85,7 +61,7 @@ fn a_file_parameter_at_its_default_is_not_read_as_a_file() {
         "--set",
         "random_to=0.04",
         "--out",
-        out.to_str().unwrap(),
+        &out,
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let o = xtask(&[
@@ -101,7 +77,7 @@ fn a_file_parameter_at_its_default_is_not_read_as_a_file() {
         "--set",
         "measured=none",
         "--out",
-        out.to_str().unwrap(),
+        &out,
     ]);
     assert!(o.status.success(), "measured=none: {}", stderr(&o));
 }

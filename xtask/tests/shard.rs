@@ -6,14 +6,9 @@
 
 use std::fs;
 use std::path::Path;
-use std::process::Output;
 
 mod support;
-use support::{Scratch, files, xtask};
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+use support::{Scratch, files, sealed, stderr, stdout, xtask};
 
 /// A reduced table1: 5 trials of short runs with few samples.
 const TABLE1: &[&str] = &[
@@ -192,21 +187,6 @@ fn one_and_two_threads_write_the_same_results() {
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert_same_results(&s.0.join("one/table1"), &s.0.join("merged/table1"));
-}
-
-/// `json` (a partial file's value) with the checksum the runner gives it: SHA-256 of the JSON
-/// without its `checksum` member, written compactly.
-fn sealed(mut json: serde_json::Value) -> String {
-    use sha2::Digest;
-    json.as_object_mut().unwrap().remove("checksum");
-    let sum: String = sha2::Sha256::digest(json.to_string().as_bytes())
-        .iter()
-        .map(|b| format!("{b:02x}"))
-        .collect();
-    json.as_object_mut()
-        .unwrap()
-        .insert("checksum".into(), sum.into());
-    json.to_string()
 }
 
 /// Adds 1 to the first number found in `v` (depth first).
@@ -444,7 +424,7 @@ fn bad_shard_flags_exit_2_and_write_nothing() {
 fn usage_describes_shards_and_merge() {
     let o = xtask(&[]);
     assert!(o.status.success());
-    let text = String::from_utf8_lossy(&o.stdout);
+    let text = stdout(&o);
     for word in [
         "--shard K/N",
         "cargo xtask merge",

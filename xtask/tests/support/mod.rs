@@ -1,5 +1,5 @@
-//! What the integration tests that run reduced experiments share: running the built binary, a
-//! scratch directory, and reading a results directory.
+//! What the integration tests share: running the built binary and reading what it printed, a
+//! scratch directory, finding Chromium, and reading a results directory.
 
 #![allow(
     dead_code,
@@ -11,12 +11,13 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-/// Runs the built `xtask` with `args` and extra environment, without the caller's log or
-/// progress settings.
+/// Runs the built `xtask` with `args` and extra environment, without the caller's log,
+/// backtrace or progress settings.
 pub fn xtask_env(args: &[&str], env: &[(&str, &str)]) -> Output {
     let mut c = Command::new(env!("CARGO_BIN_EXE_xtask"));
     c.args(args)
         .env_remove("RUST_LOG")
+        .env_remove("RUST_BACKTRACE")
         .env_remove("XTASK_PROGRESS");
     for (k, v) in env {
         c.env(k, v);
@@ -29,8 +30,52 @@ pub fn xtask(args: &[&str]) -> Output {
     xtask_env(args, &[])
 }
 
-/// A fresh scratch directory under the system temp dir, removed on drop.
-pub struct Scratch(pub PathBuf);
+/// What `o` printed on stdout, as text (invalid UTF-8 replaced).
+pub fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+/// What `o` printed on stderr, as text (invalid UTF-8 replaced).
+pub fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Runs `xtask` with `args`, asserts it succeeded, and returns its stdout (which must be UTF-8).
+pub fn succeeded(args: &[&str]) -> String {
+    let o = xtask(args);
+    assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+    String::from_utf8(o.stdout).unwrap()
+}
+
+/// Asserts that the run `o` succeeded; returns its stdout and stderr as text.
+pub fn succeeded_output(o: &Output) -> (String, String) {
+    let err = stderr(o);
+    assert!(o.status.success(), "{err}");
+    (stdout(o), err)
+}
+
+/// Writes `text` to `name` in a fresh scratch dir, runs `xtask` with `args` (`{file}` stands for
+/// that file, `{out}` for a results dir) and returns (exit code, stderr, whether `{out}` exists).
+pub fn run_with_file(
+    tag: &str,
+    name: &str,
+    text: &str,
+    args: &[&str],
+) -> (Option<i32>, String, bool) {
+    let s = Scratch::new(tag);
+    let file = s.path(name);
+    fs::write(&file, text).unwrap();
+    let out = s.path("results");
+    let args: Vec<String> = args
+        .iter()
+        .map(|a| a.replace("{file}", &file).replace("{out}", &out))
+        .collect();
+    let o = xtask(&args.iter().map(String::as_str).collect::<Vec<_>>());
+    (o.status.code(), stderr(&o), Path::new(&out).exists())
+}
+
+/// A fresh scratch directory under the system temp dir, removed on drop unless kept.
+pub struct Scratch(pub PathBuf, bool);
 
 impl Scratch {
     /// Creates `xtask-<tag>-<pid>-<nanos>` under the temp dir.
@@ -41,19 +86,49 @@ impl Scratch {
             .as_nanos();
         let p = std::env::temp_dir().join(format!("xtask-{tag}-{}-{nanos}", std::process::id()));
         fs::create_dir_all(&p).unwrap();
-        Scratch(p)
+        Scratch(p, false)
     }
 
     /// `rel` under the scratch directory, as a string for the command line.
     pub fn path(&self, rel: &str) -> String {
         self.0.join(rel).to_str().unwrap().to_owned()
     }
+
+    /// Whether dropping leaves the directory in place (for a failure to be looked at).
+    pub fn keep(&mut self, keep: bool) {
+        self.1 = keep;
+    }
 }
 
 impl Drop for Scratch {
     fn drop(&mut self) {
-        let _ = fs::remove_dir_all(&self.0);
+        if !self.1 {
+            let _ = fs::remove_dir_all(&self.0);
+        }
     }
+}
+
+/// Chromium's path: `$CHROMIUM`, else `/usr/bin/chromium` if present.
+pub fn chromium() -> Option<PathBuf> {
+    std::env::var_os("CHROMIUM")
+        .map(PathBuf::from)
+        .or_else(|| Some(PathBuf::from("/usr/bin/chromium")))
+        .filter(|p| p.is_file())
+}
+
+/// `json` (a partial file) with the checksum the runner gives it: SHA-256 of its compact JSON
+/// without the `checksum` member.
+pub fn sealed(mut json: serde_json::Value) -> String {
+    use sha2::Digest;
+    json.as_object_mut().unwrap().remove("checksum");
+    let sum: String = sha2::Sha256::digest(json.to_string().as_bytes())
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect();
+    json.as_object_mut()
+        .unwrap()
+        .insert("checksum".into(), sum.into());
+    json.to_string()
 }
 
 /// Every results file by name. `run.json` is the run's provenance (date, thread count): it must
