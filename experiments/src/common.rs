@@ -75,10 +75,7 @@ pub fn semilog_plot(
     plot(title, x_label, y_label, &logged, true, &[])
 }
 
-/// The most rows of a data file (CSV) an experiment writes: 10^6, some 40-80 MB. A sampling
-/// step that would give more (`pair`'s `sample_deg`, `fig2`'s `step`) is refused before
-/// anything runs, naming the smallest step allowed.
-pub const MAX_DATA_ROWS: usize = 1_000_000;
+pub use registry::MAX_DATA_ROWS;
 
 /// The most points of one series a figure draws: 50 000 (the default runs draw at most 36 001).
 /// A longer series is thinned to the first, smallest, largest and last point of each of 12 500
@@ -316,6 +313,30 @@ pub fn category_plot(
         root.present().map_err(|e| plot_err(&e))?;
     }
     Ok(svg)
+}
+/// "mean [lo .. hi]" of days (no interval for one value, "-" for none).
+pub fn mean_cell(days: &[f64], horizon: f64) -> String {
+    let e = study::whole_mechanism::mean_days(days, horizon);
+    match days.len() {
+        0 => "-".into(),
+        1 => format!("{} (n = 1)", fmt_f64(e.mean, 0)),
+        _ => format!(
+            "{} [{} .. {}]",
+            fmt_f64(e.mean, 0),
+            fmt_f64(e.lo, 0),
+            fmt_f64(e.hi, 0)
+        ),
+    }
+}
+
+/// "rate [lo .. hi]" of a proportion, in whole percent.
+pub fn percent_cell(p: &stats::Proportion) -> String {
+    format!(
+        "{} [{} .. {}]",
+        fmt_f64(100.0 * p.rate(), 0),
+        fmt_f64(100.0 * p.lo, 0),
+        fmt_f64(100.0 * p.hi, 0)
+    )
 }
 
 #[cfg(test)]

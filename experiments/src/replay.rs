@@ -13,10 +13,10 @@ use std::fmt::Write as _;
 use registry::{Context, OutputFile, Report, RunError, Table, fmt_f64};
 use train::Gearing;
 
-use crate::errors;
-use crate::gearing;
-use crate::pair_jams::{CellSpec, Rebuilt, rebuild};
-use crate::table2::CASES;
+use study::cell::{CellSpec, Rebuilt, rebuild};
+use study::errors;
+use study::gearing;
+use study::grids::CASES;
 
 /// The experiments whose trials can be replayed, with the form of their cells.
 pub const REPLAYABLE: [(&str, &str); 3] = [
@@ -113,7 +113,7 @@ pub fn cell_spec(ctx: &Context, g: &Gearing, id: &str, cell: &str) -> Result<Cel
         params: errors::params(ctx, hyp, &errors)?,
         tooth_height: ctx.f64("tooth_height")?,
         clearance,
-        events: crate::events::chosen(ctx)?,
+        events: study::events::chosen(ctx)?,
     })
 }
 
@@ -384,7 +384,7 @@ fn describable(name: &str, gear: &geometry::Gear) -> Result<(), String> {
 mod tests {
     #![allow(clippy::unwrap_used, reason = "tests")]
     use super::*;
-    use crate::pair_jams::{Stage, run_cells};
+    use study::cell::{Purpose, run_cells};
 
     fn ctx(id: &str, sets: &[(&str, &str)]) -> Context {
         crate::link();
@@ -413,7 +413,7 @@ mod tests {
             let g = gearing::load(&ctx).unwrap();
             let spec = cell_spec(&ctx, &g, id, cell).unwrap();
             let counts =
-                run_cells(&ctx, &g, std::slice::from_ref(&spec), 16, Stage::Own).unwrap()[0];
+                run_cells(&ctx, &g, std::slice::from_ref(&spec), 16, Purpose::Own).unwrap()[0];
             let listing = replay(&ctx, id, cell, None).unwrap();
             assert_eq!(listed(&listing, 0), counts.jams, "{id} {cell}: jams");
             assert_eq!(

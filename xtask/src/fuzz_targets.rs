@@ -12,7 +12,7 @@
 //!   `mesh_ratio` and `mesh_geometry` of every mesh, `days_per_degree` finite where given);
 //! - an accepted measured table holds only values its own checks accept, and applying each row
 //!   to an ideal gear returns a gear or an error;
-//! - an accepted pair config (`experiments::pair::load`) gives a mesh with at least 3 and at most
+//! - an accepted pair config (`study::pair_file::load`) gives a mesh with at least 3 and at most
 //!   `geometry::MAX_TEETH` teeth per gear, finite radii and a finite positive centre distance
 //!   at which the gears can touch, and (for gears of at most 2000 teeth, so that an input stays
 //!   fast) the mesh runs one driver pitch to a finite driven angle.
@@ -282,9 +282,9 @@ pub fn measured(text: &str) -> Result<Outcome, String> {
     Ok(Outcome::Accepted)
 }
 
-/// `experiments::pair::load`, then the accepted mesh checked and run over one driver pitch.
+/// `study::pair_file::load`, then the accepted mesh checked and run over one driver pitch.
 pub fn pair(text: &str) -> Result<Outcome, String> {
-    let (mesh, _) = match experiments::pair::load(FILE, text) {
+    let (mesh, _) = match study::pair_file::load(FILE, text) {
         Ok(m) => m,
         Err(e) => return check_refusal(e.to_string()),
     };

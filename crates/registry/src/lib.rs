@@ -30,6 +30,7 @@ use std::collections::BTreeMap;
 pub use inventory;
 
 mod context;
+mod engine;
 mod error;
 mod finite;
 mod output;
@@ -37,9 +38,10 @@ mod progress;
 mod table;
 mod trials;
 
-pub use context::{ConfigFile, Context, MAX_COUNT, MAX_TRIALS, TrialMode};
+pub use context::{ConfigFile, Context, MAX_COUNT, MAX_TRIALS};
+pub use engine::TrialMode;
 pub use error::{DuplicateId, RunError};
-pub use output::{Agreement, OutputFile, Report, tidy, write_results};
+pub use output::{Agreement, MAX_DATA_ROWS, OutputFile, Report, tidy, write_results};
 pub use progress::{BatchProgress, Progress};
 pub use table::{Table, fmt_f64, fmt_number};
 pub use trials::{Batch, Records, Shard, ShardRecords, f64_bits, merge_records};

@@ -9,6 +9,11 @@ use serde_json::{Value, json};
 
 use crate::{RunError, Table};
 
+/// The most rows of a data file (CSV) an experiment writes: 10^6, some 40-80 MB. A sampling
+/// step that would give more (`pair`'s `sample_deg`, `fig2`'s `step`) is refused before
+/// anything runs, naming the smallest step allowed.
+pub const MAX_DATA_ROWS: usize = 1_000_000;
+
 /// What an experiment returns.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct Report {

@@ -1,0 +1,855 @@
+//! The paper's jam protocol for one mesh on its own: each trial draws both gears' errors and an
+//! initial angle, runs one full turn of the gear with more teeth, and notes whether it jammed and
+//! whether it disengaged at least once.
+//!
+//! [`run_cells`] is the one place where such pair trials run (Tables 3, 4, 5, I and the
+//! tolerances of Table 6 and Figure 6 all go through it). A trial's random stream is derived from
+//! the *content* of its cell (mesh, hypothesis, parameter values, h, G) and the trial index, never
+//! from the cell's position in a table, so the same cell gives the same counts in every
+//! experiment; a process-wide cache then lets an experiment reuse cells another one has run
+//! (`cargo xtask run all`), with the same bits as running them again.
+
+use std::collections::HashMap;
+use std::f64::consts::TAU;
+use std::fmt::Write as _;
+use std::sync::{Mutex, OnceLock};
+
+use contact::{Mesh, Start};
+use geometry::Gear;
+use hypotheses::{Hypothesis, Params};
+use mechanism::trial_rng;
+use rand::Rng;
+use registry::{Context, RunError, TrialMode, fmt_f64};
+use stats::{Proportion, wilson95};
+use train::Gearing;
+
+use crate::errors;
+
+/// Trials per cell in the paper's Tables 3, 4, 5 and I: its counts are out of this.
+pub const PAPER_TRIALS: u64 = 200;
+
+/// One mesh under one set of errors: what a cell of Tables 3-5 and I needs.
+#[derive(Clone)]
+pub struct CellSpec {
+    /// Mesh label.
+    pub mesh: String,
+    /// Error hypothesis.
+    pub hypothesis: &'static dyn Hypothesis,
+    /// Parameters of the hypothesis (every declared one has a value).
+    pub params: Params,
+    /// Tooth height h (mm).
+    pub tooth_height: f64,
+    /// Clearance G (% of h).
+    pub clearance: f64,
+    /// Which events count as jams and disengagements. Not part of [`CellSpec::canonical`]: the
+    /// same gears and initial angles are counted under every rule.
+    pub events: rules::Rule,
+}
+
+impl CellSpec {
+    /// The cell's content as one line of text, e.g.
+    /// `mesh=b2-c1;hypothesis=edmunds-split;random=0.04;split=0.5;systematic=0.0;h=1.1;G=40.0`:
+    /// parameters sorted by name, numbers in Rust's shortest round-trip form (so two cells have
+    /// the same text exactly when they hold the same values). It names the cell's random streams
+    /// and its cache entry.
+    pub fn canonical(&self) -> String {
+        let mut s = format!("mesh={};hypothesis={}", self.mesh, self.hypothesis.name());
+        for (k, v) in self.params.iter() {
+            let _ = write!(s, ";{k}={v:?}");
+        }
+        let _ = write!(s, ";h={:?};G={:?}", self.tooth_height, self.clearance);
+        s
+    }
+}
+
+/// What the trials of one cell gave.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Counts {
+    /// Trials with at least one jam.
+    pub jams: u64,
+    /// Trials with at least one disengagement.
+    pub disengagements: u64,
+    /// Trials with at least one jam or at least one disengagement (either failure).
+    pub failures: u64,
+    /// Trials run.
+    pub trials: u64,
+    /// Tooth engagements simulated: each trial engages every tooth of the larger gear once.
+    pub engagements: u64,
+}
+
+impl std::ops::AddAssign for Counts {
+    /// Adds the counts of more trials of the same cell (another range of trial indices).
+    fn add_assign(&mut self, more: Counts) {
+        self.jams += more.jams;
+        self.disengagements += more.disengagements;
+        self.failures += more.failures;
+        self.trials += more.trials;
+        self.engagements += more.engagements;
+    }
+}
+
+impl Counts {
+    /// 95 % Wilson interval of the jam count.
+    pub fn jam_interval(&self) -> Proportion {
+        wilson95(self.jams, self.trials)
+    }
+
+    /// 95 % Wilson interval of the disengagement count.
+    pub fn dis_interval(&self) -> Proportion {
+        wilson95(self.disengagements, self.trials)
+    }
+}
+
+const FNV_OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
+const FNV_PRIME: u64 = 0x0000_0100_0000_01b3;
+
+/// 64-bit FNV-1a of `bytes`, continuing from `hash` (start from [`fnv1a64`]'s offset basis).
+/// Stable across Rust versions and platforms, unlike `std`'s `DefaultHasher`.
+fn fnv1a_from(mut hash: u64, bytes: &[u8]) -> u64 {
+    for &b in bytes {
+        hash ^= u64::from(b);
+        hash = hash.wrapping_mul(FNV_PRIME);
+    }
+    hash
+}
+
+/// 64-bit FNV-1a hash of `bytes`.
+pub fn fnv1a64(bytes: &[u8]) -> u64 {
+    fnv1a_from(FNV_OFFSET, bytes)
+}
+
+/// The RNG stream of trial `t` of the cell whose canonical text is `canonical`: FNV-1a of the
+/// text, continued over the trial index's eight little-endian bytes.
+pub fn stream(canonical: &str, t: u64) -> u64 {
+    fnv1a_from(fnv1a64(canonical.as_bytes()), &t.to_le_bytes())
+}
+
+/// A cell checked and sized, ready for its trials.
+struct Prepared<'a> {
+    spec: &'a CellSpec,
+    canonical: String,
+    driver_name: String,
+    driven_name: String,
+    driver: Gear,
+    driven: Gear,
+    centre_distance: f64,
+    /// Driver rotation for one full turn of the gear with more teeth.
+    turn: f64,
+    larger_teeth: u64,
+}
+
+fn prepare<'a>(g: &Gearing, spec: &'a CellSpec) -> Result<Prepared<'a>, RunError> {
+    let m = g.mesh(&spec.mesh).ok_or_else(|| {
+        RunError::bad(
+            "--set",
+            "mesh",
+            format!("no mesh `{}` in the gearing", spec.mesh),
+        )
+    })?;
+    let geo = g
+        .mesh_geometry(&spec.mesh, spec.tooth_height, spec.clearance)
+        .ok_or_else(|| {
+            RunError::bad("gearing", format!("mesh {}", spec.mesh), "cannot be sized")
+        })?;
+    let h = spec.tooth_height;
+    let bad = |e: geometry::GeometryError| {
+        RunError::bad("gearing", format!("mesh {}", spec.mesh), e.to_string())
+    };
+    let driver = Gear::ideal(
+        geo.driver_teeth as usize,
+        geo.driver_tip_radius,
+        geo.driver_tip_radius - h,
+    )
+    .map_err(bad)?;
+    let driven = Gear::ideal(
+        geo.driven_teeth as usize,
+        geo.driven_tip_radius,
+        geo.driven_tip_radius - h,
+    )
+    .map_err(bad)?;
+    let larger = geo.driver_teeth.max(geo.driven_teeth);
+    Ok(Prepared {
+        spec,
+        canonical: spec.canonical(),
+        driver_name: m.driver.clone(),
+        driven_name: m.driven.clone(),
+        driver,
+        driven,
+        centre_distance: geo.centre_distance,
+        turn: TAU * f64::from(larger) / f64::from(geo.driver_teeth),
+        larger_teeth: u64::from(larger),
+    })
+}
+
+/// Trial `t` of a cell rebuilt from its stream, as every table ran it.
+pub struct Rebuilt {
+    /// The meshed gears (with their errors), or `None` when their bodies would overlap at every
+    /// angle (a large eccentricity at a small clearance): they cannot turn, which is a jam.
+    pub mesh: Option<Mesh>,
+    /// The driver's initial angle φ0 (radians).
+    pub phi0: f64,
+    /// The driver rotation of the trial: one full turn of the gear with more teeth.
+    pub turn: f64,
+}
+
+impl Rebuilt {
+    /// The trial's events (none for gears that cannot turn: see [`Rebuilt::mesh`]).
+    pub fn events(&self) -> Vec<contact::Event> {
+        self.mesh.as_ref().map_or_else(Vec::new, |mesh| {
+            mesh.run_events(self.phi0, self.phi0 + self.turn, Start::Touching(0.0))
+        })
+    }
+}
+
+/// Rebuilds trial `t` of `cell` under `seed` exactly as the tables ran it: the same stream (named
+/// by the cell's content and `t`), both gears' errors, then the initial angle. [`trial`] is built
+/// on it, so a replayed trial cannot drift from the one a table counted.
+///
+/// Errors: a mesh missing from the gearing; a gear the hypothesis cannot manufacture.
+pub fn rebuild(g: &Gearing, cell: &CellSpec, seed: u64, t: u64) -> Result<Rebuilt, RunError> {
+    rebuild_prepared(&prepare(g, cell)?, seed, t)
+}
+
+fn rebuild_prepared(p: &Prepared<'_>, seed: u64, t: u64) -> Result<Rebuilt, RunError> {
+    // One stream per (cell content, trial): both gears' errors, then the initial angle.
+    let mut rng = trial_rng(seed, stream(&p.canonical, t));
+    let spec = p.spec;
+    let driver = errors::make(
+        spec.hypothesis,
+        &p.driver,
+        &p.driver_name,
+        &spec.params,
+        &mut rng,
+    )?;
+    let driven = errors::make(
+        spec.hypothesis,
+        &p.driven,
+        &p.driven_name,
+        &spec.params,
+        &mut rng,
+    )?;
+    let phi0 = rng.random::<f64>() * TAU / driver.teeth() as f64;
+    Ok(Rebuilt {
+        mesh: Mesh::new(driver, driven, p.centre_distance).ok(),
+        phi0,
+        turn: p.turn,
+    })
+}
+
+/// One trial of cell `p`, counted under every rule of `rules` (at most [`MAX_RULES`]): bit `2r`
+/// of the result is "jammed at least once by rule r", bit `2r + 1` "disengaged at least once".
+/// The gears and the run do not depend on the rules: only the counting does.
+fn trial(p: &Prepared<'_>, seed: u64, t: u64, rules: &[rules::Rule]) -> Result<RuleBits, RunError> {
+    let rebuilt = rebuild_prepared(p, seed, t)?;
+    if rebuilt.mesh.is_none() {
+        // Gears that overlap at every tooth are jammed under any rule.
+        return Ok((0..rules.len()).fold(0, |acc, r| acc | 1 << (2 * r)));
+    }
+    // Only the events are counted: the run keeps no segments.
+    let events = rebuilt.events();
+    Ok(rules.iter().enumerate().fold(0, |acc, (r, rule)| {
+        let (jam, dis) = rule.tally(&events);
+        acc | u64::from(jam) << (2 * r) | u64::from(dis) << (2 * r + 1)
+    }))
+}
+
+/// One trial of a flat batch under several rules: see [`trial`].
+type RuleBits = u64;
+
+/// Most rules one batch counts under (two bits each in a [`RuleBits`]).
+pub const MAX_RULES: usize = 32;
+
+/// Rule `r`'s (jammed, disengaged) in a [`RuleBits`].
+fn under(o: RuleBits, r: usize) -> (bool, bool) {
+    (o >> (2 * r) & 1 == 1, o >> (2 * r + 1) & 1 == 1)
+}
+
+/// Counts of every cell run in this process, by cache key (see [`run_cells`]).
+fn cache() -> &'static Mutex<HashMap<String, Counts>> {
+    static CACHE: OnceLock<Mutex<HashMap<String, Counts>>> = OnceLock::new();
+    CACHE.get_or_init(|| Mutex::new(HashMap::new()))
+}
+
+/// What a set of cells is to the experiment that runs them: its own result, or an input from
+/// which later cells are derived (Table 4's grid inside Table 5, Table 5's inside Table 6).
+///
+/// Under `--shard K/N` an experiment's own cells are split between the shards; its inputs are
+/// computed whole by every shard ([`Context::trials_whole`]), because the cells derived from them
+/// must be the same in every shard.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Purpose {
+    /// The experiment's own result (sharded).
+    Own,
+    /// An input to cells run later in the same experiment (never sharded).
+    Input,
+}
+
+/// Empties the cache of cell counts.
+pub fn forget_cache() {
+    cache().lock().unwrap_or_else(|e| e.into_inner()).clear();
+}
+
+/// Runs `trials` trials of every cell and returns each cell's counts, in the order of `cells`.
+///
+/// Every (cell, trial) job runs in one flat parallel batch through [`Context::trials`] (or
+/// [`Context::trials_whole`] for a [`Purpose::Input`]) and is collected in order, so the counts
+/// do not depend on the thread count, and a run split into shards and merged gives the same
+/// counts. Trial `t` of a cell draws from `trial_rng(seed, stream(cell.canonical(), t))`: the
+/// same cell gives the same counts in any experiment. Counts are cached for the life of the
+/// process under the cell's canonical text, the seed, the trial count and a hash of the gearing,
+/// so a cell another experiment has already run (Table 5 reusing Table 4, Table I's G = 40 % rows
+/// reusing Table 3) costs nothing and gives the same bits; a shard's partial counts are never
+/// cached. [`Counts::engagements`] is counted whether or not the cell came from the cache, so a
+/// report does not depend on what ran before it.
+///
+/// Errors: `trials == 0`; a mesh missing from the gearing; a gear the hypothesis cannot
+/// manufacture (the first such trial in cell and trial order).
+pub fn run_cells(
+    ctx: &Context,
+    g: &Gearing,
+    cells: &[CellSpec],
+    trials: u64,
+    purpose: Purpose,
+) -> Result<Vec<Counts>, RunError> {
+    let per_rule = run_cells_by_rule(ctx, g, cells, None, trials, purpose)?;
+    Ok(per_rule.into_iter().map(|mut c| c.swap_remove(0)).collect())
+}
+
+/// [`run_cells`] counted under each of `rules` at once (the cells' own `events` rules are then
+/// ignored; `None`: each cell's own): `result[cell][rule]`. Each trial runs once whatever the
+/// number of rules, and every (cell, rule) count is cached, so an experiment run afterwards
+/// under one of the rules finds its cells already run.
+///
+/// Errors: those of [`run_cells`]; more than [`MAX_RULES`] rules.
+pub fn run_cells_by_rule(
+    ctx: &Context,
+    g: &Gearing,
+    cells: &[CellSpec],
+    rules: Option<&[rules::Rule]>,
+    trials: u64,
+    purpose: Purpose,
+) -> Result<Vec<Vec<Counts>>, RunError> {
+    let whole = purpose == Purpose::Input;
+    let partial = matches!(ctx.trial_mode(), TrialMode::Shard(_)) && !whole;
+    let batch = |key: &str, n, f: &(dyn Fn(u64) -> Result<RuleBits, RunError> + Sync + Send)| {
+        if whole {
+            ctx.trials_whole(key, n, f)
+        } else {
+            ctx.trials(key, n, f)
+        }
+    };
+    run_cells_under(g, cells, rules, trials, ctx.seed(), !partial, batch)
+}
+
+/// A batch runner: `run_batch(key, n, f)` returns `f(t)` for t in 0..n in order.
+trait RunBatch:
+    FnOnce(
+    &str,
+    u64,
+    &(dyn Fn(u64) -> Result<RuleBits, RunError> + Sync + Send),
+) -> Result<Vec<RuleBits>, RunError>
+{
+}
+
+impl<F> RunBatch for F where
+    F: FnOnce(
+        &str,
+        u64,
+        &(dyn Fn(u64) -> Result<RuleBits, RunError> + Sync + Send),
+    ) -> Result<Vec<RuleBits>, RunError>
+{
+}
+
+/// [`run_cells`] with the batch runner and the use of the cache given.
+#[cfg(test)]
+fn run_cells_with(
+    g: &Gearing,
+    cells: &[CellSpec],
+    trials: u64,
+    seed: u64,
+    use_cache: bool,
+    run_batch: impl RunBatch,
+) -> Result<Vec<Counts>, RunError> {
+    let per_rule = run_cells_under(g, cells, None, trials, seed, use_cache, run_batch)?;
+    Ok(per_rule.into_iter().map(|mut c| c.swap_remove(0)).collect())
+}
+
+/// [`run_cells_by_rule`] with the batch runner and the use of the cache given.
+fn run_cells_under(
+    g: &Gearing,
+    cells: &[CellSpec],
+    rules: Option<&[rules::Rule]>,
+    trials: u64,
+    seed: u64,
+    use_cache: bool,
+    run_batch: impl RunBatch,
+) -> Result<Vec<Vec<Counts>>, RunError> {
+    if trials == 0 {
+        return Err(RunError::bad("--set", "trials", "must be at least 1"));
+    }
+    if rules.is_some_and(|r| r.is_empty() || r.len() > MAX_RULES) {
+        return Err(RunError::Internal(format!(
+            "cells are counted under 1 to {MAX_RULES} rules at once"
+        )));
+    }
+    let prepared: Vec<Prepared<'_>> = cells
+        .iter()
+        .map(|c| prepare(g, c))
+        .collect::<Result<_, _>>()?;
+    let rules_of: Vec<Vec<rules::Rule>> = cells
+        .iter()
+        .map(|c| rules.map_or_else(|| vec![c.events.clone()], <[_]>::to_vec))
+        .collect();
+    let gearing_id = fnv1a64(format!("{g:?}").as_bytes());
+    // One key per (cell, rule): what the cache holds.
+    let keys: Vec<Vec<String>> = prepared
+        .iter()
+        .zip(&rules_of)
+        .map(|(p, rs)| {
+            rs.iter()
+                .map(|r| {
+                    format!(
+                        "{}|events={}|seed={seed}|trials={trials}|gearing={gearing_id:016x}",
+                        p.canonical,
+                        r.label()
+                    )
+                })
+                .collect()
+        })
+        .collect();
+    let mut known: HashMap<String, Counts> = HashMap::new();
+    if use_cache {
+        let cached = cache().lock().unwrap_or_else(|e| e.into_inner());
+        for k in keys.iter().flatten() {
+            if let Some(c) = cached.get(k) {
+                known.insert(k.clone(), *c);
+            }
+        }
+    }
+    // Cells with a count still missing, each once even if listed twice (same keys).
+    let mut todo: Vec<usize> = Vec::new();
+    let mut queued: HashMap<String, ()> = HashMap::new();
+    for (i, ks) in keys.iter().enumerate() {
+        let missing = ks.iter().any(|k| !known.contains_key(k));
+        if missing && queued.insert(ks.join("\n"), ()).is_none() {
+            todo.push(i);
+        }
+    }
+    let outcomes = run_todo(&prepared, &rules_of, &keys, &todo, trials, seed, run_batch)?;
+    for (n, &i) in todo.iter().enumerate() {
+        let start = n * trials as usize;
+        for (r, k) in keys[i].iter().enumerate() {
+            let mut c = Counts {
+                trials,
+                engagements: trials * prepared[i].larger_teeth,
+                ..Counts::default()
+            };
+            for &o in &outcomes[start..start + trials as usize] {
+                let (jam, dis) = under(o, r);
+                c.jams += u64::from(jam);
+                c.disengagements += u64::from(dis);
+                c.failures += u64::from(jam || dis);
+            }
+            known.insert(k.clone(), c);
+        }
+    }
+    if use_cache {
+        let mut cached = cache().lock().unwrap_or_else(|e| e.into_inner());
+        for &i in &todo {
+            for k in &keys[i] {
+                if let Some(c) = known.get(k) {
+                    cached.insert(k.clone(), *c);
+                }
+            }
+        }
+    }
+    keys.iter()
+        .map(|ks| {
+            ks.iter()
+                .map(|k| {
+                    known
+                        .get(k)
+                        .copied()
+                        .ok_or_else(|| RunError::Internal(format!("cell {k} was not run")))
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Runs every trial of the cells `todo` in one flat batch named by everything that determines
+/// it (the cells' keys, in order); the outcomes in (cell, trial) order.
+fn run_todo(
+    prepared: &[Prepared<'_>],
+    rules_of: &[Vec<rules::Rule>],
+    keys: &[Vec<String>],
+    todo: &[usize],
+    trials: u64,
+    seed: u64,
+    run_batch: impl RunBatch,
+) -> Result<Vec<RuleBits>, RunError> {
+    let jobs: Vec<(usize, u64)> = todo
+        .iter()
+        .flat_map(|&i| (0..trials).map(move |t| (i, t)))
+        .collect();
+    if jobs.is_empty() {
+        return Ok(Vec::new());
+    }
+    let mut names = String::new();
+    for &i in todo {
+        for k in &keys[i] {
+            names.push_str(k);
+            names.push('\n');
+        }
+    }
+    let batch = format!(
+        "pair-cells/{}-cells-of-{trials}/{:016x}",
+        todo.len(),
+        fnv1a64(names.as_bytes())
+    );
+    let job = |n: u64| -> Result<RuleBits, RunError> {
+        let (i, t) = jobs[n as usize];
+        trial(&prepared[i], seed, t, &rules_of[i])
+    };
+    run_batch(&batch, jobs.len() as u64, &job)
+}
+
+/// Trials `range` (indices, e.g. `40..60`) of one cell: a stretch of a cell's trials, for a
+/// search that adds trials to a cell a batch at a time.
+#[derive(Clone)]
+pub struct CellRange {
+    /// The cell.
+    pub cell: CellSpec,
+    /// Trial indices to run.
+    pub range: std::ops::Range<u64>,
+}
+
+/// Runs trial indices `start..end` of each cell of `ranges` and returns each range's counts, in
+/// the order of `ranges`.
+///
+/// Trial `t` of a cell draws from the same stream as in [`run_cells`], so the counts of ranges
+/// `0..a` and `a..b` of a cell add up to what `run_cells` gives that cell with `b` trials. All
+/// ranges run in one flat batch through [`Context::trials`] (or [`Context::trials_whole`] for an
+/// [`Purpose::Input`]: a search that decides from the counts what to run next must use it), named
+/// by every cell's canonical text, the seed, the gearing and the index range. Nothing is
+/// cached.
+///
+/// Errors: an empty range; a mesh missing from the gearing; a gear the hypothesis cannot
+/// manufacture (the first such trial in range and trial order).
+pub fn run_cell_ranges(
+    ctx: &Context,
+    g: &Gearing,
+    ranges: &[CellRange],
+    purpose: Purpose,
+) -> Result<Vec<Counts>, RunError> {
+    let whole = purpose == Purpose::Input;
+    run_cell_ranges_with(g, ranges, ctx.seed(), |key, n, f| {
+        if whole {
+            ctx.trials_whole(key, n, f)
+        } else {
+            ctx.trials(key, n, f)
+        }
+    })
+}
+
+/// [`run_cell_ranges`] with the batch runner given (as in [`run_cells_with`]).
+fn run_cell_ranges_with(
+    g: &Gearing,
+    ranges: &[CellRange],
+    seed: u64,
+    run_batch: impl RunBatch,
+) -> Result<Vec<Counts>, RunError> {
+    if let Some(r) = ranges.iter().find(|r| r.range.is_empty()) {
+        return Err(RunError::bad(
+            "--set",
+            "trials",
+            format!(
+                "the trial range {}..{} of mesh {} is empty",
+                r.range.start, r.range.end, r.cell.mesh
+            ),
+        ));
+    }
+    let prepared: Vec<Prepared<'_>> = ranges
+        .iter()
+        .map(|r| prepare(g, &r.cell))
+        .collect::<Result<_, _>>()?;
+    let gearing_id = fnv1a64(format!("{g:?}").as_bytes());
+    let mut names = String::new();
+    let mut jobs: Vec<(usize, u64)> = Vec::new();
+    for (i, (r, p)) in ranges.iter().zip(&prepared).enumerate() {
+        let _ = writeln!(
+            names,
+            "{}|seed={seed}|gearing={gearing_id:016x}|trials={}..{}",
+            p.canonical, r.range.start, r.range.end
+        );
+        jobs.extend(r.range.clone().map(|t| (i, t)));
+    }
+    let batch = format!(
+        "pair-ranges/{}-ranges-{}-trials/{:016x}",
+        ranges.len(),
+        jobs.len(),
+        fnv1a64(names.as_bytes())
+    );
+    let outcomes: Vec<RuleBits> = if jobs.is_empty() {
+        Vec::new()
+    } else {
+        let job = |n: u64| -> Result<RuleBits, RunError> {
+            let (i, t) = jobs[n as usize];
+            trial(
+                &prepared[i],
+                seed,
+                t,
+                std::slice::from_ref(&prepared[i].spec.events),
+            )
+        };
+        run_batch(&batch, jobs.len() as u64, &job)?
+    };
+    let mut counts: Vec<Counts> = ranges
+        .iter()
+        .zip(&prepared)
+        .map(|(r, p)| {
+            let n = r.range.end - r.range.start;
+            Counts {
+                trials: n,
+                engagements: n * p.larger_teeth,
+                ..Counts::default()
+            }
+        })
+        .collect();
+    for (&(i, _), &o) in jobs.iter().zip(&outcomes) {
+        let (jam, dis) = under(o, 0);
+        counts[i].jams += u64::from(jam);
+        counts[i].disengagements += u64::from(dis);
+        counts[i].failures += u64::from(jam || dis);
+    }
+    Ok(counts)
+}
+
+/// A grid value as printed and as keyed in `paper.ron`: at least `min_decimals` decimals, more
+/// if needed to give the value back exactly (0.04 → `0.040` with 3, 0.0375 → `0.0375`).
+pub fn label(v: f64, min_decimals: usize) -> String {
+    for d in min_decimals..=12 {
+        let s = fmt_f64(v, d);
+        if s.parse::<f64>()
+            .is_ok_and(|x| (x - v).abs() <= 1e-12 * v.abs().max(1.0))
+        {
+            return s;
+        }
+    }
+    v.to_string()
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, reason = "tests")]
+    use super::*;
+
+    fn cell(mesh: &str, random: f64) -> CellSpec {
+        let hyp = hypotheses::lookup("edmunds-split").unwrap();
+        let params = Params::new(
+            hyp,
+            &[
+                ("random".into(), random.to_string()),
+                ("systematic".into(), "0.5".into()),
+            ],
+        )
+        .unwrap();
+        CellSpec {
+            mesh: mesh.into(),
+            hypothesis: hyp,
+            params,
+            tooth_height: 1.1,
+            clearance: 40.0,
+            events: rules::Rule::default(),
+        }
+    }
+
+    #[test]
+    fn counting_under_several_rules_gives_each_rules_own_counts() {
+        let g = Gearing::freeth2006();
+        let strict = rules::Rule::parse("strict").unwrap();
+        let paper = rules::Rule::parse("paper").unwrap();
+        // Case D-like errors at a wide clearance: gaps and slips happen, so the rules differ.
+        let mut cells = vec![cell("m3-e3", 0.08), cell("b2-c1", 0.08)];
+        for c in &mut cells {
+            c.clearance = 70.0;
+        }
+        let both = run_cells_under(
+            &g,
+            &cells,
+            Some(&[strict.clone(), paper.clone()]),
+            6,
+            11,
+            false,
+            local,
+        )
+        .unwrap();
+        for (r, rule) in [strict, paper].iter().enumerate() {
+            let own: Vec<CellSpec> = cells
+                .iter()
+                .map(|c| CellSpec {
+                    events: rule.clone(),
+                    ..c.clone()
+                })
+                .collect();
+            let alone = run_cells_with(&g, &own, 6, 11, false, local).unwrap();
+            for (i, a) in alone.iter().enumerate() {
+                assert_eq!(both[i][r], *a, "cell {i} under {}", rule.label());
+            }
+        }
+        // The rules must differ somewhere here, or the test shows nothing.
+        assert!(
+            both.iter().any(|c| c[0] != c[1]),
+            "strict and paper count alike: {both:?}"
+        );
+        // Counted under both, then read from the cache under one: the same counts.
+        forget_cache();
+        let filled = run_cells_under(
+            &g,
+            &cells[..1],
+            Some(&[
+                rules::Rule::parse("strict").unwrap(),
+                rules::Rule::parse("paper").unwrap(),
+            ]),
+            6,
+            11,
+            true,
+            local,
+        )
+        .unwrap();
+        let mut paper_cell = cells[0].clone();
+        paper_cell.events = rules::Rule::parse("paper").unwrap();
+        let never = |_: &str,
+                     _: u64,
+                     _: &(dyn Fn(u64) -> Result<RuleBits, RunError> + Sync + Send)|
+         -> Result<Vec<RuleBits>, RunError> {
+            panic!("the cell should come from the cache")
+        };
+        let cached = run_cells_with(&g, &[paper_cell], 6, 11, true, never).unwrap();
+        assert_eq!(cached[0], filled[0][1]);
+        forget_cache();
+    }
+
+    #[test]
+    fn fnv1a_matches_reference_values() {
+        // Published FNV-1a 64-bit test vectors.
+        assert_eq!(fnv1a64(b""), 0xcbf2_9ce4_8422_2325);
+        assert_eq!(fnv1a64(b"a"), 0xaf63_dc4c_8601_ec8c);
+        assert_eq!(fnv1a64(b"foobar"), 0x8594_4171_f739_67e8);
+    }
+
+    #[test]
+    fn canonical_text_names_the_content() {
+        let c = cell("b2-c1", 0.04);
+        assert_eq!(
+            c.canonical(),
+            "mesh=b2-c1;hypothesis=edmunds-split;random=0.04;split=0.5;systematic=0.5;h=1.1;G=40.0"
+        );
+        assert_ne!(stream(&c.canonical(), 0), stream(&c.canonical(), 1));
+        assert_ne!(
+            stream(&c.canonical(), 0),
+            stream(&cell("b2-c1", 0.045).canonical(), 0)
+        );
+    }
+
+    /// The batch runner of a plain run: every trial, in order, over rayon.
+    fn local(
+        _key: &str,
+        n: u64,
+        f: &(dyn Fn(u64) -> Result<RuleBits, RunError> + Sync + Send),
+    ) -> Result<Vec<RuleBits>, RunError> {
+        use rayon::prelude::*;
+        (0..n).into_par_iter().map(f).collect()
+    }
+
+    #[test]
+    fn counts_depend_on_content_not_position_cache_or_threads() {
+        let g = Gearing::freeth2006();
+        let a = [cell("e1-b3", 0.06), cell("m2-n1", 0.06)];
+        let b = [
+            cell("m2-n1", 0.06),
+            cell("c2-d1", 0.05),
+            cell("e1-b3", 0.06),
+        ];
+        let pool = |n: usize| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .unwrap()
+        };
+        let ra = pool(1).install(|| run_cells_with(&g, &a, 3, 11, false, local).unwrap());
+        let rb = pool(2).install(|| run_cells_with(&g, &b, 3, 11, false, local).unwrap());
+        assert_eq!(ra[0], rb[2]);
+        assert_eq!(ra[1], rb[0]);
+        // Through the cache (first run fills it, second reads it): the same counts.
+        let first = run_cells_with(&g, &b, 3, 11, true, local).unwrap();
+        let second = run_cells_with(&g, &b, 3, 11, true, local).unwrap();
+        assert_eq!(first, rb);
+        assert_eq!(second, rb);
+        assert_eq!(rb[0].trials, 3);
+        assert_eq!(rb[0].engagements, 3 * 53); // m2-n1: 15 and 53 teeth
+    }
+
+    #[test]
+    fn ranges_add_up_to_the_whole_cell() {
+        let g = Gearing::freeth2006();
+        let whole = run_cells_with(
+            &g,
+            &[cell("m2-n1", 0.06), cell("e1-b3", 0.07)],
+            5,
+            11,
+            false,
+            local,
+        )
+        .unwrap();
+        let range = |c: CellSpec, r: std::ops::Range<u64>| CellRange { cell: c, range: r };
+        let parts = run_cell_ranges_with(
+            &g,
+            &[
+                range(cell("m2-n1", 0.06), 0..2),
+                range(cell("e1-b3", 0.07), 0..5),
+                range(cell("m2-n1", 0.06), 2..5),
+            ],
+            11,
+            local,
+        )
+        .unwrap();
+        let sum = |a: Counts, b: Counts| Counts {
+            jams: a.jams + b.jams,
+            disengagements: a.disengagements + b.disengagements,
+            failures: a.failures + b.failures,
+            trials: a.trials + b.trials,
+            engagements: a.engagements + b.engagements,
+        };
+        assert_eq!(sum(parts[0], parts[2]), whole[0]);
+        let mut added = parts[0];
+        added += parts[2];
+        assert_eq!(added, whole[0]);
+        assert_eq!(parts[1], whole[1]);
+        for c in &whole {
+            // A trial fails when it jams, disengages or both.
+            assert!(c.failures >= c.jams.max(c.disengagements), "{c:?}");
+            assert!(c.failures <= c.jams + c.disengagements, "{c:?}");
+        }
+        let e =
+            run_cell_ranges_with(&g, &[range(cell("m2-n1", 0.06), 3..3)], 1, local).unwrap_err();
+        assert_eq!(e.exit_code(), 2);
+    }
+
+    #[test]
+    fn labels_keep_the_value() {
+        assert_eq!(label(0.04, 3), "0.040");
+        assert_eq!(label(0.0375, 3), "0.0375");
+        assert_eq!(label(1.0, 1), "1.0");
+        assert_eq!(label(40.0, 0), "40");
+    }
+
+    #[test]
+    fn bad_cells_are_bad_input() {
+        let g = Gearing::freeth2006();
+        let e = run_cells_with(&g, &[cell("x-y", 0.04)], 2, 1, true, local).unwrap_err();
+        assert_eq!(e.exit_code(), 2);
+        let e = run_cells_with(&g, &[cell("b2-c1", 0.04)], 0, 1, true, local).unwrap_err();
+        assert_eq!(e.exit_code(), 2);
+    }
+}

@@ -1,0 +1,23 @@
+//! The simulations every experiment runs, and the settings they share: experiments call these and only format what comes back.
+//!
+//! - [`cell`]: one mesh on its own under the paper's jam protocol (Tables 3, 4, 5, I), with the
+//!   process-wide cache of cells; [`grids`]: Edmunds' Cases as data and the grids of cells the
+//!   tables run, with the sequential tolerances derived from them ([`tolerance`] holds the rule).
+//! - [`whole_mechanism`]: the 30-run study of whole mechanisms until they jam.
+//! - [`pointers`]: run lengths and sampling of the five pointers.
+//! - [`limits`]: an ideal pair's clearance limits, from its contact motion.
+//! - [`equal_pair`]: the paper's pair of equal gears (Figures 2 and 3).
+//! - Setting groups shared by experiments: [`gearing`] (file, h, G, pin-and-slot), [`errors`]
+//!   (hypothesis and its parameters), [`events`] (the event rule).
+
+pub mod cell;
+pub mod equal_pair;
+pub mod errors;
+pub mod events;
+pub mod gearing;
+pub mod grids;
+pub mod limits;
+pub mod pair_file;
+pub mod pointers;
+pub mod tolerance;
+pub mod whole_mechanism;

@@ -1,0 +1,171 @@
+//! One ideal mesh run over a full turn of its larger gear at a given clearance, and the clearance
+//! limits of a mesh: below the first it jams, above the second it disengages.
+
+use std::f64::consts::TAU;
+
+use contact::{Mesh, Start, Trajectory};
+use geometry::Gear;
+use registry::RunError;
+
+use rules::Rule;
+
+/// A mesh's clearance limits (% of h): (smallest G without a jam, largest G without a
+/// disengagement); `None` where 0-100 % does not bracket one.
+pub type Limits = (Option<f64>, Option<f64>);
+
+/// An ideal mesh whose clearance can vary.
+#[derive(Debug, Clone, Copy)]
+pub struct IdealPair {
+    /// Driver teeth N1.
+    pub n1: usize,
+    /// Driven teeth N2.
+    pub n2: usize,
+    /// Driver tip radius R1 (mm).
+    pub r1: f64,
+    /// Driven tip radius R2 (mm).
+    pub r2: f64,
+    /// Tooth height h of both gears (mm).
+    pub h: f64,
+}
+
+impl IdealPair {
+    /// The ideal mesh at clearance `g` (% of h), or None when the gears overlap at every tooth.
+    fn mesh(&self, g: f64) -> Result<Option<Mesh>, RunError> {
+        let bad = |e: geometry::GeometryError| RunError::bad("--set", e.field, e.rule);
+        let driver = Gear::ideal(self.n1, self.r1, self.r1 - self.h).map_err(bad)?;
+        let driven = Gear::ideal(self.n2, self.r2, self.r2 - self.h).map_err(bad)?;
+        let d = geometry::centre_distance(self.r1, self.r2, self.h, g);
+        Ok(Mesh::new(driver, driven, d).ok())
+    }
+
+    /// Driver rotation for one full turn of the larger gear.
+    fn turn(&self) -> f64 {
+        TAU * self.n1.max(self.n2) as f64 / self.n1 as f64
+    }
+
+    /// One full turn of the larger gear from driver angle 0 at clearance `g` (% of h), or None
+    /// when the gears overlap at every tooth.
+    pub fn run(&self, g: f64) -> Result<Option<Trajectory>, RunError> {
+        Ok(self
+            .mesh(g)?
+            .map(|mesh| mesh.run(0.0, self.turn(), Start::Touching(0.0))))
+    }
+
+    /// One full turn of the larger gear from driver angle 0 at clearance `g` with the driven
+    /// gear at rest `frac` of the way through the backlash: 0 touching the driver tooth behind
+    /// it (as [`IdealPair::run`]), 1 touching the one ahead; it stays put until a driver tooth
+    /// takes it up. None when the gears overlap at every tooth.
+    pub fn run_in_backlash(&self, g: f64, frac: f64) -> Result<Option<Trajectory>, RunError> {
+        let Some(mesh) = self.mesh(g)? else {
+            return Ok(None);
+        };
+        let touching = mesh.run(0.0, 0.0, Start::Touching(0.0)).theta_at(0.0);
+        // The nearest driver tooth ahead of the driven gear: where the backlash ends.
+        let mut obstacles = Vec::new();
+        let pitch = TAU / self.n2 as f64;
+        mesh.obstacles(0.0, touching, touching + 2.0 * pitch, &mut obstacles);
+        let ahead = obstacles
+            .iter()
+            .map(|o| o.lo)
+            .filter(|&lo| lo > touching + 1e-9)
+            .fold(f64::INFINITY, f64::min);
+        let backlash = if ahead.is_finite() {
+            ahead - touching
+        } else {
+            0.0
+        };
+        let start = touching + frac.clamp(0.0, 1.0) * backlash;
+        Ok(Some(mesh.run(0.0, self.turn(), Start::At(start))))
+    }
+
+    /// The events of [`IdealPair::run`] alone (no segments kept: cheaper), or None when the
+    /// gears overlap at every tooth.
+    fn events(&self, g: f64) -> Result<Option<Vec<contact::Event>>, RunError> {
+        Ok(self
+            .mesh(g)?
+            .map(|mesh| mesh.run_events(0.0, self.turn(), Start::Touching(0.0))))
+    }
+
+    /// Whether a full turn at clearance `g` jams by `rule` (or the gears overlap at every tooth).
+    pub fn jams(&self, g: f64, rule: &Rule) -> Result<bool, RunError> {
+        Ok(self.events(g)?.is_none_or(|e| rule.tally(&e).0))
+    }
+
+    /// Whether a full turn at clearance `g` disengages by `rule`.
+    pub fn disengages(&self, g: f64, rule: &Rule) -> Result<bool, RunError> {
+        Ok(self.events(g)?.is_some_and(|e| rule.tally(&e).1))
+    }
+
+    /// Standard deviation of the driven gear's Theoretical Difference (degrees) over a run.
+    pub fn td_sigma(&self, t: &Trajectory, samples: usize) -> stats::PointerStats {
+        let th0 = t.theta_at(t.phi_start());
+        let end = t.phi_end();
+        let ratio = self.n1 as f64 / self.n2 as f64;
+        let n = samples.max(2);
+        (0..n)
+            .map(|k| {
+                let phi = end * k as f64 / (n - 1) as f64;
+                (t.theta_at(phi) - th0 - ratio * phi).to_degrees()
+            })
+            .collect::<stats::Accumulator>()
+            .stats()
+    }
+
+    /// The clearance limits (% of h), located by bisection to `tol` between grid points 0 and 100:
+    /// (smallest G without a jam, largest G without a disengagement). None where the grid does not
+    /// bracket a limit.
+    pub fn limits(&self, tol: f64, rule: &Rule) -> Result<Limits, RunError> {
+        Ok(self.limits_under(tol, std::slice::from_ref(rule))?[0])
+    }
+
+    /// [`IdealPair::limits`] under each of `rules`, in their order. A run at a given G is made
+    /// once and counted under every rule (the searches of rules that agree visit the same G).
+    pub fn limits_under(&self, tol: f64, rules: &[Rule]) -> Result<Vec<Limits>, RunError> {
+        type Events = Option<std::rc::Rc<Vec<contact::Event>>>;
+        let memo: std::cell::RefCell<std::collections::HashMap<u64, Events>> =
+            std::cell::RefCell::default();
+        let at = |g: f64| -> Result<Events, RunError> {
+            if let Some(e) = memo.borrow().get(&g.to_bits()) {
+                return Ok(e.clone());
+            }
+            let e = self.events(g)?.map(std::rc::Rc::new);
+            memo.borrow_mut().insert(g.to_bits(), e.clone());
+            Ok(e)
+        };
+        rules
+            .iter()
+            .map(|rule| {
+                // Overlapping at every tooth counts as a jam.
+                let jams = |g: f64| Ok(at(g)?.is_none_or(|e| rule.tally(&e).0));
+                let disengages = |g: f64| Ok(at(g)?.is_some_and(|e| rule.tally(&e).1));
+                let mid = 50.0;
+                let jam = if jams(mid)? || !jams(0.0)? {
+                    None
+                } else {
+                    Some(boundary(0.0, mid, tol, jams)?)
+                };
+                let dis = if disengages(mid)? || !disengages(100.0)? {
+                    None
+                } else {
+                    Some(boundary(100.0, mid, tol, disengages)?)
+                };
+                Ok((jam, dis))
+            })
+            .collect()
+    }
+}
+
+/// The boundary between `yes_at` and `no_at` of a monotone predicate, to `tol`; returns the
+/// side where the predicate is false.
+pub fn boundary(
+    mut yes_at: f64,
+    mut no_at: f64,
+    tol: f64,
+    pred: impl Fn(f64) -> Result<bool, RunError>,
+) -> Result<f64, RunError> {
+    while (yes_at - no_at).abs() > tol {
+        let m = 0.5 * (yes_at + no_at);
+        if pred(m)? { yes_at = m } else { no_at = m }
+    }
+    Ok(no_at)
+}

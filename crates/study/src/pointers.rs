@@ -1,0 +1,110 @@
+//! Pointer runs: each pointer's run length (in turns of b) and how finely its Theoretical
+//! Difference is sampled, checked against the gearing.
+
+use registry::{Context, Param, RunError};
+
+/// How finely the Theoretical Difference is sampled (table1 and table6).
+pub const SAMPLES_PER_ENGAGEMENT: Param = Param {
+    name: "samples_per_engagement",
+    default: "16",
+    unit: "",
+    help: "TD samples per tooth engagement of the busiest mesh",
+};
+
+/// Run length of the Lunar pointer.
+pub const LUNAR_TURNS: Param = Param {
+    name: "lunar_turns",
+    default: "1",
+    unit: "turns of b",
+    help: "run length, Lunar (Table 1 caption: one turn of b2)",
+};
+
+/// Run length of the Metonic pointer.
+pub const METONIC_TURNS: Param = Param {
+    name: "metonic_turns",
+    default: "3.8",
+    unit: "turns of b",
+    help: "run length, Metonic (caption: 3.8 turns)",
+};
+
+/// Run length of the Saros pointer.
+pub const SAROS_TURNS: Param = Param {
+    name: "saros_turns",
+    default: "4.5",
+    unit: "turns of b",
+    help: "run length, Saros (caption: 4.5 turns)",
+};
+
+/// Run length of the Games pointer.
+pub const GAMES_TURNS: Param = Param {
+    name: "games_turns",
+    default: "3.8",
+    unit: "turns of b",
+    help: "run length, Games (caption silent: as Metonic)",
+};
+
+/// Run length of the Exeligmos pointer.
+pub const EXELIGMOS_TURNS: Param = Param {
+    name: "exeligmos_turns",
+    default: "4.5",
+    unit: "turns of b",
+    help: "run length, Exeligmos (caption silent: as Saros)",
+};
+
+/// Pointers in the paper's column order, with the parameter holding each run length.
+pub const POINTERS: [(&str, &str); 5] = [
+    ("Lunar", "lunar_turns"),
+    ("Metonic", "metonic_turns"),
+    ("Saros", "saros_turns"),
+    ("Games", "games_turns"),
+    ("Exeligmos", "exeligmos_turns"),
+];
+
+/// (pointer, input turns, TD samples) for each (pointer, run-length parameter), checked.
+pub fn pointer_runs<'a>(
+    ctx: &Context,
+    g: &train::Gearing,
+    pointers: &[(&'a str, &str)],
+    per: usize,
+) -> Result<Vec<(&'a str, f64, usize)>, RunError> {
+    let mut runs = Vec::new();
+    for &(name, param) in pointers {
+        let turns = ctx.f64(param)?;
+        if !(turns > 0.0 && turns <= 100.0) {
+            return Err(RunError::bad(
+                "--set",
+                param,
+                "must be between 0 and 100 turns",
+            ));
+        }
+        if g.pointer(name).is_none() {
+            return Err(RunError::bad(
+                "gearing",
+                format!("pointer {name}"),
+                "is missing from the gearing",
+            ));
+        }
+        runs.push((name, turns, samples_for(g, name, turns, per)));
+    }
+    Ok(runs)
+}
+
+/// Samples needed so that the busiest mesh of a pointer's train gets `per` samples per tooth
+/// engagement over `turns` input turns.
+pub fn samples_for(g: &train::Gearing, pointer: &str, turns: f64, per: usize) -> usize {
+    let mut arbor_turns = 1.0;
+    let mut busiest: f64 = 1.0;
+    for label in g
+        .pointer(pointer)
+        .map(|p| p.meshes.clone())
+        .unwrap_or_default()
+    {
+        let (Some(m), Some(r)) = (g.mesh(&label), g.mesh_ratio(&label)) else {
+            continue;
+        };
+        let teeth = g.gear(&m.driver).map_or(1.0, |x| f64::from(x.teeth));
+        busiest = busiest.max(arbor_turns * teeth);
+        arbor_turns *= r.to_f64();
+    }
+    ((busiest * turns * per as f64).ceil() as usize).max(100)
+}

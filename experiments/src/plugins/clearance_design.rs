@@ -1,0 +1,1052 @@
+//! `clearance-design`: each mesh's clearance that minimises the probability of a jam or a
+//! disengagement per pair run, for each of Edmunds' Cases (a coarse grid, then a finer look
+//! around the best), and the 30-run failure study rerun with those clearances against the
+//! paper's one clearance for every mesh (beyond the paper).
+//!
+//! The pair runs are the cells of Tables 3, 4 and I (`pair_jams`: one full turn of the gear with
+//! more teeth, both gears manufactured afresh, a random initial angle), so a cell this search
+//! shares with another experiment gives the same counts. The failure study's runs are
+//! `failure`'s: the same gears and initial angles at both settings, so its 40 % columns are
+//! `failure`'s numbers and the difference is the clearances' alone.
+
+use std::collections::BTreeMap;
+
+use hypotheses::Hypothesis;
+use registry::{
+    Context, Experiment, MAX_TRIALS, OutputFile, Param, Report, RunError, Table, fmt_f64,
+};
+use stats::{Proportion, clopper_pearson95};
+use train::Gearing;
+
+use crate::common::{Series, line_plot};
+use study::errors;
+use study::whole_mechanism::{self as failure, Clearances, Input, MechanismRun, Summary};
+use study::gearing;
+use study::gearing::clearance_list;
+use study::cell::{CellRange, CellSpec, Counts, Purpose, label, run_cell_ranges, run_cells};
+use study::grids::CASES;
+
+const GRID: Param = Param {
+    name: "grid",
+    default: "20,30,40,50,60,70",
+    unit: "% of h",
+    help: "coarse grid of clearances tried for every mesh and case, comma-separated (the reference clearance is always added)",
+};
+
+const COARSE_TRIALS: Param = Param {
+    name: "coarse_trials",
+    default: "20",
+    unit: "pair runs",
+    help: "trials per mesh, case and clearance of the coarse grid",
+};
+
+const REFINE_STEP: Param = Param {
+    name: "refine_step",
+    default: "5",
+    unit: "% of h",
+    help: "the refinement tries the coarse grid's best clearance plus and minus this (0: no refinement; the coarse grid decides)",
+};
+
+const REFINE_TRIALS: Param = Param {
+    name: "refine_trials",
+    default: "40",
+    unit: "pair runs",
+    help: "trials per clearance compared in the refinement: the coarse best, its two neighbours and the reference, each brought to this count (at least coarse_trials)",
+};
+
+const RUNS: Param = Param {
+    name: "runs",
+    default: failure::RUNS_DEFAULT,
+    unit: "",
+    help: "whole-mechanism runs per case and clearance setting (failure's trials; the paper: 30)",
+};
+
+const REFERENCE: Param = Param {
+    name: "clearance",
+    default: "40",
+    unit: "% of h",
+    help: "reference clearance: the paper's one value for every mesh, always tried, and the failure study's first setting",
+};
+
+const PARAMS: &[Param] = &[
+    GRID,
+    COARSE_TRIALS,
+    REFINE_STEP,
+    REFINE_TRIALS,
+    RUNS,
+    failure::DAYS,
+    failure::CASES_PARAM,
+    REFERENCE,
+    gearing::TOOTH_HEIGHT,
+    errors::SPLIT,
+    errors::PARAM,
+    errors::PARAMS_PARAM,
+    gearing::PARAM,
+    study::events::PARAM,
+];
+
+registry::inventory::submit! {
+    Experiment {
+        id: "clearance-design",
+        title: "Per-mesh clearance that minimises jams and disengagements, for each of Edmunds' Cases, and the failure study rerun with it (beyond the paper)",
+        paper_item: "Section 6 / beyond the paper",
+        params: PARAMS,
+        config: None,
+        run,
+    }
+}
+
+/// How many worst meshes each case's plot draws.
+const PLOTTED: usize = 4;
+
+/// A mesh whose failure rate at its chosen clearance is above this (by the lower end of its 95 %
+/// interval) is named as still failing: no clearance of the search saves it.
+const STILL_FAILING: f64 = 0.10;
+
+/// The search's and the study's parameters, checked.
+struct Settings {
+    /// Coarse grid with the reference, ascending, without repeats.
+    grid: Vec<f64>,
+    /// The reference clearance (% of h).
+    reference: f64,
+    coarse: u64,
+    /// 0: no refinement.
+    step: f64,
+    refine: u64,
+    runs: u64,
+    days: f64,
+    /// Indices into `CASES`.
+    cases: Vec<usize>,
+}
+
+impl Settings {
+    /// Trials per compared clearance at the final stage.
+    fn final_trials(&self) -> u64 {
+        if self.step > 0.0 {
+            self.refine
+        } else {
+            self.coarse
+        }
+    }
+}
+
+/// A count parameter of pair runs or mechanism runs: at least 1, at most [`MAX_TRIALS`].
+fn count(ctx: &Context, p: &Param) -> Result<u64, RunError> {
+    let n = ctx.u64(p.name)?;
+    if n == 0 || n > MAX_TRIALS {
+        return Err(RunError::bad(
+            "--set",
+            p.name,
+            format!("must be from 1 to {MAX_TRIALS} (got {n})"),
+        ));
+    }
+    Ok(n)
+}
+
+fn settings(ctx: &Context) -> Result<Settings, RunError> {
+    let reference = ctx.f64(REFERENCE.name)?;
+    let mut grid = clearance_list(ctx, GRID.name, 100.0)?;
+    grid.push(reference);
+    grid.sort_by(f64::total_cmp);
+    grid.dedup();
+    let coarse = count(ctx, &COARSE_TRIALS)?;
+    let refine = count(ctx, &REFINE_TRIALS)?;
+    if refine < coarse {
+        return Err(RunError::bad(
+            "--set",
+            REFINE_TRIALS.name,
+            format!(
+                "must be at least {} = {coarse} (got {refine})",
+                COARSE_TRIALS.name
+            ),
+        ));
+    }
+    let step = ctx.f64(REFINE_STEP.name)?;
+    if !(0.0..100.0).contains(&step) {
+        return Err(RunError::bad(
+            "--set",
+            REFINE_STEP.name,
+            format!("must be at least 0 and below 100 % of h (got {step})"),
+        ));
+    }
+    let runs = count(ctx, &RUNS)?;
+    let days = failure::days(ctx)?;
+    let cases = failure::parse_cases(ctx.param(failure::CASES_PARAM.name)?)?;
+    if cases.is_empty() {
+        return Err(RunError::bad(
+            "--set",
+            failure::CASES_PARAM.name,
+            "no case: nothing to run",
+        ));
+    }
+    Ok(Settings {
+        grid,
+        reference,
+        coarse,
+        step,
+        refine,
+        runs,
+        days,
+        cases,
+    })
+}
+
+/// `v` rounded to nine decimals, so a refined clearance has a short canonical text (35, not
+/// 34.999999999999996).
+fn round9(v: f64) -> f64 {
+    (v * 1e9).round() / 1e9
+}
+
+/// Is clearance `a` with counts `ca` better than `b` with `cb`: a lower failure rate (compared
+/// exactly, as fractions), then nearer the reference, then lower.
+fn better(a: f64, ca: &Counts, b: f64, cb: &Counts, reference: f64) -> bool {
+    let lhs = u128::from(ca.failures) * u128::from(cb.trials);
+    let rhs = u128::from(cb.failures) * u128::from(ca.trials);
+    if lhs != rhs {
+        return lhs < rhs;
+    }
+    let (da, db) = ((a - reference).abs(), (b - reference).abs());
+    if da != db {
+        return da < db;
+    }
+    a < b
+}
+
+/// The best of `probes` (clearance, counts) by [`better`]; `None` for none.
+fn pick(probes: &[(f64, Counts)], reference: f64) -> Option<usize> {
+    let mut best: Option<usize> = None;
+    for (i, (g, c)) in probes.iter().enumerate() {
+        if best.is_none_or(|b| better(*g, c, probes[b].0, &probes[b].1, reference)) {
+            best = Some(i);
+        }
+    }
+    best
+}
+
+/// The clearances the refinement compares: the coarse best, the best plus and minus `step`
+/// (those above 0 and at most 100 % of h) and the reference; ascending, without repeats.
+fn refine_values(best: f64, step: f64, reference: f64) -> Vec<f64> {
+    let mut v: Vec<f64> = [best - step, best, best + step, reference]
+        .into_iter()
+        .map(round9)
+        .filter(|&g| g > 0.0 && g <= 100.0)
+        .collect();
+    v.sort_by(f64::total_cmp);
+    v.dedup();
+    v
+}
+
+/// The search of one (case, mesh).
+struct MeshSearch {
+    /// Index into `CASES`.
+    case: usize,
+    mesh: String,
+    /// Every clearance tried, ascending, with its counts so far.
+    probes: Vec<(f64, Counts)>,
+    /// The coarse grid's counts, in the grid's order.
+    coarse: Vec<Counts>,
+    /// The coarse grid's best.
+    coarse_best: f64,
+    /// The clearances compared at the final stage (the whole grid without refinement).
+    finalists: Vec<f64>,
+    /// The chosen clearance.
+    best: f64,
+}
+
+impl MeshSearch {
+    /// The counts at clearance `g` (zero if never tried).
+    fn at(&self, g: f64) -> Counts {
+        self.probes
+            .iter()
+            .find(|p| p.0 == g)
+            .map_or_else(Counts::default, |p| p.1)
+    }
+
+    /// Adds counts at `g`, trying it if new.
+    fn add(&mut self, g: f64, c: Counts) {
+        match self.probes.iter_mut().find(|p| p.0 == g) {
+            Some(p) => p.1 += c,
+            None => {
+                self.probes.push((g, c));
+                self.probes.sort_by(|a, b| a.0.total_cmp(&b.0));
+            }
+        }
+    }
+
+    /// Pair runs used.
+    fn trials(&self) -> u64 {
+        self.probes.iter().map(|p| p.1.trials).sum()
+    }
+}
+
+/// The cell of `mesh` under case `ci` at clearance `g`: the same content (and so the same trial
+/// streams and cache entry) as Table 3's and Table I's cells.
+fn cell(
+    ctx: &Context,
+    hyp: &'static dyn Hypothesis,
+    ci: usize,
+    mesh: &str,
+    g: f64,
+) -> Result<CellSpec, RunError> {
+    let (_, systematic, random) = CASES[ci];
+    let params = errors::params(
+        ctx,
+        hyp,
+        &[
+            ("random", random),
+            ("systematic", systematic),
+            ("split", ctx.f64("split")?),
+        ],
+    )?;
+    Ok(CellSpec {
+        mesh: mesh.to_string(),
+        hypothesis: hyp,
+        params,
+        tooth_height: ctx.f64("tooth_height")?,
+        clearance: g,
+        events: study::events::chosen(ctx)?,
+    })
+}
+
+/// Runs the search of every (case, mesh): the coarse grid through the shared cell runner (so
+/// cells other experiments ran with the same trial count come from the cache), then the
+/// refinement's extra trials as ranges of the same cells, all as inputs (never sharded: the
+/// choices feed the failure study).
+fn search(
+    ctx: &Context,
+    g: &Gearing,
+    hyp: &'static dyn Hypothesis,
+    s: &Settings,
+) -> Result<Vec<MeshSearch>, RunError> {
+    let meshes: Vec<String> = g.meshes().iter().map(|m| m.label.clone()).collect();
+    let mut searches = Vec::new();
+    let mut cells = Vec::new();
+    for &ci in &s.cases {
+        for m in &meshes {
+            searches.push(MeshSearch {
+                case: ci,
+                mesh: m.clone(),
+                probes: Vec::new(),
+                coarse: Vec::new(),
+                coarse_best: s.reference,
+                finalists: Vec::new(),
+                best: s.reference,
+            });
+            for &v in &s.grid {
+                cells.push(cell(ctx, hyp, ci, m, v)?);
+            }
+        }
+    }
+    let counts = run_cells(ctx, g, &cells, s.coarse, Purpose::Input)?;
+    for (sr, row) in searches.iter_mut().zip(counts.chunks(s.grid.len())) {
+        for (&v, c) in s.grid.iter().zip(row) {
+            sr.add(v, *c);
+        }
+        sr.coarse = row.to_vec();
+        let i = pick(&sr.probes, s.reference)
+            .ok_or_else(|| RunError::Internal(format!("no clearance tried for {}", sr.mesh)))?;
+        sr.coarse_best = sr.probes[i].0;
+        sr.finalists = if s.step > 0.0 {
+            refine_values(sr.coarse_best, s.step, s.reference)
+        } else {
+            s.grid.clone()
+        };
+    }
+    if s.step > 0.0 {
+        let mut ranges = Vec::new();
+        let mut owners = Vec::new();
+        for (k, sr) in searches.iter().enumerate() {
+            for &v in &sr.finalists {
+                let have = sr.at(v).trials;
+                if have < s.refine {
+                    ranges.push(CellRange {
+                        cell: cell(ctx, hyp, sr.case, &sr.mesh, v)?,
+                        range: have..s.refine,
+                    });
+                    owners.push((k, v));
+                }
+            }
+        }
+        if !ranges.is_empty() {
+            let more = run_cell_ranges(ctx, g, &ranges, Purpose::Input)?;
+            for (&(k, v), c) in owners.iter().zip(more) {
+                searches[k].add(v, c);
+            }
+        }
+    }
+    for sr in &mut searches {
+        let finalists: Vec<(f64, Counts)> = sr.finalists.iter().map(|&v| (v, sr.at(v))).collect();
+        let i = pick(&finalists, s.reference)
+            .ok_or_else(|| RunError::Internal(format!("no finalist for {}", sr.mesh)))?;
+        sr.best = finalists[i].0;
+    }
+    Ok(searches)
+}
+
+/// Runs whose train `ti` (`TRAINS.len()`: the mechanism) jammed within a year at the first
+/// setting and not at the second, and the reverse; `a` and `b` hold the same runs (same gears
+/// and initial angles) at two settings.
+fn discordant(a: &[MechanismRun], b: &[MechanismRun], ti: usize) -> (u64, u64) {
+    let jammed =
+        |o: &MechanismRun| failure::jam_of(o, ti).is_some_and(|j| j.day <= stats::DAYS_PER_YEAR);
+    let mut only = (0, 0);
+    for (x, y) in a.iter().zip(b) {
+        match (jammed(x), jammed(y)) {
+            (true, false) => only.0 += 1,
+            (false, true) => only.1 += 1,
+            _ => {}
+        }
+    }
+    only
+}
+
+/// Two-sided exact sign test of `b` against `c` discordant pairs (McNemar's exact test): the
+/// probability, with each pair going either way with probability 1/2, of a split at least as
+/// uneven; 1 when there are none.
+fn sign_test(b: u64, c: u64) -> f64 {
+    let n = b + c;
+    if n == 0 {
+        return 1.0;
+    }
+    // ln of C(n, i) / 2^n, from i = 0 up.
+    let mut ln_term = -(n as f64) * std::f64::consts::LN_2;
+    let mut tail = ln_term.exp();
+    for i in 1..=b.min(c) {
+        ln_term += ((n - i + 1) as f64).ln() - (i as f64).ln();
+        tail += ln_term.exp();
+    }
+    (2.0 * tail).min(1.0)
+}
+
+/// Years of the b arbor (the input, one turn a year) in one pair run of `mesh`: one turn of its
+/// gear with more teeth, driven through the first pointer train that holds the mesh. `None` for a
+/// mesh on no pointer's train.
+fn years_per_pair_run(g: &Gearing, mesh: &str) -> Option<f64> {
+    let chain = g
+        .pointers()
+        .iter()
+        .find(|p| p.meshes.iter().any(|m| m == mesh))?;
+    let mut driver_turns = 1.0;
+    for label in chain.meshes.iter().take_while(|m| *m != mesh) {
+        driver_turns *= g.mesh_ratio(label)?.to_f64();
+    }
+    let m = g.mesh(mesh)?;
+    let (driver, driven) = (g.gear(&m.driver)?.teeth, g.gear(&m.driven)?.teeth);
+    let larger_turns = driver_turns * f64::from(driver) / f64::from(driver.max(driven));
+    Some(1.0 / larger_turns)
+}
+
+/// "k/n (jams/dis)" of a cell.
+fn counts_cell(c: &Counts) -> String {
+    format!(
+        "{}/{} ({}/{})",
+        c.failures, c.trials, c.jams, c.disengagements
+    )
+}
+
+/// "lo .. hi" of a proportion in whole percent.
+fn interval_cell(p: &Proportion) -> String {
+    format!(
+        "{} .. {}",
+        fmt_f64(100.0 * p.lo, 0),
+        fmt_f64(100.0 * p.hi, 0)
+    )
+}
+
+/// "k/n, rate % [lo .. hi]" of a share of runs.
+fn share_cell(p: &Proportion) -> String {
+    format!("{}/{}, {}", p.k, p.n, crate::common::percent_cell(p))
+}
+
+fn run(ctx: &Context) -> Result<Report, RunError> {
+    study::events::label(ctx, counted(ctx)?)
+}
+
+/// The experiment itself; [`run`] names the event rule in its tables' titles.
+fn counted(ctx: &Context) -> Result<Report, RunError> {
+    let g = gearing::load(ctx)?;
+    let hyp = errors::chosen(ctx)?;
+    let s = settings(ctx)?;
+    let h = ctx.f64("tooth_height")?;
+    ctx.f64("split")?;
+    failure::check_study(&g, h, &Clearances::Uniform(s.reference))?;
+    let searches = search(ctx, &g, hyp, &s)?;
+    let meshes: Vec<String> = g.meshes().iter().map(|m| m.label.clone()).collect();
+    let rl = label(s.reference, 0);
+    let n_final = s.final_trials();
+
+    // The search's table: one row per (case, mesh).
+    let mut header = vec![
+        "case".to_string(),
+        "mesh".to_string(),
+        "years of b per pair run".to_string(),
+    ];
+    header.extend(s.grid.iter().map(|v| format!("{} %", label(*v, 0))));
+    header.extend([
+        "best G [%]".to_string(),
+        format!("best: failed of {n_final} (jams/dis)"),
+        "best: 95 % interval [%]".to_string(),
+        format!("{rl} %: failed of {n_final} (jams/dis)"),
+        format!("{rl} %: 95 % interval [%]"),
+    ]);
+    let mut table = Table::new(
+        format!(
+            "Each mesh on its own, Edmunds' Cases: pair runs (of {}) with a jam or a disengagement at each clearance of the coarse grid, and the clearance that minimises them (best), against the paper's {rl} % for every mesh",
+            s.coarse
+        ),
+        header,
+    );
+    let mut best_csv = String::from(
+        "case,mesh,best_clearance,coarse_best,trials,failures,jams,disengagements,failure_lo,failure_hi,reference_clearance,reference_trials,reference_failures,reference_jams,reference_disengagements,reference_lo,reference_hi\n",
+    );
+    let mut probes_csv =
+        String::from("case,mesh,clearance,trials,jams,disengagements,failures,finalist,chosen\n");
+    for sr in &searches {
+        let case = CASES[sr.case].0;
+        let mut row = vec![
+            case.to_string(),
+            sr.mesh.clone(),
+            years_per_pair_run(&g, &sr.mesh).map_or_else(|| "-".into(), |y| fmt_f64(y, 2)),
+        ];
+        for (&v, c) in s.grid.iter().zip(&sr.coarse) {
+            let mark = if v == sr.coarse_best { "*" } else { "" };
+            row.push(format!("{}{mark}", c.failures));
+        }
+        let (b, r) = (sr.at(sr.best), sr.at(s.reference));
+        let (bp, rp) = (
+            clopper_pearson95(b.failures, b.trials),
+            clopper_pearson95(r.failures, r.trials),
+        );
+        row.extend([
+            label(sr.best, 0),
+            counts_cell(&b),
+            interval_cell(&bp),
+            counts_cell(&r),
+            interval_cell(&rp),
+        ]);
+        table.row(row);
+        best_csv.push_str(&format!(
+            "{case},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+            sr.mesh,
+            sr.best,
+            sr.coarse_best,
+            b.trials,
+            b.failures,
+            b.jams,
+            b.disengagements,
+            bp.lo,
+            bp.hi,
+            s.reference,
+            r.trials,
+            r.failures,
+            r.jams,
+            r.disengagements,
+            rp.lo,
+            rp.hi
+        ));
+        for (v, c) in &sr.probes {
+            probes_csv.push_str(&format!(
+                "{case},{},{v},{},{},{},{},{},{}\n",
+                sr.mesh,
+                c.trials,
+                c.jams,
+                c.disengagements,
+                c.failures,
+                sr.finalists.contains(v),
+                *v == sr.best
+            ));
+        }
+    }
+    let used: u64 = searches.iter().map(MeshSearch::trials).sum();
+    let years: Vec<f64> = meshes
+        .iter()
+        .filter_map(|m| years_per_pair_run(&g, m))
+        .collect();
+    let (shortest, longest) = (
+        years.iter().copied().fold(f64::INFINITY, f64::min),
+        years.iter().copied().fold(0.0, f64::max),
+    );
+    table.note(format!(
+        "Each pair run: both gears manufactured afresh under the Case ({} hypothesis, split {}), a random initial angle, one full turn of the gear with more teeth (the run of Tables 3, 4 and I); failed: at least one jam or at least one disengagement. One such turn is {} to {} years of the mechanism, depending on the mesh (the years column: turns of b, through the first pointer train holding the mesh), so these rates are per pair run, not per year. A step of 5 % of h is {} mm of centre distance.",
+        hyp.name(),
+        ctx.f64("split")?,
+        fmt_f64(shortest, 2),
+        fmt_f64(longest, 0),
+        fmt_f64(0.05 * h, 3),
+    ));
+    if s.step > 0.0 {
+        let lo = s.grid.first().copied().unwrap_or(s.reference);
+        let hi = s.grid.last().copied().unwrap_or(s.reference);
+        let fine_values = ((hi - lo) / s.step).floor() as u64 + 1;
+        let fine = fine_values * s.refine * searches.len() as u64;
+        table.note(format!(
+            "Search: the coarse grid at {} trials each (grid columns; `*`: the coarse best, the fewest failures with ties going to the nearest to {rl} %, then the lower); then the coarse best, the best plus and minus {} % and the reference ({rl} %), each brought to {} trials by adding trials to the same cells, and the one with the fewest failures chosen by the same rule. {used} pair runs in all, where a single grid from {} to {} % by {} % at {} trials each would take {fine} ({} % saved).",
+            s.coarse,
+            label(s.step, 0),
+            s.refine,
+            label(lo, 0),
+            label(hi, 0),
+            label(s.step, 0),
+            s.refine,
+            fmt_f64(100.0 * (1.0 - used as f64 / fine as f64), 0),
+        ));
+    } else {
+        table.note(format!(
+            "Search: the coarse grid at {} trials each (`*`: the best), and the clearance with the fewest failures chosen (ties: nearest {rl} %, then the lower); {used} pair runs in all.",
+            s.coarse
+        ));
+    }
+    table.note(format!(
+        "Intervals: exact (Clopper-Pearson) 95 % of the failure rate. The best's count is the smallest of the finalists' on the trials that chose it, so it is biased low (the more finalists, the more); the failure study below, on other trials, is the independent check. A cell at {} trials of the same clearance and case is the same cell as in table3/tableI (same content, same trial streams): `--set coarse_trials=200` reuses their cells when they ran first in the same process.",
+        s.coarse
+    ));
+
+    // The chosen clearances as a design table.
+    let mut header = vec!["case".to_string()];
+    header.extend(meshes.iter().cloned());
+    let mut design = Table::new(
+        format!("Chosen clearance of each mesh [% of h] by case (the paper: {rl} for every mesh)"),
+        header,
+    );
+    let mut maps: Vec<BTreeMap<String, f64>> = Vec::new();
+    for (k, &ci) in s.cases.iter().enumerate() {
+        let rows = &searches[k * meshes.len()..(k + 1) * meshes.len()];
+        let mut row = vec![CASES[ci].0.to_string()];
+        row.extend(rows.iter().map(|sr| label(sr.best, 0)));
+        design.row(row);
+        maps.push(rows.iter().map(|sr| (sr.mesh.clone(), sr.best)).collect());
+    }
+
+    // The failure study at both settings, on the same gears and initial angles.
+    let mut inputs: Vec<Input<'_>> = Vec::new();
+    for (&ci, map) in s.cases.iter().zip(&maps) {
+        let per_mesh = Clearances::PerMesh {
+            default: s.reference,
+            meshes: map.clone(),
+        };
+        failure::check_study(&g, h, &per_mesh)?;
+        let mut at_ref = failure::case_input(ctx, hyp, ci, Clearances::Uniform(s.reference))?;
+        at_ref.label = format!("{} at {rl} %", CASES[ci].0);
+        let mut at_best = failure::case_input(ctx, hyp, ci, per_mesh)?;
+        at_best.label = format!("{} at best", CASES[ci].0);
+        inputs.push(at_ref);
+        inputs.push(at_best);
+    }
+    let key = format!(
+        "clearance-design/{}",
+        failure::batch_key(ctx, &inputs, s.runs, h, s.reference, s.days)?
+    );
+    let outcomes = failure::run_study(ctx, &g, &inputs, s.runs, h, s.days, &key)?;
+    let per_input: Vec<&[MechanismRun]> = outcomes.chunks(s.runs as usize).collect();
+    let summaries: Vec<Vec<Summary>> = per_input
+        .iter()
+        .map(|runs| failure::summarise(runs, s.days))
+        .collect();
+    let mut study = Table::new(
+        format!(
+            "The failure study rerun ({} whole mechanisms per case and setting, {} days of b): {rl} % for every mesh against each mesh at its case's chosen clearance, on the same gears and initial angles",
+            s.runs,
+            fmt_f64(s.days, 2)
+        ),
+        [
+            "case".to_string(),
+            "train".to_string(),
+            format!("{rl} %: jammed within a year [%, 95 % interval]"),
+            format!("{rl} %: mean day [95 %]"),
+            format!("{rl} %: median day"),
+            "best: jammed within a year [%, 95 % interval]".to_string(),
+            "best: mean day [95 %]".to_string(),
+            "best: median day".to_string(),
+            "best: meshes that jammed first (runs)".to_string(),
+            format!("jammed within a year at {rl} % only / at best only (exact p)"),
+        ],
+    );
+    for (k, &ci) in s.cases.iter().enumerate() {
+        let (at_ref, at_best) = (&summaries[2 * k], &summaries[2 * k + 1]);
+        let (runs_ref, runs_best) = (per_input[2 * k], per_input[2 * k + 1]);
+        for (ti, ((name, r), b)) in failure::train_names().zip(at_ref).zip(at_best).enumerate() {
+            let (only_ref, only_best) = discordant(runs_ref, runs_best, ti);
+            let first: Vec<String> = b
+                .meshes
+                .iter()
+                .take(4)
+                .map(|(m, c)| format!("{m} ({c})"))
+                .collect();
+            study.row(vec![
+                CASES[ci].0.to_string(),
+                name.to_string(),
+                share_cell(&r.year),
+                crate::common::mean_cell(&r.days, s.days),
+                stats::median(&r.days).map_or_else(|| "-".into(), |d| fmt_f64(d, 0)),
+                share_cell(&b.year),
+                crate::common::mean_cell(&b.days, s.days),
+                stats::median(&b.days).map_or_else(|| "-".into(), |d| fmt_f64(d, 0)),
+                if first.is_empty() {
+                    "-".into()
+                } else {
+                    first.join(", ")
+                },
+                format!(
+                    "{only_ref} / {only_best} ({})",
+                    fmt_f64(sign_test(only_ref, only_best), 2)
+                ),
+            ]);
+        }
+    }
+    study.note(format!(
+        "Run t of a case draws the same gears and initial angles at both settings (failure's streams), so the {rl} % columns are failure's own runs and the difference is the clearances' alone; the last column pairs them: runs that jammed within a year at one setting and not at the other, with the exact two-sided sign (McNemar) test of that split. Shares: runs with a jam within one year of b, exact 95 % interval; days: b arbor, mean over the runs that jammed within the horizon with its 95 % Student-t interval clipped to the horizon. Only jams stop a run (a disengagement does not), as in failure."
+    ));
+    for (k, &ci) in s.cases.iter().enumerate() {
+        let mech = failure::TRAINS.len();
+        let (r, b) = (
+            &summaries[2 * k][mech].year,
+            &summaries[2 * k + 1][mech].year,
+        );
+        let (only_ref, only_best) = discordant(per_input[2 * k], per_input[2 * k + 1], mech);
+        let rows = &searches[k * meshes.len()..(k + 1) * meshes.len()];
+        let changed = rows.iter().filter(|sr| sr.best != s.reference).count();
+        let still: Vec<String> = rows
+            .iter()
+            .filter_map(|sr| {
+                let c = sr.at(sr.best);
+                (clopper_pearson95(c.failures, c.trials).lo > STILL_FAILING).then(|| {
+                    format!(
+                        "{} at {} % ({}/{})",
+                        sr.mesh,
+                        label(sr.best, 0),
+                        c.failures,
+                        c.trials
+                    )
+                })
+            })
+            .collect();
+        let horizon = if s.days > stats::DAYS_PER_YEAR {
+            let within = |runs: &[MechanismRun]| {
+                runs.iter()
+                    .filter(|o| failure::jam_of(o, mech).is_some_and(|j| j.day <= s.days))
+                    .count()
+            };
+            format!(
+                " Within the whole horizon ({} days of b): {}/{} at {rl} %, {}/{} at the chosen clearances.",
+                fmt_f64(s.days, 2),
+                within(per_input[2 * k]),
+                s.runs,
+                within(per_input[2 * k + 1]),
+                s.runs,
+            )
+        } else {
+            String::new()
+        };
+        let case = CASES[ci].0;
+        let question = if case == "B" {
+            "Could a careful maker have made Case B work? "
+        } else {
+            ""
+        };
+        study.note(format!(
+            "{question}Case {case}: with {changed} of {} meshes moved off {rl} %, {}/{} mechanisms jammed within a year ({} %, 95 % interval {}-{} %), against {}/{} at {rl} % everywhere ({} %, {}-{} %); paired, {only_ref} runs jammed only at {rl} % and {only_best} only at the chosen clearances (exact p = {}). Meshes still failing in more than {} % of pair runs at their chosen clearance (lower 95 % bound): {}.{horizon}",
+            meshes.len(),
+            b.k,
+            b.n,
+            fmt_f64(100.0 * b.rate(), 0),
+            fmt_f64(100.0 * b.lo, 0),
+            fmt_f64(100.0 * b.hi, 0),
+            r.k,
+            r.n,
+            fmt_f64(100.0 * r.rate(), 0),
+            fmt_f64(100.0 * r.lo, 0),
+            fmt_f64(100.0 * r.hi, 0),
+            fmt_f64(sign_test(only_ref, only_best), 2),
+            fmt_f64(100.0 * STILL_FAILING, 0),
+            if still.is_empty() {
+                "none".to_string()
+            } else {
+                still.join(", ")
+            },
+        ));
+    }
+
+    let mut files = vec![
+        OutputFile::new("clearance-design-best.csv", best_csv),
+        OutputFile::new("clearance-design-probes.csv", probes_csv),
+        OutputFile::new(
+            "clearance-design-runs.csv",
+            failure::runs_csv(&inputs, &per_input, s.days),
+        ),
+    ];
+    for (k, &ci) in s.cases.iter().enumerate() {
+        let rows = &searches[k * meshes.len()..(k + 1) * meshes.len()];
+        files.push(OutputFile::new(
+            format!("clearance-design-case-{}.svg", CASES[ci].0),
+            worst_plot(CASES[ci].0, rows, s.reference)?,
+        ));
+    }
+    let pair_engagements: u64 = searches
+        .iter()
+        .flat_map(|sr| sr.probes.iter().map(|p| p.1.engagements))
+        .sum();
+    Ok(Report {
+        tables: vec![table, design, study],
+        files,
+        trials: used + outcomes.len() as u64,
+        engagements: pair_engagements
+            + outcomes.iter().map(|o| o.engagements).sum::<f64>().round() as u64,
+        agreement: None,
+        ..Default::default()
+    })
+}
+
+/// Failure rate [%] against clearance of the case's `PLOTTED` meshes that fail most at the
+/// reference (every clearance tried, each at the trials it had).
+fn worst_plot(case: &str, rows: &[MeshSearch], reference: f64) -> Result<String, RunError> {
+    let rate = |c: &Counts| {
+        if c.trials == 0 {
+            0.0
+        } else {
+            c.failures as f64 / c.trials as f64
+        }
+    };
+    let mut order: Vec<&MeshSearch> = rows.iter().collect();
+    order.sort_by(|a, b| rate(&b.at(reference)).total_cmp(&rate(&a.at(reference))));
+    let legends: Vec<String> = order
+        .iter()
+        .take(PLOTTED)
+        .map(|sr| format!("{} (best {} %)", sr.mesh, label(sr.best, 0)))
+        .collect();
+    let series: Vec<Series<'_>> = order
+        .iter()
+        .zip(&legends)
+        .map(|(sr, l)| Series {
+            label: l,
+            points: sr
+                .probes
+                .iter()
+                .map(|(g, c)| (*g, 100.0 * rate(c)))
+                .collect(),
+        })
+        .collect();
+    line_plot(
+        &format!(
+            "Case {case}: pair runs with a jam or a disengagement against the clearance, the {PLOTTED} meshes failing most at {} % (beyond the paper)",
+            label(reference, 0)
+        ),
+        "clearance G [% of the tooth height h]",
+        "pair runs failed [%]",
+        &series,
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, reason = "tests")]
+    use super::*;
+
+    fn counts(failures: u64, trials: u64) -> Counts {
+        Counts {
+            failures,
+            trials,
+            ..Counts::default()
+        }
+    }
+
+    #[test]
+    fn the_lowest_rate_wins_then_the_nearest_to_the_reference_then_the_lower() {
+        let p = |v: &[(f64, u64, u64)]| -> Vec<(f64, Counts)> {
+            v.iter().map(|&(g, f, n)| (g, counts(f, n))).collect()
+        };
+        // Lowest rate, compared as fractions: 1 of 40 beats 1 of 20.
+        assert_eq!(
+            pick(&p(&[(30.0, 1, 20), (40.0, 2, 20), (50.0, 1, 40)]), 40.0),
+            Some(2)
+        );
+        // A tie at zero: the reference itself.
+        assert_eq!(
+            pick(&p(&[(30.0, 0, 20), (40.0, 0, 20), (50.0, 0, 20)]), 40.0),
+            Some(1)
+        );
+        // A tie between 35 and 45, both 5 from the reference: the lower.
+        assert_eq!(
+            pick(&p(&[(35.0, 1, 40), (40.0, 3, 40), (45.0, 1, 40)]), 40.0),
+            Some(0)
+        );
+        // A tie between 30 and 45: the nearer to 40.
+        assert_eq!(pick(&p(&[(30.0, 0, 20), (45.0, 0, 20)]), 40.0), Some(1));
+        assert_eq!(pick(&[], 40.0), None);
+    }
+
+    #[test]
+    fn a_pair_run_is_one_turn_of_the_larger_gear_in_years_of_b() {
+        let g = Gearing::freeth2006();
+        // b2 (64) drives c1 (38): b2 is larger and turns once a year.
+        assert_eq!(years_per_pair_run(&g, "b2-c1"), Some(1.0));
+        // e3 (223) behind b2-l1 (64:38), l2-m1 (53:96) and m3 (27): 8.88 years.
+        let e3 = years_per_pair_run(&g, "m3-e3").unwrap();
+        let want = (38.0 * 96.0 * 223.0) / (64.0 * 53.0 * 27.0);
+        assert!((e3 - want).abs() < 1e-12, "{e3} vs {want}");
+        assert_eq!(years_per_pair_run(&g, "x-y"), None);
+    }
+
+    #[test]
+    fn the_sign_test_matches_binomial_tails() {
+        assert_eq!(sign_test(0, 0), 1.0);
+        // 3 against 0: 2 * (1/2)^3.
+        assert!((sign_test(3, 0) - 0.25).abs() < 1e-15);
+        assert!((sign_test(0, 3) - 0.25).abs() < 1e-15);
+        // 1 against 9: 2 * (1 + 10) / 1024.
+        assert!((sign_test(1, 9) - 22.0 / 1024.0).abs() < 1e-15);
+        // An even split: 1.
+        assert_eq!(sign_test(5, 5), 1.0);
+        // Large counts do not underflow: 0 against 2000 is tiny but 2 * 2^-2000 underflows to 0,
+        // and 1000 against 1000 is 1.
+        assert!(sign_test(0, 2000) < 1e-300);
+        assert_eq!(sign_test(1000, 1000), 1.0);
+    }
+
+    #[test]
+    fn refinement_brackets_the_coarse_best_and_keeps_the_reference() {
+        assert_eq!(refine_values(30.0, 5.0, 40.0), [25.0, 30.0, 35.0, 40.0]);
+        assert_eq!(refine_values(40.0, 5.0, 40.0), [35.0, 40.0, 45.0]);
+        // Within (0, 100] only.
+        assert_eq!(refine_values(100.0, 5.0, 40.0), [40.0, 95.0, 100.0]);
+        assert_eq!(refine_values(5.0, 5.0, 40.0), [5.0, 10.0, 40.0]);
+        // Rounded to a short canonical value.
+        assert_eq!(refine_values(0.3, 0.1, 0.3), [0.2, 0.3, 0.4]);
+    }
+
+    fn run_with(threads: usize, sets: &[(&str, &str)]) -> Result<Report, RunError> {
+        crate::link();
+        let map = registry::experiments().unwrap();
+        let overrides: Vec<(String, String)> = sets
+            .iter()
+            .map(|(k, v)| ((*k).to_string(), (*v).to_string()))
+            .collect();
+        let ctx = Context::new(map["clearance-design"], 2025, threads, &overrides, None)?;
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| (map["clearance-design"].run)(&ctx))
+    }
+
+    #[test]
+    fn bad_parameters_are_bad_input() {
+        for (k, v) in [
+            ("grid", "0,40"),
+            ("grid", "40,101"),
+            ("grid", "x"),
+            ("coarse_trials", "0"),
+            ("refine_trials", "5"),
+            ("refine_step", "-1"),
+            ("runs", "0"),
+            ("days", "100"),
+            ("cases", ""),
+            ("cases", "E"),
+            ("clearance", "0"),
+        ] {
+            let e = run_with(1, &[(k, v)]).unwrap_err();
+            assert_eq!(e.exit_code(), 2, "{k}={v}: {e}");
+            assert!(e.to_string().contains(k), "{k}={v}: {e}");
+        }
+    }
+
+    /// A small run: Case D (jams early, so quick), three clearances, few trials.
+    const SMALL: [(&str, &str); 6] = [
+        ("cases", "D"),
+        ("grid", "30,50"),
+        ("coarse_trials", "2"),
+        ("refine_trials", "3"),
+        ("refine_step", "5"),
+        ("runs", "3"),
+    ];
+
+    #[test]
+    fn a_small_design_runs_and_its_reference_arm_is_the_failure_study() {
+        let r = run_with(2, &SMALL).unwrap();
+        assert_eq!(r.tables.len(), 3);
+        // 15 meshes of one case.
+        assert_eq!(r.tables[0].rows.len(), 15);
+        assert_eq!(r.tables[1].rows.len(), 1);
+        // 3 trains and the mechanism.
+        assert_eq!(r.tables[2].rows.len(), 4);
+        // Pair runs: 3 coarse values at 2 each, then at most 4 finalists brought to 3.
+        let pair = r.trials - 2 * 3;
+        assert!(
+            (15 * (3 * 2 + 3)..=15 * (3 * 2 + 4 * 3)).contains(&pair),
+            "{pair}"
+        );
+        let best = String::from_utf8(r.files[0].contents.clone()).unwrap();
+        for line in best.lines().skip(1) {
+            let f: Vec<&str> = line.split(',').collect();
+            assert_eq!(f[4], "3", "the chosen clearance has refine_trials: {line}");
+            assert_eq!(f[11], "3", "so has the reference: {line}");
+            let chosen: u64 = f[5].parse().unwrap();
+            let reference: u64 = f[12].parse().unwrap();
+            assert!(chosen <= reference, "{line}");
+        }
+
+        // The reference arm's runs are failure's runs with the same seed, cases and count.
+        let map = registry::experiments().unwrap();
+        let set = |k: &str, v: &str| (k.to_string(), v.to_string());
+        let ctx = Context::new(
+            map["failure"],
+            2025,
+            2,
+            &[set("cases", "D"), set("trials", "3")],
+            None,
+        )
+        .unwrap();
+        let f = (map["failure"].run)(&ctx).unwrap();
+        let theirs = String::from_utf8(f.files[0].contents.clone()).unwrap();
+        let ours = String::from_utf8(r.files[2].contents.clone()).unwrap();
+        let ours_at_40: Vec<String> = ours
+            .lines()
+            .filter(|l| l.starts_with("D at 40 %,"))
+            .map(|l| l.replacen("D at 40 %,", "D,", 1))
+            .collect();
+        let theirs: Vec<&str> = theirs.lines().skip(1).collect();
+        assert_eq!(ours_at_40.len(), 12);
+        assert_eq!(ours_at_40, theirs);
+    }
+
+    #[test]
+    fn a_horizon_beyond_a_year_is_counted_whole() {
+        let sets = [
+            ("cases", "D"),
+            ("grid", "40"),
+            ("coarse_trials", "1"),
+            ("refine_trials", "1"),
+            ("refine_step", "0"),
+            ("runs", "2"),
+            ("days", "730.5"),
+        ];
+        let r = run_with(1, &sets).unwrap();
+        let notes = r.tables[2].notes.join("\n");
+        assert!(
+            notes.contains("Within the whole horizon (730.50 days of b): 2/2 at 40 %"),
+            "{notes}"
+        );
+        // At one year (the default) there is no such note.
+        let one_year = run_with(1, &sets[..6]).unwrap();
+        assert!(
+            !one_year.tables[2]
+                .notes
+                .join("\n")
+                .contains("whole horizon")
+        );
+    }
+
+    #[test]
+    fn without_refinement_the_coarse_grid_decides() {
+        let sets = [
+            ("cases", "D"),
+            ("grid", "30,50"),
+            ("coarse_trials", "2"),
+            ("refine_trials", "2"),
+            ("refine_step", "0"),
+            ("runs", "1"),
+        ];
+        let r = run_with(1, &sets).unwrap();
+        // 15 meshes x (30, 40, 50) x 2 trials, and one mechanism per setting.
+        assert_eq!(r.trials, 15 * 3 * 2 + 2);
+    }
+}

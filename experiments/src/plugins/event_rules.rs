@@ -1,0 +1,518 @@
+//! `event-rules`: Tables 3, 4 and I and the ideal meshes' clearance limits counted under every
+//! registered event rule at once, with each rule's share of the paper's counts that a
+//! two-sample test finds consistent with ours: which reading of "jam" and "disengagement"
+//! reproduces the paper best.
+//!
+//! Every trial runs once and is counted under all the rules (the gears and the contact motion do
+//! not depend on the rule), and the per-rule counts go into the shared cell cache, so Tables 3, 4
+//! and I run afterwards in the same process (`run all`) find their cells already run.
+
+use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use rules::Rule;
+use train::Gearing;
+
+use study::errors;
+use study::gearing;
+use study::limits::IdealPair;
+use study::cell::{CellSpec, Counts, Purpose, label, run_cells_by_rule};
+use crate::cells::{Tally, consistent_with_paper, paper_counts, share};
+use study::grids::CASES;
+use study::tolerance::{self, RANDOM_FROM, RANDOM_STEP, RANDOM_TO};
+
+const PARAMS: &[Param] = &[
+    Param {
+        name: "trials",
+        default: "200",
+        unit: "",
+        help: "trials per cell (the paper: 200)",
+    },
+    gearing::CLEARANCE,
+    Param {
+        name: "clearances",
+        default: "10,40,70",
+        unit: "% of h",
+        help: "Table I's clearances G, comma-separated (the paper: 10, 40 and 70)",
+    },
+    RANDOM_FROM,
+    RANDOM_TO,
+    RANDOM_STEP,
+    gearing::TOOTH_HEIGHT,
+    errors::SPLIT,
+    errors::PARAM,
+    errors::PARAMS_PARAM,
+    gearing::PARAM,
+    Param {
+        name: "limit_tolerance",
+        default: "0.1",
+        unit: "% of h",
+        help: "how closely each ideal mesh's clearance limits are located (bisection)",
+    },
+];
+
+registry::inventory::submit! {
+    Experiment {
+        id: "event-rules",
+        title: "Every event rule side by side: the paper's counts of Tables 3, 4 and I consistent with ours, and the ideal meshes' clearance limits",
+        paper_item: "Tables 3, 4, I and section 3 / Appendix II (what counts as a jam or a disengagement)",
+        params: PARAMS,
+        config: None,
+        run,
+    }
+}
+
+/// Where a cell's paper counts are: experiment id and key in `paper.ron`, and the group of
+/// cells it is reported in (table, Case, clearance).
+struct PaperCell {
+    table: &'static str,
+    key: String,
+    group: String,
+}
+
+/// The tables compared, in the order they are printed.
+const TABLES: [&str; 3] = ["table3", "table4", "tableI"];
+
+/// Every registered rule at its defaults, in name order.
+fn every_rule() -> Result<Vec<Rule>, RunError> {
+    let names = rules::rules().map_err(|e| RunError::Internal(e.to_string()))?;
+    names
+        .keys()
+        .map(|n| Rule::parse(n).map_err(|e| RunError::Internal(e.to_string())))
+        .collect()
+}
+
+/// One cell: `mesh` under the hypothesis with `errors` at clearance `g`.
+fn cell(
+    ctx: &Context,
+    hyp: &'static dyn hypotheses::Hypothesis,
+    mesh: &str,
+    errors: &[(&str, f64)],
+    g: f64,
+) -> Result<CellSpec, RunError> {
+    Ok(CellSpec {
+        mesh: mesh.to_owned(),
+        hypothesis: hyp,
+        params: errors::params(ctx, hyp, errors)?,
+        tooth_height: ctx.f64("tooth_height")?,
+        clearance: g,
+        // Ignored: the cells are counted under every rule at once.
+        events: Rule::parse(rules::DEFAULT).map_err(|e| RunError::Internal(e.to_string()))?,
+    })
+}
+
+/// The cells of Tables 3 (Cases A-D at the clearance), 4 (the random grid, no systematic error)
+/// and I (Cases A-D at each of its clearances), each with where its paper counts are.
+fn all_cells(
+    ctx: &Context,
+    g: &Gearing,
+    hyp: &'static dyn hypotheses::Hypothesis,
+) -> Result<Vec<(CellSpec, PaperCell)>, RunError> {
+    let clearance = ctx.f64("clearance")?;
+    let split = ctx.f64("split")?;
+    let clearances = gearing::clearance_list(ctx, "clearances", 200.0)?;
+    let randoms = tolerance::grid(ctx, &RANDOM_FROM, &RANDOM_TO, &RANDOM_STEP)?;
+    let meshes: Vec<&str> = g.meshes().iter().map(|m| m.label.as_str()).collect();
+    let mut out = Vec::new();
+    let case_errors =
+        |sys: f64, random: f64| [("random", random), ("systematic", sys), ("split", split)];
+    for &(case, sys, random) in &CASES {
+        for m in &meshes {
+            let c = cell(ctx, hyp, m, &case_errors(sys, random), clearance)?;
+            let key = format!("{case}.{m}");
+            let group = format!("Table 3, Case {case}");
+            out.push((
+                c,
+                PaperCell {
+                    table: "table3",
+                    key,
+                    group,
+                },
+            ));
+        }
+    }
+    for &e in &randoms {
+        for m in &meshes {
+            let c = cell(
+                ctx,
+                hyp,
+                m,
+                &[("random", e), ("systematic", 0.0)],
+                clearance,
+            )?;
+            let key = format!("{}.{m}", label(e, 3));
+            let group = "Table 4, random error only".to_string();
+            out.push((
+                c,
+                PaperCell {
+                    table: "table4",
+                    key,
+                    group,
+                },
+            ));
+        }
+    }
+    for &(case, sys, random) in &CASES {
+        for &gc in &clearances {
+            for m in &meshes {
+                let c = cell(ctx, hyp, m, &case_errors(sys, random), gc)?;
+                let key = format!("{case}.{}.{m}", label(gc, 0));
+                let group = format!("Table I, Case {case}, G = {} %", label(gc, 0));
+                out.push((
+                    c,
+                    PaperCell {
+                        table: "tableI",
+                        key,
+                        group,
+                    },
+                ));
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// Per rule, per table: the tally of the paper's counts against ours.
+fn tallies(
+    cells: &[(CellSpec, PaperCell)],
+    counts: &[Vec<Counts>],
+    rules: usize,
+) -> Vec<[Tally; 3]> {
+    let mut out = vec![[Tally::default(); 3]; rules];
+    for ((_, p), per_rule) in cells.iter().zip(counts) {
+        let paper = paper_counts(p.table, &p.key);
+        let t = TABLES.iter().position(|&id| id == p.table).unwrap_or(0);
+        for (r, c) in per_rule.iter().enumerate() {
+            out[r][t].add(c, paper);
+        }
+    }
+    out
+}
+
+/// The shares table: one row per rule.
+fn shares_table(rules: &[Rule], tallies: &[[Tally; 3]], trials: u64) -> Table {
+    let mut t = Table::new(
+        format!(
+            "The paper's counts consistent with ours under each event rule (Fisher's exact two-sample test at 5 %; ours {trials} trials per cell, the paper's 200)"
+        ),
+        [
+            "rule",
+            "Table 3 jams",
+            "Table 3 dis.",
+            "Table 4 jams",
+            "Table 4 dis.",
+            "Table I jams",
+            "Table I dis.",
+            "all jams",
+            "all dis.",
+        ],
+    );
+    for (rule, per_table) in rules.iter().zip(tallies) {
+        let mut row = vec![rule.label()];
+        let mut all = Tally::default();
+        for tally in per_table {
+            row.push(share(tally.jams_consistent, tally.jams_compared));
+            row.push(share(tally.dis_consistent, tally.dis_compared));
+            all.jams_consistent += tally.jams_consistent;
+            all.jams_compared += tally.jams_compared;
+            all.dis_consistent += tally.dis_consistent;
+            all.dis_compared += tally.dis_compared;
+        }
+        row.push(share(all.jams_consistent, all.jams_compared));
+        row.push(share(all.dis_consistent, all.dis_compared));
+        t.row(row);
+    }
+    t.note("Cells: Table 3 (Cases A-D at G = 40 %), Table 4 (random error only, the grid of its rows) and Table I (Cases A-D at G = 10, 40, 70 %), each mesh on its own. Every trial runs once and is counted under each rule: the gears, initial angles and contact motion are the same for all rules; only what counts as a jam or a disengagement differs.");
+    t.note("Table I's 40 % rows are Table 3's cells; the paper printed them twice, with some differences, and each printing is compared.");
+    t
+}
+
+/// How one group of cells compares under one rule: consistent counts, and among the counts the
+/// test separates, how many of ours are higher than the paper's.
+#[derive(Default)]
+struct Split {
+    jams: (u64, u64, u64),
+    dis: (u64, u64, u64),
+}
+
+/// (consistent, compared, ours higher among the separated) for one count.
+fn compare(into: &mut (u64, u64, u64), ours: u64, trials: u64, paper: Option<u64>) {
+    let Some(p) = paper else { return };
+    into.1 += 1;
+    if consistent_with_paper(ours, trials, paper) {
+        into.0 += 1;
+    } else if ours as f64 / trials as f64 > p as f64 / 200.0 {
+        into.2 += 1;
+    }
+}
+
+/// Where the differences lie under `rule` (index `r`): one row per group of cells.
+fn breakdown_table(
+    cells: &[(CellSpec, PaperCell)],
+    counts: &[Vec<Counts>],
+    rule: &Rule,
+    r: usize,
+) -> Table {
+    let mut groups: Vec<(String, Split)> = Vec::new();
+    for ((_, p), per_rule) in cells.iter().zip(counts) {
+        let paper = paper_counts(p.table, &p.key);
+        let c = &per_rule[r];
+        let i = match groups.iter().position(|(g, _)| *g == p.group) {
+            Some(i) => i,
+            None => {
+                groups.push((p.group.clone(), Split::default()));
+                groups.len() - 1
+            }
+        };
+        compare(&mut groups[i].1.jams, c.jams, c.trials, paper.0);
+        compare(&mut groups[i].1.dis, c.disengagements, c.trials, paper.1);
+    }
+    let mut t = Table::new(
+        format!(
+            "Where the differences lie under rule {}: the paper's counts consistent with ours, by table, Case and clearance",
+            rule.label()
+        ),
+        [
+            "cells",
+            "jams consistent",
+            "jams differing: ours higher / lower",
+            "dis. consistent",
+            "dis. differing: ours higher / lower",
+        ],
+    );
+    for (g, s) in &groups {
+        let differing = |x: (u64, u64, u64)| {
+            let d = x.1 - x.0;
+            if d == 0 {
+                "-".to_string()
+            } else {
+                format!("{} / {}", x.2, d - x.2)
+            }
+        };
+        t.row(vec![
+            g.clone(),
+            share(s.jams.0, s.jams.1),
+            differing(s.jams),
+            share(s.dis.0, s.dis.1),
+            differing(s.dis),
+        ]);
+    }
+    t.note("Higher / lower compares the rates (ours of this run's trials, the paper's of 200) of the counts the two-sample test separates.");
+    t
+}
+
+/// In how many cells every rule gives the same jam count, and the same disengagement count.
+fn agreement_between_rules(counts: &[Vec<Counts>]) -> (usize, usize) {
+    let same = |f: fn(&Counts) -> u64| {
+        counts
+            .iter()
+            .filter(|per_rule| per_rule.iter().all(|c| f(c) == f(&per_rule[0])))
+            .count()
+    };
+    (same(|c| c.jams), same(|c| c.disengagements))
+}
+
+/// Each rule's clearance limits of every ideal mesh, with their envelope.
+struct RuleLimits {
+    /// `per_mesh[mesh][rule]`: (smallest G without a jam, largest G without a disengagement).
+    per_mesh: Vec<Vec<(Option<f64>, Option<f64>)>>,
+}
+
+/// The ideal meshes' limits under every rule, located to `tol` % of h.
+fn ideal_limits(
+    ctx: &Context,
+    g: &Gearing,
+    rules: &[Rule],
+    tol: f64,
+) -> Result<RuleLimits, RunError> {
+    use rayon::prelude::*;
+    let h = ctx.f64("tooth_height")?;
+    let pairs: Vec<IdealPair> = g
+        .meshes()
+        .iter()
+        .map(|m| {
+            let geo = g
+                .mesh_geometry(&m.label, h, 40.0)
+                .ok_or_else(|| RunError::Internal(format!("mesh {} has no geometry", m.label)))?;
+            Ok(IdealPair {
+                n1: geo.driver_teeth as usize,
+                n2: geo.driven_teeth as usize,
+                r1: geo.driver_tip_radius,
+                r2: geo.driven_tip_radius,
+                h,
+            })
+        })
+        .collect::<Result<_, RunError>>()?;
+    // Each mesh's searches are independent and deterministic; collected in order, so the
+    // thread count changes nothing.
+    let per_mesh = pairs
+        .par_iter()
+        .map(|p| p.limits_under(tol, rules))
+        .collect::<Result<_, _>>()?;
+    Ok(RuleLimits { per_mesh })
+}
+
+/// `lo .. hi` of the values given (`-` when none), and how many meshes have none.
+fn envelope(values: impl Iterator<Item = Option<f64>>) -> (Option<(f64, f64)>, usize) {
+    let mut range: Option<(f64, f64)> = None;
+    let mut missing = 0;
+    for v in values {
+        match v {
+            Some(v) => {
+                range = Some(range.map_or((v, v), |(lo, hi)| (lo.min(v), hi.max(v))));
+            }
+            None => missing += 1,
+        }
+    }
+    (range, missing)
+}
+
+fn show_envelope((range, missing): (Option<(f64, f64)>, usize)) -> String {
+    let mut s = range.map_or_else(
+        || "-".to_string(),
+        |(lo, hi)| format!("{} .. {}", fmt_f64(lo, 1), fmt_f64(hi, 1)),
+    );
+    if missing > 0 {
+        s.push_str(&format!(" ({missing} meshes without a limit in 0-100 %)"));
+    }
+    s
+}
+
+/// The limits table: per rule, the envelope over the meshes, and whether the paper's figure
+/// lies inside it.
+fn limits_table(g: &Gearing, rules: &[Rule], limits: &RuleLimits, tol: f64) -> Table {
+    let jam_paper = crate::paper::get("clearance", "jam_below").map(|r| r.value);
+    let dis_paper = crate::paper::get("clearance", "disengage_above").map(|r| r.value);
+    let mut t = Table::new(
+        format!(
+            "Ideal meshes' clearance limits under each rule, over all {} meshes (one turn of the larger gear, located to {} % of h): ours (the paper's section 3 / Appendix II)",
+            g.meshes().len(),
+            fmt_f64(tol, 2)
+        ),
+        [
+            "rule",
+            "jams below G [% of h]",
+            "paper's inside?",
+            "disengages above G [% of h]",
+            "paper's inside?",
+        ],
+    );
+    let inside = |env: &(Option<(f64, f64)>, usize), paper: Option<f64>| match (env.0, paper) {
+        (Some((lo, hi)), Some(p)) => {
+            if p >= lo && p <= hi {
+                format!("yes ({})", fmt_f64(p, 0))
+            } else {
+                format!("no ({})", fmt_f64(p, 0))
+            }
+        }
+        _ => "-".into(),
+    };
+    for (r, rule) in rules.iter().enumerate() {
+        let jam = envelope(limits.per_mesh.iter().map(|m| m[r].0));
+        let dis = envelope(limits.per_mesh.iter().map(|m| m[r].1));
+        t.row(vec![
+            rule.label(),
+            show_envelope(jam),
+            inside(&jam, jam_paper),
+            show_envelope(dis),
+            inside(&dis, dis_paper),
+        ]);
+    }
+    t.note("The paper's reading: no value below about 10 % (the teeth interfere at all times) and none above 87 % (section 3 says about 90 %) in its Figure IV, for b2-c1; read here as an envelope over every mesh: is the paper's figure between our smallest and largest limit?");
+    t
+}
+
+/// Per mesh and rule: the limits, for the CSV.
+fn limits_csv(g: &Gearing, rules: &[Rule], limits: &RuleLimits) -> String {
+    let mut s = String::from("mesh,rule,jam_below_percent,disengage_above_percent\n");
+    let show = |v: Option<f64>| v.map_or_else(String::new, |v| fmt_f64(v, 3));
+    for (m, per_rule) in g.meshes().iter().zip(&limits.per_mesh) {
+        for (rule, (jam, dis)) in rules.iter().zip(per_rule) {
+            s.push_str(&format!(
+                "{},{},{},{}\n",
+                m.label,
+                rule.label(),
+                show(*jam),
+                show(*dis)
+            ));
+        }
+    }
+    s
+}
+
+/// Every cell's counts under every rule, with the paper's and the test's verdict.
+fn cells_csv(cells: &[(CellSpec, PaperCell)], rules: &[Rule], counts: &[Vec<Counts>]) -> String {
+    let mut s = String::from(
+        "table,key,rule,trials,jams,paper_jams,jams_consistent,disengagements,paper_disengagements,disengagements_consistent\n",
+    );
+    let show = |v: Option<u64>| v.map_or_else(String::new, |v| v.to_string());
+    for ((_, p), per_rule) in cells.iter().zip(counts) {
+        let paper = paper_counts(p.table, &p.key);
+        for (rule, c) in rules.iter().zip(per_rule) {
+            let verdict = |k: u64, q: Option<u64>| {
+                q.map_or_else(String::new, |_| {
+                    consistent_with_paper(k, c.trials, q).to_string()
+                })
+            };
+            s.push_str(&format!(
+                "{},{},{},{},{},{},{},{},{},{}\n",
+                p.table,
+                p.key,
+                rule.label(),
+                c.trials,
+                c.jams,
+                show(paper.0),
+                verdict(c.jams, paper.0),
+                c.disengagements,
+                show(paper.1),
+                verdict(c.disengagements, paper.1),
+            ));
+        }
+    }
+    s
+}
+
+fn run(ctx: &Context) -> Result<Report, RunError> {
+    let g = gearing::load(ctx)?;
+    let hyp = errors::chosen(ctx)?;
+    let trials = ctx.u64("trials")?;
+    if trials == 0 {
+        return Err(RunError::bad("--set", "trials", "must be at least 1"));
+    }
+    let tol = ctx.f64("limit_tolerance")?;
+    if !(tol.is_finite() && (0.001..=10.0).contains(&tol)) {
+        return Err(RunError::bad(
+            "--set",
+            "limit_tolerance",
+            format!("must be between 0.001 and 10 (% of h; got {tol})"),
+        ));
+    }
+    let rules = every_rule()?;
+    let cells = all_cells(ctx, &g, hyp)?;
+    let specs: Vec<CellSpec> = cells.iter().map(|(c, _)| c.clone()).collect();
+    let counts = run_cells_by_rule(ctx, &g, &specs, Some(&rules), trials, Purpose::Own)?;
+    let tallies = tallies(&cells, &counts, rules.len());
+    let limits = ideal_limits(ctx, &g, &rules, tol)?;
+    let mut shares = shares_table(&rules, &tallies, trials);
+    let (same_jams, same_dis) = agreement_between_rules(&counts);
+    shares.note(format!(
+        "Between the rules: the same jam count under every rule in {same_jams} of {} cells, the same disengagement count in {same_dis}.",
+        counts.len()
+    ));
+    let default = rules
+        .iter()
+        .position(|r| r.label() == rules::DEFAULT)
+        .unwrap_or(0);
+    Ok(Report {
+        tables: vec![
+            shares,
+            breakdown_table(&cells, &counts, &rules[default], default),
+            limits_table(&g, &rules, &limits, tol),
+        ],
+        files: vec![
+            OutputFile::new("event-rules-cells.csv", cells_csv(&cells, &rules, &counts)),
+            OutputFile::new("event-rules-limits.csv", limits_csv(&g, &rules, &limits)),
+        ],
+        trials: counts.iter().map(|c| c[0].trials).sum(),
+        engagements: counts.iter().map(|c| c[0].engagements).sum(),
+        ..Default::default()
+    })
+}

@@ -1,0 +1,293 @@
+//! `fig6`: each gear's largest tolerable random error (Table 4 by the 1 % rule; a gear in two
+//! meshes takes the smaller), beside the paper's (its Table 5 E. max row) and, when a table of
+//! measured errors is given, the measured ones.
+
+use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table};
+
+use crate::common::{Series, category_plot};
+use study::errors;
+use study::gearing;
+use study::cell::{Purpose, label};
+use study::grids::TRIALS;
+use crate::emax::{paper_random, show};
+use study::tolerance::{self, RANDOM_FROM, RANDOM_STEP, RANDOM_TO, RULE};
+
+const PARAMS: &[Param] = &[
+    TRIALS,
+    RULE,
+    RANDOM_FROM,
+    RANDOM_TO,
+    RANDOM_STEP,
+    Param {
+        name: "measured",
+        default: "",
+        unit: "",
+        help: "RON table of measured per-gear errors (the `measured` hypothesis' format) to draw beside ours; empty (or none): no measured values",
+    },
+    gearing::CLEARANCE,
+    gearing::TOOTH_HEIGHT,
+    errors::PARAM,
+    errors::PARAMS_PARAM,
+    gearing::PARAM,
+    study::events::PARAM,
+];
+
+registry::inventory::submit! {
+    Experiment {
+        id: "fig6",
+        title: "Largest tolerable random error of each gear (from Table 4 by the 1 % rule), beside the paper's and any measured errors",
+        paper_item: "Figure 6 (section 5)",
+        params: PARAMS,
+        config: None,
+        run,
+    }
+}
+
+/// The measured table named by the `measured` parameter, if any: (file name, table).
+fn measured(ctx: &Context) -> Result<Option<(String, hypotheses::MeasuredTable)>, RunError> {
+    let Some(path) = hypotheses::measured_file_given(ctx.param("measured")?) else {
+        return Ok(None);
+    };
+    let text = input_file::read_to_string(std::path::Path::new(path), input_file::MAX_INPUT_BYTES)
+        .map_err(|e| RunError::bad("--set", "measured", format!("cannot read {path}: {e}")))?;
+    let table = hypotheses::measured_from_ron(path, &text).map_err(|e| {
+        let what = e
+            .what
+            .strip_prefix(&format!("{path}: "))
+            .unwrap_or(&e.what)
+            .to_string();
+        RunError::bad(path, what, e.rule)
+    })?;
+    Ok(Some((path.to_string(), table)))
+}
+
+/// The smaller of two tolerances, `None` (below the grid) being the smallest.
+fn smaller(a: Option<f64>, b: Option<f64>) -> Option<f64> {
+    match (a, b) {
+        (Some(x), Some(y)) => Some(x.min(y)),
+        _ => None,
+    }
+}
+
+fn run(ctx: &Context) -> Result<Report, RunError> {
+    study::events::label(ctx, counted(ctx)?)
+}
+
+/// The experiment itself; [`run`] names the event rule in its tables' titles.
+fn counted(ctx: &Context) -> Result<Report, RunError> {
+    let g = gearing::load(ctx)?;
+    let hyp = errors::chosen(ctx)?;
+    let trials = study::grids::trials(ctx, TRIALS.name)?;
+    let rule = tolerance::rule(ctx)?;
+    let clearance = ctx.f64("clearance")?;
+    let measured = measured(ctx)?;
+    let grid = study::grids::run_grid(ctx, &g, hyp, trials, Purpose::Input)?;
+    let tolerable = grid.tolerable(trials, rule);
+
+    // Gears in mesh order, first appearance; each with its meshes.
+    let mut gears: Vec<(String, Vec<usize>)> = Vec::new();
+    for (m, mesh) in g.meshes().iter().enumerate() {
+        for gear in [&mesh.driver, &mesh.driven] {
+            match gears.iter_mut().find(|(n, _)| n == gear) {
+                Some((_, ms)) => ms.push(m),
+                None => gears.push((gear.clone(), vec![m])),
+            }
+        }
+    }
+    let smallest = grid.values.first();
+    let mut table = Table::new(
+        format!(
+            "Figure 6: largest tolerable random error of each gear (rule {rule} % of {trials} trials, no systematic error, G = {clearance} %) [fraction of the pitch]"
+        ),
+        [
+            "gear",
+            "meshes",
+            "ours",
+            "paper (Table 5 E. max)",
+            "measured",
+        ],
+    );
+    let mut csv = String::from("gear,meshes,ours,paper,measured\n");
+    let (mut ours_pts, mut paper_pts, mut measured_pts) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut inside, mut outside) = (0, 0);
+    for (i, (gear, ms)) in gears.iter().enumerate() {
+        let ours = ms.iter().map(|&m| tolerable[m]).reduce(smaller).flatten();
+        let paper: Option<f64> = ms
+            .iter()
+            .map(|&m| paper_random(&g.meshes()[m].label))
+            .collect::<Option<Vec<f64>>>()
+            .and_then(|v| v.into_iter().reduce(f64::min));
+        let meas = measured
+            .as_ref()
+            .and_then(|(_, t)| t.errors(gear).ok().map(|e| e.random));
+        if let Some(p) = paper {
+            if ours.is_some_and(|o| (o - p).abs() < 1e-9) {
+                inside += 1;
+            } else {
+                outside += 1;
+            }
+        }
+        let x = i as f64;
+        if let Some(o) = ours {
+            ours_pts.push((x, o));
+        }
+        if let Some(p) = paper {
+            paper_pts.push((x, p));
+        }
+        if let Some(v) = meas {
+            measured_pts.push((x, v));
+        }
+        let labels: Vec<&str> = ms.iter().map(|&m| g.meshes()[m].label.as_str()).collect();
+        let opt = |v: Option<f64>| v.map_or_else(|| "-".into(), |v| label(v, 3));
+        let meas_text = match (meas, ours) {
+            (Some(v), Some(o)) if v > o => format!("{} (above ours)", label(v, 3)),
+            (v, _) => opt(v),
+        };
+        table.row(vec![
+            gear.clone(),
+            labels.join(", "),
+            show(ours, smallest, 3),
+            opt(paper),
+            meas_text,
+        ]);
+        csv.push_str(&format!(
+            "{gear},{},{},{},{}\n",
+            labels.join(" "),
+            ours.map_or_else(String::new, |v| v.to_string()),
+            paper.map_or_else(String::new, |v| v.to_string()),
+            meas.map_or_else(String::new, |v| v.to_string()),
+        ));
+    }
+    table.note(format!(
+        "Each mesh's value: the largest random error of Table 4's grid up to which every value has at most {} of {trials} trials jammed; each gear takes its mesh's, a gear in two meshes the smaller. `< {}`: below the grid.",
+        tolerance::allowed_jams(trials, rule),
+        smallest.map_or_else(|| "-".into(), |v| label(*v, 3)),
+    ));
+    table.note(format!(
+        "Gears whose value equals the paper's: {inside}; differ: {outside}. The paper's figure gives no numbers; its per-mesh values are the E. max row of its Table 5, assigned to gears the same way."
+    ));
+    match &measured {
+        Some((file, t)) => table.note(format!(
+            "Measured: the random error of each gear in {file} ({} gears listed){}.",
+            t.entries().count(),
+            if file.ends_with("measured-example.ron") {
+                "; that shipped example's values are INVENTED, not Edmunds' measurements"
+            } else {
+                ""
+            }
+        )),
+        None => table.note("Measured: none given (--set measured=FILE, a table in the format of crates/hypotheses/data/measured-example.ron, whose values are invented)."),
+    }
+    let names: Vec<String> = gears.iter().map(|(n, _)| n.clone()).collect();
+    let ours_label = format!("ours: largest tolerable (rule {rule} %)");
+    let measured_label = measured
+        .as_ref()
+        .map(|(f, _)| format!("measured ({f})"))
+        .unwrap_or_default();
+    let mut series = vec![
+        Series {
+            label: &ours_label,
+            points: ours_pts,
+        },
+        Series {
+            label: "paper: Table 5 E. max",
+            points: paper_pts,
+        },
+    ];
+    if measured.is_some() {
+        series.push(Series {
+            label: &measured_label,
+            points: measured_pts,
+        });
+    }
+    let svg = category_plot(
+        "Figure 6: largest tolerable random error of each gear",
+        &names,
+        "gear",
+        "random error [fraction of the pitch]",
+        &series,
+    )?;
+    Ok(Report {
+        tables: vec![table],
+        files: vec![
+            OutputFile::new("fig6-data.csv", csv),
+            OutputFile::new("fig6.svg", svg),
+        ],
+        trials: grid.all().map(|c| c.trials).sum(),
+        engagements: grid.all().map(|c| c.engagements).sum(),
+        agreement: Some(registry::Agreement {
+            consistent: inside,
+            differ: outside,
+        }),
+        ..Default::default()
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, reason = "tests")]
+    use registry::Context;
+
+    fn run(measured: &str) -> Result<registry::Report, registry::RunError> {
+        crate::link();
+        let map = registry::experiments().unwrap();
+        let exp = map["fig6"];
+        let set = |k: &str, v: &str| (k.to_string(), v.to_string());
+        let overrides = [
+            set("trials", "2"),
+            set("random_from", "0.05"),
+            set("random_to", "0.06"),
+            set("random_step", "0.01"),
+            set("measured", measured),
+        ];
+        let ctx = Context::new(exp, 7, 2, &overrides, None).unwrap();
+        (exp.run)(&ctx)
+    }
+
+    #[test]
+    fn measured_values_are_drawn_beside_ours() {
+        // The shipped example table: its values are INVENTED, used here only to exercise the
+        // `measured` parameter.
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../crates/hypotheses/data/measured-example.ron"
+        );
+        let report = run(path).unwrap();
+        let table = &report.tables[0];
+        assert_eq!(
+            table.rows.len(),
+            29,
+            "29 gears in the 15 meshes (b2 in two)"
+        );
+        let b2 = &table.rows[0];
+        assert_eq!(b2[0], "b2");
+        assert_eq!(b2[1], "b2-c1, b2-l1");
+        assert!(b2[4].starts_with("0.070"), "{b2:?}");
+        assert!(table.notes.iter().any(|n| n.contains("INVENTED")));
+        let svg = report.files.iter().find(|f| f.name == "fig6.svg").unwrap();
+        let svg = String::from_utf8(svg.contents.clone()).unwrap();
+        assert!(
+            svg.contains("measured ("),
+            "legend names the measured table"
+        );
+        assert_eq!(report.trials, 2 * 2 * 15);
+
+        let none = run("none").unwrap();
+        assert!(none.tables[0].rows.iter().all(|r| r[4] == "-"));
+    }
+
+    #[test]
+    fn a_missing_or_broken_measured_table_is_bad_input() {
+        assert_eq!(run("/nonexistent/measured.ron").unwrap_err().exit_code(), 2);
+        let broken = std::env::temp_dir().join(format!("fig6-broken-{}.ron", std::process::id()));
+        std::fs::write(
+            &broken,
+            "(gears: [(gear: \"b2\", random: -1.0, systematic: 0.0)])",
+        )
+        .unwrap();
+        let e = run(broken.to_str().unwrap()).unwrap_err();
+        let _ = std::fs::remove_file(&broken);
+        assert_eq!(e.exit_code(), 2);
+        assert!(e.to_string().contains("gear b2"), "{e}");
+    }
+}

@@ -1,0 +1,158 @@
+//! `fig-events`: the paper's Figures V_A and V_B for one ideal mesh (default b2-c1): the mesh just
+//! inside its jam limit at its first jam, and just beyond its disengagement limit at its first
+//! disengagement, each drawn zoomed on the two teeth involved.
+
+use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
+
+use study::gearing;
+use study::limits::IdealPair;
+
+const PARAMS: &[Param] = &[
+    Param {
+        name: "mesh",
+        default: "b2-c1",
+        unit: "",
+        help: "mesh label in the gearing (radii sized as crates/train sizes them)",
+    },
+    gearing::TOOTH_HEIGHT,
+    Param {
+        name: "margin",
+        default: "1",
+        unit: "% of h",
+        help: "how far inside the jam limit and beyond the disengagement limit the two runs are made",
+    },
+    gearing::PARAM,
+    study::events::PARAM,
+];
+
+registry::inventory::submit! {
+    Experiment {
+        id: "fig-events",
+        title: "A jam and a decoupling of one ideal mesh, drawn at the instant they happen",
+        paper_item: "Figures V_A and V_B (Appendix II)",
+        params: PARAMS,
+        config: None,
+        run,
+    }
+}
+
+/// How closely the limits are located before stepping `margin` past them (% of h).
+const LIMIT_TOLERANCE: f64 = 0.01;
+
+fn run(ctx: &Context) -> Result<Report, RunError> {
+    study::events::label(ctx, counted(ctx)?)
+}
+
+/// The experiment itself; [`run`] names the event rule in its tables' titles.
+fn counted(ctx: &Context) -> Result<Report, RunError> {
+    let rule = study::events::chosen(ctx)?;
+    let h = ctx.f64("tooth_height")?;
+    let margin = ctx.f64("margin")?;
+    if !(margin.is_finite() && (0.01..=20.0).contains(&margin)) {
+        return Err(RunError::bad(
+            "--set",
+            "margin",
+            format!("must be between 0.01 and 20 (% of h; got {margin})"),
+        ));
+    }
+    let g = gearing::load(ctx)?;
+    let label = ctx.param("mesh")?;
+    let geo = g.mesh_geometry(label, h, 40.0).ok_or_else(|| {
+        RunError::bad("--set", "mesh", format!("no mesh `{label}` in the gearing"))
+    })?;
+    let pair = IdealPair {
+        n1: geo.driver_teeth as usize,
+        n2: geo.driven_teeth as usize,
+        r1: geo.driver_tip_radius,
+        r2: geo.driven_tip_radius,
+        h,
+    };
+    let (jam_limit, dis_limit) = pair.limits(LIMIT_TOLERANCE, &rule)?;
+    let mut table = Table::new(
+        format!(
+            "Figures V_A and V_B: {label} ({}:{}), ideal teeth, h = {h} mm, one turn of the larger gear from driver angle 0",
+            pair.n1, pair.n2
+        ),
+        [
+            "figure",
+            "limit G [% of h]",
+            "run at G [% of h]",
+            "event",
+            "phi [deg]",
+            "driver tooth",
+            "driven tooth",
+            "picture",
+        ],
+    );
+    let mut files = Vec::new();
+    let cases = [
+        (
+            "V_A (a jam)",
+            jam_limit.map(|l| l - margin),
+            true,
+            "fig-V_A.svg",
+        ),
+        (
+            "V_B (a decoupling)",
+            dis_limit.map(|l| l + margin),
+            false,
+            "fig-V_B.svg",
+        ),
+    ];
+    for ((figure, at, jam, file), limit) in cases.into_iter().zip([jam_limit, dis_limit]) {
+        let mut row = vec![
+            figure.to_string(),
+            limit.map_or_else(|| "-".into(), |l| fmt_f64(l, 2)),
+            at.map_or_else(|| "-".into(), |g| fmt_f64(g, 2)),
+        ];
+        let found = match at {
+            Some(gc) if gc > 0.0 => pair.run(gc)?.and_then(|t| {
+                let e = t
+                    .events()
+                    .iter()
+                    .find(|e| {
+                        if jam {
+                            rule.is_jam(e)
+                        } else {
+                            rule.is_disengagement(e)
+                        }
+                    })
+                    .cloned()?;
+                Some((t, e))
+            }),
+            _ => None,
+        };
+        match found {
+            Some((t, e)) => {
+                let counted = if jam { "jam" } else { "disengagement" };
+                files.push(OutputFile::new(
+                    file,
+                    crate::pair_html::event_svg(&t, &e, counted),
+                ));
+                row.extend([
+                    e.kind.name().to_string(),
+                    fmt_f64(e.phi.to_degrees(), 4),
+                    e.driver_tooth.rem_euclid(pair.n1 as i64).to_string(),
+                    e.driven_tooth.rem_euclid(pair.n2 as i64).to_string(),
+                    file.to_string(),
+                ]);
+            }
+            None => row.extend([
+                "none found".to_string(),
+                "-".into(),
+                "-".into(),
+                "-".into(),
+                "-".into(),
+            ]),
+        }
+        table.row(row);
+    }
+    table.note(format!(
+        "Limits as `clearance` finds them (located to {LIMIT_TOLERANCE} % of h), then a run {margin} % of h inside the jam limit and beyond the disengagement limit; each picture shows the mesh at its first jam or disengagement, zoomed on the two teeth, with the contact point and its normal. The paper's Figure V_A shows a lock (one driver tip pushes a driven flank while another meets a preceding tooth), V_B tips that no longer reach each other."
+    ));
+    Ok(Report {
+        tables: vec![table],
+        files,
+        ..Default::default()
+    })
+}

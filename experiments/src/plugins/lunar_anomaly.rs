@@ -1,0 +1,546 @@
+//! `lunar-anomaly`: the pin-and-slot (Freeth 2006) on the Lunar train, which the paper leaves
+//! out. (a) The anomaly it puts on the Lunar pointer, from the geometry in the gearing data;
+//! (b) the Lunar pointer's Theoretical Difference with triangular teeth, ideal and with Edmunds'
+//! Cases A-D, without and with the pin-and-slot (then against the anomaly-bearing ideal), on the
+//! same gears and initial angles trial by trial; (c) a plot of the anomaly over two anomalistic
+//! months beside one simulated Case B trajectory.
+//!
+//! The Cases' trials use table2's RNG streams (Case index, trial), so that without the
+//! pin-and-slot they are table2's triangular Lunar trials, number for number.
+
+use mechanism::{Mechanism, PinSlotTrain, PointerRun, TrialRng, trial_rng};
+use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use serde::{Deserialize, Serialize};
+use stats::{DAYS_PER_YEAR, Estimate, mean_ci95};
+
+use crate::common::{Series, csv, line_plot, paper_cell};
+use study::errors;
+use study::gearing;
+use study::pointers::pointer_runs;
+use study::grids::CASES;
+
+const PARAMS: &[Param] = &[
+    Param {
+        name: "trials",
+        default: "20",
+        unit: "",
+        help: "trials per row (ideal teeth, Cases A-D), each with fresh errors and initial angles, run without and with the pin-and-slot (table2's count and streams)",
+    },
+    Param {
+        name: "lunar_turns",
+        default: "1",
+        unit: "turns of b",
+        help: "run length (one turn of b: about 13 anomalistic months)",
+    },
+    Param {
+        name: "samples_per_engagement",
+        default: "8",
+        unit: "",
+        help: "TD samples per engagement of the busiest mesh",
+    },
+    Param {
+        name: "curve_samples",
+        default: "2000",
+        unit: "",
+        help: "points of the anomaly curve over one anomalistic month (amplitude and plot)",
+    },
+    gearing::CLEARANCE,
+    gearing::TOOTH_HEIGHT,
+    errors::SPLIT,
+    errors::PARAM,
+    errors::PARAMS_PARAM,
+    gearing::PARAM,
+    study::events::PARAM,
+];
+
+registry::inventory::submit! {
+    Experiment {
+        id: "lunar-anomaly",
+        title: "The pin-and-slot lunar anomaly on the Lunar pointer (beyond the paper)",
+        paper_item: "Section 6 (assumptions) / Freeth 2006",
+        params: PARAMS,
+        config: None,
+        run,
+    }
+}
+
+/// The pointer the pin-and-slot sits on.
+const LUNAR: &str = "Lunar";
+
+/// Stream index of the ideal-teeth row (the Cases use their index in `CASES`, as table2 does).
+const IDEAL_INDEX: u64 = CASES.len() as u64;
+
+/// The Case whose first trial is plotted.
+const PLOTTED_CASE: &str = "B";
+
+/// TD statistics of one run, as table1 and table2 keep them. NaN (a run that stopped at once)
+/// cannot go through JSON: stored as bits.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+struct RunStats {
+    #[serde(with = "registry::f64_bits")]
+    sigma: f64,
+    #[serde(with = "registry::f64_bits")]
+    dm: f64,
+    /// |P|, the absolute oscillation mean.
+    #[serde(with = "registry::f64_bits")]
+    p: f64,
+    /// The run jammed.
+    jammed: bool,
+}
+
+impl RunStats {
+    fn of(run: &PointerRun, samples: usize) -> RunStats {
+        let s = run.stats(samples);
+        RunStats {
+            sigma: s.sigma,
+            dm: s.dm,
+            p: s.mean.abs(),
+            jammed: run.first_stop().is_some(),
+        }
+    }
+}
+
+/// One trial of one row: the same gears and initial angles without and with the pin-and-slot.
+/// The default (another shard's trial, see `Context::trials`) reads as zeros.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+struct AnomalyTrial {
+    rigid: RunStats,
+    pin_slot: RunStats,
+}
+
+/// One row of the TD table: label and RNG stream index; `None` errors means ideal teeth.
+struct Row {
+    label: String,
+    index: u64,
+    case: Option<(f64, f64)>,
+}
+
+fn run(ctx: &Context) -> Result<Report, RunError> {
+    study::events::label(ctx, counted(ctx)?)
+}
+
+/// The experiment itself; [`run`] names the event rule in its tables' titles.
+fn counted(ctx: &Context) -> Result<Report, RunError> {
+    let g = gearing::load(ctx)?;
+    let trials = ctx.usize("trials")?;
+    if trials < 2 {
+        return Err(RunError::bad(
+            "--set",
+            "trials",
+            "must be at least 2 (an interval needs two trials)",
+        ));
+    }
+    let curve_samples = ctx.usize("curve_samples")?;
+    if curve_samples < 100 {
+        return Err(RunError::bad(
+            "--set",
+            "curve_samples",
+            "must be at least 100",
+        ));
+    }
+    let (h, clearance, split) = (
+        ctx.f64("tooth_height")?,
+        ctx.f64("clearance")?,
+        ctx.f64("split")?,
+    );
+    let per = ctx.usize("samples_per_engagement")?.max(1);
+    let runs = pointer_runs(ctx, &g, &[(LUNAR, "lunar_turns")], per)?;
+    let &[(_, turns, samples)] = runs.as_slice() else {
+        return Err(RunError::Internal("one Lunar run expected".into()));
+    };
+    let ideal = Mechanism::ideal(&g, h, clearance).map_err(study::gearing::mechanism_error)?;
+    let ideal = study::events::with_rule(ctx, ideal)?;
+    let ideal_on = gearing::with_pin_and_slot(ctx, ideal.clone(), true)?;
+    let Some(train) = ideal_on.pin_slot_for(LUNAR) else {
+        return Err(RunError::bad(
+            ctx.param(gearing::PARAM.name)?,
+            "pin_and_slot",
+            "the Lunar pointer's train does not run through the pin gear",
+        ));
+    };
+
+    // (a) The anomaly from the geometry.
+    let mut tables = vec![anomaly_table(&train, curve_samples)];
+
+    // (b) TD statistics, ideal teeth and Cases A-D, without and with the pin-and-slot.
+    let hyp = errors::chosen(ctx)?;
+    let mut rows = vec![Row {
+        label: "ideal teeth".into(),
+        index: IDEAL_INDEX,
+        case: None,
+    }];
+    for (ci, &(case, systematic, random)) in CASES.iter().enumerate() {
+        rows.push(Row {
+            label: format!("Case {case}"),
+            index: ci as u64,
+            case: Some((systematic, random)),
+        });
+    }
+    let params: Vec<Option<hypotheses::Params>> = rows
+        .iter()
+        .map(|r| {
+            r.case
+                .map(|(systematic, random)| {
+                    errors::params(
+                        ctx,
+                        hyp,
+                        &[
+                            ("random", random),
+                            ("systematic", systematic),
+                            ("split", split),
+                        ],
+                    )
+                })
+                .transpose()
+        })
+        .collect::<Result<_, _>>()?;
+    let seed = ctx.seed();
+    // Builds trial `t` of row `ri`: its mechanism (without the pin-and-slot) and the RNG left
+    // ready for the initial angles.
+    let build = |ri: usize, t: u64| -> Result<(Mechanism, TrialRng), RunError> {
+        // One stream per (row, trial): errors first, then initial angles (table2's order).
+        let mut rng = trial_rng(seed, (rows[ri].index << 32) | t);
+        let Some(p) = &params[ri] else {
+            return Ok((ideal.clone(), rng));
+        };
+        let mut failure = None;
+        let mech = Mechanism::build(&g, h, clearance, |name, gear| {
+            errors::make(hyp, &gear, name, p, &mut rng).map_err(|e| {
+                let text = e.to_string();
+                failure = Some(e);
+                text
+            })
+        });
+        let mech = match mech {
+            Ok(m) => Ok(study::events::with_rule(ctx, m)?),
+            Err(e) => Err(e),
+        };
+        match (mech, failure) {
+            (_, Some(e)) => Err(e),
+            (Err(e), None) => Err(RunError::bad(
+                "--hypothesis",
+                format!("mesh {}", e.mesh),
+                format!(
+                    "{}: the manufactured gears cannot be placed at this clearance",
+                    e.rule
+                ),
+            )),
+            (Ok(m), None) => Ok((m, rng)),
+        }
+    };
+    let n = trials as u64;
+    let key = batch_key(ctx, &rows, &params, trials, h, clearance, turns, samples)?;
+    let results: Vec<AnomalyTrial> = ctx.trials(&key, rows.len() as u64 * n, |j| {
+        let (ri, t) = ((j / n) as usize, j % n);
+        let (mech, rng) = build(ri, t)?;
+        let on = gearing::with_pin_and_slot(ctx, mech.clone(), true)?;
+        // The same initial angles for both.
+        let missing = || RunError::bad("gearing", "pointer Lunar", "is missing");
+        let rigid = mech
+            .run_pointer_to_first_jam(LUNAR, turns, &mut rng.clone())
+            .ok_or_else(missing)?;
+        let pinned = on
+            .run_pointer_to_first_jam(LUNAR, turns, &mut rng.clone())
+            .ok_or_else(missing)?;
+        Ok(AnomalyTrial {
+            rigid: RunStats::of(&rigid, samples),
+            pin_slot: RunStats::of(&pinned, samples),
+        })
+    })?;
+    let per_row: Vec<&[AnomalyTrial]> = results.chunks(trials).collect();
+    tables.push(td_table(&rows, &per_row, trials, seed, clearance, turns));
+
+    // (c) The anomaly over two anomalistic months, and one Case B trajectory.
+    let period = train.anomaly_period();
+    let days_per_radian = DAYS_PER_YEAR / std::f64::consts::TAU;
+    let points = 2 * curve_samples;
+    let xs: Vec<f64> = (0..=points)
+        .map(|i| 2.0 * period * i as f64 / points as f64)
+        .collect();
+    let ideal_curve: Vec<(f64, f64)> = xs
+        .iter()
+        .map(|&psi| (psi * days_per_radian, train.anomaly(psi).to_degrees()))
+        .collect();
+    let plotted = CASES
+        .iter()
+        .position(|c| c.0 == PLOTTED_CASE)
+        .ok_or_else(|| RunError::Internal(format!("Case {PLOTTED_CASE}")))?;
+    let (mech, rng) = build(plotted + 1, 0)?;
+    let on = gearing::with_pin_and_slot(ctx, mech, true)?;
+    let traj = on
+        .run_pointer_to_first_jam(LUNAR, 2.0 * train.anomaly_period_turns(), &mut rng.clone())
+        .ok_or_else(|| RunError::bad("gearing", "pointer Lunar", "is missing"))?;
+    let end = traj
+        .first_stop()
+        .map_or(traj.input_range, |s| s.input_angle);
+    let simulated: Vec<(f64, f64)> = xs
+        .iter()
+        .filter(|&&psi| psi <= end)
+        .map(|&psi| {
+            (
+                psi * days_per_radian,
+                (traj.pointer_angle(psi) - train.mean_ratio() * psi).to_degrees(),
+            )
+        })
+        .collect();
+    let legend_sim = format!(
+        "Case {PLOTTED_CASE}, trial 0, triangular teeth, with the pin-and-slot: pointer minus mean motion"
+    );
+    let svg = line_plot(
+        "The pin-and-slot's lunar anomaly on the Lunar pointer (Freeth 2006 geometry; beyond the paper)",
+        "days of b",
+        "Lunar pointer minus its mean motion [deg]",
+        &[
+            Series {
+                label: "ideal gears: the anomaly from the geometry",
+                points: ideal_curve.clone(),
+            },
+            Series {
+                label: &legend_sim,
+                points: simulated.clone(),
+            },
+        ],
+    )?;
+    let curve_csv = csv(
+        &["day", "ideal_anomaly_deg", "case_b_trial0_deviation_deg"],
+        ideal_curve
+            .iter()
+            .enumerate()
+            .map(|(i, &(d, a))| vec![d, a, simulated.get(i).map_or(f64::NAN, |s| s.1)]),
+        6,
+    );
+    Ok(Report {
+        tables,
+        files: vec![
+            OutputFile::new("lunar-anomaly.svg", svg),
+            OutputFile::new("lunar-anomaly-curve.csv", curve_csv),
+            OutputFile::new("lunar-anomaly-td.csv", td_csv(&rows, &per_row)),
+        ],
+        // Mechanisms built: one per (row, trial), each run twice.
+        trials: results.len() as u64,
+        ..Default::default()
+    })
+}
+
+/// The key of the trial batch: everything that determines the trials.
+#[allow(
+    clippy::too_many_arguments,
+    reason = "one key from every input, spelt out"
+)]
+fn batch_key(
+    ctx: &Context,
+    rows: &[Row],
+    params: &[Option<hypotheses::Params>],
+    trials: usize,
+    h: f64,
+    clearance: f64,
+    turns: f64,
+    samples: usize,
+) -> Result<String, RunError> {
+    let rows: Vec<String> = rows
+        .iter()
+        .zip(params)
+        .map(|(r, p)| {
+            let p = p.as_ref().map_or_else(String::new, |p| {
+                p.iter()
+                    .map(|(k, v)| format!("{k}={v}"))
+                    .collect::<Vec<_>>()
+                    .join(",")
+            });
+            format!("{} stream {} ({p})", r.label, r.index)
+        })
+        .collect();
+    Ok(format!(
+        "lunar-anomaly: {trials} trials per row, Lunar {turns} turns {samples} samples, h = {h} mm, G = {clearance} %, gearing {}, hypothesis {}, rows: {}",
+        ctx.param(gearing::PARAM.name)?,
+        ctx.param(errors::PARAM.name)?,
+        rows.join("; ")
+    ))
+}
+
+/// (a): amplitude (sampled over one period and in closed form), periods, and the paper's value.
+fn anomaly_table(train: &PinSlotTrain, curve_samples: usize) -> Table {
+    let period = train.anomaly_period();
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for i in 0..=curve_samples {
+        let a = train.anomaly(period * i as f64 / curve_samples as f64);
+        lo = lo.min(a);
+        hi = hi.max(a);
+    }
+    let mut t = Table::new(
+        "The anomaly from the geometry: the Lunar pointer's ideal motion with the pin-and-slot, minus its mean motion",
+        ["quantity", "ours", "unit", "paper"],
+    );
+    t.row(vec![
+        "axes apart e / pin radius R (gearing data)".into(),
+        format!(
+            "{} / {}",
+            fmt_f64(train.offset, 2),
+            fmt_f64(train.pin_radius, 2)
+        ),
+        "mm".into(),
+        "-".into(),
+    ]);
+    t.row(vec![
+        "largest lead of the pointer over its mean motion (sampled)".into(),
+        fmt_f64(hi.to_degrees(), 3),
+        "deg".into(),
+        paper_cell("lunar-anomaly", "amplitude", 2),
+    ]);
+    t.row(vec![
+        "largest lag (sampled)".into(),
+        fmt_f64(lo.to_degrees(), 3),
+        "deg".into(),
+        "-".into(),
+    ]);
+    t.row(vec![
+        "amplitude asin(e/R) on the pointer (closed form)".into(),
+        fmt_f64(train.pointer_amplitude().to_degrees(), 3),
+        "deg".into(),
+        "-".into(),
+    ]);
+    t.row(vec![
+        "period of the anomaly (anomalistic month)".into(),
+        fmt_f64(train.anomaly_period_turns() * DAYS_PER_YEAR, 3),
+        "days".into(),
+        "-".into(),
+    ]);
+    t.row(vec![
+        "one turn of the turntable (apsidal line)".into(),
+        fmt_f64(1.0 / train.turntable_ratio, 3),
+        "years".into(),
+        "-".into(),
+    ]);
+    t.note("Ideal gears, the turntable at its mean rate from the gear ratios (b2-l1, l2-m1, m3-e3), the pin on the line of centres at the start; the anomaly is computed from the gearing file's pin_and_slot section, not typed in.");
+    t.note("Paper: section 3 quotes the anomaly's angular variation as +-6.53 deg (Freeth et al. 2006) and compares it with Table 1; the paper itself leaves the pin-and-slot out.");
+    t
+}
+
+/// `mean [lo .. hi]` of an estimate.
+fn show(e: &Estimate) -> String {
+    format!(
+        "{} [{} .. {}]",
+        fmt_f64(e.mean, 3),
+        fmt_f64(e.lo, 3),
+        fmt_f64(e.hi, 3)
+    )
+}
+
+/// (b): per row, sigma, Dm and P without and with the pin-and-slot, and the paired difference.
+fn td_table(
+    rows: &[Row],
+    per_row: &[&[AnomalyTrial]],
+    trials: usize,
+    seed: u64,
+    clearance: f64,
+    turns: f64,
+) -> Table {
+    let mut t = Table::new(
+        format!(
+            "Lunar pointer TD, triangular teeth, G = {clearance} %, {turns} turn(s) of b, {trials} trials per row, seed {seed}: mean and 95 % interval over trials [deg]"
+        ),
+        [
+            "errors",
+            "statistic",
+            "without the pin-and-slot (paper)",
+            "with the pin-and-slot",
+            "with minus without",
+            "trials that jammed (without / with)",
+        ],
+    );
+    for (row, trials_of) in rows.iter().zip(per_row) {
+        let jams = |f: fn(&AnomalyTrial) -> bool| trials_of.iter().filter(|x| f(x)).count();
+        let jammed = format!(
+            "{}/{trials} / {}/{trials}",
+            jams(|x| x.rigid.jammed),
+            jams(|x| x.pin_slot.jammed)
+        );
+        for (name, f) in [
+            ("sigma", (|s: &RunStats| s.sigma) as fn(&RunStats) -> f64),
+            ("Dm", |s: &RunStats| s.dm),
+            ("P", |s: &RunStats| s.p),
+        ] {
+            let without: Vec<f64> = trials_of.iter().map(|x| f(&x.rigid)).collect();
+            let with: Vec<f64> = trials_of.iter().map(|x| f(&x.pin_slot)).collect();
+            let diff: Vec<f64> = with.iter().zip(&without).map(|(a, b)| a - b).collect();
+            t.row(vec![
+                row.label.clone(),
+                name.into(),
+                show(&mean_ci95(&without)),
+                show(&mean_ci95(&with)),
+                show(&mean_ci95(&diff)),
+                jammed.clone(),
+            ]);
+        }
+    }
+    t.note("Each trial: one set of gears (Cases: Edmunds' errors, as table2 draws them from the same streams) and one set of initial angles, run without the pin-and-slot (k1 -> k2 rigid, turntable still: the paper) and with it (e5-k1 and k2-e6 in the frame of the e3 turntable turning at its mean rate, k1's pin in k2's slot).");
+    t.note("With the pin-and-slot the TD is taken against the anomaly-bearing ideal motion, so it holds only what the teeth add; P is the absolute oscillation mean. A jam stops the pointer: a trial that jammed is measured up to its first jam.");
+    t
+}
+
+/// Every trial's statistics, per row and configuration.
+fn td_csv(rows: &[Row], per_row: &[&[AnomalyTrial]]) -> String {
+    let mut out = String::from("errors,trial,pin_and_slot,sigma_deg,dm_deg,p_deg,jammed\n");
+    for (row, trials_of) in rows.iter().zip(per_row) {
+        for (t, x) in trials_of.iter().enumerate() {
+            for (on, s) in [(false, x.rigid), (true, x.pin_slot)] {
+                out.push_str(&format!(
+                    "{},{t},{on},{},{},{},{}\n",
+                    row.label, s.sigma, s.dm, s.p, s.jammed
+                ));
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, reason = "tests")]
+    use super::*;
+
+    fn run_with(threads: usize, sets: &[(&str, &str)]) -> Result<Report, RunError> {
+        crate::link();
+        let map = registry::experiments().unwrap();
+        let exp = map["lunar-anomaly"];
+        let overrides: Vec<(String, String)> = sets
+            .iter()
+            .map(|(k, v)| ((*k).to_string(), (*v).to_string()))
+            .collect();
+        let ctx = Context::new(exp, 7, threads, &overrides, None)?;
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| (exp.run)(&ctx))
+    }
+
+    const SMALL: &[(&str, &str)] = &[
+        ("trials", "2"),
+        ("lunar_turns", "0.1"),
+        ("samples_per_engagement", "2"),
+        ("curve_samples", "200"),
+    ];
+
+    #[test]
+    fn identical_with_one_and_two_threads() {
+        let a = run_with(1, SMALL).unwrap();
+        let b = run_with(2, SMALL).unwrap();
+        assert_eq!(a.text(), b.text());
+        assert!(a.text().contains("6.579"), "{}", a.text());
+    }
+
+    #[test]
+    fn bad_parameters_are_refused_as_bad_input() {
+        for (k, v) in [
+            ("trials", "1"),
+            ("curve_samples", "10"),
+            ("lunar_turns", "0"),
+        ] {
+            let mut sets = SMALL.to_vec();
+            sets.push((k, v));
+            let e = run_with(1, &sets).unwrap_err();
+            assert!(matches!(e, RunError::BadInput { .. }), "{k}={v}: {e}");
+        }
+    }
+}

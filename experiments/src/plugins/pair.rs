@@ -1,0 +1,1324 @@
+//! `pair`: any mesh described in a RON file (tooth counts, radii, optional measured tip angles and
+//! eccentricity, centre distance or clearance): θ(φ), Theoretical Difference and every event.
+
+use std::f64::consts::PI;
+
+use contact::Trajectory;
+use geometry::{Vec2, polar, rotate};
+use registry::{Context, Experiment, OutputFile, Report, RunError, Table, fmt_f64};
+
+use crate::common::{Mark, Series, csv, deg, marked_plot};
+use study::pair_file::{Prepared, Role, Sense, StartSpec, default_run_deg, prepare};
+
+const EXAMPLE: &str = include_str!("../../data/pair-example.ron");
+const EXAMPLE_NAME: &str = "experiments/data/pair-example.ron";
+
+registry::inventory::submit! {
+    Experiment {
+        id: "pair",
+        title: "One mesh from a RON file: theta(phi), Theoretical Difference, jams and disengagements",
+        paper_item: "sections 2-3 (any gear pair, e.g. measured from CT scans)",
+        params: &[study::events::PARAM],
+        config: Some(CONFIG_HELP),
+        run,
+    }
+}
+
+/// What `cargo xtask help pair` says of the file: its fields, then every convention in a
+/// sentence, so that someone with measurements can fill it in without reading the code.
+const CONFIG_HELP: &str = "a mesh: driver and driven gear, each (teeth, tip_radius, root_radius, \
+optional sense, tips_deg, eccentricity or arbor, eccentricity_frame), centre_distance or \
+clearance_percent, start_deg, optional start, run_deg, sample_deg; see \
+experiments/data/pair-example.ron. Conventions, one sentence each:
+  - View: the mesh is seen from the side on which the driver turns counter-clockwise; the \
+driver's arbor (rotation centre) is at the origin and the driven gear's at (D, 0), so +x runs \
+along the line of centres from the driver to the driven gear and +y is 90 deg counter-clockwise \
+from it.
+  - Zero ray: each gear's tips_deg = 0 is a ray fixed in that gear, starting at its tip-circle \
+centre; you choose it when you measure, and tooth angles, phi and theta are all counted from it.
+  - phi (driver angle) is how far the driver has turned counter-clockwise, its own turning sense, \
+from phi = 0, where its zero ray is parallel to +x, pointing at the driven gear.
+  - theta (driven angle) is how far the driven gear has turned clockwise, its own turning sense, \
+from theta = 0, where its zero ray is parallel to -x, pointing at the driver.
+  - tips_deg are the angles of the tips about the tip-circle centre (the centre of the circle \
+through the tips, not the arbor), one per tooth, strictly increasing, all within one turn of \
+the first; tooth k is the k-th angle of your list, and every output numbers teeth that way.
+  - sense: driver (the default) means tips_deg increase in the direction the driver turns, \
+own that they increase in the direction this gear turns; for the driver the two are the same, \
+for the driven gear they are mirror images (own: clockwise in the view above).
+  - eccentricity: Some((x, y)) is the arbor minus the tip-circle centre, in the frame named by \
+eccentricity_frame; arbor: Some((offset: L, angle_deg: A)) gives the same point in polar form \
+(L from the tip-circle centre, A from that frame's x axis towards its y axis); give at most one.
+  - eccentricity_frame: tips (the default) has x along the gear's zero ray and y 90 deg from it in \
+the sense of its tips_deg; world is the view's frame (x along the line of centres towards the \
+driven gear, y 90 deg counter-clockwise) with the gears at phi = 0 and theta = 0.
+  - start_deg is phi at the start of the run.
+  - start: touching (the default) starts the driven gear from theta = 0, pushed forward to the \
+first free position if it overlaps a driver tooth, else turned back until one of its teeth rests \
+against a driver tooth; at_rest(theta_deg: T) starts it standing still at theta = T until the \
+driver reaches it (refused if it overlaps the driver there); teeth(driver: j, driven: k) \
+starts it with its tooth k resting against driver tooth j, being pushed, at the theta within half \
+a turn of 0 (refused if they cannot touch at start_deg or the position overlaps another tooth).
+  - pair.csv: phi_deg and theta_deg are phi - phi0 and theta - theta0 (phi0 = start_deg, theta0 \
+the driven angle at the start), td_deg = theta_deg - (N1/N2) phi_deg, and phi_abs_deg, \
+theta_abs_deg are phi and theta themselves.
+  - event-log.csv: the same relative angles, then the absolute ones, and tooth numbers as in your \
+file.
+  - pair-check.svg draws both gears at phi = 0 and theta = 0 with the axes, each zero ray, teeth 0 \
+and 1 of each gear and the turning senses, so you can check your entry against your scan.
+  - pair.html: the run on one self-contained page - both gears turning with a slider over phi and \
+a play button, the Theoretical Difference beneath with a cursor, every event a link that jumps \
+there and zooms on the mesh (open it from disk; `#phi=X` opens it at phi - phi0 = X deg).";
+
+fn run(ctx: &Context) -> Result<Report, RunError> {
+    study::events::label(ctx, counted(ctx)?)
+}
+
+/// The experiment itself; [`run`] names the event rule in its tables' titles.
+fn counted(ctx: &Context) -> Result<Report, RunError> {
+    let rule = study::events::chosen(ctx)?;
+    let (name, text) = match ctx.config() {
+        Some(c) => (c.path.display().to_string(), c.text.as_str()),
+        None => (EXAMPLE_NAME.to_string(), EXAMPLE),
+    };
+    let prepared = prepare(&name, text)?;
+    let (mesh, spec) = (&prepared.mesh, &prepared.spec);
+    let (n1, n2) = (mesh.driver().teeth(), mesh.driven().teeth());
+    let ratio = n1 as f64 / n2 as f64;
+    let run_deg = spec.run_deg.unwrap_or_else(|| default_run_deg(n1, n2));
+    let phi0 = spec.start_deg.to_radians();
+    let phi_end = phi0 + run_deg.to_radians();
+    let traj = mesh.run(phi0, phi_end, prepared.start);
+    let theta0 = traj.theta_at(phi0);
+    let samples = (run_deg / spec.sample_deg).floor() as usize;
+    let rows: Vec<Vec<f64>> = (0..=samples)
+        .map(|i| {
+            let phi = (phi0 + (i as f64 * spec.sample_deg).to_radians()).min(phi_end);
+            let theta_abs = traj.theta_at(phi);
+            let theta = theta_abs - theta0;
+            vec![
+                deg(phi - phi0),
+                deg(theta),
+                deg(theta - ratio * (phi - phi0)),
+                deg(phi),
+                deg(theta_abs),
+            ]
+        })
+        .collect();
+    let td: Vec<f64> = rows.iter().map(|r| r[2]).collect();
+    let s = stats::pointer_stats(&td);
+
+    let mut summary = Table::new(format!("Mesh from {name}"), ["quantity", "value", "unit"]);
+    let rowf = |t: &mut Table, q: &str, v: String, u: &str| t.row(vec![q.into(), v, u.into()]);
+    rowf(&mut summary, "teeth N1 : N2", format!("{n1} : {n2}"), "");
+    rowf(
+        &mut summary,
+        "centre distance D",
+        fmt_f64(mesh.centre_distance(), 4),
+        "length",
+    );
+    rowf(&mut summary, "driver angle run", fmt_f64(run_deg, 3), "deg");
+    rowf(
+        &mut summary,
+        "driver angle at the start phi0 (absolute)",
+        fmt_f64(deg(phi0), 6),
+        "deg",
+    );
+    rowf(
+        &mut summary,
+        "driven angle at the start theta0 (absolute)",
+        fmt_f64(deg(theta0), 6),
+        "deg",
+    );
+    let (jams, disengagements) = study::events::counts(&rule, &traj);
+    rowf(&mut summary, "jams", jams.to_string(), "");
+    rowf(
+        &mut summary,
+        "disengagements",
+        disengagements.to_string(),
+        "",
+    );
+    rowf(
+        &mut summary,
+        "Theoretical Difference sigma",
+        fmt_f64(s.sigma, 4),
+        "deg",
+    );
+    rowf(
+        &mut summary,
+        "Theoretical Difference Dm",
+        fmt_f64(s.dm, 4),
+        "deg",
+    );
+    rowf(
+        &mut summary,
+        "Theoretical Difference mean P",
+        fmt_f64(s.mean, 4),
+        "deg",
+    );
+    summary.note(ABSOLUTE_NOTE);
+
+    let (events, ev_rows, marks) = event_log(&traj, &rule, (phi0, theta0), &prepared);
+    let svg = marked_plot(
+        "Theoretical Difference of the mesh (sections 2-3), events marked with kind and size",
+        "driver angle phi [deg]",
+        "Theoretical Difference [deg]",
+        &[Series {
+            label: "simulated",
+            points: rows.iter().map(|r| (r[0], r[2])).collect(),
+        }],
+        &marks,
+    )?;
+    let data = csv(
+        &[
+            "phi_deg",
+            "theta_deg",
+            "td_deg",
+            "phi_abs_deg",
+            "theta_abs_deg",
+        ],
+        rows.into_iter(),
+        9,
+    );
+    let check = check_svg(&name, &prepared, &traj);
+    Ok(Report {
+        tables: vec![summary, events],
+        files: vec![
+            OutputFile::new("pair.csv", data),
+            OutputFile::new("event-log.csv", ev_rows),
+            OutputFile::new("pair.svg", svg),
+            OutputFile::new("pair-check.svg", check),
+            OutputFile::new(
+                "pair.html",
+                crate::pair_html::page(&format!("Mesh from {name}"), &traj, &|e| {
+                    counted_as(&rule, e)
+                }),
+            ),
+        ]
+        .into_iter()
+        .chain(
+            crate::pair_html::event_pictures(&traj, &|e| counted_as(&rule, e), EVENT_PICTURES)
+                .into_iter()
+                .map(|(n, svg)| OutputFile::new(n, svg)),
+        )
+        .collect(),
+        ..Default::default()
+    })
+}
+
+/// How many events get a picture of their own (`event-<n>-<kind>.svg`): as many as the event
+/// table shows.
+const EVENT_PICTURES: usize = 20;
+
+/// What `rule` counts an event as: `jam`, `disengagement` or `-` (reported, not a failure).
+fn counted_as(rule: &rules::Rule, e: &contact::Event) -> &'static str {
+    if rule.is_jam(e) {
+        "jam"
+    } else if rule.is_disengagement(e) {
+        "disengagement"
+    } else {
+        "-"
+    }
+}
+
+/// An event's size in words: what a reader needs to judge it.
+fn size_text(e: &contact::Event) -> String {
+    use contact::EventKind;
+    match e.kind {
+        EventKind::Lock | EventKind::Strike => {
+            let wedge = e.wedge_angle.map_or_else(
+                || "tip on tip".to_string(),
+                |a| format!("wedge {:.1} deg", deg(a)),
+            );
+            format!("jump {:.3} deg, {wedge}", deg(e.theta_after - e.theta))
+        }
+        EventKind::Gap | EventKind::Slip => format!(
+            "lost motion {:.3} pitch{}, lag {:.3} deg, phase {:+}",
+            e.lost_motion,
+            if e.resumed { "" } else { " (not resumed)" },
+            deg(e.lag),
+            e.phase_shift
+        ),
+        EventKind::BlockedAtStart => "no free position".to_string(),
+    }
+}
+
+/// The event table (first 20), `event-log.csv` (every event: kind, what the rule counts it as,
+/// and its sizes) and the marks of `pair.svg`. Angles relative to the start (φ0, θ0); teeth
+/// within one turn.
+fn event_log(
+    traj: &contact::Trajectory,
+    rule: &rules::Rule,
+    (phi0, theta0): (f64, f64),
+    prepared: &Prepared,
+) -> (Table, String, Vec<Mark>) {
+    let mut events = Table::new(
+        "Events (kind from the contact motion, and what the rule counts it as)",
+        [
+            "phi [deg]",
+            "kind",
+            "counted as",
+            "driver tooth",
+            "driven tooth",
+            "theta [deg]",
+            "theta after [deg]",
+            "size",
+        ],
+    );
+    let mut ev_rows = String::from(
+        "phi_deg,kind,counted_as,driver_tooth,driven_tooth,theta_deg,theta_after_deg,lost_motion_pitches,resumed,phase_shift,lag_deg,wedge_angle_deg,phi_abs_deg,theta_abs_deg,theta_after_abs_deg\n",
+    );
+    let mut marks = Vec::new();
+    for e in traj.events() {
+        let kind = e.kind.name();
+        let counted = counted_as(rule, e);
+        // Tooth numbers as the user wrote them (a driven gear measured in its own sense is
+        // numbered the other way round inside the solver).
+        let j = prepared.driver.user(e.driver_tooth);
+        let k = prepared.driven.user(e.driven_tooth);
+        let cells = [
+            format!("{:.9}", deg(e.phi - phi0)),
+            kind.to_string(),
+            counted.to_string(),
+            j.to_string(),
+            k.to_string(),
+            format!("{:.9}", deg(e.theta - theta0)),
+            format!("{:.9}", deg(e.theta_after - theta0)),
+            format!("{:.9}", e.lost_motion),
+            e.resumed.to_string(),
+            e.phase_shift.to_string(),
+            format!("{:.9}", deg(e.lag)),
+            e.wedge_angle
+                .map_or_else(String::new, |a| format!("{:.9}", deg(a))),
+            format!("{:.9}", deg(e.phi)),
+            format!("{:.9}", deg(e.theta)),
+            format!("{:.9}", deg(e.theta_after)),
+        ];
+        ev_rows.push_str(&cells.join(","));
+        ev_rows.push('\n');
+        if events.rows.len() < 20 {
+            events.row(vec![
+                fmt_f64(deg(e.phi - phi0), 6),
+                kind.into(),
+                counted.into(),
+                j.to_string(),
+                k.to_string(),
+                fmt_f64(deg(e.theta - theta0), 6),
+                fmt_f64(deg(e.theta_after - theta0), 6),
+                size_text(e),
+            ]);
+        }
+        if marks.len() < 40 {
+            let group = contact::EventKind::ALL
+                .iter()
+                .position(|&x| x == e.kind)
+                .unwrap_or(0);
+            marks.push(Mark {
+                x: deg(e.phi - phi0),
+                label: format!("{kind}: {}", size_text(e)),
+                group,
+            });
+        }
+    }
+    if traj.events().len() > 20 {
+        events.note(format!(
+            "{} more in event-log.csv",
+            traj.events().len() - 20
+        ));
+    }
+    if traj.events().is_empty() {
+        events.note("no event: the driven gear was driven throughout");
+    }
+    // The table is an excerpt of event-log.csv: the run writes the events once.
+    (events.data_in("event-log.csv"), ev_rows, marks)
+}
+
+/// The note under the summary table: the frames of the absolute angles.
+const ABSOLUTE_NOTE: &str = "absolute angles: phi is how far the driver's zero ray (its tips_deg = 0) has turned, in the driver's turning sense, from pointing along the line of centres at the driven gear; theta is how far the driven gear's zero ray has turned, in its own turning sense, from pointing at the driver; pair.csv has both relative to the start (phi_deg, theta_deg) and absolute (phi_abs_deg, theta_abs_deg)";
+
+/// The tips `pair-check.svg` labels: (gear, the user's tooth number, world position at φ = 0 and
+/// θ = 0), teeth 0 and 1 of each gear, so that the picture shows where the numbering starts and
+/// which way it runs.
+fn labelled_tips(p: &Prepared) -> Vec<(Role, i64, Vec2)> {
+    let (driver, driven) = p.mesh.world_outlines(0.0, 0.0);
+    let mut out = Vec::new();
+    for (role, outline, numbering) in [
+        (Role::Driver, &driver, p.driver),
+        (Role::Driven, &driven, p.driven),
+    ] {
+        for user in [0, 1] {
+            // The outline alternates tip and valley, in the solver's tooth order.
+            let k = numbering.solver(user) as usize;
+            if let Some(&tip) = outline.get(2 * k) {
+                out.push((role, user, tip));
+            }
+        }
+    }
+    out
+}
+
+/// `s` broken at spaces into lines of at most `width` characters (longer words stay whole).
+fn wrap(s: &str, width: usize) -> Vec<String> {
+    let mut lines = vec![String::new()];
+    for word in s.split(' ') {
+        let last = lines.len() - 1;
+        if !lines[last].is_empty() && lines[last].chars().count() + 1 + word.chars().count() > width
+        {
+            lines.push(String::new());
+        }
+        let last = lines.len() - 1;
+        if !lines[last].is_empty() {
+            lines[last].push(' ');
+        }
+        lines[last].push_str(word);
+    }
+    lines
+}
+
+/// Text safe inside SVG markup.
+fn escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// `pair-check.svg`: both gears at φ = 0 and θ = 0 as the file describes them, with the axes, the
+/// arbors and tip-circle centres, each zero ray, teeth 0 and 1 of each gear, the turning senses,
+/// and in words the conventions read from the file and the start of the run.
+fn check_svg(name: &str, p: &Prepared, traj: &Trajectory) -> String {
+    let mesh = &p.mesh;
+    let (g1, g2) = (mesh.driver(), mesh.driven());
+    let d = mesh.centre_distance();
+    let (out1, out2) = mesh.world_outlines(0.0, 0.0);
+    // Tip-circle centres: the arbors are at the origin and (D, 0); at φ = 0 the driver's frame is
+    // the world's, at θ = 0 the driven gear's is the world's turned by π.
+    let arbor2 = Vec2::new(d, 0.0);
+    let c1 = -g1.rotation_centre();
+    let c2 = arbor2 + rotate(-g2.rotation_centre(), PI);
+    let (r1, r2) = (g1.max_tip_radius(), g2.max_tip_radius());
+    // Room beyond the driven gear for the labels of its zero ray and turning sense, which run
+    // outwards from it whatever its size.
+    let (x_min, x_max) = (c1.x - 1.15 * r1, c2.x + 1.15 * r2 + 0.3 * r1.max(r2));
+    let y_max = 1.15 * r1.max(r2);
+    let (width, margin, top) = (1000.0, 30.0, 50.0);
+    let k = (width - 2.0 * margin) / (x_max - x_min);
+    let legend_top = top + 2.0 * y_max * k + 20.0;
+    let height = legend_top + 12.0 * 18.0 + 10.0;
+    let at = |v: Vec2| (margin + (v.x - x_min) * k, top + (y_max - v.y) * k);
+    let pt = |v: Vec2| {
+        let (x, y) = at(v);
+        format!("{x:.2},{y:.2}")
+    };
+    let mut svg = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width}\" height=\"{height:.0}\" viewBox=\"0 0 {width} {height:.0}\" font-family=\"sans-serif\" font-size=\"13\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+    );
+    let text = |svg: &mut String, v: Vec2, anchor: &str, colour: &str, s: &str| {
+        let (x, y) = at(v);
+        svg.push_str(&format!(
+            "<text x=\"{x:.2}\" y=\"{y:.2}\" text-anchor=\"{anchor}\" fill=\"{colour}\" stroke=\"white\" stroke-width=\"3\" paint-order=\"stroke\">{}</text>\n",
+            escape(s)
+        ));
+    };
+    let line = |svg: &mut String, a: Vec2, b: Vec2, colour: &str, extra: &str| {
+        let ((x1, y1), (x2, y2)) = (at(a), at(b));
+        svg.push_str(&format!(
+            "<line x1=\"{x1:.2}\" y1=\"{y1:.2}\" x2=\"{x2:.2}\" y2=\"{y2:.2}\" stroke=\"{colour}\" {extra}/>\n"
+        ));
+    };
+    // An arrowhead at `tip` pointing along the unit vector `u`, `size` long (world lengths).
+    let head = |svg: &mut String, tip: Vec2, u: Vec2, size: f64, colour: &str| {
+        let n = Vec2::new(-u.y, u.x) * (0.45 * size);
+        let base = tip - u * size;
+        svg.push_str(&format!(
+            "<polygon points=\"{} {} {}\" fill=\"{colour}\"/>\n",
+            pt(tip),
+            pt(base + n),
+            pt(base - n)
+        ));
+    };
+    svg.push_str(&format!(
+        "<text x=\"{margin}\" y=\"24\" font-size=\"16\">{}</text>\n",
+        escape(&format!(
+            "Check of {name}: both gears at phi = 0 and theta = 0"
+        ))
+    ));
+    let size = 0.05 * r1.min(r2);
+    // Axes: x along the line of centres, y through the driver's arbor.
+    let x_end = Vec2::new(x_max, 0.0);
+    line(
+        &mut svg,
+        Vec2::new(x_min, 0.0),
+        x_end,
+        "black",
+        "stroke-width=\"1\"",
+    );
+    head(&mut svg, x_end, Vec2::new(1.0, 0.0), size, "black");
+    text(
+        &mut svg,
+        x_end + Vec2::new(0.0, 1.2 * size),
+        "end",
+        "black",
+        "x: line of centres, driver arbor -> driven arbor",
+    );
+    let y_end = Vec2::new(0.0, y_max * 0.98);
+    line(
+        &mut svg,
+        Vec2::new(0.0, -y_max * 0.98),
+        y_end,
+        "black",
+        "stroke-width=\"1\"",
+    );
+    head(&mut svg, y_end, Vec2::new(0.0, 1.0), size, "black");
+    text(
+        &mut svg,
+        y_end + Vec2::new(size, -size),
+        "start",
+        "black",
+        "y: 90 deg from x in the driver's turning sense",
+    );
+    let gears = [
+        (
+            Role::Driver,
+            &out1,
+            Vec2::zeros(),
+            c1,
+            r1,
+            "#1f4e9c",
+            "#cfdcf3",
+        ),
+        (Role::Driven, &out2, arbor2, c2, r2, "#a3261f", "#f5d3cf"),
+    ];
+    for (role, outline, arbor, centre, radius, colour, fill) in gears {
+        let points: Vec<String> = outline.iter().map(|&v| pt(v)).collect();
+        svg.push_str(&format!(
+            "<polygon id=\"{}-outline\" points=\"{}\" fill=\"{fill}\" fill-opacity=\"0.6\" stroke=\"{colour}\" stroke-width=\"1\"/>\n",
+            role.name(),
+            points.join(" ")
+        ));
+        // The zero ray, from the tip-circle centre towards the other gear.
+        let towards = match role {
+            Role::Driver => Vec2::new(1.0, 0.0),
+            Role::Driven => Vec2::new(-1.0, 0.0),
+        };
+        let ray_end = centre + towards * radius;
+        line(
+            &mut svg,
+            centre,
+            ray_end,
+            colour,
+            "stroke-width=\"2\" stroke-dasharray=\"8 4\"",
+        );
+        head(&mut svg, ray_end, towards, size, colour);
+        let (angle, anchor) = match role {
+            Role::Driver => ("phi = 0", "end"),
+            Role::Driven => ("theta = 0", "start"),
+        };
+        // Beside the centre, clear of the mesh, where the two rays meet.
+        text(
+            &mut svg,
+            centre - towards * (0.05 * radius) - Vec2::new(0.0, 1.8 * size),
+            anchor,
+            colour,
+            &format!("{} zero ray (tips_deg = 0, {angle})", role.name()),
+        );
+        // The arbor (+) and the tip-circle centre (o).
+        let arm = 0.6 * size;
+        line(
+            &mut svg,
+            arbor - Vec2::new(arm, 0.0),
+            arbor + Vec2::new(arm, 0.0),
+            colour,
+            "stroke-width=\"2\"",
+        );
+        line(
+            &mut svg,
+            arbor - Vec2::new(0.0, arm),
+            arbor + Vec2::new(0.0, arm),
+            colour,
+            "stroke-width=\"2\"",
+        );
+        let (cx, cy) = at(centre);
+        svg.push_str(&format!(
+            "<circle cx=\"{cx:.2}\" cy=\"{cy:.2}\" r=\"4\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"1.5\"/>\n"
+        ));
+        text(
+            &mut svg,
+            arbor - Vec2::new(0.0, 3.8 * size),
+            "middle",
+            colour,
+            &format!("{} arbor (+), tip-circle centre (o)", role.name()),
+        );
+        // The turning sense: an arc away from the mesh, arrowhead where the turn goes.
+        let (from, to): (f64, f64) = match role {
+            Role::Driver => (100.0, 150.0),
+            Role::Driven => (80.0, 30.0),
+        };
+        let arc_r = 0.55 * radius;
+        let steps = 24;
+        let arc: Vec<String> = (0..=steps)
+            .map(|i| {
+                let a = (from + (to - from) * f64::from(i) / f64::from(steps)).to_radians();
+                pt(arbor + polar(arc_r, a))
+            })
+            .collect();
+        svg.push_str(&format!(
+            "<polyline points=\"{}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"2\"/>\n",
+            arc.join(" ")
+        ));
+        let end = to.to_radians();
+        let along = (to - from).signum();
+        let u = Vec2::new(-end.sin(), end.cos()) * along;
+        head(&mut svg, arbor + polar(arc_r, end), u, 1.5 * size, colour);
+        let turns = match role {
+            Role::Driver => "driver turns this way: phi increases",
+            Role::Driven => "driven gear turns this way: theta increases",
+        };
+        let mid = (0.5 * (from + to)).to_radians();
+        text(
+            &mut svg,
+            arbor + polar(arc_r + 2.0 * size, mid),
+            "middle",
+            colour,
+            turns,
+        );
+    }
+    // Labels of tips in the mesh, where the gears crowd each other, go up or down on leaders of
+    // growing length, the driver's to the left and the driven gear's to the right.
+    let mut stacked = [0.0, 0.0];
+    for (role, user, tip) in labelled_tips(p) {
+        let (colour, centre, other, other_r) = match role {
+            Role::Driver => ("#1f4e9c", c1, c2, r2),
+            Role::Driven => ("#a3261f", c2, c1, r1),
+        };
+        let out = (tip - centre).normalize();
+        let (x, y) = at(tip);
+        svg.push_str(&format!(
+            "<circle id=\"{}-tooth-{user}\" cx=\"{x:.2}\" cy=\"{y:.2}\" r=\"4\" fill=\"{colour}\"/>\n",
+            role.name()
+        ));
+        let radial = tip + out * (3.0 * size);
+        let (label, anchor) = if (radial - other).norm() < other_r + 3.0 * size {
+            let up = tip.y > 0.0 || (tip.y == 0.0 && role == Role::Driver);
+            let slot = &mut stacked[usize::from(!up)];
+            *slot += 1.0;
+            let dy = (2.0 + 2.5 * *slot) * size;
+            let anchor = match role {
+                Role::Driver => "end",
+                Role::Driven => "start",
+            };
+            (tip + Vec2::new(0.0, if up { dy } else { -dy }), anchor)
+        } else {
+            (radial, if out.x >= 0.0 { "start" } else { "end" })
+        };
+        line(&mut svg, tip, label, colour, "stroke-width=\"1\"");
+        // A little clear of the leader, on the side the text runs to.
+        let nudge = match anchor {
+            "end" => -0.5 * size,
+            _ => 0.5 * size,
+        };
+        text(
+            &mut svg,
+            label + Vec2::new(nudge, 0.0),
+            anchor,
+            colour,
+            &format!("{} tooth {user}", role.name()),
+        );
+    }
+    // The file's conventions in words, and the start.
+    let mut lines = vec![
+        "Seen from the side on which the driver turns counter-clockwise. Each zero ray starts at its gear's tip-circle centre (o) and, at phi = 0 and theta = 0, points along the line of centres at the other gear.".to_string(),
+        "The gears may overlap in this picture: it shows your frames, not a meshing position. Teeth 0 and 1 show where your numbering starts and which way it runs.".to_string(),
+    ];
+    for (role, gear, spec, numbering) in [
+        (Role::Driver, g1, &p.spec.driver, p.driver),
+        (Role::Driven, g2, &p.spec.driven, p.driven),
+    ] {
+        let ccw = match role {
+            Role::Driver => true,
+            Role::Driven => !numbering.mirrored,
+        };
+        let sense = match spec.sense {
+            Sense::Driver => "driver",
+            Sense::Own => "own",
+        };
+        let e = gear.rotation_centre();
+        let tips_frame = if numbering.mirrored {
+            Vec2::new(e.x, -e.y)
+        } else {
+            e
+        };
+        let world = match role {
+            Role::Driver => e,
+            Role::Driven => -e,
+        };
+        let xy = |v: Vec2| format!("({}, {})", fmt_f64(v.x, 4), fmt_f64(v.y, 4));
+        lines.push(format!(
+            "{}: {} teeth, tips_deg run {} here (sense: {sense}); arbor minus tip-circle centre {} in the world frame, {} in its tips frame = arbor (offset: {}, angle_deg: {}).",
+            role.name(),
+            gear.teeth(),
+            if ccw {
+                "counter-clockwise"
+            } else {
+                "clockwise"
+            },
+            xy(world),
+            xy(tips_frame),
+            fmt_f64(tips_frame.norm(), 4),
+            fmt_f64(deg(tips_frame.y.atan2(tips_frame.x)), 3),
+        ));
+    }
+    let phi0 = traj.phi_start();
+    let start = match p.spec.start {
+        StartSpec::Touching => "start: touching".to_string(),
+        StartSpec::AtRest { theta_deg } => format!("start: at_rest(theta_deg: {theta_deg})"),
+        StartSpec::Teeth { driver, driven } => {
+            format!("start: teeth(driver: {driver}, driven: {driven})")
+        }
+    };
+    lines.push(format!(
+        "The run starts at phi0 = {} deg, theta0 = {} deg ({start}); centre distance D = {}.",
+        fmt_f64(deg(phi0), 6),
+        fmt_f64(deg(traj.theta_at(phi0)), 6),
+        fmt_f64(d, 4)
+    ));
+    let wrapped: Vec<String> = lines.iter().flat_map(|l| wrap(l, 150)).collect();
+    for (i, l) in wrapped.iter().enumerate() {
+        svg.push_str(&format!(
+            "<text x=\"{margin}\" y=\"{:.0}\" font-size=\"12\">{}</text>\n",
+            legend_top + 18.0 * i as f64,
+            escape(l)
+        ));
+    }
+    svg.push_str("</svg>\n");
+    svg
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, reason = "tests")]
+    use super::*;
+    use contact::Start;
+    use geometry::Gear;
+    use std::f64::consts::TAU;
+    use study::pair_file::load;
+
+    #[test]
+    fn example_loads() {
+        assert!(load("x.ron", EXAMPLE).is_ok());
+    }
+
+    #[test]
+    fn errors_name_file_field_and_rule() {
+        let bad = |text: &str| load("m.ron", text).unwrap_err().to_string();
+        let base = |driver: &str, extra: &str| {
+            format!(
+                "(driver: {driver}, driven: (teeth: 20, tip_radius: 10.0, root_radius: 9.0), {extra})"
+            )
+        };
+        let ok_driver = "(teeth: 20, tip_radius: 10.0, root_radius: 9.0)";
+        assert_eq!(
+            bad(&base(
+                "(teeth: 2, tip_radius: 10.0, root_radius: 9.0)",
+                "clearance_percent: Some(40.0)"
+            )),
+            "m.ron: driver.teeth: must be at least 3 (got 2)"
+        );
+        assert!(
+            bad(&base(
+                "(teeth: 20, tip_radius: 10.0, root_radius: 10.0)",
+                "clearance_percent: Some(40.0)"
+            ))
+            .starts_with("m.ron: driver.root_radius: must be less than tip_radius")
+        );
+        assert!(
+            bad(&base(ok_driver, "centre_distance: Some(15.0)"))
+                .starts_with("m.ron: centre_distance: must exceed")
+        );
+        assert!(bad(&base(ok_driver, "")).contains("give exactly one of"));
+        assert!(
+            bad(&base(ok_driver, "clearance_percent: Some(140.0)"))
+                .starts_with("m.ron: clearance_percent:")
+        );
+        assert!(bad("(driver: (teeth: 20,").starts_with("m.ron: line 1, column"));
+        assert_eq!(
+            bad(&base(
+                "(teeth: 1000000000, tip_radius: 10.0, root_radius: 9.0)",
+                "clearance_percent: Some(40.0)"
+            )),
+            "m.ron: driver.teeth: must be at most 100000 (the limit on teeth; got 1000000000)"
+        );
+        assert_eq!(train::MAX_TEETH as usize, geometry::MAX_TEETH);
+        assert!(
+            bad(&base(
+                "(teeth: 3, tip_radius: 10.0, root_radius: 9.0, tips_deg: Some([0.0, 10.0]))",
+                "clearance_percent: Some(40.0)"
+            ))
+            .starts_with("m.ron: driver.tips_deg: must list exactly")
+        );
+    }
+
+    /// A gear known in the world at φ = 0 and θ = 0, built without the loader: its arbor, its
+    /// tip-circle centre and its tips (all at `radius` from that centre).
+    struct Known {
+        teeth: usize,
+        radius: f64,
+        root: f64,
+        arbor: Vec2,
+        centre: Vec2,
+        tips: Vec<Vec2>,
+    }
+
+    /// Irregular tips (up to ±0.03 of a pitch off their place) about an offset centre: `first` is
+    /// the world angle of tip 0 seen from the centre.
+    fn known(teeth: usize, radius: f64, arbor: Vec2, centre: Vec2, first: f64) -> Known {
+        let pitch = 360.0 / teeth as f64;
+        let tips = (0..teeth)
+            .map(|k| {
+                let jitter = 0.03 * pitch * (2.3 * k as f64 + 0.4).sin();
+                centre + polar(radius, (first + pitch * k as f64 + jitter).to_radians())
+            })
+            .collect();
+        Known {
+            teeth,
+            radius,
+            root: radius - 1.8,
+            arbor,
+            centre,
+            tips,
+        }
+    }
+
+    /// A measuring convention: the sense of the tip angles, the frame of the offset, and whether
+    /// the offset is written as `eccentricity` or `arbor`.
+    #[derive(Debug, Clone, Copy)]
+    struct Convention {
+        own: bool,
+        world: bool,
+        polar: bool,
+    }
+
+    /// Circumcentre of three points: the tip-circle centre fitted as one would on a scan.
+    fn circumcentre(a: Vec2, b: Vec2, c: Vec2) -> Vec2 {
+        let (b, c) = (b - a, c - a);
+        let d = 2.0 * (b.x * c.y - b.y * c.x);
+        let (b2, c2) = (b.norm_squared(), c.norm_squared());
+        a + Vec2::new(c.y * b2 - b.y * c2, b.x * c2 - c.x * b2) / d
+    }
+
+    /// Measures `g` as the help text tells a user to: about the fitted tip-circle centre, from
+    /// the zero ray `zero` (the gear's direction along the line of centres towards the other
+    /// gear), counter-clockwise in the view when `ccw`. Returns the gear's RON text and, for each
+    /// of the user's tooth numbers, the index of that tip in `g.tips`.
+    fn measure(g: &Known, zero: Vec2, ccw: bool, c: Convention) -> (String, Vec<usize>) {
+        let n = g.teeth;
+        let centre = circumcentre(g.tips[0], g.tips[n / 3], g.tips[2 * n / 3]);
+        let sign = if ccw { 1.0 } else { -1.0 };
+        let angle = |v: Vec2| {
+            let a = (zero.x * v.y - zero.y * v.x).atan2(zero.dot(&v));
+            (sign * a).to_degrees().rem_euclid(360.0)
+        };
+        let mut order: Vec<usize> = (0..n).collect();
+        order.sort_by(|&i, &j| angle(g.tips[i] - centre).total_cmp(&angle(g.tips[j] - centre)));
+        let tips: Vec<f64> = order.iter().map(|&i| angle(g.tips[i] - centre)).collect();
+        let e = g.arbor - centre;
+        let offset = if c.world {
+            e
+        } else {
+            // y is 90° from the zero ray in the sense the tips are measured in.
+            let y_axis = Vec2::new(-zero.y, zero.x) * sign;
+            Vec2::new(e.dot(&zero), e.dot(&y_axis))
+        };
+        let sense = if c.own { "own" } else { "driver" };
+        let frame = if c.world { "world" } else { "tips" };
+        let offset = if c.polar {
+            format!(
+                "arbor: Some((offset: {:?}, angle_deg: {:?}))",
+                offset.norm(),
+                offset.y.atan2(offset.x).to_degrees()
+            )
+        } else {
+            format!("eccentricity: Some(({:?}, {:?}))", offset.x, offset.y)
+        };
+        (
+            format!(
+                "(teeth: {n}, tip_radius: {:?}, root_radius: {:?}, sense: {sense}, tips_deg: Some({tips:?}), {offset}, eccentricity_frame: {frame})",
+                g.radius, g.root
+            ),
+            order,
+        )
+    }
+
+    /// The known pair: 17 and 23 irregular teeth, both eccentric, G = 40 % of h = 1.8.
+    fn known_pair() -> (Known, Known, f64) {
+        let d = geometry::centre_distance(20.0, 26.0, 1.8, 40.0);
+        let driver = known(17, 20.0, Vec2::zeros(), Vec2::new(-0.3, 0.2), 5.0);
+        let driven = known(
+            23,
+            26.0,
+            Vec2::new(d, 0.0),
+            Vec2::new(d + 0.25, -0.4),
+            183.0,
+        );
+        (driver, driven, d)
+    }
+
+    /// The pair file for the known pair measured in `c` (both gears), with `start`.
+    fn measured_file(c: Convention, start: &str) -> (String, Vec<usize>, Vec<usize>) {
+        let (g1, g2, d) = known_pair();
+        let (t1, m1) = measure(&g1, Vec2::new(1.0, 0.0), true, c);
+        // The driven gear turns clockwise in the view: its own sense is clockwise.
+        let (t2, m2) = measure(&g2, Vec2::new(-1.0, 0.0), !c.own, c);
+        let text = format!(
+            "(driver: {t1}, driven: {t2}, centre_distance: Some({d:?}), start_deg: 0.0, run_deg: Some(400.0), {start})"
+        );
+        (text, m1, m2)
+    }
+
+    fn conventions() -> Vec<Convention> {
+        let mut out = Vec::new();
+        for own in [false, true] {
+            for world in [false, true] {
+                for polar in [false, true] {
+                    out.push(Convention { own, world, polar });
+                }
+            }
+        }
+        out
+    }
+
+    /// θ every 0.2° of φ over the run, and the events with the known tips' indices.
+    type Motion = (
+        Vec<f64>,
+        Vec<(f64, f64, f64, contact::EventKind, usize, usize)>,
+    );
+
+    fn motion(p: &Prepared, m1: &[usize], m2: &[usize]) -> Motion {
+        let traj = p.mesh.run(0.0, 400f64.to_radians(), p.start);
+        let thetas = (0..=2000)
+            .map(|i| traj.theta_at((0.2 * f64::from(i)).to_radians()))
+            .collect();
+        let events = traj
+            .events()
+            .iter()
+            .map(|e| {
+                let j = m1[p.driver.user(e.driver_tooth) as usize];
+                let k = m2[p.driven.user(e.driven_tooth) as usize];
+                (e.phi, e.theta, e.theta_after, e.kind, j, k)
+            })
+            .collect();
+        (thetas, events)
+    }
+
+    fn assert_same_motion(a: &Motion, b: &Motion, what: &str) {
+        let tol = 1e-9f64.to_radians();
+        for (i, (x, y)) in a.0.iter().zip(&b.0).enumerate() {
+            assert!(
+                (x - y).abs() < tol,
+                "{what}: theta at row {i}: {x} against {y}"
+            );
+        }
+        assert_eq!(
+            a.1.len(),
+            b.1.len(),
+            "{what}: events {:?} against {:?}",
+            a.1,
+            b.1
+        );
+        for (e, f) in a.1.iter().zip(&b.1) {
+            assert!(
+                (e.0 - f.0).abs() < tol,
+                "{what}: event phi {e:?} against {f:?}"
+            );
+            assert!(
+                (e.1 - f.1).abs() < tol,
+                "{what}: event theta {e:?} against {f:?}"
+            );
+            assert!(
+                (e.2 - f.2).abs() < tol,
+                "{what}: event theta after {e:?} against {f:?}"
+            );
+            assert_eq!(
+                (e.3, e.4, e.5),
+                (f.3, f.4, f.5),
+                "{what}: event {e:?} against {f:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn every_convention_recovers_the_known_gears_and_the_same_motion() {
+        let (g1, g2, _) = known_pair();
+        let mut reference: Option<(Motion, Motion)> = None;
+        let mut events = 0;
+        for c in conventions() {
+            let (text, m1, m2) = measured_file(c, "");
+            let p = prepare("rt.ron", &text).unwrap_or_else(|e| panic!("{c:?}: {e}\n{text}"));
+            // The loaded gears stand where the known ones do, tooth for tooth in the user's
+            // numbering.
+            let (w1, w2) = p.mesh.world_outlines(0.0, 0.0);
+            for (outline, numbering, map, g) in
+                [(&w1, p.driver, &m1, &g1), (&w2, p.driven, &m2, &g2)]
+            {
+                for (user, &i) in map.iter().enumerate() {
+                    let k = numbering.solver(user as i64) as usize;
+                    let miss = (outline[2 * k] - g.tips[i]).norm();
+                    assert!(miss < 1e-9, "{c:?}: tooth {user} is {miss} off");
+                }
+            }
+            for (role, user, at) in labelled_tips(&p) {
+                let (g, map) = match role {
+                    Role::Driver => (&g1, &m1),
+                    Role::Driven => (&g2, &m2),
+                };
+                assert!(
+                    (at - g.tips[map[user as usize]]).norm() < 1e-9,
+                    "{c:?}: {role:?} {user}"
+                );
+            }
+            assert!(
+                (g2.centre - g2.arbor - rotate(-p.mesh.driven().rotation_centre(), PI)).norm()
+                    < 1e-9
+            );
+            // The same motion from the touching start, and from the resting pair of that start
+            // named by tooth numbers in this convention.
+            let touching = motion(&p, &m1, &m2);
+            let traj = p.mesh.run(0.0, 0.1, p.start);
+            let theta0 = traj.theta_at(0.0);
+            let mut obs = Vec::new();
+            p.mesh
+                .obstacles(0.0, theta0 - 1e-6, theta0 + 1e-6, &mut obs);
+            let resting = obs
+                .iter()
+                .find(|o| (o.hi - theta0).abs() < 1e-12)
+                .unwrap_or_else(|| panic!("{c:?}: nothing touches at the start"));
+            let (j, k) = (
+                p.driver.user(resting.driver_tooth),
+                p.driven.user(resting.driven_tooth),
+            );
+            let (text, ..) = measured_file(c, &format!("start: teeth(driver: {j}, driven: {k})"));
+            let by_teeth = motion(&prepare("rt.ron", &text).unwrap(), &m1, &m2);
+            assert_same_motion(&touching, &by_teeth, &format!("{c:?}: teeth({j}, {k})"));
+            events = events.max(touching.1.len());
+            match &reference {
+                None => reference = Some((touching, by_teeth)),
+                Some((t, b)) => {
+                    assert_same_motion(t, &touching, &format!("{c:?}: touching"));
+                    assert_same_motion(b, &by_teeth, &format!("{c:?}: teeth"));
+                }
+            }
+        }
+        // The pair must have events, or their tooth numbers would go unchecked.
+        assert!(events > 0, "the known pair ran without an event");
+    }
+
+    /// The example's mesh and its touching start angle.
+    fn example_start() -> (Prepared, f64) {
+        let p = prepare("x.ron", EXAMPLE).unwrap();
+        let theta0 = p.mesh.run(0.0, 0.01, p.start).theta_at(0.0);
+        (p, theta0)
+    }
+
+    /// The example with `start` added.
+    fn example_with(start: &str) -> String {
+        let end = EXAMPLE.rfind(')').unwrap();
+        format!("{}    {start},\n)", &EXAMPLE[..end])
+    }
+
+    #[test]
+    fn start_touching_is_todays_start() {
+        let (p, theta0) = example_start();
+        assert_eq!(p.start, Start::Touching(0.0));
+        // At rest against a driver tooth: one obstacle ends exactly there, and nothing overlaps.
+        let mut obs = Vec::new();
+        p.mesh.obstacles(0.0, theta0 - 0.1, theta0 + 0.1, &mut obs);
+        assert!(obs.iter().any(|o| o.hi == theta0), "{obs:?}");
+        assert_eq!(p.mesh.next_free(0.0, theta0, false), Some(theta0));
+        // A file written before the conventions existed keeps its meaning, bit for bit: the
+        // example's gears are the ones the loader built then.
+        let ideal: Vec<f64> = (0..50).map(|k| TAU * f64::from(k) / 50.0).collect();
+        let then = |e: Vec2| Gear::new(200.0, 180.0, ideal.clone(), e).unwrap();
+        assert_eq!(p.mesh.driver(), &then(Vec2::zeros()));
+        assert_eq!(p.mesh.driven(), &then(Vec2::new(1.5, 0.5)));
+        assert_eq!(p.driven.user(7), 7);
+        // Written out, `touching` is the default.
+        let q = prepare("x.ron", &example_with("start: touching")).unwrap();
+        assert_eq!(q.start, Start::Touching(0.0));
+    }
+
+    #[test]
+    fn start_at_rest_stands_still_until_the_driver_arrives() {
+        let (p, touching) = example_start();
+        // A little ahead of the touching position: free, with the pushing tooth behind it.
+        let theta_deg = deg(touching) + 0.2;
+        let q = prepare(
+            "x.ron",
+            &example_with(&format!("start: at_rest(theta_deg: {theta_deg:?})")),
+        )
+        .unwrap();
+        let theta0 = theta_deg.to_radians();
+        assert_eq!(q.start, Start::At(theta0));
+        let traj = q.mesh.run(0.0, 0.2, q.start);
+        let arrives = p.mesh.first_touch(theta0, 0.0, 0.2).unwrap();
+        assert!(arrives > 1e-4, "{arrives}");
+        assert_eq!(traj.theta_at(0.0), theta0);
+        assert_eq!(traj.theta_at(0.999 * arrives), theta0);
+        assert!(traj.theta_at(arrives + 1e-3) > theta0 + 1e-6);
+        // Behind the touching position it would overlap the pushing tooth: refused.
+        let behind = deg(touching) - 0.5;
+        let e = prepare(
+            "m.ron",
+            &example_with(&format!("start: at_rest(theta_deg: {behind:?})")),
+        )
+        .err()
+        .unwrap()
+        .to_string();
+        assert!(
+            e.starts_with("m.ron: start.theta_deg: the driven gear at rest at theta = ")
+                && e.contains("overlaps a driver tooth at start_deg = 0"),
+            "{e}"
+        );
+        let e = prepare("m.ron", &example_with("start: at_rest(theta_deg: inf)"))
+            .err()
+            .unwrap()
+            .to_string();
+        assert_eq!(
+            e,
+            "m.ron: start.theta_deg: must be a finite number of degrees"
+        );
+    }
+
+    #[test]
+    fn start_on_named_teeth_puts_them_in_contact() {
+        // At φ = 0 driver tooth 0 points at the driven gear and driven tooth 0 at the driver.
+        let q = prepare("x.ron", &example_with("start: teeth(driver: 0, driven: 0)")).unwrap();
+        let Start::At(theta0) = q.start else {
+            panic!("{:?}", q.start)
+        };
+        let o = q.mesh.obstacle(0.0, 0, 0).unwrap();
+        assert_eq!(theta0, o.hi);
+        assert!(theta0.abs() < PI);
+        // Driver tooth 0 pushes driven tooth 0 as the driver turns.
+        let traj = q.mesh.run(0.0, 0.05, q.start);
+        assert_eq!(traj.theta_at(0.0), theta0);
+        match &traj.segments()[0].motion {
+            contact::Motion::Push(pairs) => assert!(pairs.contains(&(0, 0)), "{pairs:?}"),
+            other => panic!("{other:?}"),
+        }
+        assert!(traj.theta_at(0.05) > theta0);
+        // Any driven tooth can be turned onto driver tooth 0: tooth 20 is 20 pitches further on
+        // (give or take the driven gear's eccentricity), within half a turn of θ = 0.
+        let r = prepare(
+            "x.ron",
+            &example_with("start: teeth(driver: 0, driven: 20)"),
+        )
+        .unwrap();
+        let Start::At(other) = r.start else {
+            panic!("{:?}", r.start)
+        };
+        assert!(
+            (other - theta0 - 20.0 * TAU / 50.0).abs() < 0.03 && other.abs() < PI,
+            "{other} {theta0}"
+        );
+        assert_eq!(other, r.mesh.obstacle(0.0, 0, 20).unwrap().hi);
+        let bad = |start: &str| match prepare("m.ron", &example_with(start)) {
+            Ok(p) => panic!("{start} accepted: {:?}", p.start),
+            Err(e) => e.to_string(),
+        };
+        assert_eq!(
+            bad("start: teeth(driver: 50, driven: 0)"),
+            "m.ron: start.driver: must be a driver tooth, 0 to 49 (got 50)"
+        );
+        assert_eq!(
+            bad("start: teeth(driver: 0, driven: 70)"),
+            "m.ron: start.driven: must be a driven tooth, 0 to 49 (got 70)"
+        );
+        // Tooth 25 is on the far side of the driver.
+        let e = bad("start: teeth(driver: 25, driven: 0)");
+        assert!(
+            e.starts_with("m.ron: start: driver tooth 25 cannot touch driven tooth 0 at start_deg = 0 (driver teeth that can touch there: 0, 1,"),
+            "{e}"
+        );
+        // Tooth 1 has passed the line of centres: driven tooth 0 resting on it would overlap
+        // tooth 0.
+        let e = bad("start: teeth(driver: 1, driven: 0)");
+        assert!(
+            e.starts_with("m.ron: start: driven tooth 0 resting against driver tooth 1 overlaps a driver tooth at start_deg = 0: the nearest free driven angle ahead is "),
+            "{e}"
+        );
+        assert!(bad("start: teeth(driver: 0)").starts_with("m.ron: line "));
+        assert!(bad("start: sideways").starts_with("m.ron: line "));
+    }
+
+    #[test]
+    fn conventions_are_refused_with_the_field_and_rule() {
+        let bad = |driven: &str| {
+            let text = format!(
+                "(driver: (teeth: 20, tip_radius: 10.0, root_radius: 9.0), driven: {driven}, clearance_percent: Some(40.0))"
+            );
+            prepare("m.ron", &text).err().unwrap().to_string()
+        };
+        assert_eq!(
+            bad(
+                "(teeth: 20, tip_radius: 10.0, root_radius: 9.0, eccentricity: Some((0.1, 0.0)), arbor: Some((offset: 0.1, angle_deg: 0.0)))"
+            ),
+            "m.ron: driven.arbor: give at most one of eccentricity and arbor (they are the same offset)"
+        );
+        assert_eq!(
+            bad(
+                "(teeth: 20, tip_radius: 10.0, root_radius: 9.0, arbor: Some((offset: -0.1, angle_deg: 0.0)))"
+            ),
+            "m.ron: driven.arbor.offset: must be a finite length >= 0 (got -0.1)"
+        );
+        assert_eq!(
+            bad(
+                "(teeth: 20, tip_radius: 10.0, root_radius: 9.0, arbor: Some((offset: 0.1, angle_deg: NaN)))"
+            ),
+            "m.ron: driven.arbor.angle_deg: must be a finite number of degrees"
+        );
+        assert!(
+            bad("(teeth: 20, tip_radius: 10.0, root_radius: 9.0, arbor: Some((offset: 9.5, angle_deg: 30.0)))")
+                .starts_with("m.ron: driven.arbor: must lie inside the root circle")
+        );
+        assert!(
+            bad("(teeth: 20, tip_radius: 10.0, root_radius: 9.0, sense: backwards)")
+                .starts_with("m.ron: line 1")
+        );
+        assert!(
+            bad("(teeth: 20, tip_radius: 10.0, root_radius: 9.0, eccentricity_frame: scan)")
+                .starts_with("m.ron: line 1")
+        );
+        assert!(
+            bad("(teeth: 20, tip_radius: 10.0, root_radius: 9.0, arbor: Some((offset: 0.1, angel_deg: 3.0)))")
+                .starts_with("m.ron: line 1")
+        );
+        // Out of order in the user's own list: named by the user's index, whatever the sense.
+        assert_eq!(
+            bad(
+                "(teeth: 3, tip_radius: 10.0, root_radius: 9.0, sense: own, tips_deg: Some([0.0, 200.0, 100.0]))"
+            ),
+            "m.ron: driven.tips_deg[2]: tip angles must be strictly increasing"
+        );
+    }
+
+    #[test]
+    fn own_sense_mirrors_the_driven_gear_and_numbers_its_teeth_as_written() {
+        let file = |driven: &str| {
+            format!(
+                "(driver: (teeth: 20, tip_radius: 10.0, root_radius: 9.0), driven: {driven}, clearance_percent: Some(40.0))"
+            )
+        };
+        let own = prepare(
+            "m.ron",
+            &file("(teeth: 4, tip_radius: 10.0, root_radius: 9.0, sense: own, tips_deg: Some([10.0, 100.0, 185.0, 280.0]), eccentricity: Some((0.2, 0.1)))"),
+        )
+        .unwrap();
+        // Mirrored: the same wheel with the angles negated, the list reversed.
+        let driver = prepare(
+            "m.ron",
+            &file("(teeth: 4, tip_radius: 10.0, root_radius: 9.0, tips_deg: Some([-280.0, -185.0, -100.0, -10.0]), eccentricity: Some((0.2, -0.1)))"),
+        )
+        .unwrap();
+        assert_eq!(own.mesh.driven(), driver.mesh.driven());
+        // The user's tooth 0 (at 10° in its own sense) is the solver's last tooth.
+        assert_eq!(own.driven.solver(0), 3);
+        assert_eq!(own.driven.user(3), 0);
+        assert_eq!(own.driven.user(-1), 0);
+        assert_eq!(own.driven.user(4), 3);
+        assert_eq!(driver.driven.user(-1), 3);
+        assert_eq!(own.driver.user(21), 1);
+        // The world frame: at θ = 0 the driven gear's frame is the world's turned by π.
+        let world = prepare(
+            "m.ron",
+            &file("(teeth: 4, tip_radius: 10.0, root_radius: 9.0, sense: own, tips_deg: Some([10.0, 100.0, 185.0, 280.0]), eccentricity: Some((-0.2, 0.1)), eccentricity_frame: world)"),
+        )
+        .unwrap();
+        assert_eq!(world.mesh.driven(), own.mesh.driven());
+        // Polar: 0.5 at 90° in the own sense is (0, −0.5) in the solver's frame.
+        let polar_form = prepare(
+            "m.ron",
+            &file("(teeth: 4, tip_radius: 10.0, root_radius: 9.0, sense: own, arbor: Some((offset: 0.5, angle_deg: 90.0)))"),
+        )
+        .unwrap();
+        let e = polar_form.mesh.driven().rotation_centre();
+        assert!((e - Vec2::new(0.0, -0.5)).norm() < 1e-15, "{e}");
+    }
+
+    #[test]
+    fn check_picture_labels_what_the_user_entered() {
+        let (c, ..) = measured_file(
+            Convention {
+                own: true,
+                world: false,
+                polar: true,
+            },
+            "",
+        );
+        let p = prepare("rt.ron", &c).unwrap();
+        let traj = p.mesh.run(0.0, 0.1, p.start);
+        let svg = check_svg("my <pair>.ron", &p, &traj);
+        for words in [
+            "Check of my &lt;pair&gt;.ron: both gears at phi = 0 and theta = 0",
+            "driver zero ray (tips_deg = 0, phi = 0)",
+            "driven zero ray (tips_deg = 0, theta = 0)",
+            ">driver tooth 0<",
+            ">driver tooth 1<",
+            ">driven tooth 0<",
+            ">driven tooth 1<",
+            "id=\"driven-tooth-0\"",
+            "driver turns this way: phi increases",
+            "driven gear turns this way: theta increases",
+            "x: line of centres, driver arbor -&gt; driven arbor",
+            "y: 90 deg from x in the driver's turning sense",
+            "driver: 17 teeth, tips_deg run counter-clockwise here (sense: own)",
+            "driven: 23 teeth, tips_deg run clockwise here (sense: own)",
+            "(start: touching)",
+        ] {
+            assert!(svg.contains(words), "{words} missing from\n{svg}");
+        }
+        assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
+        assert_eq!(svg.matches("<polygon id=").count(), 2);
+    }
+
+    /// The ```ron block after `marker` in the README, without its `driven: ` and final comma.
+    fn readme_block(marker: &str) -> String {
+        let readme = include_str!("../../../README.md");
+        let at = readme.find(marker).unwrap();
+        let body = &readme[at..];
+        let start = body.find("```ron\n").unwrap() + "```ron\n".len();
+        let end = start + body[start..].find("```").unwrap();
+        let block = body[start..end].trim();
+        block
+            .strip_prefix("driven: ")
+            .unwrap()
+            .strip_suffix(',')
+            .unwrap()
+            .to_string()
+    }
+
+    #[test]
+    fn the_readmes_measured_wheel_is_one_gear_in_both_spellings() {
+        let file = |driven: String| {
+            format!(
+                "(driver: (teeth: 30, tip_radius: 26.4, root_radius: 25.3), driven: {driven}, clearance_percent: Some(40.0))"
+            )
+        };
+        let own = prepare(
+            "README.md",
+            &file(readme_block("<!-- measured wheel: own sense -->")),
+        )
+        .unwrap();
+        let driver = prepare(
+            "README.md",
+            &file(readme_block("<!-- measured wheel: driver sense -->")),
+        )
+        .unwrap();
+        let (a, b) = (own.mesh.driven(), driver.mesh.driven());
+        assert_eq!(a.tip_angles(), b.tip_angles());
+        let gap = (a.rotation_centre() - b.rotation_centre()).norm();
+        assert!(gap < 1e-6, "the arbors are {gap} apart");
+        // The scan's tooth 0 is the driver-sense spelling's tooth 14.
+        assert_eq!(own.driven.user(driver.driven.solver(14)), 0);
+        assert_eq!(own.driven.user(driver.driven.solver(0)), 14);
+    }
+}

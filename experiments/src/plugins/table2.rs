@@ -1,0 +1,363 @@
+//! `table2`: Edmunds' Cases A-D with his radial-line model (his Table 2 beside ours), then the
+//! same manufactured gears with triangular teeth, trial by trial, with the difference and its
+//! 95 % interval.
+
+use mechanism::{Mechanism, Model, trial_rng};
+use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use stats::mean_ci95;
+
+use crate::common::{Series, semilog_plot};
+use study::errors;
+use study::gearing;
+use study::grids::CASES;
+use study::pointers::pointer_runs;
+
+const PARAMS: &[Param] = &[
+    Param {
+        name: "trials",
+        default: "20",
+        unit: "",
+        help: "trials per case, each with fresh errors and initial angles (Edmunds gives no count)",
+    },
+    gearing::CLEARANCE,
+    gearing::TOOTH_HEIGHT,
+    errors::SPLIT,
+    Param {
+        name: "lunar_turns",
+        default: "1",
+        unit: "turns of b",
+        help: "run length, Lunar",
+    },
+    Param {
+        name: "metonic_turns",
+        default: "3.8",
+        unit: "turns of b",
+        help: "run length, Metonic",
+    },
+    Param {
+        name: "saros_turns",
+        default: "4.5",
+        unit: "turns of b",
+        help: "run length, Saros",
+    },
+    Param {
+        name: "samples_per_engagement",
+        default: "8",
+        unit: "",
+        help: "TD samples per engagement of the busiest mesh",
+    },
+    errors::PARAM,
+    errors::PARAMS_PARAM,
+    gearing::PARAM,
+    gearing::PIN_AND_SLOT,
+    study::events::PARAM,
+];
+
+registry::inventory::submit! {
+    Experiment {
+        id: "table2",
+        title: "Edmunds' Cases A-D: his radial-line model beside his Table 2, and triangular teeth on the same gears",
+        paper_item: "Table 2 (section 4)",
+        params: PARAMS,
+        config: None,
+        run,
+    }
+}
+
+const POINTERS: [(&str, &str); 3] = [
+    ("Lunar", "lunar_turns"),
+    ("Metonic", "metonic_turns"),
+    ("Saros", "saros_turns"),
+];
+
+/// One trial of one case: per pointer, (Edmunds σ, Edmunds Dm, triangular σ, triangular Dm, jammed).
+type CaseTrial = Vec<(f64, f64, f64, f64, bool)>;
+
+/// One pointer of one trial as [`Context::trials`] records it (for shards and their merge):
+/// Edmunds' and the triangular σ and Dm, and whether the triangular run jammed. A run that
+/// stops at once has NaN statistics, which JSON cannot carry: they are recorded as bits.
+#[derive(Debug, Clone, Copy, Default, serde::Serialize, serde::Deserialize)]
+struct Recorded {
+    #[serde(with = "registry::f64_bits")]
+    edmunds_sigma: f64,
+    #[serde(with = "registry::f64_bits")]
+    edmunds_dm: f64,
+    #[serde(with = "registry::f64_bits")]
+    triangular_sigma: f64,
+    #[serde(with = "registry::f64_bits")]
+    triangular_dm: f64,
+    jammed: bool,
+}
+
+fn run(ctx: &Context) -> Result<Report, RunError> {
+    study::events::label(ctx, counted(ctx)?)
+}
+
+/// The experiment itself; [`run`] names the event rule in its tables' titles.
+fn counted(ctx: &Context) -> Result<Report, RunError> {
+    let g = gearing::load(ctx)?;
+    let hyp = errors::chosen(ctx)?;
+    let trials = ctx.usize("trials")?;
+    if trials < 2 {
+        return Err(RunError::bad(
+            "--set",
+            "trials",
+            "must be at least 2 (an interval needs two trials)",
+        ));
+    }
+    let (h, clearance, split) = (
+        ctx.f64("tooth_height")?,
+        ctx.f64("clearance")?,
+        ctx.f64("split")?,
+    );
+    let per = ctx.usize("samples_per_engagement")?.max(1);
+    let pin_and_slot = gearing::pin_and_slot(ctx)?;
+    let runs = pointer_runs(ctx, &g, &POINTERS, per)?;
+    let seed = ctx.seed();
+    let mut results: Vec<Vec<CaseTrial>> = Vec::new();
+    for (ci, &(case, systematic, random)) in CASES.iter().enumerate() {
+        let p = errors::params(
+            ctx,
+            hyp,
+            &[
+                ("random", random),
+                ("systematic", systematic),
+                ("split", split),
+            ],
+        )?;
+        // Named by everything that determines the trials, so shards run and merge them.
+        let key = format!(
+            "table2: case {case} ({} {:?}), {trials} trials, h = {h} mm, G = {clearance} %, gearing {}, pin_and_slot {pin_and_slot}, events {}, pointers {:?}",
+            hyp.name(),
+            p.iter().collect::<Vec<_>>(),
+            ctx.param("gearing")?,
+            study::events::chosen(ctx)?.label(),
+            runs,
+        );
+        let per_trial: Vec<Vec<Recorded>> = ctx.trials(&key, trials as u64, |t| {
+            // One stream per (case, trial): errors first, then initial angles.
+            let mut rng = trial_rng(seed, ((ci as u64) << 32) | t);
+            let mut failure = None;
+            let mech = Mechanism::build(&g, h, clearance, |name, gear| {
+                errors::make(hyp, &gear, name, &p, &mut rng).map_err(|e| {
+                    let text = e.to_string();
+                    failure = Some(e);
+                    text
+                })
+            });
+            let mech = match (mech, failure) {
+                (_, Some(e)) => return Err(e),
+                // The errors moved the bodies into each other: these inputs cannot be run.
+                (Err(e), None) => {
+                    return Err(RunError::bad(
+                        "--hypothesis",
+                        format!("mesh {}", e.mesh),
+                        format!(
+                            "{}: the manufactured gears cannot be placed at this clearance",
+                            e.rule
+                        ),
+                    ));
+                }
+                (Ok(m), None) => gearing::with_pin_and_slot(
+                    ctx,
+                    study::events::with_rule(ctx, m)?,
+                    pin_and_slot,
+                )?,
+            };
+            let mut out = Vec::new();
+            for &(name, turns, samples) in &runs {
+                // The same initial angles for both models.
+                let mut rng_edmunds = rng.clone();
+                let edm = mech.run_pointer_with(name, turns, &mut rng_edmunds, Model::Edmunds);
+                let tri = mech.run_pointer_to_first_jam(name, turns, &mut rng);
+                let (Some(edm), Some(tri)) = (edm, tri) else {
+                    return Err(RunError::bad(
+                        "gearing",
+                        format!("pointer {name}"),
+                        "is missing",
+                    ));
+                };
+                // A jam stops the pointer: triangular statistics run up to it.
+                let (se, st) = (edm.stats_through_jams(samples), tri.stats(samples));
+                out.push(Recorded {
+                    edmunds_sigma: se.sigma,
+                    edmunds_dm: se.dm,
+                    triangular_sigma: st.sigma,
+                    triangular_dm: st.dm,
+                    jammed: tri.first_stop().is_some(),
+                });
+            }
+            Ok(out)
+        })?;
+        results.push(
+            per_trial
+                .into_iter()
+                .map(|trial| {
+                    trial
+                        .into_iter()
+                        .map(|r| {
+                            (
+                                r.edmunds_sigma,
+                                r.edmunds_dm,
+                                r.triangular_sigma,
+                                r.triangular_dm,
+                                r.jammed,
+                            )
+                        })
+                        .collect()
+                })
+                .collect(),
+        );
+    }
+
+    let mut edm_table = Table::new(
+        format!(
+            "Table 2: Edmunds' model (radial lines), {trials} trials per case: sigma - Dm, ours / paper [deg] (days)"
+        ),
+        [
+            "case",
+            "systematic [deg]",
+            "random",
+            "Lunar",
+            "Metonic",
+            "Saros",
+        ],
+    );
+    // sigma against the systematic error, per pointer and model, for the plot.
+    let mut curves: std::collections::BTreeMap<String, Vec<(f64, f64)>> =
+        std::collections::BTreeMap::new();
+    let mut tri_table = Table::new(
+        format!(
+            "Triangular teeth on the same gears (G = {clearance} %): triangular minus Edmunds, mean and 95 % interval over trials [deg]"
+        ),
+        [
+            "case",
+            "pointer",
+            "Edmunds sigma",
+            "triangular sigma",
+            "difference sigma",
+            "Edmunds Dm",
+            "triangular Dm",
+            "difference Dm",
+            "trials that jammed",
+        ],
+    );
+    let mut csv = String::from("case,pointer,model,statistic,mean_deg,lo_deg,hi_deg,paper_deg\n");
+    for (ci, &(case, systematic, random)) in CASES.iter().enumerate() {
+        let mut row = vec![case.to_string(), fmt_f64(systematic, 2), fmt_f64(random, 3)];
+        for (pi, &(name, _, _)) in runs.iter().enumerate() {
+            let col = |f: fn(&(f64, f64, f64, f64, bool)) -> f64| -> Vec<f64> {
+                results[ci].iter().map(|t| f(&t[pi])).collect()
+            };
+            let (es, ed, ts, td) = (col(|x| x.0), col(|x| x.1), col(|x| x.2), col(|x| x.3));
+            let (es_m, ed_m) = (mean_ci95(&es), mean_ci95(&ed));
+            let paper = |q: &str| {
+                crate::paper::get("table2", &format!("{case}.{name}.{q}")).map(|r| r.value)
+            };
+            let days = g.days_per_degree(name);
+            let mut cell = format!(
+                "{} - {} / {} - {}",
+                fmt_f64(es_m.mean, 2),
+                fmt_f64(ed_m.mean, 2),
+                paper("sigma").map_or_else(|| "-".into(), |v| fmt_f64(v, 2)),
+                paper("dm").map_or_else(|| "-".into(), |v| fmt_f64(v, 2)),
+            );
+            if let Some(d) = days {
+                cell.push_str(&format!(
+                    " ({} - {} d)",
+                    fmt_f64(es_m.mean * d, 1),
+                    fmt_f64(ed_m.mean * d, 1)
+                ));
+            }
+            row.push(cell);
+            let mut add = |label: String, y: Option<f64>| {
+                if let Some(y) = y {
+                    curves.entry(label).or_default().push((systematic, y));
+                }
+            };
+            add(format!("{name}, Edmunds' model (ours)"), Some(es_m.mean));
+            add(
+                format!("{name}, triangular teeth (ours)"),
+                Some(mean_ci95(&ts).mean),
+            );
+            add(format!("{name}, Edmunds' Table 2 (paper)"), paper("sigma"));
+            let diff = |a: &[f64], b: &[f64]| {
+                mean_ci95(&a.iter().zip(b).map(|(x, y)| x - y).collect::<Vec<_>>())
+            };
+            let (dsig, ddm) = (diff(&ts, &es), diff(&td, &ed));
+            let show = |e: &stats::Estimate| {
+                format!(
+                    "{} [{} .. {}]",
+                    fmt_f64(e.mean, 3),
+                    fmt_f64(e.lo, 3),
+                    fmt_f64(e.hi, 3)
+                )
+            };
+            let jammed = results[ci].iter().filter(|t| t[pi].4).count();
+            tri_table.row(vec![
+                case.into(),
+                name.into(),
+                fmt_f64(es_m.mean, 3),
+                fmt_f64(mean_ci95(&ts).mean, 3),
+                show(&dsig),
+                fmt_f64(ed_m.mean, 3),
+                fmt_f64(mean_ci95(&td).mean, 3),
+                show(&ddm),
+                format!("{jammed}/{trials}"),
+            ]);
+            for (model, stat, v, p) in [
+                ("edmunds", "sigma", &es, paper("sigma")),
+                ("edmunds", "dm", &ed, paper("dm")),
+                ("triangular", "sigma", &ts, None),
+                ("triangular", "dm", &td, None),
+            ] {
+                let e = mean_ci95(v);
+                csv.push_str(&format!(
+                    "{case},{name},{model},{stat},{},{},{},{}\n",
+                    e.mean,
+                    e.lo,
+                    e.hi,
+                    p.map_or(String::new(), |x| x.to_string())
+                ));
+            }
+        }
+        edm_table.row(row);
+    }
+    edm_table.note("Each case: every gear gets random tooth errors (sd = random x pitch) and the systematic error split between a sinusoid of tip position and an eccentric axis (split parameter, 0.5 as in the paper).");
+    edm_table.note(format!(
+        "Days: from each pointer's exact ratio (Metonic {} d/deg, Saros {} d/deg).",
+        g.days_per_degree("Metonic")
+            .map_or_else(|| "-".into(), |d| fmt_f64(d, 3)),
+        g.days_per_degree("Saros")
+            .map_or_else(|| "-".into(), |d| fmt_f64(d, 3)),
+    ));
+    if pin_and_slot {
+        let note = "Lunar: with the pin-and-slot (--set pin_and_slot=true), beyond the paper; its TD is taken against the anomaly-bearing ideal motion (cargo xtask help lunar-anomaly).";
+        edm_table.note(note);
+        tri_table.note(note);
+    }
+    tri_table.note("A jam stops the pointer, so a triangular trial that jammed is measured up to its first jam (Edmunds' model never jams).");
+    let series: Vec<Series<'_>> = curves
+        .iter()
+        .map(|(label, points)| Series {
+            label: label.as_str(),
+            points: points.clone(),
+        })
+        .collect();
+    let svg = semilog_plot(
+        "Table 2: pointer sigma against Edmunds' systematic error (Cases A-D)",
+        "systematic error amplitude [deg] (Case A 0, B 0.5, C 1, D 2)",
+        "sigma of the Theoretical Difference [deg], logarithmic scale",
+        &series,
+    )?;
+    Ok(Report {
+        tables: vec![edm_table, tri_table],
+        files: vec![
+            OutputFile::new("table2-data.csv", csv),
+            OutputFile::new("table2.svg", svg),
+        ],
+        // Mechanisms run, per Case (each under both contact models).
+        trials: (CASES.len() * trials) as u64,
+        ..Default::default()
+    })
+}

@@ -1,0 +1,394 @@
+//! `table6`: σ, Dm and P of the five pointers for a mechanism built with each mesh's largest
+//! tolerable random and systematic errors (Tables 4 and 5 by the 1 % rule), 30 trials.
+
+use std::collections::BTreeMap;
+use std::f64::consts::TAU;
+
+use hypotheses::Params;
+use mechanism::{Mechanism, trial_rng};
+use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use stats::{Estimate, PointerStats, mean_ci95};
+
+use study::errors;
+use study::gearing;
+use study::cell::{Purpose, label};
+use study::pointers::{
+    EXELIGMOS_TURNS, GAMES_TURNS, LUNAR_TURNS, METONIC_TURNS, POINTERS, SAMPLES_PER_ENGAGEMENT,
+    SAROS_TURNS, pointer_runs,
+};
+use crate::emax::{paper_random, paper_systematic, show};
+use study::tolerance::{
+    self, RANDOM_FROM, RANDOM_STEP, RANDOM_TO, RULE, SYSTEMATIC_FROM, SYSTEMATIC_STEP,
+    SYSTEMATIC_TO,
+};
+
+const PARAMS: &[Param] = &[
+    Param {
+        name: "trials",
+        default: "30",
+        unit: "",
+        help: "runs of the whole mechanism, each with fresh errors and initial angles (the paper: 30)",
+    },
+    Param {
+        name: "cell_trials",
+        default: "200",
+        unit: "",
+        help: "trials per cell of Tables 4 and 5, from which the tolerances are derived",
+    },
+    RULE,
+    crate::emax::EMAX,
+    RANDOM_FROM,
+    RANDOM_TO,
+    RANDOM_STEP,
+    SYSTEMATIC_FROM,
+    SYSTEMATIC_TO,
+    SYSTEMATIC_STEP,
+    gearing::CLEARANCE,
+    gearing::TOOTH_HEIGHT,
+    errors::SPLIT,
+    LUNAR_TURNS,
+    METONIC_TURNS,
+    SAROS_TURNS,
+    GAMES_TURNS,
+    EXELIGMOS_TURNS,
+    SAMPLES_PER_ENGAGEMENT,
+    errors::PARAM,
+    errors::PARAMS_PARAM,
+    gearing::PARAM,
+    study::events::PARAM,
+];
+
+registry::inventory::submit! {
+    Experiment {
+        id: "table6",
+        title: "Pointer errors of a mechanism built with each mesh's largest tolerable random and systematic errors",
+        paper_item: "Table 6 (section 5)",
+        params: PARAMS,
+        config: None,
+        run,
+    }
+}
+
+/// One trial: per pointer (statistics up to the first jam, jammed, tooth engagements).
+type PointerTrials = Vec<(PointerStats, bool, u64)>;
+
+/// One pointer of one trial as [`Context::trials`] records it (for shards and their merge); NaN
+/// statistics (a run that stops at once) are recorded as bits.
+#[derive(Debug, Clone, Copy, Default, serde::Serialize, serde::Deserialize)]
+struct Recorded {
+    #[serde(with = "registry::f64_bits")]
+    sigma: f64,
+    #[serde(with = "registry::f64_bits")]
+    dm: f64,
+    #[serde(with = "registry::f64_bits")]
+    mean: f64,
+    jammed: bool,
+    engaged: u64,
+}
+
+fn run(ctx: &Context) -> Result<Report, RunError> {
+    study::events::label(ctx, counted(ctx)?)
+}
+
+/// The experiment itself; [`run`] names the event rule in its tables' titles.
+fn counted(ctx: &Context) -> Result<Report, RunError> {
+    let g = gearing::load(ctx)?;
+    let hyp = errors::chosen(ctx)?;
+    let trials = ctx.usize("trials")?;
+    if trials < 2 {
+        return Err(RunError::bad(
+            "--set",
+            "trials",
+            "must be at least 2 (an interval needs two trials)",
+        ));
+    }
+    let cell_trials = study::grids::trials(ctx, "cell_trials")?;
+    let rule = tolerance::rule(ctx)?;
+    let (h, clearance, split) = (
+        ctx.f64("tooth_height")?,
+        ctx.f64("clearance")?,
+        ctx.f64("split")?,
+    );
+    let per = ctx.usize("samples_per_engagement")?.max(1);
+    let runs = pointer_runs(ctx, &g, &POINTERS, per)?;
+    let tol = study::grids::derive(
+        ctx,
+        &g,
+        hyp,
+        cell_trials,
+        rule,
+        Purpose::Input,
+        crate::emax::given_random(ctx, &g)?,
+    )?;
+
+    // Each gear: the tolerances of its mesh; a gear in two meshes (b2) the smaller of each.
+    // Below a grid counts as 0 (no error known to be tolerable).
+    let mut per_gear: BTreeMap<String, (f64, f64, Vec<String>)> = BTreeMap::new();
+    for (m, mesh) in g.meshes().iter().enumerate() {
+        let r = tol.random[m].unwrap_or(0.0);
+        let s = tol.systematic[m].unwrap_or(0.0);
+        for gear in [&mesh.driver, &mesh.driven] {
+            let e =
+                per_gear
+                    .entry(gear.clone())
+                    .or_insert((f64::INFINITY, f64::INFINITY, Vec::new()));
+            e.0 = e.0.min(r);
+            e.1 = e.1.min(s);
+            e.2.push(mesh.label.clone());
+        }
+    }
+    let mut params: BTreeMap<String, Params> = BTreeMap::new();
+    for (gear, (r, s, _)) in &per_gear {
+        params.insert(
+            gear.clone(),
+            errors::params(
+                ctx,
+                hyp,
+                &[("random", *r), ("systematic", *s), ("split", split)],
+            )?,
+        );
+    }
+
+    let seed = ctx.seed();
+    // Named by everything that determines the trials (the tolerances are derived from the
+    // parameters, so naming those names them), so shards run and merge them.
+    let key = format!(
+        "table6: {trials} trials, hypothesis {}, tolerances {:?}, h = {h} mm, G = {clearance} %, gearing {}, events {}, pointers {:?}",
+        hyp.name(),
+        params
+            .iter()
+            .map(|(gear, p)| (gear.as_str(), p.iter().collect::<Vec<_>>()))
+            .collect::<Vec<_>>(),
+        ctx.param("gearing")?,
+        study::events::chosen(ctx)?.label(),
+        runs,
+    );
+    let recorded: Vec<Vec<Recorded>> = ctx.trials(&key, trials as u64, |t| {
+        // One stream per trial: every gear's errors, then the initial angles.
+        let mut rng = trial_rng(seed, t);
+        let mut failure = None;
+        let mech = Mechanism::build(&g, h, clearance, |name, gear| {
+            let Some(p) = params.get(name) else {
+                return Err(format!("gear {name} has no tolerance"));
+            };
+            errors::make(hyp, &gear, name, p, &mut rng).map_err(|e| {
+                let text = e.to_string();
+                failure = Some(e);
+                text
+            })
+        });
+        let mech = match (mech, failure) {
+            (_, Some(e)) => return Err(e),
+            (Err(e), None) => return Err(RunError::Internal(e.to_string())),
+            (Ok(m), None) => study::events::with_rule(ctx, m)?,
+        };
+        let mut out = Vec::new();
+        for &(name, turns, samples) in &runs {
+            let Some(run) = mech.run_pointer_to_first_jam(name, turns, &mut rng) else {
+                return Err(RunError::bad(
+                    "gearing",
+                    format!("pointer {name}"),
+                    "is missing",
+                ));
+            };
+            // A jam stops the pointer: statistics up to it (as table2 does).
+            let stop = run.first_stop();
+            let end = stop.as_ref().map_or(run.input_range, |s| s.input_angle);
+            let engaged: f64 = run
+                .stages
+                .iter()
+                .enumerate()
+                .map(|(i, s)| {
+                    let teeth = mech.mesh(&s.label).map_or(0, |m| m.driver().teeth());
+                    run.arbor_angle(end, i).abs() / TAU * teeth as f64
+                })
+                .sum();
+            let s = run.stats(samples);
+            out.push(Recorded {
+                sigma: s.sigma,
+                dm: s.dm,
+                mean: s.mean,
+                jammed: stop.is_some(),
+                engaged: engaged.round() as u64,
+            });
+        }
+        Ok(out)
+    })?;
+    let per_trial: Vec<PointerTrials> = recorded
+        .into_iter()
+        .map(|trial| {
+            trial
+                .into_iter()
+                .map(|r| {
+                    let s = PointerStats {
+                        sigma: r.sigma,
+                        dm: r.dm,
+                        mean: r.mean,
+                    };
+                    (s, r.jammed, r.engaged)
+                })
+                .collect()
+        })
+        .collect();
+
+    let mut layout = Table::new(
+        format!(
+            "Table 6: tolerable errors{}, G = {clearance} %, {trials} trials: ours (paper) [deg]; * where the paper's value is outside our 95 % interval",
+            if crate::emax::emax_from_paper(ctx)? {
+                " (random: the paper's E. max row, emax=paper)"
+            } else {
+                ""
+            }
+        ),
+        [
+            "",
+            "Lunar",
+            "Metonic",
+            "Eclipse (Saros)",
+            "Games",
+            "Exeligmos",
+        ],
+    );
+    let mut detail = Table::new(
+        "Table 6 in detail: mean over trials with its 95 % interval, the paper's value, trials that jammed",
+        [
+            "pointer",
+            "statistic",
+            "ours [deg]",
+            "95 % interval [deg]",
+            "paper [deg]",
+            "trials that jammed",
+        ],
+    );
+    let mut csv = String::from("pointer,statistic,mean_deg,lo_deg,hi_deg,paper_deg,jammed\n");
+    let mut rows: Vec<Vec<String>> = ["sigma", "Dm", "P"]
+        .iter()
+        .map(|s| vec![(*s).to_string()])
+        .collect();
+    let (mut inside, mut outside) = (0, 0);
+    for (i, &(name, turns, _)) in runs.iter().enumerate() {
+        let jammed = per_trial.iter().filter(|t| t[i].1).count();
+        let columns: [(&str, &str, Vec<f64>); 3] = [
+            (
+                "sigma",
+                "sigma",
+                per_trial.iter().map(|t| t[i].0.sigma).collect(),
+            ),
+            ("Dm", "dm", per_trial.iter().map(|t| t[i].0.dm).collect()),
+            // P: the average absolute value of the oscillation mean, as in Table 1.
+            (
+                "P",
+                "mean",
+                per_trial.iter().map(|t| t[i].0.mean.abs()).collect(),
+            ),
+        ];
+        for (row, (label_text, key, values)) in columns.into_iter().enumerate() {
+            let e: Estimate = mean_ci95(&values);
+            let paper = crate::paper::get("table6", &format!("{name}.{key}")).map(|r| r.value);
+            let ok = paper.is_none_or(|p| e.contains(p));
+            if paper.is_some() {
+                if ok { inside += 1 } else { outside += 1 }
+            }
+            let cell =
+                |x: Option<f64>, dec: usize| x.map_or_else(|| "-".to_string(), |v| fmt_f64(v, dec));
+            rows[row].push(format!(
+                "{} ({}){}",
+                fmt_f64(e.mean, 3),
+                cell(paper, 2),
+                if ok { "" } else { "*" }
+            ));
+            detail.row(vec![
+                format!("{name} ({turns} turns)"),
+                label_text.into(),
+                fmt_f64(e.mean, 4),
+                format!("{} .. {}", fmt_f64(e.lo, 4), fmt_f64(e.hi, 4)),
+                cell(paper, 2),
+                format!("{jammed}/{trials}"),
+            ]);
+            csv.push_str(&format!(
+                "{name},{label_text},{},{},{},{},{jammed}\n",
+                e.mean,
+                e.lo,
+                e.hi,
+                paper.map_or(String::new(), |v| v.to_string()),
+            ));
+        }
+    }
+    for r in rows {
+        layout.row(r);
+    }
+    layout.note(format!(
+        "Values of the paper inside our 95 % Student-t intervals: {inside}; outside: {outside}."
+    ));
+    layout.note("Each trial: every gear manufactured afresh with its tolerances (systematic split as the split parameter says), random initial angles; a jam stops the pointer, so a trial that jammed is measured up to its first jam (as in table2).");
+
+    let mut inputs = Table::new(
+        format!(
+            "Table 6 inputs: each mesh's largest tolerable errors (rule {rule} % of {cell_trials} trials): ours (paper)"
+        ),
+        ["mesh", "random E. max [pitch]", "systematic E. max [deg]"],
+    );
+    let mut inputs_csv = String::from("mesh,random_emax,systematic_emax_deg\n");
+    for (m, mesh) in tol.random_grid.meshes.iter().enumerate() {
+        let paper_sys = paper_systematic(mesh, &tol.sys_values, rule)
+            .map_or_else(|| "-".into(), |p| show(p, tol.sys_values.first(), 1));
+        let ours_sys = if tol.random[m].is_some() {
+            show(tol.systematic[m], tol.sys_values.first(), 1)
+        } else {
+            "-".into()
+        };
+        inputs.row(vec![
+            mesh.clone(),
+            format!(
+                "{} ({})",
+                show(tol.random[m], tol.random_grid.values.first(), 3),
+                paper_random(mesh).map_or_else(|| "-".into(), |p| label(p, 3))
+            ),
+            format!("{ours_sys} ({paper_sys})"),
+        ]);
+        inputs_csv.push_str(&format!(
+            "{mesh},{},{}\n",
+            tol.random[m].unwrap_or(0.0),
+            tol.systematic[m].unwrap_or(0.0)
+        ));
+    }
+    let shared: Vec<String> = per_gear
+        .iter()
+        .filter(|(_, (_, _, meshes))| meshes.len() > 1)
+        .map(|(gear, (r, s, meshes))| {
+            format!(
+                "{gear} ({}): random {}, systematic {} deg",
+                meshes.join(" and "),
+                label(*r, 3),
+                label(*s, 1)
+            )
+        })
+        .collect();
+    inputs.note(format!(
+        "Each gear takes its mesh's values; a gear in two meshes takes the smaller of each: {}.",
+        if shared.is_empty() {
+            "none".to_string()
+        } else {
+            shared.join("; ")
+        }
+    ));
+    inputs.note("A value below its grid (`< ...`) is built as 0. Systematic: the paper's value in brackets is what its own Table 5 counts give by the same rule.");
+
+    let cells = || tol.all();
+    let trains: u64 = (trials * runs.len()) as u64;
+    let train_engagements: u64 = per_trial.iter().flatten().map(|x| x.2).sum();
+    Ok(Report {
+        tables: vec![layout, detail, inputs],
+        files: vec![
+            OutputFile::new("table6-data.csv", csv),
+            OutputFile::new("table6-inputs.csv", inputs_csv),
+        ],
+        trials: cells().map(|c| c.trials).sum::<u64>() + trains,
+        engagements: cells().map(|c| c.engagements).sum::<u64>() + train_engagements,
+        agreement: Some(registry::Agreement {
+            consistent: inside,
+            differ: outside,
+        }),
+        ..Default::default()
+    })
+}
