@@ -1,5 +1,6 @@
 //! Small helpers shared by experiments: units, radii, Theoretical-Difference statistics, plots.
 
+use plotters::coord::ranged1d::AsRangedCoord;
 use plotters::prelude::*;
 use registry::{RunError, fmt_f64};
 
@@ -112,6 +113,53 @@ fn thinned(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
     out
 }
 
+/// How plotting errors are reported: naming the figure.
+type PlotErr<'a> = &'a dyn Fn(&dyn std::fmt::Display) -> RunError;
+
+/// The chart every figure is drawn on, in one place: a white `width` x 480 SVG canvas, the
+/// title as caption, the same margins and label areas, axes `x` by `y`; `draw` adds the mesh,
+/// the series and marks, then the legend is drawn (where `legend` is set, at that position).
+pub fn chart_svg<X, Y>(
+    title: &str,
+    width: u32,
+    (x, y): (X, Y),
+    legend: Option<SeriesLabelPosition>,
+    draw: impl for<'a> FnOnce(
+        &mut ChartContext<'a, SVGBackend<'a>, Cartesian2d<X::CoordDescType, Y::CoordDescType>>,
+        PlotErr<'_>,
+    ) -> Result<(), RunError>,
+) -> Result<String, RunError>
+where
+    X: AsRangedCoord,
+    Y: AsRangedCoord,
+{
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (width, 480)).into_drawing_area();
+        let plot_err = |e: &dyn std::fmt::Display| RunError::Internal(format!("plot {title}: {e}"));
+        root.fill(&WHITE).map_err(|e| plot_err(&e))?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 18))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(70)
+            .build_cartesian_2d(x, y)
+            .map_err(|e| plot_err(&e))?;
+        draw(&mut chart, &plot_err)?;
+        let mut labels = chart.configure_series_labels();
+        if let Some(at) = legend {
+            labels.position(at);
+        }
+        labels
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .draw()
+            .map_err(|e| plot_err(&e))?;
+        root.present().map_err(|e| plot_err(&e))?;
+    }
+    Ok(svg)
+}
+
 fn plot(
     title: &str,
     x_label: &str,
@@ -138,18 +186,7 @@ fn plot(
     let pad = ((y1 - y0) * 0.05).max(1e-9);
     let (y0, y1) = (y0 - pad, y1 + pad);
     let colours = [BLUE, RED, BLACK, GREEN, MAGENTA];
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (800, 480)).into_drawing_area();
-        let plot_err = |e: &dyn std::fmt::Display| RunError::Internal(format!("plot {title}: {e}"));
-        root.fill(&WHITE).map_err(|e| plot_err(&e))?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", 18))
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(70)
-            .build_cartesian_2d(x0..x1, y0..y1)
-            .map_err(|e| plot_err(&e))?;
+    chart_svg(title, 800, (x0..x1, y0..y1), None, |chart, plot_err| {
         let decade = |v: &f64| format!("{:.1e}", 10f64.powf(*v));
         let plain = |v: &f64| {
             // Six decimals at most, without trailing zeros: 0.1 + 0.2 prints as 0.3.
@@ -196,15 +233,8 @@ fn plot(
                 )))
                 .map_err(|e| plot_err(&e))?;
         }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .draw()
-            .map_err(|e| plot_err(&e))?;
-        root.present().map_err(|e| plot_err(&e))?;
-    }
-    Ok(svg)
+        Ok(())
+    })
 }
 
 /// CSV text from a header and rows of numbers printed with `decimals` decimals.
@@ -243,76 +273,65 @@ pub fn category_plot(
     let (y0, y1) = ((y0 - pad).max(0.0), y1 + pad);
     let n = categories.len().max(1) as i32;
     let colours = [BLUE, RED, BLACK, GREEN, MAGENTA];
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (1000, 480)).into_drawing_area();
-        let plot_err = |e: &dyn std::fmt::Display| RunError::Internal(format!("plot {title}: {e}"));
-        root.fill(&WHITE).map_err(|e| plot_err(&e))?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", 18))
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(70)
-            .build_cartesian_2d((0..n).into_segmented(), y0..y1)
-            .map_err(|e| plot_err(&e))?;
-        let name = |v: &SegmentValue<i32>| match v {
-            SegmentValue::CenterOf(i) | SegmentValue::Exact(i) => usize::try_from(*i)
-                .ok()
-                .and_then(|i| categories.get(i))
-                .cloned()
-                .unwrap_or_default(),
-            SegmentValue::Last => String::new(),
-        };
-        chart
-            .configure_mesh()
-            .x_desc(x_label)
-            .y_desc(y_label)
-            .x_labels(categories.len() + 1)
-            .x_label_formatter(&name)
-            .disable_x_mesh()
-            .draw()
-            .map_err(|e| plot_err(&e))?;
-        for (k, s) in series.iter().enumerate() {
-            let colour = colours[k % colours.len()];
-            let at = |x: f64, y: f64| (SegmentValue::CenterOf(x.round() as i32), y);
-            let style = colour.stroke_width(2);
-            let drawn = match k % 3 {
-                0 => chart.draw_series(
-                    s.points
-                        .iter()
-                        .map(|&(x, y)| Circle::new(at(x, y), 5, colour.filled())),
-                ),
-                1 => chart.draw_series(
-                    s.points
-                        .iter()
-                        .map(|&(x, y)| TriangleMarker::new(at(x, y), 7, style)),
-                ),
-                _ => chart.draw_series(
-                    s.points
-                        .iter()
-                        .map(|&(x, y)| Cross::new(at(x, y), 6, style)),
-                ),
+    chart_svg(
+        title,
+        1000,
+        ((0..n).into_segmented(), y0..y1),
+        None,
+        |chart, plot_err| {
+            let name = |v: &SegmentValue<i32>| match v {
+                SegmentValue::CenterOf(i) | SegmentValue::Exact(i) => usize::try_from(*i)
+                    .ok()
+                    .and_then(|i| categories.get(i))
+                    .cloned()
+                    .unwrap_or_default(),
+                SegmentValue::Last => String::new(),
             };
-            let shape = k % 3;
-            drawn.map_err(|e| plot_err(&e))?.label(s.label).legend(
-                move |(x, y)| -> DynElement<'static, SVGBackend<'_>, (i32, i32)> {
-                    match shape {
-                        0 => Circle::new((x + 10, y), 5, colour.filled()).into_dyn(),
-                        1 => TriangleMarker::new((x + 10, y), 7, colour.stroke_width(2)).into_dyn(),
-                        _ => Cross::new((x + 10, y), 6, colour.stroke_width(2)).into_dyn(),
-                    }
-                },
-            );
-        }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .draw()
-            .map_err(|e| plot_err(&e))?;
-        root.present().map_err(|e| plot_err(&e))?;
-    }
-    Ok(svg)
+            chart
+                .configure_mesh()
+                .x_desc(x_label)
+                .y_desc(y_label)
+                .x_labels(categories.len() + 1)
+                .x_label_formatter(&name)
+                .disable_x_mesh()
+                .draw()
+                .map_err(|e| plot_err(&e))?;
+            for (k, s) in series.iter().enumerate() {
+                let colour = colours[k % colours.len()];
+                let at = |x: f64, y: f64| (SegmentValue::CenterOf(x.round() as i32), y);
+                let style = colour.stroke_width(2);
+                let drawn = match k % 3 {
+                    0 => chart.draw_series(
+                        s.points
+                            .iter()
+                            .map(|&(x, y)| Circle::new(at(x, y), 5, colour.filled())),
+                    ),
+                    1 => chart.draw_series(
+                        s.points
+                            .iter()
+                            .map(|&(x, y)| TriangleMarker::new(at(x, y), 7, style)),
+                    ),
+                    _ => chart.draw_series(
+                        s.points
+                            .iter()
+                            .map(|&(x, y)| Cross::new(at(x, y), 6, style)),
+                    ),
+                };
+                let shape = k % 3;
+                drawn.map_err(|e| plot_err(&e))?.label(s.label).legend(
+                    move |(x, y)| -> DynElement<'static, SVGBackend<'_>, (i32, i32)> {
+                        match shape {
+                            0 => Circle::new((x + 10, y), 5, colour.filled()).into_dyn(),
+                            1 => TriangleMarker::new((x + 10, y), 7, colour.stroke_width(2))
+                                .into_dyn(),
+                            _ => Cross::new((x + 10, y), 6, colour.stroke_width(2)).into_dyn(),
+                        }
+                    },
+                );
+            }
+            Ok(())
+        },
+    )
 }
 /// "mean [lo .. hi]" of days (no interval for one value, "-" for none).
 pub fn mean_cell(days: &[f64], horizon: f64) -> String {

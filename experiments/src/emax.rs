@@ -14,19 +14,13 @@ pub const EMAX: Param = Param {
     default: "derived",
     unit: "",
     help: "each mesh's random error (row E. max): `derived` from Table 4's grid by the rule, as the paper did, or `paper`, the paper's own E. max row, so that every cell is run on the paper's inputs and compared like for like",
+    kind: registry::Kind::Choice(&["derived", "paper"]),
 };
 
-/// The `emax` parameter: `true` for the paper's own E. max row.
+/// The `emax` parameter: `true` for the paper's own E. max row (its kind admits only `derived`
+/// and `paper`).
 pub fn emax_from_paper(ctx: &Context) -> Result<bool, RunError> {
-    match ctx.param(EMAX.name)? {
-        "derived" => Ok(false),
-        "paper" => Ok(true),
-        other => Err(RunError::bad(
-            "--set",
-            EMAX.name,
-            format!("must be `derived` or `paper` (got `{other}`)"),
-        )),
-    }
+    Ok(ctx.param(EMAX.name)?.trim() == "paper")
 }
 
 /// Each mesh's random error from the paper's E. max row; an error naming the first mesh the

@@ -24,3 +24,44 @@ pub fn link() {}
 pub fn forget_cached_cells() {
     study::cell::forget_cache();
 }
+
+/// The context registered experiment `id` runs in with `seed`, `threads` and the `--set` pairs
+/// `sets`, built as the runner builds it (the same checks of every value).
+///
+/// Errors: an unregistered id, or a value [`registry::Context::new`] refuses.
+pub fn context(
+    id: &str,
+    seed: u64,
+    threads: usize,
+    sets: &[(&str, &str)],
+) -> Result<(&'static registry::Experiment, registry::Context), registry::RunError> {
+    link();
+    let map = registry::experiments().map_err(|e| registry::RunError::Internal(e.to_string()))?;
+    let exp = *map.get(id).ok_or_else(|| {
+        registry::RunError::bad("experiment", id, "is not registered (cargo xtask list)")
+    })?;
+    let sets: Vec<(String, String)> = sets
+        .iter()
+        .map(|(k, v)| ((*k).to_owned(), (*v).to_owned()))
+        .collect();
+    Ok((
+        exp,
+        registry::Context::new(exp, seed, threads, &sets, None)?,
+    ))
+}
+
+/// Runs registered experiment `id` in a pool of `threads` threads (see [`context`]): how tests
+/// and benchmarks run one experiment without the runner.
+pub fn run(
+    id: &str,
+    seed: u64,
+    threads: usize,
+    sets: &[(&str, &str)],
+) -> Result<registry::Report, registry::RunError> {
+    let (exp, ctx) = context(id, seed, threads, sets)?;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| registry::RunError::Internal(format!("thread pool: {e}")))?;
+    pool.install(|| (exp.run)(&ctx))
+}

@@ -387,13 +387,7 @@ mod tests {
     use study::cell::{Purpose, run_cells};
 
     fn ctx(id: &str, sets: &[(&str, &str)]) -> Context {
-        crate::link();
-        let map = registry::experiments().unwrap();
-        let sets: Vec<(String, String)> = sets
-            .iter()
-            .map(|(k, v)| ((*k).to_owned(), (*v).to_owned()))
-            .collect();
-        Context::new(map[id], 2025, 2, &sets, None).unwrap()
+        crate::context(id, 2025, 2, sets).unwrap().1
     }
 
     /// The first cell of the listing's row `row`: the count of failed trials.

@@ -6,13 +6,7 @@
 use registry::{Context, Report, Shard, ShardRecords, merge_records};
 
 fn context(id: &str, sets: &[(&str, &str)]) -> Context {
-    experiments::link();
-    let map = registry::experiments().unwrap();
-    let overrides: Vec<(String, String)> = sets
-        .iter()
-        .map(|(k, v)| ((*k).to_string(), (*v).to_string()))
-        .collect();
-    Context::new(map[id], 5, 2, &overrides, None).unwrap()
+    experiments::context(id, 5, 2, sets).unwrap().1
 }
 
 fn run(id: &str, ctx: &Context) -> Report {

@@ -198,6 +198,31 @@ fn no_more(cmd: &str, rest: &[String]) -> Result<(), ArgError> {
     }
 }
 
+/// The flag of `arg` and its value (`--flag=value`, or `--flag value` with the value taken from
+/// `rest`) when the flag is one of `known`; `Ok(None)` for anything else, which the caller
+/// refuses in its own words. A known flag without a value is `Err("--flag needs a value")`.
+pub(crate) fn flag_value<'a>(
+    arg: &'a str,
+    rest: &mut std::slice::Iter<'_, String>,
+    known: &[&str],
+) -> Result<Option<(&'a str, String)>, String> {
+    let (flag, inline) = match arg.split_once('=') {
+        Some((f, v)) if f.starts_with("--") => (f, Some(v.to_owned())),
+        _ => (arg, None),
+    };
+    if !known.contains(&flag) {
+        return Ok(None);
+    }
+    let value = match inline {
+        Some(v) => v,
+        None => match rest.next() {
+            Some(v) if !v.starts_with("--") => v.clone(),
+            _ => return Err(format!("{flag} needs a value")),
+        },
+    };
+    Ok(Some((flag, value)))
+}
+
 /// Refuses a flag given twice (`--seed 1 --seed 2`: which one was meant?), and `--set` of the
 /// same key twice; `seen` holds what was given so far.
 fn once(seen: &mut Vec<String>, flag: &str, value: &str) -> Result<(), ArgError> {
@@ -238,32 +263,22 @@ fn parse_run(args: &[String]) -> Result<RunArgs, ArgError> {
             run.ids.push(arg.clone());
             continue;
         }
-        let (flag, inline) = match arg.split_once('=') {
-            Some((f, v)) if f.starts_with("--") => (f, Some(v.to_owned())),
-            _ => (arg.as_str(), None),
-        };
-        if !matches!(
-            flag,
-            "--seed"
-                | "--threads"
-                | "--out"
-                | "--config"
-                | "--set"
-                | "--gearing"
-                | "--hypothesis"
-                | "--shard"
-                | "--trials"
-                | "--errors"
-                | "--format"
-        ) {
+        const RUN_FLAGS: [&str; 11] = [
+            "--seed",
+            "--threads",
+            "--out",
+            "--config",
+            "--set",
+            "--gearing",
+            "--hypothesis",
+            "--shard",
+            "--trials",
+            "--errors",
+            "--format",
+        ];
+        let Some((flag, value)) = flag_value(arg, &mut it, &RUN_FLAGS).map_err(ArgError::Usage)?
+        else {
             return Err(ArgError::Usage(format!("unknown flag `{arg}`")));
-        }
-        let value = match inline {
-            Some(v) => v,
-            None => match it.next() {
-                Some(v) if !v.starts_with("--") => v.clone(),
-                _ => return Err(ArgError::Usage(format!("{flag} needs a value"))),
-            },
         };
         once(&mut seen, flag, &value)?;
         match flag {
@@ -417,21 +432,11 @@ fn parse_merge(args: &[String]) -> Result<MergeArgs, ArgError> {
             merge.inputs.push(PathBuf::from(arg));
             continue;
         }
-        let (flag, inline) = match arg.split_once('=') {
-            Some((f, v)) if f.starts_with("--") => (f, Some(v.to_owned())),
-            _ => (arg.as_str(), None),
-        };
-        if !matches!(flag, "--out" | "--threads" | "--format") {
+        let known = ["--out", "--threads", "--format"];
+        let Some((flag, value)) = flag_value(arg, &mut it, &known).map_err(ArgError::Usage)? else {
             return Err(ArgError::Usage(format!(
                 "unknown flag `{arg}` of merge (the seed, parameters and config come from the partial files)"
             )));
-        }
-        let value = match inline {
-            Some(v) => v,
-            None => match it.next() {
-                Some(v) if !v.starts_with("--") => v.clone(),
-                _ => return Err(ArgError::Usage(format!("{flag} needs a value"))),
-            },
         };
         once(&mut seen, flag, &value)?;
         match flag {
@@ -463,23 +468,13 @@ fn parse_bench(args: &[String]) -> Result<BenchArgs, ArgError> {
     };
     let mut it = args.iter();
     while let Some(arg) = it.next() {
-        let (flag, inline) = match arg.split_once('=') {
-            Some((f, v)) if f.starts_with("--") => (f, Some(v.to_owned())),
-            _ => (arg.as_str(), None),
-        };
-        if !matches!(flag, "--only" | "--threads") {
+        let known = ["--only", "--threads"];
+        let Some((flag, value)) = flag_value(arg, &mut it, &known).map_err(ArgError::Usage)? else {
             return Err(ArgError::Usage(if arg.starts_with('-') {
                 format!("unknown flag `{arg}` of bench")
             } else {
                 format!("bench takes no ids (got `{arg}`); use --only table5|all")
             }));
-        }
-        let value = match inline {
-            Some(v) => v,
-            None => match it.next() {
-                Some(v) if !v.starts_with("--") => v.clone(),
-                _ => return Err(ArgError::Usage(format!("{flag} needs a value"))),
-            },
         };
         if flag == "--only" {
             bench.targets = vec![match value.trim() {

@@ -89,21 +89,13 @@ fn parse(args: &[String]) -> Result<Opts, Failure> {
     };
     let mut it = args.iter();
     while let Some(arg) = it.next() {
-        let (flag, inline) = match arg.split_once('=') {
-            Some((f, v)) if f.starts_with("--") => (f, Some(v.to_owned())),
-            _ => (arg.as_str(), None),
-        };
-        if !matches!(flag, "--seconds" | "--execs" | "--seed" | "--findings") {
+        let known = ["--seconds", "--execs", "--seed", "--findings"];
+        let Some((flag, value)) =
+            crate::args::flag_value(arg, &mut it, &known).map_err(Failure::Usage)?
+        else {
             return Err(Failure::Usage(format!(
                 "fuzz takes --seconds N or --execs N, --seed S and --findings DIR (got `{arg}`)"
             )));
-        }
-        let value = match inline {
-            Some(v) => v,
-            None => match it.next() {
-                Some(v) if !v.starts_with("--") => v.clone(),
-                _ => return Err(Failure::Usage(format!("{flag} needs a value"))),
-            },
         };
         match flag {
             "--seconds" => {

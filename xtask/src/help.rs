@@ -161,24 +161,25 @@ pub(crate) fn overview(exps: &Registry) -> String {
 /// directory, when there is one).
 pub(crate) fn details(e: &Experiment) -> String {
     let mut s = format!("{}: {}\nPaper item: {}\n\n", e.id, e.title, e.paper_item);
-    if e.params.is_empty() {
+    if e.all_params().next().is_none() {
         s.push_str("Parameters: none.\n");
     } else {
         let mut t = Table::new(
             "Parameters (set with --set NAME=VALUE)",
-            ["name", "default", "unit", "help"],
+            ["name", "default", "unit", "values", "help"],
         );
-        for p in e.params {
+        for p in e.all_params() {
             t.row(vec![
                 p.name.into(),
                 p.default.into(),
                 p.unit.into(),
+                p.kind.describe(),
                 p.help.into(),
             ]);
         }
         s.push_str(&t.render());
     }
-    let declares = |name: &str| e.params.iter().any(|p| p.name == name);
+    let declares = |name: &str| e.all_params().any(|p| p.name == name);
     let mut flags = Vec::new();
     if declares("trials") {
         flags.push(format!(
@@ -230,7 +231,7 @@ pub(crate) fn rule_details(r: &rules::Rule, exps: &Registry) -> String {
     }
     let users: Vec<&str> = exps
         .values()
-        .filter(|e| e.params.iter().any(|p| p.name == "events"))
+        .filter(|e| e.all_params().any(|p| p.name == "events"))
         .map(|e| e.id)
         .collect();
     s.push_str(&format!(
@@ -269,7 +270,7 @@ pub(crate) fn hypothesis_details(h: &dyn hypotheses::Hypothesis, exps: &Registry
     }
     let takes: Vec<&str> = exps
         .values()
-        .filter(|e| e.params.iter().any(|p| p.name == "hypothesis"))
+        .filter(|e| e.all_params().any(|p| p.name == "hypothesis"))
         .map(|e| e.id)
         .collect();
     let example = h

@@ -51,10 +51,7 @@ pub(crate) fn check_sets(
     sets: &[(String, String)],
 ) -> Result<(), Failure> {
     for (key, _) in sets {
-        if !chosen
-            .iter()
-            .any(|e| e.params.iter().any(|p| p.name == key))
-        {
+        if !chosen.iter().any(|e| e.all_params().any(|p| p.name == key)) {
             return Err(Failure::Bad(format!(
                 "--set: {key}: no selected experiment has this parameter"
             )));
@@ -64,7 +61,7 @@ pub(crate) fn check_sets(
 }
 
 pub(crate) fn declares(e: &Experiment, name: &str) -> bool {
-    e.params.iter().any(|p| p.name == name)
+    e.all_params().any(|p| p.name == name)
 }
 
 /// The `--set` pairs `e` declares.
@@ -164,7 +161,9 @@ pub(crate) fn plan(
         };
         sets.extend(shorthands(e, run).into_iter().filter_map(|(_, s)| s));
         let file = config.filter(|_| e.config.is_some()).cloned();
-        let ctx = progress::attach(Context::new(e, run.seed, threads, &sets, file)?);
+        let ctx = Context::new(e, run.seed, threads, &sets, file)
+            .map_err(|err| crate::execute::as_typed(err, e.id, run))?;
+        let ctx = progress::attach(ctx);
         planned.push(Planned { e, ctx, sets });
     }
     preflight(&planned, run)?;
@@ -178,104 +177,14 @@ pub(crate) fn plan(
 pub(crate) fn preflight(planned: &[Planned], run: &RunArgs) -> Result<(), Failure> {
     check_out(&run.out.clone().unwrap_or_else(default_out))?;
     let mut seen = std::collections::BTreeSet::new();
+    // The flags the user typed, for the messages: `--errors` stands for both.
+    let flags = if run.errors.is_some() {
+        ("--errors", "--errors")
+    } else {
+        ("--hypothesis", "--set measured")
+    };
     for p in planned {
-        let value = |name: &str| {
-            p.ctx
-                .declares(name)
-                .then(|| p.ctx.param(name).ok().map(str::to_owned))
-                .flatten()
-        };
-        if let Some(g) = value("gearing")
-            && train::Gearing::builtin(&g).is_none()
-            && seen.insert(("gearing", g.clone()))
-        {
-            train::Gearing::load(Path::new(&g)).map_err(|e| Failure::Bad(e.to_string()))?;
-        }
-        let flag = if run.errors.is_some() {
-            "--errors"
-        } else {
-            "--hypothesis"
-        };
-        if let Some(h) = value("hypothesis")
-            && seen.insert(("hypothesis", h.clone()))
-        {
-            hypotheses::lookup(&h).map_err(|e| Failure::Bad(format!("{flag}: {e}")))?;
-        }
-        if let Some(m) = value("measured")
-            && hypotheses::measured_file_given(&m).is_some()
-            && seen.insert(("measured", m.clone()))
-        {
-            let flag = if run.errors.is_some() {
-                "--errors"
-            } else {
-                "--set measured"
-            };
-            hypotheses::measured_file(m.trim())
-                .map_err(|e| Failure::Bad(format!("{flag}: {e}")))?;
-        }
-        measured_gears_in_gearing(p, run)?;
-    }
-    Ok(())
-}
-
-/// A measured-errors table given to an experiment that builds a gearing must name only gears of
-/// that gearing: a row for another gear (a typo, another gearing's name) would be silently
-/// unused. Refused naming the flag, the file, the gear and the gearing.
-pub(crate) fn measured_gears_in_gearing(p: &Planned, run: &RunArgs) -> Result<(), Failure> {
-    let value = |name: &str| {
-        p.ctx
-            .declares(name)
-            .then(|| p.ctx.param(name).ok().map(str::to_owned))
-            .flatten()
-    };
-    let Some(gearing_name) = value("gearing") else {
-        return Ok(());
-    };
-    let from_hypothesis = value("hypothesis").and_then(|h| {
-        h.split(hypotheses::SEPARATOR)
-            .find_map(|layer| layer.strip_prefix("measured:").map(str::to_owned))
-    });
-    let (file, flag) = match (from_hypothesis, value("measured")) {
-        (Some(f), _) => (
-            f,
-            if run.errors.is_some() {
-                "--errors"
-            } else {
-                "--hypothesis"
-            },
-        ),
-        (None, Some(m)) if hypotheses::measured_file_given(&m).is_some() => (
-            m.trim().to_owned(),
-            if run.errors.is_some() {
-                "--errors"
-            } else {
-                "--set measured"
-            },
-        ),
-        _ => return Ok(()),
-    };
-    let Ok(h) = hypotheses::measured_file(&file) else {
-        return Ok(()); // refused above with its own message
-    };
-    let gearing = match train::Gearing::builtin(&gearing_name) {
-        Some(g) => g,
-        None => train::Gearing::load(Path::new(&gearing_name))
-            .map_err(|e| Failure::Bad(e.to_string()))?,
-    };
-    for (gear, _) in h.table().entries() {
-        if gearing.gear(gear).is_none() {
-            return Err(Failure::Bad(format!(
-                "{flag}: {file}: gear {gear}: is not a gear of the gearing `{gearing_name}` ({} gears, e.g. {}), so its row would be silently unused",
-                gearing.gears().len(),
-                gearing
-                    .gears()
-                    .iter()
-                    .take(3)
-                    .map(|g| g.name.as_str())
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            )));
-        }
+        study::inputs::check(&p.ctx, flags, &mut seen).map_err(Failure::Bad)?;
     }
     Ok(())
 }

@@ -27,7 +27,7 @@ pub fn stamp(
 ) -> Report {
     let overrides: BTreeMap<&str, &str> = sets
         .iter()
-        .filter(|(k, _)| e.params.iter().any(|p| p.name == k))
+        .filter(|(k, _)| e.all_params().any(|p| p.name == k))
         .map(|(k, v)| (k.as_str(), v.as_str()))
         .collect();
     let config = config
@@ -88,10 +88,8 @@ fn recorded_inputs(ctx: &Context) -> BTreeMap<String, String> {
         inputs.insert(name.to_owned(), v.to_owned());
     }
     if let Some(h) = inputs.get("hypothesis").cloned() {
-        for layer in h.split(hypotheses::SEPARATOR) {
-            if let Some(f) = layer.strip_prefix("measured:") {
-                inputs.insert("errors".to_owned(), f.to_owned());
-            }
+        for f in study::inputs::measured_in_hypothesis(&h) {
+            inputs.insert("errors".to_owned(), f);
         }
     }
     inputs
@@ -157,30 +155,7 @@ fn inputs(ctx: &Context) -> Vec<serde_json::Value> {
             "sha256": sha256(c.text.as_bytes()),
         }));
     }
-    let value = |name: &str| {
-        ctx.declares(name)
-            .then(|| ctx.param(name).ok().map(str::to_owned))
-            .flatten()
-    };
-    let mut files: Vec<(&str, String)> = Vec::new();
-    if let Some(g) = value("gearing")
-        && train::Gearing::builtin(&g).is_none()
-    {
-        files.push(("gearing", g));
-    }
-    if let Some(h) = value("hypothesis") {
-        for layer in h.split(hypotheses::SEPARATOR) {
-            if let Some(f) = layer.strip_prefix("measured:") {
-                files.push(("measured errors", f.to_owned()));
-            }
-        }
-    }
-    if let Some(m) = value("measured")
-        && !m.trim().is_empty()
-        && m.trim() != "none"
-    {
-        files.push(("measured errors", m.trim().to_owned()));
-    }
+    let files = study::inputs::files(ctx);
     for (role, path) in files {
         let hash = input_file::read_to_string(Path::new(&path), input_file::MAX_INPUT_BYTES)
             .ok()
@@ -266,7 +241,9 @@ mod tests {
             default: "1",
             unit: "",
             help: "h",
+            kind: registry::Kind::Text,
         }],
+        groups: &[],
         config: None,
         run: nothing,
     };
@@ -281,14 +258,17 @@ mod tests {
                 default: "freeth2006",
                 unit: "",
                 help: "h",
+                kind: registry::Kind::Text,
             },
             Param {
                 name: "hypothesis",
                 default: "edmunds-split",
                 unit: "",
                 help: "h",
+                kind: registry::Kind::Text,
             },
         ],
+        groups: &[],
         config: None,
         run: nothing,
     };

@@ -825,6 +825,7 @@ mod tests {
         title: "First <one>",
         paper_item: "Figure 1",
         params: &[],
+        groups: &[],
         config: None,
         run: nothing,
     };
@@ -833,6 +834,7 @@ mod tests {
         title: "Second",
         paper_item: "Table 2",
         params: &[],
+        groups: &[],
         config: None,
         run: nothing,
     };

@@ -46,7 +46,9 @@ static A_FINE: Experiment = Experiment {
         default: "5",
         unit: "",
         help: "trials",
+        kind: registry::Kind::Text,
     }],
+    groups: &[],
     config: None,
     run: fine,
 };
@@ -55,6 +57,7 @@ static B_BAD: Experiment = Experiment {
     title: "refuses",
     paper_item: "Table 0",
     params: &[],
+    groups: &[],
     config: None,
     run: refuses,
 };
@@ -63,6 +66,7 @@ static C_PANIC: Experiment = Experiment {
     title: "panics",
     paper_item: "Table 0",
     params: &[],
+    groups: &[],
     config: None,
     run: panics,
 };

@@ -5,7 +5,7 @@
 #![allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
 
 mod support;
-use support::{stderr, stdout, xtask};
+use support::{stdout, xtask};
 
 #[test]
 fn bench_refuses_bad_arguments() {
@@ -17,16 +17,7 @@ fn bench_refuses_bad_arguments() {
         (&["bench", "--seed", "1"], true),
         (&["bench", "--only"], true),
     ] {
-        let o = xtask(args);
-        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
-        let err = stderr(&o);
-        assert_eq!(err.lines().count(), 1, "{args:?}: one line: {err}");
-        assert_eq!(
-            err.contains("`cargo xtask help` shows the usage"),
-            usage,
-            "{args:?}: {err}"
-        );
-        assert!(o.stdout.is_empty(), "{args:?}: nothing may run");
+        support::refused_in_one_line(args, usage);
     }
 }
 

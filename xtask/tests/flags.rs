@@ -12,27 +12,11 @@ mod support;
 use support::{Scratch, files, stderr, succeeded_output, xtask, xtask_env};
 
 /// A reduced table1 (its trial count comes from `--trials`).
-const TABLE1: &[&str] = &[
-    "--set",
-    "lunar_turns=0.2",
-    "--set",
-    "metonic_turns=0.2",
-    "--set",
-    "saros_turns=0.2",
-    "--set",
-    "games_turns=0.2",
-    "--set",
-    "exeligmos_turns=0.2",
-    "--set",
-    "samples_per_engagement=4",
-];
+const TABLE1: &[&str] = support::TABLE1_SHORT;
 
-fn run(ids: &[&str], extra: &[&str], out: &str) -> Output {
-    let mut args = vec!["run"];
-    args.extend_from_slice(ids);
-    args.extend_from_slice(extra);
-    args.extend(["--out", out]);
-    xtask(&args)
+/// `xtask run ids extra --out out`.
+fn run_into(ids: &[&str], extra: &[&str], out: &str) -> Output {
+    support::run_args(ids, &[extra, &["--out", out]].concat())
 }
 
 fn tables_json(dir: &Path) -> serde_json::Value {
@@ -42,7 +26,7 @@ fn tables_json(dir: &Path) -> serde_json::Value {
 #[test]
 fn format_json_prints_tables_json() {
     let s = Scratch::new("json");
-    let (out, _) = succeeded_output(&run(&["fig2"], &["--format", "json"], &s.path("r")));
+    let (out, _) = succeeded_output(&run_into(&["fig2"], &["--format", "json"], &s.path("r")));
     let file = fs::read_to_string(s.0.join("r/fig2/tables.json")).unwrap();
     assert_eq!(out, file, "stdout is tables.json");
     assert!(
@@ -50,7 +34,11 @@ fn format_json_prints_tables_json() {
         "results written as ever"
     );
 
-    let (out, _) = succeeded_output(&run(&["fig2", "fig3"], &["--format=json"], &s.path("two")));
+    let (out, _) = succeeded_output(&run_into(
+        &["fig2", "fig3"],
+        &["--format=json"],
+        &s.path("two"),
+    ));
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
     for id in ["fig2", "fig3"] {
         assert_eq!(
@@ -64,7 +52,7 @@ fn format_json_prints_tables_json() {
 #[test]
 fn format_csv_prints_each_table_after_its_title() {
     let s = Scratch::new("csv");
-    let (out, _) = succeeded_output(&run(&["fig2"], &["--format", "csv"], &s.path("r")));
+    let (out, _) = succeeded_output(&run_into(&["fig2"], &["--format", "csv"], &s.path("r")));
     let dir = s.0.join("r/fig2");
     let titles: Vec<String> = tables_json(&dir)["tables"]
         .as_array()
@@ -89,7 +77,7 @@ fn format_csv_prints_each_table_after_its_title() {
         );
     }
     // Several experiments: titles name the experiment.
-    let (out, _) = succeeded_output(&run(
+    let (out, _) = succeeded_output(&run_into(
         &["fig2", "fig3"],
         &["--format", "csv"],
         &s.path("two"),
@@ -103,12 +91,12 @@ fn trials_reaches_every_experiment_that_declares_it() {
     let s = Scratch::new("trials");
     let mut extra = vec!["--trials", "3"];
     extra.extend_from_slice(TABLE1);
-    let (out, _) = succeeded_output(&run(&["table1", "fig2"], &extra, &s.path("r")));
+    let (out, _) = succeeded_output(&run_into(&["table1", "fig2"], &extra, &s.path("r")));
     assert!(out.contains("3 trials"), "{out}");
     // A shard records it with its other parameters, so that the merge replays it.
     let mut extra = vec!["--trials", "3", "--shard", "0/1"];
     extra.extend_from_slice(TABLE1);
-    succeeded_output(&run(&["table1"], &extra, &s.path("shard")));
+    succeeded_output(&run_into(&["table1"], &extra, &s.path("shard")));
     let partial = fs::read_to_string(s.0.join("shard/table1/partial-0-of-1.json")).unwrap();
     assert!(partial.contains(r#"["trials","3"]"#), "{partial}");
 }
@@ -116,13 +104,13 @@ fn trials_reaches_every_experiment_that_declares_it() {
 #[test]
 fn quiet_prints_nothing_on_stderr_and_verbose_logs_batches() {
     let s = Scratch::new("quiet");
-    let (_, err) = succeeded_output(&run(&["fig2"], &[], &s.path("a")));
+    let (_, err) = succeeded_output(&run_into(&["fig2"], &[], &s.path("a")));
     assert!(err.contains("results: "), "{err}");
-    let (_, err) = succeeded_output(&run(&["fig2"], &["-q"], &s.path("b")));
+    let (_, err) = succeeded_output(&run_into(&["fig2"], &["-q"], &s.path("b")));
     assert_eq!(err, "", "-q: errors only");
     let mut extra = vec!["--trials", "2", "-v"];
     extra.extend_from_slice(TABLE1);
-    let (_, err) = succeeded_output(&run(&["table1"], &extra, &s.path("c")));
+    let (_, err) = succeeded_output(&run_into(&["table1"], &extra, &s.path("c")));
     assert!(
         err.contains("DEBUG") && err.contains("trial batch"),
         "{err}"
@@ -171,10 +159,11 @@ fn errors_points_the_measured_hypothesis_at_a_table() {
     )
     .unwrap();
     let file = table.to_str().unwrap();
-    let (by_errors, _) = succeeded_output(&run(&["fig5"], &["--errors", file], &s.path("a")));
+    let (by_errors, _) = succeeded_output(&run_into(&["fig5"], &["--errors", file], &s.path("a")));
     let name = format!("measured:{file}");
-    let (by_name, _) = succeeded_output(&run(&["fig5"], &["--hypothesis", &name], &s.path("b")));
-    let (default, _) = succeeded_output(&run(&["fig5"], &[], &s.path("c")));
+    let (by_name, _) =
+        succeeded_output(&run_into(&["fig5"], &["--hypothesis", &name], &s.path("b")));
+    let (default, _) = succeeded_output(&run_into(&["fig5"], &[], &s.path("c")));
     assert_eq!(by_errors, by_name);
     assert_ne!(by_errors, default, "the table's errors were applied");
     // A gear the table lacks is named.
@@ -183,7 +172,7 @@ fn errors_points_the_measured_hypothesis_at_a_table() {
         r#"(gears: [(gear: "driver", random: 0.05, systematic: 0.5)])"#,
     )
     .unwrap();
-    let o = run(&["fig5"], &["--errors", file], &s.path("d"));
+    let o = run_into(&["fig5"], &["--errors", file], &s.path("d"));
     let err = stderr(&o);
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert!(err.contains("gear driven: missing from the table"), "{err}");

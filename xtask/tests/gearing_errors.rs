@@ -48,22 +48,8 @@ fn one_wrong_tooth_count_changes_the_ratio_checks() {
         train::FREETH2006_RON.replace(original, "(name: \"b2\", teeth: 63,"),
     )
     .unwrap();
-    let short = [
-        "--set",
-        "trials=2",
-        "--set",
-        "lunar_turns=0.05",
-        "--set",
-        "metonic_turns=0.05",
-        "--set",
-        "saros_turns=0.05",
-        "--set",
-        "games_turns=0.05",
-        "--set",
-        "exeligmos_turns=0.05",
-        "--set",
-        "samples_per_engagement=2",
-    ];
+    let short = support::TABLE1_TINY;
+
     let out = s.path("out");
     let run = |gearing: Option<&str>| {
         let mut args = vec!["run", "table1", "--out", &out];

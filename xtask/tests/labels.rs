@@ -26,45 +26,34 @@ fn table3_with_an_errors_file_prints_one_row_and_names_its_inputs() {
         .collect();
     fs::write(&errors, format!("(gears: [{}])", rows.join(", "))).unwrap();
     let out = s.path("out");
-    let printed = succeeded(&[
-        "run",
-        "table3",
-        "--errors",
-        errors.to_str().unwrap(),
-        "--trials",
-        "2",
-        "--out",
-        &out,
-    ]);
+    // Each table with the errors file and two trials.
+    let run = |id: &str| {
+        let errors = errors.to_str().unwrap();
+        succeeded(&[
+            "run", id, "--errors", errors, "--trials", "2", "--out", &out,
+        ])
+    };
+    let printed = run("table3");
     check_table3(&printed, &out, &errors);
     // tableI: one row per clearance, not four Cases per clearance.
-    let printed = succeeded(&[
-        "run",
-        "tableI",
-        "--errors",
-        errors.to_str().unwrap(),
-        "--trials",
-        "2",
-        "--out",
-        &out,
-    ]);
+    let printed = run("tableI");
+    check_rows(&printed, 3);
+}
+
+/// The table's body has `rows` rows, the first saying the Cases do not reach the hypothesis.
+fn check_rows(printed: &str, rows: usize) {
     let body: Vec<&str> = printed
         .lines()
         .filter(|l| l.starts_with("| ") && !l.starts_with("| case"))
         .collect();
-    assert_eq!(body.len(), 3, "{printed}");
+    assert_eq!(body.len(), rows, "{printed}");
     assert!(body[0].contains("Cases A-D alike"), "{printed}");
 }
 
 fn check_table3(printed: &str, out: &str, errors: &std::path::Path) {
     let file = errors.to_str().unwrap();
     // One row: the Cases do not reach the measured hypothesis.
-    let body: Vec<&str> = printed
-        .lines()
-        .filter(|l| l.starts_with("| ") && !l.starts_with("| case"))
-        .collect();
-    assert_eq!(body.len(), 1, "{printed}");
-    assert!(body[0].contains("Cases A-D alike"), "{printed}");
+    check_rows(printed, 1);
     assert!(!printed.contains("| A "), "{printed}");
     // The title says the inputs differ, and the paper's numbers are labelled.
     assert!(

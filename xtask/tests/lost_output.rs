@@ -50,28 +50,16 @@ fn a_killed_runs_leftovers_are_cleaned_and_its_moved_aside_results_put_back() {
     );
     assert!(out.join("pair/pair.csv").exists());
 
-    let o = xtask(&[
+    let mut args = vec![
         "run",
         "table1",
         "--shard",
         "0/2",
-        "--set",
-        "trials=2",
-        "--set",
-        "lunar_turns=0.05",
-        "--set",
-        "metonic_turns=0.05",
-        "--set",
-        "saros_turns=0.05",
-        "--set",
-        "games_turns=0.05",
-        "--set",
-        "exeligmos_turns=0.05",
-        "--set",
-        "samples_per_engagement=2",
         "--out",
         out.to_str().unwrap(),
-    ]);
+    ];
+    args.extend(support::TABLE1_TINY);
+    let o = xtask(&args);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(!partial_tmp.exists(), "the killed shard's temporary file");
     let hidden: Vec<String> = fs::read_dir(&out)
@@ -87,28 +75,10 @@ fn a_merge_never_replaces_the_folder_holding_its_partial_files() {
     let s = Scratch::new("merge-into-shards");
     let sh = s.path("sh");
     for k in 0..2 {
-        let o = xtask(&[
-            "run",
-            "table1",
-            "--shard",
-            &format!("{k}/2"),
-            "--set",
-            "trials=2",
-            "--set",
-            "lunar_turns=0.05",
-            "--set",
-            "metonic_turns=0.05",
-            "--set",
-            "saros_turns=0.05",
-            "--set",
-            "games_turns=0.05",
-            "--set",
-            "exeligmos_turns=0.05",
-            "--set",
-            "samples_per_engagement=2",
-            "--out",
-            &sh,
-        ]);
+        let shard = format!("{k}/2");
+        let mut args = vec!["run", "table1", "--shard", &shard, "--out", &sh];
+        args.extend(support::TABLE1_TINY);
+        let o = xtask(&args);
         assert!(o.status.success(), "{}", stderr(&o));
     }
     let o = xtask(&["merge", &sh, "--out", &sh]);

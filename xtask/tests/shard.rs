@@ -11,34 +11,24 @@ mod support;
 use support::{Scratch, files, sealed, stderr, stdout, xtask};
 
 /// A reduced table1: 5 trials of short runs with few samples.
-const TABLE1: &[&str] = &[
-    "table1",
-    "--set",
-    "trials=5",
-    "--set",
-    "lunar_turns=0.2",
-    "--set",
-    "metonic_turns=0.2",
-    "--set",
-    "saros_turns=0.2",
-    "--set",
-    "games_turns=0.2",
-    "--set",
-    "exeligmos_turns=0.2",
-    "--set",
-    "samples_per_engagement=4",
-];
+fn table1() -> Vec<&'static str> {
+    let mut args = vec!["table1", "--set", "trials=5"];
+    args.extend(support::TABLE1_SHORT);
+    args
+}
 
 /// A reduced failure study: Case D (jams early) and Case C, 5 runs each.
 const FAILURE: &[&str] = &["failure", "--set", "cases=D,C", "--set", "trials=5"];
 
 /// `run <experiment...> <extra...>`, which must succeed; returns its stdout.
-fn run(experiment: &[&str], extra: &[&str]) -> Vec<u8> {
-    let mut args = vec!["run"];
-    args.extend_from_slice(experiment);
-    args.extend_from_slice(extra);
-    let o = xtask(&args);
-    assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+/// `xtask run experiment extra`, which must succeed: its stdout.
+fn run_ok(experiment: &[&str], extra: &[&str]) -> Vec<u8> {
+    let o = support::run_args(experiment, extra);
+    assert!(
+        o.status.success(),
+        "{experiment:?} {extra:?}: {}",
+        stderr(&o)
+    );
     o.stdout
 }
 
@@ -78,10 +68,10 @@ fn assert_same_results(a: &Path, b: &Path) {
 fn shards_merge_to_the_single_run(experiment: &[&str]) {
     let id = experiment[0];
     let s = Scratch::new(id);
-    let printed = run(experiment, &["--out", &s.path("single")]);
+    let printed = run_ok(experiment, &["--out", &s.path("single")]);
 
     for k in 0..2 {
-        run(
+        run_ok(
             experiment,
             &[
                 "--shard",
@@ -100,7 +90,7 @@ fn shards_merge_to_the_single_run(experiment: &[&str]) {
     assert_same_results(&s.0.join("single").join(id), &s.0.join("merged2").join(id));
 
     for k in [2, 0, 1] {
-        run(
+        run_ok(
             experiment,
             &["--shard", &format!("{k}/3"), "--out", &s.path("three")],
         );
@@ -125,7 +115,7 @@ fn shards_merge_to_the_single_run(experiment: &[&str]) {
 
 #[test]
 fn table1_shards_merge_to_the_single_run_byte_for_byte() {
-    shards_merge_to_the_single_run(TABLE1);
+    shards_merge_to_the_single_run(&table1());
 }
 
 #[test]
@@ -159,14 +149,14 @@ fn table5_shards_merge_to_the_single_run_byte_for_byte() {
 #[test]
 fn one_and_two_threads_write_the_same_results() {
     let s = Scratch::new("threads");
-    let one = run(TABLE1, &["--threads", "1", "--out", &s.path("one")]);
-    let two = run(TABLE1, &["--threads", "2", "--out", &s.path("two")]);
+    let one = run_ok(&table1(), &["--threads", "1", "--out", &s.path("one")]);
+    let two = run_ok(&table1(), &["--threads", "2", "--out", &s.path("two")]);
     assert_eq!(one, two);
     assert_same_results(&s.0.join("one/table1"), &s.0.join("two/table1"));
     // A merge with one thread of shards run with two.
     for k in 0..2 {
-        run(
-            TABLE1,
+        run_ok(
+            &table1(),
             &[
                 "--threads",
                 "2",
@@ -225,8 +215,8 @@ fn refused(s: &Scratch, inputs: &[String], words: &[&str]) {
 fn merge_refuses_partial_files_that_do_not_fit() {
     let s = Scratch::new("refuse");
     for k in 0..3 {
-        run(
-            TABLE1,
+        run_ok(
+            &table1(),
             &[
                 "--shard",
                 &format!("{k}/3"),
@@ -259,8 +249,8 @@ fn merge_refuses_partial_files_that_do_not_fit() {
         ],
     );
     // Shards of different seeds.
-    run(
-        TABLE1,
+    run_ok(
+        &table1(),
         &["--seed", "9", "--shard", "1/3", "--out", &s.path("seed9")],
     );
     refused(
@@ -269,16 +259,16 @@ fn merge_refuses_partial_files_that_do_not_fit() {
         &[&file(&s.path("seed9"), 1, 3), "seed", "is 9", "2025"],
     );
     // Shards of different parameters.
-    let mut more: Vec<&str> = TABLE1.to_vec();
+    let mut more: Vec<&str> = table1();
     more[2] = "trials=6";
-    run(&more, &["--shard", "1/3", "--out", &s.path("trials6")]);
+    run_ok(&more, &["--shard", "1/3", "--out", &s.path("trials6")]);
     refused(
         &s,
         &[ok(0), s.path("trials6"), ok(2)],
         &["--set", "trials=6", "trials=5"],
     );
     // Shards of different experiments.
-    run(
+    run_ok(
         &["failure", "--set", "cases=D", "--set", "trials=2"],
         &["--shard", "1/3", "--out", &s.path("failure")],
     );
@@ -293,7 +283,7 @@ fn merge_refuses_partial_files_that_do_not_fit() {
         ],
     );
     // Different numbers of shards.
-    run(TABLE1, &["--shard", "1/2", "--out", &s.path("of2")]);
+    run_ok(&table1(), &["--shard", "1/2", "--out", &s.path("of2")]);
     refused(
         &s,
         &[ok(0), s.path("of2"), ok(2)],
@@ -400,16 +390,7 @@ fn bad_shard_flags_exit_2_and_write_nothing() {
         (&["merge"], true),
         (&["merge", &out, "--seed", "1"], true),
     ] {
-        let o = xtask(args);
-        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
-        let err = stderr(&o);
-        assert_eq!(err.lines().count(), 1, "{args:?}: one line: {err}");
-        assert_eq!(
-            err.contains("`cargo xtask help` shows the usage"),
-            usage,
-            "{args:?}: {err}"
-        );
-        assert!(o.stdout.is_empty());
+        support::refused_in_one_line(args, usage);
         assert!(!Path::new(&out).exists(), "{args:?} wrote something");
     }
     let o = xtask(&["run", "table1", "--shard", "3/3"]);

@@ -52,7 +52,7 @@ fn count_parameters() -> Vec<(&'static str, &'static str)> {
     experiments::link();
     let mut out = Vec::new();
     for (id, e) in registry::experiments().unwrap() {
-        for p in e.params {
+        for p in e.all_params() {
             if COUNTS.contains(&p.name) {
                 out.push((id, p.name));
             }

@@ -2,29 +2,11 @@
 //! same events. `cargo run --release -p contact --example differential -- 300 4`
 #![allow(missing_docs, clippy::unwrap_used, reason = "harness")]
 
-use std::f64::consts::TAU;
+use contact::Start;
 
-use contact::{Mesh, Start};
-use geometry::{Gear, Vec2};
-use rand::{Rng, SeedableRng};
-use rand_chacha::ChaCha8Rng;
-use rand_distr::{Distribution, Normal};
-
-fn gear(n: usize, r_tip: f64, sigma: f64, ecc: f64, rng: &mut ChaCha8Rng) -> Gear {
-    let pitch = TAU / n as f64;
-    let normal = Normal::new(0.0, sigma * pitch).unwrap();
-    let tips = (0..n)
-        .map(|k| pitch * k as f64 + normal.sample(rng))
-        .collect();
-    let a: f64 = rng.random::<f64>() * TAU;
-    Gear::new(
-        r_tip,
-        r_tip - 1.1,
-        tips,
-        Vec2::new(ecc * a.cos(), ecc * a.sin()),
-    )
-    .unwrap()
-}
+#[path = "../tests/support/hard_meshes.rs"]
+mod hard_meshes;
+use hard_meshes::hard_mesh;
 
 fn main() {
     let mut args = std::env::args().skip(1);
@@ -34,25 +16,10 @@ fn main() {
     let g_fixed: Option<f64> = args.next().map(|s| s.parse().unwrap());
     let (mut diffs, mut events, mut first_diffs) = (0, 0, 0);
     for s in 0..cases {
-        let mut rng = ChaCha8Rng::seed_from_u64(s);
-        let n1 = rng.random_range(12..40);
-        let n2 = rng.random_range(n1..(n1 * 4).min(120));
-        let module = 0.5 + rng.random::<f64>();
-        let (r1, r2) = (n1 as f64 * module / 2.0, n2 as f64 * module / 2.0);
-        let sigma = [0.0, 0.04, 0.08, 0.12][rng.random_range(0..4)];
-        let ecc = [0.0, 0.05, 0.15, 0.3][rng.random_range(0..4)];
-        let g = [10.0, 25.0, 40.0, 55.0, 70.0, 85.0][rng.random_range(0..6)];
-        let g = g_fixed.unwrap_or(g);
-        let d = geometry::centre_distance(r1, r2, 1.1, g);
-        let Ok(m) = Mesh::new(
-            gear(n1, r1, sigma, ecc, &mut rng),
-            gear(n2, r2, sigma, ecc, &mut rng),
-            d,
-        ) else {
+        let Some(h) = hard_mesh(s, g_fixed) else {
             continue;
         };
-        let phi0 = rng.random::<f64>();
-        let end = phi0 + TAU * n2 as f64 / n1 as f64;
+        let (m, phi0, end, what) = (h.mesh, h.phi0, h.end, h.what);
         let a = m.run_with_steps(phi0, end, Start::Touching(0.0), false, reference);
         let b = m.run_with_steps(phi0, end, Start::Touching(0.0), false, steps);
         events += a.events().len();
@@ -80,7 +47,7 @@ fn main() {
                 );
             }
             println!(
-                "case {s}: n {n1}:{n2} sigma {sigma} ecc {ecc} G {g}: {reference} steps {} jams {} dis; {steps} steps {} jams {} dis",
+                "{what}: {reference} steps {} jams {} dis; {steps} steps {} jams {} dis",
                 a.jams(),
                 a.disengagements(),
                 b.jams(),

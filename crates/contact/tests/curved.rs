@@ -11,7 +11,7 @@ use geometry::{Gear, Vec2};
 
 /// The paper's N = 8 example (R = 200, r = 100, D = 310), the driver with flank sagitta
 /// `s_driver` and the driven gear with `s_driven`.
-fn paper_example(s_driver: f64, s_driven: f64) -> Mesh {
+fn curved_paper_example(s_driver: f64, s_driven: f64) -> Mesh {
     let g = |s: f64| {
         Gear::ideal(8, 200.0, 100.0)
             .unwrap()
@@ -86,7 +86,7 @@ fn convex_teeth_touch_earlier_and_push_further() {
         .collect();
     let pushes: Vec<f64> = sagittas
         .iter()
-        .map(|&s| paper_example(s, s).obstacle(0.0, 0, 0).unwrap().hi)
+        .map(|&s| curved_paper_example(s, s).obstacle(0.0, 0, 0).unwrap().hi)
         .collect();
     for w in touches.windows(2) {
         assert!(w[1] < w[0], "first touch not earlier: {touches:?}");
@@ -122,7 +122,7 @@ fn driver_tip_on_a_driven_arc_matches_the_law_of_cosines() {
             .into_iter()
             .find(|a| (0.0..PI / 8.0).contains(a))
             .unwrap();
-        let got = paper_example(0.0, s).obstacle(0.0, 0, 0).unwrap().hi;
+        let got = curved_paper_example(0.0, s).obstacle(0.0, 0, 0).unwrap().hi;
         assert!(
             (got - want).abs() < 1e-12,
             "s = {s}: solver {} deg, closed form {} deg",
@@ -131,6 +131,9 @@ fn driver_tip_on_a_driven_arc_matches_the_law_of_cosines() {
         );
     }
     // And the straight limit is Thorndike's θ'(0) = 17.955 387 657 7°.
-    let straight = paper_example(0.0, 0.0).obstacle(0.0, 0, 0).unwrap().hi;
+    let straight = curved_paper_example(0.0, 0.0)
+        .obstacle(0.0, 0, 0)
+        .unwrap()
+        .hi;
     assert!((straight.to_degrees() - 17.955_387_657_7).abs() < 1e-9);
 }

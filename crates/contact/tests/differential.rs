@@ -5,55 +5,27 @@
 //! cases; `cargo run --release -p contact --example differential` reports them.)
 #![allow(clippy::unwrap_used, reason = "tests")]
 
-use std::f64::consts::TAU;
+use contact::Start;
 
-use contact::{Mesh, Start};
-use geometry::{Gear, Vec2};
-use rand::{Rng, SeedableRng};
-use rand_chacha::ChaCha8Rng;
-use rand_distr::{Distribution, Normal};
-
-fn gear(n: usize, r_tip: f64, sigma: f64, ecc: f64, rng: &mut ChaCha8Rng) -> Gear {
-    let pitch = TAU / n as f64;
-    let normal = Normal::new(0.0, sigma * pitch).unwrap();
-    let tips = (0..n)
-        .map(|k| pitch * k as f64 + normal.sample(rng))
-        .collect();
-    let a: f64 = rng.random::<f64>() * TAU;
-    Gear::new(
-        r_tip,
-        r_tip - 1.1,
-        tips,
-        Vec2::new(ecc * a.cos(), ecc * a.sin()),
-    )
-    .unwrap()
-}
+#[path = "support/hard_meshes.rs"]
+mod hard_meshes;
+use hard_meshes::{HardMesh, hard_mesh};
 
 #[test]
 fn first_events_do_not_depend_on_the_step() {
     let (mut checked, mut with_events) = (0, 0);
     for case in 0..120u64 {
-        let mut rng = ChaCha8Rng::seed_from_u64(case);
-        let n1 = rng.random_range(12..40);
-        let n2 = rng.random_range(n1..(n1 * 4).min(120));
-        let module = 0.5 + rng.random::<f64>();
-        let (r1, r2) = (n1 as f64 * module / 2.0, n2 as f64 * module / 2.0);
-        let sigma = [0.0, 0.04, 0.08, 0.12][rng.random_range(0..4)];
-        let ecc = [0.0, 0.05, 0.15, 0.3][rng.random_range(0..4)];
-        let g = [10.0, 25.0, 40.0, 55.0, 70.0, 85.0][rng.random_range(0..6)];
-        let d = geometry::centre_distance(r1, r2, 1.1, g);
-        let Ok(m) = Mesh::new(
-            gear(n1, r1, sigma, ecc, &mut rng),
-            gear(n2, r2, sigma, ecc, &mut rng),
-            d,
-        ) else {
+        let Some(HardMesh {
+            mesh: m,
+            phi0,
+            end,
+            what,
+        }) = hard_mesh(case, None)
+        else {
             continue;
         };
-        let phi0 = rng.random::<f64>();
-        let end = phi0 + TAU * n2 as f64 / n1 as f64;
         let coarse = m.run(phi0, end, Start::Touching(0.0));
         let fine = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 32.0);
-        let what = format!("case {case}: {n1}:{n2} teeth, sigma {sigma}, ecc {ecc} mm, G {g} %");
         // The events-only run (no segments kept) finds exactly the same events.
         assert_eq!(
             m.run_events(phi0, end, Start::Touching(0.0)),

@@ -18,7 +18,7 @@ const COUNTS: [usize; 30] = [
 ];
 
 /// An ideal gear of `n` teeth at the paper's module (R/N about 0.25 mm, h = 1.1 mm).
-fn gear(n: usize) -> Gear {
+fn small_gear(n: usize) -> Gear {
     let r_tip = 0.25 * n as f64 + 1.0;
     Gear::ideal(n, r_tip, r_tip - 1.1).unwrap()
 }
@@ -85,7 +85,7 @@ fn check_random_sd(name: &str, sets: &[(&str, &str)], random: f64, seed: u64) {
     let (mut sum_sq, mut n) = (0.0, 0usize);
     for _ in 0..4 {
         for &teeth in &COUNTS {
-            let g = gear(teeth);
+            let g = small_gear(teeth);
             let made = h.apply(&g, "test", &p, &mut rng).unwrap();
             let sigma = random * g.pitch();
             for d in displacements(&g, &made) {
@@ -154,7 +154,7 @@ fn sinusoid_has_amplitude_split_times_a_exactly_without_random_error() {
         let p = params(h, &sets);
         let mut rng = ChaCha8Rng::seed_from_u64(4);
         for &teeth in &COUNTS {
-            let g = gear(teeth);
+            let g = small_gear(teeth);
             let made = h.apply(&g, "test", &p, &mut rng).unwrap();
             let (a, b) = fit_sinusoid(&displacements(&g, &made));
             let amplitude = a.hypot(b).to_degrees();
@@ -178,7 +178,7 @@ fn sinusoid_amplitude_with_random_error_matches_on_average() {
     let (mut amp2, mut cos_phase, mut sin_phase) = (Vec::new(), Vec::new(), Vec::new());
     for _ in 0..20 {
         for &teeth in &COUNTS {
-            let g = gear(teeth);
+            let g = small_gear(teeth);
             let made = h.apply(&g, "test", &p, &mut rng).unwrap();
             let (a, b) = fit_sinusoid(&displacements(&g, &made));
             let sigma = 0.05 * g.pitch();
@@ -219,7 +219,7 @@ fn eccentricity_is_r_tan_of_its_share_exactly() {
         let (mut cos_dir, mut sin_dir) = (Vec::new(), Vec::new());
         for _ in 0..30 {
             for &teeth in &COUNTS {
-                let g = gear(teeth);
+                let g = small_gear(teeth);
                 let made = h.apply(&g, "test", &p, &mut rng).unwrap();
                 let expected = g.tip_radius() * ((1.0 - split) * 1.2_f64).to_radians().tan();
                 let got = made.rotation_centre().norm();
@@ -269,7 +269,7 @@ fn same_seed_same_gear() {
     ] {
         let h = lookup(name).unwrap();
         let p = Params::new(h, &[]).unwrap();
-        let g = gear(53);
+        let g = small_gear(53);
         let one = h
             .apply(&g, "f1", &p, &mut ChaCha8Rng::seed_from_u64(8))
             .unwrap();
@@ -290,7 +290,7 @@ fn ideal_returns_the_gear_unchanged() {
     let h = lookup("ideal").unwrap();
     let p = Params::new(h, &[]).unwrap();
     let mut rng = ChaCha8Rng::seed_from_u64(10);
-    let g = gear(60);
+    let g = small_gear(60);
     assert_eq!(h.apply(&g, "h1", &p, &mut rng).unwrap(), g);
     // Also a gear that is already not ideal.
     let odd = Gear::new(
@@ -309,7 +309,12 @@ fn a_draw_that_reorders_tips_is_an_error_naming_the_gear() {
     let h = lookup("sinusoid-only").unwrap();
     let p = params(h, &[("systematic", "90")]);
     let e = h
-        .apply(&gear(223), "e3", &p, &mut ChaCha8Rng::seed_from_u64(11))
+        .apply(
+            &small_gear(223),
+            "e3",
+            &p,
+            &mut ChaCha8Rng::seed_from_u64(11),
+        )
         .unwrap_err();
     assert!(e.what.starts_with("gear `e3`: tips["), "{e}");
     assert!(e.rule.contains("strictly increasing"), "{e}");
@@ -323,7 +328,12 @@ fn a_random_error_that_would_reorder_tips_in_some_draws_is_refused_on_every_draw
     for seed in 0..20 {
         let p = params(h, &[("random", "0.2")]);
         let e = h
-            .apply(&gear(15), "h2", &p, &mut ChaCha8Rng::seed_from_u64(seed))
+            .apply(
+                &small_gear(15),
+                "h2",
+                &p,
+                &mut ChaCha8Rng::seed_from_u64(seed),
+            )
             .unwrap_err();
         assert!(e.what.ends_with("random"), "{e}");
         assert!(
@@ -332,8 +342,13 @@ fn a_random_error_that_would_reorder_tips_in_some_draws_is_refused_on_every_draw
         );
         let p = params(h, &[("random", "0.1")]);
         assert!(
-            h.apply(&gear(15), "h2", &p, &mut ChaCha8Rng::seed_from_u64(seed))
-                .is_ok()
+            h.apply(
+                &small_gear(15),
+                "h2",
+                &p,
+                &mut ChaCha8Rng::seed_from_u64(seed)
+            )
+            .is_ok()
         );
     }
 }
@@ -344,7 +359,12 @@ fn an_axis_outside_the_root_circle_is_an_error_naming_the_gear() {
     let h = lookup("eccentric-only").unwrap();
     let p = params(h, &[("systematic", "60")]);
     let e = h
-        .apply(&gear(15), "h2", &p, &mut ChaCha8Rng::seed_from_u64(12))
+        .apply(
+            &small_gear(15),
+            "h2",
+            &p,
+            &mut ChaCha8Rng::seed_from_u64(12),
+        )
         .unwrap_err();
     assert_eq!(e.what, "gear `h2`: rotation_centre", "{e}");
 }
@@ -355,7 +375,7 @@ fn bad_values_are_refused_when_applied() {
     let mut rng = ChaCha8Rng::seed_from_u64(13);
     for (key, value) in [("split", "1.5"), ("random", "-0.1"), ("systematic", "-1")] {
         let p = params(h, &[(key, value)]);
-        let e = h.apply(&gear(50), "k1", &p, &mut rng).unwrap_err();
+        let e = h.apply(&small_gear(50), "k1", &p, &mut rng).unwrap_err();
         assert_eq!(e.what, format!("edmunds-split: {key}"), "{e}");
     }
 }

@@ -43,7 +43,7 @@ const FREETH: [(&str, usize); 30] = [
     ("o1", 60),
 ];
 
-fn gear(n: usize) -> Gear {
+fn sized_gear(n: usize) -> Gear {
     let r_tip = 0.25 * n as f64 + 0.5;
     Gear::ideal(n, r_tip, r_tip - 1.1).unwrap()
 }
@@ -65,13 +65,13 @@ fn registered_measured_applies_to_every_freeth_gear() {
     let p = Params::new(h, &[]).unwrap();
     let mut rng = ChaCha8Rng::seed_from_u64(1);
     for (name, teeth) in FREETH {
-        let g = gear(teeth);
+        let g = sized_gear(teeth);
         let made = h.apply(&g, name, &p, &mut rng).unwrap();
         assert_eq!(made.teeth(), teeth);
     }
     // scale 0 removes every error.
     let p = Params::new(h, &[("scale".into(), "0".into())]).unwrap();
-    let g = gear(53);
+    let g = sized_gear(53);
     let made = h.apply(&g, "f1", &p, &mut rng).unwrap();
     assert_eq!(made, g);
     let p = Params::new(h, &[("scale".into(), "-1".into())]).unwrap();
@@ -84,7 +84,7 @@ fn a_gear_missing_from_the_table_is_an_error_naming_it() {
     let h = lookup("measured").unwrap();
     let p = Params::new(h, &[]).unwrap();
     let e = h
-        .apply(&gear(40), "z9", &p, &mut ChaCha8Rng::seed_from_u64(2))
+        .apply(&sized_gear(40), "z9", &p, &mut ChaCha8Rng::seed_from_u64(2))
         .unwrap_err();
     assert_eq!(e.what, "measured-example.ron: gear z9");
     assert!(e.rule.contains("missing"), "{e}");
@@ -106,7 +106,7 @@ fn a_users_table_gives_its_phase_amplitude_and_eccentricity() {
     let h = table.hypothesis();
     assert_eq!(h.name(), "measured");
     let p = Params::new(&h, &[]).unwrap();
-    let g = gear(60);
+    let g = sized_gear(60);
     let mut rng = ChaCha8Rng::seed_from_u64(3);
     for (name, split) in [("x1", 0.5), ("x2", 1.0)] {
         let made = h.apply(&g, name, &p, &mut rng).unwrap();
@@ -194,9 +194,9 @@ fn measured_colon_file_reads_the_users_table() {
     );
     let p = Params::new(h, &[]).unwrap();
     let mut rng = ChaCha8Rng::seed_from_u64(3);
-    let made = h.apply(&gear(60), "x1", &p, &mut rng).unwrap();
-    assert_ne!(made.tip_angles(), gear(60).tip_angles());
-    let e = h.apply(&gear(60), "b1", &p, &mut rng).unwrap_err();
+    let made = h.apply(&sized_gear(60), "x1", &p, &mut rng).unwrap();
+    assert_ne!(made.tip_angles(), sized_gear(60).tip_angles());
+    let e = h.apply(&sized_gear(60), "b1", &p, &mut rng).unwrap_err();
     assert!(e.to_string().contains("gear b1: missing"), "{e}");
 
     // Bad files name the file and the rule.

@@ -79,8 +79,7 @@ impl Context {
             return Err(RunError::bad("--threads", "threads", "must be at least 1"));
         }
         let mut params: Vec<Value> = exp
-            .params
-            .iter()
+            .all_params()
             .map(|p| Value {
                 name: p.name,
                 value: p.default.to_owned(),
@@ -94,10 +93,10 @@ impl Context {
                     p.overridden = true;
                 }
                 None => {
-                    let known = if exp.params.is_empty() {
+                    let known = if exp.all_params().next().is_none() {
                         format!("experiment `{}` has no parameters", exp.id)
                     } else {
-                        let names: Vec<&str> = exp.params.iter().map(|p| p.name).collect();
+                        let names: Vec<&str> = exp.all_params().map(|p| p.name).collect();
                         format!(
                             "unknown parameter of experiment `{}`; known: {}",
                             exp.id,
@@ -110,6 +109,23 @@ impl Context {
         }
         if let Some(p) = params.iter().find(|p| p.name == "trials" && p.overridden) {
             check_trials(&p.value)?;
+        }
+        // Every value against its parameter's kind, before anything runs.
+        for (v, p) in params.iter().zip(exp.all_params()) {
+            if let Err(rule) = p.kind.check(&v.value) {
+                return Err(if v.overridden {
+                    RunError::bad(
+                        "--set",
+                        v.name,
+                        format!("{rule} (got `{}`)", v.value.trim()),
+                    )
+                } else {
+                    RunError::Internal(format!(
+                        "experiment `{}`: default of parameter `{}` ({:?}) {rule}",
+                        exp.id, v.name, v.value
+                    ))
+                });
+            }
         }
         if let (Some(file), None) = (&config, exp.config) {
             return Err(RunError::bad(
@@ -124,7 +140,7 @@ impl Context {
             threads,
             params,
             config,
-            defaults: exp.params.iter().map(|p| p.default).collect(),
+            defaults: exp.all_params().map(|p| p.default).collect(),
             engine: TrialEngine::new(exp.id),
         })
     }
@@ -345,7 +361,9 @@ fn check_trials(value: &str) -> Result<(), RunError> {
 #[allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
 mod tests {
     use super::*;
-    use crate::{Param, Report};
+    use crate::{Kind, Param, Report};
+    // The parameters here are `Kind::Text`: these tests read values the kinds would refuse, to
+    // check the reading functions themselves (kinds are tested in lib.rs).
 
     fn nothing(_: &Context) -> Result<Report, RunError> {
         Ok(Report::default())
@@ -357,18 +375,21 @@ mod tests {
             default: "24",
             unit: "",
             help: "number of teeth",
+            kind: Kind::Text,
         },
         Param {
             name: "module",
             default: "0.5",
             unit: "mm",
             help: "tooth size",
+            kind: Kind::Text,
         },
         Param {
             name: "broken",
             default: "lots",
             unit: "",
             help: "a default that does not parse",
+            kind: Kind::Text,
         },
     ];
 
@@ -377,6 +398,7 @@ mod tests {
         title: "test",
         paper_item: "Figure 0",
         params: PARAMS,
+        groups: &[],
         config: Some("a mesh"),
         run: nothing,
     };
@@ -386,6 +408,7 @@ mod tests {
         title: "no params, no config",
         paper_item: "Table 0",
         params: &[],
+        groups: &[],
         config: None,
         run: nothing,
     };
@@ -481,14 +504,17 @@ mod tests {
                 default: "30",
                 unit: "",
                 help: "trials",
+                kind: crate::Kind::Text,
             },
             Param {
                 name: "samples",
                 default: "100",
                 unit: "",
                 help: "samples",
+                kind: crate::Kind::Text,
             },
         ],
+        groups: &[],
         config: None,
         run: nothing,
     };

@@ -16,6 +16,7 @@ static EXP: Experiment = Experiment {
     title: "test",
     paper_item: "Table 0",
     params: &[],
+    groups: &[],
     config: None,
     run: nothing,
 };

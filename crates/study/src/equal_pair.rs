@@ -11,6 +11,7 @@ pub const TEETH: Param = Param {
     default: "8",
     unit: "",
     help: "teeth N of both gears",
+    kind: registry::Kind::count(0, registry::MAX_COUNT as u64, ""),
 };
 /// Outer radius R of both gears.
 pub const TIP_RADIUS: Param = Param {
@@ -18,6 +19,7 @@ pub const TIP_RADIUS: Param = Param {
     default: "200",
     unit: "length",
     help: "outer radius R of both gears",
+    kind: registry::Kind::ANY_NUMBER,
 };
 /// Inner radius r of both gears.
 pub const ROOT_RADIUS: Param = Param {
@@ -25,6 +27,7 @@ pub const ROOT_RADIUS: Param = Param {
     default: "100",
     unit: "length",
     help: "inner radius r of both gears",
+    kind: registry::Kind::ANY_NUMBER,
 };
 /// Centre distance D.
 pub const CENTRE_DISTANCE: Param = Param {
@@ -32,7 +35,11 @@ pub const CENTRE_DISTANCE: Param = Param {
     default: "310",
     unit: "length",
     help: "centre distance D",
+    kind: registry::Kind::ANY_NUMBER,
 };
+
+/// The pair's setting group: N, R, r and D.
+pub const GROUP: &[Param] = &[TEETH, TIP_RADIUS, ROOT_RADIUS, CENTRE_DISTANCE];
 
 /// The pair as set by the parameters above.
 pub struct EqualPair {

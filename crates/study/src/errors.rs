@@ -11,6 +11,7 @@ pub const PARAM: Param = Param {
     default: "edmunds-split",
     unit: "",
     help: "error hypothesis (cargo xtask hypotheses lists them)",
+    kind: registry::Kind::Text,
 };
 
 /// The `hypothesis_params` parameter: the chosen hypothesis's own parameters, `name=value`
@@ -20,6 +21,7 @@ pub const PARAMS_PARAM: Param = Param {
     default: "",
     unit: "",
     help: "parameters of the hypothesis, name=value[,name=value] (cargo xtask hypotheses lists them)",
+    kind: registry::Kind::Text,
 };
 
 /// Share of the systematic error put on the sinusoid of tip positions (the rest on the axis).
@@ -28,7 +30,15 @@ pub const SPLIT: Param = Param {
     default: "0.5",
     unit: "",
     help: "share of the systematic error on the sinusoid (rest: eccentricity); 0.5 as in the paper",
+    kind: registry::Kind::number(0.0, 1.0, ""),
 };
+
+/// The error setting group: the hypothesis and its parameters.
+pub const GROUP: &[Param] = &[PARAM, PARAMS_PARAM];
+
+/// The error setting group of experiments that run Edmunds' Cases: the split of the systematic
+/// error, the hypothesis and its parameters.
+pub const CASES_GROUP: &[Param] = &[SPLIT, PARAM, PARAMS_PARAM];
 
 /// The hypothesis named by the `hypothesis` parameter.
 pub fn chosen(ctx: &Context) -> Result<&'static dyn Hypothesis, RunError> {

@@ -10,7 +10,11 @@ pub const PARAM: Param = Param {
     default: rules::DEFAULT,
     unit: "",
     help: "event rule: which events count as jams and disengagements, NAME or NAME:key=value (cargo xtask rules lists them)",
+    kind: registry::Kind::Text,
 };
+
+/// The event setting group: the event rule.
+pub const GROUP: &[Param] = &[PARAM];
 
 /// The rule named by the `events` parameter.
 pub fn chosen(ctx: &Context) -> Result<Rule, RunError> {
@@ -33,6 +37,15 @@ pub fn counts(rule: &Rule, traj: &contact::Trajectory) -> (usize, usize) {
         events.iter().filter(|e| rule.is_jam(e)).count(),
         events.iter().filter(|e| rule.is_disengagement(e)).count(),
     )
+}
+
+/// Runs `experiment` and names the event rule in its tables' titles ([`label`]): how an
+/// experiment that counts events registers its `run`.
+pub fn labelled(
+    ctx: &Context,
+    experiment: fn(&Context) -> Result<registry::Report, RunError>,
+) -> Result<registry::Report, RunError> {
+    label(ctx, experiment(ctx)?)
 }
 
 /// `report` with every table's title naming the event rule it was counted with (so the printed

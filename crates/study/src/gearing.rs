@@ -10,6 +10,7 @@ pub const PARAM: Param = Param {
     default: "freeth2006",
     unit: "",
     help: "gearing RON file, or an embedded one: freeth2006 (the default, crates/train/data/freeth2006.ron) or freeth2021 (the same gearing with the outer radii of Freeth et al. 2021)",
+    kind: registry::Kind::Text,
 };
 
 /// Clearance G of every mesh of the gearing (the paper's working value, Appendix II).
@@ -18,6 +19,7 @@ pub const CLEARANCE: Param = Param {
     default: "40",
     unit: "% of h",
     help: "clearance G of every mesh",
+    kind: registry::Kind::positive(100.0, "% of the tooth height h"),
 };
 
 /// Tooth height h of every gear.
@@ -26,6 +28,7 @@ pub const TOOTH_HEIGHT: Param = Param {
     default: "1.1",
     unit: "mm",
     help: "h = R - r of every gear (Efstathiou et al. 2012)",
+    kind: registry::Kind::positive(f64::INFINITY, "mm"),
 };
 
 /// Whether the Lunar train includes the pin-and-slot (Freeth 2006's lunar anomaly mechanism).
@@ -34,7 +37,14 @@ pub const PIN_AND_SLOT: Param = Param {
     default: "false",
     unit: "",
     help: "true: the Lunar train includes the pin-and-slot (k1's pin in k2's slot on the turning e3 turntable) and its TD is taken against the anomaly-bearing ideal; false: left out, as in the paper",
+    kind: registry::Kind::Switch,
 };
+
+/// The gearing setting group: the gearing file, G and h of every mesh.
+pub const GROUP: &[Param] = &[PARAM, CLEARANCE, TOOTH_HEIGHT];
+
+/// The gearing file and h, for experiments that choose their own clearances.
+pub const SHAPE: &[Param] = &[PARAM, TOOTH_HEIGHT];
 
 /// A mechanism the gearing could not build, as the user's error: the gearing, the mesh and the
 /// rule it broke (one mapping for every experiment that builds a mechanism).
@@ -42,17 +52,9 @@ pub fn mechanism_error(e: mechanism::MechanismError) -> RunError {
     RunError::bad("gearing", format!("mesh {}", e.mesh), e.rule)
 }
 
-/// The `pin_and_slot` parameter: `true` or `false`.
+/// The `pin_and_slot` parameter (its kind admits only `true` and `false`).
 pub fn pin_and_slot(ctx: &Context) -> Result<bool, RunError> {
-    match ctx.param(PIN_AND_SLOT.name)?.trim() {
-        "true" => Ok(true),
-        "false" => Ok(false),
-        other => Err(RunError::bad(
-            "--set",
-            PIN_AND_SLOT.name,
-            format!("must be true or false (got `{other}`)"),
-        )),
-    }
+    Ok(ctx.param(PIN_AND_SLOT.name)?.trim() == "true")
 }
 
 /// `mech` with the pin-and-slot in or out as `on` says; a gearing without a `pin_and_slot`
@@ -86,32 +88,13 @@ pub fn load(ctx: &Context) -> Result<Gearing, RunError> {
     Ok(g)
 }
 
-/// The gearing-wide parameters, where the experiment declares them: `clearance` G must be
-/// greater than 0 and at most 100 (% of h: at 0 the tips reach the other gear's valleys, at 100
-/// they only touch its tips), and `tooth_height` h must be positive and smaller than the tip
-/// radius of every gear in a mesh (the root radius R - h must stay positive).
+/// What the gearing asks of the gearing-wide parameters beyond their kinds (`clearance` G above
+/// 0 and at most 100 % of h, `tooth_height` h above 0, checked before anything runs): h must be
+/// smaller than the tip radius of every gear in a mesh (the root radius R - h must stay
+/// positive).
 pub fn check(ctx: &Context, g: &Gearing) -> Result<(), RunError> {
-    if ctx.declares(CLEARANCE.name) {
-        let c = ctx.f64(CLEARANCE.name)?;
-        if !(c > 0.0 && c <= 100.0) {
-            return Err(RunError::bad(
-                "--set",
-                CLEARANCE.name,
-                format!(
-                    "must be greater than 0 and at most 100 (% of the tooth height h; got {c})"
-                ),
-            ));
-        }
-    }
     if ctx.declares(TOOTH_HEIGHT.name) {
         let h = ctx.f64(TOOTH_HEIGHT.name)?;
-        if h <= 0.0 {
-            return Err(RunError::bad(
-                "--set",
-                TOOTH_HEIGHT.name,
-                format!("must be greater than 0 mm (got {h})"),
-            ));
-        }
         let meshed = g
             .meshes()
             .iter()

@@ -21,6 +21,23 @@ pub const CASES: [(&str, f64, f64); 4] = [
     ("D", 2.0, 0.08),
 ];
 
+/// The parameters of `hyp` for an error of `systematic` degrees and `random` of the pitch (as
+/// Edmunds' Cases give them), with the `split` parameter: those `hyp` declares, then the user's
+/// `hypothesis_params` ([`errors::params`]).
+pub fn case_params(
+    ctx: &Context,
+    hyp: &dyn Hypothesis,
+    (systematic, random): (f64, f64),
+) -> Result<hypotheses::Params, RunError> {
+    let split = ctx.f64("split")?;
+    let values = [
+        ("random", random),
+        ("systematic", systematic),
+        ("split", split),
+    ];
+    errors::params(ctx, hyp, &values)
+}
+
 /// The cells of Cases A-D at clearance `clearance`, case by case, each case's meshes in the
 /// gearing's order: what Table 3 runs at G = 40 % and Table I at each of its clearances.
 pub fn case_cells(
@@ -29,18 +46,10 @@ pub fn case_cells(
     hyp: &'static dyn hypotheses::Hypothesis,
     clearance: f64,
 ) -> Result<Vec<CellSpec>, RunError> {
-    let (h, split) = (ctx.f64("tooth_height")?, ctx.f64("split")?);
+    let h = ctx.f64("tooth_height")?;
     let mut cells = Vec::new();
     for &(_, systematic, random) in &CASES {
-        let params = errors::params(
-            ctx,
-            hyp,
-            &[
-                ("random", random),
-                ("systematic", systematic),
-                ("split", split),
-            ],
-        )?;
+        let params = case_params(ctx, hyp, (systematic, random))?;
         for m in g.meshes() {
             cells.push(CellSpec {
                 mesh: m.label.clone(),
@@ -69,6 +78,7 @@ pub const TRIALS: Param = Param {
     default: "200",
     unit: "",
     help: "trials per cell (the paper: 200)",
+    kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
 };
 
 /// Table 4's results: counts for every (random error, mesh).
@@ -139,13 +149,26 @@ pub fn run_grid(
     })
 }
 
-/// The `trials` parameter of a per-cell experiment, checked.
-pub fn trials(ctx: &Context, name: &str) -> Result<u64, RunError> {
-    let trials = ctx.u64(name)?;
-    if trials == 0 {
-        return Err(RunError::bad("--set", name, "must be at least 1"));
+/// What every table of jam cells reads first, parsed and checked once: the gearing (read and
+/// checked against h and G), the error hypothesis and the trials per cell.
+pub struct CellSettings {
+    /// The gearing.
+    pub gearing: Gearing,
+    /// The error hypothesis the cells' gears are made with.
+    pub hypothesis: &'static dyn Hypothesis,
+    /// Trials per cell (the parameter named when reading).
+    pub trials: u64,
+}
+
+impl CellSettings {
+    /// Reads the gearing group, the hypothesis and the trials parameter `trials`.
+    pub fn read(ctx: &Context, trials: &str) -> Result<CellSettings, RunError> {
+        Ok(CellSettings {
+            gearing: crate::gearing::load(ctx)?,
+            hypothesis: errors::chosen(ctx)?,
+            trials: ctx.u64(trials)?,
+        })
     }
-    Ok(trials)
 }
 
 /// Each mesh's tolerances, with the cells they were derived from.
@@ -197,13 +220,6 @@ pub fn derive(
         ctx.f64("clearance")?,
         ctx.f64("split")?,
     );
-    if !(0.0..=1.0).contains(&split) {
-        return Err(RunError::bad(
-            "--set",
-            "split",
-            format!("must be between 0 and 1 (got {split})"),
-        ));
-    }
     let (random_grid, random) = if let Some(random) = given_random {
         let meshes: Vec<String> = g.meshes().iter().map(|m| m.label.clone()).collect();
         let values = tolerance::grid(ctx, &RANDOM_FROM, &RANDOM_TO, &RANDOM_STEP)?;

@@ -16,6 +16,7 @@ pub mod errors;
 pub mod events;
 pub mod gearing;
 pub mod grids;
+pub mod inputs;
 pub mod limits;
 pub mod pair_file;
 pub mod pointers;

@@ -5,7 +5,7 @@ use std::f64::consts::TAU;
 
 use contact::{Mesh, Start, Trajectory};
 use geometry::Gear;
-use registry::RunError;
+use registry::{Context, RunError};
 
 use rules::Rule;
 
@@ -28,14 +28,75 @@ pub struct IdealPair {
     pub h: f64,
 }
 
+/// The mesh whose ideal pair an experiment studies (`--set mesh=LABEL`).
+pub const MESH: registry::Param = registry::Param {
+    name: "mesh",
+    default: "b2-c1",
+    unit: "",
+    help: "mesh label in the gearing (radii sized as crates/train sizes them)",
+    kind: registry::Kind::Text,
+};
+
 impl IdealPair {
+    /// Mesh `label` of gearing `g` with ideal teeth of height `h`, sized as `train` sizes it
+    /// (its gears' fitted tip radii); `None` for a label the gearing does not have.
+    pub fn of_mesh(g: &train::Gearing, label: &str, h: f64) -> Option<IdealPair> {
+        // The clearance does not enter the radii: any value sizes the gears.
+        let geo = g.mesh_geometry(label, h, 40.0)?;
+        Some(IdealPair {
+            n1: geo.driver_teeth as usize,
+            n2: geo.driven_teeth as usize,
+            r1: geo.driver_tip_radius,
+            r2: geo.driven_tip_radius,
+            h,
+        })
+    }
+
+    /// [`IdealPair::of_mesh`] of the mesh the `mesh` parameter names, refused naming it.
+    pub fn chosen(ctx: &Context, g: &train::Gearing, h: f64) -> Result<IdealPair, RunError> {
+        let label = ctx.param(MESH.name)?;
+        IdealPair::of_mesh(g, label, h).ok_or_else(|| {
+            RunError::bad(
+                "--set",
+                MESH.name,
+                format!("no mesh `{label}` in the gearing"),
+            )
+        })
+    }
     /// The ideal mesh at clearance `g` (% of h), or None when the gears overlap at every tooth.
     fn mesh(&self, g: f64) -> Result<Option<Mesh>, RunError> {
         let bad = |e: geometry::GeometryError| RunError::bad("--set", e.field, e.rule);
         let driver = Gear::ideal(self.n1, self.r1, self.r1 - self.h).map_err(bad)?;
         let driven = Gear::ideal(self.n2, self.r2, self.r2 - self.h).map_err(bad)?;
-        let d = geometry::centre_distance(self.r1, self.r2, self.h, g);
-        Ok(Mesh::new(driver, driven, d).ok())
+        Ok(Mesh::new(driver, driven, self.centre_distance(g)).ok())
+    }
+
+    /// The centre distance at clearance `g` (% of h): D = R1 + R2 - h + G h.
+    pub fn centre_distance(&self, g: f64) -> f64 {
+        geometry::centre_distance(self.r1, self.r2, self.h, g)
+    }
+
+    /// The pair's ideal gears (driver, driven).
+    pub fn ideal_gears(&self) -> Result<(Gear, Gear), RunError> {
+        let bad = |e: geometry::GeometryError| RunError::bad("gearing", e.field, e.rule);
+        Ok((
+            Gear::ideal(self.n1, self.r1, self.r1 - self.h).map_err(bad)?,
+            Gear::ideal(self.n2, self.r2, self.r2 - self.h).map_err(bad)?,
+        ))
+    }
+
+    /// Manufactured gears `made` (driver, driven) placed at this pair's centre distance for
+    /// clearance `g`, run one full turn of the larger gear from driver angle `phi0`, starting in
+    /// contact. Gears that cannot be placed there are bad input naming the field and rule.
+    pub fn run_made(
+        &self,
+        made: (&Gear, &Gear),
+        g: f64,
+        phi0: f64,
+    ) -> Result<Trajectory, RunError> {
+        let mesh = Mesh::new(made.0.clone(), made.1.clone(), self.centre_distance(g))
+            .map_err(|e| RunError::bad("--set", e.field, e.rule))?;
+        Ok(mesh.run(phi0, phi0 + self.turn(), Start::Touching(0.0)))
     }
 
     /// Driver rotation for one full turn of the larger gear.

@@ -9,6 +9,7 @@ pub const SAMPLES_PER_ENGAGEMENT: Param = Param {
     default: "16",
     unit: "",
     help: "TD samples per tooth engagement of the busiest mesh",
+    kind: registry::Kind::count(0, registry::MAX_COUNT as u64, ""),
 };
 
 /// Run length of the Lunar pointer.
@@ -17,6 +18,7 @@ pub const LUNAR_TURNS: Param = Param {
     default: "1",
     unit: "turns of b",
     help: "run length, Lunar (Table 1 caption: one turn of b2)",
+    kind: registry::Kind::positive(100.0, "turns"),
 };
 
 /// Run length of the Metonic pointer.
@@ -25,6 +27,7 @@ pub const METONIC_TURNS: Param = Param {
     default: "3.8",
     unit: "turns of b",
     help: "run length, Metonic (caption: 3.8 turns)",
+    kind: registry::Kind::positive(100.0, "turns"),
 };
 
 /// Run length of the Saros pointer.
@@ -33,6 +36,7 @@ pub const SAROS_TURNS: Param = Param {
     default: "4.5",
     unit: "turns of b",
     help: "run length, Saros (caption: 4.5 turns)",
+    kind: registry::Kind::positive(100.0, "turns"),
 };
 
 /// Run length of the Games pointer.
@@ -41,6 +45,7 @@ pub const GAMES_TURNS: Param = Param {
     default: "3.8",
     unit: "turns of b",
     help: "run length, Games (caption silent: as Metonic)",
+    kind: registry::Kind::positive(100.0, "turns"),
 };
 
 /// Run length of the Exeligmos pointer.
@@ -49,7 +54,18 @@ pub const EXELIGMOS_TURNS: Param = Param {
     default: "4.5",
     unit: "turns of b",
     help: "run length, Exeligmos (caption silent: as Saros)",
+    kind: registry::Kind::positive(100.0, "turns"),
 };
+
+/// The five pointers' run lengths and the TD sampling (Tables 1 and 6).
+pub const RUN_LENGTHS: &[Param] = &[
+    LUNAR_TURNS,
+    METONIC_TURNS,
+    SAROS_TURNS,
+    GAMES_TURNS,
+    EXELIGMOS_TURNS,
+    SAMPLES_PER_ENGAGEMENT,
+];
 
 /// Pointers in the paper's column order, with the parameter holding each run length.
 pub const POINTERS: [(&str, &str); 5] = [
@@ -58,6 +74,16 @@ pub const POINTERS: [(&str, &str); 5] = [
     ("Saros", "saros_turns"),
     ("Games", "games_turns"),
     ("Exeligmos", "exeligmos_turns"),
+];
+
+/// A table's header over the five pointers, in the paper's column order (Tables 1 and 6).
+pub const COLUMNS: [&str; 6] = [
+    "",
+    "Lunar",
+    "Metonic",
+    "Eclipse (Saros)",
+    "Games",
+    "Exeligmos",
 ];
 
 /// (pointer, input turns, TD samples) for each (pointer, run-length parameter), checked.
@@ -70,13 +96,6 @@ pub fn pointer_runs<'a>(
     let mut runs = Vec::new();
     for &(name, param) in pointers {
         let turns = ctx.f64(param)?;
-        if !(turns > 0.0 && turns <= 100.0) {
-            return Err(RunError::bad(
-                "--set",
-                param,
-                "must be between 0 and 100 turns",
-            ));
-        }
         if g.pointer(name).is_none() {
             return Err(RunError::bad(
                 "gearing",

@@ -10,6 +10,7 @@ pub const RANDOM_FROM: Param = Param {
     default: "0.035",
     unit: "pitch",
     help: "smallest random error (sd of a tip's displacement / pitch 360/N); the paper's Table 4: 0.035",
+    kind: registry::Kind::number(0.0, f64::INFINITY, ""),
 };
 
 /// End of the random-error grid.
@@ -18,6 +19,7 @@ pub const RANDOM_TO: Param = Param {
     default: "0.065",
     unit: "pitch",
     help: "largest random error of the grid (the paper: 0.065)",
+    kind: registry::Kind::ANY_NUMBER,
 };
 
 /// Step of the random-error grid.
@@ -26,6 +28,7 @@ pub const RANDOM_STEP: Param = Param {
     default: "0.005",
     unit: "pitch",
     help: "step of the random-error grid (the paper: 0.005)",
+    kind: registry::Kind::positive(f64::INFINITY, ""),
 };
 
 /// Start of the systematic-error grid (Table 5's first row).
@@ -34,6 +37,7 @@ pub const SYSTEMATIC_FROM: Param = Param {
     default: "0.1",
     unit: "deg",
     help: "smallest systematic amplitude A of the grid (the paper's Table 5: 0.1)",
+    kind: registry::Kind::number(0.0, f64::INFINITY, ""),
 };
 
 /// End of the systematic-error grid.
@@ -42,6 +46,7 @@ pub const SYSTEMATIC_TO: Param = Param {
     default: "1.1",
     unit: "deg",
     help: "largest systematic amplitude of the grid (the paper: 1.1)",
+    kind: registry::Kind::ANY_NUMBER,
 };
 
 /// Step of the systematic-error grid.
@@ -50,6 +55,7 @@ pub const SYSTEMATIC_STEP: Param = Param {
     default: "0.1",
     unit: "deg",
     help: "step of the systematic grid (the paper: 0.1)",
+    kind: registry::Kind::positive(f64::INFINITY, ""),
 };
 
 /// The failure threshold.
@@ -58,7 +64,14 @@ pub const RULE: Param = Param {
     default: "1",
     unit: "%",
     help: "a value is tolerable when at most this share of trials jam (the paper: 1 %, 2 of 200)",
+    kind: registry::Kind::number(0.0, 100.0, "a percentage"),
 };
+
+/// The random-error grid (Table 4's rows).
+pub const RANDOM_GRID: &[Param] = &[RANDOM_FROM, RANDOM_TO, RANDOM_STEP];
+
+/// The systematic-error grid (Table 5's rows).
+pub const SYSTEMATIC_GRID: &[Param] = &[SYSTEMATIC_FROM, SYSTEMATIC_TO, SYSTEMATIC_STEP];
 
 /// Jams allowed among `trials` trials under a rule of `rule_percent` %: ⌊rule·trials/100⌋.
 pub fn allowed_jams(trials: u64, rule_percent: f64) -> u64 {
@@ -87,13 +100,6 @@ pub fn largest_tolerable(grid: &[(f64, u64)], trials: u64, rule_percent: f64) ->
 /// The `rule` parameter, checked: a percentage from 0 to 100.
 pub fn rule(ctx: &Context) -> Result<f64, RunError> {
     let r = ctx.f64(RULE.name)?;
-    if !(0.0..=100.0).contains(&r) {
-        return Err(RunError::bad(
-            "--set",
-            RULE.name,
-            format!("must be a percentage from 0 to 100 (got {r})"),
-        ));
-    }
     Ok(r)
 }
 
@@ -102,20 +108,6 @@ pub fn rule(ctx: &Context) -> Result<f64, RunError> {
 /// is 1.0 and the same grid gives the same cells in every experiment.
 pub fn grid(ctx: &Context, from: &Param, to: &Param, step: &Param) -> Result<Vec<f64>, RunError> {
     let (a, b, s) = (ctx.f64(from.name)?, ctx.f64(to.name)?, ctx.f64(step.name)?);
-    if a < 0.0 {
-        return Err(RunError::bad(
-            "--set",
-            from.name,
-            format!("must be at least 0 (got {a})"),
-        ));
-    }
-    if s <= 0.0 {
-        return Err(RunError::bad(
-            "--set",
-            step.name,
-            format!("must be greater than 0 (got {s})"),
-        ));
-    }
     if a > b {
         return Err(RunError::bad(
             "--set",

@@ -17,7 +17,6 @@ use registry::{Context, Param, RunError};
 use serde::{Deserialize, Serialize};
 use stats::{DAYS_PER_YEAR, Proportion, clopper_pearson95, mean_ci95};
 
-use crate::errors;
 use crate::grids::CASES;
 
 /// The `days` parameter: the horizon of each whole-mechanism run.
@@ -26,6 +25,11 @@ pub const DAYS: Param = Param {
     default: "365.25",
     unit: "days of b",
     help: "horizon of each run (365.25 d per turn of b); at least one year",
+    kind: registry::Kind::number(
+        stats::DAYS_PER_YEAR,
+        100.0 * stats::DAYS_PER_YEAR,
+        "one year of b: jams are counted within a year",
+    ),
 };
 
 /// The `cases` parameter: which of Edmunds' cases to run.
@@ -34,6 +38,7 @@ pub const CASES_PARAM: Param = Param {
     default: "A,B,C,D",
     unit: "",
     help: "Edmunds' cases to run, comma-separated (empty: none)",
+    kind: registry::Kind::Text,
 };
 
 /// Whole-mechanism runs per input at the defaults (the paper: 30).
@@ -143,21 +148,10 @@ impl MechanismRun {
     }
 }
 
-/// The `days` parameter, checked: at least one year (jams are counted within a year), at most
-/// 100 years.
+/// The `days` parameter: the horizon of each run, from one year of b (jams are counted within
+/// a year) to 100 years, as its kind checks.
 pub fn days(ctx: &Context) -> Result<f64, RunError> {
-    let days = ctx.f64(DAYS.name)?;
-    if !(DAYS_PER_YEAR..=100.0 * DAYS_PER_YEAR).contains(&days) {
-        return Err(RunError::bad(
-            "--set",
-            DAYS.name,
-            format!(
-                "must be between {DAYS_PER_YEAR} (one year of b: jams are counted within a year) and {} (got {days})",
-                100.0 * DAYS_PER_YEAR
-            ),
-        ));
-    }
-    Ok(days)
+    ctx.f64(DAYS.name)
 }
 
 /// Checks that the study can run on `g`: ideal gears fit at `clearances` and tooth height `h` (a
@@ -189,22 +183,13 @@ pub fn case_input<'a>(
     clearances: Clearances,
 ) -> Result<Input<'a>, RunError> {
     let (case, systematic, random) = CASES[ci];
-    let split = ctx.f64("split")?;
     Ok(Input {
         label: case.to_string(),
         legend: format!("Case {case} (systematic {systematic} deg, random {random})"),
         index: ci as u64,
         source: "--hypothesis",
         hypothesis: hyp,
-        params: errors::params(
-            ctx,
-            hyp,
-            &[
-                ("random", random),
-                ("systematic", systematic),
-                ("split", split),
-            ],
-        )?,
+        params: crate::grids::case_params(ctx, hyp, (systematic, random))?,
         clearances,
         pin_and_slot: false,
         extra: None,
@@ -426,17 +411,7 @@ fn one_run(
                             * traj.mesh().driver().teeth() as f64;
                     }
                 }
-                if p == "Lunar" {
-                    lunar_sigma = lunar_spread(g, &run, horizon);
-                }
-                if let Some(stop) = run.first_stop()
-                    && first.as_ref().is_none_or(|f| stop.day < f.day)
-                {
-                    first = Some(Jam {
-                        day: stop.day,
-                        mesh: stop.mesh,
-                    });
-                }
+                note_pointer(g, &run, horizon, &mut first, &mut lunar_sigma);
                 continue;
             }
             let mut range = horizon;
@@ -479,17 +454,7 @@ fn one_run(
                 pin_slot: None,
                 rule: mech.rule().clone(),
             };
-            if p == "Lunar" {
-                lunar_sigma = lunar_spread(g, &run, horizon);
-            }
-            if let Some(stop) = run.first_stop()
-                && first.as_ref().is_none_or(|f| stop.day < f.day)
-            {
-                first = Some(Jam {
-                    day: stop.day,
-                    mesh: stop.mesh,
-                });
-            }
+            note_pointer(g, &run, horizon, &mut first, &mut lunar_sigma);
         }
         trains.push(first);
     }
@@ -499,6 +464,28 @@ fn one_run(
         unplaceable: None,
         lunar_sigma,
     })
+}
+
+/// What one pointer's run tells its train: its first stop, if earlier than the train's first so
+/// far, and for the Lunar pointer the σ of its TD.
+fn note_pointer(
+    g: &train::Gearing,
+    run: &PointerRun,
+    horizon: f64,
+    first: &mut Option<Jam>,
+    lunar_sigma: &mut Option<f64>,
+) {
+    if run.pointer == "Lunar" {
+        *lunar_sigma = lunar_spread(g, run, horizon);
+    }
+    if let Some(stop) = run.first_stop()
+        && first.as_ref().is_none_or(|f| stop.day < f.day)
+    {
+        *first = Some(Jam {
+            day: stop.day,
+            mesh: stop.mesh,
+        });
+    }
 }
 
 /// σ of a pointer run's Theoretical Difference up to its first jam, sampled as table1 samples

@@ -8,32 +8,29 @@ use study::gearing;
 use study::limits::{IdealPair, boundary};
 
 const PARAMS: &[Param] = &[
-    Param {
-        name: "mesh",
-        default: "b2-c1",
-        unit: "",
-        help: "mesh label in the gearing (radii sized as crates/train sizes them)",
-    },
+    study::limits::MESH,
     Param {
         name: "tooth_height",
         default: "1.1",
         unit: "mm",
         help: "h = R - r for both gears (Efstathiou et al. 2012)",
+        kind: registry::Kind::positive(f64::INFINITY, "mm"),
     },
     Param {
         name: "grid_step",
         default: "5",
         unit: "% of h",
         help: "spacing of the printed sweep",
+        kind: registry::Kind::number(0.5, 50.0, "% of h"),
     },
     Param {
         name: "samples",
         default: "3600",
         unit: "",
         help: "samples of the Theoretical Difference per run",
+        kind: registry::Kind::count(0, registry::MAX_COUNT as u64, ""),
     },
     gearing::PARAM,
-    study::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -42,13 +39,14 @@ registry::inventory::submit! {
         title: "Smallest clearance without a jam and largest without a disengagement, ideal gears",
         paper_item: "Appendix II (and section 3): jam below about 10 %, disengagement above about 87 %",
         params: PARAMS,
+        groups: &[study::events::GROUP],
         config: None,
         run,
     }
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::label(ctx, counted(ctx)?)
+    study::events::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
@@ -56,22 +54,11 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let rule = study::events::chosen(ctx)?;
     let h = ctx.f64("tooth_height")?;
     let grid_step = ctx.f64("grid_step")?;
-    if !(0.5..=50.0).contains(&grid_step) {
-        return Err(RunError::bad(
-            "--set",
-            "grid_step",
-            "must be between 0.5 and 50 (% of h)",
-        ));
-    }
     let samples = ctx.usize("samples")?.max(2);
     let g = gearing::load(ctx)?;
     let label = ctx.param("mesh")?;
-    let geo = g.mesh_geometry(label, h, 40.0).ok_or_else(|| {
-        RunError::bad("--set", "mesh", format!("no mesh `{label}` in the gearing"))
-    })?;
-    let (n1, n2) = (geo.driver_teeth as usize, geo.driven_teeth as usize);
-    let (r1, r2) = (geo.driver_tip_radius, geo.driven_tip_radius);
-    let setup = IdealPair { n1, n2, r1, r2, h };
+    let setup = IdealPair::chosen(ctx, &g, h)?;
+    let IdealPair { n1, n2, r1, r2, .. } = setup;
 
     let mut grid = Table::new(
         format!(
@@ -97,7 +84,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let mut last_engaged: Option<f64> = None;
     for i in 0..=steps {
         let g = grid_step * i as f64;
-        let d = geometry::centre_distance(r1, r2, h, g);
+        let d = setup.centre_distance(g);
         match setup.run(g)? {
             None => {
                 grid.row(vec![

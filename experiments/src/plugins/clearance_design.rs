@@ -31,6 +31,7 @@ const GRID: Param = Param {
     default: "20,30,40,50,60,70",
     unit: "% of h",
     help: "coarse grid of clearances tried for every mesh and case, comma-separated (the reference clearance is always added)",
+    kind: registry::Kind::Text,
 };
 
 const COARSE_TRIALS: Param = Param {
@@ -38,6 +39,7 @@ const COARSE_TRIALS: Param = Param {
     default: "20",
     unit: "pair runs",
     help: "trials per mesh, case and clearance of the coarse grid",
+    kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
 };
 
 const REFINE_STEP: Param = Param {
@@ -45,6 +47,7 @@ const REFINE_STEP: Param = Param {
     default: "5",
     unit: "% of h",
     help: "the refinement tries the coarse grid's best clearance plus and minus this (0: no refinement; the coarse grid decides)",
+    kind: registry::Kind::number(0.0, 100.0, "% of h"),
 };
 
 const REFINE_TRIALS: Param = Param {
@@ -52,6 +55,7 @@ const REFINE_TRIALS: Param = Param {
     default: "40",
     unit: "pair runs",
     help: "trials per clearance compared in the refinement: the coarse best, its two neighbours and the reference, each brought to this count (at least coarse_trials)",
+    kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
 };
 
 const RUNS: Param = Param {
@@ -59,6 +63,7 @@ const RUNS: Param = Param {
     default: failure::RUNS_DEFAULT,
     unit: "",
     help: "whole-mechanism runs per case and clearance setting (failure's trials; the paper: 30)",
+    kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
 };
 
 const REFERENCE: Param = Param {
@@ -66,6 +71,7 @@ const REFERENCE: Param = Param {
     default: "40",
     unit: "% of h",
     help: "reference clearance: the paper's one value for every mesh, always tried, and the failure study's first setting",
+    kind: registry::Kind::positive(100.0, "% of the tooth height h"),
 };
 
 const PARAMS: &[Param] = &[
@@ -77,12 +83,6 @@ const PARAMS: &[Param] = &[
     failure::DAYS,
     failure::CASES_PARAM,
     REFERENCE,
-    gearing::TOOTH_HEIGHT,
-    errors::SPLIT,
-    errors::PARAM,
-    errors::PARAMS_PARAM,
-    gearing::PARAM,
-    study::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -91,6 +91,7 @@ registry::inventory::submit! {
         title: "Per-mesh clearance that minimises jams and disengagements, for each of Edmunds' Cases, and the failure study rerun with it (beyond the paper)",
         paper_item: "Section 6 / beyond the paper",
         params: PARAMS,
+        groups: &[study::gearing::SHAPE, study::errors::CASES_GROUP, study::events::GROUP],
         config: None,
         run,
     }
@@ -289,15 +290,7 @@ fn cell(
     g: f64,
 ) -> Result<CellSpec, RunError> {
     let (_, systematic, random) = CASES[ci];
-    let params = errors::params(
-        ctx,
-        hyp,
-        &[
-            ("random", random),
-            ("systematic", systematic),
-            ("split", ctx.f64("split")?),
-        ],
-    )?;
+    let params = study::grids::case_params(ctx, hyp, (systematic, random))?;
     Ok(CellSpec {
         mesh: mesh.to_string(),
         hypothesis: hyp,
@@ -459,7 +452,7 @@ fn share_cell(p: &Proportion) -> String {
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::label(ctx, counted(ctx)?)
+    study::events::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
@@ -914,18 +907,7 @@ mod tests {
     }
 
     fn run_with(threads: usize, sets: &[(&str, &str)]) -> Result<Report, RunError> {
-        crate::link();
-        let map = registry::experiments().unwrap();
-        let overrides: Vec<(String, String)> = sets
-            .iter()
-            .map(|(k, v)| ((*k).to_string(), (*v).to_string()))
-            .collect();
-        let ctx = Context::new(map["clearance-design"], 2025, threads, &overrides, None)?;
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| (map["clearance-design"].run)(&ctx))
+        crate::run("clearance-design", 2025, threads, sets)
     }
 
     #[test]

@@ -25,27 +25,21 @@ const PARAMS: &[Param] = &[
         default: "200",
         unit: "",
         help: "trials per cell (the paper: 200)",
+        kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
     },
-    gearing::CLEARANCE,
     Param {
         name: "clearances",
         default: "10,40,70",
         unit: "% of h",
         help: "Table I's clearances G, comma-separated (the paper: 10, 40 and 70)",
+        kind: registry::Kind::Text,
     },
-    RANDOM_FROM,
-    RANDOM_TO,
-    RANDOM_STEP,
-    gearing::TOOTH_HEIGHT,
-    errors::SPLIT,
-    errors::PARAM,
-    errors::PARAMS_PARAM,
-    gearing::PARAM,
     Param {
         name: "limit_tolerance",
         default: "0.1",
         unit: "% of h",
         help: "how closely each ideal mesh's clearance limits are located (bisection)",
+        kind: registry::Kind::number(0.001, 10.0, "% of h"),
     },
 ];
 
@@ -55,6 +49,7 @@ registry::inventory::submit! {
         title: "Every event rule side by side: the paper's counts of Tables 3, 4 and I consistent with ours, and the ideal meshes' clearance limits",
         paper_item: "Tables 3, 4, I and section 3 / Appendix II (what counts as a jam or a disengagement)",
         params: PARAMS,
+        groups: &[study::gearing::GROUP, study::errors::CASES_GROUP, study::tolerance::RANDOM_GRID],
         config: None,
         run,
     }
@@ -329,16 +324,8 @@ fn ideal_limits(
         .meshes()
         .iter()
         .map(|m| {
-            let geo = g
-                .mesh_geometry(&m.label, h, 40.0)
-                .ok_or_else(|| RunError::Internal(format!("mesh {} has no geometry", m.label)))?;
-            Ok(IdealPair {
-                n1: geo.driver_teeth as usize,
-                n2: geo.driven_teeth as usize,
-                r1: geo.driver_tip_radius,
-                r2: geo.driven_tip_radius,
-                h,
-            })
+            IdealPair::of_mesh(g, &m.label, h)
+                .ok_or_else(|| RunError::Internal(format!("mesh {} has no geometry", m.label)))
         })
         .collect::<Result<_, RunError>>()?;
     // Each mesh's searches are independent and deterministic; collected in order, so the
@@ -471,26 +458,15 @@ fn cells_csv(cells: &[(CellSpec, PaperCell)], rules: &[Rule], counts: &[Vec<Coun
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    let g = gearing::load(ctx)?;
-    let hyp = errors::chosen(ctx)?;
-    let trials = ctx.u64("trials")?;
-    if trials == 0 {
-        return Err(RunError::bad("--set", "trials", "must be at least 1"));
-    }
+    let cells = study::grids::CellSettings::read(ctx, "trials")?;
+    let (g, hyp, trials) = (&cells.gearing, cells.hypothesis, cells.trials);
     let tol = ctx.f64("limit_tolerance")?;
-    if !(tol.is_finite() && (0.001..=10.0).contains(&tol)) {
-        return Err(RunError::bad(
-            "--set",
-            "limit_tolerance",
-            format!("must be between 0.001 and 10 (% of h; got {tol})"),
-        ));
-    }
     let rules = every_rule()?;
-    let cells = all_cells(ctx, &g, hyp)?;
+    let cells = all_cells(ctx, g, hyp)?;
     let specs: Vec<CellSpec> = cells.iter().map(|(c, _)| c.clone()).collect();
-    let counts = run_cells_by_rule(ctx, &g, &specs, Some(&rules), trials, Purpose::Own)?;
+    let counts = run_cells_by_rule(ctx, g, &specs, Some(&rules), trials, Purpose::Own)?;
     let tallies = tallies(&cells, &counts, rules.len());
-    let limits = ideal_limits(ctx, &g, &rules, tol)?;
+    let limits = ideal_limits(ctx, g, &rules, tol)?;
     let mut shares = shares_table(&rules, &tallies, trials);
     let (same_jams, same_dis) = agreement_between_rules(&counts);
     shares.note(format!(
@@ -505,11 +481,11 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         tables: vec![
             shares,
             breakdown_table(&cells, &counts, &rules[default], default),
-            limits_table(&g, &rules, &limits, tol),
+            limits_table(g, &rules, &limits, tol),
         ],
         files: vec![
             OutputFile::new("event-rules-cells.csv", cells_csv(&cells, &rules, &counts)),
-            OutputFile::new("event-rules-limits.csv", limits_csv(&g, &rules, &limits)),
+            OutputFile::new("event-rules-limits.csv", limits_csv(g, &rules, &limits)),
         ],
         trials: counts.iter().map(|c| c[0].trials).sum(),
         engagements: counts.iter().map(|c| c[0].engagements).sum(),

@@ -36,6 +36,7 @@ const PARAMS: &[Param] = &[
         default: RUNS_DEFAULT,
         unit: "",
         help: "whole-mechanism runs per input (the paper: 30)",
+        kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
     },
     DAYS,
     CASES_PARAM,
@@ -44,15 +45,9 @@ const PARAMS: &[Param] = &[
         default: "",
         unit: "",
         help: "per-gear error table (RON, as crates/hypotheses/data/measured-example.ron), run with the measured hypothesis; empty: not run",
+        kind: registry::Kind::Text,
     },
-    gearing::CLEARANCE,
-    gearing::TOOTH_HEIGHT,
-    errors::SPLIT,
-    errors::PARAM,
-    errors::PARAMS_PARAM,
-    gearing::PARAM,
     gearing::PIN_AND_SLOT,
-    study::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -61,6 +56,7 @@ registry::inventory::submit! {
         title: "Days to the first jam of each train, whole mechanisms with Edmunds' errors at G = 40 %",
         paper_item: "Section 5, the 30-run study",
         params: PARAMS,
+        groups: &[study::gearing::GROUP, study::errors::CASES_GROUP, study::events::GROUP],
         config: None,
         run,
     }
@@ -70,16 +66,13 @@ registry::inventory::submit! {
 const READ_AT_DEG: [f64; 5] = [30.0, 60.0, 120.0, 180.0, 360.0];
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::label(ctx, counted(ctx)?)
+    study::events::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
     let g = gearing::load(ctx)?;
     let trials = ctx.u64("trials")?;
-    if trials == 0 {
-        return Err(RunError::bad("--set", "trials", "must be at least 1"));
-    }
     let days = days(ctx)?;
     let (h, clearance) = (ctx.f64("tooth_height")?, ctx.f64("clearance")?);
     // Read here, before the gearing's checks, as each case reads it again.
@@ -400,18 +393,8 @@ fn survival_plot(
     curves: &[(String, Vec<(f64, f64)>)],
 ) -> Result<String, RunError> {
     let colours = [BLUE, RED, BLACK, GREEN, MAGENTA, CYAN];
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (800, 480)).into_drawing_area();
-        let plot_err = |e: &dyn std::fmt::Display| RunError::Internal(format!("plot {title}: {e}"));
-        root.fill(&WHITE).map_err(|e| plot_err(&e))?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", 18))
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(70)
-            .build_cartesian_2d(0.0..horizon, 0.0..102.0)
-            .map_err(|e| plot_err(&e))?;
+    let legend = Some(SeriesLabelPosition::MiddleRight);
+    crate::common::chart_svg(title, 800, (0.0..horizon, 0.0..102.0), legend, |chart, plot_err| {
         chart
             .configure_mesh()
             .x_desc("days of the b arbor (solar pointer; 365.25 d per turn)")
@@ -431,16 +414,8 @@ fn survival_plot(
                 .label(label.as_str())
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour));
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::MiddleRight)
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .draw()
-            .map_err(|e| plot_err(&e))?;
-        root.present().map_err(|e| plot_err(&e))?;
-    }
-    Ok(svg)
+        Ok(())
+    })
 }
 
 #[cfg(test)]
@@ -472,18 +447,7 @@ mod tests {
     }
 
     fn run_with(threads: usize, sets: &[(&str, &str)]) -> Result<Report, RunError> {
-        crate::link();
-        let map = registry::experiments().unwrap();
-        let overrides: Vec<(String, String)> = sets
-            .iter()
-            .map(|(k, v)| ((*k).to_string(), (*v).to_string()))
-            .collect();
-        let ctx = Context::new(map["failure"], 11, threads, &overrides, None)?;
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| run(&ctx))
+        crate::run("failure", 11, threads, sets)
     }
 
     #[test]

@@ -13,17 +13,13 @@ use study::equal_pair;
 const MAX_TEETH: usize = 500;
 
 const PARAMS: &[Param] = &[
-    equal_pair::TEETH,
-    equal_pair::TIP_RADIUS,
-    equal_pair::ROOT_RADIUS,
-    equal_pair::CENTRE_DISTANCE,
     Param {
         name: "step",
         default: "0.01",
         unit: "deg",
         help: "driver angle between samples",
+        kind: registry::Kind::positive(10.0, "degrees"),
     },
-    study::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -32,13 +28,14 @@ registry::inventory::submit! {
         title: "theta(phi) and Theoretical Difference of two N = 8 triangular-tooth gears, simulated vs closed form",
         paper_item: "Figure 2 (section 2) and Figure III (Appendix I)",
         params: PARAMS,
+        groups: &[study::equal_pair::GROUP, study::events::GROUP],
         config: None,
         run,
     }
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::label(ctx, counted(ctx)?)
+    study::events::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
@@ -62,9 +59,6 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         mesh,
     } = equal_pair::from_params(ctx)?;
     let step = ctx.f64("step")?;
-    if !(step > 0.0 && step <= 10.0) {
-        return Err(RunError::bad("--set", "step", "must be in (0, 10] degrees"));
-    }
     if 360.0 / step > MAX_DATA_ROWS as f64 {
         return Err(RunError::bad(
             "--set",

@@ -10,21 +10,19 @@ use crate::common::{Series, csv, deg, line_plot};
 use study::equal_pair;
 
 const PARAMS: &[Param] = &[
-    equal_pair::TEETH,
-    equal_pair::TIP_RADIUS,
-    equal_pair::ROOT_RADIUS,
-    equal_pair::CENTRE_DISTANCE,
     Param {
         name: "pitches",
         default: "3",
         unit: "driver teeth",
         help: "length of each run",
+        kind: registry::Kind::count(0, registry::MAX_COUNT as u64, ""),
     },
     Param {
         name: "samples",
         default: "1200",
         unit: "",
         help: "samples per run",
+        kind: registry::Kind::count(0, registry::MAX_COUNT as u64, ""),
     },
 ];
 
@@ -34,6 +32,7 @@ registry::inventory::submit! {
         title: "Theoretical Difference for three initial angles: lagging, centred, leading",
         paper_item: "Figure 3 (section 2)",
         params: PARAMS,
+        groups: &[study::equal_pair::GROUP],
         config: None,
         run,
     }

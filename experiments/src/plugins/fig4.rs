@@ -15,17 +15,15 @@ const PARAMS: &[Param] = &[
         default: "0",
         unit: "",
         help: "which trial's random initial angles (stream of the seed)",
+        kind: registry::Kind::count(0, u64::MAX, ""),
     },
-    gearing::CLEARANCE,
-    gearing::TOOTH_HEIGHT,
     Param {
         name: "samples",
         default: "7200",
         unit: "",
         help: "samples over the solar turn",
+        kind: registry::Kind::count(0, registry::MAX_COUNT as u64, ""),
     },
-    gearing::PARAM,
-    study::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -34,6 +32,7 @@ registry::inventory::submit! {
         title: "One instance of the Lunar, Metonic and Saros Theoretical Difference over the first solar turn",
         paper_item: "Figure 4 (section 3)",
         params: PARAMS,
+        groups: &[study::gearing::GROUP, study::events::GROUP],
         config: None,
         run,
     }
@@ -42,7 +41,7 @@ registry::inventory::submit! {
 const POINTERS: [(&str, &str); 3] = [("Lunar", "A"), ("Metonic", "B"), ("Saros", "C")];
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::label(ctx, counted(ctx)?)
+    study::events::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.

@@ -3,7 +3,6 @@
 
 use std::f64::consts::TAU;
 
-use contact::{Mesh, Start};
 use edmunds::RadialPair;
 use geometry::Gear;
 use mechanism::trial_rng;
@@ -19,52 +18,57 @@ const PARAMS: &[Param] = &[
         default: "50",
         unit: "",
         help: "teeth of both gears",
+        kind: registry::Kind::count(0, registry::MAX_COUNT as u64, ""),
     },
     Param {
         name: "tip_radius",
         default: "200",
         unit: "length",
         help: "R of both gears",
+        kind: registry::Kind::ANY_NUMBER,
     },
     Param {
         name: "root_radius",
         default: "180",
         unit: "length",
         help: "r of both gears",
+        kind: registry::Kind::ANY_NUMBER,
     },
     Param {
         name: "clearance",
         default: "50",
         unit: "% of h",
         help: "clearance G",
+        kind: registry::Kind::positive(100.0, "% of the tooth height h"),
     },
     Param {
         name: "random",
         default: "0.05",
         unit: "of the pitch",
         help: "random tooth error (sd)",
+        kind: registry::Kind::ANY_NUMBER,
     },
     Param {
         name: "systematic",
         default: "0.6",
         unit: "deg",
         help: "systematic error amplitude A",
+        kind: registry::Kind::ANY_NUMBER,
     },
     Param {
         name: "trial",
         default: "0",
         unit: "",
         help: "which trial stream of the seed",
+        kind: registry::Kind::count(0, u64::MAX, ""),
     },
     Param {
         name: "samples",
         default: "3600",
         unit: "",
         help: "samples over the turn",
+        kind: registry::Kind::count(0, registry::MAX_COUNT as u64, ""),
     },
-    errors::PARAM,
-    errors::PARAMS_PARAM,
-    study::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -73,6 +77,7 @@ registry::inventory::submit! {
         title: "Edmunds' model against triangular teeth for three splits of the systematic error",
         paper_item: "Figure 5 (section 4)",
         params: PARAMS,
+        groups: &[study::errors::GROUP, study::events::GROUP],
         config: None,
         run,
     }
@@ -85,7 +90,7 @@ const SPLITS: [(&str, f64); 3] = [
 ];
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::label(ctx, counted(ctx)?)
+    study::events::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
@@ -95,7 +100,15 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let (big_r, small_r) = (ctx.f64("tip_radius")?, ctx.f64("root_radius")?);
     let ideal =
         Gear::ideal(n, big_r, small_r).map_err(|e| RunError::bad("--set", e.field, e.rule))?;
-    let d = geometry::centre_distance(big_r, big_r, big_r - small_r, ctx.f64("clearance")?);
+    // Two equal gears of height R - r at the chosen clearance.
+    let pair = study::limits::IdealPair {
+        n1: n,
+        n2: n,
+        r1: big_r,
+        r2: big_r,
+        h: big_r - small_r,
+    };
+    let clearance = ctx.f64("clearance")?;
     let h = errors::chosen(ctx)?;
     let samples = ctx.usize("samples")?.max(2);
     let phis: Vec<f64> = (0..samples)
@@ -134,9 +147,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         let driver = errors::make(h, &ideal, "driver", &p, &mut rng)?;
         let driven = errors::make(h, &ideal, "driven", &p, &mut rng)?;
         let phi0 = rng.random::<f64>() * TAU / n as f64;
-        let mesh = Mesh::new(driver.clone(), driven.clone(), d)
-            .map_err(|e| RunError::bad("--set", e.field, e.rule))?;
-        let tri = mesh.run(phi0, phi0 + TAU, Start::Touching(0.0));
+        let tri = pair.run_made((&driver, &driven), clearance, phi0)?;
         let rad = RadialPair::new(&driver, &driven, phi0);
         let td = |f: &dyn Fn(f64) -> f64| -> Vec<f64> {
             let t0 = f(phi0);

@@ -5,31 +5,21 @@
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table};
 
 use crate::common::{Series, category_plot};
-use study::errors;
-use study::gearing;
 use study::cell::{Purpose, label};
 use study::grids::TRIALS;
 use crate::emax::{paper_random, show};
-use study::tolerance::{self, RANDOM_FROM, RANDOM_STEP, RANDOM_TO, RULE};
+use study::tolerance::{self, RULE};
 
 const PARAMS: &[Param] = &[
     TRIALS,
     RULE,
-    RANDOM_FROM,
-    RANDOM_TO,
-    RANDOM_STEP,
     Param {
         name: "measured",
         default: "",
         unit: "",
         help: "RON table of measured per-gear errors (the `measured` hypothesis' format) to draw beside ours; empty (or none): no measured values",
+        kind: registry::Kind::Text,
     },
-    gearing::CLEARANCE,
-    gearing::TOOTH_HEIGHT,
-    errors::PARAM,
-    errors::PARAMS_PARAM,
-    gearing::PARAM,
-    study::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -38,6 +28,7 @@ registry::inventory::submit! {
         title: "Largest tolerable random error of each gear (from Table 4 by the 1 % rule), beside the paper's and any measured errors",
         paper_item: "Figure 6 (section 5)",
         params: PARAMS,
+        groups: &[study::gearing::GROUP, study::errors::GROUP, study::tolerance::RANDOM_GRID, study::events::GROUP],
         config: None,
         run,
     }
@@ -70,18 +61,17 @@ fn smaller(a: Option<f64>, b: Option<f64>) -> Option<f64> {
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::label(ctx, counted(ctx)?)
+    study::events::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let g = gearing::load(ctx)?;
-    let hyp = errors::chosen(ctx)?;
-    let trials = study::grids::trials(ctx, TRIALS.name)?;
+    let cells = study::grids::CellSettings::read(ctx, TRIALS.name)?;
+    let (g, hyp, trials) = (&cells.gearing, cells.hypothesis, cells.trials);
     let rule = tolerance::rule(ctx)?;
     let clearance = ctx.f64("clearance")?;
     let measured = measured(ctx)?;
-    let grid = study::grids::run_grid(ctx, &g, hyp, trials, Purpose::Input)?;
+    let grid = study::grids::run_grid(ctx, g, hyp, trials, Purpose::Input)?;
     let tolerable = grid.tolerable(trials, rule);
 
     // Gears in mesh order, first appearance; each with its meshes.
@@ -226,22 +216,16 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
 #[cfg(test)]
 mod tests {
     #![allow(clippy::unwrap_used, reason = "tests")]
-    use registry::Context;
 
     fn run(measured: &str) -> Result<registry::Report, registry::RunError> {
-        crate::link();
-        let map = registry::experiments().unwrap();
-        let exp = map["fig6"];
-        let set = |k: &str, v: &str| (k.to_string(), v.to_string());
-        let overrides = [
-            set("trials", "2"),
-            set("random_from", "0.05"),
-            set("random_to", "0.06"),
-            set("random_step", "0.01"),
-            set("measured", measured),
+        let sets = [
+            ("trials", "2"),
+            ("random_from", "0.05"),
+            ("random_to", "0.06"),
+            ("random_step", "0.01"),
+            ("measured", measured),
         ];
-        let ctx = Context::new(exp, 7, 2, &overrides, None).unwrap();
-        (exp.run)(&ctx)
+        crate::run("fig6", 7, 2, &sets)
     }
 
     #[test]

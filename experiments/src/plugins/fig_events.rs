@@ -8,21 +8,14 @@ use study::gearing;
 use study::limits::IdealPair;
 
 const PARAMS: &[Param] = &[
-    Param {
-        name: "mesh",
-        default: "b2-c1",
-        unit: "",
-        help: "mesh label in the gearing (radii sized as crates/train sizes them)",
-    },
-    gearing::TOOTH_HEIGHT,
+    study::limits::MESH,
     Param {
         name: "margin",
         default: "1",
         unit: "% of h",
         help: "how far inside the jam limit and beyond the disengagement limit the two runs are made",
+        kind: registry::Kind::number(0.01, 20.0, "% of h"),
     },
-    gearing::PARAM,
-    study::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -31,6 +24,7 @@ registry::inventory::submit! {
         title: "A jam and a decoupling of one ideal mesh, drawn at the instant they happen",
         paper_item: "Figures V_A and V_B (Appendix II)",
         params: PARAMS,
+        groups: &[study::gearing::SHAPE, study::events::GROUP],
         config: None,
         run,
     }
@@ -40,7 +34,7 @@ registry::inventory::submit! {
 const LIMIT_TOLERANCE: f64 = 0.01;
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::label(ctx, counted(ctx)?)
+    study::events::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
@@ -48,25 +42,9 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let rule = study::events::chosen(ctx)?;
     let h = ctx.f64("tooth_height")?;
     let margin = ctx.f64("margin")?;
-    if !(margin.is_finite() && (0.01..=20.0).contains(&margin)) {
-        return Err(RunError::bad(
-            "--set",
-            "margin",
-            format!("must be between 0.01 and 20 (% of h; got {margin})"),
-        ));
-    }
     let g = gearing::load(ctx)?;
     let label = ctx.param("mesh")?;
-    let geo = g.mesh_geometry(label, h, 40.0).ok_or_else(|| {
-        RunError::bad("--set", "mesh", format!("no mesh `{label}` in the gearing"))
-    })?;
-    let pair = IdealPair {
-        n1: geo.driver_teeth as usize,
-        n2: geo.driven_teeth as usize,
-        r1: geo.driver_tip_radius,
-        r2: geo.driven_tip_radius,
-        h,
-    };
+    let pair = IdealPair::chosen(ctx, &g, h)?;
     let (jam_limit, dis_limit) = pair.limits(LIMIT_TOLERANCE, &rule)?;
     let mut table = Table::new(
         format!(

@@ -12,33 +12,34 @@ use study::limits::IdealPair;
 type Limits = (Option<f64>, Option<f64>);
 
 const PARAMS: &[Param] = &[
-    gearing::TOOTH_HEIGHT,
     Param {
         name: "from",
         default: "10",
         unit: "% of h",
         help: "first clearance of the sweep",
+        kind: registry::Kind::number(0.0, 100.0, "% of h"),
     },
     Param {
         name: "to",
         default: "90",
         unit: "% of h",
         help: "last clearance of the sweep",
+        kind: registry::Kind::ANY_NUMBER,
     },
     Param {
         name: "step",
         default: "5",
         unit: "% of h",
         help: "clearance step",
+        kind: registry::Kind::number(0.25, 50.0, "% of h"),
     },
     Param {
         name: "samples",
         default: "2000",
         unit: "",
         help: "TD samples per run",
+        kind: registry::Kind::count(0, registry::MAX_COUNT as u64, ""),
     },
-    gearing::PARAM,
-    study::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -47,13 +48,14 @@ registry::inventory::submit! {
         title: "sigma of the driven gear against clearance G for the mechanism's meshes (semi-log), with jam and disengagement limits",
         paper_item: "Figure IV (Appendix II)",
         params: PARAMS,
+        groups: &[study::gearing::SHAPE, study::events::GROUP],
         config: None,
         run,
     }
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::label(ctx, counted(ctx)?)
+    study::events::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
@@ -69,13 +71,6 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             "need 0 <= from <= to <= 100 (% of h)",
         ));
     }
-    if !(0.25..=50.0).contains(&step) {
-        return Err(RunError::bad(
-            "--set",
-            "step",
-            "must be between 0.25 and 50 (% of h)",
-        ));
-    }
     let samples = ctx.usize("samples")?.max(2);
     let clearances: Vec<f64> = (0..)
         .map(|i| from + step * f64::from(i))
@@ -83,16 +78,9 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         .collect();
     let mut pairs = Vec::new();
     for m in g.meshes() {
-        let geo = g.mesh_geometry(&m.label, h, 40.0).ok_or_else(|| {
+        let pair = IdealPair::of_mesh(&g, &m.label, h).ok_or_else(|| {
             RunError::bad("gearing", format!("mesh {}", m.label), "cannot be sized")
         })?;
-        let pair = IdealPair {
-            n1: geo.driver_teeth as usize,
-            n2: geo.driven_teeth as usize,
-            r1: geo.driver_tip_radius,
-            r2: geo.driven_tip_radius,
-            h,
-        };
         pairs.push((m.label.clone(), pair));
     }
     // Every (mesh, clearance) run and every mesh's limits are independent: run them in parallel,

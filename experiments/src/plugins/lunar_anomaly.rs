@@ -25,32 +25,29 @@ const PARAMS: &[Param] = &[
         default: "20",
         unit: "",
         help: "trials per row (ideal teeth, Cases A-D), each with fresh errors and initial angles, run without and with the pin-and-slot (table2's count and streams)",
+        kind: registry::Kind::count(2, registry::MAX_TRIALS, "an interval needs two trials"),
     },
     Param {
         name: "lunar_turns",
         default: "1",
         unit: "turns of b",
         help: "run length (one turn of b: about 13 anomalistic months)",
+        kind: registry::Kind::positive(100.0, "turns"),
     },
     Param {
         name: "samples_per_engagement",
         default: "8",
         unit: "",
         help: "TD samples per engagement of the busiest mesh",
+        kind: registry::Kind::count(0, registry::MAX_COUNT as u64, ""),
     },
     Param {
         name: "curve_samples",
         default: "2000",
         unit: "",
         help: "points of the anomaly curve over one anomalistic month (amplitude and plot)",
+        kind: registry::Kind::count(100, registry::MAX_COUNT as u64, ""),
     },
-    gearing::CLEARANCE,
-    gearing::TOOTH_HEIGHT,
-    errors::SPLIT,
-    errors::PARAM,
-    errors::PARAMS_PARAM,
-    gearing::PARAM,
-    study::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -59,6 +56,7 @@ registry::inventory::submit! {
         title: "The pin-and-slot lunar anomaly on the Lunar pointer (beyond the paper)",
         paper_item: "Section 6 (assumptions) / Freeth 2006",
         params: PARAMS,
+        groups: &[study::gearing::GROUP, study::errors::CASES_GROUP, study::events::GROUP],
         config: None,
         run,
     }
@@ -116,33 +114,15 @@ struct Row {
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::label(ctx, counted(ctx)?)
+    study::events::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
     let g = gearing::load(ctx)?;
     let trials = ctx.usize("trials")?;
-    if trials < 2 {
-        return Err(RunError::bad(
-            "--set",
-            "trials",
-            "must be at least 2 (an interval needs two trials)",
-        ));
-    }
     let curve_samples = ctx.usize("curve_samples")?;
-    if curve_samples < 100 {
-        return Err(RunError::bad(
-            "--set",
-            "curve_samples",
-            "must be at least 100",
-        ));
-    }
-    let (h, clearance, split) = (
-        ctx.f64("tooth_height")?,
-        ctx.f64("clearance")?,
-        ctx.f64("split")?,
-    );
+    let (h, clearance) = (ctx.f64("tooth_height")?, ctx.f64("clearance")?);
     let per = ctx.usize("samples_per_engagement")?.max(1);
     let runs = pointer_runs(ctx, &g, &[(LUNAR, "lunar_turns")], per)?;
     let &[(_, turns, samples)] = runs.as_slice() else {
@@ -180,17 +160,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         .iter()
         .map(|r| {
             r.case
-                .map(|(systematic, random)| {
-                    errors::params(
-                        ctx,
-                        hyp,
-                        &[
-                            ("random", random),
-                            ("systematic", systematic),
-                            ("split", split),
-                        ],
-                    )
-                })
+                .map(|case| study::grids::case_params(ctx, hyp, case))
                 .transpose()
         })
         .collect::<Result<_, _>>()?;
@@ -500,19 +470,7 @@ mod tests {
     use super::*;
 
     fn run_with(threads: usize, sets: &[(&str, &str)]) -> Result<Report, RunError> {
-        crate::link();
-        let map = registry::experiments().unwrap();
-        let exp = map["lunar-anomaly"];
-        let overrides: Vec<(String, String)> = sets
-            .iter()
-            .map(|(k, v)| ((*k).to_string(), (*v).to_string()))
-            .collect();
-        let ctx = Context::new(exp, 7, threads, &overrides, None)?;
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| (exp.run)(&ctx))
+        crate::run("lunar-anomaly", 7, threads, sets)
     }
 
     const SMALL: &[(&str, &str)] = &[

@@ -18,7 +18,8 @@ registry::inventory::submit! {
         id: "pair",
         title: "One mesh from a RON file: theta(phi), Theoretical Difference, jams and disengagements",
         paper_item: "sections 2-3 (any gear pair, e.g. measured from CT scans)",
-        params: &[study::events::PARAM],
+        params: &[],
+        groups: &[study::events::GROUP],
         config: Some(CONFIG_HELP),
         run,
     }
@@ -71,7 +72,7 @@ a play button, the Theoretical Difference beneath with a cursor, every event a l
 there and zooms on the mesh (open it from disk; `#phi=X` opens it at phi - phi0 = X deg).";
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::label(ctx, counted(ctx)?)
+    study::events::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.

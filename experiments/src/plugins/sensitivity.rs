@@ -27,6 +27,7 @@ const PARAMS: &[Param] = &[
         default: "60",
         unit: "",
         help: "whole-mechanism runs per row (the paper's failure study: 30)",
+        kind: registry::Kind::count(2, registry::MAX_TRIALS, "an interval needs two runs"),
     },
     failure::DAYS,
     Param {
@@ -34,13 +35,10 @@ const PARAMS: &[Param] = &[
         default: "B",
         unit: "",
         help: "Edmunds' case every row starts from (A, B, C or D)",
+        kind: registry::Kind::Text,
     },
-    gearing::CLEARANCE,
-    gearing::TOOTH_HEIGHT,
     errors::SPLIT,
     errors::PARAM,
-    gearing::PARAM,
-    study::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -49,6 +47,7 @@ registry::inventory::submit! {
         title: "How the Case B failure study moves when one assumption of the paper is changed (beyond the paper)",
         paper_item: "Section 6, assumptions (1)-(5)",
         params: PARAMS,
+        groups: &[study::gearing::GROUP, study::events::GROUP],
         config: None,
         run,
     }
@@ -169,20 +168,13 @@ struct Row<'v> {
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::label(ctx, counted(ctx)?)
+    study::events::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
     let base_gearing = gearing::load(ctx)?;
     let trials = ctx.u64("trials")?;
-    if trials < 2 {
-        return Err(RunError::bad(
-            "--set",
-            "trials",
-            "must be at least 2 (an interval needs two runs)",
-        ));
-    }
     let days = failure::days(ctx)?;
     let case = ctx.param("case")?.trim();
     let Some(ci) = CASES.iter().position(|c| c.0.eq_ignore_ascii_case(case)) else {

@@ -23,30 +23,35 @@ const PARAMS: &[Param] = &[
         default: "2",
         unit: "",
         help: "Table 1 trials per reading (random initial angles; the same draws for every reading)",
+        kind: registry::Kind::count(2, registry::MAX_TRIALS, "a pooled sigma needs two trials"),
     },
     Param {
         name: "clearance",
         default: "40",
         unit: "% of h",
         help: "Table 1's clearance G of every mesh (before a reading's extra centre distance)",
+        kind: registry::Kind::positive(100.0, "% of the tooth height h"),
     },
     Param {
         name: "samples_per_engagement",
         default: "16",
         unit: "",
         help: "TD samples per tooth engagement of the busiest mesh (Table 1's default)",
+        kind: registry::Kind::count(0, registry::MAX_COUNT as u64, ""),
     },
     Param {
         name: "draws",
         default: "3",
         unit: "",
         help: "Figure IV with Case A errors: manufactured pairs per mesh (each swept over every G)",
+        kind: registry::Kind::count(0, registry::MAX_COUNT as u64, ""),
     },
     Param {
         name: "samples",
         default: "2000",
         unit: "",
         help: "TD samples per pair run of the Figure IV sweep (figIV's default)",
+        kind: registry::Kind::count(0, registry::MAX_COUNT as u64, ""),
     },
 ];
 
@@ -56,6 +61,7 @@ registry::inventory::submit! {
         title: "Why our sigma differs from the paper's: Figure IV's minimum and Table 1's sigma under each candidate reading",
         paper_item: "Table 1 and Figure IV (issue 14, beyond the paper)",
         params: PARAMS,
+        groups: &[],
         config: None,
         run,
     }
@@ -439,25 +445,20 @@ fn case_a_minimum(
         ],
     )
     .map_err(|e| RunError::Internal(format!("edmunds-split: {}", e.rule)))?;
-    let bad = |e: geometry::GeometryError| RunError::bad("gearing", e.field, e.rule);
-    let h = pair.h;
     let turn = std::f64::consts::TAU * pair.n1.max(pair.n2) as f64 / pair.n1 as f64;
     let ratio = pair.n1 as f64 / pair.n2 as f64;
     let mut sums = vec![0.0; grid.len()];
     let mut counts = vec![0_usize; grid.len()];
     for d in 0..draws {
         let mut rng = trial_rng(seed, 1000 * index as u64 + d as u64);
-        let ideal1 = Gear::ideal(pair.n1, pair.r1, pair.r1 - h).map_err(bad)?;
-        let ideal2 = Gear::ideal(pair.n2, pair.r2, pair.r2 - h).map_err(bad)?;
+        let (ideal1, ideal2) = pair.ideal_gears()?;
         let a = study::errors::make(hyp, &ideal1, &m.driver, &params, &mut rng)?;
         let b = study::errors::make(hyp, &ideal2, &m.driven, &params, &mut rng)?;
         let phi0 = rng.random::<f64>() * std::f64::consts::TAU / pair.n1 as f64;
         for (k, &c) in grid.iter().enumerate() {
-            let dist = geometry::centre_distance(pair.r1, pair.r2, h, c);
-            let Ok(mesh) = contact::Mesh::new(a.clone(), b.clone(), dist) else {
+            let Ok(t) = pair.run_made((&a, &b), c, phi0) else {
                 continue;
             };
-            let t = mesh.run(phi0, phi0 + turn, contact::Start::Touching(0.0));
             let th0 = t.theta_at(phi0);
             let acc: stats::Accumulator = (0..samples)
                 .map(|j| {
@@ -483,21 +484,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     let g2021 = Gearing::builtin("freeth2021")
         .ok_or_else(|| RunError::Internal("the embedded freeth2021 gearing is missing".into()))?;
     let trials = ctx.usize("trials")?;
-    if trials < 2 {
-        return Err(RunError::bad(
-            "--set",
-            "trials",
-            "must be at least 2 (a pooled sigma needs two trials)",
-        ));
-    }
     let clearance = ctx.f64("clearance")?;
-    if !(0.0 < clearance && clearance <= 100.0) {
-        return Err(RunError::bad(
-            "--set",
-            "clearance",
-            "must be in (0, 100] % of h",
-        ));
-    }
     let per = ctx.usize("samples_per_engagement")?.max(1);
     let samples = ctx.usize("samples")?.max(2);
     let paper_from = crate::paper::get("sigma-causes", "figIV.minimum_from").map(|r| r.value);

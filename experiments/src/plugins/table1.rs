@@ -7,10 +7,7 @@ use serde::{Deserialize, Serialize};
 use stats::{Estimate, mean_ci95};
 
 use study::gearing;
-use study::pointers::{
-    EXELIGMOS_TURNS, GAMES_TURNS, LUNAR_TURNS, METONIC_TURNS, POINTERS, SAMPLES_PER_ENGAGEMENT,
-    SAROS_TURNS, pointer_runs,
-};
+use study::pointers::{POINTERS, pointer_runs};
 
 const PARAMS: &[Param] = &[
     Param {
@@ -18,17 +15,8 @@ const PARAMS: &[Param] = &[
         default: "30",
         unit: "",
         help: "trials, each with fresh random initial angles",
+        kind: registry::Kind::count(2, registry::MAX_TRIALS, "an interval needs two trials"),
     },
-    gearing::CLEARANCE,
-    gearing::TOOTH_HEIGHT,
-    LUNAR_TURNS,
-    METONIC_TURNS,
-    SAROS_TURNS,
-    GAMES_TURNS,
-    EXELIGMOS_TURNS,
-    SAMPLES_PER_ENGAGEMENT,
-    gearing::PARAM,
-    study::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -37,6 +25,7 @@ registry::inventory::submit! {
         title: "Pointer errors of ideal triangular teeth: sigma, Dm and P of five pointers",
         paper_item: "Table 1 (section 3)",
         params: PARAMS,
+        groups: &[study::gearing::GROUP, study::pointers::RUN_LENGTHS, study::events::GROUP],
         config: None,
         run,
     }
@@ -86,20 +75,13 @@ fn batch_key(
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::label(ctx, counted(ctx)?)
+    study::events::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
     let g = gearing::load(ctx)?;
     let trials = ctx.usize("trials")?;
-    if trials < 2 {
-        return Err(RunError::bad(
-            "--set",
-            "trials",
-            "must be at least 2 (an interval needs two trials)",
-        ));
-    }
     let h = ctx.f64("tooth_height")?;
     let clearance = ctx.f64("clearance")?;
     let per = ctx.usize("samples_per_engagement")?.max(1);
@@ -131,14 +113,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         format!(
             "Table 1: ideal triangular teeth, G = {clearance} %, h = {h} mm, {trials} trials: ours / paper [deg] (days)"
         ),
-        [
-            "",
-            "Lunar",
-            "Metonic",
-            "Eclipse (Saros)",
-            "Games",
-            "Exeligmos",
-        ],
+        study::pointers::COLUMNS,
     );
     let mut detail = Table::new(
         "Table 1 in detail: mean over trials with its 95 % interval, the paper's value and ours/paper",

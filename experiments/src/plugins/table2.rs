@@ -18,39 +18,37 @@ const PARAMS: &[Param] = &[
         default: "20",
         unit: "",
         help: "trials per case, each with fresh errors and initial angles (Edmunds gives no count)",
+        kind: registry::Kind::count(2, registry::MAX_TRIALS, "an interval needs two trials"),
     },
-    gearing::CLEARANCE,
-    gearing::TOOTH_HEIGHT,
-    errors::SPLIT,
     Param {
         name: "lunar_turns",
         default: "1",
         unit: "turns of b",
         help: "run length, Lunar",
+        kind: registry::Kind::positive(100.0, "turns"),
     },
     Param {
         name: "metonic_turns",
         default: "3.8",
         unit: "turns of b",
         help: "run length, Metonic",
+        kind: registry::Kind::positive(100.0, "turns"),
     },
     Param {
         name: "saros_turns",
         default: "4.5",
         unit: "turns of b",
         help: "run length, Saros",
+        kind: registry::Kind::positive(100.0, "turns"),
     },
     Param {
         name: "samples_per_engagement",
         default: "8",
         unit: "",
         help: "TD samples per engagement of the busiest mesh",
+        kind: registry::Kind::count(0, registry::MAX_COUNT as u64, ""),
     },
-    errors::PARAM,
-    errors::PARAMS_PARAM,
-    gearing::PARAM,
     gearing::PIN_AND_SLOT,
-    study::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -59,6 +57,7 @@ registry::inventory::submit! {
         title: "Edmunds' Cases A-D: his radial-line model beside his Table 2, and triangular teeth on the same gears",
         paper_item: "Table 2 (section 4)",
         params: PARAMS,
+        groups: &[study::gearing::GROUP, study::errors::CASES_GROUP, study::events::GROUP],
         config: None,
         run,
     }
@@ -90,41 +89,21 @@ struct Recorded {
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::label(ctx, counted(ctx)?)
+    study::events::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let g = gearing::load(ctx)?;
-    let hyp = errors::chosen(ctx)?;
-    let trials = ctx.usize("trials")?;
-    if trials < 2 {
-        return Err(RunError::bad(
-            "--set",
-            "trials",
-            "must be at least 2 (an interval needs two trials)",
-        ));
-    }
-    let (h, clearance, split) = (
-        ctx.f64("tooth_height")?,
-        ctx.f64("clearance")?,
-        ctx.f64("split")?,
-    );
+    let cells = study::grids::CellSettings::read(ctx, "trials")?;
+    let (g, hyp, trials) = (&cells.gearing, cells.hypothesis, cells.trials as usize);
+    let (h, clearance) = (ctx.f64("tooth_height")?, ctx.f64("clearance")?);
     let per = ctx.usize("samples_per_engagement")?.max(1);
     let pin_and_slot = gearing::pin_and_slot(ctx)?;
-    let runs = pointer_runs(ctx, &g, &POINTERS, per)?;
+    let runs = pointer_runs(ctx, g, &POINTERS, per)?;
     let seed = ctx.seed();
     let mut results: Vec<Vec<CaseTrial>> = Vec::new();
     for (ci, &(case, systematic, random)) in CASES.iter().enumerate() {
-        let p = errors::params(
-            ctx,
-            hyp,
-            &[
-                ("random", random),
-                ("systematic", systematic),
-                ("split", split),
-            ],
-        )?;
+        let p = study::grids::case_params(ctx, hyp, (systematic, random))?;
         // Named by everything that determines the trials, so shards run and merge them.
         let key = format!(
             "table2: case {case} ({} {:?}), {trials} trials, h = {h} mm, G = {clearance} %, gearing {}, pin_and_slot {pin_and_slot}, events {}, pointers {:?}",
@@ -138,7 +117,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             // One stream per (case, trial): errors first, then initial angles.
             let mut rng = trial_rng(seed, ((ci as u64) << 32) | t);
             let mut failure = None;
-            let mech = Mechanism::build(&g, h, clearance, |name, gear| {
+            let mech = Mechanism::build(g, h, clearance, |name, gear| {
                 errors::make(hyp, &gear, name, &p, &mut rng).map_err(|e| {
                     let text = e.to_string();
                     failure = Some(e);

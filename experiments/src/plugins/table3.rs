@@ -3,8 +3,6 @@
 
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table};
 
-use study::errors;
-use study::gearing;
 use study::cell::{Purpose, run_cells};
 use crate::cells::{CSV_COLUMNS, Tally, cell_text, csv_columns, paper_counts};
 use study::grids::{CASES, case_cells, cases_apply};
@@ -15,14 +13,8 @@ const PARAMS: &[Param] = &[
         default: "200",
         unit: "",
         help: "trials per cell (the paper: 200)",
+        kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
     },
-    gearing::CLEARANCE,
-    gearing::TOOTH_HEIGHT,
-    errors::SPLIT,
-    errors::PARAM,
-    errors::PARAMS_PARAM,
-    gearing::PARAM,
-    study::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -31,33 +23,30 @@ registry::inventory::submit! {
         title: "Jams and disengagements of each mesh on its own, Cases A-D at G = 40 %, 200 trials per cell",
         paper_item: "Table 3 (section 5)",
         params: PARAMS,
+        groups: &[study::gearing::GROUP, study::errors::CASES_GROUP, study::events::GROUP],
         config: None,
         run,
     }
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::label(ctx, counted(ctx)?)
+    study::events::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let g = gearing::load(ctx)?;
-    let hyp = errors::chosen(ctx)?;
-    let trials = ctx.u64("trials")?;
-    if trials == 0 {
-        return Err(RunError::bad("--set", "trials", "must be at least 1"));
-    }
+    let cells = study::grids::CellSettings::read(ctx, "trials")?;
+    let (g, hyp, trials) = (&cells.gearing, cells.hypothesis, cells.trials);
     let clearance = ctx.f64("clearance")?;
     let meshes: Vec<&str> = g.meshes().iter().map(|m| m.label.as_str()).collect();
-    let mut cells = case_cells(ctx, &g, hyp, clearance)?;
+    let mut cells = case_cells(ctx, g, hyp, clearance)?;
     // A hypothesis that takes neither a random nor a systematic error (ideal, measured, a
     // shape-only one) makes the four Cases the same cells: one row, compared with no Case.
     let cases_apply = cases_apply(hyp);
     if !cases_apply {
         cells.truncate(meshes.len());
     }
-    let counts = run_cells(ctx, &g, &cells, trials, Purpose::Own)?;
+    let counts = run_cells(ctx, g, &cells, trials, Purpose::Own)?;
 
     let mut header = vec!["case".to_string()];
     header.extend(meshes.iter().map(|m| (*m).to_string()));

@@ -3,24 +3,12 @@
 
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table};
 
-use study::errors;
-use study::gearing;
 use study::cell::{Purpose, label};
 use crate::cells::{CSV_COLUMNS, Tally, cell_text, csv_columns, paper_counts};
-use study::grids::{TRIALS, run_grid, trials};
-use study::tolerance::{RANDOM_FROM, RANDOM_STEP, RANDOM_TO};
+use study::grids::{TRIALS, run_grid};
 
 const PARAMS: &[Param] = &[
     TRIALS,
-    RANDOM_FROM,
-    RANDOM_TO,
-    RANDOM_STEP,
-    gearing::CLEARANCE,
-    gearing::TOOTH_HEIGHT,
-    errors::PARAM,
-    errors::PARAMS_PARAM,
-    gearing::PARAM,
-    study::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -29,22 +17,22 @@ registry::inventory::submit! {
         title: "Jams and disengagements of each mesh on its own against the random tooth error, no systematic error, G = 40 %",
         paper_item: "Table 4 (section 5)",
         params: PARAMS,
+        groups: &[study::gearing::GROUP, study::errors::GROUP, study::tolerance::RANDOM_GRID, study::events::GROUP],
         config: None,
         run,
     }
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::label(ctx, counted(ctx)?)
+    study::events::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let g = gearing::load(ctx)?;
-    let hyp = errors::chosen(ctx)?;
-    let trials = trials(ctx, TRIALS.name)?;
+    let cells = study::grids::CellSettings::read(ctx, TRIALS.name)?;
+    let (g, hyp, trials) = (&cells.gearing, cells.hypothesis, cells.trials);
     let clearance = ctx.f64("clearance")?;
-    let grid = run_grid(ctx, &g, hyp, trials, Purpose::Own)?;
+    let grid = run_grid(ctx, g, hyp, trials, Purpose::Own)?;
 
     let mut header = vec!["random error".to_string()];
     header.extend(grid.meshes.iter().cloned());

@@ -4,34 +4,16 @@
 
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table};
 
-use study::errors;
-use study::gearing;
 use study::cell::{Purpose, label};
 use crate::cells::{CSV_COLUMNS, Tally, cell_text, csv_columns, paper_counts};
 use crate::emax::{EMAX, emax_from_paper, given_random, paper_random, paper_systematic, show};
 use study::grids::{TRIALS, derive};
-use study::tolerance::{
-    self, RANDOM_FROM, RANDOM_STEP, RANDOM_TO, RULE, SYSTEMATIC_FROM, SYSTEMATIC_STEP,
-    SYSTEMATIC_TO,
-};
+use study::tolerance::{self, RULE};
 
 const PARAMS: &[Param] = &[
     TRIALS,
     RULE,
     EMAX,
-    RANDOM_FROM,
-    RANDOM_TO,
-    RANDOM_STEP,
-    SYSTEMATIC_FROM,
-    SYSTEMATIC_TO,
-    SYSTEMATIC_STEP,
-    gearing::CLEARANCE,
-    gearing::TOOTH_HEIGHT,
-    errors::SPLIT,
-    errors::PARAM,
-    errors::PARAMS_PARAM,
-    gearing::PARAM,
-    study::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -40,6 +22,7 @@ registry::inventory::submit! {
         title: "Largest tolerable random error of each mesh (from Table 4 by the 1 % rule), then jams and disengagements against the systematic error",
         paper_item: "Table 5 (section 5)",
         params: PARAMS,
+        groups: &[study::gearing::GROUP, study::errors::CASES_GROUP, study::tolerance::RANDOM_GRID, study::tolerance::SYSTEMATIC_GRID, study::events::GROUP],
         config: None,
         run,
     }
@@ -47,17 +30,16 @@ registry::inventory::submit! {
 
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::label(ctx, counted(ctx)?)
+    study::events::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let g = gearing::load(ctx)?;
-    let hyp = errors::chosen(ctx)?;
-    let trials = study::grids::trials(ctx, TRIALS.name)?;
+    let cells = study::grids::CellSettings::read(ctx, TRIALS.name)?;
+    let (g, hyp, trials) = (&cells.gearing, cells.hypothesis, cells.trials);
     let rule = tolerance::rule(ctx)?;
     let (clearance, split) = (ctx.f64("clearance")?, ctx.f64("split")?);
-    let t = derive(ctx, &g, hyp, trials, rule, Purpose::Own, given_random(ctx, &g)?)?;
+    let t = derive(ctx, g, hyp, trials, rule, Purpose::Own, given_random(ctx, g)?)?;
     let given = emax_from_paper(ctx)?;
     let meshes = &t.random_grid.meshes;
     let allowed = tolerance::allowed_jams(trials, rule);
@@ -173,43 +155,32 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
 #[cfg(test)]
 mod tests {
     #![allow(clippy::unwrap_used, reason = "tests")]
-    use registry::Context;
 
     /// Table 5's E. max row at a reduced size: three random values, one systematic value, 20
     /// trials per cell (so 1 % allows no jam and 5 % allows one). Returns the row of the printed table.
     fn emax_row(rule: &str) -> Vec<String> {
-        crate::link();
-        let map = registry::experiments().unwrap();
-        let exp = map["table5"];
-        let set = |k: &str, v: &str| (k.to_string(), v.to_string());
-        let overrides = [
-            set("trials", "20"),
-            set("rule", rule),
-            set("random_from", "0.04"),
-            set("random_to", "0.06"),
-            set("random_step", "0.01"),
-            set("systematic_from", "0.1"),
-            set("systematic_to", "0.1"),
+        let sets = [
+            ("trials", "20"),
+            ("rule", rule),
+            ("random_from", "0.04"),
+            ("random_to", "0.06"),
+            ("random_step", "0.01"),
+            ("systematic_from", "0.1"),
+            ("systematic_to", "0.1"),
         ];
-        let ctx = Context::new(exp, 2025, 2, &overrides, None).unwrap();
-        let report = (exp.run)(&ctx).unwrap();
+        let report = crate::run("table5", 2025, 2, &sets).unwrap();
         report.tables[0].rows[0].clone()
     }
 
     #[test]
     fn emax_paper_runs_on_the_papers_own_row() {
-        crate::link();
-        let map = registry::experiments().unwrap();
-        let exp = map["table5"];
-        let set = |k: &str, v: &str| (k.to_string(), v.to_string());
-        let overrides = [
-            set("trials", "4"),
-            set("emax", "paper"),
-            set("systematic_from", "0.1"),
-            set("systematic_to", "0.1"),
+        let sets = [
+            ("trials", "4"),
+            ("emax", "paper"),
+            ("systematic_from", "0.1"),
+            ("systematic_to", "0.1"),
         ];
-        let ctx = Context::new(exp, 2025, 2, &overrides, None).unwrap();
-        let report = (exp.run)(&ctx).unwrap();
+        let report = crate::run("table5", 2025, 2, &sets).unwrap();
         let t = &report.tables[0];
         assert!(
             t.title.contains("the paper's own, emax=paper"),
@@ -227,12 +198,14 @@ mod tests {
         }
         // No Table 4 grid was run: only the systematic row's 15 cells of 4 trials.
         assert_eq!(report.trials, 15 * 4);
-        let bad = [set("emax", "derive")];
-        let ctx = Context::new(exp, 2025, 2, &bad, None).unwrap();
-        let e = (exp.run)(&ctx).err().unwrap();
+        // Refused before anything runs, by the parameter's kind.
+        let e = crate::run("table5", 2025, 2, &[("emax", "derive")])
+            .err()
+            .unwrap();
         assert_eq!(e.exit_code(), 2);
         assert!(
-            e.to_string().contains("must be `derived` or `paper`"),
+            e.to_string()
+                .contains("--set: emax: must be one of derived, paper (got `derive`)"),
             "{e}"
         );
     }

@@ -10,17 +10,10 @@ use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, 
 use stats::{Estimate, PointerStats, mean_ci95};
 
 use study::errors;
-use study::gearing;
 use study::cell::{Purpose, label};
-use study::pointers::{
-    EXELIGMOS_TURNS, GAMES_TURNS, LUNAR_TURNS, METONIC_TURNS, POINTERS, SAMPLES_PER_ENGAGEMENT,
-    SAROS_TURNS, pointer_runs,
-};
+use study::pointers::{POINTERS, pointer_runs};
 use crate::emax::{paper_random, paper_systematic, show};
-use study::tolerance::{
-    self, RANDOM_FROM, RANDOM_STEP, RANDOM_TO, RULE, SYSTEMATIC_FROM, SYSTEMATIC_STEP,
-    SYSTEMATIC_TO,
-};
+use study::tolerance::{self, RULE};
 
 const PARAMS: &[Param] = &[
     Param {
@@ -28,34 +21,17 @@ const PARAMS: &[Param] = &[
         default: "30",
         unit: "",
         help: "runs of the whole mechanism, each with fresh errors and initial angles (the paper: 30)",
+        kind: registry::Kind::count(2, registry::MAX_TRIALS, "an interval needs two trials"),
     },
     Param {
         name: "cell_trials",
         default: "200",
         unit: "",
         help: "trials per cell of Tables 4 and 5, from which the tolerances are derived",
+        kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
     },
     RULE,
     crate::emax::EMAX,
-    RANDOM_FROM,
-    RANDOM_TO,
-    RANDOM_STEP,
-    SYSTEMATIC_FROM,
-    SYSTEMATIC_TO,
-    SYSTEMATIC_STEP,
-    gearing::CLEARANCE,
-    gearing::TOOTH_HEIGHT,
-    errors::SPLIT,
-    LUNAR_TURNS,
-    METONIC_TURNS,
-    SAROS_TURNS,
-    GAMES_TURNS,
-    EXELIGMOS_TURNS,
-    SAMPLES_PER_ENGAGEMENT,
-    errors::PARAM,
-    errors::PARAMS_PARAM,
-    gearing::PARAM,
-    study::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -64,6 +40,7 @@ registry::inventory::submit! {
         title: "Pointer errors of a mechanism built with each mesh's largest tolerable random and systematic errors",
         paper_item: "Table 6 (section 5)",
         params: PARAMS,
+        groups: &[study::gearing::GROUP, study::errors::CASES_GROUP, study::tolerance::RANDOM_GRID, study::tolerance::SYSTEMATIC_GRID, study::pointers::RUN_LENGTHS, study::events::GROUP],
         config: None,
         run,
     }
@@ -87,22 +64,14 @@ struct Recorded {
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::label(ctx, counted(ctx)?)
+    study::events::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let g = gearing::load(ctx)?;
-    let hyp = errors::chosen(ctx)?;
-    let trials = ctx.usize("trials")?;
-    if trials < 2 {
-        return Err(RunError::bad(
-            "--set",
-            "trials",
-            "must be at least 2 (an interval needs two trials)",
-        ));
-    }
-    let cell_trials = study::grids::trials(ctx, "cell_trials")?;
+    let cells = study::grids::CellSettings::read(ctx, "trials")?;
+    let (g, hyp, trials) = (&cells.gearing, cells.hypothesis, cells.trials as usize);
+    let cell_trials = ctx.u64("cell_trials")?;
     let rule = tolerance::rule(ctx)?;
     let (h, clearance, split) = (
         ctx.f64("tooth_height")?,
@@ -110,15 +79,15 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         ctx.f64("split")?,
     );
     let per = ctx.usize("samples_per_engagement")?.max(1);
-    let runs = pointer_runs(ctx, &g, &POINTERS, per)?;
+    let runs = pointer_runs(ctx, g, &POINTERS, per)?;
     let tol = study::grids::derive(
         ctx,
-        &g,
+        g,
         hyp,
         cell_trials,
         rule,
         Purpose::Input,
-        crate::emax::given_random(ctx, &g)?,
+        crate::emax::given_random(ctx, g)?,
     )?;
 
     // Each gear: the tolerances of its mesh; a gear in two meshes (b2) the smaller of each.
@@ -167,7 +136,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         // One stream per trial: every gear's errors, then the initial angles.
         let mut rng = trial_rng(seed, t);
         let mut failure = None;
-        let mech = Mechanism::build(&g, h, clearance, |name, gear| {
+        let mech = Mechanism::build(g, h, clearance, |name, gear| {
             let Some(p) = params.get(name) else {
                 return Err(format!("gear {name} has no tolerance"));
             };
@@ -240,14 +209,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
                 ""
             }
         ),
-        [
-            "",
-            "Lunar",
-            "Metonic",
-            "Eclipse (Saros)",
-            "Games",
-            "Exeligmos",
-        ],
+        study::pointers::COLUMNS,
     );
     let mut detail = Table::new(
         "Table 6 in detail: mean over trials with its 95 % interval, the paper's value, trials that jammed",

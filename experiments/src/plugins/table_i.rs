@@ -3,8 +3,6 @@
 
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table};
 
-use study::errors;
-use study::gearing;
 use study::cell::{Purpose, label, run_cells};
 use crate::cells::{CSV_COLUMNS, Tally, cell_text, csv_columns, paper_counts};
 use study::grids::CASES;
@@ -18,13 +16,8 @@ const PARAMS: &[Param] = &[
         default: "10,40,70",
         unit: "% of h",
         help: "clearances G, comma-separated (the paper: 10, 40 and 70)",
+        kind: registry::Kind::Text,
     },
-    gearing::TOOTH_HEIGHT,
-    errors::SPLIT,
-    errors::PARAM,
-    errors::PARAMS_PARAM,
-    gearing::PARAM,
-    study::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -33,6 +26,7 @@ registry::inventory::submit! {
         title: "Jams and disengagements of each mesh on its own, Cases A-D at G = 10, 40 and 70 %",
         paper_item: "Table I (Appendix II)",
         params: PARAMS,
+        groups: &[study::gearing::SHAPE, study::errors::CASES_GROUP, study::events::GROUP],
         config: None,
         run,
     }
@@ -44,14 +38,13 @@ fn clearances(ctx: &Context) -> Result<Vec<f64>, RunError> {
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::label(ctx, counted(ctx)?)
+    study::events::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let g = gearing::load(ctx)?;
-    let hyp = errors::chosen(ctx)?;
-    let trials = study::grids::trials(ctx, TRIALS.name)?;
+    let cells = study::grids::CellSettings::read(ctx, TRIALS.name)?;
+    let (g, hyp, trials) = (&cells.gearing, cells.hypothesis, cells.trials);
     let gs = clearances(ctx)?;
     let meshes: Vec<String> = g.meshes().iter().map(|m| m.label.clone()).collect();
     // All cells in one call: Cases by clearance, as case_cells lays them out. A hypothesis the
@@ -60,11 +53,11 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let cases = if cases_apply { CASES.len() } else { 1 };
     let mut cells = Vec::new();
     for &clearance in &gs {
-        let mut these = case_cells(ctx, &g, hyp, clearance)?;
+        let mut these = case_cells(ctx, g, hyp, clearance)?;
         these.truncate(cases * meshes.len());
         cells.extend(these);
     }
-    let counts = run_cells(ctx, &g, &cells, trials, Purpose::Own)?;
+    let counts = run_cells(ctx, g, &cells, trials, Purpose::Own)?;
     let per_g = cases * meshes.len();
 
     let mut header = vec!["case".to_string(), "G [%]".to_string()];

@@ -21,6 +21,7 @@ const SEARCH_LO: Param = Param {
     default: "0.02",
     unit: "pitch",
     help: "lower end of the searched random error (fraction of the pitch 360/N)",
+    kind: registry::Kind::number(0.0, f64::INFINITY, ""),
 };
 
 const SEARCH_HI: Param = Param {
@@ -28,6 +29,7 @@ const SEARCH_HI: Param = Param {
     default: "0.08",
     unit: "pitch",
     help: "upper end of the searched random error",
+    kind: registry::Kind::ANY_NUMBER,
 };
 
 const RESOLUTION: Param = Param {
@@ -35,6 +37,7 @@ const RESOLUTION: Param = Param {
     default: "0.0025",
     unit: "pitch",
     help: "the bisection stops when the bracket is at most this wide",
+    kind: registry::Kind::positive(f64::INFINITY, ""),
 };
 
 const BATCH: Param = Param {
@@ -42,6 +45,7 @@ const BATCH: Param = Param {
     default: "20",
     unit: "",
     help: "trials added to a probed value at a time",
+    kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
 };
 
 const CAP: Param = Param {
@@ -49,6 +53,7 @@ const CAP: Param = Param {
     default: "200",
     unit: "",
     help: "most trials at one probed value, where the paper's count rule decides; also the trials per cell of the Table 4 grid compared with (the paper: 200)",
+    kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
 };
 
 const PARAMS: &[Param] = &[
@@ -58,15 +63,6 @@ const PARAMS: &[Param] = &[
     RULE,
     BATCH,
     CAP,
-    RANDOM_FROM,
-    RANDOM_TO,
-    RANDOM_STEP,
-    gearing::CLEARANCE,
-    gearing::TOOTH_HEIGHT,
-    errors::PARAM,
-    errors::PARAMS_PARAM,
-    gearing::PARAM,
-    study::events::PARAM,
 ];
 
 registry::inventory::submit! {
@@ -75,6 +71,7 @@ registry::inventory::submit! {
         title: "Largest tolerable random error of each mesh by a sequential search (bisection, trials added until the jam rate is clearly below or above the rule), against Table 4's grid",
         paper_item: "Section 5, Tables 4-5 (tolerance by sequential search; beyond the paper)",
         params: PARAMS,
+        groups: &[study::gearing::GROUP, study::errors::GROUP, study::tolerance::RANDOM_GRID, study::events::GROUP],
         config: None,
         run,
     }
@@ -256,25 +253,11 @@ fn settings(ctx: &Context) -> Result<Settings, RunError> {
     let resolution = ctx.f64(RESOLUTION.name)?;
     let rule = ctx.f64(RULE.name)?;
     let (batch, cap) = (ctx.u64(BATCH.name)?, ctx.u64(CAP.name)?);
-    if lo.is_nan() || lo < 0.0 {
-        return Err(RunError::bad(
-            "--set",
-            SEARCH_LO.name,
-            format!("must be at least 0 (got {lo})"),
-        ));
-    }
     if hi.is_nan() || lo >= hi {
         return Err(RunError::bad(
             "--set",
             SEARCH_HI.name,
             format!("must be greater than {} = {lo} (got {hi})", SEARCH_LO.name),
-        ));
-    }
-    if resolution.is_nan() || resolution <= 0.0 {
-        return Err(RunError::bad(
-            "--set",
-            RESOLUTION.name,
-            format!("must be greater than 0 (got {resolution})"),
         ));
     }
     if rule.is_nan() || rule <= 0.0 || rule >= 100.0 {
@@ -283,9 +266,6 @@ fn settings(ctx: &Context) -> Result<Settings, RunError> {
             RULE.name,
             format!("must be a percentage strictly between 0 and 100 (got {rule})"),
         ));
-    }
-    if batch == 0 {
-        return Err(RunError::bad("--set", BATCH.name, "must be at least 1"));
     }
     if cap < batch {
         return Err(RunError::bad(
@@ -368,7 +348,7 @@ fn show_search(sr: &Search, s: &Settings) -> String {
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::label(ctx, counted(ctx)?)
+    study::events::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
@@ -602,15 +582,7 @@ mod tests {
     }
 
     fn run_with(sets: &[(&str, &str)]) -> Result<Report, RunError> {
-        crate::link();
-        let map = registry::experiments().unwrap();
-        let exp = map["tolerance"];
-        let overrides: Vec<(String, String)> = sets
-            .iter()
-            .map(|(k, v)| ((*k).to_string(), (*v).to_string()))
-            .collect();
-        let ctx = Context::new(exp, 2025, 2, &overrides, None).unwrap();
-        (exp.run)(&ctx)
+        crate::run("tolerance", 2025, 2, sets)
     }
 
     #[test]

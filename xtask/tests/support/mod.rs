@@ -149,3 +149,60 @@ pub fn files(dir: &Path) -> BTreeMap<String, Vec<u8>> {
         })
         .collect()
 }
+
+/// A reduced table1: short runs of every pointer with few samples (the trials come from the test).
+pub const TABLE1_SHORT: &[&str] = &[
+    "--set",
+    "lunar_turns=0.2",
+    "--set",
+    "metonic_turns=0.2",
+    "--set",
+    "saros_turns=0.2",
+    "--set",
+    "games_turns=0.2",
+    "--set",
+    "exeligmos_turns=0.2",
+    "--set",
+    "samples_per_engagement=4",
+];
+
+/// A tiny table1: two trials of very short runs, for tests that only need it to run.
+pub const TABLE1_TINY: &[&str] = &[
+    "--set",
+    "trials=2",
+    "--set",
+    "lunar_turns=0.05",
+    "--set",
+    "metonic_turns=0.05",
+    "--set",
+    "saros_turns=0.05",
+    "--set",
+    "games_turns=0.05",
+    "--set",
+    "exeligmos_turns=0.05",
+    "--set",
+    "samples_per_engagement=2",
+];
+
+/// Asserts that `xtask args` is refused as a bad command line: exit status 2, one line on stderr
+/// (pointing to the usage when `usage` is set), nothing on stdout (nothing ran).
+pub fn refused_in_one_line(args: &[&str], usage: bool) {
+    let o = xtask(args);
+    assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+    let err = stderr(&o);
+    assert_eq!(err.lines().count(), 1, "{args:?}: one line: {err}");
+    assert_eq!(
+        err.contains("`cargo xtask help` shows the usage"),
+        usage,
+        "{args:?}: {err}"
+    );
+    assert!(o.stdout.is_empty(), "{args:?}: nothing may run");
+}
+
+/// Runs `xtask run` with the experiment ids (and their flags) `ids`, then `extra`.
+pub fn run_args(ids: &[&str], extra: &[&str]) -> Output {
+    let mut args = vec!["run"];
+    args.extend_from_slice(ids);
+    args.extend_from_slice(extra);
+    xtask(&args)
+}

@@ -1,0 +1,121 @@
+//! The files a run reads, named by its parameters (a gearing file, measured-error tables), and
+//! their checks before anything runs: each must read and pass its rules, and a measured table
+//! must name only gears of the gearing it is run with. The runner calls these for every
+//! experiment it is about to run, knowing nothing of gearings or hypotheses itself.
+
+use std::collections::BTreeSet;
+use std::path::Path;
+
+use registry::Context;
+use train::Gearing;
+
+/// The value of parameter `name` where the experiment declares it.
+fn value(ctx: &Context, name: &str) -> Option<String> {
+    ctx.declares(name)
+        .then(|| ctx.param(name).ok().map(str::to_owned))
+        .flatten()
+}
+
+/// The measured-error tables the `hypothesis` parameter names (its `measured:FILE` layers).
+pub fn measured_in_hypothesis(hypothesis: &str) -> Vec<String> {
+    hypothesis
+        .split(hypotheses::SEPARATOR)
+        .filter_map(|layer| layer.strip_prefix("measured:").map(str::to_owned))
+        .collect()
+}
+
+/// The files this run reads, as (role, path): a gearing file (not an embedded gearing) and
+/// every measured-error table, from the hypothesis or the `measured` parameter.
+pub fn files(ctx: &Context) -> Vec<(&'static str, String)> {
+    let mut files = Vec::new();
+    if let Some(g) = value(ctx, "gearing")
+        && Gearing::builtin(&g).is_none()
+    {
+        files.push(("gearing", g));
+    }
+    if let Some(h) = value(ctx, "hypothesis") {
+        files.extend(
+            measured_in_hypothesis(&h)
+                .into_iter()
+                .map(|f| ("measured errors", f)),
+        );
+    }
+    if let Some(m) = value(ctx, "measured")
+        && hypotheses::measured_file_given(&m).is_some()
+    {
+        files.push(("measured errors", m.trim().to_owned()));
+    }
+    files
+}
+
+/// Checks, before anything runs, every gearing file, error hypothesis and measured-errors table
+/// the run was given: each must read and pass its rules (refused naming the file, the line or
+/// item and the rule), and a measured table must name only gears of the run's gearing. `flags`
+/// names what the user typed: (`--hypothesis` or `--errors`, `--set measured` or `--errors`).
+/// `seen` skips what an earlier experiment of the same run already checked.
+pub fn check(
+    ctx: &Context,
+    flags: (&str, &str),
+    seen: &mut BTreeSet<(&'static str, String)>,
+) -> Result<(), String> {
+    let (hypothesis_flag, measured_flag) = flags;
+    if let Some(g) = value(ctx, "gearing")
+        && Gearing::builtin(&g).is_none()
+        && seen.insert(("gearing", g.clone()))
+    {
+        Gearing::load(Path::new(&g)).map_err(|e| e.to_string())?;
+    }
+    if let Some(h) = value(ctx, "hypothesis")
+        && seen.insert(("hypothesis", h.clone()))
+    {
+        hypotheses::lookup(&h).map_err(|e| format!("{hypothesis_flag}: {e}"))?;
+    }
+    if let Some(m) = value(ctx, "measured")
+        && hypotheses::measured_file_given(&m).is_some()
+        && seen.insert(("measured", m.clone()))
+    {
+        hypotheses::measured_file(m.trim()).map_err(|e| format!("{measured_flag}: {e}"))?;
+    }
+    measured_gears_in_gearing(ctx, flags)
+}
+
+/// A measured-errors table given to an experiment that builds a gearing must name only gears of
+/// that gearing: a row for another gear (a typo, another gearing's name) would be silently
+/// unused. Refused naming the flag, the file, the gear and the gearing.
+fn measured_gears_in_gearing(ctx: &Context, flags: (&str, &str)) -> Result<(), String> {
+    let Some(gearing_name) = value(ctx, "gearing") else {
+        return Ok(());
+    };
+    let from_hypothesis =
+        value(ctx, "hypothesis").and_then(|h| measured_in_hypothesis(&h).into_iter().next());
+    let (file, flag) = match (from_hypothesis, value(ctx, "measured")) {
+        (Some(f), _) => (f, flags.0),
+        (None, Some(m)) if hypotheses::measured_file_given(&m).is_some() => {
+            (m.trim().to_owned(), flags.1)
+        }
+        _ => return Ok(()),
+    };
+    let Ok(h) = hypotheses::measured_file(&file) else {
+        return Ok(()); // refused by `check` with its own message
+    };
+    let gearing = match Gearing::builtin(&gearing_name) {
+        Some(g) => g,
+        None => Gearing::load(Path::new(&gearing_name)).map_err(|e| e.to_string())?,
+    };
+    for (gear, _) in h.table().entries() {
+        if gearing.gear(gear).is_none() {
+            return Err(format!(
+                "{flag}: {file}: gear {gear}: is not a gear of the gearing `{gearing_name}` ({} gears, e.g. {}), so its row would be silently unused",
+                gearing.gears().len(),
+                gearing
+                    .gears()
+                    .iter()
+                    .take(3)
+                    .map(|g| g.name.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ));
+        }
+    }
+    Ok(())
+}
