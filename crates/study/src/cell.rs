@@ -202,7 +202,7 @@ impl Rebuilt {
 }
 
 /// Rebuilds trial `t` of `cell` under `seed` exactly as the tables ran it: the same stream (named
-/// by the cell's content and `t`), both gears' errors, then the initial angle. [`trial`] is built
+/// by the cell's content and `t`), both gears' errors, then the initial angle. `trial` is built
 /// on it, so a replayed trial cannot drift from the one a table counted.
 ///
 /// Errors: a mesh missing from the gearing; a gear the hypothesis cannot manufacture.
@@ -256,7 +256,7 @@ fn trial(p: &Prepared<'_>, seed: u64, t: u64, rules: &[rules::Rule]) -> Result<R
 /// One trial of a flat batch under several rules: see [`trial`].
 type RuleBits = u64;
 
-/// Most rules one batch counts under (two bits each in a [`RuleBits`]).
+/// Most rules one batch counts under (two bits each in a `RuleBits`).
 pub const MAX_RULES: usize = 32;
 
 /// Rule `r`'s (jammed, disengaged) in a [`RuleBits`].

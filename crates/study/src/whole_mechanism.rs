@@ -132,7 +132,7 @@ pub struct MechanismRun {
     pub engagements: f64,
     /// The gears could not be placed (bodies overlapping at every angle): the mesh and rule.
     pub unplaceable: Option<String>,
-    /// σ of the Lunar pointer's Theoretical Difference [deg] over the run up to its first jam
+    /// σ of the Lunar pointer's Theoretical Difference (degrees) over the run up to its first jam
     /// (None: it jammed at once, or the gears could not be placed).
     #[serde(default)]
     pub lunar_sigma: Option<f64>,
