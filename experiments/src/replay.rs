@@ -137,7 +137,7 @@ pub fn replay(ctx: &Context, id: &str, cell: &str, trial: Option<u64>) -> Result
             ),
         )),
         Some(t) => one_trial(&g, &spec, ctx.seed(), id, cell, t),
-        None => listing(&g, &spec, ctx.seed(), id, cell, trials),
+        None => listing(ctx, &g, &spec, id, cell, trials),
     }
 }
 
@@ -248,25 +248,24 @@ fn verdict(jam: bool, dis: bool) -> &'static str {
 
 /// The trials of the cell that failed, by kind (the first [`LISTED`] of each).
 fn listing(
+    ctx: &Context,
     g: &Gearing,
     spec: &CellSpec,
-    seed: u64,
     id: &str,
     cell: &str,
     trials: u64,
 ) -> Result<Report, RunError> {
-    use rayon::prelude::*;
-    let outcomes: Vec<(bool, bool)> = (0..trials)
-        .into_par_iter()
-        .map(|t| {
-            let r = rebuild(g, spec, seed, t)?;
-            Ok(if r.mesh.is_none() {
-                (true, false)
-            } else {
-                spec.events.tally(&r.events())
-            })
+    let seed = ctx.seed();
+    // Through the trial engine like every trial loop (one stream per trial, in trial order).
+    let key = format!("replay listing of {}", spec.canonical());
+    let outcomes: Vec<(bool, bool)> = ctx.trials(&key, trials, |t| {
+        let r = rebuild(g, spec, seed, t)?;
+        Ok(if r.mesh.is_none() {
+            (true, false)
+        } else {
+            spec.events.tally(&r.events())
         })
-        .collect::<Result<_, RunError>>()?;
+    })?;
     let which = |f: fn(&(bool, bool)) -> bool| -> (usize, String) {
         let all: Vec<String> = outcomes
             .iter()

@@ -9,7 +9,6 @@ use std::collections::BTreeMap;
 
 use geometry::Gear;
 use mechanism::{Mechanism, PointerRun, trial_rng};
-use rayon::prelude::*;
 use registry::{Context, Experiment, Param, Report, RunError, Table, fmt_f64};
 use serde::{Deserialize, Serialize};
 use train::Gearing;
@@ -381,15 +380,19 @@ fn pooled(trials: &[Vec<PointerSigma>], i: usize) -> f64 {
     v.sqrt()
 }
 
-/// Where a σ(G) curve is smallest, and how deep that minimum is.
-#[derive(Debug, Clone, Copy)]
+/// Where a σ(G) curve is smallest, and how deep that minimum is. Recorded per (reading, mesh)
+/// through `Context::trials_whole` (NaN fields as bits).
+#[derive(Debug, Clone, Copy, Default, serde::Serialize, serde::Deserialize)]
 struct Minimum {
     /// The clearance of the smallest σ, % of h.
+    #[serde(with = "registry::f64_bits")]
     at: f64,
     /// σ at 40 % over the smallest σ (NaN when 40 % is not on the curve).
+    #[serde(with = "registry::f64_bits")]
     depth: f64,
     /// The largest clearance on the curve (for ideal gears: the largest that runs a full turn
     /// without a jam or disengagement).
+    #[serde(with = "registry::f64_bits")]
     last: f64,
 }
 
@@ -525,9 +528,15 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     }
     // (column, mesh) -> G of the smallest σ; pairs of identical geometry (b2-c1 and b2-l1) are
     // run twice, which keeps the code plain.
-    let minima: Vec<Result<Option<Minimum>, RunError>> = jobs
-        .par_iter()
-        .map(|&(ri, mi, ref pair)| {
+    // Through the trial engine like every trial loop: job j is (reading, mesh); the Case A column
+    // draws its gears from streams of the seed.
+    let key = format!(
+        "sigma-causes Figure IV minima: {} jobs, grid {grid:?}, draws {draws}, samples {samples}",
+        jobs.len()
+    );
+    let minima: Vec<Option<Minimum>> = ctx.trials_whole(&key, jobs.len() as u64, |j| {
+        let &(ri, mi, ref pair) = &jobs[j as usize];
+        {
             if ri == case_a {
                 return case_a_minimum(&g, mi, pair, &grid, draws, samples, seed);
             }
@@ -555,11 +564,11 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
                 curve.push((c, pair.td_sigma(&t, samples).sigma));
             }
             Ok(Minimum::of(&curve))
-        })
-        .collect();
+        }
+    })?;
     let mut at: BTreeMap<(usize, usize), Option<Minimum>> = BTreeMap::new();
     for ((ri, mi, _), m) in jobs.iter().zip(minima) {
-        at.insert((*ri, *mi), m?);
+        at.insert((*ri, *mi), m);
     }
     let columns = in_backlash + 1;
 
