@@ -96,10 +96,9 @@ impl Mechanism {
                 mesh: format!("(gear {})", g.name),
                 rule,
             };
-            let radius = gearing
-                .tip_radius(&g.name)
-                .ok_or_else(|| bad("cannot be sized".into()))?;
-            let ideal = Gear::ideal(g.teeth as usize, radius, radius - h)
+            let ideal = gearing
+                .ideal_gear(&g.name, h)
+                .ok_or_else(|| bad("cannot be sized".into()))?
                 .map_err(|e| bad(e.to_string()))?;
             made.insert(g.name.clone(), make(&g.name, ideal).map_err(bad)?);
         }

@@ -151,22 +151,14 @@ fn prepare<'a>(g: &Gearing, spec: &'a CellSpec) -> Result<Prepared<'a>, RunError
         .ok_or_else(|| {
             RunError::bad("gearing", format!("mesh {}", spec.mesh), "cannot be sized")
         })?;
-    let h = spec.tooth_height;
-    let bad = |e: geometry::GeometryError| {
-        RunError::bad("gearing", format!("mesh {}", spec.mesh), e.to_string())
+    let ideal = |name: &str| {
+        g.ideal_gear(name, spec.tooth_height)
+            .ok_or_else(|| {
+                RunError::bad("gearing", format!("mesh {}", spec.mesh), "cannot be sized")
+            })?
+            .map_err(|e| RunError::bad("gearing", format!("mesh {}", spec.mesh), e.to_string()))
     };
-    let driver = Gear::ideal(
-        geo.driver_teeth as usize,
-        geo.driver_tip_radius,
-        geo.driver_tip_radius - h,
-    )
-    .map_err(bad)?;
-    let driven = Gear::ideal(
-        geo.driven_teeth as usize,
-        geo.driven_tip_radius,
-        geo.driven_tip_radius - h,
-    )
-    .map_err(bad)?;
+    let (driver, driven) = (ideal(&m.driver)?, ideal(&m.driven)?);
     let larger = geo.driver_teeth.max(geo.driven_teeth);
     Ok(Prepared {
         spec,

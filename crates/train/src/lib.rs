@@ -827,6 +827,19 @@ impl Gearing {
         Some(c.mu * f64::from(teeth))
     }
 
+    /// `gear` with ideal triangular teeth of height `h` mm, sized as every experiment sizes it
+    /// (tip radius [`Gearing::tip_radius`], root radius `R - h`): the one place a gearing's gear
+    /// becomes a [`geometry::Gear`]. None for a gear the gearing does not have.
+    pub fn ideal_gear(
+        &self,
+        gear: &str,
+        h: f64,
+    ) -> Option<Result<geometry::Gear, geometry::GeometryError>> {
+        let teeth = self.gear(gear)?.teeth as usize;
+        let radius = self.tip_radius(gear)?;
+        Some(geometry::Gear::ideal(teeth, radius, radius - h))
+    }
+
     /// Tip (outer) radius `R` of every gear in mm, by name.
     ///
     /// The paper keeps `R1/R2 = N1/N2` exactly in every mesh, with `R` as close as possible to
