@@ -503,7 +503,7 @@ impl Mesh {
     /// Its ends are contact roots: a vertex of one tooth on a flank of the other (tip on flank is
     /// the paper's Phase 1 or 2; tip on tip is the shared end of both), each solved in closed form.
     pub fn obstacle(&self, phi: f64, j: i64, k: i64) -> Option<Obstacle> {
-        let (s, c) = phi.sin_cos();
+        let (s, c) = sin_cos_of(phi);
         let (da, _) = self.driver.data(j);
         let a =
             da.v.map(|v| Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y));
@@ -1065,6 +1065,24 @@ pub(crate) fn wrap_pi(x: f64) -> f64 {
 
 thread_local! {
     static EVALS: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+    /// The last driver angle whose sine and cosine were taken, with them.
+    static LAST_SIN_COS: std::cell::Cell<(u64, f64, f64)> =
+        const { std::cell::Cell::new((0, 0.0, 1.0)) };
+}
+
+/// `phi.sin_cos()`, remembered for the last angle asked on this thread: the solver evaluates
+/// several tooth pairs at one driver angle in a row. The same bits either way.
+#[inline]
+fn sin_cos_of(phi: f64) -> (f64, f64) {
+    LAST_SIN_COS.with(|last| {
+        let (bits, s, c) = last.get();
+        if bits == phi.to_bits() {
+            return (s, c);
+        }
+        let (s, c) = phi.sin_cos();
+        last.set((phi.to_bits(), s, c));
+        (s, c)
+    })
 }
 
 /// Tooth-pair obstacle evaluations (the closed-form contact roots of one driver tooth against
