@@ -50,34 +50,16 @@ fn a_file_parameter_at_its_default_is_not_read_as_a_file() {
     // before anything runs, which refused `run fig6` and so `run all` at their defaults.
     let s = Scratch::new("all-defaults");
     let out = s.path("out");
-    let o = xtask(&[
-        "run",
-        "fig6",
-        "-q",
-        "--set",
-        "trials=1",
-        "--set",
-        "random_from=0.04",
-        "--set",
-        "random_to=0.04",
-        "--out",
-        &out,
-    ]);
+    // A tiny fig6 (one trial, one random error), with `extra` settings.
+    let fig6 = |extra: &[&str]| {
+        let mut args = vec!["run", "fig6", "-q", "--out", &out];
+        args.extend(["--set", "trials=1", "--set", "random_from=0.04"]);
+        args.extend(["--set", "random_to=0.04"]);
+        args.extend(extra);
+        xtask(&args)
+    };
+    let o = fig6(&[]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let o = xtask(&[
-        "run",
-        "fig6",
-        "-q",
-        "--set",
-        "trials=1",
-        "--set",
-        "random_from=0.04",
-        "--set",
-        "random_to=0.04",
-        "--set",
-        "measured=none",
-        "--out",
-        &out,
-    ]);
+    let o = fig6(&["--set", "measured=none"]);
     assert!(o.status.success(), "measured=none: {}", stderr(&o));
 }
