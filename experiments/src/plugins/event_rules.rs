@@ -20,7 +20,13 @@ use study::grids::CASES;
 use study::tolerance::{self, RANDOM_FROM, RANDOM_STEP, RANDOM_TO};
 
 const PARAMS: &[Param] = &[
-    study::grids::TRIALS,
+    Param {
+        name: "trials",
+        default: "200",
+        unit: "",
+        help: "trials per cell (the paper: 200)",
+        kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
+    },
     Param {
         name: "clearances",
         default: "10,40,70",

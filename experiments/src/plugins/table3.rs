@@ -8,7 +8,13 @@ use crate::cells::{CSV_COLUMNS, Tally, cell_text, csv_columns, paper_counts};
 use study::grids::{CASES, case_cells, cases_apply};
 
 const PARAMS: &[Param] = &[
-    study::grids::TRIALS,
+    Param {
+        name: "trials",
+        default: "200",
+        unit: "",
+        help: "trials per cell (the paper: 200)",
+        kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
+    },
 ];
 
 registry::inventory::submit! {
