@@ -3,7 +3,7 @@
 //! around the best), and the 30-run failure study rerun with those clearances against the
 //! paper's one clearance for every mesh (beyond the paper).
 //!
-//! The pair runs are the cells of Tables 3, 4 and I (`pair_jams`: one full turn of the gear with
+//! The pair runs are the cells of Tables 3, 4 and I (`study::cell`: one full turn of the gear with
 //! more teeth, both gears manufactured afresh, a random initial angle), so a cell this search
 //! shares with another experiment gives the same counts. The failure study's runs are
 //! `failure`'s: the same gears and initial angles at both settings, so its 40 % columns are
@@ -20,7 +20,7 @@ use train::Gearing;
 
 use crate::common::{Series, line_plot};
 use study::errors;
-use study::whole_mechanism::{self as failure, Clearances, Input, MechanismRun, Summary};
+use study::whole_mechanism::{self as whole, Clearances, Input, MechanismRun, Summary};
 use study::gearing;
 use study::gearing::clearance_list;
 use study::cell::{CellRange, CellSpec, Counts, Purpose, label, run_cell_ranges, run_cells};
@@ -60,7 +60,7 @@ const REFINE_TRIALS: Param = Param {
 
 const RUNS: Param = Param {
     name: "runs",
-    default: failure::RUNS_DEFAULT,
+    default: whole::RUNS_DEFAULT,
     unit: "",
     help: "whole-mechanism runs per case and clearance setting (failure's trials; the paper: 30)",
     kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
@@ -80,8 +80,8 @@ const PARAMS: &[Param] = &[
     REFINE_STEP,
     REFINE_TRIALS,
     RUNS,
-    failure::DAYS,
-    failure::CASES_PARAM,
+    whole::DAYS,
+    whole::CASES_PARAM,
     REFERENCE,
 ];
 
@@ -171,12 +171,12 @@ fn settings(ctx: &Context) -> Result<Settings, RunError> {
         ));
     }
     let runs = count(ctx, &RUNS)?;
-    let days = failure::days(ctx)?;
-    let cases = failure::parse_cases(ctx.param(failure::CASES_PARAM.name)?)?;
+    let days = whole::days(ctx)?;
+    let cases = whole::parse_cases(ctx.param(whole::CASES_PARAM.name)?)?;
     if cases.is_empty() {
         return Err(RunError::bad(
             "--set",
-            failure::CASES_PARAM.name,
+            whole::CASES_PARAM.name,
             "no case: nothing to run",
         ));
     }
@@ -381,7 +381,7 @@ fn search(
 /// and initial angles) at two settings.
 fn discordant(a: &[MechanismRun], b: &[MechanismRun], ti: usize) -> (u64, u64) {
     let jammed =
-        |o: &MechanismRun| failure::jam_of(o, ti).is_some_and(|j| j.day <= stats::DAYS_PER_YEAR);
+        |o: &MechanismRun| whole::jam_of(o, ti).is_some_and(|j| j.day <= stats::DAYS_PER_YEAR);
     let mut only = (0, 0);
     for (x, y) in a.iter().zip(b) {
         match (jammed(x), jammed(y)) {
@@ -462,7 +462,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let s = settings(ctx)?;
     let h = ctx.f64("tooth_height")?;
     ctx.f64("split")?;
-    failure::check_study(&g, h, &Clearances::Uniform(s.reference))?;
+    whole::check_study(&g, h, &Clearances::Uniform(s.reference))?;
     let searches = search(ctx, &g, hyp, &s)?;
     let meshes: Vec<String> = g.meshes().iter().map(|m| m.label.clone()).collect();
     let rl = label(s.reference, 0);
@@ -617,23 +617,23 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             default: s.reference,
             meshes: map.clone(),
         };
-        failure::check_study(&g, h, &per_mesh)?;
-        let mut at_ref = failure::case_input(ctx, hyp, ci, Clearances::Uniform(s.reference))?;
+        whole::check_study(&g, h, &per_mesh)?;
+        let mut at_ref = whole::case_input(ctx, hyp, ci, Clearances::Uniform(s.reference))?;
         at_ref.label = format!("{} at {rl} %", CASES[ci].0);
-        let mut at_best = failure::case_input(ctx, hyp, ci, per_mesh)?;
+        let mut at_best = whole::case_input(ctx, hyp, ci, per_mesh)?;
         at_best.label = format!("{} at best", CASES[ci].0);
         inputs.push(at_ref);
         inputs.push(at_best);
     }
     let key = format!(
         "clearance-design/{}",
-        failure::batch_key(ctx, &inputs, s.runs, h, s.reference, s.days)?
+        whole::batch_key(ctx, &inputs, s.runs, h, s.reference, s.days)?
     );
-    let outcomes = failure::run_study(ctx, &g, &inputs, s.runs, h, s.days, &key)?;
+    let outcomes = whole::run_study(ctx, &g, &inputs, s.runs, h, s.days, &key)?;
     let per_input: Vec<&[MechanismRun]> = outcomes.chunks(s.runs as usize).collect();
     let summaries: Vec<Vec<Summary>> = per_input
         .iter()
-        .map(|runs| failure::summarise(runs, s.days))
+        .map(|runs| whole::summarise(runs, s.days))
         .collect();
     let mut study = Table::new(
         format!(
@@ -657,7 +657,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     for (k, &ci) in s.cases.iter().enumerate() {
         let (at_ref, at_best) = (&summaries[2 * k], &summaries[2 * k + 1]);
         let (runs_ref, runs_best) = (per_input[2 * k], per_input[2 * k + 1]);
-        for (ti, ((name, r), b)) in failure::train_names().zip(at_ref).zip(at_best).enumerate() {
+        for (ti, ((name, r), b)) in whole::train_names().zip(at_ref).zip(at_best).enumerate() {
             let (only_ref, only_best) = discordant(runs_ref, runs_best, ti);
             let first: Vec<String> = b
                 .meshes
@@ -690,7 +690,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         "Run t of a case draws the same gears and initial angles at both settings (failure's streams), so the {rl} % columns are failure's own runs and the difference is the clearances' alone; the last column pairs them: runs that jammed within a year at one setting and not at the other, with the exact two-sided sign (McNemar) test of that split. Shares: runs with a jam within one year of b, exact 95 % interval; days: b arbor, mean over the runs that jammed within the horizon with its 95 % Student-t interval clipped to the horizon. Only jams stop a run (a disengagement does not), as in failure."
     ));
     for (k, &ci) in s.cases.iter().enumerate() {
-        let mech = failure::TRAINS.len();
+        let mech = whole::TRAINS.len();
         let (r, b) = (
             &summaries[2 * k][mech].year,
             &summaries[2 * k + 1][mech].year,
@@ -716,7 +716,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         let horizon = if s.days > stats::DAYS_PER_YEAR {
             let within = |runs: &[MechanismRun]| {
                 runs.iter()
-                    .filter(|o| failure::jam_of(o, mech).is_some_and(|j| j.day <= s.days))
+                    .filter(|o| whole::jam_of(o, mech).is_some_and(|j| j.day <= s.days))
                     .count()
             };
             format!(
@@ -764,7 +764,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         OutputFile::new("clearance-design-probes.csv", probes_csv),
         OutputFile::new(
             "clearance-design-runs.csv",
-            failure::runs_csv(&inputs, &per_input, s.days),
+            whole::runs_csv(&inputs, &per_input, s.days),
         ),
     ];
     for (k, &ci) in s.cases.iter().enumerate() {

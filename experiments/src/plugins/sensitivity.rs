@@ -17,7 +17,7 @@ use train::Gearing;
 use crate::common::{Series, category_plot};
 use study::errors;
 use crate::common::{mean_cell, percent_cell};
-use study::whole_mechanism::{self as failure, Clearances, Input, MechanismRun, TRAINS, summarise};
+use study::whole_mechanism::{self as whole, Clearances, Input, MechanismRun, TRAINS, summarise};
 use study::gearing;
 use study::grids::CASES;
 
@@ -29,7 +29,7 @@ const PARAMS: &[Param] = &[
         help: "whole-mechanism runs per row (the paper's failure study: 30)",
         kind: registry::Kind::count(2, registry::MAX_TRIALS, "an interval needs two runs"),
     },
-    failure::DAYS,
+    whole::DAYS,
     Param {
         name: "case",
         default: "B",
@@ -175,7 +175,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
 fn counted(ctx: &Context) -> Result<Report, RunError> {
     let base_gearing = gearing::load(ctx)?;
     let trials = ctx.u64("trials")?;
-    let days = failure::days(ctx)?;
+    let days = whole::days(ctx)?;
     let case = ctx.param("case")?.trim();
     let Some(ci) = CASES.iter().position(|c| c.0.eq_ignore_ascii_case(case)) else {
         return Err(RunError::bad(
@@ -242,7 +242,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             None => &base_gearing,
         };
         let h = v.tooth_height.unwrap_or(h0);
-        failure::check_study(g, h, &Clearances::Uniform(clearance))?;
+        whole::check_study(g, h, &Clearances::Uniform(clearance))?;
         // The legend names the row, so every row is its own batch.
         let input = Input {
             label: case.to_string(),
@@ -257,12 +257,12 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             extra,
         };
         let inputs = std::slice::from_ref(&input);
-        let key = failure::batch_key(ctx, inputs, trials, h, clearance, days)?;
+        let key = whole::batch_key(ctx, inputs, trials, h, clearance, days)?;
         rows.push(Row {
             variant: v,
             hypotheses,
             h,
-            outcomes: failure::run_study(ctx, g, inputs, trials, h, days, &key)?,
+            outcomes: whole::run_study(ctx, g, inputs, trials, h, days, &key)?,
         });
     }
 
