@@ -1,5 +1,6 @@
 //! Exact push-model contact solver for one mesh of triangular-tooth gears: θ(φ), jams, disengagements.
 
+mod certify;
 mod mesh;
 mod roots;
 mod solver;

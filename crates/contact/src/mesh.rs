@@ -16,6 +16,7 @@ use std::f64::consts::{PI, TAU};
 
 use geometry::{Arc, Flank, Gear, Vec2, rotate};
 
+use crate::certify::CertTooth;
 use crate::roots::{circle_circle, circle_segment};
 
 /// Why a mesh cannot be built.
@@ -70,6 +71,9 @@ pub(crate) struct Placed {
     /// Per tooth, its two flank arcs relative to the rotation centre (gear frame); empty for
     /// straight flanks.
     pub arcs: Vec<[Arc; 2]>,
+    /// Per tooth, what the step certificates need (`certify.rs`); empty for curved flanks, which
+    /// are always bracketed.
+    pub cert: Vec<CertTooth>,
 }
 
 impl Placed {
@@ -142,6 +146,7 @@ impl Placed {
             valley_reaches: Vec::new(),
             teeth: Vec::new(),
             arcs,
+            cert: Vec::new(),
         }
     }
 
@@ -185,6 +190,15 @@ impl Placed {
                 }
             })
             .collect();
+        if self.arcs.is_empty() {
+            self.cert = self.teeth.iter().map(CertTooth::new).collect();
+        }
+    }
+
+    /// Tooth k's certificate data (straight flanks only).
+    #[inline]
+    pub fn cert(&self, k: i64) -> &CertTooth {
+        &self.cert[self.idx(k)]
     }
 
     /// Tooth k's cached data and the angle of the whole turns that separate k from its index

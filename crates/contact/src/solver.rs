@@ -19,16 +19,25 @@
 //!
 //! Between events θ(φ) is the maximum of closed-form contact curves, so it is exact at every φ;
 //! events are located by bisection or golden-section search on those curves to 1e-13 rad.
-//! The driver angle is advanced in steps of a quarter of the driver's pitch only to bracket them;
-//! within a step the backlash ahead is sampled at the middle and, wherever the samples say it
-//! could close in between, at finer halvings (see `first_closing`), so a brief tip-on-tip graze
-//! is not stepped over. `tests/differential.rs` checks that a finer step finds the same events.
+//!
+//! The driver angle is advanced in steps of a quarter of the driver's pitch. A step is first
+//! tried on a **certificate** (`certified_step`, straight flanks): bounds on the contact functions
+//! over the box of the step's driver angles and the driven angles it can reach (`certify.rs`)
+//! prove that every tooth pair near the driven gear either stays clear of it or, behind it, only
+//! pushes it forwards; then no event lies in the step, by construction, and it ends where the
+//! pushing curves end, with no sampling and no search. Where no certificate is found (an
+//! obstacle ahead close by, a pusher about to slip, curved flanks) the step is **bracketed**:
+//! the backlash ahead is sampled at the middle and, wherever the samples say it could close in
+//! between, at finer halvings (see `first_closing`), so a brief tip-on-tip graze is not stepped
+//! over. `tests/differential.rs` checks that certified steps find exactly the events bracketing
+//! finds, and that a finer step finds the same first events.
 
 use std::cell::RefCell;
 use std::f64::consts::TAU;
 
 use serde::Serialize;
 
+use crate::certify::{ConfigBox, Verdict, vertex_meeting};
 use crate::mesh::{Mesh, Obstacle};
 
 /// Relative tolerance (radians) when deciding on which side of θ an obstacle lies.
@@ -296,6 +305,58 @@ struct Tracked {
     hi: f64,
 }
 
+/// How a run is solved.
+#[derive(Debug, Clone, Copy)]
+struct Solve {
+    /// The bracketing step is this fraction of the driver's pitch.
+    steps_per_pitch: f64,
+    /// Keep every segment (for θ at any φ) or only the events.
+    keep_segments: bool,
+    /// Take steps on certificates where they are found (else bracket every step).
+    certify: bool,
+}
+
+impl Default for Solve {
+    fn default() -> Self {
+        Self {
+            steps_per_pitch: STEPS_PER_PITCH,
+            keep_segments: true,
+            certify: true,
+        }
+    }
+}
+
+/// A tooth pair judged over a certified step.
+#[derive(Debug, Clone, Copy)]
+struct Judged {
+    pair: (i64, i64),
+    /// Upper end of its obstacle at the step's end (−∞ if gone, or not needed).
+    hi: f64,
+    /// Whether its contacts in the box rise (else they fall).
+    rising: bool,
+}
+
+impl Judged {
+    fn fallen(pair: (i64, i64)) -> Self {
+        Self {
+            pair,
+            hi: f64::NEG_INFINITY,
+            rising: false,
+        }
+    }
+}
+
+/// The verdicts of a certified step: the pairs that touch the box, and which of them are born or
+/// gone within it.
+#[derive(Debug, Default)]
+struct JudgedStep {
+    pairs: Vec<Judged>,
+    /// Rising pairs not there at the step's start and there at its end.
+    newborn: Vec<(i64, i64)>,
+    /// Rising pairs there at the step's start and gone at its end.
+    dead: Vec<(i64, i64)>,
+}
+
 /// One evaluated tooth pair: (driver angle, (driver tooth, driven tooth), obstacle).
 type Memo = (f64, (i64, i64), Option<Obstacle>);
 
@@ -319,6 +380,8 @@ struct Run<'m> {
     drive_phase: Option<i64>,
     /// Events whose size waits for the drive to resume: (index in `events`, phase before).
     pending: Vec<(usize, Option<i64>)>,
+    /// Whether steps may be taken on a certificate instead of bracketing (straight flanks).
+    certify: bool,
 }
 
 impl Mesh {
@@ -339,7 +402,7 @@ impl Mesh {
         start: Start,
         stop: Option<&StopAt<'_>>,
     ) -> Trajectory {
-        let run = self.solve(phi_start, phi_end, start, stop, STEPS_PER_PITCH, true);
+        let run = self.solve(phi_start, phi_end, start, stop, Solve::default());
         Trajectory {
             mesh: self.clone(),
             segments: run.segments,
@@ -358,6 +421,7 @@ impl Mesh {
         start: Start,
         stop_at_jam: bool,
         steps_per_pitch: f64,
+        certify: bool,
     ) -> Trajectory {
         let contact_stop = |e: &Event| e.kind.is_contact_stop();
         let stop: Option<&StopAt<'_>> = if stop_at_jam {
@@ -365,7 +429,12 @@ impl Mesh {
         } else {
             None
         };
-        let run = self.solve(phi_start, phi_end, start, stop, steps_per_pitch, true);
+        let how = Solve {
+            steps_per_pitch,
+            certify,
+            ..Solve::default()
+        };
+        let run = self.solve(phi_start, phi_end, start, stop, how);
         Trajectory {
             mesh: self.clone(),
             segments: run.segments,
@@ -376,8 +445,11 @@ impl Mesh {
     /// The jams and disengagements of [`Mesh::run`] over the same range, without its segments:
     /// all that jam statistics need, in memory that does not grow with the range.
     pub fn run_events(&self, phi_start: f64, phi_end: f64, start: Start) -> Vec<Event> {
-        self.solve(phi_start, phi_end, start, None, STEPS_PER_PITCH, false)
-            .events
+        let how = Solve {
+            keep_segments: false,
+            ..Solve::default()
+        };
+        self.solve(phi_start, phi_end, start, None, how).events
     }
 
     fn solve(
@@ -386,8 +458,7 @@ impl Mesh {
         phi_end: f64,
         start: Start,
         stop: Option<&StopAt<'_>>,
-        steps_per_pitch: f64,
-        keep_segments: bool,
+        how: Solve,
     ) -> Run<'_> {
         let mut run = Run {
             mesh: self,
@@ -397,15 +468,17 @@ impl Mesh {
             unheld_at: None,
             sides: Vec::new(),
             segments: Vec::new(),
-            keep_segments,
+            keep_segments: how.keep_segments,
             events: Vec::new(),
             scratch: Vec::new(),
             drive_phase: None,
             pending: Vec::new(),
+            certify: how.certify && !self.curved,
         };
         run.start(start);
         let mut seen = 0;
-        let step = self.driver.max_gap.min(TAU / self.driver.tips.len() as f64) / steps_per_pitch;
+        let step =
+            self.driver.max_gap.min(TAU / self.driver.tips.len() as f64) / how.steps_per_pitch;
         while run.phi < phi_end {
             // No sliver of a step at the end: it would only gather rounding noise.
             let next = if run.phi + step * (1.0 + 1e-6) >= phi_end {
@@ -649,6 +722,211 @@ impl Run<'_> {
         self.push_segment(phi_end, self.theta, motion);
     }
 
+    /// Takes the step to `phi1` on a certificate, if one is found: every tooth pair near the
+    /// driven gear is proved, over the box of the step's driver angles and the driven angles the
+    /// gear can reach in it, either not to touch, or (pairs behind it) to touch only on contact
+    /// curves that rise, or only on curves that fall (`certify.rs`). Then nothing ahead can meet
+    /// the driven gear (no lock, no strike), and the driven angle, the running maximum of rising
+    /// curves one of which (a pusher) starts at θ, rises throughout (no gap): the step ends at
+    /// the largest upper end among the rising pairs, exactly as bracketing would end it.
+    /// Returns false, having changed nothing, when no certificate is found.
+    ///
+    /// The driven angles: from θ0 (less the side tolerance, so that a pair within it of θ0 is
+    /// judged too) up to θ1, the largest upper end at φ1 of the rising pairs. A rising pair's
+    /// upper end cannot pass above θ1 and come back within the step (it would fall through the
+    /// box), nor vanish above it (it is evaluated at φ1 and must still be there, at most θ1); a
+    /// rising pair found with a larger upper end at φ1 widens the box and the search restarts.
+    fn certified_step(&mut self, phi1: f64, pushers: &[(i64, i64)]) -> bool {
+        let Some(judged) = self.judge_step(phi1, pushers) else {
+            return false;
+        };
+        // Every pusher must be among the rising pairs: one that falls leaves the driven gear.
+        let pushes_on = pushers
+            .iter()
+            .all(|p| judged.pairs.iter().any(|m| m.pair == *p && m.rising));
+        if !pushes_on || !self.births_and_deaths_hold(&judged, phi1) {
+            return false;
+        }
+        let rising: Vec<(i64, i64)> = judged
+            .pairs
+            .iter()
+            .filter(|m| m.rising)
+            .map(|m| m.pair)
+            .collect();
+        let theta1 = judged.pairs.iter().map(|m| m.hi).fold(self.theta, f64::max);
+        self.push_segment(phi1, theta1, Motion::Push(rising));
+        // Sides stay (nothing crossed θ). Upper ends at φ1 are known for the judged pairs; a pair
+        // behind that was not judged stayed clear of the box, so it is no pusher at φ1.
+        for t in &mut self.sides {
+            match judged.pairs.iter().find(|m| m.pair == t.pair) {
+                Some(m) => t.hi = m.hi,
+                None if t.side == Side::Behind => t.hi = f64::NEG_INFINITY,
+                None => {}
+            }
+        }
+        for m in &judged.pairs {
+            if self.side_of(m.pair).is_none() {
+                self.sides.push(Tracked {
+                    pair: m.pair,
+                    side: Side::Behind,
+                    hi: m.hi,
+                });
+            }
+        }
+        true
+    }
+
+    /// The box verdict of every tooth pair near the driven gear over the step to `phi1`, or None
+    /// when one of them may meet the driven gear other than by pushing it. The box's driven
+    /// angles grow (and the pairs are judged again) until they hold every rising pair's upper end
+    /// at φ1.
+    fn judge_step(&self, phi1: f64, pushers: &[(i64, i64)]) -> Option<JudgedStep> {
+        let mesh = self.mesh;
+        let (phi0, theta0) = (self.phi, self.theta);
+        let (driver, driven) = (&mesh.driver, &mesh.driven);
+        // Each pair is evaluated at φ1 once, however often the box grows.
+        let mut at1: Vec<((i64, i64), Option<Obstacle>)> = Vec::new();
+        let mut end_of = |pair: (i64, i64)| -> Option<Obstacle> {
+            if let Some(&(_, o)) = at1.iter().find(|e| e.0 == pair) {
+                return o;
+            }
+            let o = mesh.obstacle(phi1, pair.0, pair.1);
+            at1.push((pair, o));
+            o
+        };
+        let pushed = pushers
+            .iter()
+            .filter_map(|&p| end_of(p))
+            .map(|o| o.hi)
+            .fold(theta0, f64::max);
+        let mut top = pushed;
+        let drivers = driver.teeth_between(-phi1 - driver.window, -phi0 + driver.window);
+        'search: for _ in 0..4 {
+            let mut judged = JudgedStep::default();
+            let bottom = theta0 - SIDE_TOL;
+            let cell = ConfigBox::new(phi0, phi1, bottom, top, mesh.centre_distance);
+            let drivens = driven.teeth_between(bottom - driven.window, top + driven.window);
+            let discs: Vec<_> = drivens
+                .clone()
+                .map(|k| cell.driven_disc(driven.cert(k)))
+                .collect();
+            for j in drivers.clone() {
+                let a = driver.cert(j);
+                let disc = cell.driver_disc(a);
+                for (k, &other) in drivens.clone().zip(&discs) {
+                    if ConfigBox::apart(disc, other) {
+                        continue;
+                    }
+                    let (rising, born) = match (cell.pair(a, driven.cert(k)), self.side_of((j, k)))
+                    {
+                        (Verdict::Clear, _) => continue,
+                        (Verdict::Rising, Some(Side::Behind)) => (true, false),
+                        (Verdict::Falling, Some(Side::Behind)) => (false, false),
+                        // A pair not yet tracked whose contacts in the box only rise: behind if it
+                        // is behind θ at φ0; if it is not there yet, it is born in the step, and
+                        // where is judged by `births_and_deaths_hold`.
+                        (Verdict::Rising, None) => match mesh.obstacle(phi0, j, k) {
+                            None => (true, true),
+                            Some(o) if o.hi <= theta0 + SIDE_TOL => (true, false),
+                            Some(_) => return None,
+                        },
+                        // Anything else near the driven gear (ahead of it, or not proved to rise
+                        // or fall) may meet it: bracket.
+                        _ => return None,
+                    };
+                    let pair = (j, k);
+                    if !rising && pushed - theta0 > 2.0 * SIDE_TOL {
+                        // Falling from behind θ0: it never reaches θ, whatever becomes of it,
+                        // and ends too far below θ1 to push at the next step.
+                        judged.pairs.push(Judged::fallen(pair));
+                        continue;
+                    }
+                    let Some(o) = end_of(pair) else {
+                        if !rising {
+                            judged.pairs.push(Judged::fallen(pair));
+                        } else if born {
+                            // Neither at φ0 nor at φ1: a pair whose contacts only rise is born and
+                            // dies where two vertices meet; with no meeting it never touches.
+                            let meets = vertex_meeting(
+                                driver.cert(j),
+                                driven.cert(k),
+                                phi0,
+                                phi1,
+                                mesh.centre_distance,
+                                false,
+                            );
+                            if meets.is_some() {
+                                return None;
+                            }
+                        } else {
+                            judged.dead.push(pair);
+                            judged.pairs.push(Judged {
+                                pair,
+                                hi: f64::NEG_INFINITY,
+                                rising: true,
+                            });
+                        }
+                        continue;
+                    };
+                    if rising && o.hi > top {
+                        top = o.hi;
+                        continue 'search;
+                    }
+                    judged.pairs.push(Judged {
+                        pair,
+                        hi: o.hi,
+                        rising,
+                    });
+                    if born {
+                        judged.newborn.push(pair);
+                    }
+                }
+            }
+            return Some(judged);
+        }
+        None
+    }
+
+    /// Whether the pairs born or gone in a judged step leave the drive continuous and nothing
+    /// ahead: a pair whose contacts only rise is born, and dies, where two of its vertices meet
+    /// (`certify::vertex_meeting`). A pair born above the driven gear would be an obstacle ahead;
+    /// one that died while carrying it must hand it to another there.
+    fn births_and_deaths_hold(&self, judged: &JudgedStep, phi1: f64) -> bool {
+        let mesh = self.mesh;
+        let (phi0, theta0) = (self.phi, self.theta);
+        // The driven angle at φ without pair `except`: the largest upper end of the other rising
+        // pairs, at least θ0.
+        let others = |phi: f64, except: (i64, i64)| {
+            judged
+                .pairs
+                .iter()
+                .filter(|m| m.rising && m.pair != except)
+                .map(|m| mesh.hi(phi, m.pair))
+                .fold(theta0, f64::max)
+        };
+        let meeting = |(j, k): (i64, i64), last: bool| {
+            vertex_meeting(
+                mesh.driver.cert(j),
+                mesh.driven.cert(k),
+                phi0,
+                phi1,
+                mesh.centre_distance,
+                last,
+            )
+        };
+        let deaths_hand_over = judged.dead.iter().all(|&pair| {
+            meeting(pair, true).is_some_and(|(phi_d, at)| {
+                crate::mesh::wrap_pi(at - others(phi_d, pair)) <= SIDE_TOL
+            })
+        });
+        let births_behind = judged.newborn.iter().all(|&pair| {
+            meeting(pair, false).is_some_and(|(phi_b, at)| {
+                crate::mesh::wrap_pi(at - others(phi_b, pair)) <= SIDE_TOL
+            })
+        });
+        deaths_hand_over && births_behind
+    }
+
     /// Advance from `self.phi` to `phi1`, locating every event in between.
     fn advance(&mut self, mut phi1: f64) {
         let mesh = self.mesh;
@@ -681,6 +959,17 @@ impl Run<'_> {
             .filter(|t| t.side == Side::Behind && (t.hi - theta0).abs() <= SIDE_TOL)
             .map(|t| t.pair)
             .collect();
+        if self.certify && !pushers.is_empty() && self.unheld_at != Some(phi0) {
+            // The whole step on one certificate, or else its first half, quarter or eighth (a
+            // smaller box has smaller bounds); what is left is bracketed.
+            let mut to = phi1;
+            for _ in 0..1 {
+                if self.certified_step(to, &pushers) {
+                    return;
+                }
+                to = 0.5 * (phi0 + to);
+            }
+        }
         // Standing still, the first touch of any driver tooth is found exactly; end the step just
         // after it, so that even a brief graze (a tip clipping a tip) is seen at the step's end.
         if pushers.is_empty()

@@ -1,0 +1,510 @@
+//! Proofs about a box of configurations: which tooth pairs cannot touch the driven gear while the
+//! driver turns through a step, and, for those that can, whether their contact can only move the
+//! driven gear forwards. The solver takes a step without bracketing when every pair near the
+//! driven gear is proved harmless (see `Run::certified_step` in `solver.rs`).
+//!
+//! # The contact functions
+//!
+//! Two straight-flanked teeth touch exactly when a vertex of one lies on a flank of the other.
+//! Each such condition is the zero of a signed distance F(φ, θ), smooth in both angles:
+//!
+//! - **driver vertex P on a driven flank** (outward unit normal m, offset h, driven frame):
+//!   `F = m(θ)·(R(φ)P − c2) − h` with `m(θ) = R(π − θ) m`. Then
+//!   `F_θ = −(J m(θ))·(R(φ)P − c2)` and `F_φ = m(θ)·(J R(φ)P)`, J the quarter turn; so
+//!   `|F_θ| ≤ |R(φ)P − c2|` (P's distance from the driven centre, a function of φ alone) and
+//!   `|F_φ| ≤ |P|`; the second derivatives obey `|F_θθ| ≤ |R(φ)P − c2|` and
+//!   `|F_θφ|, |F_φφ| ≤ |P|`.
+//! - **driven vertex Q on a driver flank** (outward unit normal n, offset h, driver frame):
+//!   `F = n(φ)·(c2 + R(π − θ)Q) − h` with `n(φ) = R(φ) n`. Then `F_φ = (J n(φ))·(c2 + R(π − θ)Q)`
+//!   and `F_θ = −n(φ)·(J R(π − θ)Q)`; so `|F_φ| ≤ |c2 + R(π − θ)Q|` (Q's distance from the driver
+//!   centre, a function of θ alone) and `|F_θ| ≤ |Q|`; `|F_φφ| ≤ |c2 + R(π − θ)Q|` and
+//!   `|F_φθ|, |F_θθ| ≤ |Q|`.
+//!
+//! # The box and what is proved
+//!
+//! A box is `|φ − φc| ≤ dφ`, `|θ − θc| ≤ dθ`. Walking from the centre to any point first along
+//! one angle, then along the other, with the first-derivative bounds above (taking, on the first
+//! leg, the distance that depends only on the fixed angle, exactly at the centre):
+//!
+//! - type P: `|F − F_c| ≤ dθ·|R(φc)P − c2| + dφ·|P|`;
+//! - type Q: `|F − F_c| ≤ dφ·|c2 + R(π − θc)Q| + dθ·|Q|`.
+//!
+//! So where `|F_c|` exceeds that bound the condition has **no root in the box**: the vertex is on
+//! the same side of that flank's line throughout. A tooth pair none of whose conditions has a root
+//! in the box never touches at any configuration in it: no end of its obstacle (which are roots,
+//! `Mesh::obstacle`) lies in the box, so its obstacle never reaches the box's driven angles while
+//! the driver turns through the box's driver angles. The same bounds on the second derivatives
+//! give intervals for `F_φ` and `F_θ` over the whole box; where both keep one sign, every root
+//! curve of that condition in the box is a smooth function θ(φ) (implicit functions) with slope
+//! `−F_φ / F_θ` of that sign: the contact can only move the driven gear forwards (**rising**) or
+//! only backwards (**falling**) there.
+//!
+//! Rounding: every bound is widened by [`ROUND`], far above the rounding of these few products
+//! (millimetre-sized vectors, about 1e-14 mm).
+//!
+//! Curved flanks are not covered: a mesh with them is always bracketed.
+
+use geometry::Vec2;
+
+use crate::mesh::ToothData;
+
+/// Absolute widening of every bound (mm of signed distance) against rounding.
+const ROUND: f64 = 1e-10;
+
+/// One tooth as the certificate needs it, in its gear's frame about the rotation centre.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct CertTooth {
+    /// (valley k−1, tip k, valley k).
+    v: [Vec2; 3],
+    /// Distances of the vertices from the rotation centre.
+    rad: [f64; 3],
+    /// Whether each vertex can ever touch the other gear.
+    reaches: [bool; 3],
+    /// Unit normals of the two flanks (valley k−1 → tip k, tip k → valley k).
+    normal: [Vec2; 2],
+    /// Offsets of the flank lines: `normal · x = offset` on the line.
+    offset: [f64; 2],
+    /// Unit directions of the flanks, where along its direction each starts, and their lengths:
+    /// a point x is beside flank f when `0 ≤ dir[f]·x − start[f] ≤ len[f]`.
+    dir: [Vec2; 2],
+    start: [f64; 2],
+    len: [f64; 2],
+    /// Centre of a disc holding the tooth, and its radius.
+    centre: Vec2,
+    disc: f64,
+    /// Farthest vertex from the rotation centre: no point of the tooth moves faster than this
+    /// (per radian of its gear's turn).
+    reach: f64,
+}
+
+impl CertTooth {
+    pub(crate) fn new(t: &ToothData) -> Self {
+        let v = t.v;
+        let normal = [0, 1].map(|f| {
+            let d = v[f + 1] - v[f];
+            Vec2::new(d.y, -d.x) / d.norm()
+        });
+        let offset = [0, 1].map(|f| normal[f].dot(&v[f]));
+        let len = [0, 1].map(|f| (v[f + 1] - v[f]).norm());
+        let dir = [0, 1].map(|f| (v[f + 1] - v[f]) / len[f]);
+        let start = [0, 1].map(|f| dir[f].dot(&v[f]));
+        let centre = (v[0] + v[1] + v[2]) / 3.0;
+        let disc = v.iter().map(|p| (p - centre).norm()).fold(0.0, f64::max);
+        let rad = v.map(|p| p.norm());
+        Self {
+            v,
+            rad,
+            reaches: t.reaches,
+            normal,
+            offset,
+            dir,
+            start,
+            len,
+            centre,
+            disc,
+            reach: rad.into_iter().fold(0.0, f64::max),
+        }
+    }
+}
+
+/// What a tooth pair can do within a box.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Verdict {
+    /// The teeth touch nowhere in the box.
+    Clear,
+    /// Every contact in the box moves the driven angle forwards as the driver turns.
+    Rising,
+    /// Every contact in the box moves the driven angle backwards as the driver turns.
+    Falling,
+    /// Not proved either way.
+    Unknown,
+}
+
+/// A box of configurations `|φ − φc| ≤ dφ`, `|θ − θc| ≤ dθ`, with the rotations at its centre.
+pub(crate) struct ConfigBox {
+    d_phi: f64,
+    d_theta: f64,
+    /// (sin, cos) of φc: the driver's turn.
+    driver_turn: (f64, f64),
+    /// (sin, cos) of π − θc: the driven gear's turn.
+    driven_turn: (f64, f64),
+    c2: Vec2,
+}
+
+#[inline]
+fn turn((s, c): (f64, f64), v: Vec2) -> Vec2 {
+    Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y)
+}
+
+/// The quarter turn J.
+#[inline]
+fn quarter(v: Vec2) -> Vec2 {
+    Vec2::new(-v.y, v.x)
+}
+
+/// How the sign of a quantity known to lie in `value ± err` is proved: +1, −1 or 0 (unknown).
+#[inline]
+fn sign(value: f64, err: f64) -> i8 {
+    if value - err > 0.0 {
+        1
+    } else if value + err < 0.0 {
+        -1
+    } else {
+        0
+    }
+}
+
+impl ConfigBox {
+    /// The box over driver angles `[phi0, phi1]` and driven angles `[theta0, theta1]`, for a
+    /// driven gear whose centre is at `(centre_distance, 0)`.
+    pub(crate) fn new(
+        phi0: f64,
+        phi1: f64,
+        theta0: f64,
+        theta1: f64,
+        centre_distance: f64,
+    ) -> Self {
+        let phi_c = 0.5 * (phi0 + phi1);
+        let theta_c = 0.5 * (theta0 + theta1);
+        Self {
+            // Half-widths, a hair wider than the rounding of the midpoints.
+            d_phi: 0.5 * (phi1 - phi0) * (1.0 + 1e-12) + 1e-15 * phi_c.abs(),
+            d_theta: 0.5 * (theta1 - theta0) * (1.0 + 1e-12) + 1e-15 * theta_c.abs(),
+            driver_turn: phi_c.sin_cos(),
+            driven_turn: (std::f64::consts::PI - theta_c).sin_cos(),
+            c2: Vec2::new(centre_distance, 0.0),
+        }
+    }
+
+    /// Where driver tooth `a` is at the box's centre, and how far from there any of its points
+    /// stays within the box: a disc that holds the tooth throughout.
+    pub(crate) fn driver_disc(&self, a: &CertTooth) -> (Vec2, f64) {
+        (
+            turn(self.driver_turn, a.centre),
+            a.disc + self.d_phi * a.reach,
+        )
+    }
+
+    /// The same for driven tooth `b`.
+    pub(crate) fn driven_disc(&self, b: &CertTooth) -> (Vec2, f64) {
+        (
+            self.c2 + turn(self.driven_turn, b.centre),
+            b.disc + self.d_theta * b.reach,
+        )
+    }
+
+    /// Whether two discs (from [`ConfigBox::driver_disc`] and [`ConfigBox::driven_disc`]) are
+    /// apart: then the teeth touch nowhere in the box.
+    #[inline]
+    pub(crate) fn apart(a: (Vec2, f64), b: (Vec2, f64)) -> bool {
+        let far = a.1 + b.1 + ROUND;
+        (a.0 - b.0).norm_squared() > far * far
+    }
+
+    /// What driver tooth `a` and driven tooth `b` can do within the box.
+    pub(crate) fn pair(&self, a: &CertTooth, b: &CertTooth) -> Verdict {
+        let (dp, dt) = (self.d_phi, self.d_theta);
+        if Self::apart(self.driver_disc(a), self.driven_disc(b)) {
+            return Verdict::Clear;
+        }
+        let mut touched = false;
+        let (mut rising, mut falling) = (true, true);
+        let mut judge = |f_phi: i8, f_theta: i8| {
+            touched = true;
+            // θ' = −F_φ / F_θ.
+            let slope = -f_phi * f_theta;
+            rising &= slope > 0;
+            falling &= slope < 0;
+        };
+        // Driver vertex P on a driven flank.
+        let normals_b = b.normal.map(|m| turn(self.driven_turn, m));
+        let dirs_b = b.dir.map(|e| turn(self.driven_turn, e));
+        for i in 0..3 {
+            if !a.reaches[i] {
+                continue;
+            }
+            let pw = turn(self.driver_turn, a.v[i]);
+            let x = pw - self.c2;
+            let dist = x.norm();
+            let rp = a.rad[i];
+            // How far P can move from x, seen from the driven gear, within the box.
+            let moved = dt * (dist + rp * dp) + dp * rp + ROUND;
+            for f in 0..2 {
+                let m = &normals_b[f];
+                let along = dirs_b[f].dot(&x) - b.start[f];
+                if along < -moved || along > b.len[f] + moved {
+                    continue;
+                }
+                let f = m.dot(&x) - b.offset[f];
+                if f.abs() > dt * dist + dp * rp + ROUND {
+                    continue;
+                }
+                let f_theta = -quarter(*m).dot(&x);
+                let f_phi = m.dot(&quarter(pw));
+                let e_theta = dt * (dist + rp * dp) + dp * rp + ROUND;
+                let e_phi = (dt + dp) * rp + ROUND;
+                judge(sign(f_phi, e_phi), sign(f_theta, e_theta));
+            }
+        }
+        // Driven vertex Q on a driver flank.
+        let normals_a = a.normal.map(|n| turn(self.driver_turn, n));
+        let dirs_a = a.dir.map(|e| turn(self.driver_turn, e));
+        for i in 0..3 {
+            if !b.reaches[i] {
+                continue;
+            }
+            let q = turn(self.driven_turn, b.v[i]);
+            let qw = self.c2 + q;
+            let dist = qw.norm();
+            let rq = b.rad[i];
+            // How far Q can move from qw, seen from the driver, within the box.
+            let moved = dp * (dist + rq * dt) + dt * rq + ROUND;
+            for f in 0..2 {
+                let n = &normals_a[f];
+                let along = dirs_a[f].dot(&qw) - a.start[f];
+                if along < -moved || along > a.len[f] + moved {
+                    continue;
+                }
+                let f = n.dot(&qw) - a.offset[f];
+                if f.abs() > dp * dist + dt * rq + ROUND {
+                    continue;
+                }
+                let f_phi = quarter(*n).dot(&qw);
+                let f_theta = -n.dot(&quarter(q));
+                let e_phi = dp * (dist + rq * dt) + dt * rq + ROUND;
+                let e_theta = (dp + dt) * rq + ROUND;
+                judge(sign(f_phi, e_phi), sign(f_theta, e_theta));
+            }
+        }
+        match (touched, rising, falling) {
+            (false, _, _) => Verdict::Clear,
+            (true, true, _) => Verdict::Rising,
+            (true, _, true) => Verdict::Falling,
+            _ => Verdict::Unknown,
+        }
+    }
+}
+
+/// Where a vertex of driver tooth `a` meets a vertex of driven tooth `b` (tip on tip, or a tip in
+/// a valley's corner) while the driver turns from `phi0` to `phi1`: the earliest such meeting
+/// (`last` false) or the latest (`last` true) as (φ, θ), θ reduced to (−π, π], or None. A pair of teeth that first touch at a point where
+/// every contact curve rises are born at such a meeting, and die at one: elsewhere a first or last
+/// touch is a tangency of one contact, where `F_θ = 0`, and the box verdict would not be `Rising`.
+///
+/// Driver vertex P meets driven vertex Q when P is as far from the driven centre as Q:
+/// `|R(φ)P − c2| = |Q|`, i.e. `|P| cos(φ + arg P) = (|P|² + D² − |Q|²) / 2D`; then θ turns Q
+/// onto P: `θ = π + arg Q − arg(R(φ)P − c2)`.
+pub(crate) fn vertex_meeting(
+    a: &CertTooth,
+    b: &CertTooth,
+    phi0: f64,
+    phi1: f64,
+    centre_distance: f64,
+    last: bool,
+) -> Option<(f64, f64)> {
+    let d = centre_distance;
+    let mut best: Option<(f64, f64)> = None;
+    for i in 0..3 {
+        if !a.reaches[i] {
+            continue;
+        }
+        let p = a.v[i];
+        let rp = a.rad[i];
+        let base = p.y.atan2(p.x);
+        for l in 0..3 {
+            if !b.reaches[l] {
+                continue;
+            }
+            let q = b.v[l];
+            let c = (rp * rp + d * d - b.rad[l] * b.rad[l]) / (2.0 * d * rp);
+            if !(-1.0..=1.0).contains(&c) {
+                continue;
+            }
+            let spread = c.acos();
+            for root in [spread - base, -spread - base] {
+                let tau = std::f64::consts::TAU;
+                // The first angle ≥ phi0 with this cosine, or the last ≤ phi1.
+                let phi = if last {
+                    phi1 - (phi1 - root).rem_euclid(tau)
+                } else {
+                    phi0 + (root - phi0).rem_euclid(tau)
+                };
+                let better = |b: f64| if last { phi > b } else { phi < b };
+                if phi > phi1 || phi < phi0 || best.is_some_and(|(b, _)| !better(b)) {
+                    continue;
+                }
+                let (s, c) = phi.sin_cos();
+                let x = Vec2::new(c * p.x - s * p.y - d, s * p.x + c * p.y);
+                let theta =
+                    crate::mesh::wrap_pi(std::f64::consts::PI + q.y.atan2(q.x) - x.y.atan2(x.x));
+                best = Some((phi, theta));
+            }
+        }
+    }
+    best
+}
+
+#[cfg(test)]
+mod tests {
+    //! The certificates against the exact obstacles: on random meshes and random boxes near the
+    //! running driven gear, what a verdict claims must hold at every sampled driver angle.
+    #![allow(clippy::unwrap_used, reason = "tests")]
+
+    use std::f64::consts::TAU;
+
+    use geometry::Gear;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    use super::*;
+    use crate::{Mesh, Obstacle, Start};
+
+    fn gear(n: usize, r_tip: f64, sigma: f64, ecc: f64, rng: &mut ChaCha8Rng) -> Gear {
+        let pitch = TAU / n as f64;
+        let tips = (0..n)
+            .map(|k| pitch * k as f64 + sigma * pitch * (rng.random::<f64>() - 0.5))
+            .collect();
+        let a = rng.random::<f64>() * TAU;
+        Gear::new(
+            r_tip,
+            r_tip - 1.1,
+            tips,
+            Vec2::new(ecc * a.cos(), ecc * a.sin()),
+        )
+        .unwrap()
+    }
+
+    fn mesh(rng: &mut ChaCha8Rng) -> Option<Mesh> {
+        let n1 = rng.random_range(12..40);
+        let n2 = rng.random_range(n1..120);
+        let module = 0.5 + rng.random::<f64>();
+        let (r1, r2) = (n1 as f64 * module / 2.0, n2 as f64 * module / 2.0);
+        let sigma = [0.0, 0.1, 0.3][rng.random_range(0..3)];
+        let ecc = [0.0, 0.1, 0.3][rng.random_range(0..3)];
+        let g = 5.0 + 90.0 * rng.random::<f64>();
+        let d = geometry::centre_distance(r1, r2, 1.1, g);
+        Mesh::new(
+            gear(n1, r1, sigma, ecc, rng),
+            gear(n2, r2, sigma, ecc, rng),
+            d,
+        )
+        .ok()
+    }
+
+    /// `x` moved by whole turns to lie within half a turn of `near`.
+    fn near(x: f64, near: f64) -> f64 {
+        x + TAU * ((near - x) / TAU).round()
+    }
+
+    #[test]
+    fn verdicts_hold_at_every_sampled_driver_angle() {
+        let mut rng = ChaCha8Rng::seed_from_u64(15);
+        let mut seen = [0usize; 4];
+        for _ in 0..150 {
+            let Some(m) = mesh(&mut rng) else { continue };
+            let pitch = TAU / m.driver.tips.len() as f64;
+            let phi0 = rng.random::<f64>() * TAU;
+            let run = m.run(phi0, phi0 + 2.0 * pitch, Start::Touching(0.0));
+            let phi0 = phi0 + rng.random::<f64>() * pitch;
+            let phi1 = phi0 + pitch * 10f64.powf(-3.0 * rng.random::<f64>()) * 0.5;
+            let theta = run.theta_at(phi0);
+            let lo = theta - 0.02 * pitch * rng.random::<f64>();
+            let hi = theta + pitch * rng.random::<f64>();
+            let cell = ConfigBox::new(phi0, phi1, lo, hi, m.centre_distance);
+            let drivers = m
+                .driver
+                .teeth_between(-phi1 - m.driver.window, -phi0 + m.driver.window);
+            let drivens = m
+                .driven
+                .teeth_between(lo - m.driven.window, hi + m.driven.window);
+            for j in drivers {
+                for k in drivens.clone() {
+                    let verdict = cell.pair(m.driver.cert(j), m.driven.cert(k));
+                    seen[verdict as usize] += 1;
+                    let mut last: Option<Obstacle> = None;
+                    for i in 0..=200 {
+                        let phi = phi0 + (phi1 - phi0) * i as f64 / 200.0;
+                        let o = m.obstacle(phi, j, k);
+                        let in_band = |x: f64| (lo..=hi).contains(&near(x, 0.5 * (lo + hi)));
+                        if let Some(o) = o {
+                            let what = format!(
+                                "{verdict:?} pair ({j}, {k}) at φ {phi}: {o:?}, band [{lo}, {hi}]"
+                            );
+                            match verdict {
+                                Verdict::Clear => {
+                                    assert!(!in_band(o.lo) && !in_band(o.hi), "{what}");
+                                }
+                                Verdict::Rising | Verdict::Falling => {
+                                    if let Some(p) = last {
+                                        for (a, b) in [(p.lo, o.lo), (p.hi, o.hi)] {
+                                            if in_band(a) && in_band(b) {
+                                                let rise = near(b, a) - a;
+                                                if verdict == Verdict::Rising {
+                                                    assert!(
+                                                        rise >= -1e-12,
+                                                        "{what}: fell by {rise}"
+                                                    );
+                                                } else {
+                                                    assert!(
+                                                        rise <= 1e-12,
+                                                        "{what}: rose by {rise}"
+                                                    );
+                                                }
+                                            }
+                                        }
+                                    }
+                                }
+                                Verdict::Unknown => {}
+                            }
+                        }
+                        last = o;
+                    }
+                }
+            }
+        }
+        // Every verdict was put to the test.
+        assert!(seen.iter().all(|&n| n > 20), "verdicts seen: {seen:?}");
+    }
+
+    #[test]
+    fn vertex_meetings_are_vertices_meeting() {
+        let mut rng = ChaCha8Rng::seed_from_u64(16);
+        let mut met = 0;
+        for _ in 0..100 {
+            let Some(m) = mesh(&mut rng) else { continue };
+            let phi0 = rng.random::<f64>() * TAU;
+            let phi1 = phi0 + 0.3;
+            for j in m
+                .driver
+                .teeth_between(-phi1 - m.driver.window, -phi0 + m.driver.window)
+            {
+                let k = rng.random_range(0..m.driven.tips.len() as i64);
+                for last in [false, true] {
+                    let Some((phi, theta)) = vertex_meeting(
+                        m.driver.cert(j),
+                        m.driven.cert(k),
+                        phi0,
+                        phi1,
+                        m.centre_distance,
+                        last,
+                    ) else {
+                        continue;
+                    };
+                    assert!((phi0..=phi1).contains(&phi));
+                    let a = m.driver.tooth(j).map(|v| m.driver_world(v, phi));
+                    let b = m.driven.tooth(k).map(|v| m.driven_world(v, theta));
+                    let gap = a
+                        .iter()
+                        .flat_map(|p| b.iter().map(move |q| (p - q).norm()))
+                        .fold(f64::INFINITY, f64::min);
+                    assert!(
+                        gap < 1e-9,
+                        "pair ({j}, {k}) at ({phi}, {theta}): {gap} mm apart"
+                    );
+                    met += 1;
+                }
+            }
+        }
+        assert!(met > 50, "{met} meetings");
+    }
+}
