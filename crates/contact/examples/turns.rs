@@ -28,6 +28,7 @@ fn main() {
     ] {
         let t0 = Instant::now();
         let evals0 = contact::tooth_pair_evaluations();
+        let stats0 = contact::solver_stats();
         let (mut segs, mut events) = (0, 0);
         for s in 0..turns as u64 {
             let mut rng = ChaCha8Rng::seed_from_u64(s);
@@ -46,6 +47,16 @@ fn main() {
         println!(
             "evaluations per driven tooth: {:.1}",
             (contact::tooth_pair_evaluations() - evals0) as f64 / turns as f64 / n2 as f64
+        );
+        let st = contact::solver_stats();
+        let per = |x: u64| x as f64 / turns as f64 / n2 as f64;
+        println!(
+            "per driven tooth: {:.2} certified steps ({:.1} evaluations), {:.2} refused ({:.1}), {:.2} bracketed",
+            per(st.certified - stats0.certified),
+            per(st.certified_evaluations - stats0.certified_evaluations),
+            per(st.refused - stats0.refused),
+            per(st.refused_evaluations - stats0.refused_evaluations),
+            per(st.bracketed - stats0.bracketed),
         );
         println!(
             "{name}: {:.3} ms per turn, {segs} segments, {events} events",

@@ -176,8 +176,34 @@ impl ConfigBox {
         }
     }
 
-    /// Where driver tooth `a` is at the box's centre, and how far from there any of its points
-    /// stays within the box: a disc that holds the tooth throughout.
+    /// Driver tooth `a` placed at the box's centre.
+    pub(crate) fn place_driver<'t>(&self, a: &'t CertTooth) -> PlacedTooth<'t> {
+        let world = a.v.map(|v| turn(self.driver_turn, v));
+        PlacedTooth {
+            tooth: a,
+            disc: self.driver_disc(a),
+            // P relative to the driven centre: its distance is what a driven turn moves it by.
+            rel: world.map(|p| p - self.c2),
+            world,
+            normal: a.normal.map(|n| turn(self.driver_turn, n)),
+            dir: a.dir.map(|e| turn(self.driver_turn, e)),
+        }
+    }
+
+    /// Driven tooth `b` placed at the box's centre.
+    pub(crate) fn place_driven<'t>(&self, b: &'t CertTooth) -> PlacedTooth<'t> {
+        let rel = b.v.map(|v| turn(self.driven_turn, v));
+        PlacedTooth {
+            tooth: b,
+            disc: self.driven_disc(b),
+            world: rel.map(|q| q + self.c2),
+            rel,
+            normal: b.normal.map(|n| turn(self.driven_turn, n)),
+            dir: b.dir.map(|e| turn(self.driven_turn, e)),
+        }
+    }
+
+    /// A disc that holds driver tooth `a` throughout the box: centre and radius.
     pub(crate) fn driver_disc(&self, a: &CertTooth) -> (Vec2, f64) {
         (
             turn(self.driver_turn, a.centre),
@@ -185,7 +211,7 @@ impl ConfigBox {
         )
     }
 
-    /// The same for driven tooth `b`.
+    /// A disc that holds driven tooth `b` throughout the box.
     pub(crate) fn driven_disc(&self, b: &CertTooth) -> (Vec2, f64) {
         (
             self.c2 + turn(self.driven_turn, b.centre),
@@ -193,96 +219,181 @@ impl ConfigBox {
         )
     }
 
-    /// Whether two discs (from [`ConfigBox::driver_disc`] and [`ConfigBox::driven_disc`]) are
-    /// apart: then the teeth touch nowhere in the box.
+    /// Whether two discs from [`ConfigBox::driver_disc`] and [`ConfigBox::driven_disc`] are
+    /// apart: then the teeth touch nowhere in the box, and [`ConfigBox::pair`] is `Clear`.
     #[inline]
     pub(crate) fn apart(a: (Vec2, f64), b: (Vec2, f64)) -> bool {
         let far = a.1 + b.1 + ROUND;
         (a.0 - b.0).norm_squared() > far * far
     }
 
-    /// What driver tooth `a` and driven tooth `b` can do within the box.
-    pub(crate) fn pair(&self, a: &CertTooth, b: &CertTooth) -> Verdict {
+    /// Every contact condition of driver tooth `a` and driven tooth `b` whose vertex may lie
+    /// beside the flank somewhere in the box (the rest have no root in it), with its values and
+    /// bounds at the box's centre.
+    fn conditions(
+        &self,
+        a: &PlacedTooth<'_>,
+        b: &PlacedTooth<'_>,
+        mut visit: impl FnMut(Condition),
+    ) {
         let (dp, dt) = (self.d_phi, self.d_theta);
-        if Self::apart(self.driver_disc(a), self.driven_disc(b)) {
-            return Verdict::Clear;
+        // Driver vertex P on a driven flank.
+        for i in 0..3 {
+            if !a.tooth.reaches[i] {
+                continue;
+            }
+            let (pw, x) = (a.world[i], a.rel[i]);
+            let dist = x.norm();
+            let rp = a.tooth.rad[i];
+            // How far P can move from x, seen from the driven gear, within the box.
+            let moved = dt * (dist + rp * dp) + dp * rp + ROUND;
+            for f in 0..2 {
+                // Both points are relative to the driven centre.
+                let along = b.dir[f].dot(&x) - b.tooth.start[f];
+                if along < -moved || along > b.tooth.len[f] + moved {
+                    continue;
+                }
+                let m = &b.normal[f];
+                visit(Condition {
+                    value: m.dot(&x) - b.tooth.offset[f],
+                    rate_phi: rp,
+                    rate_theta: dist,
+                    f_phi: m.dot(&quarter(pw)),
+                    f_theta: -quarter(*m).dot(&x),
+                    e_phi: (dt + dp) * rp + ROUND,
+                    e_theta: dt * (dist + rp * dp) + dp * rp + ROUND,
+                });
+            }
         }
+        // Driven vertex Q on a driver flank.
+        for i in 0..3 {
+            if !b.tooth.reaches[i] {
+                continue;
+            }
+            let (q, qw) = (b.rel[i], b.world[i]);
+            let dist = qw.norm();
+            let rq = b.tooth.rad[i];
+            // How far Q can move from qw, seen from the driver, within the box.
+            let moved = dp * (dist + rq * dt) + dt * rq + ROUND;
+            for f in 0..2 {
+                let along = a.dir[f].dot(&qw) - a.tooth.start[f];
+                if along < -moved || along > a.tooth.len[f] + moved {
+                    continue;
+                }
+                let n = &a.normal[f];
+                visit(Condition {
+                    value: n.dot(&qw) - a.tooth.offset[f],
+                    rate_phi: dist,
+                    rate_theta: rq,
+                    f_phi: quarter(*n).dot(&qw),
+                    f_theta: -n.dot(&quarter(q)),
+                    e_phi: dp * (dist + rq * dt) + dt * rq + ROUND,
+                    e_theta: (dp + dt) * rq + ROUND,
+                });
+            }
+        }
+    }
+
+    /// What driver tooth `a` and driven tooth `b`, placed by [`ConfigBox::place_driver`] and
+    /// [`ConfigBox::place_driven`], can do within the box; for `Rising` and `Falling`, also the
+    /// range of the slopes dθ/dφ of their contact curves there.
+    pub(crate) fn pair(&self, a: &PlacedTooth<'_>, b: &PlacedTooth<'_>) -> (Verdict, (f64, f64)) {
+        if Self::apart(a.disc, b.disc) {
+            return (Verdict::Clear, (0.0, 0.0));
+        }
+        let (dp, dt) = (self.d_phi, self.d_theta);
         let mut touched = false;
         let (mut rising, mut falling) = (true, true);
-        let mut judge = |f_phi: i8, f_theta: i8| {
+        let mut slopes = (f64::INFINITY, f64::NEG_INFINITY);
+        self.conditions(a, b, |c| {
+            if c.value.abs() > dt * c.rate_theta + dp * c.rate_phi + ROUND {
+                return;
+            }
             touched = true;
+            let f_phi = sign(c.f_phi, c.e_phi);
+            let f_theta = sign(c.f_theta, c.e_theta);
             // θ' = −F_φ / F_θ.
             let slope = -f_phi * f_theta;
             rising &= slope > 0;
             falling &= slope < 0;
-        };
-        // Driver vertex P on a driven flank.
-        let normals_b = b.normal.map(|m| turn(self.driven_turn, m));
-        let dirs_b = b.dir.map(|e| turn(self.driven_turn, e));
-        for i in 0..3 {
-            if !a.reaches[i] {
-                continue;
-            }
-            let pw = turn(self.driver_turn, a.v[i]);
-            let x = pw - self.c2;
-            let dist = x.norm();
-            let rp = a.rad[i];
-            // How far P can move from x, seen from the driven gear, within the box.
-            let moved = dt * (dist + rp * dp) + dp * rp + ROUND;
-            for f in 0..2 {
-                let m = &normals_b[f];
-                let along = dirs_b[f].dot(&x) - b.start[f];
-                if along < -moved || along > b.len[f] + moved {
-                    continue;
+            if slope != 0 {
+                // Over the corners of F_φ's and F_θ's ranges, both of one sign.
+                for p in [c.f_phi - c.e_phi, c.f_phi + c.e_phi] {
+                    for t in [c.f_theta - c.e_theta, c.f_theta + c.e_theta] {
+                        let s = -p / t;
+                        slopes = (slopes.0.min(s), slopes.1.max(s));
+                    }
                 }
-                let f = m.dot(&x) - b.offset[f];
-                if f.abs() > dt * dist + dp * rp + ROUND {
-                    continue;
-                }
-                let f_theta = -quarter(*m).dot(&x);
-                let f_phi = m.dot(&quarter(pw));
-                let e_theta = dt * (dist + rp * dp) + dp * rp + ROUND;
-                let e_phi = (dt + dp) * rp + ROUND;
-                judge(sign(f_phi, e_phi), sign(f_theta, e_theta));
             }
-        }
-        // Driven vertex Q on a driver flank.
-        let normals_a = a.normal.map(|n| turn(self.driver_turn, n));
-        let dirs_a = a.dir.map(|e| turn(self.driver_turn, e));
-        for i in 0..3 {
-            if !b.reaches[i] {
-                continue;
-            }
-            let q = turn(self.driven_turn, b.v[i]);
-            let qw = self.c2 + q;
-            let dist = qw.norm();
-            let rq = b.rad[i];
-            // How far Q can move from qw, seen from the driver, within the box.
-            let moved = dp * (dist + rq * dt) + dt * rq + ROUND;
-            for f in 0..2 {
-                let n = &normals_a[f];
-                let along = dirs_a[f].dot(&qw) - a.start[f];
-                if along < -moved || along > a.len[f] + moved {
-                    continue;
-                }
-                let f = n.dot(&qw) - a.offset[f];
-                if f.abs() > dp * dist + dt * rq + ROUND {
-                    continue;
-                }
-                let f_phi = quarter(*n).dot(&qw);
-                let f_theta = -n.dot(&quarter(q));
-                let e_phi = dp * (dist + rq * dt) + dt * rq + ROUND;
-                let e_theta = (dp + dt) * rq + ROUND;
-                judge(sign(f_phi, e_phi), sign(f_theta, e_theta));
-            }
-        }
-        match (touched, rising, falling) {
+        });
+        let verdict = match (touched, rising, falling) {
             (false, _, _) => Verdict::Clear,
             (true, true, _) => Verdict::Rising,
             (true, _, true) => Verdict::Falling,
             _ => Verdict::Unknown,
-        }
+        };
+        (verdict, slopes)
     }
+
+    /// Whether teeth `a` and `b` stay apart, by `margin` of driven angle at least, along every
+    /// path θ(φ) through the box from its lower-left to its upper-right corner whose slope stays
+    /// within `slopes` (the driven gear, pushed by curves with those slopes, from (φ0, θ0) to
+    /// (φ1, θ1)).
+    ///
+    /// Such a path stays within `w = (s_max − s_min)·(φ1 − φ0)/4` of the chord θ_d(φ) through the
+    /// corners, whose slope is s̄. Along the chord G(φ) = F(φ, θ_d(φ)) changes at
+    /// `G' = F_φ + s̄·F_θ`, bounded over the box by its value at the centre and the second
+    /// derivatives; off the chord F changes by at most `w·max|F_θ|`. So F has no zero on the
+    /// paths where `|F_c| > dφ·(|F_φc + s̄F_θc| + e_φ + s̄e_θ) + w·(|F_θc| + e_θ)`: second order
+    /// in the step where the box test is first order, because the teeth ahead move with the
+    /// driven gear.
+    pub(crate) fn clear_along(
+        &self,
+        a: &PlacedTooth<'_>,
+        b: &PlacedTooth<'_>,
+        slopes: (f64, f64),
+        margin: f64,
+    ) -> bool {
+        let dp = self.d_phi;
+        let chord = if dp > 0.0 { self.d_theta / dp } else { 0.0 };
+        let width = (slopes.1 - slopes.0).max(0.0) * dp / 2.0 + self.d_theta * 1e-12;
+        let mut clear = true;
+        self.conditions(a, b, |c| {
+            let along = (c.f_phi + chord * c.f_theta).abs() + c.e_phi + chord * c.e_theta;
+            let across = c.f_theta.abs() + c.e_theta;
+            clear &= c.value.abs() > dp * along + (width + margin) * across + ROUND;
+        });
+        clear
+    }
+}
+
+/// One contact condition (a vertex on a flank line) at a box's centre: its signed distance F,
+/// the bounds on |F_φ| and |F_θ| used for the box test (each exact on the leg where the other
+/// angle is held at the centre), and `F_φ`, `F_θ` there with how far they can change in the box.
+struct Condition {
+    value: f64,
+    rate_phi: f64,
+    rate_theta: f64,
+    f_phi: f64,
+    f_theta: f64,
+    e_phi: f64,
+    e_theta: f64,
+}
+
+/// A tooth placed at a box's centre (world frame): what [`ConfigBox::pair`] reads, computed once
+/// per tooth and box rather than once per pair.
+#[derive(Clone, Copy)]
+pub(crate) struct PlacedTooth<'t> {
+    tooth: &'t CertTooth,
+    /// A disc holding the tooth throughout the box: centre and radius.
+    disc: (Vec2, f64),
+    /// Vertices in the world.
+    world: [Vec2; 3],
+    /// Vertices relative to the other gear's centre (driver) or to their own (driven).
+    rel: [Vec2; 3],
+    /// Flank normals and directions, turned.
+    normal: [Vec2; 2],
+    dir: [Vec2; 2],
 }
 
 /// Where a vertex of driver tooth `a` meets a vertex of driven tooth `b` (tip on tip, or a tip in
@@ -419,7 +530,10 @@ mod tests {
                 .teeth_between(lo - m.driven.window, hi + m.driven.window);
             for j in drivers {
                 for k in drivens.clone() {
-                    let verdict = cell.pair(m.driver.cert(j), m.driven.cert(k));
+                    let (verdict, _) = cell.pair(
+                        &cell.place_driver(m.driver.cert(j)),
+                        &cell.place_driven(m.driven.cert(k)),
+                    );
                     seen[verdict as usize] += 1;
                     let mut last: Option<Obstacle> = None;
                     for i in 0..=200 {
@@ -464,6 +578,78 @@ mod tests {
         }
         // Every verdict was put to the test.
         assert!(seen.iter().all(|&n| n > 20), "verdicts seen: {seen:?}");
+    }
+
+    #[test]
+    fn pairs_clear_along_the_tube_miss_every_path_in_it() {
+        let mut rng = ChaCha8Rng::seed_from_u64(17);
+        let (mut clear, mut paths) = (0, 0);
+        for _ in 0..200 {
+            let Some(m) = mesh(&mut rng) else { continue };
+            let pitch = TAU / m.driver.tips.len() as f64;
+            let ratio = m.driver.tips.len() as f64 / m.driven.tips.len() as f64;
+            let phi0 = rng.random::<f64>() * TAU;
+            let run = m.run(phi0, phi0 + pitch, Start::Touching(0.0));
+            let theta0 = run.theta_at(phi0);
+            let span = pitch * (0.05 + 0.5 * rng.random::<f64>());
+            let phi1 = phi0 + span;
+            // Slopes about the ratio, the chord's among them.
+            let slopes = (
+                ratio * (0.5 + 0.5 * rng.random::<f64>()),
+                ratio * (1.0 + rng.random::<f64>()),
+            );
+            let chord = slopes.0 + (slopes.1 - slopes.0) * rng.random::<f64>();
+            let theta1 = theta0 + chord * span;
+            let margin = 1e-10;
+            let path = ConfigBox::new(phi0, phi1, theta0, theta1, m.centre_distance);
+            let drivers = m
+                .driver
+                .teeth_between(-phi1 - m.driver.window, -phi0 + m.driver.window);
+            let drivens = m
+                .driven
+                .teeth_between(theta0 - m.driven.window, theta1 + m.driven.window);
+            for j in drivers {
+                for k in drivens.clone() {
+                    let (a, b) = (
+                        path.place_driver(m.driver.cert(j)),
+                        path.place_driven(m.driven.cert(k)),
+                    );
+                    if !path.clear_along(&a, &b, slopes, margin) {
+                        continue;
+                    }
+                    clear += 1;
+                    // Paths of two straight pieces, slopes within range, through both corners.
+                    for _ in 0..20 {
+                        let t = span * rng.random::<f64>();
+                        let s1 = slopes.0 + (slopes.1 - slopes.0) * rng.random::<f64>();
+                        let s2 = (theta1 - theta0 - s1 * t) / (span - t);
+                        if !(slopes.0..=slopes.1).contains(&s2) {
+                            continue;
+                        }
+                        paths += 1;
+                        for i in 0..=100 {
+                            let phi = phi0 + span * f64::from(i) / 100.0;
+                            let theta = if phi - phi0 <= t {
+                                theta0 + s1 * (phi - phi0)
+                            } else {
+                                theta0 + s1 * t + s2 * (phi - phi0 - t)
+                            };
+                            if let Some(o) = m.obstacle(phi, j, k) {
+                                let (lo, hi) = (near(o.lo, theta), near(o.hi, theta));
+                                assert!(
+                                    theta < lo - margin || theta > hi + margin,
+                                    "pair ({j}, {k}) meets the path at ({phi}, {theta}): {o:?}"
+                                );
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        assert!(
+            clear > 200 && paths > 1000,
+            "{clear} pairs clear, {paths} paths"
+        );
     }
 
     #[test]

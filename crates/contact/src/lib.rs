@@ -6,4 +6,6 @@ mod roots;
 mod solver;
 
 pub use mesh::{Mesh, MeshError, Obstacle, tooth_pair_evaluations};
-pub use solver::{Event, EventKind, Motion, Segment, Start, StopAt, Trajectory};
+pub use solver::{
+    Event, EventKind, Motion, Segment, SolverStats, Start, StopAt, Trajectory, solver_stats,
+};

@@ -337,7 +337,8 @@ struct Judged {
 }
 
 impl Judged {
-    fn fallen(pair: (i64, i64)) -> Self {
+    /// A pair behind the driven gear that does not carry it at the step's end.
+    fn not_carrying(pair: (i64, i64)) -> Self {
         Self {
             pair,
             hi: f64::NEG_INFINITY,
@@ -346,8 +347,23 @@ impl Judged {
     }
 }
 
-/// The verdicts of a certified step: the pairs that touch the box, and which of them are born or
-/// gone within it.
+/// A tooth pair touching a certified step's box, and its role there.
+type Boxed = ((i64, i64), Role);
+
+/// What a tooth pair touching a certified step's box may do there.
+#[derive(Debug, Clone, Copy)]
+enum Role {
+    /// Behind the driven gear, its contact curves rising: it may push. `born`: not there at
+    /// the step's start.
+    Rising { born: bool },
+    /// Behind the driven gear, its contact curves falling: it never reaches it.
+    Falling,
+    /// Anything else: it must stay clear of the driven gear's path.
+    Suspect,
+}
+
+/// The verdicts of a certified step: the pairs evaluated at its end, and which of them are born
+/// or gone within it.
 #[derive(Debug, Default)]
 struct JudgedStep {
     pairs: Vec<Judged>,
@@ -355,6 +371,10 @@ struct JudgedStep {
     newborn: Vec<(i64, i64)>,
     /// Rising pairs there at the step's start and gone at its end.
     dead: Vec<(i64, i64)>,
+    /// The driven angle at the step's end.
+    theta1: f64,
+    /// The range of slopes of the rising pairs' contact curves (the driven gear's path).
+    slopes: (f64, f64),
 }
 
 /// One evaluated tooth pair: (driver angle, (driver tooth, driven tooth), obstacle).
@@ -722,20 +742,24 @@ impl Run<'_> {
         self.push_segment(phi_end, self.theta, motion);
     }
 
-    /// Takes the step to `phi1` on a certificate, if one is found: every tooth pair near the
-    /// driven gear is proved, over the box of the step's driver angles and the driven angles the
-    /// gear can reach in it, either not to touch, or (pairs behind it) to touch only on contact
-    /// curves that rise, or only on curves that fall (`certify.rs`). Then nothing ahead can meet
-    /// the driven gear (no lock, no strike), and the driven angle, the running maximum of rising
-    /// curves one of which (a pusher) starts at θ, rises throughout (no gap): the step ends at
-    /// the largest upper end among the rising pairs, exactly as bracketing would end it.
-    /// Returns false, having changed nothing, when no certificate is found.
+    /// Takes the step to `phi1` on a certificate, if one is found, and returns whether it did
+    /// (having changed nothing if not). The certificate (`certify.rs` has the bounds):
     ///
-    /// The driven angles: from θ0 (less the side tolerance, so that a pair within it of θ0 is
-    /// judged too) up to θ1, the largest upper end at φ1 of the rising pairs. A rising pair's
-    /// upper end cannot pass above θ1 and come back within the step (it would fall through the
-    /// box), nor vanish above it (it is evaluated at φ1 and must still be there, at most θ1); a
-    /// rising pair found with a larger upper end at φ1 widens the box and the search restarts.
+    /// - Over the **box** of the step's driver angles and the driven angles from θ0 (less the
+    ///   side tolerance) to θ1, every tooth pair near the driven gear either touches nowhere, or
+    ///   is behind it with contact curves that only rise (it may push) or only fall; any other
+    ///   pair is a *suspect*.
+    /// - The driven angle, the running maximum of the rising curves, one of which (a pusher)
+    ///   starts at θ0, then rises throughout (no gap), with slopes the rising curves bound: its
+    ///   **path** from (φ0, θ0) to (φ1, θ1) lies in a thin tube about the chord. Every suspect
+    ///   must stay clear of that tube (nothing ahead meets the driven gear: no lock, no strike),
+    ///   and a rising pair that stays clear of it never carries the gear and needs no evaluating.
+    /// - θ1 is the largest upper end at φ1 of the rising pairs that reach the tube. A rising pair
+    ///   cannot pass above θ1 and come back within the step (it would fall through the box), nor
+    ///   vanish above it; one found higher at φ1 moves θ1 (and, past the box, widens it).
+    /// - Pairs born or gone within the step meet the conditions of `births_and_deaths_hold`.
+    ///
+    /// Then no event lies in the step, and it ends at θ1, exactly as bracketing would end it.
     fn certified_step(&mut self, phi1: f64, pushers: &[(i64, i64)]) -> bool {
         let Some(judged) = self.judge_step(phi1, pushers) else {
             return false;
@@ -753,10 +777,13 @@ impl Run<'_> {
             .filter(|m| m.rising)
             .map(|m| m.pair)
             .collect();
-        let theta1 = judged.pairs.iter().map(|m| m.hi).fold(self.theta, f64::max);
-        self.push_segment(phi1, theta1, Motion::Push(rising));
-        // Sides stay (nothing crossed θ). Upper ends at φ1 are known for the judged pairs; a pair
-        // behind that was not judged stayed clear of the box, so it is no pusher at φ1.
+        self.push_segment(phi1, judged.theta1, Motion::Push(rising));
+        // Pairs whose driver tooth has left the window (teeth enter it at lower indices as the
+        // driver turns, and leave it at higher ones) are done with.
+        let last = *self.mesh.driver_teeth(phi1).end();
+        self.sides.retain(|t| t.pair.0 <= last);
+        // Sides stay (nothing crossed θ). Upper ends at φ1 are known for the evaluated pairs; a
+        // pair behind that was not evaluated stayed clear of the path, so it is no pusher at φ1.
         for t in &mut self.sides {
             match judged.pairs.iter().find(|m| m.pair == t.pair) {
                 Some(m) => t.hi = m.hi,
@@ -776,15 +803,12 @@ impl Run<'_> {
         true
     }
 
-    /// The box verdict of every tooth pair near the driven gear over the step to `phi1`, or None
-    /// when one of them may meet the driven gear other than by pushing it. The box's driven
-    /// angles grow (and the pairs are judged again) until they hold every rising pair's upper end
-    /// at φ1.
+    /// The verdicts of a certified step to `phi1` (see [`Run::certified_step`]), or None when a
+    /// pair may meet the driven gear other than by pushing it.
     fn judge_step(&self, phi1: f64, pushers: &[(i64, i64)]) -> Option<JudgedStep> {
         let mesh = self.mesh;
         let (phi0, theta0) = (self.phi, self.theta);
-        let (driver, driven) = (&mesh.driver, &mesh.driven);
-        // Each pair is evaluated at φ1 once, however often the box grows.
+        // Each pair is evaluated at φ1 once, however often the box grows or θ1 moves.
         let mut at1: Vec<((i64, i64), Option<Obstacle>)> = Vec::new();
         let mut end_of = |pair: (i64, i64)| -> Option<Obstacle> {
             if let Some(&(_, o)) = at1.iter().find(|e| e.0 == pair) {
@@ -799,92 +823,153 @@ impl Run<'_> {
             .filter_map(|&p| end_of(p))
             .map(|o| o.hi)
             .fold(theta0, f64::max);
-        let mut top = pushed;
-        let drivers = driver.teeth_between(-phi1 - driver.window, -phi0 + driver.window);
-        'search: for _ in 0..4 {
-            let mut judged = JudgedStep::default();
-            let bottom = theta0 - SIDE_TOL;
-            let cell = ConfigBox::new(phi0, phi1, bottom, top, mesh.centre_distance);
-            let drivens = driven.teeth_between(bottom - driven.window, top + driven.window);
-            let discs: Vec<_> = drivens
-                .clone()
-                .map(|k| cell.driven_disc(driven.cert(k)))
-                .collect();
-            for j in drivers.clone() {
-                let a = driver.cert(j);
-                let disc = cell.driver_disc(a);
-                for (k, &other) in drivens.clone().zip(&discs) {
-                    if ConfigBox::apart(disc, other) {
-                        continue;
-                    }
-                    let (rising, born) = match (cell.pair(a, driven.cert(k)), self.side_of((j, k)))
-                    {
-                        (Verdict::Clear, _) => continue,
-                        (Verdict::Rising, Some(Side::Behind)) => (true, false),
-                        (Verdict::Falling, Some(Side::Behind)) => (false, false),
-                        // A pair not yet tracked whose contacts in the box only rise: behind if it
-                        // is behind θ at φ0; if it is not there yet, it is born in the step, and
-                        // where is judged by `births_and_deaths_hold`.
-                        (Verdict::Rising, None) => match mesh.obstacle(phi0, j, k) {
-                            None => (true, true),
-                            Some(o) if o.hi <= theta0 + SIDE_TOL => (true, false),
-                            Some(_) => return None,
-                        },
-                        // Anything else near the driven gear (ahead of it, or not proved to rise
-                        // or fall) may meet it: bracket.
-                        _ => return None,
-                    };
-                    let pair = (j, k);
-                    if !rising && pushed - theta0 > 2.0 * SIDE_TOL {
-                        // Falling from behind θ0: it never reaches θ, whatever becomes of it,
-                        // and ends too far below θ1 to push at the next step.
-                        judged.pairs.push(Judged::fallen(pair));
-                        continue;
-                    }
-                    let Some(o) = end_of(pair) else {
-                        if !rising {
-                            judged.pairs.push(Judged::fallen(pair));
-                        } else if born {
-                            // Neither at φ0 nor at φ1: a pair whose contacts only rise is born and
-                            // dies where two vertices meet; with no meeting it never touches.
-                            let meets = vertex_meeting(
-                                driver.cert(j),
-                                driven.cert(k),
-                                phi0,
-                                phi1,
-                                mesh.centre_distance,
-                                false,
-                            );
-                            if meets.is_some() {
-                                return None;
-                            }
-                        } else {
-                            judged.dead.push(pair);
-                            judged.pairs.push(Judged {
-                                pair,
-                                hi: f64::NEG_INFINITY,
-                                rising: true,
-                            });
+        let mut theta1 = pushed;
+        'grow: for _ in 0..4 {
+            let top = theta1;
+            let (boxed, slopes) = self.box_verdicts(phi1, top);
+            // θ1 only rises, each time to a pair's upper end: this ends.
+            'path: loop {
+                let path = ConfigBox::new(phi0, phi1, theta0, theta1, mesh.centre_distance);
+                let clear = |(j, k): (i64, i64)| {
+                    path.clear_along(
+                        &path.place_driver(mesh.driver.cert(j)),
+                        &path.place_driven(mesh.driven.cert(k)),
+                        slopes,
+                        SIDE_TOL,
+                    )
+                };
+                let mut judged = JudgedStep {
+                    theta1,
+                    slopes,
+                    ..JudgedStep::default()
+                };
+                for &(pair, role) in &boxed {
+                    match role {
+                        Role::Suspect if clear(pair) => {}
+                        Role::Suspect => return None,
+                        Role::Falling if pushed - theta0 > 2.0 * SIDE_TOL => {
+                            // Falling from behind θ0: it never reaches θ, whatever becomes of
+                            // it, and ends too far below θ1 to push at the next step.
+                            judged.pairs.push(Judged::not_carrying(pair));
                         }
-                        continue;
-                    };
-                    if rising && o.hi > top {
-                        top = o.hi;
-                        continue 'search;
-                    }
-                    judged.pairs.push(Judged {
-                        pair,
-                        hi: o.hi,
-                        rising,
-                    });
-                    if born {
-                        judged.newborn.push(pair);
+                        Role::Falling => judged.pairs.push(Judged {
+                            pair,
+                            hi: end_of(pair).map_or(f64::NEG_INFINITY, |o| o.hi),
+                            rising: false,
+                        }),
+                        // Never on the path: it carries nothing, wherever it ends. One that was
+                        // behind at φ0 still is (tracked, as no pusher); one born in the step
+                        // may be on either side of the driven gear (left untracked).
+                        Role::Rising { born } if !pushers.contains(&pair) && clear(pair) => {
+                            if !born {
+                                judged.pairs.push(Judged::not_carrying(pair));
+                            }
+                        }
+                        Role::Rising { born } => match end_of(pair) {
+                            Some(o) if o.hi > theta1 => {
+                                theta1 = o.hi;
+                                if theta1 > top {
+                                    continue 'grow;
+                                }
+                                continue 'path;
+                            }
+                            Some(o) => {
+                                judged.pairs.push(Judged {
+                                    pair,
+                                    hi: o.hi,
+                                    rising: true,
+                                });
+                                if born {
+                                    judged.newborn.push(pair);
+                                }
+                            }
+                            None if born => {
+                                // Neither at φ0 nor at φ1: a pair whose contacts only rise is
+                                // born and dies where two of its vertices meet; with no meeting
+                                // in the step it never touches.
+                                let (j, k) = pair;
+                                let meets = vertex_meeting(
+                                    mesh.driver.cert(j),
+                                    mesh.driven.cert(k),
+                                    phi0,
+                                    phi1,
+                                    mesh.centre_distance,
+                                    false,
+                                );
+                                if meets.is_some() {
+                                    return None;
+                                }
+                            }
+                            None => {
+                                judged.dead.push(pair);
+                                judged.pairs.push(Judged {
+                                    pair,
+                                    hi: f64::NEG_INFINITY,
+                                    rising: true,
+                                });
+                            }
+                        },
                     }
                 }
+                return Some(judged);
             }
-            return Some(judged);
         }
         None
+    }
+
+    /// Every tooth pair that touches the box of the step to `phi1` and driven angles from θ0
+    /// (less the side tolerance) to `top`, with its role, and the range of slopes of the rising
+    /// pairs' contact curves in the box.
+    fn box_verdicts(&self, phi1: f64, top: f64) -> (Vec<Boxed>, (f64, f64)) {
+        let mesh = self.mesh;
+        let (phi0, theta0) = (self.phi, self.theta);
+        let (driver, driven) = (&mesh.driver, &mesh.driven);
+        let bottom = theta0 - SIDE_TOL;
+        let cell = ConfigBox::new(phi0, phi1, bottom, top, mesh.centre_distance);
+        let drivers = driver.teeth_between(-phi1 - driver.window, -phi0 + driver.window);
+        let drivens = driven.teeth_between(bottom - driven.window, top + driven.window);
+        // Each tooth is placed in the box once, and only if its disc comes near another's.
+        let discs: Vec<_> = drivens
+            .clone()
+            .map(|k| cell.driven_disc(driven.cert(k)))
+            .collect();
+        let mut placed = vec![None; discs.len()];
+        let mut boxed = Vec::new();
+        let mut slopes = (f64::INFINITY, f64::NEG_INFINITY);
+        for j in drivers {
+            let disc = cell.driver_disc(driver.cert(j));
+            let mut a = None;
+            for (i, k) in drivens.clone().enumerate() {
+                if ConfigBox::apart(disc, discs[i]) {
+                    continue;
+                }
+                let a = a.get_or_insert_with(|| cell.place_driver(driver.cert(j)));
+                let b = placed[i].get_or_insert_with(|| cell.place_driven(driven.cert(k)));
+                let pair = (j, k);
+                let (verdict, range) = cell.pair(a, b);
+                let role = match (verdict, self.side_of(pair)) {
+                    (Verdict::Clear, _) => continue,
+                    (Verdict::Rising, Some(Side::Behind)) => Role::Rising { born: false },
+                    (Verdict::Falling, Some(Side::Behind)) => Role::Falling,
+                    // A pair not yet tracked whose contacts in the box only rise: behind if it
+                    // is behind θ at φ0; if it is not there yet, it is born in the step, and where
+                    // is judged by `births_and_deaths_hold`.
+                    (Verdict::Rising, None) => match mesh.obstacle(phi0, j, k) {
+                        None => Role::Rising { born: true },
+                        Some(o) if o.hi <= theta0 + SIDE_TOL => Role::Rising { born: false },
+                        Some(_) => Role::Suspect,
+                    },
+                    // Ahead of the driven gear, or not proved to rise or fall: it must stay
+                    // clear of the driven gear's path.
+                    _ => Role::Suspect,
+                };
+                if let Role::Rising { .. } = role {
+                    slopes = (slopes.0.min(range.0), slopes.1.max(range.1));
+                }
+                boxed.push((pair, role));
+            }
+        }
+        (boxed, slopes)
     }
 
     /// Whether the pairs born or gone in a judged step leave the drive continuous and nothing
@@ -919,9 +1004,16 @@ impl Run<'_> {
                 crate::mesh::wrap_pi(at - others(phi_d, pair)) <= SIDE_TOL
             })
         });
+        // Where the driven gear is at least, by the path's tube (`ConfigBox::clear_along`): when
+        // a pair is born below that, nothing need be evaluated.
+        let (s_lo, s_hi) = judged.slopes;
+        let chord = (judged.theta1 - theta0) / (phi1 - phi0);
+        let width = (s_hi - s_lo).max(0.0) * (phi1 - phi0) / 4.0;
+        let at_least = |phi: f64| (theta0 + chord * (phi - phi0) - width).max(theta0);
         let births_behind = judged.newborn.iter().all(|&pair| {
             meeting(pair, false).is_some_and(|(phi_b, at)| {
-                crate::mesh::wrap_pi(at - others(phi_b, pair)) <= SIDE_TOL
+                crate::mesh::wrap_pi(at - at_least(phi_b)) <= SIDE_TOL
+                    || crate::mesh::wrap_pi(at - others(phi_b, pair)) <= SIDE_TOL
             })
         });
         deaths_hand_over && births_behind
@@ -960,16 +1052,30 @@ impl Run<'_> {
             .map(|t| t.pair)
             .collect();
         if self.certify && !pushers.is_empty() && self.unheld_at != Some(phi0) {
-            // The whole step on one certificate, or else its first half, quarter or eighth (a
-            // smaller box has smaller bounds); what is left is bracketed.
-            let mut to = phi1;
-            for _ in 0..1 {
-                if self.certified_step(to, &pushers) {
-                    return;
+            // The whole step on a certificate, or else bracketed.
+            let e0 = crate::mesh::tooth_pair_evaluations();
+            let certified = self.certified_step(phi1, &pushers);
+            let spent = crate::mesh::tooth_pair_evaluations() - e0;
+            STATS.with(|c| {
+                let mut st = c.get();
+                if certified {
+                    st.certified += 1;
+                    st.certified_evaluations += spent;
+                } else {
+                    st.refused += 1;
+                    st.refused_evaluations += spent;
                 }
-                to = 0.5 * (phi0 + to);
+                c.set(st);
+            });
+            if certified {
+                return;
             }
         }
+        STATS.with(|c| {
+            let mut st = c.get();
+            st.bracketed += 1;
+            c.set(st);
+        });
         // Standing still, the first touch of any driver tooth is found exactly; end the step just
         // after it, so that even a brief graze (a tip clipping a tip) is seen at the step's end.
         if pushers.is_empty()
@@ -1424,4 +1530,36 @@ fn golden_max(mut a: f64, mut b: f64, f: impl Fn(f64) -> f64) -> f64 {
         (x, y) if value == f64::NEG_INFINITY && y > value => x,
         _ => top,
     }
+}
+
+/// How the steps of the runs on this thread were taken, for benchmarks and profiling.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct SolverStats {
+    /// Steps taken on a certificate.
+    pub certified: u64,
+    /// Tooth-pair evaluations made by certified steps.
+    pub certified_evaluations: u64,
+    /// Certificates tried and not found.
+    pub refused: u64,
+    /// Tooth-pair evaluations made by those attempts.
+    pub refused_evaluations: u64,
+    /// Steps bracketed (no certificate tried, or none found), while the driven gear was free.
+    pub bracketed: u64,
+}
+
+thread_local! {
+    static STATS: std::cell::Cell<SolverStats> = const {
+        std::cell::Cell::new(SolverStats {
+            certified: 0,
+            certified_evaluations: 0,
+            refused: 0,
+            refused_evaluations: 0,
+            bracketed: 0,
+        })
+    };
+}
+
+/// The step counts of the runs on this thread so far.
+pub fn solver_stats() -> SolverStats {
+    STATS.with(std::cell::Cell::get)
 }

@@ -90,5 +90,8 @@ fn certified_steps_find_the_events_bracketing_finds() {
         checked += 1;
         events += a.len();
     }
-    assert!(checked > 100 && events > 500, "{checked} cases, {events} events");
+    assert!(
+        checked > 100 && events > 500,
+        "{checked} cases, {events} events"
+    );
 }
