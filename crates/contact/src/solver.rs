@@ -358,6 +358,8 @@ enum Role {
     Rising { born: bool },
     /// Behind the driven gear, its contact curves falling: it never reaches it.
     Falling,
+    /// Not tracked yet, its contact curves rising: judged by where it is at the step's start.
+    Untracked,
     /// Anything else: it must stay clear of the driven gear's path.
     Suspect,
 }
@@ -844,9 +846,21 @@ impl Run<'_> {
                     ..JudgedStep::default()
                 };
                 for &(pair, role) in &boxed {
+                    let role = match role {
+                        // Never on the path: it touches nothing, wherever it is.
+                        Role::Untracked if clear(pair) => continue,
+                        // Behind if it is behind θ at φ0; if it is not there yet, it is born in
+                        // the step, and where is judged by `births_and_deaths_hold`.
+                        Role::Untracked => match mesh.obstacle(phi0, pair.0, pair.1) {
+                            None => Role::Rising { born: true },
+                            Some(o) if o.hi <= theta0 + SIDE_TOL => Role::Rising { born: false },
+                            Some(_) => return None,
+                        },
+                        role => role,
+                    };
                     match role {
-                        Role::Suspect if clear(pair) => {}
-                        Role::Suspect => return None,
+                        Role::Suspect | Role::Untracked if clear(pair) => {}
+                        Role::Suspect | Role::Untracked => return None,
                         Role::Falling if pushed - theta0 > 2.0 * SIDE_TOL => {
                             // Falling from behind θ0: it never reaches θ, whatever becomes of
                             // it, and ends too far below θ1 to push at the next step.
@@ -951,19 +965,12 @@ impl Run<'_> {
                     (Verdict::Clear, _) => continue,
                     (Verdict::Rising, Some(Side::Behind)) => Role::Rising { born: false },
                     (Verdict::Falling, Some(Side::Behind)) => Role::Falling,
-                    // A pair not yet tracked whose contacts in the box only rise: behind if it
-                    // is behind θ at φ0; if it is not there yet, it is born in the step, and where
-                    // is judged by `births_and_deaths_hold`.
-                    (Verdict::Rising, None) => match mesh.obstacle(phi0, j, k) {
-                        None => Role::Rising { born: true },
-                        Some(o) if o.hi <= theta0 + SIDE_TOL => Role::Rising { born: false },
-                        Some(_) => Role::Suspect,
-                    },
+                    (Verdict::Rising, None) => Role::Untracked,
                     // Ahead of the driven gear, or not proved to rise or fall: it must stay
                     // clear of the driven gear's path.
                     _ => Role::Suspect,
                 };
-                if let Role::Rising { .. } = role {
+                if let Role::Rising { .. } | Role::Untracked = role {
                     slopes = (slopes.0.min(range.0), slopes.1.max(range.1));
                 }
                 boxed.push((pair, role));
@@ -999,17 +1006,20 @@ impl Run<'_> {
                 last,
             )
         };
-        let deaths_hand_over = judged.dead.iter().all(|&pair| {
-            meeting(pair, true).is_some_and(|(phi_d, at)| {
-                crate::mesh::wrap_pi(at - others(phi_d, pair)) <= SIDE_TOL
-            })
-        });
+
         // Where the driven gear is at least, by the path's tube (`ConfigBox::clear_along`): when
         // a pair is born below that, nothing need be evaluated.
         let (s_lo, s_hi) = judged.slopes;
         let chord = (judged.theta1 - theta0) / (phi1 - phi0);
         let width = (s_hi - s_lo).max(0.0) * (phi1 - phi0) / 4.0;
         let at_least = |phi: f64| (theta0 + chord * (phi - phi0) - width).max(theta0);
+        // A pair that dies below where the driven gear is at least was not carrying it.
+        let deaths_hand_over = judged.dead.iter().all(|&pair| {
+            meeting(pair, true).is_some_and(|(phi_d, at)| {
+                crate::mesh::wrap_pi(at - at_least(phi_d)) < -SIDE_TOL
+                    || crate::mesh::wrap_pi(at - others(phi_d, pair)) <= SIDE_TOL
+            })
+        });
         let births_behind = judged.newborn.iter().all(|&pair| {
             meeting(pair, false).is_some_and(|(phi_b, at)| {
                 crate::mesh::wrap_pi(at - at_least(phi_b)) <= SIDE_TOL
