@@ -95,3 +95,108 @@ fn certified_steps_find_the_events_bracketing_finds() {
         "{checked} cases, {events} events"
     );
 }
+
+/// A wider class of meshes than `hard_mesh`: asymmetric teeth (valleys off the midway angle),
+/// gears that are not round (a radius per tip and valley), eccentricity, random tip errors and
+/// clearances from 5 to 95 %; None where the drawn gears cannot be placed.
+fn wide_mesh(case: u64) -> Option<(contact::Mesh, f64, f64, String)> {
+    use std::f64::consts::TAU;
+
+    use geometry::{Gear, Vec2};
+    use rand::{Rng, SeedableRng};
+
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(1_000_000 + case);
+    let gear = |n: usize, r_tip: f64, rng: &mut rand_chacha::ChaCha8Rng| -> Option<Gear> {
+        let pitch = TAU / n as f64;
+        let sigma = [0.0, 0.04, 0.12][rng.random_range(0..3)];
+        let tips: Vec<f64> = (0..n)
+            .map(|k| pitch * k as f64 + sigma * pitch * (rng.random::<f64>() - 0.5))
+            .collect();
+        let lean = 0.3 * (rng.random::<f64>() - 0.5);
+        let valleys = (0..n)
+            .map(|k| {
+                let next = if k + 1 == n {
+                    tips[0] + TAU
+                } else {
+                    tips[k + 1]
+                };
+                tips[k] + (next - tips[k]) * (0.5 + lean)
+            })
+            .collect();
+        let ecc = [0.0, 0.1, 0.3][rng.random_range(0..3)];
+        let a = rng.random::<f64>() * TAU;
+        let g = Gear::with_valleys(
+            r_tip,
+            r_tip - 1.1,
+            tips,
+            valleys,
+            Vec2::new(ecc * a.cos(), ecc * a.sin()),
+        )
+        .ok()?;
+        if rng.random::<bool>() {
+            let wobble = 0.1 * rng.random::<f64>();
+            let tip_radii = (0..n)
+                .map(|_| r_tip + wobble * (rng.random::<f64>() - 0.5))
+                .collect();
+            let root_radii = (0..n)
+                .map(|_| r_tip - 1.1 + wobble * (rng.random::<f64>() - 0.5))
+                .collect();
+            g.with_radii(tip_radii, root_radii).ok()
+        } else {
+            Some(g)
+        }
+    };
+    let n1 = rng.random_range(12..40);
+    let n2 = rng.random_range(n1..(n1 * 4).min(120));
+    let module = 0.5 + rng.random::<f64>();
+    let (r1, r2) = (n1 as f64 * module / 2.0, n2 as f64 * module / 2.0);
+    let g = 5.0 + 90.0 * rng.random::<f64>();
+    let d = geometry::centre_distance(r1, r2, 1.1, g);
+    let mesh = contact::Mesh::new(gear(n1, r1, &mut rng)?, gear(n2, r2, &mut rng)?, d).ok()?;
+    let phi0 = rng.random::<f64>();
+    let end = phi0 + TAU * n2 as f64 / n1 as f64;
+    Some((
+        mesh,
+        phi0,
+        end,
+        format!("wide case {case}: {n1}:{n2} teeth, G {g:.1} %"),
+    ))
+}
+
+/// As `certified_steps_find_the_events_bracketing_finds`, on 1,000 meshes of the wider class
+/// (`CERTIFY_CASES` sets another count, e.g. 10000).
+#[test]
+fn certified_steps_agree_with_bracketing_on_asymmetric_and_out_of_round_teeth() {
+    let cases: u64 = std::env::var("CERTIFY_CASES")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(1000);
+    let (mut checked, mut events, mut certified) = (0u64, 0u64, 0u64);
+    for case in 0..cases {
+        let Some((m, phi0, end, what)) = wide_mesh(case) else {
+            continue;
+        };
+        let before = contact::solver_stats().certified;
+        let a = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, true);
+        certified += contact::solver_stats().certified - before;
+        let b = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, false);
+        assert_eq!(
+            a.events().len(),
+            b.events().len(),
+            "{what}: {:?} vs {:?}",
+            a.events(),
+            b.events()
+        );
+        for (x, y) in a.events().iter().zip(b.events()) {
+            assert_eq!(x.kind, y.kind, "{what}: {x:?} vs {y:?}");
+            assert!((x.phi - y.phi).abs() < 1e-9, "{what}: {x:?} vs {y:?}");
+            assert!((x.theta - y.theta).abs() < 1e-9, "{what}: {x:?} vs {y:?}");
+        }
+        checked += 1;
+        events += a.events().len() as u64;
+    }
+    assert!(
+        checked * 10 > cases * 8 && events > cases && certified > 20 * cases,
+        "{checked} cases, {events} events, {certified} certified steps"
+    );
+}
