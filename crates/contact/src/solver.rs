@@ -50,6 +50,9 @@ const LOCATE_TOL: f64 = 1e-13;
 /// How closely the angle where a new obstacle appeared is located to tell on which side of θ
 /// it appeared (radians of driver angle).
 const SIDE_LOCATE_TOL: f64 = 1e-10;
+/// How far past a turn of the driven gear (in its largest tooth gaps) `next_free` looks for a
+/// free position before it calls the gear blocked.
+const LAST_REACH: f64 = 3.0;
 /// How far past a first touch from rest a step ends (radians of driver angle).
 const TOUCH_STEP: f64 = 1e-8;
 /// Steps per driver pitch used to bracket events (finer halvings are taken where needed).
@@ -312,7 +315,9 @@ struct Solve {
     steps_per_pitch: f64,
     /// Keep every segment (for θ at any φ) or only the events.
     keep_segments: bool,
-    /// Take steps on certificates where they are found (else bracket every step).
+    /// Take steps on certificates where they are found, and check a held gear's last cover
+    /// first (else bracket every step and scan the turn at every check: the plain solver the
+    /// differential tests compare against).
     certify: bool,
 }
 
@@ -404,6 +409,11 @@ struct Run<'m> {
     pending: Vec<(usize, Option<i64>)>,
     /// Whether steps may be taken on a certificate instead of bracketing (straight flanks).
     certify: bool,
+    /// While the driven gear is held: tooth pairs whose obstacles closed up over the turn when
+    /// last checked.
+    cover: Vec<(i64, i64)>,
+    /// Whether to check those pairs first (else every check scans the turn).
+    remember_cover: bool,
 }
 
 impl Mesh {
@@ -433,8 +443,9 @@ impl Mesh {
     }
 
     /// [`Mesh::run_until`] with the bracketing step set to `1 / steps_per_pitch` of the driver's
-    /// pitch. The result must not depend on it (events are located exactly either way); the
-    /// differential tests run several values against each other.
+    /// pitch, and, with `certify` unset, the plain solver: every step bracketed, every check of a
+    /// held gear a scan of the turn. The result must depend on neither (events are located
+    /// exactly either way); the differential tests run them against each other.
     #[doc(hidden)]
     pub fn run_with_steps(
         &self,
@@ -496,6 +507,8 @@ impl Mesh {
             drive_phase: None,
             pending: Vec::new(),
             certify: how.certify && !self.curved,
+            cover: Vec::new(),
+            remember_cover: how.certify,
         };
         run.start(start);
         let mut seen = 0;
@@ -540,33 +553,66 @@ impl Mesh {
     /// behind does not move it; one that touches it from ahead does when `through` is set (the
     /// release after a jam: the driven gear is let go to the next position where it is free).
     pub fn next_free(&self, phi: f64, theta: f64, through: bool) -> Option<f64> {
+        self.free_or_cover(phi, theta, through).ok()
+    }
+
+    /// [`Mesh::next_free`], but where there is no free position, the tooth pairs whose
+    /// obstacles, one after another, close up over the turn: a proof of being blocked that
+    /// [`Mesh::still_covered`] re-checks at another driver angle with only those pairs.
+    fn free_or_cover(&self, phi: f64, theta: f64, through: bool) -> Result<f64, Vec<(i64, i64)>> {
         let gap = self.driven.max_gap;
         let mut obs = Vec::new();
         let mut reach = 3.0 * gap;
         loop {
             self.obstacles(phi, theta - gap, theta + reach, &mut obs);
-            obs.sort_by(|a, b| a.lo.total_cmp(&b.lo));
-            let mut top = theta;
-            for o in &obs {
-                let carried = through || top > theta;
-                let reaches = if carried {
-                    o.lo <= top + SIDE_TOL
-                } else {
-                    o.lo < top - SIDE_TOL
-                };
-                if reaches && o.hi > top {
-                    top = o.hi;
-                }
-            }
+            let (top, chain) = cover_from(theta, &mut obs, through);
             if top < theta + reach - gap {
-                return Some(top);
+                return Ok(top);
             }
-            if reach > TAU + 3.0 * gap {
-                return None;
+            if reach >= LAST_REACH * gap + TAU {
+                return Err(chain);
             }
-            reach *= 2.0;
+            // Obstacles repeat every turn of the driven gear: closed up over a turn and a
+            // little more, they close up everywhere.
+            reach = (2.0 * reach).min(LAST_REACH * gap + TAU);
         }
     }
+
+    /// Whether the obstacles of `cover` alone, at φ, close up from θ as far as
+    /// [`Mesh::free_or_cover`] asks of all of them to find no free position: then there is none
+    /// (more obstacles can only cover more), with `through` unset.
+    fn still_covered(&self, phi: f64, theta: f64, cover: &[(i64, i64)]) -> bool {
+        let gap = self.driven.max_gap;
+        // The reach at which `free_or_cover` gives up.
+        let reach = LAST_REACH * gap + TAU;
+        let mut obs: Vec<Obstacle> = cover
+            .iter()
+            .filter_map(|&(j, k)| self.obstacle(phi, j, k))
+            .collect();
+        cover_from(theta, &mut obs, false).0 >= theta + reach - gap
+    }
+}
+
+/// How far above θ the obstacles close up, swept in order of their lower ends (those that
+/// extend the cover are kept, in order): an obstacle that only touches θ from behind does not
+/// start it; one that touches it from ahead does when `through` is set.
+fn cover_from(theta: f64, obs: &mut [Obstacle], through: bool) -> (f64, Vec<(i64, i64)>) {
+    obs.sort_by(|a, b| a.lo.total_cmp(&b.lo));
+    let mut top = theta;
+    let mut chain = Vec::new();
+    for o in obs.iter() {
+        let carried = through || top > theta;
+        let reaches = if carried {
+            o.lo <= top + SIDE_TOL
+        } else {
+            o.lo < top - SIDE_TOL
+        };
+        if reaches && o.hi > top {
+            top = o.hi;
+            chain.push((o.driver_tooth, o.driven_tooth));
+        }
+    }
+    (top, chain)
 }
 
 impl Run<'_> {
@@ -1035,13 +1081,33 @@ impl Run<'_> {
         let phi0 = self.phi;
         let theta0 = self.theta;
         if self.held {
-            if mesh.next_free(phi1, theta0, false).is_none() {
+            // While blocked, the pairs that closed up last time are checked first: a full scan
+            // of the turn is made only when they no longer prove it.
+            let cover = RefCell::new(std::mem::take(&mut self.cover));
+            let blocked = |p: f64| {
+                if self.remember_cover
+                    && !cover.borrow().is_empty()
+                    && mesh.still_covered(p, theta0, &cover.borrow())
+                {
+                    return true;
+                }
+                match mesh.free_or_cover(p, theta0, false) {
+                    Ok(_) => false,
+                    Err(chain) => {
+                        *cover.borrow_mut() = chain;
+                        true
+                    }
+                }
+            };
+            if blocked(phi1) {
+                self.cover = cover.into_inner();
                 self.rest_to(phi1);
                 return;
             }
             // Freed within the step: the driven gear is let go at the first angle where a free
             // position appears, located like any event (not at the step's end).
-            let held_until = bisect(phi0, phi1, |p| mesh.next_free(p, theta0, false).is_none());
+            let held_until = bisect(phi0, phi1, blocked);
+            self.cover = cover.into_inner();
             let phi_r = (held_until + LOCATE_TOL).min(phi1);
             let Some(t) = mesh.next_free(phi_r, theta0, false) else {
                 self.rest_to(phi_r);
@@ -1049,6 +1115,7 @@ impl Run<'_> {
             };
             self.rest_to(phi_r);
             self.held = false;
+            self.cover.clear();
             self.theta = t;
             self.classify_all(phi_r);
             return;

@@ -200,3 +200,32 @@ fn certified_steps_agree_with_bracketing_on_asymmetric_and_out_of_round_teeth() 
         "{checked} cases, {events} events, {certified} certified steps"
     );
 }
+
+/// Meshes so tight that the driven gear jams at every tooth or cannot turn at all (held): the
+/// held gear's remembered cover (`Run::cover`) and the certified steps change no event.
+#[test]
+fn tight_meshes_agree_with_the_plain_solver() {
+    let (mut checked, mut events) = (0, 0);
+    for case in 0..40u64 {
+        for g in [2.0, 5.0, 8.0] {
+            let Some(HardMesh {
+                mesh: m,
+                phi0,
+                end,
+                what,
+            }) = hard_mesh(case, Some(g))
+            else {
+                continue;
+            };
+            let a = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, true);
+            let b = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, false);
+            assert_eq!(a.events(), b.events(), "{what}");
+            checked += 1;
+            events += a.events().len();
+        }
+    }
+    assert!(
+        checked > 100 && events > 1000,
+        "{checked} cases, {events} events"
+    );
+}
