@@ -50,9 +50,6 @@ const LOCATE_TOL: f64 = 1e-13;
 /// How closely the angle where a new obstacle appeared is located to tell on which side of θ
 /// it appeared (radians of driver angle).
 const SIDE_LOCATE_TOL: f64 = 1e-10;
-/// How far past a turn of the driven gear (in its largest tooth gaps) `next_free` looks for a
-/// free position before it calls the gear blocked.
-const LAST_REACH: f64 = 3.0;
 /// How far past a first touch from rest a step ends (radians of driver angle).
 const TOUCH_STEP: f64 = 1e-8;
 /// Steps per driver pitch used to bracket events (finer halvings are taken where needed).
@@ -569,12 +566,10 @@ impl Mesh {
             if top < theta + reach - gap {
                 return Ok(top);
             }
-            if reach >= LAST_REACH * gap + TAU {
+            if reach > TAU + 3.0 * gap {
                 return Err(chain);
             }
-            // Obstacles repeat every turn of the driven gear: closed up over a turn and a
-            // little more, they close up everywhere.
-            reach = (2.0 * reach).min(LAST_REACH * gap + TAU);
+            reach *= 2.0;
         }
     }
 
@@ -584,7 +579,10 @@ impl Mesh {
     fn still_covered(&self, phi: f64, theta: f64, cover: &[(i64, i64)]) -> bool {
         let gap = self.driven.max_gap;
         // The reach at which `free_or_cover` gives up.
-        let reach = LAST_REACH * gap + TAU;
+        let mut reach = 3.0 * gap;
+        while reach <= TAU + 3.0 * gap {
+            reach *= 2.0;
+        }
         let mut obs: Vec<Obstacle> = cover
             .iter()
             .filter_map(|&(j, k)| self.obstacle(phi, j, k))
@@ -892,9 +890,10 @@ impl Run<'_> {
                     ..JudgedStep::default()
                 };
                 for &(pair, role) in &boxed {
+                    // An untracked pair is classified (and then tracked) even when it stays clear
+                    // of the path: left untracked, bracketed steps later judge it as a pair new
+                    // to the scan, which is not what it is.
                     let role = match role {
-                        // Never on the path: it touches nothing, wherever it is.
-                        Role::Untracked if clear(pair) => continue,
                         // Behind if it is behind θ at φ0; if it is not there yet, it is born in
                         // the step, and where is judged by `births_and_deaths_hold`.
                         Role::Untracked => match mesh.obstacle(phi0, pair.0, pair.1) {

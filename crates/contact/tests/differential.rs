@@ -96,9 +96,10 @@ fn certified_steps_find_the_events_bracketing_finds() {
     );
 }
 
-/// A wider class of meshes than `hard_mesh`: asymmetric teeth (valleys off the midway angle),
-/// gears that are not round (a radius per tip and valley), eccentricity, random tip errors and
-/// clearances from 5 to 95 %; None where the drawn gears cannot be placed.
+/// A wider class of meshes than `hard_mesh`: systematic (sinusoidal) and random tip errors,
+/// asymmetric teeth (valleys off the midway angle),
+/// gears that are not round (a radius per tip and valley), eccentricity and clearances from 5 to
+/// 95 %; None where the drawn gears cannot be placed.
 fn wide_mesh(case: u64) -> Option<(contact::Mesh, f64, f64, String)> {
     use std::f64::consts::TAU;
 
@@ -108,9 +109,17 @@ fn wide_mesh(case: u64) -> Option<(contact::Mesh, f64, f64, String)> {
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(1_000_000 + case);
     let gear = |n: usize, r_tip: f64, rng: &mut rand_chacha::ChaCha8Rng| -> Option<Gear> {
         let pitch = TAU / n as f64;
-        let sigma = [0.0, 0.04, 0.12][rng.random_range(0..3)];
+        let sigma = [0.0, 0.04, 0.12, 0.25][rng.random_range(0..4)];
+        // A sinusoidal (systematic) error of up to half a pitch, as Edmunds' larger Cases.
+        let (amp, phase) = (
+            [0.0, 0.2, 0.5][rng.random_range(0..3)],
+            TAU * rng.random::<f64>(),
+        );
         let tips: Vec<f64> = (0..n)
-            .map(|k| pitch * k as f64 + sigma * pitch * (rng.random::<f64>() - 0.5))
+            .map(|k| {
+                let a = TAU * k as f64 / n as f64;
+                a + amp * pitch * (a + phase).sin() + sigma * pitch * (rng.random::<f64>() - 0.5)
+            })
             .collect();
         let lean = 0.3 * (rng.random::<f64>() - 0.5);
         let valleys = (0..n)
