@@ -533,6 +533,25 @@ impl Mesh {
         run
     }
 
+    /// Where two vertices of tooth pair (j, k) first meet (or, with `last`, meet last) while the
+    /// driver turns from `phi0` to `phi1` (`certify::vertex_meeting`; straight flanks).
+    fn vertex_meeting(
+        &self,
+        (j, k): (i64, i64),
+        phi0: f64,
+        phi1: f64,
+        last: bool,
+    ) -> Option<(f64, f64)> {
+        vertex_meeting(
+            self.driver.cert(j),
+            self.driven.cert(k),
+            phi0,
+            phi1,
+            self.centre_distance,
+            last,
+        )
+    }
+
     /// Upper end of the (j, k) obstacle at φ, or −∞ when it does not exist.
     fn hi(&self, phi: f64, pair: (i64, i64)) -> f64 {
         self.obstacle(phi, pair.0, pair.1)
@@ -946,16 +965,7 @@ impl Run<'_> {
                                 // Neither at φ0 nor at φ1: a pair whose contacts only rise is
                                 // born and dies where two of its vertices meet; with no meeting
                                 // in the step it never touches.
-                                let (j, k) = pair;
-                                let meets = vertex_meeting(
-                                    mesh.driver.cert(j),
-                                    mesh.driven.cert(k),
-                                    phi0,
-                                    phi1,
-                                    mesh.centre_distance,
-                                    false,
-                                );
-                                if meets.is_some() {
+                                if mesh.vertex_meeting(pair, phi0, phi1, false).is_some() {
                                     return None;
                                 }
                             }
@@ -1041,16 +1051,7 @@ impl Run<'_> {
                 .map(|m| mesh.hi(phi, m.pair))
                 .fold(theta0, f64::max)
         };
-        let meeting = |(j, k): (i64, i64), last: bool| {
-            vertex_meeting(
-                mesh.driver.cert(j),
-                mesh.driven.cert(k),
-                phi0,
-                phi1,
-                mesh.centre_distance,
-                last,
-            )
-        };
+        let meeting = |pair: (i64, i64), last: bool| mesh.vertex_meeting(pair, phi0, phi1, last);
 
         // Where the driven gear is at least, by the path's tube (`ConfigBox::clear_along`): when
         // a pair is born below that, nothing need be evaluated.

@@ -63,15 +63,10 @@ fn first_events_do_not_depend_on_the_step() {
 fn certified_steps_find_the_events_bracketing_finds() {
     let (mut checked, mut events) = (0, 0);
     for case in 0..120u64 {
-        let Some(HardMesh {
-            mesh: m,
-            phi0,
-            end,
-            what,
-        }) = hard_mesh(case, None)
-        else {
+        let Some(h) = hard_mesh(case, None) else {
             continue;
         };
+        let (m, phi0, end, what) = (h.mesh, h.phi0, h.end, h.what);
         let certified = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, true);
         let bracketed = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, false);
         let (a, b) = (certified.events(), bracketed.events());
@@ -217,15 +212,10 @@ fn tight_meshes_agree_with_the_plain_solver() {
     let (mut checked, mut events) = (0, 0);
     for case in 0..40u64 {
         for g in [2.0, 5.0, 8.0] {
-            let Some(HardMesh {
-                mesh: m,
-                phi0,
-                end,
-                what,
-            }) = hard_mesh(case, Some(g))
-            else {
+            let Some(h) = hard_mesh(case, Some(g)) else {
                 continue;
             };
+            let (m, phi0, end, what) = (h.mesh, h.phi0, h.end, h.what);
             let a = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, true);
             let b = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, false);
             assert_eq!(a.events(), b.events(), "{what}");
