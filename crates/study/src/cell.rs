@@ -480,11 +480,10 @@ fn run_todo(
     seed: u64,
     run_batch: impl RunBatch,
 ) -> Result<Vec<RuleBits>, RunError> {
-    let jobs: Vec<(usize, u64)> = todo
-        .iter()
-        .flat_map(|&i| (0..trials).map(move |t| (i, t)))
-        .collect();
-    if jobs.is_empty() {
+    // Job n is trial n % trials of cell todo[n / trials]: every cell runs the same trials, so
+    // the (cell, trial) list is arithmetic, not a vector (10^6 trials of 256 cells would be 4 GB).
+    let jobs = todo.len() as u64 * trials;
+    if jobs == 0 {
         return Ok(Vec::new());
     }
     let mut names = String::new();
@@ -500,10 +499,10 @@ fn run_todo(
         fnv1a64(names.as_bytes())
     );
     let job = |n: u64| -> Result<RuleBits, RunError> {
-        let (i, t) = jobs[n as usize];
+        let (i, t) = (todo[(n / trials) as usize], n % trials);
         trial(&prepared[i], seed, t, &rules_of[i])
     };
-    run_batch(&batch, jobs.len() as u64, &job)
+    run_batch(&batch, jobs, &job)
 }
 
 /// Trials `range` (indices, e.g. `40..60`) of one cell: a stretch of a cell's trials, for a

@@ -215,14 +215,13 @@ pub fn run_study(
     let events = crate::events::chosen(ctx)?;
     // The rule decides where a train stops, so it names the batch too.
     let batch = format!("{batch}|events={}", events.label());
-    let jobs: Vec<(usize, u64)> = (0..inputs.len())
-        .flat_map(|i| (0..trials).map(move |t| (i, t)))
-        .collect();
-    ctx.trials(&batch, jobs.len() as u64, |j| {
-        let &(i, t) = jobs
-            .get(j as usize)
-            .ok_or_else(|| RunError::Internal(format!("run {j} of {}", jobs.len())))?;
-        one_run(g, &inputs[i], h, seed, t, horizon, &events)
+    // Run j is run j % trials of input j / trials (arithmetic, not a vector of every pair).
+    let jobs = inputs.len() as u64 * trials;
+    ctx.trials(&batch, jobs, |j| {
+        let input = inputs
+            .get((j / trials) as usize)
+            .ok_or_else(|| RunError::Internal(format!("run {j} of {jobs}")))?;
+        one_run(g, input, h, seed, j % trials, horizon, &events)
     })
 }
 
