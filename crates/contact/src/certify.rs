@@ -666,14 +666,7 @@ mod tests {
             {
                 let k = rng.random_range(0..m.driven.tips.len() as i64);
                 for last in [false, true] {
-                    let Some((phi, theta)) = vertex_meeting(
-                        m.driver.cert(j),
-                        m.driven.cert(k),
-                        phi0,
-                        phi1,
-                        m.centre_distance,
-                        last,
-                    ) else {
+                    let Some((phi, theta)) = m.vertex_meeting((j, k), phi0, phi1, last) else {
                         continue;
                     };
                     assert!((phi0..=phi1).contains(&phi));

@@ -360,8 +360,6 @@ enum Role {
     Rising { born: bool },
     /// Behind the driven gear, its contact curves falling: it never reaches it.
     Falling,
-    /// Not tracked yet, its contact curves rising: judged by where it is at the step's start.
-    Untracked,
     /// Anything else: it must stay clear of the driven gear's path.
     Suspect,
 }
@@ -535,7 +533,7 @@ impl Mesh {
 
     /// Where two vertices of tooth pair (j, k) first meet (or, with `last`, meet last) while the
     /// driver turns from `phi0` to `phi1` (`certify::vertex_meeting`; straight flanks).
-    fn vertex_meeting(
+    pub(crate) fn vertex_meeting(
         &self,
         (j, k): (i64, i64),
         phi0: f64,
@@ -891,7 +889,7 @@ impl Run<'_> {
         let mut theta1 = pushed;
         'grow: for _ in 0..4 {
             let top = theta1;
-            let (boxed, slopes) = self.box_verdicts(phi1, top);
+            let (boxed, slopes) = self.box_verdicts(phi1, top)?;
             // θ1 only rises, each time to a pair's upper end: this ends.
             'path: loop {
                 let path = ConfigBox::new(phi0, phi1, theta0, theta1, mesh.centre_distance);
@@ -909,22 +907,9 @@ impl Run<'_> {
                     ..JudgedStep::default()
                 };
                 for &(pair, role) in &boxed {
-                    // An untracked pair is classified (and then tracked) even when it stays clear
-                    // of the path: left untracked, bracketed steps later judge it as a pair new
-                    // to the scan, which is not what it is.
-                    let role = match role {
-                        // Behind if it is behind θ at φ0; if it is not there yet, it is born in
-                        // the step, and where is judged by `births_and_deaths_hold`.
-                        Role::Untracked => match mesh.obstacle(phi0, pair.0, pair.1) {
-                            None => Role::Rising { born: true },
-                            Some(o) if o.hi <= theta0 + SIDE_TOL => Role::Rising { born: false },
-                            Some(_) => return None,
-                        },
-                        role => role,
-                    };
                     match role {
-                        Role::Suspect | Role::Untracked if clear(pair) => {}
-                        Role::Suspect | Role::Untracked => return None,
+                        Role::Suspect if clear(pair) => {}
+                        Role::Suspect => return None,
                         Role::Falling if pushed - theta0 > 2.0 * SIDE_TOL => {
                             // Falling from behind θ0: it never reaches θ, whatever becomes of
                             // it, and ends too far below θ1 to push at the next step.
@@ -988,8 +973,9 @@ impl Run<'_> {
 
     /// Every tooth pair that touches the box of the step to `phi1` and driven angles from θ0
     /// (less the side tolerance) to `top`, with its role, and the range of slopes of the rising
-    /// pairs' contact curves in the box.
-    fn box_verdicts(&self, phi1: f64, top: f64) -> (Vec<Boxed>, (f64, f64)) {
+    /// pairs' contact curves in the box; None when an untracked pair is already ahead of the
+    /// driven gear at the step's start.
+    fn box_verdicts(&self, phi1: f64, top: f64) -> Option<(Vec<Boxed>, (f64, f64))> {
         let mesh = self.mesh;
         let (phi0, theta0) = (self.phi, self.theta);
         let (driver, driven) = (&mesh.driver, &mesh.driven);
@@ -1020,18 +1006,27 @@ impl Run<'_> {
                     (Verdict::Clear, _) => continue,
                     (Verdict::Rising, Some(Side::Behind)) => Role::Rising { born: false },
                     (Verdict::Falling, Some(Side::Behind)) => Role::Falling,
-                    (Verdict::Rising, None) => Role::Untracked,
+                    // A pair not yet tracked whose contacts in the box only rise: behind if it is
+                    // behind θ at φ0; if it is not there yet, it is born in the step, and where is
+                    // judged by `births_and_deaths_hold`. It is classified (and then tracked)
+                    // even when it stays clear of the path: left untracked, a later bracketed step
+                    // would judge it as a pair new to the scan, which it is not.
+                    (Verdict::Rising, None) => match mesh.obstacle(phi0, j, k) {
+                        None => Role::Rising { born: true },
+                        Some(o) if o.hi <= theta0 + SIDE_TOL => Role::Rising { born: false },
+                        Some(_) => return None,
+                    },
                     // Ahead of the driven gear, or not proved to rise or fall: it must stay
                     // clear of the driven gear's path.
                     _ => Role::Suspect,
                 };
-                if let Role::Rising { .. } | Role::Untracked = role {
+                if let Role::Rising { .. } = role {
                     slopes = (slopes.0.min(range.0), slopes.1.max(range.1));
                 }
                 boxed.push((pair, role));
             }
         }
-        (boxed, slopes)
+        Some((boxed, slopes))
     }
 
     /// Whether the pairs born or gone in a judged step leave the drive continuous and nothing
