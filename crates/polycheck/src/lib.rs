@@ -17,6 +17,8 @@
 //! is at `Rot(phi) (p - e1)`; a driven gear-frame point `q` at driven angle `theta` is at
 //! `(D, 0) + Rot(pi - theta) (q - e2)`. Angles are in radians.
 
+pub mod area;
+
 use std::f64::consts::{PI, TAU};
 
 /// A point or vector in the plane, `[x, y]`.
