@@ -480,6 +480,24 @@ impl Mesh {
         self.solve(phi_start, phi_end, start, None, how).events
     }
 
+    /// [`Mesh::run_events`] that ends at the first event for which `stop` holds (checked from
+    /// the start on, so a blocked start ends the run at once): the events up to and including
+    /// it are those of the whole run. For a caller that needs only whether some event occurs.
+    pub fn run_events_until(
+        &self,
+        phi_start: f64,
+        phi_end: f64,
+        start: Start,
+        stop: &StopAt<'_>,
+    ) -> Vec<Event> {
+        let how = Solve {
+            keep_segments: false,
+            ..Solve::default()
+        };
+        self.solve(phi_start, phi_end, start, Some(stop), how)
+            .events
+    }
+
     fn solve(
         &self,
         phi_start: f64,
@@ -509,7 +527,11 @@ impl Mesh {
         let mut seen = 0;
         let step =
             self.driver.max_gap.min(TAU / self.driver.tips.len() as f64) / how.steps_per_pitch;
-        while run.phi < phi_end {
+        // A run that keeps no trajectory may end at a stopping event of the start itself (a
+        // blocked start); one that keeps it takes its first step first, as it always has.
+        let stopped_at_start =
+            !how.keep_segments && stop.is_some_and(|stop| run.events.iter().any(stop));
+        while run.phi < phi_end && !stopped_at_start {
             // No sliver of a step at the end: it would only gather rounding noise.
             let next = if run.phi + step * (1.0 + 1e-6) >= phi_end {
                 phi_end

@@ -147,9 +147,24 @@ impl IdealPair {
             .map(|mesh| mesh.run_events(0.0, self.turn(), Start::Touching(0.0))))
     }
 
-    /// Whether a full turn at clearance `g` jams by `rule` (or the gears overlap at every tooth).
+    /// [`IdealPair::events`] ending at the first event for which `stop` holds: the same events
+    /// up to it, so the same answer to whether some event counted by `stop` occurs.
+    fn events_until(
+        &self,
+        g: f64,
+        stop: &contact::StopAt<'_>,
+    ) -> Result<Option<Vec<contact::Event>>, RunError> {
+        Ok(self
+            .mesh(g)?
+            .map(|mesh| mesh.run_events_until(0.0, self.turn(), Start::Touching(0.0), stop)))
+    }
+
+    /// Whether a full turn at clearance `g` jams by `rule` (or the gears overlap at every tooth):
+    /// the run ends at its first jam.
     pub fn jams(&self, g: f64, rule: &Rule) -> Result<bool, RunError> {
-        Ok(self.events(g)?.is_none_or(|e| rule.tally(&e).0))
+        Ok(self
+            .events_until(g, &|e| rule.is_jam(e))?
+            .is_none_or(|e| rule.tally(&e).0))
     }
 
     /// Whether a full turn at clearance `g` disengages by `rule`.
@@ -183,22 +198,34 @@ impl IdealPair {
     /// once and counted under every rule (the searches of rules that agree visit the same G).
     pub fn limits_under(&self, tol: f64, rules: &[Rule]) -> Result<Vec<Limits>, RunError> {
         type Events = Option<std::rc::Rc<Vec<contact::Event>>>;
-        let memo: std::cell::RefCell<std::collections::HashMap<u64, Events>> =
+        // Runs by G: (whether the run ended at an event every rule counts as a jam, events).
+        // A run ended there answers every rule's jam question (yes) but no disengagement one.
+        let memo: std::cell::RefCell<std::collections::HashMap<u64, (bool, Events)>> =
             std::cell::RefCell::default();
-        let at = |g: f64| -> Result<Events, RunError> {
-            if let Some(e) = memo.borrow().get(&g.to_bits()) {
+        let jam_for_all = |e: &contact::Event| rules.iter().all(|r| r.is_jam(e));
+        let at = |g: f64, whole: bool| -> Result<Events, RunError> {
+            if let Some((cut, e)) = memo.borrow().get(&g.to_bits())
+                && !(whole && *cut)
+            {
                 return Ok(e.clone());
             }
-            let e = self.events(g)?.map(std::rc::Rc::new);
-            memo.borrow_mut().insert(g.to_bits(), e.clone());
+            let (cut, e) = if whole {
+                (false, self.events(g)?)
+            } else {
+                let e = self.events_until(g, &jam_for_all)?;
+                let cut = e.as_ref().is_some_and(|e| e.iter().any(jam_for_all));
+                (cut, e)
+            };
+            let e = e.map(std::rc::Rc::new);
+            memo.borrow_mut().insert(g.to_bits(), (cut, e.clone()));
             Ok(e)
         };
         rules
             .iter()
             .map(|rule| {
                 // Overlapping at every tooth counts as a jam.
-                let jams = |g: f64| Ok(at(g)?.is_none_or(|e| rule.tally(&e).0));
-                let disengages = |g: f64| Ok(at(g)?.is_some_and(|e| rule.tally(&e).1));
+                let jams = |g: f64| Ok(at(g, false)?.is_none_or(|e| rule.tally(&e).0));
+                let disengages = |g: f64| Ok(at(g, true)?.is_some_and(|e| rule.tally(&e).1));
                 let mid = 50.0;
                 let jam = if jams(mid)? || !jams(0.0)? {
                     None
@@ -229,4 +256,59 @@ pub fn boundary(
         if pred(m)? { yes_at = m } else { no_at = m }
     }
     Ok(no_at)
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, reason = "tests")]
+    use super::*;
+
+    /// A run cut at its first jam has the whole run's events up to that jam (where and what; a
+    /// jam's release is sized only by the rest of the run), so every rule's jam answer is the
+    /// whole run's: blocked, jamming at every tooth, jamming once and running
+    /// meshes of small and unequal gears, every registered rule.
+    #[test]
+    fn a_run_cut_at_its_first_jam_answers_as_the_whole_turn() {
+        rules::link();
+        let g = train::Gearing::freeth2006();
+        let all: Vec<Rule> = rules::rules()
+            .unwrap()
+            .keys()
+            .map(|name| Rule::parse(name).unwrap())
+            .collect();
+        let mut cut_short = 0;
+        for label in ["b2-c1", "m2-n1", "e1-b3", "h2-i1", "c2-d1"] {
+            let pair = IdealPair::of_mesh(&g, label, 1.1).unwrap();
+            for gp in [0.5, 2.0, 5.0, 8.0, 11.0, 14.0, 17.0, 40.0, 92.0] {
+                let whole = pair.events(gp).unwrap();
+                for rule in &all {
+                    let cut = pair.events_until(gp, &|e| rule.is_jam(e)).unwrap();
+                    let (Some(whole), Some(cut)) = (&whole, &cut) else {
+                        assert_eq!(whole.is_none(), cut.is_none(), "{label} at {gp}");
+                        continue;
+                    };
+                    // The same events up to the cut, where they happened and what they are
+                    // (the whole run sizes a jam's release later: lost motion, lag).
+                    let seen = |e: &[contact::Event]| -> Vec<_> {
+                        e.iter()
+                            .map(|e| (e.phi, e.theta, e.kind, e.driver_tooth, e.driven_tooth))
+                            .collect()
+                    };
+                    assert_eq!(seen(&whole[..cut.len()]), seen(cut), "{label} at {gp}");
+                    assert_eq!(
+                        rule.tally(whole).0,
+                        rule.tally(cut).0,
+                        "{label} at {gp} under {rule:?}"
+                    );
+                    cut_short += usize::from(cut.len() < whole.len());
+                }
+                assert_eq!(
+                    pair.jams(gp, &all[0]).unwrap(),
+                    whole.as_ref().is_none_or(|e| all[0].tally(e).0)
+                );
+            }
+        }
+        // The test means something only if some runs were cut short.
+        assert!(cut_short > 0);
+    }
 }
