@@ -112,6 +112,15 @@ impl IdealPair {
             .map(|mesh| mesh.run(0.0, self.turn(), Start::Touching(0.0))))
     }
 
+    /// [`IdealPair::run`] ending at its first jam by `rule` (the trajectory then holds its last
+    /// angle): for a caller that uses only runs without a jam, it saves the rest of the turn.
+    pub fn run_to_first_jam(&self, g: f64, rule: &Rule) -> Result<Option<Trajectory>, RunError> {
+        let stop = |e: &contact::Event| rule.is_jam(e);
+        Ok(self
+            .mesh(g)?
+            .map(|mesh| mesh.run_until(0.0, self.turn(), Start::Touching(0.0), Some(&stop))))
+    }
+
     /// One full turn of the larger gear from driver angle 0 at clearance `g` with the driven
     /// gear at rest `frac` of the way through the backlash: 0 touching the driver tooth behind
     /// it (as [`IdealPair::run`]), 1 touching the one ahead; it stays put until a driver tooth

@@ -91,7 +91,8 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             clearances
                 .iter()
                 .map(|&c| {
-                    Ok(pair.run(c)?.and_then(|t| {
+                    // A run that jams shows no σ: it may end at its first jam.
+                    Ok(pair.run_to_first_jam(c, &rule)?.and_then(|t| {
                         (study::events::counts(&rule, &t) == (0, 0))
                             .then(|| pair.td_sigma(&t, samples).sigma)
                     }))
