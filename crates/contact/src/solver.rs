@@ -594,7 +594,7 @@ impl Mesh {
 
     /// [`Mesh::next_free`], but where there is no free position, the tooth pairs whose
     /// obstacles, one after another, close up over the turn: a proof of being blocked that
-    /// [`Mesh::still_covered`] re-checks at another driver angle with only those pairs.
+    /// [`Mesh::check_cover`] re-checks at another driver angle with only those pairs.
     fn free_or_cover(&self, phi: f64, theta: f64, through: bool) -> Result<f64, Vec<(i64, i64)>> {
         let gap = self.driven.max_gap;
         let mut obs = Vec::new();
@@ -613,9 +613,15 @@ impl Mesh {
     }
 
     /// Whether the obstacles of `cover` alone, at φ, close up from θ as far as
-    /// [`Mesh::free_or_cover`] asks of all of them to find no free position: then there is none
-    /// (more obstacles can only cover more), with `through` unset.
-    fn still_covered(&self, phi: f64, theta: f64, cover: &[(i64, i64)]) -> bool {
+    /// [`Mesh::free_or_cover`] asks of all of them to find no free position (`Holds`: then there
+    /// is none, as more obstacles can only cover more, with `through` unset); and where the
+    /// remembered cover has opened, whether the opening
+    /// is free of every other obstacle too: then [`Mesh::free_or_cover`] would find a free
+    /// position (`Free`) and its scan of the turn is not needed. Only the obstacles of a window
+    /// about the opening are evaluated for that, and every doubtful case (the opening at θ
+    /// itself, narrower than the side tolerance, covered by another pair, or more than a turn
+    /// up) answers `Unknown`, for the scan to decide.
+    fn check_cover(&self, phi: f64, theta: f64, cover: &[(i64, i64)]) -> CoverCheck {
         let gap = self.driven.max_gap;
         // The reach at which `free_or_cover` gives up.
         let mut reach = 3.0 * gap;
@@ -626,8 +632,46 @@ impl Mesh {
             .iter()
             .filter_map(|&(j, k)| self.obstacle(phi, j, k))
             .collect();
-        cover_from(theta, &mut obs, false).0 >= theta + reach - gap
+        let top = cover_from(theta, &mut obs, false).0;
+        if top >= theta + reach - gap {
+            return CoverCheck::Holds;
+        }
+        // The cover stops at `top`. `free_or_cover` finds a free position (its cover cannot pass
+        // an interval no obstacle touches) if one starts below the reach of its widest search
+        // that does not give up: a turn and two gaps above θ.
+        if top <= theta + SIDE_TOL {
+            return CoverCheck::Unknown;
+        }
+        let mut near = Vec::new();
+        self.obstacles(phi, top - gap, top + 2.0 * gap, &mut near);
+        near.sort_by(|a, b| a.lo.total_cmp(&b.lo));
+        let mut end = top;
+        for o in &near {
+            if o.hi <= end {
+                continue;
+            }
+            if o.lo > end + SIDE_TOL {
+                // (end, o.lo) touches no obstacle and is wider than the side tolerance.
+                break;
+            }
+            end = o.hi;
+        }
+        if end + SIDE_TOL < top + gap && end < theta + TAU + 2.0 * gap {
+            CoverCheck::Free
+        } else {
+            CoverCheck::Unknown
+        }
     }
+}
+
+/// What a remembered cover says at another driver angle (see `Mesh::check_cover`).
+enum CoverCheck {
+    /// It still closes up over the turn: no free position.
+    Holds,
+    /// It has opened where no other obstacle reaches: a free position exists.
+    Free,
+    /// Neither is proved.
+    Unknown,
 }
 
 /// How far above θ the obstacles close up, swept in order of their lower ends (those that
@@ -1102,11 +1146,12 @@ impl Run<'_> {
             // of the turn is made only when they no longer prove it.
             let cover = RefCell::new(std::mem::take(&mut self.cover));
             let blocked = |p: f64| {
-                if self.remember_cover
-                    && !cover.borrow().is_empty()
-                    && mesh.still_covered(p, theta0, &cover.borrow())
-                {
-                    return true;
+                if self.remember_cover && !cover.borrow().is_empty() {
+                    match mesh.check_cover(p, theta0, &cover.borrow()) {
+                        CoverCheck::Holds => return true,
+                        CoverCheck::Free => return false,
+                        CoverCheck::Unknown => {}
+                    }
                 }
                 match mesh.free_or_cover(p, theta0, false) {
                     Ok(_) => false,
@@ -1656,4 +1701,67 @@ thread_local! {
 /// The step counts of the runs on this thread so far.
 pub fn solver_stats() -> SolverStats {
     STATS.with(std::cell::Cell::get)
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, reason = "tests")]
+    use super::*;
+    use geometry::{Gear, Vec2};
+    use rand::{Rng, SeedableRng};
+
+    /// Meshes of a pinion and a large wheel with tip angles scattered by up to 0.1 pitch, at
+    /// clearances where they are blocked or jam at many teeth (the held-gear regime).
+    fn tight_mesh(rng: &mut rand_chacha::ChaCha8Rng) -> Mesh {
+        let (n1, n2) = (rng.random_range(12..40), rng.random_range(40..240));
+        let module = 0.24;
+        let (r1, r2) = (module * n1 as f64, module * n2 as f64);
+        let gear = |n: usize, r: f64, rng: &mut rand_chacha::ChaCha8Rng| {
+            let pitch = TAU / n as f64;
+            let tips = (0..n)
+                .map(|k| pitch * (k as f64 + rng.random_range(-0.1..0.1)))
+                .collect();
+            Gear::new(r, r - 1.1, tips, Vec2::zeros()).unwrap()
+        };
+        let (a, b) = (gear(n1, r1, rng), gear(n2, r2, rng));
+        let g = rng.random_range(0.0..12.0);
+        Mesh::new(a, b, geometry::centre_distance(r1, r2, 1.1, g)).unwrap()
+    }
+
+    /// A remembered cover's verdict is the scan's: `Holds` only where `free_or_cover` finds no
+    /// free position, `Free` only where it finds one; checked at driver angles near the one
+    /// the cover was taken at, where covers open and close.
+    #[test]
+    fn a_remembered_covers_verdict_is_the_scans() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(15);
+        let (mut holds, mut free) = (0, 0);
+        for _ in 0..40 {
+            let mesh = tight_mesh(&mut rng);
+            let pitch = TAU / mesh.driver.tips.len() as f64;
+            for _ in 0..10 {
+                let phi = rng.random_range(0.0..TAU);
+                let theta = rng.random_range(0.0..TAU);
+                let Err(cover) = mesh.free_or_cover(phi, theta, false) else {
+                    continue;
+                };
+                for _ in 0..20 {
+                    let p = phi + rng.random_range(-0.5..0.5) * pitch;
+                    let scan = mesh.free_or_cover(p, theta, false).is_ok();
+                    match mesh.check_cover(p, theta, &cover) {
+                        CoverCheck::Holds => {
+                            holds += 1;
+                            assert!(!scan, "a cover held where the scan found a free position");
+                        }
+                        CoverCheck::Free => {
+                            free += 1;
+                            assert!(scan, "an opening called free where the scan found none");
+                        }
+                        CoverCheck::Unknown => {}
+                    }
+                }
+            }
+        }
+        // Both verdicts were exercised.
+        assert!(holds > 50 && free > 50, "holds {holds}, free {free}");
+    }
 }
