@@ -334,10 +334,7 @@ impl AreaPair {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn square(x: f64, y: f64, s: f64) -> Vec<P2> {
-        vec![[x, y], [x + s, y], [x + s, y + s], [x, y + s]]
-    }
+    use crate::tests::square;
 
     #[test]
     fn overlap_area_of_squares_and_a_triangle_is_exact() {

@@ -814,7 +814,8 @@ impl CurvedMesh {
 mod tests {
     use super::*;
 
-    fn square(x0: f64, y0: f64, s: f64) -> Vec<P2> {
+    /// An axis-aligned square, counter-clockwise (also used by `area`'s tests).
+    pub(crate) fn square(x0: f64, y0: f64, s: f64) -> Vec<P2> {
         vec![[x0, y0], [x0 + s, y0], [x0 + s, y0 + s], [x0, y0 + s]]
     }
 
