@@ -473,11 +473,7 @@ impl Mesh {
     /// The jams and disengagements of [`Mesh::run`] over the same range, without its segments:
     /// all that jam statistics need, in memory that does not grow with the range.
     pub fn run_events(&self, phi_start: f64, phi_end: f64, start: Start) -> Vec<Event> {
-        let how = Solve {
-            keep_segments: false,
-            ..Solve::default()
-        };
-        self.solve(phi_start, phi_end, start, None, how).events
+        self.events_only(phi_start, phi_end, start, None)
     }
 
     /// [`Mesh::run_events`] that ends at the first event for which `stop` holds (checked from
@@ -490,12 +486,22 @@ impl Mesh {
         start: Start,
         stop: &StopAt<'_>,
     ) -> Vec<Event> {
+        self.events_only(phi_start, phi_end, start, Some(stop))
+    }
+
+    /// The events of a run that keeps no segments (cheaper), ending at `stop` if given.
+    fn events_only(
+        &self,
+        phi_start: f64,
+        phi_end: f64,
+        start: Start,
+        stop: Option<&StopAt<'_>>,
+    ) -> Vec<Event> {
         let how = Solve {
             keep_segments: false,
             ..Solve::default()
         };
-        self.solve(phi_start, phi_end, start, Some(stop), how)
-            .events
+        self.solve(phi_start, phi_end, start, stop, how).events
     }
 
     fn solve(
