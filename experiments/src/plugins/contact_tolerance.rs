@@ -11,7 +11,6 @@ use polycheck::area::AreaPair;
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
 use serde::{Deserialize, Serialize};
 use study::limits::IdealPair;
-use train::Gearing;
 
 use crate::common::{Series, semilog_plot};
 
@@ -45,14 +44,11 @@ registry::inventory::submit! {
         title: "Figure IV under an area contact test with a tolerance, or with blunt tips",
         paper_item: "Figure IV and Appendix II (issue 14, beyond the paper)",
         params: PARAMS,
-        groups: &[],
+        groups: &[study::gearing::SHAPE],
         config: None,
         run,
     }
 }
-
-/// Tooth height of every gear (mm), the paper's.
-const H: f64 = 1.1;
 
 /// Overlap areas ignored (mm²) in the ladder; 0 is the exact test.
 const TOLERANCES: [f64; 6] = [0.0, 0.0001, 0.0003, 0.001, 0.003, 0.01];
@@ -60,7 +56,8 @@ const TOLERANCES: [f64; 6] = [0.0, 0.0001, 0.0003, 0.001, 0.003, 0.01];
 /// Tip cuts in the ladder, % of h.
 const BLUNT: [f64; 3] = [5.0, 10.0, 15.0];
 
-/// One contact test: an overlap area ignored (mm²) and a tip cut (% of h).
+/// One contact test: an overlap area ignored (mm²) and a tip cut (% of h); the ladder sets at
+/// most one of them.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Test {
     tolerance: f64,
@@ -68,23 +65,21 @@ struct Test {
 }
 
 impl Test {
-    fn name(&self) -> String {
-        match (self.tolerance > 0.0, self.blunt > 0.0) {
-            (false, false) => "exact: any overlap is contact, sharp tips (ours)".into(),
-            (true, false) => format!(
+    /// What the test is, for titles; `h` (mm) gives the tip cut in mm.
+    fn name(&self, h: f64) -> String {
+        if self.tolerance > 0.0 {
+            format!(
                 "overlaps up to {} mm^2 ignored, sharp tips",
                 fmt_f64(self.tolerance, 4)
-            ),
-            (false, true) => format!(
+            )
+        } else if self.blunt > 0.0 {
+            format!(
                 "exact test, tips cut flat {} % of h ({} mm) below the apex",
                 fmt_f64(self.blunt, 0),
-                fmt_f64(self.blunt * H / 100.0, 3)
-            ),
-            (true, true) => format!(
-                "overlaps up to {} mm^2 ignored, tips cut {} % of h",
-                fmt_f64(self.tolerance, 4),
-                fmt_f64(self.blunt, 0)
-            ),
+                fmt_f64(self.blunt * h / 100.0, 3)
+            )
+        } else {
+            "exact: any overlap is contact, sharp tips (ours)".into()
         }
     }
 }
@@ -188,7 +183,8 @@ fn spread(values: impl Iterator<Item = f64>, decimals: usize) -> String {
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    let g = Gearing::freeth2006();
+    let g = study::gearing::load(ctx)?;
+    let h = ctx.f64(study::gearing::TOOTH_HEIGHT.name)?;
     let samples = ctx.usize("samples")?;
     let chosen = [
         Test {
@@ -220,7 +216,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         .meshes()
         .iter()
         .map(|m| {
-            IdealPair::of_mesh(&g, &m.label, H)
+            IdealPair::of_mesh(&g, &m.label, h)
                 .map(|p| (m.label.clone(), p))
                 .ok_or_else(|| RunError::Internal(format!("no mesh {}", m.label)))
         })
@@ -242,12 +238,12 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     let paper_last = crate::paper::get("clearance", "disengage_above").map(|r| r.value);
     let (from, to) = (paper_from.unwrap_or(f64::NAN), paper_to.unwrap_or(f64::NAN));
 
-    let summary = summary_table(&tests, &meshes, &of, (from, to), paper_last);
+    let summary = summary_table(&tests, h, &meshes, &of, (from, to), paper_last);
     let mut tables = vec![summary];
     let mut files = Vec::new();
     for c in chosen {
         let ti = tests.iter().position(|t| *t == c).unwrap_or(0);
-        let (table, svg) = curves_table(c, &meshes, |mi| of(ti, mi), samples)?;
+        let (table, svg) = curves_table(c, h, &meshes, |mi| of(ti, mi), samples)?;
         tables.push(table);
         let name = if c.blunt > 0.0 { "blunt" } else { "tolerance" };
         files.push(OutputFile::new(format!("contact-tolerance-{name}.svg"), svg));
@@ -262,6 +258,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
 /// The ladder: per test, what the fifteen curves show beside the paper's description.
 fn summary_table<'a>(
     tests: &[Test],
+    h: f64,
     meshes: &[(String, IdealPair)],
     of: &dyn Fn(usize, usize) -> &'a Vec<Point>,
     (from, to): (f64, f64),
@@ -269,7 +266,9 @@ fn summary_table<'a>(
 ) -> Table {
     let n = meshes.len();
     let mut t = Table::new(
-        "Figure IV under each contact test: ideal gears of the 15 meshes, h = 1.1 mm, G = 10-100 % of h by 5",
+        format!(
+            "Figure IV under each contact test: ideal gears of the {n} meshes, h = {h} mm, G = 10-100 % of h by 5"
+        ),
         [
             "contact test".to_string(),
             format!(
@@ -298,7 +297,7 @@ fn summary_table<'a>(
             .count();
         let first = found.clone().filter(|s| s.largest_first).count();
         t.row(vec![
-            test.name(),
+            test.name(h),
             format!("{inside} of {n}"),
             spread(found.clone().map(|s| s.minimum_at), 0),
             format!("{first} of {n}"),
@@ -321,6 +320,7 @@ fn summary_table<'a>(
 /// One test's σ(G) for every mesh, as Figure IV plots it, with its SVG.
 fn curves_table<'a>(
     test: Test,
+    h: f64,
     meshes: &[(String, IdealPair)],
     of: impl Fn(usize) -> &'a Vec<Point>,
     samples: usize,
@@ -329,8 +329,8 @@ fn curves_table<'a>(
     header.extend(meshes.iter().map(|(l, _)| l.clone()));
     let mut t = Table::new(
         format!(
-            "Figure IV under one test - {}: sigma of the driven gear's Theoretical Difference [deg]",
-            test.name()
+            "Figure IV under one test - {}: sigma of the driven gear's Theoretical Difference [deg], h = {h} mm",
+            test.name(h)
         ),
         header,
     );
@@ -358,7 +358,7 @@ fn curves_table<'a>(
         })
         .collect();
     let svg = semilog_plot(
-        &format!("Figure IV under {}", test.name()),
+        &format!("Figure IV under {}", test.name(h)),
         "clearance G [% of tooth height]",
         "sigma [deg], logarithmic scale",
         &series,
@@ -370,14 +370,16 @@ fn curves_table<'a>(
 mod tests {
     #![allow(clippy::unwrap_used, reason = "tests")]
     use super::*;
+    use train::Gearing;
 
     /// The polygon model's exact test is our contact solver's Figure IV: the same σ at 40 and
     /// 60 % for every mesh, within 1 % (sampling: one pitch here, a full turn there).
     #[test]
     fn the_exact_area_test_is_the_contact_solvers_figure_iv() {
         let g = Gearing::freeth2006();
+        let h = study::gearing::TOOTH_HEIGHT.default.parse().unwrap();
         for m in g.meshes() {
-            let pair = IdealPair::of_mesh(&g, &m.label, H).unwrap();
+            let pair = IdealPair::of_mesh(&g, &m.label, h).unwrap();
             let exact = Test {
                 tolerance: 0.0,
                 blunt: 0.0,
