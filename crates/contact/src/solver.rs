@@ -1045,8 +1045,8 @@ impl Run<'_> {
 
     /// Every tooth pair that touches the box of the step to `phi1` and driven angles from θ0
     /// (less the side tolerance) to `top`, with its role, and the range of slopes of the rising
-    /// pairs' contact curves in the box; None when an untracked pair is already ahead of the
-    /// driven gear at the step's start.
+    /// pairs' contact curves in the box; None when an untracked pair straddles the driven angle
+    /// at the step's start.
     fn box_verdicts(&self, phi1: f64, top: f64) -> Option<(Vec<Boxed>, (f64, f64))> {
         let mesh = self.mesh;
         let (phi0, theta0) = (self.phi, self.theta);
@@ -1082,10 +1082,13 @@ impl Run<'_> {
                     // behind θ at φ0; if it is not there yet, it is born in the step, and where is
                     // judged by `births_and_deaths_hold`. It is classified (and then tracked)
                     // even when it stays clear of the path: left untracked, a later bracketed step
-                    // would judge it as a pair new to the scan, which it is not.
+                    // would judge it as a pair new to the scan, which it is not. One already
+                    // ahead at φ0 is an obstacle ahead like any other: it must stay clear of the
+                    // path (untracked, as a bracketed step finds it ahead where it starts).
                     (Verdict::Rising, None) => match mesh.obstacle(phi0, j, k) {
                         None => Role::Rising { born: true },
                         Some(o) if o.hi <= theta0 + SIDE_TOL => Role::Rising { born: false },
+                        Some(o) if o.lo >= theta0 - SIDE_TOL => Role::Suspect,
                         Some(_) => return None,
                     },
                     // Ahead of the driven gear, or not proved to rise or fall: it must stay
