@@ -36,6 +36,7 @@ use std::cell::RefCell;
 use std::f64::consts::TAU;
 
 use serde::Serialize;
+use smallvec::SmallVec;
 
 use crate::certify::{ConfigBox, Verdict, vertex_meeting};
 use crate::mesh::{Mesh, Obstacle};
@@ -352,6 +353,10 @@ impl Judged {
 /// A tooth pair touching a certified step's box, and its role there.
 type Boxed = ((i64, i64), Role);
 
+/// A few tooth pairs (pushers, pairs born or gone in a step): kept inline, as every step of a
+/// run makes several such lists and a heap allocation costs as much as the rest of the list's use.
+type Pairs = SmallVec<[(i64, i64); 4]>;
+
 /// What a tooth pair touching a certified step's box may do there.
 #[derive(Debug, Clone, Copy)]
 enum Role {
@@ -368,11 +373,11 @@ enum Role {
 /// or gone within it.
 #[derive(Debug, Default)]
 struct JudgedStep {
-    pairs: Vec<Judged>,
+    pairs: SmallVec<[Judged; 8]>,
     /// Rising pairs not there at the step's start and there at its end.
-    newborn: Vec<(i64, i64)>,
+    newborn: Pairs,
     /// Rising pairs there at the step's start and gone at its end.
-    dead: Vec<(i64, i64)>,
+    dead: Pairs,
     /// The driven angle at the step's end.
     theta1: f64,
     /// The range of slopes of the rising pairs' contact curves (the driven gear's path).
@@ -409,6 +414,8 @@ struct Run<'m> {
     cover: Vec<(i64, i64)>,
     /// Whether to check those pairs first (else every check scans the turn).
     remember_cover: bool,
+    /// Where that cover stopped when last found open (see [`Mesh::check_cover`]).
+    opened: Option<f64>,
 }
 
 impl Mesh {
@@ -528,6 +535,7 @@ impl Mesh {
             certify: how.certify && !self.curved,
             cover: Vec::new(),
             remember_cover: how.certify,
+            opened: None,
         };
         run.start(start);
         let mut seen = 0;
@@ -627,7 +635,23 @@ impl Mesh {
     /// about the opening are evaluated for that, and every doubtful case (the opening at θ
     /// itself, narrower than the side tolerance, covered by another pair, or more than a turn
     /// up) answers `Unknown`, for the scan to decide.
-    fn check_cover(&self, phi: f64, theta: f64, cover: &[(i64, i64)]) -> CoverCheck {
+    ///
+    /// `opened` is where the cover stopped at the last check that found it open (a driven angle
+    /// above θ, which stays put while the gear is held): the window about it is looked at first,
+    /// as the cover mostly opens where it opened before, and a free interval found there answers
+    /// `Free` without evaluating the cover. That is the answer the cover's own check would give
+    /// (a free interval touches none of its obstacles, so they cannot close up over it). It is
+    /// updated whenever the cover is found open.
+    fn check_cover(
+        &self,
+        phi: f64,
+        theta: f64,
+        cover: &[(i64, i64)],
+        opened: &mut Option<f64>,
+    ) -> CoverCheck {
+        if opened.is_some_and(|at| self.free_above(phi, theta, at)) {
+            return CoverCheck::Free;
+        }
         let gap = self.driven.max_gap;
         // The reach at which `free_or_cover` gives up.
         let mut reach = 3.0 * gap;
@@ -642,16 +666,33 @@ impl Mesh {
         if top >= theta + reach - gap {
             return CoverCheck::Holds;
         }
-        // The cover stops at `top`. `free_or_cover` finds a free position (its cover cannot pass
-        // an interval no obstacle touches) if one starts below the reach of its widest search
-        // that does not give up: a turn and two gaps above θ.
         if top <= theta + SIDE_TOL {
             return CoverCheck::Unknown;
         }
+        if self.free_above(phi, theta, top) {
+            *opened = Some(top);
+            CoverCheck::Free
+        } else {
+            CoverCheck::Unknown
+        }
+    }
+
+    /// Whether an interval that no obstacle at φ touches, wider than the side tolerance, starts
+    /// above θ within a driven gap either side of `at`, found among the obstacles of a window
+    /// about `at`; and below the reach of `free_or_cover`'s widest search that does not give up
+    /// (a turn and two gaps above θ). Then `free_or_cover` finds a free position: its cover
+    /// cannot pass such an interval. (Below `at` too: near the angle where it first appears, a
+    /// free interval shrinks and moves as the driver turns.)
+    fn free_above(&self, phi: f64, theta: f64, at: f64) -> bool {
+        let gap = self.driven.max_gap;
+        let start = (at - gap).max(theta + 2.0 * SIDE_TOL);
+        if start >= at + gap {
+            return false;
+        }
         let mut near = Vec::new();
-        self.obstacles(phi, top - gap, top + 2.0 * gap, &mut near);
+        self.obstacles(phi, start, at + 2.0 * gap, &mut near);
         near.sort_by(|a, b| a.lo.total_cmp(&b.lo));
-        let mut end = top;
+        let mut end = start;
         for o in &near {
             if o.hi <= end {
                 continue;
@@ -662,11 +703,7 @@ impl Mesh {
             }
             end = o.hi;
         }
-        if end + SIDE_TOL < top + gap && end < theta + TAU + 2.0 * gap {
-            CoverCheck::Free
-        } else {
-            CoverCheck::Unknown
-        }
+        end + SIDE_TOL < at + gap && end < theta + TAU + 2.0 * gap
     }
 }
 
@@ -944,7 +981,7 @@ impl Run<'_> {
         let mesh = self.mesh;
         let (phi0, theta0) = (self.phi, self.theta);
         // Each pair is evaluated at φ1 once, however often the box grows or θ1 moves.
-        let mut at1: Vec<((i64, i64), Option<Obstacle>)> = Vec::new();
+        let mut at1: SmallVec<[((i64, i64), Option<Obstacle>); 8]> = SmallVec::new();
         let mut end_of = |pair: (i64, i64)| -> Option<Obstacle> {
             if let Some(&(_, o)) = at1.iter().find(|e| e.0 == pair) {
                 return o;
@@ -1047,7 +1084,7 @@ impl Run<'_> {
     /// (less the side tolerance) to `top`, with its role, and the range of slopes of the rising
     /// pairs' contact curves in the box; None when an untracked pair straddles the driven angle
     /// at the step's start.
-    fn box_verdicts(&self, phi1: f64, top: f64) -> Option<(Vec<Boxed>, (f64, f64))> {
+    fn box_verdicts(&self, phi1: f64, top: f64) -> Option<(SmallVec<[Boxed; 16]>, (f64, f64))> {
         let mesh = self.mesh;
         let (phi0, theta0) = (self.phi, self.theta);
         let (driver, driven) = (&mesh.driver, &mesh.driven);
@@ -1056,12 +1093,12 @@ impl Run<'_> {
         let drivers = driver.teeth_between(-phi1 - driver.window, -phi0 + driver.window);
         let drivens = driven.teeth_between(bottom - driven.window, top + driven.window);
         // Each tooth is placed in the box once, and only if its disc comes near another's.
-        let discs: Vec<_> = drivens
+        let discs: SmallVec<[_; 16]> = drivens
             .clone()
             .map(|k| cell.driven_disc(driven.cert(k)))
             .collect();
-        let mut placed = vec![None; discs.len()];
-        let mut boxed = Vec::new();
+        let mut placed: SmallVec<[_; 16]> = SmallVec::from_elem(None, discs.len());
+        let mut boxed = SmallVec::new();
         let mut slopes = (f64::INFINITY, f64::NEG_INFINITY);
         for j in drivers {
             let disc = cell.driver_disc(driver.cert(j));
@@ -1154,16 +1191,20 @@ impl Run<'_> {
             // While blocked, the pairs that closed up last time are checked first: a full scan
             // of the turn is made only when they no longer prove it.
             let cover = RefCell::new(std::mem::take(&mut self.cover));
+            let opened = RefCell::new(self.opened);
             let blocked = |p: f64| {
                 if self.remember_cover && !cover.borrow().is_empty() {
-                    match mesh.check_cover(p, theta0, &cover.borrow()) {
+                    match mesh.check_cover(p, theta0, &cover.borrow(), &mut opened.borrow_mut()) {
                         CoverCheck::Holds => return true,
                         CoverCheck::Free => return false,
                         CoverCheck::Unknown => {}
                     }
                 }
                 match mesh.free_or_cover(p, theta0, false) {
-                    Ok(_) => false,
+                    Ok(t) => {
+                        *opened.borrow_mut() = Some(t);
+                        false
+                    }
                     Err(chain) => {
                         *cover.borrow_mut() = chain;
                         true
@@ -1172,6 +1213,7 @@ impl Run<'_> {
             };
             if blocked(phi1) {
                 self.cover = cover.into_inner();
+                self.opened = opened.into_inner();
                 self.rest_to(phi1);
                 return;
             }
@@ -1179,6 +1221,7 @@ impl Run<'_> {
             // position appears, located like any event (not at the step's end).
             let held_until = bisect(phi0, phi1, blocked);
             self.cover = cover.into_inner();
+            self.opened = opened.into_inner();
             let phi_r = (held_until + LOCATE_TOL).min(phi1);
             let Some(t) = mesh.next_free(phi_r, theta0, false) else {
                 self.rest_to(phi_r);
@@ -1187,13 +1230,14 @@ impl Run<'_> {
             self.rest_to(phi_r);
             self.held = false;
             self.cover.clear();
+            self.opened = None;
             self.theta = t;
             self.classify_all(phi_r);
             return;
         }
 
         // Pushing pairs at the start: those whose upper end is at θ.
-        let pushers: Vec<(i64, i64)> = self
+        let pushers: Pairs = self
             .sides
             .iter()
             .filter(|t| t.side == Side::Behind && (t.hi - theta0).abs() <= SIDE_TOL)
@@ -1268,7 +1312,7 @@ impl Run<'_> {
         let lo =
             |p: f64, pair: (i64, i64)| -> f64 { eval(p, pair).map_or(f64::INFINITY, |o| o.lo) };
 
-        let mut behind: Vec<(i64, i64)> = pushers.clone();
+        let mut behind: Vec<(i64, i64)> = pushers.to_vec();
         let mut ahead: Vec<(i64, i64)> = Vec::new();
         let mut unsure: Vec<Obstacle> = Vec::new();
         for o in &obs1 {
@@ -1392,7 +1436,7 @@ impl Run<'_> {
                     plan.push((
                         phi_pk,
                         theta_pk,
-                        Motion::Push(pushers.clone()),
+                        Motion::Push(pushers.to_vec()),
                         Some(Event::new(EventKind::Gap, phi_pk, theta_pk, lost)),
                     ));
                     rest_then_maybe_push(&mut plan, &others, &hi, phi_pk, theta_pk, phi1);
@@ -1738,12 +1782,13 @@ mod tests {
     }
 
     /// A remembered cover's verdict is the scan's: `Holds` only where `free_or_cover` finds no
-    /// free position, `Free` only where it finds one; checked at driver angles near the one
-    /// the cover was taken at, where covers open and close.
+    /// free position, `Free` only where it finds one (also when found at the remembered opening,
+    /// before the cover is evaluated); checked at driver angles near the one the cover was taken
+    /// at, where covers open and close.
     #[test]
     fn a_remembered_covers_verdict_is_the_scans() {
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(15);
-        let (mut holds, mut free) = (0, 0);
+        let (mut holds, mut free, mut at_opening) = (0, 0, 0);
         for _ in 0..40 {
             let mesh = tight_mesh(&mut rng);
             let pitch = TAU / mesh.driver.tips.len() as f64;
@@ -1753,10 +1798,14 @@ mod tests {
                 let Err(cover) = mesh.free_or_cover(phi, theta, false) else {
                     continue;
                 };
+                let mut opened = None;
                 for _ in 0..20 {
                     let p = phi + rng.random_range(-0.5..0.5) * pitch;
                     let scan = mesh.free_or_cover(p, theta, false).is_ok();
-                    match mesh.check_cover(p, theta, &cover) {
+                    if opened.is_some_and(|at| mesh.free_above(p, theta, at)) {
+                        at_opening += 1;
+                    }
+                    match mesh.check_cover(p, theta, &cover, &mut opened) {
                         CoverCheck::Holds => {
                             holds += 1;
                             assert!(!scan, "a cover held where the scan found a free position");
@@ -1770,7 +1819,10 @@ mod tests {
                 }
             }
         }
-        // Both verdicts were exercised.
-        assert!(holds > 50 && free > 50, "holds {holds}, free {free}");
+        // Both verdicts were exercised, and openings found where the cover opened before.
+        assert!(
+            holds > 50 && free > 50 && at_opening > 20,
+            "holds {holds}, free {free}, {at_opening} at the remembered opening"
+        );
     }
 }
