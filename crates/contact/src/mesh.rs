@@ -517,6 +517,13 @@ impl Mesh {
     /// Its ends are contact roots: a vertex of one tooth on a flank of the other (tip on flank is
     /// the paper's Phase 1 or 2; tip on tip is the shared end of both), each solved in closed form.
     pub fn obstacle(&self, phi: f64, j: i64, k: i64) -> Option<Obstacle> {
+        self.pair_args(phi, j, k)
+            .map(|args| self.placed(j, k, args))
+    }
+
+    /// The arguments, measured from driven tooth k's tip angle, of the ends of the (j, k)
+    /// obstacle at φ (see [`Mesh::placed`]): the same for k and k plus whole turns.
+    fn pair_args(&self, phi: f64, j: i64, k: i64) -> Option<(f64, f64)> {
         let (s, c) = sin_cos_of(phi);
         let (da, _) = self.driver.data(j);
         let a =
@@ -525,9 +532,42 @@ impl Mesh {
             let fa = self
                 .driver
                 .flank_arcs(j, |v| Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y));
-            return self.tooth_pair_curved(a, fa, da, j, k);
+            return self.tooth_pair_curved(a, fa, da, k);
         }
-        self.tooth_pair(a, da, j, k)
+        self.tooth_pair(a, da, k)
+    }
+
+    /// The (j, k) obstacle whose ends have the arguments `args` (from [`Mesh::pair_args`]).
+    #[inline]
+    fn placed(&self, j: i64, k: i64, (lo, hi): (f64, f64)) -> Obstacle {
+        let (db, turns) = self.driven.data(k);
+        let reference = db.tip_angle + turns;
+        Obstacle {
+            driver_tooth: j,
+            driven_tooth: k,
+            lo: reference + lo,
+            hi: reference + hi,
+        }
+    }
+
+    /// The obstacles of `pairs` at φ (those that exist), in order, into `out`. A pair that
+    /// differs from one already evaluated only by whole turns of the driven tooth (a cover that
+    /// spans more than a turn) is not evaluated again: its ends are the same arguments, measured
+    /// from the same tooth a turn on, so the obstacle is the one [`Mesh::obstacle`] gives,
+    /// bit for bit.
+    pub(crate) fn obstacles_of(&self, phi: f64, pairs: &[(i64, i64)], out: &mut Vec<Obstacle>) {
+        out.clear();
+        let n = self.driven.tips.len() as i64;
+        let mut seen: std::collections::HashMap<(i64, i64), Option<(f64, f64)>> =
+            std::collections::HashMap::with_capacity(pairs.len());
+        for &(j, k) in pairs {
+            let args = *seen
+                .entry((j, k.rem_euclid(n)))
+                .or_insert_with(|| self.pair_args(phi, j, k));
+            if let Some(args) = args {
+                out.push(self.placed(j, k, args));
+            }
+        }
     }
 
     /// The obstacle of driver tooth `j`, already placed in the world as `a`, against driven tooth `k`.
@@ -536,10 +576,10 @@ impl Mesh {
     /// product, compared through a pseudo-angle (monotone in the argument, no trigonometry) so
     /// that only the lowest and highest roots cost an `atan2`.
     #[inline]
-    fn tooth_pair(&self, a: [Vec2; 3], da: &ToothData, j: i64, k: i64) -> Option<Obstacle> {
+    fn tooth_pair(&self, a: [Vec2; 3], da: &ToothData, k: i64) -> Option<(f64, f64)> {
         EVALS.with(|c| c.set(c.get() + 1));
         let c2 = self.c2();
-        let (db, turns) = self.driven.data(k);
+        let (db, _) = self.driven.data(k);
         let b = db.v;
         // The obstacle of tooth k sits near θ = t_k: every root is measured from there, as the
         // argument of u = e^{i(θ − t_k)}, which unwraps it to (t_k − π, t_k + π].
@@ -589,13 +629,7 @@ impl Mesh {
         let (Some((_, ul)), Some((_, uh))) = (lo, hi) else {
             return None;
         };
-        let reference = db.tip_angle + turns;
-        Some(Obstacle {
-            driver_tooth: j,
-            driven_tooth: k,
-            lo: reference + ul.y.atan2(ul.x),
-            hi: reference + uh.y.atan2(uh.x),
-        })
+        Some((ul.y.atan2(ul.x), uh.y.atan2(uh.x)))
     }
 
     /// All tooth-pair obstacles at driver angle φ that can reach driven angles in `[lo, hi]`.
@@ -642,13 +676,27 @@ impl Mesh {
                 a_hi = a_hi.max(a);
             }
             let (a_lo, a_hi) = (a_lo - widen, a_hi + widen);
-            for k in d2.teeth_between(lo - a_hi - half_k, hi - a_lo + half_k) {
-                let pair = if self.curved {
-                    self.tooth_pair_curved(world, fa, da, j, k)
-                } else {
-                    self.tooth_pair(world, da, j, k)
+            let ks = d2.teeth_between(lo - a_hi - half_k, hi - a_lo + half_k);
+            // A window of more than a turn meets tooth k again whole turns on: its obstacle is
+            // then placed from the arguments already found (as in `obstacles_of`).
+            let n = d2.tips.len() as i64;
+            let mut args_of: Vec<Option<Option<(f64, f64)>>> = Vec::new();
+            if ks.end() - ks.start() >= n {
+                args_of.resize(n as usize, None);
+            }
+            for k in ks {
+                let evaluate = || {
+                    if self.curved {
+                        self.tooth_pair_curved(world, fa, da, k)
+                    } else {
+                        self.tooth_pair(world, da, k)
+                    }
                 };
-                if let Some(o) = pair
+                let args = match args_of.get_mut(k.rem_euclid(n) as usize) {
+                    Some(memo) => *memo.get_or_insert_with(evaluate),
+                    None => evaluate(),
+                };
+                if let Some(o) = args.map(|args| self.placed(j, k, args))
                     && o.hi >= lo
                     && o.lo <= hi
                 {
@@ -810,12 +858,11 @@ impl Mesh {
         a: [Vec2; 3],
         fa: [Option<Arc>; 2],
         da: &ToothData,
-        j: i64,
         k: i64,
-    ) -> Option<Obstacle> {
+    ) -> Option<(f64, f64)> {
         EVALS.with(|c| c.set(c.get() + 1));
         let c2 = self.c2();
-        let (db, turns) = self.driven.data(k);
+        let (db, _) = self.driven.data(k);
         let b = db.v;
         let fb = self.driven.flank_arcs(k, |v| v);
         let mut ends = Extremes::new(db.tip_dir);
@@ -915,13 +962,7 @@ impl Mesh {
             }
         }
         let (ul, uh) = ends.get()?;
-        let reference = db.tip_angle + turns;
-        Some(Obstacle {
-            driver_tooth: j,
-            driven_tooth: k,
-            lo: reference + ul.y.atan2(ul.x),
-            hi: reference + uh.y.atan2(uh.x),
-        })
+        Some((ul.y.atan2(ul.x), uh.y.atan2(uh.x)))
     }
 }
 

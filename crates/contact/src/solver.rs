@@ -353,6 +353,12 @@ impl Judged {
 /// A tooth pair touching a certified step's box, and its role there.
 type Boxed = ((i64, i64), Role);
 
+/// The pairs touching a certified step's box (a dozen or so), kept inline.
+type BoxedPairs = SmallVec<[Boxed; 16]>;
+
+/// A tooth pair and its obstacle at a step's end, if any.
+type Evaluated = ((i64, i64), Option<Obstacle>);
+
 /// A few tooth pairs (pushers, pairs born or gone in a step): kept inline, as every step of a
 /// run makes several such lists and a heap allocation costs as much as the rest of the list's use.
 type Pairs = SmallVec<[(i64, i64); 4]>;
@@ -611,10 +617,10 @@ impl Mesh {
     /// [`Mesh::check_cover`] re-checks at another driver angle with only those pairs.
     fn free_or_cover(&self, phi: f64, theta: f64, through: bool) -> Result<f64, Vec<(i64, i64)>> {
         let gap = self.driven.max_gap;
-        let mut obs = Vec::new();
+        let (mut obs, mut more) = (Vec::new(), Vec::new());
         let mut reach = 3.0 * gap;
+        self.obstacles(phi, theta - gap, theta + reach, &mut obs);
         loop {
-            self.obstacles(phi, theta - gap, theta + reach, &mut obs);
             let (top, chain) = cover_from(theta, &mut obs, through);
             if top < theta + reach - gap {
                 return Ok(top);
@@ -622,6 +628,11 @@ impl Mesh {
             if reach > TAU + 3.0 * gap {
                 return Err(chain);
             }
+            // Widen the search by what lies beyond its reach: those that straddle it come twice,
+            // which changes nothing in the sweep (a copy never reaches past the top its first
+            // left).
+            self.obstacles(phi, theta + reach, theta + 2.0 * reach, &mut more);
+            obs.append(&mut more);
             reach *= 2.0;
         }
     }
@@ -642,14 +653,20 @@ impl Mesh {
     /// `Free` without evaluating the cover. That is the answer the cover's own check would give
     /// (a free interval touches none of its obstacles, so they cannot close up over it). It is
     /// updated whenever the cover is found open.
+    ///
+    /// Where the cover has opened but no free interval is found, another pair usually covers the
+    /// opening: the obstacles of the window about it are added to the cover's, and if together
+    /// they close up over the turn the answer is `Holds` (more obstacles only cover more) and
+    /// `cover` becomes the pairs that did, to be checked next time in place of a scan.
     fn check_cover(
         &self,
         phi: f64,
         theta: f64,
-        cover: &[(i64, i64)],
+        cover: &mut Vec<(i64, i64)>,
         opened: &mut Option<f64>,
     ) -> CoverCheck {
-        if opened.is_some_and(|at| self.free_above(phi, theta, at)) {
+        let mut near = Vec::new();
+        if opened.is_some_and(|at| self.free_above(phi, theta, at, &mut near)) {
             return CoverCheck::Free;
         }
         let gap = self.driven.max_gap;
@@ -658,20 +675,25 @@ impl Mesh {
         while reach <= TAU + 3.0 * gap {
             reach *= 2.0;
         }
-        let mut obs: Vec<Obstacle> = cover
-            .iter()
-            .filter_map(|&(j, k)| self.obstacle(phi, j, k))
-            .collect();
+        let mut obs = Vec::with_capacity(cover.len());
+        self.obstacles_of(phi, cover, &mut obs);
         let top = cover_from(theta, &mut obs, false).0;
         if top >= theta + reach - gap {
             return CoverCheck::Holds;
         }
-        if top <= theta + SIDE_TOL {
-            return CoverCheck::Unknown;
-        }
-        if self.free_above(phi, theta, top) {
+        near.clear();
+        if top > theta + SIDE_TOL && self.free_above(phi, theta, top, &mut near) {
             *opened = Some(top);
-            CoverCheck::Free
+            return CoverCheck::Free;
+        }
+        if near.is_empty() {
+            self.obstacles(phi, top - gap, top + 2.0 * gap, &mut near);
+        }
+        obs.extend_from_slice(&near);
+        let (top, chain) = cover_from(theta, &mut obs, false);
+        if top >= theta + reach - gap {
+            *cover = chain;
+            CoverCheck::Holds
         } else {
             CoverCheck::Unknown
         }
@@ -683,17 +705,19 @@ impl Mesh {
     /// (a turn and two gaps above θ). Then `free_or_cover` finds a free position: its cover
     /// cannot pass such an interval. (Below `at` too: near the angle where it first appears, a
     /// free interval shrinks and moves as the driver turns.)
-    fn free_above(&self, phi: f64, theta: f64, at: f64) -> bool {
+    ///
+    /// `near` is left holding the window's obstacles, sorted by their lower ends.
+    fn free_above(&self, phi: f64, theta: f64, at: f64, near: &mut Vec<Obstacle>) -> bool {
+        near.clear();
         let gap = self.driven.max_gap;
         let start = (at - gap).max(theta + 2.0 * SIDE_TOL);
         if start >= at + gap {
             return false;
         }
-        let mut near = Vec::new();
-        self.obstacles(phi, start, at + 2.0 * gap, &mut near);
+        self.obstacles(phi, start, at + 2.0 * gap, near);
         near.sort_by(|a, b| a.lo.total_cmp(&b.lo));
         let mut end = start;
-        for o in &near {
+        for o in near.iter() {
             if o.hi <= end {
                 continue;
             }
@@ -746,7 +770,15 @@ impl Run<'_> {
             Start::Touching(t) => (t, true),
         };
         let phi = self.phi;
-        self.theta = match self.mesh.next_free(phi, guess, false) {
+        let free = match self.mesh.free_or_cover(phi, guess, false) {
+            Ok(t) => Some(t),
+            Err(chain) => {
+                // Held from the start: these pairs prove it, to be checked first next time.
+                self.cover = chain;
+                None
+            }
+        };
+        self.theta = match free {
             Some(t) if t > guess => t,
             Some(_) if touching => {
                 // Free: turn back until a driver tooth is met (highest upper end below the guess).
@@ -981,7 +1013,7 @@ impl Run<'_> {
         let mesh = self.mesh;
         let (phi0, theta0) = (self.phi, self.theta);
         // Each pair is evaluated at φ1 once, however often the box grows or θ1 moves.
-        let mut at1: SmallVec<[((i64, i64), Option<Obstacle>); 8]> = SmallVec::new();
+        let mut at1: SmallVec<[Evaluated; 8]> = SmallVec::new();
         let mut end_of = |pair: (i64, i64)| -> Option<Obstacle> {
             if let Some(&(_, o)) = at1.iter().find(|e| e.0 == pair) {
                 return o;
@@ -1084,7 +1116,7 @@ impl Run<'_> {
     /// (less the side tolerance) to `top`, with its role, and the range of slopes of the rising
     /// pairs' contact curves in the box; None when an untracked pair straddles the driven angle
     /// at the step's start.
-    fn box_verdicts(&self, phi1: f64, top: f64) -> Option<(SmallVec<[Boxed; 16]>, (f64, f64))> {
+    fn box_verdicts(&self, phi1: f64, top: f64) -> Option<(BoxedPairs, (f64, f64))> {
         let mesh = self.mesh;
         let (phi0, theta0) = (self.phi, self.theta);
         let (driver, driven) = (&mesh.driver, &mesh.driven);
@@ -1194,7 +1226,12 @@ impl Run<'_> {
             let opened = RefCell::new(self.opened);
             let blocked = |p: f64| {
                 if self.remember_cover && !cover.borrow().is_empty() {
-                    match mesh.check_cover(p, theta0, &cover.borrow(), &mut opened.borrow_mut()) {
+                    match mesh.check_cover(
+                        p,
+                        theta0,
+                        &mut cover.borrow_mut(),
+                        &mut opened.borrow_mut(),
+                    ) {
                         CoverCheck::Holds => return true,
                         CoverCheck::Free => return false,
                         CoverCheck::Unknown => {}
@@ -1223,9 +1260,14 @@ impl Run<'_> {
             self.cover = cover.into_inner();
             self.opened = opened.into_inner();
             let phi_r = (held_until + LOCATE_TOL).min(phi1);
-            let Some(t) = mesh.next_free(phi_r, theta0, false) else {
-                self.rest_to(phi_r);
-                return;
+            let t = match mesh.free_or_cover(phi_r, theta0, false) {
+                Ok(t) => t,
+                Err(chain) => {
+                    // Still held: the scan's cover is the one to check next.
+                    self.cover = chain;
+                    self.rest_to(phi_r);
+                    return;
+                }
             };
             self.rest_to(phi_r);
             self.held = false;
@@ -1531,7 +1573,10 @@ impl Run<'_> {
                     .copied()
                     .min_by(|&a, &b| mesh.lo(phi_j, a).total_cmp(&mesh.lo(phi_j, b)))
                     .unwrap_or((0, 0));
-                let release = mesh.next_free(phi_j, theta_j, true);
+                let (release, chain) = match mesh.free_or_cover(phi_j, theta_j, true) {
+                    Ok(t) => (Some(t), Vec::new()),
+                    Err(chain) => (None, chain),
+                };
                 if release.is_some_and(|t| t <= theta_j + SIDE_TOL) {
                     // Nothing ahead actually holds the driven gear (the closing obstacle only
                     // touches, or vanished): no jam. Count the pair as behind and go on.
@@ -1547,6 +1592,10 @@ impl Run<'_> {
                     return;
                 }
                 self.held = release.is_none();
+                // Held: the pairs that closed up over the turn are the first check of the next
+                // step (a cover found touching θ from ahead is no proof there, and a scan then
+                // decides, as with no cover at all).
+                self.cover = chain;
                 let after = release.unwrap_or(theta_j);
                 // Held from both sides (a pair touching behind as the one ahead closes), or
                 // struck from the front with nothing pushing.
@@ -1782,32 +1831,35 @@ mod tests {
     }
 
     /// A remembered cover's verdict is the scan's: `Holds` only where `free_or_cover` finds no
-    /// free position, `Free` only where it finds one (also when found at the remembered opening,
-    /// before the cover is evaluated); checked at driver angles near the one the cover was taken
-    /// at, where covers open and close.
+    /// free position (also when the cover was patched with the pairs about its opening), `Free`
+    /// only where it finds one (also when found at the remembered opening, before the cover is
+    /// evaluated); checked at driver angles near the one the cover was taken at, where covers
+    /// open and close.
     #[test]
     fn a_remembered_covers_verdict_is_the_scans() {
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(15);
-        let (mut holds, mut free, mut at_opening) = (0, 0, 0);
+        let (mut holds, mut free, mut at_opening, mut patched) = (0, 0, 0, 0);
         for _ in 0..40 {
             let mesh = tight_mesh(&mut rng);
             let pitch = TAU / mesh.driver.tips.len() as f64;
             for _ in 0..10 {
                 let phi = rng.random_range(0.0..TAU);
                 let theta = rng.random_range(0.0..TAU);
-                let Err(cover) = mesh.free_or_cover(phi, theta, false) else {
+                let Err(mut cover) = mesh.free_or_cover(phi, theta, false) else {
                     continue;
                 };
                 let mut opened = None;
                 for _ in 0..20 {
                     let p = phi + rng.random_range(-0.5..0.5) * pitch;
                     let scan = mesh.free_or_cover(p, theta, false).is_ok();
-                    if opened.is_some_and(|at| mesh.free_above(p, theta, at)) {
+                    if opened.is_some_and(|at| mesh.free_above(p, theta, at, &mut Vec::new())) {
                         at_opening += 1;
                     }
-                    match mesh.check_cover(p, theta, &cover, &mut opened) {
+                    let before = cover.clone();
+                    match mesh.check_cover(p, theta, &mut cover, &mut opened) {
                         CoverCheck::Holds => {
                             holds += 1;
+                            patched += usize::from(cover != before);
                             assert!(!scan, "a cover held where the scan found a free position");
                         }
                         CoverCheck::Free => {
@@ -1819,10 +1871,11 @@ mod tests {
                 }
             }
         }
-        // Both verdicts were exercised, and openings found where the cover opened before.
+        // Both verdicts were exercised, openings found where the cover opened before, and
+        // covers patched.
         assert!(
-            holds > 50 && free > 50 && at_opening > 20,
-            "holds {holds}, free {free}, {at_opening} at the remembered opening"
+            holds > 50 && free > 50 && at_opening > 20 && patched > 10,
+            "holds {holds}, free {free}, {at_opening} at the remembered opening, {patched} patched"
         );
     }
 }
