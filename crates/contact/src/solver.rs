@@ -25,7 +25,8 @@
 //! over the box of the step's driver angles and the driven angles it can reach (`certify.rs`)
 //! prove that every tooth pair near the driven gear either stays clear of it or, behind it, only
 //! pushes it forwards; then no event lies in the step, by construction, and it ends where the
-//! pushing curves end, with no sampling and no search. Where no certificate is found (an
+//! pushing curves end, with no sampling and no search; a step with no certificate is tried again
+//! as two half steps (`certified_halves`: both or neither). Where no certificate is found (an
 //! obstacle ahead close by, a pusher about to slip, curved flanks) the step is **bracketed**:
 //! the backlash ahead is sampled at the middle and, wherever the samples say it could close in
 //! between, at finer halvings (see `first_closing`), so a brief tip-on-tip graze is not stepped
@@ -1007,6 +1008,46 @@ impl Run<'_> {
         true
     }
 
+    /// Takes the step to `phi1` as two certified half steps when the whole step has no
+    /// certificate (a thinner box and a thinner tube about the driven gear's path prove more), and
+    /// returns whether it did. Only both halves together count: if the second finds none, the
+    /// first is undone and the whole step is bracketed as before, over the same driver angles, so
+    /// that no event is located differently. (Not tried while an event waits for the drive to
+    /// resume and size it: a certified push would size it, and that is not undone.)
+    fn certified_halves(&mut self, phi1: f64, pushers: &[(i64, i64)]) -> bool {
+        if !self.pending.is_empty() {
+            return false;
+        }
+        let mid = 0.5 * (self.phi + phi1);
+        let (phi0, theta0) = (self.phi, self.theta);
+        let sides = self.sides.clone();
+        let segments = self.segments.len();
+        // A run that keeps no trajectory keeps only its last segment, which a step replaces.
+        let last = (!self.keep_segments)
+            .then(|| self.segments.last().cloned())
+            .flatten();
+        if !self.certified_step(mid, pushers) {
+            return false;
+        }
+        let pushers: Pairs = self
+            .sides
+            .iter()
+            .filter(|t| t.side == Side::Behind && (t.hi - self.theta).abs() <= SIDE_TOL)
+            .map(|t| t.pair)
+            .collect();
+        if !pushers.is_empty() && self.certified_step(phi1, &pushers) {
+            return true;
+        }
+        (self.phi, self.theta, self.sides) = (phi0, theta0, sides);
+        if self.keep_segments {
+            self.segments.truncate(segments);
+        } else {
+            self.segments.clear();
+            self.segments.extend(last);
+        }
+        false
+    }
+
     /// The verdicts of a certified step to `phi1` (see [`Run::certified_step`]), or None when a
     /// pair may meet the driven gear other than by pushing it.
     fn judge_step(&self, phi1: f64, pushers: &[(i64, i64)]) -> Option<JudgedStep> {
@@ -1288,7 +1329,8 @@ impl Run<'_> {
         if self.certify && !pushers.is_empty() && self.unheld_at != Some(phi0) {
             // The whole step on a certificate, or else bracketed.
             let e0 = crate::mesh::tooth_pair_evaluations();
-            let certified = self.certified_step(phi1, &pushers);
+            let certified =
+                self.certified_step(phi1, &pushers) || self.certified_halves(phi1, &pushers);
             let spent = crate::mesh::tooth_pair_evaluations() - e0;
             STATS.with(|c| {
                 let mut st = c.get();
