@@ -1020,13 +1020,17 @@ impl Run<'_> {
         }
         let mid = 0.5 * (self.phi + phi1);
         let (phi0, theta0) = (self.phi, self.theta);
-        let sides = self.sides.clone();
+        let sides: SmallVec<[Tracked; 16]> = SmallVec::from_slice(&self.sides);
         let segments = self.segments.len();
-        // A run that keeps no trajectory keeps only its last segment, which a step replaces.
-        let last = (!self.keep_segments)
-            .then(|| self.segments.last().cloned())
-            .flatten();
+        // A run that keeps no trajectory keeps only its last segment, which a step replaces: it
+        // is set aside (not copied) until the halves are known to stand.
+        let last = if self.keep_segments {
+            None
+        } else {
+            self.segments.pop()
+        };
         if !self.certified_step(mid, pushers) {
+            self.segments.extend(last);
             return false;
         }
         let pushers: Pairs = self
@@ -1038,7 +1042,9 @@ impl Run<'_> {
         if !pushers.is_empty() && self.certified_step(phi1, &pushers) {
             return true;
         }
-        (self.phi, self.theta, self.sides) = (phi0, theta0, sides);
+        (self.phi, self.theta) = (phi0, theta0);
+        self.sides.clear();
+        self.sides.extend_from_slice(&sides);
         if self.keep_segments {
             self.segments.truncate(segments);
         } else {
