@@ -965,6 +965,9 @@ impl Run<'_> {
     /// - Pairs born or gone within the step meet the conditions of `births_and_deaths_hold`.
     ///
     /// Then no event lies in the step, and it ends at θ1, exactly as bracketing would end it.
+    // One copy of this large step for its three callers (a whole step and two halves): inlined
+    // into each it made the program's resident code larger than before the halves.
+    #[inline(never)]
     fn certified_step(&mut self, phi1: f64, pushers: &[(i64, i64)]) -> bool {
         let Some(judged) = self.judge_step(phi1, pushers) else {
             return false;
