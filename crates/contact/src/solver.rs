@@ -645,8 +645,8 @@ impl Mesh {
     /// is free of every other obstacle too: then [`Mesh::free_or_cover`] would find a free
     /// position (`Free`) and its scan of the turn is not needed. Only the obstacles of a window
     /// about the opening are evaluated for that, and every doubtful case (the opening at θ
-    /// itself, narrower than the side tolerance, covered by another pair, or more than a turn
-    /// up) answers `Unknown`, for the scan to decide.
+    /// itself, narrower than the side tolerance, covered by another pair that the patch below
+    /// does not close up with, or more than a turn up) answers `Unknown`, for the scan to decide.
     ///
     /// `opened` is where the cover stopped at the last check that found it open (a driven angle
     /// above θ, which stays put while the gear is held): the window about it is looked at first,
@@ -910,6 +910,15 @@ impl Run<'_> {
         }
     }
 
+    /// The pushing pairs: those behind the driven gear whose upper end is at θ.
+    fn pushers(&self) -> Pairs {
+        self.sides
+            .iter()
+            .filter(|t| t.side == Side::Behind && (t.hi - self.theta).abs() <= SIDE_TOL)
+            .map(|t| t.pair)
+            .collect()
+    }
+
     fn side_of(&self, pair: (i64, i64)) -> Option<Side> {
         self.sides.iter().find(|t| t.pair == pair).map(|t| t.side)
     }
@@ -1036,12 +1045,7 @@ impl Run<'_> {
             self.segments.extend(last);
             return false;
         }
-        let pushers: Pairs = self
-            .sides
-            .iter()
-            .filter(|t| t.side == Side::Behind && (t.hi - self.theta).abs() <= SIDE_TOL)
-            .map(|t| t.pair)
-            .collect();
+        let pushers = self.pushers();
         if !pushers.is_empty() && self.certified_step(phi1, &pushers) {
             return true;
         }
@@ -1328,13 +1332,7 @@ impl Run<'_> {
             return;
         }
 
-        // Pushing pairs at the start: those whose upper end is at θ.
-        let pushers: Pairs = self
-            .sides
-            .iter()
-            .filter(|t| t.side == Side::Behind && (t.hi - theta0).abs() <= SIDE_TOL)
-            .map(|t| t.pair)
-            .collect();
+        let pushers = self.pushers();
         if self.certify && !pushers.is_empty() && self.unheld_at != Some(phi0) {
             // The whole step on a certificate, or else bracketed.
             let e0 = crate::mesh::tooth_pair_evaluations();
