@@ -368,8 +368,8 @@ type Pairs = SmallVec<[(i64, i64); 4]>;
 #[derive(Debug, Clone, Copy)]
 enum Role {
     /// Behind the driven gear, its contact curves rising: it may push. `born`: not there at
-    /// the step's start.
-    Rising { born: bool },
+    /// the step's start; `slopes`: the range of its contact curves' slopes dθ/dφ in the box.
+    Rising { born: bool, slopes: (f64, f64) },
     /// Behind the driven gear, its contact curves falling: it never reaches it.
     Falling,
     /// Anything else: it must stay clear of the driven gear's path.
@@ -964,10 +964,18 @@ impl Run<'_> {
     ///   is behind it with contact curves that only rise (it may push) or only fall; any other
     ///   pair is a *suspect*.
     /// - The driven angle, the running maximum of the rising curves, one of which (a pusher)
-    ///   starts at θ0, then rises throughout (no gap), with slopes the rising curves bound: its
-    ///   **path** from (φ0, θ0) to (φ1, θ1) lies in a thin tube about the chord. Every suspect
-    ///   must stay clear of that tube (nothing ahead meets the driven gear: no lock, no strike),
-    ///   and a rising pair that stays clear of it never carries the gear and needs no evaluating.
+    ///   starts at θ0, then rises throughout (no gap): its **path** from (φ0, θ0) to (φ1, θ1)
+    ///   lies in a thin tube about the chord, as wide as the spread of the slopes of the curves
+    ///   it follows. Every suspect must stay clear of that tube (nothing ahead meets the driven
+    ///   gear: no lock, no strike), and a rising pair that stays clear of it never carries the
+    ///   gear and needs no evaluating.
+    /// - Only the **carriers** bound the tube: the pushers, and every rising pair found to reach
+    ///   the tube (each widens it by its own slopes, and then every pair is judged again). This is
+    ///   sound: the running maximum P of the carriers' curves has their slopes, so lies in their
+    ///   tube; a rising pair that stays clear of that tube never meets P, and, starting below
+    ///   it, stays below; so P is the driven gear's path. Unrelated rising pairs (an incoming
+    ///   tooth's tip, a pair long past) no longer widen the tube: on m3-e3 the pushers' slopes
+    ///   span 0.08-0.15 where every rising pair in the box spans 0.03-0.41.
     /// - θ1 is the largest upper end at φ1 of the rising pairs that reach the tube. A rising pair
     ///   cannot pass above θ1 and come back within the step (it would fall through the box), nor
     ///   vanish above it; one found higher at φ1 moves θ1 (and, past the box, widens it).
@@ -1084,9 +1092,34 @@ impl Run<'_> {
         let mut theta1 = pushed;
         'grow: for _ in 0..4 {
             let top = theta1;
-            let (boxed, slopes) = self.box_verdicts(phi1, top)?;
-            // θ1 only rises, each time to a pair's upper end: this ends.
+            let boxed = self.box_verdicts(phi1, top)?;
+            // The path is bounded by the slopes of the pairs that may carry the driven gear:
+            // the pushers, and each rising pair found to reach the path's tube (see above).
+            let slopes_of = |carriers: &Pairs| {
+                boxed
+                    .iter()
+                    .filter(|(pair, _)| carriers.contains(pair))
+                    .fold(
+                        (f64::INFINITY, f64::NEG_INFINITY),
+                        |s, (_, role)| match role {
+                            Role::Rising { slopes: r, .. } => (s.0.min(r.0), s.1.max(r.1)),
+                            _ => s,
+                        },
+                    )
+            };
+            // A pusher whose contacts are not all rising cannot be followed: no certificate.
+            if !pushers.iter().all(|p| {
+                boxed
+                    .iter()
+                    .any(|(pair, role)| pair == p && matches!(role, Role::Rising { .. }))
+            }) {
+                return None;
+            }
+            let mut carriers: Pairs = SmallVec::from_slice(pushers);
+            // θ1 only rises, each time to a pair's upper end, and the carriers only grow: this
+            // ends.
             'path: loop {
+                let slopes = slopes_of(&carriers);
                 let path = ConfigBox::new(phi0, phi1, theta0, theta1, mesh.centre_distance);
                 let clear = |(j, k): (i64, i64)| {
                     path.clear_along(
@@ -1118,46 +1151,56 @@ impl Run<'_> {
                         // Never on the path: it carries nothing, wherever it ends. One that was
                         // behind at φ0 still is (tracked, as no pusher); one born in the step
                         // may be on either side of the driven gear (left untracked).
-                        Role::Rising { born } if !pushers.contains(&pair) && clear(pair) => {
+                        Role::Rising { born, .. } if !carriers.contains(&pair) && clear(pair) => {
                             if !born {
                                 judged.pairs.push(Judged::not_carrying(pair));
                             }
                         }
-                        Role::Rising { born } => match end_of(pair) {
-                            Some(o) if o.hi > theta1 => {
-                                theta1 = o.hi;
-                                if theta1 > top {
-                                    continue 'grow;
-                                }
-                                continue 'path;
-                            }
-                            Some(o) => {
-                                judged.pairs.push(Judged {
-                                    pair,
-                                    hi: o.hi,
-                                    rising: true,
-                                });
-                                if born {
-                                    judged.newborn.push(pair);
+                        Role::Rising { born, slopes: r } => {
+                            // It reaches the tube: a carrier, whose slopes may widen the tube
+                            // (and then every pair is judged again).
+                            if !carriers.contains(&pair) {
+                                carriers.push(pair);
+                                if r.0 < slopes.0 || r.1 > slopes.1 {
+                                    continue 'path;
                                 }
                             }
-                            None if born => {
-                                // Neither at φ0 nor at φ1: a pair whose contacts only rise is
-                                // born and dies where two of its vertices meet; with no meeting
-                                // in the step it never touches.
-                                if mesh.vertex_meeting(pair, phi0, phi1, false).is_some() {
-                                    return None;
+                            match end_of(pair) {
+                                Some(o) if o.hi > theta1 => {
+                                    theta1 = o.hi;
+                                    if theta1 > top {
+                                        continue 'grow;
+                                    }
+                                    continue 'path;
+                                }
+                                Some(o) => {
+                                    judged.pairs.push(Judged {
+                                        pair,
+                                        hi: o.hi,
+                                        rising: true,
+                                    });
+                                    if born {
+                                        judged.newborn.push(pair);
+                                    }
+                                }
+                                None if born => {
+                                    // Neither at φ0 nor at φ1: a pair whose contacts only rise is
+                                    // born and dies where two of its vertices meet; with no meeting
+                                    // in the step it never touches.
+                                    if mesh.vertex_meeting(pair, phi0, phi1, false).is_some() {
+                                        return None;
+                                    }
+                                }
+                                None => {
+                                    judged.dead.push(pair);
+                                    judged.pairs.push(Judged {
+                                        pair,
+                                        hi: f64::NEG_INFINITY,
+                                        rising: true,
+                                    });
                                 }
                             }
-                            None => {
-                                judged.dead.push(pair);
-                                judged.pairs.push(Judged {
-                                    pair,
-                                    hi: f64::NEG_INFINITY,
-                                    rising: true,
-                                });
-                            }
-                        },
+                        }
                     }
                 }
                 return Some(judged);
@@ -1167,10 +1210,10 @@ impl Run<'_> {
     }
 
     /// Every tooth pair that touches the box of the step to `phi1` and driven angles from θ0
-    /// (less the side tolerance) to `top`, with its role, and the range of slopes of the rising
-    /// pairs' contact curves in the box; None when an untracked pair straddles the driven angle
-    /// at the step's start.
-    fn box_verdicts(&self, phi1: f64, top: f64) -> Option<(BoxedPairs, (f64, f64))> {
+    /// (less the side tolerance) to `top`, with its role (for a rising pair, with the range of
+    /// slopes of its contact curves in the box); None when an untracked pair straddles the
+    /// driven angle at the step's start.
+    fn box_verdicts(&self, phi1: f64, top: f64) -> Option<BoxedPairs> {
         let mesh = self.mesh;
         let (phi0, theta0) = (self.phi, self.theta);
         let (driver, driven) = (&mesh.driver, &mesh.driven);
@@ -1185,7 +1228,6 @@ impl Run<'_> {
             .collect();
         let mut placed: SmallVec<[_; 16]> = SmallVec::from_elem(None, discs.len());
         let mut boxed = SmallVec::new();
-        let mut slopes = (f64::INFINITY, f64::NEG_INFINITY);
         for j in drivers {
             let disc = cell.driver_disc(driver.cert(j));
             let mut a = None;
@@ -1199,7 +1241,10 @@ impl Run<'_> {
                 let (verdict, range) = cell.pair(a, b);
                 let role = match (verdict, self.side_of(pair)) {
                     (Verdict::Clear, _) => continue,
-                    (Verdict::Rising, Some(Side::Behind)) => Role::Rising { born: false },
+                    (Verdict::Rising, Some(Side::Behind)) => Role::Rising {
+                        born: false,
+                        slopes: range,
+                    },
                     (Verdict::Falling, Some(Side::Behind)) => Role::Falling,
                     // A pair not yet tracked whose contacts in the box only rise: behind if it is
                     // behind θ at φ0; if it is not there yet, it is born in the step, and where is
@@ -1209,8 +1254,14 @@ impl Run<'_> {
                     // ahead at φ0 is an obstacle ahead like any other: it must stay clear of the
                     // path (untracked, as a bracketed step finds it ahead where it starts).
                     (Verdict::Rising, None) => match mesh.obstacle(phi0, j, k) {
-                        None => Role::Rising { born: true },
-                        Some(o) if o.hi <= theta0 + SIDE_TOL => Role::Rising { born: false },
+                        None => Role::Rising {
+                            born: true,
+                            slopes: range,
+                        },
+                        Some(o) if o.hi <= theta0 + SIDE_TOL => Role::Rising {
+                            born: false,
+                            slopes: range,
+                        },
                         Some(o) if o.lo >= theta0 - SIDE_TOL => Role::Suspect,
                         Some(_) => return None,
                     },
@@ -1218,13 +1269,10 @@ impl Run<'_> {
                     // clear of the driven gear's path.
                     _ => Role::Suspect,
                 };
-                if let Role::Rising { .. } = role {
-                    slopes = (slopes.0.min(range.0), slopes.1.max(range.1));
-                }
                 boxed.push((pair, role));
             }
         }
-        Some((boxed, slopes))
+        Some(boxed)
     }
 
     /// Whether the pairs born or gone in a judged step leave the drive continuous and nothing
