@@ -254,6 +254,7 @@ impl ConfigBox {
                     continue;
                 }
                 let m = &b.normal[f];
+                let e = &b.dir[f];
                 visit(Condition {
                     value: m.dot(&x) - b.tooth.offset[f],
                     rate_phi: rp,
@@ -262,6 +263,12 @@ impl ConfigBox {
                     f_theta: -quarter(*m).dot(&x),
                     e_phi: (dt + dp) * rp + ROUND,
                     e_theta: dt * (dist + rp * dp) + dp * rp + ROUND,
+                    beside: Beside {
+                        along,
+                        len: b.tooth.len[f],
+                        a_phi: e.dot(&quarter(pw)),
+                        a_theta: -quarter(*e).dot(&x),
+                    },
                 });
             }
         }
@@ -281,6 +288,7 @@ impl ConfigBox {
                     continue;
                 }
                 let n = &a.normal[f];
+                let e = &a.dir[f];
                 visit(Condition {
                     value: n.dot(&qw) - a.tooth.offset[f],
                     rate_phi: dist,
@@ -289,6 +297,12 @@ impl ConfigBox {
                     f_theta: -n.dot(&quarter(q)),
                     e_phi: dp * (dist + rq * dt) + dt * rq + ROUND,
                     e_theta: (dp + dt) * rq + ROUND,
+                    beside: Beside {
+                        along,
+                        len: a.tooth.len[f],
+                        a_phi: quarter(*e).dot(&qw),
+                        a_theta: -e.dot(&quarter(q)),
+                    },
                 });
             }
         }
@@ -358,10 +372,21 @@ impl ConfigBox {
         let chord = if dp > 0.0 { self.d_theta / dp } else { 0.0 };
         let width = (slopes.1 - slopes.0).max(0.0) * dp / 2.0 + self.d_theta * 1e-12;
         let mut clear = true;
+        // How far a function of the configuration with these derivatives at the centre (and
+        // the condition's bounds on how they change) can move from its centre value on the tube.
+        let reach = |f_phi: f64, f_theta: f64, c: &Condition| {
+            let along = (f_phi + chord * f_theta).abs() + c.e_phi + chord * c.e_theta;
+            let across = f_theta.abs() + c.e_theta;
+            dp * along + (width + margin) * across + ROUND
+        };
         self.conditions(a, b, |c| {
-            let along = (c.f_phi + chord * c.f_theta).abs() + c.e_phi + chord * c.e_theta;
-            let across = c.f_theta.abs() + c.e_theta;
-            clear &= c.value.abs() > dp * along + (width + margin) * across + ROUND;
+            // The vertex never beside the flank on the tube: this condition is no contact there.
+            let s = &c.beside;
+            let slide = reach(s.a_phi, s.a_theta, &c);
+            if s.along + slide < 0.0 || s.along - slide > s.len {
+                return;
+            }
+            clear &= c.value.abs() > reach(c.f_phi, c.f_theta, &c);
         });
         clear
     }
@@ -378,6 +403,19 @@ struct Condition {
     f_theta: f64,
     e_phi: f64,
     e_theta: f64,
+    beside: Beside,
+}
+
+/// Where a condition's vertex lies along its flank, at a box's centre: `A = e·x − start`, the
+/// flank's unit direction e, beside the flank when `0 ≤ A ≤ len`. A is the signed distance F
+/// with the flank's direction in place of its normal, so its derivatives `a_phi`, `a_theta`
+/// take the same form and obey the same bounds on how they change in the box (`e_phi`,
+/// `e_theta`: both use only that the vector turned with the flank is a unit vector).
+struct Beside {
+    along: f64,
+    len: f64,
+    a_phi: f64,
+    a_theta: f64,
 }
 
 /// A tooth placed at a box's centre (world frame): what [`ConfigBox::pair`] reads, computed once
