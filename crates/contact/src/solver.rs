@@ -372,8 +372,9 @@ enum Role {
     Rising { born: bool, slopes: (f64, f64) },
     /// Behind the driven gear, its contact curves falling: it never reaches it.
     Falling,
-    /// Anything else: it must stay clear of the driven gear's path.
-    Suspect,
+    /// Anything else: it must stay clear of the driven gear's path. `ahead`: an untracked pair
+    /// whose contacts rise, found ahead of the driven gear (or gone) at the step's start.
+    Suspect { ahead: bool },
 }
 
 /// The verdicts of a certified step: the pairs evaluated at its end, and which of them are born
@@ -389,6 +390,9 @@ struct JudgedStep {
     theta1: f64,
     /// The range of slopes of the rising pairs' contact curves (the driven gear's path).
     slopes: (f64, f64),
+    /// Untracked pairs found ahead at the step's start and proved clear of the path: ahead of
+    /// the driven gear (or gone) at its end.
+    clear_ahead: Pairs,
 }
 
 /// One evaluated tooth pair: (driver angle, (driver tooth, driven tooth), obstacle).
@@ -423,6 +427,10 @@ struct Run<'m> {
     remember_cover: bool,
     /// Where that cover stopped when last found open (see [`Mesh::check_cover`]).
     opened: Option<f64>,
+    /// Untracked tooth pairs known to be ahead of the driven gear, or gone, at (φ, θ): the
+    /// suspects the last certified step ending there proved clear of its path, so the next
+    /// step need not evaluate them to find where they start.
+    clear_ahead: (f64, f64, Pairs),
 }
 
 impl Mesh {
@@ -543,6 +551,7 @@ impl Mesh {
             cover: Vec::new(),
             remember_cover: how.certify,
             opened: None,
+            clear_ahead: (f64::NAN, f64::NAN, Pairs::new()),
         };
         run.start(start);
         let mut seen = 0;
@@ -919,6 +928,13 @@ impl Run<'_> {
             .collect()
     }
 
+    /// Whether the last certified step proved `pair` ahead of the driven gear (or gone) at the
+    /// current (φ, θ).
+    fn known_clear_ahead(&self, pair: (i64, i64)) -> bool {
+        let (phi, theta, pairs) = &self.clear_ahead;
+        *phi == self.phi && *theta == self.theta && pairs.contains(&pair)
+    }
+
     fn side_of(&self, pair: (i64, i64)) -> Option<Side> {
         self.sides.iter().find(|t| t.pair == pair).map(|t| t.side)
     }
@@ -996,6 +1012,7 @@ impl Run<'_> {
         if !pushes_on || !self.births_and_deaths_hold(&judged, phi1) {
             return false;
         }
+        self.clear_ahead = (phi1, judged.theta1, judged.clear_ahead.clone());
         let rising: Vec<(i64, i64)> = judged
             .pairs
             .iter()
@@ -1041,6 +1058,7 @@ impl Run<'_> {
         let mid = 0.5 * (self.phi + phi1);
         let (phi0, theta0) = (self.phi, self.theta);
         let sides: SmallVec<[Tracked; 16]> = SmallVec::from_slice(&self.sides);
+        let clear_ahead = self.clear_ahead.clone();
         let segments = self.segments.len();
         // A run that keeps no trajectory keeps only its last segment, which a step replaces: it
         // is set aside (not copied) until the halves are known to stand.
@@ -1060,6 +1078,7 @@ impl Run<'_> {
         (self.phi, self.theta) = (phi0, theta0);
         self.sides.clear();
         self.sides.extend_from_slice(&sides);
+        self.clear_ahead = clear_ahead;
         if self.keep_segments {
             self.segments.truncate(segments);
         } else {
@@ -1136,8 +1155,12 @@ impl Run<'_> {
                 };
                 for &(pair, role) in &boxed {
                     match role {
-                        Role::Suspect if clear(pair) => {}
-                        Role::Suspect => return None,
+                        Role::Suspect { ahead } if clear(pair) => {
+                            if ahead {
+                                judged.clear_ahead.push(pair);
+                            }
+                        }
+                        Role::Suspect { .. } => return None,
                         Role::Falling if pushed - theta0 > 2.0 * SIDE_TOL => {
                             // Falling from behind θ0: it never reaches θ, whatever becomes of
                             // it, and ends too far below θ1 to push at the next step.
@@ -1253,6 +1276,11 @@ impl Run<'_> {
                     // would judge it as a pair new to the scan, which it is not. One already
                     // ahead at φ0 is an obstacle ahead like any other: it must stay clear of the
                     // path (untracked, as a bracketed step finds it ahead where it starts).
+                    // One the last step proved ahead (or gone) here is taken as ahead: a
+                    // suspect whatever it does, it must stay clear of the path.
+                    (Verdict::Rising, None) if self.known_clear_ahead(pair) => {
+                        Role::Suspect { ahead: true }
+                    }
                     (Verdict::Rising, None) => match mesh.obstacle(phi0, j, k) {
                         None => Role::Rising {
                             born: true,
@@ -1262,12 +1290,12 @@ impl Run<'_> {
                             born: false,
                             slopes: range,
                         },
-                        Some(o) if o.lo >= theta0 - SIDE_TOL => Role::Suspect,
+                        Some(o) if o.lo >= theta0 - SIDE_TOL => Role::Suspect { ahead: true },
                         Some(_) => return None,
                     },
                     // Ahead of the driven gear, or not proved to rise or fall: it must stay
                     // clear of the driven gear's path.
-                    _ => Role::Suspect,
+                    _ => Role::Suspect { ahead: false },
                 };
                 boxed.push((pair, role));
             }
