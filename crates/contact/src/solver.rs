@@ -39,7 +39,7 @@ use std::f64::consts::TAU;
 use serde::Serialize;
 use smallvec::SmallVec;
 
-use crate::certify::{ConfigBox, Verdict, vertex_meeting};
+use crate::certify::{ConfigBox, PlacedTooth, Verdict, vertex_meeting};
 use crate::mesh::{Mesh, Obstacle};
 
 /// Relative tolerance (radians) when deciding on which side of θ an obstacle lies.
@@ -414,6 +414,10 @@ struct Run<'m> {
     keep_segments: bool,
     events: Vec<Event>,
     scratch: Vec<Obstacle>,
+    /// The driven teeth a certified step's box has placed, by index in its range: kept here
+    /// and reused, as a fresh list of these 200-byte placements per step cost more to move
+    /// about than to fill.
+    placed: RefCell<Vec<Option<PlacedTooth<'m>>>>,
     /// Tooth phase (driver tooth + driven tooth) of the last known driving pair.
     drive_phase: Option<i64>,
     /// Events whose size waits for the drive to resume: (index in `events`, phase before).
@@ -545,6 +549,7 @@ impl Mesh {
             keep_segments: how.keep_segments,
             events: Vec::new(),
             scratch: Vec::new(),
+            placed: RefCell::new(Vec::new()),
             drive_phase: None,
             pending: Vec::new(),
             certify: how.certify && !self.curved,
@@ -1249,7 +1254,9 @@ impl Run<'_> {
             .clone()
             .map(|k| cell.driven_disc(driven.cert(k)))
             .collect();
-        let mut placed: SmallVec<[_; 16]> = SmallVec::from_elem(None, discs.len());
+        let mut placed = self.placed.borrow_mut();
+        placed.clear();
+        placed.resize(discs.len(), None);
         let mut boxed = SmallVec::new();
         for j in drivers {
             let disc = cell.driver_disc(driver.cert(j));
