@@ -64,9 +64,8 @@ pub(crate) struct CertTooth {
     normal: [Vec2; 2],
     /// Offsets of the flank lines: `normal · x = offset` on the line.
     offset: [f64; 2],
-    /// Unit directions of the flanks, where along its direction each starts, and their lengths:
-    /// a point x is beside flank f when `0 ≤ dir[f]·x − start[f] ≤ len[f]`.
-    dir: [Vec2; 2],
+    /// Where along its unit direction (its normal a quarter turn on) each flank starts, and
+    /// their lengths: a point x is beside flank f when `0 ≤ dir[f]·x − start[f] ≤ len[f]`.
     start: [f64; 2],
     len: [f64; 2],
     /// Centre of a disc holding the tooth, and its radius.
@@ -86,8 +85,7 @@ impl CertTooth {
         });
         let offset = [0, 1].map(|f| normal[f].dot(&v[f]));
         let len = [0, 1].map(|f| (v[f + 1] - v[f]).norm());
-        let dir = [0, 1].map(|f| (v[f + 1] - v[f]) / len[f]);
-        let start = [0, 1].map(|f| dir[f].dot(&v[f]));
+        let start = [0, 1].map(|f| quarter(normal[f]).dot(&v[f]));
         let centre = (v[0] + v[1] + v[2]) / 3.0;
         let disc = v.iter().map(|p| (p - centre).norm()).fold(0.0, f64::max);
         let rad = v.map(|p| p.norm());
@@ -97,7 +95,6 @@ impl CertTooth {
             reaches: t.reaches,
             normal,
             offset,
-            dir,
             start,
             len,
             centre,
@@ -176,30 +173,45 @@ impl ConfigBox {
         }
     }
 
+    /// The box over the same driver angles and driven angles `[theta0, theta1]` (the driver's
+    /// turn at the centre is this box's, not computed again).
+    pub(crate) fn with_driven(&self, theta0: f64, theta1: f64) -> Self {
+        let theta_c = 0.5 * (theta0 + theta1);
+        Self {
+            d_theta: 0.5 * (theta1 - theta0) * (1.0 + 1e-12) + 1e-15 * theta_c.abs(),
+            driven_turn: (std::f64::consts::PI - theta_c).sin_cos(),
+            ..*self
+        }
+    }
+
     /// Driver tooth `a` placed at the box's centre.
     pub(crate) fn place_driver<'t>(&self, a: &'t CertTooth) -> PlacedTooth<'t> {
         let world = a.v.map(|v| turn(self.driver_turn, v));
+        let normal = a.normal.map(|n| turn(self.driver_turn, n));
         PlacedTooth {
             tooth: a,
             disc: self.driver_disc(a),
             // P relative to the driven centre: its distance is what a driven turn moves it by.
             rel: world.map(|p| p - self.c2),
             world,
-            normal: a.normal.map(|n| turn(self.driver_turn, n)),
-            dir: a.dir.map(|e| turn(self.driver_turn, e)),
+            normal,
+            // A flank's direction is its normal a quarter turn on (`CertTooth::new`), and a turn
+            // commutes with the quarter turn: the same bits as turning the direction.
+            dir: normal.map(quarter),
         }
     }
 
     /// Driven tooth `b` placed at the box's centre.
     pub(crate) fn place_driven<'t>(&self, b: &'t CertTooth) -> PlacedTooth<'t> {
         let rel = b.v.map(|v| turn(self.driven_turn, v));
+        let normal = b.normal.map(|n| turn(self.driven_turn, n));
         PlacedTooth {
             tooth: b,
             disc: self.driven_disc(b),
             world: rel.map(|q| q + self.c2),
             rel,
-            normal: b.normal.map(|n| turn(self.driven_turn, n)),
-            dir: b.dir.map(|e| turn(self.driven_turn, e)),
+            normal,
+            dir: normal.map(quarter),
         }
     }
 

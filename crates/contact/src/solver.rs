@@ -1116,7 +1116,8 @@ impl Run<'_> {
         let mut theta1 = pushed;
         'grow: for _ in 0..4 {
             let top = theta1;
-            let boxed = self.box_verdicts(phi1, top)?;
+            let cell = ConfigBox::new(phi0, phi1, theta0 - SIDE_TOL, top, mesh.centre_distance);
+            let boxed = self.box_verdicts(&cell, phi1, top)?;
             // The path is bounded by the slopes of the pairs that may carry the driven gear:
             // the pushers, and each rising pair found to reach the path's tube (see above).
             let slopes_of = |carriers: &Pairs| {
@@ -1144,7 +1145,7 @@ impl Run<'_> {
             // ends.
             'path: loop {
                 let slopes = slopes_of(&carriers);
-                let path = ConfigBox::new(phi0, phi1, theta0, theta1, mesh.centre_distance);
+                let path = cell.with_driven(theta0, theta1);
                 let clear = |(j, k): (i64, i64)| {
                     path.clear_along(
                         &path.place_driver(mesh.driver.cert(j)),
@@ -1237,16 +1238,15 @@ impl Run<'_> {
         None
     }
 
-    /// Every tooth pair that touches the box of the step to `phi1` and driven angles from θ0
-    /// (less the side tolerance) to `top`, with its role (for a rising pair, with the range of
+    /// Every tooth pair that touches `cell`, the box of the step to `phi1` and driven angles
+    /// from θ0 (less the side tolerance) to `top`, with its role (for a rising pair, with the range of
     /// slopes of its contact curves in the box); None when an untracked pair straddles the
     /// driven angle at the step's start.
-    fn box_verdicts(&self, phi1: f64, top: f64) -> Option<BoxedPairs> {
+    fn box_verdicts(&self, cell: &ConfigBox, phi1: f64, top: f64) -> Option<BoxedPairs> {
         let mesh = self.mesh;
         let (phi0, theta0) = (self.phi, self.theta);
         let (driver, driven) = (&mesh.driver, &mesh.driven);
         let bottom = theta0 - SIDE_TOL;
-        let cell = ConfigBox::new(phi0, phi1, bottom, top, mesh.centre_distance);
         let drivers = driver.teeth_between(-phi1 - driver.window, -phi0 + driver.window);
         let drivens = driven.teeth_between(bottom - driven.window, top + driven.window);
         // Each tooth is placed in the box once, and only if its disc comes near another's.
