@@ -373,6 +373,13 @@ impl ConfigBox {
     /// paths where `|F_c| > dφ·(|F_φc + s̄F_θc| + e_φ + s̄e_θ) + w·(|F_θc| + e_θ)`: second order
     /// in the step where the box test is first order, because the teeth ahead move with the
     /// driven gear.
+    ///
+    /// A condition is a contact only where its vertex lies beside the flank (`0 ≤ A ≤ len`, A
+    /// the vertex's coordinate along the flank). A has the form of F with the flank's direction
+    /// for its normal, so the same bound holds for it: where `A_c` plus or minus that bound
+    /// stays below 0 or above `len`, the vertex is never beside the flank on these paths, and
+    /// the condition is no contact whatever F does. This matters in longer steps, where a
+    /// vertex passes near the line of a flank of the tooth ahead but beyond its end.
     pub(crate) fn clear_along(
         &self,
         a: &PlacedTooth<'_>,
