@@ -392,7 +392,7 @@ struct JudgedStep {
     dead: Pairs,
     /// The driven angle at the step's end.
     theta1: f64,
-    /// The range of slopes of the rising pairs' contact curves (the driven gear's path).
+    /// The range of slopes of the carriers' contact curves (the driven gear's path).
     slopes: (f64, f64),
     /// Untracked pairs found ahead at the step's start and proved clear of the path: ahead of
     /// the driven gear (or gone) at its end.
