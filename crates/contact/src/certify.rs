@@ -162,15 +162,16 @@ impl ConfigBox {
         centre_distance: f64,
     ) -> Self {
         let phi_c = 0.5 * (phi0 + phi1);
-        let theta_c = 0.5 * (theta0 + theta1);
         Self {
             // Half-widths, a hair wider than the rounding of the midpoints.
             d_phi: 0.5 * (phi1 - phi0) * (1.0 + 1e-12) + 1e-15 * phi_c.abs(),
-            d_theta: 0.5 * (theta1 - theta0) * (1.0 + 1e-12) + 1e-15 * theta_c.abs(),
             driver_turn: phi_c.sin_cos(),
-            driven_turn: (std::f64::consts::PI - theta_c).sin_cos(),
             c2: Vec2::new(centre_distance, 0.0),
+            // Set by `with_driven` below.
+            d_theta: 0.0,
+            driven_turn: (0.0, 1.0),
         }
+        .with_driven(theta0, theta1)
     }
 
     /// The box over the same driver angles and driven angles `[theta0, theta1]` (the driver's
@@ -195,9 +196,6 @@ impl ConfigBox {
             rel: world.map(|p| p - self.c2),
             world,
             normal,
-            // A flank's direction is its normal a quarter turn on (`CertTooth::new`), and a turn
-            // commutes with the quarter turn: the same bits as turning the direction.
-            dir: normal.map(quarter),
         }
     }
 
@@ -211,7 +209,6 @@ impl ConfigBox {
             world: rel.map(|q| q + self.c2),
             rel,
             normal,
-            dir: normal.map(quarter),
         }
     }
 
@@ -261,12 +258,13 @@ impl ConfigBox {
             let moved = dt * (dist + rp * dp) + dp * rp + ROUND;
             for f in 0..2 {
                 // Both points are relative to the driven centre.
-                let along = b.dir[f].dot(&x) - b.tooth.start[f];
+                // The flank's direction: its normal a quarter turn on (`CertTooth::new`).
+                let e = &quarter(b.normal[f]);
+                let along = e.dot(&x) - b.tooth.start[f];
                 if along < -moved || along > b.tooth.len[f] + moved {
                     continue;
                 }
                 let m = &b.normal[f];
-                let e = &b.dir[f];
                 visit(Condition {
                     value: m.dot(&x) - b.tooth.offset[f],
                     rate_phi: rp,
@@ -295,12 +293,12 @@ impl ConfigBox {
             // How far Q can move from qw, seen from the driver, within the box.
             let moved = dp * (dist + rq * dt) + dt * rq + ROUND;
             for f in 0..2 {
-                let along = a.dir[f].dot(&qw) - a.tooth.start[f];
+                let e = &quarter(a.normal[f]);
+                let along = e.dot(&qw) - a.tooth.start[f];
                 if along < -moved || along > a.tooth.len[f] + moved {
                     continue;
                 }
                 let n = &a.normal[f];
-                let e = &a.dir[f];
                 visit(Condition {
                     value: n.dot(&qw) - a.tooth.offset[f],
                     rate_phi: dist,
@@ -448,9 +446,9 @@ pub(crate) struct PlacedTooth<'t> {
     world: [Vec2; 3],
     /// Vertices relative to the other gear's centre (driver) or to their own (driven).
     rel: [Vec2; 3],
-    /// Flank normals and directions, turned.
+    /// Flank normals, turned (a flank's direction is its normal a quarter turn on, and a turn
+    /// commutes with the quarter turn).
     normal: [Vec2; 2],
-    dir: [Vec2; 2],
 }
 
 /// Where a vertex of driver tooth `a` meets a vertex of driven tooth `b` (tip on tip, or a tip in

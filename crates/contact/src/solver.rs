@@ -1011,17 +1011,21 @@ impl Run<'_> {
     // into each it made the program's resident code larger than before the halves.
     #[inline(never)]
     fn certified_step(&mut self, phi1: f64, pushers: &[(i64, i64)]) -> bool {
-        let Some(judged) = self.judge_step(phi1, pushers) else {
+        let Some(mut judged) = self.judge_step(phi1, pushers) else {
             return false;
         };
-        // Every pusher must be among the rising pairs: one that falls leaves the driven gear.
-        let pushes_on = pushers
-            .iter()
-            .all(|p| judged.pairs.iter().any(|m| m.pair == *p && m.rising));
-        if !pushes_on || !self.births_and_deaths_hold(&judged, phi1) {
+        // Every pusher is among the rising pairs (`judge_step` refuses a box where one is not):
+        // one that fell would leave the driven gear.
+        debug_assert!(
+            pushers
+                .iter()
+                .all(|p| judged.pairs.iter().any(|m| m.pair == *p && m.rising)),
+            "a pusher not judged rising"
+        );
+        if !self.births_and_deaths_hold(&judged, phi1) {
             return false;
         }
-        self.clear_ahead = (phi1, judged.theta1, judged.clear_ahead.clone());
+        self.clear_ahead = (phi1, judged.theta1, std::mem::take(&mut judged.clear_ahead));
         let rising: Vec<(i64, i64)> = judged
             .pairs
             .iter()
