@@ -15,6 +15,7 @@
 use std::f64::consts::{PI, TAU};
 
 use geometry::{Arc, Flank, Gear, Vec2, rotate};
+use smallvec::SmallVec;
 
 use crate::certify::CertTooth;
 use crate::roots::{circle_circle, circle_segment};
@@ -474,13 +475,15 @@ impl Mesh {
             }
         };
         const FLANKS: [(usize, usize); 2] = [(0, 1), (1, 2)];
+        // Each tooth's vertices and their arguments, taken once (not once per pair of teeth).
+        let with_args = |t: [Vec2; 3]| (t, t.map(|p| p.y.atan2(p.x)));
+        let drivers: SmallVec<[([Vec2; 3], [f64; 3]); 8]> =
+            (lo_j..=hi_j).map(|j| with_args(d1.tooth(j))).collect();
         for k in ks {
-            let b = d2.tooth(k).map(place);
-            for j in lo_j..=hi_j {
-                let a = d1.tooth(j);
+            let (b, b_args) = with_args(d2.tooth(k).map(place));
+            for &(a, a_args) in &drivers {
                 // Driver vertex (turning about the origin) on a fixed driven flank.
-                for p in a {
-                    let base = p.y.atan2(p.x);
+                for (p, base) in a.into_iter().zip(a_args) {
                     for (u, v) in FLANKS {
                         circle_segment(
                             Vec2::zeros(),
@@ -493,8 +496,7 @@ impl Mesh {
                     }
                 }
                 // Fixed driven vertex on a driver flank: in the driver's frame it turns backwards.
-                for q in b {
-                    let base = q.y.atan2(q.x);
+                for (q, base) in b.into_iter().zip(b_args) {
                     for (u, v) in FLANKS {
                         circle_segment(
                             Vec2::zeros(),

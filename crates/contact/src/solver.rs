@@ -18,7 +18,9 @@
 //! crate), not the solver's.
 //!
 //! Between events θ(φ) is the maximum of closed-form contact curves, so it is exact at every φ;
-//! events are located by bisection or golden-section search on those curves to 1e-13 rad.
+//! events are located by bisection or golden-section search on those curves to 1e-13 rad (where
+//! a continuous function changes sign - a backlash closing, a curve rising to θ - bisection is
+//! replayed after secant steps, to the same angle: `bisect_sign`).
 //!
 //! The driver angle is advanced in steps of a quarter of the driver's pitch. A step is first
 //! tried on a **certificate** (`certified_step`, straight flanks): bounds on the contact functions
@@ -734,7 +736,7 @@ impl Mesh {
             return false;
         }
         self.obstacles(phi, start, at + 2.0 * gap, near);
-        near.sort_by(|a, b| a.lo.total_cmp(&b.lo));
+        near.sort_unstable_by(|a, b| a.lo.total_cmp(&b.lo));
         let mut end = start;
         for o in near.iter() {
             if o.hi <= end {
@@ -763,8 +765,11 @@ enum CoverCheck {
 /// How far above θ the obstacles close up, swept in order of their lower ends (those that
 /// extend the cover are kept, in order): an obstacle that only touches θ from behind does not
 /// start it; one that touches it from ahead does when `through` is set.
+///
+/// Obstacles with the same lower end may come in either order (an unstable sort, which does not
+/// allocate): the top reached is the same either way, and so is every verdict drawn from it.
 fn cover_from(theta: f64, obs: &mut [Obstacle], through: bool) -> (f64, Vec<(i64, i64)>) {
-    obs.sort_by(|a, b| a.lo.total_cmp(&b.lo));
+    obs.sort_unstable_by(|a, b| a.lo.total_cmp(&b.lo));
     let mut top = theta;
     let mut chain = Vec::new();
     for o in obs.iter() {
@@ -972,6 +977,22 @@ impl Run<'_> {
         self.theta = theta_end;
     }
 
+    /// An empty list for the pairs of the next segment: the last segment's own when only the last
+    /// is kept (it is about to be replaced), so that a step allocates nothing for it.
+    fn spare_pairs(&mut self) -> Vec<(i64, i64)> {
+        match self.segments.last_mut() {
+            Some(Segment {
+                motion: Motion::Push(pairs),
+                ..
+            }) if !self.keep_segments => {
+                let mut spare = std::mem::take(pairs);
+                spare.clear();
+                spare
+            }
+            _ => Vec::new(),
+        }
+    }
+
     fn rest_to(&mut self, phi_end: f64) {
         let motion = if self.held {
             Motion::Held
@@ -1026,12 +1047,8 @@ impl Run<'_> {
             return false;
         }
         self.clear_ahead = (phi1, judged.theta1, std::mem::take(&mut judged.clear_ahead));
-        let rising: Vec<(i64, i64)> = judged
-            .pairs
-            .iter()
-            .filter(|m| m.rising)
-            .map(|m| m.pair)
-            .collect();
+        let mut rising = self.spare_pairs();
+        rising.extend(judged.pairs.iter().filter(|m| m.rising).map(|m| m.pair));
         self.push_segment(phi1, judged.theta1, Motion::Push(rising));
         // Pairs whose driver tooth has left the window (teeth enter it at lower indices as the
         // driver turns, and leave it at higher ones) are done with.
@@ -1627,11 +1644,17 @@ impl Run<'_> {
                         Motion::Push(pushers.to_vec()),
                         Some(Event::new(EventKind::Gap, phi_pk, theta_pk, lost)),
                     ));
-                    rest_then_maybe_push(&mut plan, &others, &hi, phi_pk, theta_pk, phi1);
+                    rest_then_maybe_push(
+                        &mut plan,
+                        &others,
+                        &hi,
+                        (phi_pk, theta_pk, phi1),
+                        self.certify,
+                    );
                 }
             }
         } else {
-            rest_then_maybe_push(&mut plan, &behind, &hi, phi0, theta0, phi1);
+            rest_then_maybe_push(&mut plan, &behind, &hi, (phi0, theta0, phi1), self.certify);
         }
 
         // Jam check against the obstacles ahead, along the planned path.
@@ -1662,8 +1685,6 @@ impl Run<'_> {
         };
         // Backlash: how far the nearest driver tooth ahead is from the driven gear.
         let backlash = |p: f64| front(p) - theta_on_plan(p);
-        // Once a jam is known to lie in the step, locate first contact exactly (no tolerance).
-        let strictly_clear = |p: f64| front(p) > theta_on_plan(p);
         let jam_at = if ahead.is_empty() || self.unheld_at == Some(phi0) {
             None
         } else {
@@ -1671,8 +1692,17 @@ impl Run<'_> {
             if g0 < -SIDE_TOL {
                 Some(phi0)
             } else {
-                first_closing(phi0, phi1, g0, backlash(phi1), &backlash, 0)
-                    .map(|(clear, closed)| bisect(clear, closed, strictly_clear))
+                // Once a jam is known to lie in the step, locate first contact exactly: where the
+                // backlash stops being positive (no tolerance).
+                first_closing(phi0, phi1, g0, backlash(phi1), &backlash, 0).map(
+                    |(clear, closed)| {
+                        if self.certify {
+                            bisect_sign(clear, closed, theta0, backlash)
+                        } else {
+                            bisect(clear, closed, |p| backlash(p) > 0.0)
+                        }
+                    },
+                )
             }
         };
 
@@ -1825,9 +1855,8 @@ fn rest_then_maybe_push(
     plan: &mut Vec<(f64, f64, Motion, Option<Event>)>,
     behind: &[(i64, i64)],
     hi: &impl Fn(f64, (i64, i64)) -> f64,
-    phi_a: f64,
-    theta: f64,
-    phi1: f64,
+    (phi_a, theta, phi1): (f64, f64, f64),
+    secant: bool,
 ) {
     let env = |p: f64| {
         behind
@@ -1836,7 +1865,12 @@ fn rest_then_maybe_push(
             .fold(f64::NEG_INFINITY, f64::max)
     };
     if env(phi1) > theta + SIDE_TOL {
-        let phi_r = bisect(phi_a, phi1, |p| env(p) < theta);
+        // Where the curve behind reaches θ: `env(p) < θ` up to there (see `bisect_sign`).
+        let phi_r = if secant {
+            bisect_sign(phi_a, phi1, theta, |p| theta - env(p))
+        } else {
+            bisect(phi_a, phi1, |p| env(p) < theta)
+        };
         plan.push((phi_r, theta, Motion::Rest, None));
         plan.push((phi1, env(phi1), Motion::Push(behind.to_vec()), None));
     } else {
@@ -1868,6 +1902,117 @@ fn bisect(mut a: f64, mut b: f64, good: impl Fn(f64) -> bool) -> f64 {
     }
     a
 }
+
+/// [`bisect`] with `good(p) = gap(p) > 0`, for a continuous `gap` positive at `a` and not at `b`
+/// (a backlash closing, a curve rising to θ) whose values are angles near `scale`: the same
+/// driver angle, bit for bit, in about half the evaluations.
+///
+/// Bisection's answer is fixed by the signs of `gap` at its midpoints. Secant steps first close
+/// in on the sign change (`close_in`), ending with `gap(l) > 0 ≥ gap(u)`, both evaluated;
+/// bisection is then replayed from `[a, b]`, evaluating only the midpoints within a guard of
+/// `[l, u]` - the sign of every other midpoint is that of `l` (below) or `u` (above) wherever
+/// the sign changes once in `[a, b]`. The guard keeps the rounding of `gap` near its zero, where
+/// its sign is noise, out of what is inferred: it is the driver angle over which `gap` changes by
+/// 64 roundings of `scale` at the slope found on the open side, and at least [`REPLAY_GUARD`].
+/// Where the sign changes more than once (a graze just before the closing), bisection finds one
+/// of the changes and neither it nor this is sure to find the first: that is what the bracketing
+/// before it (`first_closing`) is for. The plain solver (`Solve::certify` unset) bisects
+/// throughout, and the differential tests hold the two to the same events.
+fn bisect_sign(a: f64, b: f64, scale: f64, gap: impl Fn(f64) -> f64) -> f64 {
+    let (ga, gb) = (gap(a), gap(b));
+    let bracket = if ga > 0.0 && gb <= 0.0 {
+        close_in((a, ga), (b, gb), &gap)
+    } else {
+        None
+    };
+    bisect_within(a, b, scale, bracket, |p| gap(p) > 0.0)
+}
+
+/// [`bisect`] of `good` over `[a, b]`, with `good` taken as true below and false above a guard
+/// about `bracket` - `(l, u, slope)` from [`close_in`], `good(l)` and not `good(u)` - and
+/// evaluated within it (see [`bisect_sign`]; `scale`: the size of the angles `good` compares).
+/// Plain bisection without a bracket.
+fn bisect_within(
+    a: f64,
+    b: f64,
+    scale: f64,
+    bracket: Option<(f64, f64, f64)>,
+    good: impl Fn(f64) -> bool,
+) -> f64 {
+    let Some((l, u, slope)) = bracket else {
+        return bisect(a, b, good);
+    };
+    let noise = 64.0 * f64::EPSILON * (1.0 + scale.abs());
+    let guard = (noise / slope).max(REPLAY_GUARD);
+    bisect(a, b, |p| {
+        if p < l - guard {
+            true
+        } else if p > u + guard {
+            false
+        } else {
+            good(p)
+        }
+    })
+}
+
+/// A bracket `(l, u)` of the sign change of `gap`, with `gap(l) > 0 ≥ gap(u)` evaluated, and the
+/// slope of `gap` on the open side, or None if a few steps do not bring it within
+/// [`REPLAY_GUARD`]: `(l, gl)` and `(u, gu)` bracket it to start with.
+///
+/// Secant steps through the last two samples (through the last two on the open side when the
+/// last sample is exactly 0: where a backlash has closed it is often flat, a pair's end exactly
+/// at θ), a halving wherever the secant leaves the bracket; once an aim moves by less than a
+/// quarter of the guard, one sample either side of it closes the bracket from both sides.
+fn close_in(
+    (mut l, mut gl): (f64, f64),
+    (mut u, gu): (f64, f64),
+    gap: &impl Fn(f64) -> f64,
+) -> Option<(f64, f64, f64)> {
+    // The last two samples, the latest second; and the one before the latest open-side sample.
+    let mut last = [(l, gl), (u, gu)];
+    let mut before_l: Option<(f64, f64)> = None;
+    let mut last_aim = f64::NAN;
+    for _ in 0..MAX_SECANT {
+        let width = u - l;
+        if width <= REPLAY_GUARD {
+            let slope = before_l.map_or(gl / width, |(p, gp)| (gp - gl) / (l - p));
+            return (slope > 0.0 && slope.is_finite()).then_some((l, u, slope));
+        }
+        let [(x1, g1), (x2, g2)] = match before_l {
+            Some(b) if last[1].1 == 0.0 => [b, (l, gl)],
+            _ => last,
+        };
+        let aim = x2 - g2 * (x2 - x1) / (g2 - g1);
+        let probes = if !(aim > l && aim < u && aim.is_finite()) {
+            [l + 0.5 * width, f64::NAN]
+        } else if (aim - last_aim).abs() < 0.25 * REPLAY_GUARD {
+            [aim - 0.25 * REPLAY_GUARD, aim + 0.25 * REPLAY_GUARD]
+        } else {
+            [aim, f64::NAN]
+        };
+        last_aim = aim;
+        for m in probes {
+            if !(m > l && m < u) {
+                continue;
+            }
+            let gm = gap(m);
+            last = [last[1], (m, gm)];
+            if gm > 0.0 {
+                before_l = Some((l, gl));
+                (l, gl) = (m, gm);
+            } else {
+                u = m;
+            }
+        }
+    }
+    None
+}
+
+/// The narrowest guard [`bisect_sign`] keeps either side of its secant bracket (radians of
+/// driver angle), and the bracket it aims for.
+const REPLAY_GUARD: f64 = 4e-12;
+/// Most secant steps [`bisect_sign`] takes before replaying bisection (or, failing, bisecting).
+const MAX_SECANT: u32 = 12;
 
 /// Where a function that rises and then falls (or ends, −∞) takes its largest value on [a, b].
 ///
@@ -1974,6 +2119,56 @@ mod tests {
         let (a, b) = (gear(n1, r1, rng), gear(n2, r2, rng));
         let g = rng.random_range(0.0..12.0);
         Mesh::new(a, b, geometry::centre_distance(r1, r2, 1.1, g)).unwrap()
+    }
+
+    /// Replayed bisection lands on bisection's own driver angle, bit for bit, for gaps that change
+    /// sign once: smooth, kinked where they close, flat at exactly 0 beyond the closing (a pair's
+    /// end at θ), and infinite before it (no obstacle yet), over brackets from a step to 1e-9 rad.
+    #[test]
+    fn replayed_bisection_is_bisection() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(15);
+        let mut secant_found = 0;
+        for case in 0..20_000 {
+            let a = rng.random_range(-30.0..30.0);
+            let width = 10f64.powf(rng.random_range(-9.0..-0.5));
+            let b = a + width;
+            let root = a + width * rng.random_range(0.001..0.999);
+            let (slope, curve) = (
+                10f64.powf(rng.random_range(-3.0..1.0)),
+                rng.random_range(-5.0..5.0),
+            );
+            let scale = rng.random_range(0.0..50.0);
+            let kind = case % 4;
+            let gap = |p: f64| {
+                let d = root - p;
+                let smooth = slope * d + curve * d * d;
+                match kind {
+                    0 => smooth,
+                    1 if d < 0.0 => 3.0 * smooth,
+                    2 if d < 0.0 => 0.0,
+                    3 if d > 0.6 * (root - a) => f64::INFINITY,
+                    _ => smooth,
+                }
+            };
+            // Keep the gap monotone on the bracket (the curvature must not turn it).
+            if (slope - 2.0 * curve.abs() * width) <= 0.0 {
+                continue;
+            }
+            if close_in((a, gap(a)), (b, gap(b)), &gap).is_some() {
+                secant_found += 1;
+            }
+            let want = bisect(a, b, |p| gap(p) > 0.0);
+            let got = bisect_sign(a, b, scale, gap);
+            assert_eq!(
+                got.to_bits(),
+                want.to_bits(),
+                "case {case}: {got} vs {want}"
+            );
+        }
+        assert!(
+            secant_found > 5_000,
+            "the secant bracket was found {secant_found} times"
+        );
     }
 
     /// A remembered cover's verdict is the scan's: `Holds` only where `free_or_cover` finds no

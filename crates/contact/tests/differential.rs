@@ -206,7 +206,8 @@ fn certified_steps_agree_with_bracketing_on_asymmetric_and_out_of_round_teeth() 
 }
 
 /// Meshes so tight that the driven gear jams at every tooth or cannot turn at all (held): the
-/// held gear's remembered cover (`Run::cover`) and the certified steps change no event.
+/// held gear's remembered cover (`Run::cover`), the certified steps and the replayed bisection
+/// that locates each jam (`bisect_sign`) change no event, bit for bit.
 #[test]
 fn tight_meshes_agree_with_the_plain_solver() {
     let (mut checked, mut events) = (0, 0);
