@@ -736,7 +736,7 @@ impl Mesh {
             return false;
         }
         self.obstacles(phi, start, at + 2.0 * gap, near);
-        near.sort_unstable_by(|a, b| a.lo.total_cmp(&b.lo));
+        near.sort_by(|a, b| a.lo.total_cmp(&b.lo));
         let mut end = start;
         for o in near.iter() {
             if o.hi <= end {
@@ -765,11 +765,8 @@ enum CoverCheck {
 /// How far above θ the obstacles close up, swept in order of their lower ends (those that
 /// extend the cover are kept, in order): an obstacle that only touches θ from behind does not
 /// start it; one that touches it from ahead does when `through` is set.
-///
-/// Obstacles with the same lower end may come in either order (an unstable sort, which does not
-/// allocate): the top reached is the same either way, and so is every verdict drawn from it.
 fn cover_from(theta: f64, obs: &mut [Obstacle], through: bool) -> (f64, Vec<(i64, i64)>) {
-    obs.sort_unstable_by(|a, b| a.lo.total_cmp(&b.lo));
+    obs.sort_by(|a, b| a.lo.total_cmp(&b.lo));
     let mut top = theta;
     let mut chain = Vec::new();
     for o in obs.iter() {
