@@ -320,9 +320,9 @@ struct Solve {
     steps_per_pitch: f64,
     /// Keep every segment (for θ at any φ) or only the events.
     keep_segments: bool,
-    /// Take steps on certificates where they are found, and check a held gear's last cover
-    /// first (else bracket every step and scan the turn at every check: the plain solver the
-    /// differential tests compare against).
+    /// Take steps on certificates where they are found, check a held gear's last cover first,
+    /// and locate jams by replayed bisection (else bracket every step, scan the turn at every
+    /// check and bisect throughout: the plain solver the differential tests compare against).
     certify: bool,
 }
 
@@ -428,7 +428,8 @@ struct Run<'m> {
     drive_phase: Option<i64>,
     /// Events whose size waits for the drive to resume: (index in `events`, phase before).
     pending: Vec<(usize, Option<i64>)>,
-    /// Whether steps may be taken on a certificate instead of bracketing (straight flanks).
+    /// Whether steps may be taken on a certificate instead of bracketing (straight flanks), and
+    /// jams located by replayed bisection (`bisect_sign`) instead of plain bisection.
     certify: bool,
     /// While the driven gear is held: tooth pairs whose obstacles closed up over the turn when
     /// last checked.
@@ -1922,22 +1923,8 @@ fn bisect_sign(a: f64, b: f64, scale: f64, gap: impl Fn(f64) -> f64) -> f64 {
     } else {
         None
     };
-    bisect_within(a, b, scale, bracket, |p| gap(p) > 0.0)
-}
-
-/// [`bisect`] of `good` over `[a, b]`, with `good` taken as true below and false above a guard
-/// about `bracket` - `(l, u, slope)` from [`close_in`], `good(l)` and not `good(u)` - and
-/// evaluated within it (see [`bisect_sign`]; `scale`: the size of the angles `good` compares).
-/// Plain bisection without a bracket.
-fn bisect_within(
-    a: f64,
-    b: f64,
-    scale: f64,
-    bracket: Option<(f64, f64, f64)>,
-    good: impl Fn(f64) -> bool,
-) -> f64 {
     let Some((l, u, slope)) = bracket else {
-        return bisect(a, b, good);
+        return bisect(a, b, |p| gap(p) > 0.0);
     };
     let noise = 64.0 * f64::EPSILON * (1.0 + scale.abs());
     let guard = (noise / slope).max(REPLAY_GUARD);
@@ -1947,7 +1934,7 @@ fn bisect_within(
         } else if p > u + guard {
             false
         } else {
-            good(p)
+            gap(p) > 0.0
         }
     })
 }
