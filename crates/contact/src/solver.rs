@@ -1693,13 +1693,7 @@ impl Run<'_> {
                 // Once a jam is known to lie in the step, locate first contact exactly: where the
                 // backlash stops being positive (no tolerance).
                 first_closing(phi0, phi1, g0, backlash(phi1), &backlash, 0).map(
-                    |(clear, closed)| {
-                        if self.certify {
-                            bisect_sign(clear, closed, theta0, backlash)
-                        } else {
-                            bisect(clear, closed, |p| backlash(p) > 0.0)
-                        }
-                    },
+                    |(clear, closed)| bisect_sign(clear, closed, theta0, self.certify, backlash),
                 )
             }
         };
@@ -1854,7 +1848,7 @@ fn rest_then_maybe_push(
     behind: &[(i64, i64)],
     hi: &impl Fn(f64, (i64, i64)) -> f64,
     (phi_a, theta, phi1): (f64, f64, f64),
-    secant: bool,
+    replay: bool,
 ) {
     let env = |p: f64| {
         behind
@@ -1864,11 +1858,7 @@ fn rest_then_maybe_push(
     };
     if env(phi1) > theta + SIDE_TOL {
         // Where the curve behind reaches θ: `env(p) < θ` up to there (see `bisect_sign`).
-        let phi_r = if secant {
-            bisect_sign(phi_a, phi1, theta, |p| theta - env(p))
-        } else {
-            bisect(phi_a, phi1, |p| env(p) < theta)
-        };
+        let phi_r = bisect_sign(phi_a, phi1, theta, replay, |p| theta - env(p));
         plan.push((phi_r, theta, Motion::Rest, None));
         plan.push((phi1, env(phi1), Motion::Push(behind.to_vec()), None));
     } else {
@@ -1914,9 +1904,12 @@ fn bisect(mut a: f64, mut b: f64, good: impl Fn(f64) -> bool) -> f64 {
 /// 64 roundings of `scale` at the slope found on the open side, and at least [`REPLAY_GUARD`].
 /// Where the sign changes more than once (a graze just before the closing), bisection finds one
 /// of the changes and neither it nor this is sure to find the first: that is what the bracketing
-/// before it (`first_closing`) is for. The plain solver (`Solve::certify` unset) bisects
-/// throughout, and the differential tests hold the two to the same events.
-fn bisect_sign(a: f64, b: f64, scale: f64, gap: impl Fn(f64) -> f64) -> f64 {
+/// before it (`first_closing`) is for. Without `replay` it bisects throughout: the plain solver
+/// (`Solve::certify` unset) does, and the differential tests hold the two to the same events.
+fn bisect_sign(a: f64, b: f64, scale: f64, replay: bool, gap: impl Fn(f64) -> f64) -> f64 {
+    if !replay {
+        return bisect(a, b, |p| gap(p) > 0.0);
+    }
     let (ga, gb) = (gap(a), gap(b));
     let bracket = if ga > 0.0 && gb <= 0.0 {
         close_in((a, ga), (b, gb), &gap)
@@ -2142,7 +2135,7 @@ mod tests {
                 secant_found += 1;
             }
             let want = bisect(a, b, |p| gap(p) > 0.0);
-            let got = bisect_sign(a, b, scale, gap);
+            let got = bisect_sign(a, b, scale, true, gap);
             assert_eq!(
                 got.to_bits(),
                 want.to_bits(),
