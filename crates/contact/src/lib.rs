@@ -1,6 +1,7 @@
 //! Exact push-model contact solver for one mesh of triangular-tooth gears: θ(φ), jams, disengagements.
 
 mod certify;
+mod held;
 mod mesh;
 mod roots;
 mod solver;

@@ -42,6 +42,7 @@ use serde::Serialize;
 use smallvec::SmallVec;
 
 use crate::certify::{ConfigBox, PlacedTooth, Verdict, vertex_meeting};
+use crate::held::HeldProof;
 use crate::mesh::{Mesh, Obstacle};
 
 /// Relative tolerance (radians) when deciding on which side of θ an obstacle lies.
@@ -638,6 +639,18 @@ impl Mesh {
     /// obstacles, one after another, close up over the turn: a proof of being blocked that
     /// [`Mesh::check_cover`] re-checks at another driver angle with only those pairs.
     fn free_or_cover(&self, phi: f64, theta: f64, through: bool) -> Result<f64, Vec<(i64, i64)>> {
+        self.free_or_cover_with(phi, theta, through, None)
+    }
+
+    /// [`Mesh::free_or_cover`], and where there is no free position, the obstacles of the
+    /// returned cover at φ into `links` (in the order the sweep took them), if given.
+    fn free_or_cover_with(
+        &self,
+        phi: f64,
+        theta: f64,
+        through: bool,
+        links: Option<&mut Vec<Obstacle>>,
+    ) -> Result<f64, Vec<(i64, i64)>> {
         let gap = self.driven.max_gap;
         let (mut obs, mut more) = (Vec::new(), Vec::new());
         let mut reach = 3.0 * gap;
@@ -648,6 +661,9 @@ impl Mesh {
                 return Ok(top);
             }
             if reach > TAU + 3.0 * gap {
+                if let Some(links) = links {
+                    chain_links(theta, &obs, through, links);
+                }
                 return Err(chain);
             }
             // Widen the search by what lies beyond its reach: those that straddle it come twice,
@@ -686,21 +702,19 @@ impl Mesh {
         theta: f64,
         cover: &mut Vec<(i64, i64)>,
         opened: &mut Option<f64>,
+        links: &mut Vec<Obstacle>,
     ) -> CoverCheck {
         let mut near = Vec::new();
         if opened.is_some_and(|at| self.free_above(phi, theta, at, &mut near)) {
             return CoverCheck::Free;
         }
         let gap = self.driven.max_gap;
-        // The reach at which `free_or_cover` gives up.
-        let mut reach = 3.0 * gap;
-        while reach <= TAU + 3.0 * gap {
-            reach *= 2.0;
-        }
+        let threshold = self.held_threshold(theta);
         let mut obs = Vec::with_capacity(cover.len());
         self.obstacles_of(phi, cover, &mut obs);
         let top = cover_from(theta, &mut obs, false).0;
-        if top >= theta + reach - gap {
+        if top >= threshold {
+            chain_links(theta, &obs, false, links);
             return CoverCheck::Holds;
         }
         near.clear();
@@ -713,12 +727,25 @@ impl Mesh {
         }
         obs.extend_from_slice(&near);
         let (top, chain) = cover_from(theta, &mut obs, false);
-        if top >= theta + reach - gap {
+        if top >= threshold {
             *cover = chain;
+            chain_links(theta, &obs, false, links);
             CoverCheck::Holds
         } else {
             CoverCheck::Unknown
         }
+    }
+
+    /// How far above θ the obstacles must close up for the driven gear at θ to have no free
+    /// position: the top of the widest search of [`Mesh::free_or_cover`] (which gives up there),
+    /// less a driven gap.
+    fn held_threshold(&self, theta: f64) -> f64 {
+        let gap = self.driven.max_gap;
+        let mut reach = 3.0 * gap;
+        while reach <= TAU + 3.0 * gap {
+            reach *= 2.0;
+        }
+        theta + reach - gap
     }
 
     /// Whether an interval that no obstacle at φ touches, wider than the side tolerance, starts
@@ -768,9 +795,25 @@ enum CoverCheck {
 /// start it; one that touches it from ahead does when `through` is set.
 fn cover_from(theta: f64, obs: &mut [Obstacle], through: bool) -> (f64, Vec<(i64, i64)>) {
     obs.sort_by(|a, b| a.lo.total_cmp(&b.lo));
-    let mut top = theta;
     let mut chain = Vec::new();
-    for o in obs.iter() {
+    let top = sweep(theta, obs, through, |o| {
+        chain.push((o.driver_tooth, o.driven_tooth));
+    });
+    (top, chain)
+}
+
+/// The obstacles [`cover_from`] took into its cover (those that lifted the top), in order, into
+/// `links`, from `obs` as it left them (sorted).
+fn chain_links(theta: f64, obs: &[Obstacle], through: bool, links: &mut Vec<Obstacle>) {
+    links.clear();
+    sweep(theta, obs, through, |o| links.push(*o));
+}
+
+/// [`cover_from`]'s sweep over obstacles sorted by their lower ends: the top reached, each
+/// obstacle that lifted it passed to `take`.
+fn sweep(theta: f64, obs: &[Obstacle], through: bool, mut take: impl FnMut(&Obstacle)) -> f64 {
+    let mut top = theta;
+    for o in obs {
         let carried = through || top > theta;
         let reaches = if carried {
             o.lo <= top + SIDE_TOL
@@ -779,10 +822,10 @@ fn cover_from(theta: f64, obs: &mut [Obstacle], through: bool) -> (f64, Vec<(i64
         };
         if reaches && o.hi > top {
             top = o.hi;
-            chain.push((o.driver_tooth, o.driven_tooth));
+            take(o);
         }
     }
-    (top, chain)
+    top
 }
 
 impl Run<'_> {
@@ -1380,67 +1423,99 @@ impl Run<'_> {
         deaths_hand_over && births_behind
     }
 
+    /// A step of a held driven gear to `phi1`: it stays put while no free position appears, and
+    /// is let go at the first driver angle where one does, located like any event.
+    fn held_step(&mut self, phi1: f64) {
+        let mesh = self.mesh;
+        let (phi0, theta0) = (self.phi, self.theta);
+        // While blocked, the pairs that closed up last time are checked first: a full scan of the
+        // turn is made only when they no longer prove it. Where it is blocked, `links` is left
+        // holding the obstacles that closed up, for a proof over the driver angles ahead.
+        let cover = RefCell::new(std::mem::take(&mut self.cover));
+        let opened = RefCell::new(self.opened);
+        let links = RefCell::new(Vec::new());
+        let blocked = |p: f64| {
+            if self.remember_cover && !cover.borrow().is_empty() {
+                match mesh.check_cover(
+                    p,
+                    theta0,
+                    &mut cover.borrow_mut(),
+                    &mut opened.borrow_mut(),
+                    &mut links.borrow_mut(),
+                ) {
+                    CoverCheck::Holds => return true,
+                    CoverCheck::Free => return false,
+                    CoverCheck::Unknown => {}
+                }
+            }
+            match mesh.free_or_cover_with(p, theta0, false, Some(&mut links.borrow_mut())) {
+                Ok(t) => {
+                    *opened.borrow_mut() = Some(t);
+                    false
+                }
+                Err(chain) => {
+                    *cover.borrow_mut() = chain;
+                    true
+                }
+            }
+        };
+        if blocked(phi1) {
+            self.cover = cover.into_inner();
+            self.opened = opened.into_inner();
+            self.rest_to(phi1);
+            return;
+        }
+        // Freed within the step: the driven gear is let go at the first angle where a free
+        // position appears, located by bisection (not at the step's end). A probe found blocked
+        // proves, in one pass over its links, that it stays blocked up to the bracket's top but
+        // where a few doubtful links give way (`HeldProof`): the later probes below that top
+        // evaluate those few, not the whole cover, and get the scan's answer all the same.
+        let proof: RefCell<Option<HeldProof>> = RefCell::new(None);
+        let threshold = mesh.held_threshold(theta0);
+        let held_until = bisect_to(phi0, phi1, |p, top| {
+            if !self.certify {
+                return blocked(p);
+            }
+            if let Some(proof) = proof.borrow_mut().as_mut()
+                && proof.holds_at(mesh, p, theta0)
+            {
+                proof.narrow(mesh, p, top);
+                return true;
+            }
+            let held = blocked(p);
+            if held {
+                *proof.borrow_mut() =
+                    HeldProof::build(mesh, (p, top), theta0, threshold, SIDE_TOL, &links.borrow());
+            }
+            held
+        });
+        self.cover = cover.into_inner();
+        self.opened = opened.into_inner();
+        let phi_r = (held_until + LOCATE_TOL).min(phi1);
+        let t = match mesh.free_or_cover(phi_r, theta0, false) {
+            Ok(t) => t,
+            Err(chain) => {
+                // Still held: the scan's cover is the one to check next.
+                self.cover = chain;
+                self.rest_to(phi_r);
+                return;
+            }
+        };
+        self.rest_to(phi_r);
+        self.held = false;
+        self.cover.clear();
+        self.opened = None;
+        self.theta = t;
+        self.classify_all(phi_r);
+    }
+
     /// Advance from `self.phi` to `phi1`, locating every event in between.
     fn advance(&mut self, mut phi1: f64) {
         let mesh = self.mesh;
         let phi0 = self.phi;
         let theta0 = self.theta;
         if self.held {
-            // While blocked, the pairs that closed up last time are checked first: a full scan
-            // of the turn is made only when they no longer prove it.
-            let cover = RefCell::new(std::mem::take(&mut self.cover));
-            let opened = RefCell::new(self.opened);
-            let blocked = |p: f64| {
-                if self.remember_cover && !cover.borrow().is_empty() {
-                    match mesh.check_cover(
-                        p,
-                        theta0,
-                        &mut cover.borrow_mut(),
-                        &mut opened.borrow_mut(),
-                    ) {
-                        CoverCheck::Holds => return true,
-                        CoverCheck::Free => return false,
-                        CoverCheck::Unknown => {}
-                    }
-                }
-                match mesh.free_or_cover(p, theta0, false) {
-                    Ok(t) => {
-                        *opened.borrow_mut() = Some(t);
-                        false
-                    }
-                    Err(chain) => {
-                        *cover.borrow_mut() = chain;
-                        true
-                    }
-                }
-            };
-            if blocked(phi1) {
-                self.cover = cover.into_inner();
-                self.opened = opened.into_inner();
-                self.rest_to(phi1);
-                return;
-            }
-            // Freed within the step: the driven gear is let go at the first angle where a free
-            // position appears, located like any event (not at the step's end).
-            let held_until = bisect(phi0, phi1, blocked);
-            self.cover = cover.into_inner();
-            self.opened = opened.into_inner();
-            let phi_r = (held_until + LOCATE_TOL).min(phi1);
-            let t = match mesh.free_or_cover(phi_r, theta0, false) {
-                Ok(t) => t,
-                Err(chain) => {
-                    // Still held: the scan's cover is the one to check next.
-                    self.cover = chain;
-                    self.rest_to(phi_r);
-                    return;
-                }
-            };
-            self.rest_to(phi_r);
-            self.held = false;
-            self.cover.clear();
-            self.opened = None;
-            self.theta = t;
-            self.classify_all(phi_r);
+            self.held_step(phi1);
             return;
         }
 
@@ -1891,6 +1966,19 @@ fn bisect(mut a: f64, mut b: f64, good: impl Fn(f64) -> bool) -> f64 {
     a
 }
 
+/// [`bisect`], its `good` also told the top of the bracket it probes: the same midpoints and the
+/// same answer, bit for bit.
+fn bisect_to(mut a: f64, mut b: f64, good: impl Fn(f64, f64) -> bool) -> f64 {
+    while b - a > LOCATE_TOL {
+        let m = 0.5 * (a + b);
+        if m <= a || m >= b {
+            break;
+        }
+        if good(m, b) { a = m } else { b = m }
+    }
+    a
+}
+
 /// [`bisect`] with `good(p) = gap(p) > 0`, for a continuous `gap` positive at `a` and not at `b`
 /// (a backlash closing, a curve rising to θ) whose values are angles near `scale`: the same
 /// driver angle, bit for bit, in about half the evaluations.
@@ -2174,7 +2262,7 @@ mod tests {
                         at_opening += 1;
                     }
                     let before = cover.clone();
-                    match mesh.check_cover(p, theta, &mut cover, &mut opened) {
+                    match mesh.check_cover(p, theta, &mut cover, &mut opened, &mut Vec::new()) {
                         CoverCheck::Holds => {
                             holds += 1;
                             patched += usize::from(cover != before);
@@ -2194,6 +2282,64 @@ mod tests {
         assert!(
             holds > 50 && free > 50 && at_opening > 20 && patched > 10,
             "holds {holds}, free {free}, {at_opening} at the remembered opening, {patched} patched"
+        );
+    }
+
+    /// A held gear's proof answers "held" only where the scan finds no free position: from the
+    /// cover found at a driver angle (by the scan, or by a remembered cover's check), over ranges
+    /// from a hundredth of a pitch to a pitch, at driver angles across the range, narrowed as a
+    /// bisection would narrow it after each probe that holds.
+    #[test]
+    fn a_held_proof_holds_only_where_the_scan_finds_no_free_position() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(16);
+        let (mut proofs, mut held, mut refused, mut fixed_some) = (0, 0, 0, 0);
+        for _ in 0..40 {
+            let mesh = tight_mesh(&mut rng);
+            let pitch = TAU / mesh.driver.tips.len() as f64;
+            for _ in 0..10 {
+                let phi = rng.random_range(0.0..TAU);
+                let theta = rng.random_range(0.0..TAU);
+                let mut links = Vec::new();
+                if mesh
+                    .free_or_cover_with(phi, theta, false, Some(&mut links))
+                    .is_ok()
+                {
+                    continue;
+                }
+                let top = phi + pitch * 10f64.powf(rng.random_range(-2.0..0.0));
+                let threshold = mesh.held_threshold(theta);
+                let Some(mut proof) =
+                    HeldProof::build(&mesh, (phi, top), theta, threshold, SIDE_TOL, &links)
+                else {
+                    continue;
+                };
+                proofs += 1;
+                fixed_some += usize::from(proof.has_fixed_joints());
+                let mut lo = phi;
+                for _ in 0..30 {
+                    let p = rng.random_range(lo..=top);
+                    let says_held = proof.holds_at(&mesh, p, theta);
+                    let scan_held = mesh.free_or_cover(p, theta, false).is_err();
+                    assert!(
+                        !says_held || scan_held,
+                        "proved held at {p} (from {phi}) where the scan finds a free position"
+                    );
+                    if says_held {
+                        held += 1;
+                        proof.narrow(&mesh, p, top);
+                        lo = p;
+                    } else {
+                        refused += 1;
+                    }
+                }
+                // Outside its range, or for another driven angle, it proves nothing.
+                assert!(!proof.holds_at(&mesh, top + 1e-6, theta));
+                assert!(!proof.holds_at(&mesh, lo, theta + 1e-3));
+            }
+        }
+        assert!(
+            proofs > 50 && held > 500 && refused > 50 && fixed_some > 25,
+            "{proofs} proofs ({fixed_some} with fixed joints), {held} probes held, {refused} not"
         );
     }
 }
