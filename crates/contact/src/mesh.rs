@@ -560,12 +560,15 @@ impl Mesh {
     pub(crate) fn obstacles_of(&self, phi: f64, pairs: &[(i64, i64)], out: &mut Vec<Obstacle>) {
         out.clear();
         let n = self.driven.tips.len() as i64;
-        let mut seen: std::collections::HashMap<(i64, i64), Option<(f64, f64)>> =
-            std::collections::HashMap::with_capacity(pairs.len());
+        let (first, last) = pairs
+            .iter()
+            .fold((i64::MAX, i64::MIN), |(a, b), &(j, _)| (a.min(j), b.max(j)));
+        let mut seen = PairMemo::over(phi, first..=last, self.driven.tips.len());
         for &(j, k) in pairs {
-            let args = *seen
-                .entry((j, k.rem_euclid(n)))
-                .or_insert_with(|| self.pair_args(phi, j, k));
+            let args = match seen.of_driver(j).get_mut(k.rem_euclid(n) as usize) {
+                Some(memo) => *memo.get_or_insert_with(|| self.pair_args(phi, j, k)),
+                None => self.pair_args(phi, j, k),
+            };
             if let Some(args) = args {
                 out.push(self.placed(j, k, args));
             }
@@ -636,6 +639,20 @@ impl Mesh {
 
     /// All tooth-pair obstacles at driver angle φ that can reach driven angles in `[lo, hi]`.
     pub fn obstacles(&self, phi: f64, lo: f64, hi: f64, out: &mut Vec<Obstacle>) {
+        self.obstacles_with(phi, lo, hi, out, None);
+    }
+
+    /// [`Mesh::obstacles`], taking the arguments of pairs already evaluated at φ from `memo` (a
+    /// scan over several windows at one driver angle, where the later windows pass the same teeth
+    /// whole turns on) and leaving there those it evaluates.
+    pub(crate) fn obstacles_with(
+        &self,
+        phi: f64,
+        lo: f64,
+        hi: f64,
+        out: &mut Vec<Obstacle>,
+        mut memo: Option<&mut PairMemo>,
+    ) {
         out.clear();
         let c2 = self.c2();
         let (d1, d2) = (&self.driver, &self.driven);
@@ -683,9 +700,15 @@ impl Mesh {
             // then placed from the arguments already found (as in `obstacles_of`).
             let n = d2.tips.len() as i64;
             let mut args_of: Vec<Option<Option<(f64, f64)>>> = Vec::new();
-            if ks.end() - ks.start() >= n {
-                args_of.resize(n as usize, None);
-            }
+            let remembered = match memo.as_deref_mut() {
+                Some(m) if m.phi == phi => m.of_driver(j),
+                _ => {
+                    if ks.end() - ks.start() >= n {
+                        args_of.resize(n as usize, None);
+                    }
+                    &mut args_of[..]
+                }
+            };
             for k in ks {
                 let evaluate = || {
                     if self.curved {
@@ -694,7 +717,7 @@ impl Mesh {
                         self.tooth_pair(world, da, k)
                     }
                 };
-                let args = match args_of.get_mut(k.rem_euclid(n) as usize) {
+                let args = match remembered.get_mut(k.rem_euclid(n) as usize) {
                     Some(memo) => *memo.get_or_insert_with(evaluate),
                     None => evaluate(),
                 };
@@ -1146,4 +1169,52 @@ fn sin_cos_of(phi: f64) -> (f64, f64) {
 /// one driven tooth) made on this thread so far: the solver's unit of work, read by benchmarks.
 pub fn tooth_pair_evaluations() -> u64 {
     EVALS.with(std::cell::Cell::get)
+}
+
+/// The arguments of the obstacles of every driver tooth near the line of centres at one driver
+/// angle against every driven tooth (by its index in the turn), as far as evaluated: what
+/// [`Mesh::obstacles_with`] remembers across the windows of one scan. An obstacle placed from
+/// remembered arguments is the one [`Mesh::obstacle`] gives, bit for bit.
+pub(crate) struct PairMemo {
+    phi: f64,
+    first_driver: i64,
+    teeth: usize,
+    args: Vec<Option<Option<(f64, f64)>>>,
+}
+
+impl PairMemo {
+    /// An empty memo for the driver teeth of `mesh` near the line of centres at `phi`.
+    pub(crate) fn new(mesh: &Mesh, phi: f64) -> Self {
+        Self::over(phi, mesh.driver_teeth(phi), mesh.driven.tips.len())
+    }
+
+    /// An empty memo for driver teeth `drivers` at `phi`, against a driven gear of `teeth`.
+    fn over(phi: f64, drivers: std::ops::RangeInclusive<i64>, teeth: usize) -> Self {
+        // A few driver teeth at most touch the driven gear at once: a wider range (or none)
+        // remembers nothing, and every pair is evaluated.
+        let count = drivers
+            .end()
+            .checked_sub(*drivers.start())
+            .and_then(|d| usize::try_from(d).ok())
+            .filter(|&d| d < 64)
+            .map_or(0, |d| d + 1);
+        Self {
+            phi,
+            first_driver: *drivers.start(),
+            teeth,
+            args: vec![None; count * teeth],
+        }
+    }
+
+    /// The remembered arguments of driver tooth `j` against each driven tooth (empty for a
+    /// tooth outside the memo's range).
+    fn of_driver(&mut self, j: i64) -> &mut [Option<Option<(f64, f64)>>] {
+        let Ok(i) = usize::try_from(j - self.first_driver) else {
+            return &mut [];
+        };
+        let start = i * self.teeth;
+        self.args
+            .get_mut(start..start + self.teeth)
+            .unwrap_or(&mut [])
+    }
 }

@@ -43,7 +43,7 @@ use smallvec::SmallVec;
 
 use crate::certify::{ConfigBox, PlacedTooth, Verdict, vertex_meeting};
 use crate::held::HeldProof;
-use crate::mesh::{Mesh, Obstacle};
+use crate::mesh::{Mesh, Obstacle, PairMemo};
 
 /// Relative tolerance (radians) when deciding on which side of θ an obstacle lies.
 const SIDE_TOL: f64 = 1e-10;
@@ -654,7 +654,9 @@ impl Mesh {
         let gap = self.driven.max_gap;
         let (mut obs, mut more) = (Vec::new(), Vec::new());
         let mut reach = 3.0 * gap;
-        self.obstacles(phi, theta - gap, theta + reach, &mut obs);
+        // The widening windows pass the same teeth again a turn on: each pair is evaluated once.
+        let mut memo = PairMemo::new(self, phi);
+        self.obstacles_with(phi, theta - gap, theta + reach, &mut obs, Some(&mut memo));
         loop {
             let (top, chain) = cover_from(theta, &mut obs, through);
             if top < theta + reach - gap {
@@ -669,7 +671,13 @@ impl Mesh {
             // Widen the search by what lies beyond its reach: those that straddle it come twice,
             // which changes nothing in the sweep (a copy never reaches past the top its first
             // left).
-            self.obstacles(phi, theta + reach, theta + 2.0 * reach, &mut more);
+            self.obstacles_with(
+                phi,
+                theta + reach,
+                theta + 2.0 * reach,
+                &mut more,
+                Some(&mut memo),
+            );
             obs.append(&mut more);
             reach *= 2.0;
         }
@@ -2341,5 +2349,75 @@ mod tests {
             proofs > 50 && held > 500 && refused > 50 && fixed_some > 25,
             "{proofs} proofs ({fixed_some} with fixed joints), {held} probes held, {refused} not"
         );
+    }
+
+    /// Obstacles taken from a memo (a scan's widening windows, a cover's links a turn apart) are
+    /// the ones a fresh evaluation gives, bit for bit, and no pair is evaluated twice.
+    #[test]
+    fn remembered_obstacles_are_evaluated_ones() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(17);
+        let bits = |o: &Obstacle| {
+            (
+                o.driver_tooth,
+                o.driven_tooth,
+                o.lo.to_bits(),
+                o.hi.to_bits(),
+            )
+        };
+        for _ in 0..20 {
+            let mesh = tight_mesh(&mut rng);
+            let (phi, theta) = (rng.random_range(0.0..TAU), rng.random_range(0.0..TAU));
+            let gap = mesh.driven.max_gap;
+            let mut memo = PairMemo::new(&mesh, phi);
+            let (mut fresh, mut remembered) = (Vec::new(), Vec::new());
+            let mut reach = 3.0 * gap;
+            let mut window = (theta - gap, theta + reach);
+            // Widening windows as the scan takes them, until past one that lies wholly a turn on.
+            let mut beyond = 0;
+            while window.0 < theta + 2.0 * TAU + 2.0 * gap {
+                mesh.obstacles(phi, window.0, window.1, &mut fresh);
+                let before = crate::mesh::tooth_pair_evaluations();
+                mesh.obstacles_with(phi, window.0, window.1, &mut remembered, Some(&mut memo));
+                let evaluated = crate::mesh::tooth_pair_evaluations() - before;
+                assert_eq!(
+                    fresh.iter().map(bits).collect::<Vec<_>>(),
+                    remembered.iter().map(bits).collect::<Vec<_>>()
+                );
+                if window.0 > theta + TAU + gap {
+                    beyond += remembered.len();
+                    assert_eq!(
+                        evaluated, 0,
+                        "a tooth met again a turn on was evaluated again"
+                    );
+                }
+                window = (theta + reach, theta + 2.0 * reach);
+                reach *= 2.0;
+            }
+            assert!(beyond > 0, "no obstacles a turn on");
+            // A cover's links, some a turn apart: as `Mesh::obstacle` gives them.
+            let n = mesh.driven.tips.len() as i64;
+            let pairs: Vec<(i64, i64)> = remembered
+                .iter()
+                .flat_map(|o| {
+                    [
+                        (o.driver_tooth, o.driven_tooth),
+                        (o.driver_tooth, o.driven_tooth + n),
+                    ]
+                })
+                .collect();
+            let mut of = Vec::new();
+            mesh.obstacles_of(phi, &pairs, &mut of);
+            let each: Vec<_> = pairs
+                .iter()
+                .filter_map(|&(j, k)| mesh.obstacle(phi, j, k))
+                .collect();
+            assert_eq!(
+                of.iter().map(bits).collect::<Vec<_>>(),
+                each.iter().map(bits).collect::<Vec<_>>()
+            );
+        }
+        let mut none = Vec::new();
+        tight_mesh(&mut rng).obstacles_of(0.0, &[], &mut none);
+        assert!(none.is_empty());
     }
 }
