@@ -523,9 +523,32 @@ impl Mesh {
             .map(|args| self.placed(j, k, args))
     }
 
+    /// One end of the (j, k) obstacle at φ, or `None` if there is none: the `lo` or `hi` of
+    /// [`Mesh::obstacle`], bit for bit, for the price of one `atan2` instead of two (most callers
+    /// ask for one end only: the upper end of a pair behind the driven gear, the lower end of one
+    /// ahead).
+    pub(crate) fn obstacle_end(&self, phi: f64, j: i64, k: i64, end: End) -> Option<f64> {
+        let (ul, uh) = self.pair_dirs(phi, j, k)?;
+        let (db, turns) = self.driven.data(k);
+        let reference = db.tip_angle + turns;
+        Some(
+            reference
+                + match end {
+                    End::Lower => arg(ul),
+                    End::Upper => arg(uh),
+                },
+        )
+    }
+
     /// The arguments, measured from driven tooth k's tip angle, of the ends of the (j, k)
     /// obstacle at φ (see [`Mesh::placed`]): the same for k and k plus whole turns.
     fn pair_args(&self, phi: f64, j: i64, k: i64) -> Option<(f64, f64)> {
+        self.pair_dirs(phi, j, k).map(|(ul, uh)| (arg(ul), arg(uh)))
+    }
+
+    /// The ends of the (j, k) obstacle at φ as directions whose arguments are
+    /// [`Mesh::pair_args`]'s (see [`Mesh::tooth_pair`]).
+    fn pair_dirs(&self, phi: f64, j: i64, k: i64) -> Option<(Vec2, Vec2)> {
         let (s, c) = sin_cos_of(phi);
         let (da, _) = self.driver.data(j);
         let a =
@@ -579,9 +602,10 @@ impl Mesh {
     ///
     /// Every contact root is a point on a circle; its driven angle is the argument of a complex
     /// product, compared through a pseudo-angle (monotone in the argument, no trigonometry) so
-    /// that only the lowest and highest roots cost an `atan2`.
+    /// that only the lowest and highest roots cost an `atan2`: they are returned as directions,
+    /// and each caller takes the argument of the ends it needs.
     #[inline]
-    fn tooth_pair(&self, a: [Vec2; 3], da: &ToothData, k: i64) -> Option<(f64, f64)> {
+    fn tooth_pair(&self, a: [Vec2; 3], da: &ToothData, k: i64) -> Option<(Vec2, Vec2)> {
         EVALS.with(|c| c.set(c.get() + 1));
         let c2 = self.c2();
         let (db, _) = self.driven.data(k);
@@ -634,7 +658,7 @@ impl Mesh {
         let (Some((_, ul)), Some((_, uh))) = (lo, hi) else {
             return None;
         };
-        Some((ul.y.atan2(ul.x), uh.y.atan2(uh.x)))
+        Some((ul, uh))
     }
 
     /// All tooth-pair obstacles at driver angle φ that can reach driven angles in `[lo, hi]`.
@@ -716,6 +740,7 @@ impl Mesh {
                     } else {
                         self.tooth_pair(world, da, k)
                     }
+                    .map(|(ul, uh)| (arg(ul), arg(uh)))
                 };
                 let args = match remembered.get_mut(k.rem_euclid(n) as usize) {
                     Some(memo) => *memo.get_or_insert_with(evaluate),
@@ -884,7 +909,7 @@ impl Mesh {
         fa: [Option<Arc>; 2],
         da: &ToothData,
         k: i64,
-    ) -> Option<(f64, f64)> {
+    ) -> Option<(Vec2, Vec2)> {
         EVALS.with(|c| c.set(c.get() + 1));
         let c2 = self.c2();
         let (db, _) = self.driven.data(k);
@@ -986,9 +1011,21 @@ impl Mesh {
                 }
             }
         }
-        let (ul, uh) = ends.get()?;
-        Some((ul.y.atan2(ul.x), uh.y.atan2(uh.x)))
+        ends.get()
     }
+}
+
+/// Which end of an obstacle a caller asks for (see [`Mesh::obstacle_end`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum End {
+    Lower,
+    Upper,
+}
+
+/// The argument of a root's direction (see [`Mesh::tooth_pair`]).
+#[inline]
+fn arg(u: Vec2) -> f64 {
+    u.y.atan2(u.x)
 }
 
 /// The lowest and highest contact roots of one tooth pair, as in [`Mesh::tooth_pair`]: each root

@@ -43,7 +43,7 @@ use smallvec::SmallVec;
 
 use crate::certify::{ConfigBox, PlacedTooth, Verdict, vertex_meeting};
 use crate::held::HeldProof;
-use crate::mesh::{Mesh, Obstacle, PairMemo};
+use crate::mesh::{End, Mesh, Obstacle, PairMemo};
 
 /// Relative tolerance (radians) when deciding on which side of θ an obstacle lies.
 const SIDE_TOL: f64 = 1e-10;
@@ -249,7 +249,7 @@ impl Trajectory {
                 }
                 pairs
                     .iter()
-                    .filter_map(|&(j, k)| self.mesh.obstacle(phi, j, k).map(|o| o.hi))
+                    .filter_map(|&(j, k)| self.mesh.obstacle_end(phi, j, k, End::Upper))
                     .fold(s.theta_start, f64::max)
             }
         }
@@ -364,8 +364,8 @@ type Boxed = ((i64, i64), Role);
 /// The pairs touching a certified step's box (a dozen or so), kept inline.
 type BoxedPairs = SmallVec<[Boxed; 16]>;
 
-/// A tooth pair and its obstacle at a step's end, if any.
-type Evaluated = ((i64, i64), Option<Obstacle>);
+/// A tooth pair and the upper end of its obstacle at a step's end, if any.
+type Evaluated = ((i64, i64), Option<f64>);
 
 /// A few tooth pairs (pushers, pairs born or gone in a step): kept inline, as every step of a
 /// run makes several such lists and a heap allocation costs as much as the rest of the list's use.
@@ -402,8 +402,9 @@ struct JudgedStep {
     clear_ahead: Pairs,
 }
 
-/// One evaluated tooth pair: (driver angle, (driver tooth, driven tooth), obstacle).
-type Memo = (f64, (i64, i64), Option<Obstacle>);
+/// One end of an evaluated tooth pair's obstacle: (driver angle, (driver tooth, driven tooth),
+/// which end, where it is).
+type Memo = (f64, (i64, i64), End, Option<f64>);
 
 /// Working state of one run.
 struct Run<'m> {
@@ -617,14 +618,14 @@ impl Mesh {
 
     /// Upper end of the (j, k) obstacle at φ, or −∞ when it does not exist.
     fn hi(&self, phi: f64, pair: (i64, i64)) -> f64 {
-        self.obstacle(phi, pair.0, pair.1)
-            .map_or(f64::NEG_INFINITY, |o| o.hi)
+        self.obstacle_end(phi, pair.0, pair.1, End::Upper)
+            .unwrap_or(f64::NEG_INFINITY)
     }
 
     /// Lower end of the (j, k) obstacle at φ, or +∞ when it does not exist.
     fn lo(&self, phi: f64, pair: (i64, i64)) -> f64 {
-        self.obstacle(phi, pair.0, pair.1)
-            .map_or(f64::INFINITY, |o| o.lo)
+        self.obstacle_end(phi, pair.0, pair.1, End::Lower)
+            .unwrap_or(f64::INFINITY)
     }
 
     /// The nearest driven angle ≥ θ that overlaps no driver tooth at φ, or None if the obstacles
@@ -1172,20 +1173,20 @@ impl Run<'_> {
     fn judge_step(&self, phi1: f64, pushers: &[(i64, i64)]) -> Option<JudgedStep> {
         let mesh = self.mesh;
         let (phi0, theta0) = (self.phi, self.theta);
-        // Each pair is evaluated at φ1 once, however often the box grows or θ1 moves.
+        // Each pair is evaluated at φ1 once, however often the box grows or θ1 moves; only the
+        // upper ends are asked for (where the pairs behind end).
         let mut at1: SmallVec<[Evaluated; 8]> = SmallVec::new();
-        let mut end_of = |pair: (i64, i64)| -> Option<Obstacle> {
+        let mut end_of = |pair: (i64, i64)| -> Option<f64> {
             if let Some(&(_, o)) = at1.iter().find(|e| e.0 == pair) {
                 return o;
             }
-            let o = mesh.obstacle(phi1, pair.0, pair.1);
+            let o = mesh.obstacle_end(phi1, pair.0, pair.1, End::Upper);
             at1.push((pair, o));
             o
         };
         let pushed = pushers
             .iter()
             .filter_map(|&p| end_of(p))
-            .map(|o| o.hi)
             .fold(theta0, f64::max);
         let mut theta1 = pushed;
         'grow: for grown in 0..4 {
@@ -1254,7 +1255,7 @@ impl Run<'_> {
                         }
                         Role::Falling => judged.pairs.push(Judged {
                             pair,
-                            hi: end_of(pair).map_or(f64::NEG_INFINITY, |o| o.hi),
+                            hi: end_of(pair).unwrap_or(f64::NEG_INFINITY),
                             rising: false,
                         }),
                         // Never on the path: it carries nothing, wherever it ends. One that was
@@ -1275,17 +1276,17 @@ impl Run<'_> {
                                 }
                             }
                             match end_of(pair) {
-                                Some(o) if o.hi > theta1 => {
-                                    theta1 = o.hi;
+                                Some(hi) if hi > theta1 => {
+                                    theta1 = hi;
                                     if theta1 > top {
                                         continue 'grow;
                                     }
                                     continue 'path;
                                 }
-                                Some(o) => {
+                                Some(hi) => {
                                     judged.pairs.push(Judged {
                                         pair,
-                                        hi: o.hi,
+                                        hi,
                                         rising: true,
                                     });
                                     if born {
@@ -1575,28 +1576,38 @@ impl Run<'_> {
             obs1.iter()
                 .find(|o| (o.driver_tooth, o.driven_tooth) == pair)
         };
-        // The checks below ask for the same pair at the same angle several times (mid-step,
-        // just before the end): evaluate each once.
+        // The checks below ask for the same end of a pair at the same angle several times
+        // (mid-step, just before the end): evaluate each once, and only the end asked for (the
+        // upper end of a pair behind, the lower end of one ahead).
         let memo: RefCell<Vec<Memo>> = RefCell::new(Vec::new());
-        let eval = |p: f64, pair: (i64, i64)| -> Option<Obstacle> {
+        let end_at = |p: f64, pair: (i64, i64), end: End| -> Option<f64> {
             if p == phi1 {
-                return at1(pair).copied();
+                return at1(pair).map(|o| match end {
+                    End::Lower => o.lo,
+                    End::Upper => o.hi,
+                });
             }
-            if let Some(&(_, _, o)) = memo.borrow().iter().find(|m| m.0 == p && m.1 == pair) {
+            if let Some(&(.., o)) = memo
+                .borrow()
+                .iter()
+                .find(|m| m.0 == p && m.1 == pair && m.2 == end)
+            {
                 return o;
             }
-            let o = mesh.obstacle(p, pair.0, pair.1);
+            let o = mesh.obstacle_end(p, pair.0, pair.1, end);
             let mut m = memo.borrow_mut();
             if m.len() >= 64 {
                 m.clear();
             }
-            m.push((p, pair, o));
+            m.push((p, pair, end, o));
             o
         };
-        let hi =
-            |p: f64, pair: (i64, i64)| -> f64 { eval(p, pair).map_or(f64::NEG_INFINITY, |o| o.hi) };
-        let lo =
-            |p: f64, pair: (i64, i64)| -> f64 { eval(p, pair).map_or(f64::INFINITY, |o| o.lo) };
+        let hi = |p: f64, pair: (i64, i64)| -> f64 {
+            end_at(p, pair, End::Upper).unwrap_or(f64::NEG_INFINITY)
+        };
+        let lo = |p: f64, pair: (i64, i64)| -> f64 {
+            end_at(p, pair, End::Lower).unwrap_or(f64::INFINITY)
+        };
 
         let mut behind: Vec<(i64, i64)> = pushers.to_vec();
         let mut ahead: Vec<(i64, i64)> = Vec::new();
@@ -1621,7 +1632,7 @@ impl Run<'_> {
             let reach = behind.iter().map(|&p| hi(phi1, p)).fold(theta0, f64::max);
             // An obstacle that appeared below θ and rose past it within the step is behind (it
             // pushed), even though it lies above θ0 now: decide where it first appeared.
-            let at_start = eval(phi0, pair);
+            let at_start = mesh.obstacle(phi0, pair.0, pair.1);
             let side = if o.lo >= reach + mesh.driven.max_gap {
                 Side::Ahead
             } else if let Some(a0) = at_start.filter(|a0| a0.hi <= theta0 + SIDE_TOL) {
