@@ -187,28 +187,21 @@ impl ConfigBox {
 
     /// Driver tooth `a` placed at the box's centre.
     pub(crate) fn place_driver<'t>(&self, a: &'t CertTooth) -> PlacedTooth<'t> {
-        let world = a.v.map(|v| turn(self.driver_turn, v));
-        let normal = a.normal.map(|n| turn(self.driver_turn, n));
         PlacedTooth {
             tooth: a,
             disc: self.driver_disc(a),
-            // P relative to the driven centre: its distance is what a driven turn moves it by.
-            rel: world.map(|p| p - self.c2),
-            world,
-            normal,
+            turned: a.v.map(|v| turn(self.driver_turn, v)),
+            normal: a.normal.map(|n| turn(self.driver_turn, n)),
         }
     }
 
     /// Driven tooth `b` placed at the box's centre.
     pub(crate) fn place_driven<'t>(&self, b: &'t CertTooth) -> PlacedTooth<'t> {
-        let rel = b.v.map(|v| turn(self.driven_turn, v));
-        let normal = b.normal.map(|n| turn(self.driven_turn, n));
         PlacedTooth {
             tooth: b,
             disc: self.driven_disc(b),
-            world: rel.map(|q| q + self.c2),
-            rel,
-            normal,
+            turned: b.v.map(|v| turn(self.driven_turn, v)),
+            normal: b.normal.map(|n| turn(self.driven_turn, n)),
         }
     }
 
@@ -251,7 +244,10 @@ impl ConfigBox {
             if !a.tooth.reaches[i] {
                 continue;
             }
-            let (pw, x) = (a.world[i], a.rel[i]);
+            // P in the world, and relative to the driven centre (its distance is what a driven
+            // turn moves it by).
+            let pw = a.turned[i];
+            let x = pw - self.c2;
             let dist = x.norm();
             let rp = a.tooth.rad[i];
             // How far P can move from x, seen from the driven gear, within the box.
@@ -287,7 +283,8 @@ impl ConfigBox {
             if !b.tooth.reaches[i] {
                 continue;
             }
-            let (q, qw) = (b.rel[i], b.world[i]);
+            let q = b.turned[i];
+            let qw = q + self.c2;
             let dist = qw.norm();
             let rq = b.tooth.rad[i];
             // How far Q can move from qw, seen from the driver, within the box.
@@ -442,10 +439,10 @@ pub(crate) struct PlacedTooth<'t> {
     tooth: &'t CertTooth,
     /// A disc holding the tooth throughout the box: centre and radius.
     disc: (Vec2, f64),
-    /// Vertices in the world.
-    world: [Vec2; 3],
-    /// Vertices relative to the other gear's centre (driver) or to their own (driven).
-    rel: [Vec2; 3],
+    /// Vertices turned about their gear's centre: in the world for the driver, relative to its
+    /// own centre for the driven gear (the other frame is one vector sum away, computed where it
+    /// is used: a placement is copied about more often than it is read, and is smaller so).
+    turned: [Vec2; 3],
     /// Flank normals, turned (a flank's direction is its normal a quarter turn on, and a turn
     /// commutes with the quarter turn).
     normal: [Vec2; 2],
