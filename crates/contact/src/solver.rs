@@ -1657,7 +1657,25 @@ impl Run<'_> {
                     .iter()
                     .map(|&b| mesh.hi(phi_a, b))
                     .fold(theta0, f64::max);
-                if at <= theta_a + SIDE_TOL {
+                // The driven gear never turns back: where the pushers peaked before φ_a (they
+                // lost contact there), it rests at least at their peak, which may lie above
+                // where they are at φ_a.
+                let rested_at = || {
+                    let push_env = |p: f64| {
+                        pushers
+                            .iter()
+                            .map(|&b| hi(p, b))
+                            .fold(f64::NEG_INFINITY, f64::max)
+                    };
+                    let phi_pk = golden_max(phi0, phi1, push_env);
+                    if phi_pk <= phi_a {
+                        push_env(phi_pk)
+                    } else {
+                        f64::NEG_INFINITY
+                    }
+                };
+                if at <= theta_a + SIDE_TOL || (!pushers.is_empty() && at <= rested_at() + SIDE_TOL)
+                {
                     Side::Behind
                 } else {
                     Side::Ahead

@@ -229,3 +229,28 @@ fn tight_meshes_agree_with_the_plain_solver() {
         "{checked} cases, {events} events"
     );
 }
+
+/// A tooth pair that first touches (tip on tip) just below a driven gear resting where its
+/// pushers left it after a gap, within the same bracketed step, is behind the gear: its
+/// obstacle rises through the gear's angle, so it pushes it. The side of such a newborn pair is
+/// judged against where the gear rests (the pushers' peak), not where the pushers have fallen
+/// back to; judged against the latter, the quarter-pitch step took it for a pair ahead and let
+/// it pass through the resting gear (hard meshes 4 and 361, among others: a re-engagement
+/// missed, and the gap sized as a slip), where a 64-times-finer step, whose step starts after
+/// the gap, saw the push. On these meshes every event of the two step sizes agrees.
+#[test]
+fn a_tooth_born_under_a_resting_gear_pushes_it() {
+    for case in [4u64, 331, 345, 361, 485, 765, 864, 956, 976, 1467] {
+        let h = hard_mesh(case, None).unwrap();
+        let (m, phi0, end, what) = (h.mesh, h.phi0, h.end, h.what);
+        let quarter = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, true);
+        let fine = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 64.0, false);
+        let (a, b) = (quarter.events(), fine.events());
+        assert_eq!(a.len(), b.len(), "{what}: {a:?} vs {b:?}");
+        for (x, y) in a.iter().zip(b) {
+            assert_eq!(x.kind, y.kind, "{what}: {x:?} vs {y:?}");
+            assert!((x.phi - y.phi).abs() < 1e-9, "{what}: {x:?} vs {y:?}");
+            assert!((x.theta - y.theta).abs() < 1e-9, "{what}: {x:?} vs {y:?}");
+        }
+    }
+}
