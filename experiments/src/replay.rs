@@ -2,7 +2,8 @@
 //! gears, initial angle and events, and the pair file that reruns it with `run pair`.
 //!
 //! A cell is named as its table prints it: `table3 B/m3-e3` (Case / mesh), `tableI B/70/m3-e3`
-//! (Case / G / mesh), `table4 0.050/m3-e3` (random error / mesh). The cell is built from the
+//! (Case / G / mesh), `table4 0.050/m3-e3` (random error / mesh), `table5 0.050/0.7/e4-f1` (random
+//! error / systematic error / mesh: the mesh's E. max and a row of Table 5). The cell is built from the
 //! experiment's own parameters (`--set` reaches them as in `run`), so the trial is the one the
 //! table counted, in any run, sharded or not: a trial's stream depends only on the cell's content,
 //! the seed and the trial index.
@@ -19,10 +20,11 @@ use study::gearing;
 use study::grids::CASES;
 
 /// The experiments whose trials can be replayed, with the form of their cells.
-pub const REPLAYABLE: [(&str, &str); 3] = [
+pub const REPLAYABLE: [(&str, &str); 4] = [
     ("table3", "CASE/MESH, e.g. B/m3-e3"),
     ("tableI", "CASE/G/MESH, e.g. B/70/m3-e3"),
     ("table4", "RANDOM/MESH, e.g. 0.050/m3-e3"),
+    ("table5", "RANDOM/SYSTEMATIC/MESH, e.g. 0.050/0.7/e4-f1"),
 ];
 
 /// How many failing trials a listing shows of each kind.
@@ -91,6 +93,15 @@ pub fn cell_spec(ctx: &Context, g: &Gearing, id: &str, cell: &str) -> Result<Cel
             let e = vec![
                 ("random", number(id, cell, "random error", random)?),
                 ("systematic", 0.0),
+            ];
+            (*mesh, e, ctx.f64("clearance")?)
+        }
+        // The random error is the mesh's E. max (Table 5's first row), the systematic one a row.
+        ("table5", [random, sys, mesh]) => {
+            let e = vec![
+                ("random", number(id, cell, "random error", random)?),
+                ("systematic", number(id, cell, "systematic error", sys)?),
+                ("split", ctx.f64("split")?),
             ];
             (*mesh, e, ctx.f64("clearance")?)
         }
@@ -400,6 +411,7 @@ mod tests {
             ("table3", "B/m3-e3"),
             ("tableI", "D/70/l2-m1"),
             ("table4", "0.065/m2-n1"),
+            ("table5", "0.050/0.7/e4-f1"),
         ] {
             // Fewer trials than a listing shows, so every failed one is named.
             let ctx = ctx(id, &[("trials", "16")]);

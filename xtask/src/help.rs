@@ -43,10 +43,11 @@ Usage:
                                 print and write the results as `run` would:
                                 bit-identical to one run without --shard
   cargo xtask replay <experiment> <cell> [<trial>] [--seed S] [--set KEY=VALUE]... [--out DIR]
-                                rebuild one trial of table3, table4 or tableI from
+                                rebuild one trial of table3, table4, table5 or tableI from
                                 its random stream (cell as the table names it:
-                                B/m3-e3, B/70/m3-e3, 0.050/m3-e3) and print its
-                                events; writes pair.ron to rerun it with `run pair`;
+                                B/m3-e3, B/70/m3-e3, 0.050/m3-e3, 0.050/0.7/e4-f1)
+                                and print its events; writes pair.ron to rerun it
+                                with `run pair`;
                                 with no trial, list the cell's failed trials
   cargo xtask report [--out DIR]
                                 write <out>/index.html: one self-contained page with
