@@ -1625,6 +1625,21 @@ impl Run<'_> {
                 None => unsure.push(*o),
             }
         }
+        // The pushers' upper envelope, and where it peaks in the step (a golden-section search,
+        // made once: the side of a pair born in the step and the plan below both ask for it).
+        let push_env = |p: f64| {
+            pushers
+                .iter()
+                .map(|&b| hi(p, b))
+                .fold(f64::NEG_INFINITY, f64::max)
+        };
+        let peak = std::cell::OnceCell::new();
+        let push_peak = || {
+            *peak.get_or_init(|| {
+                let phi_pk = golden_max(phi0, phi1, push_env);
+                (phi_pk, push_env(phi_pk))
+            })
+        };
         // A new obstacle not clearly behind: ahead if it lies above where the driven gear can get
         // to in this step, otherwise decide at the angle where it first appeared.
         for o in unsure {
@@ -1660,22 +1675,11 @@ impl Run<'_> {
                 // The driven gear never turns back: where the pushers peaked before φ_a (they
                 // lost contact there), it rests at least at their peak, which may lie above
                 // where they are at φ_a.
-                let rested_at = || {
-                    let push_env = |p: f64| {
-                        pushers
-                            .iter()
-                            .map(|&b| hi(p, b))
-                            .fold(f64::NEG_INFINITY, f64::max)
-                    };
-                    let phi_pk = golden_max(phi0, phi1, push_env);
-                    if phi_pk <= phi_a {
-                        push_env(phi_pk)
-                    } else {
-                        f64::NEG_INFINITY
-                    }
+                let rests_above = || {
+                    let (phi_pk, theta_pk) = push_peak();
+                    phi_pk <= phi_a && at <= theta_pk + SIDE_TOL
                 };
-                if at <= theta_a + SIDE_TOL || (!pushers.is_empty() && at <= rested_at() + SIDE_TOL)
-                {
+                if at <= theta_a + SIDE_TOL || (!pushers.is_empty() && rests_above()) {
                     Side::Behind
                 } else {
                     Side::Ahead
@@ -1700,12 +1704,6 @@ impl Run<'_> {
         let mut plan: Vec<(f64, f64, Motion, Option<Event>)> = Vec::new();
         if !pushers.is_empty() {
             // Is the push continuous through the step? The pushers' envelope must not peak.
-            let push_env = |p: f64| {
-                pushers
-                    .iter()
-                    .map(|&b| hi(p, b))
-                    .fold(f64::NEG_INFINITY, f64::max)
-            };
             let e1 = envelope(phi1);
             let p1 = push_env(phi1);
             // Rounding may put the pushers' curve a hair below θ at a step end: that is not a
@@ -1725,8 +1723,8 @@ impl Run<'_> {
                 plan.push((phi1, e1.max(theta0), Motion::Push(behind.clone()), None));
             } else {
                 // Where do the pushers stop rising (peak or vanish)?
-                let phi_pk = golden_max(phi0, phi1, push_env);
-                let theta_pk = push_env(phi_pk).max(theta0);
+                let (phi_pk, theta_pk) = push_peak();
+                let theta_pk = theta_pk.max(theta0);
                 // Did another behind obstacle take over before that?
                 let others: Vec<(i64, i64)> = behind
                     .iter()
