@@ -70,12 +70,7 @@ fn certified_steps_find_the_events_bracketing_finds() {
         let certified = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, true);
         let bracketed = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, false);
         let (a, b) = (certified.events(), bracketed.events());
-        assert_eq!(a.len(), b.len(), "{what}: {a:?} vs {b:?}");
-        for (x, y) in a.iter().zip(b) {
-            assert_eq!(x.kind, y.kind, "{what}: {x:?} vs {y:?}");
-            assert!((x.phi - y.phi).abs() < 1e-9, "{what}: {x:?} vs {y:?}");
-            assert!((x.theta - y.theta).abs() < 1e-9, "{what}: {x:?} vs {y:?}");
-        }
+        assert_same_events(&what, a, b);
         // θ agrees between the events too.
         for i in 0..=50 {
             let phi = phi0 + (end - phi0) * f64::from(i) / 50.0;
@@ -184,18 +179,7 @@ fn certified_steps_agree_with_bracketing_on_asymmetric_and_out_of_round_teeth() 
         let a = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, true);
         certified += contact::solver_stats().certified - before;
         let b = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, false);
-        assert_eq!(
-            a.events().len(),
-            b.events().len(),
-            "{what}: {:?} vs {:?}",
-            a.events(),
-            b.events()
-        );
-        for (x, y) in a.events().iter().zip(b.events()) {
-            assert_eq!(x.kind, y.kind, "{what}: {x:?} vs {y:?}");
-            assert!((x.phi - y.phi).abs() < 1e-9, "{what}: {x:?} vs {y:?}");
-            assert!((x.theta - y.theta).abs() < 1e-9, "{what}: {x:?} vs {y:?}");
-        }
+        assert_same_events(&what, a.events(), b.events());
         checked += 1;
         events += a.events().len() as u64;
     }
@@ -245,12 +229,17 @@ fn a_tooth_born_under_a_resting_gear_pushes_it() {
         let (m, phi0, end, what) = (h.mesh, h.phi0, h.end, h.what);
         let quarter = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, true);
         let fine = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 64.0, false);
-        let (a, b) = (quarter.events(), fine.events());
-        assert_eq!(a.len(), b.len(), "{what}: {a:?} vs {b:?}");
-        for (x, y) in a.iter().zip(b) {
-            assert_eq!(x.kind, y.kind, "{what}: {x:?} vs {y:?}");
-            assert!((x.phi - y.phi).abs() < 1e-9, "{what}: {x:?} vs {y:?}");
-            assert!((x.theta - y.theta).abs() < 1e-9, "{what}: {x:?} vs {y:?}");
-        }
+        assert_same_events(&what, quarter.events(), fine.events());
+    }
+}
+
+/// Two runs found the same events: as many, of the same kinds, at the same driver and driven
+/// angles to 1e-9 rad.
+fn assert_same_events(what: &str, a: &[contact::Event], b: &[contact::Event]) {
+    assert_eq!(a.len(), b.len(), "{what}: {a:?} vs {b:?}");
+    for (x, y) in a.iter().zip(b) {
+        assert_eq!(x.kind, y.kind, "{what}: {x:?} vs {y:?}");
+        assert!((x.phi - y.phi).abs() < 1e-9, "{what}: {x:?} vs {y:?}");
+        assert!((x.theta - y.theta).abs() < 1e-9, "{what}: {x:?} vs {y:?}");
     }
 }
