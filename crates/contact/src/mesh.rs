@@ -529,15 +529,20 @@ impl Mesh {
     /// ahead).
     pub(crate) fn obstacle_end(&self, phi: f64, j: i64, k: i64, end: End) -> Option<f64> {
         let (ul, uh) = self.pair_dirs(phi, j, k)?;
-        let (db, turns) = self.driven.data(k);
-        let reference = db.tip_angle + turns;
         Some(
-            reference
+            self.tip_reference(k)
                 + match end {
                     End::Lower => arg(ul),
                     End::Upper => arg(uh),
                 },
         )
+    }
+
+    /// Driven tooth k's tip angle, whole turns included: what the arguments of its obstacles'
+    /// ends are measured from.
+    fn tip_reference(&self, k: i64) -> f64 {
+        let (db, turns) = self.driven.data(k);
+        db.tip_angle + turns
     }
 
     /// The arguments, measured from driven tooth k's tip angle, of the ends of the (j, k)
@@ -565,8 +570,7 @@ impl Mesh {
     /// The (j, k) obstacle whose ends have the arguments `args` (from [`Mesh::pair_args`]).
     #[inline]
     fn placed(&self, j: i64, k: i64, (lo, hi): (f64, f64)) -> Obstacle {
-        let (db, turns) = self.driven.data(k);
-        let reference = db.tip_angle + turns;
+        let reference = self.tip_reference(k);
         Obstacle {
             driver_tooth: j,
             driven_tooth: k,
