@@ -1793,19 +1793,41 @@ impl Run<'_> {
         };
         // Backlash: how far the nearest driver tooth ahead is from the driven gear.
         let backlash = |p: f64| front(p) - theta_on_plan(p);
-        let jam_at = if ahead.is_empty() || self.unheld_at == Some(phi0) {
-            None
-        } else {
-            let g0 = backlash(phi0);
+        // Where a backlash first closes in the step, if it does.
+        let first_jam = |gap: &dyn Fn(f64) -> f64| {
+            let g0 = gap(phi0);
             if g0 < -SIDE_TOL {
                 Some(phi0)
             } else {
                 // Once a jam is known to lie in the step, locate first contact exactly: where the
                 // backlash stops being positive (no tolerance).
-                first_closing(phi0, phi1, g0, backlash(phi1), &backlash, 0).map(
-                    |(clear, closed)| bisect_sign(clear, closed, theta0, self.certify, backlash),
-                )
+                first_closing(phi0, phi1, g0, gap(phi1), &gap, 0)
+                    .map(|(clear, closed)| bisect_sign(clear, closed, theta0, self.certify, gap))
             }
+        };
+        // A pair ahead where the step starts may close on the driven gear and be gone by its
+        // end (a tip passing a tip): it is not among the obstacles at φ1, so the backlash above
+        // leaves it out. Each such pair near enough to close has its own backlash searched
+        // alike (kept apart, so that the search of the others sees what it always saw), and the
+        // first closing of all is the jam.
+        let gone: Pairs = self
+            .sides
+            .iter()
+            .filter(|t| {
+                t.side == Side::Ahead
+                    && at1(t.pair).is_none()
+                    && lo(phi0, t.pair) <= theta0 + 0.5 * gap
+            })
+            .map(|t| t.pair)
+            .collect();
+        let jam_at = if self.unheld_at == Some(phi0) {
+            None
+        } else {
+            let others = (!ahead.is_empty()).then(|| first_jam(&backlash)).flatten();
+            gone.iter()
+                .filter_map(|&pair| first_jam(&|p: f64| lo(p, pair) - theta_on_plan(p)))
+                .chain(others)
+                .min_by(f64::total_cmp)
         };
 
         match jam_at {
@@ -1848,6 +1870,7 @@ impl Run<'_> {
                 let theta_j = self.theta;
                 let closing = ahead
                     .iter()
+                    .chain(&gone)
                     .copied()
                     .min_by(|&a, &b| mesh.lo(phi_j, a).total_cmp(&mesh.lo(phi_j, b)))
                     .unwrap_or((0, 0));
