@@ -16,13 +16,18 @@ fn main() {
     let g_fixed: Option<f64> = args.next().and_then(|s| s.parse().ok());
     let certify = std::env::var("BRACKET_ONLY").is_err();
     let (mut diffs, mut events, mut first_diffs) = (0, 0, 0);
+    let (mut b_evals, mut b_time) = (0, 0.0);
     for s in 0..cases {
         let Some(h) = hard_mesh(s, g_fixed) else {
             continue;
         };
         let (m, phi0, end, what) = (h.mesh, h.phi0, h.end, h.what);
         let a = m.run_with_steps(phi0, end, Start::Touching(0.0), false, reference, false);
+        let e0 = contact::tooth_pair_evaluations();
+        let t0 = std::time::Instant::now();
         let b = m.run_with_steps(phi0, end, Start::Touching(0.0), false, steps, certify);
+        b_evals += contact::tooth_pair_evaluations() - e0;
+        b_time += t0.elapsed().as_secs_f64();
         events += a.events().len();
         let same = a.events().len() == b.events().len()
             && a.events().iter().zip(b.events()).all(|(x, y)| {
@@ -56,6 +61,10 @@ fn main() {
             );
         }
     }
+    println!(
+        "unproved stretches {}, tooth-pair evaluations {b_evals}, {b_time:.3} s (the run checked)",
+        contact::solver_stats().unproved
+    );
     println!(
         "{diffs} of {cases} cases differ ({first_diffs} in the first event or in jammed/disengaged at all); {events} events at 16 steps"
     );

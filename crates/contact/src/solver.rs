@@ -30,10 +30,16 @@
 //! pushing curves end, with no sampling and no search; a step with no certificate is tried again
 //! as two half steps (`certified_halves`: both or neither). Where no certificate is found (an
 //! obstacle ahead close by, a pusher about to slip, curved flanks) the step is **bracketed**:
-//! the backlash ahead is sampled at the middle and, wherever the samples say it could close in
-//! between, at finer halvings (see `first_closing`), so a brief tip-on-tip graze is not stepped
-//! over. `tests/differential.rs` checks that certified steps find exactly the events bracketing
-//! finds, and that a finer step finds the same first events.
+//! the path is planned from the pairs behind, and the backlash ahead along it is searched for
+//! its first closing (`Closing::first`). Each stretch of the step is either proved free of
+//! contact - the pairs ahead have no contact root in the box, or the tube about the path's chord,
+//! that holds the path over it (`certify.rs`) - or halved, the left half first, down to a
+//! resolution of 1e-8 rad (a stretch holding a sign change has it located, and the stretch
+//! before it proved likewise): no closing wider than that, however brief (a tip grazing a tip),
+//! is stepped over, by construction. (Curved flanks have no certificates: there the backlash is
+//! sampled at the middle and at finer halvings only where the samples say it could close in
+//! between.) `tests/differential.rs` checks that certified steps find exactly the events
+//! bracketing finds, and that a finer step finds the same first events.
 
 use std::cell::RefCell;
 use std::f64::consts::TAU;
@@ -1793,16 +1799,54 @@ impl Run<'_> {
         };
         // Backlash: how far the nearest driver tooth ahead is from the driven gear.
         let backlash = |p: f64| front(p) - theta_on_plan(p);
+        // Whether pairs `pairs`, each open at `a`, are proved to stay clear of the driven
+        // gear's path over driver angles [a, b] (a pair with no contact root on the path, open
+        // where it starts, stays open: `certify.rs`). The path runs from (a, θ(a)) to
+        // (b, θ(b)) and never turns back, so it lies in that box: a pair `Clear` in the box is
+        // proved. Otherwise, where the slopes of the path are bounded (it rests, or is pushed by
+        // pairs whose contacts in the box all rise), the thinner tube about its chord is tried
+        // (`ConfigBox::clear_along`, second order: it proves a pair that runs a small backlash
+        // ahead alongside the gear, which a box of any useful width does not).
+        let proved_clear = |pairs: &[(i64, i64)], a: f64, b: f64| {
+            let cell = ConfigBox::new(
+                a,
+                b,
+                theta_on_plan(a),
+                theta_on_plan(b),
+                mesh.centre_distance,
+            );
+            let place = |(j, k): (i64, i64)| {
+                (
+                    cell.place_driver(mesh.driver.cert(j)),
+                    cell.place_driven(mesh.driven.cert(k)),
+                )
+            };
+            let slopes = std::cell::OnceCell::new();
+            let path_slopes =
+                || *slopes.get_or_init(|| plan_slopes(&plan, phi0, (a, b), &cell, place));
+            pairs.iter().all(|&pair| {
+                let (va, vb) = place(pair);
+                cell.pair(&va, &vb).0 == Verdict::Clear
+                    || path_slopes().is_some_and(|sl| cell.clear_along(&va, &vb, sl, SIDE_TOL))
+            })
+        };
         // Where a backlash first closes in the step, if it does.
-        let first_jam = |gap: &dyn Fn(f64) -> f64| {
+        let first_jam = |gap: &dyn Fn(f64) -> f64, pairs: &[(i64, i64)]| {
             let g0 = gap(phi0);
             if g0 < -SIDE_TOL {
                 Some(phi0)
             } else {
                 // Once a jam is known to lie in the step, locate first contact exactly: where the
                 // backlash stops being positive (no tolerance).
-                first_closing(phi0, phi1, g0, gap(phi1), &gap, 0)
-                    .map(|(clear, closed)| bisect_sign(clear, closed, theta0, self.certify, gap))
+                let clear = |a: f64, b: f64| proved_clear(pairs, a, b);
+                let locate = |a: f64, b: f64| bisect_sign(a, b, theta0, self.certify, gap);
+                let search = Closing {
+                    gap: &gap,
+                    clear: &clear,
+                    locate: &locate,
+                    certified: !mesh.curved,
+                };
+                search.first(phi0, phi1, g0, gap(phi1), 0)
             }
         };
         // A pair ahead where the step starts may close on the driven gear and be gone by its
@@ -1823,9 +1867,11 @@ impl Run<'_> {
         let jam_at = if self.unheld_at == Some(phi0) {
             None
         } else {
-            let others = (!ahead.is_empty()).then(|| first_jam(&backlash)).flatten();
+            let others = (!ahead.is_empty())
+                .then(|| first_jam(&backlash, &ahead))
+                .flatten();
             gone.iter()
-                .filter_map(|&pair| first_jam(&|p: f64| lo(p, pair) - theta_on_plan(p)))
+                .filter_map(|&pair| first_jam(&|p: f64| lo(p, pair) - theta_on_plan(p), &[pair]))
                 .chain(others)
                 .min_by(f64::total_cmp)
         };
@@ -1919,41 +1965,160 @@ impl Run<'_> {
     }
 }
 
-/// Deepest halving of a step when looking for a closing backlash.
+/// Deepest halving of a step when a mesh with curved flanks (no certificates) looks for a
+/// closing backlash; with certificates, the halvings of a step after which a stretch known to
+/// hold a closing has it located (not a matter of what is found - every stretch before it is
+/// proved free of contact - but of where bisection starts: from the same stretches as before
+/// certificates, it finds the same angles to the last bit, where a backlash flat at zero has
+/// several).
 const MAX_REFINE: u32 = 5;
 
-/// The first sub-interval `(clear, closed)` of `[a, b]` at whose right end the backlash `gap` has
-/// closed (below −SIDE_TOL) while it is open at the left end, or None if it stays open.
-///
-/// Samples at the ends and middle; where the samples say the backlash could dip to zero in
-/// between (it is small compared with how much it changes, or the parabola through the three
-/// samples dips below zero), both halves are examined, down to `MAX_REFINE` halvings. So a brief
-/// graze between two samples is not stepped over.
-fn first_closing(
-    a: f64,
-    b: f64,
-    ga: f64,
-    gb: f64,
-    gap: &impl Fn(f64) -> f64,
-    depth: u32,
+/// The narrowest stretch of driver angle (radians, relative to 1 + |φ|) a certified search for a
+/// closing backlash divides a step into. It is a resolution, not a step: every wider stretch is
+/// proved free of contact or divided, so all that is left unproved is a stretch this narrow
+/// where a pair ahead touches the driven gear to within the side tolerance and the sample at
+/// its end finds the backlash not closed.
+const CLOSING_RESOLUTION: f64 = 1e-8;
+
+/// The search of a bracketed step for the first closing of a backlash `gap` (open where it is
+/// positive, closed below −SIDE_TOL), and where it starts.
+struct Closing<'a, G: Fn(f64) -> f64, C: Fn(f64, f64) -> bool, L: Fn(f64, f64) -> f64> {
+    gap: &'a G,
+    /// Proves a stretch of driver angles free of contact, for pairs open at its start.
+    clear: &'a C,
+    /// Where the backlash stops being positive in a stretch open at its start and closed at its
+    /// end (`bisect_sign`: the last angle where it is positive, to `LOCATE_TOL`).
+    locate: &'a L,
+    /// Divide wherever `clear` proves nothing, down to `CLOSING_RESOLUTION` (else the plain
+    /// sampling, `dip_possible`, to `MAX_REFINE` halvings).
+    certified: bool,
+}
+
+impl<G, C, L> Closing<'_, G, C, L>
+where
+    G: Fn(f64) -> f64,
+    C: Fn(f64, f64) -> bool,
+    L: Fn(f64, f64) -> f64,
+{
+    /// Where the backlash first closes in `[a, b]` (the last angle before it where the backlash
+    /// is positive), or None if it stays open; `ga`, `gb`: the backlash at `a` and `b`.
+    ///
+    /// Certified, a stretch is passed over only when the backlash is positive at its start and
+    /// `clear` proves it free of contact: no closing lies in it, however brief. A stretch open
+    /// at its start and closed at its end has its sign change located, and the stretch up to it
+    /// is then proved free of contact piece by piece (`prove_up_to`): the change found is the
+    /// first. Every other stretch is halved, the left half first, down to `CLOSING_RESOLUTION`.
+    /// Plain (curved flanks, no certificates), the backlash is sampled at the ends and the
+    /// middle, and both halves are examined only where the samples say it could dip to zero in
+    /// between (`dip_possible`), down to `MAX_REFINE` halvings.
+    fn first(&self, a: f64, b: f64, ga: f64, gb: f64, depth: u32) -> Option<f64> {
+        let closed = |g: f64| g < -SIDE_TOL;
+        let finest = if self.certified {
+            b - a <= CLOSING_RESOLUTION * (1.0 + a.abs())
+        } else {
+            depth >= MAX_REFINE
+        };
+        if self.certified && ga > 0.0 {
+            if closed(gb) && !finest && depth >= MAX_REFINE {
+                let z = (self.locate)(a, b);
+                if let Some(found) = self.prove_up_to(a, ga, z, depth) {
+                    return Some(found);
+                }
+            } else if !closed(gb) && (self.clear)(a, b) {
+                return None;
+            }
+        }
+        if finest {
+            if self.certified && !closed(gb) {
+                STATS.with(|c| {
+                    let mut st = c.get();
+                    st.unproved += 1;
+                    c.set(st);
+                });
+            }
+            return closed(gb).then(|| (self.locate)(a, b));
+        }
+        let m = 0.5 * (a + b);
+        let gm = (self.gap)(m);
+        if closed(gm) {
+            return self.first(a, m, ga, gm, depth + 1);
+        }
+        if self.certified || dip_possible(ga, gm, gb) {
+            return self
+                .first(a, m, ga, gm, depth + 1)
+                .or_else(|| self.first(m, b, gm, gb, depth + 1));
+        }
+        if closed(gb) {
+            return self.first(m, b, gm, gb, depth + 1);
+        }
+        None
+    }
+
+    /// With the backlash open at `a` and a sign change located at `z`: proves `[a, z]` free of
+    /// contact in stretches, each ending an eighth of the way from its start to `z` short of it
+    /// (near a closing the backlash shrinks about linearly, so each stretch keeps a margin the
+    /// bounds can prove), and searches any stretch not proved as `first` does. The first closing:
+    /// an earlier one found so, or `z`; None where the backlash is not positive short of `z` (a
+    /// touch within the side tolerance before it), for the caller to halve the stretch instead.
+    fn prove_up_to(&self, a: f64, ga: f64, z: f64, depth: u32) -> Option<f64> {
+        let (mut x, mut gx) = (a, ga);
+        while z - x > CLOSING_RESOLUTION * (1.0 + x.abs()) {
+            let y = z - (z - x) / 8.0;
+            let gy = (self.gap)(y);
+            if gy <= 0.0 {
+                return None;
+            }
+            if !(self.clear)(x, y)
+                && let Some(earlier) = self.first(x, y, gx, gy, depth + 1)
+            {
+                return Some(earlier);
+            }
+            (x, gx) = (y, gy);
+        }
+        Some(z)
+    }
+}
+
+/// Bounds on the slopes dθ/dφ of a planned path over driver angles `[a, b]` (the plan's
+/// segments from `phi0`, each ending at its first element), read off `cell`, the box from
+/// (a, θ(a)) to (b, θ(b)): 0 where it rests; where it is pushed, the slopes of every pushing
+/// pair's contacts in the box (θ is the largest of their upper ends, each a contact); None when
+/// a pushing pair touches the box other than rising (no bound).
+fn plan_slopes<'t>(
+    plan: &[(f64, f64, Motion, Option<Event>)],
+    phi0: f64,
+    (a, b): (f64, f64),
+    cell: &ConfigBox,
+    place: impl Fn((i64, i64)) -> (PlacedTooth<'t>, PlacedTooth<'t>),
 ) -> Option<(f64, f64)> {
-    let closed = |g: f64| g < -SIDE_TOL;
-    if depth >= MAX_REFINE {
-        return closed(gb).then_some((a, b));
+    let mut from = phi0;
+    let mut slopes = (f64::INFINITY, f64::NEG_INFINITY);
+    for (end, _, motion, _) in plan {
+        let overlaps = *end >= a && from <= b;
+        from = *end;
+        if !overlaps {
+            continue;
+        }
+        match motion {
+            Motion::Push(pairs) => {
+                for &pair in pairs {
+                    let (va, vb) = place(pair);
+                    match cell.pair(&va, &vb) {
+                        (Verdict::Clear, _) => {}
+                        (Verdict::Rising, r) => slopes = (slopes.0.min(r.0), slopes.1.max(r.1)),
+                        _ => return None,
+                    }
+                }
+            }
+            _ => slopes = (slopes.0.min(0.0), slopes.1.max(0.0)),
+        }
     }
-    let m = 0.5 * (a + b);
-    let gm = gap(m);
-    if closed(gm) {
-        return first_closing(a, m, ga, gm, gap, depth + 1);
-    }
-    if dip_possible(ga, gm, gb) {
-        return first_closing(a, m, ga, gm, gap, depth + 1)
-            .or_else(|| first_closing(m, b, gm, gb, gap, depth + 1));
-    }
-    if closed(gb) {
-        return first_closing(m, b, gm, gb, gap, depth + 1);
-    }
-    None
+    // No pair that pushes touches the box: the path is level.
+    Some(if slopes.0 > slopes.1 {
+        (0.0, 0.0)
+    } else {
+        slopes
+    })
 }
 
 /// Whether a function sampled as `ga`, `gm`, `gb` at the start, middle and end of an interval
@@ -2049,8 +2214,8 @@ fn bisect_to(mut a: f64, mut b: f64, good: impl Fn(f64, f64) -> bool) -> f64 {
 /// its sign is noise, out of what is inferred: it is the driver angle over which `gap` changes by
 /// 64 roundings of `scale` at the slope found on the open side, and at least [`REPLAY_GUARD`].
 /// Where the sign changes more than once (a graze just before the closing), bisection finds one
-/// of the changes and neither it nor this is sure to find the first: that is what the bracketing
-/// before it (`first_closing`) is for. Without `replay` it bisects throughout: the plain solver
+/// of the changes and neither it nor this is sure to find the first: that is what the search
+/// around it (`Closing::first`, which proves the stretch before the change found) is for. Without `replay` it bisects throughout: the plain solver
 /// (`Solve::certify` unset) does, and the differential tests hold the two to the same events.
 fn bisect_sign(a: f64, b: f64, scale: f64, replay: bool, gap: impl Fn(f64) -> f64) -> f64 {
     if !replay {
@@ -2200,6 +2365,10 @@ pub struct SolverStats {
     pub refused_evaluations: u64,
     /// Steps bracketed (no certificate tried, or none found), while the driven gear was free.
     pub bracketed: u64,
+    /// Stretches of a bracketed step at the finest resolution of the search for a closing
+    /// backlash that were neither proved free of contact nor found closed (a touch within
+    /// the side tolerance).
+    pub unproved: u64,
 }
 
 thread_local! {
@@ -2210,6 +2379,7 @@ thread_local! {
             refused: 0,
             refused_evaluations: 0,
             bracketed: 0,
+            unproved: 0,
         })
     };
 }
@@ -2242,6 +2412,55 @@ mod tests {
         let (a, b) = (gear(n1, r1, rng), gear(n2, r2, rng));
         let g = rng.random_range(0.0..12.0);
         Mesh::new(a, b, geometry::centre_distance(r1, r2, 1.1, g)).unwrap()
+    }
+    /// A backlash that is 0.05 but for a V-shaped dip to −0.01 of half-width `half` about
+    /// `centre`, and, with `closing_at`, closed for good from there on.
+    fn dipping_gap(centre: f64, half: f64, closing_at: Option<f64>) -> impl Fn(f64) -> f64 {
+        move |p: f64| {
+            let dip = 0.06 * (1.0 - (p - centre).abs() / half).max(0.0);
+            let closed = closing_at.map_or(0.0, |c| if p >= c { 1.0 } else { 0.0 });
+            0.05 - dip - closed
+        }
+    }
+
+    /// The search for a closing of `dipping_gap(_, half, _)` over `[0, 1]`, certified (with a
+    /// sound proof: the backlash falls at most 0.06 / half per radian, so over `[a, b]` it stays
+    /// above the mean of its ends less half that times b − a) or plain.
+    fn search_dipping(gap: &impl Fn(f64) -> f64, half: f64, certified: bool) -> Option<f64> {
+        let clear = |a: f64, b: f64| 0.5 * (gap(a) + gap(b)) - 0.03 / half * (b - a) > 0.0;
+        let locate = |a: f64, b: f64| bisect(a, b, |p| gap(p) > 0.0);
+        let search = Closing {
+            gap,
+            clear: &clear,
+            locate: &locate,
+            certified,
+        };
+        search.first(0.0, 1.0, gap(0.0), gap(1.0), 0)
+    }
+
+    /// A closing between the samples the plain search takes (a dip at 0.3 between 9/32 and
+    /// 10/32, where the backlash is 0.05 as everywhere it is sampled) is stepped over by it and
+    /// found by the certified search, which passes over only what is proved clear. And a brief
+    /// closing inside the finest stretch that holds a sign change (a dip at 0.91, closed for good
+    /// from 0.93, both between 29/32 and 30/32) is found by the certified search, which proves the
+    /// stretch before the sign change it locates, not the later one bisection leads to.
+    #[test]
+    fn the_certified_search_finds_a_closing_between_samples() {
+        // The backlash falls to zero where a dip is 0.05 deep: a sixth of its half-width before
+        // its centre.
+        let brief = dipping_gap(0.3, 0.005, None);
+        assert_eq!(
+            search_dipping(&brief, 0.005, false),
+            None,
+            "the plain search misses it"
+        );
+        let found = search_dipping(&brief, 0.005, true).unwrap();
+        assert!((found - (0.3 - 0.005 / 6.0)).abs() < 1e-12, "{found}");
+        let then_closed = dipping_gap(0.91, 0.002, Some(0.93));
+        let plain = search_dipping(&then_closed, 0.002, false).unwrap();
+        assert!((plain - 0.93).abs() < 1e-12, "{plain}");
+        let found = search_dipping(&then_closed, 0.002, true).unwrap();
+        assert!((found - (0.91 - 0.002 / 6.0)).abs() < 1e-12, "{found}");
     }
 
     /// Replayed bisection lands on bisection's own driver angle, bit for bit, for gaps that change
