@@ -354,7 +354,7 @@ impl Mesh {
         self.driver.reach + self.driven.reach > self.centre_distance
     }
 
-    fn c2(&self) -> Vec2 {
+    pub(crate) fn c2(&self) -> Vec2 {
         Vec2::new(self.centre_distance, 0.0)
     }
 

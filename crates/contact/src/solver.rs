@@ -20,7 +20,8 @@
 //! Between events θ(φ) is the maximum of closed-form contact curves, so it is exact at every φ;
 //! events are located by bisection or golden-section search on those curves to 1e-13 rad (where
 //! a continuous function changes sign - a backlash closing, a curve rising to θ - bisection is
-//! replayed after secant steps, to the same angle: `bisect_sign`).
+//! replayed after secant steps, to the same angle: `bisect_sign`; where a pushing curve peaks
+//! smoothly, by bisection on the sign of its closed-form slope: `Mesh::smooth_peak`).
 //!
 //! The driver angle is advanced in steps of a quarter of the driver's pitch. A step is first
 //! tried on a **certificate** (`certified_step`, straight flanks): bounds on the contact functions
@@ -620,6 +621,49 @@ impl Mesh {
             self.centre_distance,
             last,
         )
+    }
+
+    /// Where the pushers' upper envelope `env` peaks, refined from `phi_pk` (a golden-section
+    /// search's answer, within `range`): where the pair on top peaks smoothly - its contact's
+    /// normal passing through the driver's centre, so that dθ/dφ = 0 - golden-section search can
+    /// only tell values apart to the rounding of a flat top, about 1e-8 rad of driver angle; the
+    /// slope changes sign there, and bisection on its sign locates it to `LOCATE_TOL`. Along a
+    /// contact (point p, unit normal n, the driven centre c2) the slope is
+    /// dθ/dφ = −(p × n) / ((p − c2) × n), whose sign does not depend on which way n points. A
+    /// peak at a kink (tip on tip, no normal; or a hand-over between pairs) is left as found.
+    fn smooth_peak(
+        &self,
+        phi_pk: f64,
+        (phi0, phi1): (f64, f64),
+        pushers: &[(i64, i64)],
+        env: impl Fn(f64) -> f64,
+    ) -> f64 {
+        let c2 = self.c2();
+        let top_pair = |phi: f64| {
+            pushers
+                .iter()
+                .copied()
+                .max_by(|&a, &b| self.hi(phi, a).total_cmp(&self.hi(phi, b)))
+        };
+        let Some(pair) = top_pair(phi_pk) else {
+            return phi_pk;
+        };
+        let rising = |phi: f64| -> Option<bool> {
+            let theta = self.hi(phi, pair);
+            if top_pair(phi) != Some(pair) || env(phi) != theta {
+                return None;
+            }
+            let (p, n) = self.contact_normal(phi, theta, pair.0, pair.1)?;
+            let (arm1, arm2) = (p.perp(&n), (p - c2).perp(&n));
+            (arm1 != 0.0 && arm2 != 0.0).then_some(arm1 * arm2 < 0.0)
+        };
+        let reach = 1e-7 * (1.0 + phi_pk.abs());
+        let (a, b) = ((phi_pk - reach).max(phi0), (phi_pk + reach).min(phi1));
+        if rising(a) == Some(true) && rising(b) == Some(false) {
+            bisect(a, b, |p| rising(p) != Some(false))
+        } else {
+            phi_pk
+        }
     }
 
     /// Upper end of the (j, k) obstacle at φ, or −∞ when it does not exist.
@@ -1643,6 +1687,7 @@ impl Run<'_> {
         let push_peak = || {
             *peak.get_or_init(|| {
                 let phi_pk = golden_max(phi0, phi1, push_env);
+                let phi_pk = mesh.smooth_peak(phi_pk, (phi0, phi1), &pushers, push_env);
                 (phi_pk, push_env(phi_pk))
             })
         };
