@@ -44,8 +44,8 @@ fn first_events_do_not_depend_on_the_step() {
                 with_events += 1;
                 assert_eq!(a.kind, b.kind, "{what}: first event kind");
                 assert!((a.theta - b.theta).abs() < 1e-9, "{what}: {a:?} vs {b:?}");
-                // The angle of a disengagement is a flat maximum of θ: ill-conditioned in φ.
-                assert!((a.phi - b.phi).abs() < 1e-6, "{what}: {a:?} vs {b:?}");
+                // A disengagement at a flat maximum of θ too: located by the sign of the slope.
+                assert!((a.phi - b.phi).abs() < 1e-9, "{what}: {a:?} vs {b:?}");
             }
             (a, b) => panic!("{what}: first events {a:?} vs {b:?}"),
         }
@@ -54,6 +54,38 @@ fn first_events_do_not_depend_on_the_step() {
     assert!(
         checked > 100 && with_events > 40,
         "{checked} cases, {with_events} with events"
+    );
+}
+
+/// Every event of a quarter-pitch run, not only the first, is one a run with a 64 times finer
+/// step (and every check plain) finds: as many, of the same kinds, at the same angles to 1e-9
+/// rad, on hard meshes at clearances of 55, 70 and 85 % (`DIFFERENTIAL_CASES` sets the count, 300
+/// by default; 10000 passes). At tighter clearances two classes of later events still depend on
+/// the step (`examples/differential` counts them): a held gear free for a moment inside a step
+/// whose end it is held at, and a driven gear resting where a tip left it, which every later tip
+/// of the same radius grazes exactly, a touch that counts as drive resumed or not as the step's
+/// ends fall.
+#[test]
+fn every_event_agrees_with_a_64_times_finer_step_at_working_clearances() {
+    let cases: u64 = std::env::var("DIFFERENTIAL_CASES")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(300);
+    let mut events = 0;
+    for case in 0..cases {
+        let g = [55.0, 70.0, 85.0][(case % 3) as usize];
+        let Some(h) = hard_mesh(case, Some(g)) else {
+            continue;
+        };
+        let (m, phi0, end, what) = (h.mesh, h.phi0, h.end, h.what);
+        let quarter = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, true);
+        let fine = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 64.0, false);
+        assert_same_events(&what, quarter.events(), fine.events());
+        events += quarter.events().len();
+    }
+    assert!(
+        events as u64 > 3 * cases,
+        "{events} events in {cases} cases"
     );
 }
 
