@@ -67,19 +67,14 @@ fn first_events_do_not_depend_on_the_step() {
 /// ends fall.
 #[test]
 fn every_event_agrees_with_a_64_times_finer_step_at_working_clearances() {
-    let cases: u64 = std::env::var("DIFFERENTIAL_CASES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(300);
+    let cases = case_count("DIFFERENTIAL_CASES", 300);
     let mut events = 0;
     for case in 0..cases {
         let g = [55.0, 70.0, 85.0][(case % 3) as usize];
         let Some(h) = hard_mesh(case, Some(g)) else {
             continue;
         };
-        let (m, phi0, end, what) = (h.mesh, h.phi0, h.end, h.what);
-        let quarter = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, true);
-        let fine = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 64.0, false);
+        let (what, quarter, fine) = quarter_and_fine(h);
         assert_same_events(&what, quarter.events(), fine.events());
         events += quarter.events().len();
     }
@@ -198,10 +193,7 @@ fn wide_mesh(case: u64) -> Option<(contact::Mesh, f64, f64, String)> {
 /// (`CERTIFY_CASES` sets another count, e.g. 10000).
 #[test]
 fn certified_steps_agree_with_bracketing_on_asymmetric_and_out_of_round_teeth() {
-    let cases: u64 = std::env::var("CERTIFY_CASES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(1000);
+    let cases = case_count("CERTIFY_CASES", 1000);
     let (mut checked, mut events, mut certified) = (0u64, 0u64, 0u64);
     for case in 0..cases {
         let Some((m, phi0, end, what)) = wide_mesh(case) else {
@@ -258,9 +250,7 @@ fn tight_meshes_agree_with_the_plain_solver() {
 fn a_tooth_born_under_a_resting_gear_pushes_it() {
     for case in [4u64, 331, 345, 361, 485, 765, 864, 956, 976, 1467] {
         let h = hard_mesh(case, None).unwrap();
-        let (m, phi0, end, what) = (h.mesh, h.phi0, h.end, h.what);
-        let quarter = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, true);
-        let fine = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 64.0, false);
+        let (what, quarter, fine) = quarter_and_fine(h);
         assert_same_events(&what, quarter.events(), fine.events());
     }
 }
@@ -274,9 +264,7 @@ fn a_tooth_born_under_a_resting_gear_pushes_it() {
 fn a_smooth_peak_is_located_to_the_bisection_tolerance() {
     for case in [391u64, 480, 1295] {
         let h = hard_mesh(case, None).unwrap();
-        let (m, phi0, end, what) = (h.mesh, h.phi0, h.end, h.what);
-        let quarter = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, true);
-        let fine = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 64.0, false);
+        let (what, quarter, fine) = quarter_and_fine(h);
         assert!(
             quarter
                 .events()
@@ -286,6 +274,23 @@ fn a_smooth_peak_is_located_to_the_bisection_tolerance() {
         );
         assert_same_events(&what, quarter.events(), fine.events());
     }
+}
+
+/// How many meshes a test runs: the environment variable `var` where set, else `default`.
+fn case_count(var: &str, default: u64) -> u64 {
+    std::env::var(var)
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(default)
+}
+
+/// A hard mesh's description and its runs over its turn with the default quarter-pitch step
+/// (certified) and with a step 64 times finer (plain).
+fn quarter_and_fine(h: HardMesh) -> (String, contact::Trajectory, contact::Trajectory) {
+    let (m, phi0, end) = (h.mesh, h.phi0, h.end);
+    let quarter = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, true);
+    let fine = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 64.0, false);
+    (h.what, quarter, fine)
 }
 
 /// Two runs found the same events: as many, of the same kinds, at the same driver and driven
@@ -308,9 +313,7 @@ fn assert_same_events(what: &str, a: &[contact::Event], b: &[contact::Event]) {
 #[test]
 fn a_pair_ahead_gone_by_the_step_end_still_closes_on_the_gear() {
     let h = hard_mesh(1045, None).unwrap();
-    let (m, phi0, end, what) = (h.mesh, h.phi0, h.end, h.what);
-    let quarter = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, true);
-    let fine = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 64.0, false);
+    let (what, quarter, fine) = quarter_and_fine(h);
     assert!(quarter.jams() > 0, "{what}: the lock is found");
     assert_same_events(&what, quarter.events(), fine.events());
 }
