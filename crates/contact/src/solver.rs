@@ -1791,6 +1791,17 @@ impl Run<'_> {
                 if other_env(phi_pk) >= theta_pk - SIDE_TOL {
                     // Continuous handoff: one Push segment over the whole step with every behind pair.
                     plan.push((phi1, e1.max(theta0), Motion::Push(behind.clone()), None));
+                } else if !self.pending.is_empty() && theta_pk <= theta0 + SIDE_TOL {
+                    // The gear rests (drive lost) and the pair touching it from behind where the
+                    // step starts falls away without lifting it: a graze, not drive resumed (a
+                    // tip of the radius of the one that left the gear there passes it exactly).
+                    rest_then_maybe_push(
+                        &mut plan,
+                        &others,
+                        &hi,
+                        (phi0, theta0, phi1),
+                        self.certify,
+                    );
                 } else {
                     let lost = pushers
                         .iter()
