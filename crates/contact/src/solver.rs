@@ -639,24 +639,19 @@ impl Mesh {
         env: impl Fn(f64) -> f64,
     ) -> f64 {
         let c2 = self.c2();
-        let top_pair = |phi: f64| {
-            pushers
-                .iter()
-                .copied()
-                .max_by(|&a, &b| self.hi(phi, a).total_cmp(&self.hi(phi, b)))
-        };
-        let Some(pair) = top_pair(phi_pk) else {
+        let Some(pair) = self.top_pair(phi_pk, pushers) else {
             return phi_pk;
         };
         let rising = |phi: f64| -> Option<bool> {
             let theta = self.hi(phi, pair);
-            if top_pair(phi) != Some(pair) || env(phi) != theta {
+            if self.top_pair(phi, pushers) != Some(pair) || env(phi) != theta {
                 return None;
             }
             let (p, n) = self.contact_normal(phi, theta, pair.0, pair.1)?;
             let (arm1, arm2) = (p.perp(&n), (p - c2).perp(&n));
             (arm1 != 0.0 && arm2 != 0.0).then_some(arm1 * arm2 < 0.0)
         };
+        // Ten times the flat top's width that golden-section search leaves: the peak lies within.
         let reach = 1e-7 * (1.0 + phi_pk.abs());
         let (a, b) = ((phi_pk - reach).max(phi0), (phi_pk + reach).min(phi1));
         if rising(a) == Some(true) && rising(b) == Some(false) {
@@ -664,6 +659,14 @@ impl Mesh {
         } else {
             phi_pk
         }
+    }
+
+    /// The pair of `pairs` whose obstacle reaches highest at φ (None if there are none).
+    fn top_pair(&self, phi: f64, pairs: &[(i64, i64)]) -> Option<(i64, i64)> {
+        pairs
+            .iter()
+            .copied()
+            .max_by(|&a, &b| self.hi(phi, a).total_cmp(&self.hi(phi, b)))
     }
 
     /// Upper end of the (j, k) obstacle at φ, or −∞ when it does not exist.
@@ -1803,11 +1806,7 @@ impl Run<'_> {
                         self.certify,
                     );
                 } else {
-                    let lost = pushers
-                        .iter()
-                        .copied()
-                        .max_by(|&a, &b| mesh.hi(phi_pk, a).total_cmp(&mesh.hi(phi_pk, b)))
-                        .unwrap_or(pushers[0]);
+                    let lost = mesh.top_pair(phi_pk, &pushers).unwrap_or(pushers[0]);
                     plan.push((
                         phi_pk,
                         theta_pk,
