@@ -271,11 +271,14 @@ fn oracle_note(mesh: &contact::Mesh, traj: &contact::Trajectory) -> String {
         driven: shape(driven),
         centre_distance: mesh.centre_distance(),
     };
-    let held = |phi: f64| {
-        traj.segments()
-            .iter()
-            .any(|s| s.motion == contact::Motion::Held && (s.phi_start..=s.phi_end).contains(&phi))
-    };
+    // The held stretches, gathered once (a turn has thousands of segments, few of them held).
+    let held_spans: Vec<_> = traj
+        .segments()
+        .iter()
+        .filter(|s| s.motion == contact::Motion::Held)
+        .map(|s| s.phi_start..=s.phi_end)
+        .collect();
+    let held = |phi: f64| held_spans.iter().any(|span| span.contains(&phi));
     let (phi0, phi1) = (traj.phi_start(), traj.phi_end());
     let deepest = (0..=ORACLE_SAMPLES)
         .map(|i| phi0 + (phi1 - phi0) * i as f64 / ORACLE_SAMPLES as f64)

@@ -1588,8 +1588,7 @@ impl Run<'_> {
             let certified =
                 self.certified_step(phi1, &pushers) || self.certified_halves(phi1, &pushers);
             let spent = crate::mesh::tooth_pair_evaluations() - e0;
-            STATS.with(|c| {
-                let mut st = c.get();
+            count(|st| {
                 if certified {
                     st.certified += 1;
                     st.certified_evaluations += spent;
@@ -1597,17 +1596,12 @@ impl Run<'_> {
                     st.refused += 1;
                     st.refused_evaluations += spent;
                 }
-                c.set(st);
             });
             if certified {
                 return;
             }
         }
-        STATS.with(|c| {
-            let mut st = c.get();
-            st.bracketed += 1;
-            c.set(st);
-        });
+        count(|st| st.bracketed += 1);
         // Standing still, the first touch of any driver tooth is found exactly; end the step just
         // after it, so that even a brief graze (a tip clipping a tip) is seen at the step's end.
         if pushers.is_empty()
@@ -2085,11 +2079,7 @@ where
         }
         if finest {
             if self.certified && !closed(gb) {
-                STATS.with(|c| {
-                    let mut st = c.get();
-                    st.unproved += 1;
-                    c.set(st);
-                });
+                count(|st| st.unproved += 1);
             }
             return closed(gb).then(|| (self.locate)(a, b));
         }
@@ -2456,6 +2446,15 @@ thread_local! {
 /// The step counts of the runs on this thread so far.
 pub fn solver_stats() -> SolverStats {
     STATS.with(std::cell::Cell::get)
+}
+
+/// Updates this thread's step counts.
+fn count(update: impl FnOnce(&mut SolverStats)) {
+    STATS.with(|c| {
+        let mut st = c.get();
+        update(&mut st);
+        c.set(st);
+    });
 }
 
 #[cfg(test)]
