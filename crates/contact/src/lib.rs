@@ -8,5 +8,6 @@ mod solver;
 
 pub use mesh::{Mesh, MeshError, Obstacle, tooth_pair_evaluations};
 pub use solver::{
-    Event, EventKind, Motion, Segment, SolverStats, Start, StopAt, Trajectory, solver_stats,
+    Answered, Event, EventKind, Motion, Segment, SolverStats, Start, StopAt, Trajectory,
+    solver_stats,
 };

@@ -219,6 +219,27 @@ pub struct Segment {
 /// Which events end a run early ([`Mesh::run_until`]).
 pub type StopAt<'a> = dyn Fn(&Event) -> bool + 'a;
 
+/// Whether the events of a run so far, every one of them sized, answer the caller's question
+/// for good (see [`Mesh::run_events_until_answered`]).
+pub type Answered<'a> = dyn Fn(&[Event]) -> bool + 'a;
+
+/// When a run may end before its last driver angle.
+#[derive(Clone, Copy)]
+enum Stop<'s, 'a> {
+    /// Never: the run goes to its end.
+    Never,
+    /// At the first event for which this holds, as it is recorded.
+    AtEvent(&'s StopAt<'a>),
+    /// Once this holds for the events so far, none of them waiting to be sized.
+    Answered(&'s Answered<'a>),
+}
+
+impl<'s, 'a> From<Option<&'s StopAt<'a>>> for Stop<'s, 'a> {
+    fn from(stop: Option<&'s StopAt<'a>>) -> Self {
+        stop.map_or(Self::Never, Self::AtEvent)
+    }
+}
+
 /// How the driven gear starts.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Start {
@@ -471,7 +492,7 @@ impl Mesh {
         start: Start,
         stop: Option<&StopAt<'_>>,
     ) -> Trajectory {
-        let run = self.solve(phi_start, phi_end, start, stop, Solve::default());
+        let run = self.solve(phi_start, phi_end, start, stop.into(), Solve::default());
         Trajectory {
             mesh: self.clone(),
             segments: run.segments,
@@ -504,7 +525,7 @@ impl Mesh {
             certify,
             ..Solve::default()
         };
-        let run = self.solve(phi_start, phi_end, start, stop, how);
+        let run = self.solve(phi_start, phi_end, start, stop.into(), how);
         Trajectory {
             mesh: self.clone(),
             segments: run.segments,
@@ -515,7 +536,7 @@ impl Mesh {
     /// The jams and disengagements of [`Mesh::run`] over the same range, without its segments:
     /// all that jam statistics need, in memory that does not grow with the range.
     pub fn run_events(&self, phi_start: f64, phi_end: f64, start: Start) -> Vec<Event> {
-        self.events_only(phi_start, phi_end, start, None)
+        self.events_only(phi_start, phi_end, start, Stop::Never)
     }
 
     /// [`Mesh::run_events`] that ends at the first event for which `stop` holds (checked from
@@ -528,7 +549,22 @@ impl Mesh {
         start: Start,
         stop: &StopAt<'_>,
     ) -> Vec<Event> {
-        self.events_only(phi_start, phi_end, start, Some(stop))
+        self.events_only(phi_start, phi_end, start, Stop::AtEvent(stop))
+    }
+
+    /// [`Mesh::run_events`] that ends as soon as `answered` holds for the events so far, asked
+    /// each time new events are sized and none waits to be (the drive has resumed after each),
+    /// so that it sees every event as the whole run records it. For a caller whose answer, once
+    /// found, more events cannot change (has each rule seen a jam and a disengagement?): the
+    /// events returned are then the whole run's up to the cut, and the answer is the whole run's.
+    pub fn run_events_until_answered(
+        &self,
+        phi_start: f64,
+        phi_end: f64,
+        start: Start,
+        answered: &Answered<'_>,
+    ) -> Vec<Event> {
+        self.events_only(phi_start, phi_end, start, Stop::Answered(answered))
     }
 
     /// The events of a run that keeps no segments (cheaper), ending at `stop` if given.
@@ -537,7 +573,7 @@ impl Mesh {
         phi_start: f64,
         phi_end: f64,
         start: Start,
-        stop: Option<&StopAt<'_>>,
+        stop: Stop<'_, '_>,
     ) -> Vec<Event> {
         let how = Solve {
             keep_segments: false,
@@ -551,7 +587,7 @@ impl Mesh {
         phi_start: f64,
         phi_end: f64,
         start: Start,
-        stop: Option<&StopAt<'_>>,
+        stop: Stop<'_, '_>,
         how: Solve,
     ) -> Run<'_> {
         let mut run = Run {
@@ -580,8 +616,7 @@ impl Mesh {
             self.driver.max_gap.min(TAU / self.driver.tips.len() as f64) / how.steps_per_pitch;
         // A run that keeps no trajectory may end at a stopping event of the start itself (a
         // blocked start); one that keeps it takes its first step first, as it always has.
-        let stopped_at_start =
-            !how.keep_segments && stop.is_some_and(|stop| run.events.iter().any(stop));
+        let stopped_at_start = !how.keep_segments && run.stops(stop, &mut seen);
         while run.phi < phi_end && !stopped_at_start {
             // No sliver of a step at the end: it would only gather rounding noise.
             let next = if run.phi + step * (1.0 + 1e-6) >= phi_end {
@@ -590,11 +625,8 @@ impl Mesh {
                 run.phi + step
             };
             run.advance(next);
-            if let Some(stop) = stop {
-                if run.events[seen..].iter().any(stop) {
-                    break;
-                }
-                seen = run.events.len();
+            if run.stops(stop, &mut seen) {
+                break;
             }
         }
         if run.segments.is_empty() {
@@ -891,6 +923,28 @@ fn sweep(theta: f64, obs: &[Obstacle], through: bool, mut take: impl FnMut(&Obst
 }
 
 impl Run<'_> {
+    /// Whether the run ends here by `stop`, given that the events before `seen` were asked
+    /// about already (`seen` is moved past those asked about now).
+    fn stops(&self, stop: Stop<'_, '_>, seen: &mut usize) -> bool {
+        match stop {
+            Stop::Never => false,
+            Stop::AtEvent(stop) => {
+                let stops = self.events[*seen..].iter().any(stop);
+                *seen = self.events.len();
+                stops
+            }
+            // Only where every event is sized: a gap waiting for the drive may yet become a
+            // slip, and its lost motion and phase shift are not known.
+            Stop::Answered(answered) => {
+                if !self.pending.is_empty() || self.events.len() == *seen {
+                    return false;
+                }
+                *seen = self.events.len();
+                answered(&self.events)
+            }
+        }
+    }
+
     fn start(&mut self, start: Start) {
         let (guess, touching) = match start {
             Start::At(t) => (t, false),

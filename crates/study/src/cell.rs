@@ -9,6 +9,7 @@
 //! experiment; a process-wide cache then lets an experiment reuse cells another one has run
 //! (`cargo xtask run all`), with the same bits as running them again.
 
+use std::cell::Cell;
 use std::collections::HashMap;
 use std::f64::consts::TAU;
 use std::fmt::Write as _;
@@ -73,7 +74,9 @@ pub struct Counts {
     pub failures: u64,
     /// Trials run.
     pub trials: u64,
-    /// Tooth engagements simulated: each trial engages every tooth of the larger gear once.
+    /// Tooth engagements the trials stand for: each trial turns the gear with more teeth once
+    /// (its run ends earlier once every rule has seen a jam and a disengagement, so fewer may be
+    /// simulated).
     pub engagements: u64,
 }
 
@@ -233,16 +236,34 @@ fn rebuild_prepared(p: &Prepared<'_>, seed: u64, t: u64) -> Result<Rebuilt, RunE
 /// The gears and the run do not depend on the rules: only the counting does.
 fn trial(p: &Prepared<'_>, seed: u64, t: u64, rules: &[rules::Rule]) -> Result<RuleBits, RunError> {
     let rebuilt = rebuild_prepared(p, seed, t)?;
-    if rebuilt.mesh.is_none() {
+    let Some(mesh) = rebuilt.mesh.as_ref() else {
         // Gears that overlap at every tooth are jammed under any rule.
         return Ok((0..rules.len()).fold(0, |acc, r| acc | 1 << (2 * r)));
-    }
-    // Only the events are counted: the run keeps no segments.
-    let events = rebuilt.events();
-    Ok(rules.iter().enumerate().fold(0, |acc, (r, rule)| {
-        let (jam, dis) = rule.tally(&events);
+    };
+    Ok(rule_bits(rules, &events_to_answer(mesh, &rebuilt, rules)))
+}
+
+/// The events a trial counts: those of its whole turn (the run keeps no segments), but the run
+/// ends once every rule has seen a jam and a disengagement, as more events cannot unset a bit of
+/// its [`RuleBits`]. The bits are gathered as the events are sized, each event counted once.
+fn events_to_answer(mesh: &Mesh, rebuilt: &Rebuilt, rules: &[rules::Rule]) -> Vec<contact::Event> {
+    let every = u64::MAX >> (64 - 2 * rules.len().clamp(1, MAX_RULES));
+    let (bits, counted) = (Cell::new(0), Cell::new(0));
+    let gather = |events: &[contact::Event]| {
+        bits.set(bits.get() | rule_bits(rules, &events[counted.get()..]));
+        counted.set(events.len());
+        bits.get() == every
+    };
+    let (phi0, end) = (rebuilt.phi0, rebuilt.phi0 + rebuilt.turn);
+    mesh.run_events_until_answered(phi0, end, Start::Touching(0.0), &gather)
+}
+
+/// The [`RuleBits`] of `events` under `rules`.
+fn rule_bits(rules: &[rules::Rule], events: &[contact::Event]) -> RuleBits {
+    rules.iter().enumerate().fold(0, |acc, (r, rule)| {
+        let (jam, dis) = rule.tally(events);
         acc | u64::from(jam) << (2 * r) | u64::from(dis) << (2 * r + 1)
-    }))
+    })
 }
 
 /// One trial of a flat batch under several rules: see [`trial`].
@@ -653,6 +674,52 @@ mod tests {
             clearance: 40.0,
             events: rules::Rule::default(),
         }
+    }
+
+    /// A trial's run ends once every rule has seen a jam and a disengagement: its events are the
+    /// whole turn's up to the cut, and its bits the whole turn's, under every registered rule, on
+    /// meshes that jam, slip, or do neither; and some runs are cut short (else this means nothing).
+    #[test]
+    fn a_trial_cut_at_its_answer_counts_as_the_whole_turn() {
+        let g = Gearing::freeth2006();
+        let all: Vec<rules::Rule> = rules::rules()
+            .unwrap()
+            .keys()
+            .map(|name| rules::Rule::parse(name).unwrap())
+            .collect();
+        assert!(all.len() >= 4, "{all:?}");
+        let mut cut_short = 0;
+        let at = |mut spec: CellSpec, clearance: f64| {
+            spec.clearance = clearance;
+            spec
+        };
+        for spec in [
+            cell("m3-e3", 0.08),
+            at(cell("b2-c1", 0.1), 70.0),
+            at(cell("e4-f1", 0.02), 10.0),
+        ] {
+            let p = prepare(&g, &spec).unwrap();
+            for t in 0..30 {
+                let rebuilt = rebuild_prepared(&p, 11, t).unwrap();
+                let Some(mesh) = &rebuilt.mesh else { continue };
+                let whole = rebuilt.events();
+                let cut = events_to_answer(mesh, &rebuilt, &all);
+                assert_eq!(
+                    cut[..],
+                    whole[..cut.len()],
+                    "{} trial {t}",
+                    spec.canonical()
+                );
+                assert_eq!(
+                    trial(&p, 11, t, &all).unwrap(),
+                    rule_bits(&all, &whole),
+                    "{} trial {t}",
+                    spec.canonical()
+                );
+                cut_short += usize::from(cut.len() < whole.len());
+            }
+        }
+        assert!(cut_short > 0);
     }
 
     #[test]
