@@ -245,22 +245,7 @@ fn certified_steps_agree_with_bracketing_on_asymmetric_and_out_of_round_teeth() 
 /// case 8533 (G 40.1 %) a held gear is free for less than a step (see the next test).
 #[test]
 fn every_event_of_a_wide_mesh_agrees_with_a_64_times_finer_step_at_working_clearances() {
-    let cases = case_count("WIDE_DIFFERENTIAL_CASES", 400);
-    let (mut checked, mut events) = (0u64, 0usize);
-    for case in 0..cases {
-        let Some((m, phi0, end, what)) = wide_mesh_within(case, (40.0, 95.0)) else {
-            continue;
-        };
-        let quarter = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, true);
-        let fine = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 64.0, false);
-        assert_same_events(&what, quarter.events(), fine.events());
-        checked += 1;
-        events += quarter.events().len();
-    }
-    assert!(
-        checked * 10 > cases * 8 && events as u64 > 2 * cases,
-        "{checked} cases, {events} events"
-    );
+    wide_meshes_agree_with_a_64_times_finer_step(case_count("WIDE_DIFFERENTIAL_CASES", 400), false);
 }
 
 /// As `every_event_of_a_wide_mesh_agrees_with_a_64_times_finer_step_at_working_clearances`, with
@@ -269,14 +254,21 @@ fn every_event_of_a_wide_mesh_agrees_with_a_64_times_finer_step_at_working_clear
 /// (`CURVED_DIFFERENTIAL_CASES` sets the count, 200 by default; 2000 pass).
 #[test]
 fn every_event_of_a_curved_wide_mesh_agrees_with_a_64_times_finer_step_at_working_clearances() {
-    let cases = case_count("CURVED_DIFFERENTIAL_CASES", 200);
+    wide_meshes_agree_with_a_64_times_finer_step(
+        case_count("CURVED_DIFFERENTIAL_CASES", 200),
+        true,
+    );
+}
+
+/// Every event of the quarter-pitch run of each of the first `cases` meshes of the wider class at
+/// G = 40-95 % (with curved flanks where `curved` is set) is the 64-times-finer run's.
+fn wide_meshes_agree_with_a_64_times_finer_step(cases: u64, curved: bool) {
     let (mut checked, mut events) = (0u64, 0usize);
     for case in 0..cases {
-        let Some((m, phi0, end, what)) = wide_mesh_drawn(case, (40.0, 95.0), true) else {
+        let Some((m, phi0, end, what)) = wide_mesh_drawn(case, (40.0, 95.0), curved) else {
             continue;
         };
-        let quarter = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, true);
-        let fine = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 64.0, false);
+        let (quarter, fine) = quarter_and_fine_runs(&m, phi0, end);
         assert_same_events(&what, quarter.events(), fine.events());
         checked += 1;
         events += quarter.events().len();
@@ -302,8 +294,7 @@ fn tight_wide_meshes_answer_as_a_64_times_finer_step() {
         let Some((m, phi0, end, what)) = wide_mesh_within(case, (5.0, 40.0)) else {
             continue;
         };
-        let quarter = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, true);
-        let fine = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 64.0, false);
+        let (quarter, fine) = quarter_and_fine_runs(&m, phi0, end);
         let answer = |t: &contact::Trajectory| (t.jams() > 0, t.disengagements() > 0);
         assert_eq!(answer(&quarter), answer(&fine), "{what}");
         let firsts = |t: &contact::Trajectory| t.events().first().cloned();
@@ -413,10 +404,20 @@ fn case_count(var: &str, default: u64) -> u64 {
 /// A hard mesh's description and its runs over its turn with the default quarter-pitch step
 /// (certified) and with a step 64 times finer (plain).
 fn quarter_and_fine(h: HardMesh) -> (String, contact::Trajectory, contact::Trajectory) {
-    let (m, phi0, end) = (h.mesh, h.phi0, h.end);
+    let (quarter, fine) = quarter_and_fine_runs(&h.mesh, h.phi0, h.end);
+    (h.what, quarter, fine)
+}
+
+/// A mesh's runs from `phi0` to `end` with the default quarter-pitch step (certified) and with a
+/// step 64 times finer (plain).
+fn quarter_and_fine_runs(
+    m: &contact::Mesh,
+    phi0: f64,
+    end: f64,
+) -> (contact::Trajectory, contact::Trajectory) {
     let quarter = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, true);
     let fine = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 64.0, false);
-    (h.what, quarter, fine)
+    (quarter, fine)
 }
 
 /// Two runs found the same events: as many, of the same kinds, at the same driver and driven
