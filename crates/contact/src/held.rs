@@ -83,7 +83,7 @@ impl HeldProof {
                 .iter()
                 .map(|c| (c.driver_tooth, c.driven_tooth))
                 .collect(),
-            open: Vec::new(),
+            open: Vec::with_capacity(m + 1),
             seen: Vec::new(),
         };
         let base = proof.segments(mesh);
