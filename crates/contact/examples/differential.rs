@@ -18,21 +18,20 @@ mod wide_meshes;
 fn wide(cases: u64) {
     let mut bands = [(0u32, 0u32, 0u32); 10];
     for case in 0..cases {
-        let Some((m, phi0, end, what)) = wide_meshes::wide_mesh(case) else {
+        let Some(wide_meshes::WideMesh {
+            mesh: m,
+            phi0,
+            end,
+            clearance,
+            what,
+        }) = wide_meshes::wide_mesh(case)
+        else {
             continue;
         };
-        let g: f64 = what
-            .rsplit("G ")
-            .next()
-            .and_then(|g| g.trim_end_matches(" %").parse().ok())
-            .unwrap();
-        let band = &mut bands[((g / 10.0) as usize).min(9)];
+        let band = &mut bands[((clearance / 10.0) as usize).min(9)];
         let a = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, true);
         let b = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 64.0, false);
-        let same = a.events().len() == b.events().len()
-            && a.events().iter().zip(b.events()).all(|(x, y)| {
-                x.kind == y.kind && (x.phi - y.phi).abs() < 1e-9 && (x.theta - y.theta).abs() < 1e-9
-            });
+        let same = same_events(a.events(), b.events());
         let answer = |t: &contact::Trajectory| (t.jams() > 0, t.disengagements() > 0);
         band.0 += 1;
         if !same {
@@ -52,6 +51,16 @@ fn wide(cases: u64) {
             10 * i + 10
         );
     }
+}
+
+/// Two runs found the same events: as many, of the same kinds, at the same driver and driven
+/// angles to 1e-9 rad.
+fn same_events(a: &[contact::Event], b: &[contact::Event]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| same_event(x, y))
+}
+
+fn same_event(x: &contact::Event, y: &contact::Event) -> bool {
+    x.kind == y.kind && (x.phi - y.phi).abs() < 1e-9 && (x.theta - y.theta).abs() < 1e-9
 }
 
 fn main() {
@@ -79,10 +88,7 @@ fn main() {
         b_evals += contact::tooth_pair_evaluations() - e0;
         b_time += t0.elapsed().as_secs_f64();
         events += a.events().len();
-        let same = a.events().len() == b.events().len()
-            && a.events().iter().zip(b.events()).all(|(x, y)| {
-                x.kind == y.kind && (x.phi - y.phi).abs() < 1e-9 && (x.theta - y.theta).abs() < 1e-9
-            });
+        let same = same_events(a.events(), b.events());
         if !same {
             diffs += 1;
             if (a.jams() > 0) != (b.jams() > 0)
@@ -90,11 +96,11 @@ fn main() {
             {
                 first_diffs += 1;
             }
-            let first = a.events().iter().zip(b.events()).position(|(x, y)| {
-                !(x.kind == y.kind
-                    && (x.phi - y.phi).abs() < 1e-9
-                    && (x.theta - y.theta).abs() < 1e-9)
-            });
+            let first = a
+                .events()
+                .iter()
+                .zip(b.events())
+                .position(|(x, y)| !same_event(x, y));
             if let Some(i) = first {
                 println!(
                     "  first diff at event {i}: ref: {:?}\n   other: {:?}",

@@ -13,7 +13,7 @@ mod hard_meshes;
 use hard_meshes::{HardMesh, hard_mesh};
 #[path = "support/wide_meshes.rs"]
 mod wide_meshes;
-use wide_meshes::{wide_mesh, wide_mesh_drawn, wide_mesh_within};
+use wide_meshes::{WideMesh, wide_mesh, wide_mesh_drawn, wide_mesh_within};
 
 #[test]
 fn first_events_do_not_depend_on_the_step() {
@@ -122,7 +122,14 @@ fn certified_steps_agree_with_bracketing_on_asymmetric_and_out_of_round_teeth() 
     let cases = case_count("CERTIFY_CASES", 1000);
     let (mut checked, mut events, mut certified) = (0u64, 0u64, 0u64);
     for case in 0..cases {
-        let Some((m, phi0, end, what)) = wide_mesh(case) else {
+        let Some(WideMesh {
+            mesh: m,
+            phi0,
+            end,
+            what,
+            ..
+        }) = wide_mesh(case)
+        else {
             continue;
         };
         let before = contact::solver_stats().certified;
@@ -168,7 +175,14 @@ fn every_event_of_a_curved_wide_mesh_agrees_with_a_64_times_finer_step_at_workin
 fn wide_meshes_agree_with_a_64_times_finer_step(cases: u64, curved: bool) {
     let (mut checked, mut events) = (0u64, 0usize);
     for case in 0..cases {
-        let Some((m, phi0, end, what)) = wide_mesh_drawn(case, (40.0, 95.0), curved) else {
+        let Some(WideMesh {
+            mesh: m,
+            phi0,
+            end,
+            what,
+            ..
+        }) = wide_mesh_drawn(case, (40.0, 95.0), curved)
+        else {
             continue;
         };
         let (quarter, fine) = quarter_and_fine_runs(&m, phi0, end);
@@ -194,7 +208,14 @@ fn tight_wide_meshes_answer_as_a_64_times_finer_step() {
     let cases = case_count("WIDE_DIFFERENTIAL_CASES", 400);
     let (mut checked, mut jammed) = (0u64, 0u64);
     for case in 0..cases {
-        let Some((m, phi0, end, what)) = wide_mesh_within(case, (5.0, 40.0)) else {
+        let Some(WideMesh {
+            mesh: m,
+            phi0,
+            end,
+            what,
+            ..
+        }) = wide_mesh_within(case, (5.0, 40.0))
+        else {
             continue;
         };
         let (quarter, fine) = quarter_and_fine_runs(&m, phi0, end);

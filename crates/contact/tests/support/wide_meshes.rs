@@ -4,30 +4,34 @@
 //! each mesh from its own seed.
 #![allow(dead_code, reason = "each includer uses a part")]
 
+/// One mesh of the wider class, where its run starts and ends, and its clearance.
+pub struct WideMesh {
+    pub mesh: contact::Mesh,
+    pub phi0: f64,
+    pub end: f64,
+    /// Per cent of the tooth height.
+    pub clearance: f64,
+    /// The mesh in words, for messages.
+    pub what: String,
+}
+
 /// A wider class of meshes than `hard_mesh`: systematic (sinusoidal) and random tip errors,
 /// asymmetric teeth (valleys off the midway angle),
 /// gears that are not round (a radius per tip and valley), eccentricity and clearances from 5 to
 /// 95 %; None where the drawn gears cannot be placed.
-pub fn wide_mesh(case: u64) -> Option<(contact::Mesh, f64, f64, String)> {
+pub fn wide_mesh(case: u64) -> Option<WideMesh> {
     wide_mesh_within(case, (5.0, 95.0))
 }
 
 /// [`wide_mesh`] with its clearance drawn from `clearances` (per cent of h), everything else
 /// drawn alike.
-pub fn wide_mesh_within(
-    case: u64,
-    clearances: (f64, f64),
-) -> Option<(contact::Mesh, f64, f64, String)> {
+pub fn wide_mesh_within(case: u64, clearances: (f64, f64)) -> Option<WideMesh> {
     wide_mesh_drawn(case, clearances, false)
 }
 
 /// [`wide_mesh_within`], and with `curved` set, both gears' flanks circular arcs of a sagitta
 /// drawn from -0.05 to 0.05 mm (convex or concave; None where the teeth cannot take it).
-pub fn wide_mesh_drawn(
-    case: u64,
-    clearances: (f64, f64),
-    curved: bool,
-) -> Option<(contact::Mesh, f64, f64, String)> {
+pub fn wide_mesh_drawn(case: u64, clearances: (f64, f64), curved: bool) -> Option<WideMesh> {
     use std::f64::consts::TAU;
 
     use geometry::{Gear, Vec2};
@@ -96,10 +100,11 @@ pub fn wide_mesh_drawn(
     let mesh = contact::Mesh::new(gear(n1, r1, &mut rng)?, gear(n2, r2, &mut rng)?, d).ok()?;
     let phi0 = rng.random::<f64>();
     let end = phi0 + TAU * n2 as f64 / n1 as f64;
-    Some((
+    Some(WideMesh {
         mesh,
         phi0,
         end,
-        format!("wide case {case}: {n1}:{n2} teeth, G {g:.1} %"),
-    ))
+        clearance: g,
+        what: format!("wide case {case}: {n1}:{n2} teeth, G {g:.1} %"),
+    })
 }
