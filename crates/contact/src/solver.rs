@@ -1296,6 +1296,23 @@ impl Run<'_> {
             .filter_map(|&p| end_of(p))
             .fold(theta0, f64::max);
         let mut theta1 = pushed;
+        // A pair behind the driven gear that ends the step above the pushers has taken it over
+        // within the step: it is a carrier from the start, so that the first box is tall enough
+        // and the path's tube wide enough (else the box grows, and every pair is judged again,
+        // once it is found). Only pairs near enough to overtake are evaluated: within twice the
+        // pushers' rise below θ0.
+        let mut overtakers: Pairs = SmallVec::new();
+        for t in &self.sides {
+            if t.side == Side::Behind
+                && !pushers.contains(&t.pair)
+                && t.hi > theta0 - 2.0 * (pushed - theta0)
+                && let Some(hi) = end_of(t.pair)
+                && hi > pushed
+            {
+                theta1 = theta1.max(hi);
+                overtakers.push(t.pair);
+            }
+        }
         'grow: for grown in 0..4 {
             // The first box reaches a little above where the pushers end: the next pusher, taking
             // over within the step, often ends higher, and a box found too low is judged again.
@@ -1329,6 +1346,16 @@ impl Run<'_> {
                 return None;
             }
             let mut carriers: Pairs = SmallVec::from_slice(pushers);
+            // An overtaker is a carrier where its contacts in the box rise (else it is judged
+            // like any pair: a certificate needs them rising).
+            for &o in &overtakers {
+                if boxed
+                    .iter()
+                    .any(|(pair, role)| *pair == o && matches!(role, Role::Rising { .. }))
+                {
+                    carriers.push(o);
+                }
+            }
             // θ1 only rises, each time to a pair's upper end, and the carriers only grow: this
             // ends.
             'path: loop {
