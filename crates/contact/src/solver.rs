@@ -1902,13 +1902,16 @@ impl Run<'_> {
         }
 
         // Jam check against the obstacles ahead, along the planned path.
-        let theta_on_plan = |p: f64| -> f64 {
+        // θ on the plan at φ = p, leaving out the pushing pairs `skip` (those proved below the
+        // path where a closing is located: `locate` below).
+        let theta_on_plan_without = |p: f64, skip: &[(i64, i64)]| -> f64 {
             let mut from = theta0;
             for (end, th, motion, _) in &plan {
                 if p <= *end {
                     return match motion {
                         Motion::Push(pairs) => pairs
                             .iter()
+                            .filter(|b| !skip.contains(b))
                             .map(|&b| hi(p, b))
                             .fold(from, f64::max)
                             .min(*th),
@@ -1919,16 +1922,18 @@ impl Run<'_> {
             }
             from
         };
+        let theta_on_plan = |p: f64| theta_on_plan_without(p, &[]);
         let theta1 = theta_on_plan(phi1);
         ahead.retain(|&a| lo(phi1, a) <= theta1 + 0.5 * gap);
-        let front = |p: f64| {
-            ahead
+        // The backlash of pairs `ahead`: how far the nearest of their driver teeth is from the
+        // driven gear (θ on the plan without the pairs behind `skip`).
+        let backlash_of = |ahead: &[(i64, i64)], skip: &[(i64, i64)], p: f64| {
+            let front = ahead
                 .iter()
                 .map(|&a| lo(p, a))
-                .fold(f64::INFINITY, f64::min)
+                .fold(f64::INFINITY, f64::min);
+            front - theta_on_plan_without(p, skip)
         };
-        // Backlash: how far the nearest driver tooth ahead is from the driven gear.
-        let backlash = |p: f64| front(p) - theta_on_plan(p);
         // Whether pairs `pairs`, each open at `a`, are proved to stay clear of the driven
         // gear's path over driver angles [a, b] (a pair with no contact root on the path, open
         // where it starts, stays open: `certify.rs`). The path runs from (a, θ(a)) to
@@ -1960,8 +1965,47 @@ impl Run<'_> {
                     || path_slopes().is_some_and(|sl| cell.clear_along(&va, &vb, sl, SIDE_TOL))
             })
         };
-        // Where a backlash first closes in the step, if it does.
-        let first_jam = |gap: &dyn Fn(f64) -> f64, pairs: &[(i64, i64)]| {
+        // The pairs that make the backlash of `pairs` where a closing is located in [a, b]: those
+        // ahead that touch the box of the path there (from (a, θ(a)) to (b, θ(b)), as
+        // `proved_clear` has it), and, left out, the pushing pairs of the plan that do not. A
+        // pair ahead that touches no configuration of the box has its lower end above the path
+        // throughout, so it is never the nearest where the backlash is not positive, and the
+        // backlash of the rest has the sign of the whole one everywhere in [a, b]; a pair behind
+        // that touches none is below the path throughout, never the one that carries it, and θ
+        // on the plan without it is the same. Locating reads only the backlash's sign (replayed
+        // bisection: its secant steps only aim the probes), so it finds the same angle,
+        // evaluating at each probe only the pairs that can close and the one that pushes.
+        let closing_pairs = |pairs: &[(i64, i64)], a: f64, b: f64| {
+            let cell = ConfigBox::new(
+                a,
+                b,
+                theta_on_plan(a),
+                theta_on_plan(b),
+                mesh.centre_distance,
+            );
+            let touches = |&(j, k): &(i64, i64)| {
+                let (va, vb) = (
+                    cell.place_driver(mesh.driver.cert(j)),
+                    cell.place_driven(mesh.driven.cert(k)),
+                );
+                cell.pair(&va, &vb).0 != Verdict::Clear
+            };
+            let ahead: Pairs = pairs.iter().copied().filter(touches).collect();
+            let mut below = Pairs::new();
+            for (.., motion, _) in &plan {
+                if let Motion::Push(pushing) = motion {
+                    for pair in pushing {
+                        if !below.contains(pair) && !touches(pair) {
+                            below.push(*pair);
+                        }
+                    }
+                }
+            }
+            (ahead, below)
+        };
+        // Where the backlash of pairs `pairs` ahead first closes in the step, if it does.
+        let first_jam = |pairs: &[(i64, i64)]| {
+            let gap = |p: f64| backlash_of(pairs, &[], p);
             let g0 = gap(phi0);
             if g0 < -SIDE_TOL {
                 Some(phi0)
@@ -1969,7 +2013,13 @@ impl Run<'_> {
                 // Once a jam is known to lie in the step, locate first contact exactly: where the
                 // backlash stops being positive (no tolerance).
                 let clear = |a: f64, b: f64| proved_clear(pairs, a, b);
-                let locate = |a: f64, b: f64| bisect_sign(a, b, theta0, self.certify, gap);
+                let locate = |a: f64, b: f64| {
+                    if !self.certify {
+                        return bisect_sign(a, b, theta0, false, gap);
+                    }
+                    let (ahead, below) = closing_pairs(pairs, a, b);
+                    bisect_sign(a, b, theta0, true, |p| backlash_of(&ahead, &below, p))
+                };
                 let search = Closing {
                     gap: &gap,
                     clear: &clear,
@@ -1997,11 +2047,9 @@ impl Run<'_> {
         let jam_at = if self.unheld_at == Some(phi0) {
             None
         } else {
-            let others = (!ahead.is_empty())
-                .then(|| first_jam(&backlash, &ahead))
-                .flatten();
+            let others = (!ahead.is_empty()).then(|| first_jam(&ahead)).flatten();
             gone.iter()
-                .filter_map(|&pair| first_jam(&|p: f64| lo(p, pair) - theta_on_plan(p), &[pair]))
+                .filter_map(|&pair| first_jam(&[pair]))
                 .chain(others)
                 .min_by(f64::total_cmp)
         };
