@@ -579,6 +579,26 @@ impl Mesh {
         }
     }
 
+    /// The (j, k) obstacle at φ, its arguments taken from `memo` (a memo at φ) where remembered
+    /// there and left there when evaluated: [`Mesh::obstacle`], bit for bit.
+    pub(crate) fn obstacle_in(
+        &self,
+        phi: f64,
+        j: i64,
+        k: i64,
+        memo: &mut PairMemo,
+    ) -> Option<Obstacle> {
+        if memo.phi != phi {
+            return self.obstacle(phi, j, k);
+        }
+        let n = self.driven.tips.len() as i64;
+        let args = match memo.of_driver(j).get_mut(k.rem_euclid(n) as usize) {
+            Some(m) => *m.get_or_insert_with(|| self.pair_args(phi, j, k)),
+            None => self.pair_args(phi, j, k),
+        };
+        args.map(|args| self.placed(j, k, args))
+    }
+
     /// The obstacles of `pairs` at φ (those that exist), in order, into `out`. A pair that
     /// differs from one already evaluated only by whole turns of the driven tooth (a cover that
     /// spans more than a turn) is not evaluated again: its ends are the same arguments, measured

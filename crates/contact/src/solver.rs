@@ -707,12 +707,6 @@ impl Mesh {
             .unwrap_or(f64::NEG_INFINITY)
     }
 
-    /// Lower end of the (j, k) obstacle at φ, or +∞ when it does not exist.
-    fn lo(&self, phi: f64, pair: (i64, i64)) -> f64 {
-        self.obstacle_end(phi, pair.0, pair.1, End::Lower)
-            .unwrap_or(f64::INFINITY)
-    }
-
     /// The nearest driven angle ≥ θ that overlaps no driver tooth at φ, or None if the obstacles
     /// close up over more than a turn of the driven gear. An obstacle that only touches θ from
     /// behind does not move it; one that touches it from ahead does when `through` is set (the
@@ -737,12 +731,24 @@ impl Mesh {
         through: bool,
         links: Option<&mut Vec<Obstacle>>,
     ) -> Result<f64, Vec<(i64, i64)>> {
+        self.free_or_cover_in(phi, theta, through, links, &mut PairMemo::new(self, phi))
+    }
+
+    /// [`Mesh::free_or_cover_with`], taking the pairs already evaluated at φ from `memo` (a memo
+    /// at φ) and leaving there those it evaluates.
+    fn free_or_cover_in(
+        &self,
+        phi: f64,
+        theta: f64,
+        through: bool,
+        links: Option<&mut Vec<Obstacle>>,
+        memo: &mut PairMemo,
+    ) -> Result<f64, Vec<(i64, i64)>> {
         let gap = self.driven.max_gap;
         let (mut obs, mut more) = (Vec::new(), Vec::new());
         let mut reach = 3.0 * gap;
         // The widening windows pass the same teeth again a turn on: each pair is evaluated once.
-        let mut memo = PairMemo::new(self, phi);
-        self.obstacles_with(phi, theta - gap, theta + reach, &mut obs, Some(&mut memo));
+        self.obstacles_with(phi, theta - gap, theta + reach, &mut obs, Some(&mut *memo));
         loop {
             let (top, chain) = cover_from(theta, &mut obs, through);
             if top < theta + reach - gap {
@@ -762,7 +768,7 @@ impl Mesh {
                 theta + reach,
                 theta + 2.0 * reach,
                 &mut more,
-                Some(&mut memo),
+                Some(&mut *memo),
             );
             obs.append(&mut more);
             reach *= 2.0;
@@ -951,7 +957,11 @@ impl Run<'_> {
             Start::Touching(t) => (t, true),
         };
         let phi = self.phi;
-        let free = match self.mesh.free_or_cover(phi, guess, false) {
+        let mut memo = PairMemo::new(self.mesh, phi);
+        let free = match self
+            .mesh
+            .free_or_cover_in(phi, guess, false, None, &mut memo)
+        {
             Ok(t) => Some(t),
             Err(chain) => {
                 // Held from the start: these pairs prove it, to be checked first next time.
@@ -991,23 +1001,27 @@ impl Run<'_> {
                 guess
             }
         };
-        self.classify_all(phi);
+        self.classify_all(phi, &mut memo);
         self.drive_phase = self
-            .touching_behind(phi, self.theta, None)
+            .touching_behind(phi, self.theta, None, &mut memo)
             .map(|p| p.0 + p.1);
     }
 
     /// A tooth pair touching the driven gear from behind at (φ, θ) (its obstacle's upper end is
     /// at θ), other than `except`: what drives, or would drive, the driven gear there.
+    /// The pairs already evaluated at φ are taken from `memo`, a memo at φ, and those it
+    /// evaluates left there.
     fn touching_behind(
         &self,
         phi: f64,
         theta: f64,
         except: Option<(i64, i64)>,
+        memo: &mut PairMemo,
     ) -> Option<(i64, i64)> {
         let gap = self.mesh.driven.max_gap;
         let mut obs = Vec::new();
-        self.mesh.obstacles(phi, theta - gap, theta + gap, &mut obs);
+        self.mesh
+            .obstacles_with(phi, theta - gap, theta + gap, &mut obs, Some(memo));
         obs.iter()
             .filter(|o| Some((o.driver_tooth, o.driven_tooth)) != except)
             .filter(|o| (o.hi - theta).abs() <= CONTACT_TOL * (1.0 + theta.abs()))
@@ -1071,10 +1085,17 @@ impl Run<'_> {
     }
 
     /// Re-derive every nearby obstacle's side from scratch, relative to the current θ.
-    fn classify_all(&mut self, phi: f64) {
+    /// (The pairs already evaluated at φ are taken from `memo`, a memo at φ, and those it
+    /// evaluates left there.)
+    fn classify_all(&mut self, phi: f64, memo: &mut PairMemo) {
         let gap = self.mesh.driven.max_gap;
-        self.mesh
-            .obstacles(phi, self.theta - gap, self.theta + gap, &mut self.scratch);
+        self.mesh.obstacles_with(
+            phi,
+            self.theta - gap,
+            self.theta + gap,
+            &mut self.scratch,
+            Some(memo),
+        );
         self.sides.clear();
         for o in &self.scratch {
             let side = if o.hi <= self.theta + SIDE_TOL {
@@ -1635,7 +1656,8 @@ impl Run<'_> {
         self.cover = cover.into_inner();
         self.opened = opened.into_inner();
         let phi_r = (held_until + LOCATE_TOL).min(phi1);
-        let t = match mesh.free_or_cover(phi_r, theta0, false) {
+        let mut memo = PairMemo::new(mesh, phi_r);
+        let t = match mesh.free_or_cover_in(phi_r, theta0, false, None, &mut memo) {
             Ok(t) => t,
             Err(chain) => {
                 // Still held: the scan's cover is the one to check next.
@@ -1649,7 +1671,7 @@ impl Run<'_> {
         self.cover.clear();
         self.opened = None;
         self.theta = t;
-        self.classify_all(phi_r);
+        self.classify_all(phi_r, &mut memo);
     }
 
     /// Advance from `self.phi` to `phi1`, locating every event in between.
@@ -2092,20 +2114,27 @@ impl Run<'_> {
                     }
                 }
                 let theta_j = self.theta;
+                // Every scan at φ_j below evaluates a pair once (`PairMemo`).
+                let mut memo = PairMemo::new(mesh, phi_j);
+                let mut lo_j = |pair: (i64, i64)| {
+                    mesh.obstacle_in(phi_j, pair.0, pair.1, &mut memo)
+                        .map_or(f64::INFINITY, |o| o.lo)
+                };
                 let closing = ahead
                     .iter()
                     .chain(&gone)
-                    .copied()
-                    .min_by(|&a, &b| mesh.lo(phi_j, a).total_cmp(&mesh.lo(phi_j, b)))
-                    .unwrap_or((0, 0));
-                let (release, chain) = match mesh.free_or_cover(phi_j, theta_j, true) {
-                    Ok(t) => (Some(t), Vec::new()),
-                    Err(chain) => (None, chain),
-                };
+                    .map(|&pair| (pair, lo_j(pair)))
+                    .min_by(|a, b| a.1.total_cmp(&b.1))
+                    .map_or((0, 0), |(pair, _)| pair);
+                let (release, chain) =
+                    match mesh.free_or_cover_in(phi_j, theta_j, true, None, &mut memo) {
+                        Ok(t) => (Some(t), Vec::new()),
+                        Err(chain) => (None, chain),
+                    };
                 if release.is_some_and(|t| t <= theta_j + SIDE_TOL) {
                     // Nothing ahead actually holds the driven gear (the closing obstacle only
                     // touches, or vanished): no jam. Count the pair as behind and go on.
-                    self.classify_all(phi_j);
+                    self.classify_all(phi_j, &mut memo);
                     for t in &mut self.sides {
                         if t.pair == closing {
                             t.side = Side::Behind;
@@ -2124,7 +2153,7 @@ impl Run<'_> {
                 let after = release.unwrap_or(theta_j);
                 // Held from both sides (a pair touching behind as the one ahead closes), or
                 // struck from the front with nothing pushing.
-                let behind_pair = self.touching_behind(phi_j, theta_j, Some(closing));
+                let behind_pair = self.touching_behind(phi_j, theta_j, Some(closing), &mut memo);
                 let (kind, before) = match behind_pair {
                     Some(p) => (EventKind::Lock, Some(p.0 + p.1)),
                     None => (EventKind::Strike, self.drive_phase),
@@ -2136,7 +2165,7 @@ impl Run<'_> {
                     .map(|(p, n)| mesh.angle_to_driven_centre(p, n));
                 self.record(e, before);
                 self.theta = after;
-                self.classify_all(phi_j);
+                self.classify_all(phi_j, &mut memo);
             }
         }
         self.scratch = obs1;
