@@ -1193,8 +1193,10 @@ impl Run<'_> {
     ///   it follows. Every suspect must stay clear of that tube (nothing ahead meets the driven
     ///   gear: no lock, no strike), and a rising pair that stays clear of it never carries the
     ///   gear and needs no evaluating.
-    /// - Only the **carriers** bound the tube: the pushers, and every rising pair found to reach
-    ///   the tube (each widens it by its own slopes, and then every pair is judged again). This is
+    /// - Only the **carriers** bound the tube: the pushers, every pair behind whose contacts rise
+    ///   and which ends the step above them (it has taken the gear over: known from the start),
+    ///   and every rising pair found to reach the tube (each widens it by its own slopes, and
+    ///   then every pair is judged again). This is
     ///   sound: the running maximum P of the carriers' curves has their slopes, so lies in their
     ///   tube; a rising pair that stays clear of that tube never meets P, and, starting below
     ///   it, stays below; so P is the driven gear's path. Unrelated rising pairs (an incoming
