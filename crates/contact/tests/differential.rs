@@ -240,14 +240,18 @@ fn tight_wide_meshes_answer_as_a_64_times_finer_step() {
     );
 }
 
-/// Meshes so tight that the driven gear jams at every tooth or cannot turn at all (held): the
-/// held gear's remembered cover (`Run::cover`), the certified steps and the replayed bisection
-/// that locates each jam (`bisect_sign`) change no event, bit for bit.
+/// Meshes so tight that the driven gear jams at most teeth or cannot turn at all (held): the
+/// held gear's remembered cover (`Run::cover`), the certified steps, the replayed bisection that
+/// locates each jam (`bisect_sign`) and the pairs it reads there change no event, bit for bit.
+/// `TIGHT_PLAIN_CASES` sets the count of hard meshes, each at six clearances (100 by default;
+/// 1500 pass). With the replay's guard at 64 roundings (`REPLAY_NOISE`) cases 44, 73 and 75
+/// failed here: a jam located up to 1e-11 rad from plain bisection's angle.
 #[test]
 fn tight_meshes_agree_with_the_plain_solver() {
     let (mut checked, mut events) = (0, 0);
-    for case in 0..40u64 {
-        for g in [2.0, 5.0, 8.0] {
+    let cases = case_count("TIGHT_PLAIN_CASES", 100);
+    for case in 0..cases {
+        for g in [2.0, 5.0, 8.0, 12.0, 20.0, 30.0] {
             let Some(h) = hard_mesh(case, Some(g)) else {
                 continue;
             };
@@ -259,9 +263,10 @@ fn tight_meshes_agree_with_the_plain_solver() {
             events += a.events().len();
         }
     }
+    // Most hard meshes exist at each clearance, and jam more than once.
     assert!(
-        checked > 100 && events > 1000,
-        "{checked} cases, {events} events"
+        checked * 2 > cases * 6 && events > 2 * checked as usize,
+        "{checked} of {cases} x 6 meshes, {events} events"
     );
 }
 
