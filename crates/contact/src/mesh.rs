@@ -606,20 +606,15 @@ impl Mesh {
     /// bit for bit.
     pub(crate) fn obstacles_of(&self, phi: f64, pairs: &[(i64, i64)], out: &mut Vec<Obstacle>) {
         out.clear();
-        let n = self.driven.tips.len() as i64;
         let (first, last) = pairs
             .iter()
             .fold((i64::MAX, i64::MIN), |(a, b), &(j, _)| (a.min(j), b.max(j)));
         let mut seen = PairMemo::over(phi, first..=last, self.driven.tips.len());
-        for &(j, k) in pairs {
-            let args = match seen.of_driver(j).get_mut(k.rem_euclid(n) as usize) {
-                Some(memo) => *memo.get_or_insert_with(|| self.pair_args(phi, j, k)),
-                None => self.pair_args(phi, j, k),
-            };
-            if let Some(args) = args {
-                out.push(self.placed(j, k, args));
-            }
-        }
+        out.extend(
+            pairs
+                .iter()
+                .filter_map(|&(j, k)| self.obstacle_in(phi, j, k, &mut seen)),
+        );
     }
 
     /// The obstacle of driver tooth `j`, already placed in the world as `a`, against driven tooth `k`.
