@@ -17,17 +17,14 @@ mod wide_meshes;
 /// 64-times-finer run in any event, and how many in jammed at all or disengaged at all.
 fn wide(cases: u64) {
     let mut bands = [(0u32, 0u32, 0u32); 10];
-    for case in 0..cases {
-        let Some(wide_meshes::WideMesh {
-            mesh: m,
-            phi0,
-            end,
-            clearance,
-            what,
-        }) = wide_meshes::wide_mesh(case)
-        else {
-            continue;
-        };
+    for wide_meshes::WideMesh {
+        mesh: m,
+        phi0,
+        end,
+        clearance,
+        what,
+    } in wide_meshes::wide_meshes(cases, (5.0, 95.0), false)
+    {
         let band = &mut bands[((clearance / 10.0) as usize).min(9)];
         let a = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, true);
         let b = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 64.0, false);

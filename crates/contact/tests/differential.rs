@@ -13,7 +13,7 @@ mod hard_meshes;
 use hard_meshes::{HardMesh, hard_mesh};
 #[path = "support/wide_meshes.rs"]
 mod wide_meshes;
-use wide_meshes::{WideMesh, wide_mesh, wide_mesh_drawn, wide_mesh_within};
+use wide_meshes::{WideMesh, wide_meshes};
 
 #[test]
 fn first_events_do_not_depend_on_the_step() {
@@ -121,17 +121,14 @@ fn certified_steps_find_the_events_bracketing_finds() {
 fn certified_steps_agree_with_bracketing_on_asymmetric_and_out_of_round_teeth() {
     let cases = case_count("CERTIFY_CASES", 1000);
     let (mut checked, mut events, mut certified) = (0u64, 0u64, 0u64);
-    for case in 0..cases {
-        let Some(WideMesh {
-            mesh: m,
-            phi0,
-            end,
-            what,
-            ..
-        }) = wide_mesh(case)
-        else {
-            continue;
-        };
+    for WideMesh {
+        mesh: m,
+        phi0,
+        end,
+        what,
+        ..
+    } in wide_meshes(cases, (5.0, 95.0), false)
+    {
         let before = contact::solver_stats().certified;
         let a = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, true);
         certified += contact::solver_stats().certified - before;
@@ -174,17 +171,14 @@ fn every_event_of_a_curved_wide_mesh_agrees_with_a_64_times_finer_step_at_workin
 /// G = 40-95 % (with curved flanks where `curved` is set) is the 64-times-finer run's.
 fn wide_meshes_agree_with_a_64_times_finer_step(cases: u64, curved: bool) {
     let (mut checked, mut events) = (0u64, 0usize);
-    for case in 0..cases {
-        let Some(WideMesh {
-            mesh: m,
-            phi0,
-            end,
-            what,
-            ..
-        }) = wide_mesh_drawn(case, (40.0, 95.0), curved)
-        else {
-            continue;
-        };
+    for WideMesh {
+        mesh: m,
+        phi0,
+        end,
+        what,
+        ..
+    } in wide_meshes(cases, (40.0, 95.0), curved)
+    {
         let (quarter, fine) = quarter_and_fine_runs(&m, phi0, end);
         assert_same_events(&what, quarter.events(), fine.events());
         checked += 1;
@@ -207,17 +201,14 @@ fn wide_meshes_agree_with_a_64_times_finer_step(cases: u64, curved: bool) {
 fn tight_wide_meshes_answer_as_a_64_times_finer_step() {
     let cases = case_count("WIDE_DIFFERENTIAL_CASES", 400);
     let (mut checked, mut jammed) = (0u64, 0u64);
-    for case in 0..cases {
-        let Some(WideMesh {
-            mesh: m,
-            phi0,
-            end,
-            what,
-            ..
-        }) = wide_mesh_within(case, (5.0, 40.0))
-        else {
-            continue;
-        };
+    for WideMesh {
+        mesh: m,
+        phi0,
+        end,
+        what,
+        ..
+    } in wide_meshes(cases, (5.0, 40.0), false)
+    {
         let (quarter, fine) = quarter_and_fine_runs(&m, phi0, end);
         let answer = |t: &contact::Trajectory| (t.jams() > 0, t.disengagements() > 0);
         assert_eq!(answer(&quarter), answer(&fine), "{what}");

@@ -19,17 +19,22 @@ pub struct WideMesh {
 /// asymmetric teeth (valleys off the midway angle),
 /// gears that are not round (a radius per tip and valley), eccentricity and clearances from 5 to
 /// 95 %; None where the drawn gears cannot be placed.
+/// (The documents name meshes of the class so: `wide_mesh(242)`.)
 pub fn wide_mesh(case: u64) -> Option<WideMesh> {
-    wide_mesh_within(case, (5.0, 95.0))
+    wide_mesh_drawn(case, (5.0, 95.0), false)
+}
+
+/// The meshes of the first `cases` cases that can be placed, as [`wide_mesh_drawn`] draws them.
+pub fn wide_meshes(
+    cases: u64,
+    clearances: (f64, f64),
+    curved: bool,
+) -> impl Iterator<Item = WideMesh> {
+    (0..cases).filter_map(move |case| wide_mesh_drawn(case, clearances, curved))
 }
 
 /// [`wide_mesh`] with its clearance drawn from `clearances` (per cent of h), everything else
-/// drawn alike.
-pub fn wide_mesh_within(case: u64, clearances: (f64, f64)) -> Option<WideMesh> {
-    wide_mesh_drawn(case, clearances, false)
-}
-
-/// [`wide_mesh_within`], and with `curved` set, both gears' flanks circular arcs of a sagitta
+/// drawn alike, and with `curved` set, both gears' flanks circular arcs of a sagitta
 /// drawn from -0.05 to 0.05 mm (convex or concave; None where the teeth cannot take it).
 pub fn wide_mesh_drawn(case: u64, clearances: (f64, f64), curved: bool) -> Option<WideMesh> {
     use std::f64::consts::TAU;
