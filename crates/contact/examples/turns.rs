@@ -6,26 +6,16 @@ use std::f64::consts::TAU;
 use std::time::Instant;
 
 use contact::{Mesh, Start};
-use geometry::{Gear, Vec2};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use rand_distr::{Distribution, Normal};
 
-fn gear(n: usize, r_tip: f64, sigma: f64, rng: &mut ChaCha8Rng) -> Gear {
-    let pitch = TAU / n as f64;
-    let normal = Normal::new(0.0, sigma * pitch).unwrap();
-    let tips = (0..n)
-        .map(|k| pitch * k as f64 + normal.sample(rng))
-        .collect();
-    Gear::new(r_tip, r_tip - 1.1, tips, Vec2::zeros()).unwrap()
-}
+mod support;
+
+use support::{MESHES, gear};
 
 fn main() {
     let turns: usize = std::env::args().nth(1).map_or(20, |s| s.parse().unwrap());
-    for (name, n1, n2, r1, r2) in [
-        ("m3-e3", 27, 223, 27.0 / 223.0 * 51.95, 51.95),
-        ("m2-n1", 15, 53, 3.85, 53.0 / 15.0 * 3.85),
-    ] {
+    for (name, n1, n2, r1, r2) in MESHES {
         let t0 = Instant::now();
         let evals0 = contact::tooth_pair_evaluations();
         let stats0 = contact::solver_stats();
