@@ -15,9 +15,13 @@ use std::f64::consts::TAU;
 use std::hint::black_box;
 use std::time::Instant;
 
-use geometry::{Gear, Vec2};
+use geometry::Vec2;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+
+mod support;
+
+use support::{MESHES, gear};
 
 /// `A·cos θ + B·sin θ = H`, each of A, B, H as [constant, coefficient of cos φ, of sin φ].
 #[derive(Debug, Clone, Copy)]
@@ -176,15 +180,9 @@ fn conditions(a: [Vec2; 3], b: [Vec2; 3], d: f64) -> Vec<Cond> {
 
 fn main() {
     let mut rng = ChaCha8Rng::seed_from_u64(7);
-    let (n1, n2, r1, r2) = (27usize, 223usize, 27.0 / 223.0 * 51.95, 51.95);
-    let gear = |n: usize, r: f64, rng: &mut ChaCha8Rng| {
-        let pitch = TAU / n as f64;
-        let tips = (0..n)
-            .map(|k| pitch * k as f64 + 0.04 * pitch * (rng.random::<f64>() - 0.5))
-            .collect();
-        Gear::new(r, r - 1.1, tips, Vec2::zeros()).unwrap()
-    };
-    let (g1, g2) = (gear(n1, r1, &mut rng), gear(n2, r2, &mut rng));
+    // m3-e3, random tip errors σ = 0.04 pitch.
+    let (_, n1, n2, r1, r2) = MESHES[0];
+    let (g1, g2) = (gear(n1, r1, 0.04, &mut rng), gear(n2, r2, 0.04, &mut rng));
     let d = geometry::centre_distance(r1, r2, 1.1, 40.0);
     let pitch = TAU / n1 as f64;
     // Pairs of conditions of teeth near the mesh: driver teeth 0..3 and driven teeth about the
