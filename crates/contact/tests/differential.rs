@@ -171,15 +171,7 @@ fn every_event_of_a_curved_wide_mesh_agrees_with_a_64_times_finer_step_at_workin
 /// G = 40-95 % (with curved flanks where `curved` is set) is the 64-times-finer run's.
 fn wide_meshes_agree_with_a_64_times_finer_step(cases: u64, curved: bool) {
     let (mut checked, mut events) = (0u64, 0usize);
-    for WideMesh {
-        mesh: m,
-        phi0,
-        end,
-        what,
-        ..
-    } in wide_meshes(cases, (40.0, 95.0), curved)
-    {
-        let (quarter, fine) = quarter_and_fine_runs(&m, phi0, end);
+    for (what, quarter, fine) in wide_quarter_and_fine_runs(cases, (40.0, 95.0), curved) {
         assert_same_events(&what, quarter.events(), fine.events());
         checked += 1;
         events += quarter.events().len();
@@ -201,15 +193,7 @@ fn wide_meshes_agree_with_a_64_times_finer_step(cases: u64, curved: bool) {
 fn tight_wide_meshes_answer_as_a_64_times_finer_step() {
     let cases = case_count("WIDE_DIFFERENTIAL_CASES", 400);
     let (mut checked, mut jammed) = (0u64, 0u64);
-    for WideMesh {
-        mesh: m,
-        phi0,
-        end,
-        what,
-        ..
-    } in wide_meshes(cases, (5.0, 40.0), false)
-    {
-        let (quarter, fine) = quarter_and_fine_runs(&m, phi0, end);
+    for (what, quarter, fine) in wide_quarter_and_fine_runs(cases, (5.0, 40.0), false) {
         let answer = |t: &contact::Trajectory| (t.jams() > 0, t.disengagements() > 0);
         assert_eq!(answer(&quarter), answer(&fine), "{what}");
         let firsts = |t: &contact::Trajectory| t.events().first().cloned();
@@ -338,6 +322,19 @@ fn quarter_and_fine_runs(
     let quarter = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, true);
     let fine = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 64.0, false);
     (quarter, fine)
+}
+
+/// The quarter-pitch and 64-times-finer runs of each of the first `cases` meshes of the wider
+/// class with G in `clearances` (%), each with its description.
+fn wide_quarter_and_fine_runs(
+    cases: u64,
+    clearances: (f64, f64),
+    curved: bool,
+) -> impl Iterator<Item = (String, contact::Trajectory, contact::Trajectory)> {
+    wide_meshes(cases, clearances, curved).map(|w: WideMesh| {
+        let (quarter, fine) = quarter_and_fine_runs(&w.mesh, w.phi0, w.end);
+        (w.what, quarter, fine)
+    })
 }
 
 /// Two runs found the same events: as many, of the same kinds, at the same driver and driven
