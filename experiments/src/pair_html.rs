@@ -80,12 +80,13 @@ pub fn page(
         let (p, n) = contact_of(traj, e);
         let _ = writeln!(
             events,
-            "<li class=\"{kind}\"><a href=\"#phi={at:.9}\" data-phi=\"{at:.9}\" data-x=\"{:.9}\" data-y=\"{:.9}\" data-nx=\"{:.9}\" data-ny=\"{:.9}\">{at:.4} deg: {kind} ({counted}), driver tooth {j}, driven tooth {k}</a></li>",
+            "<li class=\"{kind}\"><a href=\"#phi={at:.9}\" data-phi=\"{at:.9}\" data-x=\"{:.9}\" data-y=\"{:.9}\" data-nx=\"{:.9}\" data-ny=\"{:.9}\">{at:.4} deg: {label} ({counted}), driver tooth {j}, driven tooth {k}</a></li>",
             p.x,
             p.y,
             n.x,
             n.y,
             kind = e.kind.name(),
+            label = e.label(),
             counted = counted(e),
             j = e.driver_tooth.rem_euclid(mesh.driver().teeth() as i64),
             k = e.driven_tooth.rem_euclid(mesh.driven().teeth() as i64),
@@ -310,7 +311,7 @@ pub fn event_svg(traj: &Trajectory, e: &contact::Event, counted: &str) -> String
     svg.push_str("</g>\n");
     let label = format!(
         "{} ({counted}) at phi - phi0 = {:.4} deg: driver tooth {j} (dot, blue), driven tooth {k} (dot, purple){}",
-        e.kind.name(),
+        e.label(),
         (e.phi - traj.phi_start()).to_degrees(),
         if contact.is_some() {
             "; red: contact point and normal"

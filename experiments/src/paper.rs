@@ -17,6 +17,15 @@ pub struct Reference {
     pub unit: String,
     /// Where in the paper it is given.
     pub source: String,
+    /// Why the number looks like a slip of the paper's own (a cell copied from the row above),
+    /// if it does: such numbers are still shown, and compared both with and without them.
+    #[serde(default)]
+    pub suspect: Option<String>,
+}
+
+/// Whether the paper's number `quantity` of experiment `id` is flagged as a likely slip.
+pub fn suspect(id: &str, quantity: &str) -> bool {
+    get(id, quantity).is_some_and(|r| r.suspect.is_some())
 }
 
 const TEXT: &str = include_str!("../paper.ron");
@@ -42,6 +51,24 @@ mod tests {
         let parsed: Result<Vec<super::Reference>, _> = ron::from_str(super::TEXT);
         assert!(parsed.is_ok(), "{parsed:?}");
         assert!(super::get("fig2", "theta_prime_0").is_some());
+    }
+
+    /// A number flagged as copied from Table I's 40 % row must equal that row's number: the
+    /// flag is a reading of the data, checked against it, not a free annotation.
+    #[test]
+    fn every_suspect_repeats_the_cell_it_was_copied_from() {
+        let suspects: Vec<_> = super::all()
+            .iter()
+            .filter(|r| r.suspect.is_some())
+            .collect();
+        assert_eq!(suspects.len(), 4, "the two Case C cells at G = 70 %");
+        for r in suspects {
+            let mut parts = r.quantity.splitn(3, '.');
+            let (case, _g, rest) = (parts.next(), parts.next(), parts.next());
+            let source = format!("{}.40.{}", case.unwrap_or(""), rest.unwrap_or(""));
+            let copied = super::get(&r.experiment, &source).map(|s| s.value);
+            assert_eq!(copied, Some(r.value), "{} against {source}", r.quantity);
+        }
     }
 
     #[test]

@@ -196,7 +196,7 @@ fn one_trial(
         };
         table.row(vec![
             fmt_f64(e.phi.to_degrees(), 6),
-            e.kind.name().into(),
+            e.label().into(),
             counted.into(),
             e.driver_tooth.rem_euclid(n1).to_string(),
             e.driven_tooth.rem_euclid(n2).to_string(),

@@ -148,3 +148,42 @@ fn bad_arguments_are_refused_in_one_line() {
         assert!(o.stdout.is_empty(), "{args:?}: nothing on stdout");
     }
 }
+
+/// A driven gear that no driver tooth ever pushes is a failure a reader must see: Case D's
+/// eccentric m3-e3 at G = 40 % starts out of reach in trial 0 and never moves. `replay` reports
+/// the idle start, every registered rule counts it as a disengagement, and `run pair` on the
+/// written pair file reports it too (never "driven throughout").
+#[test]
+fn an_idle_start_is_reported_and_every_rule_counts_it() {
+    let s = Scratch::new("replay-idle");
+    let out = s.path("out");
+    for rule in ["friction", "idle-rotation", "paper", "strict", "sync"] {
+        let text = succeeded(&[
+            "replay",
+            "table3",
+            "D/m3-e3",
+            "0",
+            "-q",
+            "--set",
+            &format!("events={rule}"),
+            "--out",
+            &out,
+        ]);
+        let title = text.lines().find(|l| l.starts_with("### ")).unwrap();
+        assert!(title.contains("disengaged"), "{rule}: {text}");
+        let row = text.lines().find(|l| l.contains("| idle start ")).unwrap();
+        assert!(row.contains("| disengagement "), "{rule}: {text}");
+    }
+    let pair = succeeded(&[
+        "run",
+        "pair",
+        "-q",
+        "--config",
+        &s.path("out/replay-table3-D-m3-e3-0/pair.ron"),
+        "--out",
+        &s.path("pair"),
+    ]);
+    assert!(pair.contains("| idle start "), "{pair}");
+    assert!(pair.contains("never pushed"), "{pair}");
+    assert!(!pair.contains("driven throughout"), "{pair}");
+}

@@ -90,7 +90,9 @@ pub enum EventKind {
     /// driver tooth took over, and drive resumed within one driver pitch, in step.
     Gap,
     /// Drive lost for a whole driver pitch or more, or resumed with the driven gear's tooth phase
-    /// against the driver moved by a tooth: synchronisation lost.
+    /// against the driver moved by a tooth: synchronisation lost. Also an **idle start**
+    /// ([`Event::idle_start`]): a driven gear first pushed a driver pitch or more after the start
+    /// of the run, or never in it, turned idle from the start.
     Slip,
     /// No free driven position at the start: the teeth overlap wherever the driven gear is put.
     BlockedAtStart,
@@ -168,9 +170,24 @@ pub struct Event {
     /// gear's rotation centre: a force along the normal passes this close to the driven arbor.
     /// None for the other kinds, and where the normal is not defined (tip on tip).
     pub wedge_angle: Option<f64>,
+    /// A slip that is the run's idle start: no driver tooth touched the driven gear from behind
+    /// at the start, and none pushed it for a driver pitch or more after it (or at all). `phi`
+    /// and `theta` are the start's, the teeth those of the nearest pair behind the driven gear
+    /// there ((0, 0) when nothing was behind), and `lost_motion` runs from the start.
+    pub idle_start: bool,
 }
 
 impl Event {
+    /// The event's name for a reader: its kind's ([`EventKind::name`]), or `idle start` for the
+    /// slip of a driven gear not pushed from the start of the run.
+    pub fn label(&self) -> &'static str {
+        if self.idle_start && self.kind == EventKind::Slip {
+            "idle start"
+        } else {
+            self.kind.name()
+        }
+    }
+
     /// An event of `kind` at (φ, θ) on tooth pair `pair`, with no size yet.
     fn new(kind: EventKind, phi: f64, theta: f64, pair: (i64, i64)) -> Self {
         Self {
@@ -186,6 +203,7 @@ impl Event {
             phase_shift: 0,
             lag: 0.0,
             wedge_angle: None,
+            idle_start: false,
         }
     }
 }
@@ -472,6 +490,9 @@ struct Run<'m> {
     /// suspects the last certified step ending there proved clear of its path, so the next
     /// step need not evaluate them to find where they start.
     clear_ahead: (f64, f64, Pairs),
+    /// Whether an idle-start candidate (always the first event) was dropped since the last
+    /// [`Run::stops`]: a start in the backlash, taken up within a driver pitch.
+    dropped_idle_start: bool,
 }
 
 impl Mesh {
@@ -609,6 +630,7 @@ impl Mesh {
             remember_cover: how.certify,
             opened: None,
             clear_ahead: (f64::NAN, f64::NAN, Pairs::new()),
+            dropped_idle_start: false,
         };
         run.start(start);
         let mut seen = 0;
@@ -931,10 +953,15 @@ fn sweep(theta: f64, obs: &[Obstacle], through: bool, mut take: impl FnMut(&Obst
 impl Run<'_> {
     /// Whether the run ends here by `stop`, given that the events before `seen` were asked
     /// about already (`seen` is moved past those asked about now).
-    fn stops(&self, stop: Stop<'_, '_>, seen: &mut usize) -> bool {
+    fn stops(&mut self, stop: Stop<'_, '_>, seen: &mut usize) -> bool {
         match stop {
             Stop::Never => false,
             Stop::AtEvent(stop) => {
+                // An idle start that turned out a backlash taken up was asked about as it was
+                // recorded (first of all events) and has gone since: the rest moved down by one.
+                if std::mem::take(&mut self.dropped_idle_start) {
+                    *seen = seen.saturating_sub(1);
+                }
                 let stops = self.events[*seen..].iter().any(stop);
                 *seen = self.events.len();
                 stops
@@ -1005,6 +1032,25 @@ impl Run<'_> {
         self.drive_phase = self
             .touching_behind(phi, self.theta, None, &mut memo)
             .map(|p| p.0 + p.1);
+        if !self.held && self.drive_phase.is_none() {
+            self.record_idle_start();
+        }
+    }
+
+    /// Nothing touches the driven gear from behind at the start: it turns idle until a driver
+    /// tooth first pushes it. Recorded as a gap waiting for the drive, like any loss of drive,
+    /// so that the same sizing tells a backlash taken up within a driver pitch (dropped when
+    /// the drive starts: see [`Run::resume_drive`]) from an idle start (a slip).
+    fn record_idle_start(&mut self) {
+        let nearest_behind = self
+            .sides
+            .iter()
+            .filter(|t| t.side == Side::Behind)
+            .max_by(|a, b| a.hi.total_cmp(&b.hi))
+            .map_or((0, 0), |t| t.pair);
+        let mut e = Event::new(EventKind::Gap, self.phi, self.theta, nearest_behind);
+        e.idle_start = true;
+        self.record(e, None);
     }
 
     /// A tooth pair touching the driven gear from behind at (φ, θ) (its obstacle's upper end is
@@ -1057,6 +1103,12 @@ impl Run<'_> {
             self.events[i].resumed_by = by;
             self.size_event(i, phi, theta, true, shift);
         }
+        // A start in the backlash taken up within a driver pitch is no event. (No index into
+        // `events` is held past this point: every pending event was sized above.)
+        let before = self.events.len();
+        self.events
+            .retain(|e| !(e.idle_start && e.kind == EventKind::Gap));
+        self.dropped_idle_start |= self.events.len() < before;
         if phase.is_some() {
             self.drive_phase = phase;
         }
@@ -1067,6 +1119,11 @@ impl Run<'_> {
         let (phi, theta) = (self.phi, self.theta);
         for (i, _) in std::mem::take(&mut self.pending) {
             self.size_event(i, phi, theta, false, 0);
+            // A driven gear never pushed in the whole run turned idle throughout, however short
+            // the run: never a mere hand-over gap.
+            if self.events[i].idle_start {
+                self.events[i].kind = EventKind::Slip;
+            }
         }
     }
 

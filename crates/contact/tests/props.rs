@@ -518,6 +518,12 @@ fn check_disengagements(case: &Case) -> Result<(), TestCaseError> {
     let oracle = case.oracle();
     let traj = case.run(&mesh);
     for e in traj.events().iter().filter(|e| e.kind.is_loss()) {
+        if e.idle_start {
+            // Not a contact lost but none made: the driven gear is free at the start.
+            let pen = oracle.penetration_at(e.phi, e.theta);
+            prop_assert!(pen <= PEN_TOL, "idle start {e:?} in overlap {pen}");
+            continue;
+        }
         let pen = oracle.penetration_at(e.phi, e.theta);
         let dist = oracle.distance_at(e.phi, e.theta);
         prop_assert!(
@@ -528,6 +534,77 @@ fn check_disengagements(case: &Case) -> Result<(), TestCaseError> {
         prop_assert!(
             after > 0.0,
             "disengagement {e:?} still in contact 1e-6 rad later"
+        );
+    }
+    Ok(())
+}
+
+/// The driver angle where a driver tooth first moves the driven gear (a push segment that lifts
+/// it), or `None` if none does in the run.
+fn first_lift(traj: &Trajectory) -> Option<f64> {
+    traj.segments()
+        .iter()
+        .find(|s| matches!(s.motion, Motion::Push(_)) && s.theta_end > s.theta_start)
+        .map(|s| s.phi_start)
+}
+
+/// Property 5b: a driven gear first lifted a driver pitch or more after the start, or never, is
+/// reported: an idle start (a slip at the start, with the lost motion to its first push), and
+/// a gear lifted sooner has none. (Where a jam comes first, the gear may be moved by its release
+/// instead: the jam is then the event reported.)
+fn check_idle_start(case: &Case, start: Start) -> Result<(), TestCaseError> {
+    let Some(mesh) = case.mesh() else {
+        return Err(TestCaseError::reject("mesh refused"));
+    };
+    let traj = mesh.run(case.phi0, case.phi_end(), start);
+    let p1 = case.driver.pitch();
+    let events = traj.events();
+    // A run that ends at its first jam finds the same first jam, whether or not an idle start
+    // was recorded and dropped before it. (The events before it may be sized otherwise: such a
+    // run ends there, so a gear not pushed by then was never pushed in it.)
+    let until = mesh.run_until(
+        case.phi0,
+        case.phi_end(),
+        start,
+        Some(&|e: &Event| e.kind.is_contact_stop()),
+    );
+    let first_jam = |events: &[Event]| {
+        events
+            .iter()
+            .find(|e| e.kind.is_contact_stop())
+            .map(|e| (e.kind, e.phi))
+    };
+    prop_assert_eq!(first_jam(until.events()), first_jam(events));
+    if first_jam(events).is_some() {
+        return Ok(());
+    }
+    let idle: Vec<&Event> = events.iter().filter(|e| e.idle_start).collect();
+    prop_assert!(idle.len() <= 1, "two idle starts: {events:?}");
+    let lift = first_lift(&traj);
+    // Half a micro-radian either side of a whole pitch: the lift's own location tolerance.
+    let late = lift.is_none_or(|phi| phi - case.phi0 >= p1 + 5e-7);
+    let early = lift.is_some_and(|phi| phi - case.phi0 < p1 - 5e-7);
+    if late {
+        prop_assert!(
+            idle.len() == 1 && idle[0].kind == EventKind::Slip && idle[0].phi == case.phi0,
+            "first lifted at {lift:?} (start {}, pitch {p1}) but no idle start: {events:?}",
+            case.phi0
+        );
+        let e = idle[0];
+        prop_assert_eq!(e.resumed, lift.is_some());
+        if let Some(phi) = lift {
+            let lost = (phi - case.phi0) / p1;
+            prop_assert!(
+                (e.lost_motion - lost).abs() < 1e-6,
+                "idle start lost motion {} against the first lift's {lost}",
+                e.lost_motion
+            );
+        }
+    }
+    if early {
+        prop_assert!(
+            idle.is_empty(),
+            "lifted at {lift:?}, yet an idle start: {events:?}"
         );
     }
     Ok(())
@@ -764,6 +841,28 @@ proptest! {
     #[test]
     fn push_touches_and_rest_is_free_curved_non_circular(case in curved_non_circular_cases(2..5)) {
         check_segments(&case)?;
+    }
+
+    /// Property 5b at wide clearances, from a touching start (eccentric gears may lie out of
+    /// reach at the start) and from a driven gear put anywhere in its backlash.
+    #[test]
+    fn an_idle_start_is_reported_eccentric(
+        case in cases(Errors::All, 60.0..100.0, 1..7),
+        at in 0.0..TAU,
+    ) {
+        check_idle_start(&case, Start::Touching(case.guess))?;
+        check_idle_start(&case, Start::At(at))?;
+    }
+
+    #[test]
+    fn an_idle_start_is_reported_non_circular(case in non_circular_cases(1..7), at in 0.0..TAU) {
+        check_idle_start(&case, Start::Touching(case.guess))?;
+        check_idle_start(&case, Start::At(at))?;
+    }
+
+    #[test]
+    fn an_idle_start_is_reported_curved(case in curved_cases(1..5), at in 0.0..TAU) {
+        check_idle_start(&case, Start::At(at))?;
     }
 
     /// Property 6: ideal gears turn at exactly N1/N2 over whole driver teeth, without events.

@@ -21,7 +21,7 @@ mod plugins {
 
 /// The rule of the paper's tables unless `--set events=NAME` says otherwise (see the README's
 /// results section for the evidence that chose it).
-pub const DEFAULT: &str = "paper";
+pub const DEFAULT: &str = "idle-rotation";
 
 /// Why a rule could not be looked up or configured: what was wrong and the rule broken.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -330,13 +330,14 @@ mod tests {
             phase_shift: 0,
             lag: 0.0,
             wedge_angle: None,
+            idle_start: false,
         }
     }
 
     #[test]
     fn the_four_readings_are_registered_and_default_exists() {
         let all = rules().unwrap();
-        for name in ["friction", "paper", "strict", "sync"] {
+        for name in ["friction", "idle-rotation", "paper", "strict", "sync"] {
             assert!(all.contains_key(name), "{name} missing");
         }
         assert_eq!(Rule::default().name(), DEFAULT);
@@ -384,6 +385,41 @@ mod tests {
     }
 
     #[test]
+    fn idle_rotation_counts_lost_drive_by_its_length_alone() {
+        let r = Rule::parse("idle-rotation").unwrap();
+        assert_eq!(r.label(), "idle-rotation(pitches=1)");
+        let mut loss = event(EventKind::Gap);
+        loss.lost_motion = 0.99;
+        assert!(!r.is_disengagement(&loss));
+        // A short loss that resumes a tooth out of step is a slip, yet no idle rotation.
+        loss.kind = EventKind::Slip;
+        loss.phase_shift = 1;
+        assert!(!r.is_disengagement(&loss));
+        loss.lost_motion = 1.0;
+        assert!(r.is_disengagement(&loss));
+        loss.kind = EventKind::Gap;
+        assert!(r.is_disengagement(&loss), "a gap is sized, not named");
+        assert!(r.is_jam(&event(EventKind::Lock)) && r.is_jam(&event(EventKind::Strike)));
+        let half = Rule::parse("idle-rotation:pitches=0.5").unwrap();
+        let mut short = event(EventKind::Gap);
+        short.lost_motion = 0.6;
+        assert!(half.is_disengagement(&short) && !r.is_disengagement(&short));
+    }
+
+    #[test]
+    fn every_rule_that_counts_slips_counts_an_idle_start() {
+        let mut idle = event(EventKind::Slip);
+        idle.idle_start = true;
+        idle.resumed = false;
+        idle.lost_motion = 0.3; // a run shorter than a pitch, never driven
+        // Every registered rule counts losses of drive in some form, so every one counts it.
+        for name in rules().unwrap().keys() {
+            let r = Rule::parse(name).unwrap();
+            assert!(r.is_disengagement(&idle), "{name}");
+        }
+    }
+
+    #[test]
     fn friction_wedges_inside_the_cone_only() {
         let r = Rule::parse("friction:mu=0.2").unwrap();
         let mut s = event(EventKind::Strike);
@@ -401,7 +437,7 @@ mod tests {
     fn bad_specs_are_refused_with_the_rule_broken() {
         let e = Rule::parse("papr").unwrap_err().to_string();
         assert!(
-            e.contains("unknown; known rules: friction, paper, strict, sync"),
+            e.contains("unknown; known rules: friction, idle-rotation, paper, strict, sync"),
             "{e}"
         );
         let e = Rule::parse("friction:nu=1").unwrap_err().to_string();

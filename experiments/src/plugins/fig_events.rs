@@ -108,7 +108,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
                     crate::pair_html::event_svg(&t, &e, counted),
                 ));
                 row.extend([
-                    e.kind.name().to_string(),
+                    e.label().to_string(),
                     fmt_f64(e.phi.to_degrees(), 4),
                     e.driver_tooth.rem_euclid(pair.n1 as i64).to_string(),
                     e.driven_tooth.rem_euclid(pair.n2 as i64).to_string(),

@@ -233,6 +233,15 @@ fn size_text(e: &contact::Event) -> String {
             );
             format!("jump {:.3} deg, {wedge}", deg(e.theta_after - e.theta))
         }
+        EventKind::Slip if e.idle_start && !e.resumed => format!(
+            "never pushed: idle for the whole run ({:.3} pitches)",
+            e.lost_motion
+        ),
+        EventKind::Slip if e.idle_start => format!(
+            "first pushed {:.3} pitches after the start, lag {:.3} deg",
+            e.lost_motion,
+            deg(e.lag)
+        ),
         EventKind::Gap | EventKind::Slip => format!(
             "lost motion {:.3} pitch{}, lag {:.3} deg, phase {:+}",
             e.lost_motion,
@@ -271,7 +280,7 @@ fn event_log(
     );
     let mut marks = Vec::new();
     for e in traj.events() {
-        let kind = e.kind.name();
+        let kind = e.label();
         let counted = counted_as(rule, e);
         // Tooth numbers as the user wrote them (a driven gear measured in its own sense is
         // numbered the other way round inside the solver).
