@@ -28,6 +28,52 @@ pub const MAX_TRIALS: u64 = 1_000_000;
 /// is refused, naming this limit, rather than attempted.
 pub const MAX_COUNT: usize = 10_000_000;
 
+/// The fewest samples of a Theoretical Difference curve a `samples` parameter may ask for: σ,
+/// Dm and P of fewer points say nothing about the pointer (two points have σ 0, and a ratio of
+/// two such σ is NaN). [`MIN_SAMPLES_WHY`] says so in `help` and in a refusal.
+pub const MIN_SAMPLES: u64 = 100;
+
+/// Why [`MIN_SAMPLES`]: shown after the range.
+pub const MIN_SAMPLES_WHY: &str = "sigma, Dm and P need the curve sampled through its teeth";
+
+/// The fewest samples per tooth engagement a `samples_per_engagement` parameter may ask for:
+/// one sample per engagement sees every engagement at the same phase, so its σ misses the error
+/// within it.
+pub const MIN_PER_ENGAGEMENT: u64 = 2;
+
+/// Why [`MIN_PER_ENGAGEMENT`]: shown after the range.
+pub const MIN_PER_ENGAGEMENT_WHY: &str =
+    "fewer cannot follow the pointer's error within a tooth engagement";
+
+/// Samples a curve needs per tooth engagement it spans, for [`samples_cover`].
+pub const SAMPLES_PER_TOOTH: usize = 4;
+
+/// Checks that `samples` points of a curve spanning `engagements` tooth engagements (set by the
+/// parameter `of`) give each at least [`SAMPLES_PER_TOOTH`]; the error names the parameter
+/// `name` and the rule, e.g. `--set: samples: must be at least 400 for 100 pitches (4 per tooth
+/// engagement)`.
+///
+/// # Errors
+/// [`RunError::BadInput`] as above.
+pub fn samples_cover(
+    name: &str,
+    samples: usize,
+    engagements: usize,
+    of: &str,
+) -> Result<(), RunError> {
+    let need = engagements.saturating_mul(SAMPLES_PER_TOOTH);
+    if samples < need {
+        return Err(RunError::bad(
+            "--set",
+            name,
+            format!(
+                "must be at least {need} for {of} = {engagements} ({SAMPLES_PER_TOOTH} per tooth engagement; got {samples})"
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// A config file given with `--config FILE`, already read.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct ConfigFile {

@@ -40,7 +40,10 @@ mod progress;
 mod table;
 mod trials;
 
-pub use context::{ConfigFile, Context, MAX_COUNT, MAX_TRIALS};
+pub use context::{
+    ConfigFile, Context, MAX_COUNT, MAX_TRIALS, MIN_PER_ENGAGEMENT, MIN_PER_ENGAGEMENT_WHY,
+    MIN_SAMPLES, MIN_SAMPLES_WHY, SAMPLES_PER_TOOTH, samples_cover,
+};
 pub use engine::TrialMode;
 pub use error::{DuplicateId, RunError};
 pub use output::{Agreement, MAX_DATA_ROWS, OutputFile, Report, tidy, write_results};

@@ -11,7 +11,7 @@ pub const TEETH: Param = Param {
     default: "8",
     unit: "",
     help: "teeth N of both gears",
-    kind: registry::Kind::count(0, registry::MAX_COUNT as u64, ""),
+    kind: registry::Kind::count(3, geometry::MAX_TEETH as u64, "a gear needs three teeth"),
 };
 /// Outer radius R of both gears.
 pub const TIP_RADIUS: Param = Param {

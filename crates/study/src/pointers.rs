@@ -3,13 +3,22 @@
 
 use registry::{Context, Param, RunError};
 
+/// The shortest run a `*_turns` parameter may ask for, in turns of b: 0.05 turn is 11 tooth
+/// engagements of b1's mesh, about the fewest a σ of the pointer's error can be read from (at
+/// 10^-300 turns every sample is at the same angle and σ is 0).
+pub const MIN_TURNS: f64 = 0.05;
+
 /// How finely the Theoretical Difference is sampled (table1 and table6).
 pub const SAMPLES_PER_ENGAGEMENT: Param = Param {
     name: "samples_per_engagement",
     default: "16",
     unit: "",
     help: "TD samples per tooth engagement of the busiest mesh",
-    kind: registry::Kind::count(0, registry::MAX_COUNT as u64, ""),
+    kind: registry::Kind::count(
+        registry::MIN_PER_ENGAGEMENT,
+        registry::MAX_COUNT as u64,
+        registry::MIN_PER_ENGAGEMENT_WHY,
+    ),
 };
 
 /// Run length of the Lunar pointer.
@@ -18,7 +27,11 @@ pub const LUNAR_TURNS: Param = Param {
     default: "1",
     unit: "turns of b",
     help: "run length, Lunar (Table 1 caption: one turn of b2)",
-    kind: registry::Kind::positive(100.0, "turns"),
+    kind: registry::Kind::number(
+        MIN_TURNS,
+        100.0,
+        "turns of b: a shorter run spans too few tooth engagements for a sigma",
+    ),
 };
 
 /// Run length of the Metonic pointer.
@@ -27,7 +40,11 @@ pub const METONIC_TURNS: Param = Param {
     default: "3.8",
     unit: "turns of b",
     help: "run length, Metonic (caption: 3.8 turns)",
-    kind: registry::Kind::positive(100.0, "turns"),
+    kind: registry::Kind::number(
+        MIN_TURNS,
+        100.0,
+        "turns of b: a shorter run spans too few tooth engagements for a sigma",
+    ),
 };
 
 /// Run length of the Saros pointer.
@@ -36,7 +53,11 @@ pub const SAROS_TURNS: Param = Param {
     default: "4.5",
     unit: "turns of b",
     help: "run length, Saros (caption: 4.5 turns)",
-    kind: registry::Kind::positive(100.0, "turns"),
+    kind: registry::Kind::number(
+        MIN_TURNS,
+        100.0,
+        "turns of b: a shorter run spans too few tooth engagements for a sigma",
+    ),
 };
 
 /// Run length of the Games pointer.
@@ -45,7 +66,11 @@ pub const GAMES_TURNS: Param = Param {
     default: "3.8",
     unit: "turns of b",
     help: "run length, Games (caption silent: as Metonic)",
-    kind: registry::Kind::positive(100.0, "turns"),
+    kind: registry::Kind::number(
+        MIN_TURNS,
+        100.0,
+        "turns of b: a shorter run spans too few tooth engagements for a sigma",
+    ),
 };
 
 /// Run length of the Exeligmos pointer.
@@ -54,7 +79,11 @@ pub const EXELIGMOS_TURNS: Param = Param {
     default: "4.5",
     unit: "turns of b",
     help: "run length, Exeligmos (caption silent: as Saros)",
-    kind: registry::Kind::positive(100.0, "turns"),
+    kind: registry::Kind::number(
+        MIN_TURNS,
+        100.0,
+        "turns of b: a shorter run spans too few tooth engagements for a sigma",
+    ),
 };
 
 /// The five pointers' run lengths and the TD sampling (Tables 1 and 6).

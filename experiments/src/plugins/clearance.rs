@@ -28,7 +28,11 @@ const PARAMS: &[Param] = &[
         default: "3600",
         unit: "",
         help: "samples of the Theoretical Difference per run",
-        kind: registry::Kind::count(0, registry::MAX_COUNT as u64, ""),
+        kind: registry::Kind::count(
+            registry::MIN_SAMPLES,
+            registry::MAX_COUNT as u64,
+            registry::MIN_SAMPLES_WHY,
+        ),
     },
     gearing::PARAM,
 ];
@@ -54,7 +58,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let rule = study::events::chosen(ctx)?;
     let h = ctx.f64("tooth_height")?;
     let grid_step = ctx.f64("grid_step")?;
-    let samples = ctx.usize("samples")?.max(2);
+    let samples = ctx.usize("samples")?;
     let g = gearing::load(ctx)?;
     let label = ctx.param("mesh")?;
     let setup = IdealPair::chosen(ctx, &g, h)?;

@@ -15,14 +15,22 @@ const PARAMS: &[Param] = &[
         default: "3",
         unit: "driver teeth",
         help: "length of each run",
-        kind: registry::Kind::count(0, registry::MAX_COUNT as u64, ""),
+        kind: registry::Kind::count(
+            1,
+            registry::MAX_COUNT as u64,
+            "a run spans at least one tooth",
+        ),
     },
     Param {
         name: "samples",
         default: "1200",
         unit: "",
         help: "samples per run",
-        kind: registry::Kind::count(0, registry::MAX_COUNT as u64, ""),
+        kind: registry::Kind::count(
+            registry::MIN_SAMPLES,
+            registry::MAX_COUNT as u64,
+            registry::MIN_SAMPLES_WHY,
+        ),
     },
 ];
 
@@ -43,8 +51,9 @@ const SCAN: usize = 4000;
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
     let equal_pair::EqualPair { teeth: n, mesh, .. } = equal_pair::from_params(ctx)?;
-    let pitches = ctx.usize("pitches")?.max(1);
-    let samples = ctx.usize("samples")?.max(2);
+    let pitches = ctx.usize("pitches")?;
+    let samples = ctx.usize("samples")?;
+    registry::samples_cover("samples", samples, pitches, "pitches")?;
     let p1 = TAU / n as f64;
     let ratio = 1.0; // equal gears
 

@@ -22,7 +22,11 @@ const PARAMS: &[Param] = &[
         default: "7200",
         unit: "",
         help: "samples over the solar turn",
-        kind: registry::Kind::count(0, registry::MAX_COUNT as u64, ""),
+        kind: registry::Kind::count(
+            registry::MIN_SAMPLES,
+            registry::MAX_COUNT as u64,
+            registry::MIN_SAMPLES_WHY,
+        ),
     },
 ];
 
@@ -50,7 +54,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let mech = Mechanism::ideal(&g, ctx.f64("tooth_height")?, ctx.f64("clearance")?)
         .map_err(study::gearing::mechanism_error)?;
     let mech = study::events::with_rule(ctx, mech)?;
-    let samples = ctx.usize("samples")?.max(2);
+    let samples = ctx.usize("samples")?;
     let mut rng = trial_rng(ctx.seed(), ctx.u64("trial")?);
     let psis: Vec<f64> = (0..samples)
         .map(|i| TAU * i as f64 / (samples - 1) as f64)

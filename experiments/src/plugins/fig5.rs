@@ -18,7 +18,7 @@ const PARAMS: &[Param] = &[
         default: "50",
         unit: "",
         help: "teeth of both gears",
-        kind: registry::Kind::count(0, registry::MAX_COUNT as u64, ""),
+        kind: registry::Kind::count(3, geometry::MAX_TEETH as u64, "a gear needs three teeth"),
     },
     Param {
         name: "tip_radius",
@@ -67,7 +67,11 @@ const PARAMS: &[Param] = &[
         default: "3600",
         unit: "",
         help: "samples over the turn",
-        kind: registry::Kind::count(0, registry::MAX_COUNT as u64, ""),
+        kind: registry::Kind::count(
+            registry::MIN_SAMPLES,
+            registry::MAX_COUNT as u64,
+            registry::MIN_SAMPLES_WHY,
+        ),
     },
 ];
 
@@ -110,7 +114,8 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     };
     let clearance = ctx.f64("clearance")?;
     let h = errors::chosen(ctx)?;
-    let samples = ctx.usize("samples")?.max(2);
+    let samples = ctx.usize("samples")?;
+    registry::samples_cover("samples", samples, n, "teeth")?;
     let phis: Vec<f64> = (0..samples)
         .map(|i| TAU * i as f64 / (samples - 1) as f64)
         .collect();

@@ -38,7 +38,11 @@ const PARAMS: &[Param] = &[
         default: "2000",
         unit: "",
         help: "TD samples per run",
-        kind: registry::Kind::count(0, registry::MAX_COUNT as u64, ""),
+        kind: registry::Kind::count(
+            registry::MIN_SAMPLES,
+            registry::MAX_COUNT as u64,
+            registry::MIN_SAMPLES_WHY,
+        ),
     },
 ];
 
@@ -71,7 +75,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             "need 0 <= from <= to <= 100 (% of h)",
         ));
     }
-    let samples = ctx.usize("samples")?.max(2);
+    let samples = ctx.usize("samples")?;
     let clearances: Vec<f64> = (0..)
         .map(|i| from + step * f64::from(i))
         .take_while(|&c| c <= to + 1e-9)

@@ -16,8 +16,8 @@ use stats::{DAYS_PER_YEAR, Estimate, mean_ci95};
 use crate::common::{Series, csv, line_plot, paper_cell};
 use study::errors;
 use study::gearing;
-use study::pointers::pointer_runs;
 use study::grids::CASES;
+use study::pointers::pointer_runs;
 
 const PARAMS: &[Param] = &[
     Param {
@@ -32,14 +32,22 @@ const PARAMS: &[Param] = &[
         default: "1",
         unit: "turns of b",
         help: "run length (one turn of b: about 13 anomalistic months)",
-        kind: registry::Kind::positive(100.0, "turns"),
+        kind: registry::Kind::number(
+            study::pointers::MIN_TURNS,
+            100.0,
+            "turns of b: a shorter run spans too few tooth engagements for a sigma",
+        ),
     },
     Param {
         name: "samples_per_engagement",
         default: "8",
         unit: "",
         help: "TD samples per engagement of the busiest mesh",
-        kind: registry::Kind::count(0, registry::MAX_COUNT as u64, ""),
+        kind: registry::Kind::count(
+            registry::MIN_PER_ENGAGEMENT,
+            registry::MAX_COUNT as u64,
+            registry::MIN_PER_ENGAGEMENT_WHY,
+        ),
     },
     Param {
         name: "curve_samples",
@@ -123,7 +131,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let trials = ctx.usize("trials")?;
     let curve_samples = ctx.usize("curve_samples")?;
     let (h, clearance) = (ctx.f64("tooth_height")?, ctx.f64("clearance")?);
-    let per = ctx.usize("samples_per_engagement")?.max(1);
+    let per = ctx.usize("samples_per_engagement")?;
     let runs = pointer_runs(ctx, &g, &[(LUNAR, "lunar_turns")], per)?;
     let &[(_, turns, samples)] = runs.as_slice() else {
         return Err(RunError::Internal("one Lunar run expected".into()));

@@ -36,21 +36,29 @@ const PARAMS: &[Param] = &[
         default: "16",
         unit: "",
         help: "TD samples per tooth engagement of the busiest mesh (Table 1's default)",
-        kind: registry::Kind::count(0, registry::MAX_COUNT as u64, ""),
+        kind: registry::Kind::count(
+            registry::MIN_PER_ENGAGEMENT,
+            registry::MAX_COUNT as u64,
+            registry::MIN_PER_ENGAGEMENT_WHY,
+        ),
     },
     Param {
         name: "draws",
         default: "3",
         unit: "",
         help: "Figure IV with Case A errors: manufactured pairs per mesh (each swept over every G)",
-        kind: registry::Kind::count(0, registry::MAX_COUNT as u64, ""),
+        kind: registry::Kind::count(1, registry::MAX_COUNT as u64, "a mean needs one draw"),
     },
     Param {
         name: "samples",
         default: "2000",
         unit: "",
         help: "TD samples per pair run of the Figure IV sweep (figIV's default)",
-        kind: registry::Kind::count(0, registry::MAX_COUNT as u64, ""),
+        kind: registry::Kind::count(
+            registry::MIN_SAMPLES,
+            registry::MAX_COUNT as u64,
+            registry::MIN_SAMPLES_WHY,
+        ),
     },
 ];
 
@@ -488,8 +496,8 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         .ok_or_else(|| RunError::Internal("the embedded freeth2021 gearing is missing".into()))?;
     let trials = ctx.usize("trials")?;
     let clearance = ctx.f64("clearance")?;
-    let per = ctx.usize("samples_per_engagement")?.max(1);
-    let samples = ctx.usize("samples")?.max(2);
+    let per = ctx.usize("samples_per_engagement")?;
+    let samples = ctx.usize("samples")?;
     let paper_from = crate::paper::get("sigma-causes", "figIV.minimum_from").map(|r| r.value);
     let paper_to = crate::paper::get("sigma-causes", "figIV.minimum_to").map(|r| r.value);
 
@@ -499,7 +507,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         .iter()
         .map(|r| tip_radii(&g, &g2021, r.radii, r.tooth_height))
         .collect::<Result<_, _>>()?;
-    let draws = ctx.usize("draws")?.max(1);
+    let draws = ctx.usize("draws")?;
     let seed = ctx.seed();
     // Columns: the geometry readings, then (CASE_A) the first one's gears with Case A errors,
     // then (IN_BACKLASH) its ideal gears started at rest half-way through the backlash.

@@ -9,15 +9,13 @@ use stats::{Estimate, mean_ci95};
 use study::gearing;
 use study::pointers::{POINTERS, pointer_runs};
 
-const PARAMS: &[Param] = &[
-    Param {
-        name: "trials",
-        default: "30",
-        unit: "",
-        help: "trials, each with fresh random initial angles",
-        kind: registry::Kind::count(2, registry::MAX_TRIALS, "an interval needs two trials"),
-    },
-];
+const PARAMS: &[Param] = &[Param {
+    name: "trials",
+    default: "30",
+    unit: "",
+    help: "trials, each with fresh random initial angles",
+    kind: registry::Kind::count(2, registry::MAX_TRIALS, "an interval needs two trials"),
+}];
 
 registry::inventory::submit! {
     Experiment {
@@ -84,7 +82,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let trials = ctx.usize("trials")?;
     let h = ctx.f64("tooth_height")?;
     let clearance = ctx.f64("clearance")?;
-    let per = ctx.usize("samples_per_engagement")?.max(1);
+    let per = ctx.usize("samples_per_engagement")?;
     let mech = Mechanism::ideal(&g, h, clearance).map_err(study::gearing::mechanism_error)?;
     let mech = study::events::with_rule(ctx, mech)?;
     let runs = pointer_runs(ctx, &g, &POINTERS, per)?;

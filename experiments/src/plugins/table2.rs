@@ -25,28 +25,44 @@ const PARAMS: &[Param] = &[
         default: "1",
         unit: "turns of b",
         help: "run length, Lunar",
-        kind: registry::Kind::positive(100.0, "turns"),
+        kind: registry::Kind::number(
+            study::pointers::MIN_TURNS,
+            100.0,
+            "turns of b: a shorter run spans too few tooth engagements for a sigma",
+        ),
     },
     Param {
         name: "metonic_turns",
         default: "3.8",
         unit: "turns of b",
         help: "run length, Metonic",
-        kind: registry::Kind::positive(100.0, "turns"),
+        kind: registry::Kind::number(
+            study::pointers::MIN_TURNS,
+            100.0,
+            "turns of b: a shorter run spans too few tooth engagements for a sigma",
+        ),
     },
     Param {
         name: "saros_turns",
         default: "4.5",
         unit: "turns of b",
         help: "run length, Saros",
-        kind: registry::Kind::positive(100.0, "turns"),
+        kind: registry::Kind::number(
+            study::pointers::MIN_TURNS,
+            100.0,
+            "turns of b: a shorter run spans too few tooth engagements for a sigma",
+        ),
     },
     Param {
         name: "samples_per_engagement",
         default: "8",
         unit: "",
         help: "TD samples per engagement of the busiest mesh",
-        kind: registry::Kind::count(0, registry::MAX_COUNT as u64, ""),
+        kind: registry::Kind::count(
+            registry::MIN_PER_ENGAGEMENT,
+            registry::MAX_COUNT as u64,
+            registry::MIN_PER_ENGAGEMENT_WHY,
+        ),
     },
     gearing::PIN_AND_SLOT,
 ];
@@ -97,7 +113,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let cells = study::grids::CellSettings::read(ctx, "trials")?;
     let (g, hyp, trials) = (&cells.gearing, cells.hypothesis, cells.trials as usize);
     let (h, clearance) = (ctx.f64("tooth_height")?, ctx.f64("clearance")?);
-    let per = ctx.usize("samples_per_engagement")?.max(1);
+    let per = ctx.usize("samples_per_engagement")?;
     let pin_and_slot = gearing::pin_and_slot(ctx)?;
     let runs = pointer_runs(ctx, g, &POINTERS, per)?;
     let seed = ctx.seed();

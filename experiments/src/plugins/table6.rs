@@ -9,10 +9,10 @@ use mechanism::{Mechanism, trial_rng};
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
 use stats::{Estimate, PointerStats, mean_ci95};
 
-use study::errors;
-use study::cell::{Purpose, label};
-use study::pointers::{POINTERS, pointer_runs};
 use crate::emax::{paper_random, paper_systematic, show};
+use study::cell::{Purpose, label};
+use study::errors;
+use study::pointers::{POINTERS, pointer_runs};
 use study::tolerance::{self, RULE};
 
 const PARAMS: &[Param] = &[
@@ -78,7 +78,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         ctx.f64("clearance")?,
         ctx.f64("split")?,
     );
-    let per = ctx.usize("samples_per_engagement")?.max(1);
+    let per = ctx.usize("samples_per_engagement")?;
     let runs = pointer_runs(ctx, g, &POINTERS, per)?;
     let tol = study::grids::derive(
         ctx,

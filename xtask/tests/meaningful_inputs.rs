@@ -1,0 +1,127 @@
+//! Inputs that would run but give meaningless numbers, or a title or message about other inputs
+//! than those used, are refused before anything runs: exit status 2 and one line naming the flag,
+//! the field and the rule broken.
+
+#![allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
+
+mod support;
+use support::{Scratch, stderr, stdout, xtask};
+
+/// Runs `xtask args` (`{out}` stands for a scratch results dir) and asserts it is refused as bad
+/// input in one line holding every one of `words`; returns that line.
+fn refused(args: &str, words: &[&str]) -> String {
+    let scratch = Scratch::new("meaningful-inputs");
+    let out = scratch.path("out");
+    let line = args.replace("{out}", &out);
+    let argv: Vec<&str> = line.split(' ').collect();
+    let o = xtask(&argv);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{args}: {err}");
+    assert_eq!(err.lines().count(), 1, "{args}: one line: {err}");
+    for w in words {
+        assert!(err.contains(w), "{args}: `{w}` missing from: {err}");
+    }
+    assert!(
+        !std::path::Path::new(&out).exists(),
+        "{args}: nothing may be written"
+    );
+    err
+}
+
+#[test]
+fn counts_and_spans_below_what_their_statistic_needs_are_refused() {
+    for (args, words) in [
+        (
+            "run fig3 --set samples=0 --out {out}",
+            &["--set: samples: must be at least 100"][..],
+        ),
+        (
+            "run fig3 --set samples=1 --out {out}",
+            &["--set: samples: must be at least 100"],
+        ),
+        (
+            "run fig3 --set pitches=0 --out {out}",
+            &["--set: pitches: must be at least 1"],
+        ),
+        (
+            "run fig3 --set pitches=1000 --set samples=1000 --out {out}",
+            &["--set: samples: must be at least 4000 for pitches = 1000"],
+        ),
+        (
+            "run fig5 --set samples=0 --out {out}",
+            &["--set: samples: must be at least 100"],
+        ),
+        (
+            "run fig5 --set teeth=1000 --out {out}",
+            &["--set: samples: must be at least 4000 for teeth = 1000"],
+        ),
+        (
+            "run fig5 --set teeth=2 --out {out}",
+            &["--set: teeth: must be at least 3"],
+        ),
+        (
+            "run fig2 --set teeth=0 --out {out}",
+            &["--set: teeth: must be at least 3"],
+        ),
+        (
+            "run fig4 --set samples=2 --out {out}",
+            &["--set: samples: must be at least 100"],
+        ),
+        (
+            "run clearance --set samples=1 --out {out}",
+            &["--set: samples: must be at least 100"],
+        ),
+        (
+            "run figIV --set samples=1 --out {out}",
+            &["--set: samples: must be at least 100"],
+        ),
+        (
+            "run sigma-causes --set samples=1 --out {out}",
+            &["--set: samples: must be at least 100"],
+        ),
+        (
+            "run sigma-causes --set draws=0 --out {out}",
+            &["--set: draws: must be at least 1"],
+        ),
+        (
+            "run sigma-causes --set samples_per_engagement=0 --out {out}",
+            &["--set: samples_per_engagement: must be at least 2"],
+        ),
+        (
+            "run table1 --set lunar_turns=1e-300 --out {out}",
+            &["--set: lunar_turns: must be between 0.05 and 100"],
+        ),
+        (
+            "run table6 --set exeligmos_turns=0.001 --out {out}",
+            &["--set: exeligmos_turns: must be between 0.05 and 100"],
+        ),
+        (
+            "run table1 --set samples_per_engagement=0 --out {out}",
+            &["--set: samples_per_engagement: must be at least 2"],
+        ),
+        (
+            "run table2 --set samples_per_engagement=1 --out {out}",
+            &["--set: samples_per_engagement: must be at least 2"],
+        ),
+        (
+            "run lunar-anomaly --set samples_per_engagement=0 --out {out}",
+            &["--set: samples_per_engagement: must be at least 2"],
+        ),
+        (
+            "run lunar-anomaly --set lunar_turns=0.01 --out {out}",
+            &["--set: lunar_turns: must be between 0.05 and 100"],
+        ),
+    ] {
+        refused(args, words);
+    }
+}
+
+#[test]
+fn help_states_each_minimum() {
+    let help = stdout(&xtask(&["help", "fig3"]));
+    assert!(help.contains("integer 1 to"), "{help}");
+    assert!(help.contains("integer 100 to"), "{help}");
+    let help = stdout(&xtask(&["help", "table1"]));
+    assert!(help.contains("0.05 to 100"), "{help}");
+    assert!(help.contains("integer 2 to"), "{help}");
+}
