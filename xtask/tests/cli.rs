@@ -90,7 +90,7 @@ fn rules_are_listed_and_documented() {
     ]);
     assert_eq!(o.status.code(), Some(2));
     assert!(
-        stderr(&o).contains("unknown; known rules: friction, paper, strict, sync"),
+        stderr(&o).contains("unknown; known rules: friction, idle-rotation, paper, strict, sync"),
         "{}",
         stderr(&o)
     );
