@@ -125,3 +125,73 @@ fn help_states_each_minimum() {
     assert!(help.contains("0.05 to 100"), "{help}");
     assert!(help.contains("integer 2 to"), "{help}");
 }
+
+#[test]
+fn a_title_names_the_values_that_ran() {
+    let scratch = Scratch::new("meaningful-title");
+    let out = scratch.path("out");
+    let o = xtask(&[
+        "run",
+        "fig5",
+        "-q",
+        "--set",
+        "hypothesis_params=random=0.04",
+        "--out",
+        &out,
+    ]);
+    let text = stdout(&o);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(text.contains("random 0.04 of the pitch"), "{text}");
+    assert!(!text.contains("random 0.05"), "{text}");
+    // A hypothesis that takes no random error is not said to run with one.
+    let o = xtask(&[
+        "run",
+        "fig5",
+        "-q",
+        "--hypothesis",
+        "asymmetric-teeth",
+        "--out",
+        &out,
+    ]);
+    let text = stdout(&o);
+    assert!(!text.contains("random 0.05"), "{text}");
+    assert!(text.contains("valley_shift"), "{text}");
+}
+
+#[test]
+fn a_key_given_twice_or_an_empty_entry_is_refused() {
+    for (args, words) in [
+        (
+            "run fig5 --set hypothesis_params=random=0.03,random=0.04 --out {out}",
+            &["--set: hypothesis_params: `random` is given twice"][..],
+        ),
+        (
+            "run fig5 --set hypothesis_params=,,, --out {out}",
+            &["--set: hypothesis_params: entry 1 is empty"],
+        ),
+        (
+            "run fig5 --set hypothesis_params=random=0.04, --out {out}",
+            &["--set: hypothesis_params: entry 2 is empty"],
+        ),
+        (
+            "run fig5 --set events=friction:mu=0.2,mu=0.3 --out {out}",
+            &["--set: events: event rule friction: parameter `mu`: is given twice"],
+        ),
+        (
+            "run fig5 --set events=friction:mu=0.2,,mu=0.3 --out {out}",
+            &["--set: events: event rule friction: entry 2 after `:` is empty"],
+        ),
+        // A value the table sets for each of its rows cannot be replaced for all of them: the
+        // rows would name values that did not run.
+        (
+            "run table4 --set hypothesis_params=random=0.03 --out {out}",
+            &["--set: hypothesis_params: `random` is set by the experiment itself"],
+        ),
+        (
+            "run fig5 --set hypothesis_params=split=0.3 --out {out}",
+            &["--set: hypothesis_params: `split` is set by the experiment itself"],
+        ),
+    ] {
+        refused(args, words);
+    }
+}

@@ -23,7 +23,7 @@ pub use measured::{
     MEASURED_EXAMPLE, MeasuredEntry, MeasuredHypothesis, MeasuredTable, measured_file,
     measured_file_given, measured_from_ron,
 };
-pub use params::Params;
+pub use params::{Params, parse_overrides};
 pub use stack::SEPARATOR;
 
 /// Why a hypothesis could not be looked up, configured or applied: what was wrong and the rule.

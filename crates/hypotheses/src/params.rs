@@ -4,6 +4,46 @@ use std::collections::BTreeMap;
 
 use crate::{Hypothesis, HypothesisError};
 
+/// The `name=value` pairs of a hypothesis' parameters as typed (`random=0.04,systematic=0.6`),
+/// trimmed, in order; blank text is no pairs.
+///
+/// # Errors
+/// The rule broken, in words: an empty entry (`,,`, a comma at either end), an entry that is not
+/// `name=value` or has no name or no value, a name given twice (which value was meant?).
+pub fn parse_overrides(text: &str) -> Result<Vec<(String, String)>, String> {
+    if text.trim().is_empty() {
+        return Ok(Vec::new());
+    }
+    let mut pairs: Vec<(String, String)> = Vec::new();
+    for (i, entry) in text.split(',').enumerate() {
+        let entry = entry.trim();
+        if entry.is_empty() {
+            return Err(format!(
+                "entry {} is empty: give name=value pairs separated by single commas",
+                i + 1
+            ));
+        }
+        let Some((k, v)) = entry.split_once('=') else {
+            return Err(format!("`{}` is not name=value", entry.escape_debug()));
+        };
+        let (k, v) = (k.trim(), v.trim());
+        if k.is_empty() {
+            return Err(format!("`{}` has no name", entry.escape_debug()));
+        }
+        if v.is_empty() {
+            return Err(format!("`{}` has no value", k.escape_debug()));
+        }
+        if pairs.iter().any(|(other, _)| other == k) {
+            return Err(format!(
+                "`{}` is given twice: give it once",
+                k.escape_debug()
+            ));
+        }
+        pairs.push((k.to_owned(), v.to_owned()));
+    }
+    Ok(pairs)
+}
+
 /// Values of a hypothesis' parameters, by name: every declared parameter has one.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Params {
@@ -11,10 +51,10 @@ pub struct Params {
 }
 
 impl Params {
-    /// `h`'s defaults, then `overrides` (name, value as typed) in order, a later one winning.
+    /// `h`'s defaults, then `overrides` (name, value as typed).
     ///
-    /// An unknown name, or a value that is not a finite number, is an error naming the key, the
-    /// hypothesis and its known keys.
+    /// An unknown name, a name given twice (which value was meant?), or a value that is not a
+    /// finite number, is an error naming the key, the hypothesis and its known keys.
     pub fn new(
         h: &dyn Hypothesis,
         overrides: &[(String, String)],
@@ -37,6 +77,17 @@ impl Params {
                     format!("unknown key ({})", known()),
                 ));
             };
+            if overrides
+                .iter()
+                .filter(|(other, _)| other.trim() == key.trim())
+                .count()
+                > 1
+            {
+                return Err(HypothesisError::new(
+                    what,
+                    "is given twice: give it once".to_string(),
+                ));
+            }
             let value: f64 = text.trim().parse().map_err(|_| {
                 HypothesisError::new(
                     what.clone(),
@@ -78,5 +129,47 @@ impl Params {
     /// Every (name, value), sorted by name.
     pub fn iter(&self) -> impl Iterator<Item = (&'static str, f64)> + '_ {
         self.values.iter().map(|(&k, &v)| (k, v))
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
+mod tests {
+    use super::*;
+
+    #[test]
+    fn overrides_are_pairs_each_named_once() {
+        assert_eq!(parse_overrides(" ").unwrap(), []);
+        assert_eq!(
+            parse_overrides(" random = 0.04 ,systematic=1").unwrap(),
+            [
+                ("random".to_owned(), "0.04".to_owned()),
+                ("systematic".to_owned(), "1".to_owned())
+            ]
+        );
+        for (text, rule) in [
+            (",,,", "entry 1 is empty"),
+            ("random=0.04,", "entry 2 is empty"),
+            ("random=0.04,,split=1", "entry 2 is empty"),
+            ("random=0.03,random=0.04", "`random` is given twice"),
+            ("random", "`random` is not name=value"),
+            ("=1", "`=1` has no name"),
+            ("random=", "`random` has no value"),
+        ] {
+            let e = parse_overrides(text).unwrap_err();
+            assert!(e.contains(rule), "{text}: {e}");
+        }
+    }
+
+    #[test]
+    fn a_key_given_twice_is_refused() {
+        let h = crate::lookup("edmunds-split").unwrap();
+        let twice = [
+            ("random".to_owned(), "0.03".to_owned()),
+            ("random".to_owned(), "0.04".to_owned()),
+        ];
+        let e = Params::new(h, &twice).unwrap_err();
+        assert_eq!(e.what, "edmunds-split: parameter `random`");
+        assert!(e.rule.contains("given twice"), "{e}");
     }
 }

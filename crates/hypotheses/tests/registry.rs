@@ -58,11 +58,7 @@ fn params_are_defaults_then_overrides() {
     assert_eq!(p.get("random"), 0.04);
     assert_eq!(p.get("systematic"), 0.5);
     assert_eq!(p.get("split"), 0.5);
-    let p = Params::new(
-        h,
-        &sets(&[("systematic", " 2 "), ("split", "0"), ("split", "0.25")]),
-    )
-    .unwrap();
+    let p = Params::new(h, &sets(&[("systematic", " 2 "), ("split", "0.25")])).unwrap();
     assert_eq!(p.get("systematic"), 2.0);
     assert_eq!(p.get("split"), 0.25);
     assert_eq!(p.try_get("phase"), None);

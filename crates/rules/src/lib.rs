@@ -8,6 +8,7 @@
 //! a time and at nothing but the contact motion: never at the clearance formula, never at a
 //! table.
 
+use registry::fmt_number;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
@@ -167,7 +168,8 @@ impl Rule {
         };
         let mut values: BTreeMap<&'static str, f64> =
             def.params().iter().map(|p| (p.name, p.default)).collect();
-        for pair in args.into_iter().flat_map(|a| a.split(',')) {
+        let mut given: Vec<&str> = Vec::new();
+        for (i, pair) in args.into_iter().flat_map(|a| a.split(',')).enumerate() {
             let what = |k: &str| format!("event rule {name}: parameter `{}`", k.escape_debug());
             let keys = || {
                 let names: Vec<&str> = def.params().iter().map(|p| p.name).collect();
@@ -177,6 +179,16 @@ impl Rule {
                     format!("known keys of {name}: {}", names.join(", "))
                 }
             };
+            if pair.trim().is_empty() {
+                return Err(RuleError::new(
+                    format!("event rule {name}"),
+                    format!(
+                        "entry {} after `:` is empty: give key=value pairs separated by single commas ({})",
+                        i + 1,
+                        keys()
+                    ),
+                ));
+            }
             let Some((key, text)) = pair.split_once('=') else {
                 return Err(RuleError::new(
                     what(pair),
@@ -184,6 +196,10 @@ impl Rule {
                 ));
             };
             let key = key.trim();
+            if given.contains(&key) {
+                return Err(RuleError::new(what(key), "is given twice: give it once"));
+            }
+            given.push(key);
             let Some(p) = def.params().iter().find(|p| p.name == key) else {
                 return Err(RuleError::new(
                     what(key),
@@ -199,7 +215,12 @@ impl Rule {
             if !(p.min..=p.max).contains(&value) {
                 return Err(RuleError::new(
                     what(key),
-                    format!("must be between {} and {} (got {value})", p.min, p.max),
+                    format!(
+                        "must be between {} and {} (got {})",
+                        fmt_number(p.min),
+                        fmt_number(p.max),
+                        fmt_number(value)
+                    ),
                 ));
             }
             values.insert(p.name, value);
@@ -232,7 +253,7 @@ impl Rule {
             let args: Vec<String> = self
                 .params
                 .iter()
-                .map(|(k, v)| format!("{k}={v}"))
+                .map(|(k, v)| format!("{k}={}", fmt_number(v)))
                 .collect();
             let _ = write!(s, "({})", args.join(","));
         }
@@ -451,5 +472,18 @@ mod tests {
         assert!(e.contains("must be key=value"), "{e}");
         let e = Rule::parse("paper:mu=1").unwrap_err().to_string();
         assert!(e.contains("paper takes no parameters"), "{e}");
+        let e = Rule::parse("friction:mu=0.2,mu=0.3")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("parameter `mu`: is given twice"), "{e}");
+        for spec in ["friction:", "friction:mu=0.2,", "friction:,,,"] {
+            let e = Rule::parse(spec).unwrap_err().to_string();
+            assert!(e.contains("is empty"), "{spec}: {e}");
+        }
+        let e = Rule::parse("friction:mu=1e300").unwrap_err().to_string();
+        assert!(e.contains("(got 1e300)"), "{e}");
+        assert!(e.len() < 200, "{e}");
+        let tiny = Rule::parse("friction:mu=1e-300").unwrap();
+        assert_eq!(tiny.label(), "friction(mu=1e-300)");
     }
 }

@@ -49,49 +49,50 @@ pub fn chosen(ctx: &Context) -> Result<&'static dyn Hypothesis, RunError> {
 /// Parameters for `h`: its defaults, then those of `values` it declares (others are ignored, so
 /// a Case's random and systematic errors can be offered to any hypothesis), then the user's
 /// `hypothesis_params`, which must all be declared by `h`.
+///
+/// A user's key that is also one of `values` replaces it only when the experiment declares a
+/// parameter of that name (fig5's `random`: the value the user asked for is the one run, and the
+/// title reads it from the result); one the experiment sets itself for each row, Case or gear (a
+/// grid's random error, Figure 5's split) is refused, since the rows would name values that did
+/// not run. `hypothesis_params` with an empty entry or a key given twice is refused.
 pub fn params(
     ctx: &Context,
     h: &dyn Hypothesis,
     values: &[(&str, f64)],
 ) -> Result<Params, RunError> {
+    let bad = |rule: String| RunError::bad("--set", PARAMS_PARAM.name, rule);
+    let user = hypotheses::parse_overrides(ctx.param(PARAMS_PARAM.name)?).map_err(bad)?;
+    for (k, _) in &user {
+        // The same value set twice, as the experiment's parameter and the hypothesis's: which
+        // one was meant? Refused like `--trials` with `--set trials`.
+        if let Some((_, plain)) = ctx.changed().into_iter().find(|(name, _)| name == k) {
+            return Err(bad(format!(
+                "`{k}` is also set with --set {k}={plain}: give one of them"
+            )));
+        }
+        if let Some((_, v)) = values.iter().find(|(name, _)| name == k)
+            && !ctx.declares(k)
+        {
+            return Err(bad(format!(
+                "`{k}` is set by the experiment itself for each row, Case or gear (here {}): it cannot be replaced here",
+                registry::fmt_number(*v)
+            )));
+        }
+    }
     let mut overrides: Vec<(String, String)> = values
         .iter()
         .filter(|(k, _)| h.params().iter().any(|p| p.name == *k))
+        .filter(|(k, _)| !user.iter().any(|(u, _)| u == k))
         .map(|(k, v)| ((*k).to_string(), v.to_string()))
         .collect();
-    for pair in ctx
-        .param(PARAMS_PARAM.name)?
-        .split(',')
-        .map(str::trim)
-        .filter(|p| !p.is_empty())
-    {
-        let Some((k, v)) = pair.split_once('=') else {
-            return Err(RunError::bad(
-                "--set",
-                PARAMS_PARAM.name,
-                format!("`{pair}` is not name=value"),
-            ));
-        };
-        // The same value set twice, as the experiment's parameter and the hypothesis's: which
-        // one was meant? Refused like `--trials` with `--set trials`.
-        if let Some((_, plain)) = ctx
-            .changed()
-            .into_iter()
-            .find(|(name, _)| *name == k.trim())
-        {
-            return Err(RunError::bad(
-                "--set",
-                PARAMS_PARAM.name,
-                format!(
-                    "`{}` is also set with --set {}={plain}: give one of them",
-                    k.trim(),
-                    k.trim()
-                ),
-            ));
-        }
-        overrides.push((k.trim().to_string(), v.trim().to_string()));
-    }
-    Params::new(h, &overrides).map_err(|e| RunError::bad("--hypothesis", e.what, e.rule))
+    overrides.extend(user);
+    Params::new(h, &overrides).map_err(|e| {
+        RunError::bad(
+            "--set",
+            format!("{}: {}", PARAMS_PARAM.name, e.what),
+            e.rule,
+        )
+    })
 }
 
 /// `gear` as manufactured under `h`. A failure is bad input (a parameter too large for the gear,

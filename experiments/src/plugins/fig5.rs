@@ -7,7 +7,9 @@ use edmunds::RadialPair;
 use geometry::Gear;
 use mechanism::trial_rng;
 use rand::Rng;
-use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use registry::{
+    Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64, fmt_number,
+};
 
 use crate::common::{Series, csv, line_plot};
 use study::errors;
@@ -119,11 +121,27 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let phis: Vec<f64> = (0..samples)
         .map(|i| TAU * i as f64 / (samples - 1) as f64)
         .collect();
+    let offered = [
+        ("random", ctx.f64("random")?),
+        ("systematic", ctx.f64("systematic")?),
+    ];
+    // The title names the values the hypothesis ran with (a `hypothesis_params` value replaces
+    // the experiment's own), and only those it takes.
+    let ran = errors::params(ctx, h, &offered)?;
+    let values: String = ran
+        .iter()
+        .filter(|(k, _)| *k != "split")
+        .map(|(k, v)| match k {
+            "random" => format!("random {} of the pitch, ", fmt_number(v)),
+            "systematic" => format!("systematic {} deg, ", fmt_number(v)),
+            _ => format!("{k} {}, ", fmt_number(v)),
+        })
+        .collect();
     let mut table = Table::new(
         format!(
-            "Figure 5: {n}:{n} pair, R = {big_r}, r = {small_r}, random {} of the pitch, systematic {} deg, hypothesis {}",
-            ctx.f64("random")?,
-            ctx.f64("systematic")?,
+            "Figure 5: {n}:{n} pair, R = {}, r = {}, {values}hypothesis {}",
+            fmt_number(big_r),
+            fmt_number(small_r),
             h.name()
         ),
         [
@@ -138,15 +156,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let mut series = Vec::new();
     let mut columns = Vec::new();
     for (name, split) in SPLITS {
-        let p = errors::params(
-            ctx,
-            h,
-            &[
-                ("random", ctx.f64("random")?),
-                ("systematic", ctx.f64("systematic")?),
-                ("split", split),
-            ],
-        )?;
+        let p = errors::params(ctx, h, &[offered[0], offered[1], ("split", split)])?;
         // The same stream for every split: only the split changes between the panels.
         let mut rng = trial_rng(ctx.seed(), ctx.u64("trial")?);
         let driver = errors::make(h, &ideal, "driver", &p, &mut rng)?;
