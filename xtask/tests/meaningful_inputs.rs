@@ -149,13 +149,43 @@ fn a_title_names_the_values_that_ran() {
         "fig5",
         "-q",
         "--hypothesis",
-        "asymmetric-teeth",
+        "ideal",
         "--out",
         &out,
     ]);
     let text = stdout(&o);
+    assert!(o.status.success(), "{}", stderr(&o));
     assert!(!text.contains("random 0.05"), "{text}");
-    assert!(text.contains("valley_shift"), "{text}");
+    assert!(text.contains("r = 180, hypothesis ideal"), "{text}");
+}
+
+#[test]
+fn a_comparison_that_cannot_hold_is_refused_or_not_made() {
+    for h in [
+        "asymmetric-teeth",
+        "curved-flanks",
+        "non-circular",
+        "edmunds-split+curved-flanks",
+    ] {
+        refused(
+            &format!("run fig5 --hypothesis {h} --out {{out}}"),
+            &[
+                &format!("--hypothesis: {h}: makes gears with"),
+                "Edmunds' radial-line model cannot take",
+            ],
+        );
+    }
+    // Ideal gears keep Edmunds' pointer exact: no ratio of a sigma to 0.
+    let scratch = Scratch::new("meaningful-ideal");
+    let out = scratch.path("out");
+    let o = xtask(&["run", "fig5", "-q", "--hypothesis", "ideal", "--out", &out]);
+    let text = stdout(&o);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(text.contains("n/a"), "{text}");
+    assert!(
+        !text.contains("e1") && !text.contains("inf") && !text.contains("NaN"),
+        "{text}"
+    );
 }
 
 #[test]

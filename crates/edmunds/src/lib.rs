@@ -35,6 +35,28 @@ fn radial_angles(g: &Gear) -> Vec<f64> {
     out
 }
 
+/// What a gear has that the radial-line model cannot take, in words (`None`: nothing). The model
+/// sees each tip's angle about the rotation centre and nothing else, so valleys off the midway
+/// between their tips, radii that differ from tooth to tooth and curved flanks all run as if the
+/// gear were ideal: comparing it with the triangular teeth on such gears compares nothing.
+pub fn unseen(g: &Gear) -> Option<&'static str> {
+    if g.flank_sagitta() != 0.0 {
+        return Some("curved flanks");
+    }
+    let n = g.teeth() as i64;
+    if (0..n)
+        .any(|k| g.tip_radius_of(k) != g.tip_radius() || g.root_radius_of(k) != g.root_radius())
+    {
+        return Some("radii that differ from tooth to tooth");
+    }
+    let (tips, valleys) = (g.tip_angles(), g.valley_angles());
+    let off_midway = (0..tips.len()).any(|k| {
+        let next = tips.get(k + 1).copied().unwrap_or(tips[0] + TAU);
+        (valleys[k] - 0.5 * (tips[k] + next)).abs() > 1e-9
+    });
+    off_midway.then_some("valleys off the midway between their tips")
+}
+
 /// One mesh in Edmunds' model.
 #[derive(Debug, Clone)]
 pub struct RadialPair {
