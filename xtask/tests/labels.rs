@@ -1,4 +1,4 @@
-//! Tables never mislead (issue 16, item 6): a run whose inputs differ from the paper's says so
+//! Tables never mislead: a run whose inputs differ from the paper's says so
 //! in every title and labels the paper's numbers; `tables.json` names the inputs; `run.json`
 //! hashes every input file; `table3` with a hypothesis the Cases do not reach prints one row,
 //! not four identical rows compared with four different paper rows; the report's heading

@@ -1,4 +1,4 @@
-//! Results are never lost or left stale (issue 16, item 4): what a killed run leaves behind is
+//! Results are never lost or left stale: what a killed run leaves behind is
 //! cleaned up by the next run, results a kill left moved aside are put back, a merge never
 //! replaces the folder holding the partial files it merges, and an `--out` that cannot be
 //! written is refused before anything is computed.

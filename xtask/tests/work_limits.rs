@@ -1,4 +1,4 @@
-//! Every experiment with every count parameter at its documented maximum (issue 16, item 3):
+//! Every experiment with every count parameter at its documented maximum:
 //! each run is either refused up front (exit 2, one line naming the parameter and the limit) or
 //! runs with progress lines on stderr even though stderr is a file, and none asks for an
 //! allocation beyond the address space it is given ([`ADDRESS_SPACE_KB`], `ulimit -v`): an

@@ -1,6 +1,6 @@
 //! How far ahead a tooth pair near the mesh could be proved to stay off the driven gear's path by
-//! a second-order bound along the exact path, at best (issue 15's design question; BENCHMARKS.md,
-//! eleventh sitting): `cargo run --release -p contact --example horizons -- 4` (seeds per mesh).
+//! a second-order bound along the exact path, at best (a design question of the contact core;
+//! BENCHMARKS.md has the figures): `cargo run --release -p contact --example horizons -- 4` (seeds per mesh).
 //!
 //! From starts every quarter pitch of full turns (m3-e3 and m2-n1, random tip errors σ = 0.04
 //! pitch, G = 40 and 10 %, starts within a pitch of an event left out), each pair whose obstacle

@@ -1,4 +1,4 @@
-//! Kernel benchmarks (issue 6): one full turn of the larger gear of m2-n1, b2-c1 and m3-e3, ideal
+//! Kernel benchmarks: one full turn of the larger gear of m2-n1, b2-c1 and m3-e3, ideal
 //! and with Edmunds' Case B errors; one year (one turn of b) of the Lunar train; and the floor,
 //! one bare evaluation of the contact closed forms of a tooth pair. Gears are sized by
 //! `crates/train` from the Freeth 2006 gearing, h = 1.1 mm, G = 40 %.

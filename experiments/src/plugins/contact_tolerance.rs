@@ -42,7 +42,7 @@ registry::inventory::submit! {
     Experiment {
         id: "contact-tolerance",
         title: "Figure IV under an area contact test with a tolerance, or with blunt tips",
-        paper_item: "Figure IV and Appendix II (issue 14, beyond the paper)",
+        paper_item: "Figure IV and Appendix II (beyond the paper)",
         params: PARAMS,
         groups: &[study::gearing::SHAPE],
         config: None,

@@ -1,5 +1,5 @@
-//! `sigma-causes`: why our σ differs from the paper's, by experiment. Two open differences
-//! (issue 14): Figure IV's σ has its minimum at 55-75 % clearance for every mesh where the paper
+//! `sigma-causes`: why our σ differs from the paper's, by experiment. Two open differences:
+//! Figure IV's σ has its minimum at 55-75 % clearance for every mesh where the paper
 //! sees it "around 40% to 50%", and Table 1's σ is 1.21-1.27 times the paper's. Each candidate
 //! reading of the paper's inputs and method (radii, tooth height, centre distance, how the
 //! Theoretical Difference is sampled and summarised, the initial angles) is run side by side on
@@ -66,7 +66,7 @@ registry::inventory::submit! {
     Experiment {
         id: "sigma-causes",
         title: "Why our sigma differs from the paper's: Figure IV's minimum and Table 1's sigma under each candidate reading",
-        paper_item: "Table 1 and Figure IV (issue 14, beyond the paper)",
+        paper_item: "Table 1 and Figure IV (beyond the paper)",
         params: PARAMS,
         groups: &[],
         config: None,
@@ -819,7 +819,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     t1.note(format!(
         "Ideal gears, G = {clearance} % (plus the reading's extra centre distance), runs of the caption's length (Lunar 1, Metonic and Games 3.8, Saros and Exeligmos 4.5 turns of b), {per} TD samples per engagement of the busiest mesh unless the reading says otherwise; sigma per trial, then the mean over trials, as table1."
     ));
-    t1.note("Ours/paper, Lunar to Games: the smallest and largest ours/paper of the Lunar, Metonic, Saros and Games pointers (the 1.21-1.27 of issue 14; Exeligmos, 1.8, has a cause of its own: see table1's note).");
+    t1.note("Ours/paper, Lunar to Games: the smallest and largest ours/paper of the Lunar, Metonic, Saros and Games pointers (the 1.21-1.27 that first prompted this study; Exeligmos, 1.8, has a cause of its own: see table1's note).");
     Ok(Report {
         tables: vec![fig, t1],
         trials: (trials * (GEOMETRY.len() + 2)) as u64,
