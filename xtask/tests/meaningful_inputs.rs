@@ -144,15 +144,7 @@ fn a_title_names_the_values_that_ran() {
     assert!(text.contains("random 0.04 of the pitch"), "{text}");
     assert!(!text.contains("random 0.05"), "{text}");
     // A hypothesis that takes no random error is not said to run with one.
-    let o = xtask(&[
-        "run",
-        "fig5",
-        "-q",
-        "--hypothesis",
-        "ideal",
-        "--out",
-        &out,
-    ]);
+    let o = xtask(&["run", "fig5", "-q", "--hypothesis", "ideal", "--out", &out]);
     let text = stdout(&o);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(!text.contains("random 0.05"), "{text}");
@@ -223,5 +215,46 @@ fn a_key_given_twice_or_an_empty_entry_is_refused() {
         ),
     ] {
         refused(args, words);
+    }
+}
+
+#[test]
+fn a_refusal_names_the_key_typed_and_prints_numbers_short() {
+    for (args, words) in [
+        (
+            "run fig2 --set tip_radius=-200 --out {out}",
+            &["--set: tip_radius: must be greater than 0"][..],
+        ),
+        (
+            "run fig2 --set centre_distance=1e300 --out {out}",
+            &["--set: centre_distance: must be greater than 0 and at most 1000000"],
+        ),
+        (
+            "run fig5 --set root_radius=1e300 --out {out}",
+            &["--set: root_radius:"],
+        ),
+        (
+            "run figIV --set to=-5 --out {out}",
+            &["--set: to: must be between 0 and 100"],
+        ),
+        (
+            "run figIV --set to=5 --out {out}",
+            &["--set: to: must be at least from = 10 (got 5)"],
+        ),
+        (
+            "run figIV --set from=95 --out {out}",
+            &["--set: from: must be at most to = 90 (got 95)"],
+        ),
+        (
+            "run fig5 --set random=-0.05 --out {out}",
+            &["--set: random: must be between 0 and 0.1"],
+        ),
+        (
+            "run fig5 --set systematic=1e300 --out {out}",
+            &["--set: systematic: must be between 0 and 45"],
+        ),
+    ] {
+        let line = refused(args, words);
+        assert!(line.len() < 300, "{args}: {line}");
     }
 }

@@ -5,6 +5,10 @@ use contact::Mesh;
 use geometry::Gear;
 use registry::{Context, Param, RunError};
 
+/// The largest radius or centre distance a parameter takes: 10^6 (the paper's example is 200;
+/// a larger size is no gear, and prints as a number nobody typed).
+pub const MAX_LENGTH: f64 = 1e6;
+
 /// Teeth N of both gears.
 pub const TEETH: Param = Param {
     name: "teeth",
@@ -19,7 +23,7 @@ pub const TIP_RADIUS: Param = Param {
     default: "200",
     unit: "length",
     help: "outer radius R of both gears",
-    kind: registry::Kind::ANY_NUMBER,
+    kind: registry::Kind::positive(MAX_LENGTH, "a length; larger is no gear"),
 };
 /// Inner radius r of both gears.
 pub const ROOT_RADIUS: Param = Param {
@@ -27,7 +31,7 @@ pub const ROOT_RADIUS: Param = Param {
     default: "100",
     unit: "length",
     help: "inner radius r of both gears",
-    kind: registry::Kind::ANY_NUMBER,
+    kind: registry::Kind::positive(MAX_LENGTH, "a length; larger is no gear"),
 };
 /// Centre distance D.
 pub const CENTRE_DISTANCE: Param = Param {
@@ -35,7 +39,7 @@ pub const CENTRE_DISTANCE: Param = Param {
     default: "310",
     unit: "length",
     help: "centre distance D",
-    kind: registry::Kind::ANY_NUMBER,
+    kind: registry::Kind::positive(MAX_LENGTH, "a length; larger is no gear"),
 };
 
 /// The pair's setting group: N, R, r and D.

@@ -27,14 +27,20 @@ const PARAMS: &[Param] = &[
         default: "200",
         unit: "length",
         help: "R of both gears",
-        kind: registry::Kind::ANY_NUMBER,
+        kind: registry::Kind::positive(
+            study::equal_pair::MAX_LENGTH,
+            "a length; larger is no gear",
+        ),
     },
     Param {
         name: "root_radius",
         default: "180",
         unit: "length",
         help: "r of both gears",
-        kind: registry::Kind::ANY_NUMBER,
+        kind: registry::Kind::positive(
+            study::equal_pair::MAX_LENGTH,
+            "a length; larger is no gear",
+        ),
     },
     Param {
         name: "clearance",
@@ -48,14 +54,14 @@ const PARAMS: &[Param] = &[
         default: "0.05",
         unit: "of the pitch",
         help: "random tooth error (sd)",
-        kind: registry::Kind::ANY_NUMBER,
+        kind: registry::Kind::number(0.0, hypotheses::MAX_RANDOM, "of the pitch"),
     },
     Param {
         name: "systematic",
         default: "0.6",
         unit: "deg",
         help: "systematic error amplitude A",
-        kind: registry::Kind::ANY_NUMBER,
+        kind: registry::Kind::number(0.0, 45.0, "deg"),
     },
     Param {
         name: "trial",

@@ -24,7 +24,7 @@ const PARAMS: &[Param] = &[
         default: "90",
         unit: "% of h",
         help: "last clearance of the sweep",
-        kind: registry::Kind::ANY_NUMBER,
+        kind: registry::Kind::number(0.0, 100.0, "% of h"),
     },
     Param {
         name: "step",
@@ -68,12 +68,29 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let g = gearing::load(ctx)?;
     let h = ctx.f64("tooth_height")?;
     let (from, to, step) = (ctx.f64("from")?, ctx.f64("to")?, ctx.f64("step")?);
-    if !(0.0..=100.0).contains(&from) || !(0.0..=100.0).contains(&to) || from > to {
-        return Err(RunError::bad(
-            "--set",
-            "from",
-            "need 0 <= from <= to <= 100 (% of h)",
-        ));
+    if from > to {
+        // Name the one the user set: `to` below the default `from`, or `from` above `to`.
+        let to_set = ctx.changed().iter().any(|(k, _)| *k == "to");
+        let (field, rule) = if to_set {
+            (
+                "to",
+                format!(
+                    "must be at least from = {} (got {})",
+                    registry::fmt_number(from),
+                    registry::fmt_number(to)
+                ),
+            )
+        } else {
+            (
+                "from",
+                format!(
+                    "must be at most to = {} (got {})",
+                    registry::fmt_number(to),
+                    registry::fmt_number(from)
+                ),
+            )
+        };
+        return Err(RunError::bad("--set", field, rule));
     }
     let samples = ctx.usize("samples")?;
     let clearances: Vec<f64> = (0..)
