@@ -499,6 +499,12 @@ fn parse_bench(args: &[String]) -> Result<BenchArgs, ArgError> {
                         "--threads: every count must be at least 1 (got `{value}`)"
                     )));
                 }
+                // The same limit as `run --threads`: a pool beyond it cannot be built.
+                if n > MAX_THREADS {
+                    return Err(ArgError::Value(format!(
+                        "--threads: every count must be at most {MAX_THREADS} (got `{value}`)"
+                    )));
+                }
                 threads.push(n);
             }
             bench.threads = threads;
@@ -647,6 +653,8 @@ mod tests {
             "bench --threads 0",
             "bench --threads 1,,2",
             "bench --threads x",
+            "bench --threads 100000",
+            "bench --threads 2,1025",
         ] {
             assert!(matches!(p(bad), Err(ArgError::Value(_))), "{bad}");
         }
