@@ -20,9 +20,10 @@ fn sets(pairs: &[(&str, &str)]) -> Vec<(String, String)> {
 }
 
 /// Files in `crates/hypotheses/src/plugins/`, found by `build.rs` with no `mod` line anywhere.
-const PLUGINS: [&str; 4] = [
+const PLUGINS: [&str; 5] = [
     "asymmetric-teeth",
     "curved-flanks",
+    "design-valleys",
     "non-circular",
     "ratio-mismatch",
 ];
