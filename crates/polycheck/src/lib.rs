@@ -18,6 +18,7 @@
 //! `(D, 0) + Rot(pi - theta) (q - e2)`. Angles are in radians.
 
 pub mod area;
+pub mod stepped;
 
 use std::f64::consts::{PI, TAU};
 
