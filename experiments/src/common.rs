@@ -113,6 +113,37 @@ fn thinned(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
     out
 }
 
+/// An axis range the chart can label: `(lo, hi)` itself when both are finite and `hi` exceeds
+/// `lo` by more than 10^-12 of their magnitude (some 4500 steps of f64 rounding), else a range
+/// of width 1 (or 10^-3 of the magnitude, if more) about the middle of what is finite (0 if
+/// nothing is). The tick search of `plotters` never ends on an empty, infinite or zero-width
+/// range: a figure with no finite point, or with values too large for their spread, would
+/// hang its run.
+pub fn drawable(lo: f64, hi: f64) -> (f64, f64) {
+    let magnitude = lo.abs().max(hi.abs());
+    if lo.is_finite() && hi.is_finite() && hi - lo > magnitude * 1e-12 {
+        return (lo, hi);
+    }
+    let mid = match (lo.is_finite(), hi.is_finite()) {
+        (true, true) => 0.5 * lo + 0.5 * hi,
+        (true, false) => lo,
+        (false, true) => hi,
+        (false, false) => 0.0,
+    };
+    let half = (mid.abs() * 5e-4).max(0.5);
+    (mid - half, mid + half)
+}
+
+/// The points of `points` with no infinite coordinate: those are left off the axes
+/// ([`drawable`]), and placing one would overflow the pixel arithmetic.
+fn placeable(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
+    points
+        .iter()
+        .copied()
+        .filter(|p| !p.0.is_infinite() && !p.1.is_infinite())
+        .collect()
+}
+
 /// How plotting errors are reported: naming the figure.
 type PlotErr<'a> = &'a dyn Fn(&dyn std::fmt::Display) -> RunError;
 
@@ -174,17 +205,24 @@ fn plot(
         f64::INFINITY,
         f64::NEG_INFINITY,
     );
+    // The axes span what can be placed on them: an infinite coordinate cannot (a NaN is
+    // passed over by `min` and `max`).
     for p in series.iter().flat_map(|s| &s.points) {
-        x0 = x0.min(p.0);
-        x1 = x1.max(p.0);
-        y0 = y0.min(p.1);
-        y1 = y1.max(p.1);
+        if !p.0.is_infinite() {
+            x0 = x0.min(p.0);
+            x1 = x1.max(p.0);
+        }
+        if !p.1.is_infinite() {
+            y0 = y0.min(p.1);
+            y1 = y1.max(p.1);
+        }
     }
     if x0.partial_cmp(&x1) != Some(std::cmp::Ordering::Less) {
         x1 = x0 + 1.0;
     }
+    let (x0, x1) = drawable(x0, x1);
     let pad = ((y1 - y0) * 0.05).max(1e-9);
-    let (y0, y1) = (y0 - pad, y1 + pad);
+    let (y0, y1) = drawable(y0 - pad, y1 + pad);
     let colours = [BLUE, RED, BLACK, GREEN, MAGENTA];
     chart_svg(title, 800, (x0..x1, y0..y1), None, |chart, plot_err| {
         let decade = |v: &f64| format!("{:.1e}", 10f64.powf(*v));
@@ -209,7 +247,10 @@ fn plot(
         for (i, s) in series.iter().enumerate() {
             let colour = colours[i % colours.len()];
             chart
-                .draw_series(LineSeries::new(thinned(&s.points), colour.stroke_width(1)))
+                .draw_series(LineSeries::new(
+                    thinned(&placeable(&s.points)),
+                    colour.stroke_width(1),
+                ))
                 .map_err(|e| plot_err(&e))?
                 .label(s.label)
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour));
@@ -262,7 +303,7 @@ pub fn category_plot(
 ) -> Result<String, RunError> {
     let values = series.iter().flat_map(|s| s.points.iter().map(|p| p.1));
     let (mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY);
-    for y in values {
+    for y in values.filter(|y| !y.is_infinite()) {
         y0 = y0.min(y);
         y1 = y1.max(y);
     }
@@ -270,7 +311,7 @@ pub fn category_plot(
         (y0, y1) = (0.0, 1.0);
     }
     let pad = ((y1 - y0) * 0.1).max(1e-3);
-    let (y0, y1) = ((y0 - pad).max(0.0), y1 + pad);
+    let (y0, y1) = drawable((y0 - pad).max(0.0), y1 + pad);
     let n = categories.len().max(1) as i32;
     let colours = [BLUE, RED, BLACK, GREEN, MAGENTA];
     chart_svg(
@@ -302,19 +343,19 @@ pub fn category_plot(
                 let style = colour.stroke_width(2);
                 let drawn = match k % 3 {
                     0 => chart.draw_series(
-                        s.points
-                            .iter()
-                            .map(|&(x, y)| Circle::new(at(x, y), 5, colour.filled())),
+                        placeable(&s.points)
+                            .into_iter()
+                            .map(|(x, y)| Circle::new(at(x, y), 5, colour.filled())),
                     ),
                     1 => chart.draw_series(
-                        s.points
-                            .iter()
-                            .map(|&(x, y)| TriangleMarker::new(at(x, y), 7, style)),
+                        placeable(&s.points)
+                            .into_iter()
+                            .map(|(x, y)| TriangleMarker::new(at(x, y), 7, style)),
                     ),
                     _ => chart.draw_series(
-                        s.points
-                            .iter()
-                            .map(|&(x, y)| Cross::new(at(x, y), 6, style)),
+                        placeable(&s.points)
+                            .into_iter()
+                            .map(|(x, y)| Cross::new(at(x, y), 6, style)),
                     ),
                 };
                 let shape = k % 3;
@@ -361,6 +402,65 @@ pub fn percent_cell(p: &stats::Proportion) -> String {
 #[cfg(test)]
 mod plot_tests {
     use super::*;
+
+    /// Runs `f` on its own thread and fails if it has not returned within a minute (a figure
+    /// whose axis range `plotters` cannot label never returns).
+    fn within_a_minute(f: impl FnOnce() + Send + 'static) {
+        let (tx, rx) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            f();
+            let _ = tx.send(());
+        });
+        match rx.recv_timeout(std::time::Duration::from_secs(60)) {
+            Ok(()) => {}
+            Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {
+                panic!("still drawing after a minute")
+            }
+            Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => panic!("drawing panicked"),
+        }
+    }
+
+    #[test]
+    fn figures_without_a_drawable_range_still_finish() {
+        within_a_minute(figures_without_a_drawable_range);
+    }
+
+    fn figures_without_a_drawable_range() {
+        let empty = Series {
+            label: "none",
+            points: Vec::new(),
+        };
+        let infinite = Series {
+            label: "infinite",
+            points: vec![(1.0, f64::INFINITY), (f64::NEG_INFINITY, 2.0)],
+        };
+        let flat_and_large = Series {
+            label: "flat",
+            points: vec![(1e20, 3e15), (1e20, 3e15)],
+        };
+        for s in [empty, infinite, flat_and_large] {
+            let svg = line_plot("t", "x", "y", std::slice::from_ref(&s)).unwrap();
+            assert!(svg.contains("<svg"), "{}", s.label);
+            let svg = semilog_plot("t", "x", "y", std::slice::from_ref(&s)).unwrap();
+            assert!(svg.contains("<svg"), "{}", s.label);
+            // A category chart's x is the category's index.
+            let by_category = Series {
+                label: s.label,
+                points: s.points.iter().map(|p| (0.0, p.1)).collect(),
+            };
+            let svg = category_plot("t", &["a".into()], "x", "y", &[by_category]).unwrap();
+            assert!(svg.contains("<svg"), "{}", s.label);
+        }
+    }
+
+    #[test]
+    fn drawable_ranges_are_kept() {
+        assert_eq!(drawable(-1e-9, 1e-9), (-1e-9, 1e-9));
+        assert_eq!(drawable(0.0, 102.0), (0.0, 102.0));
+        assert_eq!(drawable(f64::INFINITY, f64::NEG_INFINITY), (-0.5, 0.5));
+        let (lo, hi) = drawable(1e20, 1e20);
+        assert!(lo < 1e20 && hi > 1e20 && hi - lo > 1e16);
+    }
 
     #[test]
     fn long_series_are_thinned_to_their_envelope() {
