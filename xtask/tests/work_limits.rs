@@ -159,3 +159,79 @@ fn every_count_at_its_maximum_is_refused_or_shows_progress_within_its_memory() {
         bad.join("\n")
     );
 }
+
+/// Runs `xtask run ARGS --out DIR` and returns its exit code and stderr, or fails the test if it
+/// is still running after `limit`.
+fn finishes_within(s: &Scratch, args: &[&str], limit: Duration) -> (Option<i32>, String) {
+    let stderr = s.0.join("stderr-finishes");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_xtask"))
+        .arg("run")
+        .args(args)
+        .arg("--out")
+        .arg(s.0.join("out"))
+        .env_remove("RUST_LOG")
+        .env_remove("XTASK_PROGRESS")
+        .stdout(Stdio::null())
+        .stderr(fs::File::create(&stderr).unwrap())
+        .spawn()
+        .unwrap();
+    let started = Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            break status;
+        }
+        if started.elapsed() >= limit {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!(
+                "{args:?}: still running after {limit:?}: {}",
+                fs::read_to_string(&stderr).unwrap_or_default()
+            );
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    };
+    (
+        status.code(),
+        fs::read_to_string(&stderr).unwrap_or_default(),
+    )
+}
+
+/// Inputs whose figure has no point to draw (every run jams, disengages or loses contact) or
+/// points too large for their spread: the run draws an empty or widened axis and ends, where the
+/// chart's tick search used to run forever.
+#[test]
+fn runs_whose_figure_has_nothing_to_draw_finish() {
+    let s = Scratch::new("nothing-to-draw");
+    // A 1000 mm gear among the mechanism's 10-60 mm ones: every run of its mesh is degenerate.
+    let gearing = fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../crates/train/data/freeth2006.ron"
+    ))
+    .unwrap();
+    let large = gearing.replacen(
+        "measured_radius: Some(15.30)",
+        "measured_radius: Some(1000)",
+        1,
+    );
+    assert_ne!(large, gearing, "b2's radius is in the embedded gearing");
+    let file = s.path("large.ron");
+    fs::write(&file, large).unwrap();
+    let gearing = format!("gearing={file}");
+    for args in [
+        &["clearance", "--set", &gearing][..],
+        // The largest tolerance: every position counts as free, so no curve has a point.
+        &[
+            "contact-tolerance",
+            "--set",
+            "tolerance=1",
+            "--set",
+            "samples=8",
+        ],
+    ] {
+        let (code, err) = finishes_within(&s, args, Duration::from_secs(120));
+        assert!(
+            code == Some(0) || (code == Some(2) && err.trim_end().lines().count() == 1),
+            "{args:?}: exit {code:?}: {err}"
+        );
+    }
+}
