@@ -63,3 +63,32 @@ fn a_file_parameter_at_its_default_is_not_read_as_a_file() {
     let o = fig6(&["--set", "measured=none"]);
     assert!(o.status.success(), "measured=none: {}", stderr(&o));
 }
+
+/// A value of a shared setting that every experiment declaring it would refuse (an unknown event
+/// rule, a mesh the gearing lacks) is refused before the first experiment computes: one line,
+/// nothing written, no experiment's output on stdout.
+#[test]
+fn run_all_refuses_a_shared_setting_before_anything_computes() {
+    for (set, words) in [
+        ("events=bogus", &["--set: events: ", "bogus"][..]),
+        ("mesh=z9-y9", &["--set: mesh: ", "no mesh `z9-y9`"]),
+    ] {
+        let s = Scratch::new("shared-setting");
+        let out = s.path("out");
+        let start = std::time::Instant::now();
+        let o = xtask(&["run", "all", "--set", set, "--out", &out]);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{set}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{set}: {err}");
+        for w in words {
+            assert!(err.contains(w), "{set}: missing {w:?}: {err}");
+        }
+        assert!(stdout(&o).is_empty(), "{set}: something ran");
+        assert!(!Path::new(&out).exists(), "{set}: something was written");
+        assert!(
+            start.elapsed().as_secs() < 10,
+            "{set}: refused after {:?}",
+            start.elapsed()
+        );
+    }
+}

@@ -76,7 +76,35 @@ pub fn check(
     {
         hypotheses::measured_file(m.trim()).map_err(|e| format!("{measured_flag}: {e}"))?;
     }
-    measured_gears_in_gearing(ctx, flags)
+    measured_gears_in_gearing(ctx, flags)?;
+    shared_settings(ctx)
+}
+
+/// The settings that setting groups share and every experiment declaring them reads the same
+/// way, checked as the experiment would check them when it starts: the `events` rule must
+/// parse, and the `mesh` must be a mesh of the gearing. With `run all` a bad value is refused
+/// before the first experiment computes, not by each experiment in turn after others ran.
+fn shared_settings(ctx: &Context) -> Result<(), String> {
+    if ctx.declares(crate::events::PARAM.name) {
+        crate::events::chosen(ctx).map_err(|e| e.to_string())?;
+    }
+    if let Some(label) = value(ctx, crate::limits::MESH.name)
+        && let Some(gearing) = value(ctx, crate::gearing::PARAM.name)
+    {
+        let g = match Gearing::builtin(&gearing) {
+            Some(g) => g,
+            None => Gearing::load(Path::new(&gearing)).map_err(|e| e.to_string())?,
+        };
+        if !g.meshes().iter().any(|m| m.label == label) {
+            return Err(registry::RunError::bad(
+                "--set",
+                crate::limits::MESH.name,
+                format!("no mesh `{label}` in the gearing"),
+            )
+            .to_string());
+        }
+    }
+    Ok(())
 }
 
 /// A measured-errors table given to an experiment that builds a gearing must name only gears of
