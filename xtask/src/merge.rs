@@ -7,7 +7,7 @@ use registry::Context;
 use crate::args::{MergeArgs, RunArgs};
 use crate::execute::{as_typed, execute, make_pool, write_atomically};
 use crate::failure::Failure;
-use crate::plan::{Planned, check_out, lookup};
+use crate::plan::{Planned, Target, check_out, lookup};
 use crate::print::Printer;
 use crate::progress::note;
 use crate::provenance;
@@ -108,7 +108,7 @@ pub(crate) fn merge(exps: &Registry, m: &MergeArgs) -> Result<(), Failure> {
     let ctx = Context::new(e, header.seed, threads, &header.sets, header.config_file())?
         .with_replay(merged);
     let out = m.out.clone().unwrap_or_else(default_out);
-    check_out(&out)?;
+    check_out(&out, &[Target::Results(e.id.to_owned())])?;
     keeps_partials(&out.join(e.id), &files, m.out.is_some())?;
     let pool = make_pool(threads)?;
     let report = execute(e, &ctx, &pool).0?;

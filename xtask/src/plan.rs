@@ -175,7 +175,23 @@ pub(crate) fn plan(
 /// every gearing file, error hypothesis and measured-errors table the experiments were given
 /// must read and pass its rules. Each is refused naming the file, the line or item and the rule.
 pub(crate) fn preflight(planned: &[Planned], run: &RunArgs) -> Result<(), Failure> {
-    check_out(&run.out.clone().unwrap_or_else(default_out))?;
+    let targets: Vec<Target> = match run.shard {
+        Some(shard) => planned
+            .iter()
+            .map(|p| Target::File(format!("{}/{}", p.e.id, crate::shard::file_name(shard))))
+            .collect(),
+        None => planned
+            .iter()
+            .map(|p| Target::Results(p.e.id.to_owned()))
+            .chain(
+                run.is_all()
+                    .then(|| ["summary.md", "summary.json"].map(|f| Target::File(f.into())))
+                    .into_iter()
+                    .flatten(),
+            )
+            .collect(),
+    };
+    check_out(&run.out.clone().unwrap_or_else(default_out), &targets)?;
     let mut seen = std::collections::BTreeSet::new();
     // The flags the user typed, for the messages: `--errors` stands for both.
     let flags = if run.errors.is_some() {
@@ -189,18 +205,32 @@ pub(crate) fn preflight(planned: &[Planned], run: &RunArgs) -> Result<(), Failur
     Ok(())
 }
 
+/// What a command writes under `--out`, for [`check_out`] to check before anything is computed.
+pub(crate) enum Target {
+    /// `<out>/<id>`: an experiment's results, which replace the previous ones whole.
+    Results(String),
+    /// A file, as a path relative to `<out>`: `summary.md`, `index.html`, a shard's partial file.
+    File(String),
+}
+
 /// Checks, before anything is computed, that results can be written under `out` (`--out`):
-/// it is a directory, or can be created as one, and a folder can be created in it. Then puts
-/// back results a killed run left moved aside ([`registry::tidy`]). Refused (exit 2) naming
-/// `--out` and the reason; nothing is left behind by the check.
-pub(crate) fn check_out(out: &Path) -> Result<(), Failure> {
+/// it is a directory, or can be created as one (every missing folder on the way is created and
+/// removed again: a name the file system refuses, e.g. longer than it takes, is found here),
+/// and a folder can be created in it. Then puts back results a killed run left moved aside
+/// ([`registry::tidy`]) and checks each of `targets`: a results folder `<out>/<id>` that exists
+/// must be a directory whose previous results can be moved aside and removed, and a file must
+/// not be a directory or lie below something that is not one. Refused (exit 2) naming `--out`,
+/// the target and the reason; nothing is left behind by the check.
+pub(crate) fn check_out(out: &Path, targets: &[Target]) -> Result<(), Failure> {
     let refuse = |why: String| Failure::Bad(format!("--out: {}: {why}", out.display()));
     if out.exists() && !out.is_dir() {
         return Err(refuse("exists and is not a directory".into()));
     }
     // The nearest folder that exists: where the first thing would be created.
     let mut base = out.to_path_buf();
+    let mut missing = Vec::new();
     while !base.as_os_str().is_empty() && std::fs::symlink_metadata(&base).is_err() {
+        missing.push(base.clone());
         base = base.parent().map(Path::to_path_buf).unwrap_or_default();
     }
     if base.as_os_str().is_empty() {
@@ -212,20 +242,133 @@ pub(crate) fn check_out(out: &Path) -> Result<(), Failure> {
             base.display()
         )));
     }
-    let probe = base.join(format!(
-        ".xtask-out-check.tmp-{}-{}",
+    // Create the missing folders as writing would, then remove them again.
+    let mut created = Vec::new();
+    let mut failed = None;
+    for dir in missing.iter().rev() {
+        match std::fs::create_dir(dir) {
+            Ok(()) => created.push(dir),
+            Err(e) => {
+                failed = Some(format!("cannot be created ({}: {e})", dir.display()));
+                break;
+            }
+        }
+    }
+    let inside = if failed.is_none() { out } else { &base };
+    let probed = probe_folder(inside).map_err(|e| {
+        format!(
+            "cannot write results there (creating a folder in {} fails: {e})",
+            inside.display()
+        )
+    });
+    for dir in created.iter().rev() {
+        let _ = std::fs::remove_dir(dir);
+    }
+    if let Some(why) = failed {
+        return Err(refuse(why));
+    }
+    probed.map_err(refuse)?;
+    registry::tidy(out)?;
+    for t in targets {
+        match t {
+            Target::Results(id) => {
+                let dir = out.join(id);
+                match std::fs::symlink_metadata(&dir) {
+                    Ok(m) if !m.is_dir() => {
+                        return Err(refuse(format!(
+                            "{id}: exists and is not a directory, where the results of {id} go"
+                        )));
+                    }
+                    Ok(_) => replaceable(&dir).map_err(|why| {
+                        refuse(format!(
+                            "{id}: the previous results cannot be replaced: {why}"
+                        ))
+                    })?,
+                    Err(_) => {}
+                }
+            }
+            Target::File(rel) => {
+                let path = out.join(rel);
+                if let Some(parent) = path.parent()
+                    && parent != out
+                    && std::fs::symlink_metadata(parent).is_ok_and(|m| !m.is_dir())
+                {
+                    return Err(refuse(format!(
+                        "{}: exists and is not a directory, where {rel} is written",
+                        parent.strip_prefix(out).unwrap_or(parent).display()
+                    )));
+                }
+                match std::fs::symlink_metadata(&path) {
+                    Ok(m) if m.is_dir() => {
+                        return Err(refuse(format!(
+                            "{rel}: exists and is a directory, where a file is written"
+                        )));
+                    }
+                    Ok(_) => replaceable_file(&path)
+                        .map_err(|why| refuse(format!("{rel}: cannot be replaced: {why}")))?,
+                    Err(_) => {
+                        if let Some(parent) = path.parent().filter(|p| p.is_dir()) {
+                            probe_folder(parent).map_err(|e| {
+                                refuse(format!(
+                                    "{rel}: cannot be written (creating a folder in {} fails: {e})",
+                                    parent.display()
+                                ))
+                            })?;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A hidden name in `dir` for a probe, of the kind [`registry::tidy`] removes if a kill leaves it.
+fn probe_name(dir: &Path, what: &str) -> PathBuf {
+    dir.join(format!(
+        ".xtask-{what}-check.tmp-{}-{}",
         std::process::id(),
         std::time::SystemTime::now()
             .duration_since(std::time::UNIX_EPOCH)
             .map_or(0, |d| d.subsec_nanos())
-    ));
-    std::fs::create_dir(&probe).map_err(|e| {
-        refuse(format!(
-            "cannot write results there (creating a folder in {} fails: {e})",
-            base.display()
-        ))
-    })?;
+    ))
+}
+
+/// Creates a folder in `dir` and removes it.
+fn probe_folder(dir: &Path) -> std::io::Result<()> {
+    let probe = probe_name(dir, "out");
+    std::fs::create_dir(&probe)?;
     let _ = std::fs::remove_dir(&probe);
-    registry::tidy(out)?;
+    Ok(())
+}
+
+/// Whether the file `path` could be removed or renamed over: a second name for it can be made
+/// and removed beside it (which an immutable or append-only file, or a folder that cannot be
+/// written, refuses).
+fn replaceable_file(path: &Path) -> Result<(), String> {
+    let dir = path.parent().unwrap_or(Path::new("."));
+    let link = probe_name(dir, "link");
+    std::fs::hard_link(path, &link)
+        .map_err(|e| format!("{} cannot be removed ({e})", path.display()))?;
+    let _ = std::fs::remove_file(&link);
+    Ok(())
+}
+
+/// Whether the results folder `dir` could be moved aside and removed: every folder in it can be
+/// written and every file in it removed (see [`replaceable_file`]).
+fn replaceable(dir: &Path) -> Result<(), String> {
+    probe_folder(dir).map_err(|e| format!("{} cannot be written ({e})", dir.display()))?;
+    let entries = std::fs::read_dir(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    for entry in entries {
+        let entry = entry.map_err(|e| format!("{}: {e}", dir.display()))?;
+        let path = entry.path();
+        let meta =
+            std::fs::symlink_metadata(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+        if meta.is_dir() {
+            replaceable(&path)?;
+        } else {
+            replaceable_file(&path)?;
+        }
+    }
     Ok(())
 }

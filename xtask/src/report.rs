@@ -33,8 +33,9 @@ pub const INDEX_HTML: &str = "index.html";
 pub fn command(args: &[String]) -> Result<(), Failure> {
     let (out, quiet) = parse(args)?;
     let exps = registry::experiments().map_err(|e| Failure::Internal(e.to_string()))?;
-    // Results a killed run left moved aside are put back before they are read.
-    registry::tidy(&out)?;
+    // The page can be written there (checked before the results are read), and results a
+    // killed run left moved aside are put back before they are read.
+    crate::plan::check_out(&out, &[crate::plan::Target::File(INDEX_HTML.into())])?;
     let page = build(&exps, &out, quiet)?;
     let index = out.join(INDEX_HTML);
     crate::execute::write_atomically(&index, &page)?;

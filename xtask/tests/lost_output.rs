@@ -129,3 +129,112 @@ fn an_unwritable_out_is_refused_before_anything_is_computed() {
         }
     }
 }
+
+/// Runs `args` and asserts it is refused at once (exit 2) in one line starting `--out: ` and
+/// holding each of `words`.
+fn refused_before_computing(args: &[&str], words: &[&str]) {
+    let start = Instant::now();
+    let o = xtask(args);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+    assert!(err.starts_with("--out: "), "{args:?}: {err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+    for w in words {
+        assert!(err.contains(w), "{args:?}: missing {w:?}: {err}");
+    }
+    assert!(
+        start.elapsed().as_secs() < 5,
+        "{args:?}: refused only after {:?} of computing",
+        start.elapsed()
+    );
+}
+
+#[test]
+fn an_out_with_a_name_the_file_system_refuses_is_refused_before_computing() {
+    let s = Scratch::new("long-name");
+    let long = s.0.join("a".repeat(300)).join("out");
+    let out = long.to_str().unwrap();
+    refused_before_computing(
+        &["run", "table1", "--trials", "200", "--out", out],
+        &["cannot be created", "name too long"],
+    );
+    refused_before_computing(&["run", "all", "--out", out], &["cannot be created"]);
+    assert_eq!(
+        fs::read_dir(&s.0).unwrap().count(),
+        0,
+        "the check left something"
+    );
+}
+
+#[test]
+fn every_target_that_cannot_be_written_is_refused_before_computing() {
+    let s = Scratch::new("targets");
+    let out = s.path("out");
+    // A file where an experiment's results folder goes.
+    fs::create_dir_all(s.0.join("out")).unwrap();
+    fs::write(s.0.join("out/fig2"), "not a folder").unwrap();
+    refused_before_computing(
+        &["run", "fig2", "--out", &out],
+        &["fig2: exists and is not a directory"],
+    );
+    // The same under a shard's partial file.
+    fs::write(s.0.join("out/table1"), "not a folder").unwrap();
+    let mut shard = vec!["run", "table1", "--shard", "0/2", "--out", &out];
+    shard.extend(support::TABLE1_TINY);
+    refused_before_computing(&shard, &["table1: exists and is not a directory"]);
+    // A folder where `run all` writes its summary.
+    fs::remove_file(s.0.join("out/fig2")).unwrap();
+    fs::remove_file(s.0.join("out/table1")).unwrap();
+    fs::create_dir_all(s.0.join("out/summary.md")).unwrap();
+    refused_before_computing(
+        &["run", "all", "--out", &out],
+        &["summary.md: exists and is a directory"],
+    );
+    // A folder where `report` writes its page.
+    fs::create_dir_all(s.0.join("out/index.html")).unwrap();
+    refused_before_computing(
+        &["report", "--out", &out],
+        &["index.html: exists and is a directory"],
+    );
+}
+
+#[test]
+fn previous_results_that_cannot_be_removed_are_refused_before_computing() {
+    let s = Scratch::new("immutable");
+    let out = s.path("out");
+    let old = s.0.join("out/fig2");
+    fs::create_dir_all(&old).unwrap();
+    let file = old.join("table.md");
+    fs::write(&file, "previous fig2 results").unwrap();
+    // An immutable file: not even root can remove it (where chattr works here).
+    let chattr = |flag: &str| {
+        std::process::Command::new("chattr")
+            .args([flag, file.to_str().unwrap()])
+            .output()
+            .is_ok_and(|o| o.status.success())
+    };
+    if !chattr("+i") {
+        eprintln!("skipped: chattr +i is not available here");
+        return;
+    }
+    let o = xtask(&["run", "fig2", "--out", &out]);
+    chattr("-i");
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.starts_with("--out: ")
+            && err.contains("fig2: the previous results cannot be replaced")
+            && err.contains("table.md"),
+        "{err}"
+    );
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    assert!(o.stdout.is_empty(), "fig2 was computed: {err}");
+    assert_eq!(fs::read_to_string(&file).unwrap(), "previous fig2 results");
+    let hidden: Vec<_> = fs::read_dir(s.0.join("out"))
+        .unwrap()
+        .chain(fs::read_dir(&old).unwrap())
+        .map(|e| e.unwrap().file_name())
+        .filter(|n| n.to_string_lossy().starts_with('.'))
+        .collect();
+    assert!(hidden.is_empty(), "{hidden:?}");
+}
