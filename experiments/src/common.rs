@@ -400,6 +400,7 @@ pub fn percent_cell(p: &stats::Proportion) -> String {
 }
 
 #[cfg(test)]
+#[allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
 mod plot_tests {
     use super::*;
 
