@@ -64,11 +64,7 @@ pub(crate) fn write_atomically(path: &Path, text: &str) -> Result<(), Failure> {
             path.display()
         ))
     };
-    std::fs::write(&tmp, text).map_err(|e| fail("write", e))?;
-    std::fs::rename(&tmp, path).map_err(|e| {
-        let _ = std::fs::remove_file(&tmp);
-        fail("rename into", e)
-    })
+    registry::write_file_through(path, &tmp, text.as_bytes()).map_err(|(what, e)| fail(what, e))
 }
 
 /// `run all`: every experiment in id order, each written as `run <id>` writes it; a failing

@@ -57,6 +57,7 @@ fn main() -> ExitCode {
     experiments::link();
     hypotheses::link();
     rules::link();
+    stop_cleanly_on_signals();
     let args: Result<Vec<String>, _> = std::env::args_os()
         .skip(1)
         .map(|a| {
@@ -128,6 +129,32 @@ fn dispatch(args: &[String]) -> Result<(), Failure> {
         Command::Run(run) => run_all(&exps, &run),
         Command::Bench(b) => bench::bench(&exps, &b),
         Command::Merge(m) => merge::merge(&exps, &m),
+    }
+}
+
+/// The exit status of a run stopped by SIGINT, SIGTERM or SIGHUP (128 + SIGINT's number, as a
+/// shell reports Ctrl-C).
+const STOPPED: i32 = 130;
+
+/// On SIGINT, SIGTERM or SIGHUP: removes the temporary results being written and puts back
+/// results moved aside ([`registry::abandon_writes`]), says so in one line and exits with
+/// [`STOPPED`]. Without it a stop while writing left `.ID.tmp-*` folders of partial files for
+/// the next run to clean up. Where no handler can be installed the signals keep their default.
+fn stop_cleanly_on_signals() {
+    let installed = ctrlc::set_handler(|| {
+        let cleaned = registry::abandon_writes();
+        eprintln!(
+            "stopped by a signal{}",
+            if cleaned == 0 {
+                String::new()
+            } else {
+                format!("; {cleaned} unfinished results removed or put back")
+            }
+        );
+        std::process::exit(STOPPED);
+    });
+    if let Err(e) = installed {
+        tracing::debug!("no signal handler: {e}");
     }
 }
 

@@ -238,3 +238,100 @@ fn previous_results_that_cannot_be_removed_are_refused_before_computing() {
         .collect();
     assert!(hidden.is_empty(), "{hidden:?}");
 }
+
+/// Sends `signal` (a name `kill` knows) to process `pid`.
+fn signal(pid: u32, signal: &str) {
+    let ok = std::process::Command::new("kill")
+        .args([&format!("-{signal}"), &pid.to_string()])
+        .status()
+        .unwrap()
+        .success();
+    assert!(ok, "kill -{signal} {pid}");
+}
+
+/// The hidden entries (temporary or moved-aside results) of `dir`.
+fn hidden_in(dir: &std::path::Path) -> Vec<String> {
+    fs::read_dir(dir)
+        .map(|entries| {
+            entries
+                .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+                .filter(|n| n.starts_with('.'))
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+/// A run stopped by SIGTERM or SIGINT while its results are being written removes its temporary
+/// folder before it exits (status 130): nothing half-written is left for the next run. The run
+/// is frozen (SIGSTOP) as soon as its temporary folder appears, so the signal lands mid-write.
+#[test]
+fn a_run_stopped_while_writing_leaves_no_partial_results() {
+    let s = Scratch::new("stopped");
+    // A pair run with 500 000 rows in pair.csv: its write takes long enough to be caught.
+    let example = fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../experiments/data/pair-example.ron"
+    ))
+    .unwrap();
+    let config = s.0.join("pair.ron");
+    assert!(
+        example.contains("sample_deg:"),
+        "pair-example.ron sets sample_deg"
+    );
+    let big = example.replacen("sample_deg:", "sample_deg: 0.002, // was", 1);
+    fs::write(&config, big).unwrap();
+    for sig in ["TERM", "INT"] {
+        let out = s.0.join(format!("out-{sig}"));
+        let mut caught = false;
+        for _attempt in 0..5 {
+            let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_xtask"))
+                .args(["run", "pair", "--config", config.to_str().unwrap(), "--out"])
+                .arg(&out)
+                .env_remove("RUST_LOG")
+                .stdout(std::process::Stdio::null())
+                .stderr(std::process::Stdio::piped())
+                .spawn()
+                .unwrap();
+            let pid = child.id();
+            let started = Instant::now();
+            let mut frozen = false;
+            while started.elapsed().as_secs() < 120 && child.try_wait().unwrap().is_none() {
+                if hidden_in(&out).iter().any(|n| n.starts_with(".pair.tmp-")) {
+                    signal(pid, "STOP");
+                    frozen = hidden_in(&out).iter().any(|n| n.starts_with(".pair.tmp-"));
+                    if !frozen {
+                        signal(pid, "CONT");
+                    }
+                    break;
+                }
+            }
+            if !frozen {
+                let _ = child.kill();
+                let _ = child.wait();
+                let _ = fs::remove_dir_all(&out);
+                continue;
+            }
+            signal(pid, sig);
+            signal(pid, "CONT");
+            let o = child.wait_with_output().unwrap();
+            let err = stderr(&o);
+            assert_eq!(o.status.code(), Some(130), "SIG{sig}: {err}");
+            assert!(err.contains("stopped by a signal"), "SIG{sig}: {err}");
+            assert!(
+                hidden_in(&out).is_empty(),
+                "SIG{sig}: left {:?}",
+                hidden_in(&out)
+            );
+            // Either the results were not written, or written whole.
+            let dir = out.join("pair");
+            assert!(
+                !dir.exists() || dir.join("tables.json").is_file(),
+                "SIG{sig}: partial results in {}",
+                dir.display()
+            );
+            caught = true;
+            break;
+        }
+        assert!(caught, "SIG{sig}: the write was never caught under way");
+    }
+}

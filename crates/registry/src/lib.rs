@@ -46,7 +46,10 @@ pub use context::{
 };
 pub use engine::TrialMode;
 pub use error::{DuplicateId, RunError};
-pub use output::{Agreement, MAX_DATA_ROWS, OutputFile, Report, tidy, write_results};
+pub use output::{
+    Agreement, MAX_DATA_ROWS, OutputFile, Report, abandon_writes, tidy, write_file_through,
+    write_results,
+};
 pub use progress::{BatchProgress, Progress};
 pub use table::{Table, fmt_f64, fmt_number};
 pub use trials::{Batch, Records, Shard, ShardRecords, f64_bits, merge_records};

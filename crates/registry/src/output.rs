@@ -4,6 +4,7 @@ use std::collections::BTreeSet;
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Mutex, MutexGuard};
 
 use serde_json::{Value, json};
 
@@ -311,6 +312,110 @@ pub fn tidy(parent: &Path) -> Result<(), RunError> {
     Ok(())
 }
 
+/// The writes under way in this process, for [`abandon_writes`]: temporary folders and files
+/// being filled, and results moved aside while new ones take their place.
+#[derive(Default)]
+struct Pending {
+    /// Set by [`abandon_writes`]: no write may start or go on.
+    abandoned: bool,
+    /// Temporary folders and files that would be left half written.
+    temps: Vec<PathBuf>,
+    /// (moved-aside previous results, the results folder they came from).
+    aside: Vec<(PathBuf, PathBuf)>,
+}
+
+static PENDING: Mutex<Pending> = Mutex::new(Pending {
+    abandoned: false,
+    temps: Vec::new(),
+    aside: Vec::new(),
+});
+
+/// The pending writes, locked (a panic elsewhere while holding it leaves the list usable).
+fn pending() -> MutexGuard<'static, Pending> {
+    PENDING
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
+/// The pending writes, locked, for a write about to change what is on disk: once the writes are
+/// abandoned (the process is being stopped) this waits for the end of the process, so nothing
+/// more is written.
+fn pending_for_write() -> MutexGuard<'static, Pending> {
+    let guard = pending();
+    if guard.abandoned {
+        drop(guard);
+        loop {
+            std::thread::park();
+        }
+    }
+    guard
+}
+
+/// Records `path` as a temporary folder or file being written (removed by [`abandon_writes`]
+/// if the process is stopped before [`finish_temp`]). Call it before creating `path`.
+fn start_temp(path: &Path) {
+    pending_for_write().temps.push(path.to_path_buf());
+}
+
+/// `path` (given to [`start_temp`]) has been renamed into place or removed.
+fn finish_temp(path: &Path) {
+    pending().temps.retain(|p| p != path);
+}
+
+/// Writes `bytes` to `path` through the temporary sibling `tmp`, renamed into place; a stop
+/// while it is written removes `tmp` ([`abandon_writes`]). On an error `tmp` is removed and the
+/// error says which step failed: ("write", e) or ("rename into", e).
+pub fn write_file_through(
+    path: &Path,
+    tmp: &Path,
+    bytes: &[u8],
+) -> Result<(), (&'static str, std::io::Error)> {
+    start_temp(tmp);
+    let written = {
+        let _writing = pending_for_write();
+        fs::write(tmp, bytes).map_err(|e| ("write", e))
+    };
+    let result = written.and_then(|()| {
+        let _renaming = pending_for_write();
+        fs::rename(tmp, path).map_err(|e| ("rename into", e))
+    });
+    if result.is_err() {
+        let _ = fs::remove_file(tmp);
+    }
+    finish_temp(tmp);
+    result
+}
+
+/// For a process being stopped by a signal, before it exits: removes every temporary folder and
+/// file being written, and puts back previous results moved aside whose replacement is not in
+/// place, so the stop leaves the results directory as it was before the write (or with the
+/// write done). Writes still running in other threads stop at their next step. Returns the
+/// number of paths it cleaned up.
+pub fn abandon_writes() -> usize {
+    let mut p = pending();
+    p.abandoned = true;
+    let mut cleaned = 0;
+    for tmp in std::mem::take(&mut p.temps) {
+        let removed = if fs::symlink_metadata(&tmp).is_ok_and(|m| m.is_dir()) {
+            fs::remove_dir_all(&tmp)
+        } else {
+            fs::remove_file(&tmp)
+        };
+        cleaned += usize::from(removed.is_ok());
+    }
+    for (old, dir) in std::mem::take(&mut p.aside) {
+        let restored = if fs::symlink_metadata(&dir).is_ok() {
+            fs::remove_dir_all(&old)
+        } else {
+            fs::rename(&old, &dir)
+        };
+        cleaned += usize::from(restored.is_ok());
+    }
+    // The lock is kept: a write that reaches for it waits for the end of the process.
+    std::mem::forget(p);
+    cleaned
+}
+
 /// Writes `report` into `dir` (= `<out>/<id>`) atomically.
 ///
 /// Writes every [`OutputFile`] plus `table.md` ([`Report::text`]), `tables.json`
@@ -331,16 +436,25 @@ pub fn write_results(dir: &Path, report: &Report) -> Result<(), RunError> {
         tidy(parent)?;
     }
     let tmp = sibling(dir, "tmp")?;
-    fs::create_dir(&tmp).map_err(|e| io_err("cannot create", &tmp, e))?;
-    let filled = files.iter().try_for_each(|(name, bytes)| {
-        let path = tmp.join(name);
-        fs::write(&path, bytes).map_err(|e| io_err("cannot write", &path, e))
+    start_temp(&tmp);
+    // Each step under the lock of the pending writes: a stop waits for it, then removes `tmp`.
+    let created = {
+        let _creating = pending_for_write();
+        fs::create_dir(&tmp).map_err(|e| io_err("cannot create", &tmp, e))
+    };
+    let filled = created.and_then(|()| {
+        files.iter().try_for_each(|(name, bytes)| {
+            let path = tmp.join(name);
+            let _writing = pending_for_write();
+            fs::write(&path, bytes).map_err(|e| io_err("cannot write", &path, e))
+        })
     });
     let result = filled.and_then(|()| swap_in(&tmp, dir));
     if result.is_err() {
         // Best effort: the error being reported matters more than a failed clean-up.
         let _ = fs::remove_dir_all(&tmp);
     }
+    finish_temp(&tmp);
     result
 }
 
@@ -348,6 +462,7 @@ pub fn write_results(dir: &Path, report: &Report) -> Result<(), RunError> {
 fn swap_in(tmp: &Path, dir: &Path) -> Result<(), RunError> {
     match fs::symlink_metadata(dir) {
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            let _renaming = pending_for_write();
             fs::rename(tmp, dir).map_err(|e| io_err("cannot rename results to", dir, e))
         }
         Err(e) => Err(io_err("cannot inspect", dir, e)),
@@ -357,13 +472,21 @@ fn swap_in(tmp: &Path, dir: &Path) -> Result<(), RunError> {
         ))),
         Ok(_) => {
             let old = sibling(dir, "old")?;
-            fs::rename(dir, &old).map_err(|e| io_err("cannot move aside", dir, e))?;
-            if let Err(e) = fs::rename(tmp, dir) {
-                // Put the previous results back.
-                let _ = fs::rename(&old, dir);
-                return Err(io_err("cannot rename results to", dir, e));
+            {
+                // Both renames under the lock: a stop sees the old results or the new in place.
+                let mut p = pending_for_write();
+                fs::rename(dir, &old).map_err(|e| io_err("cannot move aside", dir, e))?;
+                if let Err(e) = fs::rename(tmp, dir) {
+                    // Put the previous results back.
+                    let _ = fs::rename(&old, dir);
+                    return Err(io_err("cannot rename results to", dir, e));
+                }
+                p.aside.push((old.clone(), dir.to_path_buf()));
             }
-            fs::remove_dir_all(&old).map_err(|e| io_err("cannot remove old results", &old, e))
+            let removed =
+                fs::remove_dir_all(&old).map_err(|e| io_err("cannot remove old results", &old, e));
+            pending().aside.retain(|(o, _)| *o != old);
+            removed
         }
     }
 }
