@@ -215,3 +215,51 @@ fn overview_and_help_describe_hypotheses_flags_and_outputs() {
     let (out, _) = succeeded_output(&xtask(&["help", "fig2"]));
     assert!(!out.contains("Shorthands"), "{out}");
 }
+
+/// A measured-errors file whose path holds `+`, the separator of a hypothesis stack, is read as
+/// that file through `--errors` and `--hypothesis measured:FILE`, alone or as a stack's layer,
+/// with the same results as the same table under a plain name; a `+` that starts another layer
+/// still does.
+#[test]
+fn an_errors_file_with_a_plus_in_its_path_is_one_file() {
+    let s = Scratch::new("plus-path");
+    let table = r#"(gears: [
+        (gear: "driver", random: 0.05, systematic: 0.5),
+        (gear: "driven", random: 0.03, systematic: 0.2, phase: 90.0),
+    ])"#;
+    fs::create_dir_all(s.0.join("a+b")).unwrap();
+    let plus = s.0.join("a+b/my+errors.ron");
+    let plain = s.0.join("plain.ron");
+    fs::write(&plus, table).unwrap();
+    fs::write(&plain, table).unwrap();
+    let (plus, plain) = (plus.to_str().unwrap(), plain.to_str().unwrap());
+    let (expected, _) = succeeded_output(&run_into(&["fig5"], &["--errors", plain], &s.path("p")));
+    let (by_errors, _) = succeeded_output(&run_into(&["fig5"], &["--errors", plus], &s.path("e")));
+    let by_name = format!("measured:{plus}");
+    let (by_hypothesis, _) = succeeded_output(&run_into(
+        &["fig5"],
+        &["--hypothesis", &by_name],
+        &s.path("h"),
+    ));
+    // The file's path is in the titles; the numbers are the same.
+    let numbers = |printed: &str| -> Vec<String> {
+        printed
+            .lines()
+            .filter(|l| l.starts_with("| ") && !l.contains("measured:"))
+            .map(str::to_owned)
+            .collect()
+    };
+    assert_eq!(numbers(&by_errors), numbers(&expected));
+    assert_eq!(numbers(&by_hypothesis), numbers(&expected));
+    // As the first layer of a stack, with another layer after it.
+    let stacked = format!("measured:{plus}+eccentric-only");
+    let o = run_into(&["fig5"], &["--hypothesis", &stacked], &s.path("s"));
+    assert!(o.status.success(), "{}", stderr(&o));
+    // A file that does not exist is refused in one line naming the flag.
+    let missing = format!("measured:{}", s.path("no+such.ron"));
+    let o = run_into(&["fig5"], &["--hypothesis", &missing], &s.path("m"));
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.starts_with("--hypothesis: "), "{err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+}

@@ -24,7 +24,7 @@ pub use measured::{
     measured_file_given, measured_from_ron,
 };
 pub use params::{Params, parse_overrides};
-pub use stack::SEPARATOR;
+pub use stack::{SEPARATOR, stack_layers};
 
 /// Why a hypothesis could not be looked up, configured or applied: what was wrong and the rule.
 ///

@@ -60,7 +60,39 @@ fn built() -> &'static Mutex<BTreeMap<String, &'static Stack>> {
     BUILT.get_or_init(|| Mutex::new(BTreeMap::new()))
 }
 
-/// The stack named `name` (layer names joined by [`SEPARATOR`]), each layer found by `find`.
+/// The layer names of the hypothesis `name`, each trimmed: `name` split at [`SEPARATOR`],
+/// except where the separator belongs to the path of a `measured:FILE` layer. Such a layer is
+/// read as the longest run of parts that names an existing file (`measured:my+errors.ron` is
+/// one layer when that file exists; `measured:a.ron+edmunds-split` is two when `a.ron` exists
+/// and `a.ron+edmunds-split` does not), and as its first part alone when none does (the file's
+/// own check then names it). The file is looked up as [`crate::measured_file`] reads it.
+pub fn stack_layers(name: &str) -> Vec<String> {
+    let parts: Vec<&str> = name.split(SEPARATOR).collect();
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < parts.len() {
+        let mut end = i + 1;
+        if parts[i].trim_start().starts_with("measured:") {
+            let sep = SEPARATOR.to_string();
+            end = (i + 2..=parts.len())
+                .rev()
+                .find(|&j| {
+                    let joined = parts[i..j].join(&sep);
+                    joined
+                        .trim()
+                        .strip_prefix("measured:")
+                        .is_some_and(|path| std::path::Path::new(path).is_file())
+                })
+                .unwrap_or(i + 1);
+        }
+        out.push(parts[i..end].join(&SEPARATOR.to_string()).trim().to_owned());
+        i = end;
+    }
+    out
+}
+
+/// The stack named `name` (layer names joined by [`SEPARATOR`], split by [`stack_layers`]),
+/// each layer found by `find`.
 ///
 /// Refused: an empty layer name, a layer named twice, and two layers that declare the same
 /// parameter.
@@ -72,8 +104,13 @@ pub(crate) fn lookup_stack(
     if let Some(s) = built().lock().map_err(|_| poisoned())?.get(name) {
         return Ok(*s);
     }
+    let parts = stack_layers(name);
+    // One `measured:FILE` layer whose path holds the separator: not a stack.
+    if let [one] = parts.as_slice() {
+        return find(one);
+    }
     let mut layers: Vec<&'static dyn Hypothesis> = Vec::new();
-    for part in name.split(SEPARATOR).map(str::trim) {
+    for part in parts.iter().map(String::as_str) {
         if part.is_empty() {
             return Err(HypothesisError::new(
                 what(),

@@ -18,8 +18,8 @@ fn value(ctx: &Context, name: &str) -> Option<String> {
 
 /// The measured-error tables the `hypothesis` parameter names (its `measured:FILE` layers).
 pub fn measured_in_hypothesis(hypothesis: &str) -> Vec<String> {
-    hypothesis
-        .split(hypotheses::SEPARATOR)
+    hypotheses::stack_layers(hypothesis)
+        .into_iter()
         .filter_map(|layer| layer.strip_prefix("measured:").map(str::to_owned))
         .collect()
 }
