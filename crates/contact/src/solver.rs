@@ -170,10 +170,10 @@ pub struct Event {
     /// gear's rotation centre: a force along the normal passes this close to the driven arbor.
     /// None for the other kinds, and where the normal is not defined (tip on tip).
     pub wedge_angle: Option<f64>,
-    /// A slip that is the run's idle start: no driver tooth touched the driven gear from behind
-    /// at the start, and none pushed it for a driver pitch or more after it (or at all). `phi`
-    /// and `theta` are the start's, the teeth those of the nearest pair behind the driven gear
-    /// there ((0, 0) when nothing was behind), and `lost_motion` runs from the start.
+    /// A slip that is the run's idle start: no driver tooth moved the driven gear within a
+    /// driver pitch of the start, or at all in the run. `phi` and `theta` are the start's, the
+    /// teeth those of the nearest pair behind the driven gear there ((0, 0) when nothing was
+    /// behind), and `lost_motion` runs from the start to the first push that moves it.
     pub idle_start: bool,
 }
 
@@ -339,6 +339,12 @@ impl Trajectory {
         self.events.iter().filter(|e| e.kind.is_loss()).count()
     }
 
+    /// Whether no driver tooth pushed the driven gear anywhere in the run (an idle start that
+    /// never ended): it stood still throughout, so statistics of its motion describe nothing.
+    pub fn never_driven(&self) -> bool {
+        self.events.iter().any(|e| e.idle_start && !e.resumed)
+    }
+
     /// Number of events of one kind.
     pub fn count(&self, kind: EventKind) -> usize {
         self.events.iter().filter(|e| e.kind == kind).count()
@@ -490,8 +496,11 @@ struct Run<'m> {
     /// suspects the last certified step ending there proved clear of its path, so the next
     /// step need not evaluate them to find where they start.
     clear_ahead: (f64, f64, Pairs),
-    /// Whether an idle-start candidate (always the first event) was dropped since the last
-    /// [`Run::stops`]: a start in the backlash, taken up within a driver pitch.
+    /// The idle-start candidate (its index in `events`) while no driver tooth has moved the
+    /// driven gear yet: see [`Run::record_idle_start`].
+    idle_since: Option<usize>,
+    /// Whether an idle-start candidate was dropped since the last [`Run::stops`]: the driven
+    /// gear moved within a driver pitch of the start.
     dropped_idle_start: bool,
 }
 
@@ -630,6 +639,7 @@ impl Mesh {
             remember_cover: how.certify,
             opened: None,
             clear_ahead: (f64::NAN, f64::NAN, Pairs::new()),
+            idle_since: None,
             dropped_idle_start: false,
         };
         run.start(start);
@@ -957,8 +967,8 @@ impl Run<'_> {
         match stop {
             Stop::Never => false,
             Stop::AtEvent(stop) => {
-                // An idle start that turned out a backlash taken up was asked about as it was
-                // recorded (first of all events) and has gone since: the rest moved down by one.
+                // An idle-start candidate, asked about as it was recorded (first of all events),
+                // has gone since: the rest moved down by one.
                 if std::mem::take(&mut self.dropped_idle_start) {
                     *seen = seen.saturating_sub(1);
                 }
@@ -969,7 +979,8 @@ impl Run<'_> {
             // Only where every event is sized: a gap waiting for the drive may yet become a
             // slip, and its lost motion and phase shift are not known.
             Stop::Answered(answered) => {
-                if !self.pending.is_empty() || self.events.len() == *seen {
+                let waiting = !self.pending.is_empty() || self.idle_since.is_some();
+                if waiting || self.events.len() == *seen {
                     return false;
                 }
                 *seen = self.events.len();
@@ -1032,15 +1043,16 @@ impl Run<'_> {
         self.drive_phase = self
             .touching_behind(phi, self.theta, None, &mut memo)
             .map(|p| p.0 + p.1);
-        if !self.held && self.drive_phase.is_none() {
+        if !self.held {
             self.record_idle_start();
         }
     }
 
-    /// Nothing touches the driven gear from behind at the start: it turns idle until a driver
-    /// tooth first pushes it. Recorded as a gap waiting for the drive, like any loss of drive,
-    /// so that the same sizing tells a backlash taken up within a driver pitch (dropped when
-    /// the drive starts: see [`Run::resume_drive`]) from an idle start (a slip).
+    /// Every run that can turn starts with a candidate idle start, a gap waiting for the first
+    /// push that moves the driven gear ([`Run::first_lift`]), whether or not a tooth touches it
+    /// at the start (a touching pair may fall away without lifting it): sized then like any
+    /// loss of drive, it is dropped if that came within a driver pitch, and is a slip - an idle
+    /// start - if it came later or never.
     fn record_idle_start(&mut self) {
         let nearest_behind = self
             .sides
@@ -1050,7 +1062,28 @@ impl Run<'_> {
             .map_or((0, 0), |t| t.pair);
         let mut e = Event::new(EventKind::Gap, self.phi, self.theta, nearest_behind);
         e.idle_start = true;
-        self.record(e, None);
+        self.idle_since = Some(self.events.len());
+        self.events.push(e);
+    }
+
+    /// A driver tooth (of `pairs`) moves the driven gear for the first time, at the current
+    /// (φ, θ): the idle-start candidate is sized, and dropped if this came within a driver pitch.
+    fn first_lift(&mut self, pairs: &[(i64, i64)]) {
+        let Some(i) = self.idle_since.take() else {
+            return;
+        };
+        let (phi, theta) = (self.phi, self.theta);
+        self.events[i].resumed_by = self.mesh.top_pair(phi, pairs);
+        self.size_event(i, phi, theta, true, 0);
+        if self.events[i].kind == EventKind::Gap {
+            self.events.remove(i);
+            for (j, _) in &mut self.pending {
+                if *j > i {
+                    *j -= 1;
+                }
+            }
+            self.dropped_idle_start = true;
+        }
     }
 
     /// A tooth pair touching the driven gear from behind at (φ, θ) (its obstacle's upper end is
@@ -1103,12 +1136,6 @@ impl Run<'_> {
             self.events[i].resumed_by = by;
             self.size_event(i, phi, theta, true, shift);
         }
-        // A start in the backlash taken up within a driver pitch is no event. (No index into
-        // `events` is held past this point: every pending event was sized above.)
-        let before = self.events.len();
-        self.events
-            .retain(|e| !(e.idle_start && e.kind == EventKind::Gap));
-        self.dropped_idle_start |= self.events.len() < before;
         if phase.is_some() {
             self.drive_phase = phase;
         }
@@ -1119,11 +1146,12 @@ impl Run<'_> {
         let (phi, theta) = (self.phi, self.theta);
         for (i, _) in std::mem::take(&mut self.pending) {
             self.size_event(i, phi, theta, false, 0);
-            // A driven gear never pushed in the whole run turned idle throughout, however short
+        }
+        if let Some(i) = self.idle_since.take() {
+            self.size_event(i, phi, theta, false, 0);
+            // A driven gear never moved in the whole run turned idle throughout, however short
             // the run: never a mere hand-over gap.
-            if self.events[i].idle_start {
-                self.events[i].kind = EventKind::Slip;
-            }
+            self.events[i].kind = EventKind::Slip;
         }
     }
 
@@ -1200,6 +1228,12 @@ impl Run<'_> {
             && !self.pending.is_empty()
         {
             self.resume_drive(pairs);
+        }
+        if let Motion::Push(pairs) = &motion
+            && theta_end > self.theta
+            && self.idle_since.is_some()
+        {
+            self.first_lift(pairs);
         }
         self.segments.push(Segment {
             phi_start: self.phi,

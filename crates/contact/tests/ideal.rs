@@ -79,3 +79,25 @@ fn paper_example_matches_appendix_closed_forms_every_hundredth_of_a_degree() {
         worst.to_degrees()
     );
 }
+
+/// Tip circles that only just touch (D = R1 + R2, G = 100 % of h) or miss: the driven gear is
+/// never moved, and the run says so - an idle start, never a clean run. At exactly tangent tip
+/// circles the tips touch at the start, yet fall away without lifting the driven gear.
+#[test]
+fn gears_whose_tips_cannot_engage_are_never_driven() {
+    let g = Gear::ideal(8, 200.0, 100.0).unwrap();
+    let p1 = TAU / 8.0;
+    for d in [400.0, 400.01, 450.0] {
+        let m = Mesh::new(g.clone(), g.clone(), d).unwrap();
+        let t = m.run(0.0, 3.0 * p1, Start::Touching(0.0));
+        assert!(t.never_driven(), "D = {d}: {:?}", t.events());
+        let e = t.events()[0];
+        assert!(e.idle_start && !e.resumed && e.phi == 0.0, "D = {d}: {e:?}");
+        assert!((e.lost_motion - 3.0).abs() < 1e-12, "D = {d}: {e:?}");
+    }
+    // Just inside, the tips engage and drive for a moment, then slip: driven, with a slip.
+    let m = Mesh::new(g.clone(), g, 399.99).unwrap();
+    let t = m.run(0.0, 3.0 * p1, Start::Touching(0.0));
+    assert!(!t.never_driven(), "{:?}", t.events());
+    assert!(t.events().iter().all(|e| !e.idle_start), "{:?}", t.events());
+}

@@ -66,6 +66,17 @@ pub fn from_params(ctx: &Context) -> Result<EqualPair, RunError> {
     let centre_distance = ctx.f64(CENTRE_DISTANCE.name)?;
     let bad = |field: String, rule: String| RunError::bad("--set", field, rule);
     let gear = Gear::ideal(teeth, tip_radius, root_radius).map_err(|e| bad(e.field, e.rule))?;
+    // At or beyond touching tip circles no tooth can push another: nothing would be simulated.
+    if centre_distance >= 2.0 * tip_radius {
+        return Err(bad(
+            CENTRE_DISTANCE.name.into(),
+            format!(
+                "must be below 2 x tip_radius = {}: at {} the tips cannot engage and the driven gear is never turned",
+                registry::fmt_number(2.0 * tip_radius),
+                registry::fmt_number(centre_distance),
+            ),
+        ));
+    }
     let mesh = Mesh::new(gear.clone(), gear, centre_distance).map_err(|e| bad(e.field, e.rule))?;
     Ok(EqualPair {
         teeth,

@@ -12,15 +12,13 @@ use study::equal_pair;
 /// The most teeth fig2 simulates over a whole driver turn: 500 (a few minutes).
 const MAX_TEETH: usize = 500;
 
-const PARAMS: &[Param] = &[
-    Param {
-        name: "step",
-        default: "0.01",
-        unit: "deg",
-        help: "driver angle between samples",
-        kind: registry::Kind::positive(10.0, "degrees"),
-    },
-];
+const PARAMS: &[Param] = &[Param {
+    name: "step",
+    default: "0.01",
+    unit: "deg",
+    help: "driver angle between samples",
+    kind: registry::Kind::positive(10.0, "degrees"),
+}];
 
 registry::inventory::submit! {
     Experiment {
@@ -82,6 +80,13 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
 
     // Figure III frame: phi'_o = 0, theta'_o = theta'(0); one full driver turn.
     let traj = mesh.run(0.0, TAU, Start::Touching(0.0));
+    if traj.never_driven() {
+        return Err(RunError::bad(
+            "--set",
+            "centre_distance",
+            "puts the gears out of reach: no driver tooth ever pushes the driven gear, so there is no theta(phi) to show (bring the centre distance below the sum of the tip radii)",
+        ));
+    }
     let samples = (360.0 / step).round() as usize;
     let ratio = 1.0; // N1 = N2
     let theta0 = traj.theta_at(0.0);

@@ -61,6 +61,13 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     // Theoretical Difference C - f(phi'_o), C the mean of f. So the pointer leads most from the
     // minimum of f, lags most from its maximum, and is centred where f equals its mean.
     let long = mesh.run(0.0, (pitches + 2) as f64 * p1, Start::Touching(0.0));
+    if long.never_driven() {
+        return Err(RunError::bad(
+            "--set",
+            "centre_distance",
+            "puts the gears out of reach: no driver tooth ever pushes the driven gear, so there is no Theoretical Difference to show (bring the centre distance below the sum of the tip radii)",
+        ));
+    }
     let f = |x: f64| long.theta_at(x) - ratio * x;
     let xs: Vec<f64> = (0..SCAN).map(|i| p1 * i as f64 / SCAN as f64).collect();
     let fs: Vec<f64> = xs.iter().map(|&x| f(x)).collect();

@@ -165,6 +165,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let mut series = Vec::new();
     let mut columns = Vec::new();
     let mut no_ratio = false;
+    let mut never_driven = false;
     for (name, split) in SPLITS {
         let p = errors::params(ctx, h, &[offered[0], offered[1], ("split", split)])?;
         // The same stream for every split: only the split changes between the panels.
@@ -195,11 +196,19 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             stats::pointer_stats(&td_rad).sigma,
             stats::pointer_stats(&td_tri).sigma,
         );
+        let idle = tri.never_driven();
+        never_driven |= idle;
         table.row(vec![
             name.into(),
             fmt_f64(s_rad, 4),
-            fmt_f64(s_tri, 4),
-            if s_rad > EDMUNDS_FLAT {
+            if idle {
+                "- (never driven)".into()
+            } else {
+                fmt_f64(s_tri, 4)
+            },
+            if idle {
+                "-".into()
+            } else if s_rad > EDMUNDS_FLAT {
                 fmt_f64(s_tri / s_rad, 3)
             } else {
                 no_ratio = true;
@@ -213,6 +222,9 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         columns.push(td_tri);
     }
     table.note("Both models run on the same manufactured gears and the same initial angle; one turn of the driver.");
+    if never_driven {
+        table.note("Never driven: no driver tooth reached the driven gear in the whole turn (an idle start, counted as a disengagement by every event rule), so its triangular-teeth sigma describes nothing and is not given.");
+    }
     if no_ratio {
         table.note("n/a: Edmunds' sigma is 0 (gears with no tip or axis error keep his pointer exact), so the two cannot be compared by a ratio.");
     }

@@ -139,24 +139,31 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         disengagements.to_string(),
         "",
     );
+    // A driven gear that never moved has no Theoretical Difference to speak of: its "sigma" would
+    // be the driver's own turning.
+    let stat = |v: f64| {
+        if traj.never_driven() {
+            "- (never driven)".to_string()
+        } else {
+            fmt_f64(v, 4)
+        }
+    };
     rowf(
         &mut summary,
         "Theoretical Difference sigma",
-        fmt_f64(s.sigma, 4),
+        stat(s.sigma),
         "deg",
     );
-    rowf(
-        &mut summary,
-        "Theoretical Difference Dm",
-        fmt_f64(s.dm, 4),
-        "deg",
-    );
+    rowf(&mut summary, "Theoretical Difference Dm", stat(s.dm), "deg");
     rowf(
         &mut summary,
         "Theoretical Difference mean P",
-        fmt_f64(s.mean, 4),
+        stat(s.mean),
         "deg",
     );
+    if traj.never_driven() {
+        summary.note("The driven gear was never pushed: no driver tooth reached it in the whole run (an idle start, counted as a disengagement by every event rule), so sigma, Dm and P are not given.");
+    }
     summary.note(ABSOLUTE_NOTE);
 
     let (events, ev_rows, marks) = event_log(&traj, &rule, (phi0, theta0), &prepared);
