@@ -70,8 +70,50 @@ fn number(id: &str, cell: &str, what: &str, text: &str) -> Result<f64, RunError>
         .ok_or_else(|| bad_cell(id, cell, format!("{what} `{text}` is not a number ≥ 0")))
 }
 
-/// The cell `cell` of experiment `id`, built from the experiment's parameters in `ctx`.
+/// A clearance G typed in a Table I cell: above 0 and at most what Table I's `clearances` take.
+fn clearance(id: &str, cell: &str, text: &str) -> Result<f64, RunError> {
+    study::gearing::clearance_value(text, study::gearing::MAX_LISTED_CLEARANCE)
+        .map_err(|rule| bad_cell(id, cell, format!("G `{}`: {rule}", text.trim())))
+}
+
+/// The cell `cell` of experiment `id`, built from the experiment's parameters in `ctx`, and
+/// checked as `run` checks its cells ([`study::cell::check`], under the seed of `ctx`): a value
+/// the user typed in the cell that breaks a rule is named as typed (`random error `0.5``).
 pub fn cell_spec(ctx: &Context, g: &Gearing, id: &str, cell: &str) -> Result<CellSpec, RunError> {
+    let spec = unchecked_cell_spec(ctx, g, id, cell)?;
+    study::cell::check(g, &spec, ctx.seed()).map_err(|e| typed_part(e, id, cell))?;
+    Ok(spec)
+}
+
+/// A hypothesis' refusal of a random or systematic error the user typed in the cell, said of
+/// that part of the cell; any other error as it is.
+fn typed_part(e: RunError, id: &str, cell: &str) -> RunError {
+    let RunError::BadInput { field, rule, .. } = &e else {
+        return e;
+    };
+    let parts: Vec<&str> = cell.split('/').collect();
+    let typed = match (id, parts.as_slice()) {
+        ("table4", [random, _]) => vec![("random", "random error", *random)],
+        ("table5", [random, sys, _]) => vec![
+            ("random", "random error", *random),
+            ("systematic", "systematic error", *sys),
+        ],
+        _ => Vec::new(),
+    };
+    for (key, name, text) in typed {
+        if field == key || field.ends_with(&format!(": {key}")) {
+            return bad_cell(id, cell, format!("{name} `{}`: {rule}", text.trim()));
+        }
+    }
+    e
+}
+
+fn unchecked_cell_spec(
+    ctx: &Context,
+    g: &Gearing,
+    id: &str,
+    cell: &str,
+) -> Result<CellSpec, RunError> {
     let form = form(id)?;
     let parts: Vec<&str> = cell.split('/').collect();
     let wrong = || bad_cell(id, cell, format!("must be {form}"));
@@ -87,7 +129,7 @@ pub fn cell_spec(ctx: &Context, g: &Gearing, id: &str, cell: &str) -> Result<Cel
             let (sys, random) = case_errors(id, cell, case)?;
             let split = ctx.f64("split")?;
             let e = vec![("random", random), ("systematic", sys), ("split", split)];
-            (*mesh, e, number(id, cell, "G", g_text)?)
+            (*mesh, e, clearance(id, cell, g_text)?)
         }
         ("table4", [random, mesh]) => {
             let e = vec![

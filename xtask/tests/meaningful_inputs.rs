@@ -258,3 +258,102 @@ fn a_refusal_names_the_key_typed_and_prints_numbers_short() {
         assert!(line.len() < 300, "{args}: {line}");
     }
 }
+
+#[test]
+fn replay_refuses_the_cells_run_refuses_naming_the_part_typed() {
+    for (args, words) in [
+        (
+            "replay tableI B/1e300/m3-e3 --out {out}",
+            &[
+                "replay: cell `B/1e300/m3-e3` of tableI: G `1e300`: must be above 0 and at most 200 % of h",
+            ][..],
+        ),
+        (
+            "replay tableI B/0/m3-e3 --out {out}",
+            &["replay: cell `B/0/m3-e3` of tableI: G `0`: must be above 0"],
+        ),
+        (
+            "replay tableI B/0/m3-e3 3 --out {out}",
+            &["replay: cell `B/0/m3-e3` of tableI: G `0`: must be above 0"],
+        ),
+        (
+            "replay table4 0.5/m3-e3 --out {out}",
+            &[
+                "replay: cell `0.5/m3-e3` of table4: random error `0.5`: must be at most 0.1 of the pitch",
+            ],
+        ),
+        (
+            "replay table5 0.05/1e300/e4-f1 0 --out {out}",
+            &[
+                "replay: cell `0.05/1e300/e4-f1` of table5: systematic error `1e300`: ",
+                "= 5e299°",
+            ],
+        ),
+    ] {
+        let line = refused(args, words);
+        assert!(!line.contains("--hypothesis"), "{args}: {line}");
+        assert!(line.len() < 300, "{args}: {line}");
+    }
+    // `run` refuses the same values with the same rules.
+    refused(
+        "run tableI --set clearances=0 --out {out}",
+        &["--set: clearances: each must be above 0 and at most 200 % of h"],
+    );
+    refused(
+        "run table4 --set random_to=0.5 --out {out}",
+        &["--set: random_to: must be between 0 and 0.1"],
+    );
+}
+
+#[test]
+fn a_refusal_names_the_parameter_set_not_an_internal_field() {
+    for (args, words, never) in [
+        (
+            "run fig5 --set clearance=1e-300 --out {out}",
+            &["--set: clearance: 1e-300 % of h"][..],
+            "centre_distance",
+        ),
+        (
+            "run clearance --set tooth_height=1e-300 --out {out}",
+            &["--set: tooth_height: must be between 0.01 and 10000"],
+            "root_radius",
+        ),
+        (
+            "run fig5 --hypothesis curved-flanks --set hypothesis_params=sagitta=5 --out {out}",
+            &["curved-flanks: parameter `sagitta`: the sagitta s = 5 mm"],
+            "flank_sagitta",
+        ),
+        (
+            "run table3 --hypothesis non-circular --set hypothesis_params=radial_error=3 --out {out}",
+            &["non-circular: parameter `radial_error`: too large for teeth 1.100 mm high"],
+            "radii[",
+        ),
+        (
+            "run table4 --set random_from=0.07 --out {out}",
+            &["--set: random_from: must be at most random_to = 0.065 (got 0.07)"],
+            "--set: random_to",
+        ),
+        (
+            "run table4 --set random_step=1e-300 --out {out}",
+            &[
+                "--set: random_step: gives more than 1000 grid values",
+                "by random_step = 1e-300",
+            ],
+            "000000000",
+        ),
+        (
+            "run tolerance --set search_lo=0.09 --out {out}",
+            &["--set: search_lo: must be less than search_hi = 0.08 (got 0.09)"],
+            "search_hi:",
+        ),
+        (
+            "run fig5 --set hypothesis_params=systematic=1e300 --out {out}",
+            &["systematic: its eccentric share (1 - split)·A = 1e300°"],
+            "000000000",
+        ),
+    ] {
+        let line = refused(args, words);
+        assert!(!line.contains(never), "{args}: {line}");
+        assert!(line.len() < 300, "{args}: {line}");
+    }
+}

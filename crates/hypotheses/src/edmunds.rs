@@ -7,6 +7,8 @@ use geometry::{Gear, Vec2, polar};
 use rand::Rng;
 use rand_distr::{Distribution, StandardNormal};
 
+use registry::fmt_number;
+
 use crate::HypothesisError;
 
 /// Random and systematic errors of one gear, after Edmunds (2011) as the paper adapts them.
@@ -55,7 +57,10 @@ impl EdmundsErrors {
         if !(self.random.is_finite() && self.random >= 0.0) {
             return bad(
                 "random",
-                format!("must be a finite number >= 0 (got {})", self.random),
+                format!(
+                    "must be a finite number >= 0 (got {})",
+                    fmt_number(self.random)
+                ),
             );
         }
         if self.random > MAX_RANDOM {
@@ -63,7 +68,7 @@ impl EdmundsErrors {
                 "random",
                 format!(
                     "must be at most {MAX_RANDOM} of the pitch (got {}): with a larger spread neighbouring tips cross in some draws, so whether a run fails would depend on how many trials it draws",
-                    self.random
+                    fmt_number(self.random)
                 ),
             );
         }
@@ -72,14 +77,14 @@ impl EdmundsErrors {
                 "systematic",
                 format!(
                     "must be a finite number of degrees >= 0 (got {})",
-                    self.systematic_deg
+                    fmt_number(self.systematic_deg)
                 ),
             );
         }
         if !(0.0..=1.0).contains(&self.split) {
             return bad(
                 "split",
-                format!("must be between 0 and 1 (got {})", self.split),
+                format!("must be between 0 and 1 (got {})", fmt_number(self.split)),
             );
         }
         let eccentric = (1.0 - self.split) * self.systematic_deg;
@@ -87,7 +92,8 @@ impl EdmundsErrors {
             return bad(
                 "systematic",
                 format!(
-                    "its eccentric share (1 - split)·A = {eccentric}° must be less than 90° (R·tan of it is the axis shift)"
+                    "its eccentric share (1 - split)·A = {}° must be less than 90° (R·tan of it is the axis shift)",
+                    fmt_number(eccentric)
                 ),
             );
         }
@@ -96,7 +102,7 @@ impl EdmundsErrors {
         {
             return bad(
                 "phase",
-                format!("must be a finite number of degrees (got {p})"),
+                format!("must be a finite number of degrees (got {})", fmt_number(p)),
             );
         }
         Ok(())
@@ -155,7 +161,7 @@ pub fn manufacture(
         if !t.is_finite() {
             return Err(HypothesisError::new(
                 format!("gear `{gear_name}`: tips[{k}]"),
-                format!("must be a finite angle (got {t})"),
+                format!("must be a finite angle (got {})", fmt_number(*t)),
             ));
         }
     }

@@ -205,6 +205,16 @@ pub fn rebuild(g: &Gearing, cell: &CellSpec, seed: u64, t: u64) -> Result<Rebuil
     rebuild_prepared(&prepare(g, cell)?, seed, t)
 }
 
+/// Checks `cell` as every command that runs or names it does, before any trial runs: its mesh
+/// is in the gearing and can be sized, and the hypothesis manufactures both gears of trial 0
+/// under `seed` (its parameters' ranges, e.g. a random error above 0.1 of the pitch). `run`
+/// ([`run_cells`]) and `replay` share it, so a cell one refuses the other refuses too.
+///
+/// Errors: those of [`rebuild`].
+pub fn check(g: &Gearing, cell: &CellSpec, seed: u64) -> Result<(), RunError> {
+    rebuild(g, cell, seed, 0).map(|_| ())
+}
+
 fn rebuild_prepared(p: &Prepared<'_>, seed: u64, t: u64) -> Result<Rebuilt, RunError> {
     // One stream per (cell content, trial): both gears' errors, then the initial angle.
     let mut rng = trial_rng(seed, stream(&p.canonical, t));
@@ -409,6 +419,10 @@ fn run_cells_under(
         .iter()
         .map(|c| prepare(g, c))
         .collect::<Result<_, _>>()?;
+    // Every cell checked before any runs, as `replay` checks the one it names ([`check`]).
+    for p in &prepared {
+        rebuild_prepared(p, seed, 0)?;
+    }
     let rules_of: Vec<Vec<rules::Rule>> = cells
         .iter()
         .map(|c| rules.map_or_else(|| vec![c.events.clone()], <[_]>::to_vec))

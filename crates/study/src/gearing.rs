@@ -22,13 +22,21 @@ pub const CLEARANCE: Param = Param {
     kind: registry::Kind::positive(100.0, "% of the tooth height h"),
 };
 
+/// The tooth heights a `tooth_height` parameter takes: 0.01 mm (a hundredth of the paper's
+/// 1.1 mm; below it R - h rounds to R on a large gear, and the tooth is no tooth) to 10 m.
+pub const TOOTH_HEIGHT_KIND: registry::Kind = registry::Kind::number(
+    0.01,
+    10_000.0,
+    "mm: from a hundredth of a millimetre to 10 m",
+);
+
 /// Tooth height h of every gear.
 pub const TOOTH_HEIGHT: Param = Param {
     name: "tooth_height",
     default: "1.1",
     unit: "mm",
     help: "h = R - r of every gear (Efstathiou et al. 2012)",
-    kind: registry::Kind::positive(f64::INFINITY, "mm"),
+    kind: TOOTH_HEIGHT_KIND,
 };
 
 /// Whether the Lunar train includes the pin-and-slot (Freeth 2006's lunar anomaly mechanism).
@@ -157,21 +165,34 @@ pub fn clearance_list(ctx: &Context, name: &str, max: f64) -> Result<Vec<f64>, R
     let text = ctx.param(name)?;
     let mut out = Vec::new();
     for part in text.split(',').map(str::trim) {
-        let g: f64 = part.parse().map_err(|_| {
-            RunError::bad(
-                "--set",
-                name,
-                format!("`{part}` is not a number (give e.g. 10,40,70)"),
-            )
+        let g = clearance_value(part, max).map_err(|rule| {
+            let rule = if rule.starts_with('`') {
+                format!("{rule} (give e.g. 10,40,70)")
+            } else {
+                format!("each {rule}")
+            };
+            RunError::bad("--set", name, rule)
         })?;
-        if !(g.is_finite() && g > 0.0 && g <= max) {
-            return Err(RunError::bad(
-                "--set",
-                name,
-                format!("each must be above 0 and at most {max} % of h (got {part})"),
-            ));
-        }
         out.push(g);
     }
     Ok(out)
+}
+
+/// The largest clearance of Table I's list (`clearances`), and of a Table I cell `replay` names.
+pub const MAX_LISTED_CLEARANCE: f64 = 200.0;
+
+/// One clearance G as typed (% of h), above 0 and at most `max`; the error is the rule broken:
+/// "`x` is not a number" or "must be above 0 and at most 200 % of h (got 0)".
+pub fn clearance_value(text: &str, max: f64) -> Result<f64, String> {
+    let text = text.trim();
+    let g: f64 = text
+        .parse()
+        .map_err(|_| format!("`{text}` is not a number"))?;
+    if !(g.is_finite() && g > 0.0 && g <= max) {
+        return Err(format!(
+            "must be above 0 and at most {} % of h (got {text})",
+            registry::fmt_number(max)
+        ));
+    }
+    Ok(g)
 }

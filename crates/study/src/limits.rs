@@ -64,8 +64,22 @@ impl IdealPair {
         })
     }
     /// The ideal mesh at clearance `g` (% of h), or None when the gears overlap at every tooth.
+    ///
+    /// The gears' root radii are R - h: a tooth height they cannot take is refused naming
+    /// `tooth_height`, the parameter the user set, not the gear's internal field.
     fn mesh(&self, g: f64) -> Result<Option<Mesh>, RunError> {
-        let bad = |e: geometry::GeometryError| RunError::bad("--set", e.field, e.rule);
+        let bad = |_: geometry::GeometryError| {
+            RunError::bad(
+                "--set",
+                "tooth_height",
+                format!(
+                    "must leave each gear a root radius R - h above 0 and below R (R = {} and {}; got h = {})",
+                    registry::fmt_number(self.r1),
+                    registry::fmt_number(self.r2),
+                    registry::fmt_number(self.h)
+                ),
+            )
+        };
         let driver = Gear::ideal(self.n1, self.r1, self.r1 - self.h).map_err(bad)?;
         let driven = Gear::ideal(self.n2, self.r2, self.r2 - self.h).map_err(bad)?;
         Ok(Mesh::new(driver, driven, self.centre_distance(g)).ok())
@@ -94,8 +108,20 @@ impl IdealPair {
         g: f64,
         phi0: f64,
     ) -> Result<Trajectory, RunError> {
-        let mesh = Mesh::new(made.0.clone(), made.1.clone(), self.centre_distance(g))
-            .map_err(|e| RunError::bad("--set", e.field, e.rule))?;
+        // The centre distance is the clearance's, which is what the user set.
+        let mesh =
+            Mesh::new(made.0.clone(), made.1.clone(), self.centre_distance(g)).map_err(|e| {
+                RunError::bad(
+                    "--set",
+                    "clearance",
+                    format!(
+                        "{} % of h places these gears at D = {}, where they cannot mesh: D {}",
+                        registry::fmt_number(g),
+                        registry::fmt_number(self.centre_distance(g)),
+                        e.rule
+                    ),
+                )
+            })?;
         Ok(mesh.run(phi0, phi0 + self.turn(), Start::Touching(0.0)))
     }
 

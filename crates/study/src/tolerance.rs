@@ -4,13 +4,22 @@
 
 use registry::{Context, Param, RunError};
 
+/// A random error of a grid or search (fraction of the pitch): 0 to the hypotheses' limit
+/// [`hypotheses::MAX_RANDOM`], checked with the parameter the user set rather than when a gear
+/// is made.
+pub const RANDOM_KIND: registry::Kind = registry::Kind::number(
+    0.0,
+    hypotheses::MAX_RANDOM,
+    "of the pitch: with a larger spread neighbouring tips cross in some draws",
+);
+
 /// Start of the random-error grid (Table 4's first row).
 pub const RANDOM_FROM: Param = Param {
     name: "random_from",
     default: "0.035",
     unit: "pitch",
     help: "smallest random error (sd of a tip's displacement / pitch 360/N); the paper's Table 4: 0.035",
-    kind: registry::Kind::number(0.0, f64::INFINITY, ""),
+    kind: RANDOM_KIND,
 };
 
 /// End of the random-error grid.
@@ -19,7 +28,7 @@ pub const RANDOM_TO: Param = Param {
     default: "0.065",
     unit: "pitch",
     help: "largest random error of the grid (the paper: 0.065)",
-    kind: registry::Kind::ANY_NUMBER,
+    kind: RANDOM_KIND,
 };
 
 /// Step of the random-error grid.
@@ -108,19 +117,57 @@ pub fn rule(ctx: &Context) -> Result<f64, RunError> {
 /// is 1.0 and the same grid gives the same cells in every experiment.
 pub fn grid(ctx: &Context, from: &Param, to: &Param, step: &Param) -> Result<Vec<f64>, RunError> {
     let (a, b, s) = (ctx.f64(from.name)?, ctx.f64(to.name)?, ctx.f64(step.name)?);
+    let short = registry::fmt_number;
     if a > b {
-        return Err(RunError::bad(
-            "--set",
-            to.name,
-            format!("must be at least {} = {a} (got {b})", from.name),
-        ));
+        // Name the one the user set: `to` below the default `from`, or `from` above `to`.
+        let to_set = ctx.changed().iter().any(|(k, _)| *k == to.name);
+        let (field, rule) = if to_set {
+            (
+                to.name,
+                format!(
+                    "must be at least {} = {} (got {})",
+                    from.name,
+                    short(a),
+                    short(b)
+                ),
+            )
+        } else {
+            (
+                from.name,
+                format!(
+                    "must be at most {} = {} (got {})",
+                    to.name,
+                    short(b),
+                    short(a)
+                ),
+            )
+        };
+        return Err(RunError::bad("--set", field, rule));
     }
     let n = ((b - a) / s + 1e-9).floor();
     if n >= 1000.0 {
+        // Name the one the user set: the step, or else the end (or start) they moved.
+        let changed = ctx.changed();
+        let set = |p: &Param| changed.iter().any(|(k, _)| *k == p.name);
+        let field = if set(step) || !(set(to) || set(from)) {
+            step.name
+        } else if set(to) {
+            to.name
+        } else {
+            from.name
+        };
         return Err(RunError::bad(
             "--set",
-            step.name,
-            format!("gives more than 1000 grid values from {a} to {b}"),
+            field,
+            format!(
+                "gives more than 1000 grid values from {} = {} to {} = {} by {} = {}",
+                from.name,
+                short(a),
+                to.name,
+                short(b),
+                step.name,
+                short(s)
+            ),
         ));
     }
     Ok((0..=n as u64)

@@ -14,7 +14,7 @@ const PARAMS: &[Param] = &[
         default: "1.1",
         unit: "mm",
         help: "h = R - r for both gears (Efstathiou et al. 2012)",
-        kind: registry::Kind::positive(f64::INFINITY, "mm"),
+        kind: gearing::TOOTH_HEIGHT_KIND,
     },
     Param {
         name: "grid_step",

@@ -3,11 +3,11 @@
 
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table};
 
-use study::cell::{Purpose, label, run_cells};
 use crate::cells::{CSV_COLUMNS, Tally, cell_text, csv_columns, paper_counts};
+use study::cell::{Purpose, label, run_cells};
 use study::grids::CASES;
-use study::grids::case_cells;
 use study::grids::TRIALS;
+use study::grids::case_cells;
 
 const PARAMS: &[Param] = &[
     TRIALS,
@@ -34,7 +34,7 @@ registry::inventory::submit! {
 
 /// The `clearances` parameter: a comma-separated list of clearances, each in (0, 200] % of h.
 fn clearances(ctx: &Context) -> Result<Vec<f64>, RunError> {
-    study::gearing::clearance_list(ctx, "clearances", 200.0)
+    study::gearing::clearance_list(ctx, "clearances", study::gearing::MAX_LISTED_CLEARANCE)
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {

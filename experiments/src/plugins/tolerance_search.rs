@@ -10,10 +10,10 @@ use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table};
 use stats::clopper_pearson95;
 use train::Gearing;
 
+use crate::emax::{paper_random, show};
+use study::cell::{CellRange, CellSpec, Counts, Purpose, label, run_cell_ranges};
 use study::errors;
 use study::gearing;
-use study::cell::{CellRange, CellSpec, Counts, Purpose, label, run_cell_ranges};
-use crate::emax::{paper_random, show};
 use study::tolerance::{self, RANDOM_FROM, RANDOM_STEP, RANDOM_TO, RULE};
 
 const SEARCH_LO: Param = Param {
@@ -21,7 +21,7 @@ const SEARCH_LO: Param = Param {
     default: "0.02",
     unit: "pitch",
     help: "lower end of the searched random error (fraction of the pitch 360/N)",
-    kind: registry::Kind::number(0.0, f64::INFINITY, ""),
+    kind: study::tolerance::RANDOM_KIND,
 };
 
 const SEARCH_HI: Param = Param {
@@ -29,7 +29,7 @@ const SEARCH_HI: Param = Param {
     default: "0.08",
     unit: "pitch",
     help: "upper end of the searched random error",
-    kind: registry::Kind::ANY_NUMBER,
+    kind: study::tolerance::RANDOM_KIND,
 };
 
 const RESOLUTION: Param = Param {
@@ -56,14 +56,7 @@ const CAP: Param = Param {
     kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
 };
 
-const PARAMS: &[Param] = &[
-    SEARCH_LO,
-    SEARCH_HI,
-    RESOLUTION,
-    RULE,
-    BATCH,
-    CAP,
-];
+const PARAMS: &[Param] = &[SEARCH_LO, SEARCH_HI, RESOLUTION, RULE, BATCH, CAP];
 
 registry::inventory::submit! {
     Experiment {
@@ -253,18 +246,42 @@ fn settings(ctx: &Context) -> Result<Settings, RunError> {
     let resolution = ctx.f64(RESOLUTION.name)?;
     let rule = ctx.f64(RULE.name)?;
     let (batch, cap) = (ctx.u64(BATCH.name)?, ctx.u64(CAP.name)?);
+    let short = registry::fmt_number;
     if hi.is_nan() || lo >= hi {
-        return Err(RunError::bad(
-            "--set",
-            SEARCH_HI.name,
-            format!("must be greater than {} = {lo} (got {hi})", SEARCH_LO.name),
-        ));
+        // Name the one the user set: `search_hi` at or below the default low end, or
+        // `search_lo` at or above the high end.
+        let hi_set = ctx.changed().iter().any(|(k, _)| *k == SEARCH_HI.name);
+        let (field, rule) = if hi_set {
+            (
+                SEARCH_HI.name,
+                format!(
+                    "must be greater than {} = {} (got {})",
+                    SEARCH_LO.name,
+                    short(lo),
+                    short(hi)
+                ),
+            )
+        } else {
+            (
+                SEARCH_LO.name,
+                format!(
+                    "must be less than {} = {} (got {})",
+                    SEARCH_HI.name,
+                    short(hi),
+                    short(lo)
+                ),
+            )
+        };
+        return Err(RunError::bad("--set", field, rule));
     }
     if rule.is_nan() || rule <= 0.0 || rule >= 100.0 {
         return Err(RunError::bad(
             "--set",
             RULE.name,
-            format!("must be a percentage strictly between 0 and 100 (got {rule})"),
+            format!(
+                "must be a percentage strictly between 0 and 100 (got {})",
+                short(rule)
+            ),
         ));
     }
     if cap < batch {

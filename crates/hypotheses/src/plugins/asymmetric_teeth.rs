@@ -51,7 +51,10 @@ impl Hypothesis for AsymmetricTeeth {
         if !(0.0..=1.0).contains(&shift) {
             return Err(HypothesisError::new(
                 format!("asymmetric-teeth: parameter `{}`", VALLEY_SHIFT.name),
-                format!("must be between 0 and 1 (a fraction of the tip gap; got {shift})"),
+                format!(
+                    "must be between 0 and 1 (a fraction of the tip gap; got {})",
+                    registry::fmt_number(shift)
+                ),
             ));
         }
         let valleys = (0..gear.teeth() as i64)
@@ -134,9 +137,18 @@ mod tests {
         let mut rng = ChaCha8Rng::seed_from_u64(3);
         let wild = Params::new(h, &[("valley_shift".into(), "1".into())]).unwrap();
         let f = fractions(&h.apply(&g, "a1", &wild, &mut rng).unwrap());
-        assert!(f.iter().all(|f| (0.05 - 1e-12..=0.95 + 1e-12).contains(f)), "{f:?}");
-        assert!(f.iter().any(|f| (f - 0.05).abs() < 1e-9), "some clamp low: {f:?}");
-        assert!(f.iter().any(|f| (f - 0.95).abs() < 1e-9), "some clamp high: {f:?}");
+        assert!(
+            f.iter().all(|f| (0.05 - 1e-12..=0.95 + 1e-12).contains(f)),
+            "{f:?}"
+        );
+        assert!(
+            f.iter().any(|f| (f - 0.05).abs() < 1e-9),
+            "some clamp low: {f:?}"
+        );
+        assert!(
+            f.iter().any(|f| (f - 0.95).abs() < 1e-9),
+            "some clamp high: {f:?}"
+        );
         let none = Params::new(h, &[("valley_shift".into(), "0".into())]).unwrap();
         assert_eq!(h.apply(&g, "a1", &none, &mut rng).unwrap(), g);
         let bad = Params::new(h, &[("valley_shift".into(), "1.5".into())]).unwrap();

@@ -58,14 +58,20 @@ impl Hypothesis for CurvedFlanks {
         if !sagitta.is_finite() {
             return Err(bad(
                 &SAGITTA,
-                format!("must be a finite length in mm (got {sagitta})"),
+                format!(
+                    "must be a finite length in mm (got {})",
+                    registry::fmt_number(sagitta)
+                ),
             ));
         }
         let spread = params.get(SAGITTA_SPREAD.name);
         if !(spread.is_finite() && spread >= 0.0) {
             return Err(bad(
                 &SAGITTA_SPREAD,
-                format!("must be a finite length of at least 0 mm (got {spread})"),
+                format!(
+                    "must be a finite length of at least 0 mm (got {})",
+                    registry::fmt_number(spread)
+                ),
             ));
         }
         let s = if spread > 0.0 {
@@ -74,9 +80,23 @@ impl Hypothesis for CurvedFlanks {
         } else {
             sagitta
         };
-        gear.clone()
-            .with_flank_sagitta(s)
-            .map_err(|e| HypothesisError::new(format!("gear `{gear_name}`: {}", e.field), e.rule))
+        // The gear's rule, said of the parameter the user set (the drawn s is the sagitta's, or
+        // the sagitta's plus the spread's draw).
+        gear.clone().with_flank_sagitta(s).map_err(|e| {
+            let param = if spread > 0.0 {
+                "parameters `sagitta` and `sagitta_spread`"
+            } else {
+                "parameter `sagitta`"
+            };
+            HypothesisError::new(
+                format!("gear `{gear_name}`: curved-flanks: {param}"),
+                format!(
+                    "the sagitta s = {} mm drawn for this gear is too large for its teeth: {}",
+                    registry::fmt_number(s),
+                    e.rule
+                ),
+            )
+        })
     }
 }
 
@@ -122,10 +142,14 @@ mod tests {
         let mut rng = ChaCha8Rng::seed_from_u64(5);
         let zero = Params::new(h, &set(&[("sagitta", "0")])).unwrap();
         assert_eq!(h.apply(&designed, "a1", &zero, &mut rng).unwrap(), designed);
-        let spread = Params::new(h, &set(&[("sagitta", "-0.02"), ("sagitta_spread", "0.01")]))
-            .unwrap();
+        let spread =
+            Params::new(h, &set(&[("sagitta", "-0.02"), ("sagitta_spread", "0.01")])).unwrap();
         let s: Vec<f64> = (0..400)
-            .map(|_| h.apply(&designed, "a1", &spread, &mut rng).unwrap().flank_sagitta())
+            .map(|_| {
+                h.apply(&designed, "a1", &spread, &mut rng)
+                    .unwrap()
+                    .flank_sagitta()
+            })
             .collect();
         let mean = s.iter().sum::<f64>() / 400.0;
         let sd = (s.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / 400.0).sqrt();
@@ -159,6 +183,11 @@ mod tests {
                 &mut rng,
             )
             .unwrap_err();
-        assert!(e.what.starts_with("gear `a1`: flank_sagitta"), "{e}");
+        assert!(
+            e.what
+                .starts_with("gear `a1`: curved-flanks: parameter `sagitta`"),
+            "{e}"
+        );
+        assert!(!e.to_string().contains("flank_sagitta"), "{e}");
     }
 }

@@ -60,7 +60,10 @@ impl Hypothesis for NonCircular {
             } else {
                 Err(HypothesisError::new(
                     format!("non-circular: parameter `{}`", spec.name),
-                    format!("must be a finite length of at least 0 mm (got {x})"),
+                    format!(
+                        "must be a finite length of at least 0 mm (got {})",
+                        registry::fmt_number(x)
+                    ),
                 ))
             }
         };
@@ -80,9 +83,31 @@ impl Hypothesis for NonCircular {
             .iter()
             .map(|&a| radius(gear.root_radius(), a))
             .collect();
-        gear.clone()
-            .with_radii(tips, roots)
-            .map_err(|e| HypothesisError::new(format!("gear `{gear_name}`: {}", e.field), e.rule))
+        // The gear's rule names its radii by index; said instead of the parameters the user
+        // set, with what the draw did.
+        gear.clone().with_radii(tips, roots).map_err(|e| {
+            let param = match (sd > 0.0, lobe > 0.0) {
+                (true, true) => "parameters `radial_error` and `lobe`",
+                (false, true) => "parameter `lobe`",
+                _ => "parameter `radial_error`",
+            };
+            let what = if e.field.starts_with("rotation_centre") {
+                "the smallest valley radius drawn reaches the gear's axis".to_string()
+            } else if e.field.starts_with("root_radii") {
+                "a valley was drawn at or above one of its tips".to_string()
+            } else {
+                "a radius drawn is not above 0".to_string()
+            };
+            HypothesisError::new(
+                format!("gear `{gear_name}`: non-circular: {param}"),
+                format!(
+                    "too large for teeth {} mm high (radial_error = {} mm, lobe = {} mm): {what}",
+                    registry::fmt_f64(gear.tip_radius() - gear.root_radius(), 3),
+                    registry::fmt_number(sd),
+                    registry::fmt_number(lobe)
+                ),
+            )
+        })
     }
 }
 
@@ -127,8 +152,14 @@ mod tests {
         let h = crate::lookup("non-circular").unwrap();
         let designed = Gear::ideal(40, 15.0, 13.9).unwrap();
         let mut rng = ChaCha8Rng::seed_from_u64(4);
-        let lobe = Params::new(h, &[("radial_error".into(), "0".into()), ("lobe".into(), "0.1".into())])
-            .unwrap();
+        let lobe = Params::new(
+            h,
+            &[
+                ("radial_error".into(), "0".into()),
+                ("lobe".into(), "0.1".into()),
+            ],
+        )
+        .unwrap();
         let g = h.apply(&designed, "a1", &lobe, &mut rng).unwrap();
         let d: Vec<f64> = (0..40).map(|k| g.tip_radius_of(k) - 15.0).collect();
         // Opposite tips are off by opposite amounts, spanning the whole lobe.
@@ -143,7 +174,12 @@ mod tests {
         assert_eq!(round.outline(), designed.outline());
         let wild = Params::new(h, &[("radial_error".into(), "5".into())]).unwrap();
         let e = h.apply(&designed, "a1", &wild, &mut rng).unwrap_err();
-        assert!(e.what.starts_with("gear `a1`: "), "{e}");
+        assert!(
+            e.what
+                .starts_with("gear `a1`: non-circular: parameter `radial_error`"),
+            "{e}"
+        );
+        assert!(!e.to_string().contains("radii["), "{e}");
         let bad = Params::new(h, &[("lobe".into(), "-1".into())]).unwrap();
         let e = h.apply(&designed, "a1", &bad, &mut rng).unwrap_err();
         assert!(e.to_string().contains("`lobe`"), "{e}");

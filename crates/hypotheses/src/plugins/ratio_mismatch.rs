@@ -48,7 +48,10 @@ impl Hypothesis for RatioMismatch {
         if !(0.0..50.0).contains(&spread) {
             return Err(HypothesisError::new(
                 format!("ratio-mismatch: parameter `{}`", MODULE_SPREAD.name),
-                format!("must be at least 0 and below 50 % (got {spread})"),
+                format!(
+                    "must be at least 0 and below 50 % (got {})",
+                    registry::fmt_number(spread)
+                ),
             ));
         }
         let z: f64 = StandardNormal.sample(rng);
@@ -90,12 +93,18 @@ mod tests {
             let b = h.apply(&g, "b1", &p, &mut rng).unwrap();
             assert_eq!(a.tip_angles(), g.tip_angles());
             let (sa, sb) = (a.tip_radius() / 15.0, b.tip_radius() / 15.0);
-            assert!((a.tooth_height() / 1.1 - sa).abs() < 1e-12, "height scales with radius");
+            assert!(
+                (a.tooth_height() / 1.1 - sa).abs() < 1e-12,
+                "height scales with radius"
+            );
             diffs += (sa - sb).abs();
         }
         // Mean |difference| of two modules: 2 m / sqrt(pi) = 3.72 % for m = 3.3 %.
         let mean = diffs / f64::from(n) * 100.0;
-        assert!((mean - 3.72).abs() < 0.15, "mean module difference {mean} %");
+        assert!(
+            (mean - 3.72).abs() < 0.15,
+            "mean module difference {mean} %"
+        );
         let bad = Params::new(h, &[("module_spread".into(), "60".into())]).unwrap();
         let e = h.apply(&g, "a1", &bad, &mut rng).unwrap_err();
         assert!(e.to_string().contains("below 50 %"), "{e}");
