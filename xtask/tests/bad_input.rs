@@ -172,25 +172,34 @@ fn gearing_files() {
             "NaN radius",
             gearing("Some(64.4)", "Some(NaN)"),
             run,
-            &["{file}: gear b1: measured radius must be positive and finite"],
+            &["{file}: gear b1: measured_radius must be above 0 and at most 10000 mm"],
         ),
         case(
             "infinite radius",
             gearing("Some(64.4)", "Some(inf)"),
             run,
-            &["{file}: gear b1: measured radius must be positive and finite"],
+            &["{file}: gear b1: measured_radius must be above 0 and at most 10000 mm"],
         ),
         case(
             "negative radius",
             gearing("Some(64.4)", "Some(-64.4)"),
             run,
-            &["{file}: gear b1: measured radius must be positive"],
+            &["{file}: gear b1: measured_radius must be above 0 and at most 10000 mm"],
         ),
         case(
             "zero radius",
             gearing("Some(64.4)", "Some(0.0)"),
             run,
-            &["{file}: gear b1: measured radius must be positive"],
+            &["{file}: gear b1: measured_radius must be above 0 and at most 10000 mm"],
+        ),
+        case(
+            "radius of a kilometre",
+            gearing("Some(64.4)", "Some(1e6)"),
+            run,
+            &[
+                "{file}: gear b1: measured_radius must be above 0 and at most 10000 mm",
+                "got 1000000",
+            ],
         ),
         case(
             "negative teeth",
@@ -290,8 +299,8 @@ fn gearing_files() {
         ));
     }
     for (value, words) in [
-        ("0", "greater than 0"),
-        ("-1.1", "greater than 0"),
+        ("0", "between 0.01 and 10000"),
+        ("-1.1", "between 0.01 and 10000"),
         ("NaN", "finite"),
         ("100", "less than the smallest tip radius"),
     ] {

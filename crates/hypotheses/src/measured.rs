@@ -57,6 +57,12 @@ fn paper_split() -> f64 {
     0.5
 }
 
+/// A measured-error table in the user's words, for a file that is not one at all.
+pub const RON_FILE: input_file::RonFile = input_file::RonFile {
+    what: "a measured-error table",
+    shape: "( gears: [ (gear: \"b1\", random: 0.05, systematic: 0.6), ... ] )",
+};
+
 /// Reads a table of per-gear errors; `file_name` only names the source in errors.
 ///
 /// ```text
@@ -72,22 +78,17 @@ fn paper_split() -> f64 {
 /// Errors name the file and the gear (or the RON position) and the rule: unknown fields, a gear
 /// listed twice, a negative or non-finite value, a split outside [0, 1].
 pub fn measured_from_ron(file_name: &str, text: &str) -> Result<MeasuredTable, HypothesisError> {
-    let raw: RawTable = ron::Options::default()
-        .with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME)
-        .from_str(text)
-        .map_err(|e| {
-            HypothesisError::new(
-                format!(
-                    "{file_name}: line {}, column {}",
-                    e.position.line, e.position.col
-                ),
-                input_file::ron_rule(&e.code),
-            )
-        })?;
+    let options =
+        ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
+    let raw: RawTable = input_file::parse_ron(&options, text, &RON_FILE)
+        .map_err(|e| HypothesisError::new(format!("{file_name}: {}", e.location), e.rule))?;
     if !(0.0..=1.0).contains(&raw.split) {
         return Err(HypothesisError::new(
             format!("{file_name}: split"),
-            format!("must be between 0 and 1 (got {})", raw.split),
+            format!(
+                "must be between 0 and 1 (got {})",
+                registry::fmt_number(raw.split)
+            ),
         ));
     }
     let mut gears = BTreeMap::new();
@@ -173,7 +174,10 @@ impl MeasuredTable {
         if !(scale.is_finite() && scale >= 0.0) {
             return Err(HypothesisError::new(
                 "measured: scale",
-                format!("must be a finite number >= 0 (got {scale})"),
+                format!(
+                    "must be a finite number >= 0 (got {})",
+                    registry::fmt_number(scale)
+                ),
             ));
         }
         let mut errors = self.errors(gear_name)?;

@@ -36,9 +36,110 @@ pub fn read_to_string(path: &Path, limit: u64) -> std::io::Result<String> {
     })
 }
 
-/// A RON parse error's rule in the user's words: ron names the Rust type a misspelt field was
-/// meant for (`Unexpected field named `colour`in `GearData`, ...`, with no space before `in`);
-/// the reader never wrote that type, so it is left out:
+/// A kind of RON input file in the user's words: what it is and the shape it has, for the
+/// message given when a file is not one at all (empty, JSON, CSV, another shape).
+#[derive(Debug, Clone, Copy)]
+pub struct RonFile {
+    /// What the file is, with its article: `a pair file`.
+    pub what: &'static str,
+    /// Its outline: `( driver: (...), driven: (...), ... )`.
+    pub shape: &'static str,
+}
+
+/// A RON file that could not be read: where (`line 3, column 7`) and the rule, in the user's
+/// words (no Rust type names).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct RonError {
+    /// `line L, column C`.
+    pub location: String,
+    /// What was wrong.
+    pub rule: String,
+}
+
+/// Parses `text` as RON with `options`, as a `kind` file: a leading UTF-8 byte-order mark is
+/// skipped; an empty file, or one that does not open with `(` (JSON, CSV, a list), is said to
+/// be one ("expected a pair file in RON, `( ... )`; this looks like JSON"); any other error is
+/// [`ron_rule`]'s. Nesting deeper than ron's recursion limit is an error, not a stack overflow.
+///
+/// # Errors
+/// The location and rule of the first problem.
+pub fn parse_ron<T: serde::de::DeserializeOwned>(
+    options: &ron::Options,
+    text: &str,
+    kind: &RonFile,
+) -> Result<T, RonError> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let expected = |why: String| format!("expected {} in RON, `{}`; {why}", kind.what, kind.shape);
+    let e = match options.from_str::<T>(text) {
+        Ok(value) => return Ok(value),
+        Err(e) => e,
+    };
+    match significant_start(text) {
+        None => Err(RonError {
+            location: "line 1, column 1".into(),
+            rule: expected("the file is empty".into()),
+        }),
+        Some((at, c)) if c != '(' => {
+            let (line, col) = line_col(text, at);
+            Err(RonError {
+                location: format!("line {line}, column {col}"),
+                rule: expected(looks_like(&text[at..])),
+            })
+        }
+        Some(_) => Err(RonError {
+            location: format!("line {}, column {}", e.position.line, e.position.col),
+            rule: ron_rule(&e.code),
+        }),
+    }
+}
+
+/// The byte offset and character where the RON value starts: after whitespace, comments and
+/// `#![enable(...)]` attributes; `None` when there is nothing else.
+fn significant_start(text: &str) -> Option<(usize, char)> {
+    let mut i = 0;
+    while i < text.len() {
+        let rest = &text[i..];
+        let c = rest.chars().next()?;
+        if c.is_whitespace() {
+            i += c.len_utf8();
+        } else if rest.starts_with("//") {
+            i += rest.find('\n').unwrap_or(rest.len());
+        } else if rest.starts_with("/*") {
+            i += rest.find("*/").map_or(rest.len(), |e| e + 2);
+        } else if rest.starts_with("#![") {
+            i += rest.find(']').map_or(rest.len(), |e| e + 1);
+        } else {
+            return Some((i, c));
+        }
+    }
+    None
+}
+
+/// 1-based line and column (in characters) of byte offset `at`.
+fn line_col(text: &str, at: usize) -> (usize, usize) {
+    let before = &text[..at];
+    let line = before.matches('\n').count() + 1;
+    let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    (line, col)
+}
+
+/// What a file that does not open with `(` looks like, in a few words.
+fn looks_like(rest: &str) -> String {
+    let first_line = rest.lines().next().unwrap_or("");
+    let list_of_objects = rest.starts_with('[') && rest[1..].trim_start().starts_with(['{', '"']);
+    if rest.starts_with('{') || list_of_objects || first_line.contains("\":") {
+        "this looks like JSON".into()
+    } else if first_line.contains(',') && !first_line.contains(['(', '{', '[', ':']) {
+        "this looks like CSV".into()
+    } else {
+        let head: String = first_line.chars().take(20).collect();
+        format!("it begins with `{}` instead", head.escape_debug())
+    }
+}
+
+/// A RON parse error's rule in the user's words: ron names the Rust type a value was meant for
+/// (`Unexpected field named `colour`in `GearData`, ...`, with no space before `in`; `Expected
+/// opening `(` for struct `PairFile``); the reader never wrote that type, so it is left out:
 /// `Unexpected field named `colour`, expected one of `name`, `teeth` instead`.
 pub fn ron_rule(code: &ron::Error) -> String {
     use ron::Error as E;
@@ -59,9 +160,42 @@ pub fn ron_rule(code: &ron::Error) -> String {
         },
         E::MissingStructField { field, .. } => E::MissingStructField { field, outer: None },
         E::DuplicateStructField { field, .. } => E::DuplicateStructField { field, outer: None },
+        E::ExpectedNamedStructLike(_) => E::ExpectedStructLike,
+        E::ExpectedDifferentStructName { found, .. } => {
+            return format!("Expected opening `(`, found the name `{found}`");
+        }
+        E::InvalidValueForType { expected, found } => E::InvalidValueForType {
+            expected: without_type_names(&expected),
+            found,
+        },
+        E::ExceededRecursionLimit => {
+            return "Brackets nested too deeply (more than 128 levels): no input file nests so deep".into();
+        }
+        E::Message(m) => E::Message(without_type_names(&m)),
         other => other,
     };
     plain.to_string()
+}
+
+/// serde's description of a Rust type (`struct PairFile`, `enum Start`, `tuple struct X`) said
+/// without the type's name.
+fn without_type_names(text: &str) -> String {
+    let mut out = text.to_string();
+    for (kind, words) in [
+        ("tuple struct ", "a `(...)` group"),
+        ("struct variant ", "a `Name(...)` value"),
+        ("struct ", "a `(...)` group of named fields"),
+        ("enum ", "one of the words this field takes"),
+    ] {
+        while let Some(i) = out.find(kind) {
+            let after = &out[i + kind.len()..];
+            let name_len = after
+                .find(|c: char| !(c.is_alphanumeric() || c == '_' || c == '`' || c == ':'))
+                .unwrap_or(after.len());
+            out = format!("{}{words}{}", &out[..i], &after[name_len..]);
+        }
+    }
+    out
 }
 
 #[cfg(test)]
@@ -86,6 +220,42 @@ mod tests {
         );
         let e = ron::from_str::<GearData>("()").unwrap_err();
         assert_eq!(ron_rule(&e.code), "Unexpected missing field `teeth`");
+    }
+
+    #[test]
+    fn files_that_are_not_the_ron_expected_are_said_to_be() {
+        #[derive(Debug, serde::Deserialize)]
+        #[serde(deny_unknown_fields)]
+        #[allow(dead_code)] // Reason: only the errors matter.
+        struct GearData {
+            teeth: Vec<u32>,
+        }
+        const KIND: RonFile = RonFile {
+            what: "a gear list",
+            shape: "( teeth: [...] )",
+        };
+        let parse = |text: &str| parse_ron::<GearData>(&ron::Options::default(), text, &KIND);
+        assert!(parse("\u{feff}(teeth: [3])").is_ok());
+        assert!(parse("// a gear\n#![enable(implicit_some)]\n(teeth: [3])").is_ok());
+        for (text, why) in [
+            ("", "the file is empty"),
+            ("\u{feff}  \n", "the file is empty"),
+            ("{\"teeth\": [3]}", "this looks like JSON"),
+            ("teeth,name\n3,a\n", "this looks like CSV"),
+            ("teeth: [3]", "it begins with `teeth: [3]` instead"),
+        ] {
+            let e = parse(text).unwrap_err();
+            assert_eq!(
+                e.rule,
+                format!("expected a gear list in RON, `( teeth: [...] )`; {why}"),
+                "{text}"
+            );
+        }
+        let deep = format!("(teeth: {}", "[".repeat(10_000));
+        let e = parse(&deep).unwrap_err();
+        assert!(!e.rule.contains("GearData"), "{e:?}");
+        let e = parse(&format!("({})", "(".repeat(10_000))).unwrap_err();
+        assert!(!e.rule.contains("GearData"), "{e:?}");
     }
 
     #[test]

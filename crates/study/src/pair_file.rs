@@ -276,7 +276,10 @@ fn arbor_offset(
                 return Err(RunError::bad(
                     file,
                     field("arbor.offset"),
-                    format!("must be a finite length >= 0 (got {})", a.offset),
+                    format!(
+                        "must be a finite length >= 0 (got {})",
+                        fmt_number(a.offset)
+                    ),
                 ));
             }
             if !a.angle_deg.is_finite() {
@@ -304,15 +307,16 @@ fn arbor_offset(
     })
 }
 
+/// A pair file in the user's words, for a file that is not one at all.
+pub const RON_FILE: input_file::RonFile = input_file::RonFile {
+    what: "a pair file",
+    shape: "( driver: ( teeth: ..., ... ), driven: ( ... ), clearance_percent: ..., ... )",
+};
+
 /// Parses and checks a pair file, naming the file, the field (or line and column) and the rule.
 pub fn load(file: &str, text: &str) -> Result<(Mesh, PairFile), RunError> {
-    let spec: PairFile = ron::from_str(text).map_err(|e| {
-        RunError::bad(
-            file,
-            format!("line {}, column {}", e.position.line, e.position.col),
-            input_file::ron_rule(&e.code),
-        )
-    })?;
+    let spec: PairFile = input_file::parse_ron(&ron::Options::default(), text, &RON_FILE)
+        .map_err(|e| RunError::bad(file, e.location, e.rule))?;
     let driver = gear(file, Role::Driver, &spec.driver)?;
     let driven = gear(file, Role::Driven, &spec.driven)?;
     let d = match (spec.centre_distance, spec.clearance_percent) {

@@ -16,6 +16,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::fmt;
 use std::path::Path;
 
+use registry::fmt_number;
 use serde::{Deserialize, Serialize};
 
 pub use ratio::Ratio;
@@ -36,6 +37,10 @@ pub const BUILTIN: [(&str, &str, &str); 2] = [
 /// The most teeth a gear of a gearing file may have: 10^5, the limit of `geometry::MAX_TEETH`
 /// (the mechanism's largest gear has 223).
 pub const MAX_TEETH: u32 = 100_000;
+
+/// The largest size in a gearing file: 10 m (10 000 mm) for a measured radius, a pin radius or
+/// an axis offset. The mechanism's largest gear is about 65 mm; a larger size is no part of one.
+pub const MAX_SIZE_MM: f64 = 10_000.0;
 
 /// Days in one turn of the input arbor `b` (one year).
 pub const DAYS_PER_TURN: f64 = 365.25;
@@ -175,6 +180,12 @@ pub struct Gearing {
     components: Vec<Component>,
 }
 
+/// A gearing file in the user's words, for a file that is not one at all.
+pub const RON_FILE: input_file::RonFile = input_file::RonFile {
+    what: "a gearing file",
+    shape: "( gears: [ ... ], arbors: [ ... ], meshes: [ ... ], pointers: [ ... ] )",
+};
+
 /// The file format, before validation.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -285,12 +296,8 @@ impl Gearing {
     /// characters in names are escaped.
     pub fn from_ron(file_name: &str, text: &str) -> Result<Gearing, GearingError> {
         let errors = Errors { file: file_name };
-        let raw: RawGearing = ron::from_str(text).map_err(|e| {
-            errors.at(
-                format_args!("line {}, column {}", e.position.line, e.position.col),
-                input_file::ron_rule(&e.code),
-            )
-        })?;
+        let raw: RawGearing = input_file::parse_ron(&ron::Options::default(), text, &RON_FILE)
+            .map_err(|e| errors.at(e.location, e.rule))?;
         let mut gearing = Gearing {
             gears: raw.gears,
             arbors: raw.arbors,
@@ -329,11 +336,15 @@ impl Gearing {
                 ));
             }
             if let Some(a) = gear.measured_radius
-                && !(a.is_finite() && a > 0.0)
+                && !(a.is_finite() && a > 0.0 && a <= MAX_SIZE_MM)
             {
                 return Err(errors.at(
                     at,
-                    format_args!("measured radius must be positive and finite, got {a}"),
+                    format_args!(
+                        "measured_radius must be above 0 and at most {} mm (10 m: larger is no gear of a mechanism), got {}",
+                        fmt_number(MAX_SIZE_MM),
+                        fmt_number(a)
+                    ),
                 ));
             }
         }
@@ -508,10 +519,14 @@ impl Gearing {
             ("axis_offset", ps.axis_offset),
             ("pin_radius", ps.pin_radius),
         ] {
-            if !(v.is_finite() && v > 0.0) {
+            if !(v.is_finite() && v > 0.0 && v <= MAX_SIZE_MM) {
                 return Err(errors.at(
                     at(field),
-                    format_args!("must be positive and finite (mm), got {v}"),
+                    format_args!(
+                        "must be above 0 and at most {} mm (10 m: larger is no part of a mechanism), got {}",
+                        fmt_number(MAX_SIZE_MM),
+                        fmt_number(v)
+                    ),
                 ));
             }
         }
@@ -520,7 +535,8 @@ impl Gearing {
                 at("axis_offset"),
                 format_args!(
                     "must be less than the pin radius {} mm (the pin must stay in the slot), got {}",
-                    ps.pin_radius, ps.axis_offset
+                    fmt_number(ps.pin_radius),
+                    fmt_number(ps.axis_offset)
                 ),
             ));
         }
