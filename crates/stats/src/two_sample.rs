@@ -54,7 +54,9 @@ pub fn fisher_exact_two_sided(a: u64, n1: u64, b: u64, n2: u64) -> f64 {
     let ln_term = |x: u64| {
         ln_factorial(k) - ln_factorial(x) - ln_factorial(k - x) + ln_factorial(total - k)
             - ln_factorial(n1 - x)
-            - ln_factorial(total - k - n1 + x)
+            // total - n1 - (k - x) = n2 - (k - x), summed so as not to go below 0 on the way
+            // (x >= k - n2 over the support, so the result is >= 0).
+            - ln_factorial(n2 + x - k)
     };
     let lo = k.saturating_sub(n2);
     let hi = k.min(n1);
@@ -182,6 +184,14 @@ mod tests {
         (100, 1000, 30_000, 1_000_000, 6.143_297_638_849_312e-25),
         (400_000, 1_000_000, 500, 1000, 1.756_875_609_438_391_6e-10),
     ];
+
+    #[test]
+    fn a_count_of_every_trial_on_one_side_is_compared() {
+        // 200 of 200 against 1 of 12: the support's last cell is n2 - (k - x) = 0.
+        let p = fisher_exact_two_sided(1, 12, 200, 200);
+        assert!((0.0..1e-10).contains(&p), "{p}");
+        assert_eq!(fisher_exact_two_sided(12, 12, 200, 200), 1.0);
+    }
 
     #[test]
     fn fisher_matches_scipy_and_exact_sums() {
