@@ -18,6 +18,7 @@ use study::cell::{CellSpec, Rebuilt, rebuild};
 use study::errors;
 use study::gearing;
 use study::grids::CASES;
+use study::tolerance::{RANDOM_FROM, SYSTEMATIC_FROM};
 
 /// The experiments whose trials can be replayed, with the form of their cells.
 pub const REPLAYABLE: [(&str, &str); 4] = [
@@ -62,12 +63,20 @@ fn case_errors(id: &str, cell: &str, name: &str) -> Result<(f64, f64), RunError>
         .ok_or_else(|| bad_cell(id, cell, format!("`{name}` is not a Case (A, B, C or D)")))
 }
 
-fn number(id: &str, cell: &str, what: &str, text: &str) -> Result<f64, RunError> {
-    text.trim()
-        .parse::<f64>()
-        .ok()
-        .filter(|v| v.is_finite() && *v >= 0.0)
-        .ok_or_else(|| bad_cell(id, cell, format!("{what} `{text}` is not a number ≥ 0")))
+/// A number typed in the cell, checked against the kind of the grid parameter it stands for
+/// (`run` checks the same values with the same rules).
+fn number(
+    id: &str,
+    cell: &str,
+    what: &str,
+    kind: &registry::Kind,
+    text: &str,
+) -> Result<f64, RunError> {
+    let text = text.trim();
+    kind.check(text)
+        .map_err(|rule| bad_cell(id, cell, format!("{what} `{text}`: {rule}")))?;
+    text.parse::<f64>()
+        .map_err(|_| bad_cell(id, cell, format!("{what} `{text}` is not a number")))
 }
 
 /// A clearance G typed in a Table I cell: above 0 and at most what Table I's `clearances` take.
@@ -133,7 +142,10 @@ fn unchecked_cell_spec(
         }
         ("table4", [random, mesh]) => {
             let e = vec![
-                ("random", number(id, cell, "random error", random)?),
+                (
+                    "random",
+                    number(id, cell, "random error", &RANDOM_FROM.kind, random)?,
+                ),
                 ("systematic", 0.0),
             ];
             (*mesh, e, ctx.f64("clearance")?)
@@ -141,8 +153,14 @@ fn unchecked_cell_spec(
         // The random error is the mesh's E. max (Table 5's first row), the systematic one a row.
         ("table5", [random, sys, mesh]) => {
             let e = vec![
-                ("random", number(id, cell, "random error", random)?),
-                ("systematic", number(id, cell, "systematic error", sys)?),
+                (
+                    "random",
+                    number(id, cell, "random error", &RANDOM_FROM.kind, random)?,
+                ),
+                (
+                    "systematic",
+                    number(id, cell, "systematic error", &SYSTEMATIC_FROM.kind, sys)?,
+                ),
                 ("split", ctx.f64("split")?),
             ];
             (*mesh, e, ctx.f64("clearance")?)

@@ -278,9 +278,12 @@ fn replay_refuses_the_cells_run_refuses_naming_the_part_typed() {
         ),
         (
             "replay table4 0.5/m3-e3 --out {out}",
-            &[
-                "replay: cell `0.5/m3-e3` of table4: random error `0.5`: must be at most 0.1 of the pitch",
-            ],
+            &["replay: cell `0.5/m3-e3` of table4: random error `0.5`: must be between 0 and 0.1"],
+        ),
+        // A hypothesis that takes no random error does not make the value one run refuses.
+        (
+            "replay table4 0.5/m3-e3 --set hypothesis=ideal --out {out}",
+            &["replay: cell `0.5/m3-e3` of table4: random error `0.5`: must be between 0 and 0.1"],
         ),
         (
             "replay table5 0.05/1e300/e4-f1 0 --out {out}",
