@@ -22,6 +22,18 @@ use registry::Table;
 use crate::failure::Failure;
 use crate::fuzz_targets::{Outcome, TARGETS, Target};
 
+/// Every target: the RON loaders of [`crate::fuzz_targets`] and the `--set` strings of
+/// [`crate::fuzz_settings`].
+fn targets() -> Vec<(&'static str, Target, &'static str)> {
+    let mut all = TARGETS.to_vec();
+    all.push((
+        "settings",
+        crate::fuzz_settings::settings,
+        crate::fuzz_settings::seed(),
+    ));
+    all
+}
+
 /// Default run time.
 const DEFAULT_SECONDS: f64 = 60.0;
 /// Inputs kept per target, at most.
@@ -35,12 +47,12 @@ pub fn command(args: &[String]) -> Result<(), Failure> {
     match opts.budget {
         Budget::Seconds(s) => eprintln!(
             "fuzz: {s} s over {} targets, seed {}",
-            TARGETS.len(),
+            targets().len(),
             opts.seed
         ),
         Budget::Execs(n) => eprintln!(
             "fuzz: {n} executions per target ({} targets), seed {}",
-            TARGETS.len(),
+            targets().len(),
             opts.seed
         ),
     }
@@ -645,11 +657,12 @@ pub fn run(budget: Budget, seed: u64) -> Summary {
     let scratch = std::env::temp_dir().join(format!("xtask-fuzz-{}.ron", std::process::id()));
     let mut summary = Summary::default();
     let mut seen_findings = BTreeSet::new();
-    let all_seeds: Vec<Vec<u8>> = TARGETS
+    let targets = targets();
+    let all_seeds: Vec<Vec<u8>> = targets
         .iter()
         .map(|(_, _, s)| s.as_bytes().to_vec())
         .collect();
-    for (t, &(name, target, shipped)) in TARGETS.iter().enumerate() {
+    for (t, &(name, target, shipped)) in targets.iter().enumerate() {
         let mut rng = Rng(seed ^ (t as u64 + 1).wrapping_mul(0xA076_1D64_78BD_642F));
         let mut corpus: Vec<Vec<u8>> = vec![shipped.as_bytes().to_vec()];
         corpus.extend(EDGE_CASES.iter().map(|e| e.as_bytes().to_vec()));
@@ -661,7 +674,7 @@ pub fn run(budget: Budget, seed: u64) -> Summary {
         let mut outcomes = BTreeSet::new();
         let start = Instant::now();
         let deadline = match budget {
-            Budget::Seconds(s) => Some(start + Duration::from_secs_f64(s / TARGETS.len() as f64)),
+            Budget::Seconds(s) => Some(start + Duration::from_secs_f64(s / targets.len() as f64)),
             Budget::Execs(_) => None,
         };
         let mut queue: Vec<Vec<u8>> = corpus.clone();

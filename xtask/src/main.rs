@@ -25,6 +25,7 @@ mod bench;
 mod execute;
 mod failure;
 mod fuzz;
+mod fuzz_settings;
 mod fuzz_targets;
 mod help;
 mod merge;

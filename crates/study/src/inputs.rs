@@ -60,6 +60,16 @@ pub fn check(
 ) -> Result<(), String> {
     let (hypothesis_flag, measured_flag) = flags;
     if let Some(g) = value(ctx, "gearing")
+        && g.trim().is_empty()
+    {
+        return Err(registry::RunError::bad(
+            "--set",
+            "gearing",
+            "must name an embedded gearing (freeth2006, freeth2021) or a RON file, not be empty",
+        )
+        .to_string());
+    }
+    if let Some(g) = value(ctx, "gearing")
         && Gearing::builtin(&g).is_none()
         && seen.insert(("gearing", g.clone()))
     {
