@@ -711,6 +711,9 @@ mod tests {
             cell("m3-e3", 0.08),
             at(cell("b2-c1", 0.1), 70.0),
             at(cell("e4-f1", 0.02), 10.0),
+            // Jammed and disengaged for a pitch or more in the same turn: every rule answered
+            // before the end (idle-rotation's disengagements are the long losses alone).
+            at(cell("m3-e3", 0.08), 70.0),
         ] {
             let p = prepare(&g, &spec).unwrap();
             for t in 0..30 {
