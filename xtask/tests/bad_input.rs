@@ -809,7 +809,7 @@ fn enormous_counts() {
             "a billion teeth",
             None,
             "run fig2 --set teeth=1000000000 --out {out}",
-            &["--set: teeth: must be at most 10000000"],
+            &["--set: teeth: must be at most 100000 (a gear needs three teeth)"],
         ),
         case(
             "fig2 with 100000 teeth (ran for months, silently)",
@@ -821,7 +821,7 @@ fn enormous_counts() {
             "200000 teeth",
             None,
             "run fig5 --set teeth=200000 --out {out}",
-            &["teeth: must be at most 100000 (the limit on teeth"],
+            &["--set: teeth: must be at most 100000 (a gear needs three teeth) (got `200000`)"],
         ),
         case(
             "a billion pitches",
