@@ -214,9 +214,9 @@ pub(crate) enum Target {
 }
 
 /// Checks, before anything is computed, that results can be written under `out` (`--out`):
-/// it is a directory, or can be created as one (every missing folder on the way is created and
-/// removed again: a name the file system refuses, e.g. longer than it takes, is found here),
-/// and a folder can be created in it. Then puts back results a killed run left moved aside
+/// it is a directory, or can be created as one (every missing folder on the way is created, by
+/// its name, inside a probe folder of this process and removed again: a name the file system
+/// refuses, e.g. longer than it takes, is found here), and a folder can be created in it. Then puts back results a killed run left moved aside
 /// ([`registry::tidy`]) and checks each of `targets`: a results folder `<out>/<id>` that exists
 /// must be a directory whose previous results can be moved aside and removed, and a file must
 /// not be a directory or lie below something that is not one. Refused (exit 2) naming `--out`,
@@ -242,32 +242,32 @@ pub(crate) fn check_out(out: &Path, targets: &[Target]) -> Result<(), Failure> {
             base.display()
         )));
     }
-    // Create the missing folders as writing would, then remove them again.
-    let mut created = Vec::new();
+    // A probe folder in the nearest existing one, and in it the missing folders by their names,
+    // as writing would create them; then all removed. The probe is this process's own, so runs
+    // checking the same new `--out` at once (shards starting together) never meet.
+    let probe = probe_name(&base, "out");
+    std::fs::create_dir(&probe).map_err(|e| {
+        refuse(format!(
+            "cannot write results there (creating a folder in {} fails: {e})",
+            base.display()
+        ))
+    })?;
+    let mut inside = probe.clone();
     let mut failed = None;
     for dir in missing.iter().rev() {
-        match std::fs::create_dir(dir) {
-            Ok(()) => created.push(dir),
-            Err(e) => {
-                failed = Some(format!("cannot be created ({}: {e})", dir.display()));
-                break;
-            }
+        let Some(name) = dir.file_name() else {
+            continue;
+        };
+        inside.push(name);
+        if let Err(e) = std::fs::create_dir(&inside) {
+            failed = Some(format!("cannot be created ({}: {e})", dir.display()));
+            break;
         }
     }
-    let inside = if failed.is_none() { out } else { &base };
-    let probed = probe_folder(inside).map_err(|e| {
-        format!(
-            "cannot write results there (creating a folder in {} fails: {e})",
-            inside.display()
-        )
-    });
-    for dir in created.iter().rev() {
-        let _ = std::fs::remove_dir(dir);
-    }
+    let _ = std::fs::remove_dir_all(&probe);
     if let Some(why) = failed {
         return Err(refuse(why));
     }
-    probed.map_err(refuse)?;
     registry::tidy(out)?;
     for t in targets {
         match t {

@@ -335,3 +335,30 @@ fn a_run_stopped_while_writing_leaves_no_partial_results() {
         assert!(caught, "SIG{sig}: the write was never caught under way");
     }
 }
+
+/// Shards started together on the same new `--out` all pass its check: each probes it in a
+/// folder of its own, so one's clean-up never removes what another relies on.
+#[test]
+fn shards_starting_together_on_a_new_out_all_pass_its_check() {
+    let s = Scratch::new("together");
+    let out = s.0.join("new/out");
+    let children: Vec<std::process::Child> = (0..4)
+        .map(|k| {
+            std::process::Command::new(env!("CARGO_BIN_EXE_xtask"))
+                .args(["run", "table1", "--shard", &format!("{k}/4"), "--out"])
+                .arg(&out)
+                .args(support::TABLE1_TINY)
+                .env_remove("RUST_LOG")
+                .stdout(std::process::Stdio::null())
+                .stderr(std::process::Stdio::piped())
+                .spawn()
+                .unwrap()
+        })
+        .collect();
+    for c in children {
+        let o = c.wait_with_output().unwrap();
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    assert_eq!(fs::read_dir(out.join("table1")).unwrap().count(), 4);
+    assert!(hidden_in(&s.0).is_empty() && hidden_in(&s.0.join("new")).is_empty());
+}
