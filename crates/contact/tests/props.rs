@@ -854,6 +854,17 @@ proptest! {
         check_idle_start(&case, Start::At(at))?;
     }
 
+    /// Wide clearances and centre distances beyond the tip circles' reach (G up to 300 % of h):
+    /// a run with no contact for a driver pitch or more always reports it.
+    #[test]
+    fn an_idle_start_is_reported_far_apart(
+        case in cases(Errors::All, 80.0..300.0, 1..7),
+        at in 0.0..TAU,
+    ) {
+        check_idle_start(&case, Start::Touching(case.guess))?;
+        check_idle_start(&case, Start::At(at))?;
+    }
+
     #[test]
     fn an_idle_start_is_reported_non_circular(case in non_circular_cases(1..7), at in 0.0..TAU) {
         check_idle_start(&case, Start::Touching(case.guess))?;
