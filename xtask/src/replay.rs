@@ -138,9 +138,13 @@ pub(crate) fn command(args: &[String]) -> Result<(), Failure> {
     let e = lookup(&exps, &a.id)?;
     let threads = crate::default_threads();
     let ctx = Context::new(e, a.seed, threads, &a.sets, None)?;
+    // Where the results go is checked before the trial is rebuilt and run, as `run` checks: an
+    // `--out` that is a file, or a name the file system refuses, is refused with exit 2 first.
+    let out = a.out.clone().unwrap_or_else(default_out);
+    crate::plan::check_out(&out, &[crate::plan::Target::Results(folder(&a))])?;
     let pool = crate::execute::make_pool(threads)?;
     let report = pool.install(|| experiments::replay::replay(&ctx, &a.id, &a.cell, a.trial))?;
-    let dir = a.out.clone().unwrap_or_else(default_out).join(folder(&a));
+    let dir = out.join(folder(&a));
     registry::write_results(&dir, &report)?;
     print(&report.text())?;
     if !a.quiet {

@@ -187,3 +187,18 @@ fn an_idle_start_is_reported_and_every_rule_counts_it() {
     assert!(pair.contains("never pushed"), "{pair}");
     assert!(!pair.contains("driven throughout"), "{pair}");
 }
+
+/// `--out` naming a file is refused before the trial is rebuilt, in one line, with exit 2 (it
+/// used to fail after computing, as an internal error).
+#[test]
+fn an_out_that_is_a_file_is_refused_before_computing() {
+    let s = Scratch::new("replay-out-file");
+    let file = s.path("a-file");
+    std::fs::write(&file, "kept").unwrap();
+    let o = support::xtask(&["replay", "table3", "B/m3-e3", "1", "--out", &file]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("--out"), "{err}");
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "kept");
+}
