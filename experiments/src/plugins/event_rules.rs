@@ -11,9 +11,8 @@ use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, 
 use rules::Rule;
 use train::Gearing;
 
-use crate::cells::{Tally, consistent_with_paper, paper_counts, share};
+use crate::cells::{Tally, cell, consistent_with_paper, paper_counts, share};
 use study::cell::{CellSpec, Counts, Purpose, label, run_cells_by_rule};
-use study::errors;
 use study::gearing;
 use study::grids::CASES;
 use study::limits::IdealPair;
@@ -75,24 +74,6 @@ fn every_rule() -> Result<Vec<Rule>, RunError> {
         .collect()
 }
 
-/// One cell: `mesh` under the hypothesis with `errors` at clearance `g`.
-fn cell(
-    ctx: &Context,
-    hyp: &'static dyn hypotheses::Hypothesis,
-    mesh: &str,
-    errors: &[(&str, f64)],
-    g: f64,
-) -> Result<CellSpec, RunError> {
-    Ok(CellSpec {
-        mesh: mesh.to_owned(),
-        hypothesis: hyp,
-        params: errors::params(ctx, hyp, errors)?,
-        tooth_height: ctx.f64("tooth_height")?,
-        clearance: g,
-        // Ignored: the cells are counted under every rule at once.
-        events: Rule::parse(rules::DEFAULT).map_err(|e| RunError::Internal(e.to_string()))?,
-    })
-}
 
 /// The cells of Tables 3 (Cases A-D at the clearance), 4 (the random grid, no systematic error)
 /// and I (Cases A-D at each of its clearances), each with where its paper counts are.

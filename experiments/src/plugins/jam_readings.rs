@@ -15,15 +15,13 @@ use contact::{Event, Start};
 use geometry::Gear;
 use polycheck::stepped::{GearOutline, SteppedPair, Stepping};
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
-use rules::Rule;
 use study::cell::{CellSpec, PAPER_TRIALS, fnv1a64, label, rebuild};
-use study::errors;
 use study::gearing;
 use study::grids::CASES;
 use study::tolerance::{self, RANDOM_FROM, RANDOM_STEP, RANDOM_TO};
 use train::Gearing;
 
-use crate::cells::{consistent_with_paper, paper_counts, share};
+use crate::cells::{cell, consistent_with_paper, paper_counts, share};
 
 const PARAMS: &[Param] = &[
     Param {
@@ -115,24 +113,6 @@ impl Reading {
     }
 }
 
-/// One cell: `mesh` with `errors` at clearance `g`.
-fn cell(
-    ctx: &Context,
-    hyp: &'static dyn hypotheses::Hypothesis,
-    mesh: &str,
-    errors: &[(&str, f64)],
-    g: f64,
-) -> Result<CellSpec, RunError> {
-    Ok(CellSpec {
-        mesh: mesh.to_owned(),
-        hypothesis: hyp,
-        params: errors::params(ctx, hyp, errors)?,
-        tooth_height: ctx.f64("tooth_height")?,
-        clearance: g,
-        // Not used: every reading decides jams by its own contact test.
-        events: Rule::parse(rules::DEFAULT).map_err(|e| RunError::Internal(e.to_string()))?,
-    })
-}
 
 /// The distinct cells run, and every paper cell with the index of the run that gives it.
 struct Cells {
