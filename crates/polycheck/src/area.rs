@@ -104,7 +104,7 @@ fn bounding_radius(p: &[P2]) -> f64 {
 }
 
 /// Twice the signed area of a polygon (positive counter-clockwise).
-fn twice_area(p: &[P2]) -> f64 {
+pub(crate) fn twice_area(p: &[P2]) -> f64 {
     (0..p.len())
         .map(|i| {
             let (a, b) = (p[i], p[(i + 1) % p.len()]);

@@ -20,6 +20,7 @@
 
 use std::f64::consts::{PI, TAU};
 
+use crate::area::twice_area;
 use crate::{P2, polar};
 
 /// Bisection tolerance on the driven angle, radians (well below any tolerance's effect).
@@ -120,16 +121,6 @@ impl Piece {
     fn verts(&self) -> &[P2] {
         &self.verts[..self.len]
     }
-}
-
-/// Twice the signed area of a polygon (positive counter-clockwise).
-fn twice_area(p: &[P2]) -> f64 {
-    (0..p.len())
-        .map(|i| {
-            let (a, b) = (p[i], p[(i + 1) % p.len()]);
-            a[0] * b[1] - a[1] * b[0]
-        })
-        .sum()
 }
 
 /// Area of the intersection of two convex polygons (either orientation): Sutherland-Hodgman,
