@@ -14,6 +14,9 @@ use std::fmt::Write as _;
 use contact::Trajectory;
 use geometry::Vec2;
 
+/// The note under the event tables of `pair` and `replay`: the two kinds of angle, named apart.
+pub const ANGLES_NOTE: &str = "phi - phi0 and theta - theta0: angles from the start of the run (pair.csv's phi_deg and theta_deg, pair.html's slider); phi and theta: absolute angles, as replay prints them (pair.csv's phi_abs_deg and theta_abs_deg)";
+
 /// Most samples of θ(φ) carried by the page (the slider's steps).
 const MAX_SAMPLES: usize = 4000;
 
@@ -48,12 +51,25 @@ fn escape(s: &str) -> String {
         .replace('"', "&quot;")
 }
 
+/// The tooth numbers an output shows for an event, (driver tooth, driven tooth): the numbering
+/// of the user's file, which for a driven gear measured in its own sense is the solver's
+/// mirrored.
+pub type Teeth<'a> = &'a dyn Fn(&contact::Event) -> (i64, i64);
+
+/// The solver's own tooth numbers of an event, each within one turn (0 to N - 1): the numbering
+/// of a file whose tips run the driver's way, as `replay`'s `pair.ron` does.
+pub fn solver_teeth(mesh: &contact::Mesh) -> impl Fn(&contact::Event) -> (i64, i64) + use<> {
+    let (n1, n2) = (mesh.driver().teeth() as i64, mesh.driven().teeth() as i64);
+    move |e: &contact::Event| (e.driver_tooth.rem_euclid(n1), e.driven_tooth.rem_euclid(n2))
+}
+
 /// The page for `traj` (one mesh's run), titled `title`; `counted(e)` says what the event rule
-/// counts an event as (`jam`, `disengagement` or `-`).
+/// counts an event as (`jam`, `disengagement` or `-`), `teeth(e)` the tooth numbers it shows.
 pub fn page(
     title: &str,
     traj: &Trajectory,
     counted: &dyn Fn(&contact::Event) -> &'static str,
+    teeth: Teeth<'_>,
 ) -> String {
     let mesh = traj.mesh();
     let (driver, driven) = mesh.world_outlines(0.0, 0.0);
@@ -78,6 +94,7 @@ pub fn page(
     for e in traj.events() {
         let at = (e.phi - phi0).to_degrees();
         let (p, n) = contact_of(traj, e);
+        let (j, k) = teeth(e);
         let _ = writeln!(
             events,
             "<li class=\"{kind}\"><a href=\"#phi={at:.9}\" data-phi=\"{at:.9}\" data-x=\"{:.9}\" data-y=\"{:.9}\" data-nx=\"{:.9}\" data-ny=\"{:.9}\">{at:.4} deg: {label} ({counted}), driver tooth {j}, driven tooth {k}</a></li>",
@@ -88,8 +105,6 @@ pub fn page(
             kind = e.kind.name(),
             label = e.label(),
             counted = counted(e),
-            j = e.driver_tooth.rem_euclid(mesh.driver().teeth() as i64),
-            k = e.driven_tooth.rem_euclid(mesh.driven().teeth() as i64),
         );
     }
     if events.is_empty() {
@@ -260,8 +275,14 @@ fn contact_of(traj: &Trajectory, e: &contact::Event) -> (Vec2, Vec2) {
 /// A picture of the mesh at event `e`, zoomed on the two teeth involved (driver tooth
 /// `e.driver_tooth`, driven tooth `e.driven_tooth`), like the paper's Figures V_A (a jam) and
 /// V_B (a decoupling): both outlines at (φ, θ) of the event, the contact point and its normal
-/// where the contact has one. `counted` is what the event rule counts it as.
-pub fn event_svg(traj: &Trajectory, e: &contact::Event, counted: &str) -> String {
+/// where the contact has one. `counted` is what the event rule counts it as, `shown` the tooth
+/// numbers its caption gives (the user's numbering; the outlines are indexed by the solver's).
+pub fn event_svg(
+    traj: &Trajectory,
+    e: &contact::Event,
+    counted: &str,
+    shown: (i64, i64),
+) -> String {
     let mesh = traj.mesh();
     let (driver, driven) = mesh.world_outlines(e.phi, e.theta);
     let (n1, n2) = (mesh.driver().teeth() as i64, mesh.driven().teeth() as i64);
@@ -310,9 +331,11 @@ pub fn event_svg(traj: &Trajectory, e: &contact::Event, counted: &str) -> String
     }
     svg.push_str("</g>\n");
     let label = format!(
-        "{} ({counted}) at phi - phi0 = {:.4} deg: driver tooth {j} (dot, blue), driven tooth {k} (dot, purple){}",
+        "{} ({counted}) at phi - phi0 = {:.4} deg: driver tooth {} (dot, blue), driven tooth {} (dot, purple){}",
         e.label(),
         (e.phi - traj.phi_start()).to_degrees(),
+        shown.0,
+        shown.1,
         if contact.is_some() {
             "; red: contact point and normal"
         } else {
@@ -335,6 +358,7 @@ pub fn event_svg(traj: &Trajectory, e: &contact::Event, counted: &str) -> String
 pub fn event_pictures(
     traj: &Trajectory,
     counted: &dyn Fn(&contact::Event) -> &'static str,
+    teeth: Teeth<'_>,
     most: usize,
 ) -> Vec<(String, String)> {
     traj.events()
@@ -344,7 +368,7 @@ pub fn event_pictures(
         .map(|(i, e)| {
             (
                 format!("event-{}-{}.svg", i + 1, e.kind.name()),
-                event_svg(traj, e, counted(e)),
+                event_svg(traj, e, counted(e), teeth(e)),
             )
         })
         .collect()
@@ -379,7 +403,7 @@ mod tests {
             assert!((turned - b).norm() < 1e-9);
         }
         let traj = mesh.run(0.1, 1.0, Start::Touching(0.0));
-        let html = page("a <test>", &traj, &|_| "-");
+        let html = page("a <test>", &traj, &|_| "-", &solver_teeth(&mesh));
         assert!(html.contains("<title>a &lt;test&gt;</title>"));
         assert!(html.contains("id=\"driven\"") && html.contains("id=\"status\""));
         // Nothing is fetched: no address of any kind in the page.
@@ -396,7 +420,7 @@ mod tests {
         )
         .unwrap();
         let traj = mesh.run(0.0, std::f64::consts::TAU * 1.5, Start::Touching(0.0));
-        let pictures = event_pictures(&traj, &|_| "jam", 5);
+        let pictures = event_pictures(&traj, &|_| "jam", &solver_teeth(&mesh), 5);
         assert!(!pictures.is_empty(), "the close mesh must have an event");
         let (name, svg) = &pictures[0];
         let e = &traj.events()[0];

@@ -235,63 +235,66 @@ fn one_trial(
             spec.events.label()
         ),
         [
+            "phi - phi0 [deg]",
             "phi [deg]",
             "kind",
             "counted as",
             "driver tooth",
             "driven tooth",
+            "theta - theta0 [deg]",
             "theta [deg]",
         ],
     );
-    let (n1, n2) = rebuilt.mesh.as_ref().map_or((1, 1), |m| {
-        (m.driver().teeth() as i64, m.driven().teeth() as i64)
-    });
-    for e in &events {
-        let counted = if spec.events.is_jam(e) {
+    let counted = |e: &contact::Event| {
+        if spec.events.is_jam(e) {
             "jam"
         } else if spec.events.is_disengagement(e) {
             "disengagement"
         } else {
             "-"
-        };
+        }
+    };
+    // The run `pair.html` and `run pair --config pair.ron` show: its start gives θ0.
+    let traj = rebuilt.mesh.as_ref().map(|mesh| {
+        mesh.run(
+            rebuilt.phi0,
+            rebuilt.phi0 + rebuilt.turn,
+            contact::Start::Touching(0.0),
+        )
+    });
+    let theta0 = traj.as_ref().map(|tr| tr.theta_at(rebuilt.phi0));
+    let (n1, n2) = rebuilt.mesh.as_ref().map_or((1, 1), |m| {
+        (m.driver().teeth() as i64, m.driven().teeth() as i64)
+    });
+    for e in &events {
         table.row(vec![
+            fmt_f64((e.phi - rebuilt.phi0).to_degrees(), 6),
             fmt_f64(e.phi.to_degrees(), 6),
             e.label().into(),
-            counted.into(),
+            counted(e).into(),
             e.driver_tooth.rem_euclid(n1).to_string(),
             e.driven_tooth.rem_euclid(n2).to_string(),
+            theta0.map_or_else(|| "-".into(), |t0| fmt_f64((e.theta - t0).to_degrees(), 6)),
             fmt_f64(e.theta.to_degrees(), 6),
         ]);
     }
     table.note(format!(
-        "Cell: {}. Initial driver angle {} deg; one full turn of the gear with more teeth ({} deg of the driver). Angles are absolute (the solver's frame), teeth numbered 0 to N - 1 as in pair.ron's tips_deg.",
+        "Cell: {}. Initial driver angle phi0 = {} deg; one full turn of the gear with more teeth ({} deg of the driver). Teeth numbered 0 to N - 1 as in pair.ron's tips_deg.",
         spec.canonical(),
         fmt_f64(rebuilt.phi0.to_degrees(), 9),
         fmt_f64(rebuilt.turn.to_degrees(), 6),
     ));
+    table.note(crate::pair_html::ANGLES_NOTE);
     let mut files = Vec::new();
-    if let Some(mesh) = &rebuilt.mesh {
-        let traj = mesh.run(
-            rebuilt.phi0,
-            rebuilt.phi0 + rebuilt.turn,
-            contact::Start::Touching(0.0),
-        );
-        let counted = |e: &contact::Event| {
-            if spec.events.is_jam(e) {
-                "jam"
-            } else if spec.events.is_disengagement(e) {
-                "disengagement"
-            } else {
-                "-"
-            }
-        };
-        table.note(oracle_note(mesh, &traj));
+    if let (Some(mesh), Some(traj)) = (&rebuilt.mesh, &traj) {
+        table.note(oracle_note(mesh, traj));
         let title = format!("{id} {cell}, trial {t} (seed {seed})");
+        let teeth = crate::pair_html::solver_teeth(mesh);
         files.push(OutputFile::new(
             "pair.html",
-            crate::pair_html::page(&title, &traj, &counted),
+            crate::pair_html::page(&title, traj, &counted, &teeth),
         ));
-        for (name, svg) in crate::pair_html::event_pictures(&traj, &counted, 20) {
+        for (name, svg) in crate::pair_html::event_pictures(traj, &counted, &teeth, 20) {
             files.push(OutputFile::new(name, svg));
         }
     }

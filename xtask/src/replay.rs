@@ -23,8 +23,7 @@ struct ReplayArgs {
     quiet: bool,
 }
 
-const USAGE: &str =
-    "replay <experiment> <cell> [<trial>] [--seed S] [--set KEY=VALUE]... [--out DIR] [-q]";
+const USAGE: &str = "replay <experiment> <cell> [<trial>] [--seed S] [--trials N] [--set KEY=VALUE]... [--out DIR] [-q]";
 
 fn usage(what: impl std::fmt::Display) -> Failure {
     Failure::Usage(format!("{what}\nusage: cargo xtask {USAGE}"))
@@ -51,6 +50,7 @@ fn value(
 fn parse(args: &[String]) -> Result<ReplayArgs, Failure> {
     let mut positional = Vec::new();
     let (mut seed, mut sets, mut out, mut quiet) = (None, Vec::new(), None, false);
+    let mut trials: Option<String> = None;
     let mut it = args.iter();
     while let Some(arg) = it.next() {
         if arg == "-q" || arg == "--quiet" {
@@ -70,6 +70,13 @@ fn parse(args: &[String]) -> Result<ReplayArgs, Failure> {
                 .split_once('=')
                 .ok_or_else(|| Failure::Bad(format!("--set: `{v}` must be KEY=VALUE")))?;
             sets.push((k.trim().to_owned(), val.trim().to_owned()));
+        } else if let Some(v) = value(arg, "--trials", &mut it)? {
+            // As `run` takes it: the experiment's `trials` parameter, so that a replay names the
+            // same trials as the run it follows.
+            if trials.is_some() {
+                return Err(usage("--trials given twice"));
+            }
+            trials = Some(v);
         } else if let Some(v) = value(arg, "--out", &mut it)? {
             if out.is_some() {
                 return Err(usage("--out given twice"));
@@ -83,6 +90,14 @@ fn parse(args: &[String]) -> Result<ReplayArgs, Failure> {
         } else {
             positional.push(arg.clone());
         }
+    }
+    if let Some(v) = trials {
+        if sets.iter().any(|(k, _)| k == "trials") {
+            return Err(Failure::Bad(
+                "--trials: give the trials once, as --trials N or as --set trials=N".into(),
+            ));
+        }
+        sets.push(("trials".to_owned(), v));
     }
     let (id, cell, trial) = match positional.as_slice() {
         [id, cell] => (id.clone(), cell.clone(), None),
@@ -179,6 +194,19 @@ mod tests {
         );
         assert_eq!(a.sets, [("trials".to_owned(), "40".to_owned())]);
         assert_eq!(folder(&a), "replay-table3-B-m3-e3-17");
+        // `--trials N` is `--set trials=N`, as `run` takes it; both at once are refused.
+        let short = parse(&args(&["table3", "B/m3-e3", "--trials", "40"])).unwrap();
+        assert_eq!(short.sets, a.sets);
+        assert!(
+            parse(&args(&[
+                "table3",
+                "B/m3-e3",
+                "--trials=4",
+                "--set",
+                "trials=4"
+            ]))
+            .is_err()
+        );
         let listing = parse(&args(&["tableI", "B/70/m3-e3", "-q"])).unwrap();
         assert_eq!(listing.trial, None);
         assert_eq!(folder(&listing), "replay-tableI-B-70-m3-e3-failed");

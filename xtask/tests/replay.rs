@@ -78,19 +78,24 @@ fn failed_trials_are_the_ones_a_sharded_run_counted_and_rerun_as_pairs() {
     // The first jammed trial: its jam, then the same gears rerun from pair.ron by `run pair`.
     let t = trials[0].to_string();
     let one = succeeded(&[
-        "replay",
-        "table3",
-        "B/m3-e3",
-        &t,
-        "-q",
-        "--set",
-        "trials=12",
-        "--out",
-        &out,
+        "replay", "table3", "B/m3-e3", &t, "-q",
+        // `--trials N` as `run` takes it: the same as `--set trials=N`.
+        "--trials", "12", "--out", &out,
     ]);
     assert!(one.contains(": jammed"), "{one}");
+    let header = |text: &str| -> Vec<String> {
+        let line = text.lines().find(|l| l.contains(" kind ")).unwrap();
+        line.split('|').map(|c| c.trim().to_owned()).collect()
+    };
+    assert_eq!(
+        header(&one)[1..3],
+        ["phi - phi0 [deg]", "phi [deg]"],
+        "both angles, named apart: {one}"
+    );
     let jam_row = one.lines().find(|l| l.contains("| jam ")).unwrap();
-    let phi: f64 = jam_row.split('|').nth(1).unwrap().trim().parse().unwrap();
+    let cell =
+        |row: &str, i: usize| -> f64 { row.split('|').nth(i).unwrap().trim().parse().unwrap() };
+    let (rel, phi) = (cell(jam_row, 1), cell(jam_row, 2));
     let pair_file = s.0.join(format!("out/replay-table3-B-m3-e3-{t}/pair.ron"));
     let start_deg: f64 = std::fs::read_to_string(&pair_file)
         .unwrap()
@@ -114,11 +119,21 @@ fn failed_trials_are_the_ones_a_sharded_run_counted_and_rerun_as_pairs() {
         .skip_while(|l| !l.starts_with("### Events"))
         .find(|l| l.contains("| jam "))
         .unwrap();
-    // pair prints phi from the start; the replay prints it absolute.
-    let rerun_phi: f64 = first_jam.split('|').nth(1).unwrap().trim().parse().unwrap();
+    // Both print phi - phi0 and phi, under the same headers, and agree on both.
+    let events = &rerun[rerun.find("### Events").unwrap()..];
+    assert_eq!(
+        header(events)[1..3],
+        ["phi - phi0 [deg]", "phi [deg]"],
+        "{rerun}"
+    );
+    let (rerun_rel, rerun_phi) = (cell(first_jam, 1), cell(first_jam, 2));
     assert!(
-        (rerun_phi + start_deg - phi).abs() < 1e-5,
-        "replay {phi} deg, pair {rerun_phi} + {start_deg} deg"
+        (rerun_rel + start_deg - phi).abs() < 1e-5 && (rerun_phi - phi).abs() < 1e-5,
+        "replay {phi} deg, pair {rerun_phi} deg ({rerun_rel} + {start_deg} deg)"
+    );
+    assert!(
+        (rerun_rel - rel).abs() < 1e-5,
+        "replay {rel}, pair {rerun_rel}"
     );
 }
 

@@ -105,7 +105,12 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
                 let counted = if jam { "jam" } else { "disengagement" };
                 files.push(OutputFile::new(
                     file,
-                    crate::pair_html::event_svg(&t, &e, counted),
+                    crate::pair_html::event_svg(
+                        &t,
+                        &e,
+                        counted,
+                        crate::pair_html::solver_teeth(t.mesh())(&e),
+                    ),
                 ));
                 row.extend([
                     e.label().to_string(),

@@ -169,7 +169,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let (events, ev_rows, marks) = event_log(&traj, &rule, (phi0, theta0), &prepared);
     let svg = marked_plot(
         "Theoretical Difference of the mesh (sections 2-3), events marked with kind and size",
-        "driver angle phi [deg]",
+        "driver angle from the start phi - phi0 [deg]",
         "Theoretical Difference [deg]",
         &[Series {
             label: "simulated",
@@ -189,6 +189,14 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         9,
     );
     let check = check_svg(&name, &prepared, &traj);
+    // Every output numbers the teeth as the file does (a driven gear measured in its own sense is
+    // numbered the other way round inside the solver).
+    let user_teeth = |e: &contact::Event| {
+        (
+            prepared.driver.user(e.driver_tooth),
+            prepared.driven.user(e.driven_tooth),
+        )
+    };
     Ok(Report {
         tables: vec![summary, events],
         files: vec![
@@ -198,14 +206,22 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             OutputFile::new("pair-check.svg", check),
             OutputFile::new(
                 "pair.html",
-                crate::pair_html::page(&format!("Mesh from {name}"), &traj, &|e| {
-                    counted_as(&rule, e)
-                }),
+                crate::pair_html::page(
+                    &format!("Mesh from {name}"),
+                    &traj,
+                    &|e| counted_as(&rule, e),
+                    &user_teeth,
+                ),
             ),
         ]
         .into_iter()
         .chain(
-            crate::pair_html::event_pictures(&traj, &|e| counted_as(&rule, e), EVENT_PICTURES)
+            crate::pair_html::event_pictures(
+                &traj,
+                &|e| counted_as(&rule, e),
+                &user_teeth,
+                EVENT_PICTURES,
+            )
                 .into_iter()
                 .map(|(n, svg)| OutputFile::new(n, svg)),
         )
@@ -272,13 +288,14 @@ fn event_log(
     let mut events = Table::new(
         "Events (kind from the contact motion, and what the rule counts it as)",
         [
+            "phi - phi0 [deg]",
             "phi [deg]",
             "kind",
             "counted as",
             "driver tooth",
             "driven tooth",
-            "theta [deg]",
-            "theta after [deg]",
+            "theta - theta0 [deg]",
+            "theta after - theta0 [deg]",
             "size",
         ],
     );
@@ -316,6 +333,7 @@ fn event_log(
         if events.rows.len() < 20 {
             events.row(vec![
                 fmt_f64(deg(e.phi - phi0), 6),
+                fmt_f64(deg(e.phi), 6),
                 kind.into(),
                 counted.into(),
                 j.to_string(),
@@ -337,6 +355,7 @@ fn event_log(
             });
         }
     }
+    events.note(crate::pair_html::ANGLES_NOTE);
     if traj.events().len() > 20 {
         events.note(format!(
             "{} more in event-log.csv",
