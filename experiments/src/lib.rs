@@ -6,6 +6,7 @@
 //! `src/plugins/` (`build.rs` declares it) plus its snapshot.
 
 pub mod cells;
+pub mod chart;
 pub mod common;
 pub mod emax;
 pub mod pair_html;

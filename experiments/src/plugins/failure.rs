@@ -14,7 +14,6 @@
 
 use hypotheses::Params;
 use mechanism::Mechanism;
-use plotters::prelude::*;
 use registry::{
     Agreement, Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64,
 };
@@ -28,7 +27,7 @@ use study::whole_mechanism::{
     check_study, days, jam_of, measured_table, parse_cases, run_study, runs_csv, summarise, train_names,
 };
 
-use crate::common::{mean_cell, percent_cell};
+use crate::common::{Plot, Series, mean_cell, percent_cell};
 
 const PARAMS: &[Param] = &[
     Param {
@@ -160,7 +159,9 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             })
             .collect();
         let svg = survival_plot(
-            &format!("Section 5, the 30-run study: {name}, runs not yet jammed (Kaplan-Meier)"),
+            &format!(
+                "Section 5's failure study, {trials} runs per input: {name}, runs not yet jammed (Kaplan-Meier)"
+            ),
             days,
             &curves,
         )?;
@@ -392,30 +393,22 @@ fn survival_plot(
     horizon: f64,
     curves: &[(String, Vec<(f64, f64)>)],
 ) -> Result<String, RunError> {
-    let colours = [BLUE, RED, BLACK, GREEN, MAGENTA, CYAN];
-    let legend = Some(SeriesLabelPosition::MiddleRight);
-    crate::common::chart_svg(title, 800, (0.0..horizon, 0.0..102.0), legend, |chart, plot_err| {
-        chart
-            .configure_mesh()
-            .x_desc("days of the b arbor (solar pointer; 365.25 d per turn)")
-            .y_desc("runs not yet jammed [%]")
-            .x_label_formatter(&|v: &f64| format!("{v:.0}"))
-            .y_label_formatter(&|v: &f64| format!("{v:.0}"))
-            .draw()
-            .map_err(|e| plot_err(&e))?;
-        for (i, (label, points)) in curves.iter().enumerate() {
-            let colour = colours[i % colours.len()];
-            chart
-                .draw_series(LineSeries::new(
-                    points.iter().copied(),
-                    colour.stroke_width(2),
-                ))
-                .map_err(|e| plot_err(&e))?
-                .label(label.as_str())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour));
-        }
-        Ok(())
-    })
+    let series: Vec<Series<'_>> = curves
+        .iter()
+        .map(|(label, points)| Series {
+            label,
+            points: points.clone(),
+        })
+        .collect();
+    Plot::new(
+        title,
+        "days of the b arbor (solar pointer; 365.25 d per turn)",
+        "runs not yet jammed [%]",
+        &series,
+    )
+    .ranges((0.0, horizon), (0.0, 102.0))
+    .whole_ticks()
+    .svg()
 }
 
 #[cfg(test)]

@@ -4,7 +4,7 @@
 use rayon::prelude::*;
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
 
-use crate::common::{Series, semilog_plot};
+use crate::common::{Limit, LimitKind, Plot, Series};
 use study::gearing;
 use study::limits::IdealPair;
 
@@ -166,8 +166,20 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     );
     let mut lim_csv = String::from("mesh,jam_below_percent,disengage_above_percent\n");
     let mut series = Vec::new();
-    for ((label, _), (l, col)) in pairs.iter().zip(limits.into_iter().zip(&grid)) {
+    let mut drawn_limits = Vec::new();
+    for (k, ((label, _), (l, col))) in pairs.iter().zip(limits.into_iter().zip(&grid)).enumerate() {
         let (jam, dis) = l?;
+        // Each mesh's limits, as computed above, on its curve: `[` where it stops jamming, `]`
+        // where it starts to disengage.
+        for (x, kind) in [(jam, LimitKind::Lower), (dis, LimitKind::Upper)] {
+            if let Some(x) = x {
+                drawn_limits.push(Limit {
+                    series: k,
+                    x,
+                    kind,
+                });
+            }
+        }
         let show = |x: Option<f64>| x.map_or_else(|| "-".to_string(), |v| fmt_f64(v, 2));
         let jam_cell = match jam {
             Some(v) if v <= 0.01 => "no jam at any G > 0".to_string(),
@@ -193,12 +205,19 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     lim.note(
         "The paper (Appendix II): no values below 10 % (jam) and none above 87 % (decoupling).",
     );
-    let svg = semilog_plot(
+    let svg = Plot::new(
         "Figure IV: sigma of the driven gear against clearance (semi-logarithmic)",
         "clearance G [% of tooth height]",
         "sigma [deg], logarithmic scale",
         &series,
-    )?;
+    )
+    .log_y()
+    .limits(
+        &drawn_limits,
+        "jam limit: the smallest G without a jam (figIV-limits.csv)",
+        "disengagement limit: the largest G without a disengagement",
+    )
+    .svg()?;
     Ok(Report {
         tables: vec![lim, sweep],
         files: vec![
