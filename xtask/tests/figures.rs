@@ -1,0 +1,328 @@
+//! Every figure the experiments draw, in a real browser: cheap runs of every experiment that
+//! writes an SVG, each SVG put on one page that headless Chromium lays out, and a script on that
+//! page measuring what a reader sees. Every chart must give each series a style of its own (the
+//! colour and dash of its line and the shape and colour of its marker, as rendered), name each
+//! series in its legend in that same style, and keep the legend box off the plot area and off
+//! every series; every other picture must draw something. The page is also screenshot, which
+//! must not be blank. Skipped when Chromium is missing, unless `CI=true` (`.ci/run` installs it).
+#![allow(clippy::unwrap_used, reason = "tests")]
+
+mod support;
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::Duration;
+
+use support::{Scratch, chromium, stderr, xtask};
+
+/// Chromium, or `None` after saying the test is skipped; with `CI=true` a missing Chromium fails.
+fn chromium_or_skip() -> Option<PathBuf> {
+    let chrome = chromium();
+    if chrome.is_none() {
+        assert!(
+            std::env::var("CI").map_or(true, |v| v != "true"),
+            "CI=true and no Chromium: .ci/run installs it (scripts/check-report.sh install)"
+        );
+        eprintln!("skipped: no Chromium (set CHROMIUM or install it)");
+    }
+    chrome
+}
+
+/// Runs `chrome` headless on `url` with `extra` arguments, within 90 s; its stdout.
+fn headless(chrome: &Path, profile: &Path, extra: &[String], url: &str) -> String {
+    let child = Command::new(chrome)
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            "--hide-scrollbars",
+        ])
+        .args(extra)
+        .arg(format!("--user-data-dir={}", profile.display()))
+        .arg(url)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    // Read while Chromium writes (a full pipe would stall it), with a time limit.
+    let pid = child.id();
+    let (done, got) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let _ = done.send(child.wait_with_output());
+    });
+    let out = got
+        .recv_timeout(Duration::from_secs(90))
+        .unwrap_or_else(|_| {
+            let _ = Command::new("kill").arg(pid.to_string()).status();
+            panic!("chromium took more than 90 s")
+        })
+        .unwrap();
+    assert!(out.status.success(), "chromium failed on {url}");
+    String::from_utf8(out.stdout).unwrap()
+}
+
+/// The experiments that write figures, with settings that make them quick (a few seconds in
+/// all); `contact-tolerance` runs on its own, as its `samples` means something else in `figIV`.
+const RUNS: [&[&str]; 2] = [
+    &[
+        "fig2",
+        "fig3",
+        "fig4",
+        "fig5",
+        "figIV",
+        "clearance",
+        "pair",
+        "failure",
+        "fig6",
+        "table2",
+        "lunar-anomaly",
+        "clearance-design",
+        "sensitivity",
+        "fig-events",
+        "--set",
+        "trials=2",
+        "--set",
+        "cases=B,D",
+        "--set",
+        "case=D",
+        "--set",
+        "random_from=0.05",
+        "--set",
+        "random_to=0.06",
+        "--set",
+        "random_step=0.01",
+        "--set",
+        "lunar_turns=0.05",
+        "--set",
+        "curve_samples=100",
+        "--set",
+        "grid=30,40",
+        "--set",
+        "coarse_trials=1",
+        "--set",
+        "refine_trials=1",
+        "--set",
+        "runs=1",
+    ],
+    &["contact-tolerance", "--set", "samples=8"],
+];
+
+/// Figures that are pictures of gears, not charts of series: they carry no legend.
+fn is_picture(name: &str) -> bool {
+    name == "pair-check.svg" || name.starts_with("fig-V_") || name.starts_with("event-")
+}
+
+/// The script run on the page: one line per figure, tab-separated: file, `chart` or `picture`,
+/// and for a chart the number of series, of distinct rendered styles, and `ok` or the problems.
+const SCRIPT: &str = r#"
+(function () {
+  function box(el) { const r = el.getBoundingClientRect(); return {x: r.left, y: r.top, w: r.width, h: r.height}; }
+  function meets(a, b) { return a.x < b.x + b.w && b.x < a.x + a.w && a.y < b.y + b.h && b.y < a.y + a.h; }
+  function marker(el) {
+    if (!el) return 'none';
+    const cs = getComputedStyle(el);
+    const t = el.tagName.toLowerCase();
+    let shape = t;
+    if (t === 'polygon') {
+      const p = Array.from(el.points).map(q => [q.x, q.y]);
+      const cx = p.reduce((s, q) => s + q[0], 0) / p.length, cy = p.reduce((s, q) => s + q[1], 0) / p.length;
+      const r = Math.max(...p.map(q => Math.hypot(q[0] - cx, q[1] - cy)));
+      shape += p.map(q => Math.round((q[0] - cx) / r * 4) + ',' + Math.round((q[1] - cy) / r * 4)).join(' ');
+    }
+    if (t === 'path') {
+      const n = (el.getAttribute('d').match(/-?[0-9.]+/g) || []).map(Number);
+      shape += n.length >= 4 && Math.abs(n[1] - n[3]) < 0.01 ? ':plus' : ':cross';
+    }
+    return shape + '|' + (t === 'path' ? cs.stroke : cs.fill);
+  }
+  function line(g) {
+    const l = g.querySelector('polyline');
+    if (!l) return 'no line';
+    const cs = getComputedStyle(l);
+    return cs.stroke + '|' + cs.strokeDasharray;
+  }
+  function look(g) { return line(g) + ' # ' + marker(g.querySelector('circle, polygon, path')); }
+  const out = [];
+  document.querySelectorAll('div.fig').forEach(function (div) {
+    const svg = div.querySelector('svg');
+    const file = div.dataset.file;
+    const plot = svg.querySelector('rect.plot-area');
+    if (!plot) {
+      const b = box(svg);
+      out.push(file + '\tpicture\t' + (svg.querySelectorAll('path, polyline, polygon, line').length > 0 && b.w > 0 && b.h > 0));
+      return;
+    }
+    const problems = [];
+    const P = box(plot);
+    const lb = svg.querySelector('rect.legend-box');
+    if (!lb) problems.push('no legend box');
+    const L = lb ? box(lb) : {x: 0, y: 0, w: 0, h: 0};
+    const canvas = box(svg);
+    if (meets(P, L)) problems.push('the legend box lies on the plot area');
+    if (L.x < canvas.x - 0.5 || L.y + L.h > canvas.y + canvas.h + 0.5 || L.x + L.w > canvas.x + canvas.w + 0.5)
+      problems.push('the legend box leaves the canvas');
+    const keys = [];
+    svg.querySelectorAll('g.series').forEach(function (g, k) {
+      const key = look(g);
+      keys.push(key);
+      const S = box(g);
+      if ((S.w > 0 || S.h > 0) && meets(S, L)) problems.push('series ' + k + ' runs under the legend');
+      const entry = svg.querySelector('g.legend-entry[data-series="' + g.dataset.series + '"]');
+      if (!entry) problems.push('series ' + k + ' is not in the legend');
+      else {
+        if (look(entry) !== key) problems.push('series ' + k + ' drawn as ' + key + ', its legend entry as ' + look(entry));
+        const E = box(entry);
+        if (E.x < L.x - 0.5 || E.y < L.y - 0.5 || E.x + E.w > L.x + L.w + 0.5 || E.y + E.h > L.y + L.h + 0.5)
+          problems.push('legend entry ' + k + ' leaves its box');
+      }
+    });
+    if (keys.length === 0) problems.push('no series');
+    out.push(file + '\tchart\t' + keys.length + '\t' + new Set(keys).size + '\t' + (problems.join('; ') || 'ok'));
+  });
+  document.getElementById('result').textContent = out.join('\n');
+  document.getElementById('status').textContent = 'done';
+})();
+"#;
+
+/// The check page: every SVG of `files` (relative to `out`) inline, then the script.
+fn check_page(out: &Path, files: &[String]) -> String {
+    let mut page = String::from(
+        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><style>body{margin:0;width:1100px} div.fig{margin:8px 0}</style></head><body>\n",
+    );
+    for f in files {
+        let svg = std::fs::read_to_string(out.join(f)).unwrap();
+        let start = svg.find("<svg").unwrap();
+        page.push_str(&format!(
+            "<div class=\"fig\" data-file=\"{f}\">{}</div>\n",
+            &svg[start..]
+        ));
+    }
+    page.push_str("<pre id=\"result\"></pre><p id=\"status\">not run</p>\n<script>");
+    page.push_str(SCRIPT);
+    page.push_str("</script>\n</body></html>\n");
+    page
+}
+
+/// A screenshot that is not blank: many colours, and some strongly coloured pixels.
+fn check_screenshot(png: &Path) {
+    let bytes = std::fs::read(png).unwrap();
+    let mut decoder = png::Decoder::new(std::io::Cursor::new(bytes));
+    decoder.set_transformations(png::Transformations::normalize_to_color8());
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    let channels = info.color_type.samples();
+    let mut colours = std::collections::HashSet::new();
+    let mut chromatic = 0u64;
+    for px in buf[..info.buffer_size()].chunks(channels) {
+        colours.insert((px[0], px[1], px[2]));
+        if px[0].max(px[1]).max(px[2]) - px[0].min(px[1]).min(px[2]) > 120 {
+            chromatic += 1;
+        }
+    }
+    assert!(
+        colours.len() >= 32,
+        "blank screenshot: {} colours",
+        colours.len()
+    );
+    assert!(chromatic >= 500, "no coloured series: {chromatic} pixels");
+}
+
+#[test]
+fn every_chart_gives_each_series_its_own_style_and_keeps_its_legend_off_the_data() {
+    let Some(chrome) = chromium_or_skip() else {
+        return;
+    };
+    let mut s = Scratch::new("figures");
+    let out = s.0.join("out");
+    for run in RUNS {
+        let mut args = vec![
+            "run",
+            "-q",
+            "--threads",
+            "2",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        args.extend(run.iter().copied());
+        let o = xtask(&args);
+        assert!(o.status.success(), "{run:?}: {}", stderr(&o));
+    }
+    let mut files = Vec::new();
+    for dir in std::fs::read_dir(&out).unwrap() {
+        let dir = dir.unwrap().path();
+        if !dir.is_dir() {
+            continue;
+        }
+        for f in std::fs::read_dir(&dir).unwrap() {
+            let name = f.unwrap().file_name().to_string_lossy().into_owned();
+            if name.ends_with(".svg") {
+                let id = dir.file_name().unwrap().to_string_lossy().into_owned();
+                files.push(format!("{id}/{name}"));
+            }
+        }
+    }
+    files.sort();
+    // Every experiment run wrote at least one figure.
+    for run in RUNS {
+        for id in run.iter().take_while(|a| !a.starts_with("--")) {
+            assert!(
+                files.iter().any(|f| f.starts_with(&format!("{id}/"))),
+                "{id} wrote no figure: {files:?}"
+            );
+        }
+    }
+    std::fs::write(s.0.join("figures.html"), check_page(&out, &files)).unwrap();
+    s.keep(true); // Kept while checking, for a failure to be looked at.
+    let url = format!("file://{}", s.0.join("figures.html").display());
+    let dom = headless(
+        &chrome,
+        &s.0.join(".chromium-dom"),
+        &["--dump-dom".to_owned()],
+        &url,
+    );
+    assert!(
+        dom.contains("<p id=\"status\">done</p>"),
+        "the check script did not finish (see {})",
+        s.0.display()
+    );
+    let start = dom.find("<pre id=\"result\">").unwrap() + "<pre id=\"result\">".len();
+    let result = &dom[start..start + dom[start..].find("</pre>").unwrap()];
+    let lines: Vec<Vec<&str>> = result.lines().map(|l| l.split('\t').collect()).collect();
+    assert_eq!(lines.len(), files.len(), "{result}");
+    let mut charts = 0;
+    for l in &lines {
+        let (file, kind) = (l[0], l[1]);
+        let name = file.rsplit('/').next().unwrap();
+        if is_picture(name) {
+            assert_eq!(
+                kind, "picture",
+                "{file}: a picture of gears, drawn as a chart?"
+            );
+            assert_eq!(l[2], "true", "{file} draws nothing");
+            continue;
+        }
+        assert_eq!(kind, "chart", "{file} was not drawn by the chart builder");
+        charts += 1;
+        let (n, distinct) = (l[2], l[3]);
+        assert_eq!(n, distinct, "{file}: {n} series in {distinct} styles");
+        assert_eq!(l[4], "ok", "{file}: {}", l[4]);
+    }
+    assert!(charts >= 20, "{charts} charts checked");
+    let png = s.0.join("figures.png");
+    headless(
+        &chrome,
+        &s.0.join(".chromium-shot"),
+        &[
+            "--window-size=1100,6000".to_owned(),
+            format!("--screenshot={}", png.display()),
+        ],
+        &url,
+    );
+    check_screenshot(&png);
+    s.keep(false);
+}
