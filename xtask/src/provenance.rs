@@ -101,6 +101,10 @@ fn recorded_inputs(ctx: &Context) -> BTreeMap<String, String> {
 /// that changes only these still runs on the paper's inputs and is compared with it.
 const READINGS: &[&str] = &["events", "emax"];
 
+/// What begins the label [`stamp`] adds to every table title of a run whose inputs differ from
+/// the paper's (`cargo xtask report` reads it there).
+pub const DEPARTURE: &str = "[inputs differ from the defaults: ";
+
 /// A run whose inputs differ from the defaults (the paper's) says so in every table's title,
 /// labels the paper's numbers as coming from other inputs, and judges no agreement with the
 /// paper (the summary shows `-`). Runs at the defaults, or differing only in a reading of the
@@ -122,7 +126,7 @@ fn label_departures(report: &mut Report, ctx: &Context) {
             .iter()
             .any(|t| t.title.contains("paper") || t.columns.iter().any(|c| c.contains("paper")));
     for t in &mut report.tables {
-        t.title = format!("{} [inputs differ from the defaults: {list}]", t.title);
+        t.title = format!("{} {DEPARTURE}{list}]", t.title);
         if compares {
             t.note(format!(
                 "This run's inputs differ from the paper's ({list}): the paper's numbers shown beside ours come from its own inputs, for reference, not as a check of these."

@@ -7,7 +7,13 @@
 //! every SVG figure embedded inline, links to its other files, and the provenance recorded in
 //! `run.json` (seed, threads, overrides, toolkit version, date). Registered experiments without
 //! results are listed as "not run". The page needs no network: the CSS is inline and so are the
-//! figures.
+//! figures. Tables scroll within their box when wider than the page.
+//!
+//! Tables 3, 4, 5 and I are also shown as heatmaps (jams, disengagements): ours against the
+//! paper's per cell, coloured by the two-sample verdict the table marks with `*`, each differing
+//! cell linking to its `replay` listing (or, before one is written, to the command that writes
+//! it). A run whose inputs differ from the paper's ([`provenance::DEPARTURE`] in its titles) shows
+//! no `*` marks, no heatmap, and its notes on agreement labelled for reference only.
 //!
 //! The page is written through a temporary file renamed into place. Results that cannot be read
 //! (malformed `tables.json` or `run.json`, a listed figure missing or empty) are bad input: one
@@ -534,8 +540,10 @@ h1 { font-size: 1.6em; margin-bottom: 0.2em; }
 h2 { font-size: 1.3em; border-bottom: 2px solid #c9d3e0; padding-bottom: 0.2em; margin-top: 2em; }
 .meta { color: #444; margin: 0.2em 0; }
 .meta code, .files code { background: #f2f4f7; padding: 0 0.25em; border-radius: 3px; }
-table { border-collapse: collapse; margin: 0.8em 0; font-size: 0.92em; }
-caption { caption-side: top; text-align: left; font-weight: 600; padding: 0.3em 0; }
+.table-wrap { max-width: 100%; overflow-x: auto; margin: 0.2em 0 0.8em; }
+table { border-collapse: collapse; margin: 0; font-size: 0.92em; }
+caption, .table-title { caption-side: top; text-align: left; font-weight: 600; padding: 0.3em 0; }
+.table-title { margin: 1em 0 0; }
 th, td { border: 1px solid #c9d3e0; padding: 0.25em 0.6em; vertical-align: top; }
 th { background: #eef2f7; text-align: left; }
 td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
@@ -549,6 +557,16 @@ table.toc td.status-run { color: #1d6b2f; white-space: nowrap; }
 table.toc td.status-not-run { color: #a33; white-space: nowrap; }
 .files { font-size: 0.85em; color: #555; }
 footer { margin-top: 3em; color: #777; font-size: 0.85em; }
+.reference { background: #fff3cd; border: 1px solid #e0c36a; padding: 0.4em 0.7em; }
+table.heatmap { font-size: 0.8em; }
+table.heatmap th { white-space: nowrap; }
+.hm { text-align: center; white-space: nowrap; font-variant-numeric: tabular-nums; }
+.hm.consistent { background: #d9efd3; }
+.hm.differs { background: #c0392b; color: #fff; font-weight: 600; }
+.hm.differs a { color: #fff; }
+.hm.none { background: #eeeeee; color: #666; }
+.heat-key .hm { padding: 0 0.5em; border: 1px solid #c9d3e0; }
+ul.replay-commands { font-size: 0.85em; columns: 2; }
 ";
 
 /// The whole page.
@@ -579,7 +597,7 @@ appear in columns labelled &ldquo;paper&rdquo; or in parentheses, as in the prin
     );
 
     // Contents.
-    h.push_str("<nav>\n<table class=\"toc\">\n<caption>Experiments</caption>\n<thead><tr><th>id</th><th>paper item</th><th>title</th><th>status</th><th>seed</th><th>paper's numbers consistent / differing (two-sample test for counts)</th></tr></thead>\n<tbody>\n");
+    h.push_str("<nav>\n<div class=\"table-wrap\">\n<table class=\"toc\">\n<caption>Experiments</caption>\n<thead><tr><th>id</th><th>paper item</th><th>title</th><th>status</th><th>seed</th><th>paper's numbers consistent / differing (two-sample test for counts)</th></tr></thead>\n<tbody>\n");
     for id in ids {
         let (title, item) = describe(exps, id);
         let r = results.get(id);
@@ -605,7 +623,7 @@ appear in columns labelled &ldquo;paper&rdquo; or in parentheses, as in the prin
             esc(&agreement)
         );
     }
-    h.push_str("</tbody>\n</table>\n</nav>\n<main>\n");
+    h.push_str("</tbody>\n</table>\n</div>\n</nav>\n<main>\n");
 
     for id in ids {
         let (title, item) = describe(exps, id);
@@ -622,8 +640,9 @@ appear in columns labelled &ldquo;paper&rdquo; or in parentheses, as in the prin
                 );
             }
             Some(r) => {
-                section(&mut h, id, title, item, r);
-                replay_links(&mut h, replays.get(id.as_str()).map_or(&[], Vec::as_slice));
+                let listed = replays.get(id.as_str()).map_or(&[][..], Vec::as_slice);
+                section(&mut h, id, title, item, r, listed);
+                replay_links(&mut h, listed);
             }
         }
     }
@@ -667,12 +686,27 @@ fn replay_links(h: &mut String, replays: &[(String, bool)]) {
     );
 }
 
-fn section(h: &mut String, id: &str, title: &str, item: &str, r: &Results) {
+fn section(
+    h: &mut String,
+    id: &str,
+    title: &str,
+    item: &str,
+    r: &Results,
+    replays: &[(String, bool)],
+) {
     // The registered title states the defaults ("200 trials per cell"); a run that changed
     // them is headed by its first table's title, which states what was run.
     let changed = r.run.as_ref().is_some_and(|p| !p.overrides.is_empty());
-    let title = match r.tables.first() {
-        Some(t) if changed => t.title.as_str(),
+    let reference = departs(r);
+    let first = r.tables.first().map(|t| {
+        if reference {
+            without_marks(&t.title)
+        } else {
+            t.title.clone()
+        }
+    });
+    let title = match &first {
+        Some(t) if changed => t.as_str(),
         _ => title,
     };
     let _ = write!(
@@ -728,8 +762,14 @@ xtask {} (git <code>{}</code>), {}.</p>",
     if !facts.is_empty() {
         let _ = writeln!(h, "<p class=\"meta\">{}</p>", esc(&facts.join("; ")));
     }
-    for t in &r.tables {
-        table(h, t);
+    if reference {
+        h.push_str(REFERENCE_BANNER);
+    }
+    for (i, t) in r.tables.iter().enumerate() {
+        table(h, t, reference);
+        if i == 0 {
+            heatmaps(h, id, t, r, replays, reference);
+        }
     }
     for (name, embed) in &r.figures {
         let file = format!("{id}/{name}");
@@ -767,16 +807,56 @@ xtask {} (git <code>{}</code>), {}.</p>",
     );
 }
 
-fn table(h: &mut String, t: &Table) {
+/// Has this run inputs other than the paper's ([`provenance::stamp`] says so in every title)?
+fn departs(r: &Results) -> bool {
+    r.tables
+        .iter()
+        .any(|t| t.title.contains(provenance::DEPARTURE))
+}
+
+/// Said at the top of a run whose inputs differ from the paper's.
+const REFERENCE_BANNER: &str = "<p class=\"reference\">This run's inputs differ from the paper's: \
+the paper's numbers beside ours are for reference only, not a check of these. No marks of a test \
+against the paper (<code>*</code>), no agreement figures and no heatmap are shown.</p>\n";
+
+/// A title without its phrase on the marks (`; * where ...`, up to the next bracket), for a run
+/// whose marks are not shown.
+fn without_marks(title: &str) -> String {
+    match title.find("; * where") {
+        Some(i) => {
+            let end = title[i..].find(" [").map_or(title.len(), |j| i + j);
+            format!("{}{}", &title[..i], &title[end..])
+        }
+        None => title.to_owned(),
+    }
+}
+
+/// Does the note state agreement with the paper (figures or marks of a test)?
+fn states_agreement(note: &str) -> bool {
+    note.contains("consistent with ours")
+        || note.contains("`*`")
+        || note.contains("counted as agreement")
+        || note.contains("agree with the paper")
+}
+
+/// One table. With `reference` (a run on other inputs than the paper's) its cells lose their
+/// `*` marks, its title the phrase on them, and its notes on agreement are labelled for
+/// reference only.
+fn table(h: &mut String, t: &Table, reference: bool) {
     let paper: Vec<bool> = t
         .columns
         .iter()
         .map(|c| c.to_ascii_lowercase().contains("paper"))
         .collect();
+    let title = if reference {
+        without_marks(&t.title)
+    } else {
+        t.title.clone()
+    };
     let _ = write!(
         h,
-        "<table>\n<caption>{}</caption>\n<thead><tr>",
-        esc(&t.title)
+        "<p class=\"table-title\">{}</p>\n<div class=\"table-wrap\">\n<table>\n<thead><tr>",
+        esc(&title)
     );
     for (c, p) in t.columns.iter().zip(&paper) {
         let class = if *p { " class=\"paper\"" } else { "" };
@@ -786,6 +866,13 @@ fn table(h: &mut String, t: &Table) {
     for row in &t.rows {
         h.push_str("<tr>");
         for (i, cell) in row.iter().enumerate() {
+            let unmarked;
+            let cell = if reference {
+                unmarked = cell.replace('*', "");
+                unmarked.trim_end()
+            } else {
+                cell.as_str()
+            };
             let mut classes = Vec::new();
             if numeric(cell) {
                 classes.push("num");
@@ -801,11 +888,255 @@ fn table(h: &mut String, t: &Table) {
         }
         h.push_str("</tr>\n");
     }
-    h.push_str("</tbody>\n</table>\n");
+    h.push_str("</tbody>\n</table>\n</div>\n");
     if !t.notes.is_empty() {
         h.push_str("<ul class=\"notes\">\n");
         for n in &t.notes {
-            let _ = writeln!(h, "<li>{}</li>", esc(n));
+            if reference && states_agreement(n) {
+                let _ = writeln!(
+                    h,
+                    "<li><b>For reference only, not a check (this run's inputs differ from the paper's; its marks are not shown):</b> {}</li>",
+                    esc(n)
+                );
+            } else {
+                let _ = writeln!(h, "<li>{}</li>", esc(n));
+            }
+        }
+        h.push_str("</ul>\n");
+    }
+}
+
+/// The per-mesh count tables shown as heatmaps too: experiment id, how the table's title
+/// begins, and how many columns label a row before the meshes.
+const HEATMAPS: [(&str, &str, usize); 4] = [
+    ("table3", "Table 3:", 1),
+    ("table4", "Table 4:", 1),
+    ("table5", "Table 5:", 1),
+    ("tableI", "Table I:", 2),
+];
+
+/// One count of a cell: ours, the paper's, and whether the two-sample test separates them (the
+/// table's `*`).
+#[derive(Debug, PartialEq, Eq)]
+struct Count {
+    ours: u64,
+    paper: Option<u64>,
+    differs: bool,
+}
+
+/// A per-mesh cell as the tables print it, `ours[*]/ours[*] (paper/paper)` (jams, then
+/// disengagements; `-` for no paper count): the two counts, or `None` for any other text.
+fn count_cell(cell: &str) -> Option<(Count, Count)> {
+    let (ours, paper) = cell.trim().split_once(" (")?;
+    let paper = paper.strip_suffix(')')?;
+    let (oj, od) = ours.split_once('/')?;
+    let (pj, pd) = paper.split_once('/')?;
+    let one = |o: &str, p: &str| -> Option<Count> {
+        let differs = o.ends_with('*');
+        let ours = o.trim_end_matches('*').parse().ok()?;
+        let paper = match p {
+            "-" => None,
+            _ => Some(p.parse().ok()?),
+        };
+        Some(Count {
+            ours,
+            paper,
+            differs,
+        })
+    };
+    Some((one(oj, pj)?, one(od, pd)?))
+}
+
+/// A heatmap's row: its label and, per mesh, the cell as `replay` names it with its counts.
+type HeatRow = (String, Vec<Option<(String, Count, Count)>>);
+
+/// The rows of `t` (experiment `id`, with `lead` label columns) that hold counts.
+fn heat_rows(id: &str, t: &Table, lead: usize) -> Vec<HeatRow> {
+    let meshes = t.columns.get(lead..).unwrap_or_default();
+    let mut rows = Vec::new();
+    let mut case = String::new();
+    // Table 5's cells are named by each mesh's E. max, its first row (ours, before the paper's).
+    let mut emax: Vec<Option<String>> = vec![None; meshes.len()];
+    for row in &t.rows {
+        let label = row.first().map_or("", String::as_str);
+        if id == "table5" && label.starts_with("E. max (random)") {
+            for (m, cell) in row.iter().skip(lead).enumerate().take(meshes.len()) {
+                let ours = cell.split(" (").next().unwrap_or("").trim();
+                if ours.parse::<f64>().is_ok() {
+                    emax[m] = Some(ours.to_owned());
+                }
+            }
+            continue;
+        }
+        if id == "tableI" && !label.is_empty() {
+            label.clone_into(&mut case);
+        }
+        let (row_label, key) = match id {
+            "table3" => (format!("Case {label}"), label.to_owned()),
+            "tableI" => {
+                let g = row.get(1).map_or("", String::as_str);
+                (format!("Case {case}, G = {g} %"), format!("{case}/{g}"))
+            }
+            "table4" => (format!("random error {label}"), label.to_owned()),
+            _ => (format!("E. sys {label} deg"), label.to_owned()),
+        };
+        let cells: Vec<Option<(String, Count, Count)>> = row
+            .iter()
+            .skip(lead)
+            .zip(meshes)
+            .enumerate()
+            .map(|(m, (cell, mesh))| {
+                let (j, d) = count_cell(cell)?;
+                let name = match id {
+                    "table5" => format!("{}/{key}/{mesh}", emax[m].as_deref()?),
+                    _ => format!("{key}/{mesh}"),
+                };
+                Some((name, j, d))
+            })
+            .collect();
+        if cells.iter().any(Option::is_some) {
+            rows.push((row_label, cells));
+        }
+    }
+    rows
+}
+
+/// The folder `cargo xtask replay <id> <cell>` writes its listing of failed trials to.
+fn listing_folder(id: &str, cell: &str) -> String {
+    let cell: String = cell
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '.' || c == '-' {
+                c
+            } else {
+                '-'
+            }
+        })
+        .collect();
+    format!("replay-{id}-{cell}-failed")
+}
+
+/// Table `t` of experiment `id` (its first) as heatmaps, jams and disengagements: ours against
+/// the paper's per cell, coloured by the two-sample test the table marks; each differing cell
+/// links to its `replay` listing (the folder `replay` wrote, when it is there; else the
+/// command that writes it, listed below). None for a run on other inputs than the paper's.
+fn heatmaps(
+    h: &mut String,
+    id: &str,
+    t: &Table,
+    r: &Results,
+    replays: &[(String, bool)],
+    reference: bool,
+) {
+    let Some(&(_, prefix, lead)) = HEATMAPS.iter().find(|(e, _, _)| *e == id) else {
+        return;
+    };
+    if !t.title.starts_with(prefix) {
+        return;
+    }
+    if reference {
+        let _ = writeln!(
+            h,
+            "<p class=\"reference\">No heatmap of {}: this run's inputs differ from the paper's, so the two-sample verdicts would be no check.</p>",
+            esc(prefix.trim_end_matches(':'))
+        );
+        return;
+    }
+    let rows = heat_rows(id, t, lead);
+    if rows.is_empty() {
+        return;
+    }
+    let meshes = &t.columns[lead..];
+    let name = prefix.trim_end_matches(':');
+    let mut commands: Vec<(String, String)> = Vec::new();
+    let (seed, sets) = r
+        .run
+        .as_ref()
+        .map_or((None, Vec::new()), |p| (Some(p.seed), p.overrides.clone()));
+    for (kind, pick) in [("jams", 0), ("disengagements", 1)] {
+        let _ = write!(
+            h,
+            "<p class=\"table-title\">{} as a heatmap, {kind}: ours | the paper's per cell, coloured by Fisher's exact two-sample test at 5 % (the table's <code>*</code>)</p>\n<div class=\"table-wrap\">\n<table class=\"heatmap\" data-table=\"{}\" data-kind=\"{kind}\">\n<thead><tr><th></th>",
+            esc(name),
+            esc(id)
+        );
+        for m in meshes {
+            let _ = write!(h, "<th>{}</th>", esc(m));
+        }
+        h.push_str("</tr></thead>\n<tbody>\n");
+        for (label, cells) in &rows {
+            let _ = write!(h, "<tr><th>{}</th>", esc(label));
+            for cell in cells {
+                let Some((cell_name, j, d)) = cell else {
+                    h.push_str("<td class=\"hm none\">-</td>");
+                    continue;
+                };
+                let c = if pick == 0 { j } else { d };
+                let paper = c.paper.map_or_else(|| "-".to_owned(), |p| p.to_string());
+                let text = format!("{} | {paper}", c.ours);
+                let (class, verdict) = match (c.paper, c.differs) {
+                    (None, _) => ("none", "no count in the paper"),
+                    (Some(_), true) => {
+                        ("differs", "differs from the paper's by the two-sample test")
+                    }
+                    (Some(_), false) => ("consistent", "consistent with the paper's"),
+                };
+                let tip = format!(
+                    "{cell_name} {kind}: ours {}, the paper's {paper}: {verdict}",
+                    c.ours
+                );
+                if c.differs {
+                    let folder = listing_folder(id, cell_name);
+                    let href = if replays.iter().any(|(f, _)| *f == folder) {
+                        format!("{}/table.md", url_part(&folder))
+                    } else {
+                        if !commands.iter().any(|(f, _)| *f == folder) {
+                            commands.push((folder.clone(), cell_name.clone()));
+                        }
+                        format!("#{}", esc(&folder))
+                    };
+                    let _ = write!(
+                        h,
+                        "<td class=\"hm {class}\" title=\"{}\"><a href=\"{href}\">{}</a></td>",
+                        esc(&tip),
+                        esc(&text)
+                    );
+                } else {
+                    let _ = write!(
+                        h,
+                        "<td class=\"hm {class}\" title=\"{}\">{}</td>",
+                        esc(&tip),
+                        esc(&text)
+                    );
+                }
+            }
+            h.push_str("</tr>\n");
+        }
+        h.push_str("</tbody>\n</table>\n</div>\n");
+    }
+    h.push_str("<p class=\"heat-key\"><span class=\"hm consistent\">consistent</span> <span class=\"hm differs\">differs</span> <span class=\"hm none\">no count in the paper</span> Each cell: our count | the paper's. A differing cell links to its replay listing: the trials of that cell that jammed or disengaged.</p>\n");
+    if !commands.is_empty() {
+        let mut flags = String::new();
+        if let Some(seed) = seed {
+            let _ = write!(flags, " --seed {seed}");
+        }
+        for (k, v) in &sets {
+            let _ = write!(flags, " --set {k}={v}");
+        }
+        let _ = writeln!(
+            h,
+            "<p class=\"meta\">Listings not written yet; each of these commands writes one to <code>replay-{}-&lt;cell&gt;-failed/</code> beside this page, which the cell then links:</p>\n<ul class=\"replay-commands\">",
+            esc(id)
+        );
+        for (folder, cell) in &commands {
+            let _ = writeln!(
+                h,
+                "<li id=\"{}\"><code>cargo xtask replay {} {}{}</code></li>",
+                esc(folder),
+                esc(id),
+                esc(cell),
+                esc(&flags)
+            );
         }
         h.push_str("</ul>\n");
     }
@@ -898,7 +1229,7 @@ mod tests {
         let page = build(&registry(), &s.0, true).unwrap();
         assert!(page.contains("<section id=\"exp-a\" class=\"experiment run\">"));
         assert!(page.contains("<h2>a: First &lt;one&gt;</h2>"));
-        assert!(page.contains("<caption>Ours &amp; the paper&#39;s</caption>"));
+        assert!(page.contains("<p class=\"table-title\">Ours &amp; the paper&#39;s</p>"));
         assert!(page.contains("<td class=\"num\">1.5 (1.4)</td><td class=\"num paper\">1.4</td>"));
         assert!(page.contains("<li>a &lt;note&gt;</li>"));
         assert!(page.contains("<figure data-file=\"a/a.svg\">\n<svg xmlns"));
@@ -1069,5 +1400,86 @@ mod tests {
         assert_eq!(url_part("fig 2/ä.svg"), "fig%202%2F%C3%A4.svg");
         assert!(numeric("17.96") && numeric("< 1e-12") && numeric("-0.5") && numeric("0 / 0"));
         assert!(!numeric("theta") && !numeric("-") && !numeric(""));
+    }
+
+    #[test]
+    fn count_cells_are_read_as_printed() {
+        let c = |ours, paper, differs| Count {
+            ours,
+            paper,
+            differs,
+        };
+        assert_eq!(
+            count_cell("141*/0 (168/0)"),
+            Some((c(141, Some(168), true), c(0, Some(0), false)))
+        );
+        assert_eq!(
+            count_cell("200/3* (200/189)"),
+            Some((c(200, Some(200), false), c(3, Some(189), true)))
+        );
+        assert_eq!(
+            count_cell("5/0 (-/-)"),
+            Some((c(5, None, false), c(0, None, false)))
+        );
+        for other in ["-", "0.055 (0.045)*", "< 0.1 (0.2)", "1/2", ""] {
+            assert_eq!(count_cell(other), None, "{other}");
+        }
+    }
+
+    #[test]
+    fn heatmap_cells_are_named_as_replay_names_them() {
+        let mut t5 = Table::new("Table 5: x", ["E. sys [deg]", "b2-c1", "e4-f1"]);
+        t5.row(vec![
+            "E. max (random)".into(),
+            "0.055 (0.055)".into(),
+            "< 0.035 (0.045)*".into(),
+        ]);
+        t5.row(vec!["0.7".into(), "11*/0 (1/0)".into(), "-".into()]);
+        t5.row(vec![
+            "E. max (systematic)".into(),
+            "0.2 (0.7)".into(),
+            "< 0.1 (0.2)".into(),
+        ]);
+        let rows = heat_rows("table5", &t5, 1);
+        assert_eq!(rows.len(), 1, "the E. max rows are no counts");
+        assert_eq!(rows[0].1[0].as_ref().unwrap().0, "0.055/0.7/b2-c1");
+        assert!(rows[0].1[1].is_none(), "a column below the grid is not run");
+
+        let mut t_i = Table::new("Table I: x", ["case", "G [%]", "m3-e3"]);
+        t_i.row(vec!["B".into(), "10".into(), "1/0 (1/0)".into()]);
+        t_i.row(vec!["".into(), "70".into(), "200/29* (197/186)".into()]);
+        let rows = heat_rows("tableI", &t_i, 2);
+        assert_eq!(rows[1].0, "Case B, G = 70 %");
+        assert_eq!(rows[1].1[0].as_ref().unwrap().0, "B/70/m3-e3");
+        assert_eq!(
+            listing_folder("tableI", "B/70/m3-e3"),
+            "replay-tableI-B-70-m3-e3-failed"
+        );
+        assert_eq!(
+            listing_folder("table4", "0.065/m3-e3"),
+            "replay-table4-0.065-m3-e3-failed"
+        );
+    }
+
+    #[test]
+    fn runs_on_other_inputs_show_no_marks_and_no_agreement_as_a_check() {
+        let title = "Table 3: counts: ours (paper); * where a two-sample test separates them [events: x] [inputs differ from the defaults: trials=2]";
+        assert_eq!(
+            without_marks(title),
+            "Table 3: counts: ours (paper) [events: x] [inputs differ from the defaults: trials=2]"
+        );
+        let mut t = Table::new(title, ["case", "m3-e3"]);
+        t.row(vec!["B".into(), "141*/0 (168/0)".into()]);
+        t.note("The paper's counts consistent with ours: jams 1 of 2.");
+        t.note("Each trial: one turn.");
+        let mut h = String::new();
+        table(&mut h, &t, true);
+        assert!(!h.contains('*'), "{h}");
+        assert!(h.contains("<li><b>For reference only, not a check"), "{h}");
+        assert!(h.contains("<li>Each trial: one turn.</li>"), "{h}");
+        let mut h = String::new();
+        table(&mut h, &t, false);
+        assert!(h.contains("141*/0 (168/0)"));
+        assert!(!h.contains("For reference only"));
     }
 }

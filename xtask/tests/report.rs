@@ -261,3 +261,251 @@ fn usage_lists_report() {
     assert!(o.status.success());
     assert!(stdout(&o).contains("cargo xtask report [--out DIR]"));
 }
+
+/// The fifteen meshes, as the per-mesh tables head their columns.
+const MESHES: [&str; 15] = [
+    "b2-c1", "c2-d1", "d2-e2", "e5-k1", "k2-e6", "e1-b3", "b2-l1", "l2-m1", "m3-e3", "e4-f1",
+    "f2-g1", "m2-n1", "n2-o1", "g2-h1", "h2-i1",
+];
+
+/// Writes `<out>/<id>/tables.json` (one table) and a `run.json` with `overrides`.
+fn write_table(
+    out: &Path,
+    id: &str,
+    title: &str,
+    columns: &[String],
+    rows: &[Vec<String>],
+    notes: &[&str],
+    overrides: &[(&str, &str)],
+) {
+    let dir = out.join(id);
+    std::fs::create_dir_all(&dir).unwrap();
+    let tables = serde_json::json!({
+        "tables": [{"title": title, "columns": columns, "rows": rows, "notes": notes}],
+        "files": ["run.json"],
+    });
+    std::fs::write(dir.join("tables.json"), tables.to_string()).unwrap();
+    let overrides: serde_json::Map<String, serde_json::Value> = overrides
+        .iter()
+        .map(|(k, v)| ((*k).to_owned(), serde_json::Value::from(*v)))
+        .collect();
+    let run = serde_json::json!({
+        "id": id, "seed": 2025, "threads": 2, "overrides": overrides, "config": null,
+        "version": {"crate": "0.1.0", "git": "test"}, "date": "2026-01-01T00:00:00Z",
+    });
+    std::fs::write(dir.join("run.json"), run.to_string()).unwrap();
+}
+
+/// A per-mesh count table in the printed form: `lead` label columns, cells
+/// `ours[*]/ours[*] (paper/paper)`; cell (row, mesh) differs in its jams where `differs` says.
+fn count_rows(labels: &[Vec<&str>], differs: &[(usize, usize)]) -> Vec<Vec<String>> {
+    labels
+        .iter()
+        .enumerate()
+        .map(|(r, lead)| {
+            let mut row: Vec<String> = lead.iter().map(|s| (*s).to_owned()).collect();
+            for m in 0..MESHES.len() {
+                row.push(if differs.contains(&(r, m)) {
+                    "141*/0 (168/0)".to_owned()
+                } else {
+                    format!("{}/0 ({}/0)", 100 + m, 99 + m)
+                });
+            }
+            row
+        })
+        .collect()
+}
+
+/// The script appended to a copy of the page: one line per heatmap (table, kind, cells,
+/// differing cells, differing cells with a link, whether the two verdicts' colours differ),
+/// the links of differing cells, and whether anything is wider than the window.
+const HEATMAP_SCRIPT: &str = r#"
+(function () {
+  const out = [];
+  document.querySelectorAll('table.heatmap').forEach(function (t) {
+    const cells = t.querySelectorAll('td.hm');
+    const differs = t.querySelectorAll('td.hm.differs');
+    const linked = t.querySelectorAll('td.hm.differs a[href]');
+    const one = t.querySelector('td.hm.consistent'), two = t.querySelector('td.hm.differs');
+    const apart = one && two && getComputedStyle(one).backgroundColor !== getComputedStyle(two).backgroundColor;
+    out.push(['heatmap', t.dataset.table, t.dataset.kind, cells.length, differs.length, linked.length, !!apart].join('\t'));
+    linked.forEach(function (a) {
+      const h = a.getAttribute('href');
+      const inPage = h.startsWith('#') ? !!document.getElementById(decodeURIComponent(h.slice(1))) : 'file';
+      out.push(['link', t.dataset.table, h, inPage].join('\t'));
+    });
+  });
+  const widest = Math.max(...Array.from(document.querySelectorAll('main, nav, section, .table-wrap')).map(e => e.getBoundingClientRect().right));
+  out.push(['width', document.documentElement.scrollWidth, window.innerWidth, Math.round(widest)].join('\t'));
+  document.getElementById('heat-result').textContent = out.join('\n');
+  document.getElementById('heat-status').textContent = 'done';
+})();
+"#;
+
+#[test]
+fn per_mesh_tables_show_as_heatmaps_linking_differing_cells_to_their_replays() {
+    let mut scratch = Scratch::new("report-heatmaps");
+    let out = scratch.0.clone();
+    let mut columns = vec!["case".to_owned()];
+    columns.extend(MESHES.iter().map(|m| (*m).to_owned()));
+    let title3 = "Table 3: trials (of 200) with at least one jam / disengagement, G = 40 %: ours (paper); * where a two-sample test separates our count from the paper's [events: idle-rotation(pitches=1)]";
+    let cases: Vec<Vec<&str>> = ["A", "B", "C", "D"].iter().map(|c| vec![*c]).collect();
+    write_table(
+        &out,
+        "table3",
+        title3,
+        &columns,
+        &count_rows(&cases, &[(1, 8), (3, 0)]),
+        &[
+            "The paper's counts consistent with ours by Fisher's exact two-sample test: jams 58 of 60. `*` after one of our counts: the test separates it from the paper's.",
+        ],
+        &[],
+    );
+    // B/m3-e3 has been replayed: its listing is there to link; D/b2-c1 has not.
+    let listing = out.join("replay-table3-B-m3-e3-failed");
+    std::fs::create_dir_all(&listing).unwrap();
+    std::fs::write(listing.join("table.md"), "listing\n").unwrap();
+    std::fs::write(
+        listing.join("tables.json"),
+        serde_json::json!({"tables": []}).to_string(),
+    )
+    .unwrap();
+    // Table I on other inputs than the paper's: no marks, no heatmap, agreement for reference.
+    let mut columns_i = vec!["case".to_owned(), "G [%]".to_owned()];
+    columns_i.extend(MESHES.iter().map(|m| (*m).to_owned()));
+    let lead_i: Vec<Vec<&str>> = vec![vec!["A", "10"], vec!["", "40"], vec!["B", "10"]];
+    write_table(
+        &out,
+        "tableI",
+        "Table I: trials (of 200) with at least one jam / disengagement, Cases A-D at several clearances: ours (paper); * where a two-sample test separates our count from the paper's [events: idle-rotation(pitches=1)] [inputs differ from the defaults: trials=20]",
+        &columns_i,
+        &count_rows(&lead_i, &[(0, 3), (2, 4)]),
+        &[
+            "The paper's counts consistent with ours by Fisher's exact two-sample test: jams 28 of 30.",
+            "This run's inputs differ from the paper's (trials=20): the paper's numbers shown beside ours come from its own inputs, for reference, not as a check of these.",
+        ],
+        &[("trials", "20")],
+    );
+    let rep = xtask(&["report", "-q", "--out", out.to_str().unwrap()]);
+    assert!(rep.status.success(), "{}", stderr(&rep));
+    let page = std::fs::read_to_string(out.join("index.html")).unwrap();
+
+    let section = |id: &str| {
+        let start = page.find(&format!("<section id=\"exp-{id}\"")).unwrap();
+        page[start..start + page[start..].find("</section>").unwrap()].to_owned()
+    };
+    let t3 = section("table3");
+    assert_eq!(
+        t3.matches("<table class=\"heatmap\"").count(),
+        2,
+        "jams and disengagements"
+    );
+    assert!(t3.contains("<a href=\"replay-table3-B-m3-e3-failed/table.md\">141 | 168</a>"));
+    assert!(t3.contains("<li id=\"replay-table3-D-b2-c1-failed\"><code>cargo xtask replay table3 D/b2-c1 --seed 2025</code></li>"), "{t3}");
+    let t_i = section("tableI");
+    assert!(
+        !t_i.contains("class=\"heatmap\""),
+        "no heatmap on other inputs"
+    );
+    assert!(t_i.contains("No heatmap of Table I"));
+    assert!(
+        !t_i.contains("141*") && !t_i.contains("; * where"),
+        "no marks on other inputs"
+    );
+    assert!(t_i.contains("For reference only, not a check"));
+    assert!(
+        !page.contains("issue 1") && !page.contains("Issue 1"),
+        "the paper items name no issue"
+    );
+
+    let Some(chrome) = chromium() else {
+        assert!(
+            std::env::var("CI").map_or(true, |v| v != "true"),
+            "CI=true but Chromium is not installed: run `scripts/check-report.sh install`"
+        );
+        eprintln!("report: Chromium not found: the heatmaps' browser check is skipped");
+        return;
+    };
+    scratch.keep(true);
+    let checked = page.replace(
+        "</body>",
+        &format!(
+            "<pre id=\"heat-result\"></pre><p id=\"heat-status\">not run</p><script>{HEATMAP_SCRIPT}</script></body>"
+        ),
+    );
+    std::fs::write(out.join("check.html"), checked).unwrap();
+    let child = Command::new(&chrome)
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            "--hide-scrollbars",
+            "--window-size=1280,4000",
+            "--dump-dom",
+        ])
+        .arg(format!(
+            "--user-data-dir={}",
+            out.join(".chromium-heat").display()
+        ))
+        .arg(format!("file://{}", out.join("check.html").display()))
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let pid = child.id();
+    let (done, got) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let _ = done.send(child.wait_with_output());
+    });
+    let dom = got
+        .recv_timeout(Duration::from_secs(90))
+        .unwrap_or_else(|_| {
+            let _ = Command::new("kill").arg(pid.to_string()).status();
+            panic!("chromium took more than 90 s")
+        })
+        .unwrap();
+    let dom = String::from_utf8(dom.stdout).unwrap();
+    assert!(
+        dom.contains("<p id=\"heat-status\">done</p>"),
+        "script did not finish"
+    );
+    let start = dom.find("<pre id=\"heat-result\">").unwrap() + "<pre id=\"heat-result\">".len();
+    let result = &dom[start..start + dom[start..].find("</pre>").unwrap()];
+    let lines: Vec<Vec<&str>> = result.lines().map(|l| l.split('\t').collect()).collect();
+    let maps: Vec<&Vec<&str>> = lines.iter().filter(|l| l[0] == "heatmap").collect();
+    assert_eq!(maps.len(), 2, "{result}");
+    for m in &maps {
+        assert_eq!(m[1], "table3", "{result}");
+        assert_eq!(m[3], "60", "4 cases x 15 meshes: {result}");
+        let want = if m[2] == "jams" { "2" } else { "0" };
+        assert_eq!(m[4], want, "differing cells: {result}");
+        assert_eq!(m[5], want, "each differing cell links its replay: {result}");
+        if m[2] == "jams" {
+            assert_eq!(
+                m[6], "true",
+                "differing and consistent cells look alike: {result}"
+            );
+        }
+    }
+    for l in lines.iter().filter(|l| l[0] == "link") {
+        match l[3] {
+            "file" => assert!(out.join(l[2]).is_file(), "{} links nothing", l[2]),
+            inpage => assert_eq!(inpage, "true", "{} has no target on the page", l[2]),
+        }
+    }
+    let width = lines.iter().find(|l| l[0] == "width").unwrap();
+    let (scroll, window, widest): (f64, f64, f64) = (
+        width[1].parse().unwrap(),
+        width[2].parse().unwrap(),
+        width[3].parse().unwrap(),
+    );
+    assert!(
+        scroll <= window && widest <= window,
+        "the page is wider than its window: {result}"
+    );
+    scratch.keep(false);
+}
