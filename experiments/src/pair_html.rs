@@ -63,8 +63,117 @@ pub fn solver_teeth(mesh: &contact::Mesh) -> impl Fn(&contact::Event) -> (i64, i
     move |e: &contact::Event| (e.driver_tooth.rem_euclid(n1), e.driven_tooth.rem_euclid(n2))
 }
 
+/// One contact drawn at an event: where the two teeth touch, the unit normal there (None where
+/// the contact has none: a vertex on a vertex), and what it is.
+#[derive(Debug, Clone, Copy)]
+pub struct Contact {
+    /// The contact point, world frame.
+    pub point: Vec2,
+    /// The unit common normal, where defined.
+    pub normal: Option<Vec2>,
+    /// `closing` (the contact of the event's two teeth: the one that closed at a lock or strike,
+    /// the one lost at a gap or slip), `pushing` (the driver tooth pushing the driven gear when
+    /// a lock closed) or `resumed` (the pair that drives it after a release).
+    pub role: &'static str,
+}
+
+/// Whether driver tooth `j` pushes driven tooth `k` at (φ, θ): the upper end of their obstacle
+/// is θ (to rounding).
+fn pushes_at(mesh: &contact::Mesh, phi: f64, theta: f64, (j, k): (i64, i64)) -> bool {
+    mesh.obstacle(phi, j, k)
+        .is_some_and(|o| (o.hi - theta).abs() <= 1e-9 * (1.0 + theta.abs()))
+}
+
+/// The contact of driver tooth `j` and driven tooth `k` at (φ, θ), labelled `role`; where the
+/// contact has no normal, the point half-way between the two tips.
+fn contact_at(
+    mesh: &contact::Mesh,
+    (phi, theta): (f64, f64),
+    (j, k): (i64, i64),
+    role: &'static str,
+) -> Contact {
+    if let Some((point, normal)) = mesh.contact_normal(phi, theta, j, k) {
+        return Contact {
+            point,
+            normal: Some(normal),
+            role,
+        };
+    }
+    let (driver, driven) = mesh.world_outlines(phi, theta);
+    let (n1, n2) = (mesh.driver().teeth() as i64, mesh.driven().teeth() as i64);
+    let tip1 = driver[2 * j.rem_euclid(n1) as usize];
+    let tip2 = driven[2 * k.rem_euclid(n2) as usize];
+    Contact {
+        point: (tip1 + tip2) * 0.5,
+        normal: None,
+        role,
+    }
+}
+
+/// The contacts of event `e` at its own (φ, θ): the event's pair, and at a lock (or a strike
+/// while pushed) the pair that was pushing, so that both sides of the driven tooth show.
+pub fn contacts_at_event(traj: &Trajectory, e: &contact::Event) -> Vec<Contact> {
+    let mesh = traj.mesh();
+    let pair = (e.driver_tooth, e.driven_tooth);
+    let mut out = vec![contact_at(mesh, (e.phi, e.theta), pair, "closing")];
+    if e.kind.is_contact_stop() {
+        // The pushing pair: of the pairs pushing on the segment that ends at the event, the one
+        // whose contact holds θ there.
+        let pusher = traj
+            .segments()
+            .iter()
+            .rev()
+            .filter(|s| s.phi_start < e.phi && s.phi_end >= e.phi - 1e-12)
+            .find_map(|s| match &s.motion {
+                contact::Motion::Push(pairs) => pairs
+                    .iter()
+                    .copied()
+                    .find(|&p| p != pair && pushes_at(mesh, e.phi, e.theta, p)),
+                _ => None,
+            });
+        if let Some(p) = pusher {
+            out.push(contact_at(mesh, (e.phi, e.theta), p, "pushing"));
+        }
+    }
+    out
+}
+
+/// Where a lock or strike lets the driven gear go, `(θ after, the contact that drives it
+/// there)`, when it moves it at all.
+pub fn release_of(traj: &Trajectory, e: &contact::Event) -> Option<(f64, Vec<Contact>)> {
+    if !e.kind.is_contact_stop() || e.theta_after == e.theta {
+        return None;
+    }
+    let mesh = traj.mesh();
+    let contacts = e
+        .resumed_by
+        .filter(|&p| pushes_at(mesh, e.phi, e.theta_after, p))
+        .map(|p| contact_at(mesh, (e.phi, e.theta_after), p, "resumed"))
+        .into_iter()
+        .collect();
+    Some((e.theta_after, contacts))
+}
+
+/// `x,y,nx,ny,role` per contact, `;` between them (no normal: `x,y,,,role`).
+fn contacts_attr(contacts: &[Contact]) -> String {
+    contacts
+        .iter()
+        .map(|c| {
+            let (nx, ny) = c.normal.map_or((String::new(), String::new()), |n| {
+                (format!("{:.9}", n.x), format!("{:.9}", n.y))
+            });
+            format!("{:.9},{:.9},{nx},{ny},{}", c.point.x, c.point.y, c.role)
+        })
+        .collect::<Vec<_>>()
+        .join(";")
+}
+
 /// The page for `traj` (one mesh's run), titled `title`; `counted(e)` says what the event rule
 /// counts an event as (`jam`, `disengagement` or `-`), `teeth(e)` the tooth numbers it shows.
+///
+/// An event's link draws the gears at the event's own φ and θ (not at the nearest sample), with
+/// its contacts - both of a lock - and a lock or strike that released the driven gear has a
+/// second link, its release, drawn at the same φ and θ after.
 pub fn page(
     title: &str,
     traj: &Trajectory,
@@ -81,6 +190,8 @@ pub fn page(
     let n = MAX_SAMPLES;
     let data = samples(traj, n);
     let phi0 = traj.phi_start();
+    let theta0 = traj.theta_at(phi0);
+    let ratio = mesh.driver().teeth() as f64 / mesh.driven().teeth() as f64;
     let mut json = String::from("[");
     for (i, (p, t, td)) in data.iter().enumerate() {
         let _ = write!(
@@ -90,21 +201,51 @@ pub fn page(
         );
     }
     json.push(']');
+    let td_of = |phi: f64, theta: f64| ((theta - theta0) - ratio * (phi - phi0)).to_degrees();
     let mut events = String::new();
-    for e in traj.events() {
+    for (i, e) in traj.events().iter().enumerate() {
         let at = (e.phi - phi0).to_degrees();
-        let (p, n) = contact_of(traj, e);
         let (j, k) = teeth(e);
+        let link = |class: &str, theta: f64, contacts: &[Contact], text: &str| {
+            format!(
+                "<a class=\"{class}\" href=\"#event={}{}\" data-phi=\"{at:.12}\" data-theta=\"{:.12}\" data-td=\"{:.12}\" data-contacts=\"{}\">{text}</a>",
+                i + 1,
+                if class == "release" { "-release" } else { "" },
+                theta.to_degrees(),
+                td_of(e.phi, theta),
+                contacts_attr(contacts),
+            )
+        };
+        let main = link(
+            "event",
+            e.theta,
+            &contacts_at_event(traj, e),
+            &format!(
+                "phi - phi0 = {at:.4} deg (phi = {:.4} deg, theta = {:.4} deg): {} ({}), driver tooth {j}, driven tooth {k}",
+                e.phi.to_degrees(),
+                e.theta.to_degrees(),
+                e.label(),
+                counted(e),
+            ),
+        );
+        let release = release_of(traj, e).map_or_else(String::new, |(after, contacts)| {
+            format!(
+                " - {}",
+                link(
+                    "release",
+                    after,
+                    &contacts,
+                    &format!(
+                        "its release: the driven gear let go to theta = {:.4} deg",
+                        after.to_degrees()
+                    )
+                )
+            )
+        });
         let _ = writeln!(
             events,
-            "<li class=\"{kind}\"><a href=\"#phi={at:.9}\" data-phi=\"{at:.9}\" data-x=\"{:.9}\" data-y=\"{:.9}\" data-nx=\"{:.9}\" data-ny=\"{:.9}\">{at:.4} deg: {label} ({counted}), driver tooth {j}, driven tooth {k}</a></li>",
-            p.x,
-            p.y,
-            n.x,
-            n.y,
+            "<li class=\"{kind}\">{main}{release}</li>",
             kind = e.kind.name(),
-            label = e.label(),
-            counted = counted(e),
         );
     }
     if events.is_empty() {
@@ -119,121 +260,185 @@ pub fn page(
             .driver()
             .tooth_height()
             .max(mesh.driven().tooth_height()));
+    // The TD strip: its axes in Rust, the curve and cursor drawn by the script on the same scale.
+    let phi_max = data.last().map_or(1.0, |s| s.0).max(f64::MIN_POSITIVE);
+    let (td_min, td_max) = data
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), s| {
+            (a.min(s.2), b.max(s.2))
+        });
+    let (td_min, td_max) = if td_max > td_min {
+        (td_min, td_max)
+    } else {
+        (td_min - 1.0, td_min + 1.0)
+    };
+    let axes = td_axes(phi_max, td_min, td_max);
     format!(
         r##"<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8"><title>{title}</title>
 <style>
 body {{ font-family: sans-serif; margin: 1em; }}
 #mesh {{ border: 1px solid #ccc; width: 900px; height: 480px; }}
-#plot {{ border: 1px solid #ccc; width: 900px; height: 200px; }}
+#plot {{ border: 1px solid #ccc; width: 900px; height: 230px; font-size: 12px; }}
 li.lock a, li.strike a, li.blocked a {{ color: #b00; }}
 li.gap a, li.slip a {{ color: #06c; }}
+li a.release {{ color: #555; }}
+#status {{ display: none; }}
+#status.error {{ display: block; color: #b00; }}
 </style></head>
 <body>
 <h1>{title}</h1>
 <p><input id="slider" type="range" min="0" max="{n}" value="0" step="1" style="width: 900px">
 <br><button id="play">play</button> <button id="zoom">zoom on the mesh</button>
-phi - phi0 = <span id="phi">0</span> deg, theta = <span id="theta"></span> deg,
-TD = <span id="td"></span> deg</p>
+phi - phi0 = <span id="phi">0</span> deg, theta = <span id="theta"></span> deg (absolute),
+TD = <span id="td"></span> deg <span id="where"></span></p>
 <svg id="mesh" viewBox="{vx:.5} {vy:.5} {vw:.5} {vh:.5}" data-full="{vx:.5} {vy:.5} {vw:.5} {vh:.5}" data-zoom="{zx:.5} {zy:.5} {zw:.5} {zw:.5}">
 <g transform="scale(1,-1)">
 <g id="driver" transform="rotate(0 0 0)"><polygon points="{driver}" fill="#dde" stroke="#226" stroke-width="1.2" vector-effect="non-scaling-stroke"/></g>
 <g id="driven" transform="rotate(0 {d:.9} 0)" data-theta-deg=""><polygon points="{driven}" fill="#ede" stroke="#626" stroke-width="1.2" vector-effect="non-scaling-stroke"/></g>
 <circle cx="0" cy="0" r="{dot:.5}" fill="#226"/><circle cx="{d:.9}" cy="0" r="{dot:.5}" fill="#626"/>
-<g id="contact" visibility="hidden"><circle id="contact-point" cx="0" cy="0" r="{cdot:.5}" fill="#c00"/><line id="contact-normal" x1="0" y1="0" x2="0" y2="0" stroke="#c00" stroke-width="2" vector-effect="non-scaling-stroke"/></g>
+<g id="contacts"></g>
 </g></svg>
-<svg id="plot" viewBox="0 0 900 200"><polyline id="td-line" fill="none" stroke="#333" stroke-width="1" points=""/>
-<line id="cursor" x1="0" y1="0" x2="0" y2="200" stroke="#c00"/></svg>
+<svg id="plot" viewBox="0 0 900 230">
+{axes}<polyline id="td-line" fill="none" stroke="#333" stroke-width="1" points=""/>
+<line id="cursor" x1="{px0}" y1="{py_top}" x2="{px0}" y2="{py_bottom}" stroke="#c00"/></svg>
 <h2>Events</h2>
+<p>Each link draws the gears at the event's own driver and driven angles, with its contacts (red: the teeth of the event; orange: the tooth pushing the driven gear when a lock closed; grey: the contact that drives it after its release).</p>
 <ol id="events">
 {events}</ol>
 <p id="status">loading</p>
-<p id="selftest-slider"></p><p id="selftest-event"></p>
+<p id="selftest-slider"></p><p id="selftest-event"></p><ol id="selftest-events"></ol>
 <script>
 "use strict";
 // Any error after this point is written on the page (a test reads it back).
-window.addEventListener("error", e => {{ document.getElementById("status").textContent = "error: " + e.message; }});
+window.addEventListener("error", e => {{ const s = document.getElementById("status"); s.textContent = "error: " + e.message; s.className = "error"; }});
 const S = {json};
+const PHI0 = {phi0_deg:.12};
 const slider = document.getElementById("slider");
 const driver = document.getElementById("driver");
 const driven = document.getElementById("driven");
 const cursor = document.getElementById("cursor");
 const meshSvg = document.getElementById("mesh");
-const tdMin = Math.min(...S.map(s => s[2])), tdMax = Math.max(...S.map(s => s[2]));
-const phiMax = S[S.length - 1][0] || 1;
-const px = p => 900 * p / phiMax;
-const py = t => tdMax > tdMin ? 190 - 180 * (t - tdMin) / (tdMax - tdMin) : 100;
+const zoomButton = document.getElementById("zoom");
+const playButton = document.getElementById("play");
+const contactsG = document.getElementById("contacts");
+const SVGNS = meshSvg.namespaceURI;
+const px = p => {px0} + {pw} * p / {phi_max:.12};
+const py = t => {py_bottom} - {ph} * (t - ({td_min:.12})) / ({td_span:.12});
 document.getElementById("td-line").setAttribute("points", S.map(s => px(s[0]).toFixed(2) + "," + py(s[2]).toFixed(2)).join(" "));
+// Draw the gears at phi - phi0 = phi (deg) and the absolute driven angle theta (deg).
+function draw(phi, theta, td, where) {{
+  // Driver about its arbor (the origin) by phi; driven about (D, 0) by -theta.
+  driver.setAttribute("transform", "rotate(" + (phi + PHI0) + " 0 0)");
+  driven.setAttribute("transform", "rotate(" + (-theta) + " {d:.9} 0)");
+  driven.setAttribute("data-theta-deg", String(theta));
+  driven.setAttribute("data-phi-deg", String(phi));
+  document.getElementById("phi").textContent = phi.toFixed(4);
+  document.getElementById("theta").textContent = theta.toFixed(4);
+  document.getElementById("td").textContent = td.toFixed(5);
+  document.getElementById("where").textContent = where;
+  cursor.setAttribute("x1", px(phi)); cursor.setAttribute("x2", px(phi));
+}}
 function show(i) {{
   const s = S[i];
-  // Driver about its arbor (the origin) by phi; driven about (D, 0) by -theta.
-  driver.setAttribute("transform", "rotate(" + (s[0] + {phi0_deg:.12}) + " 0 0)");
-  driven.setAttribute("transform", "rotate(" + (-s[1]) + " {d:.9} 0)");
-  driven.setAttribute("data-theta-deg", String(s[1]));
-  driven.setAttribute("data-phi-deg", String(s[0]));
-  document.getElementById("phi").textContent = s[0].toFixed(4);
-  document.getElementById("theta").textContent = s[1].toFixed(4);
-  document.getElementById("td").textContent = s[2].toFixed(5);
-  cursor.setAttribute("x1", px(s[0])); cursor.setAttribute("x2", px(s[0]));
+  contactsG.replaceChildren();
+  draw(s[0], s[1], s[2], "");
 }}
 function nearest(phi) {{
   let best = 0;
   for (let i = 1; i < S.length; i++) if (Math.abs(S[i][0] - phi) < Math.abs(S[best][0] - phi)) best = i;
   return best;
 }}
-const contact = document.getElementById("contact");
-// Jump to an event: the slider to its angle, the view zoomed on its contact point (the teeth
-// involved), the contact point and its normal drawn until the slider moves again.
-function jumpTo(phi, a) {{
+function setView(box) {{
+  meshSvg.setAttribute("viewBox", box);
+  zoomButton.textContent = box === meshSvg.dataset.full ? "zoom on the mesh" : "show the whole mesh";
+}}
+const COLOURS = {{ closing: "#c00", pushing: "#e80", resumed: "#666" }};
+// Jump to an event (or its release): the gears at its exact angles, the view zoomed on its
+// first contact, every contact's point and normal drawn until the slider moves again.
+function jumpTo(a) {{
+  const phi = parseFloat(a.dataset.phi), theta = parseFloat(a.dataset.theta);
   slider.value = nearest(phi);
-  show(Number(slider.value));
-  if (!a) {{ meshSvg.setAttribute("viewBox", meshSvg.dataset.zoom); return; }}
-  const x = parseFloat(a.dataset.x), y = parseFloat(a.dataset.y);
-  const nx = parseFloat(a.dataset.nx), ny = parseFloat(a.dataset.ny);
+  const contacts = a.dataset.contacts ? a.dataset.contacts.split(";").map(c => c.split(",")) : [];
+  draw(phi, theta, parseFloat(a.dataset.td), a.classList.contains("release") ? "(the release)" : "(the event)");
+  contactsG.replaceChildren();
   const z = parseFloat(meshSvg.dataset.zoom.split(" ")[2]);
-  meshSvg.setAttribute("viewBox", (x - z / 2) + " " + (-y - z / 2) + " " + z + " " + z);
-  document.getElementById("contact-point").setAttribute("cx", x);
-  document.getElementById("contact-point").setAttribute("cy", y);
-  const line = document.getElementById("contact-normal");
-  line.setAttribute("x1", x); line.setAttribute("y1", y);
-  line.setAttribute("x2", x + nx * z / 4); line.setAttribute("y2", y + ny * z / 4);
-  contact.setAttribute("visibility", "visible");
+  for (const [xs, ys, nxs, nys, role] of contacts) {{
+    const x = parseFloat(xs), y = parseFloat(ys), colour = COLOURS[role] || "#c00";
+    const dot = document.createElementNS(SVGNS, "circle");
+    dot.setAttribute("cx", x); dot.setAttribute("cy", y); dot.setAttribute("r", {cdot:.5});
+    dot.setAttribute("fill", "none"); dot.setAttribute("stroke", colour); dot.setAttribute("stroke-width", "2");
+    dot.setAttribute("vector-effect", "non-scaling-stroke"); dot.setAttribute("class", "contact " + role);
+    contactsG.appendChild(dot);
+    if (nxs !== "") {{
+      const line = document.createElementNS(SVGNS, "line");
+      line.setAttribute("x1", x); line.setAttribute("y1", y);
+      line.setAttribute("x2", x + parseFloat(nxs) * z / 4); line.setAttribute("y2", y + parseFloat(nys) * z / 4);
+      line.setAttribute("stroke", colour); line.setAttribute("stroke-width", "2");
+      line.setAttribute("vector-effect", "non-scaling-stroke");
+      contactsG.appendChild(line);
+    }}
+  }}
+  if (contacts.length) {{
+    const x = parseFloat(contacts[0][0]), y = parseFloat(contacts[0][1]);
+    setView((x - z / 2) + " " + (-y - z / 2) + " " + z + " " + z);
+  }} else {{
+    setView(meshSvg.dataset.zoom);
+  }}
 }}
 function fromHash() {{
+  const e = /event=([0-9]+)(-release)?/.exec(location.hash);
+  if (e) {{
+    const li = document.querySelectorAll("#events > li")[Number(e[1]) - 1];
+    const a = li && li.querySelector(e[2] ? "a.release" : "a.event");
+    if (a) {{ jumpTo(a); return; }}
+  }}
   const m = /phi=(-?[0-9.eE+-]+)/.exec(location.hash);
-  if (m) jumpTo(parseFloat(m[1])); else show(Number(slider.value));
+  if (m) {{ slider.value = nearest(parseFloat(m[1])); setView(meshSvg.dataset.zoom); }}
+  show(Number(slider.value));
 }}
 for (const a of document.querySelectorAll("#events a")) {{
-  a.addEventListener("click", () => jumpTo(parseFloat(a.dataset.phi), a));
+  a.addEventListener("click", ev => {{ ev.preventDefault(); jumpTo(a); }});
 }}
-// `#selftest`: drive the page as a reader would - move the slider, click the first event - and
+// `#selftest`: drive the page as a reader would - move the slider, click every event link - and
 // write down what it then draws, for a headless browser to read back.
-function record(id) {{
-  const p = document.getElementById(id);
+function record(p) {{
   p.dataset.phi = driven.dataset.phiDeg;
   p.dataset.theta = driven.dataset.thetaDeg;
   p.dataset.transform = driven.getAttribute("transform");
+  p.dataset.contacts = String(contactsG.querySelectorAll("circle").length);
 }}
 function selftest() {{
   slider.value = Math.floor(S.length / 3);
   slider.dispatchEvent(new Event("input"));
-  record("selftest-slider");
-  const link = document.querySelector("#events a");
-  if (link) {{ link.click(); record("selftest-event"); }}
+  record(document.getElementById("selftest-slider"));
+  const links = document.querySelectorAll("#events a");
+  const list = document.getElementById("selftest-events");
+  links.forEach((link, i) => {{
+    link.click();
+    if (i === 0) record(document.getElementById("selftest-event"));
+    const li = document.createElement("li");
+    li.dataset.link = link.getAttribute("href");
+    li.dataset.expected = link.dataset.theta;
+    li.dataset.wanted = String(link.dataset.contacts ? link.dataset.contacts.split(";").length : 0);
+    record(li);
+    list.appendChild(li);
+  }});
 }}
-slider.addEventListener("input", () => {{ contact.setAttribute("visibility", "hidden"); show(Number(slider.value)); }});
+slider.addEventListener("input", () => show(Number(slider.value)));
 window.addEventListener("hashchange", fromHash);
 let timer = null;
-document.getElementById("play").addEventListener("click", () => {{
-  if (timer) {{ clearInterval(timer); timer = null; return; }}
+playButton.addEventListener("click", () => {{
+  if (timer) {{ clearInterval(timer); timer = null; playButton.textContent = "play"; return; }}
+  playButton.textContent = "pause";
   timer = setInterval(() => {{
     const i = (Number(slider.value) + 1) % S.length;
     slider.value = i; show(i);
   }}, 30);
 }});
-document.getElementById("zoom").addEventListener("click", () => {{
+zoomButton.addEventListener("click", () => {{
   const full = meshSvg.dataset.full;
-  meshSvg.setAttribute("viewBox", meshSvg.getAttribute("viewBox") === full ? meshSvg.dataset.zoom : full);
+  setView(meshSvg.getAttribute("viewBox") === full ? meshSvg.dataset.zoom : full);
 }});
 fromHash();
 if (location.hash.includes("selftest")) selftest();
@@ -254,29 +459,75 @@ if (document.getElementById("status").textContent === "loading") document.getEle
         dot = 0.01 * r1.min(r2),
         cdot = 0.025 * zoom,
         phi0_deg = phi0.to_degrees(),
+        px0 = PLOT.0,
+        pw = PLOT.1,
+        py_top = PLOT.2,
+        py_bottom = PLOT.3,
+        ph = PLOT.3 - PLOT.2,
+        td_span = td_max - td_min,
     )
 }
 
-/// Where event `e` happens: the contact point of its two teeth and the unit normal there (world
-/// frame), or, where the contact has no normal (a vertex on a vertex), the point half-way between
-/// the two tips and the line of centres' direction.
-fn contact_of(traj: &Trajectory, e: &contact::Event) -> (Vec2, Vec2) {
-    let mesh = traj.mesh();
-    if let Some(c) = mesh.contact_normal(e.phi, e.theta, e.driver_tooth, e.driven_tooth) {
-        return c;
+/// The TD strip's plot area in its 900 × 230 box: left edge, width, top, bottom.
+const PLOT: (f64, f64, f64, f64) = (80.0, 800.0, 12.0, 180.0);
+
+/// The TD strip's axes: φ − φ0 along the bottom and TD up the left, each with three ticks
+/// labelled in degrees, and each axis named with its unit.
+fn td_axes(phi_max: f64, td_min: f64, td_max: f64) -> String {
+    let (left, width, top, bottom) = PLOT;
+    let mut s = format!(
+        "<line x1=\"{left}\" y1=\"{bottom}\" x2=\"{}\" y2=\"{bottom}\" stroke=\"#000\"/>\n<line x1=\"{left}\" y1=\"{top}\" x2=\"{left}\" y2=\"{bottom}\" stroke=\"#000\"/>\n",
+        left + width
+    );
+    for f in [0.0, 0.5, 1.0] {
+        let x = left + width * f;
+        let _ = writeln!(
+            s,
+            "<line x1=\"{x}\" y1=\"{bottom}\" x2=\"{x}\" y2=\"{}\" stroke=\"#000\"/><text x=\"{x}\" y=\"{}\" text-anchor=\"middle\">{}</text>",
+            bottom + 5.0,
+            bottom + 18.0,
+            tick(phi_max * f)
+        );
+        let y = bottom - (bottom - top) * f;
+        let _ = writeln!(
+            s,
+            "<line x1=\"{}\" y1=\"{y}\" x2=\"{left}\" y2=\"{y}\" stroke=\"#000\"/><text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>",
+            left - 5.0,
+            left - 8.0,
+            y + 4.0,
+            tick(td_min + (td_max - td_min) * f)
+        );
     }
-    let (driver, driven) = mesh.world_outlines(e.phi, e.theta);
-    let (n1, n2) = (mesh.driver().teeth() as i64, mesh.driven().teeth() as i64);
-    let tip1 = driver[2 * e.driver_tooth.rem_euclid(n1) as usize];
-    let tip2 = driven[2 * e.driven_tooth.rem_euclid(n2) as usize];
-    ((tip1 + tip2) * 0.5, Vec2::new(1.0, 0.0))
+    let _ = writeln!(
+        s,
+        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">driver angle from the start, phi - phi0 [deg]</text>\n<text x=\"14\" y=\"{}\" text-anchor=\"middle\" transform=\"rotate(-90 14 {})\">TD [deg]</text>",
+        left + 0.5 * width,
+        bottom + 40.0,
+        0.5 * (top + bottom),
+        0.5 * (top + bottom)
+    );
+    s
+}
+
+/// A tick label: enough digits to tell the ticks apart.
+fn tick(v: f64) -> String {
+    let a = v.abs();
+    if a >= 100.0 {
+        format!("{v:.0}")
+    } else if a >= 1.0 {
+        format!("{v:.2}")
+    } else {
+        format!("{v:.4}")
+    }
 }
 
 /// A picture of the mesh at event `e`, zoomed on the two teeth involved (driver tooth
 /// `e.driver_tooth`, driven tooth `e.driven_tooth`), like the paper's Figures V_A (a jam) and
-/// V_B (a decoupling): both outlines at (φ, θ) of the event, the contact point and its normal
-/// where the contact has one. `counted` is what the event rule counts it as, `shown` the tooth
-/// numbers its caption gives (the user's numbering; the outlines are indexed by the solver's).
+/// V_B (a decoupling): both outlines at (φ, θ) of the event, its contacts (at a lock both: the
+/// closing one and the pushing one) as rings with their normals, the two teeth's tips as dots
+/// drawn over them, and a caption in a band of its own beneath the teeth. `counted` is what the
+/// event rule counts it as, `shown` the tooth numbers its caption gives (the user's numbering;
+/// the outlines are indexed by the solver's).
 pub fn event_svg(
     traj: &Trajectory,
     e: &contact::Event,
@@ -290,66 +541,107 @@ pub fn event_svg(
     // Outlines alternate tip, valley: tooth j's tip is vertex 2j.
     let tip1 = driver[2 * j as usize];
     let tip2 = driven[2 * k as usize];
-    let contact = mesh.contact_normal(e.phi, e.theta, e.driver_tooth, e.driven_tooth);
-    let centre = contact.map_or((tip1 + tip2) * 0.5, |(p, _)| p);
+    let contacts = contacts_at_event(traj, e);
+    let centre = contacts[0].point;
     let h = mesh
         .driver()
         .tooth_height()
         .max(mesh.driven().tooth_height());
     let half = 2.5 * h;
+    // The picture is 600 × 600 of the mesh, and beneath it a band of 105 for the caption.
+    let (width, picture, band) = (600.0, 600.0, 105.0);
+    let scale = 2.0 * half / width;
     let (x0, y0) = (centre.x - half, -centre.y - half);
     let sw = half / 200.0;
+    let total = (picture + band) * scale;
     let mut svg = format!(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"600\" height=\"640\" viewBox=\"{x0:.6} {y0:.6} {w:.6} {hh:.6}\" font-family=\"sans-serif\">\n<rect x=\"{x0:.6}\" y=\"{y0:.6}\" width=\"{w:.6}\" height=\"{hh:.6}\" fill=\"white\"/>\n<g transform=\"scale(1,-1)\">\n<polygon points=\"{}\" fill=\"#dde\" stroke=\"#226\" stroke-width=\"{sw:.6}\"/>\n<polygon points=\"{}\" fill=\"#ede\" stroke=\"#626\" stroke-width=\"{sw:.6}\"/>\n",
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width}\" height=\"{}\" viewBox=\"{x0:.6} {y0:.6} {w:.6} {total:.6}\" font-family=\"sans-serif\">\n<rect x=\"{x0:.6}\" y=\"{y0:.6}\" width=\"{w:.6}\" height=\"{total:.6}\" fill=\"white\"/>\n<g transform=\"scale(1,-1)\">\n<polygon points=\"{}\" fill=\"#dde\" stroke=\"#226\" stroke-width=\"{sw:.6}\"/>\n<polygon points=\"{}\" fill=\"#ede\" stroke=\"#626\" stroke-width=\"{sw:.6}\"/>\n",
+        picture + band,
         points(&driver),
         points(&driven),
         w = 2.0 * half,
-        hh = 2.0 * half * 640.0 / 600.0,
     );
     let dot = half / 60.0;
-    for (p, colour) in [(tip1, "#226"), (tip2, "#626")] {
+    // Contacts first, as rings, so that the tips' dots drawn next stay visible on them.
+    for c in &contacts {
+        let colour = if c.role == "pushing" { "#e80" } else { "#c00" };
         let _ = writeln!(
             svg,
-            "<circle cx=\"{:.6}\" cy=\"{:.6}\" r=\"{dot:.6}\" fill=\"{colour}\"/>",
+            "<circle class=\"contact {}\" cx=\"{:.6}\" cy=\"{:.6}\" r=\"{:.6}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"{:.6}\"/>",
+            c.role,
+            c.point.x,
+            c.point.y,
+            2.2 * dot,
+            1.5 * sw
+        );
+        if let Some(n) = c.normal {
+            let end = c.point + n * (0.6 * h);
+            let _ = writeln!(
+                svg,
+                "<line x1=\"{:.6}\" y1=\"{:.6}\" x2=\"{:.6}\" y2=\"{:.6}\" stroke=\"{colour}\" stroke-width=\"{:.6}\"/>",
+                c.point.x,
+                c.point.y,
+                end.x,
+                end.y,
+                2.0 * sw
+            );
+        }
+    }
+    for (p, colour, who) in [(tip1, "#226", "driver-tip"), (tip2, "#626", "driven-tip")] {
+        let _ = writeln!(
+            svg,
+            "<circle class=\"{who}\" cx=\"{:.6}\" cy=\"{:.6}\" r=\"{dot:.6}\" fill=\"{colour}\"/>",
             p.x, p.y
         );
     }
-    if let Some((p, n)) = contact {
-        let end = p + n * (0.6 * h);
-        let _ = writeln!(
-            svg,
-            "<circle cx=\"{:.6}\" cy=\"{:.6}\" r=\"{:.6}\" fill=\"#c00\"/>\n<line x1=\"{:.6}\" y1=\"{:.6}\" x2=\"{:.6}\" y2=\"{:.6}\" stroke=\"#c00\" stroke-width=\"{:.6}\"/>",
-            p.x,
-            p.y,
-            1.5 * dot,
-            p.x,
-            p.y,
-            end.x,
-            end.y,
-            2.0 * sw
-        );
-    }
     svg.push_str("</g>\n");
-    let label = format!(
-        "{} ({counted}) at phi - phi0 = {:.4} deg: driver tooth {} (dot, blue), driven tooth {} (dot, purple){}",
-        e.label(),
-        (e.phi - traj.phi_start()).to_degrees(),
-        shown.0,
-        shown.1,
-        if contact.is_some() {
-            "; red: contact point and normal"
-        } else {
-            ""
-        }
-    );
+    // The caption's band, over anything of the gears that reaches below the picture.
+    let band_top = y0 + picture * scale;
     let _ = writeln!(
         svg,
-        "<text x=\"{:.6}\" y=\"{:.6}\" font-size=\"{:.6}\">{}</text>\n</svg>",
-        x0 + 0.02 * half,
-        y0 + 2.0 * half * 640.0 / 600.0 - 0.03 * half,
-        half / 34.0,
-        escape(&label)
+        "<rect x=\"{x0:.6}\" y=\"{band_top:.6}\" width=\"{:.6}\" height=\"{:.6}\" fill=\"white\"/>\n<line x1=\"{x0:.6}\" y1=\"{band_top:.6}\" x2=\"{:.6}\" y2=\"{band_top:.6}\" stroke=\"#999\" stroke-width=\"{sw:.6}\"/>",
+        2.0 * half,
+        band * scale,
+        x0 + 2.0 * half
     );
+    let mut lines = vec![
+        format!(
+            "{} ({counted}) at phi - phi0 = {:.4} deg (phi = {:.4} deg)",
+            e.label(),
+            (e.phi - traj.phi_start()).to_degrees(),
+            e.phi.to_degrees(),
+        ),
+        format!(
+            "theta = {:.4} deg (absolute, before any release)",
+            e.theta.to_degrees()
+        ),
+        format!(
+            "driver tooth {} (dot, blue), driven tooth {} (dot, purple)",
+            shown.0, shown.1
+        ),
+        format!(
+            "red ring: the contact of these teeth{}",
+            if contacts[0].normal.is_some() {
+                ", with its normal"
+            } else {
+                " (tip on tip: no normal)"
+            }
+        ),
+    ];
+    if contacts.iter().any(|c| c.role == "pushing") {
+        lines.push("orange ring: the driver tooth pushing the driven gear, with its normal".into());
+    }
+    let size = 14.0 * scale;
+    for (i, line) in lines.iter().enumerate() {
+        let _ = writeln!(
+            svg,
+            "<text x=\"{:.6}\" y=\"{:.6}\" font-size=\"{size:.6}\">{}</text>",
+            x0 + 8.0 * scale,
+            band_top + (20.0 + 19.0 * i as f64) * scale,
+            escape(line)
+        );
+    }
+    svg.push_str("</svg>\n");
     svg
 }
 
@@ -427,11 +719,12 @@ mod tests {
         assert_eq!(name, &format!("event-1-{}.svg", e.kind.name()));
         assert_eq!(svg.matches("<polygon").count(), 2);
         assert!(svg.contains(&format!("{} (jam)", e.kind.name())), "{svg}");
-        if mesh
-            .contact_normal(e.phi, e.theta, e.driver_tooth, e.driven_tooth)
-            .is_some()
-        {
-            assert!(svg.contains("contact point and normal"));
-        }
+        assert!(
+            svg.contains("red ring: the contact of these teeth"),
+            "{svg}"
+        );
+        // The tips' dots come after the contact rings: nothing hides them.
+        let last_ring = svg.rfind("class=\"contact").unwrap();
+        assert!(svg.find("class=\"driven-tip\"").unwrap() > last_ring);
     }
 }

@@ -68,8 +68,10 @@ file.
   - pair-check.svg draws both gears at phi = 0 and theta = 0 with the axes, each zero ray, teeth 0 \
 and 1 of each gear and the turning senses, so you can check your entry against your scan.
   - pair.html: the run on one self-contained page - both gears turning with a slider over phi and \
-a play button, the Theoretical Difference beneath with a cursor, every event a link that jumps \
-there and zooms on the mesh (open it from disk; `#phi=X` opens it at phi - phi0 = X deg).";
+a play button, the Theoretical Difference beneath with a cursor, every event a link that draws \
+the gears at the event's own phi and theta, zoomed on its contacts (both of a lock), and a lock's \
+release a link of its own (open it from disk; `#phi=X` opens it at phi - phi0 = X deg, \
+`#event=N` at event N).";
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
     study::events::labelled(ctx, counted)
