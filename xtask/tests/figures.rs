@@ -153,7 +153,15 @@ const SCRIPT: &str = r#"
     const plot = svg.querySelector('rect.plot-area');
     if (!plot) {
       const b = box(svg);
-      out.push(file + '\tpicture\t' + (svg.querySelectorAll('path, polyline, polygon, line').length > 0 && b.w > 0 && b.h > 0));
+      // An inset of exaggerated eccentricity: its factor, and the longest offset it draws (px).
+      const inset = svg.querySelector('g.inset');
+      let drawn = 0;
+      if (inset) inset.querySelectorAll('line[stroke-width="2.5"]').forEach(function (l) {
+        const r = box(l);
+        drawn = Math.max(drawn, Math.hypot(r.w, r.h));
+      });
+      out.push(file + '\tpicture\t' + (svg.querySelectorAll('path, polyline, polygon, line').length > 0 && b.w > 0 && b.h > 0)
+        + '\t' + (inset ? inset.dataset.exaggeration : 'none') + '\t' + Math.round(drawn));
       return;
     }
     const problems = [];
@@ -304,6 +312,14 @@ fn every_chart_gives_each_series_its_own_style_and_keeps_its_legend_off_the_data
                 "{file}: a picture of gears, drawn as a chart?"
             );
             assert_eq!(l[2], "true", "{file} draws nothing");
+            if name == "pair-check.svg" {
+                // The example pair's driven arbor sits 1.6 mm off its tip-circle centre on a
+                // 200 mm gear: invisible to scale, plain in the inset.
+                let factor: f64 = l[3].parse().unwrap_or(0.0);
+                let drawn: f64 = l[4].parse().unwrap();
+                assert!(factor > 1.0, "{file}: exaggeration {}", l[3]);
+                assert!(drawn >= 10.0, "{file}: the offset is drawn {drawn} px long");
+            }
             continue;
         }
         assert_eq!(kind, "chart", "{file} was not drawn by the chart builder");

@@ -66,7 +66,9 @@ theta_abs_deg are phi and theta themselves.
   - event-log.csv: the same relative angles, then the absolute ones, and tooth numbers as in your \
 file.
   - pair-check.svg draws both gears at phi = 0 and theta = 0 with the axes, each zero ray, teeth 0 \
-and 1 of each gear and the turning senses, so you can check your entry against your scan.
+and 1 of each gear and the turning senses, so you can check your entry against your scan, and \
+beneath them an inset per gear: its arbor against its tip-circle centre in its tips frame, the \
+offset exaggerated by the factor it states.
   - pair.html: the run on one self-contained page - both gears turning with a slider over phi and \
 a play button, the Theoretical Difference beneath with a cursor, every event a link that draws \
 the gears at the event's own phi and theta, zoomed on its contacts (both of a lock), and a lock's \
@@ -224,8 +226,8 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
                 &user_teeth,
                 EVENT_PICTURES,
             )
-                .into_iter()
-                .map(|(n, svg)| OutputFile::new(n, svg)),
+            .into_iter()
+            .map(|(n, svg)| OutputFile::new(n, svg)),
         )
         .collect(),
         ..Default::default()
@@ -421,6 +423,168 @@ fn escape(s: &str) -> String {
         .replace('"', "&quot;")
 }
 
+/// Height of the eccentricity insets of `pair-check.svg`, px.
+const INSET_HEIGHT: f64 = 230.0;
+
+/// The factor the insets of `pair-check.svg` draw each arbor's offset from its tip-circle
+/// centre by: of 1, 2 and 5 times a power of ten, the largest that draws the larger offset (as
+/// a share of its gear's tip radius) at most 0.6 of the inset's circle; 1 when there is none
+/// or it is visible as it is.
+fn exaggeration(offsets: &[(f64, f64)]) -> f64 {
+    let share = offsets.iter().map(|(e, r)| e / r).fold(0.0, f64::max);
+    if share <= 0.0 || share >= 0.6 {
+        return 1.0;
+    }
+    let raw = 0.6 / share;
+    let decade = 10f64.powf(raw.log10().floor());
+    [5.0, 2.0, 1.0]
+        .into_iter()
+        .map(|m| m * decade)
+        .find(|&f| f <= raw)
+        .unwrap_or(decade)
+        .max(1.0)
+}
+
+/// The insets of `pair-check.svg`: for each gear, its tip circle (a schematic circle), the
+/// tip-circle centre (o), the arbor (+) at its offset drawn [`exaggeration`] times its size,
+/// and the axes of the gear's tips frame (x along its zero ray, y 90 deg from it in the sense
+/// of its tips_deg), as the gears lie at φ = 0 and θ = 0: an eccentricity of a few tenths of a
+/// millimetre, invisible at the picture's scale, shown in the frame it was entered in.
+fn eccentricity_insets(svg: &mut String, p: &Prepared, margin: f64, width: f64, top: f64) {
+    let gears = [
+        (Role::Driver, p.mesh.driver(), p.driver, "#1f4e9c"),
+        (Role::Driven, p.mesh.driven(), p.driven, "#a3261f"),
+    ];
+    // The arbor minus the tip-circle centre in the view's frame (see check_svg).
+    let world = |role: Role, g: &geometry::Gear| match role {
+        Role::Driver => g.rotation_centre(),
+        Role::Driven => -g.rotation_centre(),
+    };
+    let offsets: Vec<(f64, f64)> = gears
+        .iter()
+        .map(|(role, g, ..)| (world(*role, g).norm(), g.max_tip_radius()))
+        .collect();
+    let factor = exaggeration(&offsets);
+    let box_w = (width - 2.0 * margin - 20.0) / 2.0;
+    let radius = 70.0;
+    svg.push_str(&format!(
+        "<g class=\"inset\" data-exaggeration=\"{factor}\">\n<text x=\"{margin}\" y=\"{:.1}\" font-size=\"13\" font-weight=\"bold\">{}</text>\n",
+        top + 4.0,
+        escape(&format!(
+            "Insets: arbor (+) against tip-circle centre (o) in each gear's tips frame (x along its zero ray), offsets exaggerated x{}",
+            fmt_f64(factor, 0),
+        ))
+    ));
+    for (i, ((role, g, numbering, colour), (offset, tip_r))) in
+        gears.iter().zip(&offsets).enumerate()
+    {
+        let x0 = margin + i as f64 * (box_w + 20.0);
+        let y0 = top + 14.0;
+        let h = INSET_HEIGHT - 14.0;
+        let (cx, cy) = (x0 + 20.0 + radius + 20.0, y0 + h / 2.0);
+        let at = |v: Vec2| (cx + v.x, cy - v.y);
+        svg.push_str(&format!(
+            "<rect x=\"{x0:.1}\" y=\"{y0:.1}\" width=\"{box_w:.1}\" height=\"{h:.1}\" fill=\"#fbfbfb\" stroke=\"#999999\"/>\n"
+        ));
+        // The tips frame's axes in the view: x along the zero ray (towards the other gear), y
+        // 90 deg from it the way the gear's tips_deg run.
+        let x_axis = match role {
+            Role::Driver => Vec2::new(1.0, 0.0),
+            Role::Driven => Vec2::new(-1.0, 0.0),
+        };
+        let ccw = match role {
+            Role::Driver => true,
+            Role::Driven => !numbering.mirrored,
+        };
+        let y_axis = if ccw {
+            Vec2::new(-x_axis.y, x_axis.x)
+        } else {
+            Vec2::new(x_axis.y, -x_axis.x)
+        };
+        svg.push_str(&format!(
+            "<circle cx=\"{cx:.1}\" cy=\"{cy:.1}\" r=\"{radius}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"1\"/>\n"
+        ));
+        for (axis, name) in [(x_axis, "x"), (y_axis, "y")] {
+            let end = at(axis * (radius + 18.0));
+            let base = axis * (radius + 10.0);
+            let n = Vec2::new(-axis.y, axis.x) * 4.0;
+            let (a, b) = (at(base + n), at(base - n));
+            svg.push_str(&format!(
+                "<line x1=\"{cx:.1}\" y1=\"{cy:.1}\" x2=\"{:.1}\" y2=\"{:.1}\" stroke=\"#555555\" stroke-width=\"1\"/>\n<polygon points=\"{:.1},{:.1} {:.1},{:.1} {:.1},{:.1}\" fill=\"#555555\"/>\n",
+                end.0, end.1, end.0, end.1, a.0, a.1, b.0, b.1
+            ));
+            let label =
+                at(axis * (radius + 24.0)
+                    + Vec2::new(0.0, if axis.y.abs() > 0.5 { 0.0 } else { 6.0 }));
+            let anchor = if axis.x > 0.5 {
+                "start"
+            } else if axis.x < -0.5 {
+                "end"
+            } else {
+                "middle"
+            };
+            svg.push_str(&format!(
+                "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"{anchor}\" font-size=\"11\" fill=\"#555555\">{}</text>\n",
+                label.0,
+                label.1 + if axis.y < -0.5 { 10.0 } else { 0.0 },
+                escape(name)
+            ));
+        }
+        let e = world(*role, g);
+        let drawn = e * (factor * radius / tip_r);
+        let (ax, ay) = at(drawn);
+        if *offset > 0.0 {
+            // The components along the frame's axes, dotted, and the offset itself.
+            let along = x_axis * drawn.dot(&x_axis);
+            let (px_, py_) = at(along);
+            svg.push_str(&format!(
+                "<polyline points=\"{cx:.1},{cy:.1} {px_:.1},{py_:.1} {ax:.1},{ay:.1}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"1\" stroke-dasharray=\"2 3\"/>\n<line x1=\"{cx:.1}\" y1=\"{cy:.1}\" x2=\"{ax:.1}\" y2=\"{ay:.1}\" stroke=\"{colour}\" stroke-width=\"2.5\"/>\n"
+            ));
+        }
+        svg.push_str(&format!(
+            "<circle cx=\"{cx:.1}\" cy=\"{cy:.1}\" r=\"4\" fill=\"white\" stroke=\"{colour}\" stroke-width=\"1.5\"/>\n<path d=\"M{:.1} {ay:.1}H{:.1}M{ax:.1} {:.1}V{:.1}\" stroke=\"{colour}\" stroke-width=\"2\"/>\n",
+            ax - 6.0,
+            ax + 6.0,
+            ay - 6.0,
+            ay + 6.0
+        ));
+        let tips = if numbering.mirrored {
+            Vec2::new(g.rotation_centre().x, -g.rotation_centre().y)
+        } else {
+            g.rotation_centre()
+        };
+        let xy = |v: Vec2| format!("({}, {})", fmt_f64(v.x, 4), fmt_f64(v.y, 4));
+        let words = if *offset > 0.0 {
+            format!(
+                "arbor minus tip-circle centre: {} in the tips frame (offset {}, angle_deg {}), {} in the view's frame; drawn {} times its size against a tip radius of {}.",
+                xy(tips),
+                fmt_f64(tips.norm(), 4),
+                fmt_f64(deg(tips.y.atan2(tips.x)), 3),
+                xy(e),
+                fmt_f64(factor, 0),
+                fmt_f64(*tip_r, 4)
+            )
+        } else {
+            "no eccentricity: the arbor is at the tip-circle centre.".to_string()
+        };
+        let text_x = cx + radius + 40.0;
+        svg.push_str(&format!(
+            "<text x=\"{text_x:.1}\" y=\"{:.1}\" font-size=\"13\" fill=\"{colour}\" font-weight=\"bold\">{}</text>\n",
+            y0 + 22.0,
+            escape(&format!("{}, offset x{}", role.name(), fmt_f64(factor, 0)))
+        ));
+        let chars = ((x0 + box_w - text_x - 8.0) / 6.6).max(12.0) as usize;
+        for (l, line) in wrap(&words, chars).iter().enumerate() {
+            svg.push_str(&format!(
+                "<text x=\"{text_x:.1}\" y=\"{:.1}\" font-size=\"11\">{}</text>\n",
+                y0 + 42.0 + 15.0 * l as f64,
+                escape(line)
+            ));
+        }
+    }
+    svg.push_str("</g>\n");
+}
+
 /// `pair-check.svg`: both gears at φ = 0 and θ = 0 as the file describes them, with the axes, the
 /// arbors and tip-circle centres, each zero ray, teeth 0 and 1 of each gear, the turning senses,
 /// and in words the conventions read from the file and the start of the run.
@@ -441,7 +605,8 @@ fn check_svg(name: &str, p: &Prepared, traj: &Trajectory) -> String {
     let y_max = 1.15 * r1.max(r2);
     let (width, margin, top) = (1000.0, 30.0, 50.0);
     let k = (width - 2.0 * margin) / (x_max - x_min);
-    let legend_top = top + 2.0 * y_max * k + 20.0;
+    let inset_top = top + 2.0 * y_max * k + 20.0;
+    let legend_top = inset_top + INSET_HEIGHT + 24.0;
     let height = legend_top + 12.0 * 18.0 + 10.0;
     let at = |v: Vec2| (margin + (v.x - x_min) * k, top + (y_max - v.y) * k);
     let pt = |v: Vec2| {
@@ -640,12 +805,15 @@ fn check_svg(name: &str, p: &Prepared, traj: &Trajectory) -> String {
             let up = tip.y > 0.0 || (tip.y == 0.0 && role == Role::Driver);
             let slot = &mut stacked[usize::from(!up)];
             *slot += 1.0;
-            let dy = (2.0 + 2.5 * *slot) * size;
-            let anchor = match role {
-                Role::Driver => "end",
-                Role::Driven => "start",
+            // Rows 22 px apart, the first well clear of the tips, each side of the mesh its
+            // own gear's labels, set aside from the line of centres.
+            let row = 22.0 / k;
+            let dy = 4.0 * size + *slot * row;
+            let (anchor, aside) = match role {
+                Role::Driver => ("end", -2.0 * size),
+                Role::Driven => ("start", 2.0 * size),
             };
-            (tip + Vec2::new(0.0, if up { dy } else { -dy }), anchor)
+            (tip + Vec2::new(aside, if up { dy } else { -dy }), anchor)
         } else {
             (radial, if out.x >= 0.0 { "start" } else { "end" })
         };
@@ -663,6 +831,7 @@ fn check_svg(name: &str, p: &Prepared, traj: &Trajectory) -> String {
             &format!("{} tooth {user}", role.name()),
         );
     }
+    eccentricity_insets(&mut svg, p, margin, width, inset_top);
     // The file's conventions in words, and the start.
     let mut lines = vec![
         "Seen from the side on which the driver turns counter-clockwise. Each zero ray starts at its gear's tip-circle centre (o) and, at phi = 0 and theta = 0, points along the line of centres at the other gear.".to_string(),
@@ -1316,6 +1485,39 @@ mod tests {
         }
         assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
         assert_eq!(svg.matches("<polygon id=").count(), 2);
+        // The insets: the arbor against the tip-circle centre, exaggerated by a stated factor.
+        let factor = exaggeration(&[
+            (
+                p.mesh.driver().rotation_centre().norm(),
+                p.mesh.driver().max_tip_radius(),
+            ),
+            (
+                p.mesh.driven().rotation_centre().norm(),
+                p.mesh.driven().max_tip_radius(),
+            ),
+        ]);
+        assert!(
+            svg.contains(&format!(
+                "<g class=\"inset\" data-exaggeration=\"{factor}\">"
+            )),
+            "{svg}"
+        );
+        assert!(
+            svg.contains(&format!("offsets exaggerated x{factor}")),
+            "{svg}"
+        );
+    }
+
+    #[test]
+    fn insets_exaggerate_small_offsets_by_round_factors() {
+        // 0.35 mm on a 13.2 mm wheel: 0.6 / 0.0265 = 22.6, so 20 times.
+        assert_eq!(exaggeration(&[(0.35, 13.2), (0.0, 16.0)]), 20.0);
+        assert_eq!(exaggeration(&[(0.1, 200.0)]), 1000.0);
+        assert_eq!(exaggeration(&[(1.58, 200.0)]), 50.0);
+        // None, or large enough to see: drawn as they are.
+        assert_eq!(exaggeration(&[(0.0, 10.0), (0.0, 5.0)]), 1.0);
+        assert_eq!(exaggeration(&[(4.0, 10.0)]), 1.0);
+        assert_eq!(exaggeration(&[]), 1.0);
     }
 
     /// The ```ron block after `marker` in the README, without its `driven: ` and final comma.
