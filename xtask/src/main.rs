@@ -28,6 +28,7 @@ mod fuzz;
 mod fuzz_settings;
 mod fuzz_targets;
 mod help;
+mod hints;
 mod merge;
 mod plan;
 mod print;
@@ -75,7 +76,8 @@ fn main() -> ExitCode {
                     "error: {} (`cargo xtask help` shows the usage)",
                     one_line(m)
                 ),
-                Failure::Bad(m) | Failure::Internal(m) => eprintln!("{}", one_line(m)),
+                Failure::Bad(m) => eprintln!("{}", one_line(&hints::did_you_mean(m))),
+                Failure::Internal(m) => eprintln!("{}", one_line(m)),
                 Failure::Reported(_) => {}
             }
             ExitCode::from(f.code())

@@ -167,6 +167,12 @@ pub(crate) fn plan(
         planned.push(Planned { e, ctx, sets });
     }
     preflight(&planned, run)?;
+    // What runs but is probably not what was meant, said before it runs.
+    for p in &planned {
+        for w in crate::hints::warnings(p.e, &p.sets, p.ctx.config()) {
+            progress::note(&w);
+        }
+    }
     Ok(planned)
 }
 

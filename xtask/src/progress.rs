@@ -22,7 +22,7 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, OnceLock, PoisonError};
 use std::time::{Duration, Instant};
 
-use indicatif::{ProgressState, ProgressStyle};
+use indicatif::ProgressStyle;
 use registry::{BatchProgress, Context, Progress};
 use tracing::Span;
 use tracing_indicatif::IndicatifLayer;
@@ -202,8 +202,9 @@ impl Lines {
     }
 }
 
-/// `, R trials/s, about T left` for `done` of `trials` in `elapsed`; nothing to say before the
-/// first trial is done.
+/// `, R trials/s, about T left in this batch` for `done` of `trials` in `elapsed` (since the batch
+/// started: the work done so far, not the latest ticks); nothing to say before the first trial
+/// is done. Later batches of the experiment are not known yet, so not counted.
 fn rate_and_left(done: u64, trials: u64, elapsed: Duration) -> String {
     let secs = elapsed.as_secs_f64();
     if done == 0 || secs <= 0.0 {
@@ -212,7 +213,7 @@ fn rate_and_left(done: u64, trials: u64, elapsed: Duration) -> String {
     let rate = done as f64 / secs;
     let left = Duration::from_secs_f64(((trials - done) as f64 / rate).min(1e9));
     format!(
-        ", {} trials/s, about {} left",
+        ", {} trials/s, about {} left in this batch",
         registry::fmt_f64(rate, 2),
         human(left)
     )
@@ -289,18 +290,13 @@ impl Bars {
         Bars {
             since: Mutex::new(Instant::now()),
             delay,
-            style: ProgressStyle::with_template(
-                "{msg} [{bar:30}] {human_pos}/{human_len} trials, {rate}, {eta} left",
-            )
-            .ok()
-            .map(|s| {
-                s.progress_chars("=> ").with_key(
-                    "rate",
-                    |state: &ProgressState, w: &mut dyn std::fmt::Write| {
-                        let _ = write!(w, "{:.1} trials/s", state.per_sec());
-                    },
-                )
-            }),
+            // The rate and time left are the batch's own, from the trials done since it started
+            // (as the progress lines give them), set in the message: indicatif's estimate
+            // follows the latest ticks, which come in bursts of cheap trials (a trial that jams
+            // early ends early) and ran low.
+            style: ProgressStyle::with_template("[{bar:30}] {human_pos}/{human_len} trials{msg}")
+                .ok()
+                .map(|s| s.progress_chars("=> ")),
         }
     }
 }
@@ -321,6 +317,8 @@ impl Progress for Bars {
             style: self.style.clone(),
             done: AtomicU64::new(0),
             shown: AtomicU64::new(0),
+            started: Instant::now(),
+            told: AtomicU64::new(0),
             span: OnceLock::new(),
         })
     }
@@ -338,6 +336,10 @@ struct Bar {
     done: AtomicU64,
     /// The largest count drawn so far (ticks arrive from several threads).
     shown: AtomicU64,
+    /// When the batch started: its rate and time left count from here.
+    started: Instant,
+    /// When the rate and time left were last written (milliseconds after `started`).
+    told: AtomicU64,
     span: OnceLock<Span>,
 }
 
@@ -357,17 +359,31 @@ impl BatchProgress for Bar {
                 span.pb_set_style(style);
             }
             span.pb_set_length(self.trials);
-            span.pb_set_message(&self.label);
+            span.pb_set_message(&format!(" ({})", self.label));
             span.pb_start();
-            // The trials done before the bar appeared are not part of its rate.
             span.pb_set_position(done);
-            span.pb_reset_eta();
             tracing::debug!(bar = %self.label, trials = self.trials, "progress bar shown");
             span
         });
         if self.shown.fetch_max(done, Ordering::Relaxed) < done {
             // Never backwards: a tick that lost the race to a later one draws nothing.
             span.pb_set_position(done);
+        }
+        // The rate and time left, four times a second at most.
+        let now = self.started.elapsed();
+        let ms = u64::try_from(now.as_millis()).unwrap_or(u64::MAX);
+        let told = self.told.load(Ordering::Relaxed);
+        if ms >= told.saturating_add(250)
+            && self
+                .told
+                .compare_exchange(told, ms, Ordering::Relaxed, Ordering::Relaxed)
+                .is_ok()
+        {
+            span.pb_set_message(&format!(
+                "{} ({})",
+                rate_and_left(done.min(self.trials), self.trials, now),
+                self.label
+            ));
         }
     }
 }
@@ -389,7 +405,7 @@ mod tests {
         // 30 of 200 trials in 60 s: 0.5 per second, 170 left take 340 s.
         assert_eq!(
             rate_and_left(30, 200, Duration::from_secs(60)),
-            ", 0.50 trials/s, about 5m 40s left"
+            ", 0.50 trials/s, about 5m 40s left in this batch"
         );
         assert_eq!(
             rate_and_left(0, 2, Duration::from_secs(60)),
