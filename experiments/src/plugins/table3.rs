@@ -29,6 +29,13 @@ registry::inventory::submit! {
     }
 }
 
+/// `case` and the meshes: the columns of both tables.
+fn ours_header(meshes: &[&str]) -> Vec<String> {
+    let mut header = vec!["case".to_string()];
+    header.extend(meshes.iter().map(|m| (*m).to_string()));
+    header
+}
+
 fn run(ctx: &Context) -> Result<Report, RunError> {
     study::events::labelled(ctx, counted)
 }
@@ -48,13 +55,11 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     }
     let counts = run_cells(ctx, g, &cells, trials, Purpose::Own)?;
 
-    let mut header = vec!["case".to_string()];
-    header.extend(meshes.iter().map(|m| (*m).to_string()));
     let mut ours = Table::new(
         format!(
             "Table 3: trials (of {trials}) with at least one jam / disengagement, G = {clearance} %: ours (paper); * where a two-sample test separates our count from the paper's"
         ),
-        header,
+        ours_header(&meshes),
     );
     let mut csv = format!("case,mesh,{CSV_COLUMNS}\n");
     let mut tally = Tally::default();
@@ -66,6 +71,32 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             hyp.name()
         )]
     };
+    // The printed intervals: our counts with their 95 % Wilson intervals, as counts of trials.
+    let mut intervals = Table::new(
+        format!(
+            "Table 3, ours with 95 % Wilson intervals: jams [interval] / disengagements [interval], counts of {trials} trials, G = {clearance} %"
+        ),
+        ours_header(&meshes),
+    );
+    for (c, case) in rows.iter().enumerate() {
+        let mut with_intervals = vec![case.clone()];
+        for m in 0..meshes.len() {
+            let n = &counts[c * meshes.len() + m];
+            let (j, d) = (n.jam_interval(), n.dis_interval());
+            let t = n.trials as f64;
+            with_intervals.push(format!(
+                "{} [{:.1} .. {:.1}] / {} [{:.1} .. {:.1}]",
+                n.jams,
+                j.lo * t,
+                j.hi * t,
+                n.disengagements,
+                d.lo * t,
+                d.hi * t
+            ));
+        }
+        intervals.row(with_intervals);
+    }
+    intervals.note("Wilson score intervals at 95 % of each count, in trials; table3-data.csv has the same as jam_lo, jam_hi, dis_lo and dis_hi. The `*` of the table above comes from Fisher's exact two-sample test against the paper's count, not from these intervals (the paper's counts are samples too).");
     for (c, case) in rows.iter().enumerate() {
         let mut row = vec![case.clone()];
         for (m, mesh) in meshes.iter().enumerate() {
@@ -84,7 +115,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     ours.note("Each trial: both gears manufactured afresh (hypothesis and Case), a random initial angle, one full turn of the gear with more teeth.");
     ours.note("See a failed trial: `cargo xtask replay table3 B/m3-e3` lists the trials of that cell that jammed or disengaged; `cargo xtask replay table3 B/m3-e3 TRIAL` rebuilds one from its random stream, prints its events and writes a pair file to rerun it (same --seed and --set as this run).");
     Ok(Report {
-        tables: vec![ours],
+        tables: vec![ours, intervals],
         files: vec![OutputFile::new("table3-data.csv", csv)],
         trials: counts.iter().map(|c| c.trials).sum(),
         engagements: counts.iter().map(|c| c.engagements).sum(),
