@@ -569,6 +569,21 @@ fn marked_points(n: usize, k: usize) -> Vec<usize> {
         .collect()
 }
 
+/// A tick label of a logarithmic axis: the value to at least two significant digits, written plainly
+/// from 0.001 to 99 999 (0.032, 0.1, 3.2, 316), in exponent form beyond.
+fn log_tick(v: f64) -> String {
+    if !(1e-3..1e5).contains(&v) {
+        return format!("{v:.1e}");
+    }
+    let decimals = (1.0 - v.log10().floor()).max(0.0) as usize;
+    let t = format!("{v:.decimals$}");
+    if t.contains('.') {
+        t.trim_end_matches('0').trim_end_matches('.').to_owned()
+    } else {
+        t
+    }
+}
+
 /// A chart of lines against a numeric x axis: title naming the paper item, labelled axes with
 /// units, every series in a style of its own ([`style`]), the legend below the axes. Build it
 /// with [`Plot::new`], add what the figure needs, and draw it with [`Plot::svg`].
@@ -752,7 +767,7 @@ impl<'a> Plot<'a> {
             (x0..x1, y0..y1),
             &entries,
             |chart, plot_err| {
-                let decade = |v: &f64| format!("{:.1e}", 10f64.powf(*v));
+                let decade = |v: &f64| log_tick(10f64.powf(*v));
                 let plain = |v: &f64| {
                     if whole {
                         return format!("{v:.0}");
@@ -1074,6 +1089,16 @@ mod tests {
         assert!(t.windows(2).all(|w| w[0].0 < w[1].0), "in order");
         let peak = t.iter().map(|p| p.1).fold(f64::MIN, f64::max);
         assert!(peak > 5.0, "a one-point spike survives: {peak}");
+    }
+
+    #[test]
+    fn log_ticks_read_plainly() {
+        assert_eq!(log_tick(0.031_622_776), "0.032");
+        assert_eq!(log_tick(0.1), "0.1");
+        assert_eq!(log_tick(3.162_277_6), "3.2");
+        assert_eq!(log_tick(316.227_76), "316");
+        assert_eq!(log_tick(1e-5), "1.0e-5");
+        assert_eq!(log_tick(1e6), "1.0e6");
     }
 
     #[test]
