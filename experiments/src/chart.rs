@@ -478,8 +478,40 @@ fn legend_svg(entries: &[Entry], layout: &LegendLayout, top: f64) -> String {
     s
 }
 
+/// Font size of a chart's title, px.
+const TITLE_FONT: f64 = 15.0;
+/// Distance between the lines of a title, px.
+const TITLE_LINE: f64 = 19.0;
+/// The width of a title's character, about, px.
+const TITLE_CHAR: f64 = 8.4;
+
+/// The space above the axes for a title of `lines` lines, px.
+fn title_height(lines: usize) -> u32 {
+    (TITLE_LINE * lines as f64 + 10.0).ceil() as u32
+}
+
+/// `s` broken at spaces into lines of at most `width` characters (a longer word stays whole).
+fn wrap_words(s: &str, width: usize) -> Vec<String> {
+    let mut lines: Vec<String> = vec![String::new()];
+    for word in s.split(' ') {
+        let fits = lines
+            .last()
+            .is_some_and(|l| l.is_empty() || l.chars().count() + 1 + word.chars().count() <= width);
+        if !fits {
+            lines.push(String::new());
+        }
+        if let Some(last) = lines.last_mut() {
+            if !last.is_empty() {
+                last.push(' ');
+            }
+            last.push_str(word);
+        }
+    }
+    lines
+}
+
 /// The chart every figure is drawn on, in one place: a white `width`-wide SVG canvas, the title
-/// as caption, the same margins and label areas, axes `x` by `y` 480 px high and the legend of
+/// above the axes in as many lines as it needs, the same margins and label areas, axes `x` by `y` 480 px high and the legend of
 /// `entries` below them. `draw` adds the mesh and anything `plotters` draws (marks), and returns
 /// the SVG of the series, in pixels of the canvas, given the plot area.
 fn chart_svg<X, Y>(
@@ -497,6 +529,8 @@ where
     Y: AsRangedCoord,
 {
     let layout = LegendLayout::new(entries, width);
+    // The title in as many centred lines as the canvas' width needs.
+    let title_lines = wrap_words(title, ((f64::from(width) - 24.0) / TITLE_CHAR) as usize);
     let height = AXES_HEIGHT + layout.height();
     let mut svg = String::new();
     let (plot_area, series) = {
@@ -505,8 +539,8 @@ where
         root.fill(&WHITE).map_err(|e| plot_err(&e))?;
         let (axes, _legend): (DrawingArea<_, Shift>, _) = root.split_vertically(AXES_HEIGHT);
         let mut chart = ChartBuilder::on(&axes)
-            .caption(title, ("sans-serif", 18))
             .margin(12)
+            .margin_top(title_height(title_lines.len()))
             .x_label_area_size(40)
             .y_label_area_size(70)
             .build_cartesian_2d(x, y)
@@ -529,6 +563,15 @@ where
         px(plot_area.w),
         px(plot_area.h)
     );
+    for (i, line) in title_lines.iter().enumerate() {
+        let _ = writeln!(
+            extra,
+            "<text class=\"title\" x=\"{}\" y=\"{}\" text-anchor=\"middle\" font-family=\"sans-serif\" font-size=\"{TITLE_FONT}\">{}</text>",
+            px(f64::from(width) / 2.0),
+            px(12.0 + TITLE_FONT + TITLE_LINE * i as f64),
+            esc(line)
+        );
+    }
     extra.push_str(&series);
     extra.push_str(&legend_svg(entries, &layout, f64::from(AXES_HEIGHT)));
     match svg.rfind("</svg>") {

@@ -2,8 +2,8 @@
 //! writes an SVG, each SVG put on one page that headless Chromium lays out, and a script on that
 //! page measuring what a reader sees. Every chart must give each series a style of its own (the
 //! colour and dash of its line and the shape and colour of its marker, as rendered), name each
-//! series in its legend in that same style, and keep the legend box off the plot area and off
-//! every series; every other picture must draw something. The page is also screenshot, which
+//! series in its legend in that same style, keep the legend box off the plot area and off
+//! every series, and keep every text on the canvas; every other picture must draw something. The page is also screenshot, which
 //! must not be blank. Skipped when Chromium is missing, unless `CI=true` (`.ci/run` installs it).
 #![allow(clippy::unwrap_used, reason = "tests")]
 
@@ -189,6 +189,11 @@ const SCRIPT: &str = r#"
       }
     });
     if (keys.length === 0) problems.push('no series');
+    svg.querySelectorAll('text').forEach(function (t) {
+      const T = box(t);
+      if (T.w > 0 && (T.x < canvas.x - 1 || T.x + T.w > canvas.x + canvas.w + 1))
+        problems.push('text runs off the canvas: ' + t.textContent.trim().slice(0, 40));
+    });
     out.push(file + '\tchart\t' + keys.length + '\t' + new Set(keys).size + '\t' + (problems.join('; ') || 'ok'));
   });
   document.getElementById('result').textContent = out.join('\n');
