@@ -42,7 +42,7 @@ Usage:
                                 for in the directories given), check they fit, and
                                 print and write the results as `run` would:
                                 bit-identical to one run without --shard
-  cargo xtask replay <experiment> <cell> [<trial>] [--seed S] [--set KEY=VALUE]... [--out DIR]
+  cargo xtask replay <experiment> <cell> [<trial>] [--seed S] [--trials N] [--set KEY=VALUE]... [--out DIR]
                                 rebuild one trial of table3, table4, table5 or tableI from
                                 its random stream (cell as the table names it:
                                 B/m3-e3, B/70/m3-e3, 0.050/m3-e3, 0.050/0.7/e4-f1)

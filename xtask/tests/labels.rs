@@ -45,7 +45,7 @@ fn check_rows(printed: &str, rows: usize) {
     // The first table (table3 prints its intervals in a second one, row for row).
     let first = printed
         .match_indices("\n### ")
-        .nth(0)
+        .next()
         .map_or(printed, |(i, _)| &printed[..i]);
     let body: Vec<&str> = first
         .lines()
