@@ -433,7 +433,97 @@ pub fn load(file: &str, text: &str) -> Result<(Mesh, PairFile), RunError> {
         ));
     }
     let mesh = Mesh::new(driver, driven, d).map_err(|e| RunError::bad(file, e.field, e.rule))?;
+    let distance_field = if spec.centre_distance.is_some() {
+        "centre_distance"
+    } else {
+        "clearance_percent"
+    };
+    proportions(file, &mesh, distance_field)?;
     Ok((mesh, spec))
+}
+
+/// The tallest tooth, as a share of its tip radius: half (root radius at least half the tip
+/// radius). Thorndike's example pair (`fig2`, R = 200, r = 100) is at this limit; the Freeth
+/// gearing's teeth are 1.1 mm on radii of 3.4 to 65 mm (at most a third).
+pub const MAX_TOOTH_HEIGHT_SHARE: f64 = 0.5;
+
+/// How many times larger one gear's tooth pitch (2π·tip_radius/teeth) may be than the other's.
+/// Gears that mesh have teeth of one size (the Freeth gearing's are fitted to one pitch).
+pub const MAX_PITCH_RATIO: f64 = 10.0;
+
+/// How many times taller one gear's teeth may be than the other's. The Freeth gearing's are all
+/// one height.
+pub const MAX_HEIGHT_RATIO: f64 = 4.0;
+
+/// The proportions the solver's work per driver pitch depends on, checked in numbers without a
+/// unit, so that a file in any length unit is judged alike. Beyond them the work of one pitch
+/// grows without bound (a tip radius of 1.8e19 over a root radius of 180 took a minute): teeth
+/// as tall as the gear are needles whose contacts the solver resolves a hair at a time, teeth
+/// of very different sizes bring hundreds of teeth of one gear against one of the other, and
+/// tips that reach below the other gear's valleys wherever the gears turn put one gear among
+/// the other's teeth.
+fn proportions(file: &str, mesh: &Mesh, distance_field: &str) -> Result<(), RunError> {
+    let gears = [("driver", mesh.driver()), ("driven", mesh.driven())];
+    for (which, g) in gears {
+        let (big_r, small_r) = (g.tip_radius(), g.root_radius());
+        if big_r - small_r > MAX_TOOTH_HEIGHT_SHARE * big_r {
+            return Err(RunError::bad(
+                file,
+                format!("{which}.root_radius"),
+                format!(
+                    "must be at least half of tip_radius ({}; got {}): the tooth height tip_radius - root_radius may be at most half the tip radius (Thorndike's example pair, R = 200 and r = 100, is at this limit; the Freeth gearing's teeth are at most a third of their radius)",
+                    fmt_number(MAX_TOOTH_HEIGHT_SHARE * big_r),
+                    fmt_number(small_r)
+                ),
+            ));
+        }
+    }
+    let [(_, g1), (_, g2)] = gears;
+    let pitch = |g: &Gear| TAU * g.tip_radius() / g.teeth() as f64;
+    let (p1, p2) = (pitch(g1), pitch(g2));
+    if p1.max(p2) > MAX_PITCH_RATIO * p1.min(p2) {
+        return Err(RunError::bad(
+            file,
+            "driven.tip_radius",
+            format!(
+                "the gears' teeth must be of one size: the driven gear's tooth pitch 2π·tip_radius/teeth = {} and the driver's {} are more than {MAX_PITCH_RATIO} times apart (meshing gears have teeth of one pitch)",
+                fmt_number(p2),
+                fmt_number(p1)
+            ),
+        ));
+    }
+    let (h1, h2) = (g1.tooth_height(), g2.tooth_height());
+    if h1.max(h2) > MAX_HEIGHT_RATIO * h1.min(h2) {
+        return Err(RunError::bad(
+            file,
+            "driven.root_radius",
+            format!(
+                "the gears' teeth must be of one size: the driven gear's tooth height tip_radius - root_radius = {} and the driver's {} are more than {MAX_HEIGHT_RATIO} times apart (meshing gears have teeth of one height)",
+                fmt_number(h2),
+                fmt_number(h1)
+            ),
+        ));
+    }
+    // The clearance G > 0 of eccentric gears: their tip circles' centres are at most
+    // D + |e1| + |e2| apart, so at or below R + r the tips of one gear reach below the other's
+    // valleys at every angle (concentric gears are refused so by `Mesh::new`).
+    let farthest =
+        mesh.centre_distance() + g1.rotation_centre().norm() + g2.rotation_centre().norm();
+    for (tips, valleys, g, other) in [("driver", "driven", g1, g2), ("driven", "driver", g2, g1)] {
+        let deepest = g.max_tip_radius() + other.min_root_radius();
+        if farthest <= deepest {
+            return Err(RunError::bad(
+                file,
+                distance_field,
+                format!(
+                    "the {tips} gear's tips reach below the {valleys} gear's valleys at every angle: even where the gears are farthest apart their tip-circle centres are D + |e1| + |e2| = {} apart, at most the {tips} tip radius plus the {valleys} root radius, {} (clearance G must be above 0 there)",
+                    fmt_number(farthest),
+                    fmt_number(deepest)
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// A loaded pair file, ready to run: the mesh, the file, how its tooth numbers map onto the
