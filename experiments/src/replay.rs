@@ -181,7 +181,8 @@ fn unchecked_cell_spec(
     Ok(CellSpec {
         mesh: mesh.to_owned(),
         hypothesis: hyp,
-        params: errors::params(ctx, hyp, &errors)?,
+        // A value the hypothesis refuses is named as the part of the cell it was typed in.
+        params: errors::params(ctx, hyp, &errors).map_err(|e| typed_part(e, id, cell))?,
         tooth_height: ctx.f64("tooth_height")?,
         clearance,
         events: study::events::chosen(ctx)?,

@@ -1204,3 +1204,38 @@ fn partial_files() {
     ];
     assert_none(failures("partial", cases));
 }
+
+/// A hypothesis parameter that Edmunds' errors refuse is refused naming what the user typed
+/// (`--set hypothesis_params` and the key), not `--hypothesis`, before anything is drawn.
+#[test]
+fn hypothesis_params_refused_by_edmunds_name_the_setting_typed() {
+    let cases = vec![
+        case(
+            "a negative random error",
+            None,
+            "run fig5 --set hypothesis_params=random=-0.05 --out {out}",
+            &[
+                "--set: hypothesis_params: edmunds-split: random: must be a finite number >= 0 (got -0.05)",
+            ],
+        ),
+        case(
+            "a random error above the limit",
+            None,
+            "run fig5 --hypothesis edmunds-split --set hypothesis_params=random=0.5 --out {out}",
+            &["--set: hypothesis_params: edmunds-split: random: must be at most 0.1"],
+        ),
+        case(
+            "an eccentric share of 90 degrees or more",
+            None,
+            "run fig5 --hypothesis eccentric-only --set hypothesis_params=systematic=200 --out {out}",
+            &["--set: hypothesis_params: eccentric-only: systematic: its eccentric share"],
+        ),
+        case(
+            "a layer of a stack",
+            None,
+            "run fig5 --hypothesis design-valleys+edmunds-split --set hypothesis_params=random=-1 --out {out}",
+            &["--set: hypothesis_params: edmunds-split: random: must be a finite number >= 0"],
+        ),
+    ];
+    assert_none(failures("edmunds-params", cases));
+}

@@ -108,6 +108,14 @@ pub trait Hypothesis: Sync {
     fn details(&self) -> &'static str {
         ""
     }
+    /// Refuses values of `params` that no gear can take, as [`Hypothesis::apply`] would, without
+    /// a gear: the error's `what` ends with the parameter's name (`NAME: key`), so that a caller
+    /// can name where the value came from (a `--set` the user typed, a value of its own) before
+    /// anything is computed. The default accepts every value.
+    fn check(&self, params: &Params) -> Result<(), HypothesisError> {
+        let _ = params;
+        Ok(())
+    }
     /// The manufactured version of `gear` (named `gear_name`, for errors and per-gear tables).
     ///
     /// `params` holds a value for every entry of [`Hypothesis::params`]; randomness comes only

@@ -37,6 +37,10 @@ impl Hypothesis for Stack {
         self.params
     }
 
+    fn check(&self, params: &Params) -> Result<(), HypothesisError> {
+        self.layers.iter().try_for_each(|layer| layer.check(params))
+    }
+
     fn apply(
         &self,
         gear: &Gear,

@@ -85,14 +85,32 @@ pub fn params(
         .filter(|(k, _)| !user.iter().any(|(u, _)| u == k))
         .map(|(k, v)| ((*k).to_string(), v.to_string()))
         .collect();
+    let typed: Vec<String> = user.iter().map(|(k, _)| k.trim().to_string()).collect();
     overrides.extend(user);
-    Params::new(h, &overrides).map_err(|e| {
+    let p = Params::new(h, &overrides).map_err(|e| {
         RunError::bad(
             "--set",
             format!("{}: {}", PARAMS_PARAM.name, e.what),
             e.rule,
         )
-    })
+    })?;
+    // Values no gear can take are refused here, before anything is drawn, naming what the user
+    // typed: a key of `hypothesis_params`, or the experiment's own parameter of that name.
+    h.check(&p).map_err(|e| {
+        let key = e.what.rsplit(": ").next().unwrap_or_default();
+        if typed.iter().any(|k| k == key) {
+            RunError::bad(
+                "--set",
+                format!("{}: {}", PARAMS_PARAM.name, e.what),
+                e.rule,
+            )
+        } else if ctx.declares(key) {
+            RunError::bad("--set", key, e.rule)
+        } else {
+            RunError::bad("--hypothesis", e.what, e.rule)
+        }
+    })?;
+    Ok(p)
 }
 
 /// `gear` as manufactured under `h`. A failure is bad input (a parameter too large for the gear,

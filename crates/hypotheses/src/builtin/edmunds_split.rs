@@ -54,6 +54,10 @@ impl Hypothesis for EdmundsVariant {
         self.params
     }
 
+    fn check(&self, params: &Params) -> Result<(), HypothesisError> {
+        self.errors(params).check(self.name)
+    }
+
     fn apply(
         &self,
         gear: &Gear,
@@ -61,14 +65,21 @@ impl Hypothesis for EdmundsVariant {
         params: &Params,
         rng: &mut dyn rand::RngCore,
     ) -> Result<Gear, HypothesisError> {
-        let errors = EdmundsErrors {
+        let errors = self.errors(params);
+        errors.check(self.name)?;
+        errors.apply(gear, gear_name, rng)
+    }
+}
+
+impl EdmundsVariant {
+    /// Edmunds' errors as `params` set them.
+    fn errors(&self, params: &Params) -> EdmundsErrors {
+        EdmundsErrors {
             random: params.get(RANDOM.name),
             systematic_deg: params.get(SYSTEMATIC.name),
             split: self.split.unwrap_or_else(|| params.get(SPLIT.name)),
             phase_deg: None,
-        };
-        errors.check(self.name)?;
-        errors.apply(gear, gear_name, rng)
+        }
     }
 }
 
