@@ -265,8 +265,7 @@ impl LegendLayout {
         let mut placed = Vec::with_capacity(entries.len());
         let mut rows = 0;
         let grid_rows = in_grid.len().div_ceil(columns);
-        let mut k = 0;
-        for e in entries.iter().filter(|e| e.series.is_some()) {
+        for (k, e) in in_grid.iter().enumerate() {
             if columns > 1 {
                 placed.push((k / grid_rows, k % grid_rows, vec![e.label.clone()]));
                 rows = grid_rows;
@@ -276,7 +275,6 @@ impl LegendLayout {
                 placed.push((0, rows, lines));
                 rows += n;
             }
-            k += 1;
         }
         let mut widest: f64 = 0.0;
         for e in entries.iter().filter(|e| e.series.is_none()) {
