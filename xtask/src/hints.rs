@@ -180,8 +180,7 @@ pub(crate) fn warnings(
         if p.name == "clearance"
             && p.unit == "% of h"
             && let Ok(v) = value.parse::<f64>()
-            && v > 0.0
-            && v < 1.0
+            && fraction_of_a_clearance(v)
         {
             let meant = percent(v);
             out.push(format!(
@@ -199,6 +198,12 @@ pub(crate) fn warnings(
         }
     }
     out
+}
+
+/// Whether a clearance of `v` % of h looks like a fraction typed for a per cent: below 1 %, and
+/// as a per cent (`100 v`) a clearance the paper's gears use (1 to 100 %).
+fn fraction_of_a_clearance(v: f64) -> bool {
+    (0.01..1.0).contains(&v)
 }
 
 /// A fraction `v` as the per cent it may have meant, without float noise (0.07 -> 7).
@@ -246,8 +251,7 @@ fn pair_warnings(c: &ConfigFile) -> Vec<String> {
         }
     }
     if let Some(g) = p.spec.clearance_percent
-        && g > 0.0
-        && g < 1.0
+        && fraction_of_a_clearance(g)
     {
         let meant = percent(g);
         out.push(format!(
