@@ -48,8 +48,18 @@ use geometry::Vec2;
 
 use crate::mesh::ToothData;
 
-/// Absolute widening of every bound (mm of signed distance) against rounding.
+/// Absolute widening of every bound (mm of signed distance) against rounding, for meshes whose
+/// centre distance is 1 to 1000 length units (every gearing's, in mm); see [`round_for`].
 const ROUND: f64 = 1e-10;
+
+/// The widening against rounding for a mesh at `centre_distance`: [`ROUND`] from 1 to 1000
+/// length units, and in proportion to the size beyond (a pair file takes any unit), so that it
+/// stays far above the rounding of the products (about 1e-16 of the size) without swamping
+/// smaller gears' clearances: with a fixed 1e-10, gears of radius 1e-5 lost every certificate
+/// and one driver pitch took seconds.
+fn round_for(centre_distance: f64) -> f64 {
+    ROUND * centre_distance.min(1.0).max(centre_distance / 1000.0)
+}
 
 /// One tooth as the certificate needs it, in its gear's frame about the rotation centre.
 #[derive(Debug, Clone, Copy)]
@@ -126,6 +136,8 @@ pub(crate) struct ConfigBox {
     /// (sin, cos) of π − θc: the driven gear's turn.
     driven_turn: (f64, f64),
     c2: Vec2,
+    /// The widening of every bound against rounding ([`round_for`] the centre distance).
+    round: f64,
 }
 
 #[inline]
@@ -167,6 +179,7 @@ impl ConfigBox {
             d_phi: 0.5 * (phi1 - phi0) * (1.0 + 1e-12) + 1e-15 * phi_c.abs(),
             driver_turn: phi_c.sin_cos(),
             c2: Vec2::new(centre_distance, 0.0),
+            round: round_for(centre_distance),
             // Set by `with_driven` below.
             d_theta: 0.0,
             driven_turn: (0.0, 1.0),
@@ -224,8 +237,8 @@ impl ConfigBox {
     /// Whether two discs from [`ConfigBox::driver_disc`] and [`ConfigBox::driven_disc`] are
     /// apart: then the teeth touch nowhere in the box, and [`ConfigBox::pair`] is `Clear`.
     #[inline]
-    pub(crate) fn apart(a: (Vec2, f64), b: (Vec2, f64)) -> bool {
-        let far = a.1 + b.1 + ROUND;
+    pub(crate) fn apart(&self, a: (Vec2, f64), b: (Vec2, f64)) -> bool {
+        let far = a.1 + b.1 + self.round;
         (a.0 - b.0).norm_squared() > far * far
     }
 
@@ -251,7 +264,7 @@ impl ConfigBox {
             let dist = x.norm();
             let rp = a.tooth.rad[i];
             // How far P can move from x, seen from the driven gear, within the box.
-            let moved = dt * (dist + rp * dp) + dp * rp + ROUND;
+            let moved = dt * (dist + rp * dp) + dp * rp + self.round;
             for f in 0..2 {
                 // Both points are relative to the driven centre.
                 // The flank's direction: its normal a quarter turn on (`CertTooth::new`).
@@ -267,8 +280,8 @@ impl ConfigBox {
                     rate_theta: dist,
                     f_phi: m.dot(&quarter(pw)),
                     f_theta: -quarter(*m).dot(&x),
-                    e_phi: (dt + dp) * rp + ROUND,
-                    e_theta: dt * (dist + rp * dp) + dp * rp + ROUND,
+                    e_phi: (dt + dp) * rp + self.round,
+                    e_theta: dt * (dist + rp * dp) + dp * rp + self.round,
                     beside: Beside {
                         along,
                         len: b.tooth.len[f],
@@ -288,7 +301,7 @@ impl ConfigBox {
             let dist = qw.norm();
             let rq = b.tooth.rad[i];
             // How far Q can move from qw, seen from the driver, within the box.
-            let moved = dp * (dist + rq * dt) + dt * rq + ROUND;
+            let moved = dp * (dist + rq * dt) + dt * rq + self.round;
             for f in 0..2 {
                 let e = &quarter(a.normal[f]);
                 let along = e.dot(&qw) - a.tooth.start[f];
@@ -302,8 +315,8 @@ impl ConfigBox {
                     rate_theta: rq,
                     f_phi: quarter(*n).dot(&qw),
                     f_theta: -n.dot(&quarter(q)),
-                    e_phi: dp * (dist + rq * dt) + dt * rq + ROUND,
-                    e_theta: (dp + dt) * rq + ROUND,
+                    e_phi: dp * (dist + rq * dt) + dt * rq + self.round,
+                    e_theta: (dp + dt) * rq + self.round,
                     beside: Beside {
                         along,
                         len: a.tooth.len[f],
@@ -319,7 +332,7 @@ impl ConfigBox {
     /// [`ConfigBox::place_driven`], can do within the box; for `Rising` and `Falling`, also the
     /// range of the slopes dθ/dφ of their contact curves there.
     pub(crate) fn pair(&self, a: &PlacedTooth<'_>, b: &PlacedTooth<'_>) -> (Verdict, (f64, f64)) {
-        if Self::apart(a.disc, b.disc) {
+        if self.apart(a.disc, b.disc) {
             return (Verdict::Clear, (0.0, 0.0));
         }
         let (dp, dt) = (self.d_phi, self.d_theta);
@@ -327,7 +340,7 @@ impl ConfigBox {
         let (mut rising, mut falling) = (true, true);
         let mut slopes = (f64::INFINITY, f64::NEG_INFINITY);
         self.conditions(a, b, |c| {
-            if c.value.abs() > dt * c.rate_theta + dp * c.rate_phi + ROUND {
+            if c.value.abs() > dt * c.rate_theta + dp * c.rate_phi + self.round {
                 return;
             }
             touched = true;
@@ -391,7 +404,7 @@ impl ConfigBox {
         let reach = |f_phi: f64, f_theta: f64, c: &Condition| {
             let along = (f_phi + chord * f_theta).abs() + c.e_phi + chord * c.e_theta;
             let across = f_theta.abs() + c.e_theta;
-            dp * along + (width + margin) * across + ROUND
+            dp * along + (width + margin) * across + self.round
         };
         self.conditions(a, b, |c| {
             // The vertex never beside the flank on the tube: this condition is no contact there.

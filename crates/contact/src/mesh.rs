@@ -170,8 +170,9 @@ impl Placed {
     /// Marks the vertices that can come within `other_reach` of the other gear's centre, at
     /// centre distance `d`: a vertex at ρ from its own centre is never nearer it than d − ρ.
     fn mark_reaching(&mut self, d: f64, other_reach: f64) {
-        // A little slack: a vertex exactly at the limit may graze.
-        let can = |v: &Vec2| d - v.norm() <= other_reach * (1.0 + 1e-9) + 1e-9;
+        // A little slack: a vertex exactly at the limit may graze (in proportion to gears
+        // smaller than a length unit, which a pair file's unit may make them).
+        let can = |v: &Vec2| d - v.norm() <= other_reach * (1.0 + 1e-9) + 1e-9 * d.min(1.0);
         self.tip_reaches = self.tips.iter().map(can).collect();
         self.valley_reaches = self.valleys.iter().map(can).collect();
         let n = self.tips.len() as i64;

@@ -1591,7 +1591,7 @@ impl Run<'_> {
             let disc = cell.driver_disc(driver.cert(j));
             let mut a = None;
             for (i, k) in drivens.clone().enumerate() {
-                if ConfigBox::apart(disc, discs[i]) {
+                if cell.apart(disc, discs[i]) {
                     continue;
                 }
                 let a = a.get_or_insert_with(|| cell.place_driver(driver.cert(j)));
