@@ -474,6 +474,12 @@ mod tests {
         assert_eq!(csv.name, "failure-runs.csv");
         // 3 runs x (3 trains + mechanism) + header.
         assert_eq!(String::from_utf8_lossy(&csv.contents).lines().count(), 13);
+        // Each survival plot names the runs made, not the paper's count.
+        for f in one.files.iter().filter(|f| f.name.ends_with(".svg")) {
+            let svg = String::from_utf8_lossy(&f.contents);
+            assert!(svg.contains("3 runs per input"), "{}", f.name);
+            assert!(!svg.contains("30-run"), "{}", f.name);
+        }
     }
 
     #[test]
