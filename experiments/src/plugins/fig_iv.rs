@@ -173,11 +173,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         // where it starts to disengage.
         for (x, kind) in [(jam, LimitKind::Lower), (dis, LimitKind::Upper)] {
             if let Some(x) = x {
-                drawn_limits.push(Limit {
-                    series: k,
-                    x,
-                    kind,
-                });
+                drawn_limits.push(Limit { series: k, x, kind });
             }
         }
         let show = |x: Option<f64>| x.map_or_else(|| "-".to_string(), |v| fmt_f64(v, 2));
@@ -227,4 +223,34 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         ],
         ..Default::default()
     })
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, reason = "tests")]
+
+    #[test]
+    fn the_figure_draws_each_meshs_limits_on_its_curve() {
+        let report = crate::run("figIV", 1, 2, &[("step", "40")]).unwrap();
+        let csv = report
+            .files
+            .iter()
+            .find(|f| f.name == "figIV-limits.csv")
+            .unwrap();
+        // One limit per non-empty field of figIV-limits.csv.
+        let limits = String::from_utf8_lossy(&csv.contents)
+            .lines()
+            .skip(1)
+            .flat_map(|l| l.split(',').skip(1).map(str::to_owned).collect::<Vec<_>>())
+            .filter(|v| !v.is_empty())
+            .count();
+        assert!(limits >= 15, "{limits}");
+        let svg = report.files.iter().find(|f| f.name == "figIV.svg").unwrap();
+        let svg = String::from_utf8_lossy(&svg.contents);
+        // A bracket per limit on the plot, one of each kind in the legend.
+        assert_eq!(svg.matches("stroke-width=\"2.5\"").count(), limits + 2);
+        assert!(svg.contains(">jam limit: the smallest G without a jam"));
+        assert!(svg.contains(">disengagement limit: the largest G without a disengagement"));
+        assert_eq!(svg.matches("<g class=\"series\"").count(), 15);
+    }
 }
