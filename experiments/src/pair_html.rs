@@ -15,7 +15,7 @@ use contact::Trajectory;
 use geometry::Vec2;
 
 /// The note under the event tables of `pair` and `replay`: the two kinds of angle, named apart.
-pub const ANGLES_NOTE: &str = "phi - phi0 and theta - theta0: angles from the start of the run (pair.csv's phi_deg and theta_deg, pair.html's slider); phi and theta: absolute angles, as replay prints them (pair.csv's phi_abs_deg and theta_abs_deg)";
+pub const ANGLES_NOTE: &str = "phi - phi0 and theta - theta0: angles from the start of the run (pair.csv's phi_minus_phi0_deg and theta_minus_theta0_deg, pair.html's slider); phi and theta: absolute angles, as replay prints them (pair.csv's phi_abs_deg and theta_abs_deg)";
 
 /// Most samples of θ(φ) carried by the page (the slider's steps).
 const MAX_SAMPLES: usize = 4000;

@@ -99,7 +99,7 @@ fn a_run_writes_the_check_picture_absolute_angles_and_the_users_tooth_numbers() 
     let mut lines = csv.lines();
     assert_eq!(
         lines.next(),
-        Some("phi_deg,theta_deg,td_deg,phi_abs_deg,theta_abs_deg")
+        Some("phi_minus_phi0_deg,theta_minus_theta0_deg,td_deg,phi_abs_deg,theta_abs_deg")
     );
     let rows: Vec<Vec<f64>> = lines
         .map(|l| l.split(',').map(|c| c.parse().unwrap()).collect())
@@ -117,7 +117,7 @@ fn a_run_writes_the_check_picture_absolute_angles_and_the_users_tooth_numbers() 
     assert_eq!(
         events.next(),
         Some(
-            "phi_deg,kind,counted_as,driver_tooth,driven_tooth,theta_deg,theta_after_deg,lost_motion_pitches,resumed,phase_shift,lag_deg,wedge_angle_deg,phi_abs_deg,theta_abs_deg,theta_after_abs_deg"
+            "phi_minus_phi0_deg,kind,counted_as,driver_tooth,driven_tooth,theta_minus_theta0_deg,theta_after_minus_theta0_deg,lost_motion_pitches,resumed,phase_shift,lag_deg,wedge_angle_deg,phi_abs_deg,theta_abs_deg,theta_after_abs_deg"
         )
     );
     let first: Vec<&str> = events.next().unwrap().split(',').collect();

@@ -60,8 +60,9 @@ against a driver tooth; at_rest(theta_deg: T) starts it standing still at theta 
 driver reaches it (refused if it overlaps the driver there); teeth(driver: j, driven: k) \
 starts it with its tooth k resting against driver tooth j, being pushed, at the theta within half \
 a turn of 0 (refused if they cannot touch at start_deg or the position overlaps another tooth).
-  - pair.csv: phi_deg and theta_deg are phi - phi0 and theta - theta0 (phi0 = start_deg, theta0 \
-the driven angle at the start), td_deg = theta_deg - (N1/N2) phi_deg, and phi_abs_deg, \
+  - pair.csv: phi_minus_phi0_deg and theta_minus_theta0_deg are phi - phi0 and theta - theta0 \
+(phi0 = start_deg, theta0 the driven angle at the start), td_deg = theta_minus_theta0_deg - \
+(N1/N2) phi_minus_phi0_deg, and phi_abs_deg, \
 theta_abs_deg are phi and theta themselves.
   - event-log.csv: the same relative angles, then the absolute ones, and tooth numbers as in your \
 file.
@@ -183,8 +184,8 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     )?;
     let data = csv(
         &[
-            "phi_deg",
-            "theta_deg",
+            "phi_minus_phi0_deg",
+            "theta_minus_theta0_deg",
             "td_deg",
             "phi_abs_deg",
             "theta_abs_deg",
@@ -304,7 +305,7 @@ fn event_log(
         ],
     );
     let mut ev_rows = String::from(
-        "phi_deg,kind,counted_as,driver_tooth,driven_tooth,theta_deg,theta_after_deg,lost_motion_pitches,resumed,phase_shift,lag_deg,wedge_angle_deg,phi_abs_deg,theta_abs_deg,theta_after_abs_deg\n",
+        "phi_minus_phi0_deg,kind,counted_as,driver_tooth,driven_tooth,theta_minus_theta0_deg,theta_after_minus_theta0_deg,lost_motion_pitches,resumed,phase_shift,lag_deg,wedge_angle_deg,phi_abs_deg,theta_abs_deg,theta_after_abs_deg\n",
     );
     let mut marks = Vec::new();
     for e in traj.events() {
@@ -374,7 +375,7 @@ fn event_log(
 }
 
 /// The note under the summary table: the frames of the absolute angles.
-const ABSOLUTE_NOTE: &str = "absolute angles: phi is how far the driver's zero ray (its tips_deg = 0) has turned, in the driver's turning sense, from pointing along the line of centres at the driven gear; theta is how far the driven gear's zero ray has turned, in its own turning sense, from pointing at the driver; pair.csv has both relative to the start (phi_deg, theta_deg) and absolute (phi_abs_deg, theta_abs_deg)";
+const ABSOLUTE_NOTE: &str = "absolute angles: phi is how far the driver's zero ray (its tips_deg = 0) has turned, in the driver's turning sense, from pointing along the line of centres at the driven gear; theta is how far the driven gear's zero ray has turned, in its own turning sense, from pointing at the driver; pair.csv has both relative to the start (phi_minus_phi0_deg, theta_minus_theta0_deg) and absolute (phi_abs_deg, theta_abs_deg)";
 
 /// The tips `pair-check.svg` labels: (gear, the user's tooth number, world position at φ = 0 and
 /// θ = 0), teeth 0 and 1 of each gear, so that the picture shows where the numbering starts and
