@@ -512,7 +512,9 @@ fn td_axes(phi_max: f64, td_min: f64, td_max: f64) -> String {
 /// A tick label: enough digits to tell the ticks apart.
 fn tick(v: f64) -> String {
     let a = v.abs();
-    if a >= 100.0 {
+    if a == 0.0 {
+        "0".into()
+    } else if a >= 100.0 {
         format!("{v:.0}")
     } else if a >= 1.0 {
         format!("{v:.2}")
