@@ -1,228 +1,353 @@
-//! Proofs that a held driven gear stays held while the driver turns through a range of angles,
-//! so that the bisection locating its release need not re-check the whole cover at every probe.
+//! Where a held driven gear may be let go, solved exactly.
 //!
-//! # What is proved
-//!
-//! A held gear at θ is one with no free position ahead: the obstacles at φ, swept in order of
-//! their lower ends (`cover_from` in `solver.rs`: one joins the cover when its lower end is within
-//! the side tolerance `tol` of the top so far, or, while the top is still θ, below θ − tol), close
-//! up from θ past a threshold more than a turn on. Take the **chain** c_1 … c_m of obstacles that
-//! lifted the top, and these **joints**:
+//! A held gear at θ has no free position ahead: the obstacles at φ, swept in order of their lower
+//! ends (`cover_from` in `solver.rs`: one joins the cover when its lower end is within the side
+//! tolerance `tol` of the top so far, or, while the top is still θ, below θ − tol), close up from
+//! θ past a threshold more than a turn on. Take the **chain** c_1 … c_m of obstacles that lifted
+//! the top, and these **joints**:
 //!
 //! - joint 0: lo_1 < θ − tol;
 //! - joint i (0 < i < m): lo_{i+1} ≤ hi_i + tol and hi_i > θ;
 //! - joint m: hi_m ≥ the threshold.
 //!
-//! Wherever every joint holds, the sweep closes up past the threshold. By induction over the
-//! links in order of their lower ends: a link below θ − tol joins whatever the top is. Any other
-//! c_i has an earlier link c_k with lo_k < lo_i (c_1 is one); take the last. It was swept before
-//! c_i, so the top is at least hi_k > θ, and the links between have lower ends at or above lo_i,
-//! so lo_i ≤ lo_{k+1} ≤ hi_k + tol: c_i joins, and the top reaches hi_i. Hence the top reaches
-//! hi_m, past the threshold; more obstacles only cover more.
+//! Wherever every link's teeth touch and every joint holds, the sweep closes up past the
+//! threshold. By induction over the links in order of their lower ends: a link below θ − tol
+//! joins whatever the top is. Any other c_i has an earlier link c_k with lo_k < lo_i (c_1 is
+//! one); take the last. It was swept before c_i, so the top is at least hi_k > θ, and the links
+//! between have lower ends at or above lo_i, so lo_i ≤ lo_{k+1} ≤ hi_k + tol: c_i joins, and the
+//! top reaches hi_i. Hence the top reaches hi_m, past the threshold; more obstacles only cover
+//! more.
 //!
-//! A joint is **fixed** over a range of driver angles by points its links hold there: joint 0 by
-//! t_0 < θ − tol inside c_1; joint i by u > θ inside c_i and u + tol inside c_{i+1}; joint m by a
-//! point past the threshold inside c_m. A link holds a point over the range when its tooth pair has
-//! **no contact root** on the segment {φ ∈ range, θ = the point} (`ConfigBox::pair` over a box of
-//! zero height is `Clear`): an obstacle's ends are contact roots, so neither crosses the point,
-//! and the point, inside the obstacle where the proof was made, stays inside (the argument of
-//! `certify.rs`). The other joints are **open**: at each probe their links are evaluated and the
-//! joint checked as stated; after a probe that holds, each open joint is tried again with points
-//! in its links' overlap there, over what is left of the range (a shorter segment, nearer the
-//! release, is proved clear more often).
-//!
-//! So the proof only ever answers "held", and only where the scan would: the bisection's answer
-//! is the same, bit for bit.
+//! So the gear stays held until a joint fails or a link's teeth part, and each of these happens
+//! at a root of the links' contact conditions (`meet.rs`): an end of a link crossing a fixed
+//! driven angle (θ − tol, θ, the threshold: closed form), the upper end of a link crossing the
+//! lower end of the next less the tolerance (two conditions met, one shifted by `tol`), or a
+//! link's two ends meeting (its teeth parting). [`first_change`] gives the first of these over a
+//! range of driver angles; there the solver sweeps the turn again, and either lets the gear go or
+//! takes the new chain.
 
 use smallvec::SmallVec;
 
-use crate::certify::{ConfigBox, Verdict};
-use crate::mesh::{Mesh, Obstacle};
+use crate::meet::{Condition, meetings};
+use crate::mesh::{End, Mesh, Obstacle};
 
-/// A proof that the driven gear at `theta` is held at every driver angle of `range` where its
-/// open joints hold (see the module's docs).
-#[derive(Debug, Clone)]
-pub(crate) struct HeldProof {
+/// How near (radians, relative to 1 + |angle|) an obstacle's end must be to a root for the root
+/// to be that end's: a root of a condition that is not the end (a flank's line beyond the tooth,
+/// the other branch of a circle) lies far off it.
+const AT_ROOT: f64 = 1e-9;
+
+/// The conditions of one end of one link.
+type Conditions = SmallVec<[Condition; 8]>;
+
+/// What a root found by [`first_change`] may change, to be checked where it lies.
+#[derive(Debug, Clone, Copy)]
+enum Change {
+    /// An end of link `link` (its upper end if `upper`) reaching the fixed driven angle `at`.
+    End { link: usize, upper: bool, at: f64 },
+    /// The upper end of link `below` plus the tolerance reaching the lower end of the next link,
+    /// both at `theta`.
+    Joint { below: usize, theta: f64 },
+    /// The two ends of link `link` meeting: its teeth part.
+    Parting { link: usize },
+}
+
+/// The first driver angle in `(phi0, phi1]` at which the held gear's `chain` (at `phi0`, see the
+/// module's docs) may stop holding it at θ, or None if every joint holds throughout.
+pub(crate) fn first_change(
+    mesh: &Mesh,
+    chain: &[Obstacle],
     theta: f64,
     threshold: f64,
     tol: f64,
-    range: (f64, f64),
-    /// The chain's tooth pairs, in the order the sweep took them.
-    links: Vec<(i64, i64)>,
-    /// The joints (0 to the number of links) not fixed over the range: the likeliest to fail
-    /// first.
-    open: Vec<usize>,
-    /// The links evaluated at the last probe that held: (index, obstacle).
-    seen: Vec<(usize, Obstacle)>,
-}
-
-impl HeldProof {
-    /// The proof from `chain`, the obstacles at `phi_lo` that closed up from θ past `threshold`
-    /// (in the order the sweep took them, each lifting the top), over driver angles
-    /// `[phi_lo, phi_hi]`; None where the chain does not close up as the joints ask, or the mesh
-    /// has curved flanks (no certificates).
-    pub(crate) fn build(
-        mesh: &Mesh,
-        (phi_lo, phi_hi): (f64, f64),
-        theta: f64,
-        threshold: f64,
-        tol: f64,
-        chain: &[Obstacle],
-    ) -> Option<Self> {
-        if mesh.curved || phi_hi <= phi_lo {
-            return None;
-        }
-        let m = chain.iter().position(|c| c.hi >= threshold)? + 1;
-        let chain = &chain[..m];
-        let mut proof = Self {
-            theta,
-            threshold,
-            tol,
-            range: (phi_lo, phi_hi),
-            links: chain
-                .iter()
-                .map(|c| (c.driver_tooth, c.driven_tooth))
-                .collect(),
-            open: Vec::with_capacity(m + 1),
-            seen: Vec::new(),
-        };
-        let base = proof.segments(mesh);
-        for joint in 0..=m {
-            if !proof.joint_holds(joint, |i| Some(chain[i])) {
-                return None;
-            }
-            if !proof.fix(mesh, &base, joint, |i| Some(chain[i])) {
-                proof.open.push(joint);
-            }
-        }
-        Some(proof)
-    }
-
-    /// Whether any joint is fixed over the range (for the tests: a proof that fixes none
-    /// evaluates every link at each probe).
-    #[cfg(test)]
-    pub(crate) fn has_fixed_joints(&self) -> bool {
-        self.open.len() <= self.links.len()
-    }
-
-    /// Whether the proof answers "held" at driver angle `phi` for the gear at `theta`: φ in its
-    /// range, and every open joint holding there (its links evaluated; the first that fails is
-    /// tried first next time, as it is the likeliest to fail again).
-    pub(crate) fn holds_at(&mut self, mesh: &Mesh, phi: f64, theta: f64) -> bool {
-        if theta != self.theta || phi < self.range.0 || phi > self.range.1 {
-            return false;
-        }
-        let mut seen: SmallVec<[(usize, Option<Obstacle>); 8]> = SmallVec::new();
-        let mut at = |i: usize| {
-            if let Some(&(_, o)) = seen.iter().find(|s| s.0 == i) {
-                return o;
-            }
-            let (j, k) = self.links[i];
-            let o = mesh.obstacle(phi, j, k);
-            seen.push((i, o));
-            o
-        };
-        let failed = self
-            .open
+    (phi0, phi1): (f64, f64),
+) -> Option<f64> {
+    let m = chain.iter().position(|c| c.hi >= threshold)? + 1;
+    let chain = &chain[..m];
+    let of = |end: End| -> Vec<Conditions> {
+        chain
             .iter()
-            .position(|&joint| !self.joint_holds(joint, &mut at));
-        if let Some(f) = failed {
-            self.open.swap(0, f);
-            return false;
+            .map(|c| mesh.conditions(c.driver_tooth, c.driven_tooth, end))
+            .collect()
+    };
+    let (lower, upper) = (of(End::Lower), of(End::Upper));
+    let mut found: Vec<(f64, Change)> = Vec::new();
+    ends_at_fixed_angles(
+        (&lower, &upper),
+        theta,
+        threshold,
+        tol,
+        (phi0, phi1),
+        &mut found,
+    );
+    // A cover longer than a turn meets the same teeth again a turn on: the same roots.
+    let n2 = mesh.driven.tips.len() as i64;
+    let mut seen: Vec<(i64, i64, i64, i64)> = Vec::new();
+    let mut parted = vec![false; m];
+    for (i, pair) in chain.windows(2).enumerate() {
+        let (link, next) = (pair[0], pair[1]);
+        let key = (
+            link.driver_tooth,
+            link.driven_tooth.rem_euclid(n2),
+            next.driver_tooth,
+            next.driven_tooth - link.driven_tooth,
+        );
+        if seen.contains(&key) {
+            continue;
         }
-        self.seen.clear();
-        self.seen
-            .extend(seen.iter().filter_map(|&(i, o)| o.map(|o| (i, o))));
-        true
-    }
-
-    /// After [`HeldProof::holds_at`] answered "held" at `phi`: the proof over `[phi, phi_hi]`
-    /// (within its range), each open joint tried again with points in its links' overlap at `phi`.
-    pub(crate) fn narrow(&mut self, mesh: &Mesh, phi: f64, phi_hi: f64) {
-        let range = (phi.max(self.range.0), phi_hi.min(self.range.1));
-        if range.1 <= range.0 {
-            return;
+        seen.push(key);
+        // Most joints overlap by far more than their links move: a driven angle inside both
+        // that no end of either crosses proves the joint held (closed form), and only what is
+        // left of the range after a few such proofs is searched for meetings.
+        let ends = [&lower[i], &upper[i], &lower[i + 1], &upper[i + 1]];
+        let from = held_by_points(mesh, (link, next), ends, theta, (phi0, phi1));
+        if from >= phi1 {
+            continue;
         }
-        self.range = range;
-        let base = self.segments(mesh);
-        let seen = std::mem::take(&mut self.seen);
-        let open = std::mem::take(&mut self.open);
-        let at = |i: usize| seen.iter().find(|s| s.0 == i).map(|s| s.1);
-        for joint in open {
-            if !self.fix(mesh, &base, joint, at) {
-                self.open.push(joint);
+        for l in [i, i + 1] {
+            if !std::mem::replace(&mut parted[l], true) {
+                partings(
+                    (&lower[l], &upper[l]),
+                    l,
+                    &chain[l],
+                    (from, phi1),
+                    &mut found,
+                );
             }
         }
-        self.seen = seen;
+        let below: Conditions = upper[i].iter().map(|c| c.shifted(tol)).collect();
+        for above in &lower[i + 1] {
+            for below in &below {
+                for (phi, theta) in meetings(above, below, from, phi1, next.lo) {
+                    found.push((phi, Change::Joint { below: i, theta }));
+                }
+            }
+        }
     }
-
-    /// The box of zero height over the proof's range of driver angles, at θ (segments at other
-    /// driven angles are taken from it).
-    fn segments(&self, mesh: &Mesh) -> ConfigBox {
-        ConfigBox::new(
-            self.range.0,
-            self.range.1,
-            self.theta,
-            self.theta,
-            mesh.centre_distance,
-        )
+    if m == 1 {
+        partings(
+            (&lower[0], &upper[0]),
+            0,
+            &chain[0],
+            (phi0, phi1),
+            &mut found,
+        );
     }
+    found.sort_by(|a, b| a.0.total_cmp(&b.0));
+    found
+        .into_iter()
+        .find(|&(phi, change)| changes(mesh, chain, phi, change, tol))
+        .map(|(phi, _)| phi)
+}
 
-    /// Whether `joint` holds for the links' obstacles given by `at` (None: the pair does not
-    /// touch, and the joint does not hold).
-    fn joint_holds(&self, joint: usize, mut at: impl FnMut(usize) -> Option<Obstacle>) -> bool {
-        let m = self.links.len();
-        if joint == 0 {
-            return at(0).is_some_and(|c| c.lo < self.theta - self.tol);
+/// Roots where an end of a link reaches a fixed driven angle: the first link's lower end
+/// θ − tol (joint 0), any link's upper end θ (joints 1 to m − 1), the last link's upper end the
+/// threshold (joint m).
+fn ends_at_fixed_angles(
+    (lower, upper): (&[Conditions], &[Conditions]),
+    theta: f64,
+    threshold: f64,
+    tol: f64,
+    (phi0, phi1): (f64, f64),
+    found: &mut Vec<(f64, Change)>,
+) {
+    let m = lower.len();
+    let mut at = |link: usize, is_upper: bool, at: f64| {
+        let conditions = if is_upper { &upper[link] } else { &lower[link] };
+        for c in conditions {
+            for phi in c.roots_at_theta(at, phi0, phi1) {
+                found.push((
+                    phi,
+                    Change::End {
+                        link,
+                        upper: is_upper,
+                        at,
+                    },
+                ));
+            }
         }
-        if joint == m {
-            return at(m - 1).is_some_and(|c| c.hi >= self.threshold);
-        }
-        let (Some(c), Some(next)) = (at(joint - 1), at(joint)) else {
-            return false;
-        };
-        c.hi > self.theta && next.lo <= c.hi + self.tol
+    };
+    at(0, false, theta - tol);
+    for link in 0..m.saturating_sub(1) {
+        at(link, true, theta);
     }
+    at(m - 1, true, threshold);
+}
 
-    /// Whether `joint` is fixed over the proof's range by points inside its links' obstacles
-    /// `at` the range's start (see the module's docs); not where a link's obstacle is not given.
-    fn fix(
-        &self,
-        mesh: &Mesh,
-        base: &ConfigBox,
-        joint: usize,
-        at: impl Fn(usize) -> Option<Obstacle>,
-    ) -> bool {
-        let m = self.links.len();
-        let holds = |c: Obstacle, i: usize, t: f64| {
-            c.lo < t && t < c.hi && segment_clear(mesh, base, self.links[i], t)
-        };
-        if joint == 0 {
-            let Some(c) = at(0) else { return false };
-            let t = 0.5 * (c.lo + self.theta - self.tol);
-            return t < self.theta - self.tol && holds(c, 0, t);
-        }
-        if joint == m {
-            let Some(c) = at(m - 1) else { return false };
-            let t = 0.5 * (c.lo.max(self.threshold) + c.hi);
-            return t >= self.threshold && holds(c, m - 1, t);
-        }
-        // u inside c_i, above θ, and u + tol inside c_{i+1}.
-        let (Some(c), Some(next)) = (at(joint - 1), at(joint)) else {
-            return false;
-        };
-        let low = c.lo.max(self.theta).max(next.lo - self.tol);
-        let high = c.hi.min(next.hi - self.tol);
+/// How far past `phi0` (up to `phi1`) the joint of `link` and `next` (the obstacles at `phi0`)
+/// is proved to hold by points: a driven angle u above θ inside both, held there until an end of
+/// either reaches it (the first root of their conditions `ends` at u that is that end), then a
+/// new point there, a few times over.
+fn held_by_points(
+    mesh: &Mesh,
+    (link, next): (Obstacle, Obstacle),
+    ends: [&Conditions; 4],
+    theta: f64,
+    (phi0, phi1): (f64, f64),
+) -> f64 {
+    let (mut t, mut link, mut next) = (phi0, link, next);
+    for _ in 0..8 {
+        let (low, high) = (next.lo.max(theta), link.hi);
         let u = 0.5 * (low + high);
-        low < u && u < high && holds(c, joint - 1, u) && holds(next, joint, u + self.tol)
+        if !(low < u && u < high) {
+            return t;
+        }
+        // Each root with the link whose end it may be (0: `link`, 1: `next`).
+        let mut roots: SmallVec<[(f64, usize); 16]> = SmallVec::new();
+        for (e, conditions) in ends.iter().enumerate() {
+            for c in conditions.iter() {
+                roots.extend(c.roots_at_theta(u, t, phi1).into_iter().map(|r| (r, e / 2)));
+            }
+        }
+        roots.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let near = |x: f64| (x - u).abs() <= AT_ROOT * (1.0 + u.abs());
+        let crossing = roots.into_iter().find_map(|(phi, which)| {
+            let o = [link, next][which];
+            let inside = mesh
+                .obstacle(phi, o.driver_tooth, o.driven_tooth)
+                .is_some_and(|o| o.lo < u && u < o.hi && !near(o.lo) && !near(o.hi));
+            (!inside).then_some(phi)
+        });
+        let Some(c) = crossing else {
+            return phi1;
+        };
+        t = c;
+        match (
+            mesh.obstacle(t, link.driver_tooth, link.driven_tooth),
+            mesh.obstacle(t, next.driver_tooth, next.driven_tooth),
+        ) {
+            (Some(a), Some(b)) => (link, next) = (a, b),
+            _ => return t,
+        }
+    }
+    t
+}
+
+/// Roots where link `i`'s teeth may part: its two ends met, a condition of its lower end with
+/// one of its upper end.
+fn partings(
+    (lower, upper): (&Conditions, &Conditions),
+    i: usize,
+    link: &Obstacle,
+    (phi0, phi1): (f64, f64),
+    found: &mut Vec<(f64, Change)>,
+) {
+    for first in lower {
+        for second in upper {
+            for (phi, _) in meetings(first, second, phi0, phi1, link.hi) {
+                found.push((phi, Change::Parting { link: i }));
+            }
+        }
     }
 }
 
-/// Whether tooth pair `pair` has no contact root at driven angle `t` while the driver turns
-/// through the driver angles of `base` (a box of zero height there).
-fn segment_clear(mesh: &Mesh, base: &ConfigBox, (j, k): (i64, i64), t: f64) -> bool {
-    let cell = base.with_driven(t, t);
-    let a = cell.place_driver(mesh.driver.cert(j));
-    let b = cell.place_driven(mesh.driven.cert(k));
-    cell.pair(&a, &b).0 == Verdict::Clear
+/// Whether the root at φ is the change it stands for: the ends it names are there (or the
+/// link's teeth no longer touch at all, which changes the chain too).
+fn changes(mesh: &Mesh, chain: &[Obstacle], phi: f64, change: Change, tol: f64) -> bool {
+    let near = |x: f64, y: f64| (x - y).abs() <= AT_ROOT * (1.0 + y.abs());
+    let at = |i: usize| mesh.obstacle(phi, chain[i].driver_tooth, chain[i].driven_tooth);
+    match change {
+        Change::End { link, upper, at: a } => at(link).is_none_or(|o| {
+            let end = if upper { o.hi } else { o.lo };
+            near(end, a)
+        }),
+        Change::Joint { below, theta } => match (at(below), at(below + 1)) {
+            (Some(c), Some(next)) => near(c.hi + tol, theta) && near(next.lo, theta),
+            _ => true,
+        },
+        Change::Parting { link } => at(link).is_none_or(|o| near(o.lo, o.hi)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    //! The conditions each end of an obstacle is a root of, checked on random meshes of every
+    //! kind the solver takes.
+    #![allow(clippy::unwrap_used, reason = "tests")]
+
+    use std::f64::consts::TAU;
+
+    use geometry::{Gear, Vec2};
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    use super::*;
+
+    fn gear(n: usize, r_tip: f64, rng: &mut ChaCha8Rng) -> Gear {
+        let pitch = TAU / n as f64;
+        let jitter = [0.0, 0.1, 0.3][rng.random_range(0..3)];
+        let tips: Vec<f64> = (0..n)
+            .map(|k| pitch * k as f64 + jitter * pitch * (rng.random::<f64>() - 0.5))
+            .collect();
+        let ecc = [0.0, 0.2][rng.random_range(0..2)];
+        let a = rng.random::<f64>() * TAU;
+        let centre = Vec2::new(ecc * a.cos(), ecc * a.sin());
+        let root = r_tip - 1.1;
+        let mut g = if rng.random_bool(0.3) {
+            // Asymmetric teeth: each valley off the middle of its gap.
+            let valleys = (0..n)
+                .map(|k| {
+                    let next = if k + 1 == n {
+                        tips[0] + TAU
+                    } else {
+                        tips[k + 1]
+                    };
+                    tips[k] + (next - tips[k]) * (0.35 + 0.3 * rng.random::<f64>())
+                })
+                .collect();
+            Gear::with_valleys(r_tip, root, tips, valleys, centre).unwrap()
+        } else {
+            Gear::new(r_tip, root, tips, centre).unwrap()
+        };
+        if rng.random_bool(0.3) {
+            let tip_radii = (0..n).map(|_| r_tip + 0.05 * rng.random::<f64>()).collect();
+            let root_radii = (0..n).map(|_| root - 0.05 * rng.random::<f64>()).collect();
+            g = g.with_radii(tip_radii, root_radii).unwrap();
+        }
+        if rng.random_bool(0.3) {
+            g = g
+                .with_flank_sagitta(0.05 * (rng.random::<f64>() - 0.5))
+                .unwrap();
+        }
+        g
+    }
+
+    #[test]
+    fn every_obstacle_end_is_a_root_of_its_ends_conditions() {
+        let mut rng = ChaCha8Rng::seed_from_u64(11);
+        let mut ends = 0;
+        for _ in 0..300 {
+            let n1 = rng.random_range(8..40);
+            let n2 = rng.random_range(n1..90);
+            let (r1, r2) = (0.5 * n1 as f64, 0.5 * n2 as f64);
+            let g = 2.0 + 98.0 * rng.random::<f64>();
+            let d = geometry::centre_distance(r1, r2, 1.1, g);
+            let Ok(mesh) = Mesh::new(gear(n1, r1, &mut rng), gear(n2, r2, &mut rng), d) else {
+                continue;
+            };
+            for _ in 0..20 {
+                let phi = rng.random::<f64>() * TAU;
+                let mut obs = Vec::new();
+                let theta = rng.random::<f64>() * TAU;
+                mesh.obstacles(phi, theta - 1.0, theta + 1.0, &mut obs);
+                for o in obs {
+                    for (end, at) in [(End::Lower, o.lo), (End::Upper, o.hi)] {
+                        let cs = mesh.conditions(o.driver_tooth, o.driven_tooth, end);
+                        let residual = cs
+                            .iter()
+                            .map(|c| c.at(phi, at).abs())
+                            .fold(f64::INFINITY, f64::min);
+                        // A length, or for a distance to an arc's centre a squared length (mm²).
+                        assert!(
+                            residual < 1e-7,
+                            "{end:?} end of {o:?} at φ {phi}: {residual}; curved {}, {} conditions, G {g}",
+                            mesh.curved,
+                            cs.len()
+                        );
+                        ends += 1;
+                    }
+                }
+            }
+        }
+        assert!(ends > 10_000, "{ends} ends");
+    }
 }

@@ -2,6 +2,7 @@
 
 mod certify;
 mod held;
+mod meet;
 mod mesh;
 mod roots;
 mod solver;

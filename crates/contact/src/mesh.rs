@@ -18,6 +18,7 @@ use geometry::{Arc, Flank, Gear, Vec2, rotate};
 use smallvec::SmallVec;
 
 use crate::certify::CertTooth;
+use crate::meet::Condition;
 use crate::roots::{circle_circle, circle_segment};
 
 /// Why a mesh cannot be built.
@@ -600,24 +601,6 @@ impl Mesh {
         args.map(|args| self.placed(j, k, args))
     }
 
-    /// The obstacles of `pairs` at φ (those that exist), in order, into `out`. A pair that
-    /// differs from one already evaluated only by whole turns of the driven tooth (a cover that
-    /// spans more than a turn) is not evaluated again: its ends are the same arguments, measured
-    /// from the same tooth a turn on, so the obstacle is the one [`Mesh::obstacle`] gives,
-    /// bit for bit.
-    pub(crate) fn obstacles_of(&self, phi: f64, pairs: &[(i64, i64)], out: &mut Vec<Obstacle>) {
-        out.clear();
-        let (first, last) = pairs
-            .iter()
-            .fold((i64::MAX, i64::MIN), |(a, b), &(j, _)| (a.min(j), b.max(j)));
-        let mut seen = PairMemo::over(phi, first..=last, self.driven.tips.len());
-        out.extend(
-            pairs
-                .iter()
-                .filter_map(|&(j, k)| self.obstacle_in(phi, j, k, &mut seen)),
-        );
-    }
-
     /// The obstacle of driver tooth `j`, already placed in the world as `a`, against driven tooth `k`.
     ///
     /// Every contact root is a point on a circle; its driven angle is the argument of a complex
@@ -741,7 +724,7 @@ impl Mesh {
             let (a_lo, a_hi) = (a_lo - widen, a_hi + widen);
             let ks = d2.teeth_between(lo - a_hi - half_k, hi - a_lo + half_k);
             // A window of more than a turn meets tooth k again whole turns on: its obstacle is
-            // then placed from the arguments already found (as in `obstacles_of`).
+            // then placed from the arguments already found.
             let n = d2.tips.len() as i64;
             let mut args_of: Vec<Option<Option<(f64, f64)>>> = Vec::new();
             let remembered = match memo.as_deref_mut() {
@@ -1273,5 +1256,120 @@ impl PairMemo {
         self.args
             .get_mut(start..start + self.teeth)
             .unwrap_or(&mut [])
+    }
+}
+
+/// One flank of a tooth as the contact conditions see it: a line (unit normal `n`, `n·x = h`,
+/// gear frame from the rotation centre) or a circle (an arc's centre and radius).
+#[derive(Debug, Clone, Copy)]
+enum FlankShape {
+    Line { n: Vec2, h: f64 },
+    Circle { centre: Vec2, radius: f64 },
+}
+
+impl Placed {
+    /// The shapes of tooth k's two flanks (gear frame).
+    fn flank_shapes(&self, k: i64) -> [FlankShape; 2] {
+        if !self.arcs.is_empty() {
+            return self.arcs[self.idx(k)].map(|a| FlankShape::Circle {
+                centre: a.centre,
+                radius: a.radius,
+            });
+        }
+        let v = self.tooth(k);
+        [(v[0], v[1]), (v[1], v[2])].map(|(a, b)| {
+            let e = b - a;
+            let n = Vec2::new(e.y, -e.x) / e.norm();
+            FlankShape::Line { n, h: n.dot(&a) }
+        })
+    }
+}
+
+impl Mesh {
+    /// The contact conditions (`meet.rs`) of which one end of the obstacle of driver tooth `j`
+    /// against driven tooth `k` is always a root: at the upper end the driver tooth's flank 1
+    /// (tip to the valley after it) meets the driven tooth's flank 1, at the lower end flank 0
+    /// meets flank 0; so an end of each tooth's flank of that end (that can reach the other gear)
+    /// on the other tooth's flank, and, where flanks are arcs, the two flanks tangent.
+    pub(crate) fn conditions(&self, j: i64, k: i64, end: End) -> SmallVec<[Condition; 8]> {
+        let d = self.centre_distance;
+        let f = match end {
+            End::Lower => 0,
+            End::Upper => 1,
+        };
+        let (da, _) = self.driver.data(j);
+        let (db, _) = self.driven.data(k);
+        let (sa, sb) = (self.driver.flank_shapes(j), self.driven.flank_shapes(k));
+        // Straight flanks: flank f runs from vertex f to vertex f + 1, and only its ends touch
+        // the other tooth's flank f. A curved flank may bulge past its ends: every vertex and
+        // both flanks of each tooth are taken then.
+        let (flanks, vertices) = if self.curved {
+            (0..2, 0..3)
+        } else {
+            (f..f + 1, f..f + 2)
+        };
+        let mut out = SmallVec::new();
+        for g in flanks.clone() {
+            for i in vertices.clone() {
+                if da.reaches[i] {
+                    out.push(vertex_on(sb[g], da.v[i], d, true));
+                }
+                if db.reaches[i] {
+                    out.push(vertex_on(sa[g], db.v[i], d, false));
+                }
+            }
+        }
+        for ga in flanks.clone() {
+            for gb in flanks.clone() {
+                flanks_tangent(sa[ga], sb[gb], d, &mut out);
+            }
+        }
+        out
+    }
+}
+
+/// A vertex of one gear (the driver's if `driver_vertex`) on a flank of the other.
+fn vertex_on(flank: FlankShape, v: Vec2, d: f64, driver_vertex: bool) -> Condition {
+    match (flank, driver_vertex) {
+        (FlankShape::Line { n, h }, true) => Condition::driver_point_on_line(v, n, h, d),
+        (FlankShape::Line { n, h }, false) => Condition::driven_point_on_line(v, n, h, d),
+        (FlankShape::Circle { centre, radius }, true) => {
+            Condition::points_apart(v, centre, radius, d)
+        }
+        (FlankShape::Circle { centre, radius }, false) => {
+            Condition::points_apart(centre, v, radius, d)
+        }
+    }
+}
+
+/// A driver flank `a` tangent to a driven flank `b` where one is an arc: an arc's centre at its
+/// radius from a line, or the two arcs' centres at the sum or difference of their radii.
+fn flanks_tangent(a: FlankShape, b: FlankShape, d: f64, out: &mut SmallVec<[Condition; 8]>) {
+    match (a, b) {
+        (FlankShape::Line { .. }, FlankShape::Line { .. }) => {}
+        (FlankShape::Circle { centre, radius }, FlankShape::Line { n, h }) => {
+            for off in [radius, -radius] {
+                out.push(Condition::driver_point_on_line(centre, n, h + off, d));
+            }
+        }
+        (FlankShape::Line { n, h }, FlankShape::Circle { centre, radius }) => {
+            for off in [radius, -radius] {
+                out.push(Condition::driven_point_on_line(centre, n, h + off, d));
+            }
+        }
+        (
+            FlankShape::Circle {
+                centre: ca,
+                radius: ra,
+            },
+            FlankShape::Circle {
+                centre: cb,
+                radius: rb,
+            },
+        ) => {
+            for r in [ra + rb, (ra - rb).abs()] {
+                out.push(Condition::points_apart(ca, cb, r, d));
+            }
+        }
     }
 }

@@ -14,6 +14,10 @@
 //!   pitch or more or moved the tooth phase;
 //! - no free driven position at the start: **blocked at start**.
 //!
+//! After a lock or strike the driven gear is let go to the next free position ahead; where there
+//! is none it is **held** until one appears, at the first root where the obstacles that close up
+//! over its turn may give way (`held.rs`, on the exact conditions of `meet.rs`).
+//!
 //! Which of these a table counts as a jam or a disengagement is an event rule's call (the `rules`
 //! crate), not the solver's.
 //!
@@ -49,7 +53,7 @@ use serde::Serialize;
 use smallvec::SmallVec;
 
 use crate::certify::{ConfigBox, PlacedTooth, Verdict, vertex_meeting};
-use crate::held::HeldProof;
+use crate::held;
 use crate::mesh::{End, Mesh, Obstacle, PairMemo};
 
 /// Relative tolerance (radians) when deciding on which side of θ an obstacle lies.
@@ -464,6 +468,9 @@ struct Run<'m> {
     phi: f64,
     theta: f64,
     held: bool,
+    /// While the driven gear is held: the tooth pairs of the chain that the last step proved to
+    /// hold it through its end (`held.rs`), where the next step starts; empty if none.
+    held_links: Vec<(i64, i64)>,
     /// Driver angle of the last jam check that found nothing holding the driven gear.
     unheld_at: Option<f64>,
     /// Known tooth pairs, their side of θ and their upper end at the current φ.
@@ -485,13 +492,6 @@ struct Run<'m> {
     /// Whether steps may be taken on a certificate instead of bracketing (straight flanks), and
     /// jams located by replayed bisection (`bisect_sign`) instead of plain bisection.
     certify: bool,
-    /// While the driven gear is held: tooth pairs whose obstacles closed up over the turn when
-    /// last checked.
-    cover: Vec<(i64, i64)>,
-    /// Whether to check those pairs first (else every check scans the turn).
-    remember_cover: bool,
-    /// Where that cover stopped when last found open (see [`Mesh::check_cover`]).
-    opened: Option<f64>,
     /// Untracked tooth pairs known to be ahead of the driven gear, or gone, at (φ, θ): the
     /// suspects the last certified step ending there proved clear of its path, so the next
     /// step need not evaluate them to find where they start.
@@ -625,6 +625,7 @@ impl Mesh {
             phi: phi_start,
             theta: 0.0,
             held: false,
+            held_links: Vec::new(),
             unheld_at: None,
             sides: Vec::new(),
             segments: Vec::new(),
@@ -635,9 +636,6 @@ impl Mesh {
             drive_phase: None,
             pending: Vec::new(),
             certify: how.certify && !self.curved,
-            cover: Vec::new(),
-            remember_cover: how.certify,
-            opened: None,
             clear_ahead: (f64::NAN, f64::NAN, Pairs::new()),
             idle_since: None,
             dropped_idle_start: false,
@@ -748,8 +746,7 @@ impl Mesh {
     }
 
     /// [`Mesh::next_free`], but where there is no free position, the tooth pairs whose
-    /// obstacles, one after another, close up over the turn: a proof of being blocked that
-    /// [`Mesh::check_cover`] re-checks at another driver angle with only those pairs.
+    /// obstacles, one after another, close up over the turn: the proof of being blocked.
     fn free_or_cover(&self, phi: f64, theta: f64, through: bool) -> Result<f64, Vec<(i64, i64)>> {
         self.free_or_cover_with(phi, theta, through, None)
     }
@@ -807,67 +804,6 @@ impl Mesh {
         }
     }
 
-    /// Whether the obstacles of `cover` alone, at φ, close up from θ as far as
-    /// [`Mesh::free_or_cover`] asks of all of them to find no free position (`Holds`: then there
-    /// is none, as more obstacles can only cover more, with `through` unset); and where the
-    /// remembered cover has opened, whether the opening
-    /// is free of every other obstacle too: then [`Mesh::free_or_cover`] would find a free
-    /// position (`Free`) and its scan of the turn is not needed. Only the obstacles of a window
-    /// about the opening are evaluated for that, and every doubtful case (the opening at θ
-    /// itself, narrower than the side tolerance, covered by another pair that the patch below
-    /// does not close up with, or more than a turn up) answers `Unknown`, for the scan to decide.
-    ///
-    /// `opened` is where the cover stopped at the last check that found it open (a driven angle
-    /// above θ, which stays put while the gear is held): the window about it is looked at first,
-    /// as the cover mostly opens where it opened before, and a free interval found there answers
-    /// `Free` without evaluating the cover. That is the answer the cover's own check would give
-    /// (a free interval touches none of its obstacles, so they cannot close up over it). It is
-    /// updated whenever the cover is found open.
-    ///
-    /// Where the cover has opened but no free interval is found, another pair usually covers the
-    /// opening: the obstacles of the window about it are added to the cover's, and if together
-    /// they close up over the turn the answer is `Holds` (more obstacles only cover more) and
-    /// `cover` becomes the pairs that did, to be checked next time in place of a scan.
-    fn check_cover(
-        &self,
-        phi: f64,
-        theta: f64,
-        cover: &mut Vec<(i64, i64)>,
-        opened: &mut Option<f64>,
-        links: &mut Vec<Obstacle>,
-    ) -> CoverCheck {
-        let mut near = Vec::new();
-        if opened.is_some_and(|at| self.free_above(phi, theta, at, &mut near)) {
-            return CoverCheck::Free;
-        }
-        let gap = self.driven.max_gap;
-        let threshold = self.held_threshold(theta);
-        let mut obs = Vec::with_capacity(cover.len());
-        self.obstacles_of(phi, cover, &mut obs);
-        let top = cover_from(theta, &mut obs, false).0;
-        if top >= threshold {
-            chain_links(theta, &obs, false, links);
-            return CoverCheck::Holds;
-        }
-        near.clear();
-        if top > theta + SIDE_TOL && self.free_above(phi, theta, top, &mut near) {
-            *opened = Some(top);
-            return CoverCheck::Free;
-        }
-        if near.is_empty() {
-            self.obstacles(phi, top - gap, top + 2.0 * gap, &mut near);
-        }
-        obs.extend_from_slice(&near);
-        let (top, chain) = cover_from(theta, &mut obs, false);
-        if top >= threshold {
-            *cover = chain;
-            chain_links(theta, &obs, false, links);
-            CoverCheck::Holds
-        } else {
-            CoverCheck::Unknown
-        }
-    }
-
     /// How far above θ the obstacles must close up for the driven gear at θ to have no free
     /// position: the top of the widest search of [`Mesh::free_or_cover`] (which gives up there),
     /// less a driven gap.
@@ -879,47 +815,6 @@ impl Mesh {
         }
         theta + reach - gap
     }
-
-    /// Whether an interval that no obstacle at φ touches, wider than the side tolerance, starts
-    /// above θ within a driven gap either side of `at`, found among the obstacles of a window
-    /// about `at`; and below the reach of `free_or_cover`'s widest search that does not give up
-    /// (a turn and two gaps above θ). Then `free_or_cover` finds a free position: its cover
-    /// cannot pass such an interval. (Below `at` too: near the angle where it first appears, a
-    /// free interval shrinks and moves as the driver turns.)
-    ///
-    /// `near` is left holding the window's obstacles, sorted by their lower ends.
-    fn free_above(&self, phi: f64, theta: f64, at: f64, near: &mut Vec<Obstacle>) -> bool {
-        near.clear();
-        let gap = self.driven.max_gap;
-        let start = (at - gap).max(theta + 2.0 * SIDE_TOL);
-        if start >= at + gap {
-            return false;
-        }
-        self.obstacles(phi, start, at + 2.0 * gap, near);
-        near.sort_by(|a, b| a.lo.total_cmp(&b.lo));
-        let mut end = start;
-        for o in near.iter() {
-            if o.hi <= end {
-                continue;
-            }
-            if o.lo > end + SIDE_TOL {
-                // (end, o.lo) touches no obstacle and is wider than the side tolerance.
-                break;
-            }
-            end = o.hi;
-        }
-        end + SIDE_TOL < at + gap && end < theta + TAU + 2.0 * gap
-    }
-}
-
-/// What a remembered cover says at another driver angle (see `Mesh::check_cover`).
-enum CoverCheck {
-    /// It still closes up over the turn: no free position.
-    Holds,
-    /// It has opened where no other obstacle reaches: a free position exists.
-    Free,
-    /// Neither is proved.
-    Unknown,
 }
 
 /// How far above θ the obstacles close up, swept in order of their lower ends (those that
@@ -996,17 +891,10 @@ impl Run<'_> {
         };
         let phi = self.phi;
         let mut memo = PairMemo::new(self.mesh, phi);
-        let free = match self
+        let free = self
             .mesh
             .free_or_cover_in(phi, guess, false, None, &mut memo)
-        {
-            Ok(t) => Some(t),
-            Err(chain) => {
-                // Held from the start: these pairs prove it, to be checked first next time.
-                self.cover = chain;
-                None
-            }
-        };
+            .ok();
         self.theta = match free {
             Some(t) if t > guess => t,
             Some(_) if touching => {
@@ -1026,6 +914,7 @@ impl Run<'_> {
                 // No free position: the gears cannot turn from here. Always an event, so that a
                 // mesh too tight to start is never silently counted as running.
                 self.held = true;
+                self.held_links.clear();
                 let gap = self.mesh.driven.max_gap;
                 self.mesh
                     .obstacles(phi, guess - gap, guess + gap, &mut self.scratch);
@@ -1679,92 +1568,81 @@ impl Run<'_> {
         });
         deaths_hand_over && births_behind
     }
-
-    /// A step of a held driven gear to `phi1`: it stays put while no free position appears, and
-    /// is let go at the first driver angle where one does, located like any event.
+    /// The driven gear is held at θ: it stays there until the driver angle where a free
+    /// position first appears ahead of it, located exactly (`held.rs`: the first root at which
+    /// the chain of obstacles that holds it may give way; there the turn is swept again, and the
+    /// gear either let go to the free position or held by the new chain), or to `phi1`. A chain
+    /// proved to hold through the step is taken up by the next one.
     fn held_step(&mut self, phi1: f64) {
         let mesh = self.mesh;
-        let (phi0, theta0) = (self.phi, self.theta);
-        // While blocked, the pairs that closed up last time are checked first: a full scan of the
-        // turn is made only when they no longer prove it. Where it is blocked, `links` is left
-        // holding the obstacles that closed up, for a proof over the driver angles ahead.
-        let cover = RefCell::new(std::mem::take(&mut self.cover));
-        let opened = RefCell::new(self.opened);
-        let links = RefCell::new(Vec::new());
-        let blocked = |p: f64| {
-            if self.remember_cover && !cover.borrow().is_empty() {
-                match mesh.check_cover(
-                    p,
-                    theta0,
-                    &mut cover.borrow_mut(),
-                    &mut opened.borrow_mut(),
-                    &mut links.borrow_mut(),
-                ) {
-                    CoverCheck::Holds => return true,
-                    CoverCheck::Free => return false,
-                    CoverCheck::Unknown => {}
+        let theta = self.theta;
+        let threshold = mesh.held_threshold(theta);
+        let past = |root: f64| (root + LOCATE_TOL * (1.0 + root.abs())).min(phi1);
+        let mut phi = self.phi;
+        let mut links = Vec::new();
+        // The chain the last step proved to hold through its end: no scan of the turn needed.
+        for (j, k) in std::mem::take(&mut self.held_links) {
+            match mesh.obstacle(phi, j, k) {
+                Some(o) => links.push(o),
+                None => {
+                    links.clear();
+                    break;
                 }
             }
-            match mesh.free_or_cover_with(p, theta0, false, Some(&mut links.borrow_mut())) {
-                Ok(t) => {
-                    *opened.borrow_mut() = Some(t);
-                    false
-                }
-                Err(chain) => {
-                    *cover.borrow_mut() = chain;
-                    true
-                }
-            }
-        };
-        if blocked(phi1) {
-            self.cover = cover.into_inner();
-            self.opened = opened.into_inner();
-            self.rest_to(phi1);
-            return;
         }
-        // Freed within the step: the driven gear is let go at the first angle where a free
-        // position appears, located by bisection (not at the step's end). A probe found blocked
-        // proves, in one pass over its links, that it stays blocked up to the bracket's top but
-        // where a few doubtful links give way (`HeldProof`): the later probes below that top
-        // evaluate those few, not the whole cover, and get the scan's answer all the same.
-        let proof: RefCell<Option<HeldProof>> = RefCell::new(None);
-        let threshold = mesh.held_threshold(theta0);
-        let held_until = bisect_to(phi0, phi1, |p, top| {
-            if !self.certify {
-                return blocked(p);
+        loop {
+            if links.is_empty() {
+                let mut memo = PairMemo::new(mesh, phi);
+                let found = mesh.free_or_cover_in(phi, theta, false, Some(&mut links), &mut memo);
+                if let Ok(t) = found {
+                    if phi > self.phi {
+                        self.release(phi, t, &mut memo);
+                        return;
+                    }
+                    // Free where the step starts: let go just after it.
+                    let phi_r = (phi + LOCATE_TOL).min(phi1);
+                    let mut memo = PairMemo::new(mesh, phi_r);
+                    match mesh.free_or_cover_in(phi_r, theta, false, None, &mut memo) {
+                        Ok(t) => self.release(phi_r, t, &mut memo),
+                        Err(_) if phi_r < phi1 => {
+                            phi = phi_r;
+                            links.clear();
+                            continue;
+                        }
+                        Err(_) => self.rest_to(phi1),
+                    }
+                    return;
+                }
             }
-            if let Some(proof) = proof.borrow_mut().as_mut()
-                && proof.holds_at(mesh, p, theta0)
-            {
-                proof.narrow(mesh, p, top);
-                return true;
+            match held::first_change(mesh, &links, theta, threshold, SIDE_TOL, (phi, phi1)) {
+                Some(root) if root < phi1 => {
+                    phi = past(root);
+                    links.clear();
+                }
+                found => {
+                    if found.is_none() {
+                        let m = links
+                            .iter()
+                            .position(|c| c.hi >= threshold)
+                            .map_or(0, |i| i + 1);
+                        self.held_links = links[..m]
+                            .iter()
+                            .map(|o| (o.driver_tooth, o.driven_tooth))
+                            .collect();
+                    }
+                    self.rest_to(phi1);
+                    return;
+                }
             }
-            let held = blocked(p);
-            if held {
-                *proof.borrow_mut() =
-                    HeldProof::build(mesh, (p, top), theta0, threshold, SIDE_TOL, &links.borrow());
-            }
-            held
-        });
-        self.cover = cover.into_inner();
-        self.opened = opened.into_inner();
-        let phi_r = (held_until + LOCATE_TOL).min(phi1);
-        let mut memo = PairMemo::new(mesh, phi_r);
-        let t = match mesh.free_or_cover_in(phi_r, theta0, false, None, &mut memo) {
-            Ok(t) => t,
-            Err(chain) => {
-                // Still held: the scan's cover is the one to check next.
-                self.cover = chain;
-                self.rest_to(phi_r);
-                return;
-            }
-        };
-        self.rest_to(phi_r);
+        }
+    }
+
+    /// The held gear let go at φ to the free position θ = `to`.
+    fn release(&mut self, phi: f64, to: f64, memo: &mut PairMemo) {
+        self.rest_to(phi);
         self.held = false;
-        self.cover.clear();
-        self.opened = None;
-        self.theta = t;
-        self.classify_all(phi_r, &mut memo);
+        self.theta = to;
+        self.classify_all(phi, memo);
     }
 
     /// Advance from `self.phi` to `phi1`, locating every event in between.
@@ -2219,11 +2097,9 @@ impl Run<'_> {
                     .map(|&pair| (pair, lo_j(pair)))
                     .min_by(|a, b| a.1.total_cmp(&b.1))
                     .map_or((0, 0), |(pair, _)| pair);
-                let (release, chain) =
-                    match mesh.free_or_cover_in(phi_j, theta_j, true, None, &mut memo) {
-                        Ok(t) => (Some(t), Vec::new()),
-                        Err(chain) => (None, chain),
-                    };
+                let release = mesh
+                    .free_or_cover_in(phi_j, theta_j, true, None, &mut memo)
+                    .ok();
                 if release.is_some_and(|t| t <= theta_j + SIDE_TOL) {
                     // Nothing ahead actually holds the driven gear (the closing obstacle only
                     // touches, or vanished): no jam. Count the pair as behind and go on.
@@ -2239,10 +2115,7 @@ impl Run<'_> {
                     return;
                 }
                 self.held = release.is_none();
-                // Held: the pairs that closed up over the turn are the first check of the next
-                // step (a cover found touching θ from ahead is no proof there, and a scan then
-                // decides, as with no cover at all).
-                self.cover = chain;
+                self.held_links.clear();
                 let after = release.unwrap_or(theta_j);
                 // Held from both sides (a pair touching behind as the one ahead closes), or
                 // struck from the front with nothing pushing.
@@ -2495,19 +2368,6 @@ fn bisect(mut a: f64, mut b: f64, good: impl Fn(f64) -> bool) -> f64 {
             break;
         }
         if good(m) { a = m } else { b = m }
-    }
-    a
-}
-
-/// [`bisect`], its `good` also told the top of the bracket it probes: the same midpoints and the
-/// same answer, bit for bit.
-fn bisect_to(mut a: f64, mut b: f64, good: impl Fn(f64, f64) -> bool) -> f64 {
-    while b - a > LOCATE_TOL {
-        let m = 0.5 * (a + b);
-        if m <= a || m >= b {
-            break;
-        }
-        if good(m, b) { a = m } else { b = m }
     }
     a
 }
@@ -2841,113 +2701,6 @@ mod tests {
         );
     }
 
-    /// A remembered cover's verdict is the scan's: `Holds` only where `free_or_cover` finds no
-    /// free position (also when the cover was patched with the pairs about its opening), `Free`
-    /// only where it finds one (also when found at the remembered opening, before the cover is
-    /// evaluated); checked at driver angles near the one the cover was taken at, where covers
-    /// open and close.
-    #[test]
-    fn a_remembered_covers_verdict_is_the_scans() {
-        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(15);
-        let (mut holds, mut free, mut at_opening, mut patched) = (0, 0, 0, 0);
-        for _ in 0..40 {
-            let mesh = tight_mesh(&mut rng);
-            let pitch = TAU / mesh.driver.tips.len() as f64;
-            for _ in 0..10 {
-                let phi = rng.random_range(0.0..TAU);
-                let theta = rng.random_range(0.0..TAU);
-                let Err(mut cover) = mesh.free_or_cover(phi, theta, false) else {
-                    continue;
-                };
-                let mut opened = None;
-                for _ in 0..20 {
-                    let p = phi + rng.random_range(-0.5..0.5) * pitch;
-                    let scan = mesh.free_or_cover(p, theta, false).is_ok();
-                    if opened.is_some_and(|at| mesh.free_above(p, theta, at, &mut Vec::new())) {
-                        at_opening += 1;
-                    }
-                    let before = cover.clone();
-                    match mesh.check_cover(p, theta, &mut cover, &mut opened, &mut Vec::new()) {
-                        CoverCheck::Holds => {
-                            holds += 1;
-                            patched += usize::from(cover != before);
-                            assert!(!scan, "a cover held where the scan found a free position");
-                        }
-                        CoverCheck::Free => {
-                            free += 1;
-                            assert!(scan, "an opening called free where the scan found none");
-                        }
-                        CoverCheck::Unknown => {}
-                    }
-                }
-            }
-        }
-        // Both verdicts were exercised, openings found where the cover opened before, and
-        // covers patched.
-        assert!(
-            holds > 50 && free > 50 && at_opening > 20 && patched > 10,
-            "holds {holds}, free {free}, {at_opening} at the remembered opening, {patched} patched"
-        );
-    }
-
-    /// A held gear's proof answers "held" only where the scan finds no free position: from the
-    /// cover found at a driver angle (by the scan, or by a remembered cover's check), over ranges
-    /// from a hundredth of a pitch to a pitch, at driver angles across the range, narrowed as a
-    /// bisection would narrow it after each probe that holds.
-    #[test]
-    fn a_held_proof_holds_only_where_the_scan_finds_no_free_position() {
-        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(16);
-        let (mut proofs, mut held, mut refused, mut fixed_some) = (0, 0, 0, 0);
-        for _ in 0..40 {
-            let mesh = tight_mesh(&mut rng);
-            let pitch = TAU / mesh.driver.tips.len() as f64;
-            for _ in 0..10 {
-                let phi = rng.random_range(0.0..TAU);
-                let theta = rng.random_range(0.0..TAU);
-                let mut links = Vec::new();
-                if mesh
-                    .free_or_cover_with(phi, theta, false, Some(&mut links))
-                    .is_ok()
-                {
-                    continue;
-                }
-                let top = phi + pitch * 10f64.powf(rng.random_range(-2.0..0.0));
-                let threshold = mesh.held_threshold(theta);
-                let Some(mut proof) =
-                    HeldProof::build(&mesh, (phi, top), theta, threshold, SIDE_TOL, &links)
-                else {
-                    continue;
-                };
-                proofs += 1;
-                fixed_some += usize::from(proof.has_fixed_joints());
-                let mut lo = phi;
-                for _ in 0..30 {
-                    let p = rng.random_range(lo..=top);
-                    let says_held = proof.holds_at(&mesh, p, theta);
-                    let scan_held = mesh.free_or_cover(p, theta, false).is_err();
-                    assert!(
-                        !says_held || scan_held,
-                        "proved held at {p} (from {phi}) where the scan finds a free position"
-                    );
-                    if says_held {
-                        held += 1;
-                        proof.narrow(&mesh, p, top);
-                        lo = p;
-                    } else {
-                        refused += 1;
-                    }
-                }
-                // Outside its range, or for another driven angle, it proves nothing.
-                assert!(!proof.holds_at(&mesh, top + 1e-6, theta));
-                assert!(!proof.holds_at(&mesh, lo, theta + 1e-3));
-            }
-        }
-        assert!(
-            proofs > 50 && held > 500 && refused > 50 && fixed_some > 25,
-            "{proofs} proofs ({fixed_some} with fixed joints), {held} probes held, {refused} not"
-        );
-    }
-
     /// Obstacles taken from a memo (a scan's widening windows, a cover's links a turn apart) are
     /// the ones a fresh evaluation gives, bit for bit, and no pair is evaluated twice.
     #[test]
@@ -2991,30 +2744,6 @@ mod tests {
                 reach *= 2.0;
             }
             assert!(beyond > 0, "no obstacles a turn on");
-            // A cover's links, some a turn apart: as `Mesh::obstacle` gives them.
-            let n = mesh.driven.tips.len() as i64;
-            let pairs: Vec<(i64, i64)> = remembered
-                .iter()
-                .flat_map(|o| {
-                    [
-                        (o.driver_tooth, o.driven_tooth),
-                        (o.driver_tooth, o.driven_tooth + n),
-                    ]
-                })
-                .collect();
-            let mut of = Vec::new();
-            mesh.obstacles_of(phi, &pairs, &mut of);
-            let each: Vec<_> = pairs
-                .iter()
-                .filter_map(|&(j, k)| mesh.obstacle(phi, j, k))
-                .collect();
-            assert_eq!(
-                of.iter().map(bits).collect::<Vec<_>>(),
-                each.iter().map(bits).collect::<Vec<_>>()
-            );
         }
-        let mut none = Vec::new();
-        tight_mesh(&mut rng).obstacles_of(0.0, &[], &mut none);
-        assert!(none.is_empty());
     }
 }
