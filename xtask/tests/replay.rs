@@ -172,7 +172,7 @@ fn bad_arguments_are_refused_in_one_line() {
 fn an_idle_start_is_reported_and_every_rule_counts_it() {
     let s = Scratch::new("replay-idle");
     let out = s.path("out");
-    for rule in ["friction", "idle-rotation", "paper", "strict", "sync"] {
+    for rule in rules::rules().unwrap().keys() {
         let text = succeeded(&[
             "replay",
             "table3",

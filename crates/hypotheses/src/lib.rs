@@ -8,9 +8,9 @@ use geometry::Gear;
 pub use inventory;
 pub use rand;
 
-mod builtin;
 mod edmunds;
-/// Every file in `src/plugins/`, declared by `build.rs`: a new hypothesis is one file there.
+/// Every file in `src/plugins/`, declared by `build.rs`: each hypothesis, built-in or new, is one
+/// file there.
 mod plugins {
     include!(concat!(env!("OUT_DIR"), "/plugins.rs"));
 }
@@ -92,10 +92,10 @@ pub struct ParamSpec {
 /// (build the result with [`manufacture`], which checks it); a plugin may change other things
 /// too (radii in `ratio-mismatch`, valley angles via [`geometry::Gear::with_valleys`] in
 /// `asymmetric-teeth`, per-tooth radii via [`geometry::Gear::with_radii`] in `non-circular`,
-/// arc flanks via [`geometry::Gear::with_flank_sagitta`] in `curved-flanks`). Built-ins, one file each in
-/// `src/builtin/`: `ideal`, `edmunds-split` (the paper's model, section 4), `eccentric-only`,
+/// arc flanks via [`geometry::Gear::with_flank_sagitta`] in `curved-flanks`). One file each in
+/// `src/plugins/`: `ideal`, `edmunds-split` (the paper's model, section 4), `eccentric-only`,
 /// `sinusoid-only` and `measured` (per-gear values from a RON table; the registered one uses an
-/// embedded table of invented example values).
+/// embedded table of invented example values), beside the other plugins.
 pub trait Hypothesis: Sync {
     /// Unique name, e.g. `edmunds-split`.
     fn name(&self) -> &'static str;

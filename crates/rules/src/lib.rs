@@ -356,12 +356,28 @@ mod tests {
     }
 
     #[test]
-    fn the_four_readings_are_registered_and_default_exists() {
+    fn the_readings_the_tests_name_are_registered_and_default_exists() {
         let all = rules().unwrap();
         for name in ["friction", "idle-rotation", "paper", "strict", "sync"] {
             assert!(all.contains_key(name), "{name} missing");
         }
         assert_eq!(Rule::default().name(), DEFAULT);
+    }
+
+    /// One rule per file of `src/plugins/` (file `a_b.rs` registers `a-b`), found by `build.rs`:
+    /// the registry is the list, written nowhere by hand.
+    #[test]
+    fn every_plugin_file_registers_its_rule_and_nothing_else_is_registered() {
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/src/plugins");
+        let mut files: Vec<String> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.extension().is_some_and(|x| x == "rs"))
+            .map(|p| p.file_stem().unwrap().to_string_lossy().replace('_', "-"))
+            .collect();
+        files.sort_unstable();
+        let registered: Vec<&str> = rules().unwrap().keys().copied().collect();
+        assert_eq!(registered, files);
     }
 
     #[test]
@@ -457,8 +473,9 @@ mod tests {
     #[test]
     fn bad_specs_are_refused_with_the_rule_broken() {
         let e = Rule::parse("papr").unwrap_err().to_string();
+        let known: Vec<&str> = rules().unwrap().keys().copied().collect();
         assert!(
-            e.contains("unknown; known rules: friction, idle-rotation, paper, strict, sync"),
+            e.contains(&format!("unknown; known rules: {}", known.join(", "))),
             "{e}"
         );
         let e = Rule::parse("friction:nu=1").unwrap_err().to_string();

@@ -1,7 +1,7 @@
 //! `eccentric-only`: `edmunds-split` with the whole systematic error on the axis (split 0).
 
-use super::edmunds_split::{EdmundsVariant, RANDOM, SYSTEMATIC};
 use crate::Registration;
+use crate::edmunds::{EdmundsVariant, RANDOM, SYSTEMATIC};
 
 inventory::submit! {
     Registration(&EdmundsVariant {

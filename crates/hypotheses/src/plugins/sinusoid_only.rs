@@ -1,7 +1,7 @@
 //! `sinusoid-only`: `edmunds-split` with the whole systematic error on the tip positions (split 1).
 
-use super::edmunds_split::{EdmundsVariant, RANDOM, SYSTEMATIC};
 use crate::Registration;
+use crate::edmunds::{EdmundsVariant, RANDOM, SYSTEMATIC};
 
 inventory::submit! {
     Registration(&EdmundsVariant {
