@@ -9,8 +9,8 @@ use crate::execute::{execute, make_pool};
 use crate::failure::Failure;
 use crate::progress;
 use crate::progress::note;
+use crate::shared::{Registry, default_threads, print};
 use crate::summary;
-use crate::{Registry, default_threads, print};
 
 /// `bench`: for each target and thread count, builds a pool, runs the target's experiments at
 /// their defaults (seed [`DEFAULT_SEED`]) in-process, and prints one row: wall time, trials,

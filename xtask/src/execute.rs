@@ -1,7 +1,6 @@
 //! Running experiments: the thread pool, one run caught if it panics, `run <id>...` and `run all` with its summary.
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
-use std::path::Path;
 use std::time::Instant;
 
 use registry::{Context, Experiment, RunError};
@@ -15,8 +14,8 @@ use crate::print::Printer;
 use crate::progress;
 use crate::progress::note;
 use crate::provenance;
+use crate::shared::{Registry, default_out, default_threads, print, write_atomically};
 use crate::summary;
-use crate::{Registry, default_out, default_threads, print};
 
 pub(crate) fn make_pool(threads: usize) -> Result<rayon::ThreadPool, Failure> {
     rayon::ThreadPoolBuilder::new()
@@ -48,23 +47,6 @@ pub(crate) fn execute(
     let seconds = start.elapsed().as_secs_f64();
     tracing::info!(seconds, "done");
     (result, seconds)
-}
-
-/// Writes `text` to `path` through a temporary sibling renamed into place.
-pub(crate) fn write_atomically(path: &Path, text: &str) -> Result<(), Failure> {
-    let tmp = path.with_file_name(format!(
-        ".{}.tmp-{}",
-        path.file_name()
-            .map_or_else(|| "summary".into(), |n| n.to_string_lossy().into_owned()),
-        std::process::id()
-    ));
-    let fail = |what: &str, e: std::io::Error| {
-        Failure::Internal(format!(
-            "internal error: cannot {what} {}: {e}",
-            path.display()
-        ))
-    };
-    registry::write_file_through(path, &tmp, text.as_bytes()).map_err(|(what, e)| fail(what, e))
 }
 
 /// `run all`: every experiment in id order, each written as `run <id>` writes it; a failing

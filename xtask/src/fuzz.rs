@@ -57,7 +57,7 @@ pub fn command(args: &[String]) -> Result<(), Failure> {
         ),
     }
     let summary = run(opts.budget, opts.seed);
-    crate::print(&summary.table().render())?;
+    crate::shared::print(&summary.table().render())?;
     if summary.findings.is_empty() {
         return Ok(());
     }

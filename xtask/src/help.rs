@@ -6,7 +6,7 @@ use registry::{Experiment, Table};
 use serde_json::Value;
 
 use crate::args::{DEFAULT_SEED, MAX_THREADS};
-use crate::{Registry, default_out, default_threads};
+use crate::shared::{Registry, default_out, default_threads};
 
 pub(crate) fn usage() -> String {
     format!(

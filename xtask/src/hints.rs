@@ -80,7 +80,7 @@ fn quoted(msg: &str) -> Option<&str> {
 
 /// Every name a user may type that the runner knows: experiment ids, hypothesis and event rule
 /// names, and every parameter of every experiment.
-fn every_name(exps: &crate::Registry) -> (Vec<&'static str>, Vec<&'static str>) {
+fn every_name(exps: &crate::shared::Registry) -> (Vec<&'static str>, Vec<&'static str>) {
     let mut names: Vec<&'static str> = exps.keys().copied().collect();
     if let Ok(h) = hypotheses::hypotheses() {
         names.extend(h.keys().copied());

@@ -14,11 +14,8 @@
 //! [`registry::Context::trials`]) and writes `<out>/<id>/partial-K-of-N.json`; `merge` joins the
 //! partial files of every shard and writes the results a single run would write, bit for bit.
 //!
-//! This file parses and dispatches only; each concern has its own file: `args.rs` (the command
-//! line), `help.rs` (usage, overview, `help`), `plan.rs` (what to run, checked before anything
-//! runs), `execute.rs` (`run` and `run all`), `print.rs` (stdout formats), `bench.rs`,
-//! `merge.rs` (`--shard` and `merge`), `report.rs`, `fuzz.rs`, `failure.rs` (why a command
-//! failed, in one line), `progress.rs`, `provenance.rs`, `summary.rs`.
+//! This file declares the modules (one concern each; the declarations below are the list) and
+//! dispatches the parsed command line to them.
 
 mod args;
 mod bench;
@@ -37,22 +34,16 @@ mod provenance;
 mod replay;
 mod report;
 mod shard;
+mod shared;
 mod summary;
 
-use std::collections::BTreeMap;
-use std::io::Write;
-use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-
-use registry::Experiment;
 
 use crate::args::Command;
 use crate::execute::{run_all, run_every};
 use crate::failure::{Failure, one_line};
 use crate::help::{details, hypothesis_details, overview, rule_details, usage};
-
-/// Experiments by id.
-type Registry = BTreeMap<&'static str, &'static Experiment>;
+use crate::shared::{print, stop_cleanly_on_signals};
 
 fn main() -> ExitCode {
     // Names the plugin crate so that its `inventory` registrations are linked in.
@@ -133,56 +124,6 @@ fn dispatch(args: &[String]) -> Result<(), Failure> {
         Command::Bench(b) => bench::bench(&exps, &b),
         Command::Merge(m) => merge::merge(&exps, &m),
     }
-}
-
-/// The exit status of a run stopped by SIGINT, SIGTERM or SIGHUP (128 + SIGINT's number, as a
-/// shell reports Ctrl-C).
-const STOPPED: i32 = 130;
-
-/// On SIGINT, SIGTERM or SIGHUP: removes the temporary results being written and puts back
-/// results moved aside ([`registry::abandon_writes`]), says so in one line and exits with
-/// [`STOPPED`]. Without it a stop while writing left `.ID.tmp-*` folders of partial files for
-/// the next run to clean up. Where no handler can be installed the signals keep their default.
-fn stop_cleanly_on_signals() {
-    let installed = ctrlc::set_handler(|| {
-        let cleaned = registry::abandon_writes();
-        eprintln!(
-            "stopped by a signal{}",
-            if cleaned == 0 {
-                String::new()
-            } else {
-                format!("; {cleaned} unfinished results removed or put back")
-            }
-        );
-        std::process::exit(STOPPED);
-    });
-    if let Err(e) = installed {
-        tracing::debug!("no signal handler: {e}");
-    }
-}
-
-/// Writes to stdout; a closed pipe (`cargo xtask list | head -1`) is not an error.
-fn print(s: &str) -> Result<(), Failure> {
-    let mut out = std::io::stdout().lock();
-    match out.write_all(s.as_bytes()).and_then(|()| out.flush()) {
-        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
-            Err(Failure::Internal(format!("cannot write to stdout: {e}")))
-        }
-        _ => Ok(()),
-    }
-}
-
-fn default_threads() -> usize {
-    std::thread::available_parallelism().map_or(1, |n| n.get())
-}
-
-/// `<workspace root>/results`.
-fn default_out() -> PathBuf {
-    let manifest = Path::new(env!("CARGO_MANIFEST_DIR"));
-    manifest
-        .parent()
-        .map_or_else(|| manifest.join(".."), Path::to_path_buf)
-        .join("results")
 }
 
 #[cfg(test)]

@@ -5,14 +5,14 @@ use std::path::{Path, PathBuf};
 use registry::Context;
 
 use crate::args::{MergeArgs, RunArgs};
-use crate::execute::{as_typed, execute, make_pool, write_atomically};
+use crate::execute::{as_typed, execute, make_pool};
 use crate::failure::Failure;
 use crate::plan::{Planned, Target, check_out, lookup};
 use crate::print::Printer;
 use crate::progress::note;
 use crate::provenance;
 use crate::shard;
-use crate::{Registry, default_out, default_threads, print};
+use crate::shared::{Registry, default_out, default_threads, print, write_atomically};
 
 /// `run <id> --shard K/N`: runs the experiment in shard mode, discards its report and writes
 /// the recorded trials to `<out>/<id>/partial-K-of-N.json` (through a temporary file renamed

@@ -8,7 +8,7 @@ use crate::args::RunArgs;
 use crate::failure::Failure;
 use crate::help::known;
 use crate::progress;
-use crate::{Registry, default_out};
+use crate::shared::{Registry, default_out};
 
 pub(crate) fn lookup(exps: &Registry, id: &str) -> Result<&'static Experiment, Failure> {
     exps.get(id)

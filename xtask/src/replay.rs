@@ -10,7 +10,7 @@ use crate::args::DEFAULT_SEED;
 use crate::failure::Failure;
 use crate::plan::lookup;
 use crate::progress::note;
-use crate::{default_out, print};
+use crate::shared::{default_out, print};
 
 /// What `replay` was given.
 struct ReplayArgs {
@@ -151,7 +151,7 @@ pub(crate) fn command(args: &[String]) -> Result<(), Failure> {
     let a = parse(args)?;
     let exps = registry::experiments().map_err(|e| Failure::Internal(e.to_string()))?;
     let e = lookup(&exps, &a.id)?;
-    let threads = crate::default_threads();
+    let threads = crate::shared::default_threads();
     let ctx = Context::new(e, a.seed, threads, &a.sets, None)?;
     // Where the results go is checked before the trial is rebuilt and run, as `run` checks: an
     // `--out` that is a file, or a name the file system refuses, is refused with exit 2 first.

@@ -28,9 +28,9 @@ use std::path::{Path, PathBuf};
 use registry::Table;
 use serde_json::Value;
 
-use crate::Registry;
 use crate::failure::Failure;
 use crate::provenance::{self, RUN_JSON};
+use crate::shared::Registry;
 
 /// The page's file name in `<out>/`.
 pub const INDEX_HTML: &str = "index.html";
@@ -44,7 +44,7 @@ pub fn command(args: &[String]) -> Result<(), Failure> {
     crate::plan::check_out(&out, &[crate::plan::Target::File(INDEX_HTML.into())])?;
     let page = build(&exps, &out, quiet)?;
     let index = out.join(INDEX_HTML);
-    crate::execute::write_atomically(&index, &page)?;
+    crate::shared::write_atomically(&index, &page)?;
     if !quiet {
         eprintln!("report: {}", index.display());
     }
@@ -90,7 +90,7 @@ fn parse(args: &[String]) -> Result<(PathBuf, bool), Failure> {
         }
         out = Some(PathBuf::from(value));
     }
-    Ok((out.unwrap_or_else(crate::default_out), quiet))
+    Ok((out.unwrap_or_else(crate::shared::default_out), quiet))
 }
 
 /// One experiment's results as read from `<out>/<id>/`.

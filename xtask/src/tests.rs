@@ -6,11 +6,11 @@ use std::path::{Path, PathBuf};
 
 use registry::{Context, Experiment, Param, Report, RunError, Table};
 
-use crate::Registry;
 use crate::args::{Format, RunArgs};
 use crate::bench::bench_row;
 use crate::execute::run_every;
 use crate::failure::{one_line, short_numbers};
+use crate::shared::Registry;
 use crate::summary;
 
 fn fine(ctx: &Context) -> Result<Report, RunError> {
