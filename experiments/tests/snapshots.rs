@@ -39,11 +39,13 @@ fn registered_hypotheses() {
 }
 
 /// The registered event rules with their parameters (`cargo xtask rules`): a rule added,
-/// removed or with a changed default shows here.
+/// removed or with a changed default shows here, and in the README's table of rules, which
+/// this test writes with `UPDATE_README=1` as it writes the results section's tables.
 #[test]
 fn registered_rules() {
     rules::link();
     pin("rules", &rules::listing());
+    readme_carries("rules", &rules::readme_table());
 }
 
 /// Experiments run one at a time, whatever order the test harness starts them in: the cells one
@@ -85,8 +87,8 @@ fn readme_marks(id: &str) -> (String, String) {
     )
 }
 
-/// The README's results section shows experiment `id`'s first table as this pinned run computes
-/// it. With `UPDATE_README=1` the block is rewritten; otherwise a difference fails, so the README
+/// The README shows table `id` (an experiment's first table as this pinned run computes it, or
+/// the registered rules) as computed here. With `UPDATE_README=1` the block is rewritten; otherwise a difference fails, so the README
 /// cannot drift from the snapshot.
 fn readme_carries(id: &str, table: &str) {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../README.md");

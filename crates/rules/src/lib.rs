@@ -73,6 +73,12 @@ pub trait EventRule: Sync {
     fn params(&self) -> &'static [ParamSpec] {
         &[]
     }
+    /// What it counts as a jam, in a few words: its cell of the README's table of rules
+    /// ([`readme_table`]).
+    fn jams(&self) -> &'static str;
+    /// What it counts as a disengagement, in a few words: its cell of the README's table of
+    /// rules.
+    fn disengagements(&self) -> &'static str;
     /// Whether `e` counts as a jam, with `params` holding a value for every declared parameter.
     fn is_jam(&self, e: &Event, params: &Params) -> bool;
     /// Whether `e` counts as a disengagement.
@@ -83,7 +89,9 @@ pub trait EventRule: Sync {
 ///
 /// ```ignore
 /// struct Mine;
-/// impl rules::EventRule for Mine { /* name, summary, details, is_jam, is_disengagement */ }
+/// impl rules::EventRule for Mine {
+///     /* name, summary, details, jams, disengagements, is_jam, is_disengagement */
+/// }
 /// rules::inventory::submit! { rules::Registration(&Mine) }
 /// ```
 pub struct Registration(pub &'static dyn EventRule);
@@ -326,6 +334,47 @@ pub fn listing() -> String {
     let kinds: Vec<&str> = EventKind::ALL.iter().map(|k| k.name()).collect();
     s.push_str(&kinds.join(", "));
     s.push('\n');
+    s
+}
+
+/// The README's table of rules: one row per registered rule, the default first and the others
+/// by name, each with what it counts as a jam and as a disengagement ([`EventRule::jams`],
+/// [`EventRule::disengagements`]) and, for a rule with parameters, how to set them. The test
+/// that pins `rules.snap` checks the README's block against it (`UPDATE_README=1` rewrites it).
+pub fn readme_table() -> String {
+    let all = match rules() {
+        Ok(all) => all,
+        Err(e) => return format!("error: {e}\n"),
+    };
+    let mut order: Vec<&dyn EventRule> = all.get(DEFAULT).copied().into_iter().collect();
+    order.extend(all.values().copied().filter(|r| r.name() != DEFAULT));
+    let mut s = String::from("| rule | jam | disengagement |\n|---|---|---|\n");
+    for r in order {
+        let mut notes = Vec::new();
+        if r.name() == DEFAULT {
+            notes.push("default".to_owned());
+        }
+        if !r.params().is_empty() {
+            let args: Vec<String> = r
+                .params()
+                .iter()
+                .map(|p| format!("{}={}", p.name, fmt_number(p.default)))
+                .collect();
+            notes.push(format!("`events={}:{}`", r.name(), args.join(",")));
+        }
+        let notes = if notes.is_empty() {
+            String::new()
+        } else {
+            format!(" ({})", notes.join("; "))
+        };
+        let _ = writeln!(
+            s,
+            "| `{}`{notes} | {} | {} |",
+            r.name(),
+            r.jams(),
+            r.disengagements()
+        );
+    }
     s
 }
 

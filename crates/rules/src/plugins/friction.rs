@@ -34,6 +34,14 @@ impl EventRule for Friction {
         "Beyond the paper, whose program is frictionless. With friction coefficient mu, the force at a single contact may lie anywhere in the cone of half-angle atan(mu) about the contact normal. When the line from the contact point to the driven gear's rotation centre lies inside that cone, the force can pass through the driven arbor: the driven gear is not turned and the driver cannot advance - the contact wedges, a jam. A strike (an incoming driver tooth meeting the front of a lagging driven tooth) is therefore a jam when it wedges; otherwise the free driven gear is knocked back, and it fails only if its tooth phase moved (as in sync). Locks and blocked starts are jams; slips are disengagements; hand-over gaps are lost motion. Exact from the contact geometry: the solver reports, at each lock and strike, the angle between the contact normal and the line to the driven centre. With mu = 0 it counts as sync."
     }
 
+    fn jams(&self) -> &'static str {
+        "as `sync`, and a strike whose contact wedges (the driven arbor inside the friction cone about the contact normal)"
+    }
+
+    fn disengagements(&self) -> &'static str {
+        "as `sync`"
+    }
+
     fn params(&self) -> &'static [ParamSpec] {
         PARAMS
     }

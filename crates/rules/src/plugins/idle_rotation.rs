@@ -28,6 +28,14 @@ impl EventRule for IdleRotation {
         "Disengagement read from the only definition the paper gives, in Appendix II: 'If the gears have a separation greater than this percentage, they lose contact before reaching 100% separation, and the program does not detect any tooth interference - this is what we refer to as decoupling or idle rotation', with Figure V_B, 'a decoupling situation in which a gear fails to transmit motion to the meshed pair'. The paper's program detected 'intersections between the areas of the gears'; what it could see of a loss of drive is how long the driver turned with no interference, not which tooth took the driven gear up afterwards. So a disengagement is any loss of drive (a gap or a slip) lasting at least `pitches` driver pitches (default 1: a whole tooth of the driver turned idle), whatever the tooth phase when drive resumes; a short loss that resumes a tooth out of step (which `paper` counts) is not one. A driven gear that no driver tooth pushes within that much of the start, or at all (an idle start), turned idle too and counts. Jams as under `paper`: a lock, a strike or a start with no free position ('teeth positioned too closely interfere with each other at all times ... the gears become jammed or locked', Figure V_A)."
     }
 
+    fn jams(&self) -> &'static str {
+        "lock, strike, blocked start"
+    }
+
+    fn disengagements(&self) -> &'static str {
+        "drive lost for a driver pitch or more (gap or slip, an idle start included), the tooth phase afterwards ignored"
+    }
+
     fn params(&self) -> &'static [ParamSpec] {
         PARAMS
     }

@@ -19,6 +19,14 @@ impl EventRule for Strict {
         "Every contact that stops the driver in the push model is a jam: a lock (held from both sides), a strike (an incoming driver tooth meeting the front of a lagging driven tooth, which the push model would have to turn backwards) and a start with no free position. Every moment the pushing tooth slips past its driven tooth with no other tooth touching is a disengagement, including a brief hand-over gap after which the next tooth picks the driven gear up again in step. These were the toolkit's counts before the event taxonomy; they read the paper's 'the program does not detect any tooth interference' as any instant without contact."
     }
 
+    fn jams(&self) -> &'static str {
+        "lock, strike, blocked start"
+    }
+
+    fn disengagements(&self) -> &'static str {
+        "gap, slip (any instant without contact)"
+    }
+
     fn is_jam(&self, e: &Event, _: &Params) -> bool {
         e.kind.is_contact_stop()
     }

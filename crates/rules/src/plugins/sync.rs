@@ -18,6 +18,14 @@ impl EventRule for Sync {
         "A clockmaker's failure: the mechanism stops, or a pointer loses synchronisation. The train stops at a lock (the driven gear held from both sides) or a start with no free position. A strike is one-sided: a free driven gear is knocked back by the incoming tooth rather than stopping the train, so it fails only if the tooth phase moved by it (the driven gear a tooth out of step). A slip (drive lost for a driver pitch or more, or resumed out of step) is lost synchronisation. A hand-over gap that resumes in step within a pitch is lost motion, reported in the event log with its size, not a failure."
     }
 
+    fn jams(&self) -> &'static str {
+        "lock, blocked start (the train stops)"
+    }
+
+    fn disengagements(&self) -> &'static str {
+        "slip, or a strike that moved the tooth phase"
+    }
+
     fn is_jam(&self, e: &Event, _: &Params) -> bool {
         matches!(e.kind, EventKind::Lock | EventKind::BlockedAtStart)
     }
