@@ -5,7 +5,7 @@ use std::time::Instant;
 use registry::{Context, Experiment, Table};
 
 use crate::args::{BenchArgs, BenchTarget, DEFAULT_SEED};
-use crate::execute::{execute, make_pool};
+use crate::compute::{execute, make_pool};
 use crate::failure::Failure;
 use crate::progress;
 use crate::progress::note;

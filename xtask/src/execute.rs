@@ -1,53 +1,19 @@
-//! Running experiments: the thread pool, one run caught if it panics, `run <id>...` and `run all` with its summary.
+//! Running experiments: `run <id>...` and `run all` with its summary (one experiment is computed
+//! by [`crate::compute`]).
 
-use std::panic::{AssertUnwindSafe, catch_unwind};
-use std::time::Instant;
-
-use registry::{Context, Experiment, RunError};
+use registry::Experiment;
 
 use crate::args::RunArgs;
+use crate::compute::{execute, make_pool};
 use crate::failure::Failure;
 use crate::help::known;
-use crate::merge::run_shard;
-use crate::plan::{check_sets, plan, read_config, select};
+use crate::plan::{as_typed, check_sets, plan, read_config, select};
 use crate::print::Printer;
-use crate::progress;
 use crate::progress::note;
 use crate::provenance;
+use crate::shard::run_shard;
 use crate::shared::{Registry, default_out, default_threads, print, write_atomically};
 use crate::summary;
-
-pub(crate) fn make_pool(threads: usize) -> Result<rayon::ThreadPool, Failure> {
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .thread_name(|i| format!("xtask-worker-{i}"))
-        .build()
-        .map_err(|e| Failure::Internal(format!("cannot start {threads} threads: {e}")))
-}
-
-/// Runs `e` in `pool`: its report (a panic is an internal error) and the wall time in seconds.
-pub(crate) fn execute(
-    e: &Experiment,
-    ctx: &Context,
-    pool: &rayon::ThreadPool,
-) -> (Result<registry::Report, RunError>, f64) {
-    let _span = tracing::info_span!("run", id = e.id).entered();
-    tracing::info!(seed = ctx.seed(), threads = ctx.threads(), "start");
-    progress::experiment_starts();
-    let start = Instant::now();
-    let result = progress::watch(e.id, || {
-        pool.install(|| catch_unwind(AssertUnwindSafe(|| (e.run)(ctx))))
-    })
-    .unwrap_or_else(|_| {
-        Err(RunError::Internal(format!(
-            "experiment `{}` panicked",
-            e.id
-        )))
-    });
-    let seconds = start.elapsed().as_secs_f64();
-    tracing::info!(seconds, "done");
-    (result, seconds)
-}
 
 /// `run all`: every experiment in id order, each written as `run <id>` writes it; a failing
 /// experiment is reported on stderr and the others still run. Then the summary is printed
@@ -166,33 +132,4 @@ pub(crate) fn run_all(exps: &Registry, run: &RunArgs) -> Result<(), Failure> {
         note(&format!("results: {}", dir.display()));
     }
     printer.finish()
-}
-
-/// `e` (of experiment `id`) as the user typed it: a refusal reached through a shorthand names
-/// the shorthand (`--trials`, `--gearing`, `--errors`), not the `--set` or `--hypothesis` it
-/// stands for.
-pub(crate) fn as_typed(e: RunError, id: &str, run: &RunArgs) -> RunError {
-    let RunError::BadInput {
-        source,
-        field,
-        rule,
-    } = e
-    else {
-        return e;
-    };
-    let shorthand = match (source.as_str(), field.as_str()) {
-        ("--hypothesis", _) if run.errors.is_some() => Some(("--errors", field.clone())),
-        ("--set", "trials") if run.trials.is_some() => Some(("--trials", id.to_owned())),
-        ("--set", "gearing") if run.gearing.is_some() => Some(("--gearing", id.to_owned())),
-        ("--set", "measured") if run.errors.is_some() => Some(("--errors", id.to_owned())),
-        _ => None,
-    };
-    match shorthand {
-        Some((flag, field)) => RunError::bad(flag, field, rule),
-        None => RunError::BadInput {
-            source,
-            field,
-            rule,
-        },
-    }
 }

@@ -19,6 +19,7 @@
 
 mod args;
 mod bench;
+mod compute;
 mod execute;
 mod failure;
 mod fuzz;
@@ -26,7 +27,6 @@ mod fuzz_settings;
 mod fuzz_targets;
 mod help;
 mod hints;
-mod merge;
 mod plan;
 mod print;
 mod progress;
@@ -122,7 +122,7 @@ fn dispatch(args: &[String]) -> Result<(), Failure> {
         }
         Command::Run(run) => run_all(&exps, &run),
         Command::Bench(b) => bench::bench(&exps, &b),
-        Command::Merge(m) => merge::merge(&exps, &m),
+        Command::Merge(m) => shard::merge(&exps, &m),
     }
 }
 

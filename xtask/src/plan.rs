@@ -2,7 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
-use registry::{ConfigFile, Context, Experiment};
+use registry::{ConfigFile, Context, Experiment, RunError};
 
 use crate::args::RunArgs;
 use crate::failure::Failure;
@@ -162,7 +162,7 @@ pub(crate) fn plan(
         sets.extend(shorthands(e, run).into_iter().filter_map(|(_, s)| s));
         let file = config.filter(|_| e.config.is_some()).cloned();
         let ctx = Context::new(e, run.seed, threads, &sets, file)
-            .map_err(|err| crate::execute::as_typed(err, e.id, run))?;
+            .map_err(|err| as_typed(err, e.id, run))?;
         let ctx = progress::attach(ctx);
         planned.push(Planned { e, ctx, sets });
     }
@@ -184,7 +184,13 @@ pub(crate) fn preflight(planned: &[Planned], run: &RunArgs) -> Result<(), Failur
     let targets: Vec<Target> = match run.shard {
         Some(shard) => planned
             .iter()
-            .map(|p| Target::File(format!("{}/{}", p.e.id, crate::shard::file_name(shard))))
+            .map(|p| {
+                Target::File(format!(
+                    "{}/{}",
+                    p.e.id,
+                    crate::shard::partial::file_name(shard)
+                ))
+            })
             .collect(),
         None => planned
             .iter()
@@ -377,4 +383,33 @@ fn replaceable(dir: &Path) -> Result<(), String> {
         }
     }
     Ok(())
+}
+
+/// `e` (of experiment `id`) as the user typed it: a refusal reached through a shorthand names
+/// the shorthand (`--trials`, `--gearing`, `--errors`), not the `--set` or `--hypothesis` it
+/// stands for.
+pub(crate) fn as_typed(e: RunError, id: &str, run: &RunArgs) -> RunError {
+    let RunError::BadInput {
+        source,
+        field,
+        rule,
+    } = e
+    else {
+        return e;
+    };
+    let shorthand = match (source.as_str(), field.as_str()) {
+        ("--hypothesis", _) if run.errors.is_some() => Some(("--errors", field.clone())),
+        ("--set", "trials") if run.trials.is_some() => Some(("--trials", id.to_owned())),
+        ("--set", "gearing") if run.gearing.is_some() => Some(("--gearing", id.to_owned())),
+        ("--set", "measured") if run.errors.is_some() => Some(("--errors", id.to_owned())),
+        _ => None,
+    };
+    match shorthand {
+        Some((flag, field)) => RunError::bad(flag, field, rule),
+        None => RunError::BadInput {
+            source,
+            field,
+            rule,
+        },
+    }
 }

@@ -157,7 +157,7 @@ pub(crate) fn command(args: &[String]) -> Result<(), Failure> {
     // `--out` that is a file, or a name the file system refuses, is refused with exit 2 first.
     let out = a.out.clone().unwrap_or_else(default_out);
     crate::plan::check_out(&out, &[crate::plan::Target::Results(folder(&a))])?;
-    let pool = crate::execute::make_pool(threads)?;
+    let pool = crate::compute::make_pool(threads)?;
     let report = pool.install(|| experiments::replay::replay(&ctx, &a.id, &a.cell, a.trial))?;
     let dir = out.join(folder(&a));
     registry::write_results(&dir, &report)?;

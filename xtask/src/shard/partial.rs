@@ -1,5 +1,5 @@
-//! Sharded runs: `run <id> --shard K/N` writes a partial file, `merge` finds, reads and checks
-//! the partial files of every shard.
+//! A sharded run's partial file: `run <id> --shard K/N` writes one, `merge` finds, reads and
+//! checks the partial files of every shard.
 //!
 //! A partial file, `<out>/<id>/partial-K-of-N.json`, holds what the merge needs to run the
 //! experiment again exactly as the shards did (the experiment id, seed, `--set` overrides and

@@ -1,17 +1,19 @@
-//! `run <id> --shard K/N` and `merge`: one shard's partial file, and the results of all of them joined.
+//! `run <id> --shard K/N` and `merge`: one shard's partial file, and the results of all of them joined
+//! ([`partial`]: the partial file, how it is found, read and checked).
+
+pub(crate) mod partial;
 
 use std::path::{Path, PathBuf};
 
 use registry::Context;
 
 use crate::args::{MergeArgs, RunArgs};
-use crate::execute::{as_typed, execute, make_pool};
+use crate::compute::{execute, make_pool};
 use crate::failure::Failure;
-use crate::plan::{Planned, Target, check_out, lookup};
+use crate::plan::{Planned, Target, as_typed, check_out, lookup};
 use crate::print::Printer;
 use crate::progress::note;
 use crate::provenance;
-use crate::shard;
 use crate::shared::{Registry, default_out, default_threads, print, write_atomically};
 
 /// `run <id> --shard K/N`: runs the experiment in shard mode, discards its report and writes
@@ -33,7 +35,7 @@ pub(crate) fn run_shard(
     execute(e, &ctx, pool)
         .0
         .map_err(|err| as_typed(err, e.id, run))?;
-    let mut partial = shard::Partial::new(e.id, run.seed, &planned.sets, ctx.config(), shard);
+    let mut partial = partial::Partial::new(e.id, run.seed, &planned.sets, ctx.config(), shard);
     partial.batches = ctx.recorded();
     let text = partial.to_json()?;
     let dir = out.join(e.id);
@@ -44,7 +46,7 @@ pub(crate) fn run_shard(
         ))
     })?;
     registry::tidy(&dir)?;
-    let path = dir.join(shard::file_name(shard));
+    let path = dir.join(partial::file_name(shard));
     write_atomically(&path, &text)?;
     let (mut here, mut whole) = (0, 0);
     for b in partial.batches.values() {
@@ -82,13 +84,13 @@ pub(crate) fn run_shard(
 /// and cover every shard once, replays the experiment from their records, then prints and
 /// writes its results as `run` would. Nothing is written unless every check passes.
 pub(crate) fn merge(exps: &Registry, m: &MergeArgs) -> Result<(), Failure> {
-    let files = shard::find(&m.inputs)?;
+    let files = partial::find(&m.inputs)?;
     let mut parts = Vec::with_capacity(files.len());
     for f in files.clone() {
-        let (partial, shard) = shard::read(&f)?;
+        let (partial, shard) = partial::read(&f)?;
         parts.push((f, partial, shard));
     }
-    shard::agree(&parts)?;
+    partial::agree(&parts)?;
     let header = parts
         .first()
         .map(|(_, p, _)| p.clone())
