@@ -1,6 +1,7 @@
-//! Command-line parsing, by hand: seven commands, their flags, and `-q` / `-v` anywhere.
+//! Command-line parsing, by hand: every command and its flags, and `-q` / `-v` anywhere (`report`,
+//! `fuzz` and `replay` take `-q` among their own flags).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use registry::{MAX_TRIALS, Shard};
 
@@ -33,7 +34,7 @@ pub enum Format {
 }
 
 /// What the command line asks for.
-#[derive(Debug, PartialEq, Eq)]
+#[derive(Debug, PartialEq)]
 pub enum Command {
     /// No arguments: commands and the table of experiments.
     Overview,
@@ -51,6 +52,12 @@ pub enum Command {
     Bench(BenchArgs),
     /// `merge DIR|FILE... [--out DIR] [--threads N] [--format F]`.
     Merge(MergeArgs),
+    /// `report [--out DIR] [-q]`.
+    Report(ReportArgs),
+    /// `fuzz [--seconds N | --execs N] [--seed S] [--findings DIR]`.
+    Fuzz(FuzzArgs),
+    /// `replay <experiment> <cell> [<trial>] [flags]`.
+    Replay(ReplayArgs),
 }
 
 /// Arguments of `merge`.
@@ -134,8 +141,25 @@ pub enum ArgError {
 }
 
 /// Parses the arguments after the program name: `-q` / `--quiet` and `-v` / `--verbose` may
-/// stand anywhere (at most one of them); the rest is the command ([`parse`]).
+/// stand anywhere (at most one of them); the rest is the command ([`parse`]). `report`, `fuzz`
+/// and `replay` parse their own `-q` (and `-q report` is `report -q`); their verbosity is
+/// [`Verbosity::Normal`].
 pub fn parse_invocation(args: &[String]) -> Result<(Command, Verbosity), ArgError> {
+    let own = match args.split_first().map(|(c, r)| (c.as_str(), r)) {
+        Some(("report", rest)) => Some(Command::Report(parse_report(rest)?)),
+        // `-q` goes anywhere on the line, as the usage says: `cargo xtask -q report`.
+        Some(("-q" | "--quiet", rest)) if rest.first().is_some_and(|c| c == "report") => {
+            let mut rest = rest[1..].to_vec();
+            rest.push("-q".into());
+            Some(Command::Report(parse_report(&rest)?))
+        }
+        Some(("fuzz", rest)) => Some(Command::Fuzz(parse_fuzz(rest)?)),
+        Some(("replay", rest)) => Some(Command::Replay(parse_replay(rest)?)),
+        _ => None,
+    };
+    if let Some(cmd) = own {
+        return Ok((cmd, Verbosity::Normal));
+    }
     let mut verbosity = Verbosity::Normal;
     let mut rest = Vec::with_capacity(args.len());
     for a in args {
@@ -513,6 +537,266 @@ fn parse_bench(args: &[String]) -> Result<BenchArgs, ArgError> {
     Ok(bench)
 }
 
+/// Arguments of `report`.
+#[derive(Debug, PartialEq, Eq)]
+pub struct ReportArgs {
+    /// `--out`; `None`: `<workspace>/results`.
+    pub out: Option<PathBuf>,
+    /// `-q` / `--quiet`: no note on stderr.
+    pub quiet: bool,
+}
+
+/// Parses the arguments of `report`: `--out DIR` and `-q`.
+fn parse_report(args: &[String]) -> Result<ReportArgs, ArgError> {
+    let mut out = None;
+    let mut quiet = false;
+    let mut it = args.iter();
+    while let Some(arg) = it.next() {
+        if arg == "-q" || arg == "--quiet" {
+            quiet = true;
+            continue;
+        }
+        if out.is_some() && (arg == "--out" || arg.starts_with("--out=")) {
+            return Err(ArgError::Usage("--out given twice".into()));
+        }
+        let value = match arg.split_once('=') {
+            Some(("--out", v)) => v.to_owned(),
+            None if arg == "--out" => match it.next() {
+                Some(v) if !v.starts_with("--") => v.clone(),
+                _ => return Err(ArgError::Usage("--out needs a value".into())),
+            },
+            _ => {
+                return Err(ArgError::Usage(format!(
+                    "report takes only --out DIR and -q (got `{arg}`)"
+                )));
+            }
+        };
+        if value.is_empty() {
+            return Err(ArgError::Value("--out: must not be empty".into()));
+        }
+        out = Some(PathBuf::from(value));
+    }
+    Ok(ReportArgs { out, quiet })
+}
+
+/// `fuzz`'s run time when neither `--seconds` nor `--execs` is given.
+pub const DEFAULT_FUZZ_SECONDS: f64 = 60.0;
+
+/// How long to fuzz.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Budget {
+    /// Wall-clock seconds, shared equally between the targets.
+    Seconds(f64),
+    /// Executions per target.
+    Execs(u64),
+}
+
+/// Arguments of `fuzz`.
+#[derive(Debug, PartialEq)]
+pub struct FuzzArgs {
+    /// `--seconds N` or `--execs N`, default [`DEFAULT_FUZZ_SECONDS`] seconds.
+    pub budget: Budget,
+    /// `--seed`, default [`DEFAULT_SEED`].
+    pub seed: u64,
+    /// `--findings`, default `<workspace>/target/fuzz-findings`.
+    pub findings: PathBuf,
+}
+
+/// Parses the arguments of `fuzz`.
+fn parse_fuzz(args: &[String]) -> Result<FuzzArgs, ArgError> {
+    let mut opts = FuzzArgs {
+        budget: Budget::Seconds(DEFAULT_FUZZ_SECONDS),
+        seed: DEFAULT_SEED,
+        findings: default_findings(),
+    };
+    let mut it = args.iter();
+    while let Some(arg) = it.next() {
+        let known = ["--seconds", "--execs", "--seed", "--findings"];
+        let Some((flag, value)) = flag_value(arg, &mut it, &known).map_err(ArgError::Usage)? else {
+            return Err(ArgError::Usage(format!(
+                "fuzz takes --seconds N or --execs N, --seed S and --findings DIR (got `{arg}`)"
+            )));
+        };
+        match flag {
+            "--seconds" => {
+                opts.budget = value
+                    .trim()
+                    .parse()
+                    .ok()
+                    .filter(|s: &f64| s.is_finite() && *s > 0.0 && *s <= 86_400.0)
+                    .map(Budget::Seconds)
+                    .ok_or_else(|| {
+                        ArgError::Value(format!(
+                            "--seconds: must be a number of seconds above 0, at most 86400 (got `{value}`)"
+                        ))
+                    })?;
+            }
+            "--execs" => {
+                opts.budget = value
+                    .trim()
+                    .parse()
+                    .ok()
+                    .filter(|n: &u64| *n > 0)
+                    .map(Budget::Execs)
+                    .ok_or_else(|| {
+                        ArgError::Value(format!(
+                            "--execs: must be a positive number of executions per target (got `{value}`)"
+                        ))
+                    })?;
+            }
+            "--seed" => {
+                opts.seed = value.trim().parse().map_err(|_| {
+                    ArgError::Value(format!(
+                        "--seed: must be an integer from 0 to {} (got `{value}`)",
+                        u64::MAX
+                    ))
+                })?;
+            }
+            _ => {
+                if value.is_empty() {
+                    return Err(ArgError::Value("--findings: must not be empty".into()));
+                }
+                opts.findings = PathBuf::from(value);
+            }
+        }
+    }
+    Ok(opts)
+}
+
+/// `<workspace>/target/fuzz-findings`.
+fn default_findings() -> PathBuf {
+    let manifest = Path::new(env!("CARGO_MANIFEST_DIR"));
+    manifest
+        .parent()
+        .unwrap_or(manifest)
+        .join("target")
+        .join("fuzz-findings")
+}
+
+/// Arguments of `replay`.
+#[derive(Debug, PartialEq, Eq)]
+pub struct ReplayArgs {
+    /// The experiment.
+    pub id: String,
+    /// The cell of its jam table.
+    pub cell: String,
+    /// The trial; `None`: list the cell's failed trials.
+    pub trial: Option<u64>,
+    /// `--seed`, default [`DEFAULT_SEED`].
+    pub seed: u64,
+    /// `--set KEY=VALUE`, in order, then `--trials N` as `trials=N`.
+    pub sets: Vec<(String, String)>,
+    /// `--out`; `None`: `<workspace>/results`.
+    pub out: Option<PathBuf>,
+    /// `-q` / `--quiet`: no note of where the results went.
+    pub quiet: bool,
+}
+
+const REPLAY_USAGE: &str = "replay <experiment> <cell> [<trial>] [--seed S] [--trials N] [--set KEY=VALUE]... [--out DIR] [-q]";
+
+/// A usage error of `replay`, followed by its usage.
+fn replay_usage(what: impl std::fmt::Display) -> ArgError {
+    ArgError::Usage(format!("{what}\nusage: cargo xtask {REPLAY_USAGE}"))
+}
+
+/// The value of a flag of `replay`: `--flag=V` or `--flag V`.
+fn replay_value(
+    arg: &str,
+    flag: &str,
+    it: &mut std::slice::Iter<'_, String>,
+) -> Result<Option<String>, ArgError> {
+    if let Some(v) = arg.strip_prefix(flag).and_then(|r| r.strip_prefix('=')) {
+        return Ok(Some(v.to_owned()));
+    }
+    if arg != flag {
+        return Ok(None);
+    }
+    match it.next() {
+        Some(v) if !v.starts_with("--") => Ok(Some(v.clone())),
+        _ => Err(replay_usage(format!("{flag} needs a value"))),
+    }
+}
+
+/// Parses the arguments of `replay`.
+pub(crate) fn parse_replay(args: &[String]) -> Result<ReplayArgs, ArgError> {
+    let mut positional = Vec::new();
+    let (mut seed, mut sets, mut out, mut quiet) = (None, Vec::new(), None, false);
+    let mut trials: Option<String> = None;
+    let mut it = args.iter();
+    while let Some(arg) = it.next() {
+        if arg == "-q" || arg == "--quiet" {
+            quiet = true;
+        } else if let Some(v) = replay_value(arg, "--seed", &mut it)? {
+            if seed.is_some() {
+                return Err(replay_usage("--seed given twice"));
+            }
+            seed = Some(v.parse::<u64>().map_err(|_| {
+                ArgError::Value(format!(
+                    "--seed: `{v}` is not a whole number 0 to {}",
+                    u64::MAX
+                ))
+            })?);
+        } else if let Some(v) = replay_value(arg, "--set", &mut it)? {
+            let (k, val) = v
+                .split_once('=')
+                .ok_or_else(|| ArgError::Value(format!("--set: `{v}` must be KEY=VALUE")))?;
+            sets.push((k.trim().to_owned(), val.trim().to_owned()));
+        } else if let Some(v) = replay_value(arg, "--trials", &mut it)? {
+            // As `run` takes it: the experiment's `trials` parameter, so that a replay names the
+            // same trials as the run it follows.
+            if trials.is_some() {
+                return Err(replay_usage("--trials given twice"));
+            }
+            trials = Some(v);
+        } else if let Some(v) = replay_value(arg, "--out", &mut it)? {
+            if out.is_some() {
+                return Err(replay_usage("--out given twice"));
+            }
+            if v.is_empty() {
+                return Err(ArgError::Value("--out: must not be empty".into()));
+            }
+            out = Some(PathBuf::from(v));
+        } else if arg.starts_with('-') && arg.parse::<f64>().is_err() {
+            return Err(replay_usage(format!("replay does not take `{arg}`")));
+        } else {
+            positional.push(arg.clone());
+        }
+    }
+    if let Some(v) = trials {
+        if sets.iter().any(|(k, _)| k == "trials") {
+            return Err(ArgError::Value(
+                "--trials: give the trials once, as --trials N or as --set trials=N".into(),
+            ));
+        }
+        sets.push(("trials".to_owned(), v));
+    }
+    let (id, cell, trial) = match positional.as_slice() {
+        [id, cell] => (id.clone(), cell.clone(), None),
+        [id, cell, t] => {
+            let t = t.parse::<u64>().map_err(|_| {
+                ArgError::Value(format!(
+                    "replay: trial `{t}` is not a trial index (0, 1, 2, ...)"
+                ))
+            })?;
+            (id.clone(), cell.clone(), Some(t))
+        }
+        _ => {
+            return Err(replay_usage(
+                "replay takes an experiment, a cell and optionally a trial",
+            ));
+        }
+    };
+    Ok(ReplayArgs {
+        id,
+        cell,
+        trial,
+        seed: seed.unwrap_or(DEFAULT_SEED),
+        sets,
+        out,
+        quiet,
+    })
+}
+
 #[cfg(test)]
 #[allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
 mod tests {
@@ -723,5 +1007,66 @@ mod tests {
         assert!(matches!(p("run x --errors="), Err(ArgError::Value(_))));
         assert!(matches!(p("run x --set novalue"), Err(ArgError::Usage(_))));
         assert!(matches!(p("run x --set =1"), Err(ArgError::Usage(_))));
+    }
+
+    #[test]
+    fn fuzz_arguments() {
+        let p = |s: &str| {
+            parse_fuzz(
+                &s.split_whitespace()
+                    .map(str::to_owned)
+                    .collect::<Vec<String>>(),
+            )
+        };
+        let o = p("").unwrap();
+        assert_eq!(o.budget, Budget::Seconds(DEFAULT_FUZZ_SECONDS));
+        let o = p("--seconds 2.5 --seed=9 --findings /tmp/f").unwrap();
+        assert_eq!((o.budget, o.seed), (Budget::Seconds(2.5), 9));
+        assert_eq!(o.findings, PathBuf::from("/tmp/f"));
+        assert_eq!(p("--execs 10").unwrap().budget, Budget::Execs(10));
+        for bad in [
+            "--seconds 0",
+            "--seconds x",
+            "--seconds NaN",
+            "--seed -1",
+            "--execs 0",
+            "--execs 1.5",
+        ] {
+            assert!(matches!(p(bad), Err(ArgError::Value(_))), "{bad}");
+        }
+        assert!(matches!(p("--bogus 1"), Err(ArgError::Usage(_))));
+        assert!(matches!(p("--seconds"), Err(ArgError::Usage(_))));
+    }
+
+    #[test]
+    fn report_arguments() {
+        assert!(parse_report(&[]).is_ok());
+        assert_eq!(
+            parse_report(&["--out=x".into()]).unwrap(),
+            ReportArgs {
+                out: Some(PathBuf::from("x")),
+                quiet: false
+            }
+        );
+        assert_eq!(
+            parse_report(&["-q".into(), "--out".into(), "y".into()]).unwrap(),
+            ReportArgs {
+                out: Some(PathBuf::from("y")),
+                quiet: true
+            }
+        );
+        assert_eq!(
+            parse_report(&["--out=x".into(), "--out=y".into()]).unwrap_err(),
+            ArgError::Usage("--out given twice".into())
+        );
+        assert!(parse_report(&["--out".into()]).is_err());
+        assert!(matches!(
+            parse_report(&["--out=".into()]),
+            Err(ArgError::Value(_))
+        ));
+        assert!(matches!(
+            parse_report(&["fig2".into()]),
+            Err(ArgError::Usage(_))
+        ));
     }
 }

@@ -13,12 +13,13 @@
 
 use std::collections::BTreeSet;
 use std::panic::{AssertUnwindSafe, catch_unwind};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 use registry::Table;
 
+use crate::args::{Budget, FuzzArgs};
 use crate::failure::Failure;
 use crate::fuzz_targets::{Outcome, TARGETS, Target};
 
@@ -34,16 +35,13 @@ fn targets() -> Vec<(&'static str, Target, &'static str)> {
     all
 }
 
-/// Default run time.
-const DEFAULT_SECONDS: f64 = 60.0;
 /// Inputs kept per target, at most.
 const CORPUS_CAP: usize = 4096;
 /// An input slower than this is a finding.
 const SLOW: Duration = Duration::from_secs(2);
 
 /// `fuzz [--seconds N | --execs N] [--seed S] [--findings DIR]`.
-pub fn command(args: &[String]) -> Result<(), Failure> {
-    let opts = parse(args)?;
+pub fn command(opts: &FuzzArgs) -> Result<(), Failure> {
     match opts.budget {
         Budget::Seconds(s) => eprintln!(
             "fuzz: {s} s over {} targets, seed {}",
@@ -83,95 +81,6 @@ pub fn command(args: &[String]) -> Result<(), Failure> {
         summary.findings.len(),
         opts.findings.display()
     )))
-}
-
-/// Options of `fuzz`.
-#[derive(Debug, PartialEq)]
-struct Opts {
-    budget: Budget,
-    seed: u64,
-    findings: PathBuf,
-}
-
-fn parse(args: &[String]) -> Result<Opts, Failure> {
-    let mut opts = Opts {
-        budget: Budget::Seconds(DEFAULT_SECONDS),
-        seed: crate::args::DEFAULT_SEED,
-        findings: default_findings(),
-    };
-    let mut it = args.iter();
-    while let Some(arg) = it.next() {
-        let known = ["--seconds", "--execs", "--seed", "--findings"];
-        let Some((flag, value)) =
-            crate::args::flag_value(arg, &mut it, &known).map_err(Failure::Usage)?
-        else {
-            return Err(Failure::Usage(format!(
-                "fuzz takes --seconds N or --execs N, --seed S and --findings DIR (got `{arg}`)"
-            )));
-        };
-        match flag {
-            "--seconds" => {
-                opts.budget = value
-                    .trim()
-                    .parse()
-                    .ok()
-                    .filter(|s: &f64| s.is_finite() && *s > 0.0 && *s <= 86_400.0)
-                    .map(Budget::Seconds)
-                    .ok_or_else(|| {
-                        Failure::Bad(format!(
-                            "--seconds: must be a number of seconds above 0, at most 86400 (got `{value}`)"
-                        ))
-                    })?;
-            }
-            "--execs" => {
-                opts.budget = value
-                    .trim()
-                    .parse()
-                    .ok()
-                    .filter(|n: &u64| *n > 0)
-                    .map(Budget::Execs)
-                    .ok_or_else(|| {
-                        Failure::Bad(format!(
-                            "--execs: must be a positive number of executions per target (got `{value}`)"
-                        ))
-                    })?;
-            }
-            "--seed" => {
-                opts.seed = value.trim().parse().map_err(|_| {
-                    Failure::Bad(format!(
-                        "--seed: must be an integer from 0 to {} (got `{value}`)",
-                        u64::MAX
-                    ))
-                })?;
-            }
-            _ => {
-                if value.is_empty() {
-                    return Err(Failure::Bad("--findings: must not be empty".into()));
-                }
-                opts.findings = PathBuf::from(value);
-            }
-        }
-    }
-    Ok(opts)
-}
-
-/// `<workspace>/target/fuzz-findings`.
-fn default_findings() -> PathBuf {
-    let manifest = Path::new(env!("CARGO_MANIFEST_DIR"));
-    manifest
-        .parent()
-        .unwrap_or(manifest)
-        .join("target")
-        .join("fuzz-findings")
-}
-
-/// How long to fuzz.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Budget {
-    /// Wall-clock seconds, shared equally between the targets.
-    Seconds(f64),
-    /// Executions per target.
-    Execs(u64),
 }
 
 /// Something the fuzzer found.
@@ -845,34 +754,5 @@ mod tests {
             )),
             "f: arbor # unknown gear #"
         );
-    }
-
-    #[test]
-    fn arguments() {
-        let p = |s: &str| {
-            parse(
-                &s.split_whitespace()
-                    .map(str::to_owned)
-                    .collect::<Vec<String>>(),
-            )
-        };
-        let o = p("").unwrap();
-        assert_eq!(o.budget, Budget::Seconds(DEFAULT_SECONDS));
-        let o = p("--seconds 2.5 --seed=9 --findings /tmp/f").unwrap();
-        assert_eq!((o.budget, o.seed), (Budget::Seconds(2.5), 9));
-        assert_eq!(o.findings, PathBuf::from("/tmp/f"));
-        assert_eq!(p("--execs 10").unwrap().budget, Budget::Execs(10));
-        for bad in [
-            "--seconds 0",
-            "--seconds x",
-            "--seconds NaN",
-            "--seed -1",
-            "--execs 0",
-            "--execs 1.5",
-        ] {
-            assert_eq!(p(bad).unwrap_err().code(), 2, "{bad}");
-        }
-        assert!(matches!(p("--bogus 1"), Err(Failure::Usage(_))));
-        assert!(matches!(p("--seconds"), Err(Failure::Usage(_))));
     }
 }

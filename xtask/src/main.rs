@@ -77,22 +77,16 @@ fn main() -> ExitCode {
 }
 
 fn dispatch(args: &[String]) -> Result<(), Failure> {
-    match args.split_first().map(|(c, r)| (c.as_str(), r)) {
-        Some(("report", rest)) => return report::command(rest),
-        // `-q` goes anywhere on the line, as the usage says: `cargo xtask -q report`.
-        Some(("-q" | "--quiet", rest)) if rest.first().is_some_and(|c| c == "report") => {
-            let mut rest = rest[1..].to_vec();
-            rest.push("-q".into());
-            return report::command(&rest);
-        }
-        Some(("fuzz", rest)) => return fuzz::command(rest),
-        Some(("replay", rest)) => {
+    let (cmd, verbosity) = args::parse_invocation(args)?;
+    match cmd {
+        Command::Report(r) => return report::command(&r),
+        Command::Fuzz(f) => return fuzz::command(&f),
+        Command::Replay(r) => {
             progress::init(args::Verbosity::Normal);
-            return replay::command(rest);
+            return replay::command(&r);
         }
         _ => {}
     }
-    let (cmd, verbosity) = args::parse_invocation(args)?;
     progress::init(verbosity);
     let exps = registry::experiments().map_err(|e| Failure::Internal(e.to_string()))?;
     match cmd {
@@ -123,6 +117,7 @@ fn dispatch(args: &[String]) -> Result<(), Failure> {
         Command::Run(run) => run_all(&exps, &run),
         Command::Bench(b) => bench::bench(&exps, &b),
         Command::Merge(m) => shard::merge(&exps, &m),
+        Command::Report(_) | Command::Fuzz(_) | Command::Replay(_) => Ok(()),
     }
 }
 

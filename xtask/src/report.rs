@@ -28,6 +28,7 @@ use std::path::{Path, PathBuf};
 use registry::Table;
 use serde_json::Value;
 
+use crate::args::ReportArgs;
 use crate::failure::Failure;
 use crate::provenance::{self, RUN_JSON};
 use crate::shared::Registry;
@@ -36,8 +37,9 @@ use crate::shared::Registry;
 pub const INDEX_HTML: &str = "index.html";
 
 /// `report [--out DIR]`: builds the page and writes it to `<out>/index.html`.
-pub fn command(args: &[String]) -> Result<(), Failure> {
-    let (out, quiet) = parse(args)?;
+pub fn command(args: &ReportArgs) -> Result<(), Failure> {
+    let out = args.out.clone().unwrap_or_else(crate::shared::default_out);
+    let quiet = args.quiet;
     let exps = registry::experiments().map_err(|e| Failure::Internal(e.to_string()))?;
     // The page can be written there (checked before the results are read), and results a
     // killed run left moved aside are put back before they are read.
@@ -57,40 +59,6 @@ fn one_line_of(f: &Failure) -> String {
         Failure::Usage(m) | Failure::Bad(m) | Failure::Internal(m) => m.clone(),
         Failure::Reported(code) => format!("exit status {code}"),
     }
-}
-
-/// The `--out` directory (default `<workspace>/results`), and whether `-q`/`--quiet` was
-/// given (no note on stderr).
-fn parse(args: &[String]) -> Result<(PathBuf, bool), Failure> {
-    let mut out = None;
-    let mut quiet = false;
-    let mut it = args.iter();
-    while let Some(arg) = it.next() {
-        if arg == "-q" || arg == "--quiet" {
-            quiet = true;
-            continue;
-        }
-        if out.is_some() && (arg == "--out" || arg.starts_with("--out=")) {
-            return Err(Failure::Usage("--out given twice".into()));
-        }
-        let value = match arg.split_once('=') {
-            Some(("--out", v)) => v.to_owned(),
-            None if arg == "--out" => match it.next() {
-                Some(v) if !v.starts_with("--") => v.clone(),
-                _ => return Err(Failure::Usage("--out needs a value".into())),
-            },
-            _ => {
-                return Err(Failure::Usage(format!(
-                    "report takes only --out DIR and -q (got `{arg}`)"
-                )));
-            }
-        };
-        if value.is_empty() {
-            return Err(Failure::Bad("--out: must not be empty".into()));
-        }
-        out = Some(PathBuf::from(value));
-    }
-    Ok((out.unwrap_or_else(crate::shared::default_out), quiet))
 }
 
 /// One experiment's results as read from `<out>/<id>/`.
@@ -1279,7 +1247,7 @@ mod tests {
     fn command_writes_the_page_atomically() {
         let s = Scratch::new("command");
         write_a(&s.0);
-        command(&["--out".into(), s.0.display().to_string()]).unwrap();
+        command(&out_at(&s.0)).unwrap();
         let page = fs::read_to_string(s.0.join(INDEX_HTML)).unwrap();
         assert!(page.starts_with("<!DOCTYPE html>"));
         let names: Vec<String> = fs::read_dir(&s.0)
@@ -1295,7 +1263,7 @@ mod tests {
         let e = build(&registry(), &s.0, true).unwrap_err();
         assert_eq!(e.code(), 2);
         assert!(format!("{e:?}").contains("no results"), "{e:?}");
-        let e = command(&["--out".into(), s.0.display().to_string()]).unwrap_err();
+        let e = command(&out_at(&s.0)).unwrap_err();
         assert_eq!(e.code(), 2);
         assert!(!s.0.join(INDEX_HTML).exists());
         let e = build(&registry(), &s.0.join("missing"), true).unwrap_err();
@@ -1331,7 +1299,7 @@ mod tests {
             // Under a registered id: an unreadable folder of no experiment is skipped instead.
             fs::rename(s.0.join("a"), s.0.join("fig2")).unwrap();
             fs::write(s.0.join("fig2").join(file), text).unwrap();
-            let e = command(&["--out".into(), s.0.display().to_string()]).unwrap_err();
+            let e = command(&out_at(&s.0)).unwrap_err();
             assert_eq!(e.code(), 2, "{file}");
             let msg = format!("{e:?}");
             assert!(msg.contains(want), "{file}: {msg}");
@@ -1339,26 +1307,12 @@ mod tests {
         }
     }
 
-    #[test]
-    fn arguments() {
-        assert!(parse(&[]).is_ok());
-        assert_eq!(
-            parse(&["--out=x".into()]).unwrap(),
-            (PathBuf::from("x"), false)
-        );
-        assert_eq!(
-            parse(&["-q".into(), "--out".into(), "y".into()]).unwrap(),
-            (PathBuf::from("y"), true)
-        );
-        assert_eq!(
-            parse(&["--out=x".into(), "--out=y".into()])
-                .unwrap_err()
-                .code(),
-            2
-        );
-        assert_eq!(parse(&["--out".into()]).unwrap_err().code(), 2);
-        assert_eq!(parse(&["--out=".into()]).unwrap_err().code(), 2);
-        assert!(matches!(parse(&["fig2".into()]), Err(Failure::Usage(_))));
+    /// `report --out DIR`.
+    fn out_at(dir: &Path) -> ReportArgs {
+        ReportArgs {
+            out: Some(dir.to_path_buf()),
+            quiet: false,
+        }
     }
 
     #[test]
