@@ -1,15 +1,18 @@
 //! One trial of a per-mesh jam table rebuilt from its random stream (`cargo xtask replay`): its
 //! gears, initial angle and events, and the pair file that reruns it with `run pair`.
 //!
-//! A cell is named as its table prints it: `table3 B/m3-e3` (Case / mesh), `tableI B/70/m3-e3`
-//! (Case / G / mesh), `table4 0.050/m3-e3` (random error / mesh), `table5 0.050/0.7/e4-f1` (random
-//! error / systematic error / mesh: the mesh's E. max and a row of Table 5). The cell is built from the
-//! experiment's own parameters (`--set` reaches them as in `run`), so the trial is the one the
-//! table counted, in any run, sharded or not: a trial's stream depends only on the cell's content,
-//! the seed and the trial index.
+//! A cell is named as its table prints it, in the grammar its experiment registers beside itself
+//! (a [`CellGrammar`], keyed by the experiment's id): `table3 B/m3-e3` (Case / mesh), `tableI
+//! B/70/m3-e3` (Case / G / mesh), `table4 0.050/m3-e3` (random error / mesh), `table5
+//! 0.050/0.7/e4-f1` (random error / systematic error / mesh: the mesh's E. max and a row of Table
+//! 5). The cell is built from the experiment's own parameters (`--set` reaches them as in `run`),
+//! so the trial is the one the table counted, in any run, sharded or not: a trial's stream
+//! depends only on the cell's content, the seed and the trial index.
 
+use std::collections::BTreeMap;
 use std::f64::consts::TAU;
 use std::fmt::Write as _;
+use std::sync::LazyLock;
 
 use registry::{Context, OutputFile, Report, RunError, Table, fmt_f64};
 use train::Gearing;
@@ -18,15 +21,119 @@ use study::cell::{CellSpec, Rebuilt, rebuild};
 use study::errors;
 use study::gearing;
 use study::grids::CASES;
-use study::tolerance::{RANDOM_FROM, SYSTEMATIC_FROM};
 
-/// The experiments whose trials can be replayed, with the form of their cells.
-pub const REPLAYABLE: [(&str, &str); 4] = [
-    ("table3", "CASE/MESH, e.g. B/m3-e3"),
-    ("tableI", "CASE/G/MESH, e.g. B/70/m3-e3"),
-    ("table4", "RANDOM/MESH, e.g. 0.050/m3-e3"),
-    ("table5", "RANDOM/SYSTEMATIC/MESH, e.g. 0.050/0.7/e4-f1"),
-];
+/// How the cells of a per-mesh table are named and what each one names: an experiment whose
+/// trials can be replayed registers one beside its `registry::Experiment`, in its own file:
+///
+/// ```ignore
+/// registry::inventory::submit! {
+///     CellGrammar { experiment: "table3", form: "CASE/MESH, e.g. B/m3-e3", parse: cell }
+/// }
+/// ```
+pub struct CellGrammar {
+    /// The id of the experiment whose cells these are.
+    pub experiment: &'static str,
+    /// The form of a cell, with an example (`CASE/MESH, e.g. B/m3-e3`).
+    pub form: &'static str,
+    /// What the typed cell names, under the experiment's settings in the context.
+    pub parse: for<'a> fn(&Context, &CellText<'a>) -> Result<Cell<'a>, RunError>,
+}
+
+registry::inventory::collect!(CellGrammar);
+
+/// Every registered cell grammar by experiment id; a second grammar for one experiment is an
+/// error naming it.
+pub fn grammars() -> Result<BTreeMap<&'static str, &'static CellGrammar>, RunError> {
+    let mut map = BTreeMap::new();
+    for g in registry::inventory::iter::<CellGrammar> {
+        if map.insert(g.experiment, g).is_some() {
+            return Err(RunError::Internal(format!(
+                "experiment `{}` registers two cell grammars",
+                g.experiment
+            )));
+        }
+    }
+    Ok(map)
+}
+
+/// The experiments whose trials can be replayed, with the form of their cells, by id: the
+/// registered [`CellGrammar`]s.
+pub static REPLAYABLE: LazyLock<Vec<(&'static str, &'static str)>> = LazyLock::new(|| {
+    registry::inventory::iter::<CellGrammar>
+        .into_iter()
+        .map(|g| (g.experiment, g.form))
+        .collect::<BTreeMap<_, _>>()
+        .into_iter()
+        .collect()
+});
+
+/// A cell as typed, split at its `/`, with the helpers a grammar reads its parts with: each
+/// refusal names the cell and its experiment.
+pub struct CellText<'a> {
+    id: &'a str,
+    text: &'a str,
+    form: &'static str,
+    parts: Vec<&'a str>,
+}
+
+impl<'a> CellText<'a> {
+    /// The parts of the cell between its `/`.
+    pub fn parts(&self) -> &[&'a str] {
+        &self.parts
+    }
+
+    /// The refusal of a cell that is not of the grammar's form.
+    pub fn malformed(&self) -> RunError {
+        self.bad(format!("must be {}", self.form))
+    }
+
+    /// The refusal of this cell for breaking `rule`.
+    pub fn bad(&self, rule: impl Into<String>) -> RunError {
+        bad_cell(self.id, self.text, rule)
+    }
+
+    /// Case `name`'s (systematic, random) errors.
+    pub fn case(&self, name: &str) -> Result<(f64, f64), RunError> {
+        CASES
+            .iter()
+            .find(|(c, _, _)| c.eq_ignore_ascii_case(name))
+            .map(|&(_, s, r)| (s, r))
+            .ok_or_else(|| self.bad(format!("`{name}` is not a Case (A, B, C or D)")))
+    }
+
+    /// A number typed in the cell, checked against the kind of the grid parameter it stands
+    /// for (`run` checks the same values with the same rules).
+    pub fn number(&self, what: &str, kind: &registry::Kind, text: &str) -> Result<f64, RunError> {
+        let text = text.trim();
+        kind.check(text)
+            .map_err(|rule| self.bad(format!("{what} `{text}`: {rule}")))?;
+        text.parse::<f64>()
+            .map_err(|_| self.bad(format!("{what} `{text}` is not a number")))
+    }
+
+    /// A clearance G typed in the cell: above 0 and at most what Table I's `clearances` take.
+    pub fn clearance(&self, text: &str) -> Result<f64, RunError> {
+        study::gearing::clearance_value(text, study::gearing::MAX_LISTED_CLEARANCE)
+            .map_err(|rule| self.bad(format!("G `{}`: {rule}", text.trim())))
+    }
+}
+
+/// What a cell names: one mesh under the paper's jam protocol.
+pub struct Cell<'a> {
+    /// The mesh, as typed (checked against the gearing afterwards).
+    pub mesh: &'a str,
+    /// The hypothesis parameters the cell sets, beside the hypothesis's defaults and `--set`.
+    pub errors: Vec<(&'static str, f64)>,
+    /// The clearance G, percent.
+    pub clearance: f64,
+    /// The hypothesis parameters typed in the cell: (parameter, what the cell calls it, the
+    /// text typed), so that a value the hypothesis refuses is named as the part of the cell it
+    /// was typed in.
+    pub typed: Vec<Typed<'a>>,
+}
+
+/// A hypothesis parameter typed in a cell: (parameter, what the cell calls it, the text typed).
+pub type Typed<'a> = (&'static str, &'static str, &'a str);
 
 /// How many failing trials a listing shows of each kind.
 const LISTED: usize = 20;
@@ -35,81 +142,38 @@ fn bad_cell(id: &str, cell: &str, rule: impl Into<String>) -> RunError {
     RunError::bad("replay", format!("cell `{cell}` of {id}"), rule)
 }
 
-/// The form of `id`'s cells, or an error naming the experiments that can be replayed.
-fn form(id: &str) -> Result<&'static str, RunError> {
-    REPLAYABLE
-        .iter()
-        .find(|(e, _)| *e == id)
-        .map(|(_, f)| *f)
-        .ok_or_else(|| {
-            let known: Vec<String> = REPLAYABLE
-                .iter()
-                .map(|(e, f)| format!("{e} ({f})"))
-                .collect();
-            RunError::bad(
-                "replay",
-                format!("experiment `{id}`"),
-                format!("has no replayable trials; these do: {}", known.join(", ")),
-            )
-        })
-}
-
-/// Case `name`'s (systematic, random) errors.
-fn case_errors(id: &str, cell: &str, name: &str) -> Result<(f64, f64), RunError> {
-    CASES
-        .iter()
-        .find(|(c, _, _)| c.eq_ignore_ascii_case(name))
-        .map(|&(_, s, r)| (s, r))
-        .ok_or_else(|| bad_cell(id, cell, format!("`{name}` is not a Case (A, B, C or D)")))
-}
-
-/// A number typed in the cell, checked against the kind of the grid parameter it stands for
-/// (`run` checks the same values with the same rules).
-fn number(
-    id: &str,
-    cell: &str,
-    what: &str,
-    kind: &registry::Kind,
-    text: &str,
-) -> Result<f64, RunError> {
-    let text = text.trim();
-    kind.check(text)
-        .map_err(|rule| bad_cell(id, cell, format!("{what} `{text}`: {rule}")))?;
-    text.parse::<f64>()
-        .map_err(|_| bad_cell(id, cell, format!("{what} `{text}` is not a number")))
-}
-
-/// A clearance G typed in a Table I cell: above 0 and at most what Table I's `clearances` take.
-fn clearance(id: &str, cell: &str, text: &str) -> Result<f64, RunError> {
-    study::gearing::clearance_value(text, study::gearing::MAX_LISTED_CLEARANCE)
-        .map_err(|rule| bad_cell(id, cell, format!("G `{}`: {rule}", text.trim())))
+/// `id`'s cell grammar, or an error naming the experiments that can be replayed.
+fn grammar(id: &str) -> Result<&'static CellGrammar, RunError> {
+    let all = grammars()?;
+    all.get(id).copied().ok_or_else(|| {
+        let known: Vec<String> = all
+            .values()
+            .map(|g| format!("{} ({})", g.experiment, g.form))
+            .collect();
+        RunError::bad(
+            "replay",
+            format!("experiment `{id}`"),
+            format!("has no replayable trials; these do: {}", known.join(", ")),
+        )
+    })
 }
 
 /// The cell `cell` of experiment `id`, built from the experiment's parameters in `ctx`, and
 /// checked as `run` checks its cells ([`study::cell::check`], under the seed of `ctx`): a value
 /// the user typed in the cell that breaks a rule is named as typed (`random error `0.5``).
 pub fn cell_spec(ctx: &Context, g: &Gearing, id: &str, cell: &str) -> Result<CellSpec, RunError> {
-    let spec = unchecked_cell_spec(ctx, g, id, cell)?;
-    study::cell::check(g, &spec, ctx.seed()).map_err(|e| typed_part(e, id, cell))?;
+    let (spec, typed) = unchecked_cell_spec(ctx, g, id, cell)?;
+    study::cell::check(g, &spec, ctx.seed()).map_err(|e| typed_part(e, id, cell, &typed))?;
     Ok(spec)
 }
 
-/// A hypothesis' refusal of a random or systematic error the user typed in the cell, said of
-/// that part of the cell; any other error as it is.
-fn typed_part(e: RunError, id: &str, cell: &str) -> RunError {
+/// A hypothesis' refusal of a value the user typed in the cell (`typed`, as [`Cell::typed`]),
+/// said of that part of the cell; any other error as it is.
+fn typed_part(e: RunError, id: &str, cell: &str, typed: &[(&str, &str, &str)]) -> RunError {
     let RunError::BadInput { field, rule, .. } = &e else {
         return e;
     };
-    let parts: Vec<&str> = cell.split('/').collect();
-    let typed = match (id, parts.as_slice()) {
-        ("table4", [random, _]) => vec![("random", "random error", *random)],
-        ("table5", [random, sys, _]) => vec![
-            ("random", "random error", *random),
-            ("systematic", "systematic error", *sys),
-        ],
-        _ => Vec::new(),
-    };
-    for (key, name, text) in typed {
+    for &(key, name, text) in typed {
         if field == key || field.ends_with(&format!(": {key}")) {
             return bad_cell(id, cell, format!("{name} `{}`: {rule}", text.trim()));
         }
@@ -117,56 +181,27 @@ fn typed_part(e: RunError, id: &str, cell: &str) -> RunError {
     e
 }
 
-fn unchecked_cell_spec(
+/// The (unchecked) spec of the cell and the parameters typed in it.
+fn unchecked_cell_spec<'a>(
     ctx: &Context,
     g: &Gearing,
-    id: &str,
-    cell: &str,
-) -> Result<CellSpec, RunError> {
-    let form = form(id)?;
-    let parts: Vec<&str> = cell.split('/').collect();
-    let wrong = || bad_cell(id, cell, format!("must be {form}"));
-    let hyp = errors::chosen(ctx)?;
-    let (mesh, errors, clearance) = match (id, parts.as_slice()) {
-        ("table3", [case, mesh]) => {
-            let (sys, random) = case_errors(id, cell, case)?;
-            let split = ctx.f64("split")?;
-            let e = vec![("random", random), ("systematic", sys), ("split", split)];
-            (*mesh, e, ctx.f64("clearance")?)
-        }
-        ("tableI", [case, g_text, mesh]) => {
-            let (sys, random) = case_errors(id, cell, case)?;
-            let split = ctx.f64("split")?;
-            let e = vec![("random", random), ("systematic", sys), ("split", split)];
-            (*mesh, e, clearance(id, cell, g_text)?)
-        }
-        ("table4", [random, mesh]) => {
-            let e = vec![
-                (
-                    "random",
-                    number(id, cell, "random error", &RANDOM_FROM.kind, random)?,
-                ),
-                ("systematic", 0.0),
-            ];
-            (*mesh, e, ctx.f64("clearance")?)
-        }
-        // The random error is the mesh's E. max (Table 5's first row), the systematic one a row.
-        ("table5", [random, sys, mesh]) => {
-            let e = vec![
-                (
-                    "random",
-                    number(id, cell, "random error", &RANDOM_FROM.kind, random)?,
-                ),
-                (
-                    "systematic",
-                    number(id, cell, "systematic error", &SYSTEMATIC_FROM.kind, sys)?,
-                ),
-                ("split", ctx.f64("split")?),
-            ];
-            (*mesh, e, ctx.f64("clearance")?)
-        }
-        _ => return Err(wrong()),
+    id: &'a str,
+    cell: &'a str,
+) -> Result<(CellSpec, Vec<Typed<'a>>), RunError> {
+    let grammar = grammar(id)?;
+    let text = CellText {
+        id,
+        text: cell,
+        form: grammar.form,
+        parts: cell.split('/').collect(),
     };
+    let hyp = errors::chosen(ctx)?;
+    let Cell {
+        mesh,
+        errors,
+        clearance,
+        typed,
+    } = (grammar.parse)(ctx, &text)?;
     if g.mesh(mesh).is_none() {
         let meshes: Vec<&str> = g.meshes().iter().map(|m| m.label.as_str()).collect();
         return Err(bad_cell(
@@ -178,15 +213,16 @@ fn unchecked_cell_spec(
             ),
         ));
     }
-    Ok(CellSpec {
+    let spec = CellSpec {
         mesh: mesh.to_owned(),
         hypothesis: hyp,
         // A value the hypothesis refuses is named as the part of the cell it was typed in.
-        params: errors::params(ctx, hyp, &errors).map_err(|e| typed_part(e, id, cell))?,
+        params: errors::params(ctx, hyp, &errors).map_err(|e| typed_part(e, id, cell, &typed))?,
         tooth_height: ctx.f64("tooth_height")?,
         clearance,
         events: study::events::chosen(ctx)?,
-    })
+    };
+    Ok((spec, typed))
 }
 
 /// Replays trial `trial` of `cell` of experiment `id` (its events and the pair file that reruns
@@ -195,7 +231,7 @@ fn unchecked_cell_spec(
 /// Errors: an experiment without replayable trials, a malformed cell, a mesh not in the
 /// gearing, a trial index at or beyond the experiment's trial count.
 pub fn replay(ctx: &Context, id: &str, cell: &str, trial: Option<u64>) -> Result<Report, RunError> {
-    form(id)?;
+    grammar(id)?;
     let g = gearing::load(ctx)?;
     let spec = cell_spec(ctx, &g, id, cell)?;
     let trials = ctx.u64("trials")?;
@@ -586,6 +622,20 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// Each grammar is its experiment's: registered in its file, for a registered experiment;
+    /// `REPLAYABLE` lists them all.
+    #[test]
+    fn every_cell_grammar_belongs_to_a_registered_experiment() {
+        let experiments = registry::experiments().unwrap();
+        let all = grammars().unwrap();
+        assert!(all.len() >= 4, "{:?}", all.keys());
+        for id in all.keys() {
+            assert!(experiments.contains_key(id), "{id}");
+        }
+        let listed: Vec<&str> = REPLAYABLE.iter().map(|(id, _)| *id).collect();
+        assert_eq!(listed, all.keys().copied().collect::<Vec<_>>());
     }
 
     #[test]

@@ -44,10 +44,30 @@ fn no_experiment_imports_another() {
 fn every_plugin_file_registers_exactly_one_experiment() {
     let all = plugins();
     for (stem, text) in &all {
+        // What each `inventory::submit!` registers: the type it names first.
+        let kinds: Vec<&str> = text
+            .split("inventory::submit!")
+            .skip(1)
+            .map(|rest| {
+                let rest = rest.trim_start().trim_start_matches('{').trim_start();
+                let end = rest
+                    .find(|c: char| !c.is_alphanumeric() && c != '_')
+                    .unwrap_or(rest.len());
+                &rest[..end]
+            })
+            .collect();
         assert_eq!(
-            text.matches("inventory::submit!").count(),
+            kinds.iter().filter(|k| **k == "Experiment").count(),
             1,
             "{stem}.rs should register exactly one experiment"
+        );
+        // Beside it, at most its cell grammar (`replay`).
+        assert!(
+            kinds.iter().filter(|k| **k == "CellGrammar").count() <= 1
+                && kinds
+                    .iter()
+                    .all(|k| *k == "Experiment" || *k == "CellGrammar"),
+            "{stem}.rs registers {kinds:?}: one experiment and at most its cell grammar"
         );
     }
     experiments::link();

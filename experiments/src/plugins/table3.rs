@@ -1,6 +1,7 @@
 //! `table3`: trials with at least one jam / at least one disengagement, each of the 15 meshes on
 //! its own, Edmunds' Cases A-D at G = 40 %, 200 trials per cell, with 95 % Wilson intervals.
 
+use crate::replay::{Cell, CellGrammar, CellText};
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table};
 
 use study::cell::{Purpose, run_cells};
@@ -27,6 +28,33 @@ registry::inventory::submit! {
         config: None,
         run,
     }
+}
+
+registry::inventory::submit! {
+    CellGrammar {
+        experiment: "table3",
+        form: "CASE/MESH, e.g. B/m3-e3",
+        parse: cell,
+    }
+}
+
+/// A cell of Table 3 for `cargo xtask replay`: `CASE/MESH`, at the experiment's G and split.
+fn cell<'a>(ctx: &Context, c: &CellText<'a>) -> Result<Cell<'a>, RunError> {
+    let &[case, mesh] = c.parts() else {
+        return Err(c.malformed());
+    };
+    let (systematic, random) = c.case(case)?;
+    let split = ctx.f64("split")?;
+    Ok(Cell {
+        mesh,
+        errors: vec![
+            ("random", random),
+            ("systematic", systematic),
+            ("split", split),
+        ],
+        clearance: ctx.f64("clearance")?,
+        typed: Vec::new(),
+    })
 }
 
 /// `case` and the meshes: the columns of both tables.

@@ -1,6 +1,7 @@
 //! `table4`: trials with at least one jam / disengagement of each mesh on its own, random tooth
 //! error from 0.035 to 0.065 of the pitch, no systematic error, G = 40 %, 200 trials per cell.
 
+use crate::replay::{Cell, CellGrammar, CellText};
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table};
 
 use study::cell::{Purpose, label};
@@ -21,6 +22,29 @@ registry::inventory::submit! {
         config: None,
         run,
     }
+}
+
+registry::inventory::submit! {
+    CellGrammar {
+        experiment: "table4",
+        form: "RANDOM/MESH, e.g. 0.050/m3-e3",
+        parse: cell,
+    }
+}
+
+/// A cell of Table 4 for `cargo xtask replay`: `RANDOM/MESH` (a random error of its grid, no
+/// systematic error), at the experiment's G.
+fn cell<'a>(ctx: &Context, c: &CellText<'a>) -> Result<Cell<'a>, RunError> {
+    let &[random, mesh] = c.parts() else {
+        return Err(c.malformed());
+    };
+    let value = c.number("random error", &study::tolerance::RANDOM_FROM.kind, random)?;
+    Ok(Cell {
+        mesh,
+        errors: vec![("random", value), ("systematic", 0.0)],
+        clearance: ctx.f64("clearance")?,
+        typed: vec![("random", "random error", random)],
+    })
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {

@@ -2,6 +2,7 @@
 //! paper's 1 % rule, then jams / disengagements with systematic errors of 0.1 to 1.1° (split
 //! 50/50) on top of it, 200 trials per cell.
 
+use crate::replay::{Cell, CellGrammar, CellText};
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table};
 
 use study::cell::{Purpose, label};
@@ -26,6 +27,46 @@ registry::inventory::submit! {
         config: None,
         run,
     }
+}
+
+registry::inventory::submit! {
+    CellGrammar {
+        experiment: "table5",
+        form: "RANDOM/SYSTEMATIC/MESH, e.g. 0.050/0.7/e4-f1",
+        parse: cell,
+    }
+}
+
+/// A cell of Table 5 for `cargo xtask replay`: `RANDOM/SYSTEMATIC/MESH`, the random error the
+/// mesh's E. max (Table 5's first row), the systematic one a row, at the experiment's G and split.
+fn cell<'a>(ctx: &Context, c: &CellText<'a>) -> Result<Cell<'a>, RunError> {
+    let &[random, systematic, mesh] = c.parts() else {
+        return Err(c.malformed());
+    };
+    let errors = vec![
+        (
+            "random",
+            c.number("random error", &tolerance::RANDOM_FROM.kind, random)?,
+        ),
+        (
+            "systematic",
+            c.number(
+                "systematic error",
+                &tolerance::SYSTEMATIC_FROM.kind,
+                systematic,
+            )?,
+        ),
+        ("split", ctx.f64("split")?),
+    ];
+    Ok(Cell {
+        mesh,
+        errors,
+        clearance: ctx.f64("clearance")?,
+        typed: vec![
+            ("random", "random error", random),
+            ("systematic", "systematic error", systematic),
+        ],
+    })
 }
 
 

@@ -1,6 +1,7 @@
 //! `tableI`: jams / disengagements of each mesh on its own for Edmunds' Cases A-D at clearances of
 //! 10, 40 and 70 % (Appendix II), 200 trials per cell. The 40 % rows are Table 3's cells.
 
+use crate::replay::{Cell, CellGrammar, CellText};
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table};
 
 use crate::cells::{CSV_COLUMNS, Tally, cell_text, csv_columns, paper_counts};
@@ -30,6 +31,33 @@ registry::inventory::submit! {
         config: None,
         run,
     }
+}
+
+registry::inventory::submit! {
+    CellGrammar {
+        experiment: "tableI",
+        form: "CASE/G/MESH, e.g. B/70/m3-e3",
+        parse: cell,
+    }
+}
+
+/// A cell of Table I for `cargo xtask replay`: `CASE/G/MESH`, at the experiment's split.
+fn cell<'a>(ctx: &Context, c: &CellText<'a>) -> Result<Cell<'a>, RunError> {
+    let &[case, g, mesh] = c.parts() else {
+        return Err(c.malformed());
+    };
+    let (systematic, random) = c.case(case)?;
+    let split = ctx.f64("split")?;
+    Ok(Cell {
+        mesh,
+        errors: vec![
+            ("random", random),
+            ("systematic", systematic),
+            ("split", split),
+        ],
+        clearance: c.clearance(g)?,
+        typed: Vec::new(),
+    })
 }
 
 /// The `clearances` parameter: a comma-separated list of clearances, each in (0, 200] % of h.
