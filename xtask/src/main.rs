@@ -117,6 +117,7 @@ fn dispatch(args: &[String]) -> Result<(), Failure> {
         Command::Run(run) => run_all(&exps, &run),
         Command::Bench(b) => bench::bench(&exps, &b),
         Command::Merge(m) => shard::merge(&exps, &m),
+        // Run above: they read the registry themselves, or not at all.
         Command::Report(_) | Command::Fuzz(_) | Command::Replay(_) => Ok(()),
     }
 }
