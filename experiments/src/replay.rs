@@ -244,21 +244,28 @@ pub fn replay(ctx: &Context, id: &str, cell: &str, trial: Option<u64>) -> Result
                 trials.saturating_sub(1)
             ),
         )),
-        Some(t) => one_trial(&g, &spec, ctx.seed(), id, cell, t),
+        Some(t) => one_trial(ctx, &g, &spec, id, cell, t),
         None => listing(ctx, &g, &spec, id, cell, trials),
     }
 }
 
-/// The events of one trial, and its pair file.
+/// The events of one trial, and its pair file: checked first, by the loader `run pair` uses,
+/// so that a replay never writes a pair file `run pair` refuses ([`refused_pair_file`]).
 fn one_trial(
+    ctx: &Context,
     g: &Gearing,
     spec: &CellSpec,
-    seed: u64,
     id: &str,
     cell: &str,
     t: u64,
 ) -> Result<Report, RunError> {
+    let seed = ctx.seed();
     let rebuilt = rebuild(g, spec, seed, t)?;
+    let pair = pair_file(&rebuilt);
+    if let Ok(text) = &pair {
+        study::pair_file::prepare("pair.ron", text)
+            .map_err(|e| refused_pair_file(ctx, e, id, cell, t))?;
+    }
     let events = rebuilt.events();
     let (jam, dis) = if rebuilt.mesh.is_none() {
         (true, false)
@@ -335,7 +342,7 @@ fn one_trial(
             files.push(OutputFile::new(name, svg));
         }
     }
-    match pair_file(&rebuilt) {
+    match pair {
         Ok(ron) => {
             table.note("pair.ron rebuilds this trial for `cargo xtask run pair --config pair.ron` (edit it to change one thing and rerun).");
             files.push(OutputFile::new("pair.ron", ron));
@@ -347,6 +354,48 @@ fn one_trial(
         files,
         ..Default::default()
     })
+}
+
+/// Settings that do not reach a trial's gears: never the cause of a refused pair file.
+const NOT_GEARS: [&str; 2] = ["trials", "events"];
+
+/// The pair file of trial `t` refused by `run pair`'s loader (`refusal`), as the user's error:
+/// one line naming the setting typed that made it (`--set: tooth_height=2: ...`; the one the
+/// refused field follows from when it was typed, else every one typed that shapes the gears, else
+/// the cell) and the rule.
+fn refused_pair_file(ctx: &Context, refusal: RunError, id: &str, cell: &str, t: u64) -> RunError {
+    let RunError::BadInput { field, rule, .. } = &refusal else {
+        return refusal;
+    };
+    let typed: Vec<(&str, &str)> = ctx
+        .changed()
+        .into_iter()
+        .filter(|(name, _)| !NOT_GEARS.contains(name))
+        .collect();
+    // The setting the refused field follows from: tooth heights from `tooth_height`, the
+    // centre distance from `clearance`.
+    let cause = if field.ends_with("root_radius") || field.ends_with("tip_radius") {
+        "tooth_height"
+    } else if field == "centre_distance" || field == "clearance_percent" {
+        "clearance"
+    } else {
+        ""
+    };
+    let named: Vec<String> = match typed.iter().find(|(name, _)| *name == cause) {
+        Some(&(name, value)) => vec![format!("{name}={}", value.trim())],
+        None => typed
+            .iter()
+            .map(|(name, value)| format!("{name}={}", value.trim()))
+            .collect(),
+    };
+    let what = format!(
+        "trial {t} of {id} {cell} would be written as a pair file that `run pair` refuses ({field}: {rule}); nothing written"
+    );
+    if named.is_empty() {
+        RunError::bad("replay", format!("cell `{cell}` of {id}"), what)
+    } else {
+        RunError::bad("--set", named.join(", "), what)
+    }
 }
 
 /// Driver angles of a replayed turn at which the polygon oracle checks the teeth.

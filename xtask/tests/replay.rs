@@ -217,3 +217,57 @@ fn an_out_that_is_a_file_is_refused_before_computing() {
     assert!(err.contains("--out"), "{err}");
     assert_eq!(std::fs::read_to_string(&file).unwrap(), "kept");
 }
+
+/// One validation path for a cell, whichever command names it: a replayed trial's pair file is
+/// checked by the loader `run pair` uses before anything is computed or written. Teeth 2 mm tall
+/// on h2 (tip radius 3.2 mm) are more than half its radius: `replay` wrote that pair file and
+/// `run pair` then refused it. Now `replay` refuses in one line naming the setting typed and the
+/// rule, and a height within the rule gives a pair file `run pair` runs.
+#[test]
+fn a_trial_whose_pair_file_run_pair_refuses_is_refused_before_anything_is_written() {
+    let s = Scratch::new("replay-refused-pair");
+    let out = s.path("out");
+    let o = xtask(&[
+        "replay",
+        "table3",
+        "B/h2-i1",
+        "0",
+        "-q",
+        "--set",
+        "tooth_height=2",
+        "--out",
+        &out,
+    ]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(o.stdout.is_empty(), "nothing on stdout: {err}");
+    for words in ["--set: tooth_height=2", "run pair", "driver.root_radius"] {
+        assert!(err.contains(words), "`{words}` missing: {err}");
+    }
+    assert!(
+        !s.0.join("out/replay-table3-B-h2-i1-0").exists(),
+        "nothing written: {err}"
+    );
+    // Within the rule (h = 1.5 mm, under half of 3.2 mm), the written pair file runs.
+    succeeded(&[
+        "replay",
+        "table3",
+        "B/h2-i1",
+        "0",
+        "-q",
+        "--set",
+        "tooth_height=1.5",
+        "--out",
+        &out,
+    ]);
+    succeeded(&[
+        "run",
+        "pair",
+        "-q",
+        "--config",
+        &s.path("out/replay-table3-B-h2-i1-0/pair.ron"),
+        "--out",
+        &s.path("pair"),
+    ]);
+}
