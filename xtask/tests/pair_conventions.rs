@@ -32,6 +32,11 @@ fn help_states_every_convention_of_the_pair_file() {
         "phi_abs_deg, theta_abs_deg are phi and theta themselves",
         "tooth numbers as in your file",
         "pair-check.svg draws both gears at phi = 0 and theta = 0",
+        // The proportions the loader refuses (`study::pair_file`), beside the older refusals.
+        "teeth taller than half their tip radius",
+        "more than 10 times apart",
+        "more than 4 times apart",
+        "below the other gear's valleys at every angle",
     ] {
         assert!(
             text.contains(words),

@@ -60,6 +60,12 @@ against a driver tooth; at_rest(theta_deg: T) starts it standing still at theta 
 driver reaches it (refused if it overlaps the driver there); teeth(driver: j, driven: k) \
 starts it with its tooth k resting against driver tooth j, being pushed, at the theta within half \
 a turn of 0 (refused if they cannot touch at start_deg or the position overlaps another tooth).
+  - Refused too, in one line naming the field and the rule, are proportions no meshing pair has \
+(judged without a unit, so any length unit will do): teeth taller than half their tip radius \
+(root_radius below tip_radius / 2), tooth pitches 2 pi tip_radius / teeth of the two gears more \
+than 10 times apart, tooth heights tip_radius - root_radius more than 4 times apart, and \
+eccentric tips that reach below the other gear's valleys at every angle (D + |e1| + |e2| at most \
+the tip radius plus the other gear's root radius).
   - pair.csv: phi_minus_phi0_deg and theta_minus_theta0_deg are phi - phi0 and theta - theta0 \
 (phi0 = start_deg, theta0 the driven angle at the start), td_deg = theta_minus_theta0_deg - \
 (N1/N2) phi_minus_phi0_deg, and phi_abs_deg, \
@@ -910,6 +916,19 @@ mod tests {
     use geometry::Gear;
     use std::f64::consts::TAU;
     use study::pair_file::load;
+
+    /// `help pair` states the proportions the loader refuses with the loader's own limits.
+    #[test]
+    fn the_help_states_the_loaders_proportion_limits() {
+        use study::pair_file::{MAX_HEIGHT_RATIO, MAX_PITCH_RATIO, MAX_TOOTH_HEIGHT_SHARE};
+        assert!((MAX_TOOTH_HEIGHT_SHARE - 0.5).abs() < f64::EPSILON);
+        assert!(CONFIG_HELP.contains("teeth taller than half their tip radius"));
+        for (ratio, what) in [(MAX_PITCH_RATIO, "pitches"), (MAX_HEIGHT_RATIO, "heights")] {
+            let words = format!("more than {ratio} times apart");
+            let at = CONFIG_HELP.find(&words).unwrap();
+            assert!(CONFIG_HELP[..at].rsplit("tooth ").next().unwrap().starts_with(what));
+        }
+    }
 
     #[test]
     fn example_loads() {
