@@ -1,6 +1,7 @@
 //! Where two contact conditions hold at once, exactly: the building block an event-predicting
-//! solver would use in place of bounds (issue 15; BENCHMARKS.md, eleventh sitting), measured:
-//! `cargo run --release -p contact --example meetings`.
+//! solver would use in place of bounds (BENCHMARKS.md, "Where an engagement's work goes,
+//! counted; what the next solver core must do"), measured:
+//! `cargo run --release -p contact --example meetings`. (`src/meet.rs` is this, in the crate.)
 //!
 //! Every straight-flank contact condition (a vertex on a flank line) reads
 //! `A(u)·cos θ + B(u)·sin θ = H(u)` with A, B, H affine in u = (cos φ, sin φ). Two of them fix
