@@ -450,6 +450,7 @@ mod tests {
         );
         let (phi0, phi1) = (-1.2, 1.2);
         let found = meetings(&c1, &c2, phi0, phi1, 0.0);
+        assert!(!found.is_empty(), "the two conditions meet in the range");
         for &(phi, theta) in &found {
             assert!(c1.at(phi, theta).abs() < 1e-9 && c2.at(phi, theta).abs() < 1e-9);
         }
