@@ -9,24 +9,11 @@
 
 mod support;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::Duration;
 
-use support::{Scratch, chromium, stderr, xtask};
-
-/// Chromium, or `None` after saying the test is skipped; with `CI=true` a missing Chromium fails.
-fn chromium_or_skip() -> Option<PathBuf> {
-    let chrome = chromium();
-    if chrome.is_none() {
-        assert!(
-            std::env::var("CI").map_or(true, |v| v != "true"),
-            "CI=true and no Chromium: .ci/run installs it (scripts/check-report.sh install)"
-        );
-        eprintln!("skipped: no Chromium (set CHROMIUM or install it)");
-    }
-    chrome
-}
+use support::{Scratch, chromium_or_skip, stderr, xtask};
 
 /// Runs `chrome` headless on `url` with `extra` arguments, within 90 s; its stdout.
 fn headless(chrome: &Path, profile: &Path, extra: &[String], url: &str) -> String {

@@ -11,20 +11,7 @@ use std::path::PathBuf;
 use std::process::{Command, Stdio};
 use std::time::Duration;
 
-use support::{Scratch, chromium, stderr, xtask};
-
-/// Chromium, or `None` after saying the test is skipped; with `CI=true` a missing Chromium fails.
-fn chromium_or_skip() -> Option<PathBuf> {
-    let chrome = chromium();
-    if chrome.is_none() {
-        assert!(
-            std::env::var("CI").map_or(true, |v| v != "true"),
-            "CI=true and no Chromium: .ci/run installs it (scripts/check-report.sh install)"
-        );
-        eprintln!("skipped: no Chromium (set CHROMIUM or install it)");
-    }
-    chrome
-}
+use support::{Scratch, chromium_or_skip, stderr, xtask};
 
 /// The DOM after the page's script ran (`--dump-dom`).
 fn dom(chrome: &PathBuf, dir: &std::path::Path, url: &str) -> String {

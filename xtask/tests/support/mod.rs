@@ -116,6 +116,19 @@ pub fn chromium() -> Option<PathBuf> {
         .filter(|p| p.is_file())
 }
 
+/// Chromium, or `None` after saying the test is skipped; with `CI=true` a missing Chromium fails.
+pub fn chromium_or_skip() -> Option<PathBuf> {
+    let chrome = chromium();
+    if chrome.is_none() {
+        assert!(
+            std::env::var("CI").map_or(true, |v| v != "true"),
+            "CI=true and no Chromium: .ci/run installs it (scripts/check-report.sh install)"
+        );
+        eprintln!("skipped: no Chromium (set CHROMIUM or install it)");
+    }
+    chrome
+}
+
 /// `json` (a partial file) with the checksum the runner gives it: SHA-256 of its compact JSON
 /// without the `checksum` member.
 pub fn sealed(mut json: serde_json::Value) -> String {
