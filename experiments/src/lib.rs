@@ -10,6 +10,7 @@ pub mod chart;
 pub mod common;
 pub mod emax;
 pub mod pair_html;
+pub mod pair_svg;
 pub mod paper;
 pub mod replay;
 

@@ -1,0 +1,538 @@
+//! `pair-check.svg`, the picture `pair` draws of a user's pair as its file describes it: both
+//! gears at φ = 0 and θ = 0 with the axes, arbors and tip-circle centres, each zero ray, the
+//! first teeth of each gear, the turning senses, insets that show an eccentricity at a visible
+//! size, and in words the conventions read from the file. Presentation only: the pair and its
+//! run come from `study::pair_file` and the solver.
+
+use contact::Trajectory;
+use geometry::{Vec2, polar, rotate};
+use registry::fmt_f64;
+use std::f64::consts::PI;
+use study::pair_file::{Prepared, Role, Sense, StartSpec};
+
+use crate::common::deg;
+
+/// The tips `pair-check.svg` labels: (gear, the user's tooth number, world position at φ = 0 and
+/// θ = 0), teeth 0 and 1 of each gear, so that the picture shows where the numbering starts and
+/// which way it runs.
+pub fn labelled_tips(p: &Prepared) -> Vec<(Role, i64, Vec2)> {
+    let (driver, driven) = p.mesh.world_outlines(0.0, 0.0);
+    let mut out = Vec::new();
+    for (role, outline, numbering) in [
+        (Role::Driver, &driver, p.driver),
+        (Role::Driven, &driven, p.driven),
+    ] {
+        for user in [0, 1] {
+            // The outline alternates tip and valley, in the solver's tooth order.
+            let k = numbering.solver(user) as usize;
+            if let Some(&tip) = outline.get(2 * k) {
+                out.push((role, user, tip));
+            }
+        }
+    }
+    out
+}
+
+/// `s` broken at spaces into lines of at most `width` characters (longer words stay whole).
+fn wrap(s: &str, width: usize) -> Vec<String> {
+    let mut lines = vec![String::new()];
+    for word in s.split(' ') {
+        let last = lines.len() - 1;
+        if !lines[last].is_empty() && lines[last].chars().count() + 1 + word.chars().count() > width
+        {
+            lines.push(String::new());
+        }
+        let last = lines.len() - 1;
+        if !lines[last].is_empty() {
+            lines[last].push(' ');
+        }
+        lines[last].push_str(word);
+    }
+    lines
+}
+
+/// Text safe inside SVG markup.
+fn escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// Height of the eccentricity insets of `pair-check.svg`, px.
+const INSET_HEIGHT: f64 = 230.0;
+
+/// The factor the insets of `pair-check.svg` draw each arbor's offset from its tip-circle
+/// centre by: of 1, 2 and 5 times a power of ten, the largest that draws the larger offset (as
+/// a share of its gear's tip radius) at most 0.6 of the inset's circle; 1 when there is none
+/// or it is visible as it is.
+pub fn exaggeration(offsets: &[(f64, f64)]) -> f64 {
+    let share = offsets.iter().map(|(e, r)| e / r).fold(0.0, f64::max);
+    if share <= 0.0 || share >= 0.6 {
+        return 1.0;
+    }
+    let raw = 0.6 / share;
+    let decade = 10f64.powf(raw.log10().floor());
+    [5.0, 2.0, 1.0]
+        .into_iter()
+        .map(|m| m * decade)
+        .find(|&f| f <= raw)
+        .unwrap_or(decade)
+        .max(1.0)
+}
+
+/// The insets of `pair-check.svg`: for each gear, its tip circle (a schematic circle), the
+/// tip-circle centre (o), the arbor (+) at its offset drawn [`exaggeration`] times its size,
+/// and the axes of the gear's tips frame (x along its zero ray, y 90 deg from it in the sense
+/// of its tips_deg), as the gears lie at φ = 0 and θ = 0: an eccentricity of a few tenths of a
+/// millimetre, invisible at the picture's scale, shown in the frame it was entered in.
+fn eccentricity_insets(svg: &mut String, p: &Prepared, margin: f64, width: f64, top: f64) {
+    let gears = [
+        (Role::Driver, p.mesh.driver(), p.driver, "#1f4e9c"),
+        (Role::Driven, p.mesh.driven(), p.driven, "#a3261f"),
+    ];
+    // The arbor minus the tip-circle centre in the view's frame (see check_svg).
+    let world = |role: Role, g: &geometry::Gear| match role {
+        Role::Driver => g.rotation_centre(),
+        Role::Driven => -g.rotation_centre(),
+    };
+    let offsets: Vec<(f64, f64)> = gears
+        .iter()
+        .map(|(role, g, ..)| (world(*role, g).norm(), g.max_tip_radius()))
+        .collect();
+    let factor = exaggeration(&offsets);
+    let box_w = (width - 2.0 * margin - 20.0) / 2.0;
+    let radius = 70.0;
+    svg.push_str(&format!(
+        "<g class=\"inset\" data-exaggeration=\"{factor}\">\n<text x=\"{margin}\" y=\"{:.1}\" font-size=\"13\" font-weight=\"bold\">{}</text>\n",
+        top + 4.0,
+        escape(&format!(
+            "Insets: arbor (+) against tip-circle centre (o) in each gear's tips frame (x along its zero ray), offsets exaggerated x{}",
+            fmt_f64(factor, 0),
+        ))
+    ));
+    for (i, ((role, g, numbering, colour), (offset, tip_r))) in
+        gears.iter().zip(&offsets).enumerate()
+    {
+        let x0 = margin + i as f64 * (box_w + 20.0);
+        let y0 = top + 14.0;
+        let h = INSET_HEIGHT - 14.0;
+        let (cx, cy) = (x0 + 20.0 + radius + 20.0, y0 + h / 2.0);
+        let at = |v: Vec2| (cx + v.x, cy - v.y);
+        svg.push_str(&format!(
+            "<rect x=\"{x0:.1}\" y=\"{y0:.1}\" width=\"{box_w:.1}\" height=\"{h:.1}\" fill=\"#fbfbfb\" stroke=\"#999999\"/>\n"
+        ));
+        // The tips frame's axes in the view: x along the zero ray (towards the other gear), y
+        // 90 deg from it the way the gear's tips_deg run.
+        let x_axis = match role {
+            Role::Driver => Vec2::new(1.0, 0.0),
+            Role::Driven => Vec2::new(-1.0, 0.0),
+        };
+        let ccw = match role {
+            Role::Driver => true,
+            Role::Driven => !numbering.mirrored,
+        };
+        let y_axis = if ccw {
+            Vec2::new(-x_axis.y, x_axis.x)
+        } else {
+            Vec2::new(x_axis.y, -x_axis.x)
+        };
+        svg.push_str(&format!(
+            "<circle cx=\"{cx:.1}\" cy=\"{cy:.1}\" r=\"{radius}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"1\"/>\n"
+        ));
+        for (axis, name) in [(x_axis, "x"), (y_axis, "y")] {
+            let end = at(axis * (radius + 18.0));
+            let base = axis * (radius + 10.0);
+            let n = Vec2::new(-axis.y, axis.x) * 4.0;
+            let (a, b) = (at(base + n), at(base - n));
+            svg.push_str(&format!(
+                "<line x1=\"{cx:.1}\" y1=\"{cy:.1}\" x2=\"{:.1}\" y2=\"{:.1}\" stroke=\"#555555\" stroke-width=\"1\"/>\n<polygon points=\"{:.1},{:.1} {:.1},{:.1} {:.1},{:.1}\" fill=\"#555555\"/>\n",
+                end.0, end.1, end.0, end.1, a.0, a.1, b.0, b.1
+            ));
+            let label =
+                at(axis * (radius + 24.0)
+                    + Vec2::new(0.0, if axis.y.abs() > 0.5 { 0.0 } else { 6.0 }));
+            let anchor = if axis.x > 0.5 {
+                "start"
+            } else if axis.x < -0.5 {
+                "end"
+            } else {
+                "middle"
+            };
+            svg.push_str(&format!(
+                "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"{anchor}\" font-size=\"11\" fill=\"#555555\">{}</text>\n",
+                label.0,
+                label.1 + if axis.y < -0.5 { 10.0 } else { 0.0 },
+                escape(name)
+            ));
+        }
+        let e = world(*role, g);
+        let drawn = e * (factor * radius / tip_r);
+        let (ax, ay) = at(drawn);
+        if *offset > 0.0 {
+            // The components along the frame's axes, dotted, and the offset itself.
+            let along = x_axis * drawn.dot(&x_axis);
+            let (px_, py_) = at(along);
+            svg.push_str(&format!(
+                "<polyline points=\"{cx:.1},{cy:.1} {px_:.1},{py_:.1} {ax:.1},{ay:.1}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"1\" stroke-dasharray=\"2 3\"/>\n<line x1=\"{cx:.1}\" y1=\"{cy:.1}\" x2=\"{ax:.1}\" y2=\"{ay:.1}\" stroke=\"{colour}\" stroke-width=\"2.5\"/>\n"
+            ));
+        }
+        svg.push_str(&format!(
+            "<circle cx=\"{cx:.1}\" cy=\"{cy:.1}\" r=\"4\" fill=\"white\" stroke=\"{colour}\" stroke-width=\"1.5\"/>\n<path d=\"M{:.1} {ay:.1}H{:.1}M{ax:.1} {:.1}V{:.1}\" stroke=\"{colour}\" stroke-width=\"2\"/>\n",
+            ax - 6.0,
+            ax + 6.0,
+            ay - 6.0,
+            ay + 6.0
+        ));
+        let tips = if numbering.mirrored {
+            Vec2::new(g.rotation_centre().x, -g.rotation_centre().y)
+        } else {
+            g.rotation_centre()
+        };
+        let xy = |v: Vec2| format!("({}, {})", fmt_f64(v.x, 4), fmt_f64(v.y, 4));
+        let words = if *offset > 0.0 {
+            format!(
+                "arbor minus tip-circle centre: {} in the tips frame (offset {}, angle_deg {}), {} in the view's frame; drawn {} times its size against a tip radius of {}.",
+                xy(tips),
+                fmt_f64(tips.norm(), 4),
+                fmt_f64(deg(tips.y.atan2(tips.x)), 3),
+                xy(e),
+                fmt_f64(factor, 0),
+                fmt_f64(*tip_r, 4)
+            )
+        } else {
+            "no eccentricity: the arbor is at the tip-circle centre.".to_string()
+        };
+        let text_x = cx + radius + 40.0;
+        svg.push_str(&format!(
+            "<text x=\"{text_x:.1}\" y=\"{:.1}\" font-size=\"13\" fill=\"{colour}\" font-weight=\"bold\">{}</text>\n",
+            y0 + 22.0,
+            escape(&format!("{}, offset x{}", role.name(), fmt_f64(factor, 0)))
+        ));
+        let chars = ((x0 + box_w - text_x - 8.0) / 6.6).max(12.0) as usize;
+        for (l, line) in wrap(&words, chars).iter().enumerate() {
+            svg.push_str(&format!(
+                "<text x=\"{text_x:.1}\" y=\"{:.1}\" font-size=\"11\">{}</text>\n",
+                y0 + 42.0 + 15.0 * l as f64,
+                escape(line)
+            ));
+        }
+    }
+    svg.push_str("</g>\n");
+}
+
+/// `pair-check.svg`: both gears at φ = 0 and θ = 0 as the file describes them, with the axes, the
+/// arbors and tip-circle centres, each zero ray, teeth 0 and 1 of each gear, the turning senses,
+/// and in words the conventions read from the file and the start of the run.
+pub fn check_svg(name: &str, p: &Prepared, traj: &Trajectory) -> String {
+    let mesh = &p.mesh;
+    let (g1, g2) = (mesh.driver(), mesh.driven());
+    let d = mesh.centre_distance();
+    let (out1, out2) = mesh.world_outlines(0.0, 0.0);
+    // Tip-circle centres: the arbors are at the origin and (D, 0); at φ = 0 the driver's frame is
+    // the world's, at θ = 0 the driven gear's is the world's turned by π.
+    let arbor2 = Vec2::new(d, 0.0);
+    let c1 = -g1.rotation_centre();
+    let c2 = arbor2 + rotate(-g2.rotation_centre(), PI);
+    let (r1, r2) = (g1.max_tip_radius(), g2.max_tip_radius());
+    // Room beyond the driven gear for the labels of its zero ray and turning sense, which run
+    // outwards from it whatever its size.
+    let (x_min, x_max) = (c1.x - 1.15 * r1, c2.x + 1.15 * r2 + 0.3 * r1.max(r2));
+    let y_max = 1.15 * r1.max(r2);
+    let (width, margin, top) = (1000.0, 30.0, 50.0);
+    let k = (width - 2.0 * margin) / (x_max - x_min);
+    let inset_top = top + 2.0 * y_max * k + 20.0;
+    let legend_top = inset_top + INSET_HEIGHT + 24.0;
+    let height = legend_top + 12.0 * 18.0 + 10.0;
+    let at = |v: Vec2| (margin + (v.x - x_min) * k, top + (y_max - v.y) * k);
+    let pt = |v: Vec2| {
+        let (x, y) = at(v);
+        format!("{x:.2},{y:.2}")
+    };
+    let mut svg = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width}\" height=\"{height:.0}\" viewBox=\"0 0 {width} {height:.0}\" font-family=\"sans-serif\" font-size=\"13\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+    );
+    let text = |svg: &mut String, v: Vec2, anchor: &str, colour: &str, s: &str| {
+        let (x, y) = at(v);
+        svg.push_str(&format!(
+            "<text x=\"{x:.2}\" y=\"{y:.2}\" text-anchor=\"{anchor}\" fill=\"{colour}\" stroke=\"white\" stroke-width=\"3\" paint-order=\"stroke\">{}</text>\n",
+            escape(s)
+        ));
+    };
+    let line = |svg: &mut String, a: Vec2, b: Vec2, colour: &str, extra: &str| {
+        let ((x1, y1), (x2, y2)) = (at(a), at(b));
+        svg.push_str(&format!(
+            "<line x1=\"{x1:.2}\" y1=\"{y1:.2}\" x2=\"{x2:.2}\" y2=\"{y2:.2}\" stroke=\"{colour}\" {extra}/>\n"
+        ));
+    };
+    // An arrowhead at `tip` pointing along the unit vector `u`, `size` long (world lengths).
+    let head = |svg: &mut String, tip: Vec2, u: Vec2, size: f64, colour: &str| {
+        let n = Vec2::new(-u.y, u.x) * (0.45 * size);
+        let base = tip - u * size;
+        svg.push_str(&format!(
+            "<polygon points=\"{} {} {}\" fill=\"{colour}\"/>\n",
+            pt(tip),
+            pt(base + n),
+            pt(base - n)
+        ));
+    };
+    svg.push_str(&format!(
+        "<text x=\"{margin}\" y=\"24\" font-size=\"16\">{}</text>\n",
+        escape(&format!(
+            "Check of {name}: both gears at phi = 0 and theta = 0"
+        ))
+    ));
+    let size = 0.05 * r1.min(r2);
+    // Axes: x along the line of centres, y through the driver's arbor.
+    let x_end = Vec2::new(x_max, 0.0);
+    line(
+        &mut svg,
+        Vec2::new(x_min, 0.0),
+        x_end,
+        "black",
+        "stroke-width=\"1\"",
+    );
+    head(&mut svg, x_end, Vec2::new(1.0, 0.0), size, "black");
+    text(
+        &mut svg,
+        x_end + Vec2::new(0.0, 1.2 * size),
+        "end",
+        "black",
+        "x: line of centres, driver arbor -> driven arbor",
+    );
+    let y_end = Vec2::new(0.0, y_max * 0.98);
+    line(
+        &mut svg,
+        Vec2::new(0.0, -y_max * 0.98),
+        y_end,
+        "black",
+        "stroke-width=\"1\"",
+    );
+    head(&mut svg, y_end, Vec2::new(0.0, 1.0), size, "black");
+    text(
+        &mut svg,
+        y_end + Vec2::new(size, -size),
+        "start",
+        "black",
+        "y: 90 deg from x in the driver's turning sense",
+    );
+    let gears = [
+        (
+            Role::Driver,
+            &out1,
+            Vec2::zeros(),
+            c1,
+            r1,
+            "#1f4e9c",
+            "#cfdcf3",
+        ),
+        (Role::Driven, &out2, arbor2, c2, r2, "#a3261f", "#f5d3cf"),
+    ];
+    for (role, outline, arbor, centre, radius, colour, fill) in gears {
+        let points: Vec<String> = outline.iter().map(|&v| pt(v)).collect();
+        svg.push_str(&format!(
+            "<polygon id=\"{}-outline\" points=\"{}\" fill=\"{fill}\" fill-opacity=\"0.6\" stroke=\"{colour}\" stroke-width=\"1\"/>\n",
+            role.name(),
+            points.join(" ")
+        ));
+        // The zero ray, from the tip-circle centre towards the other gear.
+        let towards = match role {
+            Role::Driver => Vec2::new(1.0, 0.0),
+            Role::Driven => Vec2::new(-1.0, 0.0),
+        };
+        let ray_end = centre + towards * radius;
+        line(
+            &mut svg,
+            centre,
+            ray_end,
+            colour,
+            "stroke-width=\"2\" stroke-dasharray=\"8 4\"",
+        );
+        head(&mut svg, ray_end, towards, size, colour);
+        let (angle, anchor) = match role {
+            Role::Driver => ("phi = 0", "end"),
+            Role::Driven => ("theta = 0", "start"),
+        };
+        // Beside the centre, clear of the mesh, where the two rays meet.
+        text(
+            &mut svg,
+            centre - towards * (0.05 * radius) - Vec2::new(0.0, 1.8 * size),
+            anchor,
+            colour,
+            &format!("{} zero ray (tips_deg = 0, {angle})", role.name()),
+        );
+        // The arbor (+) and the tip-circle centre (o).
+        let arm = 0.6 * size;
+        line(
+            &mut svg,
+            arbor - Vec2::new(arm, 0.0),
+            arbor + Vec2::new(arm, 0.0),
+            colour,
+            "stroke-width=\"2\"",
+        );
+        line(
+            &mut svg,
+            arbor - Vec2::new(0.0, arm),
+            arbor + Vec2::new(0.0, arm),
+            colour,
+            "stroke-width=\"2\"",
+        );
+        let (cx, cy) = at(centre);
+        svg.push_str(&format!(
+            "<circle cx=\"{cx:.2}\" cy=\"{cy:.2}\" r=\"4\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"1.5\"/>\n"
+        ));
+        text(
+            &mut svg,
+            arbor - Vec2::new(0.0, 3.8 * size),
+            "middle",
+            colour,
+            &format!("{} arbor (+), tip-circle centre (o)", role.name()),
+        );
+        // The turning sense: an arc away from the mesh, arrowhead where the turn goes.
+        let (from, to): (f64, f64) = match role {
+            Role::Driver => (100.0, 150.0),
+            Role::Driven => (80.0, 30.0),
+        };
+        let arc_r = 0.55 * radius;
+        let steps = 24;
+        let arc: Vec<String> = (0..=steps)
+            .map(|i| {
+                let a = (from + (to - from) * f64::from(i) / f64::from(steps)).to_radians();
+                pt(arbor + polar(arc_r, a))
+            })
+            .collect();
+        svg.push_str(&format!(
+            "<polyline points=\"{}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"2\"/>\n",
+            arc.join(" ")
+        ));
+        let end = to.to_radians();
+        let along = (to - from).signum();
+        let u = Vec2::new(-end.sin(), end.cos()) * along;
+        head(&mut svg, arbor + polar(arc_r, end), u, 1.5 * size, colour);
+        let turns = match role {
+            Role::Driver => "driver turns this way: phi increases",
+            Role::Driven => "driven gear turns this way: theta increases",
+        };
+        let mid = (0.5 * (from + to)).to_radians();
+        text(
+            &mut svg,
+            arbor + polar(arc_r + 2.0 * size, mid),
+            "middle",
+            colour,
+            turns,
+        );
+    }
+    // Labels of tips in the mesh, where the gears crowd each other, go up or down on leaders of
+    // growing length, the driver's to the left and the driven gear's to the right.
+    let mut stacked = [0.0, 0.0];
+    for (role, user, tip) in labelled_tips(p) {
+        let (colour, centre, other, other_r) = match role {
+            Role::Driver => ("#1f4e9c", c1, c2, r2),
+            Role::Driven => ("#a3261f", c2, c1, r1),
+        };
+        let out = (tip - centre).normalize();
+        let (x, y) = at(tip);
+        svg.push_str(&format!(
+            "<circle id=\"{}-tooth-{user}\" cx=\"{x:.2}\" cy=\"{y:.2}\" r=\"4\" fill=\"{colour}\"/>\n",
+            role.name()
+        ));
+        let radial = tip + out * (3.0 * size);
+        let (label, anchor) = if (radial - other).norm() < other_r + 3.0 * size {
+            let up = tip.y > 0.0 || (tip.y == 0.0 && role == Role::Driver);
+            let slot = &mut stacked[usize::from(!up)];
+            *slot += 1.0;
+            // Rows 22 px apart, the first well clear of the tips, each side of the mesh its
+            // own gear's labels, set aside from the line of centres.
+            let row = 22.0 / k;
+            let dy = 4.0 * size + *slot * row;
+            let (anchor, aside) = match role {
+                Role::Driver => ("end", -2.0 * size),
+                Role::Driven => ("start", 2.0 * size),
+            };
+            (tip + Vec2::new(aside, if up { dy } else { -dy }), anchor)
+        } else {
+            (radial, if out.x >= 0.0 { "start" } else { "end" })
+        };
+        line(&mut svg, tip, label, colour, "stroke-width=\"1\"");
+        // A little clear of the leader, on the side the text runs to.
+        let nudge = match anchor {
+            "end" => -0.5 * size,
+            _ => 0.5 * size,
+        };
+        text(
+            &mut svg,
+            label + Vec2::new(nudge, 0.0),
+            anchor,
+            colour,
+            &format!("{} tooth {user}", role.name()),
+        );
+    }
+    eccentricity_insets(&mut svg, p, margin, width, inset_top);
+    // The file's conventions in words, and the start.
+    let mut lines = vec![
+        "Seen from the side on which the driver turns counter-clockwise. Each zero ray starts at its gear's tip-circle centre (o) and, at phi = 0 and theta = 0, points along the line of centres at the other gear.".to_string(),
+        "The gears may overlap in this picture: it shows your frames, not a meshing position. Teeth 0 and 1 show where your numbering starts and which way it runs.".to_string(),
+    ];
+    for (role, gear, spec, numbering) in [
+        (Role::Driver, g1, &p.spec.driver, p.driver),
+        (Role::Driven, g2, &p.spec.driven, p.driven),
+    ] {
+        let ccw = match role {
+            Role::Driver => true,
+            Role::Driven => !numbering.mirrored,
+        };
+        let sense = match spec.sense {
+            Sense::Driver => "driver",
+            Sense::Own => "own",
+        };
+        let e = gear.rotation_centre();
+        let tips_frame = if numbering.mirrored {
+            Vec2::new(e.x, -e.y)
+        } else {
+            e
+        };
+        let world = match role {
+            Role::Driver => e,
+            Role::Driven => -e,
+        };
+        let xy = |v: Vec2| format!("({}, {})", fmt_f64(v.x, 4), fmt_f64(v.y, 4));
+        lines.push(format!(
+            "{}: {} teeth, tips_deg run {} here (sense: {sense}); arbor minus tip-circle centre {} in the world frame, {} in its tips frame = arbor (offset: {}, angle_deg: {}).",
+            role.name(),
+            gear.teeth(),
+            if ccw {
+                "counter-clockwise"
+            } else {
+                "clockwise"
+            },
+            xy(world),
+            xy(tips_frame),
+            fmt_f64(tips_frame.norm(), 4),
+            fmt_f64(deg(tips_frame.y.atan2(tips_frame.x)), 3),
+        ));
+    }
+    let phi0 = traj.phi_start();
+    let start = match p.spec.start {
+        StartSpec::Touching => "start: touching".to_string(),
+        StartSpec::AtRest { theta_deg } => format!("start: at_rest(theta_deg: {theta_deg})"),
+        StartSpec::Teeth { driver, driven } => {
+            format!("start: teeth(driver: {driver}, driven: {driven})")
+        }
+    };
+    lines.push(format!(
+        "The run starts at phi0 = {} deg, theta0 = {} deg ({start}); centre distance D = {}.",
+        fmt_f64(deg(phi0), 6),
+        fmt_f64(deg(traj.theta_at(phi0)), 6),
+        fmt_f64(d, 4)
+    ));
+    let wrapped: Vec<String> = lines.iter().flat_map(|l| wrap(l, 150)).collect();
+    for (i, l) in wrapped.iter().enumerate() {
+        svg.push_str(&format!(
+            "<text x=\"{margin}\" y=\"{:.0}\" font-size=\"12\">{}</text>\n",
+            legend_top + 18.0 * i as f64,
+            escape(l)
+        ));
+    }
+    svg.push_str("</svg>\n");
+    svg
+}
