@@ -1,29 +1,22 @@
 //! Our counts of a jam cell beside the paper's: the two-sample mark, the tally under a table,
 //! the printed cell and its CSV columns.
 
-use registry::{Context, RunError, fmt_f64};
+use registry::{RunError, fmt_f64};
 use study::cell::{CellSpec, Counts, PAPER_TRIALS};
-use study::errors;
+use study::grids::CellSettings;
 
-/// One cell of the paper's per-mesh tables: `mesh` under hypothesis `hyp` with `errors` at
-/// clearance `g` (% of h), the tooth height from the settings. Its rule is the default, for the
+/// One cell of the paper's per-mesh tables: `mesh` under the settings' hypothesis with `errors`
+/// at clearance `g` (% of h) and the settings' tooth height. Its rule is the default, for the
 /// experiments that count a cell by other means (every rule at once, or other contact tests).
 pub fn cell(
-    ctx: &Context,
-    hyp: &'static dyn hypotheses::Hypothesis,
+    s: &CellSettings,
     mesh: &str,
     errors: &[(&str, f64)],
     g: f64,
 ) -> Result<CellSpec, RunError> {
-    Ok(CellSpec {
-        mesh: mesh.to_owned(),
-        hypothesis: hyp,
-        params: errors::params(ctx, hyp, errors)?,
-        tooth_height: ctx.f64("tooth_height")?,
-        clearance: g,
-        events: rules::Rule::parse(rules::DEFAULT)
-            .map_err(|e| RunError::Internal(e.to_string()))?,
-    })
+    let mut cell = s.cell(mesh, s.errors.params(errors)?, g);
+    cell.events = rules::Rule::default();
+    Ok(cell)
 }
 
 /// The paper's (jams, disengagements) of one cell: `{key}.jam` and `{key}.dis` of experiment `id`

@@ -20,7 +20,7 @@ pub const EMAX: Param = Param {
 /// The `emax` parameter: `true` for the paper's own E. max row (its kind admits only `derived`
 /// and `paper`).
 pub fn emax_from_paper(ctx: &Context) -> Result<bool, RunError> {
-    Ok(ctx.param(EMAX.name)?.trim() == "paper")
+    Ok(ctx.text(&EMAX)?.trim() == "paper")
 }
 
 /// Each mesh's random error from the paper's E. max row; an error naming the first mesh the

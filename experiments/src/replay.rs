@@ -18,9 +18,7 @@ use registry::{Context, OutputFile, Report, RunError, Table, fmt_f64};
 use train::Gearing;
 
 use study::cell::{CellSpec, Rebuilt, rebuild};
-use study::errors;
-use study::gearing;
-use study::grids::CASES;
+use study::grids::{CASES, CellSettings};
 
 /// How the cells of a per-mesh table are named and what each one names: an experiment whose
 /// trials can be replayed registers one beside its `registry::Experiment`, in its own file:
@@ -36,7 +34,7 @@ pub struct CellGrammar {
     /// The form of a cell, with an example (`CASE/MESH, e.g. B/m3-e3`).
     pub form: &'static str,
     /// What the typed cell names, under the experiment's settings in the context.
-    pub parse: for<'a> fn(&Context, &CellText<'a>) -> Result<Cell<'a>, RunError>,
+    pub parse: for<'a> fn(&CellSettings, &CellText<'a>) -> Result<Cell<'a>, RunError>,
 }
 
 registry::inventory::collect!(CellGrammar);
@@ -158,12 +156,13 @@ fn grammar(id: &str) -> Result<&'static CellGrammar, RunError> {
     })
 }
 
-/// The cell `cell` of experiment `id`, built from the experiment's parameters in `ctx`, and
-/// checked as `run` checks its cells ([`study::cell::check`], under the seed of `ctx`): a value
-/// the user typed in the cell that breaks a rule is named as typed (`random error `0.5``).
-pub fn cell_spec(ctx: &Context, g: &Gearing, id: &str, cell: &str) -> Result<CellSpec, RunError> {
-    let (spec, typed) = unchecked_cell_spec(ctx, g, id, cell)?;
-    study::cell::check(g, &spec, ctx.seed()).map_err(|e| typed_part(e, id, cell, &typed))?;
+/// The cell `cell` of experiment `id`, built from the experiment's settings `s`, and checked as
+/// `run` checks its cells ([`study::cell::check`], under `seed`): a value the user typed in the
+/// cell that breaks a rule is named as typed (`random error `0.5``).
+pub fn cell_spec(s: &CellSettings, seed: u64, id: &str, cell: &str) -> Result<CellSpec, RunError> {
+    let (spec, typed) = unchecked_cell_spec(s, id, cell)?;
+    let g = s.gearing();
+    study::cell::check(g, &spec, seed).map_err(|e| typed_part(e, id, cell, &typed))?;
     Ok(spec)
 }
 
@@ -183,8 +182,7 @@ fn typed_part(e: RunError, id: &str, cell: &str, typed: &[(&str, &str, &str)]) -
 
 /// The (unchecked) spec of the cell and the parameters typed in it.
 fn unchecked_cell_spec<'a>(
-    ctx: &Context,
-    g: &Gearing,
+    s: &CellSettings,
     id: &'a str,
     cell: &'a str,
 ) -> Result<(CellSpec, Vec<Typed<'a>>), RunError> {
@@ -195,13 +193,13 @@ fn unchecked_cell_spec<'a>(
         form: grammar.form,
         parts: cell.split('/').collect(),
     };
-    let hyp = errors::chosen(ctx)?;
+    let g = s.gearing();
     let Cell {
         mesh,
         errors,
         clearance,
         typed,
-    } = (grammar.parse)(ctx, &text)?;
+    } = (grammar.parse)(s, &text)?;
     if g.mesh(mesh).is_none() {
         let meshes: Vec<&str> = g.meshes().iter().map(|m| m.label.as_str()).collect();
         return Err(bad_cell(
@@ -213,15 +211,12 @@ fn unchecked_cell_spec<'a>(
             ),
         ));
     }
-    let spec = CellSpec {
-        mesh: mesh.to_owned(),
-        hypothesis: hyp,
-        // A value the hypothesis refuses is named as the part of the cell it was typed in.
-        params: errors::params(ctx, hyp, &errors).map_err(|e| typed_part(e, id, cell, &typed))?,
-        tooth_height: ctx.f64("tooth_height")?,
-        clearance,
-        events: study::events::chosen(ctx)?,
-    };
+    // A value the hypothesis refuses is named as the part of the cell it was typed in.
+    let params = s
+        .errors
+        .params(&errors)
+        .map_err(|e| typed_part(e, id, cell, &typed))?;
+    let spec = s.cell(mesh, params, clearance);
     Ok((spec, typed))
 }
 
@@ -232,9 +227,10 @@ fn unchecked_cell_spec<'a>(
 /// gearing, a trial index at or beyond the experiment's trial count.
 pub fn replay(ctx: &Context, id: &str, cell: &str, trial: Option<u64>) -> Result<Report, RunError> {
     grammar(id)?;
-    let g = gearing::load(ctx)?;
-    let spec = cell_spec(ctx, &g, id, cell)?;
-    let trials = ctx.u64("trials")?;
+    // Every replayable table counts its cells with the per-cell `trials` parameter.
+    let s = CellSettings::read(ctx, &study::grids::TRIALS)?;
+    let spec = cell_spec(&s, ctx.seed(), id, cell)?;
+    let (g, trials) = (s.gearing(), s.trials);
     match trial {
         Some(t) if t >= trials => Err(RunError::bad(
             "replay",
@@ -244,8 +240,8 @@ pub fn replay(ctx: &Context, id: &str, cell: &str, trial: Option<u64>) -> Result
                 trials.saturating_sub(1)
             ),
         )),
-        Some(t) => one_trial(ctx, &g, &spec, id, cell, t),
-        None => listing(ctx, &g, &spec, id, cell, trials),
+        Some(t) => one_trial(ctx, g, &spec, id, cell, t),
+        None => listing(ctx, g, &spec, id, cell, trials),
     }
 }
 
@@ -640,10 +636,16 @@ mod tests {
         ] {
             // Fewer trials than a listing shows, so every failed one is named.
             let ctx = ctx(id, &[("trials", "16")]);
-            let g = gearing::load(&ctx).unwrap();
-            let spec = cell_spec(&ctx, &g, id, cell).unwrap();
-            let counts =
-                run_cells(&ctx, &g, std::slice::from_ref(&spec), 16, Purpose::Own).unwrap()[0];
+            let s = CellSettings::read(&ctx, &study::grids::TRIALS).unwrap();
+            let spec = cell_spec(&s, ctx.seed(), id, cell).unwrap();
+            let counts = run_cells(
+                &ctx,
+                s.gearing(),
+                std::slice::from_ref(&spec),
+                16,
+                Purpose::Own,
+            )
+            .unwrap()[0];
             let listing = replay(&ctx, id, cell, None).unwrap();
             assert_eq!(listed(&listing, 0), counts.jams, "{id} {cell}: jams");
             assert_eq!(

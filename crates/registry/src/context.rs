@@ -11,7 +11,7 @@ use serde::de::DeserializeOwned;
 use crate::engine::{TrialEngine, TrialMode};
 use crate::progress::{Hook, Progress};
 use crate::trials::{Records, Shard};
-use crate::{Experiment, RunError};
+use crate::{Experiment, Param, RunError};
 
 /// The most trials a `trials` parameter may ask for: 10^6 (per cell, case or input, as the
 /// experiment counts them). By convention an experiment's `trials` parameter is its number of
@@ -87,6 +87,9 @@ pub struct ConfigFile {
 #[derive(Debug, Clone)]
 struct Value {
     name: &'static str,
+    /// The declaration it was made from, so that a typed read ([`Context::get`]) of another
+    /// declaration with the same name is caught rather than read.
+    decl: &'static Param,
     value: String,
     /// Set with `--set` (a parse failure is the user's), rather than the default (a bug).
     overridden: bool,
@@ -128,6 +131,7 @@ impl Context {
             .all_params()
             .map(|p| Value {
                 name: p.name,
+                decl: p,
                 value: p.default.to_owned(),
                 overridden: false,
             })
@@ -246,6 +250,42 @@ impl Context {
     /// Number of threads of the pool the experiment runs in (`--threads`).
     pub fn threads(&self) -> usize {
         self.threads
+    }
+
+    /// The value of parameter `p` as type `T` (a number, a count, a switch): how experiments and
+    /// `study` read their settings, named by the parameter's declaration rather than a string.
+    /// A declaration the experiment does not hold - another parameter that only shares the name
+    /// (fig5's own `clearance` is not the gearing's) - is a bug ([`RunError::Internal`]).
+    pub fn get<T: FromParam>(&self, p: &Param) -> Result<T, RunError> {
+        self.declared(p)?;
+        T::from_param(self, p.name)
+    }
+
+    /// The text of parameter `p` as typed (a name, a list, a file), by its declaration as for
+    /// [`Context::get`].
+    pub fn text(&self, p: &Param) -> Result<&str, RunError> {
+        Ok(self.declared(p)?.value.as_str())
+    }
+
+    /// Whether the experiment declares `p` itself (the same declaration, not just its name).
+    pub fn holds(&self, p: &Param) -> bool {
+        self.params.iter().any(|v| v.decl == p)
+    }
+
+    /// The names of every declared parameter, in declaration order.
+    pub fn names(&self) -> Vec<&'static str> {
+        self.params.iter().map(|v| v.name).collect()
+    }
+
+    fn declared(&self, p: &Param) -> Result<&Value, RunError> {
+        let v = self.value(p.name)?;
+        if v.decl != p {
+            return Err(RunError::Internal(format!(
+                "experiment `{}` read parameter `{}` by a declaration other than the one it declares",
+                self.id, p.name
+            )));
+        }
+        Ok(v)
     }
 
     /// Raw string value of a declared param (an undeclared name is a bug: [`RunError::Internal`]).
@@ -381,6 +421,37 @@ impl Context {
     /// records came from a different build or different inputs).
     pub fn unclaimed(&self) -> Vec<String> {
         self.engine.unclaimed()
+    }
+}
+
+/// A type a parameter's value is read as with [`Context::get`]; the parameter's [`crate::Kind`]
+/// has already checked it fits.
+pub trait FromParam: Sized {
+    /// The value of the declared parameter `name`.
+    fn from_param(ctx: &Context, name: &str) -> Result<Self, RunError>;
+}
+
+impl FromParam for f64 {
+    fn from_param(ctx: &Context, name: &str) -> Result<f64, RunError> {
+        ctx.f64(name)
+    }
+}
+
+impl FromParam for usize {
+    fn from_param(ctx: &Context, name: &str) -> Result<usize, RunError> {
+        ctx.usize(name)
+    }
+}
+
+impl FromParam for u64 {
+    fn from_param(ctx: &Context, name: &str) -> Result<u64, RunError> {
+        ctx.u64(name)
+    }
+}
+
+impl FromParam for bool {
+    fn from_param(ctx: &Context, name: &str) -> Result<bool, RunError> {
+        ctx.parse(name, "must be true or false")
     }
 }
 

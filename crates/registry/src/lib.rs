@@ -41,8 +41,8 @@ mod table;
 mod trials;
 
 pub use context::{
-    ConfigFile, Context, MAX_COUNT, MAX_TRIALS, MIN_PER_ENGAGEMENT, MIN_PER_ENGAGEMENT_WHY,
-    MIN_SAMPLES, MIN_SAMPLES_WHY, SAMPLES_PER_TOOTH, samples_cover,
+    ConfigFile, Context, FromParam, MAX_COUNT, MAX_TRIALS, MIN_PER_ENGAGEMENT,
+    MIN_PER_ENGAGEMENT_WHY, MIN_SAMPLES, MIN_SAMPLES_WHY, SAMPLES_PER_TOOTH, samples_cover,
 };
 pub use engine::TrialMode;
 pub use error::{DuplicateId, RunError};

@@ -61,9 +61,9 @@ pub struct EqualPair {
 
 /// Reads the parameters and builds the mesh; a broken rule names the parameter.
 pub fn from_params(ctx: &Context) -> Result<EqualPair, RunError> {
-    let teeth = ctx.usize(TEETH.name)?;
-    let (tip_radius, root_radius) = (ctx.f64(TIP_RADIUS.name)?, ctx.f64(ROOT_RADIUS.name)?);
-    let centre_distance = ctx.f64(CENTRE_DISTANCE.name)?;
+    let teeth = ctx.get(&TEETH)?;
+    let (tip_radius, root_radius): (f64, f64) = (ctx.get(&TIP_RADIUS)?, ctx.get(&ROOT_RADIUS)?);
+    let centre_distance: f64 = ctx.get(&CENTRE_DISTANCE)?;
     let bad = |field: String, rule: String| RunError::bad("--set", field, rule);
     let gear = Gear::ideal(teeth, tip_radius, root_radius).map_err(|e| bad(e.field, e.rule))?;
     // At or beyond touching tip circles no tooth can push another: nothing would be simulated.

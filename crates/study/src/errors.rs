@@ -42,75 +42,163 @@ pub const CASES_GROUP: &[Param] = &[SPLIT, PARAM, PARAMS_PARAM];
 
 /// The hypothesis named by the `hypothesis` parameter.
 pub fn chosen(ctx: &Context) -> Result<&'static dyn Hypothesis, RunError> {
-    let name = ctx.param("hypothesis")?;
+    let name = ctx.text(&PARAM)?;
     hypotheses::lookup(name).map_err(|e| RunError::bad("--hypothesis", e.what, e.rule))
 }
 
-/// Parameters for `h`: its defaults, then those of `values` it declares (others are ignored, so
-/// a Case's random and systematic errors can be offered to any hypothesis), then the user's
-/// `hypothesis_params`, which must all be declared by `h`.
-///
-/// A user's key that is also one of `values` replaces it only when the experiment declares a
-/// parameter of that name (fig5's `random`: the value the user asked for is the one run, and the
-/// title reads it from the result); one the experiment sets itself for each row, Case or gear (a
-/// grid's random error, Figure 5's split) is refused, since the rows would name values that did
-/// not run. `hypothesis_params` with an empty entry or a key given twice is refused.
-pub fn params(
-    ctx: &Context,
-    h: &dyn Hypothesis,
-    values: &[(&str, f64)],
-) -> Result<Params, RunError> {
-    let bad = |rule: String| RunError::bad("--set", PARAMS_PARAM.name, rule);
-    let user = hypotheses::parse_overrides(ctx.param(PARAMS_PARAM.name)?).map_err(bad)?;
-    for (k, _) in &user {
-        // The same value set twice, as the experiment's parameter and the hypothesis's: which
-        // one was meant? Refused like `--trials` with `--set trials`.
-        if let Some((_, plain)) = ctx.changed().into_iter().find(|(name, _)| name == k) {
-            return Err(bad(format!(
-                "`{k}` is also set with --set {k}={plain}: give one of them"
-            )));
-        }
-        if let Some((_, v)) = values.iter().find(|(name, _)| name == k)
-            && !ctx.declares(k)
-        {
-            return Err(bad(format!(
-                "`{k}` is set by the experiment itself for each row, Case or gear (here {}): it cannot be replaced here",
-                registry::fmt_number(*v)
-            )));
+/// The error setting group read once: the hypothesis, the user's `hypothesis_params` parsed,
+/// [`SPLIT`] where the experiment declares it, and what [`Settings::params`] must know of the
+/// run to say whose a value is (the parameters changed from their defaults, the names declared).
+/// Cells take their parameters from here, so nothing is parsed again per cell.
+#[derive(Clone)]
+pub struct Settings {
+    /// The hypothesis the experiment's gears are made with.
+    pub hypothesis: &'static dyn Hypothesis,
+    /// Share of the systematic error on the sinusoid, when the experiment declares [`SPLIT`].
+    pub split: Option<f64>,
+    /// The user's `hypothesis_params`, as (key, value) in the order typed.
+    user: Vec<(String, String)>,
+    /// The parameters set to something other than their default, as (name, value).
+    changed: Vec<(&'static str, String)>,
+    /// Every parameter the experiment declares.
+    declared: Vec<&'static str>,
+}
+
+impl Settings {
+    /// Reads the hypothesis ([`chosen`]), parses `hypothesis_params` (an empty entry or a key
+    /// given twice is refused) and reads the split where the experiment declares it.
+    pub fn read(ctx: &Context) -> Result<Settings, RunError> {
+        let hypothesis = chosen(ctx)?;
+        Settings::read_for(ctx, hypothesis)
+    }
+
+    /// [`Settings::read`] with the hypothesis chosen by the experiment (one of its rows).
+    pub fn read_for(
+        ctx: &Context,
+        hypothesis: &'static dyn Hypothesis,
+    ) -> Result<Settings, RunError> {
+        let bad = |rule: String| RunError::bad("--set", PARAMS_PARAM.name, rule);
+        let user = hypotheses::parse_overrides(ctx.text(&PARAMS_PARAM)?).map_err(bad)?;
+        let split = if ctx.holds(&SPLIT) {
+            Some(ctx.get(&SPLIT)?)
+        } else {
+            None
+        };
+        Ok(Settings {
+            hypothesis,
+            split,
+            user,
+            changed: ctx
+                .changed()
+                .into_iter()
+                .map(|(k, v)| (k, v.to_owned()))
+                .collect(),
+            declared: ctx.names(),
+        })
+    }
+
+    /// These settings with `hypothesis` in place of the chosen one (the user's parameters kept).
+    #[must_use]
+    pub fn with_hypothesis(&self, hypothesis: &'static dyn Hypothesis) -> Settings {
+        Settings {
+            hypothesis,
+            ..self.clone()
         }
     }
-    let mut overrides: Vec<(String, String)> = values
-        .iter()
-        .filter(|(k, _)| h.params().iter().any(|p| p.name == *k))
-        .filter(|(k, _)| !user.iter().any(|(u, _)| u == k))
-        .map(|(k, v)| ((*k).to_string(), v.to_string()))
-        .collect();
-    let typed: Vec<String> = user.iter().map(|(k, _)| k.trim().to_string()).collect();
-    overrides.extend(user);
-    let p = Params::new(h, &overrides).map_err(|e| {
-        RunError::bad(
-            "--set",
-            format!("{}: {}", PARAMS_PARAM.name, e.what),
-            e.rule,
-        )
-    })?;
-    // Values no gear can take are refused here, before anything is drawn, naming what the user
-    // typed: a key of `hypothesis_params`, or the experiment's own parameter of that name.
-    h.check(&p).map_err(|e| {
-        let key = e.what.rsplit(": ").next().unwrap_or_default();
-        if typed.iter().any(|k| k == key) {
+
+    /// The split of the systematic error; an experiment that does not declare [`SPLIT`] asking
+    /// for it is a bug.
+    pub fn split(&self) -> Result<f64, RunError> {
+        self.split.ok_or_else(|| {
+            RunError::Internal(format!(
+                "the split of the systematic error was asked for without the `{}` parameter",
+                SPLIT.name
+            ))
+        })
+    }
+
+    fn declares(&self, name: &str) -> bool {
+        self.declared.contains(&name)
+    }
+
+    /// Parameters for the hypothesis: its defaults, then those of `values` it declares (others
+    /// are ignored, so a Case's random and systematic errors can be offered to any hypothesis),
+    /// then the user's `hypothesis_params`, which must all be declared by it.
+    ///
+    /// A user's key that is also one of `values` replaces it only when the experiment declares a
+    /// parameter of that name (fig5's `random`: the value the user asked for is the one run, and
+    /// the title reads it from the result); one the experiment sets itself for each row, Case or
+    /// gear (a grid's random error, Figure 5's split) is refused, since the rows would name
+    /// values that did not run.
+    pub fn params(&self, values: &[(&str, f64)]) -> Result<Params, RunError> {
+        let h = self.hypothesis;
+        let bad = |rule: String| RunError::bad("--set", PARAMS_PARAM.name, rule);
+        for (k, _) in &self.user {
+            // The same value set twice, as the experiment's parameter and the hypothesis's: which
+            // one was meant? Refused like `--trials` with `--set trials`.
+            if let Some((_, plain)) = self.changed.iter().find(|(name, _)| name == k) {
+                return Err(bad(format!(
+                    "`{k}` is also set with --set {k}={plain}: give one of them"
+                )));
+            }
+            if let Some((_, v)) = values.iter().find(|(name, _)| name == k)
+                && !self.declares(k)
+            {
+                return Err(bad(format!(
+                    "`{k}` is set by the experiment itself for each row, Case or gear (here {}): it cannot be replaced here",
+                    registry::fmt_number(*v)
+                )));
+            }
+        }
+        let mut overrides: Vec<(String, String)> = values
+            .iter()
+            .filter(|(k, _)| h.params().iter().any(|p| p.name == *k))
+            .filter(|(k, _)| !self.user.iter().any(|(u, _)| u == k))
+            .map(|(k, v)| ((*k).to_string(), v.to_string()))
+            .collect();
+        let typed: Vec<String> = self
+            .user
+            .iter()
+            .map(|(k, _)| k.trim().to_string())
+            .collect();
+        overrides.extend(self.user.iter().cloned());
+        let p = Params::new(h, &overrides).map_err(|e| {
             RunError::bad(
                 "--set",
                 format!("{}: {}", PARAMS_PARAM.name, e.what),
                 e.rule,
             )
-        } else if ctx.declares(key) {
-            RunError::bad("--set", key, e.rule)
-        } else {
-            RunError::bad("--hypothesis", e.what, e.rule)
-        }
-    })?;
-    Ok(p)
+        })?;
+        // Values no gear can take are refused here, before anything is drawn, naming what the
+        // user typed: a key of `hypothesis_params`, or the experiment's own parameter of that
+        // name.
+        h.check(&p).map_err(|e| {
+            let key = e.what.rsplit(": ").next().unwrap_or_default();
+            if typed.iter().any(|k| k == key) {
+                RunError::bad(
+                    "--set",
+                    format!("{}: {}", PARAMS_PARAM.name, e.what),
+                    e.rule,
+                )
+            } else if self.declares(key) {
+                RunError::bad("--set", key, e.rule)
+            } else {
+                RunError::bad("--hypothesis", e.what, e.rule)
+            }
+        })?;
+        Ok(p)
+    }
+
+    /// The parameters for an error of `systematic` degrees and `random` of the pitch (as
+    /// Edmunds' Cases give them), with the split: [`Settings::params`] of the three.
+    pub fn case_params(&self, (systematic, random): (f64, f64)) -> Result<Params, RunError> {
+        let values = [
+            ("random", random),
+            ("systematic", systematic),
+            ("split", self.split()?),
+        ];
+        self.params(&values)
+    }
 }
 
 /// `gear` as manufactured under `h`. A failure is bad input (a parameter too large for the gear,
@@ -124,4 +212,23 @@ pub fn make(
 ) -> Result<Gear, RunError> {
     h.apply(gear, name, p, rng)
         .map_err(|e| RunError::bad("--hypothesis", e.what, e.rule))
+}
+
+/// Figure 5's trial: a driver and a driven gear made from `ideal` under `h` with `p`, and an
+/// initial driver angle within the driver's pitch, in that order from the one stream
+/// `trial_rng(seed, trial)`, so that pairs made with other parameters from the same trial differ
+/// by the parameters alone.
+pub fn made_pair(
+    h: &dyn Hypothesis,
+    ideal: &Gear,
+    p: &Params,
+    seed: u64,
+    trial: u64,
+) -> Result<(Gear, Gear, f64), RunError> {
+    use rand::Rng;
+    let mut rng = mechanism::trial_rng(seed, trial);
+    let driver = make(h, ideal, "driver", p, &mut rng)?;
+    let driven = make(h, ideal, "driven", p, &mut rng)?;
+    let phi0 = rng.random::<f64>() * std::f64::consts::TAU / ideal.teeth() as f64;
+    Ok((driver, driven, phi0))
 }

@@ -18,8 +18,13 @@ pub const GROUP: &[Param] = &[PARAM];
 
 /// The rule named by the `events` parameter.
 pub fn chosen(ctx: &Context) -> Result<Rule, RunError> {
-    let spec = ctx.param(PARAM.name)?;
+    let spec = ctx.text(&PARAM)?;
     Rule::parse(spec).map_err(|e| RunError::bad("--set", PARAM.name, e.to_string()))
+}
+
+/// The default rule, for experiments that count by other means and declare no `events`.
+pub fn default_rule() -> Result<Rule, RunError> {
+    Rule::parse(rules::DEFAULT).map_err(|e| RunError::Internal(e.to_string()))
 }
 
 /// `mech` counting jams by the rule named by the `events` parameter.

@@ -62,17 +62,16 @@ pub fn mechanism_error(e: mechanism::MechanismError) -> RunError {
 
 /// The `pin_and_slot` parameter (its kind admits only `true` and `false`).
 pub fn pin_and_slot(ctx: &Context) -> Result<bool, RunError> {
-    Ok(ctx.param(PIN_AND_SLOT.name)?.trim() == "true")
+    ctx.get(&PIN_AND_SLOT)
 }
 
 /// `mech` with the pin-and-slot in or out as `on` says; a gearing without a `pin_and_slot`
-/// section cannot have it in (bad input, naming the gearing file).
+/// section cannot have it in (bad input, naming the gearing `file`).
 pub fn with_pin_and_slot(
-    ctx: &Context,
+    file: &str,
     mech: mechanism::Mechanism,
     on: bool,
 ) -> Result<mechanism::Mechanism, RunError> {
-    let file = ctx.param(PARAM.name)?;
     mech.with_pin_and_slot(on).map_err(|e| {
         RunError::bad(
             file,
@@ -82,87 +81,149 @@ pub fn with_pin_and_slot(
     })
 }
 
-/// Loads the gearing named by the `gearing` parameter, and checks the gearing-wide parameters
-/// the experiment declares beside it ([`check`]).
+/// The gearing and its tooth height, read and checked once: what experiments that choose their
+/// own clearances read ([`SHAPE`]), and the first part of [`Settings`].
+#[derive(Debug, Clone)]
+pub struct Shape {
+    /// The gearing.
+    pub gearing: Gearing,
+    /// The `gearing` parameter as typed: an embedded name or the user's file.
+    pub file: String,
+    /// Tooth height h of every gear (mm).
+    pub tooth_height: f64,
+}
+
+impl Shape {
+    /// Reads the `gearing` parameter and [`TOOTH_HEIGHT`], loads the gearing and checks h
+    /// against it ([`check`]).
+    pub fn read(ctx: &Context) -> Result<Shape, RunError> {
+        Shape::read_with(ctx, &TOOTH_HEIGHT)
+    }
+
+    /// [`Shape::read`] with the experiment's own tooth-height parameter `h` (one with its own
+    /// help, e.g. `clearance`'s "for both gears").
+    pub fn read_with(ctx: &Context, h: &Param) -> Result<Shape, RunError> {
+        let file = ctx.text(&PARAM)?.to_owned();
+        let tooth_height = ctx.get(h)?;
+        let gearing = load_file(&file)?;
+        check(&file, &gearing, tooth_height)?;
+        Ok(Shape {
+            gearing,
+            file,
+            tooth_height,
+        })
+    }
+}
+
+/// The gearing setting group ([`GROUP`]) read once: the gearing, h and the clearance G of every
+/// mesh.
+#[derive(Debug, Clone)]
+pub struct Settings {
+    /// The gearing.
+    pub gearing: Gearing,
+    /// The `gearing` parameter as typed: an embedded name or the user's file.
+    pub file: String,
+    /// Tooth height h of every gear (mm).
+    pub tooth_height: f64,
+    /// Clearance G of every mesh (% of h): [`CLEARANCE`], the gearing's one.
+    pub clearance: f64,
+}
+
+impl Settings {
+    /// Reads [`GROUP`]: loads the gearing and checks h against it.
+    pub fn read(ctx: &Context) -> Result<Settings, RunError> {
+        let Shape {
+            gearing,
+            file,
+            tooth_height,
+        } = Shape::read(ctx)?;
+        Ok(Settings {
+            gearing,
+            file,
+            tooth_height,
+            clearance: ctx.get(&CLEARANCE)?,
+        })
+    }
+}
+
+/// Loads the gearing named by the `gearing` parameter, and checks h against it ([`check`]).
 pub fn load(ctx: &Context) -> Result<Gearing, RunError> {
-    let name = ctx.param("gearing")?;
-    let g = if let Some(g) = Gearing::builtin(name) {
-        g
+    Ok(Shape::read(ctx)?.gearing)
+}
+
+/// The gearing `name`: an embedded one, or a RON file.
+pub fn load_file(name: &str) -> Result<Gearing, RunError> {
+    if let Some(g) = Gearing::builtin(name) {
+        Ok(g)
     } else {
         Gearing::load(std::path::Path::new(name))
-            .map_err(|e| RunError::bad(e.file, e.location, e.rule))?
-    };
-    check(ctx, &g)?;
-    Ok(g)
+            .map_err(|e| RunError::bad(e.file, e.location, e.rule))
+    }
 }
 
 /// What the gearing asks of the gearing-wide parameters beyond their kinds (`clearance` G above
 /// 0 and at most 100 % of h, `tooth_height` h above 0, checked before anything runs): h must be
 /// smaller than the tip radius of every gear in a mesh (the root radius R - h must stay
-/// positive).
-pub fn check(ctx: &Context, g: &Gearing) -> Result<(), RunError> {
-    if ctx.declares(TOOTH_HEIGHT.name) {
-        let h = ctx.f64(TOOTH_HEIGHT.name)?;
-        let meshed = g
-            .meshes()
+/// positive). `file` is the gearing as typed, named when a gear of it is to blame.
+pub fn check(file: &str, g: &Gearing, h: f64) -> Result<(), RunError> {
+    let meshed = g
+        .meshes()
+        .iter()
+        .flat_map(|m| [m.driver.as_str(), m.driven.as_str()]);
+    let smallest = meshed
+        .filter_map(|name| Some((name, g.tip_radius(name)?)))
+        .min_by(|a, b| a.1.total_cmp(&b.1));
+    if let Some((gear, r)) = smallest
+        && h >= r
+    {
+        // A gear whose tooth count does not fit its measured radius (its own module,
+        // radius per tooth, far from the others') shrinks the radii fitted to its whole
+        // meshed group: blame it, in the file that holds it.
+        let modules: Vec<(&train::GearData, f64)> = g
+            .gears()
             .iter()
-            .flat_map(|m| [m.driver.as_str(), m.driven.as_str()]);
-        let smallest = meshed
-            .filter_map(|name| Some((name, g.tip_radius(name)?)))
-            .min_by(|a, b| a.1.total_cmp(&b.1));
-        if let Some((gear, r)) = smallest
-            && h >= r
+            .filter_map(|d| Some((d, d.measured_radius? / f64::from(d.teeth))))
+            .filter(|(_, m)| m.is_finite() && *m > 0.0)
+            .collect();
+        let mut logs: Vec<f64> = modules.iter().map(|(_, m)| m.ln()).collect();
+        logs.sort_by(f64::total_cmp);
+        let median = logs.get(logs.len() / 2).copied().unwrap_or(0.0);
+        let outlier = modules.iter().max_by(|a, b| {
+            (a.1.ln() - median)
+                .abs()
+                .total_cmp(&(b.1.ln() - median).abs())
+        });
+        if let Some(&(d, module)) = outlier
+            && (module.ln() - median).abs() > 2f64.ln()
         {
-            // A gear whose tooth count does not fit its measured radius (its own module,
-            // radius per tooth, far from the others') shrinks the radii fitted to its whole
-            // meshed group: blame it, in the file that holds it.
-            let modules: Vec<(&train::GearData, f64)> = g
-                .gears()
-                .iter()
-                .filter_map(|d| Some((d, d.measured_radius? / f64::from(d.teeth))))
-                .filter(|(_, m)| m.is_finite() && *m > 0.0)
-                .collect();
-            let mut logs: Vec<f64> = modules.iter().map(|(_, m)| m.ln()).collect();
-            logs.sort_by(f64::total_cmp);
-            let median = logs.get(logs.len() / 2).copied().unwrap_or(0.0);
-            let outlier = modules.iter().max_by(|a, b| {
-                (a.1.ln() - median)
-                    .abs()
-                    .total_cmp(&(b.1.ln() - median).abs())
-            });
-            if let Some(&(d, module)) = outlier
-                && (module.ln() - median).abs() > 2f64.ln()
-                && ctx.declares(PARAM.name)
-            {
-                return Err(RunError::bad(
-                    ctx.param(PARAM.name)?,
-                    format!("gear {}", d.name),
-                    format!(
-                        "{} teeth do not fit its measured radius {} mm ({} mm per tooth, where the gears' median is {} mm): the radii fitted with it make gear {gear}'s tip radius {} mm, less than the tooth height {h} mm",
-                        d.teeth,
-                        registry::fmt_number(d.measured_radius.unwrap_or(f64::NAN)),
-                        registry::fmt_number(module),
-                        registry::fmt_number(median.exp()),
-                        registry::fmt_number(r)
-                    ),
-                ));
-            }
             return Err(RunError::bad(
-                "--set",
-                TOOTH_HEIGHT.name,
+                file,
+                format!("gear {}", d.name),
                 format!(
-                    "must be less than the smallest tip radius of the gearing, {r:.3} mm (gear {gear}; got {h})"
+                    "{} teeth do not fit its measured radius {} mm ({} mm per tooth, where the gears' median is {} mm): the radii fitted with it make gear {gear}'s tip radius {} mm, less than the tooth height {h} mm",
+                    d.teeth,
+                    registry::fmt_number(d.measured_radius.unwrap_or(f64::NAN)),
+                    registry::fmt_number(module),
+                    registry::fmt_number(median.exp()),
+                    registry::fmt_number(r)
                 ),
             ));
         }
+        return Err(RunError::bad(
+            "--set",
+            TOOTH_HEIGHT.name,
+            format!(
+                "must be less than the smallest tip radius of the gearing, {r:.3} mm (gear {gear}; got {h})"
+            ),
+        ));
     }
     Ok(())
 }
 
-/// A parameter `name` holding a comma-separated list of clearances (% of h), each above 0 and
+/// A parameter `p` holding a comma-separated list of clearances (% of h), each above 0 and
 /// at most `max`.
-pub fn clearance_list(ctx: &Context, name: &str, max: f64) -> Result<Vec<f64>, RunError> {
-    let text = ctx.param(name)?;
+pub fn clearance_list(ctx: &Context, p: &Param, max: f64) -> Result<Vec<f64>, RunError> {
+    let (text, name) = (ctx.text(p)?, p.name);
     let mut out = Vec::new();
     for part in text.split(',').map(str::trim) {
         let g = clearance_value(part, max).map_err(|rule| {

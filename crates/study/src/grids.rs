@@ -6,12 +6,11 @@ use hypotheses::Hypothesis;
 use registry::{Context, Param, RunError};
 use train::Gearing;
 
+use rules::Rule;
+
 use crate::cell::{CellSpec, Counts, Purpose, run_cells};
-use crate::errors;
-use crate::events;
-use crate::tolerance::{
-    self, RANDOM_FROM, RANDOM_STEP, RANDOM_TO, SYSTEMATIC_FROM, SYSTEMATIC_STEP, SYSTEMATIC_TO,
-};
+use crate::tolerance;
+use crate::{errors, events, gearing};
 
 /// Edmunds' cases: (name, systematic amplitude in degrees, random fraction of the pitch).
 pub const CASES: [(&str, f64, f64); 4] = [
@@ -21,44 +20,14 @@ pub const CASES: [(&str, f64, f64); 4] = [
     ("D", 2.0, 0.08),
 ];
 
-/// The parameters of `hyp` for an error of `systematic` degrees and `random` of the pitch (as
-/// Edmunds' Cases give them), with the `split` parameter: those `hyp` declares, then the user's
-/// `hypothesis_params` ([`errors::params`]).
-pub fn case_params(
-    ctx: &Context,
-    hyp: &dyn Hypothesis,
-    (systematic, random): (f64, f64),
-) -> Result<hypotheses::Params, RunError> {
-    let split = ctx.f64("split")?;
-    let values = [
-        ("random", random),
-        ("systematic", systematic),
-        ("split", split),
-    ];
-    errors::params(ctx, hyp, &values)
-}
-
 /// The cells of Cases A-D at clearance `clearance`, case by case, each case's meshes in the
 /// gearing's order: what Table 3 runs at G = 40 % and Table I at each of its clearances.
-pub fn case_cells(
-    ctx: &Context,
-    g: &train::Gearing,
-    hyp: &'static dyn hypotheses::Hypothesis,
-    clearance: f64,
-) -> Result<Vec<CellSpec>, RunError> {
-    let h = ctx.f64("tooth_height")?;
+pub fn case_cells(s: &CellSettings, clearance: f64) -> Result<Vec<CellSpec>, RunError> {
     let mut cells = Vec::new();
     for &(_, systematic, random) in &CASES {
-        let params = case_params(ctx, hyp, (systematic, random))?;
-        for m in g.meshes() {
-            cells.push(CellSpec {
-                mesh: m.label.clone(),
-                hypothesis: hyp,
-                params: params.clone(),
-                tooth_height: h,
-                clearance,
-                events: events::chosen(ctx)?,
-            });
+        let params = s.errors.case_params((systematic, random))?;
+        for m in s.gearing.gearing.meshes() {
+            cells.push(s.cell(&m.label, params.clone(), clearance));
         }
     }
     Ok(cells)
@@ -113,34 +82,27 @@ impl RandomGrid {
     }
 }
 
-/// Runs Table 4's grid (`random_from`..`random_to` by `random_step`, systematic error 0, at the
-/// context's clearance and tooth height) through the shared cell runner: Table 5, Table 6 and
-/// Figure 6 call this too, and get Table 4's own cells (from the cache when it already ran).
+/// Runs Table 4's grid (the random errors `values`, systematic error 0, at the settings'
+/// clearance and tooth height) through the shared cell runner: Table 5, Table 6 and Figure 6
+/// call this too, and get Table 4's own cells (from the cache when it already ran). `ctx` runs
+/// the trials ([`run_cells`]); the settings come from `s`.
 pub fn run_grid(
     ctx: &Context,
-    g: &Gearing,
-    hyp: &'static dyn Hypothesis,
+    s: &CellSettings,
+    values: Vec<f64>,
     trials: u64,
     purpose: Purpose,
 ) -> Result<RandomGrid, RunError> {
-    let values = tolerance::grid(ctx, &RANDOM_FROM, &RANDOM_TO, &RANDOM_STEP)?;
-    let (h, clearance) = (ctx.f64("tooth_height")?, ctx.f64("clearance")?);
-    let meshes: Vec<String> = g.meshes().iter().map(|m| m.label.clone()).collect();
+    let clearance = s.clearance()?;
+    let meshes: Vec<String> = s.meshes();
     let mut cells = Vec::new();
     for &e in &values {
-        let params = errors::params(ctx, hyp, &[("random", e), ("systematic", 0.0)])?;
+        let params = s.errors.params(&[("random", e), ("systematic", 0.0)])?;
         for m in &meshes {
-            cells.push(CellSpec {
-                mesh: m.clone(),
-                hypothesis: hyp,
-                params: params.clone(),
-                tooth_height: h,
-                clearance,
-                events: events::chosen(ctx)?,
-            });
+            cells.push(s.cell(m, params.clone(), clearance));
         }
     }
-    let flat = run_cells(ctx, g, &cells, trials, purpose)?;
+    let flat = run_cells(ctx, &s.gearing.gearing, &cells, trials, purpose)?;
     let counts = flat.chunks(meshes.len()).map(<[Counts]>::to_vec).collect();
     Ok(RandomGrid {
         values,
@@ -150,24 +112,87 @@ pub fn run_grid(
 }
 
 /// What every table of jam cells reads first, parsed and checked once: the gearing (read and
-/// checked against h and G), the error hypothesis and the trials per cell.
+/// checked against h) and, where the experiment declares it, the clearance G of every mesh; the
+/// error settings (hypothesis, its parameters, the split); the event rule (the default where
+/// the experiment counts by other means and declares none); the trials per cell.
 pub struct CellSettings {
-    /// The gearing.
-    pub gearing: Gearing,
-    /// The error hypothesis the cells' gears are made with.
-    pub hypothesis: &'static dyn Hypothesis,
-    /// Trials per cell (the parameter named when reading).
+    /// The gearing, its file and h.
+    pub gearing: gearing::Shape,
+    /// The gearing's clearance G ([`gearing::CLEARANCE`]), when the experiment declares it.
+    pub clearance: Option<f64>,
+    /// The error hypothesis the cells' gears are made with, and its parameters.
+    pub errors: errors::Settings,
+    /// The event rule the cells count with.
+    pub rule: Rule,
+    /// Trials per cell.
     pub trials: u64,
 }
 
 impl CellSettings {
-    /// Reads the gearing group, the hypothesis and the trials parameter `trials`.
-    pub fn read(ctx: &Context, trials: &str) -> Result<CellSettings, RunError> {
+    /// Reads the gearing group, the error group, the event rule and the trials parameter
+    /// `trials`.
+    pub fn read(ctx: &Context, trials: &Param) -> Result<CellSettings, RunError> {
+        let gearing = gearing::Shape::read(ctx)?;
+        let clearance = if ctx.holds(&gearing::CLEARANCE) {
+            Some(ctx.get(&gearing::CLEARANCE)?)
+        } else {
+            None
+        };
+        let errors = errors::Settings::read(ctx)?;
+        let rule = if ctx.holds(&events::PARAM) {
+            events::chosen(ctx)?
+        } else {
+            events::default_rule()?
+        };
         Ok(CellSettings {
-            gearing: crate::gearing::load(ctx)?,
-            hypothesis: errors::chosen(ctx)?,
-            trials: ctx.u64(trials)?,
+            gearing,
+            clearance,
+            errors,
+            rule,
+            trials: ctx.get(trials)?,
         })
+    }
+
+    /// The gearing.
+    pub fn gearing(&self) -> &Gearing {
+        &self.gearing.gearing
+    }
+
+    /// The hypothesis the cells' gears are made with.
+    pub fn hypothesis(&self) -> &'static dyn Hypothesis {
+        self.errors.hypothesis
+    }
+
+    /// Mesh labels in the gearing's order.
+    pub fn meshes(&self) -> Vec<String> {
+        self.gearing()
+            .meshes()
+            .iter()
+            .map(|m| m.label.clone())
+            .collect()
+    }
+
+    /// The gearing's clearance G; an experiment that does not declare it asking for it is a bug.
+    pub fn clearance(&self) -> Result<f64, RunError> {
+        self.clearance.ok_or_else(|| {
+            RunError::Internal(format!(
+                "the gearing's clearance was asked for without the `{}` parameter",
+                gearing::CLEARANCE.name
+            ))
+        })
+    }
+
+    /// One cell: `mesh` with gears made under `params`, at `clearance` and the settings' h and
+    /// rule.
+    pub fn cell(&self, mesh: &str, params: hypotheses::Params, clearance: f64) -> CellSpec {
+        CellSpec {
+            mesh: mesh.to_owned(),
+            hypothesis: self.errors.hypothesis,
+            params,
+            tooth_height: self.gearing.tooth_height,
+            clearance,
+            events: self.rule.clone(),
+        }
     }
 }
 
@@ -196,69 +221,53 @@ impl Tolerances {
     }
 }
 
-/// Runs Table 4's grid, derives each mesh's largest tolerable random error by `rule` %, then runs
-/// the systematic grid on top of it (split by the `split` parameter) and derives the largest
-/// tolerable systematic amplitude the same way. Every cell goes through the shared runner, so
-/// cells Table 4 or Table 5 already ran in this process are not run again.
+/// Runs Table 4's grid (the random errors `random_values`), derives each mesh's largest
+/// tolerable random error by `rule` %, then runs the systematic grid (`sys_values`) on top of it
+/// (split as the settings say) and derives the largest tolerable systematic amplitude the same
+/// way. Every cell goes through the shared runner, so cells Table 4 or Table 5 already ran in
+/// this process are not run again.
 ///
 /// With `given_random` (one entry per mesh, e.g. the paper's own E. max row, `--set emax=paper`)
 /// the random errors are those instead and Table 4's grid is not run (`random_grid` then has the
 /// grid's values but no counts).
 pub fn derive(
     ctx: &Context,
-    g: &Gearing,
-    hyp: &'static dyn Hypothesis,
-    trials: u64,
+    s: &CellSettings,
+    (random_values, sys_values): (Vec<f64>, Vec<f64>),
     rule: f64,
     purpose: Purpose,
     given_random: Option<Vec<Option<f64>>>,
 ) -> Result<Tolerances, RunError> {
-    // Every parameter checked before anything runs.
-    let sys_values = tolerance::grid(ctx, &SYSTEMATIC_FROM, &SYSTEMATIC_TO, &SYSTEMATIC_STEP)?;
-    let (h, clearance, split) = (
-        ctx.f64("tooth_height")?,
-        ctx.f64("clearance")?,
-        ctx.f64("split")?,
-    );
+    let trials = s.trials;
+    let (clearance, split) = (s.clearance()?, s.errors.split()?);
     let (random_grid, random) = if let Some(random) = given_random {
-        let meshes: Vec<String> = g.meshes().iter().map(|m| m.label.clone()).collect();
-        let values = tolerance::grid(ctx, &RANDOM_FROM, &RANDOM_TO, &RANDOM_STEP)?;
         let grid = RandomGrid {
-            values,
-            meshes,
+            values: random_values,
+            meshes: s.meshes(),
             counts: Vec::new(),
         };
         (grid, random)
     } else {
-        let grid = run_grid(ctx, g, hyp, trials, Purpose::Input)?;
+        let grid = run_grid(ctx, s, random_values, trials, Purpose::Input)?;
         let random = grid.tolerable(trials, rule);
         (grid, random)
     };
     let mut cells = Vec::new();
     let mut index = Vec::new();
-    for &s in &sys_values {
+    for &sys in &sys_values {
         for (m, mesh) in random_grid.meshes.iter().enumerate() {
             let Some(e) = random[m] else {
                 index.push(None);
                 continue;
             };
-            let params = errors::params(
-                ctx,
-                hyp,
-                &[("random", e), ("systematic", s), ("split", split)],
-            )?;
+            let params =
+                s.errors
+                    .params(&[("random", e), ("systematic", sys), ("split", split)])?;
             index.push(Some(cells.len()));
-            cells.push(CellSpec {
-                mesh: mesh.clone(),
-                hypothesis: hyp,
-                params,
-                tooth_height: h,
-                clearance,
-                events: events::chosen(ctx)?,
-            });
+            cells.push(s.cell(mesh, params, clearance));
         }
     }
-    let flat = run_cells(ctx, g, &cells, trials, purpose)?;
+    let flat = run_cells(ctx, s.gearing(), &cells, trials, purpose)?;
     let n = random_grid.meshes.len();
     let sys_counts: Vec<Vec<Option<Counts>>> = index
         .chunks(n)

@@ -9,7 +9,12 @@ use std::path::Path;
 use registry::Context;
 use train::Gearing;
 
-/// The value of parameter `name` where the experiment declares it.
+/// The name both `failure` and `fig6` give their measured-errors table: each declares its own
+/// `measured` (with its own help), and the runner checks the file whichever declares it.
+pub const MEASURED: &str = "measured";
+
+/// The value of parameter `name` where the experiment declares it: by name, as the runner
+/// checks every experiment's inputs knowing nothing of their declarations.
 fn value(ctx: &Context, name: &str) -> Option<String> {
     ctx.declares(name)
         .then(|| ctx.param(name).ok().map(str::to_owned))
@@ -28,19 +33,19 @@ pub fn measured_in_hypothesis(hypothesis: &str) -> Vec<String> {
 /// every measured-error table, from the hypothesis or the `measured` parameter.
 pub fn files(ctx: &Context) -> Vec<(&'static str, String)> {
     let mut files = Vec::new();
-    if let Some(g) = value(ctx, "gearing")
+    if let Some(g) = value(ctx, crate::gearing::PARAM.name)
         && Gearing::builtin(&g).is_none()
     {
         files.push(("gearing", g));
     }
-    if let Some(h) = value(ctx, "hypothesis") {
+    if let Some(h) = value(ctx, crate::errors::PARAM.name) {
         files.extend(
             measured_in_hypothesis(&h)
                 .into_iter()
                 .map(|f| ("measured errors", f)),
         );
     }
-    if let Some(m) = value(ctx, "measured")
+    if let Some(m) = value(ctx, MEASURED)
         && hypotheses::measured_file_given(&m).is_some()
     {
         files.push(("measured errors", m.trim().to_owned()));
@@ -59,30 +64,30 @@ pub fn check(
     seen: &mut BTreeSet<(&'static str, String)>,
 ) -> Result<(), String> {
     let (hypothesis_flag, measured_flag) = flags;
-    if let Some(g) = value(ctx, "gearing")
+    if let Some(g) = value(ctx, crate::gearing::PARAM.name)
         && g.trim().is_empty()
     {
         return Err(registry::RunError::bad(
             "--set",
-            "gearing",
+            crate::gearing::PARAM.name,
             "must name an embedded gearing (freeth2006, freeth2021) or a RON file, not be empty",
         )
         .to_string());
     }
-    if let Some(g) = value(ctx, "gearing")
+    if let Some(g) = value(ctx, crate::gearing::PARAM.name)
         && Gearing::builtin(&g).is_none()
         && seen.insert(("gearing", g.clone()))
     {
         Gearing::load(Path::new(&g)).map_err(|e| e.to_string())?;
     }
-    if let Some(h) = value(ctx, "hypothesis")
+    if let Some(h) = value(ctx, crate::errors::PARAM.name)
         && seen.insert(("hypothesis", h.clone()))
     {
         hypotheses::lookup(&h).map_err(|e| format!("{hypothesis_flag}: {e}"))?;
     }
-    if let Some(m) = value(ctx, "measured")
+    if let Some(m) = value(ctx, MEASURED)
         && hypotheses::measured_file_given(&m).is_some()
-        && seen.insert(("measured", m.clone()))
+        && seen.insert((MEASURED, m.clone()))
     {
         hypotheses::measured_file(m.trim()).map_err(|e| format!("{measured_flag}: {e}"))?;
     }
@@ -121,12 +126,12 @@ fn shared_settings(ctx: &Context) -> Result<(), String> {
 /// that gearing: a row for another gear (a typo, another gearing's name) would be silently
 /// unused. Refused naming the flag, the file, the gear and the gearing.
 fn measured_gears_in_gearing(ctx: &Context, flags: (&str, &str)) -> Result<(), String> {
-    let Some(gearing_name) = value(ctx, "gearing") else {
+    let Some(gearing_name) = value(ctx, crate::gearing::PARAM.name) else {
         return Ok(());
     };
-    let from_hypothesis =
-        value(ctx, "hypothesis").and_then(|h| measured_in_hypothesis(&h).into_iter().next());
-    let (file, flag) = match (from_hypothesis, value(ctx, "measured")) {
+    let from_hypothesis = value(ctx, crate::errors::PARAM.name)
+        .and_then(|h| measured_in_hypothesis(&h).into_iter().next());
+    let (file, flag) = match (from_hypothesis, value(ctx, MEASURED)) {
         (Some(f), _) => (f, flags.0),
         (None, Some(m)) if hypotheses::measured_file_given(&m).is_some() => {
             (m.trim().to_owned(), flags.1)

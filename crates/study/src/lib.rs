@@ -7,9 +7,14 @@
 //! - [`pointers`]: run lengths and sampling of the five pointers.
 //! - [`limits`]: an ideal pair's clearance limits, from its contact motion.
 //! - [`equal_pair`]: the paper's pair of equal gears (Figures 2 and 3).
+//! - [`anomaly`]: the Lunar pointer without and with the pin-and-slot.
+//! - [`area_test`]: the paper's kind of contact test (an overlap area, blunt tips) on Figure IV's
+//!   ideal pairs.
 //! - Setting groups shared by experiments: [`gearing`] (file, h, G, pin-and-slot), [`errors`]
 //!   (hypothesis and its parameters), [`events`] (the event rule).
 
+pub mod anomaly;
+pub mod area_test;
 pub mod cell;
 pub mod equal_pair;
 pub mod errors;

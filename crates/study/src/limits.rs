@@ -54,7 +54,7 @@ impl IdealPair {
 
     /// [`IdealPair::of_mesh`] of the mesh the `mesh` parameter names, refused naming it.
     pub fn chosen(ctx: &Context, g: &train::Gearing, h: f64) -> Result<IdealPair, RunError> {
-        let label = ctx.param(MESH.name)?;
+        let label = ctx.text(&MESH)?;
         IdealPair::of_mesh(g, label, h).ok_or_else(|| {
             RunError::bad(
                 "--set",

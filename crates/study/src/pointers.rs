@@ -1,7 +1,14 @@
 //! Pointer runs: each pointer's run length (in turns of b) and how finely its Theoretical
 //! Difference is sampled, checked against the gearing.
 
+use std::collections::BTreeMap;
+use std::f64::consts::TAU;
+
+use hypotheses::{Hypothesis, Params};
+use mechanism::{Mechanism, Model, trial_rng};
 use registry::{Context, Param, RunError};
+use serde::{Deserialize, Serialize};
+use train::Gearing;
 
 /// The shortest run a `*_turns` parameter may ask for, in turns of b: 0.05 turn is 11 tooth
 /// engagements of b1's mesh, about the fewest a σ of the pointer's error can be read from (at
@@ -97,12 +104,12 @@ pub const RUN_LENGTHS: &[Param] = &[
 ];
 
 /// Pointers in the paper's column order, with the parameter holding each run length.
-pub const POINTERS: [(&str, &str); 5] = [
-    ("Lunar", "lunar_turns"),
-    ("Metonic", "metonic_turns"),
-    ("Saros", "saros_turns"),
-    ("Games", "games_turns"),
-    ("Exeligmos", "exeligmos_turns"),
+pub const POINTERS: [(&str, &Param); 5] = [
+    ("Lunar", &LUNAR_TURNS),
+    ("Metonic", &METONIC_TURNS),
+    ("Saros", &SAROS_TURNS),
+    ("Games", &GAMES_TURNS),
+    ("Exeligmos", &EXELIGMOS_TURNS),
 ];
 
 /// A table's header over the five pointers, in the paper's column order (Tables 1 and 6).
@@ -119,12 +126,12 @@ pub const COLUMNS: [&str; 6] = [
 pub fn pointer_runs<'a>(
     ctx: &Context,
     g: &train::Gearing,
-    pointers: &[(&'a str, &str)],
+    pointers: &[(&'a str, &Param)],
     per: usize,
 ) -> Result<Vec<(&'a str, f64, usize)>, RunError> {
     let mut runs = Vec::new();
     for &(name, param) in pointers {
-        let turns = ctx.f64(param)?;
+        let turns = ctx.get(param)?;
         if g.pointer(name).is_none() {
             return Err(RunError::bad(
                 "gearing",
@@ -155,4 +162,299 @@ pub fn samples_for(g: &train::Gearing, pointer: &str, turns: f64, per: usize) ->
         arbor_turns *= r.to_f64();
     }
     ((busiest * turns * per as f64).ceil() as usize).max(100)
+}
+
+/// One pointer's run of one trial: its σ, Dm and mean, and whether it stopped. A pointer that
+/// could not run has NaN statistics, which JSON cannot carry: they are recorded as bits.
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize)]
+pub struct PointerTrial {
+    /// σ of the Theoretical Difference (degrees).
+    #[serde(with = "registry::f64_bits")]
+    pub sigma: f64,
+    /// Dm, the largest deviation from the mean (degrees).
+    #[serde(with = "registry::f64_bits")]
+    pub dm: f64,
+    /// Mean of the Theoretical Difference (degrees).
+    #[serde(with = "registry::f64_bits")]
+    pub mean: f64,
+    /// The run jammed (or could not run).
+    pub stopped: bool,
+}
+
+impl PointerTrial {
+    /// A run's statistics, and whether it stopped.
+    pub fn new(s: stats::PointerStats, stopped: bool) -> Self {
+        PointerTrial {
+            sigma: s.sigma,
+            dm: s.dm,
+            mean: s.mean,
+            stopped,
+        }
+    }
+}
+
+/// The ideal mechanism of the gearing at its h and G, stopping where `rule` counts a jam.
+pub fn ideal_mechanism(
+    s: &crate::gearing::Settings,
+    rule: &rules::Rule,
+) -> Result<Mechanism, RunError> {
+    let mech = Mechanism::ideal(&s.gearing, s.tooth_height, s.clearance)
+        .map_err(crate::gearing::mechanism_error)?;
+    Ok(mech.with_rule(rule.clone()))
+}
+
+/// Table 1's trials: `trials` runs of the ideal mechanism `mech`, each from random initial
+/// angles drawn from its own stream `trial_rng(seed, t)`, every pointer of `runs` (pointer,
+/// input turns, samples) in turn on that stream; in trial order, whatever the threads, as the
+/// batch `key` of [`Context::trials`].
+pub fn ideal_trials(
+    ctx: &Context,
+    key: &str,
+    mech: &Mechanism,
+    runs: &[(&str, f64, usize)],
+    trials: u64,
+) -> Result<Vec<Vec<PointerTrial>>, RunError> {
+    let seed = ctx.seed();
+    ctx.trials(key, trials, |t| {
+        let mut rng = trial_rng(seed, t);
+        Ok(runs
+            .iter()
+            .map(
+                |&(name, turns, samples)| match mech.run_pointer(name, turns, &mut rng) {
+                    Some(r) => PointerTrial::new(r.stats(samples), r.first_stop().is_some()),
+                    None => PointerTrial::new(stats::PointerStats::NAN, true),
+                },
+            )
+            .collect())
+    })
+}
+
+/// One pointer of one trial run to its first jam (statistics up to it), as [`Context::trials`]
+/// records it (for shards and their merge); NaN statistics (a run that stops at once) are
+/// recorded as bits.
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize)]
+pub struct ToFirstJam {
+    /// σ of the Theoretical Difference up to the jam (degrees).
+    #[serde(with = "registry::f64_bits")]
+    pub sigma: f64,
+    /// Dm up to the jam (degrees).
+    #[serde(with = "registry::f64_bits")]
+    pub dm: f64,
+    /// Mean up to the jam (degrees).
+    #[serde(with = "registry::f64_bits")]
+    pub mean: f64,
+    /// The pointer jammed.
+    pub jammed: bool,
+    /// Tooth engagements of the pointer's train up to the jam.
+    pub engaged: u64,
+}
+
+/// The mechanism and its errors, as [`tolerated_trials`] builds it: the gearing at h and G, each
+/// gear made under the hypothesis with its own parameters (by gear name), jams counted by the
+/// rule.
+pub struct Manufactured<'a> {
+    /// The gearing.
+    pub gearing: &'a Gearing,
+    /// Tooth height h (mm) of every gear.
+    pub tooth_height: f64,
+    /// Clearance G (% of h) of every mesh.
+    pub clearance: f64,
+    /// The hypothesis every gear is made with.
+    pub hypothesis: &'a dyn Hypothesis,
+    /// Each gear's parameters; a gear without is an internal error.
+    pub params: &'a BTreeMap<String, Params>,
+    /// The event rule that stops a pointer.
+    pub rule: &'a rules::Rule,
+}
+
+/// Table 6's trials: `trials` mechanisms as `m` makes them, each from its own stream
+/// `trial_rng(seed, t)` (every gear's errors, then the initial angles), every pointer of `runs`
+/// (pointer, input turns, samples) run to its first jam; in trial order, whatever the threads,
+/// as the batch `key` of [`Context::trials`].
+pub fn tolerated_trials(
+    ctx: &Context,
+    key: &str,
+    m: &Manufactured<'_>,
+    runs: &[(&str, f64, usize)],
+    trials: u64,
+) -> Result<Vec<Vec<ToFirstJam>>, RunError> {
+    let seed = ctx.seed();
+    ctx.trials(key, trials, |t| {
+        // One stream per trial: every gear's errors, then the initial angles.
+        let mut rng = trial_rng(seed, t);
+        let mut failure = None;
+        let mech = Mechanism::build(m.gearing, m.tooth_height, m.clearance, |name, gear| {
+            let Some(p) = m.params.get(name) else {
+                return Err(format!("gear {name} has no tolerance"));
+            };
+            crate::errors::make(m.hypothesis, &gear, name, p, &mut rng).map_err(|e| {
+                let text = e.to_string();
+                failure = Some(e);
+                text
+            })
+        });
+        let mech = match (mech, failure) {
+            (_, Some(e)) => return Err(e),
+            (Err(e), None) => return Err(RunError::Internal(e.to_string())),
+            (Ok(mech), None) => mech.with_rule(m.rule.clone()),
+        };
+        let mut out = Vec::new();
+        for &(name, turns, samples) in runs {
+            let Some(run) = mech.run_pointer_to_first_jam(name, turns, &mut rng) else {
+                return Err(RunError::bad(
+                    "gearing",
+                    format!("pointer {name}"),
+                    "is missing",
+                ));
+            };
+            // A jam stops the pointer: statistics up to it (as table2 does).
+            let stop = run.first_stop();
+            let end = stop.as_ref().map_or(run.input_range, |s| s.input_angle);
+            let engaged: f64 = run
+                .stages
+                .iter()
+                .enumerate()
+                .map(|(i, s)| {
+                    let teeth = mech.mesh(&s.label).map_or(0, |m| m.driver().teeth());
+                    run.arbor_angle(end, i).abs() / TAU * teeth as f64
+                })
+                .sum();
+            let s = run.stats(samples);
+            out.push(ToFirstJam {
+                sigma: s.sigma,
+                dm: s.dm,
+                mean: s.mean,
+                jammed: stop.is_some(),
+                engaged: engaged.round() as u64,
+            });
+        }
+        Ok(out)
+    })
+}
+
+/// One pointer of one trial under both contact models, as [`Context::trials`] records it;
+/// NaN statistics are recorded as bits.
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize)]
+pub struct BothModels {
+    /// σ under Edmunds' radial-line model, through any jams (degrees).
+    #[serde(with = "registry::f64_bits")]
+    pub edmunds_sigma: f64,
+    /// Dm under Edmunds' model (degrees).
+    #[serde(with = "registry::f64_bits")]
+    pub edmunds_dm: f64,
+    /// σ with triangular teeth, up to the first jam (degrees).
+    #[serde(with = "registry::f64_bits")]
+    pub triangular_sigma: f64,
+    /// Dm with triangular teeth, up to the first jam (degrees).
+    #[serde(with = "registry::f64_bits")]
+    pub triangular_dm: f64,
+    /// The triangular teeth jammed.
+    pub jammed: bool,
+}
+
+/// A Case's mechanism as [`both_model_trials`] builds it: the gearing at h and G, every gear
+/// made under the hypothesis with one set of parameters, jams counted by the rule, the
+/// pin-and-slot in or out.
+pub struct CaseMechanism<'a> {
+    /// The gearing, and its file as typed (named if it lacks the pin-and-slot).
+    pub gearing: (&'a Gearing, &'a str),
+    /// Tooth height h (mm) of every gear.
+    pub tooth_height: f64,
+    /// Clearance G (% of h) of every mesh.
+    pub clearance: f64,
+    /// The hypothesis every gear is made with, and its parameters.
+    pub errors: (&'a dyn Hypothesis, &'a Params),
+    /// The event rule that stops a pointer.
+    pub rule: &'a rules::Rule,
+    /// Whether the Lunar train includes the pin-and-slot.
+    pub pin_and_slot: bool,
+}
+
+/// Table 2's trials of one Case: `trials` mechanisms as `m` makes them, trial t from the
+/// stream `trial_rng(seed, (stream << 32) | t)` (the gears' errors, then the initial angles),
+/// every pointer of `runs` run from the same initial angles under Edmunds' model and with
+/// triangular teeth; in trial order, whatever the threads, as the batch `key` of
+/// [`Context::trials`].
+pub fn both_model_trials(
+    ctx: &Context,
+    key: &str,
+    stream: u64,
+    m: &CaseMechanism<'_>,
+    runs: &[(&str, f64, usize)],
+    trials: u64,
+) -> Result<Vec<Vec<BothModels>>, RunError> {
+    let seed = ctx.seed();
+    let ((g, file), (hyp, p)) = (m.gearing, m.errors);
+    ctx.trials(key, trials, |t| {
+        // One stream per (case, trial): errors first, then initial angles.
+        let mut rng = trial_rng(seed, (stream << 32) | t);
+        let mut failure = None;
+        let mech = Mechanism::build(g, m.tooth_height, m.clearance, |name, gear| {
+            crate::errors::make(hyp, &gear, name, p, &mut rng).map_err(|e| {
+                let text = e.to_string();
+                failure = Some(e);
+                text
+            })
+        });
+        let mech = match (mech, failure) {
+            (_, Some(e)) => return Err(e),
+            // The errors moved the bodies into each other: these inputs cannot be run.
+            (Err(e), None) => {
+                return Err(RunError::bad(
+                    "--hypothesis",
+                    format!("mesh {}", e.mesh),
+                    format!(
+                        "{}: the manufactured gears cannot be placed at this clearance",
+                        e.rule
+                    ),
+                ));
+            }
+            (Ok(mech), None) => crate::gearing::with_pin_and_slot(
+                file,
+                mech.with_rule(m.rule.clone()),
+                m.pin_and_slot,
+            )?,
+        };
+        let mut out = Vec::new();
+        for &(name, turns, samples) in runs {
+            // The same initial angles for both models.
+            let mut rng_edmunds = rng.clone();
+            let edm = mech.run_pointer_with(name, turns, &mut rng_edmunds, Model::Edmunds);
+            let tri = mech.run_pointer_to_first_jam(name, turns, &mut rng);
+            let (Some(edm), Some(tri)) = (edm, tri) else {
+                return Err(RunError::bad(
+                    "gearing",
+                    format!("pointer {name}"),
+                    "is missing",
+                ));
+            };
+            // A jam stops the pointer: triangular statistics run up to it.
+            let (se, st) = (edm.stats_through_jams(samples), tri.stats(samples));
+            out.push(BothModels {
+                edmunds_sigma: se.sigma,
+                edmunds_dm: se.dm,
+                triangular_sigma: st.sigma,
+                triangular_dm: st.dm,
+                jammed: tri.first_stop().is_some(),
+            });
+        }
+        Ok(out)
+    })
+}
+
+/// One instance of the mechanism `mech` (Figure 4): each of `pointers` run over `turns` input
+/// turns in turn, all on the one stream `trial_rng(seed, trial)` (each pointer's initial angles
+/// drawn after the previous pointer's); `None` for a pointer the gearing lacks.
+pub fn instance(
+    mech: &Mechanism,
+    pointers: &[&str],
+    turns: f64,
+    seed: u64,
+    trial: u64,
+) -> Vec<Option<mechanism::PointerRun>> {
+    let mut rng = trial_rng(seed, trial);
+    pointers
+        .iter()
+        .map(|name| mech.run_pointer(name, turns, &mut rng))
+        .collect()
 }

@@ -108,15 +108,24 @@ pub fn largest_tolerable(grid: &[(f64, u64)], trials: u64, rule_percent: f64) ->
 
 /// The `rule` parameter, checked: a percentage from 0 to 100.
 pub fn rule(ctx: &Context) -> Result<f64, RunError> {
-    let r = ctx.f64(RULE.name)?;
-    Ok(r)
+    ctx.get(&RULE)
+}
+
+/// The random-error grid ([`RANDOM_GRID`], Table 4's rows), checked as [`grid`] says.
+pub fn random_grid(ctx: &Context) -> Result<Vec<f64>, RunError> {
+    grid(ctx, &RANDOM_FROM, &RANDOM_TO, &RANDOM_STEP)
+}
+
+/// The systematic-error grid ([`SYSTEMATIC_GRID`], Table 5's rows), checked as [`grid`] says.
+pub fn systematic_grid(ctx: &Context) -> Result<Vec<f64>, RunError> {
+    grid(ctx, &SYSTEMATIC_FROM, &SYSTEMATIC_TO, &SYSTEMATIC_STEP)
 }
 
 /// The values from..=to by step named by three parameters, checked: from >= 0, step > 0,
 /// from <= to, at most 1000 values. Each value is rounded to nine decimals, so 0.1 + 9 × 0.1
 /// is 1.0 and the same grid gives the same cells in every experiment.
 pub fn grid(ctx: &Context, from: &Param, to: &Param, step: &Param) -> Result<Vec<f64>, RunError> {
-    let (a, b, s) = (ctx.f64(from.name)?, ctx.f64(to.name)?, ctx.f64(step.name)?);
+    let (a, b, s): (f64, f64, f64) = (ctx.get(from)?, ctx.get(to)?, ctx.get(step)?);
     let short = registry::fmt_number;
     if a > b {
         // Name the one the user set: `to` below the default `from`, or `from` above `to`.

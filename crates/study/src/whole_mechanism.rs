@@ -151,7 +151,7 @@ impl MechanismRun {
 /// The `days` parameter: the horizon of each run, from one year of b (jams are counted within
 /// a year) to 100 years, as its kind checks.
 pub fn days(ctx: &Context) -> Result<f64, RunError> {
-    ctx.f64(DAYS.name)
+    ctx.get(&DAYS)
 }
 
 /// Checks that the study can run on `g`: ideal gears fit at `clearances` and tooth height `h` (a
@@ -174,14 +174,14 @@ pub fn check_study(g: &train::Gearing, h: f64, clearances: &Clearances) -> Resul
     Ok(())
 }
 
-/// Case `CASES[ci]` under hypothesis `hyp` (its random and systematic errors, the `split`
-/// parameter) at `clearances`; its RNG streams are selected by `ci`.
-pub fn case_input<'a>(
-    ctx: &Context,
-    hyp: &'a dyn Hypothesis,
+/// Case `CASES[ci]` under the hypothesis of `errors` (its random and systematic errors, the
+/// split) at `clearances`; its RNG streams are selected by `ci`.
+pub fn case_input(
+    errors: &crate::errors::Settings,
     ci: usize,
     clearances: Clearances,
-) -> Result<Input<'a>, RunError> {
+) -> Result<Input<'static>, RunError> {
+    let hyp = errors.hypothesis;
     let (case, systematic, random) = CASES[ci];
     Ok(Input {
         label: case.to_string(),
@@ -189,7 +189,7 @@ pub fn case_input<'a>(
         index: ci as u64,
         source: "--hypothesis",
         hypothesis: hyp,
-        params: crate::grids::case_params(ctx, hyp, (systematic, random))?,
+        params: errors.case_params((systematic, random))?,
         clearances,
         pin_and_slot: false,
         extra: None,
@@ -200,7 +200,11 @@ pub fn case_input<'a>(
 /// `batch` of [`Context::trials`] (flattened so that every run shares the pool), and returns
 /// the outcomes input by input, each input's in trial order. Run `t` of an input draws from
 /// `trial_rng(seed, (input.index << 32) | t)`: the gears' errors, then the meshes' initial
-/// angles, whatever the clearances.
+/// angles, whatever the clearances. Jams are counted by `events`.
+#[allow(
+    clippy::too_many_arguments,
+    reason = "the study's inputs, each a value of its own"
+)]
 pub fn run_study(
     ctx: &Context,
     g: &train::Gearing,
@@ -208,11 +212,11 @@ pub fn run_study(
     trials: u64,
     h: f64,
     days: f64,
+    events: &rules::Rule,
     batch: &str,
 ) -> Result<Vec<MechanismRun>, RunError> {
     let horizon = days / DAYS_PER_YEAR * TAU;
     let seed = ctx.seed();
-    let events = crate::events::chosen(ctx)?;
     // The rule decides where a train stops, so it names the batch too.
     let batch = format!("{batch}|events={}", events.label());
     // Run j is run j % trials of input j / trials (arithmetic, not a vector of every pair).
@@ -221,14 +225,14 @@ pub fn run_study(
         let input = inputs
             .get((j / trials) as usize)
             .ok_or_else(|| RunError::Internal(format!("run {j} of {jobs}")))?;
-        one_run(g, input, h, seed, j % trials, horizon, &events)
+        one_run(g, input, h, seed, j % trials, horizon, events)
     })
 }
 
 /// The key of the batch of runs: everything that determines them. An input with its own
-/// clearances (not `clearance` for every mesh) lists them.
+/// clearances (not `clearance` for every mesh) lists them. `gearing` is the gearing as typed.
 pub fn batch_key(
-    ctx: &Context,
+    gearing: &str,
     inputs: &[Input<'_>],
     trials: u64,
     h: f64,
@@ -273,7 +277,7 @@ pub fn batch_key(
         .collect();
     Ok(format!(
         "failure: {trials} runs per input over {days} d, h = {h} mm, G = {clearance} %, gearing {}, inputs: {}",
-        ctx.param("gearing")?,
+        gearing,
         inputs.join("; ")
     ))
 }

@@ -7,33 +7,42 @@ use crate::common::{Series, csv, line_plot, paper_cell};
 use study::gearing;
 use study::limits::{IdealPair, boundary};
 
+/// `tooth_height`: h = R - r for both gears (Efstathiou et al. 2012).
+const TOOTH_HEIGHT: Param = Param {
+    name: "tooth_height",
+    default: "1.1",
+    unit: "mm",
+    help: "h = R - r for both gears (Efstathiou et al. 2012)",
+    kind: gearing::TOOTH_HEIGHT_KIND,
+};
+
+/// `grid_step`: spacing of the printed sweep.
+const GRID_STEP: Param = Param {
+    name: "grid_step",
+    default: "5",
+    unit: "% of h",
+    help: "spacing of the printed sweep",
+    kind: registry::Kind::number(0.5, 50.0, "% of h"),
+};
+
+/// `samples`: samples of the Theoretical Difference per run.
+const SAMPLES: Param = Param {
+    name: "samples",
+    default: "3600",
+    unit: "",
+    help: "samples of the Theoretical Difference per run",
+    kind: registry::Kind::count(
+        registry::MIN_SAMPLES,
+        registry::MAX_COUNT as u64,
+        registry::MIN_SAMPLES_WHY,
+    ),
+};
+
 const PARAMS: &[Param] = &[
     study::limits::MESH,
-    Param {
-        name: "tooth_height",
-        default: "1.1",
-        unit: "mm",
-        help: "h = R - r for both gears (Efstathiou et al. 2012)",
-        kind: gearing::TOOTH_HEIGHT_KIND,
-    },
-    Param {
-        name: "grid_step",
-        default: "5",
-        unit: "% of h",
-        help: "spacing of the printed sweep",
-        kind: registry::Kind::number(0.5, 50.0, "% of h"),
-    },
-    Param {
-        name: "samples",
-        default: "3600",
-        unit: "",
-        help: "samples of the Theoretical Difference per run",
-        kind: registry::Kind::count(
-            registry::MIN_SAMPLES,
-            registry::MAX_COUNT as u64,
-            registry::MIN_SAMPLES_WHY,
-        ),
-    },
+    TOOTH_HEIGHT,
+    GRID_STEP,
+    SAMPLES,
     gearing::PARAM,
 ];
 
@@ -49,6 +58,44 @@ registry::inventory::submit! {
     }
 }
 
+/// The clearance limits, each bisected between the grid values that bracket it: `jams` is the
+/// last G that jammed and the first that did not, `disengages` the first G that disengaged and
+/// the last that did not (a limit not bracketed on the grid is not found).
+fn limits_table(
+    setup: &IdealPair,
+    rule: &rules::Rule,
+    (last_jam, first_free): (Option<f64>, Option<f64>),
+    (first_dis, last_engaged): (Option<f64>, Option<f64>),
+) -> Result<Table, RunError> {
+    let mut limits = Table::new(
+        "Clearance limits (bisection to 1e-4 % of h)",
+        ["limit", "ours [% of h]", "paper [% of h]"],
+    );
+    let jam_limit = match (last_jam, first_free) {
+        (Some(y), Some(n)) if y < n => Some(boundary(y, n, 1e-4, |g| setup.jams(g, rule))?),
+        _ => None,
+    };
+    let dis_limit = match (first_dis, last_engaged) {
+        (Some(y), Some(n)) if y > n => Some(boundary(y, n, 1e-4, |g| setup.disengages(g, rule))?),
+        _ => None,
+    };
+    let show =
+        |x: Option<f64>| x.map_or_else(|| "not found on the grid".to_string(), |v| fmt_f64(v, 2));
+    limits.row(vec![
+        "smallest G running a full turn without a jam".into(),
+        show(jam_limit),
+        paper_cell("clearance", "jam_below", 0),
+    ]);
+    limits.row(vec![
+        "largest G running a full turn without a disengagement".into(),
+        show(dis_limit),
+        paper_cell("clearance", "disengage_above", 0),
+    ]);
+    limits.note("Ours: exact push-model contact; the paper located its limits with an area-intersection program (Appendix II).");
+    limits.note("Radii: one least-squares module per group of meshed gears (crates/train), R1/R2 = N1/N2 exactly; r = R - h; D = R1 + R2 - h + G.");
+    Ok(limits)
+}
+
 fn run(ctx: &Context) -> Result<Report, RunError> {
     study::events::labelled(ctx, counted)
 }
@@ -56,11 +103,12 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
     let rule = study::events::chosen(ctx)?;
-    let h = ctx.f64("tooth_height")?;
-    let grid_step = ctx.f64("grid_step")?;
-    let samples = ctx.usize("samples")?;
-    let g = gearing::load(ctx)?;
-    let label = ctx.param("mesh")?;
+    let h: f64 = ctx.get(&TOOTH_HEIGHT)?;
+    let grid_step: f64 = ctx.get(&GRID_STEP)?;
+    let samples: usize = ctx.get(&SAMPLES)?;
+    // The gearing checked against this experiment's own tooth height.
+    let g = gearing::Shape::read_with(ctx, &TOOTH_HEIGHT)?.gearing;
+    let label = ctx.text(&study::limits::MESH)?;
     let setup = IdealPair::chosen(ctx, &g, h)?;
     let IdealPair { n1, n2, r1, r2, .. } = setup;
 
@@ -131,32 +179,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         }
     }
 
-    let mut limits = Table::new(
-        "Clearance limits (bisection to 1e-4 % of h)",
-        ["limit", "ours [% of h]", "paper [% of h]"],
-    );
-    let jam_limit = match (last_jam, first_free) {
-        (Some(y), Some(n)) if y < n => Some(boundary(y, n, 1e-4, |g| setup.jams(g, &rule))?),
-        _ => None,
-    };
-    let dis_limit = match (first_dis, last_engaged) {
-        (Some(y), Some(n)) if y > n => Some(boundary(y, n, 1e-4, |g| setup.disengages(g, &rule))?),
-        _ => None,
-    };
-    let show =
-        |x: Option<f64>| x.map_or_else(|| "not found on the grid".to_string(), |v| fmt_f64(v, 2));
-    limits.row(vec![
-        "smallest G running a full turn without a jam".into(),
-        show(jam_limit),
-        paper_cell("clearance", "jam_below", 0),
-    ]);
-    limits.row(vec![
-        "largest G running a full turn without a disengagement".into(),
-        show(dis_limit),
-        paper_cell("clearance", "disengage_above", 0),
-    ]);
-    limits.note("Ours: exact push-model contact; the paper located its limits with an area-intersection program (Appendix II).");
-    limits.note("Radii: one least-squares module per group of meshed gears (crates/train), R1/R2 = N1/N2 exactly; r = R - h; D = R1 + R2 - h + G.");
+    let limits = limits_table(&setup, &rule, (last_jam, first_free), (first_dis, last_engaged))?;
 
     let svg = line_plot(
         "Clearance sweep (Appendix II, Figure IV style): TD sigma of the driven gear",

@@ -11,7 +11,6 @@
 
 use std::collections::BTreeMap;
 
-use hypotheses::Hypothesis;
 use registry::{
     Context, Experiment, MAX_TRIALS, OutputFile, Param, Report, RunError, Table, fmt_f64,
 };
@@ -19,9 +18,8 @@ use stats::{Proportion, clopper_pearson95};
 use train::Gearing;
 
 use crate::common::{Series, line_plot};
-use study::errors;
+use study::grids::CellSettings;
 use study::whole_mechanism::{self as whole, Clearances, Input, MechanismRun, Summary};
-use study::gearing;
 use study::gearing::clearance_list;
 use study::cell::{CellRange, CellSpec, Counts, Purpose, label, run_cell_ranges, run_cells};
 use study::grids::CASES;
@@ -66,7 +64,10 @@ const RUNS: Param = Param {
     kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
 };
 
-const REFERENCE: Param = Param {
+/// The reference clearance, typed as `clearance` like the gearing group's
+/// ([`study::gearing::CLEARANCE`]), which this experiment does not declare: here it is not every
+/// mesh's clearance but the one the search always tries and measures the chosen ones against.
+const REFERENCE_CLEARANCE: Param = Param {
     name: "clearance",
     default: "40",
     unit: "% of h",
@@ -82,7 +83,7 @@ const PARAMS: &[Param] = &[
     RUNS,
     whole::DAYS,
     whole::CASES_PARAM,
-    REFERENCE,
+    REFERENCE_CLEARANCE,
 ];
 
 registry::inventory::submit! {
@@ -133,7 +134,7 @@ impl Settings {
 
 /// A count parameter of pair runs or mechanism runs: at least 1, at most [`MAX_TRIALS`].
 fn count(ctx: &Context, p: &Param) -> Result<u64, RunError> {
-    let n = ctx.u64(p.name)?;
+    let n = ctx.get::<u64>(p)?;
     if n == 0 || n > MAX_TRIALS {
         return Err(RunError::bad(
             "--set",
@@ -145,8 +146,8 @@ fn count(ctx: &Context, p: &Param) -> Result<u64, RunError> {
 }
 
 fn settings(ctx: &Context) -> Result<Settings, RunError> {
-    let reference = ctx.f64(REFERENCE.name)?;
-    let mut grid = clearance_list(ctx, GRID.name, 100.0)?;
+    let reference = ctx.get::<f64>(&REFERENCE_CLEARANCE)?;
+    let mut grid = clearance_list(ctx, &GRID, 100.0)?;
     grid.push(reference);
     grid.sort_by(f64::total_cmp);
     grid.dedup();
@@ -162,7 +163,7 @@ fn settings(ctx: &Context) -> Result<Settings, RunError> {
             ),
         ));
     }
-    let step = ctx.f64(REFINE_STEP.name)?;
+    let step = ctx.get::<f64>(&REFINE_STEP)?;
     if !(0.0..100.0).contains(&step) {
         return Err(RunError::bad(
             "--set",
@@ -172,7 +173,7 @@ fn settings(ctx: &Context) -> Result<Settings, RunError> {
     }
     let runs = count(ctx, &RUNS)?;
     let days = whole::days(ctx)?;
-    let cases = whole::parse_cases(ctx.param(whole::CASES_PARAM.name)?)?;
+    let cases = whole::parse_cases(ctx.text(&whole::CASES_PARAM)?)?;
     if cases.is_empty() {
         return Err(RunError::bad(
             "--set",
@@ -282,36 +283,18 @@ impl MeshSearch {
 
 /// The cell of `mesh` under case `ci` at clearance `g`: the same content (and so the same trial
 /// streams and cache entry) as Table 3's and Table I's cells.
-fn cell(
-    ctx: &Context,
-    hyp: &'static dyn Hypothesis,
-    ci: usize,
-    mesh: &str,
-    g: f64,
-) -> Result<CellSpec, RunError> {
+fn cell(cells: &CellSettings, ci: usize, mesh: &str, g: f64) -> Result<CellSpec, RunError> {
     let (_, systematic, random) = CASES[ci];
-    let params = study::grids::case_params(ctx, hyp, (systematic, random))?;
-    Ok(CellSpec {
-        mesh: mesh.to_string(),
-        hypothesis: hyp,
-        params,
-        tooth_height: ctx.f64("tooth_height")?,
-        clearance: g,
-        events: study::events::chosen(ctx)?,
-    })
+    let params = cells.errors.case_params((systematic, random))?;
+    Ok(cells.cell(mesh, params, g))
 }
 
 /// Runs the search of every (case, mesh): the coarse grid through the shared cell runner (so
 /// cells other experiments ran with the same trial count come from the cache), then the
 /// refinement's extra trials as ranges of the same cells, all as inputs (never sharded: the
 /// choices feed the failure study).
-fn search(
-    ctx: &Context,
-    g: &Gearing,
-    hyp: &'static dyn Hypothesis,
-    s: &Settings,
-) -> Result<Vec<MeshSearch>, RunError> {
-    let meshes: Vec<String> = g.meshes().iter().map(|m| m.label.clone()).collect();
+fn search(ctx: &Context, c: &CellSettings, s: &Settings) -> Result<Vec<MeshSearch>, RunError> {
+    let (g, meshes) = (c.gearing(), c.meshes());
     let mut searches = Vec::new();
     let mut cells = Vec::new();
     for &ci in &s.cases {
@@ -326,7 +309,7 @@ fn search(
                 best: s.reference,
             });
             for &v in &s.grid {
-                cells.push(cell(ctx, hyp, ci, m, v)?);
+                cells.push(cell(c, ci, m, v)?);
             }
         }
     }
@@ -353,7 +336,7 @@ fn search(
                 let have = sr.at(v).trials;
                 if have < s.refine {
                     ranges.push(CellRange {
-                        cell: cell(ctx, hyp, sr.case, &sr.mesh, v)?,
+                        cell: cell(c, sr.case, &sr.mesh, v)?,
                         range: have..s.refine,
                     });
                     owners.push((k, v));
@@ -457,13 +440,12 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let g = gearing::load(ctx)?;
-    let hyp = errors::chosen(ctx)?;
+    // The coarse grid's cells count `coarse_trials` trials each.
+    let cells = CellSettings::read(ctx, &COARSE_TRIALS)?;
+    let (g, hyp, h) = (cells.gearing(), cells.hypothesis(), cells.gearing.tooth_height);
     let s = settings(ctx)?;
-    let h = ctx.f64("tooth_height")?;
-    ctx.f64("split")?;
-    whole::check_study(&g, h, &Clearances::Uniform(s.reference))?;
-    let searches = search(ctx, &g, hyp, &s)?;
+    whole::check_study(g, h, &Clearances::Uniform(s.reference))?;
+    let searches = search(ctx, &cells, &s)?;
     let meshes: Vec<String> = g.meshes().iter().map(|m| m.label.clone()).collect();
     let rl = label(s.reference, 0);
     let n_final = s.final_trials();
@@ -499,7 +481,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         let mut row = vec![
             case.to_string(),
             sr.mesh.clone(),
-            years_per_pair_run(&g, &sr.mesh).map_or_else(|| "-".into(), |y| fmt_f64(y, 2)),
+            years_per_pair_run(g, &sr.mesh).map_or_else(|| "-".into(), |y| fmt_f64(y, 2)),
         ];
         for (&v, c) in s.grid.iter().zip(&sr.coarse) {
             let mark = if v == sr.coarse_best { "*" } else { "" };
@@ -553,7 +535,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let used: u64 = searches.iter().map(MeshSearch::trials).sum();
     let years: Vec<f64> = meshes
         .iter()
-        .filter_map(|m| years_per_pair_run(&g, m))
+        .filter_map(|m| years_per_pair_run(g, m))
         .collect();
     let (shortest, longest) = (
         years.iter().copied().fold(f64::INFINITY, f64::min),
@@ -562,7 +544,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     table.note(format!(
         "Each pair run: both gears manufactured afresh under the Case ({} hypothesis, split {}), a random initial angle, one full turn of the gear with more teeth (the run of Tables 3, 4 and I); failed: at least one jam or at least one disengagement. One such turn is {} to {} years of the mechanism, depending on the mesh (the years column: turns of b, through the first pointer train holding the mesh), so these rates are per pair run, not per year. A step of 5 % of h is {} mm of centre distance.",
         hyp.name(),
-        ctx.f64("split")?,
+        cells.errors.split()?,
         fmt_f64(shortest, 2),
         fmt_f64(longest, 0),
         fmt_f64(0.05 * h, 3),
@@ -617,19 +599,19 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             default: s.reference,
             meshes: map.clone(),
         };
-        whole::check_study(&g, h, &per_mesh)?;
-        let mut at_ref = whole::case_input(ctx, hyp, ci, Clearances::Uniform(s.reference))?;
+        whole::check_study(g, h, &per_mesh)?;
+        let mut at_ref = whole::case_input(&cells.errors, ci, Clearances::Uniform(s.reference))?;
         at_ref.label = format!("{} at {rl} %", CASES[ci].0);
-        let mut at_best = whole::case_input(ctx, hyp, ci, per_mesh)?;
+        let mut at_best = whole::case_input(&cells.errors, ci, per_mesh)?;
         at_best.label = format!("{} at best", CASES[ci].0);
         inputs.push(at_ref);
         inputs.push(at_best);
     }
     let key = format!(
         "clearance-design/{}",
-        whole::batch_key(ctx, &inputs, s.runs, h, s.reference, s.days)?
+        whole::batch_key(&cells.gearing.file, &inputs, s.runs, h, s.reference, s.days)?
     );
-    let outcomes = whole::run_study(ctx, &g, &inputs, s.runs, h, s.days, &key)?;
+    let outcomes = whole::run_study(ctx, g, &inputs, s.runs, h, s.days, &cells.rule, &key)?;
     let per_input: Vec<&[MechanismRun]> = outcomes.chunks(s.runs as usize).collect();
     let summaries: Vec<Vec<Summary>> = per_input
         .iter()

@@ -6,36 +6,43 @@
 //! whether it is largest at the smallest clearance, how σ at 40 % moves and where contact is
 //! first lost: the features the paper describes for Figure IV.
 
-use geometry::centre_distance;
-use polycheck::area::AreaPair;
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
-use serde::{Deserialize, Serialize};
+use study::area_test::{Point, Test, grid};
 use study::limits::IdealPair;
 
 use crate::common::{Series, semilog_plot};
 
+/// `tolerance`: overlap area the contact test ignores, for the printed curves (the ladder is fixed).
+const TOLERANCE: Param = Param {
+    name: "tolerance",
+    default: "0.003",
+    unit: "mm^2",
+    help: "overlap area the contact test ignores, for the printed curves (the ladder is fixed)",
+    kind: registry::Kind::positive(1.0, "mm^2"),
+};
+
+/// `blunt`: depth cut flat off every tip, for the printed curves (the ladder is fixed).
+const BLUNT_PARAM: Param = Param {
+    name: "blunt",
+    default: "10",
+    unit: "% of h",
+    help: "depth cut flat off every tip, for the printed curves (the ladder is fixed)",
+    kind: registry::Kind::positive(50.0, "% of the tooth height h"),
+};
+
+/// `samples`: driver angles per driver pitch (an ideal pair repeats every driver pitch).
+const SAMPLES: Param = Param {
+    name: "samples",
+    default: "200",
+    unit: "",
+    help: "driver angles per driver pitch (an ideal pair repeats every driver pitch)",
+    kind: registry::Kind::count(8, registry::MAX_COUNT as u64, "a sigma needs samples"),
+};
+
 const PARAMS: &[Param] = &[
-    Param {
-        name: "tolerance",
-        default: "0.003",
-        unit: "mm^2",
-        help: "overlap area the contact test ignores, for the printed curves (the ladder is fixed)",
-        kind: registry::Kind::positive(1.0, "mm^2"),
-    },
-    Param {
-        name: "blunt",
-        default: "10",
-        unit: "% of h",
-        help: "depth cut flat off every tip, for the printed curves (the ladder is fixed)",
-        kind: registry::Kind::positive(50.0, "% of the tooth height h"),
-    },
-    Param {
-        name: "samples",
-        default: "200",
-        unit: "",
-        help: "driver angles per driver pitch (an ideal pair repeats every driver pitch)",
-        kind: registry::Kind::count(8, registry::MAX_COUNT as u64, "a sigma needs samples"),
-    },
+    TOLERANCE,
+    BLUNT_PARAM,
+    SAMPLES,
 ];
 
 registry::inventory::submit! {
@@ -56,81 +63,22 @@ const TOLERANCES: [f64; 6] = [0.0, 0.0001, 0.0003, 0.001, 0.003, 0.01];
 /// Tip cuts in the ladder, % of h.
 const BLUNT: [f64; 3] = [5.0, 10.0, 15.0];
 
-/// One contact test: an overlap area ignored (mm²) and a tip cut (% of h); the ladder sets at
-/// most one of them.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Test {
-    tolerance: f64,
-    blunt: f64,
-}
-
-impl Test {
-    /// What the test is, for titles; `h` (mm) gives the tip cut in mm.
-    fn name(&self, h: f64) -> String {
-        if self.tolerance > 0.0 {
-            format!(
-                "overlaps up to {} mm^2 ignored, sharp tips",
-                fmt_f64(self.tolerance, 4)
-            )
-        } else if self.blunt > 0.0 {
-            format!(
-                "exact test, tips cut flat {} % of h ({} mm) below the apex",
-                fmt_f64(self.blunt, 0),
-                fmt_f64(self.blunt * h / 100.0, 3)
-            )
-        } else {
-            "exact: any overlap is contact, sharp tips (ours)".into()
-        }
+/// What a test is, for titles; `h` (mm) gives the tip cut in mm.
+fn test_name(test: &Test, h: f64) -> String {
+    if test.tolerance > 0.0 {
+        format!(
+            "overlaps up to {} mm^2 ignored, sharp tips",
+            fmt_f64(test.tolerance, 4)
+        )
+    } else if test.blunt > 0.0 {
+        format!(
+            "exact test, tips cut flat {} % of h ({} mm) below the apex",
+            fmt_f64(test.blunt, 0),
+            fmt_f64(test.blunt * h / 100.0, 3)
+        )
+    } else {
+        "exact: any overlap is contact, sharp tips (ours)".into()
     }
-}
-
-/// One point of a σ(G) curve, as recorded by the trial engine (NaN bits survive).
-#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize)]
-struct Point {
-    #[serde(with = "registry::f64_bits")]
-    g: f64,
-    /// σ of the driven gear's Theoretical Difference, degrees; NaN when the pair does not run
-    /// (jams, or never touches).
-    #[serde(with = "registry::f64_bits")]
-    sigma: f64,
-    /// Whether the driven gear stood still at some sample (contact lost).
-    lost: bool,
-}
-
-/// The clearance grid, % of h.
-fn grid() -> Vec<f64> {
-    (2..=20).map(|i| 5.0 * f64::from(i)).collect()
-}
-
-/// σ(G) of one mesh under one test over the grid.
-fn curve(pair: &IdealPair, test: Test, samples: usize) -> Vec<Point> {
-    grid()
-        .into_iter()
-        .map(|g| {
-            let area = AreaPair {
-                n1: pair.n1,
-                n2: pair.n2,
-                r1: pair.r1,
-                r2: pair.r2,
-                h: pair.h,
-                centre_distance: centre_distance(pair.r1, pair.r2, pair.h, g),
-                tolerance: test.tolerance,
-                blunt: test.blunt * pair.h / 100.0,
-            };
-            match area.run_pitch(samples) {
-                Some(run) => Point {
-                    g,
-                    sigma: run.sigma_deg,
-                    lost: run.lost_contact,
-                },
-                None => Point {
-                    g,
-                    sigma: f64::NAN,
-                    lost: true,
-                },
-            }
-        })
-        .collect()
 }
 
 /// The points of a curve that drive throughout (no jam, no lost contact).
@@ -183,17 +131,20 @@ fn spread(values: impl Iterator<Item = f64>, decimals: usize) -> String {
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    let g = study::gearing::load(ctx)?;
-    let h = ctx.f64(study::gearing::TOOTH_HEIGHT.name)?;
-    let samples = ctx.usize("samples")?;
+    let study::gearing::Shape {
+        gearing: g,
+        tooth_height: h,
+        ..
+    } = study::gearing::Shape::read(ctx)?;
+    let samples: usize = ctx.get(&SAMPLES)?;
     let chosen = [
         Test {
-            tolerance: ctx.f64("tolerance")?,
+            tolerance: ctx.get(&TOLERANCE)?,
             blunt: 0.0,
         },
         Test {
             tolerance: 0.0,
-            blunt: ctx.f64("blunt")?,
+            blunt: ctx.get(&BLUNT_PARAM)?,
         },
     ];
     let mut tests: Vec<Test> = TOLERANCES
@@ -222,15 +173,9 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         })
         .collect::<Result<_, _>>()?;
 
-    // ---- Every (test, mesh) curve, through the trial engine (job j = test j / meshes). ----
-    let key = format!(
-        "contact-tolerance curves: tests {tests:?}, grid {:?}, {samples} samples per driver pitch",
-        grid()
-    );
-    let curves: Vec<Vec<Point>> = ctx.trials_whole(&key, (tests.len() * meshes.len()) as u64, |j| {
-        let (ti, mi) = (j as usize / meshes.len(), j as usize % meshes.len());
-        Ok(curve(&meshes[mi].1, tests[ti], samples))
-    })?;
+    // ---- Every (test, mesh) curve, through the trial engine. ----
+    let pairs: Vec<IdealPair> = meshes.iter().map(|(_, p)| *p).collect();
+    let curves = study::area_test::curves(ctx, &tests, &pairs, samples)?;
     let of = |ti: usize, mi: usize| &curves[ti * meshes.len() + mi];
 
     let paper_from = crate::paper::get("sigma-causes", "figIV.minimum_from").map(|r| r.value);
@@ -297,7 +242,7 @@ fn summary_table<'a>(
             .count();
         let first = found.clone().filter(|s| s.largest_first).count();
         t.row(vec![
-            test.name(h),
+            test_name(test, h),
             format!("{inside} of {n}"),
             spread(found.clone().map(|s| s.minimum_at), 0),
             format!("{first} of {n}"),
@@ -330,7 +275,7 @@ fn curves_table<'a>(
     let mut t = Table::new(
         format!(
             "Figure IV under one test - {}: sigma of the driven gear's Theoretical Difference [deg], h = {h} mm",
-            test.name(h)
+            test_name(&test, h)
         ),
         header,
     );
@@ -358,45 +303,10 @@ fn curves_table<'a>(
         })
         .collect();
     let svg = semilog_plot(
-        &format!("Figure IV under {}", test.name(h)),
+        &format!("Figure IV under {}", test_name(&test, h)),
         "clearance G [% of tooth height]",
         "sigma [deg], logarithmic scale",
         &series,
     )?;
     Ok((t, svg))
-}
-
-#[cfg(test)]
-mod tests {
-    #![allow(clippy::unwrap_used, reason = "tests")]
-    use super::*;
-    use train::Gearing;
-
-    /// The polygon model's exact test is our contact solver's Figure IV: the same σ at 40 and
-    /// 60 % for every mesh, within 1 % (sampling: one pitch here, a full turn there).
-    #[test]
-    fn the_exact_area_test_is_the_contact_solvers_figure_iv() {
-        let g = Gearing::freeth2006();
-        let h = study::gearing::TOOTH_HEIGHT.default.parse().unwrap();
-        for m in g.meshes() {
-            let pair = IdealPair::of_mesh(&g, &m.label, h).unwrap();
-            let exact = Test {
-                tolerance: 0.0,
-                blunt: 0.0,
-            };
-            let ours = curve(&pair, exact, 200);
-            for gp in [40.0, 60.0] {
-                let run = pair.run(gp).unwrap().unwrap();
-                let want = pair.td_sigma(&run, 2000).sigma;
-                let got = ours.iter().find(|p| p.g == gp).unwrap();
-                assert!(!got.lost, "{} at {gp}", m.label);
-                assert!(
-                    (got.sigma / want - 1.0).abs() < 0.01,
-                    "{} at {gp}: {} vs {want}",
-                    m.label,
-                    got.sigma
-                );
-            }
-        }
-    }
 }

@@ -16,30 +16,31 @@ use study::cell::{CellSpec, Counts, Purpose, label, run_cells_by_rule};
 use study::gearing;
 use study::grids::CASES;
 use study::limits::IdealPair;
-use study::tolerance::{self, RANDOM_FROM, RANDOM_STEP, RANDOM_TO};
+use study::grids::CellSettings;
+use study::tolerance;
+
+/// `clearances`: Table I's clearances G, comma-separated (the paper: 10, 40 and 70).
+const CLEARANCES: Param = Param {
+    name: "clearances",
+    default: "10,40,70",
+    unit: "% of h",
+    help: "Table I's clearances G, comma-separated (the paper: 10, 40 and 70)",
+    kind: registry::Kind::Text,
+};
+
+/// `limit_tolerance`: how closely each ideal mesh's clearance limits are located (bisection).
+const LIMIT_TOLERANCE: Param = Param {
+    name: "limit_tolerance",
+    default: "0.1",
+    unit: "% of h",
+    help: "how closely each ideal mesh's clearance limits are located (bisection)",
+    kind: registry::Kind::number(0.001, 10.0, "% of h"),
+};
 
 const PARAMS: &[Param] = &[
-    Param {
-        name: "trials",
-        default: "200",
-        unit: "",
-        help: "trials per cell (the paper: 200)",
-        kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
-    },
-    Param {
-        name: "clearances",
-        default: "10,40,70",
-        unit: "% of h",
-        help: "Table I's clearances G, comma-separated (the paper: 10, 40 and 70)",
-        kind: registry::Kind::Text,
-    },
-    Param {
-        name: "limit_tolerance",
-        default: "0.1",
-        unit: "% of h",
-        help: "how closely each ideal mesh's clearance limits are located (bisection)",
-        kind: registry::Kind::number(0.001, 10.0, "% of h"),
-    },
+    study::grids::TRIALS,
+    CLEARANCES,
+    LIMIT_TOLERANCE,
 ];
 
 registry::inventory::submit! {
@@ -77,22 +78,18 @@ fn every_rule() -> Result<Vec<Rule>, RunError> {
 
 /// The cells of Tables 3 (Cases A-D at the clearance), 4 (the random grid, no systematic error)
 /// and I (Cases A-D at each of its clearances), each with where its paper counts are.
-fn all_cells(
-    ctx: &Context,
-    g: &Gearing,
-    hyp: &'static dyn hypotheses::Hypothesis,
-) -> Result<Vec<(CellSpec, PaperCell)>, RunError> {
-    let clearance = ctx.f64("clearance")?;
-    let split = ctx.f64("split")?;
-    let clearances = gearing::clearance_list(ctx, "clearances", 200.0)?;
-    let randoms = tolerance::grid(ctx, &RANDOM_FROM, &RANDOM_TO, &RANDOM_STEP)?;
-    let meshes: Vec<&str> = g.meshes().iter().map(|m| m.label.as_str()).collect();
+fn all_cells(ctx: &Context, s: &CellSettings) -> Result<Vec<(CellSpec, PaperCell)>, RunError> {
+    let clearance = s.clearance()?;
+    let split = s.errors.split()?;
+    let clearances = gearing::clearance_list(ctx, &CLEARANCES, 200.0)?;
+    let randoms = tolerance::random_grid(ctx)?;
+    let meshes: Vec<&str> = s.gearing().meshes().iter().map(|m| m.label.as_str()).collect();
     let mut out = Vec::new();
     let case_errors =
         |sys: f64, random: f64| [("random", random), ("systematic", sys), ("split", split)];
     for &(case, sys, random) in &CASES {
         for m in &meshes {
-            let c = cell(ctx, hyp, m, &case_errors(sys, random), clearance)?;
+            let c = cell(s, m, &case_errors(sys, random), clearance)?;
             let key = format!("{case}.{m}");
             let group = format!("Table 3, Case {case}");
             out.push((
@@ -108,8 +105,7 @@ fn all_cells(
     for &e in &randoms {
         for m in &meshes {
             let c = cell(
-                ctx,
-                hyp,
+                s,
                 m,
                 &[("random", e), ("systematic", 0.0)],
                 clearance,
@@ -129,7 +125,7 @@ fn all_cells(
     for &(case, sys, random) in &CASES {
         for &gc in &clearances {
             for m in &meshes {
-                let c = cell(ctx, hyp, m, &case_errors(sys, random), gc)?;
+                let c = cell(s, m, &case_errors(sys, random), gc)?;
                 let key = format!("{case}.{}.{m}", label(gc, 0));
                 let group = format!("Table I, Case {case}, G = {} %", label(gc, 0));
                 out.push((
@@ -319,14 +315,8 @@ struct RuleLimits {
 }
 
 /// The ideal meshes' limits under every rule, located to `tol` % of h.
-fn ideal_limits(
-    ctx: &Context,
-    g: &Gearing,
-    rules: &[Rule],
-    tol: f64,
-) -> Result<RuleLimits, RunError> {
+fn ideal_limits(g: &Gearing, h: f64, rules: &[Rule], tol: f64) -> Result<RuleLimits, RunError> {
     use rayon::prelude::*;
-    let h = ctx.f64("tooth_height")?;
     let pairs: Vec<IdealPair> = g
         .meshes()
         .iter()
@@ -465,15 +455,15 @@ fn cells_csv(cells: &[(CellSpec, PaperCell)], rules: &[Rule], counts: &[Vec<Coun
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    let cells = study::grids::CellSettings::read(ctx, "trials")?;
-    let (g, hyp, trials) = (&cells.gearing, cells.hypothesis, cells.trials);
-    let tol = ctx.f64("limit_tolerance")?;
+    let s = CellSettings::read(ctx, &study::grids::TRIALS)?;
+    let (g, trials) = (s.gearing(), s.trials);
+    let tol = ctx.get(&LIMIT_TOLERANCE)?;
     let rules = every_rule()?;
-    let cells = all_cells(ctx, g, hyp)?;
+    let cells = all_cells(ctx, &s)?;
     let specs: Vec<CellSpec> = cells.iter().map(|(c, _)| c.clone()).collect();
     let counts = run_cells_by_rule(ctx, g, &specs, Some(&rules), trials, Purpose::Own)?;
     let tallies = tallies(&cells, &counts, rules.len());
-    let limits = ideal_limits(ctx, g, &rules, tol)?;
+    let limits = ideal_limits(g, s.gearing.tooth_height, &rules, tol)?;
     let mut shares = shares_table(&rules, &tallies, trials);
     let (same_jams, same_dis) = agreement_between_rules(&counts);
     shares.note(format!(

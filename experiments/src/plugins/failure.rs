@@ -13,7 +13,6 @@
 
 
 use hypotheses::Params;
-use mechanism::Mechanism;
 use registry::{
     Agreement, Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64,
 };
@@ -29,23 +28,29 @@ use study::whole_mechanism::{
 
 use crate::common::{Plot, Series, mean_cell, percent_cell};
 
+/// `trials`: whole-mechanism runs per input (the paper: 30).
+const TRIALS: Param = Param {
+    name: "trials",
+    default: RUNS_DEFAULT,
+    unit: "",
+    help: "whole-mechanism runs per input (the paper: 30)",
+    kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
+};
+
+/// `measured`: per-gear error table (RON, as crates/hypotheses/data/measured-example.ron), run with the measured hypothesis; empty: not run.
+const MEASURED: Param = Param {
+    name: "measured",
+    default: "",
+    unit: "",
+    help: "per-gear error table (RON, as crates/hypotheses/data/measured-example.ron), run with the measured hypothesis; empty: not run",
+    kind: registry::Kind::Text,
+};
+
 const PARAMS: &[Param] = &[
-    Param {
-        name: "trials",
-        default: RUNS_DEFAULT,
-        unit: "",
-        help: "whole-mechanism runs per input (the paper: 30)",
-        kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
-    },
+    TRIALS,
     DAYS,
     CASES_PARAM,
-    Param {
-        name: "measured",
-        default: "",
-        unit: "",
-        help: "per-gear error table (RON, as crates/hypotheses/data/measured-example.ron), run with the measured hypothesis; empty: not run",
-        kind: registry::Kind::Text,
-    },
+    MEASURED,
     gearing::PIN_AND_SLOT,
 ];
 
@@ -70,22 +75,23 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let g = gearing::load(ctx)?;
-    let trials = ctx.u64("trials")?;
+    let settings = gearing::Settings::read(ctx)?;
+    let trials = ctx.get(&TRIALS)?;
     let days = days(ctx)?;
-    let (h, clearance) = (ctx.f64("tooth_height")?, ctx.f64("clearance")?);
-    // Read here, before the gearing's checks, as each case reads it again.
-    ctx.f64("split")?;
-    check_study(&g, h, &Clearances::Uniform(clearance))?;
+    // Read here, before the gearing's checks, with the split each case takes.
+    let errors = errors::Settings::read(ctx)?;
+    let rule = study::events::chosen(ctx)?;
+    let (g, h, clearance) = (&settings.gearing, settings.tooth_height, settings.clearance);
+    check_study(g, h, &Clearances::Uniform(clearance))?;
     let pin_and_slot = gearing::pin_and_slot(ctx)?;
-    let ideal = Mechanism::ideal(&g, h, clearance).map_err(study::gearing::mechanism_error)?;
-    gearing::with_pin_and_slot(ctx, ideal, pin_and_slot)?;
+    // A pin-and-slot asked of a gearing without one is refused before anything runs.
+    let ideal = study::pointers::ideal_mechanism(&settings, &rule)?;
+    gearing::with_pin_and_slot(&settings.file, ideal, pin_and_slot)?;
 
-    let hyp = errors::chosen(ctx)?;
-    let measured = measured_table(ctx.param("measured")?)?;
+    let measured = measured_table(ctx.text(&MEASURED)?)?;
     let mut inputs: Vec<Input<'_>> = Vec::new();
-    for ci in parse_cases(ctx.param("cases")?)? {
-        inputs.push(case_input(ctx, hyp, ci, Clearances::Uniform(clearance))?);
+    for ci in parse_cases(ctx.text(&CASES_PARAM)?)? {
+        inputs.push(case_input(&errors, ci, Clearances::Uniform(clearance))?);
     }
     if let Some((file, m)) = &measured {
         inputs.push(Input {
@@ -114,12 +120,13 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
 
     let outcomes = run_study(
         ctx,
-        &g,
+        g,
         &inputs,
         trials,
         h,
         days,
-        &batch_key(ctx, &inputs, trials, h, clearance, days)?,
+        &rule,
+        &batch_key(&settings.file, &inputs, trials, h, clearance, days)?,
     )?;
     let per_input: Vec<&[MechanismRun]> = outcomes.chunks(trials as usize).collect();
 

@@ -12,13 +12,16 @@ use study::equal_pair;
 /// The most teeth fig2 simulates over a whole driver turn: 500 (a few minutes).
 const MAX_TEETH: usize = 500;
 
-const PARAMS: &[Param] = &[Param {
+/// `step`: driver angle between samples.
+const STEP: Param = Param {
     name: "step",
     default: "0.01",
     unit: "deg",
     help: "driver angle between samples",
     kind: registry::Kind::positive(10.0, "degrees"),
-}];
+};
+
+const PARAMS: &[Param] = &[STEP];
 
 registry::inventory::submit! {
     Experiment {
@@ -39,7 +42,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
     // Refused before the mesh is built: the work of a driver turn grows as teeth squared.
-    let asked = ctx.usize(equal_pair::TEETH.name)?;
+    let asked = ctx.get::<usize>(&equal_pair::TEETH)?;
     if asked > MAX_TEETH {
         return Err(RunError::bad(
             "--set",
@@ -56,11 +59,11 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         centre_distance: d,
         mesh,
     } = equal_pair::from_params(ctx)?;
-    let step = ctx.f64("step")?;
+    let step: f64 = ctx.get(&STEP)?;
     if 360.0 / step > MAX_DATA_ROWS as f64 {
         return Err(RunError::bad(
             "--set",
-            "step",
+            STEP.name,
             format!(
                 "must be at least {} degrees: one driver turn in steps of {} would be more than {MAX_DATA_ROWS} rows of data, the limit",
                 360.0 / MAX_DATA_ROWS as f64,

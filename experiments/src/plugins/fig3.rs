@@ -9,29 +9,35 @@ use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, 
 use crate::common::{Series, csv, deg, line_plot};
 use study::equal_pair;
 
+/// `pitches`: length of each run.
+const PITCHES: Param = Param {
+    name: "pitches",
+    default: "3",
+    unit: "driver teeth",
+    help: "length of each run",
+    kind: registry::Kind::count(
+        1,
+        registry::MAX_COUNT as u64,
+        "a run spans at least one tooth",
+    ),
+};
+
+/// `samples`: samples per run.
+const SAMPLES: Param = Param {
+    name: "samples",
+    default: "1200",
+    unit: "",
+    help: "samples per run",
+    kind: registry::Kind::count(
+        registry::MIN_SAMPLES,
+        registry::MAX_COUNT as u64,
+        registry::MIN_SAMPLES_WHY,
+    ),
+};
+
 const PARAMS: &[Param] = &[
-    Param {
-        name: "pitches",
-        default: "3",
-        unit: "driver teeth",
-        help: "length of each run",
-        kind: registry::Kind::count(
-            1,
-            registry::MAX_COUNT as u64,
-            "a run spans at least one tooth",
-        ),
-    },
-    Param {
-        name: "samples",
-        default: "1200",
-        unit: "",
-        help: "samples per run",
-        kind: registry::Kind::count(
-            registry::MIN_SAMPLES,
-            registry::MAX_COUNT as u64,
-            registry::MIN_SAMPLES_WHY,
-        ),
-    },
+    PITCHES,
+    SAMPLES,
 ];
 
 registry::inventory::submit! {
@@ -49,25 +55,11 @@ registry::inventory::submit! {
 /// Number of points used to find the extreme and centred initial angles over one pitch.
 const SCAN: usize = 4000;
 
-fn run(ctx: &Context) -> Result<Report, RunError> {
-    let equal_pair::EqualPair { teeth: n, mesh, .. } = equal_pair::from_params(ctx)?;
-    let pitches = ctx.usize("pitches")?;
-    let samples = ctx.usize("samples")?;
-    registry::samples_cover("samples", samples, pitches, "pitches")?;
-    let p1 = TAU / n as f64;
-    let ratio = 1.0; // equal gears
-
-    // f(x) = theta'(x) - ratio x is periodic in the driver pitch; a run starting at phi'_o has mean
-    // Theoretical Difference C - f(phi'_o), C the mean of f. So the pointer leads most from the
-    // minimum of f, lags most from its maximum, and is centred where f equals its mean.
-    let long = mesh.run(0.0, (pitches + 2) as f64 * p1, Start::Touching(0.0));
-    if long.never_driven() {
-        return Err(RunError::bad(
-            "--set",
-            "centre_distance",
-            "puts the gears out of reach: no driver tooth ever pushes the driven gear, so there is no Theoretical Difference to show (bring the centre distance below the sum of the tip radii)",
-        ));
-    }
+/// The initial driver angles within a pitch `p1` from which the pointer leads most, is centred
+/// and lags most, read off the long run `long`: f(x) = θ'(x) - ratio x is periodic in the
+/// driver pitch, and a run starting at φ'_o has mean Theoretical Difference C - f(φ'_o), C the
+/// mean of f.
+fn initial_angles(long: &Trajectory, p1: f64, ratio: f64) -> (f64, f64, f64) {
     let f = |x: f64| long.theta_at(x) - ratio * x;
     let xs: Vec<f64> = (0..SCAN).map(|i| p1 * i as f64 / SCAN as f64).collect();
     let fs: Vec<f64> = xs.iter().map(|&x| f(x)).collect();
@@ -100,6 +92,29 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             break;
         }
     }
+    (leading, centred, lagging)
+}
+
+fn run(ctx: &Context) -> Result<Report, RunError> {
+    let equal_pair::EqualPair { teeth: n, mesh, .. } = equal_pair::from_params(ctx)?;
+    let pitches: usize = ctx.get(&PITCHES)?;
+    let samples: usize = ctx.get(&SAMPLES)?;
+    registry::samples_cover("samples", samples, pitches, "pitches")?;
+    let p1 = TAU / n as f64;
+    let ratio = 1.0; // equal gears
+
+    // f(x) = theta'(x) - ratio x is periodic in the driver pitch; a run starting at phi'_o has mean
+    // Theoretical Difference C - f(phi'_o), C the mean of f. So the pointer leads most from the
+    // minimum of f, lags most from its maximum, and is centred where f equals its mean.
+    let long = mesh.run(0.0, (pitches + 2) as f64 * p1, Start::Touching(0.0));
+    if long.never_driven() {
+        return Err(RunError::bad(
+            "--set",
+            "centre_distance",
+            "puts the gears out of reach: no driver tooth ever pushes the driven gear, so there is no Theoretical Difference to show (bring the centre distance below the sum of the tip radii)",
+        ));
+    }
+    let (leading, centred, lagging) = initial_angles(&long, p1, ratio);
 
     let mut table = Table::new(
         format!(

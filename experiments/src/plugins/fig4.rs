@@ -3,31 +3,36 @@
 
 use std::f64::consts::TAU;
 
-use mechanism::{Mechanism, trial_rng};
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
 
 use crate::common::{Series, csv, line_plot};
 use study::gearing;
 
+/// `trial`: which trial's random initial angles (stream of the seed).
+const TRIAL: Param = Param {
+    name: "trial",
+    default: "0",
+    unit: "",
+    help: "which trial's random initial angles (stream of the seed)",
+    kind: registry::Kind::count(0, u64::MAX, ""),
+};
+
+/// `samples`: samples over the solar turn.
+const SAMPLES: Param = Param {
+    name: "samples",
+    default: "7200",
+    unit: "",
+    help: "samples over the solar turn",
+    kind: registry::Kind::count(
+        registry::MIN_SAMPLES,
+        registry::MAX_COUNT as u64,
+        registry::MIN_SAMPLES_WHY,
+    ),
+};
+
 const PARAMS: &[Param] = &[
-    Param {
-        name: "trial",
-        default: "0",
-        unit: "",
-        help: "which trial's random initial angles (stream of the seed)",
-        kind: registry::Kind::count(0, u64::MAX, ""),
-    },
-    Param {
-        name: "samples",
-        default: "7200",
-        unit: "",
-        help: "samples over the solar turn",
-        kind: registry::Kind::count(
-            registry::MIN_SAMPLES,
-            registry::MAX_COUNT as u64,
-            registry::MIN_SAMPLES_WHY,
-        ),
-    },
+    TRIAL,
+    SAMPLES,
 ];
 
 registry::inventory::submit! {
@@ -50,12 +55,11 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let g = gearing::load(ctx)?;
-    let mech = Mechanism::ideal(&g, ctx.f64("tooth_height")?, ctx.f64("clearance")?)
-        .map_err(study::gearing::mechanism_error)?;
-    let mech = study::events::with_rule(ctx, mech)?;
-    let samples = ctx.usize("samples")?;
-    let mut rng = trial_rng(ctx.seed(), ctx.u64("trial")?);
+    let s = gearing::Settings::read(ctx)?;
+    let mech = study::pointers::ideal_mechanism(&s, &study::events::chosen(ctx)?)?;
+    let samples: usize = ctx.get(&SAMPLES)?;
+    let names = POINTERS.map(|(name, _)| name);
+    let runs = study::pointers::instance(&mech, &names, 1.0, ctx.seed(), ctx.get(&TRIAL)?);
     let psis: Vec<f64> = (0..samples)
         .map(|i| TAU * i as f64 / (samples - 1) as f64)
         .collect();
@@ -65,8 +69,8 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     );
     let mut columns = Vec::new();
     let mut files = Vec::new();
-    for (name, panel) in POINTERS {
-        let r = mech.run_pointer(name, 1.0, &mut rng).ok_or_else(|| {
+    for ((name, panel), r) in POINTERS.into_iter().zip(runs) {
+        let r = r.ok_or_else(|| {
             RunError::bad("gearing", format!("pointer {name}"), "is missing or broken")
         })?;
         let td: Vec<f64> = psis

@@ -5,8 +5,6 @@ use std::f64::consts::TAU;
 
 use edmunds::RadialPair;
 use geometry::Gear;
-use mechanism::trial_rng;
-use rand::Rng;
 use registry::{
     Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64, fmt_number,
 };
@@ -14,73 +12,99 @@ use registry::{
 use crate::common::{Series, csv, line_plot};
 use study::errors;
 
+/// `tip_radius`: R of both gears.
+const TIP_RADIUS: Param = Param {
+    name: "tip_radius",
+    default: "200",
+    unit: "length",
+    help: "R of both gears",
+    kind: registry::Kind::positive(
+        study::equal_pair::MAX_LENGTH,
+        "a length; larger is no gear",
+    ),
+};
+
+/// `root_radius`: r of both gears.
+const ROOT_RADIUS: Param = Param {
+    name: "root_radius",
+    default: "180",
+    unit: "length",
+    help: "r of both gears",
+    kind: registry::Kind::positive(
+        study::equal_pair::MAX_LENGTH,
+        "a length; larger is no gear",
+    ),
+};
+
+/// `clearance`: clearance G of the pair. Not the gearing group's `clearance`
+/// ([`study::gearing::CLEARANCE`], default 40): Figure 5 runs a pair of its own, not the
+/// gearing, with a default of its own (50 %) under the same name.
+const PAIR_CLEARANCE: Param = Param {
+    name: "clearance",
+    default: "50",
+    unit: "% of h",
+    help: "clearance G",
+    kind: registry::Kind::positive(100.0, "% of the tooth height h"),
+};
+
+/// `random`: random tooth error (sd).
+const RANDOM: Param = Param {
+    name: "random",
+    default: "0.05",
+    unit: "of the pitch",
+    help: "random tooth error (sd)",
+    kind: registry::Kind::number(0.0, hypotheses::MAX_RANDOM, "of the pitch"),
+};
+
+/// `systematic`: systematic error amplitude A.
+const SYSTEMATIC: Param = Param {
+    name: "systematic",
+    default: "0.6",
+    unit: "deg",
+    help: "systematic error amplitude A",
+    kind: registry::Kind::number(0.0, 45.0, "deg"),
+};
+
+/// `trial`: which trial stream of the seed.
+const TRIAL: Param = Param {
+    name: "trial",
+    default: "0",
+    unit: "",
+    help: "which trial stream of the seed",
+    kind: registry::Kind::count(0, u64::MAX, ""),
+};
+
+/// `samples`: samples over the turn.
+const SAMPLES: Param = Param {
+    name: "samples",
+    default: "3600",
+    unit: "",
+    help: "samples over the turn",
+    kind: registry::Kind::count(
+        registry::MIN_SAMPLES,
+        registry::MAX_COUNT as u64,
+        registry::MIN_SAMPLES_WHY,
+    ),
+};
+
+/// `teeth`: teeth of both gears.
+const TEETH: Param = Param {
+    name: "teeth",
+    default: "50",
+    unit: "",
+    help: "teeth of both gears",
+    kind: registry::Kind::count(3, geometry::MAX_TEETH as u64, "a gear needs three teeth"),
+};
+
 const PARAMS: &[Param] = &[
-    Param {
-        name: "teeth",
-        default: "50",
-        unit: "",
-        help: "teeth of both gears",
-        kind: registry::Kind::count(3, geometry::MAX_TEETH as u64, "a gear needs three teeth"),
-    },
-    Param {
-        name: "tip_radius",
-        default: "200",
-        unit: "length",
-        help: "R of both gears",
-        kind: registry::Kind::positive(
-            study::equal_pair::MAX_LENGTH,
-            "a length; larger is no gear",
-        ),
-    },
-    Param {
-        name: "root_radius",
-        default: "180",
-        unit: "length",
-        help: "r of both gears",
-        kind: registry::Kind::positive(
-            study::equal_pair::MAX_LENGTH,
-            "a length; larger is no gear",
-        ),
-    },
-    Param {
-        name: "clearance",
-        default: "50",
-        unit: "% of h",
-        help: "clearance G",
-        kind: registry::Kind::positive(100.0, "% of the tooth height h"),
-    },
-    Param {
-        name: "random",
-        default: "0.05",
-        unit: "of the pitch",
-        help: "random tooth error (sd)",
-        kind: registry::Kind::number(0.0, hypotheses::MAX_RANDOM, "of the pitch"),
-    },
-    Param {
-        name: "systematic",
-        default: "0.6",
-        unit: "deg",
-        help: "systematic error amplitude A",
-        kind: registry::Kind::number(0.0, 45.0, "deg"),
-    },
-    Param {
-        name: "trial",
-        default: "0",
-        unit: "",
-        help: "which trial stream of the seed",
-        kind: registry::Kind::count(0, u64::MAX, ""),
-    },
-    Param {
-        name: "samples",
-        default: "3600",
-        unit: "",
-        help: "samples over the turn",
-        kind: registry::Kind::count(
-            registry::MIN_SAMPLES,
-            registry::MAX_COUNT as u64,
-            registry::MIN_SAMPLES_WHY,
-        ),
-    },
+    TEETH,
+    TIP_RADIUS,
+    ROOT_RADIUS,
+    PAIR_CLEARANCE,
+    RANDOM,
+    SYSTEMATIC,
+    TRIAL,
+    SAMPLES,
 ];
 
 registry::inventory::submit! {
@@ -111,8 +135,8 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
     let rule = study::events::chosen(ctx)?;
-    let n = ctx.usize("teeth")?;
-    let (big_r, small_r) = (ctx.f64("tip_radius")?, ctx.f64("root_radius")?);
+    let n = ctx.get(&TEETH)?;
+    let (big_r, small_r): (f64, f64) = (ctx.get(&TIP_RADIUS)?, ctx.get(&ROOT_RADIUS)?);
     let ideal =
         Gear::ideal(n, big_r, small_r).map_err(|e| RunError::bad("--set", e.field, e.rule))?;
     // Two equal gears of height R - r at the chosen clearance.
@@ -123,20 +147,21 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         r2: big_r,
         h: big_r - small_r,
     };
-    let clearance = ctx.f64("clearance")?;
-    let h = errors::chosen(ctx)?;
-    let samples = ctx.usize("samples")?;
-    registry::samples_cover("samples", samples, n, "teeth")?;
+    let clearance: f64 = ctx.get(&PAIR_CLEARANCE)?;
+    let errors = errors::Settings::read(ctx)?;
+    let h = errors.hypothesis;
+    let samples: usize = ctx.get(&SAMPLES)?;
+    registry::samples_cover(SAMPLES.name, samples, n, TEETH.name)?;
     let phis: Vec<f64> = (0..samples)
         .map(|i| TAU * i as f64 / (samples - 1) as f64)
         .collect();
     let offered = [
-        ("random", ctx.f64("random")?),
-        ("systematic", ctx.f64("systematic")?),
+        (RANDOM.name, ctx.get(&RANDOM)?),
+        (SYSTEMATIC.name, ctx.get(&SYSTEMATIC)?),
     ];
     // The title names the values the hypothesis ran with (a `hypothesis_params` value replaces
     // the experiment's own), and only those it takes.
-    let ran = errors::params(ctx, h, &offered)?;
+    let ran = errors.params(&offered)?;
     let values: String = ran
         .iter()
         .filter(|(k, _)| *k != "split")
@@ -162,16 +187,15 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             "disengagements",
         ],
     );
+    let trial = ctx.get(&TRIAL)?;
     let mut series = Vec::new();
     let mut columns = Vec::new();
     let mut no_ratio = false;
     let mut never_driven = false;
     for (name, split) in SPLITS {
-        let p = errors::params(ctx, h, &[offered[0], offered[1], ("split", split)])?;
+        let p = errors.params(&[offered[0], offered[1], ("split", split)])?;
         // The same stream for every split: only the split changes between the panels.
-        let mut rng = trial_rng(ctx.seed(), ctx.u64("trial")?);
-        let driver = errors::make(h, &ideal, "driver", &p, &mut rng)?;
-        let driven = errors::make(h, &ideal, "driven", &p, &mut rng)?;
+        let (driver, driven, phi0) = errors::made_pair(h, &ideal, &p, ctx.seed(), trial)?;
         if let Some(what) = edmunds::unseen(&driver).or_else(|| edmunds::unseen(&driven)) {
             return Err(RunError::bad(
                 "--hypothesis",
@@ -181,7 +205,6 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
                 ),
             ));
         }
-        let phi0 = rng.random::<f64>() * TAU / n as f64;
         let tri = pair.run_made((&driver, &driven), clearance, phi0)?;
         let rad = RadialPair::new(&driver, &driven, phi0);
         let td = |f: &dyn Fn(f64) -> f64| -> Vec<f64> {

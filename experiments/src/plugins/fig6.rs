@@ -6,20 +6,23 @@ use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table};
 
 use crate::common::{Series, category_plot};
 use study::cell::{Purpose, label};
-use study::grids::TRIALS;
+use study::grids::{CellSettings, TRIALS};
 use crate::emax::{paper_random, show};
 use study::tolerance::{self, RULE};
+
+/// `measured`: RON table of measured per-gear errors (the `measured` hypothesis' format) to draw beside ours; empty (or none): no measured values.
+const MEASURED: Param = Param {
+    name: "measured",
+    default: "",
+    unit: "",
+    help: "RON table of measured per-gear errors (the `measured` hypothesis' format) to draw beside ours; empty (or none): no measured values",
+    kind: registry::Kind::Text,
+};
 
 const PARAMS: &[Param] = &[
     TRIALS,
     RULE,
-    Param {
-        name: "measured",
-        default: "",
-        unit: "",
-        help: "RON table of measured per-gear errors (the `measured` hypothesis' format) to draw beside ours; empty (or none): no measured values",
-        kind: registry::Kind::Text,
-    },
+    MEASURED,
 ];
 
 registry::inventory::submit! {
@@ -36,11 +39,11 @@ registry::inventory::submit! {
 
 /// The measured table named by the `measured` parameter, if any: (file name, table).
 fn measured(ctx: &Context) -> Result<Option<(String, hypotheses::MeasuredTable)>, RunError> {
-    let Some(path) = hypotheses::measured_file_given(ctx.param("measured")?) else {
+    let Some(path) = hypotheses::measured_file_given(ctx.text(&MEASURED)?) else {
         return Ok(None);
     };
     let text = input_file::read_to_string(std::path::Path::new(path), input_file::MAX_INPUT_BYTES)
-        .map_err(|e| RunError::bad("--set", "measured", format!("cannot read {path}: {e}")))?;
+        .map_err(|e| RunError::bad("--set", MEASURED.name, format!("cannot read {path}: {e}")))?;
     let table = hypotheses::measured_from_ron(path, &text).map_err(|e| {
         let what = e
             .what
@@ -60,18 +63,74 @@ fn smaller(a: Option<f64>, b: Option<f64>) -> Option<f64> {
     }
 }
 
+/// Points of a plotted series: (gear index, value).
+type Points = Vec<(f64, f64)>;
+
+/// Figure 6's plot: each gear's value, ours, the paper's and (from the file `measured`, when
+/// one was given) the measured one, as (gear index, value) points.
+fn plot(
+    names: &[String],
+    rule: f64,
+    measured: Option<&str>,
+    (ours_pts, paper_pts, measured_pts): (Points, Points, Points),
+) -> Result<String, RunError> {
+    let ours_label = format!("ours: largest tolerable (rule {rule} %)");
+    let measured_label = measured
+        .map(|f| format!("measured ({f})"))
+        .unwrap_or_default();
+    let mut series = vec![
+        Series {
+            label: &ours_label,
+            points: ours_pts,
+        },
+        Series {
+            label: "paper: Table 5 E. max",
+            points: paper_pts,
+        },
+    ];
+    if measured.is_some() {
+        series.push(Series {
+            label: &measured_label,
+            points: measured_pts,
+        });
+    }
+    category_plot(
+        "Figure 6: largest tolerable random error of each gear",
+        names,
+        "gear",
+        "random error [fraction of the pitch]",
+        &series,
+    )
+}
+
+/// The note on the measured column: the file and how many gears it lists, or how to give one.
+fn measured_note(measured: Option<&(String, hypotheses::MeasuredTable)>) -> String {
+    match measured {
+        Some((file, t)) => format!(
+            "Measured: the random error of each gear in {file} ({} gears listed){}.",
+            t.entries().count(),
+            if file.ends_with("measured-example.ron") {
+                "; that shipped example's values are INVENTED, not Edmunds' measurements"
+            } else {
+                ""
+            }
+        ),
+        None => "Measured: none given (--set measured=FILE, a table in the format of crates/hypotheses/data/measured-example.ron, whose values are invented).".into(),
+    }
+}
+
 fn run(ctx: &Context) -> Result<Report, RunError> {
     study::events::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let cells = study::grids::CellSettings::read(ctx, TRIALS.name)?;
-    let (g, hyp, trials) = (&cells.gearing, cells.hypothesis, cells.trials);
+    let s = CellSettings::read(ctx, &TRIALS)?;
+    let (g, trials, clearance) = (s.gearing(), s.trials, s.clearance()?);
     let rule = tolerance::rule(ctx)?;
-    let clearance = ctx.f64("clearance")?;
     let measured = measured(ctx)?;
-    let grid = study::grids::run_grid(ctx, g, hyp, trials, Purpose::Input)?;
+    let values = tolerance::random_grid(ctx)?;
+    let grid = study::grids::run_grid(ctx, &s, values, trials, Purpose::Input)?;
     let tolerable = grid.tolerable(trials, rule);
 
     // Gears in mesh order, first appearance; each with its meshes.
@@ -156,47 +215,10 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     table.note(format!(
         "Gears whose value equals the paper's: {inside}; differ: {outside}. The paper's figure gives no numbers; its per-mesh values are the E. max row of its Table 5, assigned to gears the same way."
     ));
-    match &measured {
-        Some((file, t)) => table.note(format!(
-            "Measured: the random error of each gear in {file} ({} gears listed){}.",
-            t.entries().count(),
-            if file.ends_with("measured-example.ron") {
-                "; that shipped example's values are INVENTED, not Edmunds' measurements"
-            } else {
-                ""
-            }
-        )),
-        None => table.note("Measured: none given (--set measured=FILE, a table in the format of crates/hypotheses/data/measured-example.ron, whose values are invented)."),
-    }
+    table.note(measured_note(measured.as_ref()));
     let names: Vec<String> = gears.iter().map(|(n, _)| n.clone()).collect();
-    let ours_label = format!("ours: largest tolerable (rule {rule} %)");
-    let measured_label = measured
-        .as_ref()
-        .map(|(f, _)| format!("measured ({f})"))
-        .unwrap_or_default();
-    let mut series = vec![
-        Series {
-            label: &ours_label,
-            points: ours_pts,
-        },
-        Series {
-            label: "paper: Table 5 E. max",
-            points: paper_pts,
-        },
-    ];
-    if measured.is_some() {
-        series.push(Series {
-            label: &measured_label,
-            points: measured_pts,
-        });
-    }
-    let svg = category_plot(
-        "Figure 6: largest tolerable random error of each gear",
-        &names,
-        "gear",
-        "random error [fraction of the pitch]",
-        &series,
-    )?;
+    let measured_file = measured.as_ref().map(|(f, _)| f.as_str());
+    let svg = plot(&names, rule, measured_file, (ours_pts, paper_pts, measured_pts))?;
     Ok(Report {
         tables: vec![table],
         files: vec![

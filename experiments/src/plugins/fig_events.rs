@@ -7,15 +7,18 @@ use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, 
 use study::gearing;
 use study::limits::IdealPair;
 
+/// `margin`: how far inside the jam limit and beyond the disengagement limit the two runs are made.
+const MARGIN: Param = Param {
+    name: "margin",
+    default: "1",
+    unit: "% of h",
+    help: "how far inside the jam limit and beyond the disengagement limit the two runs are made",
+    kind: registry::Kind::number(0.01, 20.0, "% of h"),
+};
+
 const PARAMS: &[Param] = &[
     study::limits::MESH,
-    Param {
-        name: "margin",
-        default: "1",
-        unit: "% of h",
-        help: "how far inside the jam limit and beyond the disengagement limit the two runs are made",
-        kind: registry::Kind::number(0.01, 20.0, "% of h"),
-    },
+    MARGIN,
 ];
 
 registry::inventory::submit! {
@@ -40,10 +43,13 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
     let rule = study::events::chosen(ctx)?;
-    let h = ctx.f64("tooth_height")?;
-    let margin = ctx.f64("margin")?;
-    let g = gearing::load(ctx)?;
-    let label = ctx.param("mesh")?;
+    let margin: f64 = ctx.get(&MARGIN)?;
+    let gearing::Shape {
+        gearing: g,
+        tooth_height: h,
+        ..
+    } = gearing::Shape::read(ctx)?;
+    let label = ctx.text(&study::limits::MESH)?;
     let pair = IdealPair::chosen(ctx, &g, h)?;
     let (jam_limit, dis_limit) = pair.limits(LIMIT_TOLERANCE, &rule)?;
     let mut table = Table::new(

@@ -11,39 +11,51 @@ use study::limits::IdealPair;
 /// (smallest clearance without a jam, largest without a disengagement), % of h.
 type Limits = (Option<f64>, Option<f64>);
 
+/// `from`: first clearance of the sweep.
+const FROM: Param = Param {
+    name: "from",
+    default: "10",
+    unit: "% of h",
+    help: "first clearance of the sweep",
+    kind: registry::Kind::number(0.0, 100.0, "% of h"),
+};
+
+/// `to`: last clearance of the sweep.
+const TO: Param = Param {
+    name: "to",
+    default: "90",
+    unit: "% of h",
+    help: "last clearance of the sweep",
+    kind: registry::Kind::number(0.0, 100.0, "% of h"),
+};
+
+/// `step`: clearance step.
+const STEP: Param = Param {
+    name: "step",
+    default: "5",
+    unit: "% of h",
+    help: "clearance step",
+    kind: registry::Kind::number(0.25, 50.0, "% of h"),
+};
+
+/// `samples`: TD samples per run.
+const SAMPLES: Param = Param {
+    name: "samples",
+    default: "2000",
+    unit: "",
+    help: "TD samples per run",
+    kind: registry::Kind::count(
+        registry::MIN_SAMPLES,
+        registry::MAX_COUNT as u64,
+        registry::MIN_SAMPLES_WHY,
+    ),
+};
+
 const PARAMS: &[Param] = &[
-    Param {
-        name: "from",
-        default: "10",
-        unit: "% of h",
-        help: "first clearance of the sweep",
-        kind: registry::Kind::number(0.0, 100.0, "% of h"),
-    },
-    Param {
-        name: "to",
-        default: "90",
-        unit: "% of h",
-        help: "last clearance of the sweep",
-        kind: registry::Kind::number(0.0, 100.0, "% of h"),
-    },
-    Param {
-        name: "step",
-        default: "5",
-        unit: "% of h",
-        help: "clearance step",
-        kind: registry::Kind::number(0.25, 50.0, "% of h"),
-    },
-    Param {
-        name: "samples",
-        default: "2000",
-        unit: "",
-        help: "TD samples per run",
-        kind: registry::Kind::count(
-            registry::MIN_SAMPLES,
-            registry::MAX_COUNT as u64,
-            registry::MIN_SAMPLES_WHY,
-        ),
-    },
+    FROM,
+    TO,
+    STEP,
+    SAMPLES,
 ];
 
 registry::inventory::submit! {
@@ -65,12 +77,15 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
     let rule = study::events::chosen(ctx)?;
-    let g = gearing::load(ctx)?;
-    let h = ctx.f64("tooth_height")?;
-    let (from, to, step) = (ctx.f64("from")?, ctx.f64("to")?, ctx.f64("step")?);
+    let gearing::Shape {
+        gearing: g,
+        tooth_height: h,
+        ..
+    } = gearing::Shape::read(ctx)?;
+    let (from, to, step): (f64, f64, f64) = (ctx.get(&FROM)?, ctx.get(&TO)?, ctx.get(&STEP)?);
     if from > to {
         // Name the one the user set: `to` below the default `from`, or `from` above `to`.
-        let to_set = ctx.changed().iter().any(|(k, _)| *k == "to");
+        let to_set = ctx.changed().iter().any(|(k, _)| *k == TO.name);
         let (field, rule) = if to_set {
             (
                 "to",
@@ -92,7 +107,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         };
         return Err(RunError::bad("--set", field, rule));
     }
-    let samples = ctx.usize("samples")?;
+    let samples: usize = ctx.get(&SAMPLES)?;
     let clearances: Vec<f64> = (0..)
         .map(|i| from + step * f64::from(i))
         .take_while(|&c| c <= to + 1e-9)

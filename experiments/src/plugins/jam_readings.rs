@@ -17,55 +17,73 @@ use polycheck::stepped::{GearOutline, SteppedPair, Stepping};
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
 use study::cell::{CellSpec, PAPER_TRIALS, fnv1a64, label, rebuild};
 use study::gearing;
-use study::grids::CASES;
+use study::grids::{CASES, CellSettings};
 use study::tolerance::{self, RANDOM_FROM, RANDOM_STEP, RANDOM_TO};
 use train::Gearing;
 
 use crate::cells::{cell, consistent_with_paper, paper_counts, share};
 
+/// `trials`: trials per cell (a screening count; the paper: 200).
+const TRIALS: Param = Param {
+    name: "trials",
+    default: "10",
+    unit: "",
+    help: "trials per cell (a screening count; the paper: 200)",
+    kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
+};
+
+/// `clearances`: Table I's clearances G, comma-separated (the paper: 10, 40 and 70).
+const CLEARANCES: Param = Param {
+    name: "clearances",
+    default: "10,40,70",
+    unit: "% of h",
+    help: "Table I's clearances G, comma-separated (the paper: 10, 40 and 70)",
+    kind: registry::Kind::Text,
+};
+
+/// `tolerances`: overlap areas the area test ignores, one reading each, comma-separated.
+const TOLERANCES: Param = Param {
+    name: "tolerances",
+    default: "0.0001,0.001,0.003",
+    unit: "mm^2",
+    help: "overlap areas the area test ignores, one reading each, comma-separated",
+    kind: registry::Kind::Text,
+};
+
+/// `steps_per_pitch`: driver steps per driver pitch of the area test (the driver turns by a fixed step).
+const STEPS_PER_PITCH: Param = Param {
+    name: "steps_per_pitch",
+    default: "20",
+    unit: "",
+    help: "driver steps per driver pitch of the area test (the driver turns by a fixed step)",
+    kind: registry::Kind::count(2, 10_000, "a step of at most half a pitch"),
+};
+
+/// `reach`: how far ahead the area test looks for a free driven position before calling a jam.
+const REACH: Param = Param {
+    name: "reach",
+    default: "1",
+    unit: "driven pitch",
+    help: "how far ahead the area test looks for a free driven position before calling a jam",
+    kind: registry::Kind::number(0.05, 10.0, "driven pitches"),
+};
+
+/// `search_steps`: steps per driven pitch of the area test's forward search (then bisected).
+const SEARCH_STEPS: Param = Param {
+    name: "search_steps",
+    default: "64",
+    unit: "",
+    help: "steps per driven pitch of the area test's forward search (then bisected)",
+    kind: registry::Kind::count(4, 100_000, "a search step of at most a quarter pitch"),
+};
+
 const PARAMS: &[Param] = &[
-    Param {
-        name: "trials",
-        default: "10",
-        unit: "",
-        help: "trials per cell (a screening count; the paper: 200)",
-        kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
-    },
-    Param {
-        name: "clearances",
-        default: "10,40,70",
-        unit: "% of h",
-        help: "Table I's clearances G, comma-separated (the paper: 10, 40 and 70)",
-        kind: registry::Kind::Text,
-    },
-    Param {
-        name: "tolerances",
-        default: "0.0001,0.001,0.003",
-        unit: "mm^2",
-        help: "overlap areas the area test ignores, one reading each, comma-separated",
-        kind: registry::Kind::Text,
-    },
-    Param {
-        name: "steps_per_pitch",
-        default: "20",
-        unit: "",
-        help: "driver steps per driver pitch of the area test (the driver turns by a fixed step)",
-        kind: registry::Kind::count(2, 10_000, "a step of at most half a pitch"),
-    },
-    Param {
-        name: "reach",
-        default: "1",
-        unit: "driven pitch",
-        help: "how far ahead the area test looks for a free driven position before calling a jam",
-        kind: registry::Kind::number(0.05, 10.0, "driven pitches"),
-    },
-    Param {
-        name: "search_steps",
-        default: "64",
-        unit: "",
-        help: "steps per driven pitch of the area test's forward search (then bisected)",
-        kind: registry::Kind::count(4, 100_000, "a search step of at most a quarter pitch"),
-    },
+    TRIALS,
+    CLEARANCES,
+    TOLERANCES,
+    STEPS_PER_PITCH,
+    REACH,
+    SEARCH_STEPS,
 ];
 
 registry::inventory::submit! {
@@ -145,16 +163,12 @@ impl Cells {
 
 /// The cells of Tables 3 (Cases A-D at the clearance), 4 (the random grid) and I (Cases A-D at
 /// each of its clearances), in the order of `event-rules`.
-fn all_cells(
-    ctx: &Context,
-    g: &Gearing,
-    hyp: &'static dyn hypotheses::Hypothesis,
-) -> Result<Cells, RunError> {
-    let clearance = ctx.f64("clearance")?;
-    let split = ctx.f64("split")?;
-    let clearances = gearing::clearance_list(ctx, "clearances", 200.0)?;
-    let randoms = tolerance::grid(ctx, &RANDOM_FROM, &RANDOM_TO, &RANDOM_STEP)?;
-    let meshes: Vec<&str> = g.meshes().iter().map(|m| m.label.as_str()).collect();
+fn all_cells(ctx: &Context, s: &CellSettings) -> Result<Cells, RunError> {
+    let clearance = s.clearance()?;
+    let split = s.errors.split()?;
+    let clearances = gearing::clearance_list(ctx, &CLEARANCES, 200.0)?;
+    let randoms = tolerance::random_grid(ctx)?;
+    let meshes: Vec<&str> = s.gearing().meshes().iter().map(|m| m.label.as_str()).collect();
     let mut out = Cells {
         runs: Vec::new(),
         paper: Vec::new(),
@@ -164,14 +178,14 @@ fn all_cells(
         |sys: f64, random: f64| [("random", random), ("systematic", sys), ("split", split)];
     for &(case, sys, random) in &CASES {
         for m in &meshes {
-            let c = cell(ctx, hyp, m, &case_errors(sys, random), clearance)?;
+            let c = cell(s, m, &case_errors(sys, random), clearance)?;
             out.add(c, "table3", format!("{case}.{m}"), region(clearance));
         }
     }
     for &e in &randoms {
         for m in &meshes {
             let errors = [("random", e), ("systematic", 0.0)];
-            let c = cell(ctx, hyp, m, &errors, clearance)?;
+            let c = cell(s, m, &errors, clearance)?;
             out.add(
                 c,
                 "table4",
@@ -183,7 +197,7 @@ fn all_cells(
     for &(case, sys, random) in &CASES {
         for &gc in &clearances {
             for m in &meshes {
-                let c = cell(ctx, hyp, m, &case_errors(sys, random), gc)?;
+                let c = cell(s, m, &case_errors(sys, random), gc)?;
                 let key = format!("{case}.{}.{m}", label(gc, 0));
                 out.add(c, "tableI", key, region(gc));
             }
@@ -275,7 +289,7 @@ fn reversed_jams(mesh: &contact::Mesh, phi0: f64) -> bool {
 
 /// The tolerances of the area readings, from a comma-separated parameter.
 fn tolerances(ctx: &Context) -> Result<Vec<f64>, RunError> {
-    let text = ctx.param("tolerances")?;
+    let text = ctx.text(&TOLERANCES)?;
     text.split(',')
         .map(str::trim)
         .map(|part| {
@@ -285,7 +299,7 @@ fn tolerances(ctx: &Context) -> Result<Vec<f64>, RunError> {
                 .ok_or_else(|| {
                     RunError::bad(
                         "--set",
-                        "tolerances",
+                        TOLERANCES.name,
                         format!("each must be a number from 0 to 1 mm^2 (got `{part}`)"),
                     )
                 })
@@ -489,7 +503,13 @@ fn cells_csv(cells: &Cells, readings: &[Reading], jams: &[Vec<u64>], trials: u64
 }
 
 /// The notes saying what produced every number.
-fn notes(t: &mut Table, ctx: &Context, stepping: &Stepping, cells: &Cells) -> Result<(), RunError> {
+fn notes(
+    t: &mut Table,
+    ctx: &Context,
+    s: &CellSettings,
+    stepping: &Stepping,
+    cells: &Cells,
+) -> Result<(), RunError> {
     t.note("Rule: a jam is a trial in which the contact test finds no free forward position for the driven gear at least once (exact solver: a lock, a strike or a blocked start; area test: after a driver step, no driven position within the reach ahead has an overlap area at most T). Gears whose bodies overlap at every angle are a jam under every reading. The second row is not a contact test: the same gears with the other gear of each mesh driving (the paper names the driver first, as Freeth et al. do, and does not say which gear its program turned), started at the same share of its pitch, over one turn of the larger gear.");
     t.note(format!(
         "Area test (polycheck::stepped): the driver turns by fixed steps of 1/{} of its pitch over one turn of the gear with more teeth; after each step the driven gear is turned forward from where it was until the overlap area of the two outlines is at most T (searched in steps of 1/{} of a driven pitch up to {} driven pitches ahead, then bisected); it starts touching, turned back from angle 0 until the area exceeds T (pushed forward if it already does), as the solver starts. Straight flanks; tips, valleys, per-tooth radii and rotation centres as manufactured.",
@@ -499,17 +519,17 @@ fn notes(t: &mut Table, ctx: &Context, stepping: &Stepping, cells: &Cells) -> Re
     ));
     t.note(format!(
         "Gearing {} (Freeth 2006 by default), h = {} mm, hypothesis {}, split {}; errors per Case as Edmunds' (A: 0 deg, 0.04; B: 0.5 deg, 0.04; C: 1 deg, 0.04; D: 2 deg, 0.08 of the pitch); Table 4: random error only, {} to {} of the pitch by {}, at G = {} %. Every reading runs the same gears and initial angle of trial t (the cell's stream, as the tables build them); seed {}.",
-        ctx.param("gearing")?,
-        fmt_f64(ctx.f64("tooth_height")?, 2),
-        ctx.param("hypothesis")?,
-        fmt_f64(ctx.f64("split")?, 2),
-        ctx.param("random_from")?,
-        ctx.param("random_to")?,
-        ctx.param("random_step")?,
-        fmt_f64(ctx.f64("clearance")?, 0),
+        s.gearing.file,
+        fmt_f64(s.gearing.tooth_height, 2),
+        ctx.text(&study::errors::PARAM)?,
+        fmt_f64(s.errors.split()?, 2),
+        ctx.text(&RANDOM_FROM)?,
+        ctx.text(&RANDOM_TO)?,
+        ctx.text(&RANDOM_STEP)?,
+        fmt_f64(s.clearance()?, 0),
         ctx.seed(),
     ));
-    t.note(power_note(ctx.u64("trials")?));
+    t.note(power_note(s.trials));
     t.note(format!(
         "{} paper cells ({} distinct cells run: Table 3's are Table I's at G = 40 %, the paper printed them twice and each printing is compared). Case D: its cells at every clearance, also counted in their G column. All: every paper jam count once.",
         cells.paper.len(),
@@ -540,28 +560,28 @@ fn power_note(trials: u64) -> String {
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    let settings = study::grids::CellSettings::read(ctx, "trials")?;
-    let (g, hyp, trials) = (&settings.gearing, settings.hypothesis, settings.trials);
+    let settings = CellSettings::read(ctx, &TRIALS)?;
+    let (g, trials) = (settings.gearing(), settings.trials);
     let stepping = Stepping {
-        steps_per_pitch: ctx.usize("steps_per_pitch")?,
-        reach: ctx.f64("reach")?,
-        search_steps: ctx.usize("search_steps")?,
+        steps_per_pitch: ctx.get(&STEPS_PER_PITCH)?,
+        reach: ctx.get(&REACH)?,
+        search_steps: ctx.get(&SEARCH_STEPS)?,
     };
     let mut readings = vec![Reading::Exact, Reading::ExactReversed];
     readings.extend(tolerances(ctx)?.into_iter().map(Reading::Area));
     if readings.len() > 63 {
         return Err(RunError::bad(
             "--set",
-            "tolerances",
+            TOLERANCES.name,
             "at most 62 tolerances",
         ));
     }
-    let cells = all_cells(ctx, g, hyp)?;
+    let cells = all_cells(ctx, &settings)?;
     let jams = run_all(ctx, g, &cells.runs, &readings, &stepping, trials)?;
     let regions = regions(&cells);
     let tallies = tallies(&cells, &regions, &jams, readings.len(), trials);
     let mut shares = shares_table(&readings, &regions, &tallies, trials);
-    notes(&mut shares, ctx, &stepping, &cells)?;
+    notes(&mut shares, ctx, &settings, &stepping, &cells)?;
     Ok(Report {
         tables: vec![shares, mesh_table(g, &cells, &readings, &jams, trials)],
         files: vec![OutputFile::new(

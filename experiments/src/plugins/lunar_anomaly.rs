@@ -8,54 +8,65 @@
 //! The Cases' trials use table2's RNG streams (Case index, trial), so that without the
 //! pin-and-slot they are table2's triangular Lunar trials, number for number.
 
-use mechanism::{Mechanism, PinSlotTrain, PointerRun, TrialRng, trial_rng};
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
-use serde::{Deserialize, Serialize};
 use stats::{DAYS_PER_YEAR, Estimate, mean_ci95};
 
 use crate::common::{Series, csv, line_plot, paper_cell};
+use study::anomaly::{AnomalyTrial, PinSlotTrain, Rows, RunStats};
 use study::errors;
 use study::gearing;
 use study::grids::CASES;
 use study::pointers::pointer_runs;
 
+/// `trials`: trials per row (ideal teeth, Cases A-D), each with fresh errors and initial angles, run without and with the pin-and-slot (table2's count and streams).
+const TRIALS: Param = Param {
+    name: "trials",
+    default: "20",
+    unit: "",
+    help: "trials per row (ideal teeth, Cases A-D), each with fresh errors and initial angles, run without and with the pin-and-slot (table2's count and streams)",
+    kind: registry::Kind::count(2, registry::MAX_TRIALS, "an interval needs two trials"),
+};
+
+/// `lunar_turns`: run length (one turn of b: about 13 anomalistic months).
+const LUNAR_TURNS: Param = Param {
+    name: "lunar_turns",
+    default: "1",
+    unit: "turns of b",
+    help: "run length (one turn of b: about 13 anomalistic months)",
+    kind: registry::Kind::number(
+        study::pointers::MIN_TURNS,
+        100.0,
+        "turns of b: a shorter run spans too few tooth engagements for a sigma",
+    ),
+};
+
+/// `samples_per_engagement`: TD samples per engagement of the busiest mesh.
+const SAMPLES_PER_ENGAGEMENT: Param = Param {
+    name: "samples_per_engagement",
+    default: "8",
+    unit: "",
+    help: "TD samples per engagement of the busiest mesh",
+    kind: registry::Kind::count(
+        registry::MIN_PER_ENGAGEMENT,
+        registry::MAX_COUNT as u64,
+        registry::MIN_PER_ENGAGEMENT_WHY,
+    ),
+};
+
+/// `curve_samples`: points of the anomaly curve over one anomalistic month (amplitude and plot).
+const CURVE_SAMPLES: Param = Param {
+    name: "curve_samples",
+    default: "2000",
+    unit: "",
+    help: "points of the anomaly curve over one anomalistic month (amplitude and plot)",
+    kind: registry::Kind::count(100, registry::MAX_COUNT as u64, ""),
+};
+
 const PARAMS: &[Param] = &[
-    Param {
-        name: "trials",
-        default: "20",
-        unit: "",
-        help: "trials per row (ideal teeth, Cases A-D), each with fresh errors and initial angles, run without and with the pin-and-slot (table2's count and streams)",
-        kind: registry::Kind::count(2, registry::MAX_TRIALS, "an interval needs two trials"),
-    },
-    Param {
-        name: "lunar_turns",
-        default: "1",
-        unit: "turns of b",
-        help: "run length (one turn of b: about 13 anomalistic months)",
-        kind: registry::Kind::number(
-            study::pointers::MIN_TURNS,
-            100.0,
-            "turns of b: a shorter run spans too few tooth engagements for a sigma",
-        ),
-    },
-    Param {
-        name: "samples_per_engagement",
-        default: "8",
-        unit: "",
-        help: "TD samples per engagement of the busiest mesh",
-        kind: registry::Kind::count(
-            registry::MIN_PER_ENGAGEMENT,
-            registry::MAX_COUNT as u64,
-            registry::MIN_PER_ENGAGEMENT_WHY,
-        ),
-    },
-    Param {
-        name: "curve_samples",
-        default: "2000",
-        unit: "",
-        help: "points of the anomaly curve over one anomalistic month (amplitude and plot)",
-        kind: registry::Kind::count(100, registry::MAX_COUNT as u64, ""),
-    },
+    TRIALS,
+    LUNAR_TURNS,
+    SAMPLES_PER_ENGAGEMENT,
+    CURVE_SAMPLES,
 ];
 
 registry::inventory::submit! {
@@ -79,41 +90,6 @@ const IDEAL_INDEX: u64 = CASES.len() as u64;
 /// The Case whose first trial is plotted.
 const PLOTTED_CASE: &str = "B";
 
-/// TD statistics of one run, as table1 and table2 keep them. NaN (a run that stopped at once)
-/// cannot go through JSON: stored as bits.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
-struct RunStats {
-    #[serde(with = "registry::f64_bits")]
-    sigma: f64,
-    #[serde(with = "registry::f64_bits")]
-    dm: f64,
-    /// |P|, the absolute oscillation mean.
-    #[serde(with = "registry::f64_bits")]
-    p: f64,
-    /// The run jammed.
-    jammed: bool,
-}
-
-impl RunStats {
-    fn of(run: &PointerRun, samples: usize) -> RunStats {
-        let s = run.stats(samples);
-        RunStats {
-            sigma: s.sigma,
-            dm: s.dm,
-            p: s.mean.abs(),
-            jammed: run.first_stop().is_some(),
-        }
-    }
-}
-
-/// One trial of one row: the same gears and initial angles without and with the pin-and-slot.
-/// The default (another shard's trial, see `Context::trials`) reads as zeros.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
-struct AnomalyTrial {
-    rigid: RunStats,
-    pin_slot: RunStats,
-}
-
 /// One row of the TD table: label and RNG stream index; `None` errors means ideal teeth.
 struct Row {
     label: String,
@@ -127,31 +103,22 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let g = gearing::load(ctx)?;
-    let trials = ctx.usize("trials")?;
-    let curve_samples = ctx.usize("curve_samples")?;
-    let (h, clearance) = (ctx.f64("tooth_height")?, ctx.f64("clearance")?);
-    let per = ctx.usize("samples_per_engagement")?;
-    let runs = pointer_runs(ctx, &g, &[(LUNAR, "lunar_turns")], per)?;
+    let gearing::Settings {
+        gearing: g,
+        file,
+        tooth_height: h,
+        clearance,
+    } = gearing::Settings::read(ctx)?;
+    let trials: usize = ctx.get(&TRIALS)?;
+    let curve_samples: usize = ctx.get(&CURVE_SAMPLES)?;
+    let per = ctx.get(&SAMPLES_PER_ENGAGEMENT)?;
+    let runs = pointer_runs(ctx, &g, &[(LUNAR, &LUNAR_TURNS)], per)?;
+    let rule = study::events::chosen(ctx)?;
     let &[(_, turns, samples)] = runs.as_slice() else {
         return Err(RunError::Internal("one Lunar run expected".into()));
     };
-    let ideal = Mechanism::ideal(&g, h, clearance).map_err(study::gearing::mechanism_error)?;
-    let ideal = study::events::with_rule(ctx, ideal)?;
-    let ideal_on = gearing::with_pin_and_slot(ctx, ideal.clone(), true)?;
-    let Some(train) = ideal_on.pin_slot_for(LUNAR) else {
-        return Err(RunError::bad(
-            ctx.param(gearing::PARAM.name)?,
-            "pin_and_slot",
-            "the Lunar pointer's train does not run through the pin gear",
-        ));
-    };
-
-    // (a) The anomaly from the geometry.
-    let mut tables = vec![anomaly_table(&train, curve_samples)];
-
-    // (b) TD statistics, ideal teeth and Cases A-D, without and with the pin-and-slot.
-    let hyp = errors::chosen(ctx)?;
+    // (b)'s rows: ideal teeth and Cases A-D, each with its stream.
+    let errors = errors::Settings::read(ctx)?;
     let mut rows = vec![Row {
         label: "ideal teeth".into(),
         index: IDEAL_INDEX,
@@ -168,67 +135,55 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         .iter()
         .map(|r| {
             r.case
-                .map(|case| study::grids::case_params(ctx, hyp, case))
+                .map(|case| errors.case_params(case))
                 .transpose()
         })
         .collect::<Result<_, _>>()?;
-    let seed = ctx.seed();
-    // Builds trial `t` of row `ri`: its mechanism (without the pin-and-slot) and the RNG left
-    // ready for the initial angles.
-    let build = |ri: usize, t: u64| -> Result<(Mechanism, TrialRng), RunError> {
-        // One stream per (row, trial): errors first, then initial angles (table2's order).
-        let mut rng = trial_rng(seed, (rows[ri].index << 32) | t);
-        let Some(p) = &params[ri] else {
-            return Ok((ideal.clone(), rng));
-        };
-        let mut failure = None;
-        let mech = Mechanism::build(&g, h, clearance, |name, gear| {
-            errors::make(hyp, &gear, name, p, &mut rng).map_err(|e| {
-                let text = e.to_string();
-                failure = Some(e);
-                text
-            })
-        });
-        let mech = match mech {
-            Ok(m) => Ok(study::events::with_rule(ctx, m)?),
-            Err(e) => Err(e),
-        };
-        match (mech, failure) {
-            (_, Some(e)) => Err(e),
-            (Err(e), None) => Err(RunError::bad(
-                "--hypothesis",
-                format!("mesh {}", e.mesh),
-                format!(
-                    "{}: the manufactured gears cannot be placed at this clearance",
-                    e.rule
-                ),
-            )),
-            (Ok(m), None) => Ok((m, rng)),
-        }
+    let setup = Rows {
+        gearing: &g,
+        file: &file,
+        tooth_height: h,
+        clearance,
+        hypothesis: errors.hypothesis,
+        rule: &rule,
+        rows: rows.iter().map(|r| r.index).zip(params.clone()).collect(),
     };
-    let n = trials as u64;
-    let key = batch_key(ctx, &rows, &params, trials, h, clearance, turns, samples)?;
-    let results: Vec<AnomalyTrial> = ctx.trials(&key, rows.len() as u64 * n, |j| {
-        let (ri, t) = ((j / n) as usize, j % n);
-        let (mech, rng) = build(ri, t)?;
-        let on = gearing::with_pin_and_slot(ctx, mech.clone(), true)?;
-        // The same initial angles for both.
-        let missing = || RunError::bad("gearing", "pointer Lunar", "is missing");
-        let rigid = mech
-            .run_pointer_to_first_jam(LUNAR, turns, &mut rng.clone())
-            .ok_or_else(missing)?;
-        let pinned = on
-            .run_pointer_to_first_jam(LUNAR, turns, &mut rng.clone())
-            .ok_or_else(missing)?;
-        Ok(AnomalyTrial {
-            rigid: RunStats::of(&rigid, samples),
-            pin_slot: RunStats::of(&pinned, samples),
-        })
-    })?;
+    let train = setup.train(LUNAR)?;
+
+    // (a) The anomaly from the geometry.
+    let mut tables = vec![anomaly_table(&train, curve_samples)];
+
+    // (b) TD statistics, ideal teeth and Cases A-D, without and with the pin-and-slot.
+    let seed = ctx.seed();
+    let typed = (file.as_str(), ctx.text(&errors::PARAM)?);
+    let key = batch_key(typed, &rows, &params, trials, h, clearance, turns, samples);
+    let results = setup.trials(ctx, &key, LUNAR, (turns, samples), trials as u64)?;
     let per_row: Vec<&[AnomalyTrial]> = results.chunks(trials).collect();
     tables.push(td_table(&rows, &per_row, trials, seed, clearance, turns));
 
     // (c) The anomaly over two anomalistic months, and one Case B trajectory.
+    let (svg, curve_csv) = anomaly_plot(&setup, &train, seed, curve_samples)?;
+    Ok(Report {
+        tables,
+        files: vec![
+            OutputFile::new("lunar-anomaly.svg", svg),
+            OutputFile::new("lunar-anomaly-curve.csv", curve_csv),
+            OutputFile::new("lunar-anomaly-td.csv", td_csv(&rows, &per_row)),
+        ],
+        // Mechanisms built: one per (row, trial), each run twice.
+        trials: results.len() as u64,
+        ..Default::default()
+    })
+}
+
+/// (c): the anomaly over two anomalistic months from the geometry, beside the first trial of
+/// Case B with the pin-and-slot (its pointer minus the mean motion): the plot and its CSV.
+fn anomaly_plot(
+    setup: &Rows<'_>,
+    train: &PinSlotTrain,
+    seed: u64,
+    curve_samples: usize,
+) -> Result<(String, String), RunError> {
     let period = train.anomaly_period();
     let days_per_radian = DAYS_PER_YEAR / std::f64::consts::TAU;
     let points = 2 * curve_samples;
@@ -243,11 +198,8 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         .iter()
         .position(|c| c.0 == PLOTTED_CASE)
         .ok_or_else(|| RunError::Internal(format!("Case {PLOTTED_CASE}")))?;
-    let (mech, rng) = build(plotted + 1, 0)?;
-    let on = gearing::with_pin_and_slot(ctx, mech, true)?;
-    let traj = on
-        .run_pointer_to_first_jam(LUNAR, 2.0 * train.anomaly_period_turns(), &mut rng.clone())
-        .ok_or_else(|| RunError::bad("gearing", "pointer Lunar", "is missing"))?;
+    let months = 2.0 * train.anomaly_period_turns();
+    let traj = setup.trajectory(seed, (plotted + 1, 0), LUNAR, months)?;
     let end = traj
         .first_stop()
         .map_or(traj.input_range, |s| s.input_angle);
@@ -287,26 +239,17 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             .map(|(i, &(d, a))| vec![d, a, simulated.get(i).map_or(f64::NAN, |s| s.1)]),
         6,
     );
-    Ok(Report {
-        tables,
-        files: vec![
-            OutputFile::new("lunar-anomaly.svg", svg),
-            OutputFile::new("lunar-anomaly-curve.csv", curve_csv),
-            OutputFile::new("lunar-anomaly-td.csv", td_csv(&rows, &per_row)),
-        ],
-        // Mechanisms built: one per (row, trial), each run twice.
-        trials: results.len() as u64,
-        ..Default::default()
-    })
+    Ok((svg, curve_csv))
 }
 
-/// The key of the trial batch: everything that determines the trials.
+/// The key of the trial batch: everything that determines the trials; `typed` is the gearing
+/// and the hypothesis as typed.
 #[allow(
     clippy::too_many_arguments,
     reason = "one key from every input, spelt out"
 )]
 fn batch_key(
-    ctx: &Context,
+    (gearing, hypothesis): (&str, &str),
     rows: &[Row],
     params: &[Option<hypotheses::Params>],
     trials: usize,
@@ -314,7 +257,7 @@ fn batch_key(
     clearance: f64,
     turns: f64,
     samples: usize,
-) -> Result<String, RunError> {
+) -> String {
     let rows: Vec<String> = rows
         .iter()
         .zip(params)
@@ -328,12 +271,10 @@ fn batch_key(
             format!("{} stream {} ({p})", r.label, r.index)
         })
         .collect();
-    Ok(format!(
-        "lunar-anomaly: {trials} trials per row, Lunar {turns} turns {samples} samples, h = {h} mm, G = {clearance} %, gearing {}, hypothesis {}, rows: {}",
-        ctx.param(gearing::PARAM.name)?,
-        ctx.param(errors::PARAM.name)?,
+    format!(
+        "lunar-anomaly: {trials} trials per row, Lunar {turns} turns {samples} samples, h = {h} mm, G = {clearance} %, gearing {gearing}, hypothesis {hypothesis}, rows: {}",
         rows.join("; ")
-    ))
+    )
 }
 
 /// (a): amplitude (sampled over one period and in closed form), periods, and the paper's value.

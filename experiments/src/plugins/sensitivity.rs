@@ -21,22 +21,28 @@ use study::whole_mechanism::{self as whole, Clearances, Input, MechanismRun, TRA
 use study::gearing;
 use study::grids::CASES;
 
+/// `trials`: whole-mechanism runs per row (the paper's failure study: 30).
+const TRIALS: Param = Param {
+    name: "trials",
+    default: "60",
+    unit: "",
+    help: "whole-mechanism runs per row (the paper's failure study: 30)",
+    kind: registry::Kind::count(2, registry::MAX_TRIALS, "an interval needs two runs"),
+};
+
+/// `case`: Edmunds' case every row starts from (A, B, C or D).
+const CASE: Param = Param {
+    name: "case",
+    default: "B",
+    unit: "",
+    help: "Edmunds' case every row starts from (A, B, C or D)",
+    kind: registry::Kind::Text,
+};
+
 const PARAMS: &[Param] = &[
-    Param {
-        name: "trials",
-        default: "60",
-        unit: "",
-        help: "whole-mechanism runs per row (the paper's failure study: 30)",
-        kind: registry::Kind::count(2, registry::MAX_TRIALS, "an interval needs two runs"),
-    },
+    TRIALS,
     whole::DAYS,
-    Param {
-        name: "case",
-        default: "B",
-        unit: "",
-        help: "Edmunds' case every row starts from (A, B, C or D)",
-        kind: registry::Kind::Text,
-    },
+    CASE,
     errors::SPLIT,
     errors::PARAM,
 ];
@@ -173,24 +179,26 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let base_gearing = gearing::load(ctx)?;
-    let trials = ctx.u64("trials")?;
+    let gearing::Settings {
+        gearing: base_gearing,
+        file,
+        tooth_height: h0,
+        clearance,
+    } = gearing::Settings::read(ctx)?;
+    let trials = ctx.get(&TRIALS)?;
     let days = whole::days(ctx)?;
-    let case = ctx.param("case")?.trim();
+    let case = ctx.text(&CASE)?.trim();
     let Some(ci) = CASES.iter().position(|c| c.0.eq_ignore_ascii_case(case)) else {
         return Err(RunError::bad(
             "--set",
-            "case",
+            CASE.name,
             format!("unknown case `{case}` (known: A, B, C, D)"),
         ));
     };
     let (case, systematic, random) = CASES[ci];
-    let (h0, clearance, split) = (
-        ctx.f64("tooth_height")?,
-        ctx.f64("clearance")?,
-        ctx.f64("split")?,
-    );
+    let split = ctx.get(&errors::SPLIT)?;
     let base = errors::chosen(ctx)?;
+    let rule = study::events::chosen(ctx)?;
     let embedded: Vec<(&str, Gearing)> = VARIANTS
         .iter()
         .filter_map(|v| v.gearing)
@@ -257,12 +265,12 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             extra,
         };
         let inputs = std::slice::from_ref(&input);
-        let key = whole::batch_key(ctx, inputs, trials, h, clearance, days)?;
+        let key = whole::batch_key(&file, inputs, trials, h, clearance, days)?;
         rows.push(Row {
             variant: v,
             hypotheses,
             h,
-            outcomes: whole::run_study(ctx, g, inputs, trials, h, days, &key)?,
+            outcomes: whole::run_study(ctx, g, inputs, trials, h, days, &rule, &key)?,
         });
     }
 

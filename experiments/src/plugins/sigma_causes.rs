@@ -16,50 +16,67 @@ use train::Gearing;
 use study::limits::IdealPair;
 use study::pointers::{POINTERS, samples_for};
 
+/// `trials`: Table 1 trials per reading (random initial angles; the same draws for every reading).
+const TRIALS: Param = Param {
+    name: "trials",
+    default: "2",
+    unit: "",
+    help: "Table 1 trials per reading (random initial angles; the same draws for every reading)",
+    kind: registry::Kind::count(2, registry::MAX_TRIALS, "a pooled sigma needs two trials"),
+};
+
+/// `clearance`: Table 1's clearance G of every mesh (before a reading's extra centre distance).
+/// Not the gearing group's `clearance` ([`study::gearing::CLEARANCE`]): this experiment runs the
+/// embedded gearings only, so its clearance is Table 1's input alone, under the same name.
+const TABLE1_CLEARANCE: Param = Param {
+    name: "clearance",
+    default: "40",
+    unit: "% of h",
+    help: "Table 1's clearance G of every mesh (before a reading's extra centre distance)",
+    kind: registry::Kind::positive(100.0, "% of the tooth height h"),
+};
+
+/// `samples_per_engagement`: TD samples per tooth engagement of the busiest mesh (Table 1's default).
+const SAMPLES_PER_ENGAGEMENT: Param = Param {
+    name: "samples_per_engagement",
+    default: "16",
+    unit: "",
+    help: "TD samples per tooth engagement of the busiest mesh (Table 1's default)",
+    kind: registry::Kind::count(
+        registry::MIN_PER_ENGAGEMENT,
+        registry::MAX_COUNT as u64,
+        registry::MIN_PER_ENGAGEMENT_WHY,
+    ),
+};
+
+/// `draws`: Figure IV with Case A errors: manufactured pairs per mesh (each swept over every G).
+const DRAWS: Param = Param {
+    name: "draws",
+    default: "3",
+    unit: "",
+    help: "Figure IV with Case A errors: manufactured pairs per mesh (each swept over every G)",
+    kind: registry::Kind::count(1, registry::MAX_COUNT as u64, "a mean needs one draw"),
+};
+
+/// `samples`: TD samples per pair run of the Figure IV sweep (figIV's default).
+const SAMPLES: Param = Param {
+    name: "samples",
+    default: "2000",
+    unit: "",
+    help: "TD samples per pair run of the Figure IV sweep (figIV's default)",
+    kind: registry::Kind::count(
+        registry::MIN_SAMPLES,
+        registry::MAX_COUNT as u64,
+        registry::MIN_SAMPLES_WHY,
+    ),
+};
+
 const PARAMS: &[Param] = &[
-    Param {
-        name: "trials",
-        default: "2",
-        unit: "",
-        help: "Table 1 trials per reading (random initial angles; the same draws for every reading)",
-        kind: registry::Kind::count(2, registry::MAX_TRIALS, "a pooled sigma needs two trials"),
-    },
-    Param {
-        name: "clearance",
-        default: "40",
-        unit: "% of h",
-        help: "Table 1's clearance G of every mesh (before a reading's extra centre distance)",
-        kind: registry::Kind::positive(100.0, "% of the tooth height h"),
-    },
-    Param {
-        name: "samples_per_engagement",
-        default: "16",
-        unit: "",
-        help: "TD samples per tooth engagement of the busiest mesh (Table 1's default)",
-        kind: registry::Kind::count(
-            registry::MIN_PER_ENGAGEMENT,
-            registry::MAX_COUNT as u64,
-            registry::MIN_PER_ENGAGEMENT_WHY,
-        ),
-    },
-    Param {
-        name: "draws",
-        default: "3",
-        unit: "",
-        help: "Figure IV with Case A errors: manufactured pairs per mesh (each swept over every G)",
-        kind: registry::Kind::count(1, registry::MAX_COUNT as u64, "a mean needs one draw"),
-    },
-    Param {
-        name: "samples",
-        default: "2000",
-        unit: "",
-        help: "TD samples per pair run of the Figure IV sweep (figIV's default)",
-        kind: registry::Kind::count(
-            registry::MIN_SAMPLES,
-            registry::MAX_COUNT as u64,
-            registry::MIN_SAMPLES_WHY,
-        ),
-    },
+    TRIALS,
+    TABLE1_CLEARANCE,
+    SAMPLES_PER_ENGAGEMENT,
+    DRAWS,
+    SAMPLES,
 ];
 
 registry::inventory::submit! {
@@ -331,7 +348,7 @@ fn table1_trials(
     span: f64,
     per: usize,
 ) -> Result<Vec<Vec<PointerSigma>>, RunError> {
-    let trials = ctx.usize("trials")?;
+    let trials: usize = ctx.get(&TRIALS)?;
     let seed = ctx.seed();
     let turns: Vec<(&str, f64)> = POINTERS
         .iter()
@@ -353,20 +370,10 @@ fn table1_trials(
 }
 
 /// The run length of a pointer as `table1` runs it by default (the caption's turns of b).
-fn caption_turns(param: &str) -> Result<f64, RunError> {
-    let p = [
-        study::pointers::LUNAR_TURNS,
-        study::pointers::METONIC_TURNS,
-        study::pointers::SAROS_TURNS,
-        study::pointers::GAMES_TURNS,
-        study::pointers::EXELIGMOS_TURNS,
-    ]
-    .into_iter()
-    .find(|p| p.name == param)
-    .ok_or_else(|| RunError::Internal(format!("no run length {param}")))?;
+fn caption_turns(p: &Param) -> Result<f64, RunError> {
     p.default
         .parse()
-        .map_err(|_| RunError::Internal(format!("run length {param} is not a number")))
+        .map_err(|_| RunError::Internal(format!("run length {} is not a number", p.name)))
 }
 
 /// Mean over trials of one field, for pointer `i`.
@@ -494,10 +501,10 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     let g = Gearing::freeth2006();
     let g2021 = Gearing::builtin("freeth2021")
         .ok_or_else(|| RunError::Internal("the embedded freeth2021 gearing is missing".into()))?;
-    let trials = ctx.usize("trials")?;
-    let clearance = ctx.f64("clearance")?;
-    let per = ctx.usize("samples_per_engagement")?;
-    let samples = ctx.usize("samples")?;
+    let trials: usize = ctx.get(&TRIALS)?;
+    let clearance: f64 = ctx.get(&TABLE1_CLEARANCE)?;
+    let per: usize = ctx.get(&SAMPLES_PER_ENGAGEMENT)?;
+    let samples: usize = ctx.get(&SAMPLES)?;
     let paper_from = crate::paper::get("sigma-causes", "figIV.minimum_from").map(|r| r.value);
     let paper_to = crate::paper::get("sigma-causes", "figIV.minimum_to").map(|r| r.value);
 
@@ -507,7 +514,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         .iter()
         .map(|r| tip_radii(&g, &g2021, r.radii, r.tooth_height))
         .collect::<Result<_, _>>()?;
-    let draws = ctx.usize("draws")?;
+    let draws: usize = ctx.get(&DRAWS)?;
     let seed = ctx.seed();
     // Columns: the geometry readings, then (CASE_A) the first one's gears with Case A errors,
     // then (IN_BACKLASH) its ideal gears started at rest half-way through the backlash.

@@ -1,21 +1,22 @@
 //! `table1`: σ, Dm and P of the five pointers with ideal triangular teeth (no manufacturing
 //! error) at G = 40 %, averaged over trials with random initial angles.
 
-use mechanism::{Mechanism, trial_rng};
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
-use serde::{Deserialize, Serialize};
 use stats::{Estimate, mean_ci95};
 
 use study::gearing;
-use study::pointers::{POINTERS, pointer_runs};
+use study::pointers::{POINTERS, PointerTrial, pointer_runs};
 
-const PARAMS: &[Param] = &[Param {
+/// `trials`: trials, each with fresh random initial angles.
+const TRIALS: Param = Param {
     name: "trials",
     default: "30",
     unit: "",
     help: "trials, each with fresh random initial angles",
     kind: registry::Kind::count(2, registry::MAX_TRIALS, "an interval needs two trials"),
-}];
+};
+
+const PARAMS: &[Param] = &[TRIALS];
 
 registry::inventory::submit! {
     Experiment {
@@ -29,47 +30,49 @@ registry::inventory::submit! {
     }
 }
 
-/// which JSON cannot carry: they are recorded as bits.
-#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize)]
-struct PointerTrial {
-    #[serde(with = "registry::f64_bits")]
-    sigma: f64,
-    #[serde(with = "registry::f64_bits")]
-    dm: f64,
-    #[serde(with = "registry::f64_bits")]
-    mean: f64,
-    /// The run jammed (or could not run).
-    stopped: bool,
-}
-
-impl PointerTrial {
-    fn new(s: stats::PointerStats, stopped: bool) -> Self {
-        PointerTrial {
-            sigma: s.sigma,
-            dm: s.dm,
-            mean: s.mean,
-            stopped,
-        }
-    }
-}
-
 /// The key of the trial batch: everything that determines the trials.
 fn batch_key(
-    ctx: &Context,
+    gearing: &str,
     trials: usize,
     h: f64,
     clearance: f64,
     runs: &[(&str, f64, usize)],
-) -> Result<String, RunError> {
+) -> String {
     let runs: Vec<String> = runs
         .iter()
         .map(|(name, turns, samples)| format!("{name} {turns} turns {samples} samples"))
         .collect();
-    Ok(format!(
-        "table1: {trials} trials, ideal teeth, h = {h} mm, G = {clearance} %, gearing {}, pointers: {}",
-        ctx.param("gearing")?,
+    format!(
+        "table1: {trials} trials, ideal teeth, h = {h} mm, G = {clearance} %, gearing {gearing}, pointers: {}",
         runs.join(", ")
-    ))
+    )
+}
+
+/// The pointers' exact ratios from the gearing, beside Freeth 2006's.
+fn ratios_table(g: &train::Gearing, runs: &[(&str, f64, usize)]) -> Table {
+    let mut ratios = Table::new(
+        "Pointer ratios from the gearing (exact; turns per turn of the b arbor)",
+        [
+            "pointer",
+            "meshes",
+            "ratio",
+            "as decimal",
+            "days per degree",
+        ],
+    );
+    for &(name, _, _) in runs {
+        let r = g.pointer_ratio(name);
+        ratios.row(vec![
+            name.into(),
+            g.pointer(name).map_or(0, |p| p.meshes.len()).to_string(),
+            r.map_or_else(|| "-".into(), |r| r.to_string()),
+            r.map_or_else(|| "-".into(), |r| format!("{:.9}", r.to_f64())),
+            g.days_per_degree(name)
+                .map_or_else(|| "-".into(), |d| fmt_f64(d, 4)),
+        ]);
+    }
+    ratios.note("Freeth 2006 gives Lunar 254/19, Metonic 5/19, Games 1/4, Saros 940/4237, Exeligmos 235/12711.");
+    ratios
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
@@ -78,32 +81,15 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let g = gearing::load(ctx)?;
-    let trials = ctx.usize("trials")?;
-    let h = ctx.f64("tooth_height")?;
-    let clearance = ctx.f64("clearance")?;
-    let per = ctx.usize("samples_per_engagement")?;
-    let mech = Mechanism::ideal(&g, h, clearance).map_err(study::gearing::mechanism_error)?;
-    let mech = study::events::with_rule(ctx, mech)?;
-    let runs = pointer_runs(ctx, &g, &POINTERS, per)?;
-    let seed = ctx.seed();
-    // One RNG stream per trial; trials in parallel, collected (and so reduced) in trial order.
-    let per_trial: Vec<Vec<PointerTrial>> = ctx.trials(
-        &batch_key(ctx, trials, h, clearance, &runs)?,
-        trials as u64,
-        |t| {
-            let mut rng = trial_rng(seed, t);
-            Ok(runs
-                .iter()
-                .map(
-                    |&(name, turns, samples)| match mech.run_pointer(name, turns, &mut rng) {
-                        Some(r) => PointerTrial::new(r.stats(samples), r.first_stop().is_some()),
-                        None => PointerTrial::new(stats::PointerStats::NAN, true),
-                    },
-                )
-                .collect())
-        },
-    )?;
+    let settings = gearing::Settings::read(ctx)?;
+    let trials: usize = ctx.get(&TRIALS)?;
+    let per = ctx.get(&study::pointers::SAMPLES_PER_ENGAGEMENT)?;
+    let mech = study::pointers::ideal_mechanism(&settings, &study::events::chosen(ctx)?)?;
+    let runs = pointer_runs(ctx, &settings.gearing, &POINTERS, per)?;
+    let (file, h, clearance) = (&settings.file, settings.tooth_height, settings.clearance);
+    let key = batch_key(file, trials, h, clearance, &runs);
+    let g = &settings.gearing;
+    let per_trial = study::pointers::ideal_trials(ctx, &key, &mech, &runs, trials as u64)?;
     // A trial of another shard (`--shard`) is an empty default: read it as zeros.
     let at = |t: &[PointerTrial], i: usize| t.get(i).copied().unwrap_or_default();
 
@@ -195,28 +181,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         "sigma, Dm, P: standard deviation, largest |TD| and |mean TD| of each trial's Theoretical Difference in degrees; trials that jammed: {jammed}."
     ));
     detail.note("Radii: one least-squares module per group of meshed gears (crates/train); D = R1 + R2 - h + G; each mesh's initial angle is drawn per trial.");
-    let mut ratios = Table::new(
-        "Pointer ratios from the gearing (exact; turns per turn of the b arbor)",
-        [
-            "pointer",
-            "meshes",
-            "ratio",
-            "as decimal",
-            "days per degree",
-        ],
-    );
-    for &(name, _, _) in &runs {
-        let r = g.pointer_ratio(name);
-        ratios.row(vec![
-            name.into(),
-            g.pointer(name).map_or(0, |p| p.meshes.len()).to_string(),
-            r.map_or_else(|| "-".into(), |r| r.to_string()),
-            r.map_or_else(|| "-".into(), |r| format!("{:.9}", r.to_f64())),
-            g.days_per_degree(name)
-                .map_or_else(|| "-".into(), |d| fmt_f64(d, 4)),
-        ]);
-    }
-    ratios.note("Freeth 2006 gives Lunar 254/19, Metonic 5/19, Games 1/4, Saros 940/4237, Exeligmos 235/12711.");
+    let ratios = ratios_table(g, &runs);
     Ok(Report {
         tables: vec![layout, detail, ratios],
         files: vec![OutputFile::new("table1-data.csv", csv)],

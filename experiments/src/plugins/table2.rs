@@ -2,68 +2,81 @@
 //! same manufactured gears with triangular teeth, trial by trial, with the difference and its
 //! 95 % interval.
 
-use mechanism::{Mechanism, Model, trial_rng};
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
 use stats::mean_ci95;
 
 use crate::common::{Series, semilog_plot};
-use study::errors;
 use study::gearing;
 use study::grids::CASES;
-use study::pointers::pointer_runs;
+use study::pointers::{CaseMechanism, both_model_trials, pointer_runs};
+
+/// `trials`: trials per case, each with fresh errors and initial angles (Edmunds gives no count).
+const TRIALS: Param = Param {
+    name: "trials",
+    default: "20",
+    unit: "",
+    help: "trials per case, each with fresh errors and initial angles (Edmunds gives no count)",
+    kind: registry::Kind::count(2, registry::MAX_TRIALS, "an interval needs two trials"),
+};
+
+/// `lunar_turns`: run length, Lunar.
+const LUNAR_TURNS: Param = Param {
+    name: "lunar_turns",
+    default: "1",
+    unit: "turns of b",
+    help: "run length, Lunar",
+    kind: registry::Kind::number(
+        study::pointers::MIN_TURNS,
+        100.0,
+        "turns of b: a shorter run spans too few tooth engagements for a sigma",
+    ),
+};
+
+/// `metonic_turns`: run length, Metonic.
+const METONIC_TURNS: Param = Param {
+    name: "metonic_turns",
+    default: "3.8",
+    unit: "turns of b",
+    help: "run length, Metonic",
+    kind: registry::Kind::number(
+        study::pointers::MIN_TURNS,
+        100.0,
+        "turns of b: a shorter run spans too few tooth engagements for a sigma",
+    ),
+};
+
+/// `saros_turns`: run length, Saros.
+const SAROS_TURNS: Param = Param {
+    name: "saros_turns",
+    default: "4.5",
+    unit: "turns of b",
+    help: "run length, Saros",
+    kind: registry::Kind::number(
+        study::pointers::MIN_TURNS,
+        100.0,
+        "turns of b: a shorter run spans too few tooth engagements for a sigma",
+    ),
+};
+
+/// `samples_per_engagement`: TD samples per engagement of the busiest mesh.
+const SAMPLES_PER_ENGAGEMENT: Param = Param {
+    name: "samples_per_engagement",
+    default: "8",
+    unit: "",
+    help: "TD samples per engagement of the busiest mesh",
+    kind: registry::Kind::count(
+        registry::MIN_PER_ENGAGEMENT,
+        registry::MAX_COUNT as u64,
+        registry::MIN_PER_ENGAGEMENT_WHY,
+    ),
+};
 
 const PARAMS: &[Param] = &[
-    Param {
-        name: "trials",
-        default: "20",
-        unit: "",
-        help: "trials per case, each with fresh errors and initial angles (Edmunds gives no count)",
-        kind: registry::Kind::count(2, registry::MAX_TRIALS, "an interval needs two trials"),
-    },
-    Param {
-        name: "lunar_turns",
-        default: "1",
-        unit: "turns of b",
-        help: "run length, Lunar",
-        kind: registry::Kind::number(
-            study::pointers::MIN_TURNS,
-            100.0,
-            "turns of b: a shorter run spans too few tooth engagements for a sigma",
-        ),
-    },
-    Param {
-        name: "metonic_turns",
-        default: "3.8",
-        unit: "turns of b",
-        help: "run length, Metonic",
-        kind: registry::Kind::number(
-            study::pointers::MIN_TURNS,
-            100.0,
-            "turns of b: a shorter run spans too few tooth engagements for a sigma",
-        ),
-    },
-    Param {
-        name: "saros_turns",
-        default: "4.5",
-        unit: "turns of b",
-        help: "run length, Saros",
-        kind: registry::Kind::number(
-            study::pointers::MIN_TURNS,
-            100.0,
-            "turns of b: a shorter run spans too few tooth engagements for a sigma",
-        ),
-    },
-    Param {
-        name: "samples_per_engagement",
-        default: "8",
-        unit: "",
-        help: "TD samples per engagement of the busiest mesh",
-        kind: registry::Kind::count(
-            registry::MIN_PER_ENGAGEMENT,
-            registry::MAX_COUNT as u64,
-            registry::MIN_PER_ENGAGEMENT_WHY,
-        ),
-    },
+    TRIALS,
+    LUNAR_TURNS,
+    METONIC_TURNS,
+    SAROS_TURNS,
+    SAMPLES_PER_ENGAGEMENT,
     gearing::PIN_AND_SLOT,
 ];
 
@@ -79,30 +92,14 @@ registry::inventory::submit! {
     }
 }
 
-const POINTERS: [(&str, &str); 3] = [
-    ("Lunar", "lunar_turns"),
-    ("Metonic", "metonic_turns"),
-    ("Saros", "saros_turns"),
+const POINTERS: [(&str, &Param); 3] = [
+    ("Lunar", &LUNAR_TURNS),
+    ("Metonic", &METONIC_TURNS),
+    ("Saros", &SAROS_TURNS),
 ];
 
 /// One trial of one case: per pointer, (Edmunds σ, Edmunds Dm, triangular σ, triangular Dm, jammed).
 type CaseTrial = Vec<(f64, f64, f64, f64, bool)>;
-
-/// One pointer of one trial as [`Context::trials`] records it (for shards and their merge):
-/// Edmunds' and the triangular σ and Dm, and whether the triangular run jammed. A run that
-/// stops at once has NaN statistics, which JSON cannot carry: they are recorded as bits.
-#[derive(Debug, Clone, Copy, Default, serde::Serialize, serde::Deserialize)]
-struct Recorded {
-    #[serde(with = "registry::f64_bits")]
-    edmunds_sigma: f64,
-    #[serde(with = "registry::f64_bits")]
-    edmunds_dm: f64,
-    #[serde(with = "registry::f64_bits")]
-    triangular_sigma: f64,
-    #[serde(with = "registry::f64_bits")]
-    triangular_dm: f64,
-    jammed: bool,
-}
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
     study::events::labelled(ctx, counted)
@@ -110,80 +107,33 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let cells = study::grids::CellSettings::read(ctx, "trials")?;
-    let (g, hyp, trials) = (&cells.gearing, cells.hypothesis, cells.trials as usize);
-    let (h, clearance) = (ctx.f64("tooth_height")?, ctx.f64("clearance")?);
-    let per = ctx.usize("samples_per_engagement")?;
+    let cells = study::grids::CellSettings::read(ctx, &TRIALS)?;
+    let (g, hyp, trials) = (cells.gearing(), cells.hypothesis(), cells.trials as usize);
+    let (h, clearance) = (cells.gearing.tooth_height, cells.clearance()?);
+    let per = ctx.get(&SAMPLES_PER_ENGAGEMENT)?;
     let pin_and_slot = gearing::pin_and_slot(ctx)?;
     let runs = pointer_runs(ctx, g, &POINTERS, per)?;
-    let seed = ctx.seed();
     let mut results: Vec<Vec<CaseTrial>> = Vec::new();
     for (ci, &(case, systematic, random)) in CASES.iter().enumerate() {
-        let p = study::grids::case_params(ctx, hyp, (systematic, random))?;
+        let p = cells.errors.case_params((systematic, random))?;
         // Named by everything that determines the trials, so shards run and merge them.
         let key = format!(
             "table2: case {case} ({} {:?}), {trials} trials, h = {h} mm, G = {clearance} %, gearing {}, pin_and_slot {pin_and_slot}, events {}, pointers {:?}",
             hyp.name(),
             p.iter().collect::<Vec<_>>(),
-            ctx.param("gearing")?,
-            study::events::chosen(ctx)?.label(),
+            cells.gearing.file,
+            cells.rule.label(),
             runs,
         );
-        let per_trial: Vec<Vec<Recorded>> = ctx.trials(&key, trials as u64, |t| {
-            // One stream per (case, trial): errors first, then initial angles.
-            let mut rng = trial_rng(seed, ((ci as u64) << 32) | t);
-            let mut failure = None;
-            let mech = Mechanism::build(g, h, clearance, |name, gear| {
-                errors::make(hyp, &gear, name, &p, &mut rng).map_err(|e| {
-                    let text = e.to_string();
-                    failure = Some(e);
-                    text
-                })
-            });
-            let mech = match (mech, failure) {
-                (_, Some(e)) => return Err(e),
-                // The errors moved the bodies into each other: these inputs cannot be run.
-                (Err(e), None) => {
-                    return Err(RunError::bad(
-                        "--hypothesis",
-                        format!("mesh {}", e.mesh),
-                        format!(
-                            "{}: the manufactured gears cannot be placed at this clearance",
-                            e.rule
-                        ),
-                    ));
-                }
-                (Ok(m), None) => gearing::with_pin_and_slot(
-                    ctx,
-                    study::events::with_rule(ctx, m)?,
-                    pin_and_slot,
-                )?,
-            };
-            let mut out = Vec::new();
-            for &(name, turns, samples) in &runs {
-                // The same initial angles for both models.
-                let mut rng_edmunds = rng.clone();
-                let edm = mech.run_pointer_with(name, turns, &mut rng_edmunds, Model::Edmunds);
-                let tri = mech.run_pointer_to_first_jam(name, turns, &mut rng);
-                let (Some(edm), Some(tri)) = (edm, tri) else {
-                    return Err(RunError::bad(
-                        "gearing",
-                        format!("pointer {name}"),
-                        "is missing",
-                    ));
-                };
-                // A jam stops the pointer: triangular statistics run up to it.
-                let (se, st) = (edm.stats_through_jams(samples), tri.stats(samples));
-                out.push(Recorded {
-                    edmunds_sigma: se.sigma,
-                    edmunds_dm: se.dm,
-                    triangular_sigma: st.sigma,
-                    triangular_dm: st.dm,
-                    jammed: tri.first_stop().is_some(),
-                });
-            }
-            Ok(out)
-        })?;
+        let made = CaseMechanism {
+            gearing: (g, &cells.gearing.file),
+            tooth_height: h,
+            clearance,
+            errors: (hyp, &p),
+            rule: &cells.rule,
+            pin_and_slot,
+        };
+        let per_trial = both_model_trials(ctx, &key, ci as u64, &made, &runs, trials as u64)?;
         results.push(
             per_trial
                 .into_iter()

@@ -6,17 +6,9 @@ use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table};
 
 use study::cell::{Purpose, run_cells};
 use crate::cells::{CSV_COLUMNS, Tally, cell_text, csv_columns, paper_counts};
-use study::grids::{CASES, case_cells, cases_apply};
+use study::grids::{CASES, CellSettings, TRIALS, case_cells, cases_apply};
 
-const PARAMS: &[Param] = &[
-    Param {
-        name: "trials",
-        default: "200",
-        unit: "",
-        help: "trials per cell (the paper: 200)",
-        kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
-    },
-];
+const PARAMS: &[Param] = &[TRIALS];
 
 registry::inventory::submit! {
     Experiment {
@@ -39,12 +31,12 @@ registry::inventory::submit! {
 }
 
 /// A cell of Table 3 for `cargo xtask replay`: `CASE/MESH`, at the experiment's G and split.
-fn cell<'a>(ctx: &Context, c: &CellText<'a>) -> Result<Cell<'a>, RunError> {
+fn cell<'a>(s: &CellSettings, c: &CellText<'a>) -> Result<Cell<'a>, RunError> {
     let &[case, mesh] = c.parts() else {
         return Err(c.malformed());
     };
     let (systematic, random) = c.case(case)?;
-    let split = ctx.f64("split")?;
+    let split = s.errors.split()?;
     Ok(Cell {
         mesh,
         errors: vec![
@@ -52,7 +44,7 @@ fn cell<'a>(ctx: &Context, c: &CellText<'a>) -> Result<Cell<'a>, RunError> {
             ("systematic", systematic),
             ("split", split),
         ],
-        clearance: ctx.f64("clearance")?,
+        clearance: s.clearance()?,
         typed: Vec::new(),
     })
 }
@@ -70,11 +62,10 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let cells = study::grids::CellSettings::read(ctx, "trials")?;
-    let (g, hyp, trials) = (&cells.gearing, cells.hypothesis, cells.trials);
-    let clearance = ctx.f64("clearance")?;
+    let s = CellSettings::read(ctx, &TRIALS)?;
+    let (g, hyp, trials, clearance) = (s.gearing(), s.hypothesis(), s.trials, s.clearance()?);
     let meshes: Vec<&str> = g.meshes().iter().map(|m| m.label.as_str()).collect();
-    let mut cells = case_cells(ctx, g, hyp, clearance)?;
+    let mut cells = case_cells(&s, clearance)?;
     // A hypothesis that takes neither a random nor a systematic error (ideal, measured, a
     // shape-only one) makes the four Cases the same cells: one row, compared with no Case.
     let cases_apply = cases_apply(hyp);

@@ -6,7 +6,7 @@ use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table};
 
 use study::cell::{Purpose, label};
 use crate::cells::{CSV_COLUMNS, Tally, cell_text, csv_columns, paper_counts};
-use study::grids::{TRIALS, run_grid};
+use study::grids::{CellSettings, TRIALS, run_grid};
 
 const PARAMS: &[Param] = &[
     TRIALS,
@@ -34,7 +34,7 @@ registry::inventory::submit! {
 
 /// A cell of Table 4 for `cargo xtask replay`: `RANDOM/MESH` (a random error of its grid, no
 /// systematic error), at the experiment's G.
-fn cell<'a>(ctx: &Context, c: &CellText<'a>) -> Result<Cell<'a>, RunError> {
+fn cell<'a>(s: &CellSettings, c: &CellText<'a>) -> Result<Cell<'a>, RunError> {
     let &[random, mesh] = c.parts() else {
         return Err(c.malformed());
     };
@@ -42,7 +42,7 @@ fn cell<'a>(ctx: &Context, c: &CellText<'a>) -> Result<Cell<'a>, RunError> {
     Ok(Cell {
         mesh,
         errors: vec![("random", value), ("systematic", 0.0)],
-        clearance: ctx.f64("clearance")?,
+        clearance: s.clearance()?,
         typed: vec![("random", "random error", random)],
     })
 }
@@ -53,10 +53,9 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let cells = study::grids::CellSettings::read(ctx, TRIALS.name)?;
-    let (g, hyp, trials) = (&cells.gearing, cells.hypothesis, cells.trials);
-    let clearance = ctx.f64("clearance")?;
-    let grid = run_grid(ctx, g, hyp, trials, Purpose::Own)?;
+    let s = CellSettings::read(ctx, &TRIALS)?;
+    let (trials, clearance) = (s.trials, s.clearance()?);
+    let grid = run_grid(ctx, &s, study::tolerance::random_grid(ctx)?, trials, Purpose::Own)?;
 
     let mut header = vec!["random error".to_string()];
     header.extend(grid.meshes.iter().cloned());

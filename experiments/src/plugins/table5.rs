@@ -8,7 +8,7 @@ use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table};
 use study::cell::{Purpose, label};
 use crate::cells::{CSV_COLUMNS, Tally, cell_text, csv_columns, paper_counts};
 use crate::emax::{EMAX, emax_from_paper, given_random, paper_random, paper_systematic, show};
-use study::grids::{TRIALS, derive};
+use study::grids::{CellSettings, TRIALS, derive};
 use study::tolerance::{self, RULE};
 
 const PARAMS: &[Param] = &[
@@ -39,7 +39,7 @@ registry::inventory::submit! {
 
 /// A cell of Table 5 for `cargo xtask replay`: `RANDOM/SYSTEMATIC/MESH`, the random error the
 /// mesh's E. max (Table 5's first row), the systematic one a row, at the experiment's G and split.
-fn cell<'a>(ctx: &Context, c: &CellText<'a>) -> Result<Cell<'a>, RunError> {
+fn cell<'a>(s: &CellSettings, c: &CellText<'a>) -> Result<Cell<'a>, RunError> {
     let &[random, systematic, mesh] = c.parts() else {
         return Err(c.malformed());
     };
@@ -56,12 +56,12 @@ fn cell<'a>(ctx: &Context, c: &CellText<'a>) -> Result<Cell<'a>, RunError> {
                 systematic,
             )?,
         ),
-        ("split", ctx.f64("split")?),
+        ("split", s.errors.split()?),
     ];
     Ok(Cell {
         mesh,
         errors,
-        clearance: ctx.f64("clearance")?,
+        clearance: s.clearance()?,
         typed: vec![
             ("random", "random error", random),
             ("systematic", "systematic error", systematic),
@@ -76,11 +76,16 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let cells = study::grids::CellSettings::read(ctx, TRIALS.name)?;
-    let (g, hyp, trials) = (&cells.gearing, cells.hypothesis, cells.trials);
+    let s = CellSettings::read(ctx, &TRIALS)?;
+    let trials = s.trials;
     let rule = tolerance::rule(ctx)?;
-    let (clearance, split) = (ctx.f64("clearance")?, ctx.f64("split")?);
-    let t = derive(ctx, g, hyp, trials, rule, Purpose::Own, given_random(ctx, g)?)?;
+    let (clearance, split) = (s.clearance()?, s.errors.split()?);
+    let grids = (
+        tolerance::random_grid(ctx)?,
+        tolerance::systematic_grid(ctx)?,
+    );
+    let given = given_random(ctx, s.gearing())?;
+    let t = derive(ctx, &s, grids, rule, Purpose::Own, given)?;
     let given = emax_from_paper(ctx)?;
     let meshes = &t.random_grid.meshes;
     let allowed = tolerance::allowed_jams(trials, rule);
@@ -99,7 +104,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         header,
     );
     let mut csv = format!("systematic,mesh,random,{CSV_COLUMNS}\n");
-    let mut emax_csv = String::from(
+    let emax_csv = String::from(
         "mesh,random_emax,paper_random_emax,systematic_emax_deg,paper_systematic_emax_deg_by_rule\n",
     );
     let mut row = vec!["E. max (random)".to_string()];
@@ -138,27 +143,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         }
         table.row(row);
     }
-    let mut row = vec!["E. max (systematic)".to_string()];
-    for (m, mesh) in meshes.iter().enumerate() {
-        let ours = if t.random[m].is_some() {
-            show(t.systematic[m], t.sys_values.first(), 1)
-        } else {
-            "-".into()
-        };
-        let paper = paper_systematic(mesh, &t.sys_values, rule);
-        let paper_text = match paper {
-            Some(p) => show(p, t.sys_values.first(), 1),
-            None => "-".into(),
-        };
-        row.push(format!("{ours} ({paper_text})"));
-        emax_csv.push_str(&format!(
-            "{mesh},{},{},{},{}\n",
-            t.random[m].map_or_else(String::new, |v| v.to_string()),
-            paper_random(mesh).map_or_else(String::new, |v| v.to_string()),
-            t.systematic[m].map_or_else(String::new, |v| v.to_string()),
-            paper.flatten().map_or_else(String::new, |v| v.to_string()),
-        ));
-    }
+    let (row, emax_csv) = systematic_row(&t, rule, emax_csv);
     table.row(row);
     table.note(tally.note());
     if given {
@@ -191,6 +176,39 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         agreement: Some(tally.agreement()),
         ..Default::default()
     })
+}
+
+/// Table 5's last row, each mesh's largest tolerable systematic amplitude beside the one the
+/// paper's own counts give by the same rule, and the lines of `table5-emax.csv` (after its
+/// header, `emax_csv`).
+fn systematic_row(
+    t: &study::grids::Tolerances,
+    rule: f64,
+    mut emax_csv: String,
+) -> (Vec<String>, String) {
+    let meshes = &t.random_grid.meshes;
+    let mut row = vec!["E. max (systematic)".to_string()];
+    for (m, mesh) in meshes.iter().enumerate() {
+        let ours = if t.random[m].is_some() {
+            show(t.systematic[m], t.sys_values.first(), 1)
+        } else {
+            "-".into()
+        };
+        let paper = paper_systematic(mesh, &t.sys_values, rule);
+        let paper_text = match paper {
+            Some(p) => show(p, t.sys_values.first(), 1),
+            None => "-".into(),
+        };
+        row.push(format!("{ours} ({paper_text})"));
+        emax_csv.push_str(&format!(
+            "{mesh},{},{},{},{}\n",
+            t.random[m].map_or_else(String::new, |v| v.to_string()),
+            paper_random(mesh).map_or_else(String::new, |v| v.to_string()),
+            t.systematic[m].map_or_else(String::new, |v| v.to_string()),
+            paper.flatten().map_or_else(String::new, |v| v.to_string()),
+        ));
+    }
+    (row, emax_csv)
 }
 
 #[cfg(test)]

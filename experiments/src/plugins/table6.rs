@@ -2,34 +2,37 @@
 //! tolerable random and systematic errors (Tables 4 and 5 by the 1 % rule), 30 trials.
 
 use std::collections::BTreeMap;
-use std::f64::consts::TAU;
 
 use hypotheses::Params;
-use mechanism::{Mechanism, trial_rng};
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
 use stats::{Estimate, PointerStats, mean_ci95};
 
 use crate::emax::{paper_random, paper_systematic, show};
 use study::cell::{Purpose, label};
-use study::errors;
-use study::pointers::{POINTERS, pointer_runs};
+use study::pointers::{Manufactured, POINTERS, pointer_runs};
 use study::tolerance::{self, RULE};
 
+/// `trials`: runs of the whole mechanism, each with fresh errors and initial angles (the paper: 30).
+const TRIALS: Param = Param {
+    name: "trials",
+    default: "30",
+    unit: "",
+    help: "runs of the whole mechanism, each with fresh errors and initial angles (the paper: 30)",
+    kind: registry::Kind::count(2, registry::MAX_TRIALS, "an interval needs two trials"),
+};
+
+/// `cell_trials`: trials per cell of Tables 4 and 5, from which the tolerances are derived.
+const CELL_TRIALS: Param = Param {
+    name: "cell_trials",
+    default: "200",
+    unit: "",
+    help: "trials per cell of Tables 4 and 5, from which the tolerances are derived",
+    kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
+};
+
 const PARAMS: &[Param] = &[
-    Param {
-        name: "trials",
-        default: "30",
-        unit: "",
-        help: "runs of the whole mechanism, each with fresh errors and initial angles (the paper: 30)",
-        kind: registry::Kind::count(2, registry::MAX_TRIALS, "an interval needs two trials"),
-    },
-    Param {
-        name: "cell_trials",
-        default: "200",
-        unit: "",
-        help: "trials per cell of Tables 4 and 5, from which the tolerances are derived",
-        kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
-    },
+    TRIALS,
+    CELL_TRIALS,
     RULE,
     crate::emax::EMAX,
 ];
@@ -49,46 +52,30 @@ registry::inventory::submit! {
 /// One trial: per pointer (statistics up to the first jam, jammed, tooth engagements).
 type PointerTrials = Vec<(PointerStats, bool, u64)>;
 
-/// One pointer of one trial as [`Context::trials`] records it (for shards and their merge); NaN
-/// statistics (a run that stops at once) are recorded as bits.
-#[derive(Debug, Clone, Copy, Default, serde::Serialize, serde::Deserialize)]
-struct Recorded {
-    #[serde(with = "registry::f64_bits")]
-    sigma: f64,
-    #[serde(with = "registry::f64_bits")]
-    dm: f64,
-    #[serde(with = "registry::f64_bits")]
-    mean: f64,
-    jammed: bool,
-    engaged: u64,
-}
-
 fn run(ctx: &Context) -> Result<Report, RunError> {
     study::events::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let cells = study::grids::CellSettings::read(ctx, "trials")?;
-    let (g, hyp, trials) = (&cells.gearing, cells.hypothesis, cells.trials as usize);
-    let cell_trials = ctx.u64("cell_trials")?;
+    // The cells of Tables 4 and 5 count `cell_trials` trials each.
+    let cells = study::grids::CellSettings::read(ctx, &CELL_TRIALS)?;
+    let trials: usize = ctx.get(&TRIALS)?;
+    let (g, hyp, cell_trials) = (cells.gearing(), cells.hypothesis(), cells.trials);
     let rule = tolerance::rule(ctx)?;
     let (h, clearance, split) = (
-        ctx.f64("tooth_height")?,
-        ctx.f64("clearance")?,
-        ctx.f64("split")?,
+        cells.gearing.tooth_height,
+        cells.clearance()?,
+        cells.errors.split()?,
     );
-    let per = ctx.usize("samples_per_engagement")?;
+    let per = ctx.get(&study::pointers::SAMPLES_PER_ENGAGEMENT)?;
     let runs = pointer_runs(ctx, g, &POINTERS, per)?;
-    let tol = study::grids::derive(
-        ctx,
-        g,
-        hyp,
-        cell_trials,
-        rule,
-        Purpose::Input,
-        crate::emax::given_random(ctx, g)?,
-    )?;
+    let grids = (
+        tolerance::random_grid(ctx)?,
+        tolerance::systematic_grid(ctx)?,
+    );
+    let given = crate::emax::given_random(ctx, g)?;
+    let tol = study::grids::derive(ctx, &cells, grids, rule, Purpose::Input, given)?;
 
     // Each gear: the tolerances of its mesh; a gear in two meshes (b2) the smaller of each.
     // Below a grid counts as 0 (no error known to be tolerable).
@@ -110,15 +97,12 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     for (gear, (r, s, _)) in &per_gear {
         params.insert(
             gear.clone(),
-            errors::params(
-                ctx,
-                hyp,
-                &[("random", *r), ("systematic", *s), ("split", split)],
-            )?,
+            cells
+                .errors
+                .params(&[("random", *r), ("systematic", *s), ("split", split)])?,
         );
     }
 
-    let seed = ctx.seed();
     // Named by everything that determines the trials (the tolerances are derived from the
     // parameters, so naming those names them), so shards run and merge them.
     let key = format!(
@@ -128,61 +112,19 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             .iter()
             .map(|(gear, p)| (gear.as_str(), p.iter().collect::<Vec<_>>()))
             .collect::<Vec<_>>(),
-        ctx.param("gearing")?,
-        study::events::chosen(ctx)?.label(),
+        cells.gearing.file,
+        cells.rule.label(),
         runs,
     );
-    let recorded: Vec<Vec<Recorded>> = ctx.trials(&key, trials as u64, |t| {
-        // One stream per trial: every gear's errors, then the initial angles.
-        let mut rng = trial_rng(seed, t);
-        let mut failure = None;
-        let mech = Mechanism::build(g, h, clearance, |name, gear| {
-            let Some(p) = params.get(name) else {
-                return Err(format!("gear {name} has no tolerance"));
-            };
-            errors::make(hyp, &gear, name, p, &mut rng).map_err(|e| {
-                let text = e.to_string();
-                failure = Some(e);
-                text
-            })
-        });
-        let mech = match (mech, failure) {
-            (_, Some(e)) => return Err(e),
-            (Err(e), None) => return Err(RunError::Internal(e.to_string())),
-            (Ok(m), None) => study::events::with_rule(ctx, m)?,
-        };
-        let mut out = Vec::new();
-        for &(name, turns, samples) in &runs {
-            let Some(run) = mech.run_pointer_to_first_jam(name, turns, &mut rng) else {
-                return Err(RunError::bad(
-                    "gearing",
-                    format!("pointer {name}"),
-                    "is missing",
-                ));
-            };
-            // A jam stops the pointer: statistics up to it (as table2 does).
-            let stop = run.first_stop();
-            let end = stop.as_ref().map_or(run.input_range, |s| s.input_angle);
-            let engaged: f64 = run
-                .stages
-                .iter()
-                .enumerate()
-                .map(|(i, s)| {
-                    let teeth = mech.mesh(&s.label).map_or(0, |m| m.driver().teeth());
-                    run.arbor_angle(end, i).abs() / TAU * teeth as f64
-                })
-                .sum();
-            let s = run.stats(samples);
-            out.push(Recorded {
-                sigma: s.sigma,
-                dm: s.dm,
-                mean: s.mean,
-                jammed: stop.is_some(),
-                engaged: engaged.round() as u64,
-            });
-        }
-        Ok(out)
-    })?;
+    let made = Manufactured {
+        gearing: g,
+        tooth_height: h,
+        clearance,
+        hypothesis: hyp,
+        params: &params,
+        rule: &cells.rule,
+    };
+    let recorded = study::pointers::tolerated_trials(ctx, &key, &made, &runs, trials as u64)?;
     let per_trial: Vec<PointerTrials> = recorded
         .into_iter()
         .map(|trial| {

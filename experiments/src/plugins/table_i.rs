@@ -6,19 +6,20 @@ use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table};
 
 use crate::cells::{CSV_COLUMNS, Tally, cell_text, csv_columns, paper_counts};
 use study::cell::{Purpose, label, run_cells};
-use study::grids::CASES;
-use study::grids::TRIALS;
-use study::grids::case_cells;
+use study::grids::{CASES, CellSettings, TRIALS, case_cells};
+
+/// `clearances`: Table I's clearances G, comma-separated (the paper: 10, 40 and 70).
+const CLEARANCES: Param = Param {
+    name: "clearances",
+    default: "10,40,70",
+    unit: "% of h",
+    help: "clearances G, comma-separated (the paper: 10, 40 and 70)",
+    kind: registry::Kind::Text,
+};
 
 const PARAMS: &[Param] = &[
     TRIALS,
-    Param {
-        name: "clearances",
-        default: "10,40,70",
-        unit: "% of h",
-        help: "clearances G, comma-separated (the paper: 10, 40 and 70)",
-        kind: registry::Kind::Text,
-    },
+    CLEARANCES,
 ];
 
 registry::inventory::submit! {
@@ -42,12 +43,12 @@ registry::inventory::submit! {
 }
 
 /// A cell of Table I for `cargo xtask replay`: `CASE/G/MESH`, at the experiment's split.
-fn cell<'a>(ctx: &Context, c: &CellText<'a>) -> Result<Cell<'a>, RunError> {
+fn cell<'a>(s: &CellSettings, c: &CellText<'a>) -> Result<Cell<'a>, RunError> {
     let &[case, g, mesh] = c.parts() else {
         return Err(c.malformed());
     };
     let (systematic, random) = c.case(case)?;
-    let split = ctx.f64("split")?;
+    let split = s.errors.split()?;
     Ok(Cell {
         mesh,
         errors: vec![
@@ -62,7 +63,7 @@ fn cell<'a>(ctx: &Context, c: &CellText<'a>) -> Result<Cell<'a>, RunError> {
 
 /// The `clearances` parameter: a comma-separated list of clearances, each in (0, 200] % of h.
 fn clearances(ctx: &Context) -> Result<Vec<f64>, RunError> {
-    study::gearing::clearance_list(ctx, "clearances", study::gearing::MAX_LISTED_CLEARANCE)
+    study::gearing::clearance_list(ctx, &CLEARANCES, study::gearing::MAX_LISTED_CLEARANCE)
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
@@ -71,8 +72,8 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let cells = study::grids::CellSettings::read(ctx, TRIALS.name)?;
-    let (g, hyp, trials) = (&cells.gearing, cells.hypothesis, cells.trials);
+    let s = CellSettings::read(ctx, &TRIALS)?;
+    let (g, hyp, trials) = (s.gearing(), s.hypothesis(), s.trials);
     let gs = clearances(ctx)?;
     let meshes: Vec<String> = g.meshes().iter().map(|m| m.label.clone()).collect();
     // All cells in one call: Cases by clearance, as case_cells lays them out. A hypothesis the
@@ -81,7 +82,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let cases = if cases_apply { CASES.len() } else { 1 };
     let mut cells = Vec::new();
     for &clearance in &gs {
-        let mut these = case_cells(ctx, g, hyp, clearance)?;
+        let mut these = case_cells(&s, clearance)?;
         these.truncate(cases * meshes.len());
         cells.extend(these);
     }

@@ -5,16 +5,13 @@
 //! at the cap. Compared with the grid-derived value (Table 4 by the rule) and the paper's E. max,
 //! with the pair turns each needed.
 
-use hypotheses::Hypothesis;
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table};
 use stats::clopper_pearson95;
-use train::Gearing;
 
 use crate::emax::{paper_random, show};
-use study::cell::{CellRange, CellSpec, Counts, Purpose, label, run_cell_ranges};
-use study::errors;
-use study::gearing;
-use study::tolerance::{self, RANDOM_FROM, RANDOM_STEP, RANDOM_TO, RULE};
+use study::cell::{CellRange, Counts, Purpose, label, run_cell_ranges};
+use study::grids::CellSettings;
+use study::tolerance::{self, RANDOM_STEP, RULE};
 
 const SEARCH_LO: Param = Param {
     name: "search_lo",
@@ -242,10 +239,10 @@ struct Settings {
 }
 
 fn settings(ctx: &Context) -> Result<Settings, RunError> {
-    let (lo, hi) = (ctx.f64(SEARCH_LO.name)?, ctx.f64(SEARCH_HI.name)?);
-    let resolution = ctx.f64(RESOLUTION.name)?;
-    let rule = ctx.f64(RULE.name)?;
-    let (batch, cap) = (ctx.u64(BATCH.name)?, ctx.u64(CAP.name)?);
+    let (lo, hi) = (ctx.get::<f64>(&SEARCH_LO)?, ctx.get::<f64>(&SEARCH_HI)?);
+    let resolution = ctx.get::<f64>(&RESOLUTION)?;
+    let rule = ctx.get::<f64>(&RULE)?;
+    let (batch, cap) = (ctx.get::<u64>(&BATCH)?, ctx.get::<u64>(&CAP)?);
     let short = registry::fmt_number;
     if hi.is_nan() || lo >= hi {
         // Name the one the user set: `search_hi` at or below the default low end, or
@@ -304,14 +301,9 @@ fn settings(ctx: &Context) -> Result<Settings, RunError> {
 /// Runs every mesh's search in lockstep: each round adds one batch of trials to every mesh's
 /// running probe, all in one flat batch of the shared runner (as an input, never sharded: what
 /// runs next depends on the counts), so the result does not depend on threads or shards.
-fn search(
-    ctx: &Context,
-    g: &Gearing,
-    hyp: &'static dyn Hypothesis,
-    s: &Settings,
-) -> Result<Vec<Search>, RunError> {
-    let (h, clearance) = (ctx.f64("tooth_height")?, ctx.f64("clearance")?);
-    let meshes: Vec<String> = g.meshes().iter().map(|m| m.label.clone()).collect();
+fn search(ctx: &Context, cells: &CellSettings, s: &Settings) -> Result<Vec<Search>, RunError> {
+    let clearance = cells.clearance()?;
+    let meshes = cells.meshes();
     let mut searches: Vec<Search> = meshes
         .iter()
         .map(|_| Search::new(s.lo, s.hi, s.resolution))
@@ -324,18 +316,13 @@ fn search(
         let mut owners = Vec::new();
         for (m, sr) in searches.iter().enumerate() {
             let Some(p) = sr.running() else { continue };
-            let params = errors::params(ctx, hyp, &[("random", p.value), ("systematic", 0.0)])?;
+            let params = cells
+                .errors
+                .params(&[("random", p.value), ("systematic", 0.0)])?;
             let start = p.counts.trials;
             let end = (start + s.batch).min(s.cap);
             ranges.push(CellRange {
-                cell: CellSpec {
-                    mesh: meshes[m].clone(),
-                    hypothesis: hyp,
-                    params,
-                    tooth_height: h,
-                    clearance,
-                    events: study::events::chosen(ctx)?,
-                },
+                cell: cells.cell(&meshes[m], params, clearance),
                 range: start..end,
             });
             owners.push(m);
@@ -343,7 +330,7 @@ fn search(
         if ranges.is_empty() {
             return Ok(searches);
         }
-        let counts = run_cell_ranges(ctx, g, &ranges, Purpose::Input)?;
+        let counts = run_cell_ranges(ctx, cells.gearing(), &ranges, Purpose::Input)?;
         for (&m, c) in owners.iter().zip(counts) {
             let sr = &mut searches[m];
             sr.add(c, s.rule, s.cap);
@@ -364,20 +351,61 @@ fn show_search(sr: &Search, s: &Settings) -> String {
     }
 }
 
+/// The notes under the table: how the search brackets and decides, and what the grid ran; the
+/// grid's step is `step`, and `inside` and `outside` count the paper's E. max within one
+/// resolution of the search's and further.
+fn explain(
+    table: &mut Table,
+    s: &Settings,
+    grid: &study::grids::RandomGrid,
+    step: f64,
+    (inside, outside): (u64, u64),
+) {
+    let allowed = tolerance::allowed_jams(s.cap, s.rule);
+    table.note(format!(
+        "Search: bisection of [{}, {}] (assuming the jam rate grows with the error) until the bracket is at most {} wide; the value shown is the largest probed value found tolerable, so the mesh's limit lies between it and the next probed value that failed (CSV). `< {}`: even the lower end failed; `>= {}`: even the upper end passed.",
+        label(s.lo, 3),
+        label(s.hi, 3),
+        label(s.resolution, 3),
+        label(s.lo, 3),
+        label(s.hi, 3),
+    ));
+    table.note(format!(
+        "Sequential test at each probed value: {} trials at a time, stopping as soon as the exact (Clopper-Pearson) 95 % interval of the jam rate lies entirely below or above {} %, or the count rule at the cap is already settled (more than {allowed} jams); at {} trials the paper's rule decides (at most {allowed} jams). With a 1 % rule and a cap of 200 a tolerable value always runs to the cap (0 of n has an upper bound below 1 % only from n = 368), so the savings come from failing values stopped early and from fewer values probed.",
+        s.batch, s.rule, s.cap,
+    ));
+    table.note(format!(
+        "Grid: Table 4's cells ({} values from {} by {}, {} trials each) by the same rule; a probed value on the grid uses the same trial streams as the grid's cell. Paper's E. max within one resolution of the search's: {inside} meshes; further: {outside}.",
+        grid.values.len(),
+        grid.values.first().map_or_else(|| "-".into(), |v| label(*v, 3)),
+        label(step, 3),
+        s.cap,
+    ));
+}
+
+/// The share of a grid's `grid` trials a search saved by running `used` (%; 0 for no grid).
+fn saved(used: u64, grid: u64) -> f64 {
+    if grid == 0 {
+        0.0
+    } else {
+        100.0 * (1.0 - used as f64 / grid as f64)
+    }
+}
+
 fn run(ctx: &Context) -> Result<Report, RunError> {
     study::events::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let g = gearing::load(ctx)?;
-    let hyp = errors::chosen(ctx)?;
+    // Table 4's grid runs `cap` trials a cell, the most a search's probe runs.
+    let cells = CellSettings::read(ctx, &CAP)?;
     let s = settings(ctx)?;
-    let clearance = ctx.f64("clearance")?;
+    let clearance = cells.clearance()?;
     // The grid's parameters are checked before anything runs.
-    tolerance::grid(ctx, &RANDOM_FROM, &RANDOM_TO, &RANDOM_STEP)?;
-    let searches = search(ctx, &g, hyp, &s)?;
-    let grid = study::grids::run_grid(ctx, &g, hyp, s.cap, Purpose::Input)?;
+    let values = tolerance::random_grid(ctx)?;
+    let searches = search(ctx, &cells, &s)?;
+    let grid = study::grids::run_grid(ctx, &cells, values, s.cap, Purpose::Input)?;
     let grid_tolerable = grid.tolerable(s.cap, s.rule);
     let grid_per_mesh = grid.values.len() as u64 * s.cap;
 
@@ -402,13 +430,6 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         "mesh,search_emax,search_fail,grid_emax,paper_emax,probes,search_trials,grid_trials,saved_percent\n",
     );
     let mut probes_csv = String::from("mesh,probe,random,trials,jams,disengagements,decision\n");
-    let saved = |used: u64, grid: u64| {
-        if grid == 0 {
-            0.0
-        } else {
-            100.0 * (1.0 - used as f64 / grid as f64)
-        }
-    };
     let (mut inside, mut outside) = (0, 0);
     let (mut used_total, mut grid_total, mut probes_total) = (0, 0, 0);
     for ((mesh, sr), grid_value) in grid.meshes.iter().zip(&searches).zip(&grid_tolerable) {
@@ -472,26 +493,8 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         grid_total.to_string(),
         format!("{:.0}", saved(used_total, grid_total)),
     ]);
-    let allowed = tolerance::allowed_jams(s.cap, s.rule);
-    table.note(format!(
-        "Search: bisection of [{}, {}] (assuming the jam rate grows with the error) until the bracket is at most {} wide; the value shown is the largest probed value found tolerable, so the mesh's limit lies between it and the next probed value that failed (CSV). `< {}`: even the lower end failed; `>= {}`: even the upper end passed.",
-        label(s.lo, 3),
-        label(s.hi, 3),
-        label(s.resolution, 3),
-        label(s.lo, 3),
-        label(s.hi, 3),
-    ));
-    table.note(format!(
-        "Sequential test at each probed value: {} trials at a time, stopping as soon as the exact (Clopper-Pearson) 95 % interval of the jam rate lies entirely below or above {} %, or the count rule at the cap is already settled (more than {allowed} jams); at {} trials the paper's rule decides (at most {allowed} jams). With a 1 % rule and a cap of 200 a tolerable value always runs to the cap (0 of n has an upper bound below 1 % only from n = 368), so the savings come from failing values stopped early and from fewer values probed.",
-        s.batch, s.rule, s.cap,
-    ));
-    table.note(format!(
-        "Grid: Table 4's cells ({} values from {} by {}, {} trials each) by the same rule; a probed value on the grid uses the same trial streams as the grid's cell. Paper's E. max within one resolution of the search's: {inside} meshes; further: {outside}.",
-        grid.values.len(),
-        grid.values.first().map_or_else(|| "-".into(), |v| label(*v, 3)),
-        label(ctx.f64(RANDOM_STEP.name)?, 3),
-        s.cap,
-    ));
+    let step = ctx.get::<f64>(&RANDOM_STEP)?;
+    explain(&mut table, &s, &grid, step, (inside, outside));
     let trials = used_total + grid.all().map(|c| c.trials).sum::<u64>();
     let engagements = searches.iter().map(Search::engagements).sum::<u64>()
         + grid.all().map(|c| c.engagements).sum::<u64>();
