@@ -1,12 +1,19 @@
 //! The paper's kind of contact test run on the ideal pairs of Figure IV (`contact-tolerance`): an
 //! overlap area ignored up to a tolerance, or tips cut flat, in place of the exact solver's
-//! contact (`polycheck::area`, which shares nothing with the solver), σ against G for each mesh.
+//! contact (`polycheck::area`, which shares nothing with the solver), σ against G for each mesh;
+//! and the stepped area test on the per-mesh tables' manufactured gears beside the exact solver
+//! (`jam-readings`, `polycheck::stepped`), trial by trial on the cells' own streams.
 
-use geometry::centre_distance;
+use contact::{Event, Start};
+use geometry::{Gear, centre_distance};
 use polycheck::area::AreaPair;
+use polycheck::stepped::{GearOutline, SteppedPair, Stepping};
 use registry::{Context, RunError};
 use serde::{Deserialize, Serialize};
 
+use train::Gearing;
+
+use crate::cell::{CellSpec, fnv1a64, rebuild};
 use crate::limits::IdealPair;
 
 /// One contact test: an overlap area ignored (mm²) and a tip cut (% of h); a ladder of tests
@@ -86,6 +93,131 @@ pub fn curves(
         let (ti, mi) = (j as usize / meshes.len(), j as usize % meshes.len());
         Ok(curve(&meshes[mi], tests[ti], samples))
     })
+}
+
+/// One contact test of `jam-readings`, applied to every cell alike.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Reading {
+    /// Our exact solver: a jam is a contact stop (lock, strike, blocked start).
+    Exact,
+    /// Not a contact test but the drive's direction, for comparison: the exact solver with the
+    /// other gear of each mesh driving (the same manufactured gears).
+    ExactReversed,
+    /// The stepped area test ignoring overlaps up to this area (mm²).
+    Area(f64),
+}
+
+/// A gear's outline as plain numbers for the area test (straight flanks only).
+fn outline(g: &Gear) -> Result<GearOutline, RunError> {
+    if g.flank_sagitta() != 0.0 {
+        return Err(RunError::bad(
+            "--hypothesis",
+            "flank_sagitta",
+            "the area test takes straight flanks only",
+        ));
+    }
+    let n = g.teeth() as i64;
+    let e = g.rotation_centre();
+    Ok(GearOutline {
+        tips: g.tip_angles().to_vec(),
+        valleys: g.valley_angles().to_vec(),
+        tip_radii: (0..n).map(|k| g.tip_radius_of(k)).collect(),
+        root_radii: (0..n).map(|k| g.root_radius_of(k)).collect(),
+        rotation_centre: [e.x, e.y],
+    })
+}
+
+/// Trial `t` of `spec` under every reading: bit r set when reading r jams.
+fn trial(
+    g: &Gearing,
+    spec: &CellSpec,
+    seed: u64,
+    t: u64,
+    readings: &[Reading],
+    stepping: &Stepping,
+) -> Result<u64, RunError> {
+    let rebuilt = rebuild(g, spec, seed, t)?;
+    let Some(mesh) = rebuilt.mesh.as_ref() else {
+        // Bodies that overlap at every angle cannot turn under any contact test.
+        return Ok((1u64 << readings.len()) - 1);
+    };
+    let (phi0, turn) = (rebuilt.phi0, rebuilt.turn);
+    let (driver, driven) = (outline(mesh.driver())?, outline(mesh.driven())?);
+    let mut bits = 0;
+    for (r, reading) in readings.iter().enumerate() {
+        let jam = match *reading {
+            Reading::Exact => {
+                let stop = |events: &[Event]| events.iter().any(|e| e.kind.is_contact_stop());
+                let events =
+                    mesh.run_events_until_answered(phi0, phi0 + turn, Start::Touching(0.0), &stop);
+                stop(&events)
+            }
+            Reading::ExactReversed => reversed_jams(mesh, phi0),
+            Reading::Area(tol) => {
+                let pair = SteppedPair::new(
+                    &driver,
+                    &driven,
+                    mesh.centre_distance(),
+                    tol,
+                    spec.tooth_height,
+                );
+                pair.run(phi0, turn, 0.0, stepping).jam.is_some()
+            }
+        };
+        bits |= u64::from(jam) << r;
+    }
+    Ok(bits)
+}
+
+/// Whether the trial's gears jam with the mesh's driven gear driving: the same gears swapped,
+/// started from the same share of the new driver's pitch, over one turn of the larger gear.
+fn reversed_jams(mesh: &contact::Mesh, phi0: f64) -> bool {
+    let (n1, n2) = (mesh.driver().teeth() as f64, mesh.driven().teeth() as f64);
+    let Ok(back) = contact::Mesh::new(
+        mesh.driven().clone(),
+        mesh.driver().clone(),
+        mesh.centre_distance(),
+    ) else {
+        // The same bodies overlap whichever gear drives.
+        return true;
+    };
+    let start = phi0 * n1 / n2;
+    let turn = std::f64::consts::TAU * n1.max(n2) / n2;
+    let stop = |events: &[Event]| events.iter().any(|e| e.kind.is_contact_stop());
+    let events = back.run_events_until_answered(start, start + turn, Start::Touching(0.0), &stop);
+    stop(&events)
+}
+
+/// Every run cell's jam count under every reading: `jams[run][reading]`.
+pub fn run_all(
+    ctx: &Context,
+    g: &Gearing,
+    runs: &[CellSpec],
+    readings: &[Reading],
+    stepping: &Stepping,
+    trials: u64,
+) -> Result<Vec<Vec<u64>>, RunError> {
+    // The batch key names everything its trials depend on: the cells' contents, the readings
+    // and the stepping (hashed, as the text is long).
+    let mut text: String = runs.iter().map(|c| c.canonical() + "\n").collect();
+    text.push_str(&format!("{readings:?};{stepping:?};{trials}"));
+    let key = format!("jam-readings:{:016x}", fnv1a64(text.as_bytes()));
+    // One flat batch (cell-major), so every thread has work however few trials a cell has;
+    // each trial's stream is its cell's and its index's, so the thread count changes nothing.
+    let bits = ctx.trials(&key, runs.len() as u64 * trials, |i| {
+        let spec = &runs[(i / trials) as usize];
+        trial(g, spec, ctx.seed(), i % trials, readings, stepping)
+    })?;
+    Ok(runs
+        .iter()
+        .enumerate()
+        .map(|(c, _)| {
+            let cell = &bits[c * trials as usize..(c + 1) * trials as usize];
+            (0..readings.len())
+                .map(|r| cell.iter().filter(|b| *b >> r & 1 == 1).count() as u64)
+                .collect()
+        })
+        .collect())
 }
 
 #[cfg(test)]

@@ -7,6 +7,7 @@
 //! - [`pointers`]: run lengths and sampling of the five pointers.
 //! - [`limits`]: an ideal pair's clearance limits, from its contact motion.
 //! - [`equal_pair`]: the paper's pair of equal gears (Figures 2 and 3).
+//! - [`readings`]: the candidate readings of the paper's inputs that `sigma-causes` compares.
 //! - [`anomaly`]: the Lunar pointer without and with the pin-and-slot.
 //! - [`area_test`]: the paper's kind of contact test (an overlap area, blunt tips) on Figure IV's
 //!   ideal pairs.
@@ -25,5 +26,6 @@ pub mod inputs;
 pub mod limits;
 pub mod pair_file;
 pub mod pointers;
+pub mod readings;
 pub mod tolerance;
 pub mod whole_mechanism;

@@ -293,6 +293,59 @@ pub fn boundary(
     Ok(no_at)
 }
 
+/// Figure IV's sweep: for each pair, σ of the driven gear's Theoretical Difference (`samples`
+/// samples) at each of `clearances`, `None` where the run jams or disengages under `rule` or
+/// the gears overlap at every tooth. The pairs run in parallel, collected in order.
+pub fn sigma_sweep(
+    pairs: &[IdealPair],
+    clearances: &[f64],
+    rule: &Rule,
+    samples: usize,
+) -> Result<Vec<Vec<Option<f64>>>, RunError> {
+    use rayon::prelude::*;
+    let cells: Vec<Result<Vec<Option<f64>>, RunError>> = pairs
+        .par_iter()
+        .map(|pair| {
+            clearances
+                .iter()
+                .map(|&c| {
+                    // A run that jams shows no σ: it may end at its first jam.
+                    Ok(pair.run_to_first_jam(c, rule)?.and_then(|t| {
+                        (crate::events::counts(rule, &t) == (0, 0))
+                            .then(|| pair.td_sigma(&t, samples).sigma)
+                    }))
+                })
+                .collect()
+        })
+        .collect();
+    cells.into_iter().collect()
+}
+
+/// Each pair's limits under `rule` ([`IdealPair::limits`], to `tol` % of h), in parallel,
+/// collected in order; each pair's result on its own.
+pub fn all_limits(pairs: &[IdealPair], tol: f64, rule: &Rule) -> Vec<Result<Limits, RunError>> {
+    use rayon::prelude::*;
+    pairs
+        .par_iter()
+        .map(|pair| pair.limits(tol, rule))
+        .collect()
+}
+
+/// Each pair's limits under every rule of `rules` ([`IdealPair::limits_under`], to `tol` % of
+/// h): `[pair][rule]`. The pairs' searches are independent and deterministic; collected in
+/// order, so the thread count changes nothing.
+pub fn limits_under_rules(
+    pairs: &[IdealPair],
+    tol: f64,
+    rules: &[Rule],
+) -> Result<Vec<Vec<Limits>>, RunError> {
+    use rayon::prelude::*;
+    pairs
+        .par_iter()
+        .map(|p| p.limits_under(tol, rules))
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     #![allow(clippy::unwrap_used, reason = "tests")]

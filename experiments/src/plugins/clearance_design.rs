@@ -434,23 +434,18 @@ fn share_cell(p: &Proportion) -> String {
     format!("{}/{}, {}", p.k, p.n, crate::common::percent_cell(p))
 }
 
-fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::labelled(ctx, counted)
-}
-
-/// The experiment itself; [`run`] names the event rule in its tables' titles.
-fn counted(ctx: &Context) -> Result<Report, RunError> {
-    // The coarse grid's cells count `coarse_trials` trials each.
-    let cells = CellSettings::read(ctx, &COARSE_TRIALS)?;
+/// The search's table, one row per (case, mesh): the coarse grid's counts, the best clearance
+/// and the reference's, with the notes on how they were found; also clearance-design-best.csv,
+/// clearance-design-probes.csv and the pair runs used.
+fn search_table(
+    cells: &CellSettings,
+    s: &Settings,
+    searches: &[MeshSearch],
+) -> Result<(Table, String, String, u64), RunError> {
     let (g, hyp, h) = (cells.gearing(), cells.hypothesis(), cells.gearing.tooth_height);
-    let s = settings(ctx)?;
-    whole::check_study(g, h, &Clearances::Uniform(s.reference))?;
-    let searches = search(ctx, &cells, &s)?;
-    let meshes: Vec<String> = g.meshes().iter().map(|m| m.label.clone()).collect();
+    let meshes = cells.meshes();
     let rl = label(s.reference, 0);
     let n_final = s.final_trials();
-
-    // The search's table: one row per (case, mesh).
     let mut header = vec![
         "case".to_string(),
         "mesh".to_string(),
@@ -476,7 +471,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     );
     let mut probes_csv =
         String::from("case,mesh,clearance,trials,jams,disengagements,failures,finalist,chosen\n");
-    for sr in &searches {
+    for sr in searches {
         let case = CASES[sr.case].0;
         let mut row = vec![
             case.to_string(),
@@ -500,37 +495,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             interval_cell(&rp),
         ]);
         table.row(row);
-        best_csv.push_str(&format!(
-            "{case},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
-            sr.mesh,
-            sr.best,
-            sr.coarse_best,
-            b.trials,
-            b.failures,
-            b.jams,
-            b.disengagements,
-            bp.lo,
-            bp.hi,
-            s.reference,
-            r.trials,
-            r.failures,
-            r.jams,
-            r.disengagements,
-            rp.lo,
-            rp.hi
-        ));
-        for (v, c) in &sr.probes {
-            probes_csv.push_str(&format!(
-                "{case},{},{v},{},{},{},{},{},{}\n",
-                sr.mesh,
-                c.trials,
-                c.jams,
-                c.disengagements,
-                c.failures,
-                sr.finalists.contains(v),
-                *v == sr.best
-            ));
-        }
+        search_csv((&mut best_csv, &mut probes_csv), case, sr, s.reference, (&b, &bp), (&r, &rp));
     }
     let used: u64 = searches.iter().map(MeshSearch::trials).sum();
     let years: Vec<f64> = meshes
@@ -575,8 +540,16 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         "Intervals: exact (Clopper-Pearson) 95 % of the failure rate. The best's count is the smallest of the finalists' on the trials that chose it, so it is biased low (the more finalists, the more); the failure study below, on other trials, is the independent check. A cell at {} trials of the same clearance and case is the same cell as in table3/tableI (same content, same trial streams): `--set coarse_trials=200` reuses their cells when they ran first in the same process.",
         s.coarse
     ));
+    Ok((table, best_csv, probes_csv, used))
+}
 
-    // The chosen clearances as a design table.
+/// The chosen clearances by case, as a table and as each case's map from mesh to clearance.
+fn design_table(
+    s: &Settings,
+    searches: &[MeshSearch],
+    meshes: &[String],
+) -> (Table, Vec<BTreeMap<String, f64>>) {
+    let rl = label(s.reference, 0);
     let mut header = vec!["case".to_string()];
     header.extend(meshes.iter().cloned());
     let mut design = Table::new(
@@ -591,6 +564,176 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         design.row(row);
         maps.push(rows.iter().map(|sr| (sr.mesh.clone(), sr.best)).collect());
     }
+    (design, maps)
+}
+
+/// Each case's note under the failure study: how many meshes moved, the share jammed within a
+/// year at both settings, the paired split with its sign test, and the meshes still failing.
+fn case_notes(
+    study: &mut Table,
+    s: &Settings,
+    searches: &[MeshSearch],
+    meshes: &[String],
+    summaries: &[Vec<Summary>],
+    per_input: &[&[MechanismRun]],
+) {
+    let rl = label(s.reference, 0);
+    for (k, &ci) in s.cases.iter().enumerate() {
+        let mech = whole::TRAINS.len();
+        let (r, b) = (
+            &summaries[2 * k][mech].year,
+            &summaries[2 * k + 1][mech].year,
+        );
+        let (only_ref, only_best) = discordant(per_input[2 * k], per_input[2 * k + 1], mech);
+        let rows = &searches[k * meshes.len()..(k + 1) * meshes.len()];
+        let changed = rows.iter().filter(|sr| sr.best != s.reference).count();
+        let still: Vec<String> = rows
+            .iter()
+            .filter_map(|sr| {
+                let c = sr.at(sr.best);
+                (clopper_pearson95(c.failures, c.trials).lo > STILL_FAILING).then(|| {
+                    format!(
+                        "{} at {} % ({}/{})",
+                        sr.mesh,
+                        label(sr.best, 0),
+                        c.failures,
+                        c.trials
+                    )
+                })
+            })
+            .collect();
+        let horizon = if s.days > stats::DAYS_PER_YEAR {
+            let within = |runs: &[MechanismRun]| {
+                runs.iter()
+                    .filter(|o| whole::jam_of(o, mech).is_some_and(|j| j.day <= s.days))
+                    .count()
+            };
+            format!(
+                " Within the whole horizon ({} days of b): {}/{} at {rl} %, {}/{} at the chosen clearances.",
+                fmt_f64(s.days, 2),
+                within(per_input[2 * k]),
+                s.runs,
+                within(per_input[2 * k + 1]),
+                s.runs,
+            )
+        } else {
+            String::new()
+        };
+        let case = CASES[ci].0;
+        let question = if case == "B" {
+            "Could a careful maker have made Case B work? "
+        } else {
+            ""
+        };
+        study.note(format!(
+            "{question}Case {case}: with {changed} of {} meshes moved off {rl} %, {}/{} mechanisms jammed within a year ({} %, 95 % interval {}-{} %), against {}/{} at {rl} % everywhere ({} %, {}-{} %); paired, {only_ref} runs jammed only at {rl} % and {only_best} only at the chosen clearances (exact p = {}). Meshes still failing in more than {} % of pair runs at their chosen clearance (lower 95 % bound): {}.{horizon}",
+            meshes.len(),
+            b.k,
+            b.n,
+            fmt_f64(100.0 * b.rate(), 0),
+            fmt_f64(100.0 * b.lo, 0),
+            fmt_f64(100.0 * b.hi, 0),
+            r.k,
+            r.n,
+            fmt_f64(100.0 * r.rate(), 0),
+            fmt_f64(100.0 * r.lo, 0),
+            fmt_f64(100.0 * r.hi, 0),
+            fmt_f64(sign_test(only_ref, only_best), 2),
+            fmt_f64(100.0 * STILL_FAILING, 0),
+            if still.is_empty() {
+                "none".to_string()
+            } else {
+                still.join(", ")
+            },
+        ));
+    }
+}
+
+/// The files: the search's CSVs (`best`, `probes`), the runs of the failure study (`runs`),
+/// and each case's plot of its worst meshes.
+fn files(
+    s: &Settings,
+    searches: &[MeshSearch],
+    meshes: usize,
+    (best_csv, probes_csv, runs_csv): (String, String, String),
+) -> Result<Vec<OutputFile>, RunError> {
+    let mut files = vec![
+        OutputFile::new("clearance-design-best.csv", best_csv),
+        OutputFile::new("clearance-design-probes.csv", probes_csv),
+        OutputFile::new("clearance-design-runs.csv", runs_csv),
+    ];
+    for (k, &ci) in s.cases.iter().enumerate() {
+        let rows = &searches[k * meshes..(k + 1) * meshes];
+        files.push(OutputFile::new(
+            format!("clearance-design-case-{}.svg", CASES[ci].0),
+            worst_plot(CASES[ci].0, rows, s.reference)?,
+        ));
+    }
+    Ok(files)
+}
+
+/// One (case, mesh)'s lines of clearance-design-best.csv (its best `b` and the reference `r`,
+/// each with its interval) and clearance-design-probes.csv (every clearance tried).
+fn search_csv(
+    (best_csv, probes_csv): (&mut String, &mut String),
+    case: &str,
+    sr: &MeshSearch,
+    reference: f64,
+    (b, bp): (&Counts, &Proportion),
+    (r, rp): (&Counts, &Proportion),
+) {
+    best_csv.push_str(&format!(
+        "{case},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+        sr.mesh,
+        sr.best,
+        sr.coarse_best,
+        b.trials,
+        b.failures,
+        b.jams,
+        b.disengagements,
+        bp.lo,
+        bp.hi,
+        reference,
+        r.trials,
+        r.failures,
+        r.jams,
+        r.disengagements,
+        rp.lo,
+        rp.hi
+    ));
+    for (v, c) in &sr.probes {
+        probes_csv.push_str(&format!(
+            "{case},{},{v},{},{},{},{},{},{}\n",
+            sr.mesh,
+            c.trials,
+            c.jams,
+            c.disengagements,
+            c.failures,
+            sr.finalists.contains(v),
+            *v == sr.best
+        ));
+    }
+}
+
+fn run(ctx: &Context) -> Result<Report, RunError> {
+    study::events::labelled(ctx, counted)
+}
+
+/// The experiment itself; [`run`] names the event rule in its tables' titles.
+fn counted(ctx: &Context) -> Result<Report, RunError> {
+    // The coarse grid's cells count `coarse_trials` trials each.
+    let cells = CellSettings::read(ctx, &COARSE_TRIALS)?;
+    let (g, h) = (cells.gearing(), cells.gearing.tooth_height);
+    let s = settings(ctx)?;
+    whole::check_study(g, h, &Clearances::Uniform(s.reference))?;
+    let searches = search(ctx, &cells, &s)?;
+    let meshes: Vec<String> = g.meshes().iter().map(|m| m.label.clone()).collect();
+    let rl = label(s.reference, 0);
+
+    let (table, best_csv, probes_csv, used) = search_table(&cells, &s, &searches)?;
+
+    // The chosen clearances as a design table.
+    let (design, maps) = design_table(&s, &searches, &meshes);
 
     // The failure study at both settings, on the same gears and initial angles.
     let mut inputs: Vec<Input<'_>> = Vec::new();
@@ -671,91 +814,10 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     study.note(format!(
         "Run t of a case draws the same gears and initial angles at both settings (failure's streams), so the {rl} % columns are failure's own runs and the difference is the clearances' alone; the last column pairs them: runs that jammed within a year at one setting and not at the other, with the exact two-sided sign (McNemar) test of that split. Shares: runs with a jam within one year of b, exact 95 % interval; days: b arbor, mean over the runs that jammed within the horizon with its 95 % Student-t interval clipped to the horizon. Only jams stop a run (a disengagement does not), as in failure."
     ));
-    for (k, &ci) in s.cases.iter().enumerate() {
-        let mech = whole::TRAINS.len();
-        let (r, b) = (
-            &summaries[2 * k][mech].year,
-            &summaries[2 * k + 1][mech].year,
-        );
-        let (only_ref, only_best) = discordant(per_input[2 * k], per_input[2 * k + 1], mech);
-        let rows = &searches[k * meshes.len()..(k + 1) * meshes.len()];
-        let changed = rows.iter().filter(|sr| sr.best != s.reference).count();
-        let still: Vec<String> = rows
-            .iter()
-            .filter_map(|sr| {
-                let c = sr.at(sr.best);
-                (clopper_pearson95(c.failures, c.trials).lo > STILL_FAILING).then(|| {
-                    format!(
-                        "{} at {} % ({}/{})",
-                        sr.mesh,
-                        label(sr.best, 0),
-                        c.failures,
-                        c.trials
-                    )
-                })
-            })
-            .collect();
-        let horizon = if s.days > stats::DAYS_PER_YEAR {
-            let within = |runs: &[MechanismRun]| {
-                runs.iter()
-                    .filter(|o| whole::jam_of(o, mech).is_some_and(|j| j.day <= s.days))
-                    .count()
-            };
-            format!(
-                " Within the whole horizon ({} days of b): {}/{} at {rl} %, {}/{} at the chosen clearances.",
-                fmt_f64(s.days, 2),
-                within(per_input[2 * k]),
-                s.runs,
-                within(per_input[2 * k + 1]),
-                s.runs,
-            )
-        } else {
-            String::new()
-        };
-        let case = CASES[ci].0;
-        let question = if case == "B" {
-            "Could a careful maker have made Case B work? "
-        } else {
-            ""
-        };
-        study.note(format!(
-            "{question}Case {case}: with {changed} of {} meshes moved off {rl} %, {}/{} mechanisms jammed within a year ({} %, 95 % interval {}-{} %), against {}/{} at {rl} % everywhere ({} %, {}-{} %); paired, {only_ref} runs jammed only at {rl} % and {only_best} only at the chosen clearances (exact p = {}). Meshes still failing in more than {} % of pair runs at their chosen clearance (lower 95 % bound): {}.{horizon}",
-            meshes.len(),
-            b.k,
-            b.n,
-            fmt_f64(100.0 * b.rate(), 0),
-            fmt_f64(100.0 * b.lo, 0),
-            fmt_f64(100.0 * b.hi, 0),
-            r.k,
-            r.n,
-            fmt_f64(100.0 * r.rate(), 0),
-            fmt_f64(100.0 * r.lo, 0),
-            fmt_f64(100.0 * r.hi, 0),
-            fmt_f64(sign_test(only_ref, only_best), 2),
-            fmt_f64(100.0 * STILL_FAILING, 0),
-            if still.is_empty() {
-                "none".to_string()
-            } else {
-                still.join(", ")
-            },
-        ));
-    }
+    case_notes(&mut study, &s, &searches, &meshes, &summaries, &per_input);
 
-    let mut files = vec![
-        OutputFile::new("clearance-design-best.csv", best_csv),
-        OutputFile::new("clearance-design-probes.csv", probes_csv),
-        OutputFile::new(
-            "clearance-design-runs.csv",
-            whole::runs_csv(&inputs, &per_input, s.days),
-        ),
-    ];
-    for (k, &ci) in s.cases.iter().enumerate() {
-        let rows = &searches[k * meshes.len()..(k + 1) * meshes.len()];
-        files.push(OutputFile::new(
-            format!("clearance-design-case-{}.svg", CASES[ci].0),
-            worst_plot(CASES[ci].0, rows, s.reference)?,
-        ));
-    }
+    let csvs = (best_csv, probes_csv, whole::runs_csv(&inputs, &per_input, s.days));
+    let files = files(&s, &searches, meshes.len(), csvs)?;
     let pair_engagements: u64 = searches
         .iter()
         .flat_map(|sr| sr.probes.iter().map(|p| p.1.engagements))

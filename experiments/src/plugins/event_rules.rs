@@ -316,7 +316,6 @@ struct RuleLimits {
 
 /// The ideal meshes' limits under every rule, located to `tol` % of h.
 fn ideal_limits(g: &Gearing, h: f64, rules: &[Rule], tol: f64) -> Result<RuleLimits, RunError> {
-    use rayon::prelude::*;
     let pairs: Vec<IdealPair> = g
         .meshes()
         .iter()
@@ -325,12 +324,7 @@ fn ideal_limits(g: &Gearing, h: f64, rules: &[Rule], tol: f64) -> Result<RuleLim
                 .ok_or_else(|| RunError::Internal(format!("mesh {} has no geometry", m.label)))
         })
         .collect::<Result<_, RunError>>()?;
-    // Each mesh's searches are independent and deterministic; collected in order, so the
-    // thread count changes nothing.
-    let per_mesh = pairs
-        .par_iter()
-        .map(|p| p.limits_under(tol, rules))
-        .collect::<Result<_, _>>()?;
+    let per_mesh = study::limits::limits_under_rules(&pairs, tol, rules)?;
     Ok(RuleLimits { per_mesh })
 }
 

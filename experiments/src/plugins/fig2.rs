@@ -35,6 +35,126 @@ registry::inventory::submit! {
     }
 }
 
+/// Figure 2's numbers: θ'(0), the largest difference from the closed forms over `samples + 1`
+/// samples (`max_diff`, radians), the phase switch and hand-off, the Theoretical Difference's
+/// statistics and the run's (jams, disengagements).
+fn summary_table(
+    pair: &thorndike::Pair,
+    theta0: f64,
+    (samples, max_diff): (usize, f64),
+    stats: &stats::PointerStats,
+    counts: (usize, usize),
+) -> Table {
+    let mut table = Table::new(
+        "Figure 2: N1 = N2 = 8, R = 200, r = 100, D = 310 (G = 10 % of h), one driver turn",
+        ["quantity", "ours", "paper", "unit"],
+    );
+    table.row(vec![
+        "theta'(0) (Figure III frame)".into(),
+        fmt_f64(deg(theta0), 4),
+        paper_cell("fig2", "theta_prime_0", 2),
+        "deg".into(),
+    ]);
+    table.row(vec![
+        format!(
+            "max |theta simulated - theta closed form| over {} samples",
+            samples + 1
+        ),
+        below_power_of_ten(deg(max_diff)),
+        "-".into(),
+        "deg".into(),
+    ]);
+    table.row(vec![
+        "Phase 1 -> Phase 2 switch phi'".into(),
+        fmt_f64(deg(thorndike::phase_switch(pair)), 4),
+        "-".into(),
+        "deg".into(),
+    ]);
+    table.row(vec![
+        "next tooth pair takes over at phi'".into(),
+        fmt_f64(deg(thorndike::handoff(pair)), 4),
+        "-".into(),
+        "deg".into(),
+    ]);
+    table.row(vec![
+        "Theoretical Difference sigma".into(),
+        fmt_f64(stats.sigma, 4),
+        "-".into(),
+        "deg".into(),
+    ]);
+    table.row(vec![
+        "Theoretical Difference mean P".into(),
+        fmt_f64(stats.mean, 4),
+        "-".into(),
+        "deg".into(),
+    ]);
+    table.row(vec![
+        "Theoretical Difference max |TD| (Dm)".into(),
+        fmt_f64(stats.dm, 4),
+        "-".into(),
+        "deg".into(),
+    ]);
+    table.row(vec![
+        "jams / disengagements".into(),
+        format!("{} / {}", counts.0, counts.1),
+        "-".into(),
+        "".into(),
+    ]);
+    table.note("Simulated: exact push-model contact solver; closed form: Appendix I expressions [I] and [II] with the switch between them.");
+    table.note(
+        "TD = theta(phi) - (N1/N2) phi in the main-text frame (theta measured from theta'_o).",
+    );
+    table
+}
+
+/// Figure 2 A (θ against φ beside the ideal ratio) and B (the Theoretical Difference beside the
+/// closed forms' and its mean), from the rows of fig2.csv.
+fn plots(
+    rows: &[Vec<f64>],
+    theta0: f64,
+    ratio: f64,
+    stats: &stats::PointerStats,
+) -> Result<(String, String), RunError> {
+    let plot_a = line_plot(
+        "Figure 2 A: driven angle theta(phi), N = 8 pair",
+        "driver angle phi [deg]",
+        "driven angle theta [deg]",
+        &[
+            Series {
+                label: "simulated",
+                points: rows.iter().map(|r| (r[0], r[3])).collect(),
+            },
+            Series {
+                label: "ideal (N1/N2) phi, equation [1]",
+                points: rows.iter().map(|r| (r[0], ratio * r[0])).collect(),
+            },
+        ],
+    )?;
+    let plot_b = line_plot(
+        "Figure 2 B: Theoretical Difference, N = 8 pair",
+        "driver angle phi [deg]",
+        "Theoretical Difference [deg]",
+        &[
+            Series {
+                label: "simulated",
+                points: rows.iter().map(|r| (r[0], r[4])).collect(),
+            },
+            Series {
+                label: "closed form [I]/[II]",
+                points: rows
+                    .iter()
+                    .map(|r| (r[0], r[2] - deg(theta0) - ratio * r[0]))
+                    .collect(),
+            },
+            Series {
+                label: "mean P",
+                points: vec![(0.0, stats.mean), (360.0, stats.mean)],
+            },
+        ],
+    )?;
+    Ok((plot_a, plot_b))
+}
+
 fn run(ctx: &Context) -> Result<Report, RunError> {
     study::events::labelled(ctx, counted)
 }
@@ -113,106 +233,10 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     }
     let stats = stats::pointer_stats(&td);
 
-    let mut table = Table::new(
-        "Figure 2: N1 = N2 = 8, R = 200, r = 100, D = 310 (G = 10 % of h), one driver turn",
-        ["quantity", "ours", "paper", "unit"],
-    );
-    table.row(vec![
-        "theta'(0) (Figure III frame)".into(),
-        fmt_f64(deg(theta0), 4),
-        paper_cell("fig2", "theta_prime_0", 2),
-        "deg".into(),
-    ]);
-    table.row(vec![
-        format!(
-            "max |theta simulated - theta closed form| over {} samples",
-            samples + 1
-        ),
-        below_power_of_ten(deg(max_diff)),
-        "-".into(),
-        "deg".into(),
-    ]);
-    table.row(vec![
-        "Phase 1 -> Phase 2 switch phi'".into(),
-        fmt_f64(deg(thorndike::phase_switch(&pair)), 4),
-        "-".into(),
-        "deg".into(),
-    ]);
-    table.row(vec![
-        "next tooth pair takes over at phi'".into(),
-        fmt_f64(deg(thorndike::handoff(&pair)), 4),
-        "-".into(),
-        "deg".into(),
-    ]);
-    table.row(vec![
-        "Theoretical Difference sigma".into(),
-        fmt_f64(stats.sigma, 4),
-        "-".into(),
-        "deg".into(),
-    ]);
-    table.row(vec![
-        "Theoretical Difference mean P".into(),
-        fmt_f64(stats.mean, 4),
-        "-".into(),
-        "deg".into(),
-    ]);
-    table.row(vec![
-        "Theoretical Difference max |TD| (Dm)".into(),
-        fmt_f64(stats.dm, 4),
-        "-".into(),
-        "deg".into(),
-    ]);
-    table.row(vec![
-        "jams / disengagements".into(),
-        {
-            let (j, d) = study::events::counts(&study::events::chosen(ctx)?, &traj);
-            format!("{j} / {d}")
-        },
-        "-".into(),
-        "".into(),
-    ]);
-    table.note("Simulated: exact push-model contact solver; closed form: Appendix I expressions [I] and [II] with the switch between them.");
-    table.note(
-        "TD = theta(phi) - (N1/N2) phi in the main-text frame (theta measured from theta'_o).",
-    );
+    let counts = study::events::counts(&study::events::chosen(ctx)?, &traj);
+    let table = summary_table(&pair, theta0, (samples, max_diff), &stats, counts);
 
-    let plot_a = line_plot(
-        "Figure 2 A: driven angle theta(phi), N = 8 pair",
-        "driver angle phi [deg]",
-        "driven angle theta [deg]",
-        &[
-            Series {
-                label: "simulated",
-                points: rows.iter().map(|r| (r[0], r[3])).collect(),
-            },
-            Series {
-                label: "ideal (N1/N2) phi, equation [1]",
-                points: rows.iter().map(|r| (r[0], ratio * r[0])).collect(),
-            },
-        ],
-    )?;
-    let plot_b = line_plot(
-        "Figure 2 B: Theoretical Difference, N = 8 pair",
-        "driver angle phi [deg]",
-        "Theoretical Difference [deg]",
-        &[
-            Series {
-                label: "simulated",
-                points: rows.iter().map(|r| (r[0], r[4])).collect(),
-            },
-            Series {
-                label: "closed form [I]/[II]",
-                points: rows
-                    .iter()
-                    .map(|r| (r[0], r[2] - deg(theta0) - ratio * r[0]))
-                    .collect(),
-            },
-            Series {
-                label: "mean P",
-                points: vec![(0.0, stats.mean), (360.0, stats.mean)],
-            },
-        ],
-    )?;
+    let (plot_a, plot_b) = plots(&rows, theta0, ratio, &stats)?;
     let data = csv(
         &[
             "phi_deg",

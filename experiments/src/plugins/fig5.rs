@@ -128,6 +128,86 @@ const SPLITS: [(&str, f64); 3] = [
 /// Below this Edmunds' σ (degrees) his pointer is exact: no ratio is printed.
 const EDMUNDS_FLAT: f64 = 1e-9;
 
+/// A split's two Theoretical Differences: (split name, Edmunds', triangular teeth'), degrees.
+type Panel<'a> = (&'a str, Vec<f64>, Vec<f64>);
+
+/// The three panels' plots (fig5a-c.svg) and fig5.csv (every panel's curves as `columns`,
+/// over the driver angles `phis`).
+fn panels(
+    series: &[Panel<'_>],
+    columns: &[Vec<f64>],
+    phis: &[f64],
+) -> Result<Vec<OutputFile>, RunError> {
+    let samples = phis.len();
+    let mut files = Vec::new();
+    for (i, (name, rad, tri)) in series.iter().enumerate() {
+        let label = ["a", "b", "c"][i];
+        let svg = line_plot(
+            &format!(
+                "Figure 5 {}: Theoretical Difference, {name}",
+                label.to_uppercase()
+            ),
+            "driver angle phi [deg]",
+            "Theoretical Difference [deg]",
+            &[
+                Series {
+                    label: "Edmunds (radial lines)",
+                    points: phis
+                        .iter()
+                        .map(|p| p.to_degrees())
+                        .zip(rad.iter().copied())
+                        .collect(),
+                },
+                Series {
+                    label: "triangular teeth",
+                    points: phis
+                        .iter()
+                        .map(|p| p.to_degrees())
+                        .zip(tri.iter().copied())
+                        .collect(),
+                },
+            ],
+        )?;
+        files.push(OutputFile::new(format!("fig5{label}.svg"), svg));
+    }
+    let rows = (0..samples).map(|i| {
+        let mut r = vec![phis[i].to_degrees()];
+        r.extend(columns.iter().map(|c| c[i]));
+        r
+    });
+    files.push(OutputFile::new(
+        "fig5.csv",
+        csv(
+            &[
+                "phi_deg",
+                "a_edmunds_deg",
+                "a_triangular_deg",
+                "b_edmunds_deg",
+                "b_triangular_deg",
+                "c_edmunds_deg",
+                "c_triangular_deg",
+            ],
+            rows,
+            9,
+        ),
+    ));
+    Ok(files)
+}
+
+/// The values the hypothesis ran with, as the title names them (the split aside: each panel
+/// has its own), e.g. "random 0.04 of the pitch, systematic 0.5 deg, ".
+fn ran_values(ran: &hypotheses::Params) -> String {
+    ran
+        .iter()
+        .filter(|(k, _)| *k != "split")
+        .map(|(k, v)| match k {
+            "random" => format!("random {} of the pitch, ", fmt_number(v)),
+            "systematic" => format!("systematic {} deg, ", fmt_number(v)),
+            _ => format!("{k} {}, ", fmt_number(v)),
+        })
+        .collect()
+}
+
 fn run(ctx: &Context) -> Result<Report, RunError> {
     study::events::labelled(ctx, counted)
 }
@@ -162,15 +242,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     // The title names the values the hypothesis ran with (a `hypothesis_params` value replaces
     // the experiment's own), and only those it takes.
     let ran = errors.params(&offered)?;
-    let values: String = ran
-        .iter()
-        .filter(|(k, _)| *k != "split")
-        .map(|(k, v)| match k {
-            "random" => format!("random {} of the pitch, ", fmt_number(v)),
-            "systematic" => format!("systematic {} deg, ", fmt_number(v)),
-            _ => format!("{k} {}, ", fmt_number(v)),
-        })
-        .collect();
+    let values = ran_values(&ran);
     let mut table = Table::new(
         format!(
             "Figure 5: {n}:{n} pair, R = {}, r = {}, {values}hypothesis {}",
@@ -252,58 +324,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         table.note("n/a: Edmunds' sigma is 0 (gears with no tip or axis error keep his pointer exact), so the two cannot be compared by a ratio.");
     }
     table.note("The paper's claim: the split does not change the pointer's behaviour significantly. Its Figure 5 gives no numbers in the text.");
-    let mut files = Vec::new();
-    for (i, (name, rad, tri)) in series.iter().enumerate() {
-        let label = ["a", "b", "c"][i];
-        let svg = line_plot(
-            &format!(
-                "Figure 5 {}: Theoretical Difference, {name}",
-                label.to_uppercase()
-            ),
-            "driver angle phi [deg]",
-            "Theoretical Difference [deg]",
-            &[
-                Series {
-                    label: "Edmunds (radial lines)",
-                    points: phis
-                        .iter()
-                        .map(|p| p.to_degrees())
-                        .zip(rad.iter().copied())
-                        .collect(),
-                },
-                Series {
-                    label: "triangular teeth",
-                    points: phis
-                        .iter()
-                        .map(|p| p.to_degrees())
-                        .zip(tri.iter().copied())
-                        .collect(),
-                },
-            ],
-        )?;
-        files.push(OutputFile::new(format!("fig5{label}.svg"), svg));
-    }
-    let rows = (0..samples).map(|i| {
-        let mut r = vec![phis[i].to_degrees()];
-        r.extend(columns.iter().map(|c| c[i]));
-        r
-    });
-    files.push(OutputFile::new(
-        "fig5.csv",
-        csv(
-            &[
-                "phi_deg",
-                "a_edmunds_deg",
-                "a_triangular_deg",
-                "b_edmunds_deg",
-                "b_triangular_deg",
-                "c_edmunds_deg",
-                "c_triangular_deg",
-            ],
-            rows,
-            9,
-        ),
-    ));
+    let files = panels(&series, &columns, &phis)?;
     Ok(Report {
         tables: vec![table],
         files,

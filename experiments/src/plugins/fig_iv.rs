@@ -1,15 +1,12 @@
 //! `figIV`: σ of each driven gear's Theoretical Difference against the clearance G, for ideal
 //! gears of the mechanism's meshes, with each pair's jam and disengagement limits.
 
-use rayon::prelude::*;
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
 
 use crate::common::{Limit, LimitKind, Plot, Series};
 use study::gearing;
 use study::limits::IdealPair;
 
-/// (smallest clearance without a jam, largest without a disengagement), % of h.
-type Limits = (Option<f64>, Option<f64>);
 
 /// `from`: first clearance of the sweep.
 const FROM: Param = Param {
@@ -70,21 +67,10 @@ registry::inventory::submit! {
     }
 }
 
-fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::labelled(ctx, counted)
-}
-
-/// The experiment itself; [`run`] names the event rule in its tables' titles.
-fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let rule = study::events::chosen(ctx)?;
-    let gearing::Shape {
-        gearing: g,
-        tooth_height: h,
-        ..
-    } = gearing::Shape::read(ctx)?;
-    let (from, to, step): (f64, f64, f64) = (ctx.get(&FROM)?, ctx.get(&TO)?, ctx.get(&STEP)?);
+/// `from` must not exceed `to`; the error names the one the user set: `to` below the default
+/// `from`, or `from` above `to`.
+fn check_range(ctx: &Context, from: f64, to: f64) -> Result<(), RunError> {
     if from > to {
-        // Name the one the user set: `to` below the default `from`, or `from` above `to`.
         let to_set = ctx.changed().iter().any(|(k, _)| *k == TO.name);
         let (field, rule) = if to_set {
             (
@@ -107,6 +93,59 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         };
         return Err(RunError::bad("--set", field, rule));
     }
+    Ok(())
+}
+
+/// The sweep: σ of each mesh (`labels`, columns of `grid`) at each clearance, as a table and
+/// as figIV.csv.
+fn sweep_table(
+    h: f64,
+    labels: &[&str],
+    clearances: &[f64],
+    grid: &[Vec<Option<f64>>],
+) -> (Table, String) {
+    let mut header = vec!["G [% of h]".to_string()];
+    header.extend(labels.iter().map(|l| (*l).to_string()));
+    let mut sweep = Table::new(
+        format!(
+            "Figure IV: sigma of the driven gear's Theoretical Difference [deg], ideal gears, h = {h} mm, one turn of the larger gear"
+        ),
+        header.clone(),
+    );
+    let mut csv = header.join(",");
+    csv.push('\n');
+    for (i, &c) in clearances.iter().enumerate() {
+        let mut row = vec![fmt_f64(c, 1)];
+        let mut line = vec![c.to_string()];
+        for col in grid {
+            row.push(col[i].map_or_else(|| "-".to_string(), |s| format!("{s:.2e}")));
+            line.push(col[i].map_or_else(String::new, |s| s.to_string()));
+        }
+        sweep.row(row);
+        csv.push_str(&line.join(","));
+        csv.push('\n');
+    }
+    sweep.note(
+        "'-': the full turn jammed or disengaged (no sigma), or the gears overlap at every tooth.",
+    );
+    sweep.note("The paper's Figure IV shows twelve pairs without listing them in its text; all fifteen meshes are shown here.");
+    (sweep, csv)
+}
+
+fn run(ctx: &Context) -> Result<Report, RunError> {
+    study::events::labelled(ctx, counted)
+}
+
+/// The experiment itself; [`run`] names the event rule in its tables' titles.
+fn counted(ctx: &Context) -> Result<Report, RunError> {
+    let rule = study::events::chosen(ctx)?;
+    let gearing::Shape {
+        gearing: g,
+        tooth_height: h,
+        ..
+    } = gearing::Shape::read(ctx)?;
+    let (from, to, step): (f64, f64, f64) = (ctx.get(&FROM)?, ctx.get(&TO)?, ctx.get(&STEP)?);
+    check_range(ctx, from, to)?;
     let samples: usize = ctx.get(&SAMPLES)?;
     let clearances: Vec<f64> = (0..)
         .map(|i| from + step * f64::from(i))
@@ -119,57 +158,13 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         })?;
         pairs.push((m.label.clone(), pair));
     }
-    // Every (mesh, clearance) run and every mesh's limits are independent: run them in parallel,
+    // Every (mesh, clearance) run and every mesh's limits are independent: run in parallel,
     // collected in order.
-    let cells: Vec<Result<Vec<Option<f64>>, RunError>> = pairs
-        .par_iter()
-        .map(|(_, pair)| {
-            clearances
-                .iter()
-                .map(|&c| {
-                    // A run that jams shows no σ: it may end at its first jam.
-                    Ok(pair.run_to_first_jam(c, &rule)?.and_then(|t| {
-                        (study::events::counts(&rule, &t) == (0, 0))
-                            .then(|| pair.td_sigma(&t, samples).sigma)
-                    }))
-                })
-                .collect()
-        })
-        .collect();
-    let limits: Vec<Result<Limits, RunError>> = pairs
-        .par_iter()
-        .map(|(_, pair)| pair.limits(1e-2, &rule))
-        .collect();
-
-    let mut header = vec!["G [% of h]".to_string()];
-    header.extend(pairs.iter().map(|(l, _)| l.clone()));
-    let mut sweep = Table::new(
-        format!(
-            "Figure IV: sigma of the driven gear's Theoretical Difference [deg], ideal gears, h = {h} mm, one turn of the larger gear"
-        ),
-        header.clone(),
-    );
-    let mut csv = header.join(",");
-    csv.push('\n');
-    let mut grid = Vec::with_capacity(pairs.len());
-    for c in cells {
-        grid.push(c?);
-    }
-    for (i, &c) in clearances.iter().enumerate() {
-        let mut row = vec![fmt_f64(c, 1)];
-        let mut line = vec![c.to_string()];
-        for col in &grid {
-            row.push(col[i].map_or_else(|| "-".to_string(), |s| format!("{s:.2e}")));
-            line.push(col[i].map_or_else(String::new, |s| s.to_string()));
-        }
-        sweep.row(row);
-        csv.push_str(&line.join(","));
-        csv.push('\n');
-    }
-    sweep.note(
-        "'-': the full turn jammed or disengaged (no sigma), or the gears overlap at every tooth.",
-    );
-    sweep.note("The paper's Figure IV shows twelve pairs without listing them in its text; all fifteen meshes are shown here.");
+    let ideal: Vec<IdealPair> = pairs.iter().map(|(_, p)| *p).collect();
+    let grid = study::limits::sigma_sweep(&ideal, &clearances, &rule, samples)?;
+    let limits = study::limits::all_limits(&ideal, 1e-2, &rule);
+    let labels: Vec<&str> = pairs.iter().map(|(l, _)| l.as_str()).collect();
+    let (sweep, csv) = sweep_table(h, &labels, &clearances, &grid);
 
     let mut lim = Table::new(
         "Clearance limits of each pair (bisection to 0.01 % of h)",

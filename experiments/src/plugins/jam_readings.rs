@@ -11,11 +11,10 @@
 //! the same manufactured gears and initial angles of trial t (rebuilt from the cell's stream as
 //! the tables build them), so the readings differ only by the contact test.
 
-use contact::{Event, Start};
-use geometry::Gear;
-use polycheck::stepped::{GearOutline, SteppedPair, Stepping};
+use polycheck::stepped::Stepping;
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
-use study::cell::{CellSpec, PAPER_TRIALS, fnv1a64, label, rebuild};
+use study::area_test::{Reading, run_all};
+use study::cell::{CellSpec, PAPER_TRIALS, label};
 use study::gearing;
 use study::grids::{CASES, CellSettings};
 use study::tolerance::{self, RANDOM_FROM, RANDOM_STEP, RANDOM_TO};
@@ -109,28 +108,14 @@ struct PaperCell {
     run: usize,
 }
 
-/// One contact test, applied to every cell alike.
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum Reading {
-    /// Our exact solver: a jam is a contact stop (lock, strike, blocked start).
-    Exact,
-    /// Not a contact test but the drive's direction, for comparison: the exact solver with the
-    /// other gear of each mesh driving (the same manufactured gears).
-    ExactReversed,
-    /// The stepped area test ignoring overlaps up to this area (mm²).
-    Area(f64),
-}
-
-impl Reading {
-    fn name(self) -> String {
-        match self {
-            Reading::Exact => "exact solver".into(),
-            Reading::ExactReversed => "exact solver (other gear driving)".into(),
-            Reading::Area(t) => format!("area T = {} mm^2", fmt_f64(t, 4)),
-        }
+/// A reading's name, as the tables print it.
+fn reading_name(r: Reading) -> String {
+    match r {
+        Reading::Exact => "exact solver".into(),
+        Reading::ExactReversed => "exact solver (other gear driving)".into(),
+        Reading::Area(t) => format!("area T = {} mm^2", fmt_f64(t, 4)),
     }
 }
-
 
 /// The distinct cells run, and every paper cell with the index of the run that gives it.
 struct Cells {
@@ -206,87 +191,6 @@ fn all_cells(ctx: &Context, s: &CellSettings) -> Result<Cells, RunError> {
     Ok(out)
 }
 
-/// A gear's outline as plain numbers for the area test (straight flanks only).
-fn outline(g: &Gear) -> Result<GearOutline, RunError> {
-    if g.flank_sagitta() != 0.0 {
-        return Err(RunError::bad(
-            "--hypothesis",
-            "flank_sagitta",
-            "the area test takes straight flanks only",
-        ));
-    }
-    let n = g.teeth() as i64;
-    let e = g.rotation_centre();
-    Ok(GearOutline {
-        tips: g.tip_angles().to_vec(),
-        valleys: g.valley_angles().to_vec(),
-        tip_radii: (0..n).map(|k| g.tip_radius_of(k)).collect(),
-        root_radii: (0..n).map(|k| g.root_radius_of(k)).collect(),
-        rotation_centre: [e.x, e.y],
-    })
-}
-
-/// Trial `t` of `spec` under every reading: bit r set when reading r jams.
-fn trial(
-    g: &Gearing,
-    spec: &CellSpec,
-    seed: u64,
-    t: u64,
-    readings: &[Reading],
-    stepping: &Stepping,
-) -> Result<u64, RunError> {
-    let rebuilt = rebuild(g, spec, seed, t)?;
-    let Some(mesh) = rebuilt.mesh.as_ref() else {
-        // Bodies that overlap at every angle cannot turn under any contact test.
-        return Ok((1u64 << readings.len()) - 1);
-    };
-    let (phi0, turn) = (rebuilt.phi0, rebuilt.turn);
-    let (driver, driven) = (outline(mesh.driver())?, outline(mesh.driven())?);
-    let mut bits = 0;
-    for (r, reading) in readings.iter().enumerate() {
-        let jam = match *reading {
-            Reading::Exact => {
-                let stop = |events: &[Event]| events.iter().any(|e| e.kind.is_contact_stop());
-                let events =
-                    mesh.run_events_until_answered(phi0, phi0 + turn, Start::Touching(0.0), &stop);
-                stop(&events)
-            }
-            Reading::ExactReversed => reversed_jams(mesh, phi0),
-            Reading::Area(tol) => {
-                let pair = SteppedPair::new(
-                    &driver,
-                    &driven,
-                    mesh.centre_distance(),
-                    tol,
-                    spec.tooth_height,
-                );
-                pair.run(phi0, turn, 0.0, stepping).jam.is_some()
-            }
-        };
-        bits |= u64::from(jam) << r;
-    }
-    Ok(bits)
-}
-
-/// Whether the trial's gears jam with the mesh's driven gear driving: the same gears swapped,
-/// started from the same share of the new driver's pitch, over one turn of the larger gear.
-fn reversed_jams(mesh: &contact::Mesh, phi0: f64) -> bool {
-    let (n1, n2) = (mesh.driver().teeth() as f64, mesh.driven().teeth() as f64);
-    let Ok(back) = contact::Mesh::new(
-        mesh.driven().clone(),
-        mesh.driver().clone(),
-        mesh.centre_distance(),
-    ) else {
-        // The same bodies overlap whichever gear drives.
-        return true;
-    };
-    let start = phi0 * n1 / n2;
-    let turn = std::f64::consts::TAU * n1.max(n2) / n2;
-    let stop = |events: &[Event]| events.iter().any(|e| e.kind.is_contact_stop());
-    let events = back.run_events_until_answered(start, start + turn, Start::Touching(0.0), &stop);
-    stop(&events)
-}
-
 /// The tolerances of the area readings, from a comma-separated parameter.
 fn tolerances(ctx: &Context) -> Result<Vec<f64>, RunError> {
     let text = ctx.text(&TOLERANCES)?;
@@ -305,38 +209,6 @@ fn tolerances(ctx: &Context) -> Result<Vec<f64>, RunError> {
                 })
         })
         .collect()
-}
-
-/// Every run cell's jam count under every reading: `jams[run][reading]`.
-fn run_all(
-    ctx: &Context,
-    g: &Gearing,
-    runs: &[CellSpec],
-    readings: &[Reading],
-    stepping: &Stepping,
-    trials: u64,
-) -> Result<Vec<Vec<u64>>, RunError> {
-    // The batch key names everything its trials depend on: the cells' contents, the readings
-    // and the stepping (hashed, as the text is long).
-    let mut text: String = runs.iter().map(|c| c.canonical() + "\n").collect();
-    text.push_str(&format!("{readings:?};{stepping:?};{trials}"));
-    let key = format!("jam-readings:{:016x}", fnv1a64(text.as_bytes()));
-    // One flat batch (cell-major), so every thread has work however few trials a cell has;
-    // each trial's stream is its cell's and its index's, so the thread count changes nothing.
-    let bits = ctx.trials(&key, runs.len() as u64 * trials, |i| {
-        let spec = &runs[(i / trials) as usize];
-        trial(g, spec, ctx.seed(), i % trials, readings, stepping)
-    })?;
-    Ok(runs
-        .iter()
-        .enumerate()
-        .map(|(c, _)| {
-            let cell = &bits[c * trials as usize..(c + 1) * trials as usize];
-            (0..readings.len())
-                .map(|r| cell.iter().filter(|b| *b >> r & 1 == 1).count() as u64)
-                .collect()
-        })
-        .collect())
 }
 
 /// Consistent and compared jam counts, and among the separated ones how many of ours are
@@ -430,7 +302,7 @@ fn shares_table(
         head,
     );
     for (reading, (per_region, all)) in readings.iter().zip(tallies) {
-        let mut row = vec![reading.name()];
+        let mut row = vec![reading_name(*reading)];
         row.extend(per_region.iter().map(|x| share(x.consistent, x.compared)));
         row.push(share(all.consistent, all.compared));
         row.push(all.differing());
@@ -452,7 +324,7 @@ fn mesh_table(
     head.extend(
         readings
             .iter()
-            .map(|r| format!("{}: consistent; higher / lower", r.name())),
+            .map(|r| format!("{}: consistent; higher / lower", reading_name(*r))),
     );
     let mut t = Table::new(
         "Where the jam counts differ, per mesh (all regions): the paper's counts consistent with ours; of the others, ours higher / lower",
@@ -494,7 +366,7 @@ fn cells_csv(cells: &Cells, readings: &[Reading], jams: &[Vec<u64>], trials: u64
                 p.key,
                 p.region,
                 p.mesh,
-                reading.name(),
+                reading_name(*reading),
                 paper.map_or_else(String::new, |v| v.to_string()),
             ));
         }

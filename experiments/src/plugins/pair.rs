@@ -80,6 +80,78 @@ the gears at the event's own phi and theta, zoomed on its contacts (both of a lo
 release a link of its own (open it from disk; `#phi=X` opens it at phi - phi0 = X deg, \
 `#event=N` at event N).";
 
+/// The summary of a run: the mesh, the angles it ran through and from, its events as `rule`
+/// counts them, and the Theoretical Difference's statistics `s` (none for a driven gear never
+/// pushed).
+fn summary_table(
+    name: &str,
+    mesh: &contact::Mesh,
+    traj: &contact::Trajectory,
+    rule: &rules::Rule,
+    run_deg: f64,
+    (phi0, theta0): (f64, f64),
+    s: &stats::PointerStats,
+) -> Table {
+    let (n1, n2) = (mesh.driver().teeth(), mesh.driven().teeth());
+    let mut summary = Table::new(format!("Mesh from {name}"), ["quantity", "value", "unit"]);
+    let rowf = |t: &mut Table, q: &str, v: String, u: &str| t.row(vec![q.into(), v, u.into()]);
+    rowf(&mut summary, "teeth N1 : N2", format!("{n1} : {n2}"), "");
+    rowf(
+        &mut summary,
+        "centre distance D",
+        fmt_f64(mesh.centre_distance(), 4),
+        "length",
+    );
+    rowf(&mut summary, "driver angle run", fmt_f64(run_deg, 3), "deg");
+    rowf(
+        &mut summary,
+        "driver angle at the start phi0 (absolute)",
+        fmt_f64(deg(phi0), 6),
+        "deg",
+    );
+    rowf(
+        &mut summary,
+        "driven angle at the start theta0 (absolute)",
+        fmt_f64(deg(theta0), 6),
+        "deg",
+    );
+    let (jams, disengagements) = study::events::counts(rule, traj);
+    rowf(&mut summary, "jams", jams.to_string(), "");
+    rowf(
+        &mut summary,
+        "disengagements",
+        disengagements.to_string(),
+        "",
+    );
+    // A driven gear that never moved has no Theoretical Difference to speak of: its "sigma" would
+    // be the driver's own turning.
+    let stat = |v: f64| {
+        if traj.never_driven() {
+            "- (never driven)".to_string()
+        } else {
+            fmt_f64(v, 4)
+        }
+    };
+    rowf(
+        &mut summary,
+        "Theoretical Difference sigma",
+        stat(s.sigma),
+        "deg",
+    );
+    rowf(&mut summary, "Theoretical Difference Dm", stat(s.dm), "deg");
+    rowf(
+        &mut summary,
+        "Theoretical Difference mean P",
+        stat(s.mean),
+        "deg",
+    );
+    if traj.never_driven() {
+        summary.note("The driven gear was never pushed: no driver tooth reached it in the whole run (an idle start, counted as a disengagement by every event rule), so sigma, Dm and P are not given.");
+    }
+    summary.note(ABSOLUTE_NOTE);
+    summary
+}
+
 fn run(ctx: &Context) -> Result<Report, RunError> {
     study::events::labelled(ctx, counted)
 }
@@ -118,62 +190,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let td: Vec<f64> = rows.iter().map(|r| r[2]).collect();
     let s = stats::pointer_stats(&td);
 
-    let mut summary = Table::new(format!("Mesh from {name}"), ["quantity", "value", "unit"]);
-    let rowf = |t: &mut Table, q: &str, v: String, u: &str| t.row(vec![q.into(), v, u.into()]);
-    rowf(&mut summary, "teeth N1 : N2", format!("{n1} : {n2}"), "");
-    rowf(
-        &mut summary,
-        "centre distance D",
-        fmt_f64(mesh.centre_distance(), 4),
-        "length",
-    );
-    rowf(&mut summary, "driver angle run", fmt_f64(run_deg, 3), "deg");
-    rowf(
-        &mut summary,
-        "driver angle at the start phi0 (absolute)",
-        fmt_f64(deg(phi0), 6),
-        "deg",
-    );
-    rowf(
-        &mut summary,
-        "driven angle at the start theta0 (absolute)",
-        fmt_f64(deg(theta0), 6),
-        "deg",
-    );
-    let (jams, disengagements) = study::events::counts(&rule, &traj);
-    rowf(&mut summary, "jams", jams.to_string(), "");
-    rowf(
-        &mut summary,
-        "disengagements",
-        disengagements.to_string(),
-        "",
-    );
-    // A driven gear that never moved has no Theoretical Difference to speak of: its "sigma" would
-    // be the driver's own turning.
-    let stat = |v: f64| {
-        if traj.never_driven() {
-            "- (never driven)".to_string()
-        } else {
-            fmt_f64(v, 4)
-        }
-    };
-    rowf(
-        &mut summary,
-        "Theoretical Difference sigma",
-        stat(s.sigma),
-        "deg",
-    );
-    rowf(&mut summary, "Theoretical Difference Dm", stat(s.dm), "deg");
-    rowf(
-        &mut summary,
-        "Theoretical Difference mean P",
-        stat(s.mean),
-        "deg",
-    );
-    if traj.never_driven() {
-        summary.note("The driven gear was never pushed: no driver tooth reached it in the whole run (an idle start, counted as a disengagement by every event rule), so sigma, Dm and P are not given.");
-    }
-    summary.note(ABSOLUTE_NOTE);
+    let summary = summary_table(&name, mesh, &traj, &rule, run_deg, (phi0, theta0), &s);
 
     let (events, ev_rows, marks) = event_log(&traj, &rule, (phi0, theta0), &prepared);
     let svg = marked_plot(

@@ -7,14 +7,13 @@
 
 use std::collections::BTreeMap;
 
-use geometry::Gear;
-use mechanism::{Mechanism, PointerRun, trial_rng};
 use registry::{Context, Experiment, Param, Report, RunError, Table, fmt_f64};
-use serde::{Deserialize, Serialize};
 use train::Gearing;
 
-use study::limits::IdealPair;
-use study::pointers::{POINTERS, samples_for};
+use study::readings::{
+    GEOMETRY, Minimum, PointerSigma, Starts, figure_iv_minima, mechanism, table1_trials, tip_radii,
+};
+use study::pointers::POINTERS;
 
 /// `trials`: Table 1 trials per reading (random initial angles; the same draws for every reading).
 const TRIALS: Param = Param {
@@ -91,284 +90,6 @@ registry::inventory::submit! {
     }
 }
 
-/// How the tip radii are chosen.
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum Radii {
-    /// `crates/train`: one least-squares scale per group of meshed gears, R = mu N (ours).
-    LeastSquares,
-    /// The same fit, to the Freeth 2006 radius plus h/2: his radius (the mean of the best-fit
-    /// inner and outer radius) read as mid-height, so the tip lies h/2 beyond it.
-    MidHeight,
-    /// The gear with most teeth (of those measured) in each group keeps its Freeth 2006 radius
-    /// exactly; its partners follow by the tooth ratio.
-    LargestKept,
-    /// Freeth et al. 2021, Table S8 outer radii (the embedded `freeth2021`), least squares.
-    Freeth2021,
-}
-
-/// One candidate reading: what differs from ours.
-#[derive(Debug, Clone, Copy)]
-struct Reading {
-    /// Short name, as printed.
-    name: &'static str,
-    /// Whether it keeps to the paper's stated inputs (a reading of them) or departs from them.
-    stated: &'static str,
-    radii: Radii,
-    /// Tooth height h of every gear, mm.
-    tooth_height: f64,
-    /// Centre distance added to every mesh, % of h (D = R1 + R2 - h + (G + extra) h / 100).
-    extra_clearance: f64,
-    /// G is a percentage of the flank length (the slant height of a tooth, tip to valley; the
-    /// mean of the two gears') instead of the radial height h.
-    per_flank: bool,
-}
-
-impl Reading {
-    /// The clearance in % of h (the paper's formula, ours) that this reading's `g_percent`
-    /// amounts to on a mesh of teeth `n1`, `n2` and tip radii `r1`, `r2`.
-    fn clearance(&self, g_percent: f64, n1: usize, n2: usize, r1: f64, r2: f64) -> f64 {
-        let h = self.tooth_height;
-        let flank = |tip: f64, n: usize| {
-            let root = tip - h;
-            (tip * tip + root * root - 2.0 * tip * root * (std::f64::consts::PI / n as f64).cos())
-                .sqrt()
-        };
-        let scale = if self.per_flank {
-            0.5 * (flank(r1, n1) + flank(r2, n2)) / h
-        } else {
-            1.0
-        };
-        g_percent * scale + self.extra_clearance
-    }
-}
-
-/// The readings that change the gears or their centre distances: they move both Figure IV and
-/// Table 1. (Readings of the sampling, the statistic, the span and the initial angles change
-/// Table 1 only and are run on the first reading's gears.)
-const GEOMETRY: [Reading; 7] = [
-    Reading {
-        name: "as built: least-squares radii, h = 1.1 mm, D = R1 + R2 - h + G",
-        stated: "yes (ours)",
-        radii: Radii::LeastSquares,
-        tooth_height: 1.1,
-        extra_clearance: 0.0,
-        per_flank: false,
-    },
-    Reading {
-        name: "radii: tip = Freeth 2006 radius + h/2 (his radius read as mid-height)",
-        stated: "another reading",
-        radii: Radii::MidHeight,
-        tooth_height: 1.1,
-        extra_clearance: 0.0,
-        per_flank: false,
-    },
-    Reading {
-        name: "radii: largest gear of each group keeps its Freeth 2006 radius",
-        stated: "another reading",
-        radii: Radii::LargestKept,
-        tooth_height: 1.1,
-        extra_clearance: 0.0,
-        per_flank: false,
-    },
-    Reading {
-        name: "radii: Freeth 2021 outer radii (Table S8)",
-        stated: "no: other data",
-        radii: Radii::Freeth2021,
-        tooth_height: 1.1,
-        extra_clearance: 0.0,
-        per_flank: false,
-    },
-    Reading {
-        name: "tooth height 0.85 mm",
-        stated: "no: paper says 1.1 mm",
-        radii: Radii::LeastSquares,
-        tooth_height: 0.85,
-        extra_clearance: 0.0,
-        per_flank: false,
-    },
-    Reading {
-        name: "D larger by 5 % of h (0.055 mm) on every mesh",
-        stated: "no: not the paper's D",
-        radii: Radii::LeastSquares,
-        tooth_height: 1.1,
-        extra_clearance: 5.0,
-        per_flank: false,
-    },
-    Reading {
-        name: "G as a percentage of the flank length (tip to valley), not of h",
-        stated: "another reading",
-        radii: Radii::LeastSquares,
-        tooth_height: 1.1,
-        extra_clearance: 0.0,
-        per_flank: true,
-    },
-];
-
-/// Tip radius of every gear in a mesh under `rule` (mm).
-fn tip_radii(
-    g: &Gearing,
-    g2021: &Gearing,
-    rule: Radii,
-    h: f64,
-) -> Result<BTreeMap<String, f64>, RunError> {
-    let teeth = |name: &str| g.gear(name).map_or(0.0, |x| f64::from(x.teeth));
-    let mut out = BTreeMap::new();
-    for c in g.components() {
-        if c.meshes.is_empty() {
-            continue;
-        }
-        let measured: Vec<(f64, f64)> = c
-            .gears
-            .iter()
-            .filter_map(|n| Some((teeth(n), g.gear(n)?.measured_radius?)))
-            .collect();
-        let mu = match rule {
-            Radii::LeastSquares => c.mu,
-            Radii::MidHeight => {
-                let na: f64 = measured.iter().map(|(n, a)| n * (a + 0.5 * h)).sum();
-                let nn: f64 = measured.iter().map(|(n, _)| n * n).sum();
-                na / nn
-            }
-            Radii::LargestKept => {
-                measured
-                    .iter()
-                    .copied()
-                    .fold(
-                        (0.0, c.mu),
-                        |best, (n, a)| {
-                            if n > best.0 { (n, a / n) } else { best }
-                        },
-                    )
-                    .1
-            }
-            Radii::Freeth2021 => {
-                let first = c.gears.first().map_or("", String::as_str);
-                g2021.tip_radius(first).unwrap_or(f64::NAN) / teeth(first)
-            }
-        };
-        if !(mu.is_finite() && mu > 0.0) {
-            return Err(RunError::bad(
-                "gearing",
-                format!("group of {}", c.gears.join(", ")),
-                "cannot be sized under this reading",
-            ));
-        }
-        for n in &c.gears {
-            out.insert(n.clone(), mu * teeth(n));
-        }
-    }
-    Ok(out)
-}
-
-/// The ideal mechanism of a reading: its radii and tooth height, and every centre distance
-/// D = R1 + R2 - h + (G + extra) h / 100.
-fn mechanism(
-    g: &Gearing,
-    radii: &BTreeMap<String, f64>,
-    r: &Reading,
-    clearance: f64,
-) -> Result<Mechanism, RunError> {
-    let h = r.tooth_height;
-    let radius = |name: &str| radii.get(name).copied().unwrap_or(f64::NAN);
-    // `Mechanism` places each mesh at train's D for a clearance; ask for the clearance that
-    // gives this reading's D on train's radii.
-    let teeth = |name: &str| g.gear(name).map_or(0, |x| x.teeth as usize);
-    let equivalent = |label: &str| {
-        let (Some(m), Some(base)) = (g.mesh(label), g.mesh_geometry(label, h, 0.0)) else {
-            return f64::NAN;
-        };
-        let (r1, r2) = (radius(&m.driver), radius(&m.driven));
-        let c = r.clearance(clearance, teeth(&m.driver), teeth(&m.driven), r1, r2);
-        let d = r1 + r2 - h + h * c / 100.0;
-        (d - base.centre_distance) / h * 100.0
-    };
-    Mechanism::build_with_clearances(g, h, equivalent, |name, gear| {
-        let tip = radius(name);
-        Gear::ideal(gear.teeth(), tip, tip - h).map_err(|e| e.to_string())
-    })
-    .map_err(study::gearing::mechanism_error)
-}
-
-/// σ and mean of one pointer's Theoretical Difference in one trial (degrees), under the
-/// sampling readings: σ and mean at the default density, σ at one sample per engagement and at
-/// twice the default. NaN bits survive the shard records.
-#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize)]
-struct PointerSigma {
-    #[serde(with = "registry::f64_bits")]
-    sigma: f64,
-    #[serde(with = "registry::f64_bits")]
-    mean: f64,
-    #[serde(with = "registry::f64_bits")]
-    sigma_coarse: f64,
-    #[serde(with = "registry::f64_bits")]
-    sigma_fine: f64,
-}
-
-/// A pointer's σ under the three sampling densities (`per`, 1 and `2 per` per engagement).
-fn sigmas(
-    g: &Gearing,
-    run: Option<PointerRun>,
-    name: &str,
-    turns: f64,
-    per: usize,
-) -> PointerSigma {
-    let Some(run) = run else {
-        return PointerSigma {
-            sigma: f64::NAN,
-            mean: f64::NAN,
-            sigma_coarse: f64::NAN,
-            sigma_fine: f64::NAN,
-        };
-    };
-    let s = run.stats(samples_for(g, name, turns, per));
-    PointerSigma {
-        sigma: s.sigma,
-        mean: s.mean,
-        sigma_coarse: run.stats(samples_for(g, name, turns, 1)).sigma,
-        sigma_fine: run.stats(samples_for(g, name, turns, 2 * per)).sigma,
-    }
-}
-
-/// How a Table 1 trial sets each mesh's initial angle.
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum Starts {
-    /// Each mesh's initial driver angle uniform within its driver's pitch (the paper, ours).
-    Random,
-    /// Every mesh starts at driver angle 0.
-    Zero,
-}
-
-/// Table 1's σ per trial and pointer for one mechanism, one start rule and a span factor.
-fn table1_trials(
-    ctx: &Context,
-    key: &str,
-    g: &Gearing,
-    mech: &Mechanism,
-    start: Starts,
-    span: f64,
-    per: usize,
-) -> Result<Vec<Vec<PointerSigma>>, RunError> {
-    let trials: usize = ctx.get(&TRIALS)?;
-    let seed = ctx.seed();
-    let turns: Vec<(&str, f64)> = POINTERS
-        .iter()
-        .map(|&(name, param)| Ok((name, caption_turns(param)? * span)))
-        .collect::<Result<_, RunError>>()?;
-    ctx.trials(key, trials as u64, |t| {
-        let mut rng = trial_rng(seed, t);
-        Ok(turns
-            .iter()
-            .map(|&(name, turns)| {
-                let run = match start {
-                    Starts::Random => mech.run_pointer(name, turns, &mut rng),
-                    Starts::Zero => mech.run_pointer_from(name, turns, |_| Some(0.0)),
-                };
-                sigmas(g, run, name, turns, per)
-            })
-            .collect())
-    })
-}
-
 /// The run length of a pointer as `table1` runs it by default (the caption's turns of b).
 fn caption_turns(p: &Param) -> Result<f64, RunError> {
     p.default
@@ -395,198 +116,25 @@ fn pooled(trials: &[Vec<PointerSigma>], i: usize) -> f64 {
     v.sqrt()
 }
 
-/// Where a σ(G) curve is smallest, and how deep that minimum is. Recorded per (reading, mesh)
-/// through `Context::trials_whole` (NaN fields as bits).
-#[derive(Debug, Clone, Copy, Default, serde::Serialize, serde::Deserialize)]
-struct Minimum {
-    /// The clearance of the smallest σ, % of h.
-    #[serde(with = "registry::f64_bits")]
-    at: f64,
-    /// σ at 40 % over the smallest σ (NaN when 40 % is not on the curve).
-    #[serde(with = "registry::f64_bits")]
-    depth: f64,
-    /// The largest clearance on the curve (for ideal gears: the largest that runs a full turn
-    /// without a jam or disengagement).
-    #[serde(with = "registry::f64_bits")]
-    last: f64,
+/// Each pointer's run as table1 runs it by default, times `span`: (pointer, input turns).
+fn turns(span: f64) -> Result<Vec<(&'static str, f64)>, RunError> {
+    POINTERS
+        .iter()
+        .map(|&(name, param)| Ok((name, caption_turns(param)? * span)))
+        .collect()
 }
 
-impl Minimum {
-    /// The minimum of (G, σ) points; None for no points.
-    fn of(curve: &[(f64, f64)]) -> Option<Minimum> {
-        let (at, smallest) =
-            curve
-                .iter()
-                .copied()
-                .fold(None, |best: Option<(f64, f64)>, (c, s)| match best {
-                    Some((_, b)) if b <= s => best,
-                    _ => Some((c, s)),
-                })?;
-        let at40 = curve
-            .iter()
-            .find(|(c, _)| (c - 40.0).abs() < 1e-9)
-            .map_or(f64::NAN, |&(_, s)| s);
-        let last = curve.iter().map(|&(c, _)| c).fold(f64::NAN, f64::max);
-        Some(Minimum {
-            at,
-            depth: at40 / smallest,
-            last,
-        })
-    }
-}
-
-/// Figure IV with manufacturing errors: `draws` pairs of mesh `label` manufactured under Case A
-/// (`edmunds-split`, random 0.04 of the pitch, no systematic error), each swept over every
-/// clearance of `grid` with the same gears and initial angle; through jams (the driven gear
-/// released to its next free position, as the paper's program did). Returns the minimum of
-/// the mean σ over the draws. Draw d of mesh i uses stream `1000 i + d` of `seed`.
-fn case_a_minimum(
+/// Figure IV's table: each mesh's clearance of the smallest σ under each column (`at`), and
+/// per column how many fall within the paper's range, their range, the depth of the minimum
+/// and the largest clearance that runs.
+fn figure_iv_table(
     g: &Gearing,
-    index: usize,
-    pair: &IdealPair,
-    grid: &[f64],
+    at: &BTreeMap<(usize, usize), Option<Minimum>>,
     draws: usize,
-    samples: usize,
-    seed: u64,
-) -> Result<Option<Minimum>, RunError> {
-    use rand::Rng;
-    let Some(m) = g.meshes().get(index) else {
-        return Ok(None);
-    };
-    let hyp = hypotheses::lookup("edmunds-split")
-        .map_err(|e| RunError::Internal(format!("edmunds-split: {}", e.rule)))?;
-    let params = hypotheses::Params::new(
-        hyp,
-        &[
-            ("random".into(), "0.04".into()),
-            ("systematic".into(), "0".into()),
-        ],
-    )
-    .map_err(|e| RunError::Internal(format!("edmunds-split: {}", e.rule)))?;
-    let turn = std::f64::consts::TAU * pair.n1.max(pair.n2) as f64 / pair.n1 as f64;
-    let ratio = pair.n1 as f64 / pair.n2 as f64;
-    let mut sums = vec![0.0; grid.len()];
-    let mut counts = vec![0_usize; grid.len()];
-    for d in 0..draws {
-        let mut rng = trial_rng(seed, 1000 * index as u64 + d as u64);
-        let (ideal1, ideal2) = pair.ideal_gears()?;
-        let a = study::errors::make(hyp, &ideal1, &m.driver, &params, &mut rng)?;
-        let b = study::errors::make(hyp, &ideal2, &m.driven, &params, &mut rng)?;
-        let phi0 = rng.random::<f64>() * std::f64::consts::TAU / pair.n1 as f64;
-        for (k, &c) in grid.iter().enumerate() {
-            let Ok(t) = pair.run_made((&a, &b), c, phi0) else {
-                continue;
-            };
-            let th0 = t.theta_at(phi0);
-            let acc: stats::Accumulator = (0..samples)
-                .map(|j| {
-                    let phi = turn * j as f64 / samples as f64;
-                    (t.theta_at(phi0 + phi) - th0 - ratio * phi).to_degrees()
-                })
-                .collect();
-            sums[k] += acc.sigma();
-            counts[k] += 1;
-        }
-    }
-    let curve: Vec<(f64, f64)> = grid
-        .iter()
-        .zip(sums.iter().zip(&counts))
-        .filter(|(_, (_, n))| **n == draws)
-        .map(|(&c, (s, n))| (c, s / *n as f64))
-        .collect();
-    Ok(Minimum::of(&curve))
-}
-
-fn run(ctx: &Context) -> Result<Report, RunError> {
-    let g = Gearing::freeth2006();
-    let g2021 = Gearing::builtin("freeth2021")
-        .ok_or_else(|| RunError::Internal("the embedded freeth2021 gearing is missing".into()))?;
-    let trials: usize = ctx.get(&TRIALS)?;
-    let clearance: f64 = ctx.get(&TABLE1_CLEARANCE)?;
-    let per: usize = ctx.get(&SAMPLES_PER_ENGAGEMENT)?;
-    let samples: usize = ctx.get(&SAMPLES)?;
-    let paper_from = crate::paper::get("sigma-causes", "figIV.minimum_from").map(|r| r.value);
-    let paper_to = crate::paper::get("sigma-causes", "figIV.minimum_to").map(|r| r.value);
-
-    // ---- Figure IV: σ against G for each mesh under each geometry reading. ----
-    let grid: Vec<f64> = (0..=16).map(|i| 20.0 + 5.0 * f64::from(i)).collect();
-    let radii: Vec<BTreeMap<String, f64>> = GEOMETRY
-        .iter()
-        .map(|r| tip_radii(&g, &g2021, r.radii, r.tooth_height))
-        .collect::<Result<_, _>>()?;
-    let draws: usize = ctx.get(&DRAWS)?;
-    let seed = ctx.seed();
-    // Columns: the geometry readings, then (CASE_A) the first one's gears with Case A errors,
-    // then (IN_BACKLASH) its ideal gears started at rest half-way through the backlash.
-    let case_a = GEOMETRY.len();
-    let in_backlash = case_a + 1;
-    let mut jobs = Vec::new();
-    for ri in 0..=in_backlash {
-        let geometry = if ri >= case_a { 0 } else { ri };
-        let r = &GEOMETRY[geometry];
-        let radii = &radii[geometry];
-        for (mi, m) in g.meshes().iter().enumerate() {
-            let radius = |n: &str| radii.get(n).copied().unwrap_or(f64::NAN);
-            let teeth = |n: &str| g.gear(n).map_or(0, |x| x.teeth as usize);
-            jobs.push((
-                ri,
-                mi,
-                IdealPair {
-                    n1: teeth(&m.driver),
-                    n2: teeth(&m.driven),
-                    r1: radius(&m.driver),
-                    r2: radius(&m.driven),
-                    h: r.tooth_height,
-                },
-            ));
-        }
-    }
-    // (column, mesh) -> G of the smallest σ; pairs of identical geometry (b2-c1 and b2-l1) are
-    // run twice, which keeps the code plain.
-    // Through the trial engine like every trial loop: job j is (reading, mesh); the Case A column
-    // draws its gears from streams of the seed.
-    let key = format!(
-        "sigma-causes Figure IV minima: {} jobs, grid {grid:?}, draws {draws}, samples {samples}",
-        jobs.len()
-    );
-    let minima: Vec<Option<Minimum>> = ctx.trials_whole(&key, jobs.len() as u64, |j| {
-        let &(ri, mi, ref pair) = &jobs[j as usize];
-        {
-            if ri == case_a {
-                return case_a_minimum(&g, mi, pair, &grid, draws, samples, seed);
-            }
-            let reading = &GEOMETRY[if ri == in_backlash { 0 } else { ri }];
-            let mut curve = Vec::new();
-            for &c in &grid {
-                let ours = reading.clearance(c, pair.n1, pair.n2, pair.r1, pair.r2);
-                let run = if ri == in_backlash {
-                    pair.run_in_backlash(ours, 0.5)?
-                } else {
-                    pair.run(ours)?
-                };
-                let Some(t) = run else {
-                    continue;
-                };
-                // A run counts when it turns the driven gear as the tooth ratio says (tip
-                // circles that do not overlap leave it still, with no event to report).
-                let ratio = pair.n1 as f64 / pair.n2 as f64;
-                let moved = t.theta_at(t.phi_end()) - t.theta_at(t.phi_start());
-                let expected = ratio * (t.phi_end() - t.phi_start());
-                let pitch = std::f64::consts::TAU / pair.n2 as f64;
-                if t.jams() > 0 || t.disengagements() > 0 || (moved - expected).abs() > pitch {
-                    continue;
-                }
-                curve.push((c, pair.td_sigma(&t, samples).sigma));
-            }
-            Ok(Minimum::of(&curve))
-        }
-    })?;
-    let mut at: BTreeMap<(usize, usize), Option<Minimum>> = BTreeMap::new();
-    for ((ri, mi, _), m) in jobs.iter().zip(minima) {
-        at.insert((*ri, *mi), m);
-    }
+    (paper_from, paper_to): (Option<f64>, Option<f64>),
+) -> Table {
+    let (case_a, in_backlash) = (GEOMETRY.len(), GEOMETRY.len() + 1);
     let columns = in_backlash + 1;
-
     let mut header = vec!["mesh".to_string()];
     header.extend((1..=columns).map(|i| format!("({i})")));
     let mut fig = Table::new(
@@ -678,18 +226,33 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         in_backlash + 1
     ));
     fig.note("G is the clearance of the paper's formula, D = R1 + R2 - h + G (reading (6) adds its extra centre distance to it; reading (7) reads G in % of the flank length); a mesh's minimum is the grid point of its smallest sigma of the driven gear's Theoretical Difference over one turn of the larger gear (ideal gears: figIV's runs, from driver angle 0, at grid points that run without a jam or disengagement; '-': none does).");
+    fig
+}
 
-    // ---- Table 1: σ of the five pointers under every reading. ----
-    let mut rows: Vec<(String, &'static str, Vec<f64>)> = Vec::new();
+/// One row of the Table 1 comparison: the reading, whether it keeps to the paper's inputs, and
+/// each pointer's mean σ.
+type Row = (String, &'static str, Vec<f64>);
+
+/// Table 1's σ under every reading: the geometry readings on their own gears (tip radii
+/// `radii`), then the sampling, statistic, span and start readings on the first one's, each
+/// over `trials` trials at `per` samples per engagement.
+fn table1_rows(
+    ctx: &Context,
+    g: &Gearing,
+    radii: &[BTreeMap<String, f64>],
+    clearance: f64,
+    (per, trials): (usize, u64),
+) -> Result<Vec<Row>, RunError> {
+    let mut rows: Vec<Row> = Vec::new();
     let mut baseline: Option<Vec<Vec<PointerSigma>>> = None;
     for (ri, r) in GEOMETRY.iter().enumerate() {
-        let mech = mechanism(&g, &radii[ri], r, clearance)?;
+        let mech = mechanism(g, &radii[ri], r, clearance)?;
         let key = format!(
             "sigma-causes: table1 trials, reading ({}) {}, G = {clearance} %, {per} samples per engagement, random starts",
             ri + 1,
             r.name
         );
-        let t = table1_trials(ctx, &key, &g, &mech, Starts::Random, 1.0, per)?;
+        let t = table1_trials(ctx, &key, g, &mech, Starts::Random, &turns(1.0)?, per, trials)?;
         rows.push((
             format!("({}) {}", ri + 1, r.name),
             r.stated,
@@ -730,17 +293,18 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         "another reading",
         (0..POINTERS.len()).map(|i| pooled(&base, i)).collect(),
     ));
-    let mech = mechanism(&g, &radii[0], &GEOMETRY[0], clearance)?;
+    let mech = mechanism(g, &radii[0], &GEOMETRY[0], clearance)?;
     let halved = table1_trials(
         ctx,
         &format!(
             "sigma-causes: table1 trials, reading (1) with every run half as long, G = {clearance} %, {per} samples per engagement, random starts"
         ),
-        &g,
+        g,
         &mech,
         Starts::Random,
-        0.5,
+        &turns(0.5)?,
         per,
+        trials,
     )?;
     rows.push((
         format!(
@@ -757,11 +321,12 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         &format!(
             "sigma-causes: table1 trials, reading (1) with every mesh from driver angle 0, G = {clearance} %, {per} samples per engagement"
         ),
-        &g,
+        g,
         &mech,
         Starts::Zero,
-        1.0,
+        &turns(1.0)?,
         per,
+        trials,
     )?;
     rows.push((
         format!(
@@ -773,7 +338,12 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             .map(|i| mean_of(&zero, i, |p| p.sigma))
             .collect(),
     ));
+    Ok(rows)
+}
 
+/// The Table 1 comparison: each reading's σ of every pointer beside the paper's, with the
+/// ratio's range over Lunar to Games.
+fn table1_table(rows: Vec<Row>, trials: u64, clearance: f64, per: usize) -> Table {
     let mut header = vec!["reading".to_string(), "paper's inputs".to_string()];
     header.extend(
         POINTERS
@@ -827,9 +397,38 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         "Ideal gears, G = {clearance} % (plus the reading's extra centre distance), runs of the caption's length (Lunar 1, Metonic and Games 3.8, Saros and Exeligmos 4.5 turns of b), {per} TD samples per engagement of the busiest mesh unless the reading says otherwise; sigma per trial, then the mean over trials, as table1."
     ));
     t1.note("Ours/paper, Lunar to Games: the smallest and largest ours/paper of the Lunar, Metonic, Saros and Games pointers (the 1.21-1.27 that first prompted this study; Exeligmos, 1.8, has a cause of its own: see table1's note).");
+    t1
+}
+
+fn run(ctx: &Context) -> Result<Report, RunError> {
+    let g = Gearing::freeth2006();
+    let g2021 = Gearing::builtin("freeth2021")
+        .ok_or_else(|| RunError::Internal("the embedded freeth2021 gearing is missing".into()))?;
+    let trials: u64 = ctx.get(&TRIALS)?;
+    let clearance: f64 = ctx.get(&TABLE1_CLEARANCE)?;
+    let per: usize = ctx.get(&SAMPLES_PER_ENGAGEMENT)?;
+    let samples: usize = ctx.get(&SAMPLES)?;
+    let paper_from = crate::paper::get("sigma-causes", "figIV.minimum_from").map(|r| r.value);
+    let paper_to = crate::paper::get("sigma-causes", "figIV.minimum_to").map(|r| r.value);
+
+    // ---- Figure IV: σ against G for each mesh under each geometry reading. ----
+    let grid: Vec<f64> = (0..=16).map(|i| 20.0 + 5.0 * f64::from(i)).collect();
+    let radii: Vec<BTreeMap<String, f64>> = GEOMETRY
+        .iter()
+        .map(|r| tip_radii(&g, &g2021, r.radii, r.tooth_height))
+        .collect::<Result<_, _>>()?;
+    let draws: usize = ctx.get(&DRAWS)?;
+    let at = figure_iv_minima(ctx, &g, &radii, &grid, (draws, samples))?;
+
+    let fig = figure_iv_table(&g, &at, draws, (paper_from, paper_to));
+
+    // ---- Table 1: σ of the five pointers under every reading. ----
+    let rows = table1_rows(ctx, &g, &radii, clearance, (per, trials))?;
+
+    let t1 = table1_table(rows, trials, clearance, per);
     Ok(Report {
         tables: vec![fig, t1],
-        trials: (trials * (GEOMETRY.len() + 2)) as u64,
+        trials: trials * (GEOMETRY.len() as u64 + 2),
         ..Default::default()
     })
 }
@@ -838,81 +437,6 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
 mod tests {
     #![allow(clippy::unwrap_used, reason = "tests")]
     use super::*;
-
-    #[test]
-    fn the_first_reading_is_the_trains_own_geometry() {
-        let g = Gearing::freeth2006();
-        let g2021 = Gearing::builtin("freeth2021").unwrap();
-        let r = &GEOMETRY[0];
-        let radii = tip_radii(&g, &g2021, r.radii, r.tooth_height).unwrap();
-        let mech = mechanism(&g, &radii, r, 40.0).unwrap();
-        for m in g.meshes() {
-            let want = g.mesh_geometry(&m.label, 1.1, 40.0).unwrap();
-            let got = mech.mesh(&m.label).unwrap();
-            assert!(
-                (got.centre_distance() - want.centre_distance).abs() < 1e-12,
-                "{}",
-                m.label
-            );
-            assert_eq!(
-                got.driver().tip_radius(),
-                want.driver_tip_radius,
-                "{}",
-                m.label
-            );
-        }
-    }
-
-    #[test]
-    fn five_percent_more_centre_distance_is_0_055_mm() {
-        let g = Gearing::freeth2006();
-        let g2021 = Gearing::builtin("freeth2021").unwrap();
-        let shifted = GEOMETRY.iter().find(|r| r.extra_clearance == 5.0).unwrap();
-        let radii = tip_radii(&g, &g2021, shifted.radii, shifted.tooth_height).unwrap();
-        let mech = mechanism(&g, &radii, shifted, 40.0).unwrap();
-        let base = g.mesh_geometry("b2-c1", 1.1, 40.0).unwrap();
-        let d = mech.mesh("b2-c1").unwrap().centre_distance();
-        assert!((d - base.centre_distance - 0.055).abs() < 1e-12, "{d}");
-    }
-
-    #[test]
-    fn radii_readings_follow_their_rules() {
-        let g = Gearing::freeth2006();
-        let g2021 = Gearing::builtin("freeth2021").unwrap();
-        let lsq = tip_radii(&g, &g2021, Radii::LeastSquares, 1.1).unwrap();
-        let mid = tip_radii(&g, &g2021, Radii::MidHeight, 1.1).unwrap();
-        let kept = tip_radii(&g, &g2021, Radii::LargestKept, 1.1).unwrap();
-        // c2 (48) and d1 (24), both measured: the fitted scale grows by (h/2) ΣN / ΣN².
-        let grow = 0.55 * (48.0 + 24.0) / (48.0 * 48.0 + 24.0 * 24.0);
-        assert!((mid["c2"] - lsq["c2"] - 48.0 * grow).abs() < 1e-12);
-        // b2 (64) is the largest of b2, c1, l1: it keeps its 15.30 mm, its partners follow.
-        assert!((kept["b2"] - 15.30).abs() < 1e-12);
-        assert!((kept["c1"] - 15.30 * 38.0 / 64.0).abs() < 1e-12);
-        assert_eq!(kept["c1"], kept["l1"]);
-    }
-
-    #[test]
-    fn flank_reading_scales_g_by_the_flank_over_h() {
-        // N = 8, R = 200, h = 100 (Figure 2's gears): tip (200, 0), valley at radius 100 and
-        // half a pitch, 22.5 degrees.
-        let r = Reading {
-            name: "",
-            stated: "",
-            radii: Radii::LeastSquares,
-            tooth_height: 100.0,
-            extra_clearance: 0.0,
-            per_flank: true,
-        };
-        let a = 22.5_f64.to_radians();
-        let flank = (200.0 - 100.0 * a.cos()).hypot(100.0 * a.sin());
-        assert!((r.clearance(40.0, 8, 8, 200.0, 200.0) - 40.0 * flank / 100.0).abs() < 1e-9);
-        let plain = Reading {
-            per_flank: false,
-            extra_clearance: 5.0,
-            ..r
-        };
-        assert_eq!(plain.clearance(40.0, 8, 8, 200.0, 200.0), 45.0);
-    }
 
     #[test]
     fn pooled_sigma_is_the_sigma_of_all_samples_together() {

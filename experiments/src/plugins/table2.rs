@@ -101,18 +101,15 @@ const POINTERS: [(&str, &Param); 3] = [
 /// One trial of one case: per pointer, (Edmunds σ, Edmunds Dm, triangular σ, triangular Dm, jammed).
 type CaseTrial = Vec<(f64, f64, f64, f64, bool)>;
 
-fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::labelled(ctx, counted)
-}
-
-/// The experiment itself; [`run`] names the event rule in its tables' titles.
-fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let cells = study::grids::CellSettings::read(ctx, &TRIALS)?;
+/// Every Case's trials under both contact models: `results[case][trial][pointer]`.
+fn simulate(
+    ctx: &Context,
+    cells: &study::grids::CellSettings,
+    runs: &[(&str, f64, usize)],
+    pin_and_slot: bool,
+) -> Result<Vec<Vec<CaseTrial>>, RunError> {
     let (g, hyp, trials) = (cells.gearing(), cells.hypothesis(), cells.trials as usize);
     let (h, clearance) = (cells.gearing.tooth_height, cells.clearance()?);
-    let per = ctx.get(&SAMPLES_PER_ENGAGEMENT)?;
-    let pin_and_slot = gearing::pin_and_slot(ctx)?;
-    let runs = pointer_runs(ctx, g, &POINTERS, per)?;
     let mut results: Vec<Vec<CaseTrial>> = Vec::new();
     for (ci, &(case, systematic, random)) in CASES.iter().enumerate() {
         let p = cells.errors.case_params((systematic, random))?;
@@ -133,7 +130,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             rule: &cells.rule,
             pin_and_slot,
         };
-        let per_trial = both_model_trials(ctx, &key, ci as u64, &made, &runs, trials as u64)?;
+        let per_trial = both_model_trials(ctx, &key, ci as u64, &made, runs, trials as u64)?;
         results.push(
             per_trial
                 .into_iter()
@@ -154,6 +151,96 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
                 .collect(),
         );
     }
+    Ok(results)
+}
+
+/// The plot: each pointer's σ against the systematic error, per model (`curves`, by label).
+fn plot(curves: &std::collections::BTreeMap<String, Vec<(f64, f64)>>) -> Result<String, RunError> {
+    let series: Vec<Series<'_>> = curves
+        .iter()
+        .map(|(label, points)| Series {
+            label: label.as_str(),
+            points: points.clone(),
+        })
+        .collect();
+    semilog_plot(
+        "Table 2: pointer sigma against Edmunds' systematic error (Cases A-D)",
+        "systematic error amplitude [deg] (Case A 0, B 0.5, C 1, D 2)",
+        "sigma of the Theoretical Difference [deg], logarithmic scale",
+        &series,
+    )
+}
+
+/// The mean of the trial-by-trial differences `a - b`, with its 95 % interval.
+fn diff(a: &[f64], b: &[f64]) -> stats::Estimate {
+    mean_ci95(&a.iter().zip(b).map(|(x, y)| x - y).collect::<Vec<_>>())
+}
+
+/// An estimate as printed: "mean [lo .. hi]".
+fn show(e: &stats::Estimate) -> String {
+    format!(
+        "{} [{} .. {}]",
+        fmt_f64(e.mean, 3),
+        fmt_f64(e.lo, 3),
+        fmt_f64(e.hi, 3)
+    )
+}
+
+/// The notes under both tables: what each Case draws, the days per degree, and the
+/// pin-and-slot when it is in.
+fn notes(edm_table: &mut Table, tri_table: &mut Table, g: &train::Gearing, pin_and_slot: bool) {
+    edm_table.note("Each case: every gear gets random tooth errors (sd = random x pitch) and the systematic error split between a sinusoid of tip position and an eccentric axis (split parameter, 0.5 as in the paper).");
+    edm_table.note(format!(
+        "Days: from each pointer's exact ratio (Metonic {} d/deg, Saros {} d/deg).",
+        g.days_per_degree("Metonic")
+            .map_or_else(|| "-".into(), |d| fmt_f64(d, 3)),
+        g.days_per_degree("Saros")
+            .map_or_else(|| "-".into(), |d| fmt_f64(d, 3)),
+    ));
+    if pin_and_slot {
+        let note = "Lunar: with the pin-and-slot (--set pin_and_slot=true), beyond the paper; its TD is taken against the anomaly-bearing ideal motion (cargo xtask help lunar-anomaly).";
+        edm_table.note(note);
+        tri_table.note(note);
+    }
+}
+
+/// The CSV lines of one Case and pointer: each model's σ and Dm over the trials (`values`:
+/// Edmunds' σ and Dm, then the triangular teeth'), with the paper's for Edmunds' model.
+fn csv_lines(
+    csv: &mut String,
+    (case, name): (&str, &str),
+    [es, ed, ts, td]: [&Vec<f64>; 4],
+    (paper_sigma, paper_dm): (Option<f64>, Option<f64>),
+) {
+    for (model, stat, v, p) in [
+        ("edmunds", "sigma", es, paper_sigma),
+        ("edmunds", "dm", ed, paper_dm),
+        ("triangular", "sigma", ts, None),
+        ("triangular", "dm", td, None),
+    ] {
+        let e = mean_ci95(v);
+        csv.push_str(&format!(
+            "{case},{name},{model},{stat},{},{},{},{}\n",
+            e.mean,
+            e.lo,
+            e.hi,
+            p.map_or(String::new(), |x| x.to_string())
+        ));
+    }
+}
+
+fn run(ctx: &Context) -> Result<Report, RunError> {
+    study::events::labelled(ctx, counted)
+}
+
+/// The experiment itself; [`run`] names the event rule in its tables' titles.
+fn counted(ctx: &Context) -> Result<Report, RunError> {
+    let cells = study::grids::CellSettings::read(ctx, &TRIALS)?;
+    let (g, trials, clearance) = (cells.gearing(), cells.trials as usize, cells.clearance()?);
+    let per = ctx.get(&SAMPLES_PER_ENGAGEMENT)?;
+    let pin_and_slot = gearing::pin_and_slot(ctx)?;
+    let runs = pointer_runs(ctx, g, &POINTERS, per)?;
+    let results = simulate(ctx, &cells, &runs, pin_and_slot)?;
 
     let mut edm_table = Table::new(
         format!(
@@ -226,18 +313,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
                 Some(mean_ci95(&ts).mean),
             );
             add(format!("{name}, Edmunds' Table 2 (paper)"), paper("sigma"));
-            let diff = |a: &[f64], b: &[f64]| {
-                mean_ci95(&a.iter().zip(b).map(|(x, y)| x - y).collect::<Vec<_>>())
-            };
             let (dsig, ddm) = (diff(&ts, &es), diff(&td, &ed));
-            let show = |e: &stats::Estimate| {
-                format!(
-                    "{} [{} .. {}]",
-                    fmt_f64(e.mean, 3),
-                    fmt_f64(e.lo, 3),
-                    fmt_f64(e.hi, 3)
-                )
-            };
             let jammed = results[ci].iter().filter(|t| t[pi].4).count();
             tri_table.row(vec![
                 case.into(),
@@ -250,51 +326,14 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
                 show(&ddm),
                 format!("{jammed}/{trials}"),
             ]);
-            for (model, stat, v, p) in [
-                ("edmunds", "sigma", &es, paper("sigma")),
-                ("edmunds", "dm", &ed, paper("dm")),
-                ("triangular", "sigma", &ts, None),
-                ("triangular", "dm", &td, None),
-            ] {
-                let e = mean_ci95(v);
-                csv.push_str(&format!(
-                    "{case},{name},{model},{stat},{},{},{},{}\n",
-                    e.mean,
-                    e.lo,
-                    e.hi,
-                    p.map_or(String::new(), |x| x.to_string())
-                ));
-            }
+            let paper_values = (paper("sigma"), paper("dm"));
+            csv_lines(&mut csv, (case, name), [&es, &ed, &ts, &td], paper_values);
         }
         edm_table.row(row);
     }
-    edm_table.note("Each case: every gear gets random tooth errors (sd = random x pitch) and the systematic error split between a sinusoid of tip position and an eccentric axis (split parameter, 0.5 as in the paper).");
-    edm_table.note(format!(
-        "Days: from each pointer's exact ratio (Metonic {} d/deg, Saros {} d/deg).",
-        g.days_per_degree("Metonic")
-            .map_or_else(|| "-".into(), |d| fmt_f64(d, 3)),
-        g.days_per_degree("Saros")
-            .map_or_else(|| "-".into(), |d| fmt_f64(d, 3)),
-    ));
-    if pin_and_slot {
-        let note = "Lunar: with the pin-and-slot (--set pin_and_slot=true), beyond the paper; its TD is taken against the anomaly-bearing ideal motion (cargo xtask help lunar-anomaly).";
-        edm_table.note(note);
-        tri_table.note(note);
-    }
+    notes(&mut edm_table, &mut tri_table, g, pin_and_slot);
     tri_table.note("A jam stops the pointer, so a triangular trial that jammed is measured up to its first jam (Edmunds' model never jams).");
-    let series: Vec<Series<'_>> = curves
-        .iter()
-        .map(|(label, points)| Series {
-            label: label.as_str(),
-            points: points.clone(),
-        })
-        .collect();
-    let svg = semilog_plot(
-        "Table 2: pointer sigma against Edmunds' systematic error (Cases A-D)",
-        "systematic error amplitude [deg] (Case A 0, B 0.5, C 1, D 2)",
-        "sigma of the Theoretical Difference [deg], logarithmic scale",
-        &series,
-    )?;
+    let svg = plot(&curves)?;
     Ok(Report {
         tables: vec![edm_table, tri_table],
         files: vec![

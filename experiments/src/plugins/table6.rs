@@ -52,33 +52,12 @@ registry::inventory::submit! {
 /// One trial: per pointer (statistics up to the first jam, jammed, tooth engagements).
 type PointerTrials = Vec<(PointerStats, bool, u64)>;
 
-fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::labelled(ctx, counted)
-}
+/// Each gear's tolerances (random, systematic) and the meshes it is in.
+type PerGear = BTreeMap<String, (f64, f64, Vec<String>)>;
 
-/// The experiment itself; [`run`] names the event rule in its tables' titles.
-fn counted(ctx: &Context) -> Result<Report, RunError> {
-    // The cells of Tables 4 and 5 count `cell_trials` trials each.
-    let cells = study::grids::CellSettings::read(ctx, &CELL_TRIALS)?;
-    let trials: usize = ctx.get(&TRIALS)?;
-    let (g, hyp, cell_trials) = (cells.gearing(), cells.hypothesis(), cells.trials);
-    let rule = tolerance::rule(ctx)?;
-    let (h, clearance, split) = (
-        cells.gearing.tooth_height,
-        cells.clearance()?,
-        cells.errors.split()?,
-    );
-    let per = ctx.get(&study::pointers::SAMPLES_PER_ENGAGEMENT)?;
-    let runs = pointer_runs(ctx, g, &POINTERS, per)?;
-    let grids = (
-        tolerance::random_grid(ctx)?,
-        tolerance::systematic_grid(ctx)?,
-    );
-    let given = crate::emax::given_random(ctx, g)?;
-    let tol = study::grids::derive(ctx, &cells, grids, rule, Purpose::Input, given)?;
-
-    // Each gear: the tolerances of its mesh; a gear in two meshes (b2) the smaller of each.
-    // Below a grid counts as 0 (no error known to be tolerable).
+/// Each gear's tolerances (random, systematic) and its meshes: its mesh's; a gear in two meshes
+/// (b2) the smaller of each. Below a grid counts as 0 (no error known to be tolerable).
+fn per_gear(g: &train::Gearing, tol: &study::grids::Tolerances) -> PerGear {
     let mut per_gear: BTreeMap<String, (f64, f64, Vec<String>)> = BTreeMap::new();
     for (m, mesh) in g.meshes().iter().enumerate() {
         let r = tol.random[m].unwrap_or(0.0);
@@ -93,66 +72,79 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             e.2.push(mesh.label.clone());
         }
     }
-    let mut params: BTreeMap<String, Params> = BTreeMap::new();
-    for (gear, (r, s, _)) in &per_gear {
-        params.insert(
-            gear.clone(),
-            cells
-                .errors
-                .params(&[("random", *r), ("systematic", *s), ("split", split)])?,
-        );
-    }
+    per_gear
+}
 
-    // Named by everything that determines the trials (the tolerances are derived from the
-    // parameters, so naming those names them), so shards run and merge them.
-    let key = format!(
-        "table6: {trials} trials, hypothesis {}, tolerances {:?}, h = {h} mm, G = {clearance} %, gearing {}, events {}, pointers {:?}",
-        hyp.name(),
-        params
-            .iter()
-            .map(|(gear, p)| (gear.as_str(), p.iter().collect::<Vec<_>>()))
-            .collect::<Vec<_>>(),
-        cells.gearing.file,
-        cells.rule.label(),
-        runs,
+/// Table 6's inputs: each mesh's tolerances beside the paper's, and table6-inputs.csv.
+fn inputs_table(
+    tol: &study::grids::Tolerances,
+    rule: f64,
+    cell_trials: u64,
+    per_gear: &PerGear,
+) -> (Table, String) {
+    let mut inputs = Table::new(
+        format!(
+            "Table 6 inputs: each mesh's largest tolerable errors (rule {rule} % of {cell_trials} trials): ours (paper)"
+        ),
+        ["mesh", "random E. max [pitch]", "systematic E. max [deg]"],
     );
-    let made = Manufactured {
-        gearing: g,
-        tooth_height: h,
-        clearance,
-        hypothesis: hyp,
-        params: &params,
-        rule: &cells.rule,
-    };
-    let recorded = study::pointers::tolerated_trials(ctx, &key, &made, &runs, trials as u64)?;
-    let per_trial: Vec<PointerTrials> = recorded
-        .into_iter()
-        .map(|trial| {
-            trial
-                .into_iter()
-                .map(|r| {
-                    let s = PointerStats {
-                        sigma: r.sigma,
-                        dm: r.dm,
-                        mean: r.mean,
-                    };
-                    (s, r.jammed, r.engaged)
-                })
-                .collect()
+    let mut inputs_csv = String::from("mesh,random_emax,systematic_emax_deg\n");
+    for (m, mesh) in tol.random_grid.meshes.iter().enumerate() {
+        let paper_sys = paper_systematic(mesh, &tol.sys_values, rule)
+            .map_or_else(|| "-".into(), |p| show(p, tol.sys_values.first(), 1));
+        let ours_sys = if tol.random[m].is_some() {
+            show(tol.systematic[m], tol.sys_values.first(), 1)
+        } else {
+            "-".into()
+        };
+        inputs.row(vec![
+            mesh.clone(),
+            format!(
+                "{} ({})",
+                show(tol.random[m], tol.random_grid.values.first(), 3),
+                paper_random(mesh).map_or_else(|| "-".into(), |p| label(p, 3))
+            ),
+            format!("{ours_sys} ({paper_sys})"),
+        ]);
+        inputs_csv.push_str(&format!(
+            "{mesh},{},{}\n",
+            tol.random[m].unwrap_or(0.0),
+            tol.systematic[m].unwrap_or(0.0)
+        ));
+    }
+    let shared: Vec<String> = per_gear
+        .iter()
+        .filter(|(_, (_, _, meshes))| meshes.len() > 1)
+        .map(|(gear, (r, s, meshes))| {
+            format!(
+                "{gear} ({}): random {}, systematic {} deg",
+                meshes.join(" and "),
+                label(*r, 3),
+                label(*s, 1)
+            )
         })
         .collect();
+    inputs.note(format!(
+        "Each gear takes its mesh's values; a gear in two meshes takes the smaller of each: {}.",
+        if shared.is_empty() {
+            "none".to_string()
+        } else {
+            shared.join("; ")
+        }
+    ));
+    inputs.note("A value below its grid (`< ...`) is built as 0. Systematic: the paper's value in brackets is what its own Table 5 counts give by the same rule.");
+    (inputs, inputs_csv)
+}
 
-    let mut layout = Table::new(
-        format!(
-            "Table 6: tolerable errors{}, G = {clearance} %, {trials} trials: ours (paper) [deg]; * where the paper's value is outside our 95 % interval",
-            if crate::emax::emax_from_paper(ctx)? {
-                " (random: the paper's E. max row, emax=paper)"
-            } else {
-                ""
-            }
-        ),
-        study::pointers::COLUMNS,
-    );
+/// The pointers' rows: σ, Dm and P of each over the trials beside the paper's (into `layout`),
+/// the detail table, table6-data.csv, and how many of the paper's values lie inside and outside
+/// our intervals.
+fn pointer_rows(
+    layout: &mut Table,
+    runs: &[(&str, f64, usize)],
+    per_trial: &[PointerTrials],
+) -> (Table, String, (u64, u64)) {
+    let trials = per_trial.len();
     let mut detail = Table::new(
         "Table 6 in detail: mean over trials with its 95 % interval, the paper's value, trials that jammed",
         [
@@ -221,62 +213,102 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     for r in rows {
         layout.row(r);
     }
+    (detail, csv, (inside, outside))
+}
+
+fn run(ctx: &Context) -> Result<Report, RunError> {
+    study::events::labelled(ctx, counted)
+}
+
+/// The experiment itself; [`run`] names the event rule in its tables' titles.
+fn counted(ctx: &Context) -> Result<Report, RunError> {
+    // The cells of Tables 4 and 5 count `cell_trials` trials each.
+    let cells = study::grids::CellSettings::read(ctx, &CELL_TRIALS)?;
+    let trials: usize = ctx.get(&TRIALS)?;
+    let (g, hyp, cell_trials) = (cells.gearing(), cells.hypothesis(), cells.trials);
+    let rule = tolerance::rule(ctx)?;
+    let (h, clearance, split) = (
+        cells.gearing.tooth_height,
+        cells.clearance()?,
+        cells.errors.split()?,
+    );
+    let per = ctx.get(&study::pointers::SAMPLES_PER_ENGAGEMENT)?;
+    let runs = pointer_runs(ctx, g, &POINTERS, per)?;
+    let grids = (
+        tolerance::random_grid(ctx)?,
+        tolerance::systematic_grid(ctx)?,
+    );
+    let given = crate::emax::given_random(ctx, g)?;
+    let tol = study::grids::derive(ctx, &cells, grids, rule, Purpose::Input, given)?;
+
+    let per_gear = per_gear(g, &tol);
+    let mut params: BTreeMap<String, Params> = BTreeMap::new();
+    for (gear, (r, s, _)) in &per_gear {
+        params.insert(
+            gear.clone(),
+            cells
+                .errors
+                .params(&[("random", *r), ("systematic", *s), ("split", split)])?,
+        );
+    }
+
+    // Named by everything that determines the trials (the tolerances are derived from the
+    // parameters, so naming those names them), so shards run and merge them.
+    let key = format!(
+        "table6: {trials} trials, hypothesis {}, tolerances {:?}, h = {h} mm, G = {clearance} %, gearing {}, events {}, pointers {:?}",
+        hyp.name(),
+        params
+            .iter()
+            .map(|(gear, p)| (gear.as_str(), p.iter().collect::<Vec<_>>()))
+            .collect::<Vec<_>>(),
+        cells.gearing.file,
+        cells.rule.label(),
+        runs,
+    );
+    let made = Manufactured {
+        gearing: g,
+        tooth_height: h,
+        clearance,
+        hypothesis: hyp,
+        params: &params,
+        rule: &cells.rule,
+    };
+    let recorded = study::pointers::tolerated_trials(ctx, &key, &made, &runs, trials as u64)?;
+    let per_trial: Vec<PointerTrials> = recorded
+        .into_iter()
+        .map(|trial| {
+            trial
+                .into_iter()
+                .map(|r| {
+                    let s = PointerStats {
+                        sigma: r.sigma,
+                        dm: r.dm,
+                        mean: r.mean,
+                    };
+                    (s, r.jammed, r.engaged)
+                })
+                .collect()
+        })
+        .collect();
+
+    let mut layout = Table::new(
+        format!(
+            "Table 6: tolerable errors{}, G = {clearance} %, {trials} trials: ours (paper) [deg]; * where the paper's value is outside our 95 % interval",
+            if crate::emax::emax_from_paper(ctx)? {
+                " (random: the paper's E. max row, emax=paper)"
+            } else {
+                ""
+            }
+        ),
+        study::pointers::COLUMNS,
+    );
+    let (detail, csv, (inside, outside)) = pointer_rows(&mut layout, &runs, &per_trial);
     layout.note(format!(
         "Values of the paper inside our 95 % Student-t intervals: {inside}; outside: {outside}."
     ));
     layout.note("Each trial: every gear manufactured afresh with its tolerances (systematic split as the split parameter says), random initial angles; a jam stops the pointer, so a trial that jammed is measured up to its first jam (as in table2).");
 
-    let mut inputs = Table::new(
-        format!(
-            "Table 6 inputs: each mesh's largest tolerable errors (rule {rule} % of {cell_trials} trials): ours (paper)"
-        ),
-        ["mesh", "random E. max [pitch]", "systematic E. max [deg]"],
-    );
-    let mut inputs_csv = String::from("mesh,random_emax,systematic_emax_deg\n");
-    for (m, mesh) in tol.random_grid.meshes.iter().enumerate() {
-        let paper_sys = paper_systematic(mesh, &tol.sys_values, rule)
-            .map_or_else(|| "-".into(), |p| show(p, tol.sys_values.first(), 1));
-        let ours_sys = if tol.random[m].is_some() {
-            show(tol.systematic[m], tol.sys_values.first(), 1)
-        } else {
-            "-".into()
-        };
-        inputs.row(vec![
-            mesh.clone(),
-            format!(
-                "{} ({})",
-                show(tol.random[m], tol.random_grid.values.first(), 3),
-                paper_random(mesh).map_or_else(|| "-".into(), |p| label(p, 3))
-            ),
-            format!("{ours_sys} ({paper_sys})"),
-        ]);
-        inputs_csv.push_str(&format!(
-            "{mesh},{},{}\n",
-            tol.random[m].unwrap_or(0.0),
-            tol.systematic[m].unwrap_or(0.0)
-        ));
-    }
-    let shared: Vec<String> = per_gear
-        .iter()
-        .filter(|(_, (_, _, meshes))| meshes.len() > 1)
-        .map(|(gear, (r, s, meshes))| {
-            format!(
-                "{gear} ({}): random {}, systematic {} deg",
-                meshes.join(" and "),
-                label(*r, 3),
-                label(*s, 1)
-            )
-        })
-        .collect();
-    inputs.note(format!(
-        "Each gear takes its mesh's values; a gear in two meshes takes the smaller of each: {}.",
-        if shared.is_empty() {
-            "none".to_string()
-        } else {
-            shared.join("; ")
-        }
-    ));
-    inputs.note("A value below its grid (`< ...`) is built as 0. Systematic: the paper's value in brackets is what its own Table 5 counts give by the same rule.");
+    let (inputs, inputs_csv) = inputs_table(&tol, rule, cell_trials, &per_gear);
 
     let cells = || tol.all();
     let trains: u64 = (trials * runs.len()) as u64;
