@@ -27,14 +27,6 @@ pub fn default_rule() -> Result<Rule, RunError> {
     Rule::parse(rules::DEFAULT).map_err(|e| RunError::Internal(e.to_string()))
 }
 
-/// `mech` counting jams by the rule named by the `events` parameter.
-pub fn with_rule(
-    ctx: &Context,
-    mech: mechanism::Mechanism,
-) -> Result<mechanism::Mechanism, RunError> {
-    Ok(mech.with_rule(chosen(ctx)?))
-}
-
 /// (jams, disengagements) of a run, as `rule` counts them.
 pub fn counts(rule: &Rule, traj: &contact::Trajectory) -> (usize, usize) {
     let events = traj.events();
