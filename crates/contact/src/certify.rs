@@ -46,7 +46,7 @@
 
 use geometry::Vec2;
 
-use crate::mesh::ToothData;
+use crate::tooth::{ToothData, wrap_pi};
 
 /// Absolute widening of every bound (mm of signed distance) against rounding, for meshes whose
 /// centre distance is 1 to 1000 length units (every gearing's, in mm); see [`round_for`].
@@ -511,8 +511,7 @@ pub(crate) fn vertex_meeting(
                 }
                 let (s, c) = phi.sin_cos();
                 let x = Vec2::new(c * p.x - s * p.y - d, s * p.x + c * p.y);
-                let theta =
-                    crate::mesh::wrap_pi(std::f64::consts::PI + q.y.atan2(q.x) - x.y.atan2(x.x));
+                let theta = wrap_pi(std::f64::consts::PI + q.y.atan2(q.x) - x.y.atan2(x.x));
                 best = Some((phi, theta));
             }
         }

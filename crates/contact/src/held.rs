@@ -1,18 +1,18 @@
 //! Where a held driven gear may be let go, solved exactly.
 //!
 //! A held gear at θ has no free position ahead: the obstacles at φ, swept in order of their lower
-//! ends (`cover_from` in `solver.rs`: one joins the cover when its lower end is within the side
-//! tolerance `tol` of the top so far, or, while the top is still θ, below θ − tol), close up from
-//! θ past a threshold more than a turn on. Take the **chain** c_1 … c_m of obstacles that lifted
+//! ends (`cover_from` in `solver.rs`, as at the jam that held it: one joins the cover when its
+//! lower end is within the side tolerance `tol` of the top so far, so that a driver tooth
+//! touching the gear from ahead holds it), close up from θ past a threshold more than a turn on. Take the **chain** c_1 … c_m of obstacles that lifted
 //! the top, and these **joints**:
 //!
-//! - joint 0: lo_1 < θ − tol;
+//! - joint 0: lo_1 ≤ θ + tol;
 //! - joint i (0 < i < m): lo_{i+1} ≤ hi_i + tol and hi_i > θ;
 //! - joint m: hi_m ≥ the threshold.
 //!
 //! Wherever every link's teeth touch and every joint holds, the sweep closes up past the
-//! threshold. By induction over the links in order of their lower ends: a link below θ − tol
-//! joins whatever the top is. Any other c_i has an earlier link c_k with lo_k < lo_i (c_1 is
+//! threshold. By induction over the links in order of their lower ends: a link at or below
+//! θ + tol joins whatever the top is. Any other c_i has an earlier link c_k with lo_k < lo_i (c_1 is
 //! one); take the last. It was swept before c_i, so the top is at least hi_k > θ, and the links
 //! between have lower ends at or above lo_i, so lo_i ≤ lo_{k+1} ≤ hi_k + tol: c_i joins, and the
 //! top reaches hi_i. Hence the top reaches hi_m, past the threshold; more obstacles only cover
@@ -20,7 +20,7 @@
 //!
 //! So the gear stays held until a joint fails or a link's teeth part, and each of these happens
 //! at a root of the links' contact conditions (`meet.rs`): an end of a link crossing a fixed
-//! driven angle (θ − tol, θ, the threshold: closed form), the upper end of a link crossing the
+//! driven angle (θ + tol, θ, the threshold: closed form), the upper end of a link crossing the
 //! lower end of the next less the tolerance (two conditions met, one shifted by `tol`), or a
 //! link's two ends meeting (its teeth parting). [`first_change`] gives the first of these over a
 //! range of driver angles; there the solver sweeps the turn again, and either lets the gear go or
@@ -140,7 +140,7 @@ pub(crate) fn first_change(
 }
 
 /// Roots where an end of a link reaches a fixed driven angle: the first link's lower end
-/// θ − tol (joint 0), any link's upper end θ (joints 1 to m − 1), the last link's upper end the
+/// θ + tol (joint 0), any link's upper end θ (joints 1 to m − 1), the last link's upper end the
 /// threshold (joint m).
 fn ends_at_fixed_angles(
     (lower, upper): (&[Conditions], &[Conditions]),
@@ -166,7 +166,7 @@ fn ends_at_fixed_angles(
             }
         }
     };
-    at(0, false, theta - tol);
+    at(0, false, theta + tol);
     for link in 0..m.saturating_sub(1) {
         at(link, true, theta);
     }

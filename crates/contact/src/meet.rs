@@ -21,6 +21,8 @@
 use geometry::Vec2;
 use smallvec::SmallVec;
 
+use crate::tooth::wrap_pi;
+
 /// A contact condition `F(φ, θ) = 0`: `k[j][i]` is the coefficient of `u_i(φ)·w_j(θ)`, with
 /// u = (1, cos φ, sin φ) and w = (1, cos θ, sin θ).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -179,13 +181,6 @@ impl Condition {
     }
 }
 
-/// `x` wrapped into (−π, π].
-fn wrap_pi(x: f64) -> f64 {
-    use std::f64::consts::{PI, TAU};
-    let y = x.rem_euclid(TAU);
-    if y > PI { y - TAU } else { y }
-}
-
 /// A polynomial of degree 8 in t, lowest coefficient first.
 type Poly = [f64; 9];
 
@@ -304,7 +299,7 @@ fn sign_changes(b: &Poly, scale: f64) -> usize {
 /// bisection on the sign. A narrow piece with no sign change at its ends holds a double root, a
 /// tangency, or nothing: its middle is reported for the caller to check.
 fn roots(p: &Poly, scale: f64, t0: f64, t1: f64, out: &mut SmallVec<[f64; 4]>) {
-    const WIDTH: f64 = 1e-7;
+    const WIDTH: f64 = 1e-13;
     let (va, vb) = (value(p, t0), value(p, t1));
     let changes = sign_changes(&bernstein(p, t0, t1), scale);
     let single = changes == 1 && va * vb <= 0.0;
@@ -352,13 +347,18 @@ pub(crate) fn meetings(
 ) -> SmallVec<[(f64, f64); 4]> {
     let phi_c = 0.5 * (phi0 + phi1);
     let p = meeting_poly(c1, c2, phi_c);
-    let scale = p.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    let half = 0.5 * (phi1 - phi0);
+    let t1 = (0.5 * half).tan();
+    // The size of the polynomial's terms over the interval, against which a Bernstein
+    // coefficient counts as zero: not its largest coefficient, whose power of t is tiny over a
+    // short interval (two contacts meeting twice a few 1e-5 rad apart leave the polynomial a
+    // dip of 1e-7 where its largest coefficient is 1e7, and a sign change read against that
+    // was lost).
+    let scale: f64 = p.iter().rev().fold(0.0, |acc, c| acc * t1.abs() + c.abs());
     let mut out = SmallVec::new();
     if scale == 0.0 {
         return out;
     }
-    let half = 0.5 * (phi1 - phi0);
-    let t1 = (0.5 * half).tan();
     let mut ts = SmallVec::new();
     roots(&p, scale, -t1, t1, &mut ts);
     for t in ts {
@@ -476,5 +476,38 @@ mod tests {
             }
         }
         assert_eq!(changes, found.len(), "{found:?}");
+    }
+
+    /// Two contacts that meet twice within 2e-5 rad (each branch of one condition meets the other
+    /// condition, on teeth of Table I's d2-e2 with tip errors and eccentricity, G = 70 %) leave
+    /// the polynomial a dip of about 1e-7 where its largest coefficient is 2e7: both meetings are
+    /// found, the first the lock the solver must see.
+    #[test]
+    fn two_meetings_close_together_are_both_found() {
+        let pusher = Condition {
+            k: [
+                [-17.194381310932748, 33.80619291906659, 18.527921351786794],
+                [0.0, -6.912863941017957, 3.5967653856236397],
+                [0.0, 3.5967653856236397, 6.912863941017957],
+            ],
+        };
+        let ahead = Condition {
+            k: [
+                [-4.064673218185938, 0.0, 0.0],
+                [-8.58778587929386, -29.865519441986745, 8.121647389687459],
+                [-37.58181053369496, 8.121647389687459, 29.865519441986745],
+            ],
+        };
+        let found = meetings(
+            &pusher,
+            &ahead,
+            1.4757316126840851,
+            1.4881000876982182,
+            5.33,
+        );
+        assert_eq!(found.len(), 2, "{found:?}");
+        let (phi, theta) = found[0];
+        assert!((phi - 1.487_193_744).abs() < 1e-8, "{found:?}");
+        assert!(pusher.at(phi, theta).abs() < 1e-9 && ahead.at(phi, theta).abs() < 1e-9);
     }
 }

@@ -20,6 +20,7 @@ use smallvec::SmallVec;
 use crate::certify::CertTooth;
 use crate::meet::Condition;
 use crate::roots::{circle_circle, circle_segment};
+use crate::tooth::{ToothData, wrap_pi};
 
 /// Why a mesh cannot be built.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -29,22 +30,6 @@ pub struct MeshError {
     pub field: String,
     /// The broken rule.
     pub rule: String,
-}
-
-/// One tooth as the contact roots need it, cached so that a tooth-pair evaluation does no
-/// index arithmetic and no trigonometry beyond its two `atan2`s.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct ToothData {
-    /// (valley k−1, tip k, valley k), relative to the rotation centre.
-    pub v: [Vec2; 3],
-    /// Whether each vertex can ever touch the other gear.
-    pub reaches: [bool; 3],
-    /// 1 / squared length of the flanks (valley k−1 → tip k, tip k → valley k).
-    pub inv_len2: [f64; 2],
-    /// (cos, sin) of the tip angle.
-    pub tip_dir: (f64, f64),
-    /// Tip angle in [first tip angle, first tip angle + 2π).
-    pub tip_angle: f64,
 }
 
 /// One gear as the solver sees it: vertices relative to the rotation centre, cached.
@@ -1174,13 +1159,6 @@ fn segment_distance(a: Vec2, b: Vec2) -> f64 {
 fn pseudo_angle(u: Vec2) -> f64 {
     let t = u.x / (u.x.abs() + u.y.abs());
     if u.y >= 0.0 { 1.0 - t } else { t - 1.0 }
-}
-
-/// `x` reduced to (−π, π].
-#[inline]
-pub(crate) fn wrap_pi(x: f64) -> f64 {
-    let y = x.rem_euclid(TAU);
-    if y > PI { y - TAU } else { y }
 }
 
 thread_local! {

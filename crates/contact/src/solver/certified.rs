@@ -1,0 +1,554 @@
+//! The speed layer of the solver: a step taken on a certificate, where bounds on the contact
+//! conditions over the step prove that no event lies in it, so that the step ends where the
+//! pushing curves end without any search (`certify.rs` has the bounds). Everything here may be
+//! left out without changing a result: a step with no certificate is taken by the exact step of
+//! `mod.rs` (`tests/differential.rs` holds the two to the same events). Its one entry is
+//! [`Run::certified_step`] (and its halves); it reads the run's state and, when it succeeds,
+//! moves it on as the exact step would.
+
+use smallvec::SmallVec;
+
+use super::*;
+
+/// How far a certified step's first box reaches above the pushers' end, as a share of their rise
+/// over the step (a performance choice only: any box holding the path is sound; 0.1 judged the
+/// fewest boxes again on `examples/turns`, 0.25 and 0.5 more pairs in taller boxes).
+const BOX_HEADROOM: f64 = 0.1;
+
+/// A tooth pair judged over a certified step.
+#[derive(Debug, Clone, Copy)]
+struct Judged {
+    pair: (i64, i64),
+    /// Upper end of its obstacle at the step's end (−∞ if gone, or not needed).
+    hi: f64,
+    /// Whether its contacts in the box rise (else they fall).
+    rising: bool,
+}
+
+impl Judged {
+    /// A pair behind the driven gear that does not carry it at the step's end.
+    fn not_carrying(pair: (i64, i64)) -> Self {
+        Self {
+            pair,
+            hi: f64::NEG_INFINITY,
+            rising: false,
+        }
+    }
+}
+
+/// A tooth pair touching a certified step's box, and its role there.
+type Boxed = ((i64, i64), Role);
+
+/// The pairs touching a certified step's box (a dozen or so), kept inline.
+type BoxedPairs = SmallVec<[Boxed; 16]>;
+
+/// A tooth pair and the upper end of its obstacle at a step's end, if any.
+type Evaluated = ((i64, i64), Option<f64>);
+
+/// What a tooth pair touching a certified step's box may do there.
+#[derive(Debug, Clone, Copy)]
+enum Role {
+    /// Behind the driven gear, its contact curves rising: it may push. `born`: not there at
+    /// the step's start; `slopes`: the range of its contact curves' slopes dθ/dφ in the box.
+    Rising { born: bool, slopes: (f64, f64) },
+    /// Behind the driven gear, its contact curves falling: it never reaches it.
+    Falling,
+    /// Anything else: it must stay clear of the driven gear's path. `ahead`: an untracked pair
+    /// whose contacts rise, found ahead of the driven gear (or gone) at the step's start.
+    Suspect { ahead: bool },
+}
+
+/// The verdicts of a certified step: the pairs evaluated at its end, and which of them are born
+/// or gone within it.
+#[derive(Debug, Default)]
+struct JudgedStep {
+    pairs: SmallVec<[Judged; 8]>,
+    /// Rising pairs not there at the step's start and there at its end.
+    newborn: Pairs,
+    /// Rising pairs there at the step's start and gone at its end.
+    dead: Pairs,
+    /// The driven angle at the step's end.
+    theta1: f64,
+    /// The range of slopes of the carriers' contact curves (the driven gear's path).
+    slopes: (f64, f64),
+    /// Untracked pairs found ahead at the step's start and proved clear of the path: ahead of
+    /// the driven gear (or gone) at its end.
+    clear_ahead: Pairs,
+}
+
+impl Run<'_> {
+    /// Takes the step to `phi1` on a certificate - the whole step, or else its two halves - and
+    /// returns whether it did (having changed nothing if not), counting the attempt.
+    pub(super) fn try_certified(&mut self, phi1: f64, pushers: &[(i64, i64)]) -> bool {
+        let e0 = crate::mesh::tooth_pair_evaluations();
+        let certified = self.certified_step(phi1, pushers) || self.certified_halves(phi1, pushers);
+        let spent = crate::mesh::tooth_pair_evaluations() - e0;
+        count(|st| {
+            if certified {
+                st.certified += 1;
+                st.certified_evaluations += spent;
+            } else {
+                st.refused += 1;
+                st.refused_evaluations += spent;
+            }
+        });
+        certified
+    }
+
+    /// Takes the step to `phi1` on a certificate, if one is found, and returns whether it did
+    /// (having changed nothing if not). The certificate (`certify.rs` has the bounds):
+    ///
+    /// - Over the **box** of the step's driver angles and the driven angles from θ0 (less the
+    ///   side tolerance) to θ1, every tooth pair near the driven gear either touches nowhere, or
+    ///   is behind it with contact curves that only rise (it may push) or only fall; any other
+    ///   pair is a *suspect*.
+    /// - The driven angle, the running maximum of the rising curves, one of which (a pusher)
+    ///   starts at θ0, then rises throughout (no gap): its **path** from (φ0, θ0) to (φ1, θ1)
+    ///   lies in a thin tube about the chord, as wide as the spread of the slopes of the curves
+    ///   it follows. Every suspect must stay clear of that tube (nothing ahead meets the driven
+    ///   gear: no lock, no strike), and a rising pair that stays clear of it never carries the
+    ///   gear and needs no evaluating.
+    /// - Only the **carriers** bound the tube: the pushers, every pair behind whose contacts rise
+    ///   and which ends the step above them (it has taken the gear over: known from the start),
+    ///   and every rising pair found to reach the tube (each widens it by its own slopes, and
+    ///   then every pair is judged again). This is
+    ///   sound: the running maximum P of the carriers' curves has their slopes, so lies in their
+    ///   tube; a rising pair that stays clear of that tube never meets P, and, starting below
+    ///   it, stays below; so P is the driven gear's path. Unrelated rising pairs (an incoming
+    ///   tooth's tip, a pair long past) no longer widen the tube: on m3-e3 the pushers' slopes
+    ///   span 0.08-0.15 where every rising pair in the box spans 0.03-0.41.
+    /// - θ1 is the largest upper end at φ1 of the rising pairs that reach the tube. A rising pair
+    ///   cannot pass above θ1 and come back within the step (it would fall through the box), nor
+    ///   vanish above it; one found higher at φ1 moves θ1 (and, past the box, widens it).
+    /// - Pairs born or gone within the step meet the conditions of `births_and_deaths_hold`.
+    ///
+    /// Then no event lies in the step, and it ends at θ1, exactly as bracketing would end it.
+    // One copy of this large step for its three callers (a whole step and two halves): inlined
+    // into each it made the program's resident code larger than before the halves.
+    #[inline(never)]
+    fn certified_step(&mut self, phi1: f64, pushers: &[(i64, i64)]) -> bool {
+        let Some(mut judged) = self.judge_step(phi1, pushers) else {
+            return false;
+        };
+        // Every pusher is among the rising pairs (`judge_step` refuses a box where one is not):
+        // one that fell would leave the driven gear.
+        debug_assert!(
+            pushers
+                .iter()
+                .all(|p| judged.pairs.iter().any(|m| m.pair == *p && m.rising)),
+            "a pusher not judged rising"
+        );
+        if !self.births_and_deaths_hold(&judged, phi1) {
+            return false;
+        }
+        self.clear_ahead = (phi1, judged.theta1, std::mem::take(&mut judged.clear_ahead));
+        let mut rising = self.spare_pairs();
+        rising.extend(judged.pairs.iter().filter(|m| m.rising).map(|m| m.pair));
+        self.push_segment(phi1, judged.theta1, Motion::Push(rising));
+        // Pairs whose driver tooth has left the window (teeth enter it at lower indices as the
+        // driver turns, and leave it at higher ones) are done with.
+        let last = *self.mesh.driver_teeth(phi1).end();
+        self.sides.retain(|t| t.pair.0 <= last);
+        // Sides stay (nothing crossed θ). Upper ends at φ1 are known for the evaluated pairs; a
+        // pair behind that was not evaluated stayed clear of the path, so it is no pusher at φ1.
+        for t in &mut self.sides {
+            match judged.pairs.iter().find(|m| m.pair == t.pair) {
+                Some(m) => t.hi = m.hi,
+                None if t.side == Side::Behind => t.hi = f64::NEG_INFINITY,
+                None => {}
+            }
+        }
+        for m in &judged.pairs {
+            if self.side_of(m.pair).is_none() {
+                self.sides.push(Tracked {
+                    pair: m.pair,
+                    side: Side::Behind,
+                    hi: m.hi,
+                });
+            }
+        }
+        true
+    }
+
+    /// Takes the step to `phi1` as two certified half steps when the whole step has no
+    /// certificate (a thinner box and a thinner tube about the driven gear's path prove more), and
+    /// returns whether it did. Only both halves together count: if the second finds none, the
+    /// first is undone and the whole step is bracketed as before, over the same driver angles, so
+    /// that no event is located differently. (Not tried while an event waits for the drive to
+    /// resume and size it: a certified push would size it, and that is not undone.)
+    fn certified_halves(&mut self, phi1: f64, pushers: &[(i64, i64)]) -> bool {
+        if !self.pending.is_empty() {
+            return false;
+        }
+        let mid = 0.5 * (self.phi + phi1);
+        let (phi0, theta0) = (self.phi, self.theta);
+        let sides: SmallVec<[Tracked; 16]> = SmallVec::from_slice(&self.sides);
+        let clear_ahead = self.clear_ahead.clone();
+        let segments = self.segments.len();
+        // A run that keeps no trajectory keeps only its last segment, which a step replaces: it
+        // is set aside (not copied) until the halves are known to stand.
+        let last = if self.keep_segments {
+            None
+        } else {
+            self.segments.pop()
+        };
+        if !self.certified_step(mid, pushers) {
+            self.segments.extend(last);
+            return false;
+        }
+        let pushers = self.pushers();
+        if !pushers.is_empty() && self.certified_step(phi1, &pushers) {
+            return true;
+        }
+        (self.phi, self.theta) = (phi0, theta0);
+        self.sides.clear();
+        self.sides.extend_from_slice(&sides);
+        self.clear_ahead = clear_ahead;
+        if self.keep_segments {
+            self.segments.truncate(segments);
+        } else {
+            self.segments.clear();
+            self.segments.extend(last);
+        }
+        false
+    }
+
+    /// The verdicts of a certified step to `phi1` (see [`Run::certified_step`]), or None when a
+    /// pair may meet the driven gear other than by pushing it.
+    fn judge_step(&self, phi1: f64, pushers: &[(i64, i64)]) -> Option<JudgedStep> {
+        let mesh = self.mesh;
+        let (phi0, theta0) = (self.phi, self.theta);
+        // Each pair is evaluated at φ1 once, however often the box grows or θ1 moves; only the
+        // upper ends are asked for (where the pairs behind end).
+        let mut at1: SmallVec<[Evaluated; 8]> = SmallVec::new();
+        let mut end_of = |pair: (i64, i64)| -> Option<f64> {
+            if let Some(&(_, o)) = at1.iter().find(|e| e.0 == pair) {
+                return o;
+            }
+            let o = mesh.obstacle_end(phi1, pair.0, pair.1, End::Upper);
+            at1.push((pair, o));
+            o
+        };
+        let pushed = pushers
+            .iter()
+            .filter_map(|&p| end_of(p))
+            .fold(theta0, f64::max);
+        let (overtakers, mut theta1) = self.overtakers(pushers, pushed, &mut end_of);
+        'grow: for grown in 0..4 {
+            // The first box reaches a little above where the pushers end: the next pusher, taking
+            // over within the step, often ends higher, and a box found too low is judged again.
+            let top = if grown == 0 {
+                theta1 + BOX_HEADROOM * (theta1 - theta0)
+            } else {
+                theta1
+            };
+            let cell = ConfigBox::new(phi0, phi1, theta0 - SIDE_TOL, top, mesh.centre_distance);
+            let boxed = self.box_verdicts(&cell, phi1, top)?;
+            // A pusher whose contacts are not all rising cannot be followed: no certificate.
+            if !pushers.iter().all(|&p| rises(&boxed, p)) {
+                return None;
+            }
+            // An overtaker is a carrier where its contacts in the box rise (else it is judged
+            // like any pair: a certificate needs them rising).
+            let mut carriers: Pairs = SmallVec::from_slice(pushers);
+            carriers.extend(overtakers.iter().copied().filter(|&o| rises(&boxed, o)));
+            // θ1 only rises, each time to a pair's upper end, and the carriers only grow: this
+            // ends.
+            'path: loop {
+                let slopes = carrier_slopes(&boxed, &carriers);
+                let path = cell.with_driven(theta0, theta1);
+                let clear = |(j, k): (i64, i64)| {
+                    path.clear_along(
+                        &path.place_driver(mesh.driver.cert(j)),
+                        &path.place_driven(mesh.driven.cert(k)),
+                        slopes,
+                        SIDE_TOL,
+                    )
+                };
+                let mut judged = JudgedStep {
+                    theta1,
+                    slopes,
+                    ..JudgedStep::default()
+                };
+                for &(pair, role) in &boxed {
+                    match role {
+                        Role::Suspect { ahead } if clear(pair) => {
+                            if ahead {
+                                judged.clear_ahead.push(pair);
+                            }
+                        }
+                        Role::Suspect { .. } => return None,
+                        Role::Falling if pushed - theta0 > 2.0 * SIDE_TOL => {
+                            // Falling from behind θ0: it never reaches θ, whatever becomes of
+                            // it, and ends too far below θ1 to push at the next step.
+                            judged.pairs.push(Judged::not_carrying(pair));
+                        }
+                        Role::Falling => judged.pairs.push(Judged {
+                            pair,
+                            hi: end_of(pair).unwrap_or(f64::NEG_INFINITY),
+                            rising: false,
+                        }),
+                        // Never on the path: it carries nothing, wherever it ends. One that was
+                        // behind at φ0 still is (tracked, as no pusher); one born in the step
+                        // may be on either side of the driven gear (left untracked).
+                        Role::Rising { born, .. } if !carriers.contains(&pair) && clear(pair) => {
+                            if !born {
+                                judged.pairs.push(Judged::not_carrying(pair));
+                            }
+                        }
+                        Role::Rising { born, slopes: r } => {
+                            // It reaches the tube: a carrier, whose slopes may widen the tube
+                            // (and then every pair is judged again).
+                            if !carriers.contains(&pair) {
+                                carriers.push(pair);
+                                if r.0 < slopes.0 || r.1 > slopes.1 {
+                                    continue 'path;
+                                }
+                            }
+                            match end_of(pair) {
+                                Some(hi) if hi > theta1 => {
+                                    theta1 = hi;
+                                    if theta1 > top {
+                                        continue 'grow;
+                                    }
+                                    continue 'path;
+                                }
+                                Some(hi) => {
+                                    judged.pairs.push(Judged {
+                                        pair,
+                                        hi,
+                                        rising: true,
+                                    });
+                                    if born {
+                                        judged.newborn.push(pair);
+                                    }
+                                }
+                                None if born => {
+                                    // Neither at φ0 nor at φ1: a pair whose contacts only rise is
+                                    // born and dies where two of its vertices meet; with no meeting
+                                    // in the step it never touches.
+                                    if mesh.vertex_meeting(pair, phi0, phi1, false).is_some() {
+                                        return None;
+                                    }
+                                }
+                                None => {
+                                    judged.dead.push(pair);
+                                    judged.pairs.push(Judged {
+                                        pair,
+                                        hi: f64::NEG_INFINITY,
+                                        rising: true,
+                                    });
+                                }
+                            }
+                        }
+                    }
+                }
+                return Some(judged);
+            }
+        }
+        None
+    }
+
+    /// The pairs behind the driven gear that end the step above where the pushers do (`pushed`),
+    /// and the highest end of all: such a pair has taken the gear over within the step, so it is
+    /// a carrier from the start, that the first box be tall enough and the path's tube wide
+    /// enough (else the box grows, and every pair is judged again, once it is found). Only pairs
+    /// near enough to overtake are evaluated: within twice the pushers' rise below θ0.
+    fn overtakers(
+        &self,
+        pushers: &[(i64, i64)],
+        pushed: f64,
+        end_of: &mut impl FnMut((i64, i64)) -> Option<f64>,
+    ) -> (Pairs, f64) {
+        let theta0 = self.theta;
+        let (mut overtakers, mut theta1) = (Pairs::new(), pushed);
+        for t in &self.sides {
+            if t.side == Side::Behind
+                && !pushers.contains(&t.pair)
+                && t.hi > theta0 - 2.0 * (pushed - theta0)
+                && let Some(hi) = end_of(t.pair)
+                && hi > pushed
+            {
+                theta1 = theta1.max(hi);
+                overtakers.push(t.pair);
+            }
+        }
+        (overtakers, theta1)
+    }
+
+    /// Every tooth pair that touches `cell`, the box of the step to `phi1` and driven angles
+    /// from θ0 (less the side tolerance) to `top`, with its role (for a rising pair, with the range of
+    /// slopes of its contact curves in the box); None when an untracked pair straddles the
+    /// driven angle at the step's start.
+    fn box_verdicts(&self, cell: &ConfigBox, phi1: f64, top: f64) -> Option<BoxedPairs> {
+        let mesh = self.mesh;
+        let (phi0, theta0) = (self.phi, self.theta);
+        let (driver, driven) = (&mesh.driver, &mesh.driven);
+        let bottom = theta0 - SIDE_TOL;
+        let drivers = driver.teeth_between(-phi1 - driver.window, -phi0 + driver.window);
+        let drivens = driven.teeth_between(bottom - driven.window, top + driven.window);
+        // Each tooth is placed in the box once, and only if its disc comes near another's.
+        let discs: SmallVec<[_; 16]> = drivens
+            .clone()
+            .map(|k| cell.driven_disc(driven.cert(k)))
+            .collect();
+        let mut placed = self.placed.borrow_mut();
+        placed.clear();
+        placed.resize(discs.len(), None);
+        let mut boxed = SmallVec::new();
+        for j in drivers {
+            let disc = cell.driver_disc(driver.cert(j));
+            let mut a = None;
+            for (i, k) in drivens.clone().enumerate() {
+                if cell.apart(disc, discs[i]) {
+                    continue;
+                }
+                let a = a.get_or_insert_with(|| cell.place_driver(driver.cert(j)));
+                let b = placed[i].get_or_insert_with(|| cell.place_driven(driven.cert(k)));
+                let pair = (j, k);
+                let (verdict, range) = cell.pair(a, b);
+                let role = match (verdict, self.side_of(pair)) {
+                    (Verdict::Clear, _) => continue,
+                    (Verdict::Rising, Some(Side::Behind)) => Role::Rising {
+                        born: false,
+                        slopes: range,
+                    },
+                    (Verdict::Falling, Some(Side::Behind)) => Role::Falling,
+                    // A pair not yet tracked whose contacts in the box only rise: behind if it is
+                    // behind θ at φ0; if it is not there yet, it is born in the step, and where is
+                    // judged by `births_and_deaths_hold`. It is classified (and then tracked)
+                    // even when it stays clear of the path: left untracked, a later bracketed step
+                    // would judge it as a pair new to the scan, which it is not. One already
+                    // ahead at φ0 is an obstacle ahead like any other: it must stay clear of the
+                    // path (untracked, as a bracketed step finds it ahead where it starts).
+                    // One the last step proved ahead (or gone) here is taken as ahead: a
+                    // suspect whatever it does, it must stay clear of the path.
+                    (Verdict::Rising, None) if self.known_clear_ahead(pair) => {
+                        Role::Suspect { ahead: true }
+                    }
+                    (Verdict::Rising, None) => match mesh.obstacle(phi0, j, k) {
+                        None => Role::Rising {
+                            born: true,
+                            slopes: range,
+                        },
+                        Some(o) if o.hi <= theta0 + SIDE_TOL => Role::Rising {
+                            born: false,
+                            slopes: range,
+                        },
+                        Some(o) if o.lo >= theta0 - SIDE_TOL => Role::Suspect { ahead: true },
+                        Some(_) => return None,
+                    },
+                    // Ahead of the driven gear, or not proved to rise or fall: it must stay
+                    // clear of the driven gear's path.
+                    _ => Role::Suspect { ahead: false },
+                };
+                boxed.push((pair, role));
+            }
+        }
+        Some(boxed)
+    }
+
+    /// Whether the pairs born or gone in a judged step leave the drive continuous and nothing
+    /// ahead: a pair whose contacts only rise is born, and dies, where two of its vertices meet
+    /// (`certify::vertex_meeting`). A pair born above the driven gear would be an obstacle ahead;
+    /// one that died while carrying it must hand it to another there.
+    fn births_and_deaths_hold(&self, judged: &JudgedStep, phi1: f64) -> bool {
+        let mesh = self.mesh;
+        let (phi0, theta0) = (self.phi, self.theta);
+        // The driven angle at φ without pair `except`: the largest upper end of the other rising
+        // pairs, at least θ0.
+        let others = |phi: f64, except: (i64, i64)| {
+            judged
+                .pairs
+                .iter()
+                .filter(|m| m.rising && m.pair != except)
+                .map(|m| mesh.hi(phi, m.pair))
+                .fold(theta0, f64::max)
+        };
+        let meeting = |pair: (i64, i64), last: bool| mesh.vertex_meeting(pair, phi0, phi1, last);
+
+        // Where the driven gear is at least, by the path's tube (`ConfigBox::clear_along`): when
+        // a pair is born below that, nothing need be evaluated.
+        let (s_lo, s_hi) = judged.slopes;
+        let chord = (judged.theta1 - theta0) / (phi1 - phi0);
+        let width = (s_hi - s_lo).max(0.0) * (phi1 - phi0) / 4.0;
+        let at_least = |phi: f64| (theta0 + chord * (phi - phi0) - width).max(theta0);
+        // A pair that dies below where the driven gear is at least was not carrying it.
+        let deaths_hand_over = judged.dead.iter().all(|&pair| {
+            meeting(pair, true).is_some_and(|(phi_d, at)| {
+                crate::tooth::wrap_pi(at - at_least(phi_d)) < -SIDE_TOL
+                    || crate::tooth::wrap_pi(at - others(phi_d, pair)) <= SIDE_TOL
+            })
+        });
+        let births_behind = judged.newborn.iter().all(|&pair| {
+            meeting(pair, false).is_some_and(|(phi_b, at)| {
+                crate::tooth::wrap_pi(at - at_least(phi_b)) <= SIDE_TOL
+                    || crate::tooth::wrap_pi(at - others(phi_b, pair)) <= SIDE_TOL
+            })
+        });
+        deaths_hand_over && births_behind
+    }
+}
+
+/// How the steps of the runs on this thread were taken, for benchmarks and profiling.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct SolverStats {
+    /// Steps taken on a certificate.
+    pub certified: u64,
+    /// Tooth-pair evaluations made by certified steps.
+    pub certified_evaluations: u64,
+    /// Certificates tried and not found.
+    pub refused: u64,
+    /// Tooth-pair evaluations made by those attempts.
+    pub refused_evaluations: u64,
+    /// Steps bracketed (no certificate tried, or none found), while the driven gear was free.
+    pub bracketed: u64,
+}
+
+thread_local! {
+    static STATS: std::cell::Cell<SolverStats> = const {
+        std::cell::Cell::new(SolverStats {
+            certified: 0,
+            certified_evaluations: 0,
+            refused: 0,
+            refused_evaluations: 0,
+            bracketed: 0,
+        })
+    };
+}
+
+/// The step counts of the runs on this thread so far.
+pub fn solver_stats() -> SolverStats {
+    STATS.with(std::cell::Cell::get)
+}
+
+/// Updates this thread's step counts.
+pub(super) fn count(update: impl FnOnce(&mut SolverStats)) {
+    STATS.with(|c| {
+        let mut st = c.get();
+        update(&mut st);
+        c.set(st);
+    });
+}
+
+/// Whether `pair`'s contacts in the box all rise.
+fn rises(boxed: &BoxedPairs, pair: (i64, i64)) -> bool {
+    boxed
+        .iter()
+        .any(|(p, role)| *p == pair && matches!(role, Role::Rising { .. }))
+}
+
+/// The range of slopes dθ/dφ of the carriers' contacts in the box, which bounds the path: the
+/// pushers, and each rising pair found to reach the path's tube.
+fn carrier_slopes(boxed: &BoxedPairs, carriers: &Pairs) -> (f64, f64) {
+    boxed
+        .iter()
+        .filter(|(pair, _)| carriers.contains(pair))
+        .fold(
+            (f64::INFINITY, f64::NEG_INFINITY),
+            |s, (_, role)| match role {
+                Role::Rising { slopes: r, .. } => (s.0.min(r.0), s.1.max(r.1)),
+                _ => s,
+            },
+        )
+}

@@ -1,0 +1,1006 @@
+//! The push model, solved exactly: the driven gear stays put until a driver tooth pushes it, then
+//! moves only as far as it must to stay clear.
+//!
+//! At a driver angle φ every driver tooth j makes, for every driven tooth k, an obstacle: a closed
+//! interval `[lo, hi]` of driven angles at which the two teeth overlap (see [`Mesh::obstacle`]).
+//! The driven angle θ never lies strictly inside one. Obstacles *behind* θ (hi ≤ θ) push it: θ is
+//! the running maximum of their upper ends. Obstacles *ahead* (lo ≥ θ) are driver teeth the driven
+//! tooth is moving towards. Hence the events, each classified from the contact motion:
+//!
+//! - an obstacle ahead reaches θ: a **lock** if a pair touches behind at that moment (held on both
+//!   sides), a **strike** if nothing does (the push model would have to turn it backwards);
+//! - the pushing obstacle stops rising (its tips slip past each other) while no other driver tooth
+//!   touches: a **gap**, sized when drive resumes and called a **slip** if it lasted a driver
+//!   pitch or more or moved the tooth phase;
+//! - no free driven position at the start: **blocked at start**.
+//!
+//! After a lock or strike the driven gear is let go to the next free position ahead; where there
+//! is none it is **held** until one appears, at the first root where the obstacles that close up
+//! over its turn may give way (`held.rs`, on the exact conditions of `meet.rs`).
+//!
+//! Which of these a table counts as a jam or a disengagement is an event rule's call (the `rules`
+//! crate), not the solver's.
+//!
+//! **How a step finds them** (`step.rs`). The driver turns in steps of a quarter of its pitch
+//! (only to bound the tooth pairs looked at together: no result depends on it). Between events
+//! θ(φ) is a constant (at rest) or the maximum of closed-form contact curves (pushed), exact at
+//! every φ. Each event is a root of the contact conditions of `meet.rs` - a vertex on a flank
+//! line or arc, every one F(φ, θ) = 0 - and is found as one:
+//!
+//! - a driver tooth ahead closing on the path, a pair behind reaching a gear at rest: the first
+//!   root where a condition of the pair meets one of the path's, the sign of the gap checked
+//!   between consecutive roots (`closing.rs`);
+//! - a held gear let go: the first root where the obstacles that hold it may give way
+//!   (`held.rs`);
+//! - where the pushing curves stop rising (a gap): golden-section search, refined where a curve
+//!   peaks smoothly by bisection on the sign of its closed-form slope (`Mesh::smooth_peak`),
+//!   decided by samples at the middle and end of the step; and the side of a pair born within a
+//!   step, by bisection on its existence (`search.rs`).
+//!
+//! **The speed layer** (`certified.rs`, straight flanks): a pushed gear's step is first tried on a
+//! certificate, bounds on the contact conditions over the box of the step's driver angles and
+//! the driven angles it can reach (`certify.rs`) that prove every tooth pair near the gear either
+//! stays clear of it or, behind it, only pushes it forwards; then no event lies in the step and
+//! it ends where the pushing curves end. It changes no result: `tests/differential.rs` holds the
+//! runs with and without it (and with a 64-times finer step) to the same events.
+
+use std::cell::RefCell;
+use std::f64::consts::TAU;
+
+use smallvec::SmallVec;
+
+use crate::certify::{ConfigBox, PlacedTooth, Verdict, vertex_meeting};
+use crate::closing;
+use crate::held;
+use crate::mesh::{End, Mesh, Obstacle, PairMemo};
+
+mod certified;
+mod search;
+mod step;
+mod trajectory;
+
+use certified::count;
+pub use certified::{SolverStats, solver_stats};
+use search::{bisect, bracket, golden_max};
+pub use trajectory::{Answered, Event, EventKind, Motion, Segment, Start, StopAt, Trajectory};
+
+/// Relative tolerance (radians) when deciding on which side of θ an obstacle lies.
+const SIDE_TOL: f64 = 1e-10;
+/// How near (radians of driven angle, relative to 1 + |θ|) an obstacle's end must be to θ to
+/// count as a contact when an event is classified: located events are far closer than this.
+const CONTACT_TOL: f64 = 1e-9;
+/// Event location accuracy in driver angle (radians): far below the required 1e-6°.
+const LOCATE_TOL: f64 = 1e-13;
+/// How closely the angle where a new obstacle appeared is located to tell on which side of θ
+/// it appeared (radians of driver angle).
+const SIDE_LOCATE_TOL: f64 = 1e-10;
+/// How far past a first touch from rest a step ends (radians of driver angle).
+const TOUCH_STEP: f64 = 1e-8;
+/// Steps per driver pitch: how far apart the exact step looks at the tooth pairs together.
+const STEPS_PER_PITCH: f64 = 4.0;
+
+/// When a run may end before its last driver angle.
+#[derive(Clone, Copy)]
+enum Stop<'s, 'a> {
+    /// Never: the run goes to its end.
+    Never,
+    /// At the first event for which this holds, as it is recorded.
+    AtEvent(&'s StopAt<'a>),
+    /// Once this holds for the events so far, none of them waiting to be sized.
+    Answered(&'s Answered<'a>),
+}
+
+impl<'s, 'a> From<Option<&'s StopAt<'a>>> for Stop<'s, 'a> {
+    fn from(stop: Option<&'s StopAt<'a>>) -> Self {
+        stop.map_or(Self::Never, Self::AtEvent)
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Side {
+    Behind,
+    Ahead,
+}
+
+/// A tooth pair whose obstacle is near θ.
+#[derive(Debug, Clone, Copy)]
+struct Tracked {
+    pair: (i64, i64),
+    side: Side,
+    /// Upper end of the obstacle at the current driver angle.
+    hi: f64,
+}
+
+/// How a run is solved.
+#[derive(Debug, Clone, Copy)]
+struct Solve {
+    /// The step is this fraction of the driver's pitch.
+    steps_per_pitch: f64,
+    /// Keep every segment (for θ at any φ) or only the events.
+    keep_segments: bool,
+    /// Take steps on certificates where they are found (else take every step exactly: the plain
+    /// solver the differential tests compare against).
+    certify: bool,
+}
+
+impl Default for Solve {
+    fn default() -> Self {
+        Self {
+            steps_per_pitch: STEPS_PER_PITCH,
+            keep_segments: true,
+            certify: true,
+        }
+    }
+}
+
+/// A few tooth pairs (pushers, pairs born or gone in a step): kept inline, as every step of a
+/// run makes several such lists and a heap allocation costs as much as the rest of the list's use.
+type Pairs = SmallVec<[(i64, i64); 4]>;
+
+/// One end of an evaluated tooth pair's obstacle: (driver angle, (driver tooth, driven tooth),
+/// which end, where it is).
+type Memo = (f64, (i64, i64), End, Option<f64>);
+
+/// Working state of one run.
+struct Run<'m> {
+    mesh: &'m Mesh,
+    phi: f64,
+    theta: f64,
+    held: bool,
+    /// While the driven gear is held: the tooth pairs of the chain that the last step proved to
+    /// hold it through its end (`held.rs`), where the next step starts; empty if none.
+    held_links: Vec<(i64, i64)>,
+    /// Driver angle of the last jam check that found nothing holding the driven gear.
+    unheld_at: Option<f64>,
+    /// Known tooth pairs, their side of θ and their upper end at the current φ.
+    sides: Vec<Tracked>,
+    /// The segments so far; only the last one when they are not kept.
+    segments: Vec<Segment>,
+    /// Whether to keep every segment (for θ at any φ) or only the events.
+    keep_segments: bool,
+    events: Vec<Event>,
+    scratch: Vec<Obstacle>,
+    /// The driven teeth a certified step's box has placed, by index in its range: kept here
+    /// and reused, as a fresh list of these 200-byte placements per step cost more to move
+    /// about than to fill.
+    placed: RefCell<Vec<Option<PlacedTooth<'m>>>>,
+    /// Tooth phase (driver tooth + driven tooth) of the last known driving pair.
+    drive_phase: Option<i64>,
+    /// Events whose size waits for the drive to resume: (index in `events`, phase before).
+    pending: Vec<(usize, Option<i64>)>,
+    /// Whether steps may be taken on a certificate (straight flanks).
+    certify: bool,
+    /// Untracked tooth pairs known to be ahead of the driven gear, or gone, at (φ, θ): the
+    /// suspects the last certified step ending there proved clear of its path, so the next
+    /// step need not evaluate them to find where they start.
+    clear_ahead: (f64, f64, Pairs),
+    /// The idle-start candidate (its index in `events`) while no driver tooth has moved the
+    /// driven gear yet: see [`Run::record_idle_start`].
+    idle_since: Option<usize>,
+    /// Whether an idle-start candidate was dropped since the last [`Run::stops`]: the driven
+    /// gear moved within a driver pitch of the start.
+    dropped_idle_start: bool,
+}
+
+impl Mesh {
+    /// Runs the push model from driver angle `phi_start` to `phi_end` (radians, `phi_end >=
+    /// phi_start`).
+    pub fn run(&self, phi_start: f64, phi_end: f64, start: Start) -> Trajectory {
+        self.run_until(phi_start, phi_end, start, None)
+    }
+
+    /// Like [`Mesh::run`], but the run ends at the first event for which `stop` holds (a jammed
+    /// train stops; which events jam is an event rule's call): the trajectory then ends there and
+    /// holds its last angle beyond. `stop` sees an event as it is recorded, before a later drive
+    /// sizes it (its kind is final except that a gap may still become a slip).
+    pub fn run_until(
+        &self,
+        phi_start: f64,
+        phi_end: f64,
+        start: Start,
+        stop: Option<&StopAt<'_>>,
+    ) -> Trajectory {
+        let run = self.solve(phi_start, phi_end, start, stop.into(), Solve::default());
+        Trajectory {
+            mesh: self.clone(),
+            segments: run.segments,
+            events: run.events,
+        }
+    }
+
+    /// [`Mesh::run_until`] with the step set to `1 / steps_per_pitch` of the driver's pitch, and,
+    /// with `certify` unset, the plain solver: every step exact, no certificate tried. The result
+    /// must depend on neither (events are roots either way); the differential tests run them
+    /// against each other.
+    #[doc(hidden)]
+    pub fn run_with_steps(
+        &self,
+        phi_start: f64,
+        phi_end: f64,
+        start: Start,
+        stop_at_jam: bool,
+        steps_per_pitch: f64,
+        certify: bool,
+    ) -> Trajectory {
+        let contact_stop = |e: &Event| e.kind.is_contact_stop();
+        let stop: Option<&StopAt<'_>> = if stop_at_jam {
+            Some(&contact_stop)
+        } else {
+            None
+        };
+        let how = Solve {
+            steps_per_pitch,
+            certify,
+            ..Solve::default()
+        };
+        let run = self.solve(phi_start, phi_end, start, stop.into(), how);
+        Trajectory {
+            mesh: self.clone(),
+            segments: run.segments,
+            events: run.events,
+        }
+    }
+
+    /// The jams and disengagements of [`Mesh::run`] over the same range, without its segments:
+    /// all that jam statistics need, in memory that does not grow with the range.
+    pub fn run_events(&self, phi_start: f64, phi_end: f64, start: Start) -> Vec<Event> {
+        self.events_only(phi_start, phi_end, start, Stop::Never)
+    }
+
+    /// [`Mesh::run_events`] that ends at the first event for which `stop` holds (checked from
+    /// the start on, so a blocked start ends the run at once): the events up to and including
+    /// it are those of the whole run. For a caller that needs only whether some event occurs.
+    pub fn run_events_until(
+        &self,
+        phi_start: f64,
+        phi_end: f64,
+        start: Start,
+        stop: &StopAt<'_>,
+    ) -> Vec<Event> {
+        self.events_only(phi_start, phi_end, start, Stop::AtEvent(stop))
+    }
+
+    /// [`Mesh::run_events`] that ends as soon as `answered` holds for the events so far, asked
+    /// each time new events are sized and none waits to be (the drive has resumed after each),
+    /// so that it sees every event as the whole run records it. For a caller whose answer, once
+    /// found, more events cannot change (has each rule seen a jam and a disengagement?): the
+    /// events returned are then the whole run's up to the cut, and the answer is the whole run's.
+    pub fn run_events_until_answered(
+        &self,
+        phi_start: f64,
+        phi_end: f64,
+        start: Start,
+        answered: &Answered<'_>,
+    ) -> Vec<Event> {
+        self.events_only(phi_start, phi_end, start, Stop::Answered(answered))
+    }
+
+    /// The events of a run that keeps no segments (cheaper), ending at `stop` if given.
+    fn events_only(
+        &self,
+        phi_start: f64,
+        phi_end: f64,
+        start: Start,
+        stop: Stop<'_, '_>,
+    ) -> Vec<Event> {
+        let how = Solve {
+            keep_segments: false,
+            ..Solve::default()
+        };
+        self.solve(phi_start, phi_end, start, stop, how).events
+    }
+
+    fn solve(
+        &self,
+        phi_start: f64,
+        phi_end: f64,
+        start: Start,
+        stop: Stop<'_, '_>,
+        how: Solve,
+    ) -> Run<'_> {
+        let mut run = Run {
+            mesh: self,
+            phi: phi_start,
+            theta: 0.0,
+            held: false,
+            held_links: Vec::new(),
+            unheld_at: None,
+            sides: Vec::new(),
+            segments: Vec::new(),
+            keep_segments: how.keep_segments,
+            events: Vec::new(),
+            scratch: Vec::new(),
+            placed: RefCell::new(Vec::new()),
+            drive_phase: None,
+            pending: Vec::new(),
+            certify: how.certify && !self.curved,
+            clear_ahead: (f64::NAN, f64::NAN, Pairs::new()),
+            idle_since: None,
+            dropped_idle_start: false,
+        };
+        run.start(start);
+        let mut seen = 0;
+        let step =
+            self.driver.max_gap.min(TAU / self.driver.tips.len() as f64) / how.steps_per_pitch;
+        // A run that keeps no trajectory may end at a stopping event of the start itself (a
+        // blocked start); one that keeps it takes its first step first, as it always has.
+        let stopped_at_start = !how.keep_segments && run.stops(stop, &mut seen);
+        while run.phi < phi_end && !stopped_at_start {
+            // No sliver of a step at the end: it would only gather rounding noise.
+            let next = if run.phi + step * (1.0 + 1e-6) >= phi_end {
+                phi_end
+            } else {
+                run.phi + step
+            };
+            run.advance(next);
+            if run.stops(stop, &mut seen) {
+                break;
+            }
+        }
+        if run.segments.is_empty() {
+            run.rest_to(phi_end);
+        }
+        run.close_pending();
+        run
+    }
+
+    /// Where two vertices of tooth pair (j, k) first meet (or, with `last`, meet last) while the
+    /// driver turns from `phi0` to `phi1` (`certify::vertex_meeting`; straight flanks).
+    pub(crate) fn vertex_meeting(
+        &self,
+        (j, k): (i64, i64),
+        phi0: f64,
+        phi1: f64,
+        last: bool,
+    ) -> Option<(f64, f64)> {
+        vertex_meeting(
+            self.driver.cert(j),
+            self.driven.cert(k),
+            phi0,
+            phi1,
+            self.centre_distance,
+            last,
+        )
+    }
+
+    /// Where the pushers' upper envelope `env` peaks, refined from `phi_pk` (a golden-section
+    /// search's answer, within `range`): where the pair on top peaks smoothly - its contact's
+    /// normal passing through the driver's centre, so that dθ/dφ = 0 - golden-section search can
+    /// only tell values apart to the rounding of a flat top, about 1e-8 rad of driver angle; the
+    /// slope changes sign there, and bisection on its sign locates it to `LOCATE_TOL`. Along a
+    /// contact (point p, unit normal n, the driven centre c2) the slope is
+    /// dθ/dφ = −(p × n) / ((p − c2) × n), whose sign does not depend on which way n points. A
+    /// peak at a kink (tip on tip, no normal; or a hand-over between pairs) is left as found.
+    fn smooth_peak(
+        &self,
+        phi_pk: f64,
+        (phi0, phi1): (f64, f64),
+        pushers: &[(i64, i64)],
+        env: impl Fn(f64) -> f64,
+    ) -> f64 {
+        let c2 = self.c2();
+        let Some(pair) = self.top_pair(phi_pk, pushers) else {
+            return phi_pk;
+        };
+        let rising = |phi: f64| -> Option<bool> {
+            let theta = self.hi(phi, pair);
+            if self.top_pair(phi, pushers) != Some(pair) || env(phi) != theta {
+                return None;
+            }
+            let (p, n) = self.contact_normal(phi, theta, pair.0, pair.1)?;
+            let (arm1, arm2) = (p.perp(&n), (p - c2).perp(&n));
+            (arm1 != 0.0 && arm2 != 0.0).then_some(arm1 * arm2 < 0.0)
+        };
+        // Ten times the flat top's width that golden-section search leaves: the peak lies within.
+        let reach = 1e-7 * (1.0 + phi_pk.abs());
+        let (a, b) = ((phi_pk - reach).max(phi0), (phi_pk + reach).min(phi1));
+        if rising(a) == Some(true) && rising(b) == Some(false) {
+            bisect(a, b, |p| rising(p) != Some(false))
+        } else {
+            phi_pk
+        }
+    }
+
+    /// The pair of `pairs` whose obstacle reaches highest at φ (None if there are none).
+    fn top_pair(&self, phi: f64, pairs: &[(i64, i64)]) -> Option<(i64, i64)> {
+        pairs
+            .iter()
+            .copied()
+            .max_by(|&a, &b| self.hi(phi, a).total_cmp(&self.hi(phi, b)))
+    }
+
+    /// Upper end of the (j, k) obstacle at φ, or −∞ when it does not exist.
+    fn hi(&self, phi: f64, pair: (i64, i64)) -> f64 {
+        self.obstacle_end(phi, pair.0, pair.1, End::Upper)
+            .unwrap_or(f64::NEG_INFINITY)
+    }
+
+    /// The nearest driven angle ≥ θ that overlaps no driver tooth at φ, or None if the obstacles
+    /// close up over more than a turn of the driven gear. An obstacle that only touches θ from
+    /// behind does not move it; one that touches it from ahead does when `through` is set (the
+    /// release after a jam: the driven gear is let go to the next position where it is free).
+    pub fn next_free(&self, phi: f64, theta: f64, through: bool) -> Option<f64> {
+        self.free_or_cover(phi, theta, through).ok()
+    }
+
+    /// [`Mesh::next_free`], but where there is no free position, the tooth pairs whose
+    /// obstacles, one after another, close up over the turn: the proof of being blocked.
+    fn free_or_cover(&self, phi: f64, theta: f64, through: bool) -> Result<f64, Vec<(i64, i64)>> {
+        self.free_or_cover_with(phi, theta, through, None)
+    }
+
+    /// [`Mesh::free_or_cover`], and where there is no free position, the obstacles of the
+    /// returned cover at φ into `links` (in the order the sweep took them), if given.
+    fn free_or_cover_with(
+        &self,
+        phi: f64,
+        theta: f64,
+        through: bool,
+        links: Option<&mut Vec<Obstacle>>,
+    ) -> Result<f64, Vec<(i64, i64)>> {
+        self.free_or_cover_in(phi, theta, through, links, &mut PairMemo::new(self, phi))
+    }
+
+    /// [`Mesh::free_or_cover_with`], taking the pairs already evaluated at φ from `memo` (a memo
+    /// at φ) and leaving there those it evaluates.
+    fn free_or_cover_in(
+        &self,
+        phi: f64,
+        theta: f64,
+        through: bool,
+        links: Option<&mut Vec<Obstacle>>,
+        memo: &mut PairMemo,
+    ) -> Result<f64, Vec<(i64, i64)>> {
+        let gap = self.driven.max_gap;
+        let (mut obs, mut more) = (Vec::new(), Vec::new());
+        let mut reach = 3.0 * gap;
+        // The widening windows pass the same teeth again a turn on: each pair is evaluated once.
+        self.obstacles_with(phi, theta - gap, theta + reach, &mut obs, Some(&mut *memo));
+        loop {
+            let (top, chain) = cover_from(theta, &mut obs, through);
+            if top < theta + reach - gap {
+                return Ok(top);
+            }
+            if reach > TAU + 3.0 * gap {
+                if let Some(links) = links {
+                    chain_links(theta, &obs, through, links);
+                }
+                return Err(chain);
+            }
+            // Widen the search by what lies beyond its reach: those that straddle it come twice,
+            // which changes nothing in the sweep (a copy never reaches past the top its first
+            // left).
+            self.obstacles_with(
+                phi,
+                theta + reach,
+                theta + 2.0 * reach,
+                &mut more,
+                Some(&mut *memo),
+            );
+            obs.append(&mut more);
+            reach *= 2.0;
+        }
+    }
+
+    /// How far above θ the obstacles must close up for the driven gear at θ to have no free
+    /// position: the top of the widest search of [`Mesh::free_or_cover`] (which gives up there),
+    /// less a driven gap.
+    fn held_threshold(&self, theta: f64) -> f64 {
+        let gap = self.driven.max_gap;
+        let mut reach = 3.0 * gap;
+        while reach <= TAU + 3.0 * gap {
+            reach *= 2.0;
+        }
+        theta + reach - gap
+    }
+}
+
+/// How far above θ the obstacles close up, swept in order of their lower ends (those that
+/// extend the cover are kept, in order): an obstacle that only touches θ from behind does not
+/// start it; one that touches it from ahead does when `through` is set.
+fn cover_from(theta: f64, obs: &mut [Obstacle], through: bool) -> (f64, Vec<(i64, i64)>) {
+    obs.sort_by(|a, b| a.lo.total_cmp(&b.lo));
+    let mut chain = Vec::new();
+    let top = sweep(theta, obs, through, |o| {
+        chain.push((o.driver_tooth, o.driven_tooth));
+    });
+    (top, chain)
+}
+
+/// The obstacles [`cover_from`] took into its cover (those that lifted the top), in order, into
+/// `links`, from `obs` as it left them (sorted).
+fn chain_links(theta: f64, obs: &[Obstacle], through: bool, links: &mut Vec<Obstacle>) {
+    links.clear();
+    sweep(theta, obs, through, |o| links.push(*o));
+}
+
+/// [`cover_from`]'s sweep over obstacles sorted by their lower ends: the top reached, each
+/// obstacle that lifted it passed to `take`.
+fn sweep(theta: f64, obs: &[Obstacle], through: bool, mut take: impl FnMut(&Obstacle)) -> f64 {
+    let mut top = theta;
+    for o in obs {
+        let carried = through || top > theta;
+        let reaches = if carried {
+            o.lo <= top + SIDE_TOL
+        } else {
+            o.lo < top - SIDE_TOL
+        };
+        if reaches && o.hi > top {
+            top = o.hi;
+            take(o);
+        }
+    }
+    top
+}
+
+impl Run<'_> {
+    /// Whether the run ends here by `stop`, given that the events before `seen` were asked
+    /// about already (`seen` is moved past those asked about now).
+    fn stops(&mut self, stop: Stop<'_, '_>, seen: &mut usize) -> bool {
+        match stop {
+            Stop::Never => false,
+            Stop::AtEvent(stop) => {
+                // An idle-start candidate, asked about as it was recorded (first of all events),
+                // has gone since: the rest moved down by one.
+                if std::mem::take(&mut self.dropped_idle_start) {
+                    *seen = seen.saturating_sub(1);
+                }
+                let stops = self.events[*seen..].iter().any(stop);
+                *seen = self.events.len();
+                stops
+            }
+            // Only where every event is sized: a gap waiting for the drive may yet become a
+            // slip, and its lost motion and phase shift are not known.
+            Stop::Answered(answered) => {
+                let waiting = !self.pending.is_empty() || self.idle_since.is_some();
+                if waiting || self.events.len() == *seen {
+                    return false;
+                }
+                *seen = self.events.len();
+                answered(&self.events)
+            }
+        }
+    }
+
+    fn start(&mut self, start: Start) {
+        let (guess, touching) = match start {
+            Start::At(t) => (t, false),
+            Start::Touching(t) => (t, true),
+        };
+        let phi = self.phi;
+        let mut memo = PairMemo::new(self.mesh, phi);
+        let free = self
+            .mesh
+            .free_or_cover_in(phi, guess, false, None, &mut memo)
+            .ok();
+        self.theta = match free {
+            Some(t) if t > guess => t,
+            Some(_) if touching => {
+                // Free: turn back until a driver tooth is met (highest upper end below the guess).
+                let gap = self.mesh.driven.max_gap;
+                self.mesh
+                    .obstacles(phi, guess - 2.0 * gap, guess, &mut self.scratch);
+                self.scratch
+                    .iter()
+                    .map(|o| o.hi)
+                    .filter(|&h| h <= guess)
+                    .fold(f64::NEG_INFINITY, f64::max)
+                    .max(guess - 2.0 * gap)
+            }
+            Some(t) => t,
+            None => {
+                // No free position: the gears cannot turn from here. Always an event, so that a
+                // mesh too tight to start is never silently counted as running.
+                self.held = true;
+                self.held_links.clear();
+                let gap = self.mesh.driven.max_gap;
+                self.mesh
+                    .obstacles(phi, guess - gap, guess + gap, &mut self.scratch);
+                let pair = self
+                    .scratch
+                    .iter()
+                    .find(|o| o.lo <= guess && guess <= o.hi)
+                    .map_or((0, 0), |o| (o.driver_tooth, o.driven_tooth));
+                self.events
+                    .push(Event::new(EventKind::BlockedAtStart, phi, guess, pair));
+                guess
+            }
+        };
+        self.classify_all(phi, &mut memo);
+        self.drive_phase = self
+            .touching_behind(phi, self.theta, None, &mut memo)
+            .map(|p| p.0 + p.1);
+        if !self.held {
+            self.record_idle_start();
+        }
+    }
+
+    /// Every run that can turn starts with a candidate idle start, a gap waiting for the first
+    /// push that moves the driven gear ([`Run::first_lift`]), whether or not a tooth touches it
+    /// at the start (a touching pair may fall away without lifting it): sized then like any
+    /// loss of drive, it is dropped if that came within a driver pitch, and is a slip - an idle
+    /// start - if it came later or never.
+    fn record_idle_start(&mut self) {
+        let nearest_behind = self
+            .sides
+            .iter()
+            .filter(|t| t.side == Side::Behind)
+            .max_by(|a, b| a.hi.total_cmp(&b.hi))
+            .map_or((0, 0), |t| t.pair);
+        let mut e = Event::new(EventKind::Gap, self.phi, self.theta, nearest_behind);
+        e.idle_start = true;
+        self.idle_since = Some(self.events.len());
+        self.events.push(e);
+    }
+
+    /// A driver tooth (of `pairs`) moves the driven gear for the first time, at the current
+    /// (φ, θ): the idle-start candidate is sized, and dropped if this came within a driver pitch.
+    fn first_lift(&mut self, pairs: &[(i64, i64)]) {
+        let Some(i) = self.idle_since.take() else {
+            return;
+        };
+        let (phi, theta) = (self.phi, self.theta);
+        self.events[i].resumed_by = self.mesh.top_pair(phi, pairs);
+        self.size_event(i, phi, theta, true, 0);
+        if self.events[i].kind == EventKind::Gap {
+            self.events.remove(i);
+            for (j, _) in &mut self.pending {
+                if *j > i {
+                    *j -= 1;
+                }
+            }
+            self.dropped_idle_start = true;
+        }
+    }
+
+    /// A tooth pair touching the driven gear from behind at (φ, θ) (its obstacle's upper end is
+    /// at θ), other than `except`: what drives, or would drive, the driven gear there.
+    /// The pairs already evaluated at φ are taken from `memo`, a memo at φ, and those it
+    /// evaluates left there.
+    fn touching_behind(
+        &self,
+        phi: f64,
+        theta: f64,
+        except: Option<(i64, i64)>,
+        memo: &mut PairMemo,
+    ) -> Option<(i64, i64)> {
+        let gap = self.mesh.driven.max_gap;
+        let mut obs = Vec::new();
+        self.mesh
+            .obstacles_with(phi, theta - gap, theta + gap, &mut obs, Some(memo));
+        obs.iter()
+            .filter(|o| Some((o.driver_tooth, o.driven_tooth)) != except)
+            .filter(|o| (o.hi - theta).abs() <= CONTACT_TOL * (1.0 + theta.abs()))
+            .map(|o| (o.driver_tooth, o.driven_tooth))
+            .next()
+    }
+
+    /// Records an event; every kind but a blocked start is sized when the drive resumes.
+    fn record(&mut self, e: Event, phase_before: Option<i64>) {
+        if e.kind != EventKind::BlockedAtStart {
+            self.pending.push((self.events.len(), phase_before));
+        }
+        self.events.push(e);
+    }
+
+    /// Drive resumed at the current (φ, θ), by the pair among `pairs` carrying the driven gear:
+    /// size the events waiting for it (lost motion, phase shift, lag) and tell a gap from a slip.
+    fn resume_drive(&mut self, pairs: &[(i64, i64)]) {
+        let (phi, theta) = (self.phi, self.theta);
+        let by = pairs
+            .iter()
+            .copied()
+            .map(|p| (self.mesh.hi(phi, p), p))
+            .filter(|(h, _)| h.is_finite())
+            .max_by(|a, b| a.0.total_cmp(&b.0))
+            .map(|(_, p)| p);
+        let phase = by.map(|p| p.0 + p.1);
+        for (i, before) in std::mem::take(&mut self.pending) {
+            let shift = match (before, phase) {
+                (Some(b), Some(a)) => a - b,
+                _ => 0,
+            };
+            self.events[i].resumed_by = by;
+            self.size_event(i, phi, theta, true, shift);
+        }
+        if phase.is_some() {
+            self.drive_phase = phase;
+        }
+    }
+
+    /// Events still waiting at the end of the run: drive never resumed.
+    fn close_pending(&mut self) {
+        let (phi, theta) = (self.phi, self.theta);
+        for (i, _) in std::mem::take(&mut self.pending) {
+            self.size_event(i, phi, theta, false, 0);
+        }
+        if let Some(i) = self.idle_since.take() {
+            self.size_event(i, phi, theta, false, 0);
+            // A driven gear never moved in the whole run turned idle throughout, however short
+            // the run: never a mere hand-over gap.
+            self.events[i].kind = EventKind::Slip;
+        }
+    }
+
+    fn size_event(&mut self, i: usize, phi: f64, theta: f64, resumed: bool, shift: i64) {
+        let n1 = self.mesh.driver.tips.len() as f64;
+        let n2 = self.mesh.driven.tips.len() as f64;
+        let e = &mut self.events[i];
+        e.lost_motion = (phi - e.phi) * n1 / TAU;
+        e.resumed = resumed;
+        e.phase_shift = shift;
+        e.lag = n1 / n2 * (phi - e.phi) - (theta - e.theta);
+        // A whole driver pitch without drive, or a tooth out of step: synchronisation lost.
+        if e.kind == EventKind::Gap && (e.lost_motion >= 1.0 || shift != 0) {
+            e.kind = EventKind::Slip;
+        }
+    }
+
+    /// Re-derive every nearby obstacle's side from scratch, relative to the current θ.
+    /// (The pairs already evaluated at φ are taken from `memo`, a memo at φ, and those it
+    /// evaluates left there.)
+    fn classify_all(&mut self, phi: f64, memo: &mut PairMemo) {
+        let gap = self.mesh.driven.max_gap;
+        self.mesh.obstacles_with(
+            phi,
+            self.theta - gap,
+            self.theta + gap,
+            &mut self.scratch,
+            Some(memo),
+        );
+        self.sides.clear();
+        for o in &self.scratch {
+            let side = if o.hi <= self.theta + SIDE_TOL {
+                Side::Behind
+            } else {
+                Side::Ahead
+            };
+            self.sides.push(Tracked {
+                pair: (o.driver_tooth, o.driven_tooth),
+                side,
+                hi: o.hi,
+            });
+        }
+    }
+
+    /// The pushing pairs: those behind the driven gear whose upper end is at θ.
+    fn pushers(&self) -> Pairs {
+        self.sides
+            .iter()
+            .filter(|t| t.side == Side::Behind && (t.hi - self.theta).abs() <= SIDE_TOL)
+            .map(|t| t.pair)
+            .collect()
+    }
+
+    /// Whether the last certified step proved `pair` ahead of the driven gear (or gone) at the
+    /// current (φ, θ).
+    fn known_clear_ahead(&self, pair: (i64, i64)) -> bool {
+        let (phi, theta, pairs) = &self.clear_ahead;
+        *phi == self.phi && *theta == self.theta && pairs.contains(&pair)
+    }
+
+    fn side_of(&self, pair: (i64, i64)) -> Option<Side> {
+        self.sides.iter().find(|t| t.pair == pair).map(|t| t.side)
+    }
+
+    fn push_segment(&mut self, phi_end: f64, theta_end: f64, motion: Motion) {
+        if phi_end <= self.phi && !self.segments.is_empty() {
+            self.theta = theta_end;
+            return;
+        }
+        if !self.keep_segments {
+            self.segments.clear();
+        }
+        if let Motion::Push(pairs) = &motion
+            && !self.pending.is_empty()
+        {
+            self.resume_drive(pairs);
+        }
+        if let Motion::Push(pairs) = &motion
+            && theta_end > self.theta
+            && self.idle_since.is_some()
+        {
+            self.first_lift(pairs);
+        }
+        self.segments.push(Segment {
+            phi_start: self.phi,
+            phi_end,
+            theta_start: self.theta,
+            theta_end,
+            motion,
+        });
+        self.phi = phi_end;
+        self.theta = theta_end;
+    }
+
+    /// An empty list for the pairs of the next segment: the last segment's own when only the last
+    /// is kept (it is about to be replaced), so that a step allocates nothing for it.
+    fn spare_pairs(&mut self) -> Vec<(i64, i64)> {
+        match self.segments.last_mut() {
+            Some(Segment {
+                motion: Motion::Push(pairs),
+                ..
+            }) if !self.keep_segments => {
+                let mut spare = std::mem::take(pairs);
+                spare.clear();
+                spare
+            }
+            _ => Vec::new(),
+        }
+    }
+
+    fn rest_to(&mut self, phi_end: f64) {
+        let motion = if self.held {
+            Motion::Held
+        } else {
+            Motion::Rest
+        };
+        self.push_segment(phi_end, self.theta, motion);
+    }
+
+    /// The driven gear is held at θ: it stays there until the driver angle where a free
+    /// position first appears ahead of it, located exactly (`held.rs`: the first root at which
+    /// the chain of obstacles that holds it may give way; there the turn is swept again, and the
+    /// gear either let go to the free position or held by the new chain), or to `phi1`. A chain
+    /// proved to hold through the step is taken up by the next one.
+    fn held_step(&mut self, phi1: f64) {
+        let mesh = self.mesh;
+        let theta = self.theta;
+        let threshold = mesh.held_threshold(theta);
+        let past = |root: f64| (root + LOCATE_TOL * (1.0 + root.abs())).min(phi1);
+        let mut phi = self.phi;
+        let mut links = Vec::new();
+        // The chain the last step proved to hold through its end: no scan of the turn needed.
+        for (j, k) in std::mem::take(&mut self.held_links) {
+            match mesh.obstacle(phi, j, k) {
+                Some(o) => links.push(o),
+                None => {
+                    links.clear();
+                    break;
+                }
+            }
+        }
+        loop {
+            if links.is_empty() {
+                let mut memo = PairMemo::new(mesh, phi);
+                let found = mesh.free_or_cover_in(phi, theta, true, Some(&mut links), &mut memo);
+                if let Ok(t) = found {
+                    if phi > self.phi {
+                        self.release(phi, t, &mut memo);
+                        return;
+                    }
+                    // Free where the step starts: let go just after it.
+                    let phi_r = (phi + LOCATE_TOL).min(phi1);
+                    let mut memo = PairMemo::new(mesh, phi_r);
+                    match mesh.free_or_cover_in(phi_r, theta, true, None, &mut memo) {
+                        Ok(t) => self.release(phi_r, t, &mut memo),
+                        Err(_) if phi_r < phi1 => {
+                            phi = phi_r;
+                            links.clear();
+                            continue;
+                        }
+                        Err(_) => self.rest_to(phi1),
+                    }
+                    return;
+                }
+            }
+            match held::first_change(mesh, &links, theta, threshold, SIDE_TOL, (phi, phi1)) {
+                Some(root) if root < phi1 => {
+                    phi = past(root);
+                    links.clear();
+                }
+                found => {
+                    if found.is_none() {
+                        let m = links
+                            .iter()
+                            .position(|c| c.hi >= threshold)
+                            .map_or(0, |i| i + 1);
+                        self.held_links = links[..m]
+                            .iter()
+                            .map(|o| (o.driver_tooth, o.driven_tooth))
+                            .collect();
+                    }
+                    self.rest_to(phi1);
+                    return;
+                }
+            }
+        }
+    }
+
+    /// The held gear let go at φ to the free position θ = `to`.
+    fn release(&mut self, phi: f64, to: f64, memo: &mut PairMemo) {
+        self.rest_to(phi);
+        self.held = false;
+        self.theta = to;
+        self.classify_all(phi, memo);
+    }
+
+    /// Advance from `self.phi` to `phi1`, locating every event in between: a held gear waits
+    /// for its release (`held_step`); a pushed one is first tried on a certificate (the speed
+    /// layer, `certified.rs`), and otherwise, as a gear at rest always, takes the exact step
+    /// (`step.rs`).
+    fn advance(&mut self, phi1: f64) {
+        if self.held {
+            self.held_step(phi1);
+            return;
+        }
+        let pushers = self.pushers();
+        let certifiable = self.certify && !pushers.is_empty() && self.unheld_at != Some(self.phi);
+        if certifiable && self.try_certified(phi1, &pushers) {
+            return;
+        }
+        count(|st| st.bracketed += 1);
+        self.exact_step(phi1, pushers);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, reason = "tests")]
+    use super::*;
+    use geometry::{Gear, Vec2};
+    use rand::{Rng, SeedableRng};
+
+    /// Meshes of a pinion and a large wheel with tip angles scattered by up to 0.1 pitch, at
+    /// clearances where they are blocked or jam at many teeth (the held-gear regime).
+    fn tight_mesh(rng: &mut rand_chacha::ChaCha8Rng) -> Mesh {
+        let (n1, n2) = (rng.random_range(12..40), rng.random_range(40..240));
+        let module = 0.24;
+        let (r1, r2) = (module * n1 as f64, module * n2 as f64);
+        let gear = |n: usize, r: f64, rng: &mut rand_chacha::ChaCha8Rng| {
+            let pitch = TAU / n as f64;
+            let tips = (0..n)
+                .map(|k| pitch * (k as f64 + rng.random_range(-0.1..0.1)))
+                .collect();
+            Gear::new(r, r - 1.1, tips, Vec2::zeros()).unwrap()
+        };
+        let (a, b) = (gear(n1, r1, rng), gear(n2, r2, rng));
+        let g = rng.random_range(0.0..12.0);
+        Mesh::new(a, b, geometry::centre_distance(r1, r2, 1.1, g)).unwrap()
+    }
+    /// Obstacles taken from a memo (a scan's widening windows, a cover's links a turn apart) are
+    /// the ones a fresh evaluation gives, bit for bit, and no pair is evaluated twice.
+    #[test]
+    fn remembered_obstacles_are_evaluated_ones() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(17);
+        let bits = |o: &Obstacle| {
+            (
+                o.driver_tooth,
+                o.driven_tooth,
+                o.lo.to_bits(),
+                o.hi.to_bits(),
+            )
+        };
+        for _ in 0..20 {
+            let mesh = tight_mesh(&mut rng);
+            let (phi, theta) = (rng.random_range(0.0..TAU), rng.random_range(0.0..TAU));
+            let gap = mesh.driven.max_gap;
+            let mut memo = PairMemo::new(&mesh, phi);
+            let (mut fresh, mut remembered) = (Vec::new(), Vec::new());
+            let mut reach = 3.0 * gap;
+            let mut window = (theta - gap, theta + reach);
+            // Widening windows as the scan takes them, until past one that lies wholly a turn on.
+            let mut beyond = 0;
+            while window.0 < theta + 2.0 * TAU + 2.0 * gap {
+                mesh.obstacles(phi, window.0, window.1, &mut fresh);
+                let before = crate::mesh::tooth_pair_evaluations();
+                mesh.obstacles_with(phi, window.0, window.1, &mut remembered, Some(&mut memo));
+                let evaluated = crate::mesh::tooth_pair_evaluations() - before;
+                assert_eq!(
+                    fresh.iter().map(bits).collect::<Vec<_>>(),
+                    remembered.iter().map(bits).collect::<Vec<_>>()
+                );
+                if window.0 > theta + TAU + gap {
+                    beyond += remembered.len();
+                    assert_eq!(
+                        evaluated, 0,
+                        "a tooth met again a turn on was evaluated again"
+                    );
+                }
+                window = (theta + reach, theta + 2.0 * reach);
+                reach *= 2.0;
+            }
+            assert!(beyond > 0, "no obstacles a turn on");
+        }
+    }
+}
