@@ -1264,31 +1264,25 @@ impl Placed {
 }
 
 impl Mesh {
-    /// The contact conditions (`meet.rs`) of which one end of the obstacle of driver tooth `j`
-    /// against driven tooth `k` is always a root: at the upper end the driver tooth's flank 1
-    /// (tip to the valley after it) meets the driven tooth's flank 1, at the lower end flank 0
-    /// meets flank 0; so an end of each tooth's flank of that end (that can reach the other gear)
-    /// on the other tooth's flank, and, where flanks are arcs, the two flanks tangent.
-    pub(crate) fn conditions(&self, j: i64, k: i64, end: End) -> SmallVec<[Condition; 8]> {
+    /// The contact conditions (`meet.rs`) of which an end of the obstacle of driver tooth `j`
+    /// against driven tooth `k` is always a root: an end of each tooth's flank (that can reach
+    /// the other gear) on the other tooth's flank of the same side, and, where flanks are arcs,
+    /// every vertex on either flank and the two flanks tangent. Both ends take the conditions of
+    /// both sides (`_end` is for the reader): mostly the upper end is where the flanks 1 (tip to
+    /// the valley after it) meet and the lower end where the flanks 0 do, but an obstacle only
+    /// just met - a tip crossing the corner of a flank twice - has both ends on one side (a
+    /// lock on Table I's wider class was missed for it).
+    pub(crate) fn conditions(&self, j: i64, k: i64, _end: End) -> SmallVec<[Condition; 8]> {
         let d = self.centre_distance;
-        let f = match end {
-            End::Lower => 0,
-            End::Upper => 1,
-        };
         let (da, _) = self.driver.data(j);
         let (db, _) = self.driven.data(k);
         let (sa, sb) = (self.driver.flank_shapes(j), self.driven.flank_shapes(k));
-        // Straight flanks: flank f runs from vertex f to vertex f + 1, and only its ends touch
-        // the other tooth's flank f. A curved flank may bulge past its ends: every vertex and
-        // both flanks of each tooth are taken then.
-        let (flanks, vertices) = if self.curved {
-            (0..2, 0..3)
-        } else {
-            (f..f + 1, f..f + 2)
-        };
         let mut out = SmallVec::new();
-        for g in flanks.clone() {
-            for i in vertices.clone() {
+        for g in 0..2 {
+            // Straight flank g runs from vertex g to vertex g + 1, and only its ends touch the
+            // other tooth's flank g; a curved flank may bulge past its ends: every vertex then.
+            let vertices = if self.curved { 0..3 } else { g..g + 2 };
+            for i in vertices {
                 if da.reaches[i] {
                     out.push(vertex_on(sb[g], da.v[i], d, true));
                 }
@@ -1297,6 +1291,7 @@ impl Mesh {
                 }
             }
         }
+        let flanks = 0..2;
         for ga in flanks.clone() {
             for gb in flanks.clone() {
                 flanks_tangent(sa[ga], sb[gb], d, &mut out);

@@ -459,7 +459,10 @@ impl Mesh {
         loop {
             let (top, chain) = cover_from(theta, &mut obs, through);
             if top < theta + reach - gap {
-                return Ok(top);
+                // A driven angle is one a whole turn on: a free position found past a turn (a
+                // gap just opening, on the side tolerance's edge at one turn and not the other)
+                // is taken within the turn, so that θ never jumps by a turn.
+                return Ok(top - TAU * ((top - theta) / TAU).floor());
             }
             if reach > TAU + 3.0 * gap {
                 if let Some(links) = links {
