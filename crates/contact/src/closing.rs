@@ -3,10 +3,10 @@
 //!
 //! Along a stretch of a step the driven angle is known in closed form: at rest, a constant;
 //! pushed, the largest upper end of the pushing pairs' obstacles (held between the stretch's
-//! first and last driven angles), each such end a root of one of the pair's upper-end conditions
-//! ([`Mesh::conditions`]). The backlash ahead - the lowest lower end of the pairs ahead, less the
-//! driven angle - can change sign only where a lower-end condition of a pair ahead holds at the
-//! same (φ, θ) as a condition of the path: two conditions meeting (`meet::meetings`), or, where
+//! first and last driven angles), each such end a root of one of the pair's contact conditions
+//! ([`Mesh::conditions_of_both_sides`]: a just-met obstacle may have both ends on one side). The
+//! backlash ahead - the lowest lower end of the pairs ahead, less the driven angle - can change
+//! sign only where a condition of a pair ahead holds at the same (φ, θ) as one of the path: two conditions meeting (`meet::meetings`), or, where
 //! the driven angle is constant, one condition at that angle (`Condition::roots_at_theta`). So
 //! between two consecutive roots the backlash keeps one sign: one evaluation inside each, in
 //! order, finds the first closing, and it lies exactly at a root. No sampling, no step is
@@ -16,7 +16,7 @@
 use smallvec::SmallVec;
 
 use crate::meet::{Condition, meetings};
-use crate::mesh::{End, Mesh};
+use crate::mesh::Mesh;
 
 /// How the driven gear moves over one stretch of a planned step.
 #[derive(Debug, Clone, Copy)]
@@ -50,7 +50,7 @@ pub(crate) fn first_closing(
     let first = stretches.first()?;
     let lower: SmallVec<[Condition; 32]> = ahead
         .iter()
-        .flat_map(|&(j, k)| mesh.conditions(j, k, End::Lower))
+        .flat_map(|&(j, k)| mesh.conditions_of_both_sides(j, k))
         .collect();
     let mut roots: Vec<f64> = Vec::new();
     for s in stretches {
@@ -67,7 +67,7 @@ pub(crate) fn first_closing(
 /// The first driver angle in `(phi.0, phi.1]` at which a driver tooth of the pairs `behind`
 /// reaches the driven gear resting at θ - `reach(φ)`, θ less the highest upper end of their
 /// obstacles, stops being positive - or None. Resting, θ is constant: the upper end of a pair
-/// reaches it only where one of its upper-end conditions holds at θ, in closed form.
+/// reaches it only where one of its conditions holds at θ, in closed form.
 pub(crate) fn first_reach(
     mesh: &Mesh,
     behind: &[(i64, i64)],
@@ -77,7 +77,7 @@ pub(crate) fn first_reach(
 ) -> Option<f64> {
     let mut roots = vec![phi.1];
     for &(j, k) in behind {
-        for c in mesh.conditions(j, k, End::Upper) {
+        for c in mesh.conditions_of_both_sides(j, k) {
             roots.extend(c.roots_at_theta(theta, phi.0, phi.1));
         }
     }
@@ -140,7 +140,7 @@ fn roots_in_stretch(mesh: &Mesh, s: &Stretch<'_>, lower: &[Condition], out: &mut
                 at_level(theta, out);
             }
             for &(j, k) in pairs {
-                for up in mesh.conditions(j, k, End::Upper) {
+                for up in mesh.conditions_of_both_sides(j, k) {
                     for c in lower {
                         out.extend(meetings(&up, c, a, b, levels[0]).iter().map(|m| m.0));
                     }

@@ -334,7 +334,7 @@ mod tests {
                     // both ends on one side of the teeth.
                     narrow += usize::from(o.hi - o.lo < 0.01);
                     for (end, at) in [(End::Lower, o.lo), (End::Upper, o.hi)] {
-                        let cs = mesh.conditions(o.driver_tooth, o.driven_tooth, end);
+                        let cs = mesh.conditions_of_both_sides(o.driver_tooth, o.driven_tooth);
                         let residual = cs
                             .iter()
                             .map(|c| c.at(phi, at).abs())

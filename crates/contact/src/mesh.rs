@@ -1264,23 +1264,46 @@ impl Placed {
 }
 
 impl Mesh {
-    /// The contact conditions (`meet.rs`) of which an end of the obstacle of driver tooth `j`
-    /// against driven tooth `k` is always a root: an end of each tooth's flank (that can reach
-    /// the other gear) on the other tooth's flank of the same side, and, where flanks are arcs,
-    /// every vertex on either flank and the two flanks tangent. Both ends take the conditions of
-    /// both sides (`_end` is for the reader): mostly the upper end is where the flanks 1 (tip to
-    /// the valley after it) meet and the lower end where the flanks 0 do, but an obstacle only
-    /// just met - a tip crossing the corner of a flank twice - has both ends on one side (a
-    /// lock on Table I's wider class was missed for it).
-    pub(crate) fn conditions(&self, j: i64, k: i64, _end: End) -> SmallVec<[Condition; 8]> {
+    /// The contact conditions (`meet.rs`) of which one end of the obstacle of driver tooth `j`
+    /// against driven tooth `k` is a root wherever the obstacle is wider than a just-met one: at
+    /// the upper end the driver tooth's flank 1 (tip to the valley after it) meets the driven
+    /// tooth's flank 1, at the lower end flank 0 meets flank 0; so an end of each tooth's flank
+    /// of that end (that can reach the other gear) on the other tooth's flank, and, where flanks
+    /// are arcs, every vertex on either flank and the two flanks tangent. An obstacle only just
+    /// met - a tip crossing the corner of one flank twice - may have both ends on one side:
+    /// [`Mesh::conditions_of_both_sides`] covers it.
+    pub(crate) fn conditions(&self, j: i64, k: i64, end: End) -> SmallVec<[Condition; 8]> {
+        let f = match end {
+            End::Lower => 0,
+            End::Upper => 1,
+        };
+        self.conditions_on(j, k, f..f + 1)
+    }
+
+    /// The conditions of both sides of the (j, k) obstacle: either end of it is always a root of
+    /// one of these (a lock of the wider class was missed where the lower end of a just-met
+    /// obstacle lay on the side of its upper end).
+    pub(crate) fn conditions_of_both_sides(&self, j: i64, k: i64) -> SmallVec<[Condition; 8]> {
+        self.conditions_on(j, k, 0..2)
+    }
+
+    /// [`Mesh::conditions`] for the flanks `sides` (0, 1 or both).
+    fn conditions_on(
+        &self,
+        j: i64,
+        k: i64,
+        sides: std::ops::Range<usize>,
+    ) -> SmallVec<[Condition; 8]> {
         let d = self.centre_distance;
         let (da, _) = self.driver.data(j);
         let (db, _) = self.driven.data(k);
         let (sa, sb) = (self.driver.flank_shapes(j), self.driven.flank_shapes(k));
         let mut out = SmallVec::new();
-        for g in 0..2 {
-            // Straight flank g runs from vertex g to vertex g + 1, and only its ends touch the
-            // other tooth's flank g; a curved flank may bulge past its ends: every vertex then.
+        // Straight flank g runs from vertex g to vertex g + 1, and only its ends touch the
+        // other tooth's flank g; a curved flank may bulge past its ends: every vertex and both
+        // flanks of each tooth are taken then.
+        let sides = if self.curved { 0..2 } else { sides };
+        for g in sides {
             let vertices = if self.curved { 0..3 } else { g..g + 2 };
             for i in vertices {
                 if da.reaches[i] {
