@@ -39,12 +39,13 @@ pub(crate) struct Stretch<'a> {
 
 /// The first driver angle of `stretches` (in order, end to end) at which the backlash of the
 /// pairs `ahead` stops being positive - `backlash(φ)`, their lowest lower end less the driven
-/// angle on the path - or None if it stays positive. The first stretch's start counts: a
-/// backlash that closes from exactly zero there closes at it.
+/// angle on the path - or None if it stays positive. The first stretch's start counts (a
+/// backlash that closes from exactly zero there closes at it) unless `after_start`.
 pub(crate) fn first_closing(
     mesh: &Mesh,
     stretches: &[Stretch<'_>],
     ahead: &[(i64, i64)],
+    after_start: bool,
     backlash: impl Fn(f64) -> f64,
 ) -> Option<f64> {
     let first = stretches.first()?;
@@ -60,6 +61,13 @@ pub(crate) fn first_closing(
         }
         roots.push(b);
         roots_in_stretch(mesh, s, &lower, &mut roots);
+    }
+    if after_start {
+        // The search starts at the first root: whatever the backlash does before it (a pair
+        // just found holding nothing at the start), no sign change lies there.
+        let start = roots.iter().copied().fold(f64::INFINITY, f64::min);
+        roots.retain(|r| *r > start);
+        return first_sign_change(start, roots, backlash);
     }
     first_sign_change(first.phi.0, roots, backlash)
 }

@@ -159,11 +159,10 @@ impl Run<'_> {
                 ahead.push(t.pair);
             }
         }
-        let jam = if self.unheld_at == Some(phi0) {
-            None
-        } else {
-            first_jam(&step, &plan, &ahead)
-        };
+        // Just after a closing that held nothing (its pair now counts as behind), a closing at
+        // the step's very start is that one again: only later roots are asked for, so that the
+        // run moves on, and a pair ahead closing later in the step is still found.
+        let jam = first_jam(&step, &plan, &ahead, self.unheld_at == Some(phi0));
         match jam {
             None => self.follow_plan(&step, plan, &all_behind, theta1),
             Some(phi_j) => self.jam(&step, plan, phi_j, &ahead),
@@ -432,8 +431,13 @@ fn rest_then_maybe_push(
 
 /// Where the first pair of `ahead` closes on the planned path in the step: at its start if one
 /// overlaps the gear there already, else at the first root where the backlash stops being
-/// positive (`closing::first_closing`).
-fn first_jam(step: &Step<'_>, plan: &[Planned], ahead: &[(i64, i64)]) -> Option<f64> {
+/// positive (`closing::first_closing`); with `after_start`, at a root after the start only.
+fn first_jam(
+    step: &Step<'_>,
+    plan: &[Planned],
+    ahead: &[(i64, i64)],
+    after_start: bool,
+) -> Option<f64> {
     if ahead.is_empty() {
         return None;
     }
@@ -444,11 +448,11 @@ fn first_jam(step: &Step<'_>, plan: &[Planned], ahead: &[(i64, i64)]) -> Option<
             .fold(f64::INFINITY, f64::min);
         front - step.theta_on(plan, p)
     };
-    if backlash(step.phi0) < -SIDE_TOL {
+    if !after_start && backlash(step.phi0) < -SIDE_TOL {
         return Some(step.phi0);
     }
     let stretches = stretches_of(plan, step.phi0, step.theta0);
-    closing::first_closing(step.mesh, &stretches, ahead, backlash)
+    closing::first_closing(step.mesh, &stretches, ahead, after_start, backlash)
 }
 
 /// The stretches of a step's plan from (φ0, θ0), as the closing search reads them.
