@@ -60,7 +60,7 @@ pub(crate) fn first_change(
     threshold: f64,
     tol: f64,
     (phi0, phi1): (f64, f64),
-) -> Option<f64> {
+) -> Option<ChainBreak> {
     let m = chain.iter().position(|c| c.hi >= threshold)? + 1;
     let chain = &chain[..m];
     let of = |end: End| -> Vec<Conditions> {
@@ -133,10 +133,25 @@ pub(crate) fn first_change(
         );
     }
     found.sort_by(|a, b| a.0.total_cmp(&b.0));
-    found
-        .into_iter()
-        .find(|&(phi, change)| changes(mesh, chain, phi, change, tol))
-        .map(|(phi, _)| phi)
+    let i = found
+        .iter()
+        .position(|&(phi, change)| changes(mesh, chain, phi, change, tol))?;
+    let root = found[i].0;
+    let next = found[i + 1..]
+        .iter()
+        .map(|&(phi, _)| phi)
+        .find(|&phi| phi > root)
+        .unwrap_or(phi1);
+    Some(ChainBreak { root, next })
+}
+
+/// A change of the held gear's chain: the root where it happens and the next root of any of
+/// the chain's conditions after it (or the range's end), before which nothing else of the
+/// chain changes.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ChainBreak {
+    pub root: f64,
+    pub next: f64,
 }
 
 /// Roots where an end of a link reaches a fixed driven angle: the first link's lower end

@@ -255,8 +255,11 @@ fn tight_meshes_agree_with_the_plain_solver() {
 /// (cases 1615 and 467: a lock missed); a gap opening exactly on the side tolerance's edge was
 /// free at one turn and not at the next, and the gear was let go a whole turn on (curved case
 /// 87); after a closing that held nothing, the rest of the step was not searched and a lock a
-/// little later was found a step late (case 1801). Every event of the quarter-pitch and the
-/// 64-times-finer runs agrees on them.
+/// little later was found a step late (case 1801); a held gear's cover opened at a root where
+/// the gap equalled the side tolerance, and the turn swept again just past it found the gear
+/// free or not by the ends' rounding, differently for the two step lengths (cases 659, 1181,
+/// 1195: a release missed). Every event of the quarter-pitch and the 64-times-finer runs agrees
+/// on them.
 #[test]
 fn meshes_where_a_root_was_missed_agree_with_a_finer_step() {
     let cases = [
@@ -264,6 +267,9 @@ fn meshes_where_a_root_was_missed_agree_with_a_finer_step() {
         (467, (2.0, 40.0), false),
         (87, (2.0, 40.0), true),
         (1801, (2.0, 40.0), false),
+        (659, (2.0, 40.0), false),
+        (1181, (2.0, 40.0), false),
+        (1195, (2.0, 40.0), false),
     ];
     for (case, clearances, curved) in cases {
         let w = wide_mesh_drawn(case, clearances, curved).unwrap();

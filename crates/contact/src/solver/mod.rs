@@ -72,6 +72,9 @@ const SIDE_TOL: f64 = 1e-10;
 const CONTACT_TOL: f64 = 1e-9;
 /// Event location accuracy in driver angle (radians): far below the required 1e-6°.
 const LOCATE_TOL: f64 = 1e-13;
+/// How far past the root where a held gear's chain broke (radians of driver angle, relative to
+/// 1 + |φ|) the turn is swept again: see `held_step`.
+const HELD_PROBE: f64 = 1e-10;
 /// How closely the angle where a new obstacle appeared is located to tell on which side of θ
 /// it appeared (radians of driver angle).
 const SIDE_LOCATE_TOL: f64 = 1e-10;
@@ -731,7 +734,16 @@ impl Run<'_> {
         let mesh = self.mesh;
         let theta = self.theta;
         let threshold = mesh.held_threshold(theta);
-        let past = |root: f64| (root + LOCATE_TOL * (1.0 + root.abs())).min(phi1);
+        // Where the chain broke, the sweep looks a little past the root: at the root itself a
+        // joint's gap equals the side tolerance and the ends' rounding (~1e-14 rad) would decide
+        // whether the gear is free - differently for roots found over different step ranges.
+        // `HELD_PROBE` past it (but short of the chain's next root) the gap has opened by its
+        // slope times that, far above the rounding and far below the events' accuracy.
+        let past = |change: held::ChainBreak| {
+            let scale = 1.0 + change.root.abs();
+            let probe = (HELD_PROBE * scale).min(0.5 * (change.next - change.root));
+            (change.root + probe.max(LOCATE_TOL * scale)).min(phi1)
+        };
         let mut phi = self.phi;
         let mut links = Vec::new();
         // The chain the last step proved to hold through its end: no scan of the turn needed.
@@ -769,8 +781,8 @@ impl Run<'_> {
                 }
             }
             match held::first_change(mesh, &links, theta, threshold, SIDE_TOL, (phi, phi1)) {
-                Some(root) if root < phi1 => {
-                    phi = past(root);
+                Some(change) if change.root < phi1 => {
+                    phi = past(change);
                     links.clear();
                 }
                 found => {
