@@ -9,10 +9,12 @@ pub mod cells;
 pub mod chart;
 pub mod common;
 pub mod emax;
+pub mod inputs;
 pub mod pair_html;
 pub mod pair_svg;
 pub mod paper;
 pub mod replay;
+pub mod settings;
 
 mod plugins {
     include!(concat!(env!("OUT_DIR"), "/plugins.rs"));

@@ -228,7 +228,7 @@ fn unchecked_cell_spec<'a>(
 pub fn replay(ctx: &Context, id: &str, cell: &str, trial: Option<u64>) -> Result<Report, RunError> {
     grammar(id)?;
     // Every replayable table counts its cells with the per-cell `trials` parameter.
-    let s = CellSettings::read(ctx, &study::grids::TRIALS)?;
+    let s = crate::settings::cells(ctx, &study::grids::TRIALS)?;
     let spec = cell_spec(&s, ctx.seed(), id, cell)?;
     let (g, trials) = (s.gearing(), s.trials);
     match trial {
@@ -636,10 +636,10 @@ mod tests {
         ] {
             // Fewer trials than a listing shows, so every failed one is named.
             let ctx = ctx(id, &[("trials", "16")]);
-            let s = CellSettings::read(&ctx, &study::grids::TRIALS).unwrap();
+            let s = crate::settings::cells(&ctx, &study::grids::TRIALS).unwrap();
             let spec = cell_spec(&s, ctx.seed(), id, cell).unwrap();
             let counts = run_cells(
-                &ctx,
+                ctx.engine(),
                 s.gearing(),
                 std::slice::from_ref(&spec),
                 16,

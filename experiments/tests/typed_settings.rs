@@ -47,14 +47,26 @@ fn literal_reads(text: &str) -> Vec<String> {
         .collect()
 }
 
-/// The source directories scanned: the experiments and every crate but `registry`, which
-/// defines the readers (and tests them by name).
+/// Files that hold the patterns for another reason: this test's own samples, and the cluster
+/// manifests' YAML reader (`.str("name")` reads a YAML field, not a parameter).
+const NOT_READS: &[&str] = &[
+    "experiments/tests/typed_settings.rs",
+    "xtask/tests/cluster.rs",
+];
+
+/// The source directories scanned: the experiments and their tests, the runner and its tests,
+/// and every crate but `registry`, which defines the readers (and tests them by name).
 fn scanned() -> Vec<PathBuf> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"))
         .parent()
         .map(Path::to_path_buf)
         .unwrap_or_default();
-    let mut dirs = vec![root.join("experiments/src")];
+    let mut dirs = vec![
+        root.join("experiments/src"),
+        root.join("experiments/tests"),
+        root.join("xtask/src"),
+        root.join("xtask/tests"),
+    ];
     if let Ok(crates) = std::fs::read_dir(root.join("crates")) {
         for c in crates.flatten() {
             if c.file_name() != "registry" {
@@ -77,8 +89,15 @@ fn no_parameter_is_read_by_a_literal_key() {
             .any(|f| f.ends_with("experiments/src/plugins/table5.rs")),
         "the scan found the plugins"
     );
+    assert!(
+        files.iter().any(|f| f.ends_with("xtask/src/tests.rs")),
+        "the scan found the runner's tests"
+    );
     let mut found = Vec::new();
     for f in &files {
+        if NOT_READS.iter().any(|n| f.ends_with(n)) {
+            continue;
+        }
         let text = std::fs::read_to_string(f).unwrap_or_default();
         for hit in literal_reads(&text) {
             found.push(format!("{}:{hit}", f.display()));
@@ -97,5 +116,32 @@ fn the_scan_sees_a_literal_read() {
     assert_eq!(
         literal_reads(sample),
         ["2: let g = ctx.f64(\"clearance\")?;"]
+    );
+}
+
+#[test]
+fn study_takes_values_not_a_context() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .map(Path::to_path_buf)
+        .unwrap_or_default();
+    let mut files = Vec::new();
+    sources(&root.join("crates/study/src"), &mut files);
+    assert!(!files.is_empty(), "the scan found study's sources");
+    let found: Vec<String> = files
+        .iter()
+        .flat_map(|f| {
+            let text = std::fs::read_to_string(f).unwrap_or_default();
+            text.lines()
+                .enumerate()
+                .filter(|(_, l)| l.contains("Context"))
+                .map(|(i, l)| format!("{}:{}: {}", f.display(), i + 1, l.trim()))
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    assert!(
+        found.is_empty(),
+        "study takes settings as values and trials through `registry::TrialEngine`; the parsing of a Context belongs in experiments/src/settings.rs:\n{}",
+        found.join("\n")
     );
 }

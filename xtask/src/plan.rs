@@ -212,7 +212,7 @@ pub(crate) fn preflight(planned: &[Planned], run: &RunArgs) -> Result<(), Failur
         ("--hypothesis", "--set measured")
     };
     for p in planned {
-        study::inputs::check(&p.ctx, flags, &mut seen).map_err(Failure::Bad)?;
+        experiments::inputs::check(&p.ctx, flags, &mut seen).map_err(Failure::Bad)?;
     }
     Ok(())
 }

@@ -88,7 +88,7 @@ fn recorded_inputs(ctx: &Context) -> BTreeMap<String, String> {
         inputs.insert(name.to_owned(), v.to_owned());
     }
     if let Some(h) = inputs.get("hypothesis").cloned() {
-        for f in study::inputs::measured_in_hypothesis(&h) {
+        for f in experiments::inputs::measured_in_hypothesis(&h) {
             inputs.insert("errors".to_owned(), f);
         }
     }
@@ -159,7 +159,7 @@ fn inputs(ctx: &Context) -> Vec<serde_json::Value> {
             "sha256": sha256(c.text.as_bytes()),
         }));
     }
-    let files = study::inputs::files(ctx);
+    let files = experiments::inputs::files(ctx);
     for (role, path) in files {
         let hash = input_file::read_to_string(Path::new(&path), input_file::MAX_INPUT_BYTES)
             .ok()

@@ -13,12 +13,21 @@ use crate::failure::{one_line, short_numbers};
 use crate::shared::Registry;
 use crate::summary;
 
+/// `a-fine`'s one parameter, read by this declaration.
+const N: Param = Param {
+    name: "n",
+    default: "5",
+    unit: "",
+    help: "trials",
+    kind: registry::Kind::Text,
+};
+
 fn fine(ctx: &Context) -> Result<Report, RunError> {
     let mut t = Table::new("Fine", ["n"]);
-    t.row(vec![ctx.param("n")?.to_owned()]);
+    t.row(vec![ctx.text(&N)?.to_owned()]);
     Ok(Report {
         tables: vec![t],
-        trials: ctx.u64("n")?,
+        trials: ctx.get(&N)?,
         engagements: 10,
         agreement: Some(registry::Agreement {
             consistent: 2,
@@ -41,13 +50,7 @@ static A_FINE: Experiment = Experiment {
     id: "a-fine",
     title: "fine",
     paper_item: "Table 0",
-    params: &[Param {
-        name: "n",
-        default: "5",
-        unit: "",
-        help: "trials",
-        kind: registry::Kind::Text,
-    }],
+    params: &[N],
     groups: &[],
     config: None,
     run: fine,
@@ -118,7 +121,7 @@ fn run_all_goes_on_past_failures_and_writes_the_summary() {
     let mut printed = String::new();
     let rows = run_every(
         &registry(true),
-        &run_all_args(&out, &[("n", "7")]),
+        &run_all_args(&out, &[(N.name, "7")]),
         &mut |s| {
             printed.push_str(s);
             Ok(())
@@ -158,7 +161,7 @@ fn run_all_refuses_a_key_no_experiment_declares_before_running() {
     let out = scratch("key");
     let e = run_every(
         &registry(false),
-        &run_all_args(&out, &[("n", "1"), ("nonsense", "1")]),
+        &run_all_args(&out, &[(N.name, "1"), ("nonsense", "1")]),
         &mut |_| Ok(()),
     )
     .unwrap_err();

@@ -191,7 +191,7 @@ impl Context {
             params,
             config,
             defaults: exp.all_params().map(|p| p.default).collect(),
-            engine: TrialEngine::new(exp.id),
+            engine: TrialEngine::new(exp.id, seed),
         })
     }
 
@@ -245,6 +245,11 @@ impl Context {
     /// Seed for every random number generator of the run (`--seed`).
     pub fn seed(&self) -> u64 {
         self.seed
+    }
+
+    /// The trial engine with the run's seed: what `study`'s trial loops take.
+    pub fn engine(&self) -> &TrialEngine {
+        &self.engine
     }
 
     /// Number of threads of the pool the experiment runs in (`--threads`).

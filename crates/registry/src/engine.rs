@@ -36,11 +36,14 @@ struct Ledger {
     recorded: Records,
 }
 
-/// Runs, records or replays the trial batches of one experiment run.
+/// Runs, records or replays the trial batches of one experiment run: what `study`'s trial loops
+/// take ([`crate::Context::engine`]), with the run's seed, instead of the whole context.
 #[derive(Debug)]
-pub(crate) struct TrialEngine {
+pub struct TrialEngine {
     /// The experiment, for messages and progress.
     pub(crate) id: &'static str,
+    /// Seed for every random number generator of the run (`--seed`).
+    pub(crate) seed: u64,
     pub(crate) mode: TrialMode,
     /// Replay mode: the merged records of every shard.
     pub(crate) replay: Records,
@@ -55,6 +58,7 @@ impl Clone for TrialEngine {
         let ledger = self.ledger();
         TrialEngine {
             id: self.id,
+            seed: self.seed,
             mode: self.mode,
             replay: self.replay.clone(),
             ledger: Mutex::new(Ledger {
@@ -68,14 +72,43 @@ impl Clone for TrialEngine {
 
 impl TrialEngine {
     /// An engine in normal mode with nothing claimed.
-    pub(crate) fn new(id: &'static str) -> Self {
+    pub(crate) fn new(id: &'static str, seed: u64) -> Self {
         TrialEngine {
             id,
+            seed,
             mode: TrialMode::Normal,
             replay: Records::new(),
             ledger: Mutex::new(Ledger::default()),
             progress: None,
         }
+    }
+
+    /// Seed for every random number generator of the run (`--seed`).
+    pub fn seed(&self) -> u64 {
+        self.seed
+    }
+
+    /// How trials are run: normally, as one shard, or replayed from records.
+    pub fn mode(&self) -> TrialMode {
+        self.mode
+    }
+
+    /// Runs trials `0..n` of a batch: see [`crate::Context::trials`].
+    pub fn trials<T, F>(&self, batch: &str, n: u64, f: F) -> Result<Vec<T>, RunError>
+    where
+        T: Serialize + DeserializeOwned + Send + Clone + Default,
+        F: Fn(u64) -> Result<T, RunError> + Sync + Send,
+    {
+        self.batch(batch, n, false, f)
+    }
+
+    /// Runs a batch never sharded: see [`crate::Context::trials_whole`].
+    pub fn trials_whole<T, F>(&self, batch: &str, n: u64, f: F) -> Result<Vec<T>, RunError>
+    where
+        T: Serialize + DeserializeOwned + Send + Clone + Default,
+        F: Fn(u64) -> Result<T, RunError> + Sync + Send,
+    {
+        self.batch(batch, n, true, f)
     }
 
     /// The batches recorded so far in shard mode (empty in the other modes).

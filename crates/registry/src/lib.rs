@@ -44,7 +44,7 @@ pub use context::{
     ConfigFile, Context, FromParam, MAX_COUNT, MAX_TRIALS, MIN_PER_ENGAGEMENT,
     MIN_PER_ENGAGEMENT_WHY, MIN_SAMPLES, MIN_SAMPLES_WHY, SAMPLES_PER_TOOTH, samples_cover,
 };
-pub use engine::TrialMode;
+pub use engine::{TrialEngine, TrialMode};
 pub use error::{DuplicateId, RunError};
 pub use output::{
     Agreement, MAX_DATA_ROWS, OutputFile, Report, abandon_writes, tidy, write_file_through,

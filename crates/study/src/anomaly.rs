@@ -5,7 +5,7 @@
 use hypotheses::{Hypothesis, Params};
 pub use mechanism::PinSlotTrain;
 use mechanism::{Mechanism, PointerRun, TrialRng, trial_rng};
-use registry::{Context, RunError};
+use registry::{RunError, TrialEngine};
 use serde::{Deserialize, Serialize};
 use train::Gearing;
 
@@ -39,7 +39,7 @@ impl RunStats {
 }
 
 /// One trial of one row: the same gears and initial angles without and with the pin-and-slot.
-/// The default (another shard's trial, see `Context::trials`) reads as zeros.
+/// The default (another shard's trial, see `TrialEngine::trials`) reads as zeros.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
 pub struct AnomalyTrial {
     /// Without the pin-and-slot.
@@ -140,19 +140,19 @@ impl Rows<'_> {
     }
 
     /// `trials` trials of every row (row-major, in trial order, as the batch `key` of
-    /// [`Context::trials`]): `pointer` over `turns` input turns to its first jam without and
+    /// [`TrialEngine::trials`]): `pointer` over `turns` input turns to its first jam without and
     /// with the pin-and-slot, from the same initial angles, `samples` TD samples each.
     pub fn trials(
         &self,
-        ctx: &Context,
+        engine: &TrialEngine,
         key: &str,
         pointer: &str,
         (turns, samples): (f64, usize),
         trials: u64,
     ) -> Result<Vec<AnomalyTrial>, RunError> {
         let ideal = self.ideal()?;
-        let seed = ctx.seed();
-        ctx.trials(key, self.rows.len() as u64 * trials, |j| {
+        let seed = engine.seed();
+        engine.trials(key, self.rows.len() as u64 * trials, |j| {
             let (ri, t) = ((j / trials) as usize, j % trials);
             let (mech, rng) = self.build(&ideal, seed, ri, t)?;
             let on = self.pinned(mech.clone())?;

@@ -8,7 +8,7 @@ use contact::{Event, Start};
 use geometry::{Gear, centre_distance};
 use polycheck::area::AreaPair;
 use polycheck::stepped::{GearOutline, SteppedPair, Stepping};
-use registry::{Context, RunError};
+use registry::{RunError, TrialEngine};
 use serde::{Deserialize, Serialize};
 
 use train::Gearing;
@@ -80,7 +80,7 @@ pub fn curve(pair: &IdealPair, test: Test, samples: usize) -> Vec<Point> {
 /// trial engine (job j is test j / meshes, mesh j % meshes), the same bits for any thread count
 /// or shard.
 pub fn curves(
-    ctx: &Context,
+    engine: &TrialEngine,
     tests: &[Test],
     meshes: &[IdealPair],
     samples: usize,
@@ -89,7 +89,7 @@ pub fn curves(
         "contact-tolerance curves: tests {tests:?}, grid {:?}, {samples} samples per driver pitch",
         grid()
     );
-    ctx.trials_whole(&key, (tests.len() * meshes.len()) as u64, |j| {
+    engine.trials_whole(&key, (tests.len() * meshes.len()) as u64, |j| {
         let (ti, mi) = (j as usize / meshes.len(), j as usize % meshes.len());
         Ok(curve(&meshes[mi], tests[ti], samples))
     })
@@ -190,7 +190,7 @@ fn reversed_jams(mesh: &contact::Mesh, phi0: f64) -> bool {
 
 /// Every run cell's jam count under every reading: `jams[run][reading]`.
 pub fn run_all(
-    ctx: &Context,
+    engine: &TrialEngine,
     g: &Gearing,
     runs: &[CellSpec],
     readings: &[Reading],
@@ -204,9 +204,9 @@ pub fn run_all(
     let key = format!("jam-readings:{:016x}", fnv1a64(text.as_bytes()));
     // One flat batch (cell-major), so every thread has work however few trials a cell has;
     // each trial's stream is its cell's and its index's, so the thread count changes nothing.
-    let bits = ctx.trials(&key, runs.len() as u64 * trials, |i| {
+    let bits = engine.trials(&key, runs.len() as u64 * trials, |i| {
         let spec = &runs[(i / trials) as usize];
-        trial(g, spec, ctx.seed(), i % trials, readings, stepping)
+        trial(g, spec, engine.seed(), i % trials, readings, stepping)
     })?;
     Ok(runs
         .iter()

@@ -20,7 +20,7 @@ use geometry::Gear;
 use hypotheses::{Hypothesis, Params};
 use mechanism::trial_rng;
 use rand::Rng;
-use registry::{Context, RunError, TrialMode, fmt_f64};
+use registry::{RunError, TrialEngine, TrialMode, fmt_f64};
 use stats::{Proportion, wilson95};
 use train::Gearing;
 
@@ -297,7 +297,7 @@ fn cache() -> &'static Mutex<HashMap<String, Counts>> {
 /// which later cells are derived (Table 4's grid inside Table 5, Table 5's inside Table 6).
 ///
 /// Under `--shard K/N` an experiment's own cells are split between the shards; its inputs are
-/// computed whole by every shard ([`Context::trials_whole`]), because the cells derived from them
+/// computed whole by every shard ([`TrialEngine::trials_whole`]), because the cells derived from them
 /// must be the same in every shard.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Purpose {
@@ -314,8 +314,8 @@ pub fn forget_cache() {
 
 /// Runs `trials` trials of every cell and returns each cell's counts, in the order of `cells`.
 ///
-/// Every (cell, trial) job runs in one flat parallel batch through [`Context::trials`] (or
-/// [`Context::trials_whole`] for a [`Purpose::Input`]) and is collected in order, so the counts
+/// Every (cell, trial) job runs in one flat parallel batch through [`TrialEngine::trials`] (or
+/// [`TrialEngine::trials_whole`] for a [`Purpose::Input`]) and is collected in order, so the counts
 /// do not depend on the thread count, and a run split into shards and merged gives the same
 /// counts. Trial `t` of a cell draws from `trial_rng(seed, stream(cell.canonical(), t))`: the
 /// same cell gives the same counts in any experiment. Counts are cached for the life of the
@@ -328,13 +328,13 @@ pub fn forget_cache() {
 /// Errors: `trials == 0`; a mesh missing from the gearing; a gear the hypothesis cannot
 /// manufacture (the first such trial in cell and trial order).
 pub fn run_cells(
-    ctx: &Context,
+    engine: &TrialEngine,
     g: &Gearing,
     cells: &[CellSpec],
     trials: u64,
     purpose: Purpose,
 ) -> Result<Vec<Counts>, RunError> {
-    let per_rule = run_cells_by_rule(ctx, g, cells, None, trials, purpose)?;
+    let per_rule = run_cells_by_rule(engine, g, cells, None, trials, purpose)?;
     Ok(per_rule.into_iter().map(|mut c| c.swap_remove(0)).collect())
 }
 
@@ -345,7 +345,7 @@ pub fn run_cells(
 ///
 /// Errors: those of [`run_cells`]; more than [`MAX_RULES`] rules.
 pub fn run_cells_by_rule(
-    ctx: &Context,
+    engine: &TrialEngine,
     g: &Gearing,
     cells: &[CellSpec],
     rules: Option<&[rules::Rule]>,
@@ -353,15 +353,15 @@ pub fn run_cells_by_rule(
     purpose: Purpose,
 ) -> Result<Vec<Vec<Counts>>, RunError> {
     let whole = purpose == Purpose::Input;
-    let partial = matches!(ctx.trial_mode(), TrialMode::Shard(_)) && !whole;
+    let partial = matches!(engine.mode(), TrialMode::Shard(_)) && !whole;
     let batch = |key: &str, n, f: &(dyn Fn(u64) -> Result<RuleBits, RunError> + Sync + Send)| {
         if whole {
-            ctx.trials_whole(key, n, f)
+            engine.trials_whole(key, n, f)
         } else {
-            ctx.trials(key, n, f)
+            engine.trials(key, n, f)
         }
     };
-    run_cells_under(g, cells, rules, trials, ctx.seed(), !partial, batch)
+    run_cells_under(g, cells, rules, trials, engine.seed(), !partial, batch)
 }
 
 /// A batch runner: `run_batch(key, n, f)` returns `f(t)` for t in 0..n in order.
@@ -555,7 +555,7 @@ pub struct CellRange {
 ///
 /// Trial `t` of a cell draws from the same stream as in [`run_cells`], so the counts of ranges
 /// `0..a` and `a..b` of a cell add up to what `run_cells` gives that cell with `b` trials. All
-/// ranges run in one flat batch through [`Context::trials`] (or [`Context::trials_whole`] for an
+/// ranges run in one flat batch through [`TrialEngine::trials`] (or [`TrialEngine::trials_whole`] for an
 /// [`Purpose::Input`]: a search that decides from the counts what to run next must use it), named
 /// by every cell's canonical text, the seed, the gearing and the index range. Nothing is
 /// cached.
@@ -563,17 +563,17 @@ pub struct CellRange {
 /// Errors: an empty range; a mesh missing from the gearing; a gear the hypothesis cannot
 /// manufacture (the first such trial in range and trial order).
 pub fn run_cell_ranges(
-    ctx: &Context,
+    engine: &TrialEngine,
     g: &Gearing,
     ranges: &[CellRange],
     purpose: Purpose,
 ) -> Result<Vec<Counts>, RunError> {
     let whole = purpose == Purpose::Input;
-    run_cell_ranges_with(g, ranges, ctx.seed(), |key, n, f| {
+    run_cell_ranges_with(g, ranges, engine.seed(), |key, n, f| {
         if whole {
-            ctx.trials_whole(key, n, f)
+            engine.trials_whole(key, n, f)
         } else {
-            ctx.trials(key, n, f)
+            engine.trials(key, n, f)
         }
     })
 }

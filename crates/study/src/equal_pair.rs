@@ -3,7 +3,7 @@
 
 use contact::Mesh;
 use geometry::Gear;
-use registry::{Context, Param, RunError};
+use registry::{Param, RunError};
 
 /// The largest radius or centre distance a parameter takes: 10^6 (the paper's example is 200;
 /// a larger size is no gear, and prints as a number nobody typed).
@@ -59,11 +59,14 @@ pub struct EqualPair {
     pub mesh: Mesh,
 }
 
-/// Reads the parameters and builds the mesh; a broken rule names the parameter.
-pub fn from_params(ctx: &Context) -> Result<EqualPair, RunError> {
-    let teeth = ctx.get(&TEETH)?;
-    let (tip_radius, root_radius): (f64, f64) = (ctx.get(&TIP_RADIUS)?, ctx.get(&ROOT_RADIUS)?);
-    let centre_distance: f64 = ctx.get(&CENTRE_DISTANCE)?;
+/// Builds the mesh of two gears of `teeth` teeth, tip radius `tip_radius` and root radius
+/// `root_radius` at `centre_distance`; a broken rule names the parameter.
+pub fn build(
+    teeth: usize,
+    tip_radius: f64,
+    root_radius: f64,
+    centre_distance: f64,
+) -> Result<EqualPair, RunError> {
     let bad = |field: String, rule: String| RunError::bad("--set", field, rule);
     let gear = Gear::ideal(teeth, tip_radius, root_radius).map_err(|e| bad(e.field, e.rule))?;
     // At or beyond touching tip circles no tooth can push another: nothing would be simulated.

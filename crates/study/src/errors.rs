@@ -3,7 +3,7 @@
 
 use geometry::Gear;
 use hypotheses::{Hypothesis, Params};
-use registry::{Context, Param, RunError};
+use registry::{Param, RunError};
 
 /// The `hypothesis` parameter (the runner's `--hypothesis NAME`).
 pub const PARAM: Param = Param {
@@ -40,9 +40,8 @@ pub const GROUP: &[Param] = &[PARAM, PARAMS_PARAM];
 /// error, the hypothesis and its parameters.
 pub const CASES_GROUP: &[Param] = &[SPLIT, PARAM, PARAMS_PARAM];
 
-/// The hypothesis named by the `hypothesis` parameter.
-pub fn chosen(ctx: &Context) -> Result<&'static dyn Hypothesis, RunError> {
-    let name = ctx.text(&PARAM)?;
+/// The hypothesis `name` (the `hypothesis` parameter's value).
+pub fn lookup(name: &str) -> Result<&'static dyn Hypothesis, RunError> {
     hypotheses::lookup(name).map_err(|e| RunError::bad("--hypothesis", e.what, e.rule))
 }
 
@@ -65,35 +64,25 @@ pub struct Settings {
 }
 
 impl Settings {
-    /// Reads the hypothesis ([`chosen`]), parses `hypothesis_params` (an empty entry or a key
-    /// given twice is refused) and reads the split where the experiment declares it.
-    pub fn read(ctx: &Context) -> Result<Settings, RunError> {
-        let hypothesis = chosen(ctx)?;
-        Settings::read_for(ctx, hypothesis)
-    }
-
-    /// [`Settings::read`] with the hypothesis chosen by the experiment (one of its rows).
-    pub fn read_for(
-        ctx: &Context,
+    /// The settings of `hypothesis` with the user's `hypothesis_params` text `user` parsed (an
+    /// empty entry or a key given twice is refused), the `split` where the experiment declares
+    /// [`SPLIT`], the run's parameters `changed` from their defaults (name, value) and every
+    /// parameter name it `declared`.
+    pub fn new(
         hypothesis: &'static dyn Hypothesis,
+        user: &str,
+        split: Option<f64>,
+        changed: Vec<(&'static str, String)>,
+        declared: Vec<&'static str>,
     ) -> Result<Settings, RunError> {
         let bad = |rule: String| RunError::bad("--set", PARAMS_PARAM.name, rule);
-        let user = hypotheses::parse_overrides(ctx.text(&PARAMS_PARAM)?).map_err(bad)?;
-        let split = if ctx.holds(&SPLIT) {
-            Some(ctx.get(&SPLIT)?)
-        } else {
-            None
-        };
+        let user = hypotheses::parse_overrides(user).map_err(bad)?;
         Ok(Settings {
             hypothesis,
             split,
             user,
-            changed: ctx
-                .changed()
-                .into_iter()
-                .map(|(k, v)| (k, v.to_owned()))
-                .collect(),
-            declared: ctx.names(),
+            changed,
+            declared,
         })
     }
 

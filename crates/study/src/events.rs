@@ -1,7 +1,7 @@
 //! The event rule of the experiments that count jams and disengagements: the `events` parameter
 //! (`--set events=NAME`, `cargo xtask rules` lists them).
 
-use registry::{Context, Param, RunError};
+use registry::{Param, RunError};
 use rules::Rule;
 
 /// The `events` parameter.
@@ -16,9 +16,8 @@ pub const PARAM: Param = Param {
 /// The event setting group: the event rule.
 pub const GROUP: &[Param] = &[PARAM];
 
-/// The rule named by the `events` parameter.
-pub fn chosen(ctx: &Context) -> Result<Rule, RunError> {
-    let spec = ctx.text(&PARAM)?;
+/// The rule `spec` names (the `events` parameter's value).
+pub fn parse(spec: &str) -> Result<Rule, RunError> {
     Rule::parse(spec).map_err(|e| RunError::bad("--set", PARAM.name, e.to_string()))
 }
 
@@ -36,21 +35,11 @@ pub fn counts(rule: &Rule, traj: &contact::Trajectory) -> (usize, usize) {
     )
 }
 
-/// Runs `experiment` and names the event rule in its tables' titles ([`label`]): how an
-/// experiment that counts events registers its `run`.
-pub fn labelled(
-    ctx: &Context,
-    experiment: fn(&Context) -> Result<registry::Report, RunError>,
-) -> Result<registry::Report, RunError> {
-    label(ctx, experiment(ctx)?)
-}
-
 /// `report` with every table's title naming the event rule it was counted with (so the printed
 /// table, `table.md` and `tables.json` all say it).
-pub fn label(ctx: &Context, mut report: registry::Report) -> Result<registry::Report, RunError> {
-    let rule = chosen(ctx)?;
+pub fn label(rule: &Rule, mut report: registry::Report) -> registry::Report {
     for t in &mut report.tables {
         t.title = format!("{} [events: {}]", t.title, rule.label());
     }
-    Ok(report)
+    report
 }

@@ -1,7 +1,7 @@
 //! The gearing an experiment runs on: the embedded Freeth 2006 (or 2021) data, or a user's RON file given
 //! with `--set gearing=FILE`; and the gearing-wide parameters declared beside it.
 
-use registry::{Context, Param, RunError};
+use registry::{Param, RunError};
 use train::Gearing;
 
 /// The `gearing` parameter every train experiment declares.
@@ -60,11 +60,6 @@ pub fn mechanism_error(e: mechanism::MechanismError) -> RunError {
     RunError::bad("gearing", format!("mesh {}", e.mesh), e.rule)
 }
 
-/// The `pin_and_slot` parameter (its kind admits only `true` and `false`).
-pub fn pin_and_slot(ctx: &Context) -> Result<bool, RunError> {
-    ctx.get(&PIN_AND_SLOT)
-}
-
 /// `mech` with the pin-and-slot in or out as `on` says; a gearing without a `pin_and_slot`
 /// section cannot have it in (bad input, naming the gearing `file`).
 pub fn with_pin_and_slot(
@@ -94,17 +89,10 @@ pub struct Shape {
 }
 
 impl Shape {
-    /// Reads the `gearing` parameter and [`TOOTH_HEIGHT`], loads the gearing and checks h
-    /// against it ([`check`]).
-    pub fn read(ctx: &Context) -> Result<Shape, RunError> {
-        Shape::read_with(ctx, &TOOTH_HEIGHT)
-    }
-
-    /// [`Shape::read`] with the experiment's own tooth-height parameter `h` (one with its own
-    /// help, e.g. `clearance`'s "for both gears").
-    pub fn read_with(ctx: &Context, h: &Param) -> Result<Shape, RunError> {
-        let file = ctx.text(&PARAM)?.to_owned();
-        let tooth_height = ctx.get(h)?;
+    /// The gearing `file` (as typed: an embedded name or a RON file) with tooth height
+    /// `tooth_height`: loads the gearing and checks h against it ([`check`]).
+    pub fn load(file: &str, tooth_height: f64) -> Result<Shape, RunError> {
+        let file = file.to_owned();
         let gearing = load_file(&file)?;
         check(&file, &gearing, tooth_height)?;
         Ok(Shape {
@@ -130,25 +118,20 @@ pub struct Settings {
 }
 
 impl Settings {
-    /// Reads [`GROUP`]: loads the gearing and checks h against it.
-    pub fn read(ctx: &Context) -> Result<Settings, RunError> {
+    /// The gearing `shape` with clearance G of every mesh `clearance` (% of h).
+    pub fn new(shape: Shape, clearance: f64) -> Settings {
         let Shape {
             gearing,
             file,
             tooth_height,
-        } = Shape::read(ctx)?;
-        Ok(Settings {
+        } = shape;
+        Settings {
             gearing,
             file,
             tooth_height,
-            clearance: ctx.get(&CLEARANCE)?,
-        })
+            clearance,
+        }
     }
-}
-
-/// Loads the gearing named by the `gearing` parameter, and checks h against it ([`check`]).
-pub fn load(ctx: &Context) -> Result<Gearing, RunError> {
-    Ok(Shape::read(ctx)?.gearing)
 }
 
 /// The gearing `name`: an embedded one, or a RON file.
@@ -220,10 +203,9 @@ pub fn check(file: &str, g: &Gearing, h: f64) -> Result<(), RunError> {
     Ok(())
 }
 
-/// A parameter `p` holding a comma-separated list of clearances (% of h), each above 0 and
-/// at most `max`.
-pub fn clearance_list(ctx: &Context, p: &Param, max: f64) -> Result<Vec<f64>, RunError> {
-    let (text, name) = (ctx.text(p)?, p.name);
+/// `text`, the value of the parameter `name`: a comma-separated list of clearances (% of h),
+/// each above 0 and at most `max`.
+pub fn clearance_list(text: &str, name: &str, max: f64) -> Result<Vec<f64>, RunError> {
     let mut out = Vec::new();
     for part in text.split(',').map(str::trim) {
         let g = clearance_value(part, max).map_err(|rule| {

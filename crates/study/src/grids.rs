@@ -3,14 +3,14 @@
 //! derived from it (Tables 5 and 6, Figure 6).
 
 use hypotheses::Hypothesis;
-use registry::{Context, Param, RunError};
+use registry::{Param, RunError, TrialEngine};
 use train::Gearing;
 
 use rules::Rule;
 
 use crate::cell::{CellSpec, Counts, Purpose, run_cells};
 use crate::tolerance;
-use crate::{errors, events, gearing};
+use crate::{errors, gearing};
 
 /// Edmunds' cases: (name, systematic amplitude in degrees, random fraction of the pitch).
 pub const CASES: [(&str, f64, f64); 4] = [
@@ -84,10 +84,10 @@ impl RandomGrid {
 
 /// Runs Table 4's grid (the random errors `values`, systematic error 0, at the settings'
 /// clearance and tooth height) through the shared cell runner: Table 5, Table 6 and Figure 6
-/// call this too, and get Table 4's own cells (from the cache when it already ran). `ctx` runs
+/// call this too, and get Table 4's own cells (from the cache when it already ran). `engine` runs
 /// the trials ([`run_cells`]); the settings come from `s`.
 pub fn run_grid(
-    ctx: &Context,
+    engine: &TrialEngine,
     s: &CellSettings,
     values: Vec<f64>,
     trials: u64,
@@ -102,7 +102,7 @@ pub fn run_grid(
             cells.push(s.cell(m, params.clone(), clearance));
         }
     }
-    let flat = run_cells(ctx, &s.gearing.gearing, &cells, trials, purpose)?;
+    let flat = run_cells(engine, &s.gearing.gearing, &cells, trials, purpose)?;
     let counts = flat.chunks(meshes.len()).map(<[Counts]>::to_vec).collect();
     Ok(RandomGrid {
         values,
@@ -129,30 +129,6 @@ pub struct CellSettings {
 }
 
 impl CellSettings {
-    /// Reads the gearing group, the error group, the event rule and the trials parameter
-    /// `trials`.
-    pub fn read(ctx: &Context, trials: &Param) -> Result<CellSettings, RunError> {
-        let gearing = gearing::Shape::read(ctx)?;
-        let clearance = if ctx.holds(&gearing::CLEARANCE) {
-            Some(ctx.get(&gearing::CLEARANCE)?)
-        } else {
-            None
-        };
-        let errors = errors::Settings::read(ctx)?;
-        let rule = if ctx.holds(&events::PARAM) {
-            events::chosen(ctx)?
-        } else {
-            events::default_rule()?
-        };
-        Ok(CellSettings {
-            gearing,
-            clearance,
-            errors,
-            rule,
-            trials: ctx.get(trials)?,
-        })
-    }
-
     /// The gearing.
     pub fn gearing(&self) -> &Gearing {
         &self.gearing.gearing
@@ -231,7 +207,7 @@ impl Tolerances {
 /// the random errors are those instead and Table 4's grid is not run (`random_grid` then has the
 /// grid's values but no counts).
 pub fn derive(
-    ctx: &Context,
+    engine: &TrialEngine,
     s: &CellSettings,
     (random_values, sys_values): (Vec<f64>, Vec<f64>),
     rule: f64,
@@ -248,7 +224,7 @@ pub fn derive(
         };
         (grid, random)
     } else {
-        let grid = run_grid(ctx, s, random_values, trials, Purpose::Input)?;
+        let grid = run_grid(engine, s, random_values, trials, Purpose::Input)?;
         let random = grid.tolerable(trials, rule);
         (grid, random)
     };
@@ -267,7 +243,7 @@ pub fn derive(
             cells.push(s.cell(mesh, params, clearance));
         }
     }
-    let flat = run_cells(ctx, s.gearing(), &cells, trials, purpose)?;
+    let flat = run_cells(engine, s.gearing(), &cells, trials, purpose)?;
     let n = random_grid.meshes.len();
     let sys_counts: Vec<Vec<Option<Counts>>> = index
         .chunks(n)

@@ -22,7 +22,6 @@ pub mod errors;
 pub mod events;
 pub mod gearing;
 pub mod grids;
-pub mod inputs;
 pub mod limits;
 pub mod pair_file;
 pub mod pointers;

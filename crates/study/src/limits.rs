@@ -5,7 +5,7 @@ use std::f64::consts::TAU;
 
 use contact::{Mesh, Start, Trajectory};
 use geometry::Gear;
-use registry::{Context, RunError};
+use registry::RunError;
 
 use rules::Rule;
 
@@ -52,9 +52,9 @@ impl IdealPair {
         })
     }
 
-    /// [`IdealPair::of_mesh`] of the mesh the `mesh` parameter names, refused naming it.
-    pub fn chosen(ctx: &Context, g: &train::Gearing, h: f64) -> Result<IdealPair, RunError> {
-        let label = ctx.text(&MESH)?;
+    /// [`IdealPair::of_mesh`] of mesh `label` (the `mesh` parameter's value), refused naming
+    /// the parameter.
+    pub fn named(label: &str, g: &train::Gearing, h: f64) -> Result<IdealPair, RunError> {
         IdealPair::of_mesh(g, label, h).ok_or_else(|| {
             RunError::bad(
                 "--set",

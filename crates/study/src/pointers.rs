@@ -6,7 +6,7 @@ use std::f64::consts::TAU;
 
 use hypotheses::{Hypothesis, Params};
 use mechanism::{Mechanism, Model, trial_rng};
-use registry::{Context, Param, RunError};
+use registry::{Param, RunError, TrialEngine};
 use serde::{Deserialize, Serialize};
 use train::Gearing;
 
@@ -122,16 +122,14 @@ pub const COLUMNS: [&str; 6] = [
     "Exeligmos",
 ];
 
-/// (pointer, input turns, TD samples) for each (pointer, run-length parameter), checked.
+/// (pointer, input turns, TD samples) for each (pointer, input turns), checked.
 pub fn pointer_runs<'a>(
-    ctx: &Context,
     g: &train::Gearing,
-    pointers: &[(&'a str, &Param)],
+    pointers: &[(&'a str, f64)],
     per: usize,
 ) -> Result<Vec<(&'a str, f64, usize)>, RunError> {
     let mut runs = Vec::new();
-    for &(name, param) in pointers {
-        let turns = ctx.get(param)?;
+    for &(name, turns) in pointers {
         if g.pointer(name).is_none() {
             return Err(RunError::bad(
                 "gearing",
@@ -206,16 +204,16 @@ pub fn ideal_mechanism(
 /// Table 1's trials: `trials` runs of the ideal mechanism `mech`, each from random initial
 /// angles drawn from its own stream `trial_rng(seed, t)`, every pointer of `runs` (pointer,
 /// input turns, samples) in turn on that stream; in trial order, whatever the threads, as the
-/// batch `key` of [`Context::trials`].
+/// batch `key` of [`TrialEngine::trials`].
 pub fn ideal_trials(
-    ctx: &Context,
+    engine: &TrialEngine,
     key: &str,
     mech: &Mechanism,
     runs: &[(&str, f64, usize)],
     trials: u64,
 ) -> Result<Vec<Vec<PointerTrial>>, RunError> {
-    let seed = ctx.seed();
-    ctx.trials(key, trials, |t| {
+    let seed = engine.seed();
+    engine.trials(key, trials, |t| {
         let mut rng = trial_rng(seed, t);
         Ok(runs
             .iter()
@@ -229,7 +227,7 @@ pub fn ideal_trials(
     })
 }
 
-/// One pointer of one trial run to its first jam (statistics up to it), as [`Context::trials`]
+/// One pointer of one trial run to its first jam (statistics up to it), as [`TrialEngine::trials`]
 /// records it (for shards and their merge); NaN statistics (a run that stops at once) are
 /// recorded as bits.
 #[derive(Debug, Clone, Copy, Default, Serialize, Deserialize)]
@@ -270,16 +268,16 @@ pub struct Manufactured<'a> {
 /// Table 6's trials: `trials` mechanisms as `m` makes them, each from its own stream
 /// `trial_rng(seed, t)` (every gear's errors, then the initial angles), every pointer of `runs`
 /// (pointer, input turns, samples) run to its first jam; in trial order, whatever the threads,
-/// as the batch `key` of [`Context::trials`].
+/// as the batch `key` of [`TrialEngine::trials`].
 pub fn tolerated_trials(
-    ctx: &Context,
+    engine: &TrialEngine,
     key: &str,
     m: &Manufactured<'_>,
     runs: &[(&str, f64, usize)],
     trials: u64,
 ) -> Result<Vec<Vec<ToFirstJam>>, RunError> {
-    let seed = ctx.seed();
-    ctx.trials(key, trials, |t| {
+    let seed = engine.seed();
+    engine.trials(key, trials, |t| {
         // One stream per trial: every gear's errors, then the initial angles.
         let mut rng = trial_rng(seed, t);
         let mut failure = None;
@@ -332,7 +330,7 @@ pub fn tolerated_trials(
     })
 }
 
-/// One pointer of one trial under both contact models, as [`Context::trials`] records it;
+/// One pointer of one trial under both contact models, as [`TrialEngine::trials`] records it;
 /// NaN statistics are recorded as bits.
 #[derive(Debug, Clone, Copy, Default, Serialize, Deserialize)]
 pub struct BothModels {
@@ -374,18 +372,18 @@ pub struct CaseMechanism<'a> {
 /// stream `trial_rng(seed, (stream << 32) | t)` (the gears' errors, then the initial angles),
 /// every pointer of `runs` run from the same initial angles under Edmunds' model and with
 /// triangular teeth; in trial order, whatever the threads, as the batch `key` of
-/// [`Context::trials`].
+/// [`TrialEngine::trials`].
 pub fn both_model_trials(
-    ctx: &Context,
+    engine: &TrialEngine,
     key: &str,
     stream: u64,
     m: &CaseMechanism<'_>,
     runs: &[(&str, f64, usize)],
     trials: u64,
 ) -> Result<Vec<Vec<BothModels>>, RunError> {
-    let seed = ctx.seed();
+    let seed = engine.seed();
     let ((g, file), (hyp, p)) = (m.gearing, m.errors);
-    ctx.trials(key, trials, |t| {
+    engine.trials(key, trials, |t| {
         // One stream per (case, trial): errors first, then initial angles.
         let mut rng = trial_rng(seed, (stream << 32) | t);
         let mut failure = None;

@@ -6,7 +6,7 @@ use std::collections::BTreeMap;
 
 use geometry::Gear;
 use mechanism::{Mechanism, PointerRun, trial_rng};
-use registry::{Context, RunError};
+use registry::{RunError, TrialEngine};
 use serde::{Deserialize, Serialize};
 use train::Gearing;
 
@@ -267,13 +267,13 @@ pub enum Starts {
 
 /// Table 1's σ per trial and pointer for one mechanism and one start rule: `trials` trials,
 /// trial t on the stream `trial_rng(seed, t)`, each pointer of `turns` (pointer, input turns)
-/// in turn; in trial order, as the batch `key` of [`Context::trials`].
+/// in turn; in trial order, as the batch `key` of [`TrialEngine::trials`].
 #[allow(
     clippy::too_many_arguments,
     reason = "the runs' inputs, each a value of its own"
 )]
 pub fn table1_trials(
-    ctx: &Context,
+    engine: &TrialEngine,
     key: &str,
     g: &Gearing,
     mech: &Mechanism,
@@ -282,8 +282,8 @@ pub fn table1_trials(
     per: usize,
     trials: u64,
 ) -> Result<Vec<Vec<PointerSigma>>, RunError> {
-    let seed = ctx.seed();
-    ctx.trials(key, trials, |t| {
+    let seed = engine.seed();
+    engine.trials(key, trials, |t| {
         let mut rng = trial_rng(seed, t);
         Ok(turns
             .iter()
@@ -299,7 +299,7 @@ pub fn table1_trials(
 }
 
 /// Where a σ(G) curve is smallest, and how deep that minimum is. Recorded per (reading, mesh)
-/// through `Context::trials_whole` (NaN fields as bits).
+/// through `TrialEngine::trials_whole` (NaN fields as bits).
 #[derive(Debug, Clone, Copy, Default, serde::Serialize, serde::Deserialize)]
 pub struct Minimum {
     /// The clearance of the smallest σ, % of h.
@@ -406,13 +406,13 @@ fn case_a_minimum(
 /// clearances `grid`, `samples` samples a run. One whole batch of the trial engine (job j is
 /// (column, mesh)); the Case A column draws its gears from streams of the seed.
 pub fn figure_iv_minima(
-    ctx: &Context,
+    engine: &TrialEngine,
     g: &Gearing,
     radii: &[BTreeMap<String, f64>],
     grid: &[f64],
     (draws, samples): (usize, usize),
 ) -> Result<BTreeMap<(usize, usize), Option<Minimum>>, RunError> {
-    let seed = ctx.seed();
+    let seed = engine.seed();
     // Columns: the geometry readings, then (CASE_A) the first one's gears with Case A errors,
     // then (IN_BACKLASH) its ideal gears started at rest half-way through the backlash.
     let case_a = GEOMETRY.len();
@@ -446,7 +446,7 @@ pub fn figure_iv_minima(
         "sigma-causes Figure IV minima: {} jobs, grid {grid:?}, draws {draws}, samples {samples}",
         jobs.len()
     );
-    let minima: Vec<Option<Minimum>> = ctx.trials_whole(&key, jobs.len() as u64, |j| {
+    let minima: Vec<Option<Minimum>> = engine.trials_whole(&key, jobs.len() as u64, |j| {
         let &(ri, mi, ref pair) = &jobs[j as usize];
         {
             if ri == case_a {

@@ -2,7 +2,7 @@
 //! trials jam (1 % of 200 = 2), and its largest tolerable error is the largest grid value up to
 //! which every grid value passes. Also the grids of Tables 4 and 5 as parameters.
 
-use registry::{Context, Param, RunError};
+use registry::{Param, RunError};
 
 /// A random error of a grid or search (fraction of the pitch): 0 to the hypotheses' limit
 /// [`hypotheses::MAX_RANDOM`], checked with the parameter the user set rather than when a gear
@@ -106,30 +106,21 @@ pub fn largest_tolerable(grid: &[(f64, u64)], trials: u64, rule_percent: f64) ->
     best
 }
 
-/// The `rule` parameter, checked: a percentage from 0 to 100.
-pub fn rule(ctx: &Context) -> Result<f64, RunError> {
-    ctx.get(&RULE)
-}
-
-/// The random-error grid ([`RANDOM_GRID`], Table 4's rows), checked as [`grid`] says.
-pub fn random_grid(ctx: &Context) -> Result<Vec<f64>, RunError> {
-    grid(ctx, &RANDOM_FROM, &RANDOM_TO, &RANDOM_STEP)
-}
-
-/// The systematic-error grid ([`SYSTEMATIC_GRID`], Table 5's rows), checked as [`grid`] says.
-pub fn systematic_grid(ctx: &Context) -> Result<Vec<f64>, RunError> {
-    grid(ctx, &SYSTEMATIC_FROM, &SYSTEMATIC_TO, &SYSTEMATIC_STEP)
-}
-
-/// The values from..=to by step named by three parameters, checked: from >= 0, step > 0,
-/// from <= to, at most 1000 values. Each value is rounded to nine decimals, so 0.1 + 9 × 0.1
-/// is 1.0 and the same grid gives the same cells in every experiment.
-pub fn grid(ctx: &Context, from: &Param, to: &Param, step: &Param) -> Result<Vec<f64>, RunError> {
-    let (a, b, s): (f64, f64, f64) = (ctx.get(from)?, ctx.get(to)?, ctx.get(step)?);
+/// The values from..=to by step, each given with the parameter it was read from, checked:
+/// from >= 0, step > 0, from <= to, at most 1000 values; a refusal names the parameter the user
+/// set, as `changed` (the names of the run's parameters set to other than their default) says.
+/// Each value is rounded to nine decimals, so 0.1 + 9 × 0.1 is 1.0 and the same grid gives the
+/// same cells in every experiment.
+pub fn grid(
+    (from, a): (&Param, f64),
+    (to, b): (&Param, f64),
+    (step, s): (&Param, f64),
+    changed: &[&str],
+) -> Result<Vec<f64>, RunError> {
     let short = registry::fmt_number;
     if a > b {
         // Name the one the user set: `to` below the default `from`, or `from` above `to`.
-        let to_set = ctx.changed().iter().any(|(k, _)| *k == to.name);
+        let to_set = changed.contains(&to.name);
         let (field, rule) = if to_set {
             (
                 to.name,
@@ -156,8 +147,7 @@ pub fn grid(ctx: &Context, from: &Param, to: &Param, step: &Param) -> Result<Vec
     let n = ((b - a) / s + 1e-9).floor();
     if n >= 1000.0 {
         // Name the one the user set: the step, or else the end (or start) they moved.
-        let changed = ctx.changed();
-        let set = |p: &Param| changed.iter().any(|(k, _)| *k == p.name);
+        let set = |p: &Param| changed.contains(&p.name);
         let field = if set(step) || !(set(to) || set(from)) {
             step.name
         } else if set(to) {

@@ -13,7 +13,7 @@ use contact::Start;
 use hypotheses::{Hypothesis, MeasuredHypothesis, Params};
 use mechanism::{Mechanism, PointerRun, Stage, StageRun, trial_rng};
 use rand::Rng;
-use registry::{Context, Param, RunError};
+use registry::{Param, RunError, TrialEngine};
 use serde::{Deserialize, Serialize};
 use stats::{DAYS_PER_YEAR, Proportion, clopper_pearson95, mean_ci95};
 
@@ -122,7 +122,7 @@ pub struct Jam {
     pub mesh: String,
 }
 
-/// One whole-mechanism run. The default (a run of another shard, see `Context::trials`) has
+/// One whole-mechanism run. The default (a run of another shard, see `TrialEngine::trials`) has
 /// no trains: it reads as a run that never jammed.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct MechanismRun {
@@ -146,12 +146,6 @@ impl MechanismRun {
             .flatten()
             .min_by(|a, b| a.day.total_cmp(&b.day))
     }
-}
-
-/// The `days` parameter: the horizon of each run, from one year of b (jams are counted within
-/// a year) to 100 years, as its kind checks.
-pub fn days(ctx: &Context) -> Result<f64, RunError> {
-    ctx.get(&DAYS)
 }
 
 /// Checks that the study can run on `g`: ideal gears fit at `clearances` and tooth height `h` (a
@@ -197,7 +191,7 @@ pub fn case_input(
 }
 
 /// Runs `trials` whole mechanisms of every input over `days` of b, all in one batch named
-/// `batch` of [`Context::trials`] (flattened so that every run shares the pool), and returns
+/// `batch` of [`TrialEngine::trials`] (flattened so that every run shares the pool), and returns
 /// the outcomes input by input, each input's in trial order. Run `t` of an input draws from
 /// `trial_rng(seed, (input.index << 32) | t)`: the gears' errors, then the meshes' initial
 /// angles, whatever the clearances. Jams are counted by `events`.
@@ -206,7 +200,7 @@ pub fn case_input(
     reason = "the study's inputs, each a value of its own"
 )]
 pub fn run_study(
-    ctx: &Context,
+    engine: &TrialEngine,
     g: &train::Gearing,
     inputs: &[Input<'_>],
     trials: u64,
@@ -216,12 +210,12 @@ pub fn run_study(
     batch: &str,
 ) -> Result<Vec<MechanismRun>, RunError> {
     let horizon = days / DAYS_PER_YEAR * TAU;
-    let seed = ctx.seed();
+    let seed = engine.seed();
     // The rule decides where a train stops, so it names the batch too.
     let batch = format!("{batch}|events={}", events.label());
     // Run j is run j % trials of input j / trials (arithmetic, not a vector of every pair).
     let jobs = inputs.len() as u64 * trials;
-    ctx.trials(&batch, jobs, |j| {
+    engine.trials(&batch, jobs, |j| {
         let input = inputs
             .get((j / trials) as usize)
             .ok_or_else(|| RunError::Internal(format!("run {j} of {jobs}")))?;

@@ -97,19 +97,19 @@ fn limits_table(
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::labelled(ctx, counted)
+    crate::settings::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let rule = study::events::chosen(ctx)?;
+    let rule = crate::settings::rule(ctx)?;
     let h: f64 = ctx.get(&TOOTH_HEIGHT)?;
     let grid_step: f64 = ctx.get(&GRID_STEP)?;
     let samples: usize = ctx.get(&SAMPLES)?;
     // The gearing checked against this experiment's own tooth height.
-    let g = gearing::Shape::read_with(ctx, &TOOTH_HEIGHT)?.gearing;
+    let g = crate::settings::shape_with(ctx, &TOOTH_HEIGHT)?.gearing;
     let label = ctx.text(&study::limits::MESH)?;
-    let setup = IdealPair::chosen(ctx, &g, h)?;
+    let setup = crate::settings::ideal_pair(ctx, &g, h)?;
     let IdealPair { n1, n2, r1, r2, .. } = setup;
 
     let mut grid = Table::new(

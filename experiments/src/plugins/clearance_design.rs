@@ -20,7 +20,7 @@ use train::Gearing;
 use crate::common::{Series, line_plot};
 use study::grids::CellSettings;
 use study::whole_mechanism::{self as whole, Clearances, Input, MechanismRun, Summary};
-use study::gearing::clearance_list;
+use crate::settings::clearance_list;
 use study::cell::{CellRange, CellSpec, Counts, Purpose, label, run_cell_ranges, run_cells};
 use study::grids::CASES;
 
@@ -172,7 +172,7 @@ fn settings(ctx: &Context) -> Result<Settings, RunError> {
         ));
     }
     let runs = count(ctx, &RUNS)?;
-    let days = whole::days(ctx)?;
+    let days = ctx.get(&study::whole_mechanism::DAYS)?;
     let cases = whole::parse_cases(ctx.text(&whole::CASES_PARAM)?)?;
     if cases.is_empty() {
         return Err(RunError::bad(
@@ -313,7 +313,7 @@ fn search(ctx: &Context, c: &CellSettings, s: &Settings) -> Result<Vec<MeshSearc
             }
         }
     }
-    let counts = run_cells(ctx, g, &cells, s.coarse, Purpose::Input)?;
+    let counts = run_cells(ctx.engine(), g, &cells, s.coarse, Purpose::Input)?;
     for (sr, row) in searches.iter_mut().zip(counts.chunks(s.grid.len())) {
         for (&v, c) in s.grid.iter().zip(row) {
             sr.add(v, *c);
@@ -344,7 +344,7 @@ fn search(ctx: &Context, c: &CellSettings, s: &Settings) -> Result<Vec<MeshSearc
             }
         }
         if !ranges.is_empty() {
-            let more = run_cell_ranges(ctx, g, &ranges, Purpose::Input)?;
+            let more = run_cell_ranges(ctx.engine(), g, &ranges, Purpose::Input)?;
             for (&(k, v), c) in owners.iter().zip(more) {
                 searches[k].add(v, c);
             }
@@ -716,13 +716,13 @@ fn search_csv(
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::labelled(ctx, counted)
+    crate::settings::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
     // The coarse grid's cells count `coarse_trials` trials each.
-    let cells = CellSettings::read(ctx, &COARSE_TRIALS)?;
+    let cells = crate::settings::cells(ctx, &COARSE_TRIALS)?;
     let (g, h) = (cells.gearing(), cells.gearing.tooth_height);
     let s = settings(ctx)?;
     whole::check_study(g, h, &Clearances::Uniform(s.reference))?;
@@ -754,7 +754,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         "clearance-design/{}",
         whole::batch_key(&cells.gearing.file, &inputs, s.runs, h, s.reference, s.days)?
     );
-    let outcomes = whole::run_study(ctx, g, &inputs, s.runs, h, s.days, &cells.rule, &key)?;
+    let outcomes = whole::run_study(ctx.engine(), g, &inputs, s.runs, h, s.days, &cells.rule, &key)?;
     let per_input: Vec<&[MechanismRun]> = outcomes.chunks(s.runs as usize).collect();
     let summaries: Vec<Vec<Summary>> = per_input
         .iter()

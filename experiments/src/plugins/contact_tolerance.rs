@@ -135,7 +135,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         gearing: g,
         tooth_height: h,
         ..
-    } = study::gearing::Shape::read(ctx)?;
+    } = crate::settings::shape(ctx)?;
     let samples: usize = ctx.get(&SAMPLES)?;
     let chosen = [
         Test {
@@ -175,7 +175,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
 
     // ---- Every (test, mesh) curve, through the trial engine. ----
     let pairs: Vec<IdealPair> = meshes.iter().map(|(_, p)| *p).collect();
-    let curves = study::area_test::curves(ctx, &tests, &pairs, samples)?;
+    let curves = study::area_test::curves(ctx.engine(), &tests, &pairs, samples)?;
     let of = |ti: usize, mi: usize| &curves[ti * meshes.len() + mi];
 
     let paper_from = crate::paper::get("sigma-causes", "figIV.minimum_from").map(|r| r.value);

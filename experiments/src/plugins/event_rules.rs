@@ -13,11 +13,9 @@ use train::Gearing;
 
 use crate::cells::{Tally, cell, consistent_with_paper, paper_counts, share};
 use study::cell::{CellSpec, Counts, Purpose, label, run_cells_by_rule};
-use study::gearing;
 use study::grids::CASES;
 use study::limits::IdealPair;
 use study::grids::CellSettings;
-use study::tolerance;
 
 /// `clearances`: Table I's clearances G, comma-separated (the paper: 10, 40 and 70).
 const CLEARANCES: Param = Param {
@@ -81,8 +79,8 @@ fn every_rule() -> Result<Vec<Rule>, RunError> {
 fn all_cells(ctx: &Context, s: &CellSettings) -> Result<Vec<(CellSpec, PaperCell)>, RunError> {
     let clearance = s.clearance()?;
     let split = s.errors.split()?;
-    let clearances = gearing::clearance_list(ctx, &CLEARANCES, 200.0)?;
-    let randoms = tolerance::random_grid(ctx)?;
+    let clearances = crate::settings::clearance_list(ctx, &CLEARANCES, 200.0)?;
+    let randoms = crate::settings::random_grid(ctx)?;
     let meshes: Vec<&str> = s.gearing().meshes().iter().map(|m| m.label.as_str()).collect();
     let mut out = Vec::new();
     let case_errors =
@@ -449,13 +447,13 @@ fn cells_csv(cells: &[(CellSpec, PaperCell)], rules: &[Rule], counts: &[Vec<Coun
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    let s = CellSettings::read(ctx, &study::grids::TRIALS)?;
+    let s = crate::settings::cells(ctx, &study::grids::TRIALS)?;
     let (g, trials) = (s.gearing(), s.trials);
     let tol = ctx.get(&LIMIT_TOLERANCE)?;
     let rules = every_rule()?;
     let cells = all_cells(ctx, &s)?;
     let specs: Vec<CellSpec> = cells.iter().map(|(c, _)| c.clone()).collect();
-    let counts = run_cells_by_rule(ctx, g, &specs, Some(&rules), trials, Purpose::Own)?;
+    let counts = run_cells_by_rule(ctx.engine(), g, &specs, Some(&rules), trials, Purpose::Own)?;
     let tallies = tallies(&cells, &counts, rules.len());
     let limits = ideal_limits(g, s.gearing.tooth_height, &rules, tol)?;
     let mut shares = shares_table(&rules, &tallies, trials);

@@ -18,12 +18,11 @@ use registry::{
 };
 use stats::DAYS_PER_YEAR;
 
-use study::errors;
 use study::gearing;
 use study::whole_mechanism::{
     Clearances,
     CASES_PARAM, DAYS, Input, MEASURED_INDEX, MechanismRun, RUNS_DEFAULT, Summary, TRAINS, batch_key, case_input,
-    check_study, days, jam_of, measured_table, parse_cases, run_study, runs_csv, summarise, train_names,
+    check_study, jam_of, measured_table, parse_cases, run_study, runs_csv, summarise, train_names,
 };
 
 use crate::common::{Plot, Series, mean_cell, percent_cell};
@@ -70,20 +69,20 @@ registry::inventory::submit! {
 const READ_AT_DEG: [f64; 5] = [30.0, 60.0, 120.0, 180.0, 360.0];
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::labelled(ctx, counted)
+    crate::settings::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let settings = gearing::Settings::read(ctx)?;
+    let settings = crate::settings::gearing(ctx)?;
     let trials = ctx.get(&TRIALS)?;
-    let days = days(ctx)?;
+    let days = ctx.get(&study::whole_mechanism::DAYS)?;
     // Read here, before the gearing's checks, with the split each case takes.
-    let errors = errors::Settings::read(ctx)?;
-    let rule = study::events::chosen(ctx)?;
+    let errors = crate::settings::errors(ctx)?;
+    let rule = crate::settings::rule(ctx)?;
     let (g, h, clearance) = (&settings.gearing, settings.tooth_height, settings.clearance);
     check_study(g, h, &Clearances::Uniform(clearance))?;
-    let pin_and_slot = gearing::pin_and_slot(ctx)?;
+    let pin_and_slot = ctx.get(&study::gearing::PIN_AND_SLOT)?;
     // A pin-and-slot asked of a gearing without one is refused before anything runs.
     let ideal = study::pointers::ideal_mechanism(&settings, &rule)?;
     gearing::with_pin_and_slot(&settings.file, ideal, pin_and_slot)?;
@@ -119,7 +118,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     }
 
     let outcomes = run_study(
-        ctx,
+        ctx.engine(),
         g,
         &inputs,
         trials,

@@ -156,7 +156,7 @@ fn plots(
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::labelled(ctx, counted)
+    crate::settings::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
@@ -178,7 +178,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         root_radius: small_r,
         centre_distance: d,
         mesh,
-    } = equal_pair::from_params(ctx)?;
+    } = crate::settings::equal_pair(ctx)?;
     let step: f64 = ctx.get(&STEP)?;
     if 360.0 / step > MAX_DATA_ROWS as f64 {
         return Err(RunError::bad(
@@ -233,7 +233,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     }
     let stats = stats::pointer_stats(&td);
 
-    let counts = study::events::counts(&study::events::chosen(ctx)?, &traj);
+    let counts = study::events::counts(&crate::settings::rule(ctx)?, &traj);
     let table = summary_table(&pair, theta0, (samples, max_diff), &stats, counts);
 
     let (plot_a, plot_b) = plots(&rows, theta0, ratio, &stats)?;

@@ -96,7 +96,7 @@ fn initial_angles(long: &Trajectory, p1: f64, ratio: f64) -> (f64, f64, f64) {
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    let equal_pair::EqualPair { teeth: n, mesh, .. } = equal_pair::from_params(ctx)?;
+    let equal_pair::EqualPair { teeth: n, mesh, .. } = crate::settings::equal_pair(ctx)?;
     let pitches: usize = ctx.get(&PITCHES)?;
     let samples: usize = ctx.get(&SAMPLES)?;
     registry::samples_cover("samples", samples, pitches, "pitches")?;

@@ -6,7 +6,6 @@ use std::f64::consts::TAU;
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
 
 use crate::common::{Series, csv, line_plot};
-use study::gearing;
 
 /// `trial`: which trial's random initial angles (stream of the seed).
 const TRIAL: Param = Param {
@@ -50,13 +49,13 @@ registry::inventory::submit! {
 const POINTERS: [(&str, &str); 3] = [("Lunar", "A"), ("Metonic", "B"), ("Saros", "C")];
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::labelled(ctx, counted)
+    crate::settings::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let s = gearing::Settings::read(ctx)?;
-    let mech = study::pointers::ideal_mechanism(&s, &study::events::chosen(ctx)?)?;
+    let s = crate::settings::gearing(ctx)?;
+    let mech = study::pointers::ideal_mechanism(&s, &crate::settings::rule(ctx)?)?;
     let samples: usize = ctx.get(&SAMPLES)?;
     let names = POINTERS.map(|(name, _)| name);
     let runs = study::pointers::instance(&mech, &names, 1.0, ctx.seed(), ctx.get(&TRIAL)?);

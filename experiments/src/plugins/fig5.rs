@@ -209,12 +209,12 @@ fn ran_values(ran: &hypotheses::Params) -> String {
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::labelled(ctx, counted)
+    crate::settings::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let rule = study::events::chosen(ctx)?;
+    let rule = crate::settings::rule(ctx)?;
     let n = ctx.get(&TEETH)?;
     let (big_r, small_r): (f64, f64) = (ctx.get(&TIP_RADIUS)?, ctx.get(&ROOT_RADIUS)?);
     let ideal =
@@ -228,7 +228,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         h: big_r - small_r,
     };
     let clearance: f64 = ctx.get(&PAIR_CLEARANCE)?;
-    let errors = errors::Settings::read(ctx)?;
+    let errors = crate::settings::errors(ctx)?;
     let h = errors.hypothesis;
     let samples: usize = ctx.get(&SAMPLES)?;
     registry::samples_cover(SAMPLES.name, samples, n, TEETH.name)?;

@@ -6,7 +6,7 @@ use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table};
 
 use crate::common::{Series, category_plot};
 use study::cell::{Purpose, label};
-use study::grids::{CellSettings, TRIALS};
+use study::grids::TRIALS;
 use crate::emax::{paper_random, show};
 use study::tolerance::{self, RULE};
 
@@ -120,17 +120,17 @@ fn measured_note(measured: Option<&(String, hypotheses::MeasuredTable)>) -> Stri
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::labelled(ctx, counted)
+    crate::settings::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let s = CellSettings::read(ctx, &TRIALS)?;
+    let s = crate::settings::cells(ctx, &TRIALS)?;
     let (g, trials, clearance) = (s.gearing(), s.trials, s.clearance()?);
-    let rule = tolerance::rule(ctx)?;
+    let rule = ctx.get(&study::tolerance::RULE)?;
     let measured = measured(ctx)?;
-    let values = tolerance::random_grid(ctx)?;
-    let grid = study::grids::run_grid(ctx, &s, values, trials, Purpose::Input)?;
+    let values = crate::settings::random_grid(ctx)?;
+    let grid = study::grids::run_grid(ctx.engine(), &s, values, trials, Purpose::Input)?;
     let tolerable = grid.tolerable(trials, rule);
 
     // Gears in mesh order, first appearance; each with its meshes.

@@ -5,7 +5,6 @@
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
 
 use study::gearing;
-use study::limits::IdealPair;
 
 /// `margin`: how far inside the jam limit and beyond the disengagement limit the two runs are made.
 const MARGIN: Param = Param {
@@ -37,20 +36,20 @@ registry::inventory::submit! {
 const LIMIT_TOLERANCE: f64 = 0.01;
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::labelled(ctx, counted)
+    crate::settings::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let rule = study::events::chosen(ctx)?;
+    let rule = crate::settings::rule(ctx)?;
     let margin: f64 = ctx.get(&MARGIN)?;
     let gearing::Shape {
         gearing: g,
         tooth_height: h,
         ..
-    } = gearing::Shape::read(ctx)?;
+    } = crate::settings::shape(ctx)?;
     let label = ctx.text(&study::limits::MESH)?;
-    let pair = IdealPair::chosen(ctx, &g, h)?;
+    let pair = crate::settings::ideal_pair(ctx, &g, h)?;
     let (jam_limit, dis_limit) = pair.limits(LIMIT_TOLERANCE, &rule)?;
     let mut table = Table::new(
         format!(

@@ -133,17 +133,17 @@ fn sweep_table(
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::labelled(ctx, counted)
+    crate::settings::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let rule = study::events::chosen(ctx)?;
+    let rule = crate::settings::rule(ctx)?;
     let gearing::Shape {
         gearing: g,
         tooth_height: h,
         ..
-    } = gearing::Shape::read(ctx)?;
+    } = crate::settings::shape(ctx)?;
     let (from, to, step): (f64, f64, f64) = (ctx.get(&FROM)?, ctx.get(&TO)?, ctx.get(&STEP)?);
     check_range(ctx, from, to)?;
     let samples: usize = ctx.get(&SAMPLES)?;

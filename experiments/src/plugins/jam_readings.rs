@@ -15,9 +15,8 @@ use polycheck::stepped::Stepping;
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
 use study::area_test::{Reading, run_all};
 use study::cell::{CellSpec, PAPER_TRIALS, label};
-use study::gearing;
 use study::grids::{CASES, CellSettings};
-use study::tolerance::{self, RANDOM_FROM, RANDOM_STEP, RANDOM_TO};
+use study::tolerance::{RANDOM_FROM, RANDOM_STEP, RANDOM_TO};
 use train::Gearing;
 
 use crate::cells::{cell, consistent_with_paper, paper_counts, share};
@@ -151,8 +150,8 @@ impl Cells {
 fn all_cells(ctx: &Context, s: &CellSettings) -> Result<Cells, RunError> {
     let clearance = s.clearance()?;
     let split = s.errors.split()?;
-    let clearances = gearing::clearance_list(ctx, &CLEARANCES, 200.0)?;
-    let randoms = tolerance::random_grid(ctx)?;
+    let clearances = crate::settings::clearance_list(ctx, &CLEARANCES, 200.0)?;
+    let randoms = crate::settings::random_grid(ctx)?;
     let meshes: Vec<&str> = s.gearing().meshes().iter().map(|m| m.label.as_str()).collect();
     let mut out = Cells {
         runs: Vec::new(),
@@ -432,7 +431,7 @@ fn power_note(trials: u64) -> String {
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    let settings = CellSettings::read(ctx, &TRIALS)?;
+    let settings = crate::settings::cells(ctx, &TRIALS)?;
     let (g, trials) = (settings.gearing(), settings.trials);
     let stepping = Stepping {
         steps_per_pitch: ctx.get(&STEPS_PER_PITCH)?,
@@ -449,7 +448,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         ));
     }
     let cells = all_cells(ctx, &settings)?;
-    let jams = run_all(ctx, g, &cells.runs, &readings, &stepping, trials)?;
+    let jams = run_all(ctx.engine(), g, &cells.runs, &readings, &stepping, trials)?;
     let regions = regions(&cells);
     let tallies = tallies(&cells, &regions, &jams, readings.len(), trials);
     let mut shares = shares_table(&readings, &regions, &tallies, trials);

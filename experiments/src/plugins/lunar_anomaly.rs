@@ -98,7 +98,7 @@ struct Row {
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::labelled(ctx, counted)
+    crate::settings::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
@@ -108,17 +108,17 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         file,
         tooth_height: h,
         clearance,
-    } = gearing::Settings::read(ctx)?;
+    } = crate::settings::gearing(ctx)?;
     let trials: usize = ctx.get(&TRIALS)?;
     let curve_samples: usize = ctx.get(&CURVE_SAMPLES)?;
     let per = ctx.get(&SAMPLES_PER_ENGAGEMENT)?;
-    let runs = pointer_runs(ctx, &g, &[(LUNAR, &LUNAR_TURNS)], per)?;
-    let rule = study::events::chosen(ctx)?;
+    let runs = pointer_runs(&g, &[(LUNAR, ctx.get(&LUNAR_TURNS)?)], per)?;
+    let rule = crate::settings::rule(ctx)?;
     let &[(_, turns, samples)] = runs.as_slice() else {
         return Err(RunError::Internal("one Lunar run expected".into()));
     };
     // (b)'s rows: ideal teeth and Cases A-D, each with its stream.
-    let errors = errors::Settings::read(ctx)?;
+    let errors = crate::settings::errors(ctx)?;
     let mut rows = vec![Row {
         label: "ideal teeth".into(),
         index: IDEAL_INDEX,
@@ -157,7 +157,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let seed = ctx.seed();
     let typed = (file.as_str(), ctx.text(&errors::PARAM)?);
     let key = batch_key(typed, &rows, &params, trials, h, clearance, turns, samples);
-    let results = setup.trials(ctx, &key, LUNAR, (turns, samples), trials as u64)?;
+    let results = setup.trials(ctx.engine(), &key, LUNAR, (turns, samples), trials as u64)?;
     let per_row: Vec<&[AnomalyTrial]> = results.chunks(trials).collect();
     tables.push(td_table(&rows, &per_row, trials, seed, clearance, turns));
 

@@ -153,12 +153,12 @@ fn summary_table(
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::labelled(ctx, counted)
+    crate::settings::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let rule = study::events::chosen(ctx)?;
+    let rule = crate::settings::rule(ctx)?;
     let (name, text) = match ctx.config() {
         Some(c) => (c.path.display().to_string(), c.text.as_str()),
         None => (EXAMPLE_NAME.to_string(), EXAMPLE),

@@ -174,7 +174,7 @@ struct Row<'v> {
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::labelled(ctx, counted)
+    crate::settings::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
@@ -184,9 +184,9 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         file,
         tooth_height: h0,
         clearance,
-    } = gearing::Settings::read(ctx)?;
+    } = crate::settings::gearing(ctx)?;
     let trials = ctx.get(&TRIALS)?;
-    let days = whole::days(ctx)?;
+    let days = ctx.get(&study::whole_mechanism::DAYS)?;
     let case = ctx.text(&CASE)?.trim();
     let Some(ci) = CASES.iter().position(|c| c.0.eq_ignore_ascii_case(case)) else {
         return Err(RunError::bad(
@@ -197,8 +197,8 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     };
     let (case, systematic, random) = CASES[ci];
     let split = ctx.get(&errors::SPLIT)?;
-    let base = errors::chosen(ctx)?;
-    let rule = study::events::chosen(ctx)?;
+    let base = crate::settings::hypothesis(ctx)?;
+    let rule = crate::settings::rule(ctx)?;
     let embedded: Vec<(&str, Gearing)> = VARIANTS
         .iter()
         .filter_map(|v| v.gearing)
@@ -270,7 +270,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             variant: v,
             hypotheses,
             h,
-            outcomes: whole::run_study(ctx, g, inputs, trials, h, days, &rule, &key)?,
+            outcomes: whole::run_study(ctx.engine(), g, inputs, trials, h, days, &rule, &key)?,
         });
     }
 

@@ -252,7 +252,7 @@ fn table1_rows(
             ri + 1,
             r.name
         );
-        let t = table1_trials(ctx, &key, g, &mech, Starts::Random, &turns(1.0)?, per, trials)?;
+        let t = table1_trials(ctx.engine(), &key, g, &mech, Starts::Random, &turns(1.0)?, per, trials)?;
         rows.push((
             format!("({}) {}", ri + 1, r.name),
             r.stated,
@@ -295,7 +295,7 @@ fn table1_rows(
     ));
     let mech = mechanism(g, &radii[0], &GEOMETRY[0], clearance)?;
     let halved = table1_trials(
-        ctx,
+        ctx.engine(),
         &format!(
             "sigma-causes: table1 trials, reading (1) with every run half as long, G = {clearance} %, {per} samples per engagement, random starts"
         ),
@@ -317,7 +317,7 @@ fn table1_rows(
             .collect(),
     ));
     let zero = table1_trials(
-        ctx,
+        ctx.engine(),
         &format!(
             "sigma-causes: table1 trials, reading (1) with every mesh from driver angle 0, G = {clearance} %, {per} samples per engagement"
         ),
@@ -418,7 +418,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         .map(|r| tip_radii(&g, &g2021, r.radii, r.tooth_height))
         .collect::<Result<_, _>>()?;
     let draws: usize = ctx.get(&DRAWS)?;
-    let at = figure_iv_minima(ctx, &g, &radii, &grid, (draws, samples))?;
+    let at = figure_iv_minima(ctx.engine(), &g, &radii, &grid, (draws, samples))?;
 
     let fig = figure_iv_table(&g, &at, draws, (paper_from, paper_to));
 

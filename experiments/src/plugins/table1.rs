@@ -4,7 +4,6 @@
 use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
 use stats::{Estimate, mean_ci95};
 
-use study::gearing;
 use study::pointers::{POINTERS, PointerTrial, pointer_runs};
 
 /// `trials`: trials, each with fresh random initial angles.
@@ -76,20 +75,20 @@ fn ratios_table(g: &train::Gearing, runs: &[(&str, f64, usize)]) -> Table {
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::labelled(ctx, counted)
+    crate::settings::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let settings = gearing::Settings::read(ctx)?;
+    let settings = crate::settings::gearing(ctx)?;
     let trials: usize = ctx.get(&TRIALS)?;
     let per = ctx.get(&study::pointers::SAMPLES_PER_ENGAGEMENT)?;
-    let mech = study::pointers::ideal_mechanism(&settings, &study::events::chosen(ctx)?)?;
-    let runs = pointer_runs(ctx, &settings.gearing, &POINTERS, per)?;
+    let mech = study::pointers::ideal_mechanism(&settings, &crate::settings::rule(ctx)?)?;
+    let runs = pointer_runs(&settings.gearing, &crate::settings::turns(ctx, &POINTERS)?, per)?;
     let (file, h, clearance) = (&settings.file, settings.tooth_height, settings.clearance);
     let key = batch_key(file, trials, h, clearance, &runs);
     let g = &settings.gearing;
-    let per_trial = study::pointers::ideal_trials(ctx, &key, &mech, &runs, trials as u64)?;
+    let per_trial = study::pointers::ideal_trials(ctx.engine(), &key, &mech, &runs, trials as u64)?;
     // A trial of another shard (`--shard`) is an empty default: read it as zeros.
     let at = |t: &[PointerTrial], i: usize| t.get(i).copied().unwrap_or_default();
 

@@ -130,7 +130,7 @@ fn simulate(
             rule: &cells.rule,
             pin_and_slot,
         };
-        let per_trial = both_model_trials(ctx, &key, ci as u64, &made, runs, trials as u64)?;
+        let per_trial = both_model_trials(ctx.engine(), &key, ci as u64, &made, runs, trials as u64)?;
         results.push(
             per_trial
                 .into_iter()
@@ -230,16 +230,16 @@ fn csv_lines(
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::labelled(ctx, counted)
+    crate::settings::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let cells = study::grids::CellSettings::read(ctx, &TRIALS)?;
+    let cells = crate::settings::cells(ctx, &TRIALS)?;
     let (g, trials, clearance) = (cells.gearing(), cells.trials as usize, cells.clearance()?);
     let per = ctx.get(&SAMPLES_PER_ENGAGEMENT)?;
-    let pin_and_slot = gearing::pin_and_slot(ctx)?;
-    let runs = pointer_runs(ctx, g, &POINTERS, per)?;
+    let pin_and_slot = ctx.get(&study::gearing::PIN_AND_SLOT)?;
+    let runs = pointer_runs(g, &crate::settings::turns(ctx, &POINTERS)?, per)?;
     let results = simulate(ctx, &cells, &runs, pin_and_slot)?;
 
     let mut edm_table = Table::new(

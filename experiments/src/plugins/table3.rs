@@ -57,12 +57,12 @@ fn ours_header(meshes: &[&str]) -> Vec<String> {
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::labelled(ctx, counted)
+    crate::settings::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let s = CellSettings::read(ctx, &TRIALS)?;
+    let s = crate::settings::cells(ctx, &TRIALS)?;
     let (g, hyp, trials, clearance) = (s.gearing(), s.hypothesis(), s.trials, s.clearance()?);
     let meshes: Vec<&str> = g.meshes().iter().map(|m| m.label.as_str()).collect();
     let mut cells = case_cells(&s, clearance)?;
@@ -72,7 +72,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     if !cases_apply {
         cells.truncate(meshes.len());
     }
-    let counts = run_cells(ctx, g, &cells, trials, Purpose::Own)?;
+    let counts = run_cells(ctx.engine(), g, &cells, trials, Purpose::Own)?;
 
     let mut ours = Table::new(
         format!(

@@ -48,14 +48,14 @@ fn cell<'a>(s: &CellSettings, c: &CellText<'a>) -> Result<Cell<'a>, RunError> {
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::labelled(ctx, counted)
+    crate::settings::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let s = CellSettings::read(ctx, &TRIALS)?;
+    let s = crate::settings::cells(ctx, &TRIALS)?;
     let (trials, clearance) = (s.trials, s.clearance()?);
-    let grid = run_grid(ctx, &s, study::tolerance::random_grid(ctx)?, trials, Purpose::Own)?;
+    let grid = run_grid(ctx.engine(), &s, crate::settings::random_grid(ctx)?, trials, Purpose::Own)?;
 
     let mut header = vec!["random error".to_string()];
     header.extend(grid.meshes.iter().cloned());

@@ -71,21 +71,21 @@ fn cell<'a>(s: &CellSettings, c: &CellText<'a>) -> Result<Cell<'a>, RunError> {
 
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::labelled(ctx, counted)
+    crate::settings::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let s = CellSettings::read(ctx, &TRIALS)?;
+    let s = crate::settings::cells(ctx, &TRIALS)?;
     let trials = s.trials;
-    let rule = tolerance::rule(ctx)?;
+    let rule = ctx.get(&study::tolerance::RULE)?;
     let (clearance, split) = (s.clearance()?, s.errors.split()?);
     let grids = (
-        tolerance::random_grid(ctx)?,
-        tolerance::systematic_grid(ctx)?,
+        crate::settings::random_grid(ctx)?,
+        crate::settings::systematic_grid(ctx)?,
     );
     let given = given_random(ctx, s.gearing())?;
-    let t = derive(ctx, &s, grids, rule, Purpose::Own, given)?;
+    let t = derive(ctx.engine(), &s, grids, rule, Purpose::Own, given)?;
     let given = emax_from_paper(ctx)?;
     let meshes = &t.random_grid.meshes;
     let allowed = tolerance::allowed_jams(trials, rule);

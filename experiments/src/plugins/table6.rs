@@ -10,7 +10,7 @@ use stats::{Estimate, PointerStats, mean_ci95};
 use crate::emax::{paper_random, paper_systematic, show};
 use study::cell::{Purpose, label};
 use study::pointers::{Manufactured, POINTERS, pointer_runs};
-use study::tolerance::{self, RULE};
+use study::tolerance::RULE;
 
 /// `trials`: runs of the whole mechanism, each with fresh errors and initial angles (the paper: 30).
 const TRIALS: Param = Param {
@@ -217,29 +217,29 @@ fn pointer_rows(
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::labelled(ctx, counted)
+    crate::settings::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
     // The cells of Tables 4 and 5 count `cell_trials` trials each.
-    let cells = study::grids::CellSettings::read(ctx, &CELL_TRIALS)?;
+    let cells = crate::settings::cells(ctx, &CELL_TRIALS)?;
     let trials: usize = ctx.get(&TRIALS)?;
     let (g, hyp, cell_trials) = (cells.gearing(), cells.hypothesis(), cells.trials);
-    let rule = tolerance::rule(ctx)?;
+    let rule = ctx.get(&study::tolerance::RULE)?;
     let (h, clearance, split) = (
         cells.gearing.tooth_height,
         cells.clearance()?,
         cells.errors.split()?,
     );
     let per = ctx.get(&study::pointers::SAMPLES_PER_ENGAGEMENT)?;
-    let runs = pointer_runs(ctx, g, &POINTERS, per)?;
+    let runs = pointer_runs(g, &crate::settings::turns(ctx, &POINTERS)?, per)?;
     let grids = (
-        tolerance::random_grid(ctx)?,
-        tolerance::systematic_grid(ctx)?,
+        crate::settings::random_grid(ctx)?,
+        crate::settings::systematic_grid(ctx)?,
     );
     let given = crate::emax::given_random(ctx, g)?;
-    let tol = study::grids::derive(ctx, &cells, grids, rule, Purpose::Input, given)?;
+    let tol = study::grids::derive(ctx.engine(), &cells, grids, rule, Purpose::Input, given)?;
 
     let per_gear = per_gear(g, &tol);
     let mut params: BTreeMap<String, Params> = BTreeMap::new();
@@ -273,7 +273,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         params: &params,
         rule: &cells.rule,
     };
-    let recorded = study::pointers::tolerated_trials(ctx, &key, &made, &runs, trials as u64)?;
+    let recorded = study::pointers::tolerated_trials(ctx.engine(), &key, &made, &runs, trials as u64)?;
     let per_trial: Vec<PointerTrials> = recorded
         .into_iter()
         .map(|trial| {

@@ -63,16 +63,16 @@ fn cell<'a>(s: &CellSettings, c: &CellText<'a>) -> Result<Cell<'a>, RunError> {
 
 /// The `clearances` parameter: a comma-separated list of clearances, each in (0, 200] % of h.
 fn clearances(ctx: &Context) -> Result<Vec<f64>, RunError> {
-    study::gearing::clearance_list(ctx, &CLEARANCES, study::gearing::MAX_LISTED_CLEARANCE)
+    crate::settings::clearance_list(ctx, &CLEARANCES, study::gearing::MAX_LISTED_CLEARANCE)
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::labelled(ctx, counted)
+    crate::settings::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let s = CellSettings::read(ctx, &TRIALS)?;
+    let s = crate::settings::cells(ctx, &TRIALS)?;
     let (g, hyp, trials) = (s.gearing(), s.hypothesis(), s.trials);
     let gs = clearances(ctx)?;
     let meshes: Vec<String> = g.meshes().iter().map(|m| m.label.clone()).collect();
@@ -86,7 +86,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         these.truncate(cases * meshes.len());
         cells.extend(these);
     }
-    let counts = run_cells(ctx, g, &cells, trials, Purpose::Own)?;
+    let counts = run_cells(ctx.engine(), g, &cells, trials, Purpose::Own)?;
     let per_g = cases * meshes.len();
 
     let mut header = vec!["case".to_string(), "G [%]".to_string()];

@@ -330,7 +330,7 @@ fn search(ctx: &Context, cells: &CellSettings, s: &Settings) -> Result<Vec<Searc
         if ranges.is_empty() {
             return Ok(searches);
         }
-        let counts = run_cell_ranges(ctx, cells.gearing(), &ranges, Purpose::Input)?;
+        let counts = run_cell_ranges(ctx.engine(), cells.gearing(), &ranges, Purpose::Input)?;
         for (&m, c) in owners.iter().zip(counts) {
             let sr = &mut searches[m];
             sr.add(c, s.rule, s.cap);
@@ -393,19 +393,19 @@ fn saved(used: u64, grid: u64) -> f64 {
 }
 
 fn run(ctx: &Context) -> Result<Report, RunError> {
-    study::events::labelled(ctx, counted)
+    crate::settings::labelled(ctx, counted)
 }
 
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
     // Table 4's grid runs `cap` trials a cell, the most a search's probe runs.
-    let cells = CellSettings::read(ctx, &CAP)?;
+    let cells = crate::settings::cells(ctx, &CAP)?;
     let s = settings(ctx)?;
     let clearance = cells.clearance()?;
     // The grid's parameters are checked before anything runs.
-    let values = tolerance::random_grid(ctx)?;
+    let values = crate::settings::random_grid(ctx)?;
     let searches = search(ctx, &cells, &s)?;
-    let grid = study::grids::run_grid(ctx, &cells, values, s.cap, Purpose::Input)?;
+    let grid = study::grids::run_grid(ctx.engine(), &cells, values, s.cap, Purpose::Input)?;
     let grid_tolerable = grid.tolerable(s.cap, s.rule);
     let grid_per_mesh = grid.values.len() as u64 * s.cap;
 

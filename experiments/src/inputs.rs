@@ -33,12 +33,12 @@ pub fn measured_in_hypothesis(hypothesis: &str) -> Vec<String> {
 /// every measured-error table, from the hypothesis or the `measured` parameter.
 pub fn files(ctx: &Context) -> Vec<(&'static str, String)> {
     let mut files = Vec::new();
-    if let Some(g) = value(ctx, crate::gearing::PARAM.name)
+    if let Some(g) = value(ctx, study::gearing::PARAM.name)
         && Gearing::builtin(&g).is_none()
     {
         files.push(("gearing", g));
     }
-    if let Some(h) = value(ctx, crate::errors::PARAM.name) {
+    if let Some(h) = value(ctx, study::errors::PARAM.name) {
         files.extend(
             measured_in_hypothesis(&h)
                 .into_iter()
@@ -64,23 +64,23 @@ pub fn check(
     seen: &mut BTreeSet<(&'static str, String)>,
 ) -> Result<(), String> {
     let (hypothesis_flag, measured_flag) = flags;
-    if let Some(g) = value(ctx, crate::gearing::PARAM.name)
+    if let Some(g) = value(ctx, study::gearing::PARAM.name)
         && g.trim().is_empty()
     {
         return Err(registry::RunError::bad(
             "--set",
-            crate::gearing::PARAM.name,
+            study::gearing::PARAM.name,
             "must name an embedded gearing (freeth2006, freeth2021) or a RON file, not be empty",
         )
         .to_string());
     }
-    if let Some(g) = value(ctx, crate::gearing::PARAM.name)
+    if let Some(g) = value(ctx, study::gearing::PARAM.name)
         && Gearing::builtin(&g).is_none()
         && seen.insert(("gearing", g.clone()))
     {
         Gearing::load(Path::new(&g)).map_err(|e| e.to_string())?;
     }
-    if let Some(h) = value(ctx, crate::errors::PARAM.name)
+    if let Some(h) = value(ctx, study::errors::PARAM.name)
         && seen.insert(("hypothesis", h.clone()))
     {
         hypotheses::lookup(&h).map_err(|e| format!("{hypothesis_flag}: {e}"))?;
@@ -100,11 +100,11 @@ pub fn check(
 /// parse, and the `mesh` must be a mesh of the gearing. With `run all` a bad value is refused
 /// before the first experiment computes, not by each experiment in turn after others ran.
 fn shared_settings(ctx: &Context) -> Result<(), String> {
-    if ctx.declares(crate::events::PARAM.name) {
-        crate::events::chosen(ctx).map_err(|e| e.to_string())?;
+    if ctx.declares(study::events::PARAM.name) {
+        crate::settings::rule(ctx).map_err(|e| e.to_string())?;
     }
-    if let Some(label) = value(ctx, crate::limits::MESH.name)
-        && let Some(gearing) = value(ctx, crate::gearing::PARAM.name)
+    if let Some(label) = value(ctx, study::limits::MESH.name)
+        && let Some(gearing) = value(ctx, study::gearing::PARAM.name)
     {
         let g = match Gearing::builtin(&gearing) {
             Some(g) => g,
@@ -113,7 +113,7 @@ fn shared_settings(ctx: &Context) -> Result<(), String> {
         if !g.meshes().iter().any(|m| m.label == label) {
             return Err(registry::RunError::bad(
                 "--set",
-                crate::limits::MESH.name,
+                study::limits::MESH.name,
                 format!("no mesh `{label}` in the gearing"),
             )
             .to_string());
@@ -126,10 +126,10 @@ fn shared_settings(ctx: &Context) -> Result<(), String> {
 /// that gearing: a row for another gear (a typo, another gearing's name) would be silently
 /// unused. Refused naming the flag, the file, the gear and the gearing.
 fn measured_gears_in_gearing(ctx: &Context, flags: (&str, &str)) -> Result<(), String> {
-    let Some(gearing_name) = value(ctx, crate::gearing::PARAM.name) else {
+    let Some(gearing_name) = value(ctx, study::gearing::PARAM.name) else {
         return Ok(());
     };
-    let from_hypothesis = value(ctx, crate::errors::PARAM.name)
+    let from_hypothesis = value(ctx, study::errors::PARAM.name)
         .and_then(|h| measured_in_hypothesis(&h).into_iter().next());
     let (file, flag) = match (from_hypothesis, value(ctx, MEASURED)) {
         (Some(f), _) => (f, flags.0),
