@@ -36,6 +36,13 @@ use crate::mesh::{End, Mesh, Obstacle};
 /// the other branch of a circle) lies far off it.
 const AT_ROOT: f64 = 1e-9;
 
+/// How close (radians of driver angle, relative to 1 + |φ|) roots of a held gear's chain are
+/// taken as one change. Teeth alike (a driven gear without errors of its own) open joints a
+/// whole number of pitches apart at the same driver angle but for rounding and small
+/// eccentricities, 1e-13 to 1e-11 rad apart; which opens first, and so where the gear goes,
+/// would be decided by the roots' rounding. Far below the events' accuracy (1e-9 rad).
+const SIMULTANEOUS: f64 = 1e-10;
+
 /// The conditions of one end of one link.
 type Conditions = SmallVec<[Condition; 8]>;
 
@@ -137,21 +144,35 @@ pub(crate) fn first_change(
         .iter()
         .position(|&(phi, change)| changes(mesh, chain, phi, change, tol))?;
     let root = found[i].0;
-    let next = found[i + 1..]
+    let scale = 1.0 + root.abs();
+    // Roots within `SIMULTANEOUS` of the first are one change (see there): the turn is swept
+    // again past the last of them, halfway to the next root or `SIMULTANEOUS` on, whichever
+    // is nearer.
+    let last = found[i..]
         .iter()
         .map(|&(phi, _)| phi)
-        .find(|&phi| phi > root)
+        .take_while(|&phi| phi <= root + SIMULTANEOUS * scale)
+        .last()
+        .unwrap_or(root);
+    let next = found[i..]
+        .iter()
+        .map(|&(phi, _)| phi)
+        .find(|&phi| phi > last)
         .unwrap_or(phi1);
-    Some(ChainBreak { root, next })
+    let look_at = last + (SIMULTANEOUS * scale).min(0.5 * (next - last));
+    Some(ChainBreak { root, look_at })
 }
 
-/// A change of the held gear's chain: the root where it happens and the next root of any of
-/// the chain's conditions after it (or the range's end), before which nothing else of the
-/// chain changes.
+/// Where a held gear's chain may break: the first root of the change, and the driver angle
+/// just past it where the turn is to be swept again. Not at the root itself: there a joint's
+/// gap equals the side tolerance, and the ends' rounding (about 1e-14 rad) would decide whether
+/// the gear is free, differently for roots found over different ranges. A little past it (but
+/// short of the chain's next root) the gap has opened by its slope times that, far above the
+/// rounding and far below the events' accuracy.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct ChainBreak {
     pub root: f64,
-    pub next: f64,
+    pub look_at: f64,
 }
 
 /// Roots where an end of a link reaches a fixed driven angle: the first link's lower end

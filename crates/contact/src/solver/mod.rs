@@ -72,9 +72,6 @@ const SIDE_TOL: f64 = 1e-10;
 const CONTACT_TOL: f64 = 1e-9;
 /// Event location accuracy in driver angle (radians): far below the required 1e-6°.
 const LOCATE_TOL: f64 = 1e-13;
-/// How far past the root where a held gear's chain broke (radians of driver angle, relative to
-/// 1 + |φ|) the turn is swept again: see `held_step`.
-const HELD_PROBE: f64 = 1e-10;
 /// How closely the angle where a new obstacle appeared is located to tell on which side of θ
 /// it appeared (radians of driver angle).
 const SIDE_LOCATE_TOL: f64 = 1e-10;
@@ -734,15 +731,11 @@ impl Run<'_> {
         let mesh = self.mesh;
         let theta = self.theta;
         let threshold = mesh.held_threshold(theta);
-        // Where the chain broke, the sweep looks a little past the root: at the root itself a
-        // joint's gap equals the side tolerance and the ends' rounding (~1e-14 rad) would decide
-        // whether the gear is free - differently for roots found over different step ranges.
-        // `HELD_PROBE` past it (but short of the chain's next root) the gap has opened by its
-        // slope times that, far above the rounding and far below the events' accuracy.
+        // Where the chain broke, the turn is swept again a little past the root (see
+        // `held::ChainBreak`), within the step.
         let past = |change: held::ChainBreak| {
-            let scale = 1.0 + change.root.abs();
-            let probe = (HELD_PROBE * scale).min(0.5 * (change.next - change.root));
-            (change.root + probe.max(LOCATE_TOL * scale)).min(phi1)
+            let least = change.root + LOCATE_TOL * (1.0 + change.root.abs());
+            change.look_at.max(least).min(phi1)
         };
         let mut phi = self.phi;
         let mut links = Vec::new();
