@@ -17,6 +17,7 @@
 pub mod anomaly;
 pub mod area_test;
 pub mod cell;
+pub mod clearance_search;
 pub mod equal_pair;
 pub mod errors;
 pub mod events;

@@ -21,7 +21,8 @@ use crate::common::{Series, line_plot};
 use study::grids::CellSettings;
 use study::whole_mechanism::{self as whole, Clearances, Input, MechanismRun, Summary};
 use crate::settings::clearance_list;
-use study::cell::{CellRange, CellSpec, Counts, Purpose, label, run_cell_ranges, run_cells};
+use study::cell::{Counts, label};
+use study::clearance_search::{MeshSearch, Search, search};
 use study::grids::CASES;
 
 const GRID: Param = Param {
@@ -122,6 +123,18 @@ struct Settings {
 }
 
 impl Settings {
+    /// What the clearance search runs.
+    fn search(&self) -> Search {
+        Search {
+            grid: self.grid.clone(),
+            reference: self.reference,
+            coarse: self.coarse,
+            step: self.step,
+            refine: self.refine,
+            cases: self.cases.clone(),
+        }
+    }
+
     /// Trials per compared clearance at the final stage.
     fn final_trials(&self) -> u64 {
         if self.step > 0.0 {
@@ -191,172 +204,6 @@ fn settings(ctx: &Context) -> Result<Settings, RunError> {
         days,
         cases,
     })
-}
-
-/// `v` rounded to nine decimals, so a refined clearance has a short canonical text (35, not
-/// 34.999999999999996).
-fn round9(v: f64) -> f64 {
-    (v * 1e9).round() / 1e9
-}
-
-/// Is clearance `a` with counts `ca` better than `b` with `cb`: a lower failure rate (compared
-/// exactly, as fractions), then nearer the reference, then lower.
-fn better(a: f64, ca: &Counts, b: f64, cb: &Counts, reference: f64) -> bool {
-    let lhs = u128::from(ca.failures) * u128::from(cb.trials);
-    let rhs = u128::from(cb.failures) * u128::from(ca.trials);
-    if lhs != rhs {
-        return lhs < rhs;
-    }
-    let (da, db) = ((a - reference).abs(), (b - reference).abs());
-    if da != db {
-        return da < db;
-    }
-    a < b
-}
-
-/// The best of `probes` (clearance, counts) by [`better`]; `None` for none.
-fn pick(probes: &[(f64, Counts)], reference: f64) -> Option<usize> {
-    let mut best: Option<usize> = None;
-    for (i, (g, c)) in probes.iter().enumerate() {
-        if best.is_none_or(|b| better(*g, c, probes[b].0, &probes[b].1, reference)) {
-            best = Some(i);
-        }
-    }
-    best
-}
-
-/// The clearances the refinement compares: the coarse best, the best plus and minus `step`
-/// (those above 0 and at most 100 % of h) and the reference; ascending, without repeats.
-fn refine_values(best: f64, step: f64, reference: f64) -> Vec<f64> {
-    let mut v: Vec<f64> = [best - step, best, best + step, reference]
-        .into_iter()
-        .map(round9)
-        .filter(|&g| g > 0.0 && g <= 100.0)
-        .collect();
-    v.sort_by(f64::total_cmp);
-    v.dedup();
-    v
-}
-
-/// The search of one (case, mesh).
-struct MeshSearch {
-    /// Index into `CASES`.
-    case: usize,
-    mesh: String,
-    /// Every clearance tried, ascending, with its counts so far.
-    probes: Vec<(f64, Counts)>,
-    /// The coarse grid's counts, in the grid's order.
-    coarse: Vec<Counts>,
-    /// The coarse grid's best.
-    coarse_best: f64,
-    /// The clearances compared at the final stage (the whole grid without refinement).
-    finalists: Vec<f64>,
-    /// The chosen clearance.
-    best: f64,
-}
-
-impl MeshSearch {
-    /// The counts at clearance `g` (zero if never tried).
-    fn at(&self, g: f64) -> Counts {
-        self.probes
-            .iter()
-            .find(|p| p.0 == g)
-            .map_or_else(Counts::default, |p| p.1)
-    }
-
-    /// Adds counts at `g`, trying it if new.
-    fn add(&mut self, g: f64, c: Counts) {
-        match self.probes.iter_mut().find(|p| p.0 == g) {
-            Some(p) => p.1 += c,
-            None => {
-                self.probes.push((g, c));
-                self.probes.sort_by(|a, b| a.0.total_cmp(&b.0));
-            }
-        }
-    }
-
-    /// Pair runs used.
-    fn trials(&self) -> u64 {
-        self.probes.iter().map(|p| p.1.trials).sum()
-    }
-}
-
-/// The cell of `mesh` under case `ci` at clearance `g`: the same content (and so the same trial
-/// streams and cache entry) as Table 3's and Table I's cells.
-fn cell(cells: &CellSettings, ci: usize, mesh: &str, g: f64) -> Result<CellSpec, RunError> {
-    let (_, systematic, random) = CASES[ci];
-    let params = cells.errors.case_params((systematic, random))?;
-    Ok(cells.cell(mesh, params, g))
-}
-
-/// Runs the search of every (case, mesh): the coarse grid through the shared cell runner (so
-/// cells other experiments ran with the same trial count come from the cache), then the
-/// refinement's extra trials as ranges of the same cells, all as inputs (never sharded: the
-/// choices feed the failure study).
-fn search(ctx: &Context, c: &CellSettings, s: &Settings) -> Result<Vec<MeshSearch>, RunError> {
-    let (g, meshes) = (c.gearing(), c.meshes());
-    let mut searches = Vec::new();
-    let mut cells = Vec::new();
-    for &ci in &s.cases {
-        for m in &meshes {
-            searches.push(MeshSearch {
-                case: ci,
-                mesh: m.clone(),
-                probes: Vec::new(),
-                coarse: Vec::new(),
-                coarse_best: s.reference,
-                finalists: Vec::new(),
-                best: s.reference,
-            });
-            for &v in &s.grid {
-                cells.push(cell(c, ci, m, v)?);
-            }
-        }
-    }
-    let counts = run_cells(ctx.engine(), g, &cells, s.coarse, Purpose::Input)?;
-    for (sr, row) in searches.iter_mut().zip(counts.chunks(s.grid.len())) {
-        for (&v, c) in s.grid.iter().zip(row) {
-            sr.add(v, *c);
-        }
-        sr.coarse = row.to_vec();
-        let i = pick(&sr.probes, s.reference)
-            .ok_or_else(|| RunError::Internal(format!("no clearance tried for {}", sr.mesh)))?;
-        sr.coarse_best = sr.probes[i].0;
-        sr.finalists = if s.step > 0.0 {
-            refine_values(sr.coarse_best, s.step, s.reference)
-        } else {
-            s.grid.clone()
-        };
-    }
-    if s.step > 0.0 {
-        let mut ranges = Vec::new();
-        let mut owners = Vec::new();
-        for (k, sr) in searches.iter().enumerate() {
-            for &v in &sr.finalists {
-                let have = sr.at(v).trials;
-                if have < s.refine {
-                    ranges.push(CellRange {
-                        cell: cell(c, sr.case, &sr.mesh, v)?,
-                        range: have..s.refine,
-                    });
-                    owners.push((k, v));
-                }
-            }
-        }
-        if !ranges.is_empty() {
-            let more = run_cell_ranges(ctx.engine(), g, &ranges, Purpose::Input)?;
-            for (&(k, v), c) in owners.iter().zip(more) {
-                searches[k].add(v, c);
-            }
-        }
-    }
-    for sr in &mut searches {
-        let finalists: Vec<(f64, Counts)> = sr.finalists.iter().map(|&v| (v, sr.at(v))).collect();
-        let i = pick(&finalists, s.reference)
-            .ok_or_else(|| RunError::Internal(format!("no finalist for {}", sr.mesh)))?;
-        sr.best = finalists[i].0;
-    }
-    Ok(searches)
 }
 
 /// Runs whose train `ti` (`TRAINS.len()`: the mechanism) jammed within a year at the first
@@ -726,7 +573,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let (g, h) = (cells.gearing(), cells.gearing.tooth_height);
     let s = settings(ctx)?;
     whole::check_study(g, h, &Clearances::Uniform(s.reference))?;
-    let searches = search(ctx, &cells, &s)?;
+    let searches = search(ctx.engine(), &cells, &s.search())?;
     let meshes: Vec<String> = g.meshes().iter().map(|m| m.label.clone()).collect();
     let rl = label(s.reference, 0);
 
@@ -874,205 +721,5 @@ fn worst_plot(case: &str, rows: &[MeshSearch], reference: f64) -> Result<String,
 }
 
 #[cfg(test)]
-mod tests {
-    #![allow(clippy::unwrap_used, reason = "tests")]
-    use super::*;
-
-    fn counts(failures: u64, trials: u64) -> Counts {
-        Counts {
-            failures,
-            trials,
-            ..Counts::default()
-        }
-    }
-
-    #[test]
-    fn the_lowest_rate_wins_then_the_nearest_to_the_reference_then_the_lower() {
-        let p = |v: &[(f64, u64, u64)]| -> Vec<(f64, Counts)> {
-            v.iter().map(|&(g, f, n)| (g, counts(f, n))).collect()
-        };
-        // Lowest rate, compared as fractions: 1 of 40 beats 1 of 20.
-        assert_eq!(
-            pick(&p(&[(30.0, 1, 20), (40.0, 2, 20), (50.0, 1, 40)]), 40.0),
-            Some(2)
-        );
-        // A tie at zero: the reference itself.
-        assert_eq!(
-            pick(&p(&[(30.0, 0, 20), (40.0, 0, 20), (50.0, 0, 20)]), 40.0),
-            Some(1)
-        );
-        // A tie between 35 and 45, both 5 from the reference: the lower.
-        assert_eq!(
-            pick(&p(&[(35.0, 1, 40), (40.0, 3, 40), (45.0, 1, 40)]), 40.0),
-            Some(0)
-        );
-        // A tie between 30 and 45: the nearer to 40.
-        assert_eq!(pick(&p(&[(30.0, 0, 20), (45.0, 0, 20)]), 40.0), Some(1));
-        assert_eq!(pick(&[], 40.0), None);
-    }
-
-    #[test]
-    fn a_pair_run_is_one_turn_of_the_larger_gear_in_years_of_b() {
-        let g = Gearing::freeth2006();
-        // b2 (64) drives c1 (38): b2 is larger and turns once a year.
-        assert_eq!(years_per_pair_run(&g, "b2-c1"), Some(1.0));
-        // e3 (223) behind b2-l1 (64:38), l2-m1 (53:96) and m3 (27): 8.88 years.
-        let e3 = years_per_pair_run(&g, "m3-e3").unwrap();
-        let want = (38.0 * 96.0 * 223.0) / (64.0 * 53.0 * 27.0);
-        assert!((e3 - want).abs() < 1e-12, "{e3} vs {want}");
-        assert_eq!(years_per_pair_run(&g, "x-y"), None);
-    }
-
-    #[test]
-    fn the_sign_test_matches_binomial_tails() {
-        assert_eq!(sign_test(0, 0), 1.0);
-        // 3 against 0: 2 * (1/2)^3.
-        assert!((sign_test(3, 0) - 0.25).abs() < 1e-15);
-        assert!((sign_test(0, 3) - 0.25).abs() < 1e-15);
-        // 1 against 9: 2 * (1 + 10) / 1024.
-        assert!((sign_test(1, 9) - 22.0 / 1024.0).abs() < 1e-15);
-        // An even split: 1.
-        assert_eq!(sign_test(5, 5), 1.0);
-        // Large counts do not underflow: 0 against 2000 is tiny but 2 * 2^-2000 underflows to 0,
-        // and 1000 against 1000 is 1.
-        assert!(sign_test(0, 2000) < 1e-300);
-        assert_eq!(sign_test(1000, 1000), 1.0);
-    }
-
-    #[test]
-    fn refinement_brackets_the_coarse_best_and_keeps_the_reference() {
-        assert_eq!(refine_values(30.0, 5.0, 40.0), [25.0, 30.0, 35.0, 40.0]);
-        assert_eq!(refine_values(40.0, 5.0, 40.0), [35.0, 40.0, 45.0]);
-        // Within (0, 100] only.
-        assert_eq!(refine_values(100.0, 5.0, 40.0), [40.0, 95.0, 100.0]);
-        assert_eq!(refine_values(5.0, 5.0, 40.0), [5.0, 10.0, 40.0]);
-        // Rounded to a short canonical value.
-        assert_eq!(refine_values(0.3, 0.1, 0.3), [0.2, 0.3, 0.4]);
-    }
-
-    fn run_with(threads: usize, sets: &[(&str, &str)]) -> Result<Report, RunError> {
-        crate::run("clearance-design", 2025, threads, sets)
-    }
-
-    #[test]
-    fn bad_parameters_are_bad_input() {
-        for (k, v) in [
-            ("grid", "0,40"),
-            ("grid", "40,101"),
-            ("grid", "x"),
-            ("coarse_trials", "0"),
-            ("refine_trials", "5"),
-            ("refine_step", "-1"),
-            ("runs", "0"),
-            ("days", "100"),
-            ("cases", ""),
-            ("cases", "E"),
-            ("clearance", "0"),
-        ] {
-            let e = run_with(1, &[(k, v)]).unwrap_err();
-            assert_eq!(e.exit_code(), 2, "{k}={v}: {e}");
-            assert!(e.to_string().contains(k), "{k}={v}: {e}");
-        }
-    }
-
-    /// A small run: Case D (jams early, so quick), three clearances, few trials.
-    const SMALL: [(&str, &str); 6] = [
-        ("cases", "D"),
-        ("grid", "30,50"),
-        ("coarse_trials", "2"),
-        ("refine_trials", "3"),
-        ("refine_step", "5"),
-        ("runs", "3"),
-    ];
-
-    #[test]
-    fn a_small_design_runs_and_its_reference_arm_is_the_failure_study() {
-        let r = run_with(2, &SMALL).unwrap();
-        assert_eq!(r.tables.len(), 3);
-        // 15 meshes of one case.
-        assert_eq!(r.tables[0].rows.len(), 15);
-        assert_eq!(r.tables[1].rows.len(), 1);
-        // 3 trains and the mechanism.
-        assert_eq!(r.tables[2].rows.len(), 4);
-        // Pair runs: 3 coarse values at 2 each, then at most 4 finalists brought to 3.
-        let pair = r.trials - 2 * 3;
-        assert!(
-            (15 * (3 * 2 + 3)..=15 * (3 * 2 + 4 * 3)).contains(&pair),
-            "{pair}"
-        );
-        let best = String::from_utf8(r.files[0].contents.clone()).unwrap();
-        for line in best.lines().skip(1) {
-            let f: Vec<&str> = line.split(',').collect();
-            assert_eq!(f[4], "3", "the chosen clearance has refine_trials: {line}");
-            assert_eq!(f[11], "3", "so has the reference: {line}");
-            let chosen: u64 = f[5].parse().unwrap();
-            let reference: u64 = f[12].parse().unwrap();
-            assert!(chosen <= reference, "{line}");
-        }
-
-        // The reference arm's runs are failure's runs with the same seed, cases and count.
-        let map = registry::experiments().unwrap();
-        let set = |k: &str, v: &str| (k.to_string(), v.to_string());
-        let ctx = Context::new(
-            map["failure"],
-            2025,
-            2,
-            &[set("cases", "D"), set("trials", "3")],
-            None,
-        )
-        .unwrap();
-        let f = (map["failure"].run)(&ctx).unwrap();
-        let theirs = String::from_utf8(f.files[0].contents.clone()).unwrap();
-        let ours = String::from_utf8(r.files[2].contents.clone()).unwrap();
-        let ours_at_40: Vec<String> = ours
-            .lines()
-            .filter(|l| l.starts_with("D at 40 %,"))
-            .map(|l| l.replacen("D at 40 %,", "D,", 1))
-            .collect();
-        let theirs: Vec<&str> = theirs.lines().skip(1).collect();
-        assert_eq!(ours_at_40.len(), 12);
-        assert_eq!(ours_at_40, theirs);
-    }
-
-    #[test]
-    fn a_horizon_beyond_a_year_is_counted_whole() {
-        let sets = [
-            ("cases", "D"),
-            ("grid", "40"),
-            ("coarse_trials", "1"),
-            ("refine_trials", "1"),
-            ("refine_step", "0"),
-            ("runs", "2"),
-            ("days", "730.5"),
-        ];
-        let r = run_with(1, &sets).unwrap();
-        let notes = r.tables[2].notes.join("\n");
-        assert!(
-            notes.contains("Within the whole horizon (730.50 days of b): 2/2 at 40 %"),
-            "{notes}"
-        );
-        // At one year (the default) there is no such note.
-        let one_year = run_with(1, &sets[..6]).unwrap();
-        assert!(
-            !one_year.tables[2]
-                .notes
-                .join("\n")
-                .contains("whole horizon")
-        );
-    }
-
-    #[test]
-    fn without_refinement_the_coarse_grid_decides() {
-        let sets = [
-            ("cases", "D"),
-            ("grid", "30,50"),
-            ("coarse_trials", "2"),
-            ("refine_trials", "2"),
-            ("refine_step", "0"),
-            ("runs", "1"),
-        ];
-        let r = run_with(1, &sets).unwrap();
-        // 15 meshes x (30, 40, 50) x 2 trials, and one mechanism per setting.
-        assert_eq!(r.trials, 15 * 3 * 2 + 2);
-    }
-}
+#[path = "../plugin_tests/clearance_design.rs"]
+mod tests;
