@@ -74,7 +74,7 @@ pub trait EventRule: Sync {
         &[]
     }
     /// What it counts as a jam, in a few words: its cell of the README's table of rules
-    /// ([`readme_table`]).
+    /// ([`readme_row`]).
     fn jams(&self) -> &'static str;
     /// What it counts as a disengagement, in a few words: its cell of the README's table of
     /// rules.
@@ -337,45 +337,36 @@ pub fn listing() -> String {
     s
 }
 
-/// The README's table of rules: one row per registered rule, the default first and the others
-/// by name, each with what it counts as a jam and as a disengagement ([`EventRule::jams`],
-/// [`EventRule::disengagements`]) and, for a rule with parameters, how to set them. The test
-/// that pins `rules.snap` checks the README's block against it (`UPDATE_README=1` rewrites it).
-pub fn readme_table() -> String {
-    let all = match rules() {
-        Ok(all) => all,
-        Err(e) => return format!("error: {e}\n"),
-    };
-    let mut order: Vec<&dyn EventRule> = all.get(DEFAULT).copied().into_iter().collect();
-    order.extend(all.values().copied().filter(|r| r.name() != DEFAULT));
-    let mut s = String::from("| rule | jam | disengagement |\n|---|---|---|\n");
-    for r in order {
-        let mut notes = Vec::new();
-        if r.name() == DEFAULT {
-            notes.push("default".to_owned());
-        }
-        if !r.params().is_empty() {
-            let args: Vec<String> = r
-                .params()
-                .iter()
-                .map(|p| format!("{}={}", p.name, fmt_number(p.default)))
-                .collect();
-            notes.push(format!("`events={}:{}`", r.name(), args.join(",")));
-        }
-        let notes = if notes.is_empty() {
-            String::new()
-        } else {
-            format!(" ({})", notes.join("; "))
-        };
-        let _ = writeln!(
-            s,
-            "| `{}`{notes} | {} | {} |",
-            r.name(),
-            r.jams(),
-            r.disengagements()
-        );
+/// The header of the README's table of rules, whose rows are [`readme_row`].
+pub const README_HEADER: &str = "| rule | jam | disengagement |\n|---|---|---|\n";
+
+/// Rule `r`'s row of the README's table of rules (the test that pins `rules.snap` checks each row
+/// the README lists against it): its name (with `default` and its parameters' defaults),
+/// what it counts as a jam and as a disengagement; one line, ending in a newline.
+pub fn readme_row(r: &dyn EventRule) -> String {
+    let mut notes = Vec::new();
+    if r.name() == DEFAULT {
+        notes.push("default".to_owned());
     }
-    s
+    if !r.params().is_empty() {
+        let args: Vec<String> = r
+            .params()
+            .iter()
+            .map(|p| format!("{}={}", p.name, fmt_number(p.default)))
+            .collect();
+        notes.push(format!("`events={}:{}`", r.name(), args.join(",")));
+    }
+    let notes = if notes.is_empty() {
+        String::new()
+    } else {
+        format!(" ({})", notes.join("; "))
+    };
+    format!(
+        "| `{}`{notes} | {} | {} |\n",
+        r.name(),
+        r.jams(),
+        r.disengagements()
+    )
 }
 
 /// Does nothing; calling it makes a binary link this crate, and with it every rule it registers.
