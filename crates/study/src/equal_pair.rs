@@ -9,6 +9,18 @@ use registry::{Param, RunError};
 /// a larger size is no gear, and prints as a number nobody typed).
 pub const MAX_LENGTH: f64 = 1e6;
 
+/// A length (a radius, a centre distance): parameter `name` with `default` and `help`, above 0
+/// and at most [`MAX_LENGTH`].
+pub const fn length(name: &'static str, default: &'static str, help: &'static str) -> Param {
+    Param {
+        name,
+        default,
+        unit: "length",
+        help,
+        kind: registry::Kind::positive(MAX_LENGTH, "a length; larger is no gear"),
+    }
+}
+
 /// Teeth N of both gears.
 pub const TEETH: Param = Param {
     name: "teeth",
@@ -18,29 +30,11 @@ pub const TEETH: Param = Param {
     kind: registry::Kind::count(3, geometry::MAX_TEETH as u64, "a gear needs three teeth"),
 };
 /// Outer radius R of both gears.
-pub const TIP_RADIUS: Param = Param {
-    name: "tip_radius",
-    default: "200",
-    unit: "length",
-    help: "outer radius R of both gears",
-    kind: registry::Kind::positive(MAX_LENGTH, "a length; larger is no gear"),
-};
+pub const TIP_RADIUS: Param = length("tip_radius", "200", "outer radius R of both gears");
 /// Inner radius r of both gears.
-pub const ROOT_RADIUS: Param = Param {
-    name: "root_radius",
-    default: "100",
-    unit: "length",
-    help: "inner radius r of both gears",
-    kind: registry::Kind::positive(MAX_LENGTH, "a length; larger is no gear"),
-};
+pub const ROOT_RADIUS: Param = length("root_radius", "100", "inner radius r of both gears");
 /// Centre distance D.
-pub const CENTRE_DISTANCE: Param = Param {
-    name: "centre_distance",
-    default: "310",
-    unit: "length",
-    help: "centre distance D",
-    kind: registry::Kind::positive(MAX_LENGTH, "a length; larger is no gear"),
-};
+pub const CENTRE_DISTANCE: Param = length("centre_distance", "310", "centre distance D");
 
 /// The pair's setting group: N, R, r and D.
 pub const GROUP: &[Param] = &[TEETH, TIP_RADIUS, ROOT_RADIUS, CENTRE_DISTANCE];

@@ -15,83 +15,78 @@ use train::Gearing;
 /// 10^-300 turns every sample is at the same angle and σ is 0).
 pub const MIN_TURNS: f64 = 0.05;
 
+/// The values a `*_turns` parameter takes.
+pub const TURNS_KIND: registry::Kind = registry::Kind::number(
+    MIN_TURNS,
+    100.0,
+    "turns of b: a shorter run spans too few tooth engagements for a sigma",
+);
+
+/// A pointer's run length in turns of b: parameter `name` with `default` and `help`.
+pub const fn turns(name: &'static str, default: &'static str, help: &'static str) -> Param {
+    Param {
+        name,
+        default,
+        unit: "turns of b",
+        help,
+        kind: TURNS_KIND,
+    }
+}
+
+/// How finely the Theoretical Difference is sampled, `samples_per_engagement`, with `default`
+/// and `help`.
+pub const fn per_engagement(default: &'static str, help: &'static str) -> Param {
+    Param {
+        name: "samples_per_engagement",
+        default,
+        unit: "",
+        help,
+        kind: registry::Kind::count(
+            registry::MIN_PER_ENGAGEMENT,
+            registry::MAX_COUNT as u64,
+            registry::MIN_PER_ENGAGEMENT_WHY,
+        ),
+    }
+}
+
 /// How finely the Theoretical Difference is sampled (table1 and table6).
-pub const SAMPLES_PER_ENGAGEMENT: Param = Param {
-    name: "samples_per_engagement",
-    default: "16",
-    unit: "",
-    help: "TD samples per tooth engagement of the busiest mesh",
-    kind: registry::Kind::count(
-        registry::MIN_PER_ENGAGEMENT,
-        registry::MAX_COUNT as u64,
-        registry::MIN_PER_ENGAGEMENT_WHY,
-    ),
-};
+pub const SAMPLES_PER_ENGAGEMENT: Param =
+    per_engagement("16", "TD samples per tooth engagement of the busiest mesh");
 
 /// Run length of the Lunar pointer.
-pub const LUNAR_TURNS: Param = Param {
-    name: "lunar_turns",
-    default: "1",
-    unit: "turns of b",
-    help: "run length, Lunar (Table 1 caption: one turn of b2)",
-    kind: registry::Kind::number(
-        MIN_TURNS,
-        100.0,
-        "turns of b: a shorter run spans too few tooth engagements for a sigma",
-    ),
-};
+pub const LUNAR_TURNS: Param = turns(
+    "lunar_turns",
+    "1",
+    "run length, Lunar (Table 1 caption: one turn of b2)",
+);
 
 /// Run length of the Metonic pointer.
-pub const METONIC_TURNS: Param = Param {
-    name: "metonic_turns",
-    default: "3.8",
-    unit: "turns of b",
-    help: "run length, Metonic (caption: 3.8 turns)",
-    kind: registry::Kind::number(
-        MIN_TURNS,
-        100.0,
-        "turns of b: a shorter run spans too few tooth engagements for a sigma",
-    ),
-};
+pub const METONIC_TURNS: Param = turns(
+    "metonic_turns",
+    "3.8",
+    "run length, Metonic (caption: 3.8 turns)",
+);
 
 /// Run length of the Saros pointer.
-pub const SAROS_TURNS: Param = Param {
-    name: "saros_turns",
-    default: "4.5",
-    unit: "turns of b",
-    help: "run length, Saros (caption: 4.5 turns)",
-    kind: registry::Kind::number(
-        MIN_TURNS,
-        100.0,
-        "turns of b: a shorter run spans too few tooth engagements for a sigma",
-    ),
-};
+pub const SAROS_TURNS: Param = turns(
+    "saros_turns",
+    "4.5",
+    "run length, Saros (caption: 4.5 turns)",
+);
 
 /// Run length of the Games pointer.
-pub const GAMES_TURNS: Param = Param {
-    name: "games_turns",
-    default: "3.8",
-    unit: "turns of b",
-    help: "run length, Games (caption silent: as Metonic)",
-    kind: registry::Kind::number(
-        MIN_TURNS,
-        100.0,
-        "turns of b: a shorter run spans too few tooth engagements for a sigma",
-    ),
-};
+pub const GAMES_TURNS: Param = turns(
+    "games_turns",
+    "3.8",
+    "run length, Games (caption silent: as Metonic)",
+);
 
 /// Run length of the Exeligmos pointer.
-pub const EXELIGMOS_TURNS: Param = Param {
-    name: "exeligmos_turns",
-    default: "4.5",
-    unit: "turns of b",
-    help: "run length, Exeligmos (caption silent: as Saros)",
-    kind: registry::Kind::number(
-        MIN_TURNS,
-        100.0,
-        "turns of b: a shorter run spans too few tooth engagements for a sigma",
-    ),
-};
+pub const EXELIGMOS_TURNS: Param = turns(
+    "exeligmos_turns",
+    "4.5",
+    "run length, Exeligmos (caption silent: as Saros)",
+);
 
 /// The five pointers' run lengths and the TD sampling (Tables 1 and 6).
 pub const RUN_LENGTHS: &[Param] = &[

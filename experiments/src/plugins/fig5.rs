@@ -13,28 +13,10 @@ use crate::common::{Series, csv, line_plot};
 use study::errors;
 
 /// `tip_radius`: R of both gears.
-const TIP_RADIUS: Param = Param {
-    name: "tip_radius",
-    default: "200",
-    unit: "length",
-    help: "R of both gears",
-    kind: registry::Kind::positive(
-        study::equal_pair::MAX_LENGTH,
-        "a length; larger is no gear",
-    ),
-};
+const TIP_RADIUS: Param = study::equal_pair::length("tip_radius", "200", "R of both gears");
 
 /// `root_radius`: r of both gears.
-const ROOT_RADIUS: Param = Param {
-    name: "root_radius",
-    default: "180",
-    unit: "length",
-    help: "r of both gears",
-    kind: registry::Kind::positive(
-        study::equal_pair::MAX_LENGTH,
-        "a length; larger is no gear",
-    ),
-};
+const ROOT_RADIUS: Param = study::equal_pair::length("root_radius", "180", "r of both gears");
 
 /// `clearance`: clearance G of the pair. Not the gearing group's `clearance`
 /// ([`study::gearing::CLEARANCE`], default 40): Figure 5 runs a pair of its own, not the

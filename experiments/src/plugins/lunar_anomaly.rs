@@ -28,30 +28,10 @@ const TRIALS: Param = Param {
 };
 
 /// `lunar_turns`: run length (one turn of b: about 13 anomalistic months).
-const LUNAR_TURNS: Param = Param {
-    name: "lunar_turns",
-    default: "1",
-    unit: "turns of b",
-    help: "run length (one turn of b: about 13 anomalistic months)",
-    kind: registry::Kind::number(
-        study::pointers::MIN_TURNS,
-        100.0,
-        "turns of b: a shorter run spans too few tooth engagements for a sigma",
-    ),
-};
+const LUNAR_TURNS: Param = study::pointers::turns("lunar_turns", "1", "run length (one turn of b: about 13 anomalistic months)");
 
 /// `samples_per_engagement`: TD samples per engagement of the busiest mesh.
-const SAMPLES_PER_ENGAGEMENT: Param = Param {
-    name: "samples_per_engagement",
-    default: "8",
-    unit: "",
-    help: "TD samples per engagement of the busiest mesh",
-    kind: registry::Kind::count(
-        registry::MIN_PER_ENGAGEMENT,
-        registry::MAX_COUNT as u64,
-        registry::MIN_PER_ENGAGEMENT_WHY,
-    ),
-};
+const SAMPLES_PER_ENGAGEMENT: Param = study::pointers::per_engagement("8", "TD samples per engagement of the busiest mesh");
 
 /// `curve_samples`: points of the anomaly curve over one anomalistic month (amplitude and plot).
 const CURVE_SAMPLES: Param = Param {

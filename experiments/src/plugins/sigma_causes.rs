@@ -36,17 +36,7 @@ const TABLE1_CLEARANCE: Param = Param {
 };
 
 /// `samples_per_engagement`: TD samples per tooth engagement of the busiest mesh (Table 1's default).
-const SAMPLES_PER_ENGAGEMENT: Param = Param {
-    name: "samples_per_engagement",
-    default: "16",
-    unit: "",
-    help: "TD samples per tooth engagement of the busiest mesh (Table 1's default)",
-    kind: registry::Kind::count(
-        registry::MIN_PER_ENGAGEMENT,
-        registry::MAX_COUNT as u64,
-        registry::MIN_PER_ENGAGEMENT_WHY,
-    ),
-};
+const SAMPLES_PER_ENGAGEMENT: Param = study::pointers::per_engagement("16", "TD samples per tooth engagement of the busiest mesh (Table 1's default)");
 
 /// `draws`: Figure IV with Case A errors: manufactured pairs per mesh (each swept over every G).
 const DRAWS: Param = Param {

@@ -20,56 +20,16 @@ const TRIALS: Param = Param {
 };
 
 /// `lunar_turns`: run length, Lunar.
-const LUNAR_TURNS: Param = Param {
-    name: "lunar_turns",
-    default: "1",
-    unit: "turns of b",
-    help: "run length, Lunar",
-    kind: registry::Kind::number(
-        study::pointers::MIN_TURNS,
-        100.0,
-        "turns of b: a shorter run spans too few tooth engagements for a sigma",
-    ),
-};
+const LUNAR_TURNS: Param = study::pointers::turns("lunar_turns", "1", "run length, Lunar");
 
 /// `metonic_turns`: run length, Metonic.
-const METONIC_TURNS: Param = Param {
-    name: "metonic_turns",
-    default: "3.8",
-    unit: "turns of b",
-    help: "run length, Metonic",
-    kind: registry::Kind::number(
-        study::pointers::MIN_TURNS,
-        100.0,
-        "turns of b: a shorter run spans too few tooth engagements for a sigma",
-    ),
-};
+const METONIC_TURNS: Param = study::pointers::turns("metonic_turns", "3.8", "run length, Metonic");
 
 /// `saros_turns`: run length, Saros.
-const SAROS_TURNS: Param = Param {
-    name: "saros_turns",
-    default: "4.5",
-    unit: "turns of b",
-    help: "run length, Saros",
-    kind: registry::Kind::number(
-        study::pointers::MIN_TURNS,
-        100.0,
-        "turns of b: a shorter run spans too few tooth engagements for a sigma",
-    ),
-};
+const SAROS_TURNS: Param = study::pointers::turns("saros_turns", "4.5", "run length, Saros");
 
 /// `samples_per_engagement`: TD samples per engagement of the busiest mesh.
-const SAMPLES_PER_ENGAGEMENT: Param = Param {
-    name: "samples_per_engagement",
-    default: "8",
-    unit: "",
-    help: "TD samples per engagement of the busiest mesh",
-    kind: registry::Kind::count(
-        registry::MIN_PER_ENGAGEMENT,
-        registry::MAX_COUNT as u64,
-        registry::MIN_PER_ENGAGEMENT_WHY,
-    ),
-};
+const SAMPLES_PER_ENGAGEMENT: Param = study::pointers::per_engagement("8", "TD samples per engagement of the busiest mesh");
 
 const PARAMS: &[Param] = &[
     TRIALS,
