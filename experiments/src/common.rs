@@ -30,27 +30,32 @@ pub fn csv(header: &[&str], rows: impl Iterator<Item = Vec<f64>>, decimals: usiz
     out
 }
 
+/// "value [lo .. hi]", each with `decimals` decimals: how an estimate and its interval print.
+pub fn interval(value: f64, lo: f64, hi: f64, decimals: usize) -> String {
+    format!(
+        "{} [{} .. {}]",
+        fmt_f64(value, decimals),
+        fmt_f64(lo, decimals),
+        fmt_f64(hi, decimals)
+    )
+}
+
+/// "mean [lo .. hi]" of an estimate, with `decimals` decimals.
+pub fn estimate(e: &stats::Estimate, decimals: usize) -> String {
+    interval(e.mean, e.lo, e.hi, decimals)
+}
+
 /// "mean [lo .. hi]" of days (no interval for one value, "-" for none).
 pub fn mean_cell(days: &[f64], horizon: f64) -> String {
     let e = study::whole_mechanism::mean_days(days, horizon);
     match days.len() {
         0 => "-".into(),
         1 => format!("{} (n = 1)", fmt_f64(e.mean, 0)),
-        _ => format!(
-            "{} [{} .. {}]",
-            fmt_f64(e.mean, 0),
-            fmt_f64(e.lo, 0),
-            fmt_f64(e.hi, 0)
-        ),
+        _ => estimate(&e, 0),
     }
 }
 
 /// "rate [lo .. hi]" of a proportion, in whole percent.
 pub fn percent_cell(p: &stats::Proportion) -> String {
-    format!(
-        "{} [{} .. {}]",
-        fmt_f64(100.0 * p.rate(), 0),
-        fmt_f64(100.0 * p.lo, 0),
-        fmt_f64(100.0 * p.hi, 0)
-    )
+    interval(100.0 * p.rate(), 100.0 * p.lo, 100.0 * p.hi, 0)
 }

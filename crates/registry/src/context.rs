@@ -36,6 +36,30 @@ pub const MIN_SAMPLES: u64 = 100;
 /// Why [`MIN_SAMPLES`]: shown after the range.
 pub const MIN_SAMPLES_WHY: &str = "sigma, Dm and P need the curve sampled through its teeth";
 
+/// A count of trials whose results are given with a 95 % interval: parameter `trials` with
+/// `default` and `help`, at least two.
+pub const fn interval_trials(default: &'static str, help: &'static str) -> Param {
+    Param {
+        name: "trials",
+        default,
+        unit: "",
+        help,
+        kind: crate::Kind::count(2, MAX_TRIALS, "an interval needs two trials"),
+    }
+}
+
+/// A count of Theoretical-Difference samples: parameter `samples` with `default` and `help`, at
+/// least [`MIN_SAMPLES`].
+pub const fn samples(default: &'static str, help: &'static str) -> Param {
+    Param {
+        name: "samples",
+        default,
+        unit: "",
+        help,
+        kind: crate::Kind::count(MIN_SAMPLES, MAX_COUNT as u64, MIN_SAMPLES_WHY),
+    }
+}
+
 /// The fewest samples per tooth engagement a `samples_per_engagement` parameter may ask for:
 /// one sample per engagement sees every engagement at the same phase, so its σ misses the error
 /// within it.

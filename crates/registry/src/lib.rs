@@ -42,7 +42,8 @@ mod trials;
 
 pub use context::{
     ConfigFile, Context, FromParam, MAX_COUNT, MAX_TRIALS, MIN_PER_ENGAGEMENT,
-    MIN_PER_ENGAGEMENT_WHY, MIN_SAMPLES, MIN_SAMPLES_WHY, SAMPLES_PER_TOOTH, samples_cover,
+    MIN_PER_ENGAGEMENT_WHY, MIN_SAMPLES, MIN_SAMPLES_WHY, SAMPLES_PER_TOOTH, interval_trials,
+    samples, samples_cover,
 };
 pub use engine::{TrialEngine, TrialMode};
 pub use error::{DuplicateId, RunError};

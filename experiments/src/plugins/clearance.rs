@@ -26,25 +26,9 @@ const GRID_STEP: Param = Param {
 };
 
 /// `samples`: samples of the Theoretical Difference per run.
-const SAMPLES: Param = Param {
-    name: "samples",
-    default: "3600",
-    unit: "",
-    help: "samples of the Theoretical Difference per run",
-    kind: registry::Kind::count(
-        registry::MIN_SAMPLES,
-        registry::MAX_COUNT as u64,
-        registry::MIN_SAMPLES_WHY,
-    ),
-};
+const SAMPLES: Param = registry::samples("3600", "samples of the Theoretical Difference per run");
 
-const PARAMS: &[Param] = &[
-    study::limits::MESH,
-    TOOTH_HEIGHT,
-    GRID_STEP,
-    SAMPLES,
-    gearing::PARAM,
-];
+const PARAMS: &[Param] = &[study::limits::MESH, TOOTH_HEIGHT, GRID_STEP, SAMPLES, gearing::PARAM];
 
 registry::inventory::submit! {
     Experiment {

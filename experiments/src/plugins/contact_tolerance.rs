@@ -39,11 +39,7 @@ const SAMPLES: Param = Param {
     kind: registry::Kind::count(8, registry::MAX_COUNT as u64, "a sigma needs samples"),
 };
 
-const PARAMS: &[Param] = &[
-    TOLERANCE,
-    BLUNT_PARAM,
-    SAMPLES,
-];
+const PARAMS: &[Param] = &[TOLERANCE, BLUNT_PARAM, SAMPLES];
 
 registry::inventory::submit! {
     Experiment {

@@ -35,11 +35,7 @@ const LIMIT_TOLERANCE: Param = Param {
     kind: registry::Kind::number(0.001, 10.0, "% of h"),
 };
 
-const PARAMS: &[Param] = &[
-    study::grids::TRIALS,
-    CLEARANCES,
-    LIMIT_TOLERANCE,
-];
+const PARAMS: &[Param] = &[study::grids::TRIALS, CLEARANCES, LIMIT_TOLERANCE];
 
 registry::inventory::submit! {
     Experiment {

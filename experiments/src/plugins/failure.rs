@@ -45,13 +45,7 @@ const MEASURED: Param = Param {
     kind: registry::Kind::Text,
 };
 
-const PARAMS: &[Param] = &[
-    TRIALS,
-    DAYS,
-    CASES_PARAM,
-    MEASURED,
-    gearing::PIN_AND_SLOT,
-];
+const PARAMS: &[Param] = &[TRIALS, DAYS, CASES_PARAM, MEASURED, gearing::PIN_AND_SLOT];
 
 registry::inventory::submit! {
     Experiment {
@@ -386,12 +380,7 @@ fn survival_cell(steps: &[stats::Step], day: f64) -> String {
             lo: 100.0,
             hi: 100.0,
         });
-    format!(
-        "{} [{} .. {}]",
-        fmt_f64(at.survival, 0),
-        fmt_f64(at.lo, 0),
-        fmt_f64(at.hi, 0)
-    )
+    crate::common::interval(at.survival, at.lo, at.hi, 0)
 }
 
 fn survival_plot(

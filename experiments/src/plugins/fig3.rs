@@ -23,22 +23,9 @@ const PITCHES: Param = Param {
 };
 
 /// `samples`: samples per run.
-const SAMPLES: Param = Param {
-    name: "samples",
-    default: "1200",
-    unit: "",
-    help: "samples per run",
-    kind: registry::Kind::count(
-        registry::MIN_SAMPLES,
-        registry::MAX_COUNT as u64,
-        registry::MIN_SAMPLES_WHY,
-    ),
-};
+const SAMPLES: Param = registry::samples("1200", "samples per run");
 
-const PARAMS: &[Param] = &[
-    PITCHES,
-    SAMPLES,
-];
+const PARAMS: &[Param] = &[PITCHES, SAMPLES];
 
 registry::inventory::submit! {
     Experiment {

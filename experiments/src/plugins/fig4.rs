@@ -17,22 +17,9 @@ const TRIAL: Param = Param {
 };
 
 /// `samples`: samples over the solar turn.
-const SAMPLES: Param = Param {
-    name: "samples",
-    default: "7200",
-    unit: "",
-    help: "samples over the solar turn",
-    kind: registry::Kind::count(
-        registry::MIN_SAMPLES,
-        registry::MAX_COUNT as u64,
-        registry::MIN_SAMPLES_WHY,
-    ),
-};
+const SAMPLES: Param = registry::samples("7200", "samples over the solar turn");
 
-const PARAMS: &[Param] = &[
-    TRIAL,
-    SAMPLES,
-];
+const PARAMS: &[Param] = &[TRIAL, SAMPLES];
 
 registry::inventory::submit! {
     Experiment {

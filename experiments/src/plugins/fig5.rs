@@ -57,17 +57,7 @@ const TRIAL: Param = Param {
 };
 
 /// `samples`: samples over the turn.
-const SAMPLES: Param = Param {
-    name: "samples",
-    default: "3600",
-    unit: "",
-    help: "samples over the turn",
-    kind: registry::Kind::count(
-        registry::MIN_SAMPLES,
-        registry::MAX_COUNT as u64,
-        registry::MIN_SAMPLES_WHY,
-    ),
-};
+const SAMPLES: Param = registry::samples("3600", "samples over the turn");
 
 /// `teeth`: teeth of both gears.
 const TEETH: Param = Param {

@@ -19,11 +19,7 @@ const MEASURED: Param = Param {
     kind: registry::Kind::Text,
 };
 
-const PARAMS: &[Param] = &[
-    TRIALS,
-    RULE,
-    MEASURED,
-];
+const PARAMS: &[Param] = &[TRIALS, RULE, MEASURED];
 
 registry::inventory::submit! {
     Experiment {

@@ -15,10 +15,7 @@ const MARGIN: Param = Param {
     kind: registry::Kind::number(0.01, 20.0, "% of h"),
 };
 
-const PARAMS: &[Param] = &[
-    study::limits::MESH,
-    MARGIN,
-];
+const PARAMS: &[Param] = &[study::limits::MESH, MARGIN];
 
 registry::inventory::submit! {
     Experiment {

@@ -36,24 +36,9 @@ const STEP: Param = Param {
 };
 
 /// `samples`: TD samples per run.
-const SAMPLES: Param = Param {
-    name: "samples",
-    default: "2000",
-    unit: "",
-    help: "TD samples per run",
-    kind: registry::Kind::count(
-        registry::MIN_SAMPLES,
-        registry::MAX_COUNT as u64,
-        registry::MIN_SAMPLES_WHY,
-    ),
-};
+const SAMPLES: Param = registry::samples("2000", "TD samples per run");
 
-const PARAMS: &[Param] = &[
-    FROM,
-    TO,
-    STEP,
-    SAMPLES,
-];
+const PARAMS: &[Param] = &[FROM, TO, STEP, SAMPLES];
 
 registry::inventory::submit! {
     Experiment {

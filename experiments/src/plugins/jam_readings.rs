@@ -75,14 +75,7 @@ const SEARCH_STEPS: Param = Param {
     kind: registry::Kind::count(4, 100_000, "a search step of at most a quarter pitch"),
 };
 
-const PARAMS: &[Param] = &[
-    TRIALS,
-    CLEARANCES,
-    TOLERANCES,
-    STEPS_PER_PITCH,
-    REACH,
-    SEARCH_STEPS,
-];
+const PARAMS: &[Param] = &[TRIALS, CLEARANCES, TOLERANCES, STEPS_PER_PITCH, REACH, SEARCH_STEPS];
 
 registry::inventory::submit! {
     Experiment {

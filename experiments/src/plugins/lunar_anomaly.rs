@@ -19,13 +19,7 @@ use study::grids::CASES;
 use study::pointers::pointer_runs;
 
 /// `trials`: trials per row (ideal teeth, Cases A-D), each with fresh errors and initial angles, run without and with the pin-and-slot (table2's count and streams).
-const TRIALS: Param = Param {
-    name: "trials",
-    default: "20",
-    unit: "",
-    help: "trials per row (ideal teeth, Cases A-D), each with fresh errors and initial angles, run without and with the pin-and-slot (table2's count and streams)",
-    kind: registry::Kind::count(2, registry::MAX_TRIALS, "an interval needs two trials"),
-};
+const TRIALS: Param = registry::interval_trials("20", "trials per row (ideal teeth, Cases A-D), each with fresh errors and initial angles, run without and with the pin-and-slot (table2's count and streams)");
 
 /// `lunar_turns`: run length (one turn of b: about 13 anomalistic months).
 const LUNAR_TURNS: Param = study::pointers::turns("lunar_turns", "1", "run length (one turn of b: about 13 anomalistic months)");
@@ -42,12 +36,7 @@ const CURVE_SAMPLES: Param = Param {
     kind: registry::Kind::count(100, registry::MAX_COUNT as u64, ""),
 };
 
-const PARAMS: &[Param] = &[
-    TRIALS,
-    LUNAR_TURNS,
-    SAMPLES_PER_ENGAGEMENT,
-    CURVE_SAMPLES,
-];
+const PARAMS: &[Param] = &[TRIALS, LUNAR_TURNS, SAMPLES_PER_ENGAGEMENT, CURVE_SAMPLES];
 
 registry::inventory::submit! {
     Experiment {
@@ -317,12 +306,7 @@ fn anomaly_table(train: &PinSlotTrain, curve_samples: usize) -> Table {
 
 /// `mean [lo .. hi]` of an estimate.
 fn show(e: &Estimate) -> String {
-    format!(
-        "{} [{} .. {}]",
-        fmt_f64(e.mean, 3),
-        fmt_f64(e.lo, 3),
-        fmt_f64(e.hi, 3)
-    )
+    crate::common::estimate(e, 3)
 }
 
 /// (b): per row, sigma, Dm and P without and with the pin-and-slot, and the paired difference.

@@ -39,13 +39,7 @@ const CASE: Param = Param {
     kind: registry::Kind::Text,
 };
 
-const PARAMS: &[Param] = &[
-    TRIALS,
-    whole::DAYS,
-    CASE,
-    errors::SPLIT,
-    errors::PARAM,
-];
+const PARAMS: &[Param] = &[TRIALS, whole::DAYS, CASE, errors::SPLIT, errors::PARAM];
 
 registry::inventory::submit! {
     Experiment {
@@ -333,13 +327,7 @@ fn headline_table(
             0 => "-".to_string(),
             1 => format!("{} (n = 1)", fmt_f64(sigmas[0], 3)),
             _ => {
-                let e = mean_ci95(&sigmas);
-                format!(
-                    "{} [{} .. {}]",
-                    fmt_f64(e.mean, 3),
-                    fmt_f64(e.lo, 3),
-                    fmt_f64(e.hi, 3)
-                )
+                crate::common::estimate(&mean_ci95(&sigmas), 3)
             }
         };
         let first: Vec<String> = m

@@ -48,25 +48,9 @@ const DRAWS: Param = Param {
 };
 
 /// `samples`: TD samples per pair run of the Figure IV sweep (figIV's default).
-const SAMPLES: Param = Param {
-    name: "samples",
-    default: "2000",
-    unit: "",
-    help: "TD samples per pair run of the Figure IV sweep (figIV's default)",
-    kind: registry::Kind::count(
-        registry::MIN_SAMPLES,
-        registry::MAX_COUNT as u64,
-        registry::MIN_SAMPLES_WHY,
-    ),
-};
+const SAMPLES: Param = registry::samples("2000", "TD samples per pair run of the Figure IV sweep (figIV's default)");
 
-const PARAMS: &[Param] = &[
-    TRIALS,
-    TABLE1_CLEARANCE,
-    SAMPLES_PER_ENGAGEMENT,
-    DRAWS,
-    SAMPLES,
-];
+const PARAMS: &[Param] = &[TRIALS, TABLE1_CLEARANCE, SAMPLES_PER_ENGAGEMENT, DRAWS, SAMPLES];
 
 registry::inventory::submit! {
     Experiment {

@@ -7,13 +7,7 @@ use stats::{Estimate, mean_ci95};
 use study::pointers::{POINTERS, PointerTrial, pointer_runs};
 
 /// `trials`: trials, each with fresh random initial angles.
-const TRIALS: Param = Param {
-    name: "trials",
-    default: "30",
-    unit: "",
-    help: "trials, each with fresh random initial angles",
-    kind: registry::Kind::count(2, registry::MAX_TRIALS, "an interval needs two trials"),
-};
+const TRIALS: Param = registry::interval_trials("30", "trials, each with fresh random initial angles");
 
 const PARAMS: &[Param] = &[TRIALS];
 

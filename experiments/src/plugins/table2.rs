@@ -11,13 +11,7 @@ use study::grids::CASES;
 use study::pointers::{CaseMechanism, both_model_trials, pointer_runs};
 
 /// `trials`: trials per case, each with fresh errors and initial angles (Edmunds gives no count).
-const TRIALS: Param = Param {
-    name: "trials",
-    default: "20",
-    unit: "",
-    help: "trials per case, each with fresh errors and initial angles (Edmunds gives no count)",
-    kind: registry::Kind::count(2, registry::MAX_TRIALS, "an interval needs two trials"),
-};
+const TRIALS: Param = registry::interval_trials("20", "trials per case, each with fresh errors and initial angles (Edmunds gives no count)");
 
 /// `lunar_turns`: run length, Lunar.
 const LUNAR_TURNS: Param = study::pointers::turns("lunar_turns", "1", "run length, Lunar");
@@ -138,12 +132,7 @@ fn diff(a: &[f64], b: &[f64]) -> stats::Estimate {
 
 /// An estimate as printed: "mean [lo .. hi]".
 fn show(e: &stats::Estimate) -> String {
-    format!(
-        "{} [{} .. {}]",
-        fmt_f64(e.mean, 3),
-        fmt_f64(e.lo, 3),
-        fmt_f64(e.hi, 3)
-    )
+    crate::common::estimate(e, 3)
 }
 
 /// The notes under both tables: what each Case draws, the days per degree, and the

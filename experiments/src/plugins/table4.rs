@@ -8,9 +8,7 @@ use study::cell::{Purpose, label};
 use crate::cells::{CSV_COLUMNS, Tally, cell_text, csv_columns, paper_counts};
 use study::grids::{CellSettings, TRIALS, run_grid};
 
-const PARAMS: &[Param] = &[
-    TRIALS,
-];
+const PARAMS: &[Param] = &[TRIALS];
 
 registry::inventory::submit! {
     Experiment {

@@ -11,11 +11,7 @@ use crate::emax::{EMAX, emax_from_paper, given_random, paper_random, paper_syste
 use study::grids::{CellSettings, TRIALS, derive};
 use study::tolerance::{self, RULE};
 
-const PARAMS: &[Param] = &[
-    TRIALS,
-    RULE,
-    EMAX,
-];
+const PARAMS: &[Param] = &[TRIALS, RULE, EMAX];
 
 registry::inventory::submit! {
     Experiment {

@@ -13,13 +13,7 @@ use study::pointers::{Manufactured, POINTERS, pointer_runs};
 use study::tolerance::RULE;
 
 /// `trials`: runs of the whole mechanism, each with fresh errors and initial angles (the paper: 30).
-const TRIALS: Param = Param {
-    name: "trials",
-    default: "30",
-    unit: "",
-    help: "runs of the whole mechanism, each with fresh errors and initial angles (the paper: 30)",
-    kind: registry::Kind::count(2, registry::MAX_TRIALS, "an interval needs two trials"),
-};
+const TRIALS: Param = registry::interval_trials("30", "runs of the whole mechanism, each with fresh errors and initial angles (the paper: 30)");
 
 /// `cell_trials`: trials per cell of Tables 4 and 5, from which the tolerances are derived.
 const CELL_TRIALS: Param = Param {
@@ -30,12 +24,7 @@ const CELL_TRIALS: Param = Param {
     kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
 };
 
-const PARAMS: &[Param] = &[
-    TRIALS,
-    CELL_TRIALS,
-    RULE,
-    crate::emax::EMAX,
-];
+const PARAMS: &[Param] = &[TRIALS, CELL_TRIALS, RULE, crate::emax::EMAX];
 
 registry::inventory::submit! {
     Experiment {

@@ -17,10 +17,7 @@ const CLEARANCES: Param = Param {
     kind: registry::Kind::Text,
 };
 
-const PARAMS: &[Param] = &[
-    TRIALS,
-    CLEARANCES,
-];
+const PARAMS: &[Param] = &[TRIALS, CLEARANCES];
 
 registry::inventory::submit! {
     Experiment {
