@@ -1,8 +1,9 @@
-//! Differential check: the same random meshes run with different bracketing steps must give the
+//! Differential check: the same random meshes run with different step lengths must give the
 //! same events. `cargo run --release -p contact --example differential -- 300 4` (hard meshes:
-//! cases, steps a pitch, the reference's steps, a fixed clearance if given), or `-- wide 3000`
-//! (the wider class, by clearance: how many meshes differ from a 64-times-finer run in any event,
-//! and in jammed at all or disengaged at all).
+//! cases, steps a pitch, the reference's steps, a fixed clearance if given), or
+//! `-- wide 3000 [LO HI] [curved]` (the wider class with clearances drawn from LO-HI % of h, 5-95
+//! by default, straight flanks unless `curved`: how many meshes differ from a 64-times-finer run
+//! in any event, and in jammed at all or disengaged at all, by band of clearance).
 #![allow(missing_docs, clippy::unwrap_used, reason = "harness")]
 
 use contact::Start;
@@ -15,15 +16,15 @@ mod wide_meshes;
 
 /// The wider class by clearance, in bands of 10 %: meshes, how many differ from a
 /// 64-times-finer run in any event, and how many in jammed at all or disengaged at all.
-fn wide(cases: u64) {
-    let mut bands = [(0u32, 0u32, 0u32); 10];
+fn wide(cases: u64, clearances: (f64, f64), curved: bool) {
+    let mut bands = [(0u32, 0u32, 0u32, 0usize); 10];
     for wide_meshes::WideMesh {
         mesh: m,
         phi0,
         end,
         clearance,
         what,
-    } in wide_meshes::wide_meshes(cases, (5.0, 95.0), false)
+    } in wide_meshes::wide_meshes(cases, clearances, curved)
     {
         let band = &mut bands[((clearance / 10.0) as usize).min(9)];
         let a = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, true);
@@ -31,6 +32,7 @@ fn wide(cases: u64) {
         let same = same_events(a.events(), b.events());
         let answer = |t: &contact::Trajectory| (t.jams() > 0, t.disengagements() > 0);
         band.0 += 1;
+        band.3 += a.events().len();
         if !same {
             band.1 += 1;
             println!(
@@ -41,12 +43,14 @@ fn wide(cases: u64) {
         }
         band.2 += u32::from(answer(&a) != answer(&b));
     }
-    for (i, (n, events, answers)) in bands.iter().enumerate() {
-        println!(
-            "G {}-{} %: {n} meshes, {events} differ in some event, {answers} in jammed or disengaged at all",
-            10 * i,
-            10 * i + 10
-        );
+    for (i, (n, differ, answers, events)) in bands.iter().enumerate() {
+        if *n > 0 {
+            println!(
+                "G {}-{} %: {n} meshes ({events} events), {differ} differ in some event, {answers} in jammed or disengaged at all",
+                10 * i,
+                10 * i + 10
+            );
+        }
     }
 }
 
@@ -63,7 +67,15 @@ fn same_event(x: &contact::Event, y: &contact::Event) -> bool {
 fn main() {
     let mut args = std::env::args().skip(1).peekable();
     if args.peek().is_some_and(|a| a == "wide") {
-        wide(args.nth(1).map_or(1000, |s| s.parse().unwrap()));
+        let rest: Vec<String> = args.skip(1).collect();
+        let cases = rest.first().map_or(1000, |s| s.parse().unwrap());
+        let curved = rest.iter().any(|a| a == "curved");
+        let bounds: Vec<f64> = rest.iter().skip(1).filter_map(|s| s.parse().ok()).collect();
+        let clearances = match bounds[..] {
+            [lo, hi] => (lo, hi),
+            _ => (5.0, 95.0),
+        };
+        wide(cases, clearances, curved);
         return;
     }
     let cases: u64 = args.next().map_or(200, |s| s.parse().unwrap());

@@ -122,7 +122,7 @@ impl Run<'_> {
     ///   vanish above it; one found higher at φ1 moves θ1 (and, past the box, widens it).
     /// - Pairs born or gone within the step meet the conditions of `births_and_deaths_hold`.
     ///
-    /// Then no event lies in the step, and it ends at θ1, exactly as bracketing would end it.
+    /// Then no event lies in the step, and it ends at θ1, exactly as the exact step would end it.
     // One copy of this large step for its three callers (a whole step and two halves): inlined
     // into each it made the program's resident code larger than before the halves.
     #[inline(never)]
