@@ -28,4 +28,5 @@ pub mod pair_file;
 pub mod pointers;
 pub mod readings;
 pub mod tolerance;
+pub mod tolerance_search;
 pub mod whole_mechanism;
