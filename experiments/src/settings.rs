@@ -72,20 +72,22 @@ pub fn rule(ctx: &Context) -> Result<Rule, RunError> {
 /// experiment declares it, the error group, the event rule (the default where the experiment
 /// declares none) and the trials per cell, parameter `trials`.
 pub fn cells(ctx: &Context, trials: &Param) -> Result<CellSettings, RunError> {
+    let gearing = shape(ctx)?;
     let clearance = if ctx.holds(&gearing::CLEARANCE) {
         Some(ctx.get(&gearing::CLEARANCE)?)
     } else {
         None
     };
+    let errors = errors(ctx)?;
     let rule = if ctx.holds(&events::PARAM) {
         rule(ctx)?
     } else {
         events::default_rule()?
     };
     Ok(CellSettings {
-        gearing: shape(ctx)?,
+        gearing,
         clearance,
-        errors: errors(ctx)?,
+        errors,
         rule,
         trials: ctx.get(trials)?,
     })
