@@ -39,7 +39,7 @@ pub fn errors(ctx: &Context) -> Result<errors::Settings, RunError> {
     errors_for(ctx, hypothesis(ctx)?)
 }
 
-/// [`errors`] with the hypothesis chosen by the experiment (one of its rows).
+/// [`errors()`] with the hypothesis chosen by the experiment (one of its rows).
 pub fn errors_for(
     ctx: &Context,
     hypothesis: &'static dyn Hypothesis,
