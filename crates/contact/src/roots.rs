@@ -6,7 +6,7 @@
 //! rotation centre, so the contact angles are the crossings of that circle with the flank.
 //! With circular-arc flanks a vertex meets an arc where its circle crosses the arc's circle, and
 //! two arcs (or an arc and a straight flank) touch when the turning arc's centre, which also runs
-//! on a circle, reaches a circle (or an offset segment) about the other: see `mesh.rs`.
+//! on a circle, reaches a circle (or an offset segment) about the other: see `mesh/curved.rs`.
 
 use geometry::Vec2;
 

@@ -1,5 +1,5 @@
 //! One tooth as the contact roots and the step certificates both read it, and the angle
-//! reduction they share: below both `mesh.rs` and `certify.rs`, so neither depends on the other's
+//! reduction they share: below both `mesh/` and `certify.rs`, so neither depends on the other's
 //! internals for it.
 
 use std::f64::consts::{PI, TAU};
