@@ -1,0 +1,324 @@
+//! The report page's tests: results read, bad results refused, the page and its heatmaps.
+
+use super::heatmap::{Count, count_cell, heat_rows, listing_folder};
+use super::*;
+use registry::{Context, Experiment, OutputFile, Report, RunError};
+
+fn nothing(_: &Context) -> Result<Report, RunError> {
+    Ok(Report::default())
+}
+
+static A: Experiment = Experiment {
+    id: "a",
+    title: "First <one>",
+    paper_item: "Figure 1",
+    params: &[],
+    groups: &[],
+    config: None,
+    run: nothing,
+};
+static B: Experiment = Experiment {
+    id: "b",
+    title: "Second",
+    paper_item: "Table 2",
+    params: &[],
+    groups: &[],
+    config: None,
+    run: nothing,
+};
+
+fn registry() -> Registry {
+    let mut r: Registry = BTreeMap::new();
+    r.insert(A.id, &A);
+    r.insert(B.id, &B);
+    r
+}
+
+struct Scratch(PathBuf);
+impl Scratch {
+    fn new(tag: &str) -> Self {
+        let nanos = std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .unwrap()
+            .as_nanos();
+        let p =
+            std::env::temp_dir().join(format!("xtask-report-{tag}-{}-{nanos}", std::process::id()));
+        fs::create_dir_all(&p).unwrap();
+        Scratch(p)
+    }
+}
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = fs::remove_dir_all(&self.0);
+    }
+}
+
+const SVG: &str = "<?xml version=\"1.0\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"10\" height=\"10\"><polyline points=\"0,0 5,5\"/></svg>\n";
+
+fn write_a(out: &Path) {
+    let mut t = Table::new("Ours & the paper's", ["quantity", "ours", "paper"]);
+    t.row(vec!["x".into(), "1.5 (1.4)".into(), "1.4".into()]);
+    t.note("a <note>");
+    let report = Report {
+        tables: vec![t],
+        files: vec![OutputFile::new("a.svg", SVG)],
+        trials: 30,
+        agreement: Some(registry::Agreement {
+            consistent: 3,
+            differ: 1,
+        }),
+        ..Default::default()
+    };
+    let ctx = Context::new(&A, 11, 2, &[], None).unwrap();
+    registry::write_results(
+        &out.join("a"),
+        &provenance::stamp(&report, &A, &ctx, &[], None),
+    )
+    .unwrap();
+}
+
+#[test]
+fn page_has_tables_figures_provenance_and_not_run() {
+    let s = Scratch::new("page");
+    write_a(&s.0);
+    fs::create_dir_all(s.0.join(".a.tmp-1")).unwrap(); // hidden: ignored
+    let page = build(&registry(), &s.0, true).unwrap();
+    assert!(page.contains("<section id=\"exp-a\" class=\"experiment run\">"));
+    assert!(page.contains("<h2>a: First &lt;one&gt;</h2>"));
+    assert!(page.contains("<p class=\"table-title\">Ours &amp; the paper&#39;s</p>"));
+    assert!(page.contains("<td class=\"num\">1.5 (1.4)</td><td class=\"num paper\">1.4</td>"));
+    assert!(page.contains("<li>a &lt;note&gt;</li>"));
+    assert!(page.contains("<figure data-file=\"a/a.svg\">\n<svg xmlns"));
+    assert!(!page.contains("<?xml"));
+    assert!(page.contains("seed <b>11</b>, 2 threads"));
+    assert!(page.contains("consistent with ours / differing: 3 / 1"));
+    assert!(page.contains("<section id=\"exp-b\" class=\"experiment not-run\">"));
+    assert!(page.contains("<p class=\"status\">not run</p>"));
+    assert!(!page.contains("tmp-1"));
+    assert!(
+        !page.contains("<link") && !page.contains("<script"),
+        "self-contained"
+    );
+    assert_eq!(page.matches("<svg").count(), 1);
+}
+
+#[test]
+fn replayed_trials_are_linked_from_their_experiment_not_shown_as_one() {
+    let s = Scratch::new("replays");
+    let mut t = Table::new("Table 3", ["case", "m3-e3"]);
+    t.row(vec!["B".into(), "141/0".into()]);
+    let report = Report {
+        tables: vec![t],
+        ..Default::default()
+    };
+    registry::write_results(&s.0.join("table3"), &report).unwrap();
+    let replay = Report {
+        tables: vec![Table::new("table3 B/m3-e3, trial 1", ["phi"])],
+        files: vec![OutputFile::new("pair.html", "<!DOCTYPE html>")],
+        ..Default::default()
+    };
+    registry::write_results(&s.0.join("replay-table3-B-m3-e3-1"), &replay).unwrap();
+    let page = build(&registry(), &s.0, true).unwrap();
+    assert!(
+        page.contains("<a href=\"replay-table3-B-m3-e3-1/pair.html\">replay-table3-B-m3-e3-1</a>"),
+        "{page}"
+    );
+    assert!(
+        !page.contains("id=\"exp-replay-"),
+        "a replay is no experiment of its own"
+    );
+}
+
+#[test]
+fn command_writes_the_page_atomically() {
+    let s = Scratch::new("command");
+    write_a(&s.0);
+    command(&out_at(&s.0)).unwrap();
+    let page = fs::read_to_string(s.0.join(INDEX_HTML)).unwrap();
+    assert!(page.starts_with("<!DOCTYPE html>"));
+    let names: Vec<String> = fs::read_dir(&s.0)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(names.len(), 2, "{names:?}");
+}
+
+#[test]
+fn no_results_is_bad_input_and_writes_nothing() {
+    let s = Scratch::new("empty");
+    let e = build(&registry(), &s.0, true).unwrap_err();
+    assert_eq!(e.code(), 2);
+    assert!(format!("{e:?}").contains("no results"), "{e:?}");
+    let e = command(&out_at(&s.0)).unwrap_err();
+    assert_eq!(e.code(), 2);
+    assert!(!s.0.join(INDEX_HTML).exists());
+    let e = build(&registry(), &s.0.join("missing"), true).unwrap_err();
+    assert_eq!(e.code(), 2);
+    assert!(format!("{e:?}").contains("no such directory"), "{e:?}");
+}
+
+#[test]
+fn broken_results_name_the_file_and_field() {
+    let cases: [(&str, &str, &str); 6] = [
+        ("tables.json", "{", "not valid JSON"),
+        ("tables.json", "{\"tables\": 3}", "tables: must be an array"),
+        (
+            "tables.json",
+            "{\"tables\": [{\"title\": \"t\", \"columns\": [1], \"rows\": []}]}",
+            "tables[0].columns: must be an array of strings",
+        ),
+        (
+            "tables.json",
+            "{\"tables\": [], \"files\": [\"gone.svg\"]}",
+            "files: lists gone.svg",
+        ),
+        (
+            "run.json",
+            "{\"seed\": -1}",
+            "run.json: seed: must be a non-negative",
+        ),
+        ("a.svg", "<svg></svg>", "a.svg: must be an SVG drawing"),
+    ];
+    for (file, text, want) in cases {
+        let s = Scratch::new("broken");
+        write_a(&s.0);
+        // Under a registered id: an unreadable folder of no experiment is skipped instead.
+        fs::rename(s.0.join("a"), s.0.join("fig2")).unwrap();
+        fs::write(s.0.join("fig2").join(file), text).unwrap();
+        let e = command(&out_at(&s.0)).unwrap_err();
+        assert_eq!(e.code(), 2, "{file}");
+        let msg = format!("{e:?}");
+        assert!(msg.contains(want), "{file}: {msg}");
+        assert!(!s.0.join(INDEX_HTML).exists(), "{file}");
+    }
+}
+
+/// `report --out DIR`.
+fn out_at(dir: &Path) -> ReportArgs {
+    ReportArgs {
+        out: Some(dir.to_path_buf()),
+        quiet: false,
+    }
+}
+
+#[test]
+fn svg_embedding() {
+    assert_eq!(
+        embed_svg(SVG),
+        Embed::Inline(
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"10\" height=\"10\"><polyline points=\"0,0 5,5\"/></svg>"
+                .into()
+        )
+    );
+    for risky in [
+        "<svg><script>alert(1)</script><path d=\"M0 0\"/></svg>",
+        "<svg onload=\"x()\"><path/></svg>",
+        "<svg><line/></svg><svg onclick = \"x\"/>",
+        "<div><svg><path/></svg></div>",
+    ] {
+        assert!(matches!(embed_svg(risky), Embed::DataUri(_)), "{risky}");
+    }
+    assert!(matches!(
+        embed_svg("<svg><text>one driver turn</text><line/></svg>"),
+        Embed::Inline(_)
+    ));
+    assert!(has_drawing(SVG));
+    assert!(!has_drawing("<svg><rect/></svg>"));
+}
+
+#[test]
+fn helpers() {
+    assert_eq!(base64(b""), "");
+    assert_eq!(base64(b"f"), "Zg==");
+    assert_eq!(base64(b"fo"), "Zm8=");
+    assert_eq!(base64(b"foo"), "Zm9v");
+    assert_eq!(base64(b"foobar"), "Zm9vYmFy");
+    assert_eq!(
+        esc("<a href='x'>&\"</a>"),
+        "&lt;a href=&#39;x&#39;&gt;&amp;&quot;&lt;/a&gt;"
+    );
+    assert_eq!(url_part("fig 2/ä.svg"), "fig%202%2F%C3%A4.svg");
+    assert!(numeric("17.96") && numeric("< 1e-12") && numeric("-0.5") && numeric("0 / 0"));
+    assert!(!numeric("theta") && !numeric("-") && !numeric(""));
+}
+
+#[test]
+fn count_cells_are_read_as_printed() {
+    let c = |ours, paper, differs| Count {
+        ours,
+        paper,
+        differs,
+    };
+    assert_eq!(
+        count_cell("141*/0 (168/0)"),
+        Some((c(141, Some(168), true), c(0, Some(0), false)))
+    );
+    assert_eq!(
+        count_cell("200/3* (200/189)"),
+        Some((c(200, Some(200), false), c(3, Some(189), true)))
+    );
+    assert_eq!(
+        count_cell("5/0 (-/-)"),
+        Some((c(5, None, false), c(0, None, false)))
+    );
+    for other in ["-", "0.055 (0.045)*", "< 0.1 (0.2)", "1/2", ""] {
+        assert_eq!(count_cell(other), None, "{other}");
+    }
+}
+
+#[test]
+fn heatmap_cells_are_named_as_replay_names_them() {
+    let mut t5 = Table::new("Table 5: x", ["E. sys [deg]", "b2-c1", "e4-f1"]);
+    t5.row(vec![
+        "E. max (random)".into(),
+        "0.055 (0.055)".into(),
+        "< 0.035 (0.045)*".into(),
+    ]);
+    t5.row(vec!["0.7".into(), "11*/0 (1/0)".into(), "-".into()]);
+    t5.row(vec![
+        "E. max (systematic)".into(),
+        "0.2 (0.7)".into(),
+        "< 0.1 (0.2)".into(),
+    ]);
+    let rows = heat_rows("table5", &t5, 1);
+    assert_eq!(rows.len(), 1, "the E. max rows are no counts");
+    assert_eq!(rows[0].1[0].as_ref().unwrap().0, "0.055/0.7/b2-c1");
+    assert!(rows[0].1[1].is_none(), "a column below the grid is not run");
+
+    let mut t_i = Table::new("Table I: x", ["case", "G [%]", "m3-e3"]);
+    t_i.row(vec!["B".into(), "10".into(), "1/0 (1/0)".into()]);
+    t_i.row(vec!["".into(), "70".into(), "200/29* (197/186)".into()]);
+    let rows = heat_rows("tableI", &t_i, 2);
+    assert_eq!(rows[1].0, "Case B, G = 70 %");
+    assert_eq!(rows[1].1[0].as_ref().unwrap().0, "B/70/m3-e3");
+    assert_eq!(
+        listing_folder("tableI", "B/70/m3-e3"),
+        "replay-tableI-B-70-m3-e3-failed"
+    );
+    assert_eq!(
+        listing_folder("table4", "0.065/m3-e3"),
+        "replay-table4-0.065-m3-e3-failed"
+    );
+}
+
+#[test]
+fn runs_on_other_inputs_show_no_marks_and_no_agreement_as_a_check() {
+    let title = "Table 3: counts: ours (paper); * where a two-sample test separates them [events: x] [inputs differ from the defaults: trials=2]";
+    assert_eq!(
+        without_marks(title),
+        "Table 3: counts: ours (paper) [events: x] [inputs differ from the defaults: trials=2]"
+    );
+    let mut t = Table::new(title, ["case", "m3-e3"]);
+    t.row(vec!["B".into(), "141*/0 (168/0)".into()]);
+    t.note("The paper's counts consistent with ours: jams 1 of 2.");
+    t.note("Each trial: one turn.");
+    let mut h = String::new();
+    table(&mut h, &t, true);
+    assert!(!h.contains('*'), "{h}");
+    assert!(h.contains("<li><b>For reference only, not a check"), "{h}");
+    assert!(h.contains("<li>Each trial: one turn.</li>"), "{h}");
+    let mut h = String::new();
+    table(&mut h, &t, false);
+    assert!(h.contains("141*/0 (168/0)"));
+    assert!(!h.contains("For reference only"));
+}
