@@ -12,9 +12,9 @@ fn main() -> io::Result<()> {
     snapshot_tests()
 }
 
-/// The id an experiment file registers: the first `id: "..."` after its `inventory::submit!`.
+/// The id an experiment file registers: the first `id: "..."` after its `crate::experiment!`.
 fn registered_id(text: &str) -> Option<&str> {
-    let after = &text[text.find("inventory::submit!")?..];
+    let after = &text[text.find("crate::experiment!")?..];
     let start = after.find("id: \"")? + 5;
     let len = after[start..].find('"')?;
     Some(&after[start..start + len])

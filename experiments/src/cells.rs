@@ -1,7 +1,7 @@
 //! Our counts of a jam cell beside the paper's: the two-sample mark, the tally under a table,
 //! the printed cell and its CSV columns.
 
-use registry::{RunError, fmt_f64};
+use registry::{Report, RunError, fmt_f64};
 use study::cell::{CellSpec, Counts, PAPER_TRIALS};
 use study::grids::CellSettings;
 
@@ -24,6 +24,16 @@ pub fn cell(
 pub fn paper_counts(id: &str, key: &str) -> (Option<u64>, Option<u64>) {
     let get = |q: &str| crate::paper::get(id, &format!("{key}.{q}")).map(|r| r.value as u64);
     (get("jam"), get("dis"))
+}
+
+/// [`paper_counts`] of a Case's cell where the Cases apply (`cases_apply`); none where they do
+/// not (a hypothesis the Cases do not reach is compared with no Case).
+pub fn case_paper_counts(cases_apply: bool, id: &str, key: &str) -> (Option<u64>, Option<u64>) {
+    if cases_apply {
+        paper_counts(id, key)
+    } else {
+        (None, None)
+    }
 }
 
 /// Is the paper's count (out of [`PAPER_TRIALS`]) consistent with ours (`k` of `n`)? The paper's
@@ -147,6 +157,57 @@ pub fn csv_columns(c: &Counts, paper: (Option<u64>, Option<u64>)) -> String {
 /// Header of [`csv_columns`]: `*_p_fisher` is the two-sided p-value of Fisher's exact test of
 /// our count against the paper's (empty where the paper gives none).
 pub const CSV_COLUMNS: &str = "trials,jams,jam_lo,jam_hi,paper_jams,jam_p_fisher,disengagements,dis_lo,dis_hi,paper_disengagements,dis_p_fisher";
+
+/// The cells of a jam table as they are filled: each printed beside the paper's counts, its CSV
+/// line (key columns, then [`CSV_COLUMNS`]) and the [`Tally`] of the two-sample marks.
+#[derive(Debug, Clone, Default)]
+pub struct JamCells {
+    /// The CSV: the header, then one line per cell.
+    pub csv: String,
+    /// The comparison with the paper's counts so far.
+    pub tally: Tally,
+}
+
+impl JamCells {
+    /// No cells yet; the CSV's header is `keys` (the key columns, e.g. `case,mesh`), then
+    /// [`CSV_COLUMNS`].
+    pub fn new(keys: &str) -> JamCells {
+        JamCells {
+            csv: format!("{keys},{CSV_COLUMNS}\n"),
+            tally: Tally::default(),
+        }
+    }
+
+    /// One cell: its CSV line (`keys`, the values of the key columns, then [`csv_columns`]),
+    /// added to the tally; returns the printed cell ([`cell_text`]).
+    pub fn cell(&mut self, keys: &str, c: &Counts, paper: (Option<u64>, Option<u64>)) -> String {
+        self.csv
+            .push_str(&format!("{keys},{}\n", csv_columns(c, paper)));
+        cell_text(c, paper, &mut self.tally)
+    }
+}
+
+/// What one trial of a Case's cell is, noted under the tables of Cases A-D.
+pub const CASE_TRIAL_NOTE: &str = "Each trial: both gears manufactured afresh (hypothesis and Case), a random initial angle, one full turn of the gear with more teeth.";
+
+/// The note under a per-mesh table saying how to see a failed trial of its cell `example`
+/// (`cargo xtask replay ID CELL`).
+pub fn replay_note(id: &str, example: &str) -> String {
+    format!(
+        "See a failed trial: `cargo xtask replay {id} {example}` lists the trials of that cell that jammed or disengaged; `cargo xtask replay {id} {example} TRIAL` rebuilds one from its random stream, prints its events and writes a pair file to rerun it (same --seed and --set as this run)."
+    )
+}
+
+/// A report counting the trials and tooth engagements of `counts`, the rest empty: the base of
+/// a jam table's report (`Report { tables, files, ..counts_report(cells) }`).
+pub fn counts_report<'a>(counts: impl IntoIterator<Item = &'a Counts>) -> Report {
+    let mut report = Report::default();
+    for c in counts {
+        report.trials += c.trials;
+        report.engagements += c.engagements;
+    }
+    report
+}
 
 #[cfg(test)]
 mod tests {

@@ -29,6 +29,21 @@ pub struct Series<'a> {
     pub points: Vec<(f64, f64)>,
 }
 
+impl<'a> Series<'a> {
+    /// The series of `values` against `angles` (radians, as the simulations give them), drawn
+    /// in degrees.
+    pub fn in_degrees(label: &'a str, angles: &[f64], values: &[f64]) -> Series<'a> {
+        Series {
+            label,
+            points: angles
+                .iter()
+                .map(|a| a.to_degrees())
+                .zip(values.iter().copied())
+                .collect(),
+        }
+    }
+}
+
 /// A vertical mark on a plot: an event at `x`, labelled (e.g. its kind and size).
 pub struct Mark {
     /// Where (x axis units).

@@ -59,3 +59,33 @@ pub fn mean_cell(days: &[f64], horizon: f64) -> String {
 pub fn percent_cell(p: &stats::Proportion) -> String {
     interval(100.0 * p.rate(), 100.0 * p.lo, 100.0 * p.hi, 0)
 }
+
+/// The meshes that jammed first most often (the first four of `meshes`, most frequent first),
+/// each with its runs, e.g. `e3-f1 (12), b2-c1 (3)`; `-` where none did.
+pub fn jammed_first(meshes: &[(String, usize)]) -> String {
+    if meshes.is_empty() {
+        return "-".into();
+    }
+    let first: Vec<String> = meshes
+        .iter()
+        .take(4)
+        .map(|(m, c)| format!("{m} ({c})"))
+        .collect();
+    first.join(", ")
+}
+
+/// The first cells of a pointer's row in a table of estimates: the pointer `name` with its
+/// `turns`, the `reading` (how the value was measured), the mean and its 95 % interval.
+pub fn estimate_cells(name: &str, turns: f64, reading: &str, e: &stats::Estimate) -> Vec<String> {
+    vec![
+        format!("{name} ({turns} turns)"),
+        reading.into(),
+        fmt_f64(e.mean, 4),
+        format!("{} .. {}", fmt_f64(e.lo, 4), fmt_f64(e.hi, 4)),
+    ]
+}
+
+/// The CSV columns of the same: `name,reading,mean,lo,hi`, the values in full.
+pub fn estimate_csv(name: &str, reading: &str, e: &stats::Estimate) -> String {
+    format!("{name},{reading},{},{},{}", e.mean, e.lo, e.hi)
+}

@@ -13,8 +13,11 @@ pub mod inputs;
 pub mod pair_html;
 pub mod pair_svg;
 pub mod paper;
+mod register;
 pub mod replay;
 pub mod settings;
+
+pub(crate) use register::experiment;
 
 mod plugins {
     include!(concat!(env!("OUT_DIR"), "/plugins.rs"));

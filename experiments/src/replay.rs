@@ -21,11 +21,13 @@ use study::cell::{CellSpec, Rebuilt, rebuild};
 use study::grids::{CASES, CellSettings};
 
 /// How the cells of a per-mesh table are named and what each one names: an experiment whose
-/// trials can be replayed registers one beside its `registry::Experiment`, in its own file:
+/// trials can be replayed registers one in its own file, with its experiment (`replay:` in `crate::experiment!`):
 ///
 /// ```ignore
-/// registry::inventory::submit! {
-///     CellGrammar { experiment: "table3", form: "CASE/MESH, e.g. B/m3-e3", parse: cell }
+/// crate::experiment! {
+///     id: "table3", paper_item: "Table 3 (section 5)", run,
+///     // title, params, groups ...
+///     replay: "CASE/MESH, e.g. B/m3-e3" => cell,
 /// }
 /// ```
 pub struct CellGrammar {
@@ -97,6 +99,21 @@ impl<'a> CellText<'a> {
             .find(|(c, _, _)| c.eq_ignore_ascii_case(name))
             .map(|&(_, s, r)| (s, r))
             .ok_or_else(|| self.bad(format!("`{name}` is not a Case (A, B, C or D)")))
+    }
+
+    /// The hypothesis parameters Case `name` sets under settings `s`: its random and
+    /// systematic errors, and the settings' split.
+    pub fn case_errors(
+        &self,
+        s: &CellSettings,
+        name: &str,
+    ) -> Result<Vec<(&'static str, f64)>, RunError> {
+        let (systematic, random) = self.case(name)?;
+        Ok(vec![
+            ("random", random),
+            ("systematic", systematic),
+            ("split", s.errors.split()?),
+        ])
     }
 
     /// A number typed in the cell, checked against the kind of the grid parameter it stands

@@ -71,6 +71,32 @@ pub struct Param {
     pub kind: Kind,
 }
 
+impl Param {
+    /// A parameter with no unit: `name`, its `default` (as it would be typed), one line of
+    /// `help` and the values it takes; [`Param::unit`] adds a unit. One line where a plugin
+    /// declares one of its own, e.g.
+    /// `Param::new("teeth", "50", "teeth of both gears", Kind::count(3, 500, ""))`.
+    pub const fn new(
+        name: &'static str,
+        default: &'static str,
+        help: &'static str,
+        kind: Kind,
+    ) -> Param {
+        Param {
+            name,
+            default,
+            unit: "",
+            help,
+            kind,
+        }
+    }
+
+    /// The same parameter with `unit`, e.g. "mm" or "% of h".
+    pub const fn unit(self, unit: &'static str) -> Param {
+        Param { unit, ..self }
+    }
+}
+
 /// What values a parameter takes. [`Context::new`] checks the default and any `--set` value
 /// against it, so that a refused value names the flag, the value and the range before anything
 /// runs, and experiments do not each write the same check.

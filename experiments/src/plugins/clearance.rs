@@ -1,45 +1,25 @@
 //! `clearance`: for ideal gears of one mesh, the clearance G (as % of the tooth height) below which
 //! the pair jams and above which it disengages within a full turn of the larger gear.
 
-use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
 
 use crate::common::{Series, csv, line_plot, paper_cell};
 use study::gearing;
 use study::limits::{IdealPair, boundary};
 
 /// `tooth_height`: h = R - r for both gears (Efstathiou et al. 2012).
-const TOOTH_HEIGHT: Param = Param {
-    name: "tooth_height",
-    default: "1.1",
-    unit: "mm",
-    help: "h = R - r for both gears (Efstathiou et al. 2012)",
-    kind: gearing::TOOTH_HEIGHT_KIND,
-};
+const TOOTH_HEIGHT: Param = Param::new("tooth_height", "1.1", "h = R - r for both gears (Efstathiou et al. 2012)", gearing::TOOTH_HEIGHT_KIND).unit("mm");
 
 /// `grid_step`: spacing of the printed sweep.
-const GRID_STEP: Param = Param {
-    name: "grid_step",
-    default: "5",
-    unit: "% of h",
-    help: "spacing of the printed sweep",
-    kind: registry::Kind::number(0.5, 50.0, "% of h"),
-};
+const GRID_STEP: Param = Param::new("grid_step", "5", "spacing of the printed sweep", registry::Kind::number(0.5, 50.0, "% of h")).unit("% of h");
 
 /// `samples`: samples of the Theoretical Difference per run.
 const SAMPLES: Param = registry::samples("3600", "samples of the Theoretical Difference per run");
 
-const PARAMS: &[Param] = &[study::limits::MESH, TOOTH_HEIGHT, GRID_STEP, SAMPLES, gearing::PARAM];
-
-registry::inventory::submit! {
-    Experiment {
-        id: "clearance",
-        title: "Smallest clearance without a jam and largest without a disengagement, ideal gears",
-        paper_item: "Appendix II (and section 3): jam below about 10 %, disengagement above about 87 %",
-        params: PARAMS,
-        groups: &[study::events::GROUP],
-        config: None,
-        run,
-    }
+crate::experiment! {
+    id: "clearance", paper_item: "Appendix II (and section 3): jam below about 10 %, disengagement above about 87 %", run,
+    title: "Smallest clearance without a jam and largest without a disengagement, ideal gears",
+    params: [study::limits::MESH, TOOTH_HEIGHT, GRID_STEP, SAMPLES, gearing::PARAM], groups: [study::events::GROUP],
 }
 
 /// The clearance limits, each bisected between the grid values that bracket it: `jams` is the

@@ -12,7 +12,7 @@
 use std::collections::BTreeMap;
 
 use registry::{
-    Context, Experiment, MAX_TRIALS, OutputFile, Param, Report, RunError, Table, fmt_f64,
+    Context, MAX_TRIALS, OutputFile, Param, Report, RunError, Table, fmt_f64,
 };
 use stats::{Proportion, clopper_pearson95};
 use train::Gearing;
@@ -25,78 +25,25 @@ use study::cell::{Counts, label};
 use study::clearance_search::{MeshSearch, Search, search};
 use study::grids::CASES;
 
-const GRID: Param = Param {
-    name: "grid",
-    default: "20,30,40,50,60,70",
-    unit: "% of h",
-    help: "coarse grid of clearances tried for every mesh and case, comma-separated (the reference clearance is always added)",
-    kind: registry::Kind::Text,
-};
+const GRID: Param = Param::new("grid", "20,30,40,50,60,70", "coarse grid of clearances tried for every mesh and case, comma-separated (the reference clearance is always added)", registry::Kind::Text).unit("% of h");
 
-const COARSE_TRIALS: Param = Param {
-    name: "coarse_trials",
-    default: "20",
-    unit: "pair runs",
-    help: "trials per mesh, case and clearance of the coarse grid",
-    kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
-};
+const COARSE_TRIALS: Param = Param::new("coarse_trials", "20", "trials per mesh, case and clearance of the coarse grid", registry::Kind::count(1, registry::MAX_TRIALS, "")).unit("pair runs");
 
-const REFINE_STEP: Param = Param {
-    name: "refine_step",
-    default: "5",
-    unit: "% of h",
-    help: "the refinement tries the coarse grid's best clearance plus and minus this (0: no refinement; the coarse grid decides)",
-    kind: registry::Kind::number(0.0, 100.0, "% of h"),
-};
+const REFINE_STEP: Param = Param::new("refine_step", "5", "the refinement tries the coarse grid's best clearance plus and minus this (0: no refinement; the coarse grid decides)", registry::Kind::number(0.0, 100.0, "% of h")).unit("% of h");
 
-const REFINE_TRIALS: Param = Param {
-    name: "refine_trials",
-    default: "40",
-    unit: "pair runs",
-    help: "trials per clearance compared in the refinement: the coarse best, its two neighbours and the reference, each brought to this count (at least coarse_trials)",
-    kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
-};
+const REFINE_TRIALS: Param = Param::new("refine_trials", "40", "trials per clearance compared in the refinement: the coarse best, its two neighbours and the reference, each brought to this count (at least coarse_trials)", registry::Kind::count(1, registry::MAX_TRIALS, "")).unit("pair runs");
 
-const RUNS: Param = Param {
-    name: "runs",
-    default: whole::RUNS_DEFAULT,
-    unit: "",
-    help: "whole-mechanism runs per case and clearance setting (failure's trials; the paper: 30)",
-    kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
-};
+const RUNS: Param = Param::new("runs", whole::RUNS_DEFAULT, "whole-mechanism runs per case and clearance setting (failure's trials; the paper: 30)", registry::Kind::count(1, registry::MAX_TRIALS, ""));
 
 /// The reference clearance, typed as `clearance` like the gearing group's
 /// ([`study::gearing::CLEARANCE`]), which this experiment does not declare: here it is not every
 /// mesh's clearance but the one the search always tries and measures the chosen ones against.
-const REFERENCE_CLEARANCE: Param = Param {
-    name: "clearance",
-    default: "40",
-    unit: "% of h",
-    help: "reference clearance: the paper's one value for every mesh, always tried, and the failure study's first setting",
-    kind: registry::Kind::positive(100.0, "% of the tooth height h"),
-};
+const REFERENCE_CLEARANCE: Param = Param::new("clearance", "40", "reference clearance: the paper's one value for every mesh, always tried, and the failure study's first setting", registry::Kind::positive(100.0, "% of the tooth height h")).unit("% of h");
 
-const PARAMS: &[Param] = &[
-    GRID,
-    COARSE_TRIALS,
-    REFINE_STEP,
-    REFINE_TRIALS,
-    RUNS,
-    whole::DAYS,
-    whole::CASES_PARAM,
-    REFERENCE_CLEARANCE,
-];
-
-registry::inventory::submit! {
-    Experiment {
-        id: "clearance-design",
-        title: "Per-mesh clearance that minimises jams and disengagements, for each of Edmunds' Cases, and the failure study rerun with it (beyond the paper)",
-        paper_item: "Section 6 / beyond the paper",
-        params: PARAMS,
-        groups: &[study::gearing::SHAPE, study::errors::CASES_GROUP, study::events::GROUP],
-        config: None,
-        run,
-    }
+crate::experiment! {
+    id: "clearance-design", paper_item: "Section 6 / beyond the paper", run,
+    title: "Per-mesh clearance that minimises jams and disengagements, for each of Edmunds' Cases, and the failure study rerun with it (beyond the paper)",
+    params: [GRID, COARSE_TRIALS, REFINE_STEP, REFINE_TRIALS, RUNS, whole::DAYS, whole::CASES_PARAM, REFERENCE_CLEARANCE], groups: [study::gearing::SHAPE, study::errors::CASES_GROUP, study::events::GROUP],
 }
 
 /// How many worst meshes each case's plot draws.
@@ -631,12 +578,6 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         let (runs_ref, runs_best) = (per_input[2 * k], per_input[2 * k + 1]);
         for (ti, ((name, r), b)) in whole::train_names().zip(at_ref).zip(at_best).enumerate() {
             let (only_ref, only_best) = discordant(runs_ref, runs_best, ti);
-            let first: Vec<String> = b
-                .meshes
-                .iter()
-                .take(4)
-                .map(|(m, c)| format!("{m} ({c})"))
-                .collect();
             study.row(vec![
                 CASES[ci].0.to_string(),
                 name.to_string(),
@@ -646,11 +587,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
                 share_cell(&b.year),
                 crate::common::mean_cell(&b.days, s.days),
                 stats::median(&b.days).map_or_else(|| "-".into(), |d| fmt_f64(d, 0)),
-                if first.is_empty() {
-                    "-".into()
-                } else {
-                    first.join(", ")
-                },
+                crate::common::jammed_first(&b.meshes),
                 format!(
                     "{only_ref} / {only_best} ({})",
                     fmt_f64(sign_test(only_ref, only_best), 2)

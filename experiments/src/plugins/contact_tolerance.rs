@@ -6,51 +6,25 @@
 //! whether it is largest at the smallest clearance, how σ at 40 % moves and where contact is
 //! first lost: the features the paper describes for Figure IV.
 
-use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
 use study::area_test::{Point, Test, grid};
 use study::limits::IdealPair;
 
 use crate::common::{Series, semilog_plot};
 
 /// `tolerance`: overlap area the contact test ignores, for the printed curves (the ladder is fixed).
-const TOLERANCE: Param = Param {
-    name: "tolerance",
-    default: "0.003",
-    unit: "mm^2",
-    help: "overlap area the contact test ignores, for the printed curves (the ladder is fixed)",
-    kind: registry::Kind::positive(1.0, "mm^2"),
-};
+const TOLERANCE: Param = Param::new("tolerance", "0.003", "overlap area the contact test ignores, for the printed curves (the ladder is fixed)", registry::Kind::positive(1.0, "mm^2")).unit("mm^2");
 
 /// `blunt`: depth cut flat off every tip, for the printed curves (the ladder is fixed).
-const BLUNT_PARAM: Param = Param {
-    name: "blunt",
-    default: "10",
-    unit: "% of h",
-    help: "depth cut flat off every tip, for the printed curves (the ladder is fixed)",
-    kind: registry::Kind::positive(50.0, "% of the tooth height h"),
-};
+const BLUNT_PARAM: Param = Param::new("blunt", "10", "depth cut flat off every tip, for the printed curves (the ladder is fixed)", registry::Kind::positive(50.0, "% of the tooth height h")).unit("% of h");
 
 /// `samples`: driver angles per driver pitch (an ideal pair repeats every driver pitch).
-const SAMPLES: Param = Param {
-    name: "samples",
-    default: "200",
-    unit: "",
-    help: "driver angles per driver pitch (an ideal pair repeats every driver pitch)",
-    kind: registry::Kind::count(8, registry::MAX_COUNT as u64, "a sigma needs samples"),
-};
+const SAMPLES: Param = Param::new("samples", "200", "driver angles per driver pitch (an ideal pair repeats every driver pitch)", registry::Kind::count(8, registry::MAX_COUNT as u64, "a sigma needs samples"));
 
-const PARAMS: &[Param] = &[TOLERANCE, BLUNT_PARAM, SAMPLES];
-
-registry::inventory::submit! {
-    Experiment {
-        id: "contact-tolerance",
-        title: "Figure IV under an area contact test with a tolerance, or with blunt tips",
-        paper_item: "Figure IV and Appendix II (beyond the paper)",
-        params: PARAMS,
-        groups: &[study::gearing::SHAPE],
-        config: None,
-        run,
-    }
+crate::experiment! {
+    id: "contact-tolerance", paper_item: "Figure IV and Appendix II (beyond the paper)", run,
+    title: "Figure IV under an area contact test with a tolerance, or with blunt tips",
+    params: [TOLERANCE, BLUNT_PARAM, SAMPLES], groups: [study::gearing::SHAPE],
 }
 
 /// Overlap areas ignored (mm²) in the ladder; 0 is the exact test.

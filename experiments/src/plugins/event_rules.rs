@@ -7,7 +7,7 @@
 //! not depend on the rule), and the per-rule counts go into the shared cell cache, so Tables 3, 4
 //! and I run afterwards in the same process (`run all`) find their cells already run.
 
-use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
 use rules::Rule;
 use train::Gearing;
 
@@ -18,35 +18,15 @@ use study::limits::IdealPair;
 use study::grids::CellSettings;
 
 /// `clearances`: Table I's clearances G, comma-separated (the paper: 10, 40 and 70).
-const CLEARANCES: Param = Param {
-    name: "clearances",
-    default: "10,40,70",
-    unit: "% of h",
-    help: "Table I's clearances G, comma-separated (the paper: 10, 40 and 70)",
-    kind: registry::Kind::Text,
-};
+const CLEARANCES: Param = Param::new("clearances", "10,40,70", "Table I's clearances G, comma-separated (the paper: 10, 40 and 70)", registry::Kind::Text).unit("% of h");
 
 /// `limit_tolerance`: how closely each ideal mesh's clearance limits are located (bisection).
-const LIMIT_TOLERANCE: Param = Param {
-    name: "limit_tolerance",
-    default: "0.1",
-    unit: "% of h",
-    help: "how closely each ideal mesh's clearance limits are located (bisection)",
-    kind: registry::Kind::number(0.001, 10.0, "% of h"),
-};
+const LIMIT_TOLERANCE: Param = Param::new("limit_tolerance", "0.1", "how closely each ideal mesh's clearance limits are located (bisection)", registry::Kind::number(0.001, 10.0, "% of h")).unit("% of h");
 
-const PARAMS: &[Param] = &[study::grids::TRIALS, CLEARANCES, LIMIT_TOLERANCE];
-
-registry::inventory::submit! {
-    Experiment {
-        id: "event-rules",
-        title: "Every event rule side by side: the paper's counts of Tables 3, 4 and I consistent with ours, and the ideal meshes' clearance limits",
-        paper_item: "Tables 3, 4, I and section 3 / Appendix II (what counts as a jam or a disengagement)",
-        params: PARAMS,
-        groups: &[study::gearing::GROUP, study::errors::CASES_GROUP, study::tolerance::RANDOM_GRID],
-        config: None,
-        run,
-    }
+crate::experiment! {
+    id: "event-rules", paper_item: "Tables 3, 4, I and section 3 / Appendix II (what counts as a jam or a disengagement)", run,
+    title: "Every event rule side by side: the paper's counts of Tables 3, 4 and I consistent with ours, and the ideal meshes' clearance limits",
+    params: [study::grids::TRIALS, CLEARANCES, LIMIT_TOLERANCE], groups: [study::gearing::GROUP, study::errors::CASES_GROUP, study::tolerance::RANDOM_GRID],
 }
 
 /// Where a cell's paper counts are: experiment id and key in `paper.ron`, and the group of
@@ -68,7 +48,6 @@ fn every_rule() -> Result<Vec<Rule>, RunError> {
         .map(|n| Rule::parse(n).map_err(|e| RunError::Internal(e.to_string())))
         .collect()
 }
-
 
 /// The cells of Tables 3 (Cases A-D at the clearance), 4 (the random grid, no systematic error)
 /// and I (Cases A-D at each of its clearances), each with where its paper counts are.

@@ -11,10 +11,9 @@
 //! the simulated stretch (to the horizon or the mesh's first jam) times its teeth: the teeth that
 //! passed through the mesh.
 
-
 use hypotheses::Params;
 use registry::{
-    Agreement, Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64,
+    Agreement, Context, OutputFile, Param, Report, RunError, Table, fmt_f64,
 };
 use stats::DAYS_PER_YEAR;
 
@@ -28,35 +27,15 @@ use study::whole_mechanism::{
 use crate::common::{Plot, Series, mean_cell, percent_cell};
 
 /// `trials`: whole-mechanism runs per input (the paper: 30).
-const TRIALS: Param = Param {
-    name: "trials",
-    default: RUNS_DEFAULT,
-    unit: "",
-    help: "whole-mechanism runs per input (the paper: 30)",
-    kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
-};
+const TRIALS: Param = Param::new("trials", RUNS_DEFAULT, "whole-mechanism runs per input (the paper: 30)", registry::Kind::count(1, registry::MAX_TRIALS, ""));
 
 /// `measured`: per-gear error table (RON, as crates/hypotheses/data/measured-example.ron), run with the measured hypothesis; empty: not run.
-const MEASURED: Param = Param {
-    name: "measured",
-    default: "",
-    unit: "",
-    help: "per-gear error table (RON, as crates/hypotheses/data/measured-example.ron), run with the measured hypothesis; empty: not run",
-    kind: registry::Kind::Text,
-};
+const MEASURED: Param = Param::new("measured", "", "per-gear error table (RON, as crates/hypotheses/data/measured-example.ron), run with the measured hypothesis; empty: not run", registry::Kind::Text);
 
-const PARAMS: &[Param] = &[TRIALS, DAYS, CASES_PARAM, MEASURED, gearing::PIN_AND_SLOT];
-
-registry::inventory::submit! {
-    Experiment {
-        id: "failure",
-        title: "Days to the first jam of each train, whole mechanisms with Edmunds' errors at G = 40 %",
-        paper_item: "Section 5, the 30-run study",
-        params: PARAMS,
-        groups: &[study::gearing::GROUP, study::errors::CASES_GROUP, study::events::GROUP],
-        config: None,
-        run,
-    }
+crate::experiment! {
+    id: "failure", paper_item: "Section 5, the 30-run study", run,
+    title: "Days to the first jam of each train, whole mechanisms with Edmunds' errors at G = 40 %",
+    params: [TRIALS, DAYS, CASES_PARAM, MEASURED, gearing::PIN_AND_SLOT], groups: [study::gearing::GROUP, study::errors::CASES_GROUP, study::events::GROUP],
 }
 
 /// Points of b at which the survival table is read: degrees of the solar (b) pointer.
@@ -284,12 +263,6 @@ fn detail_table(inputs: &[Input<'_>], summaries: &[Vec<Summary>], trials: u64, d
     );
     for (inp, s) in inputs.iter().zip(summaries) {
         for (name, s) in train_names().zip(s) {
-            let meshes: Vec<String> = s
-                .meshes
-                .iter()
-                .take(4)
-                .map(|(m, c)| format!("{m} ({c})"))
-                .collect();
             table.row(vec![
                 inp.label.clone(),
                 name.into(),
@@ -302,11 +275,7 @@ fn detail_table(inputs: &[Input<'_>], summaries: &[Vec<Summary>], trials: u64, d
                 format!("{}/{}", s.days.len(), s.year.n),
                 mean_cell(&s.days, days),
                 stats::median(&s.days).map_or_else(|| "-".into(), |d| fmt_f64(d, 0)),
-                if meshes.is_empty() {
-                    "-".into()
-                } else {
-                    meshes.join(", ")
-                },
+                crate::common::jammed_first(&s.meshes),
             ]);
         }
     }

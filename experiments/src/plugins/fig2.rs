@@ -4,7 +4,7 @@
 use std::f64::consts::TAU;
 
 use contact::Start;
-use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
 
 use crate::common::{MAX_DATA_ROWS, Series, csv, deg, line_plot, paper_cell};
 use study::equal_pair;
@@ -13,26 +13,12 @@ use study::equal_pair;
 const MAX_TEETH: usize = 500;
 
 /// `step`: driver angle between samples.
-const STEP: Param = Param {
-    name: "step",
-    default: "0.01",
-    unit: "deg",
-    help: "driver angle between samples",
-    kind: registry::Kind::positive(10.0, "degrees"),
-};
+const STEP: Param = Param::new("step", "0.01", "driver angle between samples", registry::Kind::positive(10.0, "degrees")).unit("deg");
 
-const PARAMS: &[Param] = &[STEP];
-
-registry::inventory::submit! {
-    Experiment {
-        id: "fig2",
-        title: "theta(phi) and Theoretical Difference of two N = 8 triangular-tooth gears, simulated vs closed form",
-        paper_item: "Figure 2 (section 2) and Figure III (Appendix I)",
-        params: PARAMS,
-        groups: &[study::equal_pair::GROUP, study::events::GROUP],
-        config: None,
-        run,
-    }
+crate::experiment! {
+    id: "fig2", paper_item: "Figure 2 (section 2) and Figure III (Appendix I)", run,
+    title: "theta(phi) and Theoretical Difference of two N = 8 triangular-tooth gears, simulated vs closed form",
+    params: [STEP], groups: [study::equal_pair::GROUP, study::events::GROUP],
 }
 
 /// Figure 2's numbers: θ'(0), the largest difference from the closed forms over `samples + 1`

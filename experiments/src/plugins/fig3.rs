@@ -4,39 +4,21 @@
 use std::f64::consts::TAU;
 
 use contact::{Start, Trajectory};
-use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
 
 use crate::common::{Series, csv, deg, line_plot};
 use study::equal_pair;
 
 /// `pitches`: length of each run.
-const PITCHES: Param = Param {
-    name: "pitches",
-    default: "3",
-    unit: "driver teeth",
-    help: "length of each run",
-    kind: registry::Kind::count(
-        1,
-        registry::MAX_COUNT as u64,
-        "a run spans at least one tooth",
-    ),
-};
+const PITCHES: Param = Param::new("pitches", "3", "length of each run", registry::Kind::count(1, registry::MAX_COUNT as u64, "a run spans at least one tooth")).unit("driver teeth");
 
 /// `samples`: samples per run.
 const SAMPLES: Param = registry::samples("1200", "samples per run");
 
-const PARAMS: &[Param] = &[PITCHES, SAMPLES];
-
-registry::inventory::submit! {
-    Experiment {
-        id: "fig3",
-        title: "Theoretical Difference for three initial angles: lagging, centred, leading",
-        paper_item: "Figure 3 (section 2)",
-        params: PARAMS,
-        groups: &[study::equal_pair::GROUP],
-        config: None,
-        run,
-    }
+crate::experiment! {
+    id: "fig3", paper_item: "Figure 3 (section 2)", run,
+    title: "Theoretical Difference for three initial angles: lagging, centred, leading",
+    params: [PITCHES, SAMPLES], groups: [study::equal_pair::GROUP],
 }
 
 /// Number of points used to find the extreme and centred initial angles over one pitch.

@@ -3,34 +3,20 @@
 
 use std::f64::consts::TAU;
 
-use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
 
 use crate::common::{Series, csv, line_plot};
 
 /// `trial`: which trial's random initial angles (stream of the seed).
-const TRIAL: Param = Param {
-    name: "trial",
-    default: "0",
-    unit: "",
-    help: "which trial's random initial angles (stream of the seed)",
-    kind: registry::Kind::count(0, u64::MAX, ""),
-};
+const TRIAL: Param = Param::new("trial", "0", "which trial's random initial angles (stream of the seed)", registry::Kind::count(0, u64::MAX, ""));
 
 /// `samples`: samples over the solar turn.
 const SAMPLES: Param = registry::samples("7200", "samples over the solar turn");
 
-const PARAMS: &[Param] = &[TRIAL, SAMPLES];
-
-registry::inventory::submit! {
-    Experiment {
-        id: "fig4",
-        title: "One instance of the Lunar, Metonic and Saros Theoretical Difference over the first solar turn",
-        paper_item: "Figure 4 (section 3)",
-        params: PARAMS,
-        groups: &[study::gearing::GROUP, study::events::GROUP],
-        config: None,
-        run,
-    }
+crate::experiment! {
+    id: "fig4", paper_item: "Figure 4 (section 3)", run,
+    title: "One instance of the Lunar, Metonic and Saros Theoretical Difference over the first solar turn",
+    params: [TRIAL, SAMPLES], groups: [study::gearing::GROUP, study::events::GROUP],
 }
 
 const POINTERS: [(&str, &str); 3] = [("Lunar", "A"), ("Metonic", "B"), ("Saros", "C")];
@@ -80,14 +66,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             ),
             "solar pointer (b arbor) angle [deg]",
             "Theoretical Difference [deg]",
-            &[Series {
-                label: name,
-                points: psis
-                    .iter()
-                    .map(|p| p.to_degrees())
-                    .zip(td.iter().copied())
-                    .collect(),
-            }],
+            &[Series::in_degrees(name, &psis, &td)],
         )?;
         files.push(OutputFile::new(
             format!("fig4{}.svg", panel.to_lowercase()),

@@ -6,7 +6,7 @@ use std::f64::consts::TAU;
 use edmunds::RadialPair;
 use geometry::Gear;
 use registry::{
-    Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64, fmt_number,
+    Context, OutputFile, Param, Report, RunError, Table, fmt_f64, fmt_number,
 };
 
 use crate::common::{Series, csv, line_plot};
@@ -21,74 +21,27 @@ const ROOT_RADIUS: Param = study::equal_pair::length("root_radius", "180", "r of
 /// `clearance`: clearance G of the pair. Not the gearing group's `clearance`
 /// ([`study::gearing::CLEARANCE`], default 40): Figure 5 runs a pair of its own, not the
 /// gearing, with a default of its own (50 %) under the same name.
-const PAIR_CLEARANCE: Param = Param {
-    name: "clearance",
-    default: "50",
-    unit: "% of h",
-    help: "clearance G",
-    kind: registry::Kind::positive(100.0, "% of the tooth height h"),
-};
+const PAIR_CLEARANCE: Param = Param::new("clearance", "50", "clearance G", registry::Kind::positive(100.0, "% of the tooth height h")).unit("% of h");
 
 /// `random`: random tooth error (sd).
-const RANDOM: Param = Param {
-    name: "random",
-    default: "0.05",
-    unit: "of the pitch",
-    help: "random tooth error (sd)",
-    kind: registry::Kind::number(0.0, hypotheses::MAX_RANDOM, "of the pitch"),
-};
+const RANDOM: Param = Param::new("random", "0.05", "random tooth error (sd)", registry::Kind::number(0.0, hypotheses::MAX_RANDOM, "of the pitch")).unit("of the pitch");
 
 /// `systematic`: systematic error amplitude A.
-const SYSTEMATIC: Param = Param {
-    name: "systematic",
-    default: "0.6",
-    unit: "deg",
-    help: "systematic error amplitude A",
-    kind: registry::Kind::number(0.0, 45.0, "deg"),
-};
+const SYSTEMATIC: Param = Param::new("systematic", "0.6", "systematic error amplitude A", registry::Kind::number(0.0, 45.0, "deg")).unit("deg");
 
 /// `trial`: which trial stream of the seed.
-const TRIAL: Param = Param {
-    name: "trial",
-    default: "0",
-    unit: "",
-    help: "which trial stream of the seed",
-    kind: registry::Kind::count(0, u64::MAX, ""),
-};
+const TRIAL: Param = Param::new("trial", "0", "which trial stream of the seed", registry::Kind::count(0, u64::MAX, ""));
 
 /// `samples`: samples over the turn.
 const SAMPLES: Param = registry::samples("3600", "samples over the turn");
 
 /// `teeth`: teeth of both gears.
-const TEETH: Param = Param {
-    name: "teeth",
-    default: "50",
-    unit: "",
-    help: "teeth of both gears",
-    kind: registry::Kind::count(3, geometry::MAX_TEETH as u64, "a gear needs three teeth"),
-};
+const TEETH: Param = Param::new("teeth", "50", "teeth of both gears", registry::Kind::count(3, geometry::MAX_TEETH as u64, "a gear needs three teeth"));
 
-const PARAMS: &[Param] = &[
-    TEETH,
-    TIP_RADIUS,
-    ROOT_RADIUS,
-    PAIR_CLEARANCE,
-    RANDOM,
-    SYSTEMATIC,
-    TRIAL,
-    SAMPLES,
-];
-
-registry::inventory::submit! {
-    Experiment {
-        id: "fig5",
-        title: "Edmunds' model against triangular teeth for three splits of the systematic error",
-        paper_item: "Figure 5 (section 4)",
-        params: PARAMS,
-        groups: &[study::errors::GROUP, study::events::GROUP],
-        config: None,
-        run,
-    }
+crate::experiment! {
+    id: "fig5", paper_item: "Figure 5 (section 4)", run,
+    title: "Edmunds' model against triangular teeth for three splits of the systematic error",
+    params: [TEETH, TIP_RADIUS, ROOT_RADIUS, PAIR_CLEARANCE, RANDOM, SYSTEMATIC, TRIAL, SAMPLES], groups: [study::errors::GROUP, study::events::GROUP],
 }
 
 const SPLITS: [(&str, f64); 3] = [
@@ -122,22 +75,8 @@ fn panels(
             "driver angle phi [deg]",
             "Theoretical Difference [deg]",
             &[
-                Series {
-                    label: "Edmunds (radial lines)",
-                    points: phis
-                        .iter()
-                        .map(|p| p.to_degrees())
-                        .zip(rad.iter().copied())
-                        .collect(),
-                },
-                Series {
-                    label: "triangular teeth",
-                    points: phis
-                        .iter()
-                        .map(|p| p.to_degrees())
-                        .zip(tri.iter().copied())
-                        .collect(),
-                },
+                Series::in_degrees("Edmunds (radial lines)", phis, rad),
+                Series::in_degrees("triangular teeth", phis, tri),
             ],
         )?;
         files.push(OutputFile::new(format!("fig5{label}.svg"), svg));

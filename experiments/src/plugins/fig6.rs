@@ -2,7 +2,7 @@
 //! meshes takes the smaller), beside the paper's (its Table 5 E. max row) and, when a table of
 //! measured errors is given, the measured ones.
 
-use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table};
+use registry::{Context, OutputFile, Param, Report, RunError, Table};
 
 use crate::common::{Series, category_plot};
 use study::cell::{Purpose, label};
@@ -11,26 +11,12 @@ use crate::emax::{paper_random, show};
 use study::tolerance::{self, RULE};
 
 /// `measured`: RON table of measured per-gear errors (the `measured` hypothesis' format) to draw beside ours; empty (or none): no measured values.
-const MEASURED: Param = Param {
-    name: "measured",
-    default: "",
-    unit: "",
-    help: "RON table of measured per-gear errors (the `measured` hypothesis' format) to draw beside ours; empty (or none): no measured values",
-    kind: registry::Kind::Text,
-};
+const MEASURED: Param = Param::new("measured", "", "RON table of measured per-gear errors (the `measured` hypothesis' format) to draw beside ours; empty (or none): no measured values", registry::Kind::Text);
 
-const PARAMS: &[Param] = &[TRIALS, RULE, MEASURED];
-
-registry::inventory::submit! {
-    Experiment {
-        id: "fig6",
-        title: "Largest tolerable random error of each gear (from Table 4 by the 1 % rule), beside the paper's and any measured errors",
-        paper_item: "Figure 6 (section 5)",
-        params: PARAMS,
-        groups: &[study::gearing::GROUP, study::errors::GROUP, study::tolerance::RANDOM_GRID, study::events::GROUP],
-        config: None,
-        run,
-    }
+crate::experiment! {
+    id: "fig6", paper_item: "Figure 6 (section 5)", run,
+    title: "Largest tolerable random error of each gear (from Table 4 by the 1 % rule), beside the paper's and any measured errors",
+    params: [TRIALS, RULE, MEASURED], groups: [study::gearing::GROUP, study::errors::GROUP, study::tolerance::RANDOM_GRID, study::events::GROUP],
 }
 
 /// The measured table named by the `measured` parameter, if any: (file name, table).
@@ -221,13 +207,11 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             OutputFile::new("fig6-data.csv", csv),
             OutputFile::new("fig6.svg", svg),
         ],
-        trials: grid.all().map(|c| c.trials).sum(),
-        engagements: grid.all().map(|c| c.engagements).sum(),
         agreement: Some(registry::Agreement {
             consistent: inside,
             differ: outside,
         }),
-        ..Default::default()
+        ..crate::cells::counts_report(grid.all())
     })
 }
 

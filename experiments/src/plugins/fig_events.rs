@@ -2,31 +2,17 @@
 //! inside its jam limit at its first jam, and just beyond its disengagement limit at its first
 //! disengagement, each drawn zoomed on the two teeth involved.
 
-use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
 
 use study::gearing;
 
 /// `margin`: how far inside the jam limit and beyond the disengagement limit the two runs are made.
-const MARGIN: Param = Param {
-    name: "margin",
-    default: "1",
-    unit: "% of h",
-    help: "how far inside the jam limit and beyond the disengagement limit the two runs are made",
-    kind: registry::Kind::number(0.01, 20.0, "% of h"),
-};
+const MARGIN: Param = Param::new("margin", "1", "how far inside the jam limit and beyond the disengagement limit the two runs are made", registry::Kind::number(0.01, 20.0, "% of h")).unit("% of h");
 
-const PARAMS: &[Param] = &[study::limits::MESH, MARGIN];
-
-registry::inventory::submit! {
-    Experiment {
-        id: "fig-events",
-        title: "A jam and a decoupling of one ideal mesh, drawn at the instant they happen",
-        paper_item: "Figures V_A and V_B (Appendix II)",
-        params: PARAMS,
-        groups: &[study::gearing::SHAPE, study::events::GROUP],
-        config: None,
-        run,
-    }
+crate::experiment! {
+    id: "fig-events", paper_item: "Figures V_A and V_B (Appendix II)", run,
+    title: "A jam and a decoupling of one ideal mesh, drawn at the instant they happen",
+    params: [study::limits::MESH, MARGIN], groups: [study::gearing::SHAPE, study::events::GROUP],
 }
 
 /// How closely the limits are located before stepping `margin` past them (% of h).

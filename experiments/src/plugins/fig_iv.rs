@@ -1,55 +1,28 @@
 //! `figIV`: σ of each driven gear's Theoretical Difference against the clearance G, for ideal
 //! gears of the mechanism's meshes, with each pair's jam and disengagement limits.
 
-use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
 
 use crate::common::{Limit, LimitKind, Plot, Series};
 use study::gearing;
 use study::limits::IdealPair;
 
-
 /// `from`: first clearance of the sweep.
-const FROM: Param = Param {
-    name: "from",
-    default: "10",
-    unit: "% of h",
-    help: "first clearance of the sweep",
-    kind: registry::Kind::number(0.0, 100.0, "% of h"),
-};
+const FROM: Param = Param::new("from", "10", "first clearance of the sweep", registry::Kind::number(0.0, 100.0, "% of h")).unit("% of h");
 
 /// `to`: last clearance of the sweep.
-const TO: Param = Param {
-    name: "to",
-    default: "90",
-    unit: "% of h",
-    help: "last clearance of the sweep",
-    kind: registry::Kind::number(0.0, 100.0, "% of h"),
-};
+const TO: Param = Param::new("to", "90", "last clearance of the sweep", registry::Kind::number(0.0, 100.0, "% of h")).unit("% of h");
 
 /// `step`: clearance step.
-const STEP: Param = Param {
-    name: "step",
-    default: "5",
-    unit: "% of h",
-    help: "clearance step",
-    kind: registry::Kind::number(0.25, 50.0, "% of h"),
-};
+const STEP: Param = Param::new("step", "5", "clearance step", registry::Kind::number(0.25, 50.0, "% of h")).unit("% of h");
 
 /// `samples`: TD samples per run.
 const SAMPLES: Param = registry::samples("2000", "TD samples per run");
 
-const PARAMS: &[Param] = &[FROM, TO, STEP, SAMPLES];
-
-registry::inventory::submit! {
-    Experiment {
-        id: "figIV",
-        title: "sigma of the driven gear against clearance G for the mechanism's meshes (semi-log), with jam and disengagement limits",
-        paper_item: "Figure IV (Appendix II)",
-        params: PARAMS,
-        groups: &[study::gearing::SHAPE, study::events::GROUP],
-        config: None,
-        run,
-    }
+crate::experiment! {
+    id: "figIV", paper_item: "Figure IV (Appendix II)", run,
+    title: "sigma of the driven gear against clearance G for the mechanism's meshes (semi-log), with jam and disengagement limits",
+    params: [FROM, TO, STEP, SAMPLES], groups: [study::gearing::SHAPE, study::events::GROUP],
 }
 
 /// `from` must not exceed `to`; the error names the one the user set: `to` below the default

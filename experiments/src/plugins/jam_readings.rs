@@ -12,7 +12,7 @@
 //! the tables build them), so the readings differ only by the contact test.
 
 use polycheck::stepped::Stepping;
-use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
 use study::area_test::{Reading, run_all};
 use study::cell::{CellSpec, PAPER_TRIALS, label};
 use study::grids::{CASES, CellSettings};
@@ -22,71 +22,27 @@ use train::Gearing;
 use crate::cells::{cell, consistent_with_paper, paper_counts, share};
 
 /// `trials`: trials per cell (a screening count; the paper: 200).
-const TRIALS: Param = Param {
-    name: "trials",
-    default: "10",
-    unit: "",
-    help: "trials per cell (a screening count; the paper: 200)",
-    kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
-};
+const TRIALS: Param = Param::new("trials", "10", "trials per cell (a screening count; the paper: 200)", registry::Kind::count(1, registry::MAX_TRIALS, ""));
 
 /// `clearances`: Table I's clearances G, comma-separated (the paper: 10, 40 and 70).
-const CLEARANCES: Param = Param {
-    name: "clearances",
-    default: "10,40,70",
-    unit: "% of h",
-    help: "Table I's clearances G, comma-separated (the paper: 10, 40 and 70)",
-    kind: registry::Kind::Text,
-};
+const CLEARANCES: Param = Param::new("clearances", "10,40,70", "Table I's clearances G, comma-separated (the paper: 10, 40 and 70)", registry::Kind::Text).unit("% of h");
 
 /// `tolerances`: overlap areas the area test ignores, one reading each, comma-separated.
-const TOLERANCES: Param = Param {
-    name: "tolerances",
-    default: "0.0001,0.001,0.003",
-    unit: "mm^2",
-    help: "overlap areas the area test ignores, one reading each, comma-separated",
-    kind: registry::Kind::Text,
-};
+const TOLERANCES: Param = Param::new("tolerances", "0.0001,0.001,0.003", "overlap areas the area test ignores, one reading each, comma-separated", registry::Kind::Text).unit("mm^2");
 
 /// `steps_per_pitch`: driver steps per driver pitch of the area test (the driver turns by a fixed step).
-const STEPS_PER_PITCH: Param = Param {
-    name: "steps_per_pitch",
-    default: "20",
-    unit: "",
-    help: "driver steps per driver pitch of the area test (the driver turns by a fixed step)",
-    kind: registry::Kind::count(2, 10_000, "a step of at most half a pitch"),
-};
+const STEPS_PER_PITCH: Param = Param::new("steps_per_pitch", "20", "driver steps per driver pitch of the area test (the driver turns by a fixed step)", registry::Kind::count(2, 10_000, "a step of at most half a pitch"));
 
 /// `reach`: how far ahead the area test looks for a free driven position before calling a jam.
-const REACH: Param = Param {
-    name: "reach",
-    default: "1",
-    unit: "driven pitch",
-    help: "how far ahead the area test looks for a free driven position before calling a jam",
-    kind: registry::Kind::number(0.05, 10.0, "driven pitches"),
-};
+const REACH: Param = Param::new("reach", "1", "how far ahead the area test looks for a free driven position before calling a jam", registry::Kind::number(0.05, 10.0, "driven pitches")).unit("driven pitch");
 
 /// `search_steps`: steps per driven pitch of the area test's forward search (then bisected).
-const SEARCH_STEPS: Param = Param {
-    name: "search_steps",
-    default: "64",
-    unit: "",
-    help: "steps per driven pitch of the area test's forward search (then bisected)",
-    kind: registry::Kind::count(4, 100_000, "a search step of at most a quarter pitch"),
-};
+const SEARCH_STEPS: Param = Param::new("search_steps", "64", "steps per driven pitch of the area test's forward search (then bisected)", registry::Kind::count(4, 100_000, "a search step of at most a quarter pitch"));
 
-const PARAMS: &[Param] = &[TRIALS, CLEARANCES, TOLERANCES, STEPS_PER_PITCH, REACH, SEARCH_STEPS];
-
-registry::inventory::submit! {
-    Experiment {
-        id: "jam-readings",
-        title: "The jams of Tables 3, 4 and I under the paper's kind of contact test (stepped driver, overlap area up to a tolerance) beside our exact solver",
-        paper_item: "Tables 3, 4 and I, and section 3 (the area contact test)",
-        params: PARAMS,
-        groups: &[study::gearing::GROUP, study::errors::CASES_GROUP, study::tolerance::RANDOM_GRID],
-        config: None,
-        run,
-    }
+crate::experiment! {
+    id: "jam-readings", paper_item: "Tables 3, 4 and I, and section 3 (the area contact test)", run,
+    title: "The jams of Tables 3, 4 and I under the paper's kind of contact test (stepped driver, overlap area up to a tolerance) beside our exact solver",
+    params: [TRIALS, CLEARANCES, TOLERANCES, STEPS_PER_PITCH, REACH, SEARCH_STEPS], groups: [study::gearing::GROUP, study::errors::CASES_GROUP, study::tolerance::RANDOM_GRID],
 }
 
 /// Where a cell's paper counts are, the region it is tallied in, its mesh, and which of the

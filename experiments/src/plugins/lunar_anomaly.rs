@@ -8,7 +8,7 @@
 //! The Cases' trials use table2's RNG streams (Case index, trial), so that without the
 //! pin-and-slot they are table2's triangular Lunar trials, number for number.
 
-use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
 use stats::{DAYS_PER_YEAR, Estimate, mean_ci95};
 
 use crate::common::{Series, csv, line_plot, paper_cell};
@@ -28,26 +28,12 @@ const LUNAR_TURNS: Param = study::pointers::turns("lunar_turns", "1", "run lengt
 const SAMPLES_PER_ENGAGEMENT: Param = study::pointers::per_engagement("8", "TD samples per engagement of the busiest mesh");
 
 /// `curve_samples`: points of the anomaly curve over one anomalistic month (amplitude and plot).
-const CURVE_SAMPLES: Param = Param {
-    name: "curve_samples",
-    default: "2000",
-    unit: "",
-    help: "points of the anomaly curve over one anomalistic month (amplitude and plot)",
-    kind: registry::Kind::count(100, registry::MAX_COUNT as u64, ""),
-};
+const CURVE_SAMPLES: Param = Param::new("curve_samples", "2000", "points of the anomaly curve over one anomalistic month (amplitude and plot)", registry::Kind::count(100, registry::MAX_COUNT as u64, ""));
 
-const PARAMS: &[Param] = &[TRIALS, LUNAR_TURNS, SAMPLES_PER_ENGAGEMENT, CURVE_SAMPLES];
-
-registry::inventory::submit! {
-    Experiment {
-        id: "lunar-anomaly",
-        title: "The pin-and-slot lunar anomaly on the Lunar pointer (beyond the paper)",
-        paper_item: "Section 6 (assumptions) / Freeth 2006",
-        params: PARAMS,
-        groups: &[study::gearing::GROUP, study::errors::CASES_GROUP, study::events::GROUP],
-        config: None,
-        run,
-    }
+crate::experiment! {
+    id: "lunar-anomaly", paper_item: "Section 6 (assumptions) / Freeth 2006", run,
+    title: "The pin-and-slot lunar anomaly on the Lunar pointer (beyond the paper)",
+    params: [TRIALS, LUNAR_TURNS, SAMPLES_PER_ENGAGEMENT, CURVE_SAMPLES], groups: [study::gearing::GROUP, study::errors::CASES_GROUP, study::events::GROUP],
 }
 
 /// The pointer the pin-and-slot sits on.

@@ -1,8 +1,7 @@
 //! `pair`: any mesh described in a RON file (tooth counts, radii, optional measured tip angles and
 //! eccentricity, centre distance or clearance): θ(φ), Theoretical Difference and every event.
 
-
-use registry::{Context, Experiment, OutputFile, Report, RunError, Table, fmt_f64};
+use registry::{Context, OutputFile, Report, RunError, Table, fmt_f64};
 
 use crate::common::{Mark, Series, csv, deg, marked_plot};
 use crate::pair_svg::check_svg;
@@ -11,16 +10,11 @@ use study::pair_file::{Prepared, default_run_deg, prepare};
 const EXAMPLE: &str = include_str!("../../data/pair-example.ron");
 const EXAMPLE_NAME: &str = "experiments/data/pair-example.ron";
 
-registry::inventory::submit! {
-    Experiment {
-        id: "pair",
-        title: "One mesh from a RON file: theta(phi), Theoretical Difference, jams and disengagements",
-        paper_item: "sections 2-3 (any gear pair, e.g. measured from CT scans)",
-        params: &[],
-        groups: &[study::events::GROUP],
-        config: Some(CONFIG_HELP),
-        run,
-    }
+crate::experiment! {
+    id: "pair", paper_item: "sections 2-3 (any gear pair, e.g. measured from CT scans)", run,
+    title: "One mesh from a RON file: theta(phi), Theoretical Difference, jams and disengagements",
+    params: [], groups: [study::events::GROUP],
+    config: CONFIG_HELP,
 }
 
 /// What `cargo xtask help pair` says of the file: its fields, then every convention in a

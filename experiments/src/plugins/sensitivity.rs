@@ -10,7 +10,7 @@
 //! trial t, so every row runs the same mechanisms, changed only by its assumption: the rows
 //! differ by the assumption, not by luck in the draws (common random numbers).
 
-use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
 use stats::mean_ci95;
 use train::Gearing;
 
@@ -22,35 +22,15 @@ use study::gearing;
 use study::grids::CASES;
 
 /// `trials`: whole-mechanism runs per row (the paper's failure study: 30).
-const TRIALS: Param = Param {
-    name: "trials",
-    default: "60",
-    unit: "",
-    help: "whole-mechanism runs per row (the paper's failure study: 30)",
-    kind: registry::Kind::count(2, registry::MAX_TRIALS, "an interval needs two runs"),
-};
+const TRIALS: Param = Param::new("trials", "60", "whole-mechanism runs per row (the paper's failure study: 30)", registry::Kind::count(2, registry::MAX_TRIALS, "an interval needs two runs"));
 
 /// `case`: Edmunds' case every row starts from (A, B, C or D).
-const CASE: Param = Param {
-    name: "case",
-    default: "B",
-    unit: "",
-    help: "Edmunds' case every row starts from (A, B, C or D)",
-    kind: registry::Kind::Text,
-};
+const CASE: Param = Param::new("case", "B", "Edmunds' case every row starts from (A, B, C or D)", registry::Kind::Text);
 
-const PARAMS: &[Param] = &[TRIALS, whole::DAYS, CASE, errors::SPLIT, errors::PARAM];
-
-registry::inventory::submit! {
-    Experiment {
-        id: "sensitivity",
-        title: "How the Case B failure study moves when one assumption of the paper is changed (beyond the paper)",
-        paper_item: "Section 6, assumptions (1)-(5)",
-        params: PARAMS,
-        groups: &[study::gearing::GROUP, study::events::GROUP],
-        config: None,
-        run,
-    }
+crate::experiment! {
+    id: "sensitivity", paper_item: "Section 6, assumptions (1)-(5)", run,
+    title: "How the Case B failure study moves when one assumption of the paper is changed (beyond the paper)",
+    params: [TRIALS, whole::DAYS, CASE, errors::SPLIT, errors::PARAM], groups: [study::gearing::GROUP, study::events::GROUP],
 }
 
 /// One row: the paper's model with one thing changed.

@@ -7,7 +7,7 @@
 
 use std::collections::BTreeMap;
 
-use registry::{Context, Experiment, Param, Report, RunError, Table, fmt_f64};
+use registry::{Context, Param, Report, RunError, Table, fmt_f64};
 use train::Gearing;
 
 use study::readings::{
@@ -16,52 +16,26 @@ use study::readings::{
 use study::pointers::POINTERS;
 
 /// `trials`: Table 1 trials per reading (random initial angles; the same draws for every reading).
-const TRIALS: Param = Param {
-    name: "trials",
-    default: "2",
-    unit: "",
-    help: "Table 1 trials per reading (random initial angles; the same draws for every reading)",
-    kind: registry::Kind::count(2, registry::MAX_TRIALS, "a pooled sigma needs two trials"),
-};
+const TRIALS: Param = Param::new("trials", "2", "Table 1 trials per reading (random initial angles; the same draws for every reading)", registry::Kind::count(2, registry::MAX_TRIALS, "a pooled sigma needs two trials"));
 
 /// `clearance`: Table 1's clearance G of every mesh (before a reading's extra centre distance).
 /// Not the gearing group's `clearance` ([`study::gearing::CLEARANCE`]): this experiment runs the
 /// embedded gearings only, so its clearance is Table 1's input alone, under the same name.
-const TABLE1_CLEARANCE: Param = Param {
-    name: "clearance",
-    default: "40",
-    unit: "% of h",
-    help: "Table 1's clearance G of every mesh (before a reading's extra centre distance)",
-    kind: registry::Kind::positive(100.0, "% of the tooth height h"),
-};
+const TABLE1_CLEARANCE: Param = Param::new("clearance", "40", "Table 1's clearance G of every mesh (before a reading's extra centre distance)", registry::Kind::positive(100.0, "% of the tooth height h")).unit("% of h");
 
 /// `samples_per_engagement`: TD samples per tooth engagement of the busiest mesh (Table 1's default).
 const SAMPLES_PER_ENGAGEMENT: Param = study::pointers::per_engagement("16", "TD samples per tooth engagement of the busiest mesh (Table 1's default)");
 
 /// `draws`: Figure IV with Case A errors: manufactured pairs per mesh (each swept over every G).
-const DRAWS: Param = Param {
-    name: "draws",
-    default: "3",
-    unit: "",
-    help: "Figure IV with Case A errors: manufactured pairs per mesh (each swept over every G)",
-    kind: registry::Kind::count(1, registry::MAX_COUNT as u64, "a mean needs one draw"),
-};
+const DRAWS: Param = Param::new("draws", "3", "Figure IV with Case A errors: manufactured pairs per mesh (each swept over every G)", registry::Kind::count(1, registry::MAX_COUNT as u64, "a mean needs one draw"));
 
 /// `samples`: TD samples per pair run of the Figure IV sweep (figIV's default).
 const SAMPLES: Param = registry::samples("2000", "TD samples per pair run of the Figure IV sweep (figIV's default)");
 
-const PARAMS: &[Param] = &[TRIALS, TABLE1_CLEARANCE, SAMPLES_PER_ENGAGEMENT, DRAWS, SAMPLES];
-
-registry::inventory::submit! {
-    Experiment {
-        id: "sigma-causes",
-        title: "Why our sigma differs from the paper's: Figure IV's minimum and Table 1's sigma under each candidate reading",
-        paper_item: "Table 1 and Figure IV (beyond the paper)",
-        params: PARAMS,
-        groups: &[],
-        config: None,
-        run,
-    }
+crate::experiment! {
+    id: "sigma-causes", paper_item: "Table 1 and Figure IV (beyond the paper)", run,
+    title: "Why our sigma differs from the paper's: Figure IV's minimum and Table 1's sigma under each candidate reading",
+    params: [TRIALS, TABLE1_CLEARANCE, SAMPLES_PER_ENGAGEMENT, DRAWS, SAMPLES], groups: [],
 }
 
 /// The run length of a pointer as `table1` runs it by default (the caption's turns of b).

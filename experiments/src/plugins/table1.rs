@@ -1,7 +1,7 @@
 //! `table1`: σ, Dm and P of the five pointers with ideal triangular teeth (no manufacturing
 //! error) at G = 40 %, averaged over trials with random initial angles.
 
-use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
 use stats::{Estimate, mean_ci95};
 
 use study::pointers::{POINTERS, PointerTrial, pointer_runs};
@@ -9,18 +9,10 @@ use study::pointers::{POINTERS, PointerTrial, pointer_runs};
 /// `trials`: trials, each with fresh random initial angles.
 const TRIALS: Param = registry::interval_trials("30", "trials, each with fresh random initial angles");
 
-const PARAMS: &[Param] = &[TRIALS];
-
-registry::inventory::submit! {
-    Experiment {
-        id: "table1",
-        title: "Pointer errors of ideal triangular teeth: sigma, Dm and P of five pointers",
-        paper_item: "Table 1 (section 3)",
-        params: PARAMS,
-        groups: &[study::gearing::GROUP, study::pointers::RUN_LENGTHS, study::events::GROUP],
-        config: None,
-        run,
-    }
+crate::experiment! {
+    id: "table1", paper_item: "Table 1 (section 3)", run,
+    title: "Pointer errors of ideal triangular teeth: sigma, Dm and P of five pointers",
+    params: [TRIALS], groups: [study::gearing::GROUP, study::pointers::RUN_LENGTHS, study::events::GROUP],
 }
 
 /// The key of the trial batch: everything that determines the trials.
@@ -144,21 +136,17 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
                 lay.push_str(&format!(" ({} / {} d)", fmt_f64(d, 3), cell(paper_days, 3)));
             }
             layout_rows[row].push(lay);
-            detail.row(vec![
-                format!("{name} ({turns} turns)"),
-                label.into(),
-                fmt_f64(e.mean, 4),
-                format!("{} .. {}", fmt_f64(e.lo, 4), fmt_f64(e.hi, 4)),
+            let mut cells = crate::common::estimate_cells(name, turns, label, &e);
+            cells.extend([
                 cell(paper, 3),
                 cell(ratio, 2),
                 cell(ours_days, 3),
                 cell(paper_days, 3),
             ]);
+            detail.row(cells);
             csv.push_str(&format!(
-                "{name},{label},{},{},{},{},{},{},{}\n",
-                e.mean,
-                e.lo,
-                e.hi,
+                "{},{},{},{},{}\n",
+                crate::common::estimate_csv(name, label, &e),
                 paper.map_or(String::new(), |v| v.to_string()),
                 ratio.map_or(String::new(), |v| v.to_string()),
                 ours_days.map_or(String::new(), |v| v.to_string()),

@@ -2,7 +2,7 @@
 //! same manufactured gears with triangular teeth, trial by trial, with the difference and its
 //! 95 % interval.
 
-use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
 use stats::mean_ci95;
 
 use crate::common::{Series, semilog_plot};
@@ -25,25 +25,10 @@ const SAROS_TURNS: Param = study::pointers::turns("saros_turns", "4.5", "run len
 /// `samples_per_engagement`: TD samples per engagement of the busiest mesh.
 const SAMPLES_PER_ENGAGEMENT: Param = study::pointers::per_engagement("8", "TD samples per engagement of the busiest mesh");
 
-const PARAMS: &[Param] = &[
-    TRIALS,
-    LUNAR_TURNS,
-    METONIC_TURNS,
-    SAROS_TURNS,
-    SAMPLES_PER_ENGAGEMENT,
-    gearing::PIN_AND_SLOT,
-];
-
-registry::inventory::submit! {
-    Experiment {
-        id: "table2",
-        title: "Edmunds' Cases A-D: his radial-line model beside his Table 2, and triangular teeth on the same gears",
-        paper_item: "Table 2 (section 4)",
-        params: PARAMS,
-        groups: &[study::gearing::GROUP, study::errors::CASES_GROUP, study::events::GROUP],
-        config: None,
-        run,
-    }
+crate::experiment! {
+    id: "table2", paper_item: "Table 2 (section 4)", run,
+    title: "Edmunds' Cases A-D: his radial-line model beside his Table 2, and triangular teeth on the same gears",
+    params: [TRIALS, LUNAR_TURNS, METONIC_TURNS, SAROS_TURNS, SAMPLES_PER_ENGAGEMENT, gearing::PIN_AND_SLOT], groups: [study::gearing::GROUP, study::errors::CASES_GROUP, study::events::GROUP],
 }
 
 const POINTERS: [(&str, &Param); 3] = [

@@ -1,33 +1,18 @@
 //! `table3`: trials with at least one jam / at least one disengagement, each of the 15 meshes on
 //! its own, Edmunds' Cases A-D at G = 40 %, 200 trials per cell, with 95 % Wilson intervals.
 
-use crate::replay::{Cell, CellGrammar, CellText};
-use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table};
+use crate::replay::{Cell, CellText};
+use registry::{Context, OutputFile, Report, RunError, Table};
 
 use study::cell::{Purpose, run_cells};
-use crate::cells::{CSV_COLUMNS, Tally, cell_text, csv_columns, paper_counts};
+use crate::cells::{CASE_TRIAL_NOTE, JamCells, case_paper_counts, counts_report, replay_note};
 use study::grids::{CASES, CellSettings, TRIALS, case_cells, cases_apply};
 
-const PARAMS: &[Param] = &[TRIALS];
-
-registry::inventory::submit! {
-    Experiment {
-        id: "table3",
-        title: "Jams and disengagements of each mesh on its own, Cases A-D at G = 40 %, 200 trials per cell",
-        paper_item: "Table 3 (section 5)",
-        params: PARAMS,
-        groups: &[study::gearing::GROUP, study::errors::CASES_GROUP, study::events::GROUP],
-        config: None,
-        run,
-    }
-}
-
-registry::inventory::submit! {
-    CellGrammar {
-        experiment: "table3",
-        form: "CASE/MESH, e.g. B/m3-e3",
-        parse: cell,
-    }
+crate::experiment! {
+    id: "table3", paper_item: "Table 3 (section 5)", run,
+    title: "Jams and disengagements of each mesh on its own, Cases A-D at G = 40 %, 200 trials per cell",
+    params: [TRIALS], groups: [study::gearing::GROUP, study::errors::CASES_GROUP, study::events::GROUP],
+    replay: "CASE/MESH, e.g. B/m3-e3" => cell,
 }
 
 /// A cell of Table 3 for `cargo xtask replay`: `CASE/MESH`, at the experiment's G and split.
@@ -35,15 +20,9 @@ fn cell<'a>(s: &CellSettings, c: &CellText<'a>) -> Result<Cell<'a>, RunError> {
     let &[case, mesh] = c.parts() else {
         return Err(c.malformed());
     };
-    let (systematic, random) = c.case(case)?;
-    let split = s.errors.split()?;
     Ok(Cell {
         mesh,
-        errors: vec![
-            ("random", random),
-            ("systematic", systematic),
-            ("split", split),
-        ],
+        errors: c.case_errors(s, case)?,
         clearance: s.clearance()?,
         typed: Vec::new(),
     })
@@ -65,14 +44,14 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let s = crate::settings::cells(ctx, &TRIALS)?;
     let (g, hyp, trials, clearance) = (s.gearing(), s.hypothesis(), s.trials, s.clearance()?);
     let meshes: Vec<&str> = g.meshes().iter().map(|m| m.label.as_str()).collect();
-    let mut cells = case_cells(&s, clearance)?;
+    let mut specs = case_cells(&s, clearance)?;
     // A hypothesis that takes neither a random nor a systematic error (ideal, measured, a
     // shape-only one) makes the four Cases the same cells: one row, compared with no Case.
     let cases_apply = cases_apply(hyp);
     if !cases_apply {
-        cells.truncate(meshes.len());
+        specs.truncate(meshes.len());
     }
-    let counts = run_cells(ctx.engine(), g, &cells, trials, Purpose::Own)?;
+    let counts = run_cells(ctx.engine(), g, &specs, trials, Purpose::Own)?;
 
     let mut ours = Table::new(
         format!(
@@ -80,8 +59,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         ),
         ours_header(&meshes),
     );
-    let mut csv = format!("case,mesh,{CSV_COLUMNS}\n");
-    let mut tally = Tally::default();
+    let mut cells = JamCells::new("case,mesh");
     let rows: Vec<String> = if cases_apply {
         CASES.iter().map(|c| c.0.to_string()).collect()
     } else {
@@ -120,25 +98,18 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         let mut row = vec![case.clone()];
         for (m, mesh) in meshes.iter().enumerate() {
             let n = &counts[c * meshes.len() + m];
-            let paper = if cases_apply {
-                paper_counts("table3", &format!("{case}.{mesh}"))
-            } else {
-                (None, None)
-            };
-            row.push(cell_text(n, paper, &mut tally));
-            csv.push_str(&format!("{case},{mesh},{}\n", csv_columns(n, paper)));
+            let paper = case_paper_counts(cases_apply, "table3", &format!("{case}.{mesh}"));
+            row.push(cells.cell(&format!("{case},{mesh}"), n, paper));
         }
         ours.row(row);
     }
-    ours.note(tally.note());
-    ours.note("Each trial: both gears manufactured afresh (hypothesis and Case), a random initial angle, one full turn of the gear with more teeth.");
-    ours.note("See a failed trial: `cargo xtask replay table3 B/m3-e3` lists the trials of that cell that jammed or disengaged; `cargo xtask replay table3 B/m3-e3 TRIAL` rebuilds one from its random stream, prints its events and writes a pair file to rerun it (same --seed and --set as this run).");
+    ours.note(cells.tally.note());
+    ours.note(CASE_TRIAL_NOTE);
+    ours.note(replay_note("table3", "B/m3-e3"));
     Ok(Report {
         tables: vec![ours, intervals],
-        files: vec![OutputFile::new("table3-data.csv", csv)],
-        trials: counts.iter().map(|c| c.trials).sum(),
-        engagements: counts.iter().map(|c| c.engagements).sum(),
-        agreement: Some(tally.agreement()),
-        ..Default::default()
+        files: vec![OutputFile::new("table3-data.csv", cells.csv)],
+        agreement: Some(cells.tally.agreement()),
+        ..counts_report(counts.iter())
     })
 }

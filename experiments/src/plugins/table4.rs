@@ -1,33 +1,18 @@
 //! `table4`: trials with at least one jam / disengagement of each mesh on its own, random tooth
 //! error from 0.035 to 0.065 of the pitch, no systematic error, G = 40 %, 200 trials per cell.
 
-use crate::replay::{Cell, CellGrammar, CellText};
-use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table};
+use crate::replay::{Cell, CellText};
+use registry::{Context, OutputFile, Report, RunError, Table};
 
 use study::cell::{Purpose, label};
-use crate::cells::{CSV_COLUMNS, Tally, cell_text, csv_columns, paper_counts};
+use crate::cells::{JamCells, counts_report, paper_counts, replay_note};
 use study::grids::{CellSettings, TRIALS, run_grid};
 
-const PARAMS: &[Param] = &[TRIALS];
-
-registry::inventory::submit! {
-    Experiment {
-        id: "table4",
-        title: "Jams and disengagements of each mesh on its own against the random tooth error, no systematic error, G = 40 %",
-        paper_item: "Table 4 (section 5)",
-        params: PARAMS,
-        groups: &[study::gearing::GROUP, study::errors::GROUP, study::tolerance::RANDOM_GRID, study::events::GROUP],
-        config: None,
-        run,
-    }
-}
-
-registry::inventory::submit! {
-    CellGrammar {
-        experiment: "table4",
-        form: "RANDOM/MESH, e.g. 0.050/m3-e3",
-        parse: cell,
-    }
+crate::experiment! {
+    id: "table4", paper_item: "Table 4 (section 5)", run,
+    title: "Jams and disengagements of each mesh on its own against the random tooth error, no systematic error, G = 40 %",
+    params: [TRIALS], groups: [study::gearing::GROUP, study::errors::GROUP, study::tolerance::RANDOM_GRID, study::events::GROUP],
+    replay: "RANDOM/MESH, e.g. 0.050/m3-e3" => cell,
 }
 
 /// A cell of Table 4 for `cargo xtask replay`: `RANDOM/MESH` (a random error of its grid, no
@@ -63,28 +48,24 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         ),
         header,
     );
-    let mut csv = format!("random,mesh,{CSV_COLUMNS}\n");
-    let mut tally = Tally::default();
+    let mut jam_cells = JamCells::new("random,mesh");
     for (e, row) in grid.values.iter().zip(&grid.counts) {
         let key = label(*e, 3);
         let mut cells = vec![key.clone()];
         for (mesh, c) in grid.meshes.iter().zip(row) {
             let paper = paper_counts("table4", &format!("{key}.{mesh}"));
-            cells.push(cell_text(c, paper, &mut tally));
-            csv.push_str(&format!("{key},{mesh},{}\n", csv_columns(c, paper)));
+            cells.push(jam_cells.cell(&format!("{key},{mesh}"), c, paper));
         }
         table.row(cells);
     }
-    table.note(tally.note());
+    table.note(jam_cells.tally.note());
     table.note("Random error: sd of each tip's displacement as a fraction of the pitch 360/N (Edmunds' tooth error; Case A's 0.04). No systematic error. Each trial: both gears manufactured afresh, a random initial angle, one full turn of the gear with more teeth.");
-    table.note("See a failed trial: `cargo xtask replay table4 0.065/m3-e3` lists the trials of that cell that jammed or disengaged; `cargo xtask replay table4 0.065/m3-e3 TRIAL` rebuilds one from its random stream, prints its events and writes a pair file to rerun it (same --seed and --set as this run).");
+    table.note(replay_note("table4", "0.065/m3-e3"));
     table.note("The paper's text says the error went from 0.04 to 0.65 by 0.005; its table shows 0.035 to 0.065, which is what we run.");
     Ok(Report {
         tables: vec![table],
-        files: vec![OutputFile::new("table4-data.csv", csv)],
-        trials: grid.all().map(|c| c.trials).sum(),
-        engagements: grid.all().map(|c| c.engagements).sum(),
-        agreement: Some(tally.agreement()),
-        ..Default::default()
+        files: vec![OutputFile::new("table4-data.csv", jam_cells.csv)],
+        agreement: Some(jam_cells.tally.agreement()),
+        ..counts_report(grid.all())
     })
 }

@@ -2,35 +2,20 @@
 //! paper's 1 % rule, then jams / disengagements with systematic errors of 0.1 to 1.1° (split
 //! 50/50) on top of it, 200 trials per cell.
 
-use crate::replay::{Cell, CellGrammar, CellText};
-use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table};
+use crate::replay::{Cell, CellText};
+use registry::{Context, OutputFile, Report, RunError, Table};
 
 use study::cell::{Purpose, label};
-use crate::cells::{CSV_COLUMNS, Tally, cell_text, csv_columns, paper_counts};
+use crate::cells::{JamCells, counts_report, paper_counts};
 use crate::emax::{EMAX, emax_from_paper, given_random, paper_random, paper_systematic, show};
 use study::grids::{CellSettings, TRIALS, derive};
 use study::tolerance::{self, RULE};
 
-const PARAMS: &[Param] = &[TRIALS, RULE, EMAX];
-
-registry::inventory::submit! {
-    Experiment {
-        id: "table5",
-        title: "Largest tolerable random error of each mesh (from Table 4 by the 1 % rule), then jams and disengagements against the systematic error",
-        paper_item: "Table 5 (section 5)",
-        params: PARAMS,
-        groups: &[study::gearing::GROUP, study::errors::CASES_GROUP, study::tolerance::RANDOM_GRID, study::tolerance::SYSTEMATIC_GRID, study::events::GROUP],
-        config: None,
-        run,
-    }
-}
-
-registry::inventory::submit! {
-    CellGrammar {
-        experiment: "table5",
-        form: "RANDOM/SYSTEMATIC/MESH, e.g. 0.050/0.7/e4-f1",
-        parse: cell,
-    }
+crate::experiment! {
+    id: "table5", paper_item: "Table 5 (section 5)", run,
+    title: "Largest tolerable random error of each mesh (from Table 4 by the 1 % rule), then jams and disengagements against the systematic error",
+    params: [TRIALS, RULE, EMAX], groups: [study::gearing::GROUP, study::errors::CASES_GROUP, study::tolerance::RANDOM_GRID, study::tolerance::SYSTEMATIC_GRID, study::events::GROUP],
+    replay: "RANDOM/SYSTEMATIC/MESH, e.g. 0.050/0.7/e4-f1" => cell,
 }
 
 /// A cell of Table 5 for `cargo xtask replay`: `RANDOM/SYSTEMATIC/MESH`, the random error the
@@ -65,7 +50,6 @@ fn cell<'a>(s: &CellSettings, c: &CellText<'a>) -> Result<Cell<'a>, RunError> {
     })
 }
 
-
 fn run(ctx: &Context) -> Result<Report, RunError> {
     crate::settings::labelled(ctx, counted)
 }
@@ -99,7 +83,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         ),
         header,
     );
-    let mut csv = format!("systematic,mesh,random,{CSV_COLUMNS}\n");
+    let mut jam_cells = JamCells::new("systematic,mesh,random");
     let emax_csv = String::from(
         "mesh,random_emax,paper_random_emax,systematic_emax_deg,paper_systematic_emax_deg_by_rule\n",
     );
@@ -120,7 +104,6 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         ));
     }
     table.row(row);
-    let mut tally = Tally::default();
     for (s, counts) in t.sys_values.iter().zip(&t.sys_counts) {
         let key = label(*s, 1);
         let mut row = vec![key.clone()];
@@ -130,18 +113,14 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
                 continue;
             };
             let paper = paper_counts("table5", &format!("{key}.{mesh}"));
-            row.push(cell_text(c, paper, &mut tally));
             let random = t.random[m].map_or_else(String::new, |e| e.to_string());
-            csv.push_str(&format!(
-                "{key},{mesh},{random},{}\n",
-                csv_columns(c, paper)
-            ));
+            row.push(jam_cells.cell(&format!("{key},{mesh},{random}"), c, paper));
         }
         table.row(row);
     }
     let (row, emax_csv) = systematic_row(&t, rule, emax_csv);
     table.row(row);
-    table.note(tally.note());
+    table.note(jam_cells.tally.note());
     if given {
         table.note("E. max (random): the paper's own row (emax=paper), not derived from Table 4: every cell runs on the paper's inputs, so all of them are compared like for like.");
     } else {
@@ -164,13 +143,11 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     Ok(Report {
         tables: vec![table],
         files: vec![
-            OutputFile::new("table5-data.csv", csv),
+            OutputFile::new("table5-data.csv", jam_cells.csv),
             OutputFile::new("table5-emax.csv", emax_csv),
         ],
-        trials: t.all().map(|c| c.trials).sum(),
-        engagements: t.all().map(|c| c.engagements).sum(),
-        agreement: Some(tally.agreement()),
-        ..Default::default()
+        agreement: Some(jam_cells.tally.agreement()),
+        ..counts_report(t.all())
     })
 }
 

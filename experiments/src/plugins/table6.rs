@@ -4,7 +4,7 @@
 use std::collections::BTreeMap;
 
 use hypotheses::Params;
-use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
 use stats::{Estimate, PointerStats, mean_ci95};
 
 use crate::emax::{paper_random, paper_systematic, show};
@@ -16,26 +16,12 @@ use study::tolerance::RULE;
 const TRIALS: Param = registry::interval_trials("30", "runs of the whole mechanism, each with fresh errors and initial angles (the paper: 30)");
 
 /// `cell_trials`: trials per cell of Tables 4 and 5, from which the tolerances are derived.
-const CELL_TRIALS: Param = Param {
-    name: "cell_trials",
-    default: "200",
-    unit: "",
-    help: "trials per cell of Tables 4 and 5, from which the tolerances are derived",
-    kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
-};
+const CELL_TRIALS: Param = Param::new("cell_trials", "200", "trials per cell of Tables 4 and 5, from which the tolerances are derived", registry::Kind::count(1, registry::MAX_TRIALS, ""));
 
-const PARAMS: &[Param] = &[TRIALS, CELL_TRIALS, RULE, crate::emax::EMAX];
-
-registry::inventory::submit! {
-    Experiment {
-        id: "table6",
-        title: "Pointer errors of a mechanism built with each mesh's largest tolerable random and systematic errors",
-        paper_item: "Table 6 (section 5)",
-        params: PARAMS,
-        groups: &[study::gearing::GROUP, study::errors::CASES_GROUP, study::tolerance::RANDOM_GRID, study::tolerance::SYSTEMATIC_GRID, study::pointers::RUN_LENGTHS, study::events::GROUP],
-        config: None,
-        run,
-    }
+crate::experiment! {
+    id: "table6", paper_item: "Table 6 (section 5)", run,
+    title: "Pointer errors of a mechanism built with each mesh's largest tolerable random and systematic errors",
+    params: [TRIALS, CELL_TRIALS, RULE, crate::emax::EMAX], groups: [study::gearing::GROUP, study::errors::CASES_GROUP, study::tolerance::RANDOM_GRID, study::tolerance::SYSTEMATIC_GRID, study::pointers::RUN_LENGTHS, study::events::GROUP],
 }
 
 /// One trial: per pointer (statistics up to the first jam, jammed, tooth engagements).
@@ -182,21 +168,12 @@ fn pointer_rows(
                 cell(paper, 2),
                 if ok { "" } else { "*" }
             ));
-            detail.row(vec![
-                format!("{name} ({turns} turns)"),
-                label_text.into(),
-                fmt_f64(e.mean, 4),
-                format!("{} .. {}", fmt_f64(e.lo, 4), fmt_f64(e.hi, 4)),
-                cell(paper, 2),
-                format!("{jammed}/{trials}"),
-            ]);
-            csv.push_str(&format!(
-                "{name},{label_text},{},{},{},{},{jammed}\n",
-                e.mean,
-                e.lo,
-                e.hi,
-                paper.map_or(String::new(), |v| v.to_string()),
-            ));
+            let mut cells = crate::common::estimate_cells(name, turns, label_text, &e);
+            cells.extend([cell(paper, 2), format!("{jammed}/{trials}")]);
+            detail.row(cells);
+            let paper_csv = paper.map_or(String::new(), |v| v.to_string());
+            let start = crate::common::estimate_csv(name, label_text, &e);
+            csv.push_str(&format!("{start},{paper_csv},{jammed}\n"));
         }
     }
     for r in rows {

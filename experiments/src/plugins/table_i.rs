@@ -1,42 +1,21 @@
 //! `tableI`: jams / disengagements of each mesh on its own for Edmunds' Cases A-D at clearances of
 //! 10, 40 and 70 % (Appendix II), 200 trials per cell. The 40 % rows are Table 3's cells.
 
-use crate::replay::{Cell, CellGrammar, CellText};
-use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table};
+use crate::replay::{Cell, CellText};
+use registry::{Context, OutputFile, Param, Report, RunError, Table};
 
-use crate::cells::{CSV_COLUMNS, Tally, cell_text, csv_columns, paper_counts};
+use crate::cells::{CASE_TRIAL_NOTE, JamCells, case_paper_counts, counts_report, paper_counts, replay_note};
 use study::cell::{Purpose, label, run_cells};
 use study::grids::{CASES, CellSettings, TRIALS, case_cells};
 
 /// `clearances`: Table I's clearances G, comma-separated (the paper: 10, 40 and 70).
-const CLEARANCES: Param = Param {
-    name: "clearances",
-    default: "10,40,70",
-    unit: "% of h",
-    help: "clearances G, comma-separated (the paper: 10, 40 and 70)",
-    kind: registry::Kind::Text,
-};
+const CLEARANCES: Param = Param::new("clearances", "10,40,70", "clearances G, comma-separated (the paper: 10, 40 and 70)", registry::Kind::Text).unit("% of h");
 
-const PARAMS: &[Param] = &[TRIALS, CLEARANCES];
-
-registry::inventory::submit! {
-    Experiment {
-        id: "tableI",
-        title: "Jams and disengagements of each mesh on its own, Cases A-D at G = 10, 40 and 70 %",
-        paper_item: "Table I (Appendix II)",
-        params: PARAMS,
-        groups: &[study::gearing::SHAPE, study::errors::CASES_GROUP, study::events::GROUP],
-        config: None,
-        run,
-    }
-}
-
-registry::inventory::submit! {
-    CellGrammar {
-        experiment: "tableI",
-        form: "CASE/G/MESH, e.g. B/70/m3-e3",
-        parse: cell,
-    }
+crate::experiment! {
+    id: "tableI", paper_item: "Table I (Appendix II)", run,
+    title: "Jams and disengagements of each mesh on its own, Cases A-D at G = 10, 40 and 70 %",
+    params: [TRIALS, CLEARANCES], groups: [study::gearing::SHAPE, study::errors::CASES_GROUP, study::events::GROUP],
+    replay: "CASE/G/MESH, e.g. B/70/m3-e3" => cell,
 }
 
 /// A cell of Table I for `cargo xtask replay`: `CASE/G/MESH`, at the experiment's split.
@@ -44,15 +23,9 @@ fn cell<'a>(s: &CellSettings, c: &CellText<'a>) -> Result<Cell<'a>, RunError> {
     let &[case, g, mesh] = c.parts() else {
         return Err(c.malformed());
     };
-    let (systematic, random) = c.case(case)?;
-    let split = s.errors.split()?;
     Ok(Cell {
         mesh,
-        errors: vec![
-            ("random", random),
-            ("systematic", systematic),
-            ("split", split),
-        ],
+        errors: c.case_errors(s, case)?,
         clearance: c.clearance(g)?,
         typed: Vec::new(),
     })
@@ -94,8 +67,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         ),
         header,
     );
-    let mut csv = format!("case,clearance,mesh,{CSV_COLUMNS}\n");
-    let mut tally = Tally::default();
+    let mut jam_cells = JamCells::new("case,clearance,mesh");
     let alike = format!(
         "Cases A-D alike ({} takes no random or systematic error)",
         hyp.name()
@@ -114,20 +86,17 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             ];
             for (m, mesh) in meshes.iter().enumerate() {
                 let n = &counts[k * per_g + c * meshes.len() + m];
-                let paper = if cases_apply {
-                    paper_counts("tableI", &format!("{case}.{gl}.{mesh}"))
-                } else {
-                    (None, None)
-                };
-                row.push(cell_text(n, paper, &mut tally));
-                csv.push_str(&format!("{case},{gl},{mesh},{}\n", csv_columns(n, paper)));
+                let paper = case_paper_counts(cases_apply, "tableI", &format!("{case}.{gl}.{mesh}"));
+                row.push(jam_cells.cell(&format!("{case},{gl},{mesh}"), n, paper));
             }
             table.row(row);
         }
     }
-    table.note(tally.note());
-    table.note("Each trial: both gears manufactured afresh (hypothesis and Case), a random initial angle, one full turn of the gear with more teeth. The 40 % rows are the cells of table3 (same streams, so the same counts).");
-    table.note("See a failed trial: `cargo xtask replay tableI B/70/m3-e3` lists the trials of that cell that jammed or disengaged; `cargo xtask replay tableI B/70/m3-e3 TRIAL` rebuilds one from its random stream, prints its events and writes a pair file to rerun it (same --seed and --set as this run).");
+    table.note(jam_cells.tally.note());
+    table.note(format!(
+        "{CASE_TRIAL_NOTE} The 40 % rows are the cells of table3 (same streams, so the same counts)."
+    ));
+    table.note(replay_note("tableI", "B/70/m3-e3"));
     // The paper's own two printings of the 40 % cells, compared.
     let mut differ = Vec::new();
     for &(case, _, _) in &CASES {
@@ -148,10 +117,8 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     }
     Ok(Report {
         tables: vec![table],
-        files: vec![OutputFile::new("tableI-data.csv", csv)],
-        trials: counts.iter().map(|c| c.trials).sum(),
-        engagements: counts.iter().map(|c| c.engagements).sum(),
-        agreement: Some(tally.agreement()),
-        ..Default::default()
+        files: vec![OutputFile::new("tableI-data.csv", jam_cells.csv)],
+        agreement: Some(jam_cells.tally.agreement()),
+        ..counts_report(counts.iter())
     })
 }

@@ -5,65 +5,27 @@
 //! at the cap. Compared with the grid-derived value (Table 4 by the rule) and the paper's E. max,
 //! with the pair turns each needed.
 
-use registry::{Context, Experiment, OutputFile, Param, Report, RunError, Table};
+use registry::{Context, OutputFile, Param, Report, RunError, Table};
 
 use crate::emax::{paper_random, show};
 use study::cell::{Purpose, label};
 use study::tolerance_search::{Search, Settings, search};
 use study::tolerance::{self, RANDOM_STEP, RULE};
 
-const SEARCH_LO: Param = Param {
-    name: "search_lo",
-    default: "0.02",
-    unit: "pitch",
-    help: "lower end of the searched random error (fraction of the pitch 360/N)",
-    kind: study::tolerance::RANDOM_KIND,
-};
+const SEARCH_LO: Param = Param::new("search_lo", "0.02", "lower end of the searched random error (fraction of the pitch 360/N)", study::tolerance::RANDOM_KIND).unit("pitch");
 
-const SEARCH_HI: Param = Param {
-    name: "search_hi",
-    default: "0.08",
-    unit: "pitch",
-    help: "upper end of the searched random error",
-    kind: study::tolerance::RANDOM_KIND,
-};
+const SEARCH_HI: Param = Param::new("search_hi", "0.08", "upper end of the searched random error", study::tolerance::RANDOM_KIND).unit("pitch");
 
-const RESOLUTION: Param = Param {
-    name: "resolution",
-    default: "0.0025",
-    unit: "pitch",
-    help: "the bisection stops when the bracket is at most this wide",
-    kind: registry::Kind::positive(f64::INFINITY, ""),
-};
+const RESOLUTION: Param = Param::new("resolution", "0.0025", "the bisection stops when the bracket is at most this wide", registry::Kind::positive(f64::INFINITY, "")).unit("pitch");
 
-const BATCH: Param = Param {
-    name: "batch",
-    default: "20",
-    unit: "",
-    help: "trials added to a probed value at a time",
-    kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
-};
+const BATCH: Param = Param::new("batch", "20", "trials added to a probed value at a time", registry::Kind::count(1, registry::MAX_TRIALS, ""));
 
-const CAP: Param = Param {
-    name: "cap",
-    default: "200",
-    unit: "",
-    help: "most trials at one probed value, where the paper's count rule decides; also the trials per cell of the Table 4 grid compared with (the paper: 200)",
-    kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
-};
+const CAP: Param = Param::new("cap", "200", "most trials at one probed value, where the paper's count rule decides; also the trials per cell of the Table 4 grid compared with (the paper: 200)", registry::Kind::count(1, registry::MAX_TRIALS, ""));
 
-const PARAMS: &[Param] = &[SEARCH_LO, SEARCH_HI, RESOLUTION, RULE, BATCH, CAP];
-
-registry::inventory::submit! {
-    Experiment {
-        id: "tolerance",
-        title: "Largest tolerable random error of each mesh by a sequential search (bisection, trials added until the jam rate is clearly below or above the rule), against Table 4's grid",
-        paper_item: "Section 5, Tables 4-5 (tolerance by sequential search; beyond the paper)",
-        params: PARAMS,
-        groups: &[study::gearing::GROUP, study::errors::GROUP, study::tolerance::RANDOM_GRID, study::events::GROUP],
-        config: None,
-        run,
-    }
+crate::experiment! {
+    id: "tolerance", paper_item: "Section 5, Tables 4-5 (tolerance by sequential search; beyond the paper)", run,
+    title: "Largest tolerable random error of each mesh by a sequential search (bisection, trials added until the jam rate is clearly below or above the rule), against Table 4's grid",
+    params: [SEARCH_LO, SEARCH_HI, RESOLUTION, RULE, BATCH, CAP], groups: [study::gearing::GROUP, study::errors::GROUP, study::tolerance::RANDOM_GRID, study::events::GROUP],
 }
 
 fn settings(ctx: &Context) -> Result<Settings, RunError> {
