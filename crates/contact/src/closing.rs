@@ -117,19 +117,42 @@ pub(crate) fn first_sign_change(
     None
 }
 
+/// How small a positive gap is at the open side of a closing (radians of driven angle): well
+/// inside the solver's side tolerance (1e-10 rad), within which a tooth ahead counts as touching
+/// the gear and holds it, so that the tooth that closes is judged touching there however steeply
+/// it closes.
+pub(crate) const TOUCHING: f64 = 2.5e-11;
+
 /// Where a sign change at the root `root` is recorded: the last angle before it, within about
 /// 1e-13 rad, at which the gap is still positive (the teeth touch, not yet overlap), but not
 /// before `open`, where it is known to be positive. At the root itself the gap is zero only to
 /// rounding, of either sign; on the open side the driven gear is where the push model leaves it
-/// at a jam, and a release tested there sees the closing tooth ahead of it.
+/// at a jam, and a release tested there sees the closing tooth ahead of it, touching: where
+/// the gap closes so steeply (hundreds of radians of driven angle a radian of driver angle, a
+/// tooth met just after it appeared) that 1e-13 rad back it is already wider than
+/// [`TOUCHING`], the angle is bisected towards the root until it is not.
 fn open_side(root: f64, open: f64, gap: &impl Fn(f64) -> f64) -> f64 {
     let mut back = 1e-13 * (1.0 + root.abs());
-    let mut x = root;
+    let (mut x, mut closed) = (root, root);
     while x > open && gap(x) <= 0.0 {
+        closed = x;
         x = root - back;
         back *= 2.0;
     }
-    x.max(open)
+    let x = x.max(open);
+    let (mut wide, mut shut) = (x, closed);
+    while gap(wide) > TOUCHING {
+        let mid = 0.5 * (wide + shut);
+        if mid <= wide || mid >= shut {
+            break;
+        }
+        if gap(mid) > 0.0 {
+            wide = mid;
+        } else {
+            shut = mid;
+        }
+    }
+    wide
 }
 
 /// Every driver angle in the stretch where a lower-end condition of `lower` holds together with
