@@ -97,8 +97,11 @@ fn pinned(id: &str) {
     let report = (exp.run)(&ctx).unwrap_or_else(|e| panic!("{id}: {e}"));
     pin(id, &report.text());
     // The README's results section shows these tables as computed here.
-    if id == "sensitivity" || id == "event-rules" {
+    if id == "sensitivity" {
         readme_carries(id, &report.tables[0].render());
+    }
+    if id == "event-rules" {
+        readme_carries_rules(&report.tables[0]);
     }
 }
 
@@ -118,6 +121,65 @@ fn readme_marks(id: &str) -> (String, String) {
         format!("<!-- {id} table: written by experiments/tests/snapshots.rs -->"),
         format!("<!-- end of the {id} table -->"),
     )
+}
+
+/// The note of `event-rules`' first table that compares the registered rules with one another.
+const BETWEEN_RULES: &str = "- Between the rules:";
+
+/// The README shows `event-rules`' first table (a row per registered rule) as computed here for
+/// the rules it lists: those registered when the block was written, the built-in ones. While
+/// the registered rules are those, the block is the computed table exactly ([`readme_carries`];
+/// `UPDATE_README=1` rewrites it). A rule registered since (a new plugin) adds a row the block
+/// need not show, so that adding a rule is its file and the snapshots insta writes: the block is
+/// then compared with the computed table restricted to the rules it lists, every row, the
+/// title, the columns and the notes, all but the note comparing every registered rule with the
+/// others, which the new rule changes. A listed rule that is not registered fails.
+fn readme_carries_rules(table: &registry::Table) {
+    let block = readme_block("event-rules");
+    let listed: Vec<&str> = block
+        .lines()
+        .filter_map(|l| l.strip_prefix("| "))
+        .filter_map(|l| l.split('|').next())
+        .map(str::trim)
+        .skip(1)
+        .collect();
+    let registered: Vec<&str> = table.rows.iter().map(|r| r[0].as_str()).collect();
+    for rule in &listed {
+        assert!(
+            registered.contains(rule),
+            "README.md's event-rules table lists `{rule}`, which is not registered"
+        );
+    }
+    if registered.iter().all(|r| listed.contains(r)) || std::env::var_os("UPDATE_README").is_some()
+    {
+        readme_carries("event-rules", &table.render());
+        return;
+    }
+    let mut shown = table.clone();
+    shown.rows.retain(|r| listed.contains(&r[0].as_str()));
+    let lines = |text: &str| -> Vec<String> {
+        text.trim()
+            .lines()
+            .filter(|l| !l.starts_with(BETWEEN_RULES))
+            .map(str::to_owned)
+            .collect()
+    };
+    assert_eq!(
+        lines(&block),
+        lines(&shown.render()),
+        "README.md's event-rules table is not the computed one for the rules it lists"
+    );
+}
+
+/// The text of README.md between the marks of `id`'s block.
+fn readme_block(id: &str) -> String {
+    let text =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../README.md")).unwrap();
+    let (start, end) = readme_marks(id);
+    let (Some(a), Some(b)) = (text.find(&start), text.find(&end)) else {
+        panic!("README.md has no block between `{start}` and `{end}`");
+    };
+    text[a + start.len()..b].to_owned()
 }
 
 /// The README shows table `id` (an experiment's first table as this pinned run computes it, or
