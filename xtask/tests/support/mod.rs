@@ -6,6 +6,8 @@
     reason = "each test file uses its own subset of these helpers"
 )]
 
+pub mod hostile;
+
 use std::collections::BTreeMap;
 use std::fs;
 use std::path::{Path, PathBuf};
