@@ -11,29 +11,38 @@
 
 use std::collections::BTreeMap;
 
-use registry::{
-    Context, MAX_TRIALS, OutputFile, Param, Report, RunError, Table, fmt_f64,
-};
+use registry::{Context, MAX_TRIALS, OutputFile, Param, Report, RunError, Table, fmt_f64};
 use stats::{Proportion, clopper_pearson95};
 use train::Gearing;
 
 use crate::common::{Series, line_plot};
-use study::grids::CellSettings;
-use study::whole_mechanism::{self as whole, Clearances, Input, MechanismRun, Summary};
 use crate::settings::clearance_list;
 use study::cell::{Counts, label};
 use study::clearance_search::{MeshSearch, Search, search};
 use study::grids::CASES;
+use study::grids::CellSettings;
+use study::whole_mechanism::{self as whole, Clearances, Input, MechanismRun, Summary};
 
 const GRID: Param = Param::new("grid", "20,30,40,50,60,70", "coarse grid of clearances tried for every mesh and case, comma-separated (the reference clearance is always added)", registry::Kind::Text).unit("% of h");
 
-const COARSE_TRIALS: Param = Param::new("coarse_trials", "20", "trials per mesh, case and clearance of the coarse grid", registry::Kind::count(1, registry::MAX_TRIALS, "")).unit("pair runs");
+const COARSE_TRIALS: Param = Param::new(
+    "coarse_trials",
+    "20",
+    "trials per mesh, case and clearance of the coarse grid",
+    registry::Kind::count(1, registry::MAX_TRIALS, ""),
+)
+.unit("pair runs");
 
 const REFINE_STEP: Param = Param::new("refine_step", "5", "the refinement tries the coarse grid's best clearance plus and minus this (0: no refinement; the coarse grid decides)", registry::Kind::number(0.0, 100.0, "% of h")).unit("% of h");
 
 const REFINE_TRIALS: Param = Param::new("refine_trials", "40", "trials per clearance compared in the refinement: the coarse best, its two neighbours and the reference, each brought to this count (at least coarse_trials)", registry::Kind::count(1, registry::MAX_TRIALS, "")).unit("pair runs");
 
-const RUNS: Param = Param::new("runs", whole::RUNS_DEFAULT, "whole-mechanism runs per case and clearance setting (failure's trials; the paper: 30)", registry::Kind::count(1, registry::MAX_TRIALS, ""));
+const RUNS: Param = Param::new(
+    "runs",
+    whole::RUNS_DEFAULT,
+    "whole-mechanism runs per case and clearance setting (failure's trials; the paper: 30)",
+    registry::Kind::count(1, registry::MAX_TRIALS, ""),
+);
 
 /// The reference clearance, typed as `clearance` like the gearing group's
 /// ([`study::gearing::CLEARANCE`]), which this experiment does not declare: here it is not every
@@ -236,7 +245,11 @@ fn search_table(
     s: &Settings,
     searches: &[MeshSearch],
 ) -> Result<(Table, String, String, u64), RunError> {
-    let (g, hyp, h) = (cells.gearing(), cells.hypothesis(), cells.gearing.tooth_height);
+    let (g, hyp, h) = (
+        cells.gearing(),
+        cells.hypothesis(),
+        cells.gearing.tooth_height,
+    );
     let meshes = cells.meshes();
     let rl = label(s.reference, 0);
     let n_final = s.final_trials();
@@ -289,7 +302,14 @@ fn search_table(
             interval_cell(&rp),
         ]);
         table.row(row);
-        search_csv((&mut best_csv, &mut probes_csv), case, sr, s.reference, (&b, &bp), (&r, &rp));
+        search_csv(
+            (&mut best_csv, &mut probes_csv),
+            case,
+            sr,
+            s.reference,
+            (&b, &bp),
+            (&r, &rp),
+        );
     }
     let used: u64 = searches.iter().map(MeshSearch::trials).sum();
     let years: Vec<f64> = meshes
@@ -548,7 +568,16 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         "clearance-design/{}",
         whole::batch_key(&cells.gearing.file, &inputs, s.runs, h, s.reference, s.days)?
     );
-    let outcomes = whole::run_study(ctx.engine(), g, &inputs, s.runs, h, s.days, &cells.rule, &key)?;
+    let outcomes = whole::run_study(
+        ctx.engine(),
+        g,
+        &inputs,
+        s.runs,
+        h,
+        s.days,
+        &cells.rule,
+        &key,
+    )?;
     let per_input: Vec<&[MechanismRun]> = outcomes.chunks(s.runs as usize).collect();
     let summaries: Vec<Vec<Summary>> = per_input
         .iter()
@@ -600,7 +629,11 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     ));
     case_notes(&mut study, &s, &searches, &meshes, &summaries, &per_input);
 
-    let csvs = (best_csv, probes_csv, whole::runs_csv(&inputs, &per_input, s.days));
+    let csvs = (
+        best_csv,
+        probes_csv,
+        whole::runs_csv(&inputs, &per_input, s.days),
+    );
     let files = files(&s, &searches, meshes.len(), csvs)?;
     let pair_engagements: u64 = searches
         .iter()

@@ -13,13 +13,30 @@ use study::limits::IdealPair;
 use crate::common::{Series, semilog_plot};
 
 /// `tolerance`: overlap area the contact test ignores, for the printed curves (the ladder is fixed).
-const TOLERANCE: Param = Param::new("tolerance", "0.003", "overlap area the contact test ignores, for the printed curves (the ladder is fixed)", registry::Kind::positive(1.0, "mm^2")).unit("mm^2");
+const TOLERANCE: Param = Param::new(
+    "tolerance",
+    "0.003",
+    "overlap area the contact test ignores, for the printed curves (the ladder is fixed)",
+    registry::Kind::positive(1.0, "mm^2"),
+)
+.unit("mm^2");
 
 /// `blunt`: depth cut flat off every tip, for the printed curves (the ladder is fixed).
-const BLUNT_PARAM: Param = Param::new("blunt", "10", "depth cut flat off every tip, for the printed curves (the ladder is fixed)", registry::Kind::positive(50.0, "% of the tooth height h")).unit("% of h");
+const BLUNT_PARAM: Param = Param::new(
+    "blunt",
+    "10",
+    "depth cut flat off every tip, for the printed curves (the ladder is fixed)",
+    registry::Kind::positive(50.0, "% of the tooth height h"),
+)
+.unit("% of h");
 
 /// `samples`: driver angles per driver pitch (an ideal pair repeats every driver pitch).
-const SAMPLES: Param = Param::new("samples", "200", "driver angles per driver pitch (an ideal pair repeats every driver pitch)", registry::Kind::count(8, registry::MAX_COUNT as u64, "a sigma needs samples"));
+const SAMPLES: Param = Param::new(
+    "samples",
+    "200",
+    "driver angles per driver pitch (an ideal pair repeats every driver pitch)",
+    registry::Kind::count(8, registry::MAX_COUNT as u64, "a sigma needs samples"),
+);
 
 crate::experiment! {
     id: "contact-tolerance", paper_item: "Figure IV and Appendix II (beyond the paper)", run,
@@ -72,8 +89,14 @@ struct Shape {
 
 fn shape(curve: &[Point]) -> Option<Shape> {
     let pts = driving(curve);
-    let smallest = pts.iter().copied().reduce(|a, b| if b.1 < a.1 { b } else { a })?;
-    let largest = pts.iter().copied().reduce(|a, b| if b.1 > a.1 { b } else { a })?;
+    let smallest = pts
+        .iter()
+        .copied()
+        .reduce(|a, b| if b.1 < a.1 { b } else { a })?;
+    let largest = pts
+        .iter()
+        .copied()
+        .reduce(|a, b| if b.1 > a.1 { b } else { a })?;
     Some(Shape {
         minimum_at: smallest.0,
         largest_first: pts.first().is_some_and(|f| f.0 == largest.0),
@@ -161,7 +184,10 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         let (table, svg) = curves_table(c, h, &meshes, |mi| of(ti, mi), samples)?;
         tables.push(table);
         let name = if c.blunt > 0.0 { "blunt" } else { "tolerance" };
-        files.push(OutputFile::new(format!("contact-tolerance-{name}.svg"), svg));
+        files.push(OutputFile::new(
+            format!("contact-tolerance-{name}.svg"),
+            svg,
+        ));
     }
     Ok(Report {
         tables,

@@ -14,14 +14,26 @@ use train::Gearing;
 use crate::cells::{Tally, cell, consistent_with_paper, paper_counts, share};
 use study::cell::{CellSpec, Counts, Purpose, label, run_cells_by_rule};
 use study::grids::CASES;
-use study::limits::IdealPair;
 use study::grids::CellSettings;
+use study::limits::IdealPair;
 
 /// `clearances`: Table I's clearances G, comma-separated (the paper: 10, 40 and 70).
-const CLEARANCES: Param = Param::new("clearances", "10,40,70", "Table I's clearances G, comma-separated (the paper: 10, 40 and 70)", registry::Kind::Text).unit("% of h");
+const CLEARANCES: Param = Param::new(
+    "clearances",
+    "10,40,70",
+    "Table I's clearances G, comma-separated (the paper: 10, 40 and 70)",
+    registry::Kind::Text,
+)
+.unit("% of h");
 
 /// `limit_tolerance`: how closely each ideal mesh's clearance limits are located (bisection).
-const LIMIT_TOLERANCE: Param = Param::new("limit_tolerance", "0.1", "how closely each ideal mesh's clearance limits are located (bisection)", registry::Kind::number(0.001, 10.0, "% of h")).unit("% of h");
+const LIMIT_TOLERANCE: Param = Param::new(
+    "limit_tolerance",
+    "0.1",
+    "how closely each ideal mesh's clearance limits are located (bisection)",
+    registry::Kind::number(0.001, 10.0, "% of h"),
+)
+.unit("% of h");
 
 crate::experiment! {
     id: "event-rules", paper_item: "Tables 3, 4, I and section 3 / Appendix II (what counts as a jam or a disengagement)", run,
@@ -56,7 +68,12 @@ fn all_cells(ctx: &Context, s: &CellSettings) -> Result<Vec<(CellSpec, PaperCell
     let split = s.errors.split()?;
     let clearances = crate::settings::clearance_list(ctx, &CLEARANCES, 200.0)?;
     let randoms = crate::settings::random_grid(ctx)?;
-    let meshes: Vec<&str> = s.gearing().meshes().iter().map(|m| m.label.as_str()).collect();
+    let meshes: Vec<&str> = s
+        .gearing()
+        .meshes()
+        .iter()
+        .map(|m| m.label.as_str())
+        .collect();
     let mut out = Vec::new();
     let case_errors =
         |sys: f64, random: f64| [("random", random), ("systematic", sys), ("split", split)];
@@ -77,12 +94,7 @@ fn all_cells(ctx: &Context, s: &CellSettings) -> Result<Vec<(CellSpec, PaperCell
     }
     for &e in &randoms {
         for m in &meshes {
-            let c = cell(
-                s,
-                m,
-                &[("random", e), ("systematic", 0.0)],
-                clearance,
-            )?;
+            let c = cell(s, m, &[("random", e), ("systematic", 0.0)], clearance)?;
             let key = format!("{}.{m}", label(e, 3));
             let group = "Table 4, random error only".to_string();
             out.push((

@@ -12,25 +12,33 @@
 //! passed through the mesh.
 
 use hypotheses::Params;
-use registry::{
-    Agreement, Context, OutputFile, Param, Report, RunError, Table, fmt_f64,
-};
+use registry::{Agreement, Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
 use stats::DAYS_PER_YEAR;
 
 use study::gearing;
 use study::whole_mechanism::{
-    Clearances,
-    CASES_PARAM, DAYS, Input, MEASURED_INDEX, MechanismRun, RUNS_DEFAULT, Summary, TRAINS, batch_key, case_input,
-    check_study, jam_of, measured_table, parse_cases, run_study, runs_csv, summarise, train_names,
+    CASES_PARAM, Clearances, DAYS, Input, MEASURED_INDEX, MechanismRun, RUNS_DEFAULT, Summary,
+    TRAINS, batch_key, case_input, check_study, jam_of, measured_table, parse_cases, run_study,
+    runs_csv, summarise, train_names,
 };
 
 use crate::common::{Plot, Series, mean_cell, percent_cell};
 
 /// `trials`: whole-mechanism runs per input (the paper: 30).
-const TRIALS: Param = Param::new("trials", RUNS_DEFAULT, "whole-mechanism runs per input (the paper: 30)", registry::Kind::count(1, registry::MAX_TRIALS, ""));
+const TRIALS: Param = Param::new(
+    "trials",
+    RUNS_DEFAULT,
+    "whole-mechanism runs per input (the paper: 30)",
+    registry::Kind::count(1, registry::MAX_TRIALS, ""),
+);
 
 /// `measured`: per-gear error table (RON, as crates/hypotheses/data/measured-example.ron), run with the measured hypothesis; empty: not run.
-const MEASURED: Param = Param::new("measured", "", "per-gear error table (RON, as crates/hypotheses/data/measured-example.ron), run with the measured hypothesis; empty: not run", registry::Kind::Text);
+const MEASURED: Param = Param::new(
+    "measured",
+    "",
+    "per-gear error table (RON, as crates/hypotheses/data/measured-example.ron), run with the measured hypothesis; empty: not run",
+    registry::Kind::Text,
+);
 
 crate::experiment! {
     id: "failure", paper_item: "Section 5, the 30-run study", run,

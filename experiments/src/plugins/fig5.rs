@@ -5,9 +5,7 @@ use std::f64::consts::TAU;
 
 use edmunds::RadialPair;
 use geometry::Gear;
-use registry::{
-    Context, OutputFile, Param, Report, RunError, Table, fmt_f64, fmt_number,
-};
+use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64, fmt_number};
 
 use crate::common::{Series, csv, line_plot};
 use study::errors;
@@ -21,22 +19,50 @@ const ROOT_RADIUS: Param = study::equal_pair::length("root_radius", "180", "r of
 /// `clearance`: clearance G of the pair. Not the gearing group's `clearance`
 /// ([`study::gearing::CLEARANCE`], default 40): Figure 5 runs a pair of its own, not the
 /// gearing, with a default of its own (50 %) under the same name.
-const PAIR_CLEARANCE: Param = Param::new("clearance", "50", "clearance G", registry::Kind::positive(100.0, "% of the tooth height h")).unit("% of h");
+const PAIR_CLEARANCE: Param = Param::new(
+    "clearance",
+    "50",
+    "clearance G",
+    registry::Kind::positive(100.0, "% of the tooth height h"),
+)
+.unit("% of h");
 
 /// `random`: random tooth error (sd).
-const RANDOM: Param = Param::new("random", "0.05", "random tooth error (sd)", registry::Kind::number(0.0, hypotheses::MAX_RANDOM, "of the pitch")).unit("of the pitch");
+const RANDOM: Param = Param::new(
+    "random",
+    "0.05",
+    "random tooth error (sd)",
+    registry::Kind::number(0.0, hypotheses::MAX_RANDOM, "of the pitch"),
+)
+.unit("of the pitch");
 
 /// `systematic`: systematic error amplitude A.
-const SYSTEMATIC: Param = Param::new("systematic", "0.6", "systematic error amplitude A", registry::Kind::number(0.0, 45.0, "deg")).unit("deg");
+const SYSTEMATIC: Param = Param::new(
+    "systematic",
+    "0.6",
+    "systematic error amplitude A",
+    registry::Kind::number(0.0, 45.0, "deg"),
+)
+.unit("deg");
 
 /// `trial`: which trial stream of the seed.
-const TRIAL: Param = Param::new("trial", "0", "which trial stream of the seed", registry::Kind::count(0, u64::MAX, ""));
+const TRIAL: Param = Param::new(
+    "trial",
+    "0",
+    "which trial stream of the seed",
+    registry::Kind::count(0, u64::MAX, ""),
+);
 
 /// `samples`: samples over the turn.
 const SAMPLES: Param = registry::samples("3600", "samples over the turn");
 
 /// `teeth`: teeth of both gears.
-const TEETH: Param = Param::new("teeth", "50", "teeth of both gears", registry::Kind::count(3, geometry::MAX_TEETH as u64, "a gear needs three teeth"));
+const TEETH: Param = Param::new(
+    "teeth",
+    "50",
+    "teeth of both gears",
+    registry::Kind::count(3, geometry::MAX_TEETH as u64, "a gear needs three teeth"),
+);
 
 crate::experiment! {
     id: "fig5", paper_item: "Figure 5 (section 4)", run,
@@ -108,8 +134,7 @@ fn panels(
 /// The values the hypothesis ran with, as the title names them (the split aside: each panel
 /// has its own), e.g. "random 0.04 of the pitch, systematic 0.5 deg, ".
 fn ran_values(ran: &hypotheses::Params) -> String {
-    ran
-        .iter()
+    ran.iter()
         .filter(|(k, _)| *k != "split")
         .map(|(k, v)| match k {
             "random" => format!("random {} of the pitch, ", fmt_number(v)),

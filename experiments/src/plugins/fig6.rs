@@ -5,13 +5,18 @@
 use registry::{Context, OutputFile, Param, Report, RunError, Table};
 
 use crate::common::{Series, category_plot};
+use crate::emax::{paper_random, show};
 use study::cell::{Purpose, label};
 use study::grids::TRIALS;
-use crate::emax::{paper_random, show};
 use study::tolerance::{self, RULE};
 
 /// `measured`: RON table of measured per-gear errors (the `measured` hypothesis' format) to draw beside ours; empty (or none): no measured values.
-const MEASURED: Param = Param::new("measured", "", "RON table of measured per-gear errors (the `measured` hypothesis' format) to draw beside ours; empty (or none): no measured values", registry::Kind::Text);
+const MEASURED: Param = Param::new(
+    "measured",
+    "",
+    "RON table of measured per-gear errors (the `measured` hypothesis' format) to draw beside ours; empty (or none): no measured values",
+    registry::Kind::Text,
+);
 
 crate::experiment! {
     id: "fig6", paper_item: "Figure 6 (section 5)", run,
@@ -200,7 +205,12 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     table.note(measured_note(measured.as_ref()));
     let names: Vec<String> = gears.iter().map(|(n, _)| n.clone()).collect();
     let measured_file = measured.as_ref().map(|(f, _)| f.as_str());
-    let svg = plot(&names, rule, measured_file, (ours_pts, paper_pts, measured_pts))?;
+    let svg = plot(
+        &names,
+        rule,
+        measured_file,
+        (ours_pts, paper_pts, measured_pts),
+    )?;
     Ok(Report {
         tables: vec![table],
         files: vec![

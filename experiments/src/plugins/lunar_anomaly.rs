@@ -19,16 +19,29 @@ use study::grids::CASES;
 use study::pointers::pointer_runs;
 
 /// `trials`: trials per row (ideal teeth, Cases A-D), each with fresh errors and initial angles, run without and with the pin-and-slot (table2's count and streams).
-const TRIALS: Param = registry::interval_trials("20", "trials per row (ideal teeth, Cases A-D), each with fresh errors and initial angles, run without and with the pin-and-slot (table2's count and streams)");
+const TRIALS: Param = registry::interval_trials(
+    "20",
+    "trials per row (ideal teeth, Cases A-D), each with fresh errors and initial angles, run without and with the pin-and-slot (table2's count and streams)",
+);
 
 /// `lunar_turns`: run length (one turn of b: about 13 anomalistic months).
-const LUNAR_TURNS: Param = study::pointers::turns("lunar_turns", "1", "run length (one turn of b: about 13 anomalistic months)");
+const LUNAR_TURNS: Param = study::pointers::turns(
+    "lunar_turns",
+    "1",
+    "run length (one turn of b: about 13 anomalistic months)",
+);
 
 /// `samples_per_engagement`: TD samples per engagement of the busiest mesh.
-const SAMPLES_PER_ENGAGEMENT: Param = study::pointers::per_engagement("8", "TD samples per engagement of the busiest mesh");
+const SAMPLES_PER_ENGAGEMENT: Param =
+    study::pointers::per_engagement("8", "TD samples per engagement of the busiest mesh");
 
 /// `curve_samples`: points of the anomaly curve over one anomalistic month (amplitude and plot).
-const CURVE_SAMPLES: Param = Param::new("curve_samples", "2000", "points of the anomaly curve over one anomalistic month (amplitude and plot)", registry::Kind::count(100, registry::MAX_COUNT as u64, ""));
+const CURVE_SAMPLES: Param = Param::new(
+    "curve_samples",
+    "2000",
+    "points of the anomaly curve over one anomalistic month (amplitude and plot)",
+    registry::Kind::count(100, registry::MAX_COUNT as u64, ""),
+);
 
 crate::experiment! {
     id: "lunar-anomaly", paper_item: "Section 6 (assumptions) / Freeth 2006", run,
@@ -88,11 +101,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     }
     let params: Vec<Option<hypotheses::Params>> = rows
         .iter()
-        .map(|r| {
-            r.case
-                .map(|case| errors.case_params(case))
-                .transpose()
-        })
+        .map(|r| r.case.map(|case| errors.case_params(case)).transpose())
         .collect::<Result<_, _>>()?;
     let setup = Rows {
         gearing: &g,

@@ -15,17 +15,27 @@ use stats::mean_ci95;
 use train::Gearing;
 
 use crate::common::{Series, category_plot};
-use study::errors;
 use crate::common::{mean_cell, percent_cell};
-use study::whole_mechanism::{self as whole, Clearances, Input, MechanismRun, TRAINS, summarise};
+use study::errors;
 use study::gearing;
 use study::grids::CASES;
+use study::whole_mechanism::{self as whole, Clearances, Input, MechanismRun, TRAINS, summarise};
 
 /// `trials`: whole-mechanism runs per row (the paper's failure study: 30).
-const TRIALS: Param = Param::new("trials", "60", "whole-mechanism runs per row (the paper's failure study: 30)", registry::Kind::count(2, registry::MAX_TRIALS, "an interval needs two runs"));
+const TRIALS: Param = Param::new(
+    "trials",
+    "60",
+    "whole-mechanism runs per row (the paper's failure study: 30)",
+    registry::Kind::count(2, registry::MAX_TRIALS, "an interval needs two runs"),
+);
 
 /// `case`: Edmunds' case every row starts from (A, B, C or D).
-const CASE: Param = Param::new("case", "B", "Edmunds' case every row starts from (A, B, C or D)", registry::Kind::Text);
+const CASE: Param = Param::new(
+    "case",
+    "B",
+    "Edmunds' case every row starts from (A, B, C or D)",
+    registry::Kind::Text,
+);
 
 crate::experiment! {
     id: "sensitivity", paper_item: "Section 6, assumptions (1)-(5)", run,
@@ -306,9 +316,7 @@ fn headline_table(
         let sigma = match sigmas.len() {
             0 => "-".to_string(),
             1 => format!("{} (n = 1)", fmt_f64(sigmas[0], 3)),
-            _ => {
-                crate::common::estimate(&mean_ci95(&sigmas), 3)
-            }
+            _ => crate::common::estimate(&mean_ci95(&sigmas), 3),
         };
         let first: Vec<String> = m
             .meshes

@@ -7,7 +7,8 @@ use stats::{Estimate, mean_ci95};
 use study::pointers::{POINTERS, PointerTrial, pointer_runs};
 
 /// `trials`: trials, each with fresh random initial angles.
-const TRIALS: Param = registry::interval_trials("30", "trials, each with fresh random initial angles");
+const TRIALS: Param =
+    registry::interval_trials("30", "trials, each with fresh random initial angles");
 
 crate::experiment! {
     id: "table1", paper_item: "Table 1 (section 3)", run,
@@ -70,7 +71,11 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let trials: usize = ctx.get(&TRIALS)?;
     let per = ctx.get(&study::pointers::SAMPLES_PER_ENGAGEMENT)?;
     let mech = study::pointers::ideal_mechanism(&settings, &crate::settings::rule(ctx)?)?;
-    let runs = pointer_runs(&settings.gearing, &crate::settings::turns(ctx, &POINTERS)?, per)?;
+    let runs = pointer_runs(
+        &settings.gearing,
+        &crate::settings::turns(ctx, &POINTERS)?,
+        per,
+    )?;
     let (file, h, clearance) = (&settings.file, settings.tooth_height, settings.clearance);
     let key = batch_key(file, trials, h, clearance, &runs);
     let g = &settings.gearing;

@@ -11,7 +11,10 @@ use study::grids::CASES;
 use study::pointers::{CaseMechanism, both_model_trials, pointer_runs};
 
 /// `trials`: trials per case, each with fresh errors and initial angles (Edmunds gives no count).
-const TRIALS: Param = registry::interval_trials("20", "trials per case, each with fresh errors and initial angles (Edmunds gives no count)");
+const TRIALS: Param = registry::interval_trials(
+    "20",
+    "trials per case, each with fresh errors and initial angles (Edmunds gives no count)",
+);
 
 /// `lunar_turns`: run length, Lunar.
 const LUNAR_TURNS: Param = study::pointers::turns("lunar_turns", "1", "run length, Lunar");
@@ -23,7 +26,8 @@ const METONIC_TURNS: Param = study::pointers::turns("metonic_turns", "3.8", "run
 const SAROS_TURNS: Param = study::pointers::turns("saros_turns", "4.5", "run length, Saros");
 
 /// `samples_per_engagement`: TD samples per engagement of the busiest mesh.
-const SAMPLES_PER_ENGAGEMENT: Param = study::pointers::per_engagement("8", "TD samples per engagement of the busiest mesh");
+const SAMPLES_PER_ENGAGEMENT: Param =
+    study::pointers::per_engagement("8", "TD samples per engagement of the busiest mesh");
 
 crate::experiment! {
     id: "table2", paper_item: "Table 2 (section 4)", run,
@@ -69,7 +73,8 @@ fn simulate(
             rule: &cells.rule,
             pin_and_slot,
         };
-        let per_trial = both_model_trials(ctx.engine(), &key, ci as u64, &made, runs, trials as u64)?;
+        let per_trial =
+            both_model_trials(ctx.engine(), &key, ci as u64, &made, runs, trials as u64)?;
         results.push(
             per_trial
                 .into_iter()

@@ -4,8 +4,8 @@
 use crate::replay::{Cell, CellText};
 use registry::{Context, OutputFile, Report, RunError, Table};
 
-use study::cell::{Purpose, run_cells};
 use crate::cells::{CASE_TRIAL_NOTE, JamCells, case_paper_counts, counts_report, replay_note};
+use study::cell::{Purpose, run_cells};
 use study::grids::{CASES, CellSettings, TRIALS, case_cells, cases_apply};
 
 crate::experiment! {

@@ -4,8 +4,8 @@
 use crate::replay::{Cell, CellText};
 use registry::{Context, OutputFile, Report, RunError, Table};
 
-use study::cell::{Purpose, label};
 use crate::cells::{JamCells, counts_report, paper_counts, replay_note};
+use study::cell::{Purpose, label};
 use study::grids::{CellSettings, TRIALS, run_grid};
 
 crate::experiment! {
@@ -38,7 +38,13 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
 fn counted(ctx: &Context) -> Result<Report, RunError> {
     let s = crate::settings::cells(ctx, &TRIALS)?;
     let (trials, clearance) = (s.trials, s.clearance()?);
-    let grid = run_grid(ctx.engine(), &s, crate::settings::random_grid(ctx)?, trials, Purpose::Own)?;
+    let grid = run_grid(
+        ctx.engine(),
+        &s,
+        crate::settings::random_grid(ctx)?,
+        trials,
+        Purpose::Own,
+    )?;
 
     let mut header = vec!["random error".to_string()];
     header.extend(grid.meshes.iter().cloned());

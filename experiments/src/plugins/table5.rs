@@ -5,9 +5,9 @@
 use crate::replay::{Cell, CellText};
 use registry::{Context, OutputFile, Report, RunError, Table};
 
-use study::cell::{Purpose, label};
 use crate::cells::{JamCells, counts_report, paper_counts};
 use crate::emax::{EMAX, emax_from_paper, given_random, paper_random, paper_systematic, show};
+use study::cell::{Purpose, label};
 use study::grids::{CellSettings, TRIALS, derive};
 use study::tolerance::{self, RULE};
 

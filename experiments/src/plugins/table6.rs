@@ -13,10 +13,18 @@ use study::pointers::{Manufactured, POINTERS, pointer_runs};
 use study::tolerance::RULE;
 
 /// `trials`: runs of the whole mechanism, each with fresh errors and initial angles (the paper: 30).
-const TRIALS: Param = registry::interval_trials("30", "runs of the whole mechanism, each with fresh errors and initial angles (the paper: 30)");
+const TRIALS: Param = registry::interval_trials(
+    "30",
+    "runs of the whole mechanism, each with fresh errors and initial angles (the paper: 30)",
+);
 
 /// `cell_trials`: trials per cell of Tables 4 and 5, from which the tolerances are derived.
-const CELL_TRIALS: Param = Param::new("cell_trials", "200", "trials per cell of Tables 4 and 5, from which the tolerances are derived", registry::Kind::count(1, registry::MAX_TRIALS, ""));
+const CELL_TRIALS: Param = Param::new(
+    "cell_trials",
+    "200",
+    "trials per cell of Tables 4 and 5, from which the tolerances are derived",
+    registry::Kind::count(1, registry::MAX_TRIALS, ""),
+);
 
 crate::experiment! {
     id: "table6", paper_item: "Table 6 (section 5)", run,
@@ -239,7 +247,8 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         params: &params,
         rule: &cells.rule,
     };
-    let recorded = study::pointers::tolerated_trials(ctx.engine(), &key, &made, &runs, trials as u64)?;
+    let recorded =
+        study::pointers::tolerated_trials(ctx.engine(), &key, &made, &runs, trials as u64)?;
     let per_trial: Vec<PointerTrials> = recorded
         .into_iter()
         .map(|trial| {

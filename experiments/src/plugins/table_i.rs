@@ -4,12 +4,20 @@
 use crate::replay::{Cell, CellText};
 use registry::{Context, OutputFile, Param, Report, RunError, Table};
 
-use crate::cells::{CASE_TRIAL_NOTE, JamCells, case_paper_counts, counts_report, paper_counts, replay_note};
+use crate::cells::{
+    CASE_TRIAL_NOTE, JamCells, case_paper_counts, counts_report, paper_counts, replay_note,
+};
 use study::cell::{Purpose, label, run_cells};
 use study::grids::{CASES, CellSettings, TRIALS, case_cells};
 
 /// `clearances`: Table I's clearances G, comma-separated (the paper: 10, 40 and 70).
-const CLEARANCES: Param = Param::new("clearances", "10,40,70", "clearances G, comma-separated (the paper: 10, 40 and 70)", registry::Kind::Text).unit("% of h");
+const CLEARANCES: Param = Param::new(
+    "clearances",
+    "10,40,70",
+    "clearances G, comma-separated (the paper: 10, 40 and 70)",
+    registry::Kind::Text,
+)
+.unit("% of h");
 
 crate::experiment! {
     id: "tableI", paper_item: "Table I (Appendix II)", run,
@@ -86,7 +94,8 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             ];
             for (m, mesh) in meshes.iter().enumerate() {
                 let n = &counts[k * per_g + c * meshes.len() + m];
-                let paper = case_paper_counts(cases_apply, "tableI", &format!("{case}.{gl}.{mesh}"));
+                let paper =
+                    case_paper_counts(cases_apply, "tableI", &format!("{case}.{gl}.{mesh}"));
                 row.push(jam_cells.cell(&format!("{case},{gl},{mesh}"), n, paper));
             }
             table.row(row);
