@@ -22,7 +22,13 @@ fn the_help_states_the_loaders_proportion_limits() {
     for (ratio, what) in [(MAX_PITCH_RATIO, "pitches"), (MAX_HEIGHT_RATIO, "heights")] {
         let words = format!("more than {ratio} times apart");
         let at = CONFIG_HELP.find(&words).unwrap();
-        assert!(CONFIG_HELP[..at].rsplit("tooth ").next().unwrap().starts_with(what));
+        assert!(
+            CONFIG_HELP[..at]
+                .rsplit("tooth ")
+                .next()
+                .unwrap()
+                .starts_with(what)
+        );
     }
 }
 
@@ -280,9 +286,7 @@ fn every_convention_recovers_the_known_gears_and_the_same_motion() {
         // The loaded gears stand where the known ones do, tooth for tooth in the user's
         // numbering.
         let (w1, w2) = p.mesh.world_outlines(0.0, 0.0);
-        for (outline, numbering, map, g) in
-            [(&w1, p.driver, &m1, &g1), (&w2, p.driven, &m2, &g2)]
-        {
+        for (outline, numbering, map, g) in [(&w1, p.driver, &m1, &g1), (&w2, p.driven, &m2, &g2)] {
             for (user, &i) in map.iter().enumerate() {
                 let k = numbering.solver(user as i64) as usize;
                 let miss = (outline[2 * k] - g.tips[i]).norm();
@@ -300,8 +304,7 @@ fn every_convention_recovers_the_known_gears_and_the_same_motion() {
             );
         }
         assert!(
-            (g2.centre - g2.arbor - rotate(-p.mesh.driven().rotation_centre(), PI)).norm()
-                < 1e-9
+            (g2.centre - g2.arbor - rotate(-p.mesh.driven().rotation_centre(), PI)).norm() < 1e-9
         );
         // The same motion from the touching start, and from the resting pair of that start
         // named by tooth numbers in this convention.
