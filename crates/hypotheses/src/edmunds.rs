@@ -3,7 +3,7 @@
 
 use std::f64::consts::TAU;
 
-use geometry::{Gear, Vec2, polar};
+use geometry::{Gear, GeometryError, Vec2, polar};
 use rand::Rng;
 use rand_distr::{Distribution, StandardNormal};
 
@@ -189,7 +189,19 @@ pub fn manufacture(
         ));
     }
     Gear::new(gear.tip_radius(), gear.root_radius(), tips, rotation_centre)
-        .map_err(|e| HypothesisError::new(format!("gear `{gear_name}`: {}", e.field), e.rule))
+        .map_err(|e| HypothesisError::gear(gear_name, e))
+}
+
+/// `gear` with its valleys at `valleys` (radians), its tips, nominal radii and rotation centre
+/// kept: what [`Gear::with_valleys`] refuses is refused.
+pub(crate) fn with_valleys_at(gear: &Gear, valleys: Vec<f64>) -> Result<Gear, GeometryError> {
+    Gear::with_valleys(
+        gear.tip_radius(),
+        gear.root_radius(),
+        gear.tip_angles().to_vec(),
+        valleys,
+        gear.rotation_centre(),
+    )
 }
 
 /// Parameter `random`.

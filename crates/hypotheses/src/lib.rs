@@ -5,6 +5,7 @@ use std::fmt::Write as _;
 
 use geometry::Gear;
 
+pub use geometry;
 pub use inventory;
 pub use rand;
 
@@ -16,6 +17,7 @@ mod plugins {
 }
 mod measured;
 mod params;
+mod register;
 mod stack;
 
 pub use edmunds::{EdmundsErrors, MAX_RANDOM, eccentricity, manufacture};
@@ -48,7 +50,22 @@ impl HypothesisError {
             rule: one_line(rule.into()),
         }
     }
+
+    /// `gear_name`'s gear could not be built: `e` names the field (`gear `{gear_name}`:
+    /// {field}`) and the rule.
+    pub fn gear(gear_name: &str, e: geometry::GeometryError) -> Self {
+        Self::new(format!("gear `{gear_name}`: {}", e.field), e.rule)
+    }
+
+    /// An error about parameter `spec` of hypothesis `hypothesis` breaking `rule`: its `what` is
+    /// `{hypothesis}: parameter `{name}``.
+    pub fn parameter(hypothesis: &str, spec: &ParamSpec, rule: impl Into<String>) -> Self {
+        Self::new(format!("{hypothesis}: parameter `{}`", spec.name), rule)
+    }
 }
+
+/// What [`Hypothesis::apply`] returns: the manufactured gear, or why it could not be made.
+pub type Manufactured = Result<Gear, HypothesisError>;
 
 /// `s` with control characters escaped (`\n`, `\u{1b}`...).
 fn one_line(s: String) -> String {
@@ -82,6 +99,24 @@ pub struct ParamSpec {
     pub unit: &'static str,
     /// One line telling what it does.
     pub help: &'static str,
+}
+
+impl ParamSpec {
+    /// A parameter called `name`, `default` unless overridden, in `unit` (empty when it has
+    /// none), doing what `help` says in one line.
+    pub const fn new(
+        name: &'static str,
+        default: f64,
+        unit: &'static str,
+        help: &'static str,
+    ) -> Self {
+        Self {
+            name,
+            default,
+            unit,
+            help,
+        }
+    }
 }
 
 /// A manufacturing-error hypothesis: how a designed gear becomes a manufactured one.
@@ -130,7 +165,7 @@ pub trait Hypothesis: Sync {
 }
 
 /// The `inventory` item a hypothesis registers itself with; adding one is one file and one
-/// registration:
+/// registration, most simply with [`hypothesis!`] (which writes this one), or by hand:
 ///
 /// ```ignore
 /// struct ToyShift;
@@ -242,6 +277,29 @@ pub fn listing() -> String {
         }
     }
     s
+}
+
+/// What the plugins' tests share.
+#[cfg(test)]
+#[allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
+pub(crate) mod test_support {
+    use crate::{Hypothesis, Params};
+
+    /// The registered hypothesis `name` with its default parameters.
+    pub(crate) fn with_defaults(name: &str) -> (&'static dyn Hypothesis, Params) {
+        let h = crate::lookup(name).unwrap();
+        (h, Params::new(h, &[]).unwrap())
+    }
+
+    /// Asserts that `deviations` (draws less their design value, of the quantity `what`)
+    /// average 0 and that their root mean square is `sd`, each within `tolerance`.
+    pub(crate) fn assert_spread(deviations: &[f64], sd: f64, tolerance: f64, what: &str) {
+        let n = deviations.len() as f64;
+        let mean = deviations.iter().sum::<f64>() / n;
+        let rms = (deviations.iter().map(|d| d * d).sum::<f64>() / n).sqrt();
+        assert!(mean.abs() < tolerance, "mean {what} {mean}");
+        assert!((rms - sd).abs() < tolerance, "sd of the {what} {rms}");
+    }
 }
 
 /// Does nothing; calling it makes a binary link this crate, and with it every built-in

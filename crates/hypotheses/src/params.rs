@@ -2,7 +2,7 @@
 
 use std::collections::BTreeMap;
 
-use crate::{Hypothesis, HypothesisError};
+use crate::{Hypothesis, HypothesisError, ParamSpec};
 
 /// The `name=value` pairs of a hypothesis' parameters as typed (`random=0.04,systematic=0.6`),
 /// trimmed, in order; blank text is no pairs.
@@ -119,6 +119,33 @@ impl Params {
                 self.values.keys().copied().collect::<Vec<_>>().join(", ")
             ),
         }
+    }
+
+    /// The value of `spec`, a length of hypothesis `hypothesis` that must be finite and at least
+    /// 0; any other value is an error naming the hypothesis and the parameter (`{hypothesis}:
+    /// parameter `{name}`: must be a finite length of at least 0 {unit} (got {value})`).
+    ///
+    /// # Panics
+    ///
+    /// As [`Params::get`], if `spec` is not one of the hypothesis' declared parameters.
+    pub fn non_negative_length(
+        &self,
+        spec: &ParamSpec,
+        hypothesis: &str,
+    ) -> Result<f64, HypothesisError> {
+        let x = self.get(spec.name);
+        if x.is_finite() && x >= 0.0 {
+            return Ok(x);
+        }
+        Err(HypothesisError::parameter(
+            hypothesis,
+            spec,
+            format!(
+                "must be a finite length of at least 0 {} (got {})",
+                spec.unit,
+                registry::fmt_number(x)
+            ),
+        ))
     }
 
     /// The value of parameter `name`, or `None` if it is not declared.

@@ -3,80 +3,57 @@
 //! The model in words is [`DETAILS`] (what `cargo xtask help` prints).
 
 use geometry::Gear;
+use rand::RngCore;
 use rand_distr::{Distribution, StandardNormal};
 
-use crate::{Hypothesis, HypothesisError, ParamSpec, Params, Registration};
+use crate::edmunds::with_valleys_at;
+use crate::{HypothesisError, Manufactured, ParamSpec, Params};
 
-/// The hypothesis.
-struct AsymmetricTeeth;
-
-/// The model in words, printed by `cargo xtask help`.
-const DETAILS: &str = "Valley k is placed at the fraction `0.5 + s·z` of the angular gap from tip k to tip k + 1, z a standard normal draw and s the parameter `valley_shift`; the fraction is clamped to 0.05 ..= 0.95 so that the valley stays strictly between its tips (no flank degenerates). Tips, radii and rotation centre are unchanged.";
-
-const VALLEY_SHIFT: ParamSpec = ParamSpec {
-    name: "valley_shift",
-    default: 0.05,
-    unit: "gap",
-    help: "standard deviation of each valley's displacement from midway between its tips, as a fraction of that tip gap (the valley is clamped to 0.05 .. 0.95 of the gap)",
-};
+const VALLEY_SHIFT: ParamSpec = ParamSpec::new(
+    "valley_shift",
+    0.05,
+    "gap",
+    "standard deviation of each valley's displacement from midway between its tips, as a fraction of that tip gap (the valley is clamped to 0.05 .. 0.95 of the gap)",
+);
 
 /// The valley's position in its gap is clamped to `[LOWEST, 1 - LOWEST]`.
 const LOWEST: f64 = 0.05;
 
-impl Hypothesis for AsymmetricTeeth {
-    fn name(&self) -> &'static str {
-        "asymmetric-teeth"
+fn apply(gear: &Gear, gear_name: &str, params: &Params, rng: &mut dyn RngCore) -> Manufactured {
+    let shift = params.get(VALLEY_SHIFT.name);
+    if !(0.0..=1.0).contains(&shift) {
+        return Err(HypothesisError::parameter(
+            "asymmetric-teeth",
+            &VALLEY_SHIFT,
+            format!(
+                "must be between 0 and 1 (a fraction of the tip gap; got {})",
+                registry::fmt_number(shift)
+            ),
+        ));
     }
-
-    fn summary(&self) -> &'static str {
-        "each valley displaced from midway between its tips, so the teeth lean (assumption 3); tips unchanged"
-    }
-
-    fn details(&self) -> &'static str {
-        DETAILS
-    }
-
-    fn params(&self) -> &'static [ParamSpec] {
-        &[VALLEY_SHIFT]
-    }
-
-    fn apply(
-        &self,
-        gear: &Gear,
-        gear_name: &str,
-        params: &Params,
-        rng: &mut dyn rand::RngCore,
-    ) -> Result<Gear, HypothesisError> {
-        let shift = params.get(VALLEY_SHIFT.name);
-        if !(0.0..=1.0).contains(&shift) {
-            return Err(HypothesisError::new(
-                format!("asymmetric-teeth: parameter `{}`", VALLEY_SHIFT.name),
-                format!(
-                    "must be between 0 and 1 (a fraction of the tip gap; got {})",
-                    registry::fmt_number(shift)
-                ),
-            ));
-        }
-        let valleys = (0..gear.teeth() as i64)
-            .map(|k| {
-                let (lo, hi) = (gear.tip_angle(k), gear.tip_angle(k + 1));
-                let z: f64 = StandardNormal.sample(rng);
-                let at = (0.5 + shift * z).clamp(LOWEST, 1.0 - LOWEST);
-                lo + at * (hi - lo)
-            })
-            .collect();
-        Gear::with_valleys(
-            gear.tip_radius(),
-            gear.root_radius(),
-            gear.tip_angles().to_vec(),
-            valleys,
-            gear.rotation_centre(),
-        )
-        .map_err(|e| HypothesisError::new(format!("gear `{gear_name}`: {}", e.field), e.rule))
-    }
+    let valleys = (0..gear.teeth() as i64)
+        .map(|k| {
+            let (lo, hi) = (gear.tip_angle(k), gear.tip_angle(k + 1));
+            let z: f64 = StandardNormal.sample(rng);
+            let at = (0.5 + shift * z).clamp(LOWEST, 1.0 - LOWEST);
+            lo + at * (hi - lo)
+        })
+        .collect();
+    with_valleys_at(gear, valleys).map_err(|e| HypothesisError::gear(gear_name, e))
 }
 
-inventory::submit! { Registration(&AsymmetricTeeth) }
+/// The model in words, printed by `cargo xtask help`.
+const DETAILS: &str = "Valley k is placed at the fraction `0.5 + s·z` of the angular gap from tip k to tip k + 1, z a standard normal draw and s the parameter `valley_shift`; the fraction is clamped to 0.05 ..= 0.95 so that the valley stays strictly between its tips (no flank degenerates). Tips, radii and rotation centre are unchanged.";
+
+crate::hypothesis! {
+    /// The hypothesis.
+    struct AsymmetricTeeth;
+    name: "asymmetric-teeth",
+    summary: "each valley displaced from midway between its tips, so the teeth lean (assumption 3); tips unchanged",
+    details: DETAILS,
+    params: &[VALLEY_SHIFT],
+    apply,
+}
 
 #[cfg(test)]
 mod tests {
@@ -99,8 +76,7 @@ mod tests {
 
     #[test]
     fn valleys_spread_as_stated_and_tips_stay() {
-        let h = crate::lookup("asymmetric-teeth").unwrap();
-        let p = Params::new(h, &[]).unwrap();
+        let (h, p) = crate::test_support::with_defaults("asymmetric-teeth");
         // Uneven tips: the shift is a fraction of each gap, not of the nominal pitch.
         let designed = Gear::new(
             15.0,
@@ -112,22 +88,16 @@ mod tests {
         )
         .unwrap();
         let mut rng = ChaCha8Rng::seed_from_u64(8);
-        let (mut sum, mut sum2, mut count) = (0.0, 0.0, 0.0);
+        let mut shifts = Vec::new();
         for _ in 0..200 {
             let g = h.apply(&designed, "b1", &p, &mut rng).unwrap();
             assert_eq!(g.tip_angles(), designed.tip_angles());
             assert_eq!(g.tip_radius(), designed.tip_radius());
             assert_eq!(g.root_radius(), designed.root_radius());
             assert_eq!(g.rotation_centre(), designed.rotation_centre());
-            for f in fractions(&g) {
-                sum += f - 0.5;
-                sum2 += (f - 0.5).powi(2);
-                count += 1.0;
-            }
+            shifts.extend(fractions(&g).iter().map(|f| f - 0.5));
         }
-        let (mean, sd) = (sum / count, (sum2 / count).sqrt());
-        assert!(mean.abs() < 0.003, "mean shift {mean}");
-        assert!((sd - 0.05).abs() < 0.003, "sd of the shift {sd}");
+        crate::test_support::assert_spread(&shifts, 0.05, 0.003, "shift");
     }
 
     #[test]

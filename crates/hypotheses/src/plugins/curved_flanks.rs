@@ -3,104 +3,75 @@
 //! The model in words is [`DETAILS`] (what `cargo xtask help` prints).
 
 use geometry::Gear;
+use rand::RngCore;
 use rand_distr::{Distribution, StandardNormal};
 
-use crate::{Hypothesis, HypothesisError, ParamSpec, Params, Registration};
+use crate::{HypothesisError, Manufactured, ParamSpec, Params};
 
-/// The hypothesis.
-struct CurvedFlanks;
+const SAGITTA: ParamSpec = ParamSpec::new(
+    "sagitta",
+    0.05,
+    "mm",
+    "signed sagitta of every flank (the arc's greatest distance from its chord): + convex (bulging out of the tooth), - concave, 0 straight",
+);
+
+const SAGITTA_SPREAD: ParamSpec = ParamSpec::new(
+    "sagitta_spread",
+    0.0,
+    "mm",
+    "standard deviation of a random addition to the sagitta, drawn once per gear",
+);
+
+fn apply(gear: &Gear, gear_name: &str, params: &Params, rng: &mut dyn RngCore) -> Manufactured {
+    let sagitta = params.get(SAGITTA.name);
+    if !sagitta.is_finite() {
+        return Err(HypothesisError::parameter(
+            "curved-flanks",
+            &SAGITTA,
+            format!(
+                "must be a finite length in mm (got {})",
+                registry::fmt_number(sagitta)
+            ),
+        ));
+    }
+    let spread = params.non_negative_length(&SAGITTA_SPREAD, "curved-flanks")?;
+    let s = if spread > 0.0 {
+        let z: f64 = StandardNormal.sample(rng);
+        sagitta + spread * z
+    } else {
+        sagitta
+    };
+    // The gear's rule, said of the parameter the user set (the drawn s is the sagitta's, or
+    // the sagitta's plus the spread's draw).
+    gear.clone().with_flank_sagitta(s).map_err(|e| {
+        let param = if spread > 0.0 {
+            "parameters `sagitta` and `sagitta_spread`"
+        } else {
+            "parameter `sagitta`"
+        };
+        HypothesisError::new(
+            format!("gear `{gear_name}`: curved-flanks: {param}"),
+            format!(
+                "the sagitta s = {} mm drawn for this gear is too large for its teeth: {}",
+                registry::fmt_number(s),
+                e.rule
+            ),
+        )
+    })
+}
 
 /// The model in words, printed by `cargo xtask help`.
 const DETAILS: &str = "Every flank of a gear becomes the arc through its two vertices with one signed sagitta `s` (mm, the arc's greatest distance from the chord): `s > 0` bulges out of the tooth (convex, as a file rounds a tooth), `s < 0` hollows it (concave). Each gear gets `s = sagitta + sagitta_spread · z`, z a standard normal draw per gear (none is drawn when the spread is 0). Tips, valleys, radii and rotation centre are kept, so the hypothesis composes after the others (e.g. `edmunds-split`, then `curved-flanks`). A sagitta too large for a gear's teeth (see geometry::Gear::with_flank_sagitta) is an error naming the gear.";
 
-const SAGITTA: ParamSpec = ParamSpec {
-    name: "sagitta",
-    default: 0.05,
-    unit: "mm",
-    help: "signed sagitta of every flank (the arc's greatest distance from its chord): + convex (bulging out of the tooth), - concave, 0 straight",
-};
-
-const SAGITTA_SPREAD: ParamSpec = ParamSpec {
-    name: "sagitta_spread",
-    default: 0.0,
-    unit: "mm",
-    help: "standard deviation of a random addition to the sagitta, drawn once per gear",
-};
-
-impl Hypothesis for CurvedFlanks {
-    fn name(&self) -> &'static str {
-        "curved-flanks"
-    }
-
-    fn summary(&self) -> &'static str {
-        "every flank a circular arc of a signed sagitta, convex or concave, instead of a straight line (assumption 2); vertices unchanged"
-    }
-
-    fn details(&self) -> &'static str {
-        DETAILS
-    }
-
-    fn params(&self) -> &'static [ParamSpec] {
-        &[SAGITTA, SAGITTA_SPREAD]
-    }
-
-    fn apply(
-        &self,
-        gear: &Gear,
-        gear_name: &str,
-        params: &Params,
-        rng: &mut dyn rand::RngCore,
-    ) -> Result<Gear, HypothesisError> {
-        let bad = |spec: &ParamSpec, rule: String| {
-            HypothesisError::new(format!("curved-flanks: parameter `{}`", spec.name), rule)
-        };
-        let sagitta = params.get(SAGITTA.name);
-        if !sagitta.is_finite() {
-            return Err(bad(
-                &SAGITTA,
-                format!(
-                    "must be a finite length in mm (got {})",
-                    registry::fmt_number(sagitta)
-                ),
-            ));
-        }
-        let spread = params.get(SAGITTA_SPREAD.name);
-        if !(spread.is_finite() && spread >= 0.0) {
-            return Err(bad(
-                &SAGITTA_SPREAD,
-                format!(
-                    "must be a finite length of at least 0 mm (got {})",
-                    registry::fmt_number(spread)
-                ),
-            ));
-        }
-        let s = if spread > 0.0 {
-            let z: f64 = StandardNormal.sample(rng);
-            sagitta + spread * z
-        } else {
-            sagitta
-        };
-        // The gear's rule, said of the parameter the user set (the drawn s is the sagitta's, or
-        // the sagitta's plus the spread's draw).
-        gear.clone().with_flank_sagitta(s).map_err(|e| {
-            let param = if spread > 0.0 {
-                "parameters `sagitta` and `sagitta_spread`"
-            } else {
-                "parameter `sagitta`"
-            };
-            HypothesisError::new(
-                format!("gear `{gear_name}`: curved-flanks: {param}"),
-                format!(
-                    "the sagitta s = {} mm drawn for this gear is too large for its teeth: {}",
-                    registry::fmt_number(s),
-                    e.rule
-                ),
-            )
-        })
-    }
+crate::hypothesis! {
+    /// The hypothesis.
+    struct CurvedFlanks;
+    name: "curved-flanks",
+    summary: "every flank a circular arc of a signed sagitta, convex or concave, instead of a straight line (assumption 2); vertices unchanged",
+    details: DETAILS,
+    params: &[SAGITTA, SAGITTA_SPREAD],
+    apply,
 }
-
-inventory::submit! { Registration(&CurvedFlanks) }
 
 #[cfg(test)]
 mod tests {
@@ -120,8 +91,7 @@ mod tests {
 
     #[test]
     fn defaults_curve_every_flank_and_keep_the_vertices() {
-        let h = crate::lookup("curved-flanks").unwrap();
-        let p = Params::new(h, &[]).unwrap();
+        let (h, p) = crate::test_support::with_defaults("curved-flanks");
         assert_eq!((p.get("sagitta"), p.get("sagitta_spread")), (0.05, 0.0));
         let designed = Gear::ideal(60, 15.0, 13.9)
             .unwrap()
@@ -162,27 +132,17 @@ mod tests {
         let h = crate::lookup("curved-flanks").unwrap();
         let designed = Gear::ideal(40, 15.0, 13.9).unwrap();
         let mut rng = ChaCha8Rng::seed_from_u64(2);
-        let e = h
-            .apply(
-                &designed,
-                "a1",
-                &Params::new(h, &set(&[("sagitta_spread", "-1")])).unwrap(),
-                &mut rng,
-            )
-            .unwrap_err();
+        let mut refused = |pairs: &[(&str, &str)]| {
+            let p = Params::new(h, &set(pairs)).unwrap();
+            h.apply(&designed, "a1", &p, &mut rng).unwrap_err()
+        };
+        let e = refused(&[("sagitta_spread", "-1")]);
         assert!(e.to_string().contains("`sagitta_spread`"), "{e}");
         // A non-finite sagitta is refused when the parameters are read.
         let e = Params::new(h, &set(&[("sagitta", "inf")])).unwrap_err();
         assert!(e.to_string().contains("`sagitta`"), "{e}");
         // Far more than a quarter of a 1.5 mm flank: the gear's rule, naming the gear.
-        let e = h
-            .apply(
-                &designed,
-                "a1",
-                &Params::new(h, &set(&[("sagitta", "1")])).unwrap(),
-                &mut rng,
-            )
-            .unwrap_err();
+        let e = refused(&[("sagitta", "1")]);
         assert!(
             e.what
                 .starts_with("gear `a1`: curved-flanks: parameter `sagitta`"),

@@ -8,61 +8,37 @@
 use std::f64::consts::TAU;
 
 use geometry::Gear;
+use rand::RngCore;
 
-use crate::{Hypothesis, HypothesisError, ParamSpec, Params, Registration};
+use crate::edmunds::with_valleys_at;
+use crate::{HypothesisError, Manufactured, Params};
 
-/// The hypothesis.
-struct DesignValleys;
+fn apply(gear: &Gear, gear_name: &str, _: &Params, _: &mut dyn RngCore) -> Manufactured {
+    let n = gear.teeth();
+    let valleys = (0..n).map(|k| TAU * (k as f64 + 0.5) / n as f64).collect();
+    with_valleys_at(gear, valleys).map_err(|e| {
+        HypothesisError::new(
+            format!("design-valleys: gear `{gear_name}`"),
+            format!(
+                "a tip has moved past its design valley ({}: {})",
+                e.field, e.rule
+            ),
+        )
+    })
+}
 
 /// The model in words, printed by `cargo xtask help`.
 const DETAILS: &str = "Valley k is put at its design angle 360·(k + 1/2)/N degrees of the gear frame (midway between the design tips), whatever the hypotheses before it did to the tips; tips, radii and rotation centre are kept. After `edmunds-split` this reads the paper's tooth error as moving the tip alone, the flanks pivoting about fixed valleys, instead of the whole tooth (valleys midway between the displaced tips, the paper's own sentence and the default). A valley must stay strictly between its tips: a tip moved by half a pitch or more is refused, naming the gear.";
 
-impl Hypothesis for DesignValleys {
-    fn name(&self) -> &'static str {
-        "design-valleys"
-    }
-
-    fn summary(&self) -> &'static str {
-        "every valley at its design angle, so that a tooth error moves the tip alone (a reading of section 4; stack it after the errors: edmunds-split+design-valleys)"
-    }
-
-    fn details(&self) -> &'static str {
-        DETAILS
-    }
-
-    fn params(&self) -> &'static [ParamSpec] {
-        &[]
-    }
-
-    fn apply(
-        &self,
-        gear: &Gear,
-        gear_name: &str,
-        _: &Params,
-        _: &mut dyn rand::RngCore,
-    ) -> Result<Gear, HypothesisError> {
-        let n = gear.teeth();
-        let valleys = (0..n).map(|k| TAU * (k as f64 + 0.5) / n as f64).collect();
-        Gear::with_valleys(
-            gear.tip_radius(),
-            gear.root_radius(),
-            gear.tip_angles().to_vec(),
-            valleys,
-            gear.rotation_centre(),
-        )
-        .map_err(|e| {
-            HypothesisError::new(
-                format!("design-valleys: gear `{gear_name}`"),
-                format!(
-                    "a tip has moved past its design valley ({}: {})",
-                    e.field, e.rule
-                ),
-            )
-        })
-    }
+crate::hypothesis! {
+    /// The hypothesis.
+    struct DesignValleys;
+    name: "design-valleys",
+    summary: "every valley at its design angle, so that a tooth error moves the tip alone (a reading of section 4; stack it after the errors: edmunds-split+design-valleys)",
+    details: DETAILS,
+    params: &[],
+    apply,
 }
-
-inventory::submit! { Registration(&DesignValleys) }
 
 #[cfg(test)]
 mod tests {
@@ -72,6 +48,13 @@ mod tests {
     use rand_chacha::ChaCha8Rng;
 
     use super::*;
+    use crate::Hypothesis;
+
+    /// `design-valleys` applied to `moved`, a gear named `name`.
+    fn put_back(moved: &Gear, name: &str) -> Manufactured {
+        let params = Params::new(&DesignValleys, &[]).unwrap();
+        DesignValleys.apply(moved, name, &params, &mut ChaCha8Rng::seed_from_u64(1))
+    }
 
     #[test]
     fn valleys_go_back_to_their_design_angles_and_tips_stay() {
@@ -82,15 +65,7 @@ mod tests {
             .map(|k| pitch * k as f64 + 0.2 * pitch * ((k as f64) * 1.7).sin())
             .collect();
         let moved = Gear::new(10.0, 8.9, tips.clone(), geometry::Vec2::zeros()).unwrap();
-        let mut rng = ChaCha8Rng::seed_from_u64(1);
-        let g = DesignValleys
-            .apply(
-                &moved,
-                "x",
-                &Params::new(&DesignValleys, &[]).unwrap(),
-                &mut rng,
-            )
-            .unwrap();
+        let g = put_back(&moved, "x").unwrap();
         assert_eq!(g.tip_angles(), tips.as_slice());
         for (k, v) in g.valley_angles().iter().enumerate() {
             assert!(
@@ -107,16 +82,7 @@ mod tests {
         let mut tips: Vec<f64> = (0..n).map(|k| pitch * k as f64).collect();
         tips[3] += 0.6 * pitch;
         let moved = Gear::new(10.0, 8.9, tips, geometry::Vec2::zeros()).unwrap();
-        let mut rng = ChaCha8Rng::seed_from_u64(1);
-        let e = DesignValleys
-            .apply(
-                &moved,
-                "b1",
-                &Params::new(&DesignValleys, &[]).unwrap(),
-                &mut rng,
-            )
-            .unwrap_err()
-            .to_string();
+        let e = put_back(&moved, "b1").unwrap_err().to_string();
         assert!(e.contains("gear `b1`"), "{e}");
     }
 }

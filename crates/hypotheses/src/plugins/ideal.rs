@@ -1,34 +1,19 @@
 //! `ideal`: no manufacturing error.
 
 use geometry::Gear;
+use rand::RngCore;
 
-use crate::{Hypothesis, HypothesisError, ParamSpec, Params, Registration};
+use crate::{Manufactured, Params};
 
-/// The gear exactly as designed.
-struct Ideal;
-
-impl Hypothesis for Ideal {
-    fn name(&self) -> &'static str {
-        "ideal"
-    }
-
-    fn summary(&self) -> &'static str {
-        "no manufacturing error: the gear exactly as designed"
-    }
-
-    fn params(&self) -> &'static [ParamSpec] {
-        &[]
-    }
-
-    fn apply(
-        &self,
-        gear: &Gear,
-        _gear_name: &str,
-        _params: &Params,
-        _rng: &mut dyn rand::RngCore,
-    ) -> Result<Gear, HypothesisError> {
-        Ok(gear.clone())
-    }
+crate::hypothesis! {
+    /// The gear exactly as designed.
+    struct Ideal;
+    name: "ideal",
+    summary: "no manufacturing error: the gear exactly as designed",
+    params: &[],
+    apply,
 }
 
-inventory::submit! { Registration(&Ideal) }
+fn apply(gear: &Gear, _: &str, _: &Params, _: &mut dyn RngCore) -> Manufactured {
+    Ok(gear.clone())
+}

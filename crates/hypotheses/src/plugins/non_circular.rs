@@ -4,114 +4,82 @@
 use std::f64::consts::TAU;
 
 use geometry::Gear;
-use rand::Rng;
+use rand::{Rng, RngCore};
 use rand_distr::{Distribution, StandardNormal};
 
-use crate::{Hypothesis, HypothesisError, ParamSpec, Params, Registration};
+use crate::{HypothesisError, Manufactured, ParamSpec, Params};
 
-/// The hypothesis.
-struct NonCircular;
+const RADIAL_ERROR: ParamSpec = ParamSpec::new(
+    "radial_error",
+    0.02,
+    "mm",
+    "standard deviation of each tip's and each valley's radius about the design",
+);
+
+const LOBE: ParamSpec = ParamSpec::new(
+    "lobe",
+    0.0,
+    "mm",
+    "amplitude of a once-per-turn out-of-round (radius + lobe·cos(angle − α), α random per gear)",
+);
+
+fn apply(gear: &Gear, gear_name: &str, params: &Params, rng: &mut dyn RngCore) -> Manufactured {
+    let sd = params.non_negative_length(&RADIAL_ERROR, "non-circular")?;
+    let lobe = params.non_negative_length(&LOBE, "non-circular")?;
+    let alpha = rng.random::<f64>() * TAU;
+    let mut radius = |designed: f64, angle: f64| {
+        let z: f64 = StandardNormal.sample(rng);
+        designed + sd * z.clamp(-4.0, 4.0) + lobe * (angle - alpha).cos()
+    };
+    let tips: Vec<f64> = gear
+        .tip_angles()
+        .iter()
+        .map(|&a| radius(gear.tip_radius(), a))
+        .collect();
+    let roots: Vec<f64> = gear
+        .valley_angles()
+        .iter()
+        .map(|&a| radius(gear.root_radius(), a))
+        .collect();
+    // The gear's rule names its radii by index; said instead of the parameters the user
+    // set, with what the draw did.
+    gear.clone().with_radii(tips, roots).map_err(|e| {
+        let param = match (sd > 0.0, lobe > 0.0) {
+            (true, true) => "parameters `radial_error` and `lobe`",
+            (false, true) => "parameter `lobe`",
+            _ => "parameter `radial_error`",
+        };
+        let what = if e.field.starts_with("rotation_centre") {
+            "the smallest valley radius drawn reaches the gear's axis".to_string()
+        } else if e.field.starts_with("root_radii") {
+            "a valley was drawn at or above one of its tips".to_string()
+        } else {
+            "a radius drawn is not above 0".to_string()
+        };
+        HypothesisError::new(
+            format!("gear `{gear_name}`: non-circular: {param}"),
+            format!(
+                "too large for teeth {} mm high (radial_error = {} mm, lobe = {} mm): {what}",
+                registry::fmt_f64(gear.tip_radius() - gear.root_radius(), 3),
+                registry::fmt_number(sd),
+                registry::fmt_number(lobe)
+            ),
+        )
+    })
+}
 
 /// The model in words, printed by `cargo xtask help`.
 const DETAILS: &str = "Every tip and every valley gets its own radius: the designed one plus `radial_error · z` (z a standard normal draw, one per vertex, clamped to ±4) plus a once-per-turn out-of-round `lobe · cos(angle − α)` with α uniform over the turn (one per gear). Tip and valley angles and the rotation centre are unchanged; the designed radii stay the gear's nominal ones (Gear::tip_radius, Gear::root_radius). A draw that puts a valley above one of its tips, or the axis outside the smallest valley, is an error naming the gear.";
 
-const RADIAL_ERROR: ParamSpec = ParamSpec {
-    name: "radial_error",
-    default: 0.02,
-    unit: "mm",
-    help: "standard deviation of each tip's and each valley's radius about the design",
-};
-
-const LOBE: ParamSpec = ParamSpec {
-    name: "lobe",
-    default: 0.0,
-    unit: "mm",
-    help: "amplitude of a once-per-turn out-of-round (radius + lobe·cos(angle − α), α random per gear)",
-};
-
-impl Hypothesis for NonCircular {
-    fn name(&self) -> &'static str {
-        "non-circular"
-    }
-
-    fn summary(&self) -> &'static str {
-        "each tip and valley at its own radius, optionally with a once-per-turn lobe (assumption 1); angles unchanged"
-    }
-
-    fn details(&self) -> &'static str {
-        DETAILS
-    }
-
-    fn params(&self) -> &'static [ParamSpec] {
-        &[RADIAL_ERROR, LOBE]
-    }
-
-    fn apply(
-        &self,
-        gear: &Gear,
-        gear_name: &str,
-        params: &Params,
-        rng: &mut dyn rand::RngCore,
-    ) -> Result<Gear, HypothesisError> {
-        let param = |spec: &ParamSpec| -> Result<f64, HypothesisError> {
-            let x = params.get(spec.name);
-            if x.is_finite() && x >= 0.0 {
-                Ok(x)
-            } else {
-                Err(HypothesisError::new(
-                    format!("non-circular: parameter `{}`", spec.name),
-                    format!(
-                        "must be a finite length of at least 0 mm (got {})",
-                        registry::fmt_number(x)
-                    ),
-                ))
-            }
-        };
-        let (sd, lobe) = (param(&RADIAL_ERROR)?, param(&LOBE)?);
-        let alpha = rng.random::<f64>() * TAU;
-        let mut radius = |designed: f64, angle: f64| {
-            let z: f64 = StandardNormal.sample(rng);
-            designed + sd * z.clamp(-4.0, 4.0) + lobe * (angle - alpha).cos()
-        };
-        let tips: Vec<f64> = gear
-            .tip_angles()
-            .iter()
-            .map(|&a| radius(gear.tip_radius(), a))
-            .collect();
-        let roots: Vec<f64> = gear
-            .valley_angles()
-            .iter()
-            .map(|&a| radius(gear.root_radius(), a))
-            .collect();
-        // The gear's rule names its radii by index; said instead of the parameters the user
-        // set, with what the draw did.
-        gear.clone().with_radii(tips, roots).map_err(|e| {
-            let param = match (sd > 0.0, lobe > 0.0) {
-                (true, true) => "parameters `radial_error` and `lobe`",
-                (false, true) => "parameter `lobe`",
-                _ => "parameter `radial_error`",
-            };
-            let what = if e.field.starts_with("rotation_centre") {
-                "the smallest valley radius drawn reaches the gear's axis".to_string()
-            } else if e.field.starts_with("root_radii") {
-                "a valley was drawn at or above one of its tips".to_string()
-            } else {
-                "a radius drawn is not above 0".to_string()
-            };
-            HypothesisError::new(
-                format!("gear `{gear_name}`: non-circular: {param}"),
-                format!(
-                    "too large for teeth {} mm high (radial_error = {} mm, lobe = {} mm): {what}",
-                    registry::fmt_f64(gear.tip_radius() - gear.root_radius(), 3),
-                    registry::fmt_number(sd),
-                    registry::fmt_number(lobe)
-                ),
-            )
-        })
-    }
+crate::hypothesis! {
+    /// The hypothesis.
+    struct NonCircular;
+    name: "non-circular",
+    summary: "each tip and valley at its own radius, optionally with a once-per-turn lobe (assumption 1); angles unchanged",
+    details: DETAILS,
+    params: &[RADIAL_ERROR, LOBE],
+    apply,
 }
-
-inventory::submit! { Registration(&NonCircular) }
 
 #[cfg(test)]
 mod tests {
@@ -124,27 +92,20 @@ mod tests {
 
     #[test]
     fn radii_spread_as_stated_and_angles_stay() {
-        let h = crate::lookup("non-circular").unwrap();
-        let p = Params::new(h, &[]).unwrap();
+        let (h, p) = crate::test_support::with_defaults("non-circular");
         let designed = Gear::ideal(60, 15.0, 13.9).unwrap();
         let mut rng = ChaCha8Rng::seed_from_u64(11);
-        let (mut sum, mut sum2, mut count) = (0.0, 0.0, 0.0);
+        let mut errors = Vec::new();
         for _ in 0..100 {
             let g = h.apply(&designed, "b1", &p, &mut rng).unwrap();
             assert_eq!(g.tip_angles(), designed.tip_angles());
             assert_eq!(g.valley_angles(), designed.valley_angles());
             assert_eq!((g.tip_radius(), g.root_radius()), (15.0, 13.9));
             for k in 0..60 {
-                for d in [g.tip_radius_of(k) - 15.0, g.root_radius_of(k) - 13.9] {
-                    sum += d;
-                    sum2 += d * d;
-                    count += 1.0;
-                }
+                errors.extend([g.tip_radius_of(k) - 15.0, g.root_radius_of(k) - 13.9]);
             }
         }
-        let (mean, sd) = (sum / count, (sum2 / count).sqrt());
-        assert!(mean.abs() < 0.001, "mean radial error {mean}");
-        assert!((sd - 0.02).abs() < 0.001, "sd of the radial error {sd}");
+        crate::test_support::assert_spread(&errors, 0.02, 0.001, "radial error");
     }
 
     #[test]

@@ -3,73 +3,56 @@
 //! The model in words is [`DETAILS`] (what `cargo xtask help` prints).
 
 use geometry::Gear;
+use rand::RngCore;
 use rand_distr::{Distribution, StandardNormal};
 
-use crate::{Hypothesis, HypothesisError, ParamSpec, Params, Registration};
+use crate::{HypothesisError, Manufactured, ParamSpec, Params};
 
-/// The hypothesis.
-struct RatioMismatch;
+const MODULE_SPREAD: ParamSpec = ParamSpec::new(
+    "module_spread",
+    3.3,
+    "%",
+    "standard deviation of each gear's module about the design (3.3 % makes meshing gears differ by 3.7 % on average, as Freeth et al. 2021 measured)",
+);
+
+fn apply(gear: &Gear, gear_name: &str, params: &Params, rng: &mut dyn RngCore) -> Manufactured {
+    let spread = params.get(MODULE_SPREAD.name);
+    if !(0.0..50.0).contains(&spread) {
+        return Err(HypothesisError::parameter(
+            "ratio-mismatch",
+            &MODULE_SPREAD,
+            format!(
+                "must be at least 0 and below 50 % (got {})",
+                registry::fmt_number(spread)
+            ),
+        ));
+    }
+    let z: f64 = StandardNormal.sample(rng);
+    // A module cannot shrink to nothing: beyond four standard deviations is not a gear.
+    let scale = 1.0 + spread / 100.0 * z.clamp(-4.0, 4.0);
+    let tip = gear.tip_radius() * scale;
+    let root = tip - gear.tooth_height() * scale;
+    Gear::new(
+        tip,
+        root,
+        gear.tip_angles().to_vec(),
+        gear.rotation_centre(),
+    )
+    .map_err(|e| HypothesisError::gear(gear_name, e))
+}
 
 /// The model in words, printed by `cargo xtask help`.
 const DETAILS: &str = "Freeth et al. (2021) report the modules of meshing gears differing by 3.7 % on average and by up to 7.6 %. Here each gear's module is the designed one times (1 + m·z), z a standard normal draw, so tip radius and tooth height scale together and the tip angles stay. Two gears' modules then differ by about 1.13·m on average: m = 3.3 % gives the reported 3.7 %. The arbors stay where the design puts them, so the clearance of the mesh changes with the radii (a larger gear reaches deeper).";
 
-const MODULE_SPREAD: ParamSpec = ParamSpec {
-    name: "module_spread",
-    default: 3.3,
-    unit: "%",
-    help: "standard deviation of each gear's module about the design (3.3 % makes meshing gears differ by 3.7 % on average, as Freeth et al. 2021 measured)",
-};
-
-impl Hypothesis for RatioMismatch {
-    fn name(&self) -> &'static str {
-        "ratio-mismatch"
-    }
-
-    fn summary(&self) -> &'static str {
-        "each gear cut with its own module (radius and tooth height scaled together), so R1/R2 != N1/N2 (assumption 5)"
-    }
-
-    fn details(&self) -> &'static str {
-        DETAILS
-    }
-
-    fn params(&self) -> &'static [ParamSpec] {
-        &[MODULE_SPREAD]
-    }
-
-    fn apply(
-        &self,
-        gear: &Gear,
-        gear_name: &str,
-        params: &Params,
-        rng: &mut dyn rand::RngCore,
-    ) -> Result<Gear, HypothesisError> {
-        let spread = params.get(MODULE_SPREAD.name);
-        if !(0.0..50.0).contains(&spread) {
-            return Err(HypothesisError::new(
-                format!("ratio-mismatch: parameter `{}`", MODULE_SPREAD.name),
-                format!(
-                    "must be at least 0 and below 50 % (got {})",
-                    registry::fmt_number(spread)
-                ),
-            ));
-        }
-        let z: f64 = StandardNormal.sample(rng);
-        // A module cannot shrink to nothing: beyond four standard deviations is not a gear.
-        let scale = 1.0 + spread / 100.0 * z.clamp(-4.0, 4.0);
-        let tip = gear.tip_radius() * scale;
-        let root = tip - gear.tooth_height() * scale;
-        Gear::new(
-            tip,
-            root,
-            gear.tip_angles().to_vec(),
-            gear.rotation_centre(),
-        )
-        .map_err(|e| HypothesisError::new(format!("gear `{gear_name}`: {}", e.field), e.rule))
-    }
+crate::hypothesis! {
+    /// The hypothesis.
+    struct RatioMismatch;
+    name: "ratio-mismatch",
+    summary: "each gear cut with its own module (radius and tooth height scaled together), so R1/R2 != N1/N2 (assumption 5)",
+    details: DETAILS,
+    params: &[MODULE_SPREAD],
+    apply,
 }
-
-inventory::submit! { Registration(&RatioMismatch) }
 
 #[cfg(test)]
 mod tests {
@@ -82,8 +65,7 @@ mod tests {
 
     #[test]
     fn modules_spread_as_stated_and_the_teeth_keep_their_angles() {
-        let h = crate::lookup("ratio-mismatch").unwrap();
-        let p = Params::new(h, &[]).unwrap();
+        let (h, p) = crate::test_support::with_defaults("ratio-mismatch");
         let g = Gear::ideal(60, 15.0, 13.9).unwrap();
         let mut rng = ChaCha8Rng::seed_from_u64(5);
         let n = 4000;
