@@ -19,6 +19,9 @@ pub use inventory;
 mod plugins {
     include!(concat!(env!("OUT_DIR"), "/plugins.rs"));
 }
+mod register;
+
+pub(crate) use register::rule;
 
 /// The rule of the paper's tables unless `--set events=NAME` says otherwise (see the README's
 /// results section for the evidence that chose it).
@@ -60,6 +63,28 @@ pub struct ParamSpec {
     pub help: &'static str,
 }
 
+impl ParamSpec {
+    /// A parameter called `name`, `default` unless given, allowed from `min` to `max`, in
+    /// `unit` (empty when it has none), doing what `help` says in one line.
+    pub const fn new(
+        name: &'static str,
+        default: f64,
+        min: f64,
+        max: f64,
+        unit: &'static str,
+        help: &'static str,
+    ) -> Self {
+        Self {
+            name,
+            default,
+            min,
+            max,
+            unit,
+            help,
+        }
+    }
+}
+
 /// An event rule: which events are jams and which are disengagements.
 pub trait EventRule: Sync {
     /// Unique name, e.g. `paper`.
@@ -85,7 +110,8 @@ pub trait EventRule: Sync {
     fn is_disengagement(&self, e: &Event, params: &Params) -> bool;
 }
 
-/// The `inventory` item a rule registers itself with:
+/// The `inventory` item a rule registers itself with; a plugin file of this crate writes it, with
+/// the trait's methods, by `crate::rule!`; by hand it is:
 ///
 /// ```ignore
 /// struct Mine;

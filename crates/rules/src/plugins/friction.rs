@@ -1,18 +1,15 @@
 //! `friction`: beyond the paper, which is frictionless - a single contact may wedge.
 
-use crate::{Event, EventKind, EventRule, ParamSpec, Params, Registration};
+use crate::{Event, EventKind, ParamSpec, Params};
 
-/// A strike wedges when the contact can carry the driver's push straight into the driven arbor.
-struct Friction;
-
-const PARAMS: &[ParamSpec] = &[ParamSpec {
-    name: "mu",
-    default: 0.2,
-    min: 0.0,
-    max: 10.0,
-    unit: "",
-    help: "coefficient of friction at the teeth (bronze on bronze about 0.2)",
-}];
+const MU: ParamSpec = ParamSpec::new(
+    "mu",
+    0.2,
+    0.0,
+    10.0,
+    "",
+    "coefficient of friction at the teeth (bronze on bronze about 0.2)",
+);
 
 /// Whether a strike wedges: the line from the contact point to the driven gear's centre lies
 /// inside the friction cone (half-angle atan μ) about the contact normal. A tip meeting a tip
@@ -21,46 +18,30 @@ fn wedges(e: &Event, mu: f64) -> bool {
     e.wedge_angle.is_none_or(|a| a <= mu.atan())
 }
 
-impl EventRule for Friction {
-    fn name(&self) -> &'static str {
-        "friction"
-    }
-
-    fn summary(&self) -> &'static str {
-        "as sync, but a strike that wedges (the arbor inside the friction cone of the contact) is a jam"
-    }
-
-    fn details(&self) -> &'static str {
-        "Beyond the paper, whose program is frictionless. With friction coefficient mu, the force at a single contact may lie anywhere in the cone of half-angle atan(mu) about the contact normal. When the line from the contact point to the driven gear's rotation centre lies inside that cone, the force can pass through the driven arbor: the driven gear is not turned and the driver cannot advance - the contact wedges, a jam. A strike (an incoming driver tooth meeting the front of a lagging driven tooth) is therefore a jam when it wedges; otherwise the free driven gear is knocked back, and it fails only if its tooth phase moved (as in sync). Locks and blocked starts are jams; slips are disengagements; hand-over gaps are lost motion. Exact from the contact geometry: the solver reports, at each lock and strike, the angle between the contact normal and the line to the driven centre. With mu = 0 it counts as sync."
-    }
-
-    fn jams(&self) -> &'static str {
-        "as `sync`, and a strike whose contact wedges (the driven arbor inside the friction cone about the contact normal)"
-    }
-
-    fn disengagements(&self) -> &'static str {
-        "as `sync`"
-    }
-
-    fn params(&self) -> &'static [ParamSpec] {
-        PARAMS
-    }
-
-    fn is_jam(&self, e: &Event, p: &Params) -> bool {
-        match e.kind {
-            EventKind::Lock | EventKind::BlockedAtStart => true,
-            EventKind::Strike => p.get("mu") > 0.0 && wedges(e, p.get("mu")),
-            _ => false,
-        }
-    }
-
-    fn is_disengagement(&self, e: &Event, p: &Params) -> bool {
-        match e.kind {
-            EventKind::Slip => true,
-            EventKind::Strike => !self.is_jam(e, p) && e.phase_shift != 0,
-            _ => false,
-        }
+fn is_jam(e: &Event, p: &Params) -> bool {
+    match e.kind {
+        EventKind::Lock | EventKind::BlockedAtStart => true,
+        EventKind::Strike => p.get("mu") > 0.0 && wedges(e, p.get("mu")),
+        _ => false,
     }
 }
 
-inventory::submit! { Registration(&Friction) }
+fn is_disengagement(e: &Event, p: &Params) -> bool {
+    match e.kind {
+        EventKind::Slip => true,
+        EventKind::Strike => !is_jam(e, p) && e.phase_shift != 0,
+        _ => false,
+    }
+}
+
+crate::rule! {
+    /// A strike wedges when the contact can carry the driver's push straight into the driven
+    /// arbor.
+    struct Friction;
+    name: "friction",
+    summary: "as sync, but a strike that wedges (the arbor inside the friction cone of the contact) is a jam",
+    details: "Beyond the paper, whose program is frictionless. With friction coefficient mu, the force at a single contact may lie anywhere in the cone of half-angle atan(mu) about the contact normal. When the line from the contact point to the driven gear's rotation centre lies inside that cone, the force can pass through the driven arbor: the driven gear is not turned and the driver cannot advance - the contact wedges, a jam. A strike (an incoming driver tooth meeting the front of a lagging driven tooth) is therefore a jam when it wedges; otherwise the free driven gear is knocked back, and it fails only if its tooth phase moved (as in sync). Locks and blocked starts are jams; slips are disengagements; hand-over gaps are lost motion. Exact from the contact geometry: the solver reports, at each lock and strike, the angle between the contact normal and the line to the driven centre. With mu = 0 it counts as sync.",
+    params: &[MU],
+    jams: "as `sync`, and a strike whose contact wedges (the driven arbor inside the friction cone about the contact normal)",
+    disengagements: "as `sync`",
+}

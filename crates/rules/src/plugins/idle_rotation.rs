@@ -1,55 +1,35 @@
 //! `idle-rotation`: disengagement as the paper's program could see it - the driver turning with
 //! no tooth interference for a driver pitch or more, whatever the tooth phase afterwards.
 
-use crate::{Event, EventRule, ParamSpec, Params, Registration};
+use crate::{Event, ParamSpec, Params};
 
-/// Jams as interference; disengagement as idle rotation of at least `pitches` driver pitches.
-struct IdleRotation;
+const PITCHES: ParamSpec = ParamSpec::new(
+    "pitches",
+    1.0,
+    0.0,
+    1000.0,
+    "driver pitches",
+    "the shortest idle rotation (drive lost, no contact pushing the driven gear) counted as a disengagement; 0 counts every loss of drive",
+);
 
-const PARAMS: &[ParamSpec] = &[ParamSpec {
-    name: "pitches",
-    default: 1.0,
-    min: 0.0,
-    max: 1000.0,
-    unit: "driver pitches",
-    help: "the shortest idle rotation (drive lost, no contact pushing the driven gear) counted as a disengagement; 0 counts every loss of drive",
-}];
-
-impl EventRule for IdleRotation {
-    fn name(&self) -> &'static str {
-        "idle-rotation"
-    }
-
-    fn summary(&self) -> &'static str {
-        "jam: lock, strike or blocked start (interference); disengagement: drive lost for a driver pitch or more (idle rotation, the tooth phase afterwards ignored), an idle start included"
-    }
-
-    fn details(&self) -> &'static str {
-        "Disengagement read from the only definition the paper gives, in Appendix II: 'If the gears have a separation greater than this percentage, they lose contact before reaching 100% separation, and the program does not detect any tooth interference - this is what we refer to as decoupling or idle rotation', with Figure V_B, 'a decoupling situation in which a gear fails to transmit motion to the meshed pair'. The paper's program detected 'intersections between the areas of the gears'; what it could see of a loss of drive is how long the driver turned with no interference, not which tooth took the driven gear up afterwards. So a disengagement is any loss of drive (a gap or a slip) lasting at least `pitches` driver pitches (default 1: a whole tooth of the driver turned idle), whatever the tooth phase when drive resumes; a short loss that resumes a tooth out of step (which `paper` counts) is not one. A driven gear that no driver tooth pushes within that much of the start, or at all (an idle start), turned idle too and counts. Jams as under `paper`: a lock, a strike or a start with no free position ('teeth positioned too closely interfere with each other at all times ... the gears become jammed or locked', Figure V_A)."
-    }
-
-    fn jams(&self) -> &'static str {
-        "lock, strike, blocked start"
-    }
-
-    fn disengagements(&self) -> &'static str {
-        "drive lost for a driver pitch or more (gap or slip, an idle start included), the tooth phase afterwards ignored"
-    }
-
-    fn params(&self) -> &'static [ParamSpec] {
-        PARAMS
-    }
-
-    fn is_jam(&self, e: &Event, _: &Params) -> bool {
-        e.kind.is_contact_stop()
-    }
-
-    fn is_disengagement(&self, e: &Event, params: &Params) -> bool {
-        // A driven gear never pushed in the whole run turned idle throughout, even in a run
-        // shorter than the threshold.
-        let never_driven = e.idle_start && !e.resumed;
-        e.kind.is_loss() && (e.lost_motion >= params.get("pitches") || never_driven)
-    }
+fn is_jam(e: &Event, _: &Params) -> bool {
+    e.kind.is_contact_stop()
 }
 
-inventory::submit! { Registration(&IdleRotation) }
+fn is_disengagement(e: &Event, params: &Params) -> bool {
+    // A driven gear never pushed in the whole run turned idle throughout, even in a run
+    // shorter than the threshold.
+    let never_driven = e.idle_start && !e.resumed;
+    e.kind.is_loss() && (e.lost_motion >= params.get("pitches") || never_driven)
+}
+
+crate::rule! {
+    /// Jams as interference; disengagement as idle rotation of at least `pitches` driver pitches.
+    struct IdleRotation;
+    name: "idle-rotation",
+    summary: "jam: lock, strike or blocked start (interference); disengagement: drive lost for a driver pitch or more (idle rotation, the tooth phase afterwards ignored), an idle start included",
+    details: "Disengagement read from the only definition the paper gives, in Appendix II: 'If the gears have a separation greater than this percentage, they lose contact before reaching 100% separation, and the program does not detect any tooth interference - this is what we refer to as decoupling or idle rotation', with Figure V_B, 'a decoupling situation in which a gear fails to transmit motion to the meshed pair'. The paper's program detected 'intersections between the areas of the gears'; what it could see of a loss of drive is how long the driver turned with no interference, not which tooth took the driven gear up afterwards. So a disengagement is any loss of drive (a gap or a slip) lasting at least `pitches` driver pitches (default 1: a whole tooth of the driver turned idle), whatever the tooth phase when drive resumes; a short loss that resumes a tooth out of step (which `paper` counts) is not one. A driven gear that no driver tooth pushes within that much of the start, or at all (an idle start), turned idle too and counts. Jams as under `paper`: a lock, a strike or a start with no free position ('teeth positioned too closely interfere with each other at all times ... the gears become jammed or locked', Figure V_A).",
+    params: &[PITCHES],
+    jams: "lock, strike, blocked start",
+    disengagements: "drive lost for a driver pitch or more (gap or slip, an idle start included), the tooth phase afterwards ignored",
+}

@@ -1,39 +1,22 @@
 //! `strict`: every stop and every loss of contact counts.
 
-use crate::{Event, EventRule, Params, Registration};
+use crate::{Event, Params};
 
-/// The solver's counts before the taxonomy: every lock, strike and blocked start is a jam,
-/// every hand-over gap and slip a disengagement.
-struct Strict;
-
-impl EventRule for Strict {
-    fn name(&self) -> &'static str {
-        "strict"
-    }
-
-    fn summary(&self) -> &'static str {
-        "jam: lock, strike or blocked start; disengagement: any loss of contact, however brief (gap or slip)"
-    }
-
-    fn details(&self) -> &'static str {
-        "Every contact that stops the driver in the push model is a jam: a lock (held from both sides), a strike (an incoming driver tooth meeting the front of a lagging driven tooth, which the push model would have to turn backwards) and a start with no free position. Every moment the pushing tooth slips past its driven tooth with no other tooth touching is a disengagement, including a brief hand-over gap after which the next tooth picks the driven gear up again in step. These were the toolkit's counts before the event taxonomy; they read the paper's 'the program does not detect any tooth interference' as any instant without contact."
-    }
-
-    fn jams(&self) -> &'static str {
-        "lock, strike, blocked start"
-    }
-
-    fn disengagements(&self) -> &'static str {
-        "gap, slip (any instant without contact)"
-    }
-
-    fn is_jam(&self, e: &Event, _: &Params) -> bool {
-        e.kind.is_contact_stop()
-    }
-
-    fn is_disengagement(&self, e: &Event, _: &Params) -> bool {
-        e.kind.is_loss()
-    }
+fn is_jam(e: &Event, _: &Params) -> bool {
+    e.kind.is_contact_stop()
 }
 
-inventory::submit! { Registration(&Strict) }
+fn is_disengagement(e: &Event, _: &Params) -> bool {
+    e.kind.is_loss()
+}
+
+crate::rule! {
+    /// The solver's counts before the taxonomy: every lock, strike and blocked start is a jam,
+    /// every hand-over gap and slip a disengagement.
+    struct Strict;
+    name: "strict",
+    summary: "jam: lock, strike or blocked start; disengagement: any loss of contact, however brief (gap or slip)",
+    details: "Every contact that stops the driver in the push model is a jam: a lock (held from both sides), a strike (an incoming driver tooth meeting the front of a lagging driven tooth, which the push model would have to turn backwards) and a start with no free position. Every moment the pushing tooth slips past its driven tooth with no other tooth touching is a disengagement, including a brief hand-over gap after which the next tooth picks the driven gear up again in step. These were the toolkit's counts before the event taxonomy; they read the paper's 'the program does not detect any tooth interference' as any instant without contact.",
+    jams: "lock, strike, blocked start",
+    disengagements: "gap, slip (any instant without contact)",
+}
