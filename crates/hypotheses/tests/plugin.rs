@@ -4,43 +4,25 @@
 #![allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
 
 use geometry::Gear;
-use hypotheses::{Hypothesis, HypothesisError, ParamSpec, Params, Registration, manufacture};
+use hypotheses::rand::RngCore;
+use hypotheses::{Manufactured, ParamSpec, Params, manufacture};
 
-/// Every tip moved by the same angle: the whole toothing turned on its blank.
-struct ToyShift;
+const SHIFT: ParamSpec = ParamSpec::new("shift", 1.0, "deg", "angle added to every tip");
 
-impl Hypothesis for ToyShift {
-    fn name(&self) -> &'static str {
-        "toy-shift"
-    }
-
-    fn summary(&self) -> &'static str {
-        "every tip shifted by the same angle (an example plugin)"
-    }
-
-    fn params(&self) -> &'static [ParamSpec] {
-        &[ParamSpec {
-            name: "shift",
-            default: 1.0,
-            unit: "deg",
-            help: "angle added to every tip",
-        }]
-    }
-
-    fn apply(
-        &self,
-        gear: &Gear,
-        gear_name: &str,
-        params: &Params,
-        _rng: &mut dyn hypotheses::rand::RngCore,
-    ) -> Result<Gear, HypothesisError> {
-        let shift = params.get("shift").to_radians();
-        let tips = gear.tip_angles().iter().map(|t| t + shift).collect();
-        manufacture(gear, gear_name, tips, gear.rotation_centre())
-    }
+fn apply(gear: &Gear, gear_name: &str, params: &Params, _: &mut dyn RngCore) -> Manufactured {
+    let shift = params.get(SHIFT.name).to_radians();
+    let tips = gear.tip_angles().iter().map(|t| t + shift).collect();
+    manufacture(gear, gear_name, tips, gear.rotation_centre())
 }
 
-hypotheses::inventory::submit! { Registration(&ToyShift) }
+hypotheses::hypothesis! {
+    /// Every tip moved by the same angle: the whole toothing turned on its blank.
+    struct ToyShift;
+    name: "toy-shift",
+    summary: "every tip shifted by the same angle (an example plugin)",
+    params: &[SHIFT],
+    apply,
+}
 
 #[test]
 fn a_plugin_is_listed_looked_up_and_applied() {
