@@ -19,6 +19,95 @@ pub fn cell(
     Ok(cell)
 }
 
+/// Which of the paper's per-mesh tables a cell of [`paper_table_cells`] belongs to.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum PaperTable {
+    /// Table 3: a Case at the settings' clearance.
+    Table3 {
+        /// The Case: A to D.
+        case: &'static str,
+    },
+    /// Table 4: a random error only.
+    Table4 {
+        /// The random error (of the pitch).
+        random: f64,
+    },
+    /// Table I: a Case at one of its clearances.
+    TableI {
+        /// The Case: A to D.
+        case: &'static str,
+        /// The clearance G (% of h).
+        clearance: f64,
+    },
+}
+
+/// One cell of Tables 3, 4 and I and where its paper counts are.
+pub struct PaperTableCell {
+    /// The cell (the default rule).
+    pub cell: CellSpec,
+    /// Its table, and the Case, error or clearance it stands for there.
+    pub table: PaperTable,
+    /// The experiment id whose numbers `paper.ron` holds (`table3`, `table4`, `tableI`).
+    pub id: &'static str,
+    /// Its key there, e.g. `B.m3-e3`, `0.065.m3-e3`, `B.70.m3-e3`.
+    pub key: String,
+}
+
+/// The cells of Tables 3 (Cases A-D at the settings' clearance), 4 (each random error of
+/// `randoms`, no systematic error) and I (Cases A-D at each of `clearances`), each mesh in the
+/// gearing's order: the paper's per-mesh counts that `event-rules` and `jam-readings` set beside
+/// theirs.
+pub fn paper_table_cells(
+    s: &CellSettings,
+    randoms: &[f64],
+    clearances: &[f64],
+) -> Result<Vec<PaperTableCell>, RunError> {
+    use study::cell::label;
+    let (clearance, split) = (s.clearance()?, s.errors.split()?);
+    let meshes: Vec<&str> = s
+        .gearing()
+        .meshes()
+        .iter()
+        .map(|m| m.label.as_str())
+        .collect();
+    let case_errors =
+        |sys: f64, random: f64| [("random", random), ("systematic", sys), ("split", split)];
+    let mut out = Vec::new();
+    for &(case, sys, random) in &study::grids::CASES {
+        for m in &meshes {
+            out.push(PaperTableCell {
+                cell: cell(s, m, &case_errors(sys, random), clearance)?,
+                table: PaperTable::Table3 { case },
+                id: "table3",
+                key: format!("{case}.{m}"),
+            });
+        }
+    }
+    for &random in randoms {
+        for m in &meshes {
+            out.push(PaperTableCell {
+                cell: cell(s, m, &[("random", random), ("systematic", 0.0)], clearance)?,
+                table: PaperTable::Table4 { random },
+                id: "table4",
+                key: format!("{}.{m}", label(random, 3)),
+            });
+        }
+    }
+    for &(case, sys, random) in &study::grids::CASES {
+        for &g in clearances {
+            for m in &meshes {
+                out.push(PaperTableCell {
+                    cell: cell(s, m, &case_errors(sys, random), g)?,
+                    table: PaperTable::TableI { case, clearance: g },
+                    id: "tableI",
+                    key: format!("{case}.{}.{m}", label(g, 0)),
+                });
+            }
+        }
+    }
+    Ok(out)
+}
+
 /// The paper's (jams, disengagements) of one cell: `{key}.jam` and `{key}.dis` of experiment `id`
 /// in `paper.ron`, counts out of [`PAPER_TRIALS`].
 pub fn paper_counts(id: &str, key: &str) -> (Option<u64>, Option<u64>) {

@@ -97,6 +97,26 @@ impl Param {
     }
 }
 
+/// Declares parameters, each on one line as its author wrote it:
+///
+/// ```
+/// use registry::Param;
+/// registry::params! {
+///     /// `step`: driver angle between samples.
+///     const STEP = Param::new("step", "0.01", "driver angle between samples", registry::Kind::positive(10.0, "degrees")).unit("deg");
+/// }
+/// ```
+///
+/// expands to `const STEP: Param = ...;`. An experiment's parameters are a table - a name, a
+/// default, a help text, a kind - and read best as one: rustfmt, which leaves a macro's body as
+/// written, would otherwise spread each over seven lines of the same shape in every plugin.
+#[macro_export]
+macro_rules! params {
+    ($($(#[$meta:meta])* $vis:vis const $name:ident = $param:expr;)*) => {
+        $($(#[$meta])* $vis const $name: $crate::Param = $param;)*
+    };
+}
+
 /// What values a parameter takes. [`Context::new`] checks the default and any `--set` value
 /// against it, so that a refused value names the flag, the value and the range before anything
 /// runs, and experiments do not each write the same check.

@@ -7,23 +7,12 @@ use crate::common::{Series, csv, line_plot, paper_cell};
 use study::gearing;
 use study::limits::{IdealPair, boundary};
 
-/// `tooth_height`: h = R - r for both gears (Efstathiou et al. 2012).
-const TOOTH_HEIGHT: Param = Param::new(
-    "tooth_height",
-    "1.1",
-    "h = R - r for both gears (Efstathiou et al. 2012)",
-    gearing::TOOTH_HEIGHT_KIND,
-)
-.unit("mm");
-
-/// `grid_step`: spacing of the printed sweep.
-const GRID_STEP: Param = Param::new(
-    "grid_step",
-    "5",
-    "spacing of the printed sweep",
-    registry::Kind::number(0.5, 50.0, "% of h"),
-)
-.unit("% of h");
+registry::params! {
+    /// `tooth_height`: h = R - r for both gears (Efstathiou et al. 2012).
+    const TOOTH_HEIGHT = Param::new("tooth_height", "1.1", "h = R - r for both gears (Efstathiou et al. 2012)", gearing::TOOTH_HEIGHT_KIND).unit("mm");
+    /// `grid_step`: spacing of the printed sweep.
+    const GRID_STEP = Param::new("grid_step", "5", "spacing of the printed sweep", registry::Kind::number(0.5, 50.0, "% of h")).unit("% of h");
+}
 
 /// `samples`: samples of the Theoretical Difference per run.
 const SAMPLES: Param = registry::samples("3600", "samples of the Theoretical Difference per run");

@@ -23,31 +23,17 @@ use study::grids::CASES;
 use study::grids::CellSettings;
 use study::whole_mechanism::{self as whole, Clearances, Input, MechanismRun, Summary};
 
-const GRID: Param = Param::new("grid", "20,30,40,50,60,70", "coarse grid of clearances tried for every mesh and case, comma-separated (the reference clearance is always added)", registry::Kind::Text).unit("% of h");
-
-const COARSE_TRIALS: Param = Param::new(
-    "coarse_trials",
-    "20",
-    "trials per mesh, case and clearance of the coarse grid",
-    registry::Kind::count(1, registry::MAX_TRIALS, ""),
-)
-.unit("pair runs");
-
-const REFINE_STEP: Param = Param::new("refine_step", "5", "the refinement tries the coarse grid's best clearance plus and minus this (0: no refinement; the coarse grid decides)", registry::Kind::number(0.0, 100.0, "% of h")).unit("% of h");
-
-const REFINE_TRIALS: Param = Param::new("refine_trials", "40", "trials per clearance compared in the refinement: the coarse best, its two neighbours and the reference, each brought to this count (at least coarse_trials)", registry::Kind::count(1, registry::MAX_TRIALS, "")).unit("pair runs");
-
-const RUNS: Param = Param::new(
-    "runs",
-    whole::RUNS_DEFAULT,
-    "whole-mechanism runs per case and clearance setting (failure's trials; the paper: 30)",
-    registry::Kind::count(1, registry::MAX_TRIALS, ""),
-);
-
-/// The reference clearance, typed as `clearance` like the gearing group's
-/// ([`study::gearing::CLEARANCE`]), which this experiment does not declare: here it is not every
-/// mesh's clearance but the one the search always tries and measures the chosen ones against.
-const REFERENCE_CLEARANCE: Param = Param::new("clearance", "40", "reference clearance: the paper's one value for every mesh, always tried, and the failure study's first setting", registry::Kind::positive(100.0, "% of the tooth height h")).unit("% of h");
+registry::params! {
+    const GRID = Param::new("grid", "20,30,40,50,60,70", "coarse grid of clearances tried for every mesh and case, comma-separated (the reference clearance is always added)", registry::Kind::Text).unit("% of h");
+    const COARSE_TRIALS = Param::new("coarse_trials", "20", "trials per mesh, case and clearance of the coarse grid", registry::Kind::count(1, registry::MAX_TRIALS, "")).unit("pair runs");
+    const REFINE_STEP = Param::new("refine_step", "5", "the refinement tries the coarse grid's best clearance plus and minus this (0: no refinement; the coarse grid decides)", registry::Kind::number(0.0, 100.0, "% of h")).unit("% of h");
+    const REFINE_TRIALS = Param::new("refine_trials", "40", "trials per clearance compared in the refinement: the coarse best, its two neighbours and the reference, each brought to this count (at least coarse_trials)", registry::Kind::count(1, registry::MAX_TRIALS, "")).unit("pair runs");
+    const RUNS = Param::new("runs", whole::RUNS_DEFAULT, "whole-mechanism runs per case and clearance setting (failure's trials; the paper: 30)", registry::Kind::count(1, registry::MAX_TRIALS, ""));
+    /// The reference clearance, typed as `clearance` like the gearing group's
+    /// ([`study::gearing::CLEARANCE`]), which this experiment does not declare: here it is not every
+    /// mesh's clearance but the one the search always tries and measures the chosen ones against.
+    const REFERENCE_CLEARANCE = Param::new("clearance", "40", "reference clearance: the paper's one value for every mesh, always tried, and the failure study's first setting", registry::Kind::positive(100.0, "% of the tooth height h")).unit("% of h");
+}
 
 crate::experiment! {
     id: "clearance-design", paper_item: "Section 6 / beyond the paper", run,

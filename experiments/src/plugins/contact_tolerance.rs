@@ -12,31 +12,14 @@ use study::limits::IdealPair;
 
 use crate::common::{Series, semilog_plot};
 
-/// `tolerance`: overlap area the contact test ignores, for the printed curves (the ladder is fixed).
-const TOLERANCE: Param = Param::new(
-    "tolerance",
-    "0.003",
-    "overlap area the contact test ignores, for the printed curves (the ladder is fixed)",
-    registry::Kind::positive(1.0, "mm^2"),
-)
-.unit("mm^2");
-
-/// `blunt`: depth cut flat off every tip, for the printed curves (the ladder is fixed).
-const BLUNT_PARAM: Param = Param::new(
-    "blunt",
-    "10",
-    "depth cut flat off every tip, for the printed curves (the ladder is fixed)",
-    registry::Kind::positive(50.0, "% of the tooth height h"),
-)
-.unit("% of h");
-
-/// `samples`: driver angles per driver pitch (an ideal pair repeats every driver pitch).
-const SAMPLES: Param = Param::new(
-    "samples",
-    "200",
-    "driver angles per driver pitch (an ideal pair repeats every driver pitch)",
-    registry::Kind::count(8, registry::MAX_COUNT as u64, "a sigma needs samples"),
-);
+registry::params! {
+    /// `tolerance`: overlap area the contact test ignores, for the printed curves (the ladder is fixed).
+    const TOLERANCE = Param::new("tolerance", "0.003", "overlap area the contact test ignores, for the printed curves (the ladder is fixed)", registry::Kind::positive(1.0, "mm^2")).unit("mm^2");
+    /// `blunt`: depth cut flat off every tip, for the printed curves (the ladder is fixed).
+    const BLUNT_PARAM = Param::new("blunt", "10", "depth cut flat off every tip, for the printed curves (the ladder is fixed)", registry::Kind::positive(50.0, "% of the tooth height h")).unit("% of h");
+    /// `samples`: driver angles per driver pitch (an ideal pair repeats every driver pitch).
+    const SAMPLES = Param::new("samples", "200", "driver angles per driver pitch (an ideal pair repeats every driver pitch)", registry::Kind::count(8, registry::MAX_COUNT as u64, "a sigma needs samples"));
+}
 
 crate::experiment! {
     id: "contact-tolerance", paper_item: "Figure IV and Appendix II (beyond the paper)", run,

@@ -11,29 +11,19 @@ use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
 use rules::Rule;
 use train::Gearing;
 
-use crate::cells::{Tally, cell, consistent_with_paper, paper_counts, share};
+use crate::cells::{
+    PaperTable, Tally, consistent_with_paper, paper_counts, paper_table_cells, share,
+};
 use study::cell::{CellSpec, Counts, Purpose, label, run_cells_by_rule};
-use study::grids::CASES;
 use study::grids::CellSettings;
 use study::limits::IdealPair;
 
-/// `clearances`: Table I's clearances G, comma-separated (the paper: 10, 40 and 70).
-const CLEARANCES: Param = Param::new(
-    "clearances",
-    "10,40,70",
-    "Table I's clearances G, comma-separated (the paper: 10, 40 and 70)",
-    registry::Kind::Text,
-)
-.unit("% of h");
-
-/// `limit_tolerance`: how closely each ideal mesh's clearance limits are located (bisection).
-const LIMIT_TOLERANCE: Param = Param::new(
-    "limit_tolerance",
-    "0.1",
-    "how closely each ideal mesh's clearance limits are located (bisection)",
-    registry::Kind::number(0.001, 10.0, "% of h"),
-)
-.unit("% of h");
+registry::params! {
+    /// `clearances`: Table I's clearances G, comma-separated (the paper: 10, 40 and 70).
+    const CLEARANCES = Param::new("clearances", "10,40,70", "Table I's clearances G, comma-separated (the paper: 10, 40 and 70)", registry::Kind::Text).unit("% of h");
+    /// `limit_tolerance`: how closely each ideal mesh's clearance limits are located (bisection).
+    const LIMIT_TOLERANCE = Param::new("limit_tolerance", "0.1", "how closely each ideal mesh's clearance limits are located (bisection)", registry::Kind::number(0.001, 10.0, "% of h")).unit("% of h");
+}
 
 crate::experiment! {
     id: "event-rules", paper_item: "Tables 3, 4, I and section 3 / Appendix II (what counts as a jam or a disengagement)", run,
@@ -64,67 +54,27 @@ fn every_rule() -> Result<Vec<Rule>, RunError> {
 /// The cells of Tables 3 (Cases A-D at the clearance), 4 (the random grid, no systematic error)
 /// and I (Cases A-D at each of its clearances), each with where its paper counts are.
 fn all_cells(ctx: &Context, s: &CellSettings) -> Result<Vec<(CellSpec, PaperCell)>, RunError> {
-    let clearance = s.clearance()?;
-    let split = s.errors.split()?;
     let clearances = crate::settings::clearance_list(ctx, &CLEARANCES, 200.0)?;
     let randoms = crate::settings::random_grid(ctx)?;
-    let meshes: Vec<&str> = s
-        .gearing()
-        .meshes()
-        .iter()
-        .map(|m| m.label.as_str())
-        .collect();
-    let mut out = Vec::new();
-    let case_errors =
-        |sys: f64, random: f64| [("random", random), ("systematic", sys), ("split", split)];
-    for &(case, sys, random) in &CASES {
-        for m in &meshes {
-            let c = cell(s, m, &case_errors(sys, random), clearance)?;
-            let key = format!("{case}.{m}");
-            let group = format!("Table 3, Case {case}");
-            out.push((
-                c,
-                PaperCell {
-                    table: "table3",
-                    key,
-                    group,
-                },
-            ));
-        }
-    }
-    for &e in &randoms {
-        for m in &meshes {
-            let c = cell(s, m, &[("random", e), ("systematic", 0.0)], clearance)?;
-            let key = format!("{}.{m}", label(e, 3));
-            let group = "Table 4, random error only".to_string();
-            out.push((
-                c,
-                PaperCell {
-                    table: "table4",
-                    key,
-                    group,
-                },
-            ));
-        }
-    }
-    for &(case, sys, random) in &CASES {
-        for &gc in &clearances {
-            for m in &meshes {
-                let c = cell(s, m, &case_errors(sys, random), gc)?;
-                let key = format!("{case}.{}.{m}", label(gc, 0));
-                let group = format!("Table I, Case {case}, G = {} %", label(gc, 0));
-                out.push((
-                    c,
-                    PaperCell {
-                        table: "tableI",
-                        key,
-                        group,
-                    },
-                ));
-            }
-        }
-    }
-    Ok(out)
+    let cells = paper_table_cells(s, &randoms, &clearances)?;
+    Ok(cells
+        .into_iter()
+        .map(|c| {
+            let group = match c.table {
+                PaperTable::Table3 { case } => format!("Table 3, Case {case}"),
+                PaperTable::Table4 { .. } => "Table 4, random error only".to_string(),
+                PaperTable::TableI { case, clearance } => {
+                    format!("Table I, Case {case}, G = {} %", label(clearance, 0))
+                }
+            };
+            let paper = PaperCell {
+                table: c.id,
+                key: c.key,
+                group,
+            };
+            (c.cell, paper)
+        })
+        .collect())
 }
 
 /// Per rule, per table: the tally of the paper's counts against ours; then, last, the tally of

@@ -24,21 +24,12 @@ use study::whole_mechanism::{
 
 use crate::common::{Plot, Series, mean_cell, percent_cell};
 
-/// `trials`: whole-mechanism runs per input (the paper: 30).
-const TRIALS: Param = Param::new(
-    "trials",
-    RUNS_DEFAULT,
-    "whole-mechanism runs per input (the paper: 30)",
-    registry::Kind::count(1, registry::MAX_TRIALS, ""),
-);
-
-/// `measured`: per-gear error table (RON, as crates/hypotheses/data/measured-example.ron), run with the measured hypothesis; empty: not run.
-const MEASURED: Param = Param::new(
-    "measured",
-    "",
-    "per-gear error table (RON, as crates/hypotheses/data/measured-example.ron), run with the measured hypothesis; empty: not run",
-    registry::Kind::Text,
-);
+registry::params! {
+    /// `trials`: whole-mechanism runs per input (the paper: 30).
+    const TRIALS = Param::new("trials", RUNS_DEFAULT, "whole-mechanism runs per input (the paper: 30)", registry::Kind::count(1, registry::MAX_TRIALS, ""));
+    /// `measured`: per-gear error table (RON, as crates/hypotheses/data/measured-example.ron), run with the measured hypothesis; empty: not run.
+    const MEASURED = Param::new("measured", "", "per-gear error table (RON, as crates/hypotheses/data/measured-example.ron), run with the measured hypothesis; empty: not run", registry::Kind::Text);
+}
 
 crate::experiment! {
     id: "failure", paper_item: "Section 5, the 30-run study", run,

@@ -12,14 +12,10 @@ use study::equal_pair;
 /// The most teeth fig2 simulates over a whole driver turn: 500 (a few minutes).
 const MAX_TEETH: usize = 500;
 
-/// `step`: driver angle between samples.
-const STEP: Param = Param::new(
-    "step",
-    "0.01",
-    "driver angle between samples",
-    registry::Kind::positive(10.0, "degrees"),
-)
-.unit("deg");
+registry::params! {
+    /// `step`: driver angle between samples.
+    const STEP = Param::new("step", "0.01", "driver angle between samples", registry::Kind::positive(10.0, "degrees")).unit("deg");
+}
 
 crate::experiment! {
     id: "fig2", paper_item: "Figure 2 (section 2) and Figure III (Appendix I)", run,

@@ -9,18 +9,10 @@ use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
 use crate::common::{Series, csv, deg, line_plot};
 use study::equal_pair;
 
-/// `pitches`: length of each run.
-const PITCHES: Param = Param::new(
-    "pitches",
-    "3",
-    "length of each run",
-    registry::Kind::count(
-        1,
-        registry::MAX_COUNT as u64,
-        "a run spans at least one tooth",
-    ),
-)
-.unit("driver teeth");
+registry::params! {
+    /// `pitches`: length of each run.
+    const PITCHES = Param::new("pitches", "3", "length of each run", registry::Kind::count(1, registry::MAX_COUNT as u64, "a run spans at least one tooth")).unit("driver teeth");
+}
 
 /// `samples`: samples per run.
 const SAMPLES: Param = registry::samples("1200", "samples per run");

@@ -7,13 +7,10 @@ use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
 
 use crate::common::{Series, csv, line_plot};
 
-/// `trial`: which trial's random initial angles (stream of the seed).
-const TRIAL: Param = Param::new(
-    "trial",
-    "0",
-    "which trial's random initial angles (stream of the seed)",
-    registry::Kind::count(0, u64::MAX, ""),
-);
+registry::params! {
+    /// `trial`: which trial's random initial angles (stream of the seed).
+    const TRIAL = Param::new("trial", "0", "which trial's random initial angles (stream of the seed)", registry::Kind::count(0, u64::MAX, ""));
+}
 
 /// `samples`: samples over the solar turn.
 const SAMPLES: Param = registry::samples("7200", "samples over the solar turn");

@@ -16,53 +16,26 @@ const TIP_RADIUS: Param = study::equal_pair::length("tip_radius", "200", "R of b
 /// `root_radius`: r of both gears.
 const ROOT_RADIUS: Param = study::equal_pair::length("root_radius", "180", "r of both gears");
 
-/// `clearance`: clearance G of the pair. Not the gearing group's `clearance`
-/// ([`study::gearing::CLEARANCE`], default 40): Figure 5 runs a pair of its own, not the
-/// gearing, with a default of its own (50 %) under the same name.
-const PAIR_CLEARANCE: Param = Param::new(
-    "clearance",
-    "50",
-    "clearance G",
-    registry::Kind::positive(100.0, "% of the tooth height h"),
-)
-.unit("% of h");
-
-/// `random`: random tooth error (sd).
-const RANDOM: Param = Param::new(
-    "random",
-    "0.05",
-    "random tooth error (sd)",
-    registry::Kind::number(0.0, hypotheses::MAX_RANDOM, "of the pitch"),
-)
-.unit("of the pitch");
-
-/// `systematic`: systematic error amplitude A.
-const SYSTEMATIC: Param = Param::new(
-    "systematic",
-    "0.6",
-    "systematic error amplitude A",
-    registry::Kind::number(0.0, 45.0, "deg"),
-)
-.unit("deg");
-
-/// `trial`: which trial stream of the seed.
-const TRIAL: Param = Param::new(
-    "trial",
-    "0",
-    "which trial stream of the seed",
-    registry::Kind::count(0, u64::MAX, ""),
-);
+registry::params! {
+    /// `clearance`: clearance G of the pair. Not the gearing group's `clearance`
+    /// ([`study::gearing::CLEARANCE`], default 40): Figure 5 runs a pair of its own, not the
+    /// gearing, with a default of its own (50 %) under the same name.
+    const PAIR_CLEARANCE = Param::new("clearance", "50", "clearance G", registry::Kind::positive(100.0, "% of the tooth height h")).unit("% of h");
+    /// `random`: random tooth error (sd).
+    const RANDOM = Param::new("random", "0.05", "random tooth error (sd)", registry::Kind::number(0.0, hypotheses::MAX_RANDOM, "of the pitch")).unit("of the pitch");
+    /// `systematic`: systematic error amplitude A.
+    const SYSTEMATIC = Param::new("systematic", "0.6", "systematic error amplitude A", registry::Kind::number(0.0, 45.0, "deg")).unit("deg");
+    /// `trial`: which trial stream of the seed.
+    const TRIAL = Param::new("trial", "0", "which trial stream of the seed", registry::Kind::count(0, u64::MAX, ""));
+}
 
 /// `samples`: samples over the turn.
 const SAMPLES: Param = registry::samples("3600", "samples over the turn");
 
-/// `teeth`: teeth of both gears.
-const TEETH: Param = Param::new(
-    "teeth",
-    "50",
-    "teeth of both gears",
-    registry::Kind::count(3, geometry::MAX_TEETH as u64, "a gear needs three teeth"),
-);
+registry::params! {
+    /// `teeth`: teeth of both gears.
+    const TEETH = Param::new("teeth", "50", "teeth of both gears", registry::Kind::count(3, geometry::MAX_TEETH as u64, "a gear needs three teeth"));
+}
 
 crate::experiment! {
     id: "fig5", paper_item: "Figure 5 (section 4)", run,

@@ -10,13 +10,10 @@ use study::cell::{Purpose, label};
 use study::grids::TRIALS;
 use study::tolerance::{self, RULE};
 
-/// `measured`: RON table of measured per-gear errors (the `measured` hypothesis' format) to draw beside ours; empty (or none): no measured values.
-const MEASURED: Param = Param::new(
-    "measured",
-    "",
-    "RON table of measured per-gear errors (the `measured` hypothesis' format) to draw beside ours; empty (or none): no measured values",
-    registry::Kind::Text,
-);
+registry::params! {
+    /// `measured`: RON table of measured per-gear errors (the `measured` hypothesis' format) to draw beside ours; empty (or none): no measured values.
+    const MEASURED = Param::new("measured", "", "RON table of measured per-gear errors (the `measured` hypothesis' format) to draw beside ours; empty (or none): no measured values", registry::Kind::Text);
+}
 
 crate::experiment! {
     id: "fig6", paper_item: "Figure 6 (section 5)", run,

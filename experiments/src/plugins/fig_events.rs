@@ -6,14 +6,10 @@ use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
 
 use study::gearing;
 
-/// `margin`: how far inside the jam limit and beyond the disengagement limit the two runs are made.
-const MARGIN: Param = Param::new(
-    "margin",
-    "1",
-    "how far inside the jam limit and beyond the disengagement limit the two runs are made",
-    registry::Kind::number(0.01, 20.0, "% of h"),
-)
-.unit("% of h");
+registry::params! {
+    /// `margin`: how far inside the jam limit and beyond the disengagement limit the two runs are made.
+    const MARGIN = Param::new("margin", "1", "how far inside the jam limit and beyond the disengagement limit the two runs are made", registry::Kind::number(0.01, 20.0, "% of h")).unit("% of h");
+}
 
 crate::experiment! {
     id: "fig-events", paper_item: "Figures V_A and V_B (Appendix II)", run,

@@ -7,32 +7,14 @@ use crate::common::{Limit, LimitKind, Plot, Series};
 use study::gearing;
 use study::limits::IdealPair;
 
-/// `from`: first clearance of the sweep.
-const FROM: Param = Param::new(
-    "from",
-    "10",
-    "first clearance of the sweep",
-    registry::Kind::number(0.0, 100.0, "% of h"),
-)
-.unit("% of h");
-
-/// `to`: last clearance of the sweep.
-const TO: Param = Param::new(
-    "to",
-    "90",
-    "last clearance of the sweep",
-    registry::Kind::number(0.0, 100.0, "% of h"),
-)
-.unit("% of h");
-
-/// `step`: clearance step.
-const STEP: Param = Param::new(
-    "step",
-    "5",
-    "clearance step",
-    registry::Kind::number(0.25, 50.0, "% of h"),
-)
-.unit("% of h");
+registry::params! {
+    /// `from`: first clearance of the sweep.
+    const FROM = Param::new("from", "10", "first clearance of the sweep", registry::Kind::number(0.0, 100.0, "% of h")).unit("% of h");
+    /// `to`: last clearance of the sweep.
+    const TO = Param::new("to", "90", "last clearance of the sweep", registry::Kind::number(0.0, 100.0, "% of h")).unit("% of h");
+    /// `step`: clearance step.
+    const STEP = Param::new("step", "5", "clearance step", registry::Kind::number(0.25, 50.0, "% of h")).unit("% of h");
+}
 
 /// `samples`: TD samples per run.
 const SAMPLES: Param = registry::samples("2000", "TD samples per run");

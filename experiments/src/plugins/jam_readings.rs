@@ -15,62 +15,26 @@ use polycheck::stepped::Stepping;
 use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
 use study::area_test::{Reading, run_all};
 use study::cell::{CellSpec, PAPER_TRIALS, label};
-use study::grids::{CASES, CellSettings};
+use study::grids::CellSettings;
 use study::tolerance::{RANDOM_FROM, RANDOM_STEP, RANDOM_TO};
 use train::Gearing;
 
-use crate::cells::{cell, consistent_with_paper, paper_counts, share};
+use crate::cells::{PaperTable, consistent_with_paper, paper_counts, paper_table_cells, share};
 
-/// `trials`: trials per cell (a screening count; the paper: 200).
-const TRIALS: Param = Param::new(
-    "trials",
-    "10",
-    "trials per cell (a screening count; the paper: 200)",
-    registry::Kind::count(1, registry::MAX_TRIALS, ""),
-);
-
-/// `clearances`: Table I's clearances G, comma-separated (the paper: 10, 40 and 70).
-const CLEARANCES: Param = Param::new(
-    "clearances",
-    "10,40,70",
-    "Table I's clearances G, comma-separated (the paper: 10, 40 and 70)",
-    registry::Kind::Text,
-)
-.unit("% of h");
-
-/// `tolerances`: overlap areas the area test ignores, one reading each, comma-separated.
-const TOLERANCES: Param = Param::new(
-    "tolerances",
-    "0.0001,0.001,0.003",
-    "overlap areas the area test ignores, one reading each, comma-separated",
-    registry::Kind::Text,
-)
-.unit("mm^2");
-
-/// `steps_per_pitch`: driver steps per driver pitch of the area test (the driver turns by a fixed step).
-const STEPS_PER_PITCH: Param = Param::new(
-    "steps_per_pitch",
-    "20",
-    "driver steps per driver pitch of the area test (the driver turns by a fixed step)",
-    registry::Kind::count(2, 10_000, "a step of at most half a pitch"),
-);
-
-/// `reach`: how far ahead the area test looks for a free driven position before calling a jam.
-const REACH: Param = Param::new(
-    "reach",
-    "1",
-    "how far ahead the area test looks for a free driven position before calling a jam",
-    registry::Kind::number(0.05, 10.0, "driven pitches"),
-)
-.unit("driven pitch");
-
-/// `search_steps`: steps per driven pitch of the area test's forward search (then bisected).
-const SEARCH_STEPS: Param = Param::new(
-    "search_steps",
-    "64",
-    "steps per driven pitch of the area test's forward search (then bisected)",
-    registry::Kind::count(4, 100_000, "a search step of at most a quarter pitch"),
-);
+registry::params! {
+    /// `trials`: trials per cell (a screening count; the paper: 200).
+    const TRIALS = Param::new("trials", "10", "trials per cell (a screening count; the paper: 200)", registry::Kind::count(1, registry::MAX_TRIALS, ""));
+    /// `clearances`: Table I's clearances G, comma-separated (the paper: 10, 40 and 70).
+    const CLEARANCES = Param::new("clearances", "10,40,70", "Table I's clearances G, comma-separated (the paper: 10, 40 and 70)", registry::Kind::Text).unit("% of h");
+    /// `tolerances`: overlap areas the area test ignores, one reading each, comma-separated.
+    const TOLERANCES = Param::new("tolerances", "0.0001,0.001,0.003", "overlap areas the area test ignores, one reading each, comma-separated", registry::Kind::Text).unit("mm^2");
+    /// `steps_per_pitch`: driver steps per driver pitch of the area test (the driver turns by a fixed step).
+    const STEPS_PER_PITCH = Param::new("steps_per_pitch", "20", "driver steps per driver pitch of the area test (the driver turns by a fixed step)", registry::Kind::count(2, 10_000, "a step of at most half a pitch"));
+    /// `reach`: how far ahead the area test looks for a free driven position before calling a jam.
+    const REACH = Param::new("reach", "1", "how far ahead the area test looks for a free driven position before calling a jam", registry::Kind::number(0.05, 10.0, "driven pitches")).unit("driven pitch");
+    /// `search_steps`: steps per driven pitch of the area test's forward search (then bisected).
+    const SEARCH_STEPS = Param::new("search_steps", "64", "steps per driven pitch of the area test's forward search (then bisected)", registry::Kind::count(4, 100_000, "a search step of at most a quarter pitch"));
+}
 
 crate::experiment! {
     id: "jam-readings", paper_item: "Tables 3, 4 and I, and section 3 (the area contact test)", run,
@@ -131,48 +95,20 @@ impl Cells {
 /// each of its clearances), in the order of `event-rules`.
 fn all_cells(ctx: &Context, s: &CellSettings) -> Result<Cells, RunError> {
     let clearance = s.clearance()?;
-    let split = s.errors.split()?;
     let clearances = crate::settings::clearance_list(ctx, &CLEARANCES, 200.0)?;
     let randoms = crate::settings::random_grid(ctx)?;
-    let meshes: Vec<&str> = s
-        .gearing()
-        .meshes()
-        .iter()
-        .map(|m| m.label.as_str())
-        .collect();
     let mut out = Cells {
         runs: Vec::new(),
         paper: Vec::new(),
     };
     let region = |gc: f64| format!("G = {} %", label(gc, 0));
-    let case_errors =
-        |sys: f64, random: f64| [("random", random), ("systematic", sys), ("split", split)];
-    for &(case, sys, random) in &CASES {
-        for m in &meshes {
-            let c = cell(s, m, &case_errors(sys, random), clearance)?;
-            out.add(c, "table3", format!("{case}.{m}"), region(clearance));
-        }
-    }
-    for &e in &randoms {
-        for m in &meshes {
-            let errors = [("random", e), ("systematic", 0.0)];
-            let c = cell(s, m, &errors, clearance)?;
-            out.add(
-                c,
-                "table4",
-                format!("{}.{m}", label(e, 3)),
-                "Table 4".into(),
-            );
-        }
-    }
-    for &(case, sys, random) in &CASES {
-        for &gc in &clearances {
-            for m in &meshes {
-                let c = cell(s, m, &case_errors(sys, random), gc)?;
-                let key = format!("{case}.{}.{m}", label(gc, 0));
-                out.add(c, "tableI", key, region(gc));
-            }
-        }
+    for c in paper_table_cells(s, &randoms, &clearances)? {
+        let group = match c.table {
+            PaperTable::Table3 { .. } => region(clearance),
+            PaperTable::Table4 { .. } => "Table 4".into(),
+            PaperTable::TableI { clearance, .. } => region(clearance),
+        };
+        out.add(c.cell, c.id, c.key, group);
     }
     Ok(out)
 }

@@ -35,13 +35,10 @@ const LUNAR_TURNS: Param = study::pointers::turns(
 const SAMPLES_PER_ENGAGEMENT: Param =
     study::pointers::per_engagement("8", "TD samples per engagement of the busiest mesh");
 
-/// `curve_samples`: points of the anomaly curve over one anomalistic month (amplitude and plot).
-const CURVE_SAMPLES: Param = Param::new(
-    "curve_samples",
-    "2000",
-    "points of the anomaly curve over one anomalistic month (amplitude and plot)",
-    registry::Kind::count(100, registry::MAX_COUNT as u64, ""),
-);
+registry::params! {
+    /// `curve_samples`: points of the anomaly curve over one anomalistic month (amplitude and plot).
+    const CURVE_SAMPLES = Param::new("curve_samples", "2000", "points of the anomaly curve over one anomalistic month (amplitude and plot)", registry::Kind::count(100, registry::MAX_COUNT as u64, ""));
+}
 
 crate::experiment! {
     id: "lunar-anomaly", paper_item: "Section 6 (assumptions) / Freeth 2006", run,

@@ -21,21 +21,12 @@ use study::gearing;
 use study::grids::CASES;
 use study::whole_mechanism::{self as whole, Clearances, Input, MechanismRun, TRAINS, summarise};
 
-/// `trials`: whole-mechanism runs per row (the paper's failure study: 30).
-const TRIALS: Param = Param::new(
-    "trials",
-    "60",
-    "whole-mechanism runs per row (the paper's failure study: 30)",
-    registry::Kind::count(2, registry::MAX_TRIALS, "an interval needs two runs"),
-);
-
-/// `case`: Edmunds' case every row starts from (A, B, C or D).
-const CASE: Param = Param::new(
-    "case",
-    "B",
-    "Edmunds' case every row starts from (A, B, C or D)",
-    registry::Kind::Text,
-);
+registry::params! {
+    /// `trials`: whole-mechanism runs per row (the paper's failure study: 30).
+    const TRIALS = Param::new("trials", "60", "whole-mechanism runs per row (the paper's failure study: 30)", registry::Kind::count(2, registry::MAX_TRIALS, "an interval needs two runs"));
+    /// `case`: Edmunds' case every row starts from (A, B, C or D).
+    const CASE = Param::new("case", "B", "Edmunds' case every row starts from (A, B, C or D)", registry::Kind::Text);
+}
 
 crate::experiment! {
     id: "sensitivity", paper_item: "Section 6, assumptions (1)-(5)", run,

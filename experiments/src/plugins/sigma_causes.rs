@@ -15,24 +15,14 @@ use study::readings::{
     GEOMETRY, Minimum, PointerSigma, Starts, figure_iv_minima, mechanism, table1_trials, tip_radii,
 };
 
-/// `trials`: Table 1 trials per reading (random initial angles; the same draws for every reading).
-const TRIALS: Param = Param::new(
-    "trials",
-    "2",
-    "Table 1 trials per reading (random initial angles; the same draws for every reading)",
-    registry::Kind::count(2, registry::MAX_TRIALS, "a pooled sigma needs two trials"),
-);
-
-/// `clearance`: Table 1's clearance G of every mesh (before a reading's extra centre distance).
-/// Not the gearing group's `clearance` ([`study::gearing::CLEARANCE`]): this experiment runs the
-/// embedded gearings only, so its clearance is Table 1's input alone, under the same name.
-const TABLE1_CLEARANCE: Param = Param::new(
-    "clearance",
-    "40",
-    "Table 1's clearance G of every mesh (before a reading's extra centre distance)",
-    registry::Kind::positive(100.0, "% of the tooth height h"),
-)
-.unit("% of h");
+registry::params! {
+    /// `trials`: Table 1 trials per reading (random initial angles; the same draws for every reading).
+    const TRIALS = Param::new("trials", "2", "Table 1 trials per reading (random initial angles; the same draws for every reading)", registry::Kind::count(2, registry::MAX_TRIALS, "a pooled sigma needs two trials"));
+    /// `clearance`: Table 1's clearance G of every mesh (before a reading's extra centre distance).
+    /// Not the gearing group's `clearance` ([`study::gearing::CLEARANCE`]): this experiment runs the
+    /// embedded gearings only, so its clearance is Table 1's input alone, under the same name.
+    const TABLE1_CLEARANCE = Param::new("clearance", "40", "Table 1's clearance G of every mesh (before a reading's extra centre distance)", registry::Kind::positive(100.0, "% of the tooth height h")).unit("% of h");
+}
 
 /// `samples_per_engagement`: TD samples per tooth engagement of the busiest mesh (Table 1's default).
 const SAMPLES_PER_ENGAGEMENT: Param = study::pointers::per_engagement(
@@ -40,13 +30,10 @@ const SAMPLES_PER_ENGAGEMENT: Param = study::pointers::per_engagement(
     "TD samples per tooth engagement of the busiest mesh (Table 1's default)",
 );
 
-/// `draws`: Figure IV with Case A errors: manufactured pairs per mesh (each swept over every G).
-const DRAWS: Param = Param::new(
-    "draws",
-    "3",
-    "Figure IV with Case A errors: manufactured pairs per mesh (each swept over every G)",
-    registry::Kind::count(1, registry::MAX_COUNT as u64, "a mean needs one draw"),
-);
+registry::params! {
+    /// `draws`: Figure IV with Case A errors: manufactured pairs per mesh (each swept over every G).
+    const DRAWS = Param::new("draws", "3", "Figure IV with Case A errors: manufactured pairs per mesh (each swept over every G)", registry::Kind::count(1, registry::MAX_COUNT as u64, "a mean needs one draw"));
+}
 
 /// `samples`: TD samples per pair run of the Figure IV sweep (figIV's default).
 const SAMPLES: Param = registry::samples(

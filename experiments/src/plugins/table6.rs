@@ -18,13 +18,10 @@ const TRIALS: Param = registry::interval_trials(
     "runs of the whole mechanism, each with fresh errors and initial angles (the paper: 30)",
 );
 
-/// `cell_trials`: trials per cell of Tables 4 and 5, from which the tolerances are derived.
-const CELL_TRIALS: Param = Param::new(
-    "cell_trials",
-    "200",
-    "trials per cell of Tables 4 and 5, from which the tolerances are derived",
-    registry::Kind::count(1, registry::MAX_TRIALS, ""),
-);
+registry::params! {
+    /// `cell_trials`: trials per cell of Tables 4 and 5, from which the tolerances are derived.
+    const CELL_TRIALS = Param::new("cell_trials", "200", "trials per cell of Tables 4 and 5, from which the tolerances are derived", registry::Kind::count(1, registry::MAX_TRIALS, ""));
+}
 
 crate::experiment! {
     id: "table6", paper_item: "Table 6 (section 5)", run,

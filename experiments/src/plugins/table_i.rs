@@ -10,14 +10,10 @@ use crate::cells::{
 use study::cell::{Purpose, label, run_cells};
 use study::grids::{CASES, CellSettings, TRIALS, case_cells};
 
-/// `clearances`: Table I's clearances G, comma-separated (the paper: 10, 40 and 70).
-const CLEARANCES: Param = Param::new(
-    "clearances",
-    "10,40,70",
-    "clearances G, comma-separated (the paper: 10, 40 and 70)",
-    registry::Kind::Text,
-)
-.unit("% of h");
+registry::params! {
+    /// `clearances`: Table I's clearances G, comma-separated (the paper: 10, 40 and 70).
+    const CLEARANCES = Param::new("clearances", "10,40,70", "clearances G, comma-separated (the paper: 10, 40 and 70)", registry::Kind::Text).unit("% of h");
+}
 
 crate::experiment! {
     id: "tableI", paper_item: "Table I (Appendix II)", run,

@@ -12,43 +12,13 @@ use study::cell::{Purpose, label};
 use study::tolerance::{self, RANDOM_STEP, RULE};
 use study::tolerance_search::{Search, Settings, search};
 
-const SEARCH_LO: Param = Param::new(
-    "search_lo",
-    "0.02",
-    "lower end of the searched random error (fraction of the pitch 360/N)",
-    study::tolerance::RANDOM_KIND,
-)
-.unit("pitch");
-
-const SEARCH_HI: Param = Param::new(
-    "search_hi",
-    "0.08",
-    "upper end of the searched random error",
-    study::tolerance::RANDOM_KIND,
-)
-.unit("pitch");
-
-const RESOLUTION: Param = Param::new(
-    "resolution",
-    "0.0025",
-    "the bisection stops when the bracket is at most this wide",
-    registry::Kind::positive(f64::INFINITY, ""),
-)
-.unit("pitch");
-
-const BATCH: Param = Param::new(
-    "batch",
-    "20",
-    "trials added to a probed value at a time",
-    registry::Kind::count(1, registry::MAX_TRIALS, ""),
-);
-
-const CAP: Param = Param::new(
-    "cap",
-    "200",
-    "most trials at one probed value, where the paper's count rule decides; also the trials per cell of the Table 4 grid compared with (the paper: 200)",
-    registry::Kind::count(1, registry::MAX_TRIALS, ""),
-);
+registry::params! {
+    const SEARCH_LO = Param::new("search_lo", "0.02", "lower end of the searched random error (fraction of the pitch 360/N)", study::tolerance::RANDOM_KIND).unit("pitch");
+    const SEARCH_HI = Param::new("search_hi", "0.08", "upper end of the searched random error", study::tolerance::RANDOM_KIND).unit("pitch");
+    const RESOLUTION = Param::new("resolution", "0.0025", "the bisection stops when the bracket is at most this wide", registry::Kind::positive(f64::INFINITY, "")).unit("pitch");
+    const BATCH = Param::new("batch", "20", "trials added to a probed value at a time", registry::Kind::count(1, registry::MAX_TRIALS, ""));
+    const CAP = Param::new("cap", "200", "most trials at one probed value, where the paper's count rule decides; also the trials per cell of the Table 4 grid compared with (the paper: 200)", registry::Kind::count(1, registry::MAX_TRIALS, ""));
+}
 
 crate::experiment! {
     id: "tolerance", paper_item: "Section 5, Tables 4-5 (tolerance by sequential search; beyond the paper)", run,
