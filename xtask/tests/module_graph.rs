@@ -219,9 +219,9 @@ fn root_references(srcs: &BTreeMap<String, String>) -> Vec<String> {
 /// dispatches to all of them), and a cycle of it if there is one.
 fn cycle(srcs: &BTreeMap<String, String>) -> Option<Vec<String>> {
     let mods: BTreeSet<String> = srcs.keys().cloned().collect();
-    let mut edges: BTreeMap<&str, BTreeSet<String>> = BTreeMap::new();
+    let mut edges: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
     for (m, text) in srcs.iter().filter(|(m, _)| !m.is_empty()) {
-        let to = edges.entry(m).or_default();
+        let to = edges.entry(m.clone()).or_default();
         for p in crate_paths(text) {
             let t = target(&p, &mods);
             if &t != m {
@@ -229,35 +229,7 @@ fn cycle(srcs: &BTreeMap<String, String>) -> Option<Vec<String>> {
             }
         }
     }
-    // Depth-first, with the path walked so far.
-    fn walk(
-        m: &str,
-        edges: &BTreeMap<&str, BTreeSet<String>>,
-        path: &mut Vec<String>,
-        done: &mut BTreeSet<String>,
-    ) -> Option<Vec<String>> {
-        if let Some(i) = path.iter().position(|p| p == m) {
-            let mut c = path[i..].to_vec();
-            c.push(m.to_owned());
-            return Some(c);
-        }
-        if done.contains(m) {
-            return None;
-        }
-        path.push(m.to_owned());
-        for t in edges.get(m).into_iter().flatten() {
-            if let Some(c) = walk(t, edges, path, done) {
-                return Some(c);
-            }
-        }
-        path.pop();
-        done.insert(m.to_owned());
-        None
-    }
-    let mut done = BTreeSet::new();
-    edges
-        .keys()
-        .find_map(|m| walk(m, &edges, &mut Vec::new(), &mut done))
+    module_graph::cycle(&edges)
 }
 
 fn sources() -> BTreeMap<String, String> {
