@@ -13,7 +13,7 @@
 /// }
 /// ```
 ///
-/// `params` are the experiment's own parameters (`const NAME: Param` in the file), `groups` the
+/// `params` are the experiment's own parameters (the file's `registry::params!` block), `groups` the
 /// setting groups it shares (declared in `study`); `config: TEXT` (what a `--config FILE`
 /// describes) is optional, as is `replay`. `build.rs` reads the `id` to write the experiment's
 /// snapshot test.
