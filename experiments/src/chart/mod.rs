@@ -254,6 +254,23 @@ impl Rect {
     }
 }
 
+/// The legend's entry of each series, in order, each in its own style; `line`: drawn with its
+/// line (a line plot) or as markers only (a category plot).
+fn series_entries(series: &[Series<'_>], line: bool) -> Vec<Entry> {
+    series
+        .iter()
+        .enumerate()
+        .map(|(k, s)| Entry {
+            label: s.label.to_owned(),
+            sample: Sample::Series {
+                style: style(k),
+                line,
+            },
+            series: Some(k),
+        })
+        .collect()
+}
+
 /// How plotting errors are reported: naming the figure.
 type PlotErr<'a> = &'a dyn Fn(&dyn std::fmt::Display) -> RunError;
 
@@ -488,19 +505,7 @@ impl<'a> Plot<'a> {
 
     /// The legend's entries: the series, then one per kind of limit drawn.
     fn entries(&self) -> Vec<Entry> {
-        let mut entries: Vec<Entry> = self
-            .series
-            .iter()
-            .enumerate()
-            .map(|(k, s)| Entry {
-                label: s.label.to_owned(),
-                sample: Sample::Series {
-                    style: style(k),
-                    line: true,
-                },
-                series: Some(k),
-            })
-            .collect();
+        let mut entries = series_entries(&self.series, true);
         for (kind, label) in [
             (LimitKind::Lower, self.limit_labels.0),
             (LimitKind::Upper, self.limit_labels.1),
@@ -755,18 +760,7 @@ pub fn category_plot(
     let pad = ((y1 - y0) * 0.1).max(1e-3);
     let (y0, y1) = drawable((y0 - pad).max(0.0), y1 + pad);
     let n = categories.len().max(1) as i32;
-    let entries: Vec<Entry> = series
-        .iter()
-        .enumerate()
-        .map(|(k, s)| Entry {
-            label: s.label.to_owned(),
-            sample: Sample::Series {
-                style: style(k),
-                line: false,
-            },
-            series: Some(k),
-        })
-        .collect();
+    let entries = series_entries(series, false);
     chart_svg(
         title,
         1000,
