@@ -505,7 +505,7 @@ impl<'a> Plot<'a> {
 
     /// The legend's entries: the series, then one per kind of limit drawn.
     fn entries(&self) -> Vec<Entry> {
-        let mut entries = series_entries(&self.series, true);
+        let mut entries = series_entries(self.series, true);
         for (kind, label) in [
             (LimitKind::Lower, self.limit_labels.0),
             (LimitKind::Upper, self.limit_labels.1),
