@@ -4,11 +4,9 @@
 //! when their centres are the sum or difference of the radii apart), and a root counts only where
 //! its touching point lies on both flanks. Pairs of straight-flanked gears never come here.
 
-use std::f64::consts::{PI, TAU};
-
 use geometry::{Arc, Vec2};
 
-use super::{EVALS, Mesh, conj, pseudo_angle};
+use super::{EVALS, FirstAfter, Mesh, conj, pseudo_angle};
 use crate::roots::{circle_circle, circle_segment};
 use crate::tooth::ToothData;
 
@@ -20,19 +18,11 @@ impl Mesh {
     /// reaches a segment offset by the arc's radius or a circle about the other arc's centre.
     pub(super) fn first_touch_curved(&self, theta: f64, phi0: f64, phi1: f64) -> Option<f64> {
         let (d1, d2) = (&self.driver, &self.driven);
-        let c2 = self.c2();
-        let lo_j = *self.driver_teeth(phi1).start();
-        let hi_j = *self.driver_teeth(phi0).end();
-        let ks = d2.teeth_between(theta - d2.window, theta + d2.window);
-        let (s, c) = (PI - theta).sin_cos();
-        let place = |v: Vec2| c2 + Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y);
-        let mut best = f64::INFINITY;
-        let mut take = |phi: f64| {
-            let t = phi0 + (phi - phi0).rem_euclid(TAU);
-            if t > phi0 + 1e-12 && t <= phi1 && t < best {
-                best = t;
-            }
-        };
+        let rest = self.resting(theta, phi0, phi1);
+        let ((lo_j, hi_j), ks) = (rest.drivers, rest.ks.clone());
+        let place = |v: Vec2| rest.place(v);
+        let mut first = FirstAfter::new(phi0, phi1);
+        let mut take = |phi: f64| first.take(phi);
         let arg = |v: Vec2| v.y.atan2(v.x);
         const FLANKS: [(usize, usize); 2] = [(0, 1), (1, 2)];
         for k in ks {
@@ -140,7 +130,7 @@ impl Mesh {
                 }
             }
         }
-        best.is_finite().then_some(best)
+        first.get()
     }
 
     /// [`Mesh::tooth_pair`] when a gear has curved flanks: the driver tooth `a` and its flank arcs

@@ -448,21 +448,11 @@ impl Mesh {
             return self.first_touch_curved(theta, phi0, phi1);
         }
         let (d1, d2) = (&self.driver, &self.driven);
-        let c2 = self.c2();
-        let lo_j = *self.driver_teeth(phi1).start();
-        let hi_j = *self.driver_teeth(phi0).end();
-        // Driven teeth near the line of centres while the gear stands at θ.
-        let ks = d2.teeth_between(theta - d2.window, theta + d2.window);
-        let (s, c) = (PI - theta).sin_cos();
-        let place = |v: Vec2| c2 + Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y);
-        let mut best = f64::INFINITY;
-        let mut take = |phi: f64| {
-            // The root as an angle after phi0 (the driver turns forwards only).
-            let t = phi0 + (phi - phi0).rem_euclid(TAU);
-            if t > phi0 + 1e-12 && t <= phi1 && t < best {
-                best = t;
-            }
-        };
+        let rest = self.resting(theta, phi0, phi1);
+        let ((lo_j, hi_j), ks) = (rest.drivers, rest.ks.clone());
+        let place = |v: Vec2| rest.place(v);
+        let mut first = FirstAfter::new(phi0, phi1);
+        let mut take = |phi: f64| first.take(phi);
         const FLANKS: [(usize, usize); 2] = [(0, 1), (1, 2)];
         // Each tooth's vertices and their arguments, taken once (not once per pair of teeth).
         let with_args = |t: [Vec2; 3]| (t, t.map(|p| p.y.atan2(p.x)));
@@ -499,7 +489,24 @@ impl Mesh {
                 }
             }
         }
-        best.is_finite().then_some(best)
+        first.get()
+    }
+
+    /// What a search for the first touch on a driven gear resting at θ over driver angles
+    /// `(phi0, phi1]` reads: the driver teeth that pass the line of centres, the driven teeth
+    /// near it, and where a point of the driven gear's frame stands in the world.
+    pub(super) fn resting(&self, theta: f64, phi0: f64, phi1: f64) -> Resting {
+        let d2 = &self.driven;
+        let c2 = self.c2();
+        Resting {
+            drivers: (
+                *self.driver_teeth(phi1).start(),
+                *self.driver_teeth(phi0).end(),
+            ),
+            ks: d2.teeth_between(theta - d2.window, theta + d2.window),
+            c2,
+            sin_cos: (PI - theta).sin_cos(),
+        }
     }
 
     /// The exact obstacle of driver tooth `j` against driven tooth `k` at driver angle φ, or
@@ -744,6 +751,57 @@ impl Mesh {
                 }
             }
         }
+    }
+}
+
+/// A driven gear resting at θ as [`Mesh::resting`] gives it.
+pub(super) struct Resting {
+    /// The first and last driver tooth that pass the line of centres over the range.
+    pub(super) drivers: (i64, i64),
+    /// Driven teeth near the line of centres while the gear stands at θ.
+    pub(super) ks: std::ops::RangeInclusive<i64>,
+    /// The driven gear's centre.
+    c2: Vec2,
+    /// Sine and cosine of the driven frame's turn, π − θ.
+    sin_cos: (f64, f64),
+}
+
+impl Resting {
+    /// Where the point `v` of the driven gear's frame stands in the world.
+    pub(super) fn place(&self, v: Vec2) -> Vec2 {
+        let (s, c) = self.sin_cos;
+        self.c2 + Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y)
+    }
+}
+
+/// The first driver angle after `phi0` among the roots offered: each is taken as the angle after
+/// `phi0` (the driver turns forwards only), and the least in `(phi0, phi1]` is kept.
+pub(super) struct FirstAfter {
+    phi0: f64,
+    phi1: f64,
+    best: f64,
+}
+
+impl FirstAfter {
+    pub(super) fn new(phi0: f64, phi1: f64) -> Self {
+        Self {
+            phi0,
+            phi1,
+            best: f64::INFINITY,
+        }
+    }
+
+    /// Offers the root `phi` (of any turn).
+    pub(super) fn take(&mut self, phi: f64) {
+        let t = self.phi0 + (phi - self.phi0).rem_euclid(TAU);
+        if t > self.phi0 + 1e-12 && t <= self.phi1 && t < self.best {
+            self.best = t;
+        }
+    }
+
+    /// The first root offered in the range, if any.
+    pub(super) fn get(&self) -> Option<f64> {
+        self.best.is_finite().then_some(self.best)
     }
 }
 
