@@ -557,6 +557,49 @@ impl Gear {
         [self.valley(k - 1), self.tip(k), self.valley(k)]
     }
 
+    /// This gear seen from its other face: every point reflected in the gear frame's x axis
+    /// (angle a -> -a, rotation centre (x, y) -> (x, -y)), its teeth renumbered so that the tip
+    /// angles still increase: tooth k of the mirror image is tooth N - 1 - k of this gear, and
+    /// valley k of the image is valley N - 2 - k (mod N).
+    ///
+    /// Why: the solver measures the driver's angles counter-clockwise and the driven gear's
+    /// clockwise, each in its own direction of rotation. A gear moved from one role to the other
+    /// while it keeps turning the same way (the listed driven gear made the driver) is seen from
+    /// the other side, i.e. mirrored. Mirroring twice gives the gear back (to rounding of the
+    /// last valley, which wraps by 2π).
+    pub fn mirrored(&self) -> Gear {
+        let n = self.teeth();
+        // Old index of the tip that becomes tip k, and of the valley that becomes valley k.
+        let tip_of = |k: usize| n - 1 - k;
+        let valley_of = |k: usize| (2 * n - 2 - k) % n;
+        let tips = (0..n).map(|k| -self.tips[tip_of(k)]).collect();
+        let valleys = (0..n)
+            .map(|k| {
+                let v = -self.valleys[valley_of(k)];
+                // Old valley N-1 lies past the last tip (it wraps round): mirrored, it lies
+                // between the new last tip and the new first tip plus a turn.
+                if k == n - 1 { v + TAU } else { v }
+            })
+            .collect();
+        let pick = |radii: &[f64], of: &dyn Fn(usize) -> usize| -> Vec<f64> {
+            if radii.is_empty() {
+                Vec::new()
+            } else {
+                (0..n).map(|k| radii[of(k)]).collect()
+            }
+        };
+        Gear {
+            tip_radius: self.tip_radius,
+            root_radius: self.root_radius,
+            tips,
+            valleys,
+            rotation_centre: Vec2::new(self.rotation_centre.x, -self.rotation_centre.y),
+            tip_radii: pick(&self.tip_radii, &tip_of),
+            root_radii: pick(&self.root_radii, &valley_of),
+            flank_sagitta: self.flank_sagitta,
+        }
+    }
+
     /// Split an unwrapped tooth index into (index in 0..N, whole turns).
     fn wrap(&self, k: i64) -> (usize, i64) {
         let n = self.teeth() as i64;
@@ -699,6 +742,59 @@ pub fn centre_distance(r_tip1: f64, r_tip2: f64, h: f64, g_percent: f64) -> f64 
 mod tests {
     #![allow(clippy::unwrap_used, reason = "tests")]
     use super::*;
+
+    /// The mirror image is the reflected outline, renumbered, and a valid gear by every rule of
+    /// its constructors; mirrored twice it is the gear again.
+    #[test]
+    fn a_mirrored_gear_is_the_reflected_outline() {
+        let tips = vec![0.1, 1.9, 4.2, 5.0];
+        let valleys = vec![0.7, 3.5, 4.5, 5.9];
+        let g = Gear::with_valleys(10.0, 9.0, tips, valleys, Vec2::new(0.3, 0.2))
+            .unwrap()
+            .with_radii(vec![10.1, 9.9, 10.0, 10.2], vec![9.0, 8.9, 9.1, 8.8])
+            .unwrap()
+            .with_flank_sagitta(0.05)
+            .unwrap();
+        let m = g.mirrored();
+        let reflect = |v: Vec2| Vec2::new(v.x, -v.y);
+        let n = g.teeth() as i64;
+        for k in 0..n {
+            assert!(
+                (m.tip(k) - reflect(g.tip(n - 1 - k))).norm() < 1e-12,
+                "tip {k}"
+            );
+            assert!(
+                (m.valley(k) - reflect(g.valley((2 * n - 2 - k) % n))).norm() < 1e-12,
+                "valley {k}"
+            );
+        }
+        assert_eq!(m.rotation_centre(), Vec2::new(0.3, -0.2));
+        assert_eq!(m.flank_sagitta(), 0.05);
+        // Every rule the constructors check holds for the image.
+        let rebuilt = Gear::with_valleys(
+            m.tip_radius(),
+            m.root_radius(),
+            m.tip_angles().to_vec(),
+            m.valley_angles().to_vec(),
+            m.rotation_centre(),
+        )
+        .unwrap()
+        .with_radii(
+            (0..n).map(|k| m.tip_radius_of(k)).collect(),
+            (0..n).map(|k| m.root_radius_of(k)).collect(),
+        )
+        .unwrap()
+        .with_flank_sagitta(m.flank_sagitta())
+        .unwrap();
+        assert_eq!(rebuilt, m);
+        let back = m.mirrored();
+        assert_eq!(back.tip_angles(), g.tip_angles());
+        for (a, b) in back.valley_angles().iter().zip(g.valley_angles()) {
+            assert!((a - b).abs() < 1e-12);
+        }
+        let ideal = Gear::ideal(8, 200.0, 100.0).unwrap().mirrored();
+        assert!((ideal.tip(0) - polar(200.0, -7.0 * TAU / 8.0)).norm() < 1e-12);
+    }
 
     #[test]
     fn ideal_gear_has_valleys_midway() {

@@ -323,6 +323,22 @@ impl Mesh {
         })
     }
 
+    /// The same two gears at the same centre distance with the driven gear driving, both gears
+    /// still turning their own way: the new driver's front flanks now push the old driver's
+    /// back flanks. Each gear keeps its own angle (the new φ is the old driven gear's θ, the new
+    /// θ the old driver's φ), because the picture is the old one reflected in the perpendicular
+    /// bisector of the line of centres: each gear is seen from its other face
+    /// ([`Gear::mirrored`]), so its tooth k is tooth N − 1 − k of the gear as listed.
+    ///
+    /// Errors: those of [`Mesh::new`] (the same bodies overlap whichever gear drives).
+    pub fn other_driving(&self) -> Result<Mesh, MeshError> {
+        Mesh::new(
+            self.driven().mirrored(),
+            self.driver().mirrored(),
+            self.centre_distance,
+        )
+    }
+
     /// The driving gear.
     pub fn driver(&self) -> &Gear {
         &self.driver.gear
