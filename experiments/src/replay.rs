@@ -18,6 +18,7 @@ use registry::{Context, OutputFile, Report, RunError, Table, fmt_f64};
 use train::Gearing;
 
 use study::cell::{CellSpec, Rebuilt, rebuild};
+use study::drive::{Drive, Driver};
 use study::grids::{CASES, CellSettings};
 
 /// How the cells of a per-mesh table are named and what each one names: an experiment whose
@@ -274,7 +275,7 @@ fn one_trial(
 ) -> Result<Report, RunError> {
     let seed = ctx.seed();
     let rebuilt = rebuild(g, spec, seed, t)?;
-    let pair = pair_file(&rebuilt);
+    let pair = pair_file(&rebuilt, &drive_note(g, spec, &rebuilt));
     if let Ok(text) = &pair {
         study::pair_file::prepare("pair.ron", text)
             .map_err(|e| refused_pair_file(ctx, e, id, cell, t))?;
@@ -285,11 +286,13 @@ fn one_trial(
     } else {
         spec.events.tally(&events)
     };
+    let drove = driving_gear(g, spec, &rebuilt);
     let mut table = Table::new(
         format!(
-            "{id} {cell}, trial {t} (seed {seed}): {} [events: {}]",
+            "{id} {cell}, trial {t} (seed {seed}): {} [events: {}; drive: {}, {drove} drove]",
             verdict(jam, dis),
-            spec.events.label()
+            spec.events.label(),
+            spec.drive.name(),
         ),
         [
             "phi - phi0 [deg]",
@@ -341,6 +344,7 @@ fn one_trial(
         fmt_f64(rebuilt.phi0.to_degrees(), 9),
         fmt_f64(rebuilt.turn.to_degrees(), 6),
     ));
+    table.note(drive_note(g, spec, &rebuilt));
     table.note(crate::pair_html::ANGLES_NOTE);
     let mut files = Vec::new();
     if let (Some(mesh), Some(traj)) = (&rebuilt.mesh, &traj) {
@@ -511,8 +515,9 @@ fn listing(
     let (dis, dis_list) = which(|o| o.1);
     let mut table = Table::new(
         format!(
-            "{id} {cell}: the trials that failed, of {trials} (seed {seed}) [events: {}]",
-            spec.events.label()
+            "{id} {cell}: the trials that failed, of {trials} (seed {seed}) [events: {}; drive: {}]",
+            spec.events.label(),
+            spec.drive.name()
         ),
         ["failure", "trials", "trial indices"],
     );
@@ -532,13 +537,17 @@ fn listing(
 /// (the driver's sense, the tips frame), the centre distance, the initial driver angle and the
 /// run's length. Gears the pair format cannot describe (per-tooth radii, curved flanks, valleys
 /// off the middle) give the reason instead.
-fn pair_file(r: &Rebuilt) -> Result<String, String> {
+fn pair_file(r: &Rebuilt, drive: &str) -> Result<String, String> {
     let mesh = r
         .mesh
         .as_ref()
         .ok_or("the gears overlap at every angle, so there is no run to rerun")?;
     let mut s =
-        String::from("// Rebuilt by `cargo xtask replay`: one trial of a per-mesh table.\n(\n");
+        String::from("// Rebuilt by `cargo xtask replay`: one trial of a per-mesh table.\n");
+    for line in wrapped(drive, 96) {
+        let _ = writeln!(s, "// {line}");
+    }
+    s.push_str("(\n");
     for (name, gear) in [("driver", mesh.driver()), ("driven", mesh.driven())] {
         describable(name, gear)?;
         let tips: Vec<String> = gear
@@ -566,6 +575,58 @@ fn pair_file(r: &Rebuilt) -> Result<String, String> {
         r.turn.to_degrees()
     );
     Ok(s)
+}
+
+/// The gear of the cell's mesh that drove trial `r`, by name (`b2`, or `c1` when the listed
+/// driven gear drove).
+fn driving_gear(g: &Gearing, spec: &CellSpec, r: &Rebuilt) -> String {
+    let Some(m) = g.mesh(&spec.mesh) else {
+        return "?".into();
+    };
+    match r.driver {
+        Driver::Listed => m.driver.clone(),
+        Driver::Other => m.driven.clone(),
+    }
+}
+
+/// Which gear drove the trial and why, and how the outputs name its gears and teeth.
+fn drive_note(g: &Gearing, spec: &CellSpec, r: &Rebuilt) -> String {
+    let gear = driving_gear(g, spec, r);
+    let why = match spec.drive {
+        Drive::Listed => "drive=listed: the mesh's listed driver drives every trial".to_string(),
+        Drive::Other => "drive=other: the mesh's listed driven gear drives every trial".to_string(),
+        Drive::Either => format!(
+            "drive=either: the trial's coin (drawn from its own stream after its gears and initial angle) picked the {}",
+            match r.driver {
+                Driver::Listed => "listed driver",
+                Driver::Other => "listed driven gear",
+            }
+        ),
+    };
+    match r.driver {
+        Driver::Listed => format!("Driver: {gear} ({why})."),
+        Driver::Other => format!(
+            "Driver: {gear} ({why}); both gears turn their own way as in the train, so here `driver` is {gear} and `driven` the mesh's listed driver, each seen from its other face: tooth k here (and in pair.ron) is tooth N - 1 - k of the gear as the table's cell made it, and phi and theta are {gear}'s and its partner's own angles."
+        ),
+    }
+}
+
+/// `text` cut into lines of at most about `width` characters at spaces.
+fn wrapped(text: &str, width: usize) -> Vec<String> {
+    let mut lines = vec![String::new()];
+    for word in text.split_whitespace() {
+        let last = lines.last_mut().map_or(0, |l| l.len());
+        if last > 0 && last + 1 + word.len() > width {
+            lines.push(String::new());
+        }
+        if let Some(l) = lines.last_mut() {
+            if !l.is_empty() {
+                l.push(' ');
+            }
+            l.push_str(word);
+        }
+    }
+    lines
 }
 
 /// Whether the pair format can describe `gear`: one tip and one root radius, straight flanks,

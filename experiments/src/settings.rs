@@ -6,8 +6,9 @@
 use hypotheses::Hypothesis;
 use registry::{Context, Param, Report, RunError};
 use rules::Rule;
+use study::drive::Drive;
 use study::grids::CellSettings;
-use study::{equal_pair, errors, events, gearing, limits, tolerance};
+use study::{drive, equal_pair, errors, events, gearing, limits, tolerance};
 
 /// The gearing and its tooth height ([`gearing::SHAPE`]): loaded, and h checked against it.
 pub fn shape(ctx: &Context) -> Result<gearing::Shape, RunError> {
@@ -68,9 +69,20 @@ pub fn rule(ctx: &Context) -> Result<Rule, RunError> {
     events::parse(ctx.text(&events::PARAM)?)
 }
 
+/// Which gear of each mesh drives ([`drive::GROUP`]): the listed driver where the experiment
+/// declares no `drive`.
+pub fn drive(ctx: &Context) -> Result<Drive, RunError> {
+    if ctx.holds(&drive::PARAM) {
+        Drive::parse(ctx.text(&drive::PARAM)?)
+    } else {
+        Ok(Drive::Listed)
+    }
+}
+
 /// What every table of jam cells reads first ([`CellSettings`]): the gearing and h, G where the
 /// experiment declares it, the error group, the event rule (the default where the experiment
-/// declares none) and the trials per cell, parameter `trials`.
+/// declares none), which gear drives (the listed one where it declares no `drive`) and the
+/// trials per cell, parameter `trials`.
 pub fn cells(ctx: &Context, trials: &Param) -> Result<CellSettings, RunError> {
     let gearing = shape(ctx)?;
     let clearance = if ctx.holds(&gearing::CLEARANCE) {
@@ -89,6 +101,7 @@ pub fn cells(ctx: &Context, trials: &Param) -> Result<CellSettings, RunError> {
         clearance,
         errors,
         rule,
+        drive: drive(ctx)?,
         trials: ctx.get(trials)?,
     })
 }
@@ -159,17 +172,24 @@ pub fn turns<'a>(
         .collect()
 }
 
-/// Runs `experiment` and names the event rule in its tables' titles ([`events::label`]): how an
-/// experiment that counts events registers its `run`.
+/// Runs `experiment` and names the event rule in its tables' titles, and which gear drove where
+/// the experiment takes `drive` ([`events::label`]): how an experiment that counts events
+/// registers its `run`.
 pub fn labelled(
     ctx: &Context,
     experiment: fn(&Context) -> Result<Report, RunError>,
 ) -> Result<Report, RunError> {
     let report = experiment(ctx)?;
-    Ok(events::label(&rule(ctx)?, report))
+    label(ctx, report)
 }
 
-/// `report` with every table's title naming the event rule of the run ([`events::label`]).
+/// `report` with every table's title naming the event rule of the run, and the drive where the
+/// experiment takes one ([`events::label`]).
 pub fn label(ctx: &Context, report: Report) -> Result<Report, RunError> {
-    Ok(events::label(&rule(ctx)?, report))
+    let drive = if ctx.holds(&drive::PARAM) {
+        Some(drive(ctx)?)
+    } else {
+        None
+    };
+    Ok(events::label(&rule(ctx)?, drive, report))
 }

@@ -40,6 +40,7 @@ pub fn stamp(
             "seed": ctx.seed(),
             "threads": ctx.threads(),
             "overrides": overrides,
+            "readings": readings(ctx),
             "config": config,
             "inputs": inputs(ctx),
             "version": {
@@ -70,6 +71,8 @@ const NAMED_INPUTS: &[&str] = &[
     "tooth_height",
     "split",
     "trials",
+    "events",
+    "drive",
 ];
 
 /// The inputs `tables.json` records: every declared parameter of [`NAMED_INPUTS`] with its
@@ -96,10 +99,22 @@ fn recorded_inputs(ctx: &Context) -> BTreeMap<String, String> {
 }
 
 /// Parameters that choose how the paper is read, not what is simulated: the event rule (which
-/// events count as jams and disengagements; the experiments name it in every title) and
-/// `emax=paper` (Tables 5 and 6 on the paper's own E. max row, itself the paper's input). A run
-/// that changes only these still runs on the paper's inputs and is compared with it.
-const READINGS: &[&str] = &["events", "emax"];
+/// events count as jams and disengagements; the experiments name it in every title),
+/// `emax=paper` (Tables 5 and 6 on the paper's own E. max row, itself the paper's input) and the
+/// drive (which gear of each mesh its program turned, which the paper does not say; named in
+/// every title too). A run that changes only these still runs on the paper's inputs and is
+/// compared with it.
+const READINGS: &[&str] = &["events", "emax", "drive"];
+
+/// The readings of the paper the run was made under ([`READINGS`] the experiment declares),
+/// whatever their value: `run.json` says which event rule counted and which gear drove.
+fn readings(ctx: &Context) -> BTreeMap<&'static str, String> {
+    READINGS
+        .iter()
+        .filter(|name| ctx.declares(name))
+        .filter_map(|&name| ctx.param(name).ok().map(|v| (name, v.to_owned())))
+        .collect()
+}
 
 /// What begins the label [`stamp`] adds to every table title of a run whose inputs differ from
 /// the paper's (`cargo xtask report` reads it there).

@@ -13,7 +13,8 @@ use serde::{Deserialize, Serialize};
 
 use train::Gearing;
 
-use crate::cell::{CellSpec, fnv1a64, rebuild};
+use crate::cell::{CellSpec, Drawn, Rebuilt, draw_trial, fnv1a64};
+use crate::drive::{Drive, Driver};
 use crate::limits::IdealPair;
 
 /// One contact test: an overlap area ignored (mm²) and a tip cut (% of h); a ladder of tests
@@ -98,13 +99,12 @@ pub fn curves(
 /// One contact test of `jam-readings`, applied to every cell alike.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Reading {
-    /// Our exact solver: a jam is a contact stop (lock, strike, blocked start).
-    Exact,
-    /// Not a contact test but the drive's direction, for comparison: the exact solver with the
-    /// other gear of each mesh driving (the same manufactured gears).
-    ExactReversed,
-    /// The stepped area test ignoring overlaps up to this area (mm²).
-    Area(f64),
+    /// Our exact solver with the gear `drive` names driving (the same manufactured gears): a jam
+    /// is a contact stop (lock, strike, blocked start).
+    Exact(Drive),
+    /// The stepped area test ignoring overlaps up to this area (mm²), with the gear `drive` names
+    /// driving.
+    Area(f64, Drive),
 }
 
 /// A gear's outline as plain numbers for the area test (straight flanks only).
@@ -136,56 +136,64 @@ fn trial(
     readings: &[Reading],
     stepping: &Stepping,
 ) -> Result<u64, RunError> {
-    let rebuilt = rebuild(g, spec, seed, t)?;
-    let Some(mesh) = rebuilt.mesh.as_ref() else {
-        // Bodies that overlap at every angle cannot turn under any contact test.
-        return Ok((1u64 << readings.len()) - 1);
-    };
-    let (phi0, turn) = (rebuilt.phi0, rebuilt.turn);
-    let (driver, driven) = (outline(mesh.driver())?, outline(mesh.driven())?);
+    let drawn = draw_trial(g, spec, seed, t)?;
+    // The exact solver's verdict with each gear driving, run at most once each.
+    let mut exact: [Option<bool>; 2] = [None, None];
     let mut bits = 0;
     for (r, reading) in readings.iter().enumerate() {
         let jam = match *reading {
-            Reading::Exact => {
-                let stop = |events: &[Event]| events.iter().any(|e| e.kind.is_contact_stop());
-                let events =
-                    mesh.run_events_until_answered(phi0, phi0 + turn, Start::Touching(0.0), &stop);
-                stop(&events)
+            Reading::Exact(drive) => {
+                let driver = drive.driver(drawn.coin());
+                let i = usize::from(driver == Driver::Other);
+                match exact[i] {
+                    Some(jam) => jam,
+                    None => *exact[i].insert(exact_jams(&drawn, driver)),
+                }
             }
-            Reading::ExactReversed => reversed_jams(mesh, phi0),
-            Reading::Area(tol) => {
-                let pair = SteppedPair::new(
-                    &driver,
-                    &driven,
-                    mesh.centre_distance(),
-                    tol,
-                    spec.tooth_height,
-                );
-                pair.run(phi0, turn, 0.0, stepping).jam.is_some()
-            }
+            Reading::Area(tol, drive) => area_jams(
+                &drawn.driven_by(drive.driver(drawn.coin())),
+                spec,
+                tol,
+                stepping,
+            )?,
         };
         bits |= u64::from(jam) << r;
     }
     Ok(bits)
 }
 
-/// Whether the trial's gears jam with the mesh's driven gear driving: the same gears swapped,
-/// started from the same share of the new driver's pitch, over one turn of the larger gear.
-fn reversed_jams(mesh: &contact::Mesh, phi0: f64) -> bool {
-    let (n1, n2) = (mesh.driver().teeth() as f64, mesh.driven().teeth() as f64);
-    let Ok(back) = contact::Mesh::new(
-        mesh.driven().clone(),
-        mesh.driver().clone(),
-        mesh.centre_distance(),
-    ) else {
-        // The same bodies overlap whichever gear drives.
+/// Whether the exact solver finds a contact stop in the trial with `driver` driving; gears
+/// whose bodies overlap at every angle cannot turn, a jam.
+fn exact_jams(drawn: &Drawn, driver: Driver) -> bool {
+    let run = drawn.driven_by(driver);
+    let Some(mesh) = run.mesh.as_ref() else {
         return true;
     };
-    let start = phi0 * n1 / n2;
-    let turn = std::f64::consts::TAU * n1.max(n2) / n2;
     let stop = |events: &[Event]| events.iter().any(|e| e.kind.is_contact_stop());
-    let events = back.run_events_until_answered(start, start + turn, Start::Touching(0.0), &stop);
-    stop(&events)
+    let end = run.phi0 + run.turn;
+    stop(&mesh.run_events_until_answered(run.phi0, end, Start::Touching(0.0), &stop))
+}
+
+/// Whether the stepped area test at tolerance `tol` finds a jam in the trial `run`.
+fn area_jams(
+    run: &Rebuilt,
+    spec: &CellSpec,
+    tol: f64,
+    stepping: &Stepping,
+) -> Result<bool, RunError> {
+    let Some(mesh) = run.mesh.as_ref() else {
+        // Bodies that overlap at every angle cannot turn under any contact test.
+        return Ok(true);
+    };
+    let (driver, driven) = (outline(mesh.driver())?, outline(mesh.driven())?);
+    let pair = SteppedPair::new(
+        &driver,
+        &driven,
+        mesh.centre_distance(),
+        tol,
+        spec.tooth_height,
+    );
+    Ok(pair.run(run.phi0, run.turn, 0.0, stepping).jam.is_some())
 }
 
 /// Every run cell's jam count under every reading: `jams[run][reading]`.

@@ -24,6 +24,7 @@ use registry::{RunError, TrialEngine, TrialMode, fmt_f64};
 use stats::{Proportion, wilson95};
 use train::Gearing;
 
+use crate::drive::{Drive, Driver};
 use crate::errors;
 
 /// Trials per cell in the paper's Tables 3, 4, 5 and I: its counts are out of this.
@@ -45,6 +46,9 @@ pub struct CellSpec {
     /// Which events count as jams and disengagements. Not part of [`CellSpec::canonical`]: the
     /// same gears and initial angles are counted under every rule.
     pub events: rules::Rule,
+    /// Which gear drives. Not part of [`CellSpec::canonical`] either: the same gears and
+    /// initial share of a pitch are run whichever gear drives.
+    pub drive: Drive,
 }
 
 impl CellSpec {
@@ -136,8 +140,6 @@ struct Prepared<'a> {
     driver: Gear,
     driven: Gear,
     centre_distance: f64,
-    /// Driver rotation for one full turn of the gear with more teeth.
-    turn: f64,
     larger_teeth: u64,
 }
 
@@ -171,20 +173,23 @@ fn prepare<'a>(g: &Gearing, spec: &'a CellSpec) -> Result<Prepared<'a>, RunError
         driver,
         driven,
         centre_distance: geo.centre_distance,
-        turn: TAU * f64::from(larger) / f64::from(geo.driver_teeth),
         larger_teeth: u64::from(larger),
     })
 }
 
 /// Trial `t` of a cell rebuilt from its stream, as every table ran it.
 pub struct Rebuilt {
-    /// The meshed gears (with their errors), or `None` when their bodies would overlap at every
-    /// angle (a large eccentricity at a small clearance): they cannot turn, which is a jam.
+    /// The meshed gears (with their errors), the gear that drove first, or `None` when their
+    /// bodies would overlap at every angle (a large eccentricity at a small clearance): they
+    /// cannot turn, which is a jam. With the other gear driving this is
+    /// [`Mesh::other_driving`] of the listed mesh: each gear seen from its other face.
     pub mesh: Option<Mesh>,
-    /// The driver's initial angle φ0 (radians).
+    /// The driving gear's initial angle φ0 (radians).
     pub phi0: f64,
-    /// The driver rotation of the trial: one full turn of the gear with more teeth.
+    /// The driving gear's rotation in the trial: one full turn of the gear with more teeth.
     pub turn: f64,
+    /// Which gear of the mesh drove the trial.
+    pub driver: Driver,
 }
 
 impl Rebuilt {
@@ -215,8 +220,30 @@ pub fn check(g: &Gearing, cell: &CellSpec, seed: u64) -> Result<(), RunError> {
     rebuild(g, cell, seed, 0).map(|_| ())
 }
 
-fn rebuild_prepared(p: &Prepared<'_>, seed: u64, t: u64) -> Result<Rebuilt, RunError> {
-    // One stream per (cell content, trial): both gears' errors, then the initial angle.
+/// What trial `t` of a cell draws from its stream, in order: both gears' errors (listed driver
+/// first), the initial angle as a share of a turn (the driving gear starts at that share of its
+/// own pitch), and the coin that picks the driver under [`Drive::Either`]. The coin is drawn
+/// last, so every other draw is the same whichever gear drives.
+pub struct Drawn {
+    driver: Gear,
+    driven: Gear,
+    /// A uniform draw times 2π: the driving gear starts at this over its tooth count.
+    start: f64,
+    coin: Driver,
+    centre_distance: f64,
+    larger_teeth: u64,
+}
+
+/// Trial `t` of `cell` under `seed` as drawn, before a driver is chosen: every counting of the
+/// trial, whichever gear drives, starts from these draws ([`Drawn::driven_by`]).
+///
+/// Errors: those of [`rebuild`].
+pub fn draw_trial(g: &Gearing, cell: &CellSpec, seed: u64, t: u64) -> Result<Drawn, RunError> {
+    draw(&prepare(g, cell)?, seed, t)
+}
+
+fn draw(p: &Prepared<'_>, seed: u64, t: u64) -> Result<Drawn, RunError> {
+    // One stream per (cell content, trial).
     let mut rng = trial_rng(seed, stream(&p.canonical, t));
     let spec = p.spec;
     let driver = errors::make(
@@ -233,24 +260,109 @@ fn rebuild_prepared(p: &Prepared<'_>, seed: u64, t: u64) -> Result<Rebuilt, RunE
         &spec.params,
         &mut rng,
     )?;
-    let phi0 = rng.random::<f64>() * TAU / driver.teeth() as f64;
-    Ok(Rebuilt {
-        mesh: Mesh::new(driver, driven, p.centre_distance).ok(),
-        phi0,
-        turn: p.turn,
+    let start = rng.random::<f64>() * TAU;
+    let coin = if rng.random::<bool>() {
+        Driver::Other
+    } else {
+        Driver::Listed
+    };
+    Ok(Drawn {
+        driver,
+        driven,
+        start,
+        coin,
+        centre_distance: p.centre_distance,
+        larger_teeth: p.larger_teeth,
     })
 }
 
-/// One trial of cell `p`, counted under every rule of `rules` (at most [`MAX_RULES`]): bit `2r`
-/// of the result is "jammed at least once by rule r", bit `2r + 1` "disengaged at least once".
-/// The gears and the run do not depend on the rules: only the counting does.
-fn trial(p: &Prepared<'_>, seed: u64, t: u64, rules: &[rules::Rule]) -> Result<RuleBits, RunError> {
-    let rebuilt = rebuild_prepared(p, seed, t)?;
-    let Some(mesh) = rebuilt.mesh.as_ref() else {
-        // Gears that overlap at every tooth are jammed under any rule.
-        return Ok((0..rules.len()).fold(0, |acc, r| acc | 1 << (2 * r)));
-    };
-    Ok(rule_bits(rules, &events_to_answer(mesh, &rebuilt, rules)))
+impl Drawn {
+    /// The gear the trial's coin picks under [`Drive::Either`].
+    pub fn coin(&self) -> Driver {
+        self.coin
+    }
+
+    /// The trial with `driver` driving: the mesh as that gear drives it, its initial angle and
+    /// its rotation for one turn of the larger gear.
+    pub fn driven_by(&self, driver: Driver) -> Rebuilt {
+        let listed = Mesh::new(
+            self.driver.clone(),
+            self.driven.clone(),
+            self.centre_distance,
+        )
+        .ok();
+        let (mesh, teeth) = match driver {
+            Driver::Listed => (listed, self.driver.teeth() as f64),
+            Driver::Other => (
+                listed.and_then(|m| m.other_driving().ok()),
+                self.driven.teeth() as f64,
+            ),
+        };
+        Rebuilt {
+            mesh,
+            phi0: self.start / teeth,
+            turn: TAU * self.larger_teeth as f64 / teeth,
+            driver,
+        }
+    }
+}
+
+fn rebuild_prepared(p: &Prepared<'_>, seed: u64, t: u64) -> Result<Rebuilt, RunError> {
+    let drawn = draw(p, seed, t)?;
+    Ok(drawn.driven_by(p.spec.drive.driver(drawn.coin)))
+}
+
+/// How a table counts a cell's trials: which events count as jams and disengagements (the
+/// rule), and which gear drives.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Counting {
+    /// The event rule.
+    pub rule: rules::Rule,
+    /// Which gear drives.
+    pub drive: Drive,
+}
+
+impl Counting {
+    /// The counting a cell names itself: its own rule and drive.
+    pub fn of(cell: &CellSpec) -> Counting {
+        Counting {
+            rule: cell.events.clone(),
+            drive: cell.drive,
+        }
+    }
+}
+
+/// One trial of cell `p`, counted under every counting of `countings` (at most [`MAX_RULES`]):
+/// bit `2r` of the result is "jammed at least once under counting r", bit `2r + 1` "disengaged
+/// at least once". The gears do not depend on the countings: each gear that drives under some
+/// counting runs once, and every counting it drives under is counted on that run.
+fn trial(
+    p: &Prepared<'_>,
+    seed: u64,
+    t: u64,
+    countings: &[Counting],
+) -> Result<RuleBits, RunError> {
+    let draws = draw(p, seed, t)?;
+    let mut bits = 0;
+    for driver in Driver::BOTH {
+        let under: Vec<usize> = (0..countings.len())
+            .filter(|&r| countings[r].drive.driver(draws.coin) == driver)
+            .collect();
+        if under.is_empty() {
+            continue;
+        }
+        let rules: Vec<rules::Rule> = under.iter().map(|&r| countings[r].rule.clone()).collect();
+        let run = draws.driven_by(driver);
+        let own = match run.mesh.as_ref() {
+            Some(mesh) => rule_bits(&rules, &events_to_answer(mesh, &run, &rules)),
+            // Gears that overlap at every tooth are jammed under any rule.
+            None => (0..rules.len()).fold(0, |acc, r| acc | 1 << (2 * r)),
+        };
+        for (i, &r) in under.iter().enumerate() {
+            bits |= (own >> (2 * i) & 0b11) << (2 * r);
+        }
+    }
+    Ok(bits)
 }
 
 /// The events a trial counts: those of its whole turn (the run keeps no segments), but the run
@@ -276,13 +388,13 @@ fn rule_bits(rules: &[rules::Rule], events: &[contact::Event]) -> RuleBits {
     })
 }
 
-/// One trial of a flat batch under several rules: see [`trial`].
+/// One trial of a flat batch under several countings: see [`trial`].
 type RuleBits = u64;
 
-/// Most rules one batch counts under (two bits each in a `RuleBits`).
+/// Most countings (rule and drive) one batch counts under (two bits each in a `RuleBits`).
 pub const MAX_RULES: usize = 32;
 
-/// Rule `r`'s (jammed, disengaged) in a [`RuleBits`].
+/// Counting `r`'s (jammed, disengaged) in a [`RuleBits`].
 fn under(o: RuleBits, r: usize) -> (bool, bool) {
     (o >> (2 * r) & 1 == 1, o >> (2 * r + 1) & 1 == 1)
 }
@@ -334,24 +446,38 @@ pub fn run_cells(
     trials: u64,
     purpose: Purpose,
 ) -> Result<Vec<Counts>, RunError> {
-    let per_rule = run_cells_by_rule(engine, g, cells, None, trials, purpose)?;
+    let per_rule = run_cells_counted(engine, g, cells, None, trials, purpose)?;
     Ok(per_rule.into_iter().map(|mut c| c.swap_remove(0)).collect())
 }
 
-/// [`run_cells`] counted under each of `rules` at once (the cells' own `events` rules are then
-/// ignored; `None`: each cell's own): `result[cell][rule]`. Each trial runs once whatever the
-/// number of rules, and every (cell, rule) count is cached, so an experiment run afterwards
-/// under one of the rules finds its cells already run.
+/// [`run_cells`] counted under each of `countings` at once (the cells' own rule and drive are
+/// then ignored; `None`: each cell's own): `result[cell][counting]`. Each gear that drives
+/// under some counting runs each trial once, whatever the number of rules, and every (cell,
+/// counting) count is cached, so an experiment run afterwards under one of the countings finds
+/// its cells already run.
 ///
-/// Errors: those of [`run_cells`]; more than [`MAX_RULES`] rules.
-pub fn run_cells_by_rule(
+/// More than [`MAX_RULES`] countings are counted [`MAX_RULES`] at a time, each batch running
+/// the trials again.
+///
+/// Errors: those of [`run_cells`]; an empty list of countings.
+pub fn run_cells_counted(
     engine: &TrialEngine,
     g: &Gearing,
     cells: &[CellSpec],
-    rules: Option<&[rules::Rule]>,
+    countings: Option<&[Counting]>,
     trials: u64,
     purpose: Purpose,
 ) -> Result<Vec<Vec<Counts>>, RunError> {
+    if let Some(all) = countings.filter(|c| c.len() > MAX_RULES) {
+        let mut out: Vec<Vec<Counts>> = vec![Vec::new(); cells.len()];
+        for chunk in all.chunks(MAX_RULES) {
+            let part = run_cells_counted(engine, g, cells, Some(chunk), trials, purpose)?;
+            for (o, p) in out.iter_mut().zip(part) {
+                o.extend(p);
+            }
+        }
+        return Ok(out);
+    }
     let whole = purpose == Purpose::Input;
     let partial = matches!(engine.mode(), TrialMode::Shard(_)) && !whole;
     let batch = |key: &str, n, f: &(dyn Fn(u64) -> Result<RuleBits, RunError> + Sync + Send)| {
@@ -361,7 +487,7 @@ pub fn run_cells_by_rule(
             engine.trials(key, n, f)
         }
     };
-    run_cells_under(g, cells, rules, trials, engine.seed(), !partial, batch)
+    run_cells_under(g, cells, countings, trials, engine.seed(), !partial, batch)
 }
 
 /// A batch runner: `run_batch(key, n, f)` returns `f(t)` for t in 0..n in order.
@@ -397,11 +523,11 @@ fn run_cells_with(
     Ok(per_rule.into_iter().map(|mut c| c.swap_remove(0)).collect())
 }
 
-/// [`run_cells_by_rule`] with the batch runner and the use of the cache given.
+/// [`run_cells_counted`] with the batch runner and the use of the cache given.
 fn run_cells_under(
     g: &Gearing,
     cells: &[CellSpec],
-    rules: Option<&[rules::Rule]>,
+    countings: Option<&[Counting]>,
     trials: u64,
     seed: u64,
     use_cache: bool,
@@ -410,9 +536,9 @@ fn run_cells_under(
     if trials == 0 {
         return Err(RunError::bad("--set", "trials", "must be at least 1"));
     }
-    if rules.is_some_and(|r| r.is_empty() || r.len() > MAX_RULES) {
+    if countings.is_some_and(|r| r.is_empty() || r.len() > MAX_RULES) {
         return Err(RunError::Internal(format!(
-            "cells are counted under 1 to {MAX_RULES} rules at once"
+            "cells are counted under 1 to {MAX_RULES} countings at once"
         )));
     }
     let prepared: Vec<Prepared<'_>> = cells
@@ -423,22 +549,23 @@ fn run_cells_under(
     for p in &prepared {
         rebuild_prepared(p, seed, 0)?;
     }
-    let rules_of: Vec<Vec<rules::Rule>> = cells
+    let countings_of: Vec<Vec<Counting>> = cells
         .iter()
-        .map(|c| rules.map_or_else(|| vec![c.events.clone()], <[_]>::to_vec))
+        .map(|c| countings.map_or_else(|| vec![Counting::of(c)], <[_]>::to_vec))
         .collect();
     let gearing_id = fnv1a64(format!("{g:?}").as_bytes());
-    // One key per (cell, rule): what the cache holds.
+    // One key per (cell, counting): what the cache holds.
     let keys: Vec<Vec<String>> = prepared
         .iter()
-        .zip(&rules_of)
-        .map(|(p, rs)| {
-            rs.iter()
-                .map(|r| {
+        .zip(&countings_of)
+        .map(|(p, cs)| {
+            cs.iter()
+                .map(|c| {
                     format!(
-                        "{}|events={}|seed={seed}|trials={trials}|gearing={gearing_id:016x}",
+                        "{}|events={}|drive={}|seed={seed}|trials={trials}|gearing={gearing_id:016x}",
                         p.canonical,
-                        r.label()
+                        c.rule.label(),
+                        c.drive.name()
                     )
                 })
                 .collect()
@@ -462,7 +589,15 @@ fn run_cells_under(
             todo.push(i);
         }
     }
-    let outcomes = run_todo(&prepared, &rules_of, &keys, &todo, trials, seed, run_batch)?;
+    let outcomes = run_todo(
+        &prepared,
+        &countings_of,
+        &keys,
+        &todo,
+        trials,
+        seed,
+        run_batch,
+    )?;
     for (n, &i) in todo.iter().enumerate() {
         let start = n * trials as usize;
         for (r, k) in keys[i].iter().enumerate() {
@@ -508,7 +643,7 @@ fn run_cells_under(
 /// it (the cells' keys, in order); the outcomes in (cell, trial) order.
 fn run_todo(
     prepared: &[Prepared<'_>],
-    rules_of: &[Vec<rules::Rule>],
+    countings_of: &[Vec<Counting>],
     keys: &[Vec<String>],
     todo: &[usize],
     trials: u64,
@@ -535,7 +670,7 @@ fn run_todo(
     );
     let job = |n: u64| -> Result<RuleBits, RunError> {
         let (i, t) = (todo[(n / trials) as usize], n % trials);
-        trial(&prepared[i], seed, t, &rules_of[i])
+        trial(&prepared[i], seed, t, &countings_of[i])
     };
     run_batch(&batch, jobs, &job)
 }
@@ -625,7 +760,7 @@ fn run_cell_ranges_with(
                 &prepared[i],
                 seed,
                 t,
-                std::slice::from_ref(&prepared[i].spec.events),
+                std::slice::from_ref(&Counting::of(prepared[i].spec)),
             )
         };
         run_batch(&batch, jobs.len() as u64, &job)?
@@ -687,6 +822,7 @@ mod tests {
             tooth_height: 1.1,
             clearance: 40.0,
             events: rules::Rule::default(),
+            drive: Drive::Listed,
         }
     }
 
@@ -700,6 +836,13 @@ mod tests {
             .unwrap()
             .keys()
             .map(|name| rules::Rule::parse(name).unwrap())
+            .collect();
+        let listed: Vec<Counting> = all
+            .iter()
+            .map(|rule| Counting {
+                rule: rule.clone(),
+                drive: Drive::Listed,
+            })
             .collect();
         assert!(all.len() >= 4, "{all:?}");
         let mut cut_short = 0;
@@ -728,7 +871,7 @@ mod tests {
                     spec.canonical()
                 );
                 assert_eq!(
-                    trial(&p, 11, t, &all).unwrap(),
+                    trial(&p, 11, t, &listed).unwrap(),
                     rule_bits(&all, &whole),
                     "{} trial {t}",
                     spec.canonical()
@@ -749,17 +892,21 @@ mod tests {
         for c in &mut cells {
             c.clearance = 70.0;
         }
+        let listed = |rule: &rules::Rule| Counting {
+            rule: rule.clone(),
+            drive: Drive::Listed,
+        };
         let both = run_cells_under(
             &g,
             &cells,
-            Some(&[strict.clone(), paper.clone()]),
+            Some(&[listed(&strict), listed(&paper)]),
             6,
             11,
             false,
             local,
         )
         .unwrap();
-        for (r, rule) in [strict, paper].iter().enumerate() {
+        for (r, rule) in [strict.clone(), paper.clone()].iter().enumerate() {
             let own: Vec<CellSpec> = cells
                 .iter()
                 .map(|c| CellSpec {
@@ -782,10 +929,7 @@ mod tests {
         let filled = run_cells_under(
             &g,
             &cells[..1],
-            Some(&[
-                rules::Rule::parse("strict").unwrap(),
-                rules::Rule::parse("paper").unwrap(),
-            ]),
+            Some(&[listed(&strict), listed(&paper)]),
             6,
             11,
             true,
@@ -803,6 +947,58 @@ mod tests {
         let cached = run_cells_with(&g, &[paper_cell], 6, 11, true, never).unwrap();
         assert_eq!(cached[0], filled[0][1]);
         forget_cache();
+    }
+
+    /// Whichever gear drives, a trial draws the same gears and the same share of a pitch; the
+    /// other gear's run is its own mesh's, reflected; and `either` takes each trial's coin.
+    #[test]
+    fn the_drive_changes_the_driver_and_nothing_drawn() {
+        let g = Gearing::freeth2006();
+        let spec = cell("m2-n1", 0.06);
+        let p = prepare(&g, &spec).unwrap();
+        let (n1, n2) = (15.0, 53.0);
+        let mut coins = [0, 0];
+        for t in 0..40 {
+            let drawn = draw(&p, 11, t).unwrap();
+            let (a, b) = (
+                drawn.driven_by(Driver::Listed),
+                drawn.driven_by(Driver::Other),
+            );
+            let (ma, mb) = (a.mesh.as_ref().unwrap(), b.mesh.as_ref().unwrap());
+            assert_eq!(mb.driver(), &ma.driven().mirrored());
+            assert_eq!(mb.driven(), &ma.driver().mirrored());
+            assert_eq!((a.driver, b.driver), (Driver::Listed, Driver::Other));
+            assert!((a.phi0 * n1 / TAU - b.phi0 * n2 / TAU).abs() < 1e-12);
+            assert!((a.turn - TAU * n2 / n1).abs() < 1e-12);
+            assert!((b.turn - TAU).abs() < 1e-12);
+            // The listed trial is the one a cell without a drive setting ran.
+            assert_eq!(rebuild_prepared(&p, 11, t).unwrap().phi0, a.phi0);
+            coins[usize::from(drawn.coin() == Driver::Other)] += 1;
+        }
+        assert!(coins[0] >= 8 && coins[1] >= 8, "{coins:?}");
+        // Counted under every drive at once: each as run alone, and either trial by trial.
+        let spec = cell("m2-n1", 0.065);
+        let p = prepare(&g, &spec).unwrap();
+        let rule = rules::Rule::default();
+        let under = |drive| Counting {
+            rule: rule.clone(),
+            drive,
+        };
+        let all = [
+            under(Drive::Listed),
+            under(Drive::Other),
+            under(Drive::Either),
+        ];
+        for t in 0..40 {
+            let bits = trial(&p, 11, t, &all).unwrap();
+            for (r, c) in all.iter().enumerate() {
+                let alone = trial(&p, 11, t, std::slice::from_ref(c)).unwrap();
+                assert_eq!(bits >> (2 * r) & 0b11, alone, "trial {t}, {:?}", c.drive);
+            }
+            let coin = draw(&p, 11, t).unwrap().coin();
+            let from = usize::from(coin == Driver::Other);
+            assert_eq!(bits >> 4 & 0b11, bits >> (2 * from) & 0b11, "trial {t}");
+        }
     }
 
     #[test]

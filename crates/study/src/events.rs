@@ -35,11 +35,20 @@ pub fn counts(rule: &Rule, traj: &contact::Trajectory) -> (usize, usize) {
     )
 }
 
-/// `report` with every table's title naming the event rule it was counted with (so the printed
-/// table, `table.md` and `tables.json` all say it).
-pub fn label(rule: &Rule, mut report: registry::Report) -> registry::Report {
+/// `report` with every table's title naming the event rule it was counted with and, for an
+/// experiment of per-mesh trials, which gear drove (so the printed table, `table.md` and
+/// `tables.json` all say it).
+pub fn label(
+    rule: &Rule,
+    drive: Option<crate::drive::Drive>,
+    mut report: registry::Report,
+) -> registry::Report {
+    let tag = match drive {
+        Some(d) => format!("[events: {}; drive: {}]", rule.label(), d.name()),
+        None => format!("[events: {}]", rule.label()),
+    };
     for t in &mut report.tables {
-        t.title = format!("{} [events: {}]", t.title, rule.label());
+        t.title = format!("{} {tag}", t.title);
     }
     report
 }

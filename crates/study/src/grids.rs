@@ -9,6 +9,7 @@ use train::Gearing;
 use rules::Rule;
 
 use crate::cell::{CellSpec, Counts, Purpose, run_cells};
+use crate::drive::Drive;
 use crate::tolerance;
 use crate::{errors, gearing};
 
@@ -124,6 +125,8 @@ pub struct CellSettings {
     pub errors: errors::Settings,
     /// The event rule the cells count with.
     pub rule: Rule,
+    /// Which gear of each mesh drives the cells' trials.
+    pub drive: Drive,
     /// Trials per cell.
     pub trials: u64,
 }
@@ -158,8 +161,8 @@ impl CellSettings {
         })
     }
 
-    /// One cell: `mesh` with gears made under `params`, at `clearance` and the settings' h and
-    /// rule.
+    /// One cell: `mesh` with gears made under `params`, at `clearance` and the settings' h,
+    /// rule and drive.
     pub fn cell(&self, mesh: &str, params: hypotheses::Params, clearance: f64) -> CellSpec {
         CellSpec {
             mesh: mesh.to_owned(),
@@ -168,6 +171,7 @@ impl CellSettings {
             tooth_height: self.gearing.tooth_height,
             clearance,
             events: self.rule.clone(),
+            drive: self.drive,
         }
     }
 }

@@ -12,12 +12,14 @@
 //! - [`area_test`]: the paper's kind of contact test (an overlap area, blunt tips) on Figure IV's
 //!   ideal pairs.
 //! - Setting groups shared by experiments: [`gearing`] (file, h, G, pin-and-slot), [`errors`]
-//!   (hypothesis and its parameters), [`events`] (the event rule).
+//!   (hypothesis and its parameters), [`events`] (the event rule), [`drive`] (which gear of a
+//!   mesh drives its trials).
 
 pub mod anomaly;
 pub mod area_test;
 pub mod cell;
 pub mod clearance_search;
+pub mod drive;
 pub mod equal_pair;
 pub mod errors;
 pub mod events;

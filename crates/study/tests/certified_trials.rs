@@ -31,6 +31,7 @@ fn case_d_trials_find_the_events_of_the_plain_solver() {
                 tooth_height: 1.1,
                 clearance,
                 events: rules::Rule::parse("paper").unwrap(),
+                drive: study::drive::Drive::Listed,
             };
             for t in 0..100 {
                 let trial = rebuild(&g, &cell, 2025, t).unwrap();

@@ -38,7 +38,7 @@ registry::params! {
 crate::experiment! {
     id: "clearance-design", paper_item: "Section 6 / beyond the paper", run,
     title: "Per-mesh clearance that minimises jams and disengagements, for each of Edmunds' Cases, and the failure study rerun with it (beyond the paper)",
-    params: [GRID, COARSE_TRIALS, REFINE_STEP, REFINE_TRIALS, RUNS, whole::DAYS, whole::CASES_PARAM, REFERENCE_CLEARANCE], groups: [study::gearing::SHAPE, study::errors::CASES_GROUP, study::events::GROUP],
+    params: [GRID, COARSE_TRIALS, REFINE_STEP, REFINE_TRIALS, RUNS, whole::DAYS, whole::CASES_PARAM, REFERENCE_CLEARANCE], groups: [study::gearing::SHAPE, study::errors::CASES_GROUP, study::events::GROUP, study::drive::GROUP],
 }
 
 /// How many worst meshes each case's plot draws.

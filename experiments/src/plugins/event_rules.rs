@@ -1,11 +1,12 @@
 //! `event-rules`: Tables 3, 4 and I and the ideal meshes' clearance limits counted under every
-//! registered event rule at once, with each rule's share of the paper's counts that a
-//! two-sample test finds consistent with ours: which reading of "jam" and "disengagement"
-//! reproduces the paper best.
+//! registered event rule and every drive reading (which gear of each mesh drives) at once, with
+//! each reading's share of the paper's counts that a two-sample test finds consistent with ours:
+//! which reading of "jam" and "disengagement", and of the driver, reproduces the paper best.
 //!
-//! Every trial runs once and is counted under all the rules (the gears and the contact motion do
-//! not depend on the rule), and the per-rule counts go into the shared cell cache, so Tables 3, 4
-//! and I run afterwards in the same process (`run all`) find their cells already run.
+//! Every trial runs once with each gear driving and is counted under all the rules (the gears do
+//! not depend on the rule or the drive; the contact motion depends on the drive only), and the
+//! per-reading counts go into the shared cell cache, so Tables 3, 4 and I run afterwards in the
+//! same process (`run all`) find their cells already run.
 
 use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
 use rules::Rule;
@@ -14,7 +15,8 @@ use train::Gearing;
 use crate::cells::{
     PaperTable, Tally, consistent_with_paper, paper_counts, paper_table_cells, share,
 };
-use study::cell::{CellSpec, Counts, Purpose, label, run_cells_by_rule};
+use study::cell::{CellSpec, Counting, Counts, Purpose, label, run_cells_counted};
+use study::drive::Drive;
 use study::grids::CellSettings;
 use study::limits::IdealPair;
 
@@ -27,7 +29,7 @@ registry::params! {
 
 crate::experiment! {
     id: "event-rules", paper_item: "Tables 3, 4, I and section 3 / Appendix II (what counts as a jam or a disengagement)", run,
-    title: "Every event rule side by side: the paper's counts of Tables 3, 4 and I consistent with ours, and the ideal meshes' clearance limits",
+    title: "Every event rule and drive side by side: the paper's counts of Tables 3, 4 and I consistent with ours, and the ideal meshes' clearance limits",
     params: [study::grids::TRIALS, CLEARANCES, LIMIT_TOLERANCE], groups: [study::gearing::GROUP, study::errors::CASES_GROUP, study::tolerance::RANDOM_GRID],
 }
 
@@ -37,6 +39,10 @@ struct PaperCell {
     table: &'static str,
     key: String,
     group: String,
+    /// `Table 4`, or the clearance of a Case's cell (`G = 40 %`).
+    region: String,
+    /// A cell of Edmunds' Case D (at any clearance).
+    case_d: bool,
 }
 
 /// The tables compared, in the order they are printed.
@@ -51,35 +57,70 @@ fn every_rule() -> Result<Vec<Rule>, RunError> {
         .collect()
 }
 
+/// Every registered rule under every drive: rule by rule in name order, each under `listed`,
+/// `other` and `either`.
+fn every_counting() -> Result<Vec<Counting>, RunError> {
+    Ok(every_rule()?
+        .into_iter()
+        .flat_map(|rule| {
+            Drive::ALL.into_iter().map(move |drive| Counting {
+                rule: rule.clone(),
+                drive,
+            })
+        })
+        .collect())
+}
+
+/// The index of `rule` (by name) under `drive` in `countings`.
+fn counting_index(countings: &[Counting], rule: &str, drive: Drive) -> Option<usize> {
+    countings
+        .iter()
+        .position(|c| c.rule.name() == rule && c.drive == drive)
+}
+
 /// The cells of Tables 3 (Cases A-D at the clearance), 4 (the random grid, no systematic error)
 /// and I (Cases A-D at each of its clearances), each with where its paper counts are.
 fn all_cells(ctx: &Context, s: &CellSettings) -> Result<Vec<(CellSpec, PaperCell)>, RunError> {
     let clearances = crate::settings::clearance_list(ctx, &CLEARANCES, 200.0)?;
     let randoms = crate::settings::random_grid(ctx)?;
     let cells = paper_table_cells(s, &randoms, &clearances)?;
+    let table3_clearance = s.clearance()?;
+    let at = |g: f64| format!("G = {} %", label(g, 0));
     Ok(cells
         .into_iter()
         .map(|c| {
-            let group = match c.table {
-                PaperTable::Table3 { case } => format!("Table 3, Case {case}"),
-                PaperTable::Table4 { .. } => "Table 4, random error only".to_string(),
-                PaperTable::TableI { case, clearance } => {
-                    format!("Table I, Case {case}, G = {} %", label(clearance, 0))
-                }
+            let (group, region, case) = match c.table {
+                PaperTable::Table3 { case } => (
+                    format!("Table 3, Case {case}"),
+                    at(table3_clearance),
+                    Some(case),
+                ),
+                PaperTable::Table4 { .. } => (
+                    "Table 4, random error only".to_string(),
+                    "Table 4".to_string(),
+                    None,
+                ),
+                PaperTable::TableI { case, clearance } => (
+                    format!("Table I, Case {case}, G = {} %", label(clearance, 0)),
+                    at(clearance),
+                    Some(case),
+                ),
             };
             let paper = PaperCell {
                 table: c.id,
                 key: c.key,
                 group,
+                region,
+                case_d: case.is_some_and(|c| c == "D"),
             };
             (c.cell, paper)
         })
         .collect())
 }
 
-/// Per rule, per table: the tally of the paper's counts against ours; then, last, the tally of
-/// every table without the paper's counts that look copied from another cell (`suspect` in the
-/// reference file).
+/// Per counting, per table: the tally of the paper's counts against ours; then, last, the tally
+/// of every table without the paper's counts that look copied from another cell (`suspect` in
+/// the reference file).
 fn tallies(
     cells: &[(CellSpec, PaperCell)],
     counts: &[Vec<Counts>],
@@ -111,14 +152,15 @@ fn copy_slips() -> Vec<String> {
         .collect()
 }
 
-/// The shares table: one row per rule.
-fn shares_table(rules: &[Rule], tallies: &[[Tally; 4]], trials: u64) -> Table {
+/// The shares table: one row per counting (rule and drive).
+fn shares_table(countings: &[Counting], tallies: &[[Tally; 4]], trials: u64) -> Table {
     let mut t = Table::new(
         format!(
-            "The paper's counts consistent with ours under each event rule (Fisher's exact two-sample test at 5 %; ours {trials} trials per cell, the paper's 200)"
+            "The paper's counts consistent with ours under each event rule and drive (Fisher's exact two-sample test at 5 %; ours {trials} trials per cell, the paper's 200)"
         ),
         [
             "rule",
+            "drive",
             "Table 3 jams",
             "Table 3 dis.",
             "Table 4 jams",
@@ -131,8 +173,8 @@ fn shares_table(rules: &[Rule], tallies: &[[Tally; 4]], trials: u64) -> Table {
             "all dis., copy slips out",
         ],
     );
-    for (rule, per_table) in rules.iter().zip(tallies) {
-        let mut row = vec![rule.label()];
+    for (counting, per_table) in countings.iter().zip(tallies) {
+        let mut row = vec![counting.rule.label(), counting.drive.name().to_owned()];
         let mut all = Tally::default();
         let [tables @ .., trusted] = per_table;
         for tally in tables {
@@ -149,7 +191,8 @@ fn shares_table(rules: &[Rule], tallies: &[[Tally; 4]], trials: u64) -> Table {
         row.push(share(trusted.dis_consistent, trusted.dis_compared));
         t.row(row);
     }
-    t.note("Cells: Table 3 (Cases A-D at G = 40 %), Table 4 (random error only, the grid of its rows) and Table I (Cases A-D at G = 10, 40, 70 %), each mesh on its own. Every trial runs once and is counted under each rule: the gears, initial angles and contact motion are the same for all rules; only what counts as a jam or a disengagement differs.");
+    t.note("Cells: Table 3 (Cases A-D at G = 40 %), Table 4 (random error only, the grid of its rows) and Table I (Cases A-D at G = 10, 40, 70 %), each mesh on its own. Every trial runs once with each gear driving and is counted under each rule: the gears and initial share of a pitch are the same for every row, the contact motion for every rule of one drive; only what counts as a jam or a disengagement, and which gear drives, differ.");
+    t.note("Drive: `listed`, the first gear of the mesh's name drives, as the train runs (the default of every table); `other`, the second drives, both gears still turning their own way (it starts at the same share of its own pitch and turns until the larger gear has turned once); `either`, each trial's driver drawn by a fair coin from the trial's own stream after its gears and initial angle. `either` is a reading of the paper's counts, not a mechanism: nothing in the paper says its program chose the driver at random.");
     t.note("Table I's 40 % rows are Table 3's cells; the paper printed them twice, with some differences, and each printing is compared.");
     t.note(format!(
         "Copy slips out: the same comparison without the paper's counts that look copied from another cell ({}: Case C at G = 70 % for m3-e3 and e4-f1, 200/1 and 200/0, repeat its Case C at 40 % exactly, while every other mesh's counts move between the two clearances); they are flagged in the reference file, where a test checks that each equals the cell it repeats.",
@@ -177,11 +220,11 @@ fn compare(into: &mut (u64, u64, u64), ours: u64, trials: u64, paper: Option<u64
     }
 }
 
-/// Where the differences lie under `rule` (index `r`): one row per group of cells.
+/// Where the differences lie under `counting` (index `r`): one row per group of cells.
 fn breakdown_table(
     cells: &[(CellSpec, PaperCell)],
     counts: &[Vec<Counts>],
-    rule: &Rule,
+    counting: &Counting,
     r: usize,
 ) -> Table {
     let mut groups: Vec<(String, Split)> = Vec::new();
@@ -200,8 +243,9 @@ fn breakdown_table(
     }
     let mut t = Table::new(
         format!(
-            "Where the differences lie under rule {}: the paper's counts consistent with ours, by table, Case and clearance",
-            rule.label()
+            "Where the differences lie under rule {}, drive {}: the paper's counts consistent with ours, by table, Case and clearance",
+            counting.rule.label(),
+            counting.drive.name()
         ),
         [
             "cells",
@@ -232,15 +276,87 @@ fn breakdown_table(
     t
 }
 
-/// In how many cells every rule gives the same jam count, and the same disengagement count.
-fn agreement_between_rules(counts: &[Vec<Counts>]) -> (usize, usize) {
+/// In how many cells every rule gives the same jam count, and the same disengagement count,
+/// with the listed driver driving.
+fn agreement_between_rules(counts: &[Vec<Counts>], countings: &[Counting]) -> (usize, usize) {
+    let listed: Vec<usize> = (0..countings.len())
+        .filter(|&r| countings[r].drive == Drive::Listed)
+        .collect();
     let same = |f: fn(&Counts) -> u64| {
         counts
             .iter()
-            .filter(|per_rule| per_rule.iter().all(|c| f(c) == f(&per_rule[0])))
+            .filter(|per| listed.iter().all(|&r| f(&per[r]) == f(&per[listed[0]])))
             .count()
     };
     (same(|c| c.jams), same(|c| c.disengagements))
+}
+
+/// The regions of the paper's cells, in print order: Table 4, each clearance, then Case D
+/// (across clearances, its cells also counted in their clearance's column).
+fn regions(cells: &[(CellSpec, PaperCell)]) -> Vec<String> {
+    let mut out: Vec<String> = Vec::new();
+    for (_, p) in cells {
+        if !out.contains(&p.region) {
+            out.push(p.region.clone());
+        }
+    }
+    out.sort_by_key(|r| {
+        let g = r
+            .trim_start_matches("G = ")
+            .trim_end_matches(" %")
+            .parse::<f64>()
+            .unwrap_or(-1.0);
+        (r != "Table 4", (g * 1000.0) as i64)
+    });
+    out.push("Case D".into());
+    out
+}
+
+/// Per reading of the default rule (each drive): the paper's jams and disengagements consistent
+/// with ours in each region.
+fn regions_table(
+    cells: &[(CellSpec, PaperCell)],
+    counts: &[Vec<Counts>],
+    countings: &[Counting],
+) -> Table {
+    let regions = regions(cells);
+    let mut head = vec!["rule".to_string(), "drive".to_string()];
+    for r in &regions {
+        head.push(format!("{r} jams"));
+        head.push(format!("{r} dis."));
+    }
+    let mut t = Table::new(
+        "The paper's counts consistent with ours by region, under the default rule and each drive (Fisher's exact two-sample test at 5 %)",
+        head,
+    );
+    for drive in Drive::ALL {
+        let Some(r) = counting_index(countings, rules::DEFAULT, drive) else {
+            continue;
+        };
+        let mut split: Vec<Split> = regions.iter().map(|_| Split::default()).collect();
+        for ((_, p), per) in cells.iter().zip(counts) {
+            let paper = paper_counts(p.table, &p.key);
+            let c = &per[r];
+            let mut into = |i: usize| {
+                compare(&mut split[i].jams, c.jams, c.trials, paper.0);
+                compare(&mut split[i].dis, c.disengagements, c.trials, paper.1);
+            };
+            if let Some(i) = regions.iter().position(|x| *x == p.region) {
+                into(i);
+            }
+            if p.case_d {
+                into(regions.len() - 1);
+            }
+        }
+        let mut row = vec![countings[r].rule.label(), drive.name().to_owned()];
+        for x in &split {
+            row.push(share(x.jams.0, x.jams.1));
+            row.push(share(x.dis.0, x.dis.1));
+        }
+        t.row(row);
+    }
+    t.note("Regions: Table 4 (random error only, G = 40 %); each clearance G, Tables 3 and I (Cases A-D; Table 3's cells are Table I's at 40 %, each printing compared); Case D, its cells at every clearance (also counted in their clearance's columns).");
+    t
 }
 
 /// Each rule's clearance limits of every ideal mesh, with their envelope.
@@ -352,24 +468,29 @@ fn limits_csv(g: &Gearing, rules: &[Rule], limits: &RuleLimits) -> String {
 }
 
 /// Every cell's counts under every rule, with the paper's and the test's verdict.
-fn cells_csv(cells: &[(CellSpec, PaperCell)], rules: &[Rule], counts: &[Vec<Counts>]) -> String {
+fn cells_csv(
+    cells: &[(CellSpec, PaperCell)],
+    countings: &[Counting],
+    counts: &[Vec<Counts>],
+) -> String {
     let mut s = String::from(
-        "table,key,rule,trials,jams,paper_jams,jams_consistent,disengagements,paper_disengagements,disengagements_consistent\n",
+        "table,key,rule,drive,trials,jams,paper_jams,jams_consistent,disengagements,paper_disengagements,disengagements_consistent\n",
     );
     let show = |v: Option<u64>| v.map_or_else(String::new, |v| v.to_string());
     for ((_, p), per_rule) in cells.iter().zip(counts) {
         let paper = paper_counts(p.table, &p.key);
-        for (rule, c) in rules.iter().zip(per_rule) {
+        for (counting, c) in countings.iter().zip(per_rule) {
             let verdict = |k: u64, q: Option<u64>| {
                 q.map_or_else(String::new, |_| {
                     consistent_with_paper(k, c.trials, q).to_string()
                 })
             };
             s.push_str(&format!(
-                "{},{},{},{},{},{},{},{},{},{}\n",
+                "{},{},{},{},{},{},{},{},{},{},{}\n",
                 p.table,
                 p.key,
-                rule.label(),
+                counting.rule.label(),
+                counting.drive.name(),
                 c.trials,
                 c.jams,
                 show(paper.0),
@@ -387,30 +508,39 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     let s = crate::settings::cells(ctx, &study::grids::TRIALS)?;
     let (g, trials) = (s.gearing(), s.trials);
     let tol = ctx.get(&LIMIT_TOLERANCE)?;
-    let rules = every_rule()?;
+    let (rules, countings) = (every_rule()?, every_counting()?);
     let cells = all_cells(ctx, &s)?;
     let specs: Vec<CellSpec> = cells.iter().map(|(c, _)| c.clone()).collect();
-    let counts = run_cells_by_rule(ctx.engine(), g, &specs, Some(&rules), trials, Purpose::Own)?;
-    let tallies = tallies(&cells, &counts, rules.len());
+    let counts = run_cells_counted(
+        ctx.engine(),
+        g,
+        &specs,
+        Some(&countings),
+        trials,
+        Purpose::Own,
+    )?;
+    let tallies = tallies(&cells, &counts, countings.len());
     let limits = ideal_limits(g, s.gearing.tooth_height, &rules, tol)?;
-    let mut shares = shares_table(&rules, &tallies, trials);
-    let (same_jams, same_dis) = agreement_between_rules(&counts);
+    let mut shares = shares_table(&countings, &tallies, trials);
+    let (same_jams, same_dis) = agreement_between_rules(&counts, &countings);
     shares.note(format!(
-        "Between the rules: the same jam count under every rule in {same_jams} of {} cells, the same disengagement count in {same_dis}.",
+        "Between the rules: with the listed driver driving, the same jam count under every rule in {same_jams} of {} cells, the same disengagement count in {same_dis}.",
         counts.len()
     ));
-    let default = rules
-        .iter()
-        .position(|r| r.name() == rules::DEFAULT)
-        .unwrap_or(0);
+    let breakdowns = [Drive::Listed, Drive::Either]
+        .into_iter()
+        .filter_map(|d| counting_index(&countings, rules::DEFAULT, d))
+        .map(|r| breakdown_table(&cells, &counts, &countings[r], r));
+    let mut tables = vec![shares, regions_table(&cells, &counts, &countings)];
+    tables.extend(breakdowns);
+    tables.push(limits_table(g, &rules, &limits, tol));
     Ok(Report {
-        tables: vec![
-            shares,
-            breakdown_table(&cells, &counts, &rules[default], default),
-            limits_table(g, &rules, &limits, tol),
-        ],
+        tables,
         files: vec![
-            OutputFile::new("event-rules-cells.csv", cells_csv(&cells, &rules, &counts)),
+            OutputFile::new(
+                "event-rules-cells.csv",
+                cells_csv(&cells, &countings, &counts),
+            ),
             OutputFile::new("event-rules-limits.csv", limits_csv(g, &rules, &limits)),
         ],
         trials: counts.iter().map(|c| c[0].trials).sum(),

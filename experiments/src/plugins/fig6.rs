@@ -18,7 +18,7 @@ registry::params! {
 crate::experiment! {
     id: "fig6", paper_item: "Figure 6 (section 5)", run,
     title: "Largest tolerable random error of each gear (from Table 4 by the 1 % rule), beside the paper's and any measured errors",
-    params: [TRIALS, RULE, MEASURED], groups: [study::gearing::GROUP, study::errors::GROUP, study::tolerance::RANDOM_GRID, study::events::GROUP],
+    params: [TRIALS, RULE, MEASURED], groups: [study::gearing::GROUP, study::errors::GROUP, study::tolerance::RANDOM_GRID, study::events::GROUP, study::drive::GROUP],
 }
 
 /// The measured table named by the `measured` parameter, if any: (file name, table).

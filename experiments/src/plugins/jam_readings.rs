@@ -39,7 +39,7 @@ registry::params! {
 crate::experiment! {
     id: "jam-readings", paper_item: "Tables 3, 4 and I, and section 3 (the area contact test)", run,
     title: "The jams of Tables 3, 4 and I under the paper's kind of contact test (stepped driver, overlap area up to a tolerance) beside our exact solver",
-    params: [TRIALS, CLEARANCES, TOLERANCES, STEPS_PER_PITCH, REACH, SEARCH_STEPS], groups: [study::gearing::GROUP, study::errors::CASES_GROUP, study::tolerance::RANDOM_GRID],
+    params: [TRIALS, CLEARANCES, TOLERANCES, STEPS_PER_PITCH, REACH, SEARCH_STEPS], groups: [study::gearing::GROUP, study::errors::CASES_GROUP, study::tolerance::RANDOM_GRID, study::drive::GROUP],
 }
 
 /// Where a cell's paper counts are, the region it is tallied in, its mesh, and which of the
@@ -56,9 +56,8 @@ struct PaperCell {
 /// A reading's name, as the tables print it.
 fn reading_name(r: Reading) -> String {
     match r {
-        Reading::Exact => "exact solver".into(),
-        Reading::ExactReversed => "exact solver (other gear driving)".into(),
-        Reading::Area(t) => format!("area T = {} mm^2", fmt_f64(t, 4)),
+        Reading::Exact(d) => format!("exact solver, drive {}", d.name()),
+        Reading::Area(t, d) => format!("area T = {} mm^2, drive {}", fmt_f64(t, 4), d.name()),
     }
 }
 
@@ -304,7 +303,8 @@ fn notes(
     stepping: &Stepping,
     cells: &Cells,
 ) -> Result<(), RunError> {
-    t.note("Rule: a jam is a trial in which the contact test finds no free forward position for the driven gear at least once (exact solver: a lock, a strike or a blocked start; area test: after a driver step, no driven position within the reach ahead has an overlap area at most T). Gears whose bodies overlap at every angle are a jam under every reading. The second row is not a contact test: the same gears with the other gear of each mesh driving (the paper names the driver first, as Freeth et al. do, and does not say which gear its program turned), started at the same share of its pitch, over one turn of the larger gear.");
+    t.note("Rule: a jam is a trial in which the contact test finds no free forward position for the driven gear at least once (exact solver: a lock, a strike or a blocked start; area test: after a driver step, no driven position within the reach ahead has an overlap area at most T). Gears whose bodies overlap at every angle are a jam under every reading.");
+    t.note(format!("Drive: the exact solver's rows differ by which gear of each mesh drives, not by the contact test: `listed` (the first gear of the mesh's name, as the train runs; the paper names the driver first, as Freeth et al. do, and does not say which gear its program turned), `other` (the second, both gears still turning their own way, started at the same share of its own pitch, over one turn of the larger gear) and `either` (drawn per trial from the trial's own stream). The area test runs with the drive `--set drive=` names ({}).", s.drive.name()));
     t.note(format!(
         "Area test (polycheck::stepped): the driver turns by fixed steps of 1/{} of its pitch over one turn of the gear with more teeth; after each step the driven gear is turned forward from where it was until the overlap area of the two outlines is at most T (searched in steps of 1/{} of a driven pitch up to {} driven pitches ahead, then bisected); it starts touching, turned back from angle 0 until the area exceeds T (pushed forward if it already does), as the solver starts. Straight flanks; tips, valleys, per-tooth radii and rotation centres as manufactured.",
         stepping.steps_per_pitch,
@@ -361,8 +361,15 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         reach: ctx.get(&REACH)?,
         search_steps: ctx.get(&SEARCH_STEPS)?,
     };
-    let mut readings = vec![Reading::Exact, Reading::ExactReversed];
-    readings.extend(tolerances(ctx)?.into_iter().map(Reading::Area));
+    let mut readings: Vec<Reading> = study::drive::Drive::ALL
+        .into_iter()
+        .map(Reading::Exact)
+        .collect();
+    readings.extend(
+        tolerances(ctx)?
+            .into_iter()
+            .map(|t| Reading::Area(t, settings.drive)),
+    );
     if readings.len() > 63 {
         return Err(RunError::bad(
             "--set",

@@ -11,7 +11,7 @@ use study::grids::{CASES, CellSettings, TRIALS, case_cells, cases_apply};
 crate::experiment! {
     id: "table3", paper_item: "Table 3 (section 5)", run,
     title: "Jams and disengagements of each mesh on its own, Cases A-D at G = 40 %, 200 trials per cell",
-    params: [TRIALS], groups: [study::gearing::GROUP, study::errors::CASES_GROUP, study::events::GROUP],
+    params: [TRIALS], groups: [study::gearing::GROUP, study::errors::CASES_GROUP, study::events::GROUP, study::drive::GROUP],
     replay: "CASE/MESH, e.g. B/m3-e3" => cell,
 }
 

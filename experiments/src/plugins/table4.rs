@@ -11,7 +11,7 @@ use study::grids::{CellSettings, TRIALS, run_grid};
 crate::experiment! {
     id: "table4", paper_item: "Table 4 (section 5)", run,
     title: "Jams and disengagements of each mesh on its own against the random tooth error, no systematic error, G = 40 %",
-    params: [TRIALS], groups: [study::gearing::GROUP, study::errors::GROUP, study::tolerance::RANDOM_GRID, study::events::GROUP],
+    params: [TRIALS], groups: [study::gearing::GROUP, study::errors::GROUP, study::tolerance::RANDOM_GRID, study::events::GROUP, study::drive::GROUP],
     replay: "RANDOM/MESH, e.g. 0.050/m3-e3" => cell,
 }
 

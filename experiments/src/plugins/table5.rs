@@ -14,7 +14,7 @@ use study::tolerance::{self, RULE};
 crate::experiment! {
     id: "table5", paper_item: "Table 5 (section 5)", run,
     title: "Largest tolerable random error of each mesh (from Table 4 by the 1 % rule), then jams and disengagements against the systematic error",
-    params: [TRIALS, RULE, EMAX], groups: [study::gearing::GROUP, study::errors::CASES_GROUP, study::tolerance::RANDOM_GRID, study::tolerance::SYSTEMATIC_GRID, study::events::GROUP],
+    params: [TRIALS, RULE, EMAX], groups: [study::gearing::GROUP, study::errors::CASES_GROUP, study::tolerance::RANDOM_GRID, study::tolerance::SYSTEMATIC_GRID, study::events::GROUP, study::drive::GROUP],
     replay: "RANDOM/SYSTEMATIC/MESH, e.g. 0.050/0.7/e4-f1" => cell,
 }
 

@@ -26,7 +26,7 @@ registry::params! {
 crate::experiment! {
     id: "table6", paper_item: "Table 6 (section 5)", run,
     title: "Pointer errors of a mechanism built with each mesh's largest tolerable random and systematic errors",
-    params: [TRIALS, CELL_TRIALS, RULE, crate::emax::EMAX], groups: [study::gearing::GROUP, study::errors::CASES_GROUP, study::tolerance::RANDOM_GRID, study::tolerance::SYSTEMATIC_GRID, study::pointers::RUN_LENGTHS, study::events::GROUP],
+    params: [TRIALS, CELL_TRIALS, RULE, crate::emax::EMAX], groups: [study::gearing::GROUP, study::errors::CASES_GROUP, study::tolerance::RANDOM_GRID, study::tolerance::SYSTEMATIC_GRID, study::pointers::RUN_LENGTHS, study::events::GROUP, study::drive::GROUP],
 }
 
 /// One trial: per pointer (statistics up to the first jam, jammed, tooth engagements).

@@ -18,7 +18,7 @@ registry::params! {
 crate::experiment! {
     id: "tableI", paper_item: "Table I (Appendix II)", run,
     title: "Jams and disengagements of each mesh on its own, Cases A-D at G = 10, 40 and 70 %",
-    params: [TRIALS, CLEARANCES], groups: [study::gearing::SHAPE, study::errors::CASES_GROUP, study::events::GROUP],
+    params: [TRIALS, CLEARANCES], groups: [study::gearing::SHAPE, study::errors::CASES_GROUP, study::events::GROUP, study::drive::GROUP],
     replay: "CASE/G/MESH, e.g. B/70/m3-e3" => cell,
 }
 

@@ -23,7 +23,7 @@ registry::params! {
 crate::experiment! {
     id: "tolerance", paper_item: "Section 5, Tables 4-5 (tolerance by sequential search; beyond the paper)", run,
     title: "Largest tolerable random error of each mesh by a sequential search (bisection, trials added until the jam rate is clearly below or above the rule), against Table 4's grid",
-    params: [SEARCH_LO, SEARCH_HI, RESOLUTION, RULE, BATCH, CAP], groups: [study::gearing::GROUP, study::errors::GROUP, study::tolerance::RANDOM_GRID, study::events::GROUP],
+    params: [SEARCH_LO, SEARCH_HI, RESOLUTION, RULE, BATCH, CAP], groups: [study::gearing::GROUP, study::errors::GROUP, study::tolerance::RANDOM_GRID, study::events::GROUP, study::drive::GROUP],
 }
 
 fn settings(ctx: &Context) -> Result<Settings, RunError> {
