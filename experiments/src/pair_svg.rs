@@ -4,7 +4,6 @@
 //! size, and in words the conventions read from the file. Presentation only: the pair and its
 //! run come from `study::pair_file` and the solver.
 
-use contact::Trajectory;
 use geometry::{Vec2, polar, rotate};
 use registry::fmt_f64;
 use std::f64::consts::PI;
@@ -224,7 +223,7 @@ fn eccentricity_insets(svg: &mut String, p: &Prepared, margin: f64, width: f64, 
 /// `pair-check.svg`: both gears at φ = 0 and θ = 0 as the file describes them, with the axes, the
 /// arbors and tip-circle centres, each zero ray, teeth 0 and 1 of each gear, the turning senses,
 /// and in words the conventions read from the file and the start of the run.
-pub fn check_svg(name: &str, p: &Prepared, traj: &Trajectory) -> String {
+pub fn check_svg(name: &str, p: &Prepared, (phi0, theta0): (f64, f64)) -> String {
     let mesh = &p.mesh;
     let (g1, g2) = (mesh.driver(), mesh.driven());
     let d = mesh.centre_distance();
@@ -511,7 +510,6 @@ pub fn check_svg(name: &str, p: &Prepared, traj: &Trajectory) -> String {
             fmt_f64(deg(tips_frame.y.atan2(tips_frame.x)), 3),
         ));
     }
-    let phi0 = traj.phi_start();
     let start = match p.spec.start {
         StartSpec::Touching => "start: touching".to_string(),
         StartSpec::AtRest { theta_deg } => format!("start: at_rest(theta_deg: {theta_deg})"),
@@ -522,7 +520,7 @@ pub fn check_svg(name: &str, p: &Prepared, traj: &Trajectory) -> String {
     lines.push(format!(
         "The run starts at phi0 = {} deg, theta0 = {} deg ({start}); centre distance D = {}.",
         fmt_f64(deg(phi0), 6),
-        fmt_f64(deg(traj.theta_at(phi0)), 6),
+        fmt_f64(deg(theta0), 6),
         fmt_f64(d, 4)
     ));
     let wrapped: Vec<String> = lines.iter().flat_map(|l| wrap(l, 150)).collect();

@@ -753,6 +753,56 @@ mod tests {
         }
     }
 
+    /// Under `drive=either` a replay names the gear its trial's coin picked, counts as the table
+    /// counted, and its pair file, run by `run pair`, gives the trial's events again; a listed
+    /// trial's pair file run with `--set drive=other` is the other gear's trial.
+    #[test]
+    fn a_replayed_trial_names_the_gear_that_drove_and_its_pair_file_reruns_it() {
+        let (id, cell) = ("table4", "0.065/m2-n1");
+        let ctx = ctx(id, &[("trials", "12"), ("drive", "either")]);
+        let s = crate::settings::cells(&ctx, &study::grids::TRIALS).unwrap();
+        let spec = cell_spec(&s, ctx.seed(), id, cell).unwrap();
+        let mut seen = [false, false];
+        for t in 0..12 {
+            let drawn = study::cell::draw_trial(s.gearing(), &spec, ctx.seed(), t).unwrap();
+            let gear = match drawn.coin() {
+                Driver::Listed => "m2",
+                Driver::Other => "n1",
+            };
+            seen[usize::from(drawn.coin() == Driver::Other)] = true;
+            let one = replay(&ctx, id, cell, Some(t)).unwrap();
+            let title = &one.tables[0].title;
+            assert!(
+                title.contains(&format!("drive: either, {gear} drove")),
+                "{title}"
+            );
+            let ron = one.files.iter().find(|f| f.name == "pair.ron").unwrap();
+            let text = String::from_utf8(ron.contents.clone()).unwrap();
+            assert!(text.contains(&format!("Driver: {gear}")), "{text}");
+            // The pair file reruns the trial: the same events, to the rounding of degrees.
+            let rebuilt = rebuild(s.gearing(), &spec, ctx.seed(), t).unwrap();
+            let p = study::pair_file::prepare("pair.ron", &text).unwrap();
+            let phi0 = p.spec.start_deg.to_radians();
+            let again = p.mesh.run_events(phi0, phi0 + rebuilt.turn, p.start);
+            let events = rebuilt.events();
+            assert_eq!(again.len(), events.len(), "trial {t}");
+            for (a, b) in again.iter().zip(&events) {
+                assert_eq!(a.kind, b.kind, "trial {t}");
+                assert!(
+                    (a.phi - b.phi).abs() < 1e-9,
+                    "trial {t}: {} {}",
+                    a.phi,
+                    b.phi
+                );
+            }
+        }
+        assert_eq!(
+            seen,
+            [true, true],
+            "the coin picked both gears in 12 trials"
+        );
+    }
+
     /// Each grammar is its experiment's: registered in its file, for a registered experiment;
     /// `REPLAYABLE` lists them all.
     #[test]

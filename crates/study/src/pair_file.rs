@@ -142,6 +142,15 @@ impl Numbering {
     pub fn solver(self, k: i64) -> i64 {
         self.user(k)
     }
+
+    /// The numbering of the same gear seen from its other face ([`geometry::Gear::mirrored`]:
+    /// the solver's tooth k becomes tooth N − 1 − k).
+    fn flipped(self) -> Self {
+        Self {
+            teeth: self.teeth,
+            mirrored: !self.mirrored,
+        }
+    }
 }
 
 /// The whole file.
@@ -539,6 +548,36 @@ pub struct Prepared {
     pub driven: Numbering,
     /// How the run starts.
     pub start: Start,
+}
+
+impl Prepared {
+    /// The file's pair with its driven gear driving (`--set drive=other`), both gears still
+    /// turning their own way ([`Mesh::other_driving`]): the run's φ is the file's driven gear's
+    /// angle θ, its θ the file's driver's angle φ, and `start_deg` the angle the file's driven
+    /// gear starts at; every output numbers each gear's teeth as the file does.
+    ///
+    /// Errors: a `start` other than `touching` (it names the file's driven gear resting against
+    /// its driver, which no longer holds when the driven gear drives), naming the file and field.
+    pub fn other_driving(self, file: &str) -> Result<Prepared, RunError> {
+        if self.spec.start != StartSpec::Touching {
+            return Err(RunError::bad(
+                file,
+                "start",
+                "must be `touching` with --set drive=other: at_rest and teeth(...) place the file's driven gear against its driver, and here the driven gear drives",
+            ));
+        }
+        let mesh = self
+            .mesh
+            .other_driving()
+            .map_err(|e| RunError::bad(file, e.field, e.rule))?;
+        Ok(Prepared {
+            mesh,
+            driver: self.driven.flipped(),
+            driven: self.driver.flipped(),
+            spec: self.spec,
+            start: Start::Touching(0.0),
+        })
+    }
 }
 
 /// [`load`], then the numbering and the start, all checked before anything runs.

@@ -582,7 +582,7 @@ fn check_picture_labels_what_the_user_entered() {
     );
     let p = prepare("rt.ron", &c).unwrap();
     let traj = p.mesh.run(0.0, 0.1, p.start);
-    let svg = check_svg("my <pair>.ron", &p, &traj);
+    let svg = check_svg("my <pair>.ron", &p, (0.0, traj.theta_at(0.0)));
     for words in [
         "Check of my &lt;pair&gt;.ron: both gears at phi = 0 and theta = 0",
         "driver zero ray (tips_deg = 0, phi = 0)",
@@ -679,4 +679,38 @@ fn the_readmes_measured_wheel_is_one_gear_in_both_spellings() {
     // The scan's tooth 0 is the driver-sense spelling's tooth 14.
     assert_eq!(own.driven.user(driver.driven.solver(14)), 0);
     assert_eq!(own.driven.user(driver.driven.solver(0)), 14);
+}
+
+/// `--set drive=other` runs the file's driven gear as the driver, both gears still turning their
+/// own way: the run is the mirrored swap of the file's mesh, its teeth numbered as the file numbers
+/// them; `either` and a start that rests the driven gear against its driver are refused.
+#[test]
+fn the_driven_gear_of_a_pair_file_can_drive() {
+    let run = |sets: &[(&str, &str)]| {
+        let (exp, ctx) = crate::context("pair", 2025, 1, sets).unwrap();
+        (exp.run)(&ctx)
+    };
+    let listed = run(&[]).unwrap();
+    let other = run(&[("drive", "other")]).unwrap();
+    assert!(other.tables[0].title.contains("drive: other"), "{}", other.tables[0].title);
+    assert!(listed.tables[0].title.contains("drive: listed"));
+    let p = prepare("x.ron", EXAMPLE).unwrap();
+    let (n1, n2) = (p.mesh.driver().teeth(), p.mesh.driven().teeth());
+    let q = prepare("x.ron", EXAMPLE).unwrap().other_driving("x.ron").unwrap();
+    assert_eq!(q.mesh.driver(), &p.mesh.driven().mirrored());
+    assert_eq!(q.mesh.driven(), &p.mesh.driver().mirrored());
+    // Each gear keeps the file's numbering: the solver's tooth k of the mirrored gear is the
+    // file's tooth N - 1 - k (through the file's own numbering of that gear).
+    for k in 0..n2 as i64 {
+        assert_eq!(q.driver.user(k), p.driven.user(n2 as i64 - 1 - k));
+    }
+    for k in 0..n1 as i64 {
+        assert_eq!(q.driven.user(k), p.driver.user(n1 as i64 - 1 - k));
+    }
+    let e = run(&[("drive", "either")]).err().unwrap();
+    assert_eq!(e.exit_code(), 2);
+    assert!(e.to_string().contains("drive"), "{e}");
+    let at_rest = EXAMPLE.replacen("start_deg:", "start: at_rest(theta_deg: 3.6),\n    start_deg:", 1);
+    let e = prepare("x.ron", &at_rest).unwrap().other_driving("x.ron").err().unwrap();
+    assert!(e.to_string().contains("x.ron: start: must be `touching`"), "{e}");
 }

@@ -5,6 +5,7 @@ use registry::{Context, OutputFile, Report, RunError, Table, fmt_f64};
 
 use crate::common::{Mark, Series, csv, deg, marked_plot};
 use crate::pair_svg::check_svg;
+use study::drive::Drive;
 use study::pair_file::{Prepared, default_run_deg, prepare};
 
 const EXAMPLE: &str = include_str!("../../data/pair-example.ron");
@@ -13,7 +14,7 @@ const EXAMPLE_NAME: &str = "experiments/data/pair-example.ron";
 crate::experiment! {
     id: "pair", paper_item: "sections 2-3 (any gear pair, e.g. measured from CT scans)", run,
     title: "One mesh from a RON file: theta(phi), Theoretical Difference, jams and disengagements",
-    params: [], groups: [study::events::GROUP],
+    params: [], groups: [study::events::GROUP, study::drive::GROUP],
     config: CONFIG_HELP,
 }
 
@@ -157,7 +158,19 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         Some(c) => (c.path.display().to_string(), c.text.as_str()),
         None => (EXAMPLE_NAME.to_string(), EXAMPLE),
     };
-    let prepared = prepare(&name, text)?;
+    let drive = crate::settings::drive(ctx)?;
+    let as_written = prepare(&name, text)?;
+    let prepared = match drive {
+        Drive::Listed => prepare(&name, text)?,
+        Drive::Other => prepare(&name, text)?.other_driving(&name)?,
+        Drive::Either => {
+            return Err(RunError::bad(
+                "--set",
+                study::drive::PARAM.name,
+                "must be listed or other for a pair file: either draws the driver per trial from a table's random streams, and a pair file is one run",
+            ));
+        }
+    };
     let (mesh, spec) = (&prepared.mesh, &prepared.spec);
     let (n1, n2) = (mesh.driver().teeth(), mesh.driven().teeth());
     let ratio = n1 as f64 / n2 as f64;
@@ -208,7 +221,13 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         rows.into_iter(),
         9,
     );
-    let check = check_svg(&name, &prepared, &traj);
+    // pair-check.svg draws the file as written; its start line gives the file's own angles (with
+    // the driven gear driving, the run's phi is the file's theta and the other way round).
+    let start = match drive {
+        Drive::Other => (theta0, phi0),
+        _ => (phi0, theta0),
+    };
+    let check = check_svg(&name, &as_written, start);
     // Every output numbers the teeth as the file does (a driven gear measured in its own sense is
     // numbered the other way round inside the solver).
     let user_teeth = |e: &contact::Event| {
