@@ -17,7 +17,7 @@ use std::sync::LazyLock;
 use registry::{Context, OutputFile, Report, RunError, Table, fmt_f64};
 use train::Gearing;
 
-use study::cell::{CellSpec, Rebuilt, rebuild};
+use study::cell::{CellSpec, Counting, Rebuilt, rebuild};
 use study::drive::{Drive, Driver};
 use study::grids::{CASES, CellSettings};
 
@@ -284,15 +284,16 @@ fn one_trial(
     let (jam, dis) = if rebuilt.mesh.is_none() {
         (true, false)
     } else {
-        spec.events.tally(&events)
+        Counting::of(spec).tally(&events)
     };
     let drove = driving_gear(g, spec, &rebuilt);
     let mut table = Table::new(
         format!(
-            "{id} {cell}, trial {t} (seed {seed}): {} [events: {}; drive: {}, {drove} drove]",
+            "{id} {cell}, trial {t} (seed {seed}): {} [events: {}; drive: {}, {drove} drove{}]",
             verdict(jam, dis),
             spec.events.label(),
             spec.drive.name(),
+            end_tag(spec),
         ),
         [
             "phi - phi0 [deg]",
@@ -490,7 +491,7 @@ fn listing(
         Ok(if r.mesh.is_none() {
             (true, false)
         } else {
-            spec.events.tally(&r.events())
+            Counting::of(spec).tally(&r.events())
         })
     })?;
     let which = |f: fn(&(bool, bool)) -> bool| -> (usize, String) {
@@ -515,9 +516,10 @@ fn listing(
     let (dis, dis_list) = which(|o| o.1);
     let mut table = Table::new(
         format!(
-            "{id} {cell}: the trials that failed, of {trials} (seed {seed}) [events: {}; drive: {}]",
+            "{id} {cell}: the trials that failed, of {trials} (seed {seed}) [events: {}; drive: {}{}]",
             spec.events.label(),
-            spec.drive.name()
+            spec.drive.name(),
+            end_tag(spec)
         ),
         ["failure", "trials", "trial indices"],
     );
@@ -575,6 +577,14 @@ fn pair_file(r: &Rebuilt, drive: &str) -> Result<String, String> {
         r.turn.to_degrees()
     );
     Ok(s)
+}
+
+/// `; end: NAME` where a trial's counting ends before its whole turn, else nothing.
+fn end_tag(spec: &CellSpec) -> String {
+    match spec.end {
+        study::trial_end::End::Turn => String::new(),
+        e => format!("; end: {}", e.name()),
+    }
 }
 
 /// The gear of the cell's mesh that drove trial `r`, by name (`b2`, or `c1` when the listed

@@ -79,6 +79,16 @@ pub fn drive(ctx: &Context) -> Result<Drive, RunError> {
     }
 }
 
+/// Where a pair trial's counting ends ([`study::trial_end`]): the whole turn where the
+/// experiment declares no `end`.
+pub fn trial_end(ctx: &Context) -> Result<study::trial_end::End, RunError> {
+    if ctx.holds(&study::trial_end::PARAM) {
+        study::trial_end::End::parse(ctx.text(&study::trial_end::PARAM)?)
+    } else {
+        Ok(study::trial_end::End::Turn)
+    }
+}
+
 /// What every table of jam cells reads first ([`CellSettings`]): the gearing and h, G where the
 /// experiment declares it, the error group, the event rule (the default where the experiment
 /// declares none), which gear drives (the listed one where it declares no `drive`) and the
@@ -102,6 +112,7 @@ pub fn cells(ctx: &Context, trials: &Param) -> Result<CellSettings, RunError> {
         errors,
         rule,
         drive: drive(ctx)?,
+        end: trial_end(ctx)?,
         trials: ctx.get(trials)?,
     })
 }
@@ -186,10 +197,10 @@ pub fn labelled(
 /// `report` with every table's title naming the event rule of the run, and the drive where the
 /// experiment takes one ([`events::label`]).
 pub fn label(ctx: &Context, report: Report) -> Result<Report, RunError> {
-    let drive = if ctx.holds(&drive::PARAM) {
-        Some(drive(ctx)?)
+    let protocol = if ctx.holds(&drive::PARAM) {
+        Some((drive(ctx)?, trial_end(ctx)?))
     } else {
         None
     };
-    Ok(events::label(&rule(ctx)?, drive, report))
+    Ok(events::label(&rule(ctx)?, protocol, report))
 }

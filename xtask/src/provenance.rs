@@ -102,9 +102,9 @@ fn recorded_inputs(ctx: &Context) -> BTreeMap<String, String> {
 /// events count as jams and disengagements; the experiments name it in every title),
 /// `emax=paper` (Tables 5 and 6 on the paper's own E. max row, itself the paper's input) and the
 /// drive (which gear of each mesh its program turned, which the paper does not say; named in
-/// every title too). A run that changes only these still runs on the paper's inputs and is
+/// every title too) and where a trial's counting ends. A run that changes only these still runs on the paper's inputs and is
 /// compared with it.
-const READINGS: &[&str] = &["events", "emax", "drive"];
+const READINGS: &[&str] = &["events", "emax", "drive", "end"];
 
 /// The readings of the paper the run was made under ([`READINGS`] the experiment declares),
 /// whatever their value: `run.json` says which event rule counted and which gear drove.

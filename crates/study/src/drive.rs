@@ -85,8 +85,9 @@ pub const PARAM: Param = Param {
     kind: registry::Kind::Choice(&["listed", "other", "either"]),
 };
 
-/// The drive setting group.
-pub const GROUP: &[Param] = &[PARAM];
+/// The pair-trial protocol group of the per-mesh tables: which gear drives, and where a
+/// trial's counting ends ([`crate::trial_end`]).
+pub const GROUP: &[Param] = &[PARAM, crate::trial_end::PARAM];
 
 #[cfg(test)]
 mod tests {

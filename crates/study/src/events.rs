@@ -36,15 +36,24 @@ pub fn counts(rule: &Rule, traj: &contact::Trajectory) -> (usize, usize) {
 }
 
 /// `report` with every table's title naming the event rule it was counted with and, for an
-/// experiment of per-mesh trials, which gear drove (so the printed table, `table.md` and
-/// `tables.json` all say it).
+/// experiment of per-mesh trials, which gear drove and (unless a trial counts its whole turn,
+/// the paper's protocol) where a trial's counting ended: so the printed table, `table.md` and
+/// `tables.json` all say it.
 pub fn label(
     rule: &Rule,
-    drive: Option<crate::drive::Drive>,
+    protocol: Option<(crate::drive::Drive, crate::trial_end::End)>,
     mut report: registry::Report,
 ) -> registry::Report {
-    let tag = match drive {
-        Some(d) => format!("[events: {}; drive: {}]", rule.label(), d.name()),
+    let tag = match protocol {
+        Some((d, crate::trial_end::End::Turn)) => {
+            format!("[events: {}; drive: {}]", rule.label(), d.name())
+        }
+        Some((d, end)) => format!(
+            "[events: {}; drive: {}; end: {}]",
+            rule.label(),
+            d.name(),
+            end.name()
+        ),
         None => format!("[events: {}]", rule.label()),
     };
     for t in &mut report.tables {

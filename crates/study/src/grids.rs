@@ -127,6 +127,8 @@ pub struct CellSettings {
     pub rule: Rule,
     /// Which gear of each mesh drives the cells' trials.
     pub drive: Drive,
+    /// Where each trial's counting ends.
+    pub end: crate::trial_end::End,
     /// Trials per cell.
     pub trials: u64,
 }
@@ -172,6 +174,7 @@ impl CellSettings {
             clearance,
             events: self.rule.clone(),
             drive: self.drive,
+            end: self.end,
         }
     }
 }

@@ -13,7 +13,7 @@
 //!   ideal pairs.
 //! - Setting groups shared by experiments: [`gearing`] (file, h, G, pin-and-slot), [`errors`]
 //!   (hypothesis and its parameters), [`events`] (the event rule), [`drive`] (which gear of a
-//!   mesh drives its trials).
+//!   mesh drives its trials), [`trial_end`] (where a trial's counting ends).
 
 pub mod anomaly;
 pub mod area_test;
@@ -31,4 +31,5 @@ pub mod pointers;
 pub mod readings;
 pub mod tolerance;
 pub mod tolerance_search;
+pub mod trial_end;
 pub mod whole_mechanism;

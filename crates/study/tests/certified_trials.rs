@@ -32,6 +32,7 @@ fn case_d_trials_find_the_events_of_the_plain_solver() {
                 clearance,
                 events: rules::Rule::parse("paper").unwrap(),
                 drive: study::drive::Drive::Listed,
+                end: study::trial_end::End::Turn,
             };
             for t in 0..100 {
                 let trial = rebuild(&g, &cell, 2025, t).unwrap();

@@ -17,6 +17,7 @@ use crate::cells::{
 };
 use study::cell::{CellSpec, Counting, Counts, Purpose, label, run_cells_counted};
 use study::drive::Drive;
+use study::trial_end::End;
 use study::grids::CellSettings;
 use study::limits::IdealPair;
 
@@ -30,7 +31,7 @@ registry::params! {
 crate::experiment! {
     id: "event-rules", paper_item: "Tables 3, 4, I and section 3 / Appendix II (what counts as a jam or a disengagement)", run,
     title: "Every event rule and drive side by side: the paper's counts of Tables 3, 4 and I consistent with ours, and the ideal meshes' clearance limits",
-    params: [study::grids::TRIALS, CLEARANCES, LIMIT_TOLERANCE], groups: [study::gearing::GROUP, study::errors::CASES_GROUP, study::tolerance::RANDOM_GRID],
+    params: [study::grids::TRIALS, CLEARANCES, LIMIT_TOLERANCE, study::trial_end::PARAM], groups: [study::gearing::GROUP, study::errors::CASES_GROUP, study::tolerance::RANDOM_GRID],
 }
 
 /// Where a cell's paper counts are: experiment id and key in `paper.ron`, and the group of
@@ -57,25 +58,38 @@ fn every_rule() -> Result<Vec<Rule>, RunError> {
         .collect()
 }
 
-/// Every registered rule under every drive: rule by rule in name order, each under `listed`,
-/// `other` and `either`.
-fn every_counting() -> Result<Vec<Counting>, RunError> {
-    Ok(every_rule()?
+/// Every registered rule under every drive, each trial's counting ending at `end`: rule by
+/// rule in name order, each under `listed`, `other` and `either`; then the default rule under
+/// every drive with each other end (counting costs nothing more: the same runs).
+fn every_counting(end: End) -> Result<Vec<Counting>, RunError> {
+    let mut out: Vec<Counting> = every_rule()?
         .into_iter()
         .flat_map(|rule| {
             Drive::ALL.into_iter().map(move |drive| Counting {
                 rule: rule.clone(),
                 drive,
+                end,
             })
         })
-        .collect())
+        .collect();
+    let default = Rule::parse(rules::DEFAULT).map_err(|e| RunError::Internal(e.to_string()))?;
+    for other in End::ALL.into_iter().filter(|&e| e != end) {
+        for drive in Drive::ALL {
+            out.push(Counting {
+                rule: default.clone(),
+                drive,
+                end: other,
+            });
+        }
+    }
+    Ok(out)
 }
 
-/// The index of `rule` (by name) under `drive` in `countings`.
-fn counting_index(countings: &[Counting], rule: &str, drive: Drive) -> Option<usize> {
+/// The index of `rule` (by name) under `drive` and `end` in `countings`.
+fn counting_index(countings: &[Counting], rule: &str, drive: Drive, end: End) -> Option<usize> {
     countings
         .iter()
-        .position(|c| c.rule.name() == rule && c.drive == drive)
+        .position(|c| c.rule.name() == rule && c.drive == drive && c.end == end)
 }
 
 /// The cells of Tables 3 (Cases A-D at the clearance), 4 (the random grid, no systematic error)
@@ -173,7 +187,11 @@ fn shares_table(countings: &[Counting], tallies: &[[Tally; 4]], trials: u64) -> 
             "all dis., copy slips out",
         ],
     );
+    let end = countings.first().map_or(End::Turn, |c| c.end);
     for (counting, per_table) in countings.iter().zip(tallies) {
+        if counting.end != end {
+            continue;
+        }
         let mut row = vec![counting.rule.label(), counting.drive.name().to_owned()];
         let mut all = Tally::default();
         let [tables @ .., trusted] = per_table;
@@ -279,8 +297,9 @@ fn breakdown_table(
 /// In how many cells every rule gives the same jam count, and the same disengagement count,
 /// with the listed driver driving.
 fn agreement_between_rules(counts: &[Vec<Counts>], countings: &[Counting]) -> (usize, usize) {
+    let end = countings.first().map_or(End::Turn, |c| c.end);
     let listed: Vec<usize> = (0..countings.len())
-        .filter(|&r| countings[r].drive == Drive::Listed)
+        .filter(|&r| countings[r].drive == Drive::Listed && countings[r].end == end)
         .collect();
     let same = |f: fn(&Counts) -> u64| {
         counts
@@ -320,20 +339,26 @@ fn regions_table(
     countings: &[Counting],
 ) -> Table {
     let regions = regions(cells);
-    let mut head = vec!["rule".to_string(), "drive".to_string()];
+    let mut head = vec!["rule".to_string(), "drive".to_string(), "end".to_string()];
     for r in &regions {
         head.push(format!("{r} jams"));
         head.push(format!("{r} dis."));
     }
+    head.push("all jams".into());
+    head.push("all dis.".into());
     let mut t = Table::new(
-        "The paper's counts consistent with ours by region, under the default rule and each drive (Fisher's exact two-sample test at 5 %)",
+        "The paper's counts consistent with ours by region, under the default rule, each drive and each end of a trial's counting (Fisher's exact two-sample test at 5 %)",
         head,
     );
-    for drive in Drive::ALL {
-        let Some(r) = counting_index(countings, rules::DEFAULT, drive) else {
+    let readings = End::ALL
+        .into_iter()
+        .flat_map(|end| Drive::ALL.into_iter().map(move |drive| (drive, end)));
+    for (drive, end) in readings {
+        let Some(r) = counting_index(countings, rules::DEFAULT, drive, end) else {
             continue;
         };
         let mut split: Vec<Split> = regions.iter().map(|_| Split::default()).collect();
+        let mut all = Split::default();
         for ((_, p), per) in cells.iter().zip(counts) {
             let paper = paper_counts(p.table, &p.key);
             let c = &per[r];
@@ -347,15 +372,22 @@ fn regions_table(
             if p.case_d {
                 into(regions.len() - 1);
             }
+            compare(&mut all.jams, c.jams, c.trials, paper.0);
+            compare(&mut all.dis, c.disengagements, c.trials, paper.1);
         }
-        let mut row = vec![countings[r].rule.label(), drive.name().to_owned()];
-        for x in &split {
+        let mut row = vec![
+            countings[r].rule.label(),
+            drive.name().to_owned(),
+            end.name().to_owned(),
+        ];
+        for x in split.iter().chain([&all]) {
             row.push(share(x.jams.0, x.jams.1));
             row.push(share(x.dis.0, x.dis.1));
         }
         t.row(row);
     }
-    t.note("Regions: Table 4 (random error only, G = 40 %); each clearance G, Tables 3 and I (Cases A-D; Table 3's cells are Table I's at 40 %, each printing compared); Case D, its cells at every clearance (also counted in their clearance's columns).");
+    t.note("Regions: Table 4 (random error only, G = 40 %); each clearance G, Tables 3 and I (Cases A-D; Table 3's cells are Table I's at 40 %, each printing compared); Case D, its cells at every clearance (also counted in their clearance's columns). All: every one of the paper's 345 counts of each kind.");
+    t.note("End: `turn`, a trial counts every failure of its whole turn (the paper's stated protocol, and every table's default); `first-event`, only its first jam or disengagement counts (the trial stops there); `first-disengagement`, jams until its first disengagement and that. The same runs are counted each way.");
     t
 }
 
@@ -474,7 +506,7 @@ fn cells_csv(
     counts: &[Vec<Counts>],
 ) -> String {
     let mut s = String::from(
-        "table,key,rule,drive,trials,jams,paper_jams,jams_consistent,disengagements,paper_disengagements,disengagements_consistent\n",
+        "table,key,rule,drive,end,trials,jams,paper_jams,jams_consistent,disengagements,paper_disengagements,disengagements_consistent\n",
     );
     let show = |v: Option<u64>| v.map_or_else(String::new, |v| v.to_string());
     for ((_, p), per_rule) in cells.iter().zip(counts) {
@@ -486,11 +518,12 @@ fn cells_csv(
                 })
             };
             s.push_str(&format!(
-                "{},{},{},{},{},{},{},{},{},{},{}\n",
+                "{},{},{},{},{},{},{},{},{},{},{},{}\n",
                 p.table,
                 p.key,
                 counting.rule.label(),
                 counting.drive.name(),
+                counting.end.name(),
                 c.trials,
                 c.jams,
                 show(paper.0),
@@ -508,7 +541,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     let s = crate::settings::cells(ctx, &study::grids::TRIALS)?;
     let (g, trials) = (s.gearing(), s.trials);
     let tol = ctx.get(&LIMIT_TOLERANCE)?;
-    let (rules, countings) = (every_rule()?, every_counting()?);
+    let (rules, countings) = (every_rule()?, every_counting(s.end)?);
     let cells = all_cells(ctx, &s)?;
     let specs: Vec<CellSpec> = cells.iter().map(|(c, _)| c.clone()).collect();
     let counts = run_cells_counted(
@@ -529,10 +562,15 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     ));
     let breakdowns = [Drive::Listed, Drive::Either]
         .into_iter()
-        .filter_map(|d| counting_index(&countings, rules::DEFAULT, d))
+        .filter_map(|d| counting_index(&countings, rules::DEFAULT, d, s.end))
         .map(|r| breakdown_table(&cells, &counts, &countings[r], r));
     let mut tables = vec![shares, regions_table(&cells, &counts, &countings)];
     tables.extend(breakdowns);
+    if s.end != End::Turn {
+        for t in &mut tables {
+            t.title = format!("{} [end: {}]", t.title, s.end.name());
+        }
+    }
     tables.push(limits_table(g, &rules, &limits, tol));
     Ok(Report {
         tables,

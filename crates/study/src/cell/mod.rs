@@ -26,6 +26,7 @@ use train::Gearing;
 
 use crate::drive::{Drive, Driver};
 use crate::errors;
+use crate::trial_end::{End, Tally};
 
 /// Trials per cell in the paper's Tables 3, 4, 5 and I: its counts are out of this.
 pub const PAPER_TRIALS: u64 = 200;
@@ -49,6 +50,8 @@ pub struct CellSpec {
     /// Which gear drives. Not part of [`CellSpec::canonical`] either: the same gears and
     /// initial share of a pitch are run whichever gear drives.
     pub drive: Drive,
+    /// Where a trial's counting ends (not part of [`CellSpec::canonical`]: a way of counting).
+    pub end: End,
 }
 
 impl CellSpec {
@@ -313,22 +316,51 @@ fn rebuild_prepared(p: &Prepared<'_>, seed: u64, t: u64) -> Result<Rebuilt, RunE
 }
 
 /// How a table counts a cell's trials: which events count as jams and disengagements (the
-/// rule), and which gear drives.
+/// rule), which gear drives, and where a trial's counting ends.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Counting {
     /// The event rule.
     pub rule: rules::Rule,
     /// Which gear drives.
     pub drive: Drive,
+    /// Where a trial's counting ends.
+    pub end: End,
 }
 
 impl Counting {
-    /// The counting a cell names itself: its own rule and drive.
+    /// The counting a cell names itself: its own rule, drive and end.
     pub fn of(cell: &CellSpec) -> Counting {
         Counting {
             rule: cell.events.clone(),
             drive: cell.drive,
+            end: cell.end,
         }
+    }
+
+    /// `tally` after `events`, in order, as this counting counts them.
+    pub fn tally_on(&self, tally: Tally, events: &[contact::Event]) -> Tally {
+        events.iter().fold(tally, |t, e| {
+            t.after(self.end, self.rule.is_jam(e), self.rule.is_disengagement(e))
+        })
+    }
+
+    /// (jammed, disengaged) in a trial with these events, as this counting counts them.
+    pub fn tally(&self, events: &[contact::Event]) -> (bool, bool) {
+        let t = self.tally_on(Tally::default(), events);
+        (t.jam, t.disengaged)
+    }
+
+    /// The cache key's part for this counting.
+    fn key(&self) -> String {
+        let end = match self.end {
+            End::Turn => String::new(),
+            e => format!("|end={}", e.name()),
+        };
+        format!(
+            "events={}|drive={}{end}",
+            self.rule.label(),
+            self.drive.name()
+        )
     }
 }
 
@@ -351,41 +383,51 @@ fn trial(
         if under.is_empty() {
             continue;
         }
-        let rules: Vec<rules::Rule> = under.iter().map(|&r| countings[r].rule.clone()).collect();
+        let mine: Vec<&Counting> = under.iter().map(|&r| &countings[r]).collect();
         let run = draws.driven_by(driver);
-        let own = match run.mesh.as_ref() {
-            Some(mesh) => rule_bits(&rules, &events_to_answer(mesh, &run, &rules)),
-            // Gears that overlap at every tooth are jammed under any rule.
-            None => (0..rules.len()).fold(0, |acc, r| acc | 1 << (2 * r)),
+        let tallies = match run.mesh.as_ref() {
+            Some(mesh) => tallies_to_answer(mesh, &run, &mine).0,
+            // Gears that overlap at every tooth are jammed under any counting.
+            None => vec![Tally::default().after(End::Turn, true, false); mine.len()],
         };
-        for (i, &r) in under.iter().enumerate() {
-            bits |= (own >> (2 * i) & 0b11) << (2 * r);
+        for (&r, t) in under.iter().zip(&tallies) {
+            bits |= (u64::from(t.jam) | u64::from(t.disengaged) << 1) << (2 * r);
         }
     }
     Ok(bits)
 }
 
-/// The events a trial counts: those of its whole turn (the run keeps no segments), but the run
-/// ends once every rule has seen a jam and a disengagement, as more events cannot unset a bit of
-/// its [`RuleBits`]. The bits are gathered as the events are sized, each event counted once.
-fn events_to_answer(mesh: &Mesh, rebuilt: &Rebuilt, rules: &[rules::Rule]) -> Vec<contact::Event> {
-    let every = u64::MAX >> (64 - 2 * rules.len().clamp(1, MAX_RULES));
-    let (bits, counted) = (Cell::new(0), Cell::new(0));
+/// Each counting's tally of a trial: the events of its whole turn (the run keeps no segments),
+/// but the run ends once every counting's tally is closed (a turn's once it has seen a jam and
+/// a disengagement; a first event's at its first), as later events cannot change it. The
+/// tallies are kept as the events are sized, each event counted once.
+fn tallies_to_answer(
+    mesh: &Mesh,
+    rebuilt: &Rebuilt,
+    countings: &[&Counting],
+) -> (Vec<Tally>, Vec<contact::Event>) {
+    let (tallies, counted) = (
+        std::cell::RefCell::new(vec![Tally::default(); countings.len()]),
+        Cell::new(0),
+    );
     let gather = |events: &[contact::Event]| {
-        bits.set(bits.get() | rule_bits(rules, &events[counted.get()..]));
+        let new = &events[counted.get()..];
+        let mut all = tallies.borrow_mut();
+        for (t, c) in all.iter_mut().zip(countings) {
+            *t = c.tally_on(*t, new);
+        }
         counted.set(events.len());
-        bits.get() == every
+        all.iter().all(|t| t.closed)
     };
     let (phi0, end) = (rebuilt.phi0, rebuilt.phi0 + rebuilt.turn);
-    mesh.run_events_until_answered(phi0, end, Start::Touching(0.0), &gather)
-}
-
-/// The [`RuleBits`] of `events` under `rules`.
-fn rule_bits(rules: &[rules::Rule], events: &[contact::Event]) -> RuleBits {
-    rules.iter().enumerate().fold(0, |acc, (r, rule)| {
-        let (jam, dis) = rule.tally(events);
-        acc | u64::from(jam) << (2 * r) | u64::from(dis) << (2 * r + 1)
-    })
+    let events = mesh.run_events_until_answered(phi0, end, Start::Touching(0.0), &gather);
+    // Events sized after the last call (if any) are counted too.
+    let mut all = tallies.into_inner();
+    let rest = &events[counted.get().min(events.len())..];
+    for (t, c) in all.iter_mut().zip(countings) {
+        *t = c.tally_on(*t, rest);
+    }
+    (all, events)
 }
 
 /// One trial of a flat batch under several countings: see [`trial`].
@@ -562,10 +604,9 @@ fn run_cells_under(
             cs.iter()
                 .map(|c| {
                     format!(
-                        "{}|events={}|drive={}|seed={seed}|trials={trials}|gearing={gearing_id:016x}",
+                        "{}|{}|seed={seed}|trials={trials}|gearing={gearing_id:016x}",
                         p.canonical,
-                        c.rule.label(),
-                        c.drive.name()
+                        c.key()
                     )
                 })
                 .collect()
@@ -801,326 +842,4 @@ pub fn label(v: f64, min_decimals: usize) -> String {
 }
 
 #[cfg(test)]
-mod tests {
-    #![allow(clippy::unwrap_used, reason = "tests")]
-    use super::*;
-
-    fn cell(mesh: &str, random: f64) -> CellSpec {
-        let hyp = hypotheses::lookup("edmunds-split").unwrap();
-        let params = Params::new(
-            hyp,
-            &[
-                ("random".into(), random.to_string()),
-                ("systematic".into(), "0.5".into()),
-            ],
-        )
-        .unwrap();
-        CellSpec {
-            mesh: mesh.into(),
-            hypothesis: hyp,
-            params,
-            tooth_height: 1.1,
-            clearance: 40.0,
-            events: rules::Rule::default(),
-            drive: Drive::Listed,
-        }
-    }
-
-    /// A trial's run ends once every rule has seen a jam and a disengagement: its events are the
-    /// whole turn's up to the cut, and its bits the whole turn's, under every registered rule, on
-    /// meshes that jam, slip, or do neither; and some runs are cut short (else this means nothing).
-    #[test]
-    fn a_trial_cut_at_its_answer_counts_as_the_whole_turn() {
-        let g = Gearing::freeth2006();
-        let all: Vec<rules::Rule> = rules::rules()
-            .unwrap()
-            .keys()
-            .map(|name| rules::Rule::parse(name).unwrap())
-            .collect();
-        let listed: Vec<Counting> = all
-            .iter()
-            .map(|rule| Counting {
-                rule: rule.clone(),
-                drive: Drive::Listed,
-            })
-            .collect();
-        assert!(all.len() >= 4, "{all:?}");
-        let mut cut_short = 0;
-        let at = |mut spec: CellSpec, clearance: f64| {
-            spec.clearance = clearance;
-            spec
-        };
-        for spec in [
-            cell("m3-e3", 0.08),
-            at(cell("b2-c1", 0.1), 70.0),
-            at(cell("e4-f1", 0.02), 10.0),
-            // Jammed and disengaged for a pitch or more in the same turn: every rule answered
-            // before the end (idle-rotation's disengagements are the long losses alone).
-            at(cell("m3-e3", 0.08), 70.0),
-        ] {
-            let p = prepare(&g, &spec).unwrap();
-            for t in 0..30 {
-                let rebuilt = rebuild_prepared(&p, 11, t).unwrap();
-                let Some(mesh) = &rebuilt.mesh else { continue };
-                let whole = rebuilt.events();
-                let cut = events_to_answer(mesh, &rebuilt, &all);
-                assert_eq!(
-                    cut[..],
-                    whole[..cut.len()],
-                    "{} trial {t}",
-                    spec.canonical()
-                );
-                assert_eq!(
-                    trial(&p, 11, t, &listed).unwrap(),
-                    rule_bits(&all, &whole),
-                    "{} trial {t}",
-                    spec.canonical()
-                );
-                cut_short += usize::from(cut.len() < whole.len());
-            }
-        }
-        assert!(cut_short > 0);
-    }
-
-    #[test]
-    fn counting_under_several_rules_gives_each_rules_own_counts() {
-        let g = Gearing::freeth2006();
-        let strict = rules::Rule::parse("strict").unwrap();
-        let paper = rules::Rule::parse("paper").unwrap();
-        // Case D-like errors at a wide clearance: gaps and slips happen, so the rules differ.
-        let mut cells = vec![cell("m3-e3", 0.08), cell("b2-c1", 0.08)];
-        for c in &mut cells {
-            c.clearance = 70.0;
-        }
-        let listed = |rule: &rules::Rule| Counting {
-            rule: rule.clone(),
-            drive: Drive::Listed,
-        };
-        let both = run_cells_under(
-            &g,
-            &cells,
-            Some(&[listed(&strict), listed(&paper)]),
-            6,
-            11,
-            false,
-            local,
-        )
-        .unwrap();
-        for (r, rule) in [strict.clone(), paper.clone()].iter().enumerate() {
-            let own: Vec<CellSpec> = cells
-                .iter()
-                .map(|c| CellSpec {
-                    events: rule.clone(),
-                    ..c.clone()
-                })
-                .collect();
-            let alone = run_cells_with(&g, &own, 6, 11, false, local).unwrap();
-            for (i, a) in alone.iter().enumerate() {
-                assert_eq!(both[i][r], *a, "cell {i} under {}", rule.label());
-            }
-        }
-        // The rules must differ somewhere here, or the test shows nothing.
-        assert!(
-            both.iter().any(|c| c[0] != c[1]),
-            "strict and paper count alike: {both:?}"
-        );
-        // Counted under both, then read from the cache under one: the same counts.
-        forget_cache();
-        let filled = run_cells_under(
-            &g,
-            &cells[..1],
-            Some(&[listed(&strict), listed(&paper)]),
-            6,
-            11,
-            true,
-            local,
-        )
-        .unwrap();
-        let mut paper_cell = cells[0].clone();
-        paper_cell.events = rules::Rule::parse("paper").unwrap();
-        let never = |_: &str,
-                     _: u64,
-                     _: &(dyn Fn(u64) -> Result<RuleBits, RunError> + Sync + Send)|
-         -> Result<Vec<RuleBits>, RunError> {
-            panic!("the cell should come from the cache")
-        };
-        let cached = run_cells_with(&g, &[paper_cell], 6, 11, true, never).unwrap();
-        assert_eq!(cached[0], filled[0][1]);
-        forget_cache();
-    }
-
-    /// Whichever gear drives, a trial draws the same gears and the same share of a pitch; the
-    /// other gear's run is its own mesh's, reflected; and `either` takes each trial's coin.
-    #[test]
-    fn the_drive_changes_the_driver_and_nothing_drawn() {
-        let g = Gearing::freeth2006();
-        let spec = cell("m2-n1", 0.06);
-        let p = prepare(&g, &spec).unwrap();
-        let (n1, n2) = (15.0, 53.0);
-        let mut coins = [0, 0];
-        for t in 0..40 {
-            let drawn = draw(&p, 11, t).unwrap();
-            let (a, b) = (
-                drawn.driven_by(Driver::Listed),
-                drawn.driven_by(Driver::Other),
-            );
-            let (ma, mb) = (a.mesh.as_ref().unwrap(), b.mesh.as_ref().unwrap());
-            assert_eq!(mb.driver(), &ma.driven().mirrored());
-            assert_eq!(mb.driven(), &ma.driver().mirrored());
-            assert_eq!((a.driver, b.driver), (Driver::Listed, Driver::Other));
-            assert!((a.phi0 * n1 / TAU - b.phi0 * n2 / TAU).abs() < 1e-12);
-            assert!((a.turn - TAU * n2 / n1).abs() < 1e-12);
-            assert!((b.turn - TAU).abs() < 1e-12);
-            // The listed trial is the one a cell without a drive setting ran.
-            assert_eq!(rebuild_prepared(&p, 11, t).unwrap().phi0, a.phi0);
-            coins[usize::from(drawn.coin() == Driver::Other)] += 1;
-        }
-        assert!(coins[0] >= 8 && coins[1] >= 8, "{coins:?}");
-        // Counted under every drive at once: each as run alone, and either trial by trial.
-        let spec = cell("m2-n1", 0.065);
-        let p = prepare(&g, &spec).unwrap();
-        let rule = rules::Rule::default();
-        let under = |drive| Counting {
-            rule: rule.clone(),
-            drive,
-        };
-        let all = [
-            under(Drive::Listed),
-            under(Drive::Other),
-            under(Drive::Either),
-        ];
-        for t in 0..40 {
-            let bits = trial(&p, 11, t, &all).unwrap();
-            for (r, c) in all.iter().enumerate() {
-                let alone = trial(&p, 11, t, std::slice::from_ref(c)).unwrap();
-                assert_eq!(bits >> (2 * r) & 0b11, alone, "trial {t}, {:?}", c.drive);
-            }
-            let coin = draw(&p, 11, t).unwrap().coin();
-            let from = usize::from(coin == Driver::Other);
-            assert_eq!(bits >> 4 & 0b11, bits >> (2 * from) & 0b11, "trial {t}");
-        }
-    }
-
-    #[test]
-    fn fnv1a_matches_reference_values() {
-        // Published FNV-1a 64-bit test vectors.
-        assert_eq!(fnv1a64(b""), 0xcbf2_9ce4_8422_2325);
-        assert_eq!(fnv1a64(b"a"), 0xaf63_dc4c_8601_ec8c);
-        assert_eq!(fnv1a64(b"foobar"), 0x8594_4171_f739_67e8);
-    }
-
-    #[test]
-    fn canonical_text_names_the_content() {
-        let c = cell("b2-c1", 0.04);
-        assert_eq!(
-            c.canonical(),
-            "mesh=b2-c1;hypothesis=edmunds-split;random=0.04;split=0.5;systematic=0.5;h=1.1;G=40.0"
-        );
-        assert_ne!(stream(&c.canonical(), 0), stream(&c.canonical(), 1));
-        assert_ne!(
-            stream(&c.canonical(), 0),
-            stream(&cell("b2-c1", 0.045).canonical(), 0)
-        );
-    }
-
-    /// The batch runner of a plain run: every trial, in order, over rayon.
-    fn local(
-        _key: &str,
-        n: u64,
-        f: &(dyn Fn(u64) -> Result<RuleBits, RunError> + Sync + Send),
-    ) -> Result<Vec<RuleBits>, RunError> {
-        use rayon::prelude::*;
-        (0..n).into_par_iter().map(f).collect()
-    }
-
-    #[test]
-    fn counts_depend_on_content_not_position_cache_or_threads() {
-        let g = Gearing::freeth2006();
-        let a = [cell("e1-b3", 0.06), cell("m2-n1", 0.06)];
-        let b = [
-            cell("m2-n1", 0.06),
-            cell("c2-d1", 0.05),
-            cell("e1-b3", 0.06),
-        ];
-        let pool = |n: usize| {
-            rayon::ThreadPoolBuilder::new()
-                .num_threads(n)
-                .build()
-                .unwrap()
-        };
-        let ra = pool(1).install(|| run_cells_with(&g, &a, 3, 11, false, local).unwrap());
-        let rb = pool(2).install(|| run_cells_with(&g, &b, 3, 11, false, local).unwrap());
-        assert_eq!(ra[0], rb[2]);
-        assert_eq!(ra[1], rb[0]);
-        // Through the cache (first run fills it, second reads it): the same counts.
-        let first = run_cells_with(&g, &b, 3, 11, true, local).unwrap();
-        let second = run_cells_with(&g, &b, 3, 11, true, local).unwrap();
-        assert_eq!(first, rb);
-        assert_eq!(second, rb);
-        assert_eq!(rb[0].trials, 3);
-        assert_eq!(rb[0].engagements, 3 * 53); // m2-n1: 15 and 53 teeth
-    }
-
-    #[test]
-    fn ranges_add_up_to_the_whole_cell() {
-        let g = Gearing::freeth2006();
-        let whole = run_cells_with(
-            &g,
-            &[cell("m2-n1", 0.06), cell("e1-b3", 0.07)],
-            5,
-            11,
-            false,
-            local,
-        )
-        .unwrap();
-        let range = |c: CellSpec, r: std::ops::Range<u64>| CellRange { cell: c, range: r };
-        let parts = run_cell_ranges_with(
-            &g,
-            &[
-                range(cell("m2-n1", 0.06), 0..2),
-                range(cell("e1-b3", 0.07), 0..5),
-                range(cell("m2-n1", 0.06), 2..5),
-            ],
-            11,
-            local,
-        )
-        .unwrap();
-        let sum = |a: Counts, b: Counts| Counts {
-            jams: a.jams + b.jams,
-            disengagements: a.disengagements + b.disengagements,
-            failures: a.failures + b.failures,
-            trials: a.trials + b.trials,
-            engagements: a.engagements + b.engagements,
-        };
-        assert_eq!(sum(parts[0], parts[2]), whole[0]);
-        let mut added = parts[0];
-        added += parts[2];
-        assert_eq!(added, whole[0]);
-        assert_eq!(parts[1], whole[1]);
-        for c in &whole {
-            // A trial fails when it jams, disengages or both.
-            assert!(c.failures >= c.jams.max(c.disengagements), "{c:?}");
-            assert!(c.failures <= c.jams + c.disengagements, "{c:?}");
-        }
-        let e =
-            run_cell_ranges_with(&g, &[range(cell("m2-n1", 0.06), 3..3)], 1, local).unwrap_err();
-        assert_eq!(e.exit_code(), 2);
-    }
-
-    #[test]
-    fn labels_keep_the_value() {
-        assert_eq!(label(0.04, 3), "0.040");
-        assert_eq!(label(0.0375, 3), "0.0375");
-        assert_eq!(label(1.0, 1), "1.0");
-        assert_eq!(label(40.0, 0), "40");
-    }
-
-    #[test]
-    fn bad_cells_are_bad_input() {
-        let g = Gearing::freeth2006();
-        let e = run_cells_with(&g, &[cell("x-y", 0.04)], 2, 1, true, local).unwrap_err();
-        assert_eq!(e.exit_code(), 2);
-        let e = run_cells_with(&g, &[cell("b2-c1", 0.04)], 0, 1, true, local).unwrap_err();
-        assert_eq!(e.exit_code(), 2);
-    }
-}
+mod tests;
