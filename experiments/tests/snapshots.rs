@@ -102,6 +102,9 @@ fn pinned(id: &str) {
     }
     if id == "event-rules" {
         readme_carries_rules(&report.tables[0]);
+        // Which gear drives: the shares by region and end, and Table 4's sums per mesh.
+        readme_carries("event-rules regions", &report.tables[1].render());
+        readme_carries("event-rules sums", &report.tables[2].render());
     }
 }
 
