@@ -692,11 +692,18 @@ fn the_driven_gear_of_a_pair_file_can_drive() {
     };
     let listed = run(&[]).unwrap();
     let other = run(&[("drive", "other")]).unwrap();
-    assert!(other.tables[0].title.contains("drive: other"), "{}", other.tables[0].title);
+    assert!(
+        other.tables[0].title.contains("drive: other"),
+        "{}",
+        other.tables[0].title
+    );
     assert!(listed.tables[0].title.contains("drive: listed"));
     let p = prepare("x.ron", EXAMPLE).unwrap();
     let (n1, n2) = (p.mesh.driver().teeth(), p.mesh.driven().teeth());
-    let q = prepare("x.ron", EXAMPLE).unwrap().other_driving("x.ron").unwrap();
+    let q = prepare("x.ron", EXAMPLE)
+        .unwrap()
+        .other_driving("x.ron")
+        .unwrap();
     assert_eq!(q.mesh.driver(), &p.mesh.driven().mirrored());
     assert_eq!(q.mesh.driven(), &p.mesh.driver().mirrored());
     // Each gear keeps the file's numbering: the solver's tooth k of the mirrored gear is the
@@ -710,7 +717,18 @@ fn the_driven_gear_of_a_pair_file_can_drive() {
     let e = run(&[("drive", "either")]).err().unwrap();
     assert_eq!(e.exit_code(), 2);
     assert!(e.to_string().contains("drive"), "{e}");
-    let at_rest = EXAMPLE.replacen("start_deg:", "start: at_rest(theta_deg: 3.6),\n    start_deg:", 1);
-    let e = prepare("x.ron", &at_rest).unwrap().other_driving("x.ron").err().unwrap();
-    assert!(e.to_string().contains("x.ron: start: must be `touching`"), "{e}");
+    let at_rest = EXAMPLE.replacen(
+        "start_deg:",
+        "start: at_rest(theta_deg: 3.6),\n    start_deg:",
+        1,
+    );
+    let e = prepare("x.ron", &at_rest)
+        .unwrap()
+        .other_driving("x.ron")
+        .err()
+        .unwrap();
+    assert!(
+        e.to_string().contains("x.ron: start: must be `touching`"),
+        "{e}"
+    );
 }

@@ -17,9 +17,9 @@ use crate::cells::{
 };
 use study::cell::{CellSpec, Counting, Counts, Purpose, label, run_cells_counted};
 use study::drive::Drive;
-use study::trial_end::End;
 use study::grids::CellSettings;
 use study::limits::IdealPair;
+use study::trial_end::End;
 
 registry::params! {
     /// `clearances`: Table I's clearances G, comma-separated (the paper: 10, 40 and 70).
