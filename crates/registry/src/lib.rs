@@ -48,8 +48,8 @@ pub use context::{
 pub use engine::{TrialEngine, TrialMode};
 pub use error::{DuplicateId, RunError};
 pub use output::{
-    Agreement, MAX_DATA_ROWS, OutputFile, Report, abandon_writes, tidy, write_file_through,
-    write_results,
+    Agreement, MAX_ANGLE_DEG, MAX_DATA_ROWS, OutputFile, Report, abandon_writes, tidy,
+    write_file_through, write_results,
 };
 pub use progress::{BatchProgress, Progress};
 pub use table::{Table, fmt_f64, fmt_number};

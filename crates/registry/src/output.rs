@@ -15,6 +15,13 @@ use crate::{RunError, Table};
 /// anything runs, naming the smallest step allowed.
 pub const MAX_DATA_ROWS: usize = 1_000_000;
 
+/// The largest angle, in degrees either way, an input may give (a start angle, a tip angle, a
+/// phase): 10^6 degrees (about 2 778 turns). A double holds an angle of 10^6 degrees to about
+/// 1e-10 degrees (2e-12 rad), below the 2.5e-11 rad to which the solver places a contact; at
+/// 10^16 degrees its spacing is 2 degrees, and a run from there ends nowhere or gives another
+/// answer. An angle a whole number of turns smaller names the same position.
+pub const MAX_ANGLE_DEG: f64 = 1.0e6;
+
 /// What an experiment returns.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct Report {
