@@ -139,20 +139,22 @@ fn ron_option_hint(msg: &str) -> Option<String> {
     let (file, place) = head.rsplit_once(": line ")?;
     let (line, column) = place.split_once(", column ")?;
     let (line, column): (usize, usize) = (line.trim().parse().ok()?, column.trim().parse().ok()?);
-    let field = std::fs::read_to_string(file).ok().and_then(|text| {
-        let l = text.lines().nth(line.checked_sub(1)?)?;
-        let before: String = l.chars().take(column.saturating_sub(1)).collect();
-        let before = before.trim_end().strip_suffix(':')?;
-        let name: String = before
-            .chars()
-            .rev()
-            .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
-            .collect::<Vec<_>>()
-            .into_iter()
-            .rev()
-            .collect();
-        (!name.is_empty()).then_some(name)
-    });
+    let field = input_file::read_to_string(std::path::Path::new(file), input_file::MAX_INPUT_BYTES)
+        .ok()
+        .and_then(|text| {
+            let l = text.lines().nth(line.checked_sub(1)?)?;
+            let before: String = l.chars().take(column.saturating_sub(1)).collect();
+            let before = before.trim_end().strip_suffix(':')?;
+            let name: String = before
+                .chars()
+                .rev()
+                .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+                .collect::<Vec<_>>()
+                .into_iter()
+                .rev()
+                .collect();
+            (!name.is_empty()).then_some(name)
+        });
     Some(match field {
         Some(f) => format!(
             "`{f}` is optional: write its value inside Some(...), e.g. `{f}: Some(...)`, or leave the field out"
