@@ -212,9 +212,24 @@ pub(crate) fn preflight(planned: &[Planned], run: &RunArgs) -> Result<(), Failur
         ("--hypothesis", "--set measured")
     };
     for p in planned {
-        experiments::inputs::check(&p.ctx, flags, &mut seen).map_err(Failure::Bad)?;
+        experiments::inputs::check(&p.ctx, flags, &mut seen)
+            .map_err(|m| Failure::Bad(typed_flag(m, run)))?;
     }
     Ok(())
+}
+
+/// A refusal `msg` of `--set gearing` or `--set measured` said of the shorthand the user typed
+/// for it (`--gearing`, `--errors`).
+fn typed_flag(msg: String, run: &RunArgs) -> String {
+    for (given, set, flag) in [
+        (run.gearing.is_some(), "--set: gearing: ", "--gearing: "),
+        (run.errors.is_some(), "--set: measured: ", "--errors: "),
+    ] {
+        if given && let Some(rest) = msg.strip_prefix(set) {
+            return format!("{flag}{rest}");
+        }
+    }
+    msg
 }
 
 /// What a command writes under `--out`, for [`check_out`] to check before anything is computed.

@@ -239,6 +239,17 @@ impl Context {
             .collect()
     }
 
+    /// The parameters given (with `--set` or a shorthand), whatever their value, as (name,
+    /// value), in declaration order: what the user typed, where [`Context::changed`] is what
+    /// differs from the defaults.
+    pub fn given(&self) -> Vec<(&'static str, &str)> {
+        self.params
+            .iter()
+            .filter(|p| p.overridden)
+            .map(|p| (p.name, p.value.as_str()))
+            .collect()
+    }
+
     /// Does the experiment declare a parameter called `name`?
     pub fn declares(&self, name: &str) -> bool {
         self.params.iter().any(|p| p.name == name)
