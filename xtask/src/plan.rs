@@ -161,8 +161,10 @@ pub(crate) fn plan(
         };
         sets.extend(shorthands(e, run).into_iter().filter_map(|(_, s)| s));
         let file = config.filter(|_| e.config.is_some()).cloned();
-        let ctx = Context::new(e, run.seed, threads, &sets, file)
-            .map_err(|err| as_typed(err, e.id, run))?;
+        let ctx = Context::new(e, run.seed, threads, &sets, file).map_err(|err| {
+            let err = as_typed(err, e.id, run);
+            if alone { err } else { of_experiment(err, e.id) }
+        })?;
         let ctx = progress::attach(ctx);
         planned.push(Planned { e, ctx, sets });
     }
@@ -398,6 +400,23 @@ fn replaceable(dir: &Path) -> Result<(), String> {
         }
     }
     Ok(())
+}
+
+/// A `--set` value refused by one of several experiments it went to (`run all --set trials=1`):
+/// the refusal names that experiment, since the others took the value.
+fn of_experiment(e: RunError, id: &str) -> RunError {
+    match e {
+        RunError::BadInput {
+            source,
+            field,
+            rule,
+        } if source == "--set" => RunError::BadInput {
+            source,
+            field,
+            rule: format!("{rule}, for experiment {id}"),
+        },
+        other => other,
+    }
 }
 
 /// `e` (of experiment `id`) as the user typed it: a refusal reached through a shorthand names

@@ -377,7 +377,10 @@ impl Context {
 
     /// A param as a non-negative integer count, at most [`MAX_COUNT`].
     pub fn usize(&self, name: &str) -> Result<usize, RunError> {
-        let n: usize = self.parse(name, "must be a non-negative integer")?;
+        let n: usize = self.parse(
+            name,
+            &format!("must be a non-negative integer, at most {MAX_COUNT} (the limit on counts)"),
+        )?;
         if n > MAX_COUNT {
             return Err(self.reject(
                 self.value(name)?,
@@ -501,7 +504,9 @@ fn check_trials(value: &str) -> Result<(), RunError> {
         RunError::bad(
             "--set",
             "trials",
-            format!("must be a non-negative integer (got `{value}`)"),
+            format!(
+                "must be a non-negative integer, at most {MAX_TRIALS} (the limit on trials; got `{value}`)"
+            ),
         )
     })?;
     if n > MAX_TRIALS {

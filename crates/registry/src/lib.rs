@@ -226,9 +226,20 @@ impl Kind {
                 Err(because(rule, why))
             }
             Kind::Count { min, max, why } => {
-                let n: u64 = value
-                    .parse()
-                    .map_err(|_| "must be a non-negative integer".to_string())?;
+                let limit = if max as usize == MAX_COUNT {
+                    ", the limit on counts"
+                } else if max == MAX_TRIALS {
+                    ", the limit on trials"
+                } else {
+                    ""
+                };
+                // Not a whole number, or one beyond 64 bits (`1e300`): the range says what is.
+                let n: u64 = value.parse().map_err(|_| {
+                    because(
+                        format!("must be a non-negative integer, from {min} to {max}{limit}"),
+                        why,
+                    )
+                })?;
                 if n < min {
                     Err(because(format!("must be at least {min}"), why))
                 } else if n > max {
@@ -400,7 +411,12 @@ mod kind_tests {
         );
         assert_eq!(
             count.check("-1").unwrap_err(),
-            "must be a non-negative integer"
+            "must be a non-negative integer, from 2 to 10 (an interval needs two trials)"
+        );
+        let trials = Kind::count(2, MAX_TRIALS, "");
+        assert_eq!(
+            trials.check("1e300").unwrap_err(),
+            "must be a non-negative integer, from 2 to 1000000, the limit on trials"
         );
         let counts = Kind::Count {
             min: 0,
