@@ -78,6 +78,7 @@ fn main() -> ExitCode {
 
 fn dispatch(args: &[String]) -> Result<(), Failure> {
     let (cmd, verbosity) = args::parse_invocation(args)?;
+    progress::check_setting().map_err(Failure::Bad)?;
     match cmd {
         Command::Report(r) => return report::command(&r),
         Command::Fuzz(f) => return fuzz::command(&f),
