@@ -42,17 +42,22 @@ const SLOW: Duration = Duration::from_secs(2);
 
 /// `fuzz [--seconds N | --execs N] [--seed S] [--findings DIR]`.
 pub fn command(opts: &FuzzArgs) -> Result<(), Failure> {
-    match opts.budget {
-        Budget::Seconds(s) => eprintln!(
+    // Where findings go is checked first: a run of minutes must not end unable to save them.
+    crate::plan::writable_dir("--findings", &opts.findings)?;
+    let note = match opts.budget {
+        Budget::Seconds(s) => format!(
             "fuzz: {s} s over {} targets, seed {}",
             targets().len(),
             opts.seed
         ),
-        Budget::Execs(n) => eprintln!(
+        Budget::Execs(n) => format!(
             "fuzz: {n} executions per target ({} targets), seed {}",
             targets().len(),
             opts.seed
         ),
+    };
+    if !opts.quiet {
+        eprintln!("{note}");
     }
     let summary = run(opts.budget, opts.seed);
     crate::shared::print(&summary.table().render())?;

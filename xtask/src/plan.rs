@@ -242,16 +242,27 @@ pub(crate) enum Target {
     File(String),
 }
 
-/// Checks, before anything is computed, that results can be written under `out` (`--out`):
-/// it is a directory, or can be created as one (every missing folder on the way is created, by
-/// its name, inside a probe folder of this process and removed again: a name the file system
-/// refuses, e.g. longer than it takes, is found here), and a folder can be created in it. Then puts back results a killed run left moved aside
+/// Checks, before anything is computed, that results can be written under `out` (`--out`,
+/// [`writable_dir`]). Then puts back results a killed run left moved aside
 /// ([`registry::tidy`]) and checks each of `targets`: a results folder `<out>/<id>` that exists
 /// must be a directory whose previous results can be moved aside and removed, and a file must
 /// not be a directory or lie below something that is not one. Refused (exit 2) naming `--out`,
 /// the target and the reason; nothing is left behind by the check.
 pub(crate) fn check_out(out: &Path, targets: &[Target]) -> Result<(), Failure> {
     let refuse = |why: String| Failure::Bad(format!("--out: {}: {why}", out.display()));
+    writable_dir("--out", out)?;
+    registry::tidy(out)?;
+    check_targets(out, targets, &refuse)
+}
+
+/// Checks, before anything is computed, that files can be written in the folder `dir` given
+/// with `flag` (`--out`, `--findings`): it is a directory, or can be created as one (every
+/// missing folder on the way is created, by its name, inside a probe folder of this process and
+/// removed again: a name the file system refuses, e.g. longer than it takes, is found here),
+/// and a folder can be created in it. Refused (exit 2) naming the flag, the folder and the
+/// reason; nothing is left behind.
+pub(crate) fn writable_dir(flag: &str, out: &Path) -> Result<(), Failure> {
+    let refuse = |why: String| Failure::Bad(format!("{flag}: {}: {why}", out.display()));
     if out.exists() && !out.is_dir() {
         return Err(refuse("exists and is not a directory".into()));
     }
@@ -294,10 +305,18 @@ pub(crate) fn check_out(out: &Path, targets: &[Target]) -> Result<(), Failure> {
         }
     }
     let _ = std::fs::remove_dir_all(&probe);
-    if let Some(why) = failed {
-        return Err(refuse(why));
+    match failed {
+        Some(why) => Err(refuse(why)),
+        None => Ok(()),
     }
-    registry::tidy(out)?;
+}
+
+/// [`check_out`]'s check of each target under `out`.
+fn check_targets(
+    out: &Path,
+    targets: &[Target],
+    refuse: &dyn Fn(String) -> Failure,
+) -> Result<(), Failure> {
     for t in targets {
         match t {
             Target::Results(id) => {
