@@ -122,16 +122,17 @@ pub(crate) fn merge(exps: &Registry, m: &MergeArgs) -> Result<(), Failure> {
     }
     let config = header.config.as_ref().map(|c| PathBuf::from(&c.path));
     let report = provenance::stamp(&report, e, &ctx, &header.sets, config.as_deref());
-    let mut stdout = |s: &str| print(s);
-    Printer::new(m.format, false, &mut stdout).report(e, &report)?;
+    // Written before printed: a failed print must not cost the merged results.
     let dir = out.join(e.id);
     registry::write_results(&dir, &report)?;
+    let mut stdout = |s: &str| print(s);
+    let printed = Printer::new(m.format, false, &mut stdout).report(e, &report);
     note(&format!(
         "results: {} (merged from {} shards)",
         dir.display(),
         header.shards
     ));
-    Ok(())
+    printed
 }
 
 /// A merge replaces `dir` (`<out>/<id>`) whole: refused (exit 2) when it holds one of the
