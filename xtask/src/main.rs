@@ -58,7 +58,10 @@ fn main() -> ExitCode {
                 .map_err(|a| Failure::Bad(format!("argument {a:?} is not valid UTF-8")))
         })
         .collect();
-    match args.and_then(|a| dispatch(&a)) {
+    let done = args.and_then(|a| dispatch(&a));
+    // The run locks end with the run, whatever its outcome (a refused run leaves no empty --out).
+    registry::release_locks();
+    match done {
         Ok(()) => ExitCode::SUCCESS,
         Err(f) => {
             // One line each: what was wrong and the rule (a usage error points to the usage).

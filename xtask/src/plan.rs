@@ -252,7 +252,44 @@ pub(crate) fn check_out(out: &Path, targets: &[Target]) -> Result<(), Failure> {
     let refuse = |why: String| Failure::Bad(format!("--out: {}: {why}", out.display()));
     writable_dir("--out", out)?;
     registry::tidy(out)?;
-    check_targets(out, targets, &refuse)
+    check_targets(out, targets, &refuse)?;
+    lock_targets(out, targets, &refuse)
+}
+
+/// Takes the run lock of every target ([`registry::lock_writing`]) for the rest of the run, so
+/// that a second run writing the same results into the same `--out` is refused now, before it
+/// computes anything, instead of replacing this one's results at the end without a word.
+fn lock_targets(
+    out: &Path,
+    targets: &[Target],
+    refuse: &dyn Fn(String) -> Failure,
+) -> Result<(), Failure> {
+    for t in targets {
+        let (parent, name, shown) = match t {
+            Target::Results(id) => (out.to_path_buf(), id.clone(), id.clone()),
+            Target::File(rel) => {
+                let path = out.join(rel);
+                let name = path
+                    .file_name()
+                    .map(|n| n.to_string_lossy().into_owned())
+                    .unwrap_or_default();
+                let parent = path
+                    .parent()
+                    .map_or_else(|| out.to_path_buf(), Path::to_path_buf);
+                (parent, name, rel.clone())
+            }
+        };
+        let what = format!(
+            "a run writing {shown}, started {}",
+            crate::provenance::utc_now()
+        );
+        if let Some(holder) = registry::lock_writing(&parent, &name, &what)? {
+            return Err(refuse(format!(
+                "{shown}: another run is writing there now ({holder}); two runs into one --out would leave only one's results: wait for it to end, or give another --out"
+            )));
+        }
+    }
+    Ok(())
 }
 
 /// Checks, before anything is computed, that files can be written in the folder `dir` given

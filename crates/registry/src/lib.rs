@@ -35,6 +35,7 @@ mod context;
 mod engine;
 mod error;
 mod finite;
+mod lock;
 mod output;
 mod progress;
 mod table;
@@ -47,6 +48,7 @@ pub use context::{
 };
 pub use engine::{TrialEngine, TrialMode};
 pub use error::{DuplicateId, RunError};
+pub use lock::{lock_path, lock_writing, release_locks};
 pub use output::{
     Agreement, MAX_ANGLE_DEG, MAX_DATA_ROWS, OutputFile, Report, abandon_writes, tidy,
     write_file_through, write_results,

@@ -263,11 +263,17 @@ fn leftover(file_name: &str) -> Option<(&str, u32, bool)> {
     Some((name, digits.parse().ok()?, old))
 }
 
-/// Whether the process that left `path` has ended: on Linux, no `/proc/PID`; elsewhere, the
+/// Whether the run that left `path` (a leftover of `<parent>/<name>` by process `pid`) has
+/// ended: nobody holds the run lock of `name` ([`crate::lock`]). A process id alone proves
+/// nothing on a file system shared with other machines (their processes are not this one's, and
+/// ids are reused). Only where the lock cannot be told: on Linux, no `/proc/PID`; elsewhere, the
 /// leftover is more than a day old. This process's own leftovers are never ended ones.
-fn abandoned(path: &Path, pid: u32) -> bool {
+fn abandoned(parent: &Path, name: &str, path: &Path, pid: u32) -> bool {
     if pid == std::process::id() {
         return false;
+    }
+    if let Some(alive) = crate::lock::writer_alive(parent, name) {
+        return !alive;
     }
     if Path::new("/proc/self").exists() {
         return !Path::new("/proc").join(pid.to_string()).exists();
@@ -283,8 +289,10 @@ fn abandoned(path: &Path, pid: u32) -> bool {
 /// or a results directory shards share): removes the hidden temporary folders and files they
 /// left (`.ID.tmp-PID-...`, with up to the whole results in them), and where a kill fell
 /// between the two renames of [`write_results`] - `ID` gone, its previous results still
-/// moved aside as `.ID.old-PID-...` - puts those back as `ID`. Leftovers of processes still
-/// running (a concurrent run) are left alone. A `parent` that does not exist is fine.
+/// moved aside as `.ID.old-PID-...` - puts those back as `ID`; and removes run locks
+/// (`.ID.lock`) nobody holds. Leftovers of runs still going (a concurrent run, here or on
+/// another machine of a shared file system: it holds the run lock of `ID`) are left alone. A
+/// `parent` that does not exist is fine.
 ///
 /// Errors: an I/O failure while removing or renaming ([`RunError::Internal`]).
 pub fn tidy(parent: &Path) -> Result<(), RunError> {
@@ -296,9 +304,11 @@ pub fn tidy(parent: &Path) -> Result<(), RunError> {
         let file_name = entry.file_name().to_string_lossy().into_owned();
         let path = entry.path();
         if let Some((name, pid, old)) = leftover(&file_name)
-            && abandoned(&path, pid)
+            && abandoned(parent, name, &path, pid)
         {
             found.push((path, name.to_owned(), old));
+        } else if file_name.starts_with('.') && file_name.ends_with(".lock") {
+            crate::lock::remove_if_free(&path);
         }
     }
     found.sort();
@@ -420,6 +430,7 @@ pub fn abandon_writes() -> usize {
     }
     // The lock is kept: a write that reaches for it waits for the end of the process.
     std::mem::forget(p);
+    crate::lock::release_locks();
     cleaned
 }
 
