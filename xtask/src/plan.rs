@@ -364,11 +364,14 @@ fn check_targets(
                             "{id}: exists and is not a directory, where the results of {id} go"
                         )));
                     }
-                    Ok(_) => replaceable(&dir).map_err(|why| {
-                        refuse(format!(
-                            "{id}: the previous results cannot be replaced: {why}"
-                        ))
-                    })?,
+                    Ok(_) => {
+                        keeps_partials(&dir, id, out, refuse)?;
+                        replaceable(&dir).map_err(|why| {
+                            refuse(format!(
+                                "{id}: the previous results cannot be replaced: {why}"
+                            ))
+                        })?;
+                    }
                     Err(_) => {}
                 }
             }
@@ -406,6 +409,35 @@ fn check_targets(
         }
     }
     Ok(())
+}
+
+/// Results replace the folder `dir` (`<out>/<id>`) whole: refused (exit 2) when it holds the
+/// partial files of a sharded run (`run <id> --shard K/N --out <out>`), which the replacement
+/// would delete before they are merged.
+fn keeps_partials(
+    dir: &Path,
+    id: &str,
+    out: &Path,
+    refuse: &dyn Fn(String) -> Failure,
+) -> Result<(), Failure> {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Ok(());
+    };
+    let mut partials: Vec<String> = entries
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| crate::shard::partial::parse_name(n).is_some())
+        .collect();
+    if partials.is_empty() {
+        return Ok(());
+    }
+    partials.sort();
+    Err(refuse(format!(
+        "{id} holds the partial file{} {} of a sharded run, which writing the results of {id} there would delete: merge them into another folder first (cargo xtask merge {} --out OTHER), or give another --out",
+        if partials.len() == 1 { "" } else { "s" },
+        partials.join(", "),
+        out.join(id).display()
+    )))
 }
 
 /// A hidden name in `dir` for a probe, of the kind [`registry::tidy`] removes if a kill leaves it.

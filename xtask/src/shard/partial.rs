@@ -130,7 +130,7 @@ pub fn file_name(shard: Shard) -> String {
 }
 
 /// (K, N) of a file named `partial-K-of-N.json`.
-fn parse_name(name: &str) -> Option<(u64, u64)> {
+pub(crate) fn parse_name(name: &str) -> Option<(u64, u64)> {
     let middle = name.strip_prefix("partial-")?.strip_suffix(".json")?;
     let (k, n) = middle.split_once("-of-")?;
     let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
