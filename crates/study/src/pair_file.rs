@@ -387,7 +387,6 @@ pub fn load(file: &str, text: &str) -> Result<(Mesh, PairFile), RunError> {
     let run_deg = spec
         .run_deg
         .unwrap_or_else(|| default_run_deg(spec.driver.teeth, spec.driven.teeth));
-    samples(file, &spec, run_deg)?;
     if run_deg / spec.sample_deg > MAX_DATA_ROWS as f64 {
         return Err(RunError::bad(
             file,
@@ -445,6 +444,8 @@ pub fn load(file: &str, text: &str) -> Result<(Mesh, PairFile), RunError> {
         "clearance_percent"
     };
     proportions(file, &mesh, distance_field)?;
+    // Last: what the file asks of the run's statistics, once the gears themselves are sound.
+    samples(file, &spec, run_deg)?;
     Ok((mesh, spec))
 }
 
@@ -522,10 +523,11 @@ fn samples(file: &str, spec: &PairFile, run_deg: f64) -> Result<(), RunError> {
     let count = (run_deg / step).floor() + 1.0;
     if count < MIN_SAMPLES as f64 {
         let why = format!(
-            "{} degrees of driver angle in steps of {} give {} samples of the Theoretical Difference, and sigma, Dm and P need at least {MIN_SAMPLES}",
+            "{} degrees of driver angle in steps of {} give {} sample{} of the Theoretical Difference, and sigma, Dm and P need at least {MIN_SAMPLES}",
             fmt_number(run_deg),
             fmt_number(step),
-            fmt_number(count)
+            fmt_number(count),
+            if count == 1.0 { "" } else { "s" }
         );
         let longest_step = run_deg / (MIN_SAMPLES - 1) as f64;
         return Err(match spec.run_deg {
