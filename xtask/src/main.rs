@@ -59,6 +59,11 @@ fn main() -> ExitCode {
         })
         .collect();
     let done = args.and_then(|a| dispatch(&a));
+    // A signal taken while the command ended: its thread is cleaning up and exits with the
+    // signal's status, which must be the process's (not 0 for results it is removing).
+    while registry::stopping() {
+        std::thread::park();
+    }
     // The run locks end with the run, whatever its outcome (a refused run leaves no empty --out).
     registry::release_locks();
     match done {

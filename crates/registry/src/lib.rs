@@ -50,7 +50,7 @@ pub use engine::{TrialEngine, TrialMode};
 pub use error::{DuplicateId, RunError};
 pub use lock::{lock_path, lock_writing, release_locks};
 pub use output::{
-    Agreement, MAX_ANGLE_DEG, MAX_DATA_ROWS, OutputFile, Report, abandon_writes, tidy,
+    Agreement, MAX_ANGLE_DEG, MAX_DATA_ROWS, OutputFile, Report, abandon_writes, stopping, tidy,
     write_file_through, write_results,
 };
 pub use progress::{BatchProgress, Progress};

@@ -3,7 +3,7 @@
 use std::collections::BTreeSet;
 use std::fs;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Mutex, MutexGuard};
 
 use serde_json::{Value, json};
@@ -347,6 +347,15 @@ static PENDING: Mutex<Pending> = Mutex::new(Pending {
     aside: Vec::new(),
 });
 
+/// Set first thing by [`abandon_writes`], without waiting for any lock.
+static STOPPING: AtomicBool = AtomicBool::new(false);
+
+/// Whether the process is being stopped ([`abandon_writes`] has begun): no write starts any
+/// more, and a process that reaches its end should leave its exit to the stopping thread.
+pub fn stopping() -> bool {
+    STOPPING.load(Ordering::SeqCst)
+}
+
 /// The pending writes, locked (a panic elsewhere while holding it leaves the list usable).
 fn pending() -> MutexGuard<'static, Pending> {
     PENDING
@@ -358,6 +367,13 @@ fn pending() -> MutexGuard<'static, Pending> {
 /// abandoned (the process is being stopped) this waits for the end of the process, so nothing
 /// more is written.
 fn pending_for_write() -> MutexGuard<'static, Pending> {
+    // Seen before the lock is taken: a writer going from one file to the next would otherwise
+    // take the lock again before the stopping thread, and finish the write regardless.
+    if stopping() {
+        loop {
+            std::thread::park();
+        }
+    }
     let guard = pending();
     if guard.abandoned {
         drop(guard);
@@ -409,6 +425,7 @@ pub fn write_file_through(
 /// write done). Writes still running in other threads stop at their next step. Returns the
 /// number of paths it cleaned up.
 pub fn abandon_writes() -> usize {
+    STOPPING.store(true, Ordering::SeqCst);
     let mut p = pending();
     p.abandoned = true;
     let mut cleaned = 0;
