@@ -53,6 +53,16 @@ pub(crate) fn write_atomically(path: &Path, text: &str) -> Result<(), Failure> {
     registry::write_file_through(path, &tmp, text.as_bytes()).map_err(|(what, e)| fail(what, e))
 }
 
+/// Releases every run lock of this process when dropped ([`registry::release_locks`]): held by
+/// a command for as long as it writes, and by `main` for the whole process.
+pub(crate) struct LocksEnd;
+
+impl Drop for LocksEnd {
+    fn drop(&mut self) {
+        registry::release_locks();
+    }
+}
+
 /// Removes the temporary results being written and puts back results moved aside
 /// ([`registry::abandon_writes`]), says so in one line and exits with `status`.
 fn stop(status: i32) -> ! {
