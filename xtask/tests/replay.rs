@@ -369,3 +369,50 @@ fn cells_that_are_not_cells_of_the_table_are_refused_naming_what_was_typed() {
         succeeded(&all);
     }
 }
+
+/// `replay ... --set clearance=50` wrote into the default replay's folder under the same title:
+/// a replay under other settings goes to a folder of its own, and its title names them.
+#[test]
+fn a_replay_under_other_settings_keeps_the_default_replays_results() {
+    let s = Scratch::new("replay-settings");
+    let out = s.path("out");
+    let base = [
+        "replay", "table3", "B/m3-e3", "0", "--trials", "4", "-q", "--out", &out,
+    ];
+    let default = succeeded(&base);
+    let mut other = base.to_vec();
+    other.extend(["--set", "clearance=50"]);
+    let changed = succeeded(&other);
+    let mut seeded = base.to_vec();
+    seeded.extend(["--seed", "7"]);
+    succeeded(&seeded);
+    let title = |text: &str| text.lines().next().unwrap_or_default().to_owned();
+    assert!(!title(&default).contains("clearance=50"), "{default}");
+    assert!(title(&changed).contains("clearance=50"), "{changed}");
+    let read =
+        |dir: &str| std::fs::read_to_string(s.0.join("out").join(dir).join("table.md")).unwrap();
+    assert_eq!(title(&read("replay-table3-B-m3-e3-0")), title(&default));
+    assert_eq!(
+        title(&read("replay-table3-B-m3-e3-0-clearance-50")),
+        title(&changed)
+    );
+    assert!(read("replay-table3-B-m3-e3-0-seed-7").contains("(seed 7)"));
+    // The other way round: the replay under other settings is there first, in the plain folder;
+    // the replay at the defaults takes that folder and moves it to its own name.
+    let out2 = s.path("out2");
+    let mut first = other.clone();
+    let at = first.iter().position(|a| *a == out.as_str()).unwrap();
+    first[at] = &out2;
+    succeeded(&first);
+    let read2 =
+        |dir: &str| std::fs::read_to_string(s.0.join("out2").join(dir).join("table.md")).unwrap();
+    assert_eq!(title(&read2("replay-table3-B-m3-e3-0")), title(&changed));
+    let mut then = base.to_vec();
+    then[at] = &out2;
+    succeeded(&then);
+    assert_eq!(title(&read2("replay-table3-B-m3-e3-0")), title(&default));
+    assert_eq!(
+        title(&read2("replay-table3-B-m3-e3-0-clearance-50")),
+        title(&changed)
+    );
+}
