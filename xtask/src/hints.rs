@@ -227,11 +227,16 @@ fn fraction_of_a_clearance(v: f64) -> bool {
     (0.01..1.0).contains(&v)
 }
 
-/// For a clearance `g` (% of h) above 0 and below 0.01 %, too small to be a fraction typed for
-/// a per cent: what it means, in words. Such a clearance runs, and is what was typed, but its
-/// gears jam at nearly every tooth (the paper finds jams below about 10 %).
+/// The smallest clearance (% of h) warned as tiny: below it, the centre distance of gears of a
+/// millimetre and up no longer differs in a double from the tips' limit, and the run refuses the
+/// clearance itself in one line, which a warning would only precede.
+const TINIEST_WARNED: f64 = 1e-9;
+
+/// For a clearance `g` (% of h) from [`TINIEST_WARNED`] to below 0.01 %, too small to be a
+/// fraction typed for a per cent: what it means, in words. Such a clearance runs, and is what was
+/// typed, but its gears jam at nearly every tooth (the paper finds jams below about 10 %).
 fn tiny_clearance(g: f64) -> Option<String> {
-    (g > 0.0 && g < 0.01).then(|| {
+    (g >= TINIEST_WARNED && g < 0.01).then(|| {
         format!(
             "a clearance of {} % of the tooth height h leaves the tips {} of h from the opposite valleys: the gears will jam at nearly every tooth (the paper finds jams below about 10 %); the unit is % of h, so 40 % is written 40",
             registry::fmt_number(g),
