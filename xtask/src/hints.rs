@@ -236,7 +236,7 @@ const TINIEST_WARNED: f64 = 1e-9;
 /// fraction typed for a per cent: what it means, in words. Such a clearance runs, and is what was
 /// typed, but its gears jam at nearly every tooth (the paper finds jams below about 10 %).
 fn tiny_clearance(g: f64) -> Option<String> {
-    (g >= TINIEST_WARNED && g < 0.01).then(|| {
+    (TINIEST_WARNED..0.01).contains(&g).then(|| {
         format!(
             "a clearance of {} % of the tooth height h leaves the tips {} of h from the opposite valleys: the gears will jam at nearly every tooth (the paper finds jams below about 10 %); the unit is % of h, so 40 % is written 40",
             registry::fmt_number(g),
