@@ -74,6 +74,7 @@ pub fn check(
         )
         .to_string());
     }
+    names_no_file(ctx)?;
     if let Some(g) = value(ctx, study::gearing::PARAM.name)
         && Gearing::builtin(&g).is_none()
         && seen.insert(("gearing", g.clone()))
@@ -93,6 +94,49 @@ pub fn check(
     }
     measured_gears_in_gearing(ctx, flags)?;
     shared_settings(ctx)
+}
+
+/// A name typed for a setting that takes a built-in name or a file (`gearing=freeth2021`,
+/// `measured=none`) must not also be a file where the run starts: the built-in would be used
+/// and the file ignored without a word (the two may give different results). Refused naming the
+/// setting, the name and the file, and how to say which is meant. A name left at its default is
+/// not checked: the user asked for no file.
+fn names_no_file(ctx: &Context) -> Result<(), String> {
+    for (name, typed) in ctx.given() {
+        let builtin = match name {
+            n if n == study::gearing::PARAM.name => Gearing::builtin(typed.trim()).is_some(),
+            MEASURED => {
+                hypotheses::measured_file_given(typed).is_none() && !typed.trim().is_empty()
+            }
+            _ => false,
+        };
+        if !builtin {
+            continue;
+        }
+        let path = Path::new(typed.trim());
+        if std::fs::metadata(path).is_ok_and(|m| !m.is_dir()) {
+            let here = std::env::current_dir()
+                .map(|d| d.join(path).display().to_string())
+                .unwrap_or_else(|_| typed.trim().to_owned());
+            let what = if name == MEASURED {
+                "the setting for no table"
+            } else {
+                "an embedded gearing"
+            };
+            return Err(registry::RunError::bad(
+                "--set",
+                name,
+                format!(
+                    "`{}` is both {what} and a file in this folder ({here}), so it is unclear which is meant: write ./{} (or the file's full path) to read the file, or rename or move the file to use the built-in `{}`",
+                    typed.trim(),
+                    typed.trim(),
+                    typed.trim()
+                ),
+            )
+            .to_string());
+        }
+    }
+    Ok(())
 }
 
 /// The settings that setting groups share and every experiment declaring them reads the same

@@ -16,6 +16,7 @@ pub mod paper;
 mod register;
 pub mod replay;
 pub mod settings;
+pub mod table_cells;
 
 pub(crate) use register::experiment;
 

@@ -199,7 +199,7 @@ fn typed_part(e: RunError, id: &str, cell: &str, typed: &[(&str, &str, &str)]) -
 }
 
 /// The (unchecked) spec of the cell and the parameters typed in it.
-fn unchecked_cell_spec<'a>(
+pub(crate) fn unchecked_cell_spec<'a>(
     s: &CellSettings,
     id: &'a str,
     cell: &'a str,
@@ -247,6 +247,8 @@ pub fn replay(ctx: &Context, id: &str, cell: &str, trial: Option<u64>) -> Result
     grammar(id)?;
     // Every replayable table counts its cells with the per-cell `trials` parameter.
     let s = crate::settings::cells(ctx, &study::grids::TRIALS)?;
+    // A cell the table holds under these settings, before its gears are made.
+    crate::table_cells::check(ctx, &s, id, cell)?;
     let spec = cell_spec(&s, ctx.seed(), id, cell)?;
     let (g, trials) = (s.gearing(), s.trials);
     match trial {

@@ -1,4 +1,4 @@
-//! libFuzzer target: `experiments::pair::load` on arbitrary bytes, then every promise of
+//! libFuzzer target: `study::pair_file::prepare` on arbitrary bytes, then every promise of
 //! `xtask/src/fuzz_targets.rs` (shared with `cargo xtask fuzz`).
 
 #![no_main]

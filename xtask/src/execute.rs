@@ -51,15 +51,18 @@ pub(crate) fn run_every(
         let (result, seconds) = execute(p.e, &p.ctx, &pool);
         let result = match result {
             Ok(report) => {
-                // Printed as written: tables.json lists run.json among the files.
+                // Printed as written: tables.json lists run.json among the files. Written
+                // before it is printed, so that a failed print (a full disk behind stdout)
+                // loses no results.
                 let report =
                     provenance::stamp(&report, p.e, &p.ctx, &p.sets, run.config.as_deref());
-                printer.report(p.e, &report)?;
                 let results = dir.join(p.e.id);
-                registry::write_results(&results, &report).map(|()| {
+                let written = registry::write_results(&results, &report);
+                if written.is_ok() {
+                    printer.report(p.e, &report)?;
                     note(&format!("results: {}", results.display()));
-                    report
-                })
+                }
+                written.map(|()| report)
             }
             Err(err) => Err(as_typed(err, p.e.id, run)),
         };
@@ -126,10 +129,13 @@ pub(crate) fn run_all(exps: &Registry, run: &RunArgs) -> Result<(), Failure> {
             }
         };
         let report = provenance::stamp(&report, p.e, &p.ctx, &p.sets, run.config.as_deref());
-        printer.report(p.e, &report)?;
+        // Written before printed: a print that fails (stdout closed or its disk full) must not
+        // cost the results.
         let dir = out.join(p.e.id);
         registry::write_results(&dir, &report)?;
+        let printed = printer.report(p.e, &report);
         note(&format!("results: {}", dir.display()));
+        printed?;
     }
     printer.finish()
 }

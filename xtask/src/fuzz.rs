@@ -42,17 +42,22 @@ const SLOW: Duration = Duration::from_secs(2);
 
 /// `fuzz [--seconds N | --execs N] [--seed S] [--findings DIR]`.
 pub fn command(opts: &FuzzArgs) -> Result<(), Failure> {
-    match opts.budget {
-        Budget::Seconds(s) => eprintln!(
+    // Where findings go is checked first: a run of minutes must not end unable to save them.
+    crate::plan::writable_dir("--findings", &opts.findings)?;
+    let note = match opts.budget {
+        Budget::Seconds(s) => format!(
             "fuzz: {s} s over {} targets, seed {}",
             targets().len(),
             opts.seed
         ),
-        Budget::Execs(n) => eprintln!(
+        Budget::Execs(n) => format!(
             "fuzz: {n} executions per target ({} targets), seed {}",
             targets().len(),
             opts.seed
         ),
+    };
+    if !opts.quiet {
+        eprintln!("{note}");
     }
     let summary = run(opts.budget, opts.seed);
     crate::shared::print(&summary.table().render())?;
@@ -248,6 +253,9 @@ const EDGE_CASES: &[&str] = &[
     "(gears: [(name: \"a\", teeth: 4294967295, measured_radius: Some(1e308), source: \"\")], arbors: [(name: \"x\", gears: [\"a\"])], meshes: [], pointers: [])",
     "(driver: (teeth: 3, tip_radius: 1e308, root_radius: 5e-324), driven: (teeth: 100000, tip_radius: 10.0, root_radius: 9.0), centre_distance: Some(1e308))",
     "(driver: (teeth: 20, tip_radius: 10.0, root_radius: 9.0), driven: (teeth: 20, tip_radius: 10.0, root_radius: 9.0), clearance_percent: Some(99.999999), sample_deg: 1e-300, run_deg: Some(360000.0))",
+    // Angles where a double loses them, and samples too few for a statistic.
+    "(driver: (teeth: 20, tip_radius: 10.0, root_radius: 9.0), driven: (teeth: 24, tip_radius: 12.0, root_radius: 11.0), clearance_percent: Some(40.0), start_deg: 1e17, sample_deg: 360.0, run_deg: Some(1e-9))",
+    "(driver: (teeth: 20, tip_radius: 10.0, root_radius: 9.0), driven: (teeth: 24, tip_radius: 12.0, root_radius: 11.0), clearance_percent: Some(40.0), start_deg: 999999.0, start: at_rest(theta_deg: -1e20), sample_deg: 4.5)",
 ];
 
 /// Byte strings that are not UTF-8.

@@ -12,10 +12,13 @@
 //!   `mesh_ratio` and `mesh_geometry` of every mesh, `days_per_degree` finite where given);
 //! - an accepted measured table holds only values its own checks accept, and applying each row
 //!   to an ideal gear returns a gear or an error;
-//! - an accepted pair config (`study::pair_file::load`) gives a mesh with at least 3 and at most
-//!   `geometry::MAX_TEETH` teeth per gear, finite radii and a finite positive centre distance
-//!   at which the gears can touch, and (for gears of at most 2000 teeth, so that an input stays
-//!   fast) the mesh runs one driver pitch to a finite driven angle.
+//! - an accepted pair config (`study::pair_file::prepare`) gives a mesh with at least 3 and at
+//!   most `geometry::MAX_TEETH` teeth per gear, finite radii and a finite positive centre
+//!   distance at which the gears can touch; every angle it gives (start, tips, arbor, at-rest
+//!   start) is within `registry::MAX_ANGLE_DEG`; its samples number at least
+//!   `registry::MIN_SAMPLES`, four or more per driver pitch; and (for gears of at most 2000
+//!   teeth, so that an input stays fast) the mesh runs one driver pitch from the file's own
+//!   start angle and start to a finite driven angle, ending where it was asked to.
 
 use std::collections::BTreeSet;
 
@@ -282,13 +285,46 @@ pub fn measured(text: &str) -> Result<Outcome, String> {
     Ok(Outcome::Accepted)
 }
 
-/// `study::pair_file::load`, then the accepted mesh checked and run over one driver pitch.
+/// The angles and samples of an accepted pair file: every angle within the limit, and enough
+/// samples for sigma, Dm and P.
+fn pair_angles(spec: &study::pair_file::PairFile) -> Result<(), String> {
+    let mut angles = vec![("start_deg", spec.start_deg)];
+    for g in [&spec.driver, &spec.driven] {
+        angles.extend(g.tips_deg.iter().flatten().map(|&a| ("tips_deg", a)));
+    }
+    if let study::pair_file::StartSpec::AtRest { theta_deg } = spec.start {
+        angles.push(("start.theta_deg", theta_deg));
+    }
+    if let Some((field, a)) = angles
+        .into_iter()
+        .find(|(_, a)| !(a.is_finite() && a.abs() <= registry::MAX_ANGLE_DEG))
+    {
+        return Err(format!("accepted {field} {a}, beyond the limit on angles"));
+    }
+    let run = spec
+        .run_deg
+        .unwrap_or_else(|| study::pair_file::default_run_deg(spec.driver.teeth, spec.driven.teeth));
+    let samples = (run / spec.sample_deg).floor() + 1.0;
+    let pitch = 360.0 / spec.driver.teeth as f64;
+    if samples < registry::MIN_SAMPLES as f64 || spec.sample_deg * 4.0 > pitch * (1.0 + 1e-12) {
+        return Err(format!(
+            "accepted sample_deg {} over run_deg {run} ({samples} samples, driver pitch {pitch})",
+            spec.sample_deg
+        ));
+    }
+    Ok(())
+}
+
+/// `study::pair_file::prepare`, then the accepted mesh checked and run over one driver pitch
+/// from the file's start angle and start.
 pub fn pair(text: &str) -> Result<Outcome, String> {
-    let (mesh, _) = match study::pair_file::load(FILE, text) {
-        Ok(m) => m,
+    let prepared = match study::pair_file::prepare(FILE, text) {
+        Ok(p) => p,
         Err(e) => return check_refusal(e.to_string()),
     };
     check_fields(text, PAIR_FIELDS)?;
+    pair_angles(&prepared.spec)?;
+    let mesh = &prepared.mesh;
     let d = mesh.centre_distance();
     if !(d.is_finite() && d > 0.0) {
         return Err(format!("accepted centre distance {d}"));
@@ -316,10 +352,18 @@ pub fn pair(text: &str) -> Result<Outcome, String> {
         return Ok(Outcome::Accepted);
     }
     let pitch = std::f64::consts::TAU / mesh.driver().teeth() as f64;
-    let traj = mesh.run(0.0, pitch, contact::Start::Touching(0.0));
-    let theta = traj.theta_at(pitch);
+    let phi0 = prepared.spec.start_deg.to_radians();
+    let traj = mesh.run(phi0, phi0 + pitch, prepared.start);
+    let theta = traj.theta_at(phi0 + pitch);
     if !theta.is_finite() {
         return Err(format!("the accepted mesh ran to driven angle {theta}"));
+    }
+    if traj.phi_end() < phi0 + pitch * (1.0 - 1e-9) {
+        return Err(format!(
+            "the accepted mesh's run from {} deg ended at {} deg, short of one driver pitch",
+            prepared.spec.start_deg,
+            traj.phi_end().to_degrees()
+        ));
     }
     Ok(Outcome::Accepted)
 }

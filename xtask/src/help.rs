@@ -52,7 +52,7 @@ Usage:
   cargo xtask report [--out DIR]
                                 write <out>/index.html: one self-contained page with
                                 every experiment's tables, figures and provenance
-  cargo xtask fuzz [--seconds N | --execs N] [--seed S] [--findings DIR]
+  cargo xtask fuzz [--seconds N | --execs N] [--seed S] [--findings DIR] [-q]
                                 feed mutated RON files to the gearing, measured-
                                 errors and pair config loaders (default 60 s); exit 1
                                 on a panic or a broken promise, inputs saved in DIR
@@ -92,10 +92,12 @@ Anywhere on the line:
 Exit status: 0 done, 1 internal error, 2 bad input (one line on stderr names the file or
 flag, the field and the rule; the failing experiment writes nothing).
 `run all` runs the others after a failure and exits 1 if any failed internally, else 2 if any
-had bad input.
+had bad input. Stopped by a signal: 130 (SIGINT), 143 (SIGTERM), 129 (SIGHUP), with what was
+being written removed. A run holding the results of the same experiment in the same --out is
+never joined: the second is refused (exit 2).
 Progress bars (trials done, rate, time left) appear on stderr when it is a terminal and an
-experiment runs longer than a second. Logs go to stderr; set RUST_LOG (e.g. RUST_LOG=info)
-for more.",
+experiment runs longer than a second (XTASK_PROGRESS=always|never|auto; any other value is
+refused). Logs go to stderr; set RUST_LOG (e.g. RUST_LOG=info) for more.",
         max_seed = u64::MAX,
         max_trials = registry::MAX_TRIALS,
         threads = default_threads(),

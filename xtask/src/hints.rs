@@ -139,20 +139,22 @@ fn ron_option_hint(msg: &str) -> Option<String> {
     let (file, place) = head.rsplit_once(": line ")?;
     let (line, column) = place.split_once(", column ")?;
     let (line, column): (usize, usize) = (line.trim().parse().ok()?, column.trim().parse().ok()?);
-    let field = std::fs::read_to_string(file).ok().and_then(|text| {
-        let l = text.lines().nth(line.checked_sub(1)?)?;
-        let before: String = l.chars().take(column.saturating_sub(1)).collect();
-        let before = before.trim_end().strip_suffix(':')?;
-        let name: String = before
-            .chars()
-            .rev()
-            .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
-            .collect::<Vec<_>>()
-            .into_iter()
-            .rev()
-            .collect();
-        (!name.is_empty()).then_some(name)
-    });
+    let field = input_file::read_to_string(std::path::Path::new(file), input_file::MAX_INPUT_BYTES)
+        .ok()
+        .and_then(|text| {
+            let l = text.lines().nth(line.checked_sub(1)?)?;
+            let before: String = l.chars().take(column.saturating_sub(1)).collect();
+            let before = before.trim_end().strip_suffix(':')?;
+            let name: String = before
+                .chars()
+                .rev()
+                .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+                .collect::<Vec<_>>()
+                .into_iter()
+                .rev()
+                .collect();
+            (!name.is_empty()).then_some(name)
+        });
     Some(match field {
         Some(f) => format!(
             "`{f}` is optional: write its value inside Some(...), e.g. `{f}: Some(...)`, or leave the field out"
@@ -172,21 +174,40 @@ pub(crate) fn warnings(
     config: Option<&ConfigFile>,
 ) -> Vec<String> {
     let mut out = Vec::new();
-    // A clearance below 1 % of h: probably a fraction typed for a percentage.
+    // A clearance below 1 % of h: a fraction typed for a percentage, or tips all but touching
+    // the opposite valleys. One value (`clearance`) or a list of them (`clearances`, `grid`).
     for (key, value) in sets {
         let Some(p) = e.all_params().find(|p| p.name == key) else {
             continue;
         };
-        if p.name == "clearance"
-            && p.unit == "% of h"
-            && let Ok(v) = value.parse::<f64>()
-            && fraction_of_a_clearance(v)
-        {
-            let meant = percent(v);
-            out.push(format!(
-                "warning: {}: --set clearance={value} is {value} % of the tooth height h (the unit is % of h, not a fraction of it); for {meant} % write --set clearance={meant}",
-                e.id,
-            ));
+        if p.unit != "% of h" || !["clearance", "clearances", "grid"].contains(&p.name) {
+            continue;
+        }
+        for item in value.split(',') {
+            let Ok(v) = item.trim().parse::<f64>() else {
+                continue;
+            };
+            if fraction_of_a_clearance(v) && p.name == "clearance" {
+                let meant = percent(v);
+                out.push(format!(
+                    "warning: {}: --set clearance={value} is {value} % of the tooth height h (the unit is % of h, not a fraction of it); for {meant} % write --set clearance={meant}",
+                    e.id,
+                ));
+            } else if fraction_of_a_clearance(v) {
+                let meant = percent(v);
+                out.push(format!(
+                    "warning: {}: --set {}={value}: {} is {} % of the tooth height h (the unit is % of h, not a fraction of it); for {meant} % write {meant} in the list",
+                    e.id,
+                    p.name,
+                    item.trim(),
+                    item.trim(),
+                ));
+            } else if let Some(why) = tiny_clearance(v) {
+                out.push(format!(
+                    "warning: {}: --set {}={value}: {why}",
+                    e.id, p.name
+                ));
+            }
         }
     }
     if e.id == "pair" {
@@ -204,6 +225,24 @@ pub(crate) fn warnings(
 /// as a per cent (`100 v`) a clearance the paper's gears use (1 to 100 %).
 fn fraction_of_a_clearance(v: f64) -> bool {
     (0.01..1.0).contains(&v)
+}
+
+/// The smallest clearance (% of h) warned as tiny: below it, the centre distance of gears of a
+/// millimetre and up no longer differs in a double from the tips' limit, and the run refuses the
+/// clearance itself in one line, which a warning would only precede.
+const TINIEST_WARNED: f64 = 1e-9;
+
+/// For a clearance `g` (% of h) from [`TINIEST_WARNED`] to below 0.01 %, too small to be a
+/// fraction typed for a per cent: what it means, in words. Such a clearance runs, and is what was
+/// typed, but its gears jam at nearly every tooth (the paper finds jams below about 10 %).
+fn tiny_clearance(g: f64) -> Option<String> {
+    (TINIEST_WARNED..0.01).contains(&g).then(|| {
+        format!(
+            "a clearance of {} % of the tooth height h leaves the tips {} of h from the opposite valleys: the gears will jam at nearly every tooth (the paper finds jams below about 10 %); the unit is % of h, so 40 % is written 40",
+            registry::fmt_number(g),
+            registry::fmt_number(g / 100.0)
+        )
+    })
 }
 
 /// A fraction `v` as the per cent it may have meant, without float noise (0.07 -> 7).
@@ -250,13 +289,28 @@ fn pair_warnings(c: &ConfigFile) -> Vec<String> {
             ));
         }
     }
-    if let Some(g) = p.spec.clearance_percent
-        && fraction_of_a_clearance(g)
-    {
-        let meant = percent(g);
-        out.push(format!(
-            "warning: {name}: clearance_percent: {g} is {g} % of the tooth height h (the unit is % of h, not a fraction of it); for {meant} % write Some({meant})",
-        ));
+    if let Some(g) = p.spec.clearance_percent {
+        if fraction_of_a_clearance(g) {
+            let meant = percent(g);
+            out.push(format!(
+                "warning: {name}: clearance_percent: {g} is {g} % of the tooth height h (the unit is % of h, not a fraction of it); for {meant} % write Some({meant})",
+            ));
+        } else if let Some(why) = tiny_clearance(g) {
+            out.push(format!("warning: {name}: clearance_percent: {why}"));
+        }
+    } else {
+        // The clearance a centre distance gives: D = R1 + R2 - h + h G / 100, h the mean height.
+        let (d1, d2) = (p.mesh.driver(), p.mesh.driven());
+        let h = 0.5 * (d1.tooth_height() + d2.tooth_height());
+        let g = (p.mesh.centre_distance() - d1.tip_radius() - d2.tip_radius() + h) / h * 100.0;
+        if g > 0.0 && g < 1.0 {
+            out.push(format!(
+                "warning: {name}: centre_distance: {} gives a clearance of {} % of the mean tooth height h (R1 + R2 - h = {}): the tips all but touch the opposite valleys, and the gears will jam at nearly every tooth (the paper finds jams below about 10 %)",
+                registry::fmt_number(p.mesh.centre_distance()),
+                registry::fmt_f64(g, 4),
+                registry::fmt_number(d1.tip_radius() + d2.tip_radius() - h),
+            ));
+        }
     }
     out
 }

@@ -58,7 +58,15 @@ fn main() -> ExitCode {
                 .map_err(|a| Failure::Bad(format!("argument {a:?} is not valid UTF-8")))
         })
         .collect();
-    match args.and_then(|a| dispatch(&a)) {
+    let done = args.and_then(|a| dispatch(&a));
+    // A signal taken while the command ended: its thread is cleaning up and exits with the
+    // signal's status, which must be the process's (not 0 for results it is removing).
+    while registry::stopping() {
+        std::thread::park();
+    }
+    // The run locks end with the run, whatever its outcome (a refused run leaves no empty --out).
+    registry::release_locks();
+    match done {
         Ok(()) => ExitCode::SUCCESS,
         Err(f) => {
             // One line each: what was wrong and the rule (a usage error points to the usage).
@@ -78,6 +86,7 @@ fn main() -> ExitCode {
 
 fn dispatch(args: &[String]) -> Result<(), Failure> {
     let (cmd, verbosity) = args::parse_invocation(args)?;
+    progress::check_setting().map_err(Failure::Bad)?;
     match cmd {
         Command::Report(r) => return report::command(&r),
         Command::Fuzz(f) => return fuzz::command(&f),

@@ -161,8 +161,10 @@ pub(crate) fn plan(
         };
         sets.extend(shorthands(e, run).into_iter().filter_map(|(_, s)| s));
         let file = config.filter(|_| e.config.is_some()).cloned();
-        let ctx = Context::new(e, run.seed, threads, &sets, file)
-            .map_err(|err| as_typed(err, e.id, run))?;
+        let ctx = Context::new(e, run.seed, threads, &sets, file).map_err(|err| {
+            let err = as_typed(err, e.id, run);
+            if alone { err } else { of_experiment(err, e.id) }
+        })?;
         let ctx = progress::attach(ctx);
         planned.push(Planned { e, ctx, sets });
     }
@@ -212,9 +214,24 @@ pub(crate) fn preflight(planned: &[Planned], run: &RunArgs) -> Result<(), Failur
         ("--hypothesis", "--set measured")
     };
     for p in planned {
-        experiments::inputs::check(&p.ctx, flags, &mut seen).map_err(Failure::Bad)?;
+        experiments::inputs::check(&p.ctx, flags, &mut seen)
+            .map_err(|m| Failure::Bad(typed_flag(m, run)))?;
     }
     Ok(())
+}
+
+/// A refusal `msg` of `--set gearing` or `--set measured` said of the shorthand the user typed
+/// for it (`--gearing`, `--errors`).
+fn typed_flag(msg: String, run: &RunArgs) -> String {
+    for (given, set, flag) in [
+        (run.gearing.is_some(), "--set: gearing: ", "--gearing: "),
+        (run.errors.is_some(), "--set: measured: ", "--errors: "),
+    ] {
+        if given && let Some(rest) = msg.strip_prefix(set) {
+            return format!("{flag}{rest}");
+        }
+    }
+    msg
 }
 
 /// What a command writes under `--out`, for [`check_out`] to check before anything is computed.
@@ -225,16 +242,64 @@ pub(crate) enum Target {
     File(String),
 }
 
-/// Checks, before anything is computed, that results can be written under `out` (`--out`):
-/// it is a directory, or can be created as one (every missing folder on the way is created, by
-/// its name, inside a probe folder of this process and removed again: a name the file system
-/// refuses, e.g. longer than it takes, is found here), and a folder can be created in it. Then puts back results a killed run left moved aside
+/// Checks, before anything is computed, that results can be written under `out` (`--out`,
+/// [`writable_dir`]). Then puts back results a killed run left moved aside
 /// ([`registry::tidy`]) and checks each of `targets`: a results folder `<out>/<id>` that exists
 /// must be a directory whose previous results can be moved aside and removed, and a file must
 /// not be a directory or lie below something that is not one. Refused (exit 2) naming `--out`,
 /// the target and the reason; nothing is left behind by the check.
 pub(crate) fn check_out(out: &Path, targets: &[Target]) -> Result<(), Failure> {
     let refuse = |why: String| Failure::Bad(format!("--out: {}: {why}", out.display()));
+    writable_dir("--out", out)?;
+    registry::tidy(out)?;
+    check_targets(out, targets, &refuse)?;
+    lock_targets(out, targets, &refuse)
+}
+
+/// Takes the run lock of every target ([`registry::lock_writing`]) for the rest of the run, so
+/// that a second run writing the same results into the same `--out` is refused now, before it
+/// computes anything, instead of replacing this one's results at the end without a word.
+fn lock_targets(
+    out: &Path,
+    targets: &[Target],
+    refuse: &dyn Fn(String) -> Failure,
+) -> Result<(), Failure> {
+    for t in targets {
+        let (parent, name, shown) = match t {
+            Target::Results(id) => (out.to_path_buf(), id.clone(), id.clone()),
+            Target::File(rel) => {
+                let path = out.join(rel);
+                let name = path
+                    .file_name()
+                    .map(|n| n.to_string_lossy().into_owned())
+                    .unwrap_or_default();
+                let parent = path
+                    .parent()
+                    .map_or_else(|| out.to_path_buf(), Path::to_path_buf);
+                (parent, name, rel.clone())
+            }
+        };
+        let what = format!(
+            "a run writing {shown}, started {}",
+            crate::provenance::utc_now()
+        );
+        if let Some(holder) = registry::lock_writing(&parent, &name, &what)? {
+            return Err(refuse(format!(
+                "{shown}: another run is writing there now ({holder}); two runs into one --out would leave only one's results: wait for it to end, or give another --out"
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Checks, before anything is computed, that files can be written in the folder `dir` given
+/// with `flag` (`--out`, `--findings`): it is a directory, or can be created as one (every
+/// missing folder on the way is created, by its name, inside a probe folder of this process and
+/// removed again: a name the file system refuses, e.g. longer than it takes, is found here),
+/// and a folder can be created in it. Refused (exit 2) naming the flag, the folder and the
+/// reason; nothing is left behind.
+pub(crate) fn writable_dir(flag: &str, out: &Path) -> Result<(), Failure> {
+    let refuse = |why: String| Failure::Bad(format!("{flag}: {}: {why}", out.display()));
     if out.exists() && !out.is_dir() {
         return Err(refuse("exists and is not a directory".into()));
     }
@@ -277,10 +342,18 @@ pub(crate) fn check_out(out: &Path, targets: &[Target]) -> Result<(), Failure> {
         }
     }
     let _ = std::fs::remove_dir_all(&probe);
-    if let Some(why) = failed {
-        return Err(refuse(why));
+    match failed {
+        Some(why) => Err(refuse(why)),
+        None => Ok(()),
     }
-    registry::tidy(out)?;
+}
+
+/// [`check_out`]'s check of each target under `out`.
+fn check_targets(
+    out: &Path,
+    targets: &[Target],
+    refuse: &dyn Fn(String) -> Failure,
+) -> Result<(), Failure> {
     for t in targets {
         match t {
             Target::Results(id) => {
@@ -291,11 +364,14 @@ pub(crate) fn check_out(out: &Path, targets: &[Target]) -> Result<(), Failure> {
                             "{id}: exists and is not a directory, where the results of {id} go"
                         )));
                     }
-                    Ok(_) => replaceable(&dir).map_err(|why| {
-                        refuse(format!(
-                            "{id}: the previous results cannot be replaced: {why}"
-                        ))
-                    })?,
+                    Ok(_) => {
+                        keeps_partials(&dir, id, out, refuse)?;
+                        replaceable(&dir).map_err(|why| {
+                            refuse(format!(
+                                "{id}: the previous results cannot be replaced: {why}"
+                            ))
+                        })?;
+                    }
                     Err(_) => {}
                 }
             }
@@ -333,6 +409,35 @@ pub(crate) fn check_out(out: &Path, targets: &[Target]) -> Result<(), Failure> {
         }
     }
     Ok(())
+}
+
+/// Results replace the folder `dir` (`<out>/<id>`) whole: refused (exit 2) when it holds the
+/// partial files of a sharded run (`run <id> --shard K/N --out <out>`), which the replacement
+/// would delete before they are merged.
+fn keeps_partials(
+    dir: &Path,
+    id: &str,
+    out: &Path,
+    refuse: &dyn Fn(String) -> Failure,
+) -> Result<(), Failure> {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Ok(());
+    };
+    let mut partials: Vec<String> = entries
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| crate::shard::partial::parse_name(n).is_some())
+        .collect();
+    if partials.is_empty() {
+        return Ok(());
+    }
+    partials.sort();
+    Err(refuse(format!(
+        "{id} holds the partial file{} {} of a sharded run, which writing the results of {id} there would delete: merge them into another folder first (cargo xtask merge {} --out OTHER), or give another --out",
+        if partials.len() == 1 { "" } else { "s" },
+        partials.join(", "),
+        out.join(id).display()
+    )))
 }
 
 /// A hidden name in `dir` for a probe, of the kind [`registry::tidy`] removes if a kill leaves it.
@@ -383,6 +488,23 @@ fn replaceable(dir: &Path) -> Result<(), String> {
         }
     }
     Ok(())
+}
+
+/// A `--set` value refused by one of several experiments it went to (`run all --set trials=1`):
+/// the refusal names that experiment, since the others took the value.
+fn of_experiment(e: RunError, id: &str) -> RunError {
+    match e {
+        RunError::BadInput {
+            source,
+            field,
+            rule,
+        } if source == "--set" => RunError::BadInput {
+            source,
+            field,
+            rule: format!("{rule}, for experiment {id}"),
+        },
+        other => other,
+    }
 }
 
 /// `e` (of experiment `id`) as the user typed it: a refusal reached through a shorthand names

@@ -9,7 +9,10 @@
 //!
 //! `XTASK_PROGRESS=always` makes them even when stderr is not a terminal (where indicatif draws
 //! nothing), from the first trial on, so that tests run the same code with and without them;
-//! `XTASK_PROGRESS=never` turns them off.
+//! `XTASK_PROGRESS=never` turns them off; `auto` (or unset, or empty) is the default. Any other
+//! value is refused before anything runs ([`check_setting`]): a misspelt one would silently do
+//! nothing. A `RUST_LOG` that is not a log filter is said to be ignored, in a warning (the
+//! variable is shared with other programs, so it is not refused).
 //!
 //! When stderr is not a terminal (a log file, a pipe, a cluster job's output) and `-q` is not
 //! given, a running experiment instead prints a plain progress line every [`LINE_PERIOD`]
@@ -50,15 +53,52 @@ static BARS: OnceLock<Arc<Bars>> = OnceLock::new();
 /// `-q`: no notes on stderr either.
 static QUIET: AtomicBool = AtomicBool::new(false);
 
+/// The values `XTASK_PROGRESS` takes.
+pub const PROGRESS_VALUES: [&str; 3] = ["always", "never", "auto"];
+
+/// Refuses an `XTASK_PROGRESS` that is not one of [`PROGRESS_VALUES`] (empty counts as unset),
+/// naming the variable, the value and the values it takes.
+pub fn check_setting() -> Result<(), String> {
+    let value = match std::env::var("XTASK_PROGRESS") {
+        Err(std::env::VarError::NotPresent) => return Ok(()),
+        Err(std::env::VarError::NotUnicode(v)) => format!("{v:?}"),
+        Ok(v) if v.is_empty() || PROGRESS_VALUES.contains(&v.as_str()) => return Ok(()),
+        Ok(v) => format!("`{}`", v.escape_debug()),
+    };
+    Err(format!(
+        "XTASK_PROGRESS: must be {} (progress bars and lines whatever stderr is, none, or as stderr allows; got {value})",
+        PROGRESS_VALUES.join(", ")
+    ))
+}
+
+/// The log filter of `RUST_LOG` at the default verbosity: `warn` when unset or empty, and with a
+/// warning on stderr when it is not a filter (ignored rather than refused: other programs read
+/// the same variable).
+fn env_filter() -> EnvFilter {
+    match std::env::var("RUST_LOG") {
+        Ok(v) if !v.trim().is_empty() => EnvFilter::try_new(&v).unwrap_or_else(|e| {
+            eprintln!(
+                "warning: RUST_LOG: `{}` is not a log filter ({e}); it is ignored and warnings are logged (e.g. RUST_LOG=info or RUST_LOG=debug)",
+                v.escape_debug()
+            );
+            EnvFilter::new("warn")
+        }),
+        Ok(_) => EnvFilter::new("warn"),
+        Err(std::env::VarError::NotPresent) => EnvFilter::new("warn"),
+        Err(std::env::VarError::NotUnicode(v)) => {
+            eprintln!("warning: RUST_LOG: {v:?} is not valid UTF-8; it is ignored and warnings are logged");
+            EnvFilter::new("warn")
+        }
+    }
+}
+
 /// Sets up logging (and progress bars, where they are drawn) for the whole process.
 pub fn init(verbosity: Verbosity) {
     QUIET.store(verbosity == Verbosity::Quiet, Ordering::Relaxed);
     let filter = match verbosity {
         Verbosity::Quiet => EnvFilter::new("off"),
         Verbosity::Verbose => EnvFilter::new("debug"),
-        Verbosity::Normal => {
-            EnvFilter::try_from_default_env().unwrap_or_else(|_| EnvFilter::new("warn"))
-        }
+        Verbosity::Normal => env_filter(),
     };
     let setting = std::env::var("XTASK_PROGRESS");
     let (wanted, delay) = match setting.as_deref() {

@@ -10,6 +10,10 @@ use std::time::{SystemTime, UNIX_EPOCH};
 use registry::{Context, Experiment, OutputFile, Report};
 use serde_json::json;
 
+/// The SHA-256 of the code this runner was built from (see `xtask/build.rs`): what a shard's
+/// partial file and `run.json` record as the code that computed them.
+pub const CODE_SHA256: &str = env!("XTASK_CODE_SHA256");
+
 /// The file name of the provenance record in `<out>/<id>/`.
 pub const RUN_JSON: &str = "run.json";
 
@@ -46,6 +50,7 @@ pub fn stamp(
             "version": {
                 "crate": env!("CARGO_PKG_VERSION"),
                 "git": git_describe(),
+                "code": CODE_SHA256,
             },
             "date": utc_now(),
         })

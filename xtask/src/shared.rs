@@ -53,28 +53,71 @@ pub(crate) fn write_atomically(path: &Path, text: &str) -> Result<(), Failure> {
     registry::write_file_through(path, &tmp, text.as_bytes()).map_err(|(what, e)| fail(what, e))
 }
 
-/// The exit status of a run stopped by SIGINT, SIGTERM or SIGHUP (128 + SIGINT's number, as a
-/// shell reports Ctrl-C).
-const STOPPED: i32 = 130;
+/// Releases every run lock of this process when dropped ([`registry::release_locks`]): held by
+/// a command for as long as it writes, and by `main` for the whole process.
+pub(crate) struct LocksEnd;
 
-/// On SIGINT, SIGTERM or SIGHUP: removes the temporary results being written and puts back
-/// results moved aside ([`registry::abandon_writes`]), says so in one line and exits with
-/// [`STOPPED`]. Without it a stop while writing left `.ID.tmp-*` folders of partial files for
-/// the next run to clean up. Where no handler can be installed the signals keep their default.
+impl Drop for LocksEnd {
+    fn drop(&mut self) {
+        registry::release_locks();
+    }
+}
+
+/// Removes the temporary results being written and puts back results moved aside
+/// ([`registry::abandon_writes`]), says so in one line and exits with `status`.
+fn stop(status: i32) -> ! {
+    let cleaned = registry::abandon_writes();
+    eprintln!(
+        "stopped by a signal{}",
+        if cleaned == 0 {
+            String::new()
+        } else {
+            format!("; {cleaned} unfinished results removed or put back")
+        }
+    );
+    std::process::exit(status);
+}
+
+/// On SIGINT, SIGTERM or SIGHUP: cleans up what is being written and exits with 128 plus the
+/// signal's number, as a shell reports a process the signal ended (130, 143, 129), so that a
+/// scheduler or script sees which signal stopped the run. Without it a stop while writing left
+/// `.ID.tmp-*` folders of partial files for the next run to clean up.
+///
+/// The three signals are blocked in every thread (threads started later inherit the mask; a
+/// child process starts with none) and taken by one thread that waits for them, so the clean-up
+/// runs as ordinary code. Where this cannot be set up the signals keep their default.
+#[cfg(unix)]
 pub(crate) fn stop_cleanly_on_signals() {
-    let installed = ctrlc::set_handler(|| {
-        let cleaned = registry::abandon_writes();
-        eprintln!(
-            "stopped by a signal{}",
-            if cleaned == 0 {
-                String::new()
-            } else {
-                format!("; {cleaned} unfinished results removed or put back")
+    use nix::sys::signal::{SigSet, Signal};
+    let mut set = SigSet::empty();
+    for s in [Signal::SIGINT, Signal::SIGTERM, Signal::SIGHUP] {
+        set.add(s);
+    }
+    if let Err(e) = set.thread_block() {
+        tracing::debug!("no signal handling: {e}");
+        return;
+    }
+    let waiter = std::thread::Builder::new()
+        .name("signals".into())
+        .spawn(move || {
+            loop {
+                if let Ok(signal) = set.wait() {
+                    stop(128 + signal as i32);
+                }
             }
-        );
-        std::process::exit(STOPPED);
-    });
-    if let Err(e) = installed {
+        });
+    if let Err(e) = waiter {
+        // Nobody would take the signals: let them end the process as before.
+        let _ = set.thread_unblock();
+        tracing::debug!("no signal handling: {e}");
+    }
+}
+
+/// On SIGINT, SIGTERM or SIGHUP (as the platform reports them): cleans up what is being written
+/// and exits with 130.
+#[cfg(not(unix))]
+pub(crate) fn stop_cleanly_on_signals() {
+    if let Err(e) = ctrlc::set_handler(|| stop(130)) {
         tracing::debug!("no signal handler: {e}");
     }
 }

@@ -452,3 +452,130 @@ fn hypothesis_params_refused_by_edmunds_name_the_setting_typed() {
     ];
     assert_none(failures("edmunds-params", cases));
 }
+
+/// Counts too large or malformed name their maximum, a value refused by one of several
+/// experiments names that experiment, and `fuzz` parses its flags as `run` does: a repeated
+/// flag, or both budgets, refused; `--findings` checked before any fuzzing.
+#[test]
+fn counts_name_their_limits_and_fuzz_flags_are_parsed_as_runs_are() {
+    let s = Scratch::new("fuzz-flags");
+    let file = s.0.join("plain");
+    fs::write(&file, "x").unwrap();
+    let findings = format!("{}/below", file.display());
+    let below_a_file = format!("fuzz --execs 1 --findings {findings}");
+    let cases = vec![
+        case(
+            "trials of 1e300",
+            None,
+            "run table3 --set trials=1e300 --out {out}",
+            &[
+                "--set: trials: must be a non-negative integer, at most 1000000 (the limit on trials; got `1e300`)",
+            ],
+        ),
+        case(
+            "trials of 1e300 by the shorthand",
+            None,
+            "run table3 --trials 1e300 --out {out}",
+            &["--trials: must be an integer from 1 to 1000000"],
+        ),
+        case(
+            "a count of 1e300",
+            None,
+            "run fig3 --set samples=1e300 --out {out}",
+            &[
+                "--set: samples: must be a non-negative integer, from ",
+                "to 10000000, the limit on counts",
+            ],
+        ),
+        case(
+            "run all with one trial",
+            None,
+            "run all --set trials=1 --out {out}",
+            &["--set: trials: must be at least 2", ", for experiment "],
+        ),
+        case(
+            "two experiments, one refusing",
+            None,
+            "run table3 table1 --set trials=1 --out {out}",
+            &[
+                "--set: trials: must be at least 2",
+                ", for experiment table1",
+            ],
+        ),
+        case(
+            "fuzz with a seed twice",
+            None,
+            "fuzz --seed 1 --seed 2",
+            &["--seed given twice"],
+        ),
+        case(
+            "fuzz with both budgets",
+            None,
+            "fuzz --seconds 1 --execs 5",
+            &["--seconds and --execs cannot be combined"],
+        ),
+        case(
+            "fuzz with the seconds twice",
+            None,
+            "fuzz --seconds 1 --seconds=2",
+            &["--seconds given twice"],
+        ),
+        case(
+            "fuzz with findings below a file",
+            None,
+            &below_a_file,
+            &["--findings: ", "is not a directory"],
+        ),
+    ];
+    let started = std::time::Instant::now();
+    assert_none(failures("counts-fuzz", cases));
+    assert!(
+        started.elapsed().as_secs() < 60,
+        "the refusals came only after fuzzing: {:?}",
+        started.elapsed()
+    );
+    // `-q` is taken anywhere, as the usage says, and quiets the note of what is fuzzed.
+    for args in [
+        &["fuzz", "-q", "--execs", "1"][..],
+        &["-q", "fuzz", "--execs", "1"],
+    ] {
+        let mut all = args.to_vec();
+        let f = s.path("findings");
+        all.extend(["--findings", &f]);
+        let o = xtask(&all);
+        assert!(o.status.success(), "{all:?}: {}", stderr(&o));
+        assert!(!stderr(&o).contains("fuzz: "), "{all:?}: {}", stderr(&o));
+    }
+}
+
+/// `XTASK_PROGRESS` takes always, never or auto: any other value did nothing without a word
+/// and is refused; a `RUST_LOG` that is no filter is said to be ignored.
+#[test]
+fn environment_settings_that_mean_nothing_are_refused_or_warned() {
+    for value in ["bogus", "ALWAYS", "1", "yes", "Never "] {
+        let o = support::xtask_env(&["list"], &[("XTASK_PROGRESS", value)]);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{value}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{value}: {err}");
+        assert!(
+            err.starts_with("XTASK_PROGRESS: must be always, never, auto")
+                && err.contains(&format!("`{value}`")),
+            "{value}: {err}"
+        );
+        assert!(o.stdout.is_empty(), "{value}: ran anyway");
+    }
+    for value in ["always", "never", "auto", ""] {
+        let o = support::xtask_env(&["list"], &[("XTASK_PROGRESS", value)]);
+        assert!(o.status.success(), "{value}: {}", stderr(&o));
+    }
+    let o = support::xtask_env(&["list"], &[("RUST_LOG", "bogus[[[")]);
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    assert!(
+        err.contains("warning: RUST_LOG: `bogus[[[` is not a log filter")
+            && err.contains("ignored"),
+        "{err}"
+    );
+    let o = support::xtask_env(&["list"], &[("RUST_LOG", "info")]);
+    assert!(!stderr(&o).contains("RUST_LOG"), "{}", stderr(&o));
+}

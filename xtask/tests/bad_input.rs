@@ -10,7 +10,7 @@
 
 mod support;
 use support::hostile::{Row, assert_none, case, failures, freeth, gearing};
-use support::sealed;
+use support::{sealed, stderr};
 
 #[test]
 fn gearing_files() {
@@ -683,4 +683,220 @@ fn partial_files() {
         ),
     ];
     assert_none(failures("partial", cases));
+}
+
+/// Runs `xtask args` in `dir` (a working folder of its own) and gives it `seconds` to end: an
+/// input that waits for ever (a FIFO without a writer) is a failure, not a hung test.
+fn within(seconds: u64, dir: &std::path::Path, args: &[&str]) -> std::process::Output {
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_xtask"))
+        .args(args)
+        .current_dir(dir)
+        .env_remove("RUST_LOG")
+        .env_remove("XTASK_PROGRESS")
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let started = std::time::Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if started.elapsed().as_secs() >= seconds {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("{args:?} still running after {seconds} s: it waits for ever");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    child.wait_with_output().unwrap()
+}
+
+/// Every input file is checked to be a regular file before it is opened: a named pipe with no
+/// writer blocked `run pair --config F` (and `--gearing`, `--errors`) for ever in the open. Each
+/// is refused at once, naming the flag and the file, and nothing is written.
+#[test]
+fn named_pipes_and_folders_given_as_input_files_are_refused_at_once() {
+    let s = support::Scratch::new("fifo");
+    let fifo = s.0.join("pipe.ron");
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+    if !made.is_ok_and(|st| st.success()) {
+        eprintln!("skipped: no mkfifo");
+        return;
+    }
+    std::fs::create_dir_all(s.0.join("folder.ron")).unwrap();
+    let pipe = "must be a regular file, and this is a named pipe (FIFO)";
+    for (args, words) in [
+        (
+            &["run", "pair", "--config", "pipe.ron"][..],
+            &["--config: pipe.ron: ", pipe][..],
+        ),
+        (
+            &["run", "table1", "--gearing", "pipe.ron"],
+            &["pipe.ron: read: ", pipe],
+        ),
+        (
+            &["run", "table2", "--errors", "pipe.ron"],
+            &["--errors: pipe.ron: ", pipe],
+        ),
+        (
+            &["run", "failure", "--set", "measured=pipe.ron"],
+            &["pipe.ron", pipe],
+        ),
+        (
+            &["run", "table3", "--hypothesis", "measured:pipe.ron"],
+            &["pipe.ron", pipe],
+        ),
+        (
+            &["run", "fig6", "--set", "measured=pipe.ron"],
+            &["pipe.ron", pipe],
+        ),
+        (
+            &["merge", "pipe.ron"],
+            &["pipe.ron", "must be a regular file"],
+        ),
+        (
+            &["run", "pair", "--config", "folder.ron"],
+            &[
+                "--config: folder.ron: ",
+                "must be a regular file, and this is a directory",
+            ],
+        ),
+        (
+            &["run", "table1", "--gearing", "folder.ron"],
+            &["folder.ron: read: ", "is a directory"],
+        ),
+    ] {
+        let mut all = args.to_vec();
+        all.extend(["--out", "out"]);
+        let o = within(20, &s.0, &all);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{all:?}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{all:?}: {err}");
+        for w in words {
+            assert!(err.contains(w), "{all:?}: no {w:?} in {err}");
+        }
+        assert!(!s.0.join("out").exists(), "{all:?} wrote results");
+    }
+}
+
+/// A gearing with no meshes ran table3 and figIV to exit 0 with empty tables, and a gear named
+/// `""` made messages like "gear : teeth must be at least 3". Every experiment that reads a
+/// gearing refuses them, naming the file and the rule, before anything runs.
+#[test]
+fn empty_gearings_and_blank_names_are_refused_by_every_experiment() {
+    let ids = support::succeeded(&["list"]);
+    let empty = Some((
+        "gearing.ron",
+        b"(gears: [], arbors: [], meshes: [], pointers: [])".to_vec(),
+    ));
+    let gears_only = Some((
+        "gearing.ron",
+        br#"(gears: [(name: "a", teeth: 20, measured_radius: Some(10.0), source: "")], arbors: [(name: "x", gears: ["a"])], meshes: [], pointers: [])"#.to_vec(),
+    ));
+    let mut cases = Vec::new();
+    for id in ids.lines() {
+        let args = format!("run {id} --gearing {{file}} --out {{out}}");
+        let help = support::succeeded(&["help", id]);
+        if !help.contains("--gearing FILE sets") {
+            continue;
+        }
+        cases.push(case(
+            &format!("{id}: no gears, no meshes"),
+            empty.clone(),
+            &args,
+            &["{file}: meshes: must list at least one mesh"],
+        ));
+        cases.push(case(
+            &format!("{id}: gears but no meshes"),
+            gears_only.clone(),
+            &args,
+            &["{file}: meshes: must list at least one mesh", "has 1 gears"],
+        ));
+    }
+    assert!(
+        cases.len() >= 20,
+        "{} experiments read a gearing",
+        cases.len() / 2
+    );
+    let run = "run table3 --gearing {file} --out {out}";
+    for (what, from, to, words) in [
+        (
+            "a gear named \"\"",
+            "name: \"b1\",",
+            "name: \"\",",
+            "gears[0]: name must not be empty",
+        ),
+        (
+            "a gear named \" \"",
+            "name: \"b1\",",
+            "name: \"  \",",
+            "gears[0]: name must not be empty",
+        ),
+        (
+            "an arbor named \"\"",
+            "name: \"b\",",
+            "name: \"\",",
+            "arbors[0]: name must not be empty",
+        ),
+        (
+            "a mesh labelled \"\"",
+            "label: \"b2-c1\",",
+            "label: \"\",",
+            "label must not be empty",
+        ),
+    ] {
+        cases.push(case(what, gearing(from, to), run, &["{file}: ", words]));
+    }
+    cases.push(case(
+        "a measured row for gear \"\"",
+        Some((
+            "errors.ron",
+            br#"(gears: [(gear: "", random: 0.05, systematic: 0.5)])"#.to_vec(),
+        )),
+        "run table2 --errors {file} --out {out}",
+        &["{file}: gears[0]: gear must name a gear"],
+    ));
+    assert_none(failures("empty-gearing", cases));
+}
+
+/// `--gearing freeth2021` with a file `./freeth2021` in the folder used the embedded gearing and
+/// ignored the file without a word: a name that is both is refused, saying how to ask for each.
+#[test]
+fn a_builtin_gearing_name_that_is_also_a_file_is_refused() {
+    let s = support::Scratch::new("builtin-and-file");
+    std::fs::write(s.0.join("freeth2021"), freeth()).unwrap();
+    std::fs::write(s.0.join("freeth2006"), freeth()).unwrap();
+    for args in [
+        &["run", "figIV", "--gearing", "freeth2021"][..],
+        &["run", "table3", "--set", "gearing=freeth2006"],
+        &["run", "all", "--gearing", "freeth2021"],
+    ] {
+        let mut all = args.to_vec();
+        all.extend(["--out", "out"]);
+        let o = within(60, &s.0, &all);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{all:?}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{all:?}: {err}");
+        assert!(
+            err.contains("is both an embedded gearing and a file in this folder")
+                && err.contains("write ./freeth20"),
+            "{all:?}: {err}"
+        );
+        let flag = if args.contains(&"--gearing") {
+            "--gearing: "
+        } else {
+            "--set: gearing: "
+        };
+        assert!(err.starts_with(flag), "{all:?}: {err}");
+        assert!(!s.0.join("out").exists(), "{all:?} wrote results");
+    }
+    // Written as a path it is the file, read as such (here a file that is no gearing).
+    std::fs::write(s.0.join("freeth2021"), "not a gearing").unwrap();
+    let o = within(
+        60,
+        &s.0,
+        &["run", "figIV", "--gearing", "./freeth2021", "--out", "out"],
+    );
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.starts_with("./freeth2021: line 1"), "{err}");
 }

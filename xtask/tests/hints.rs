@@ -145,3 +145,59 @@ fn likely_mistakes_that_run_are_warned_about() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(!stderr(&o).contains("warning:"), "{}", stderr(&o));
 }
+
+/// A clearance far below 1 % of h (`clearance_percent: Some(1e-5)`) ran with no warning and
+/// printed jams and a sigma of hundreds of degrees: it is warned as tips all but touching the
+/// opposite valleys, in a pair file (by clearance or by centre distance) and in `--set`, one
+/// value or a list.
+#[test]
+fn tiny_clearances_are_warned() {
+    let s = Scratch::new("tiny-clearance");
+    let out = s.path("out");
+    let gear = "(teeth: 20, tip_radius: 10.0, root_radius: 9.0)";
+    for (tag, extra, words) in [
+        (
+            "percent",
+            "clearance_percent: Some(1e-5)",
+            "clearance_percent: a clearance of 0.00001 % of the tooth height h",
+        ),
+        // R1 + R2 - h = 19: a centre distance 1e-6 beyond it is a clearance of 0.0001 %.
+        (
+            "distance",
+            "centre_distance: Some(19.000001)",
+            "centre_distance: 19.000001 gives a clearance of 0.0001 % of the mean tooth height h",
+        ),
+    ] {
+        let file = s.path(&format!("{tag}.ron"));
+        std::fs::write(
+            &file,
+            format!("(driver: {gear}, driven: {gear}, {extra}, run_deg: Some(36.0))"),
+        )
+        .unwrap();
+        let o = xtask(&["run", "pair", "--config", &file, "--out", &out]);
+        let err = stderr(&o);
+        assert!(
+            err.contains("warning: ") && err.contains(words),
+            "{tag}: {err}"
+        );
+        assert!(err.contains("jam at nearly every tooth"), "{tag}: {err}");
+    }
+    for (args, words) in [
+        (
+            &["run", "table3", "--set", "clearance=0.001"][..],
+            "warning: table3: --set clearance=0.001: a clearance of 0.001 %",
+        ),
+        (
+            &["run", "tableI", "--set", "clearances=40,0.0001"],
+            "warning: tableI: --set clearances=40,0.0001: a clearance of 0.0001 %",
+        ),
+    ] {
+        let mut all = args.to_vec();
+        // Refused once it starts (a random error below 0): the warning comes before, and
+        // nothing is computed.
+        all.extend(["--set", "hypothesis_params=random=-1", "--out", &out]);
+        let o = xtask(&all);
+        let err = stderr(&o);
+        assert!(err.contains(words), "{all:?}: {err}");
+    }
+}

@@ -261,9 +261,10 @@ fn hidden_in(dir: &std::path::Path) -> Vec<String> {
         .unwrap_or_default()
 }
 
-/// A run stopped by SIGTERM or SIGINT while its results are being written removes its temporary
-/// folder before it exits (status 130): nothing half-written is left for the next run. The run
-/// is frozen (SIGSTOP) as soon as its temporary folder appears, so the signal lands mid-write.
+/// A run stopped by SIGTERM, SIGINT or SIGHUP while its results are being written removes its
+/// temporary folder before it exits with 128 plus the signal's number (143, 130, 129, as a shell
+/// reports it): nothing half-written is left for the next run. The run is frozen (SIGSTOP) as
+/// soon as its temporary folder appears, so the signal lands mid-write.
 #[test]
 fn a_run_stopped_while_writing_leaves_no_partial_results() {
     let s = Scratch::new("stopped");
@@ -280,7 +281,7 @@ fn a_run_stopped_while_writing_leaves_no_partial_results() {
     );
     let big = example.replacen("sample_deg:", "sample_deg: 0.002, // was", 1);
     fs::write(&config, big).unwrap();
-    for sig in ["TERM", "INT"] {
+    for (sig, status) in [("TERM", 143), ("INT", 130), ("HUP", 129)] {
         let out = s.0.join(format!("out-{sig}"));
         let mut caught = false;
         for _attempt in 0..5 {
@@ -315,7 +316,7 @@ fn a_run_stopped_while_writing_leaves_no_partial_results() {
             signal(pid, "CONT");
             let o = child.wait_with_output().unwrap();
             let err = stderr(&o);
-            assert_eq!(o.status.code(), Some(130), "SIG{sig}: {err}");
+            assert_eq!(o.status.code(), Some(status), "SIG{sig}: {err}");
             assert!(err.contains("stopped by a signal"), "SIG{sig}: {err}");
             assert!(
                 hidden_in(&out).is_empty(),
@@ -361,4 +362,190 @@ fn shards_starting_together_on_a_new_out_all_pass_its_check() {
     }
     assert_eq!(fs::read_dir(out.join("table1")).unwrap().count(), 4);
     assert!(hidden_in(&s.0).is_empty() && hidden_in(&s.0.join("new")).is_empty());
+}
+
+/// The run lock of `<out>/<name>` taken by this test, as another run (here or on another
+/// machine of a shared file system) would hold it.
+fn hold_lock(out: &std::path::Path, name: &str) -> fs::File {
+    fs::create_dir_all(out).unwrap();
+    let f = fs::OpenOptions::new()
+        .read(true)
+        .write(true)
+        .create(true)
+        .truncate(false)
+        .open(out.join(format!(".{name}.lock")))
+        .unwrap();
+    f.try_lock().unwrap();
+    use std::io::Write;
+    (&f).write_all(b"a run writing pair, process 1 on another-node")
+        .unwrap();
+    f
+}
+
+/// Two runs of one experiment into one `--out` at once: both exited 0 and printed where their
+/// results were, and the later replaced the other's without a word. Now the second is refused
+/// with exit 2 before it computes, naming the run that holds the results, and the first's
+/// results are whole.
+#[test]
+fn two_runs_into_one_out_at_once_lose_nothing() {
+    let s = Scratch::new("two-runs");
+    let out = s.0.join("out");
+    // The first: a pair run with 180 000 rows, long enough to be under way when the second starts.
+    let example = fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../experiments/data/pair-example.ron"
+    ))
+    .unwrap();
+    let config = s.0.join("pair.ron");
+    fs::write(
+        &config,
+        example.replacen("sample_deg:", "sample_deg: 0.005, // was", 1),
+    )
+    .unwrap();
+    let mut first = std::process::Command::new(env!("CARGO_BIN_EXE_xtask"))
+        .args(["run", "pair", "-q", "--seed", "1", "--config"])
+        .arg(&config)
+        .arg("--out")
+        .arg(&out)
+        .env_remove("RUST_LOG")
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let started = Instant::now();
+    while !out.join(".pair.lock").exists() {
+        assert!(
+            first.try_wait().unwrap().is_none(),
+            "the first run ended before it was seen holding its lock"
+        );
+        assert!(started.elapsed().as_secs() < 60, "no lock file appeared");
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    let second = xtask(&[
+        "run",
+        "pair",
+        "--seed",
+        "2",
+        "--config",
+        config.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let still_running = first.try_wait().unwrap().is_none();
+    let err = stderr(&second);
+    let done = first.wait_with_output().unwrap();
+    assert!(done.status.success(), "{}", stderr(&done));
+    if still_running {
+        assert_eq!(second.status.code(), Some(2), "{err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+        assert!(
+            err.contains("pair: another run is writing there now")
+                && err.contains("a run writing pair")
+                && err.contains("give another --out"),
+            "{err}"
+        );
+        assert!(second.stdout.is_empty(), "the second run printed results");
+    }
+    let run: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(out.join("pair/run.json")).unwrap()).unwrap();
+    assert_eq!(
+        run["seed"],
+        if still_running { 1 } else { 2 },
+        "the results are not the run's that said it wrote them"
+    );
+    assert!(hidden_in(&out).is_empty(), "{:?}", hidden_in(&out));
+}
+
+/// A lock held elsewhere (another machine's run on a shared file system, whose process id means
+/// nothing here) keeps its run's temporary folder from the clean-up and refuses a second run of
+/// its experiment; once the lock is free the folder is a dead run's and is removed.
+#[test]
+fn a_live_runs_leftovers_are_kept_whatever_its_process_id() {
+    let s = Scratch::new("live-elsewhere");
+    let out = s.0.join("out");
+    let dead = dead_pid();
+    let writing = out.join(format!(".pair.tmp-{dead}-0-17"));
+    fs::create_dir_all(&writing).unwrap();
+    fs::write(writing.join("pair.csv"), "being written").unwrap();
+    let lock = hold_lock(&out, "pair");
+    // Another experiment into the same --out: its clean-up must keep the live run's folder.
+    let o = xtask(&["run", "fig3", "-q", "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        writing.exists(),
+        "a live run's temporary folder was removed"
+    );
+    // The same experiment: refused, naming the holder.
+    let o = xtask(&["run", "pair", "--out", out.to_str().unwrap()]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("another-node"), "{err}");
+    drop(lock);
+    // Free: the folder is a dead run's, removed by the next run; the stale lock file too.
+    let o = xtask(&["run", "fig3", "-q", "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!writing.exists(), "a dead run's temporary folder was kept");
+    assert!(hidden_in(&out).is_empty(), "{:?}", hidden_in(&out));
+}
+
+/// Shards of table1 written into X, then a plain `run table1 --out X`: the plain run replaced
+/// X/table1 whole and the partial files were gone. It is refused, and the merge still works.
+#[test]
+fn a_plain_run_never_deletes_the_partial_files_of_a_sharded_run() {
+    let s = Scratch::new("plain-after-shards");
+    let x = s.path("x");
+    for k in 0..2 {
+        let shard = format!("{k}/2");
+        let mut args = vec!["run", "table1", "-q", "--shard", &shard, "--out", &x];
+        args.extend(support::TABLE1_TINY);
+        let o = xtask(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    for run in [&["run", "table1"][..], &["run", "all"]] {
+        let mut args = run.to_vec();
+        args.extend(["--out", &x]);
+        if run.len() == 2 && run[1] == "table1" {
+            args.extend(support::TABLE1_TINY);
+        }
+        let o = xtask(&args);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+        assert!(
+            err.contains("table1 holds the partial files partial-0-of-2.json, partial-1-of-2.json")
+                && err.contains("cargo xtask merge"),
+            "{err}"
+        );
+        assert!(o.stdout.is_empty(), "{args:?} computed");
+    }
+    let o = xtask(&["merge", &x, "-q", "--out", &s.path("merged")]);
+    assert!(o.status.success(), "{}", stderr(&o));
+}
+
+/// `run fig3 --out D > /dev/full`: the print fails (exit 1), and the results are written anyway.
+#[test]
+fn results_are_written_when_stdout_cannot_take_them() {
+    let Ok(full) = fs::OpenOptions::new().write(true).open("/dev/full") else {
+        eprintln!("skipped: no /dev/full");
+        return;
+    };
+    let s = Scratch::new("dev-full");
+    for id in ["fig3", "fig2"] {
+        let out = s.0.join(id);
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_xtask"))
+            .args(["run", id, "--out"])
+            .arg(&out)
+            .env_remove("RUST_LOG")
+            .stdout(full.try_clone().unwrap())
+            .output()
+            .unwrap();
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{err}");
+        assert!(err.contains("cannot write to stdout"), "{err}");
+        assert!(
+            out.join(id).join("tables.json").is_file(),
+            "{id}: the results were lost with the print: {err}"
+        );
+        assert!(err.contains("results: "), "{err}");
+    }
 }

@@ -140,3 +140,97 @@ fn thorndikes_example_pair_is_at_the_limit_and_runs() {
     assert_eq!(code, Some(0), "{err}");
     assert!(written);
 }
+
+/// Angles beyond what a double holds as finely as the solver places a contact ran until killed
+/// (`start_deg: 1e17`) or answered "never driven" (`1e20`); statistics from one sample printed
+/// sigma 0. Each is refused at once, naming the field and the rule, and nothing is written.
+#[test]
+fn huge_angles_and_too_few_samples_are_refused_at_once() {
+    let good = "clearance_percent: Some(40.0)";
+    let with = |extra: &str| mesh(GOOD_DRIVER, &format!("{good}, {extra}"));
+    let cases = [
+        ("start 1e17", with("start_deg: 1e17"), "start_deg: must be at most 1000000 degrees either way (got 1e17)"),
+        ("start 1e18", with("start_deg: 1e18"), "start_deg: must be at most 1000000 degrees"),
+        ("start -1e17", with("start_deg: -1e17"), "start_deg: must be at most 1000000 degrees either way (got -1e17)"),
+        ("start 1e20", with("start_deg: 1e20"), "start_deg: must be at most 1000000 degrees"),
+        ("start 1e300", with("start_deg: 1e300"), "start_deg: must be at most"),
+        ("start 3e16", with("start_deg: 3e16"), "start_deg: must be at most"),
+        ("start NaN", with("start_deg: NaN"), "start_deg: must be a finite number of degrees"),
+        (
+            "at-rest start far away",
+            with("start: at_rest(theta_deg: 1e19)"),
+            "start.theta_deg: must be at most 1000000 degrees",
+        ),
+        (
+            "a tip angle of 1e17",
+            mesh(
+                "(teeth: 3, tip_radius: 10.0, root_radius: 9.0, tips_deg: Some([1e17, 1.2e17, 1.4e17]))",
+                good,
+            ),
+            "driver.tips_deg[0]: must be at most 1000000 degrees",
+        ),
+        (
+            "an arbor angle of -1e30",
+            mesh(
+                "(teeth: 20, tip_radius: 10.0, root_radius: 9.0, arbor: Some((offset: 0.01, angle_deg: -1e30)))",
+                good,
+            ),
+            "driver.arbor.angle_deg: must be at most 1000000 degrees",
+        ),
+        ("one sample a turn", with("sample_deg: 360.0"), "sample_deg: must be at most 4.5 degrees, a quarter of the driver's pitch 360/20 (got 360)"),
+        ("a sample past the run", with("sample_deg: 720.0"), "sample_deg: must be at most 4.5 degrees"),
+        ("a whole pitch", with("sample_deg: 18.0"), "sample_deg: must be at most 4.5 degrees"),
+        (
+            "a run of a billionth of a degree",
+            with("run_deg: Some(1e-9)"),
+            "in steps of 0.1 give 1 sample of the Theoretical Difference, and sigma, Dm and P need at least 100",
+        ),
+        (
+            "a run of 99 samples",
+            with("run_deg: Some(9.8), sample_deg: 0.1"),
+            "run_deg: is too short",
+        ),
+        (
+            "a default run of 3 teeth too coarsely sampled",
+            "(driver: (teeth: 3, tip_radius: 10.0, root_radius: 9.0), driven: (teeth: 3, tip_radius: 10.0, root_radius: 9.0), clearance_percent: Some(40.0), sample_deg: 10.0)".to_string(),
+            "sample_deg: must be at most 3.6363",
+        ),
+    ];
+    for (tag, text, expected) in cases {
+        let started = std::time::Instant::now();
+        let (code, err, written) = run_pair(tag, &text);
+        assert_eq!(code, Some(2), "{tag}: {err}");
+        assert!(err.contains(expected), "{tag}: {err}");
+        assert_eq!(err.trim().lines().count(), 1, "{tag}: {err}");
+        assert!(!written, "{tag}: results were written");
+        assert!(
+            started.elapsed().as_secs() < 30,
+            "{tag}: took {:?}",
+            started.elapsed()
+        );
+    }
+    // At the limit the run goes through, and from a whole number of turns it is the run from 0.
+    let sigma = |start: &str| {
+        let s = support::Scratch::new("pair-at-limit");
+        let file = s.path("m.ron");
+        std::fs::write(&file, with(&format!("start_deg: {start}"))).unwrap();
+        let out = support::succeeded(&[
+            "run",
+            "pair",
+            "-q",
+            "--config",
+            &file,
+            "--out",
+            &s.path("o"),
+        ]);
+        out.lines()
+            .find(|l| l.contains("Theoretical Difference sigma"))
+            .unwrap()
+            .split('|')
+            .nth(2)
+            .unwrap()
+            .trim()
+            .to_owned()
+    };
+    assert_eq!(sigma("0.0"), sigma("999720.0"), "999720 = 2777 turns");
+}

@@ -271,3 +271,148 @@ fn a_trial_whose_pair_file_run_pair_refuses_is_refused_before_anything_is_writte
         &s.path("pair"),
     ]);
 }
+
+/// `replay` accepted cells its table does not hold and titled them as the table's: a G not in
+/// Table I's clearances, a random error between Table 4's rows, a Table 5 row at another random
+/// error than the mesh's E. max, `-0` for a row. Each is refused in one line naming the part of
+/// the cell typed (not a flag never typed) and the table's values, before anything is written.
+#[test]
+fn cells_that_are_not_cells_of_the_table_are_refused_naming_what_was_typed() {
+    let s = Scratch::new("replay-not-cells");
+    let out = s.path("out");
+    for (args, words) in [
+        (
+            &["tableI", "B/55/m3-e3"][..],
+            &[
+                "cell `B/55/m3-e3` of tableI",
+                "G `55`: is not one of the table's clearances (10, 40, 70",
+            ][..],
+        ),
+        (
+            &["tableI", "B/100.5/m3-e3", "0"],
+            &["G `100.5`: is not one of the table's clearances"],
+        ),
+        (
+            &["tableI", "B/40/m3-e3", "0", "--set", "clearances=10,70"],
+            &["G `40`: is not one of the table's clearances (10, 70"],
+        ),
+        (
+            &["table4", "0.066/m3-e3", "1"],
+            &[
+                "cell `0.066/m3-e3` of table4",
+                "random error `0.066`: is not a row of the table (0.035, 0.04",
+            ],
+        ),
+        (
+            &["table4", "0.030/m3-e3", "1"],
+            &["random error `0.030`: is not a row"],
+        ),
+        (
+            &["table5", "0.050/-0/e4-f1", "1"],
+            &["systematic error `-0`: is not a row of the table (0.1, 0.2"],
+        ),
+        (
+            &["table5", "0.050/0.75/e4-f1", "1"],
+            &["systematic error `0.75`: is not a row"],
+        ),
+        (
+            &["table5", "0.050/99/e4-f1", "1"],
+            &["cell `0.050/99/e4-f1` of table5", "systematic error `99`"],
+        ),
+        (
+            &["table5", "0.035/0.7/e4-f1", "1", "--set", "emax=paper"],
+            &[
+                "random error `0.035`: is not the random error the table runs mesh e4-f1 at, its E. max 0.045 (the paper's",
+            ],
+        ),
+        (
+            &["table5", "0.035/0.7/e4-f1", "1"],
+            &[
+                "random error `0.035`: is not the random error the table runs mesh e4-f1 at, its E. max 0.05 (the largest of Table 4's grid",
+            ],
+        ),
+    ] {
+        let mut all = vec!["replay"];
+        all.extend(args);
+        all.extend(["--out", &out]);
+        let o = xtask(&all);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{all:?}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{all:?}: {err}");
+        for w in words {
+            assert!(err.contains(w), "{all:?}: no {w:?} in {err}");
+        }
+        assert!(
+            !err.contains("--hypothesis"),
+            "{all:?} blamed a flag never typed: {err}"
+        );
+        assert!(o.stdout.is_empty(), "{all:?}");
+        assert!(!s.0.join("out").exists(), "{all:?} wrote results");
+    }
+    // The cells of the tables are replayed.
+    for args in [
+        &["tableI", "B/70/m3-e3", "0", "--trials", "4"][..],
+        &["table4", "0.065/m3-e3", "0", "--trials", "4"],
+        &[
+            "table5",
+            "0.045/0.7/e4-f1",
+            "0",
+            "--set",
+            "emax=paper",
+            "--trials",
+            "4",
+        ],
+    ] {
+        let mut all = vec!["replay"];
+        all.extend(args);
+        all.extend(["-q", "--out", &out]);
+        succeeded(&all);
+    }
+}
+
+/// `replay ... --set clearance=50` wrote into the default replay's folder under the same title:
+/// a replay under other settings goes to a folder of its own, and its title names them.
+#[test]
+fn a_replay_under_other_settings_keeps_the_default_replays_results() {
+    let s = Scratch::new("replay-settings");
+    let out = s.path("out");
+    let base = [
+        "replay", "table3", "B/m3-e3", "0", "--trials", "4", "-q", "--out", &out,
+    ];
+    let default = succeeded(&base);
+    let mut other = base.to_vec();
+    other.extend(["--set", "clearance=50"]);
+    let changed = succeeded(&other);
+    let mut seeded = base.to_vec();
+    seeded.extend(["--seed", "7"]);
+    succeeded(&seeded);
+    let title = |text: &str| text.lines().next().unwrap_or_default().to_owned();
+    assert!(!title(&default).contains("clearance=50"), "{default}");
+    assert!(title(&changed).contains("clearance=50"), "{changed}");
+    let read =
+        |dir: &str| std::fs::read_to_string(s.0.join("out").join(dir).join("table.md")).unwrap();
+    assert_eq!(title(&read("replay-table3-B-m3-e3-0")), title(&default));
+    assert_eq!(
+        title(&read("replay-table3-B-m3-e3-0-clearance-50")),
+        title(&changed)
+    );
+    assert!(read("replay-table3-B-m3-e3-0-seed-7").contains("(seed 7)"));
+    // The other way round: the replay under other settings is there first, in the plain folder;
+    // the replay at the defaults takes that folder and moves it to its own name.
+    let out2 = s.path("out2");
+    let mut first = other.clone();
+    let at = first.iter().position(|a| *a == out.as_str()).unwrap();
+    first[at] = &out2;
+    succeeded(&first);
+    let read2 =
+        |dir: &str| std::fs::read_to_string(s.0.join("out2").join(dir).join("table.md")).unwrap();
+    assert_eq!(title(&read2("replay-table3-B-m3-e3-0")), title(&changed));
+    let mut then = base.to_vec();
+    then[at] = &out2;
+    succeeded(&then);
+    assert_eq!(title(&read2("replay-table3-B-m3-e3-0")), title(&default));
+    assert_eq!(
+        title(&read2("replay-table3-B-m3-e3-0-clearance-50")),
+        title(&changed)
+    );
+}

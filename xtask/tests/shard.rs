@@ -415,3 +415,129 @@ fn usage_describes_shards_and_merge() {
         assert!(text.contains(word), "missing {word:?} in:\n{text}");
     }
 }
+
+/// A partial file records the SHA-256 of the code that computed it: a partial file recorded
+/// only the crate's version (0.1.0 for hundreds of commits), so shards of different code merged
+/// as one. A shard of other code, or a mix, is refused naming `code`; so is a file of a build
+/// that recorded no hash.
+#[test]
+fn a_shard_of_other_code_is_refused() {
+    let s = Scratch::new("other-code");
+    for k in 0..2 {
+        run_ok(
+            &table1(),
+            &["--shard", &format!("{k}/2"), "--out", &s.path("sh")],
+        );
+    }
+    let path = |k: u64| s.0.join(format!("sh/table1/partial-{k}-of-2.json"));
+    let original: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(path(1)).unwrap()).unwrap();
+    let code = original["code"].as_str().unwrap().to_owned();
+    assert_eq!(code.len(), 64, "{code}");
+    // As a build of other code would have written it, sealed as such a build seals it.
+    let rewritten = |code: &str, dir: &str| {
+        let mut other = original.clone();
+        other["code"] = code.into();
+        fs::create_dir_all(s.0.join(dir)).unwrap();
+        let p = s.path(&format!("{dir}/partial-1-of-2.json"));
+        fs::write(&p, sealed(other)).unwrap();
+        p
+    };
+    let other = "0".repeat(64);
+    let mixed = rewritten(&other, "other");
+    refused(
+        &s,
+        &[path(0).to_str().unwrap().to_owned(), mixed.clone()],
+        &[
+            mixed.as_str(),
+            "code",
+            "SHA-256 000000000000",
+            "same `cargo xtask run <id> --shard K/N` command",
+        ],
+    );
+    // Every shard of the other code: refused as not this build's.
+    let mut zero: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(path(0)).unwrap()).unwrap();
+    zero["code"] = other.clone().into();
+    fs::write(s.0.join("other/partial-0-of-2.json"), sealed(zero)).unwrap();
+    refused(
+        &s,
+        &[s.path("other")],
+        &[
+            "code",
+            "computed by code of SHA-256 000000000000",
+            "merge with the build that ran the shards",
+        ],
+    );
+    // A file of a build that recorded no hash.
+    let none = rewritten("", "none");
+    refused(&s, &[path(0).to_str().unwrap().to_owned(), none], &["code"]);
+}
+
+/// The files a shard read are recorded with their SHA-256: a merge after the gearing changed
+/// said "shards do not cover this batch", and one from another folder with a relative gearing
+/// path "No such file", naming neither the gearing nor the folder. Both are now named.
+#[test]
+fn a_merge_names_the_gearing_that_changed_and_the_folder_the_shards_ran_in() {
+    let s = Scratch::new("merge-inputs");
+    let work = s.0.join("work");
+    fs::create_dir_all(&work).unwrap();
+    let gearing = work.join("my-gearing.ron");
+    fs::write(&gearing, support::hostile::freeth()).unwrap();
+    let sh = s.path("sh");
+    for k in 0..2 {
+        let mut args: Vec<&str> = vec!["run"];
+        args.extend(table1());
+        let shard = format!("{k}/2");
+        args.extend([
+            "--gearing",
+            "my-gearing.ron",
+            "--shard",
+            &shard,
+            "-q",
+            "--out",
+            &sh,
+        ]);
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_xtask"))
+            .args(&args)
+            .current_dir(&work)
+            .env_remove("RUST_LOG")
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    // From another folder: the relative path names nothing there.
+    let o = xtask(&["merge", &sh, "--out", &s.path("never")]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("merge: gearing `my-gearing.ron`")
+            && err.contains(&format!("the shards ran in {}", work.display()))
+            && err.contains("run the merge from"),
+        "{err}"
+    );
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    assert!(!s.0.join("never").exists());
+    // From their folder it merges; after the gearing changed it is refused.
+    let merge_in_work = |out: &str| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_xtask"))
+            .args(["merge", &sh, "-q", "--out", out])
+            .current_dir(&work)
+            .env_remove("RUST_LOG")
+            .output()
+            .unwrap()
+    };
+    let o = merge_in_work(&s.path("merged"));
+    assert!(o.status.success(), "{}", stderr(&o));
+    let mut text = fs::read_to_string(&gearing).unwrap();
+    text.push_str("// edited after the shards ran\n");
+    fs::write(&gearing, text).unwrap();
+    let o = merge_in_work(&s.path("never"));
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("merge: gearing `my-gearing.ron`: has changed since the shards read it"),
+        "{err}"
+    );
+    assert!(!s.0.join("never").exists());
+}

@@ -98,11 +98,15 @@ impl EdmundsErrors {
             );
         }
         if let Some(p) = self.phase_deg
-            && !p.is_finite()
+            && !(p.is_finite() && p.abs() <= registry::MAX_ANGLE_DEG)
         {
             return bad(
                 "phase",
-                format!("must be a finite number of degrees (got {})", fmt_number(p)),
+                format!(
+                    "must be a finite number of degrees, at most {} either way (beyond, a double holds the angle too coarsely to mean one; got {})",
+                    fmt_number(registry::MAX_ANGLE_DEG),
+                    fmt_number(p)
+                ),
             );
         }
         Ok(())

@@ -92,7 +92,16 @@ pub fn measured_from_ron(file_name: &str, text: &str) -> Result<MeasuredTable, H
         ));
     }
     let mut gears = BTreeMap::new();
-    for e in raw.gears {
+    for (i, e) in raw.gears.into_iter().enumerate() {
+        if e.gear.trim().is_empty() {
+            return Err(HypothesisError::new(
+                format!("{file_name}: gears[{i}]"),
+                format!(
+                    "gear must name a gear of the gearing, not be empty (got {:?})",
+                    e.gear
+                ),
+            ));
+        }
         let entry = MeasuredEntry {
             random: e.random,
             systematic_deg: e.systematic,

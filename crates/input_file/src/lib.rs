@@ -4,6 +4,11 @@
 //! the allocator gives up, on `/dev/urandom` it never ends. [`read_to_string`] reads at most
 //! `limit + 1` bytes and refuses a file longer than `limit` with an [`std::io::Error`] whose
 //! message states the limit, so callers keep their "FILE: cannot read: ..." messages.
+//!
+//! Opening a named pipe (FIFO) waits for a writer, for ever if none comes: what is not a regular
+//! file (a FIFO, a socket, a directory, a block device) is refused from its metadata before it
+//! is opened, and the file is opened without waiting and checked again once open. Character
+//! devices (`/dev/zero`, `/dev/null`) open at once and are read up to the limit like a file.
 
 use std::io::Read;
 use std::path::Path;
@@ -19,7 +24,10 @@ pub const MAX_INPUT_BYTES: u64 = 16 * 1024 * 1024;
 /// `InvalidData`, "is larger than N bytes, the limit on input files"); bytes that are not UTF-8
 /// (kind `InvalidData`, "stream did not contain valid UTF-8", as `std::fs::read_to_string`).
 pub fn read_to_string(path: &Path, limit: u64) -> std::io::Result<String> {
-    let file = std::fs::File::open(path)?;
+    readable(&std::fs::metadata(path)?)?;
+    let file = open_without_waiting(path)?;
+    // The path may have been replaced between the two looks: the file opened is checked too.
+    readable(&file.metadata()?)?;
     let mut bytes = Vec::new();
     file.take(limit.saturating_add(1)).read_to_end(&mut bytes)?;
     if bytes.len() as u64 > limit {
@@ -34,6 +42,67 @@ pub fn read_to_string(path: &Path, limit: u64) -> std::io::Result<String> {
             "stream did not contain valid UTF-8",
         )
     })
+}
+
+/// Whether a file of this metadata may be read: a regular file or a character device, anything
+/// else refused (kind `InvalidInput`, "must be a regular file ...") naming what it is.
+fn readable(meta: &std::fs::Metadata) -> std::io::Result<()> {
+    let kind = meta.file_type();
+    if kind.is_file() {
+        return Ok(());
+    }
+    let what = if kind.is_dir() {
+        "a directory"
+    } else {
+        special(&kind)
+    };
+    if what.is_empty() {
+        return Ok(());
+    }
+    Err(std::io::Error::new(
+        std::io::ErrorKind::InvalidInput,
+        format!("must be a regular file, and this is {what}"),
+    ))
+}
+
+/// What a special file is, in words (empty for a character device, which is read).
+#[cfg(unix)]
+fn special(kind: &std::fs::FileType) -> &'static str {
+    use std::os::unix::fs::FileTypeExt;
+    if kind.is_fifo() {
+        "a named pipe (FIFO), which waits for a writer that may never come"
+    } else if kind.is_socket() {
+        "a socket"
+    } else if kind.is_block_device() {
+        "a block device"
+    } else if kind.is_char_device() {
+        ""
+    } else {
+        "not a file"
+    }
+}
+
+/// What a special file is, in words: anything but a file or a directory.
+#[cfg(not(unix))]
+fn special(_: &std::fs::FileType) -> &'static str {
+    "not a file"
+}
+
+/// Opens `path` for reading without waiting (a FIFO swapped in after the first look would
+/// otherwise block the open until a writer comes).
+#[cfg(unix)]
+fn open_without_waiting(path: &Path) -> std::io::Result<std::fs::File> {
+    use std::os::unix::fs::OpenOptionsExt;
+    std::fs::OpenOptions::new()
+        .read(true)
+        .custom_flags(libc::O_NONBLOCK)
+        .open(path)
+}
+
+/// Opens `path` for reading.
+#[cfg(not(unix))]
+fn open_without_waiting(path: &Path) -> std::io::Result<std::fs::File> {
+    std::fs::File::open(path)
 }
 
 /// A kind of RON input file in the user's words: what it is and the shape it has, for the
@@ -266,6 +335,26 @@ mod tests {
                 assert!(e.to_string().contains("larger than 1000 bytes"), "{e}");
             }
         }
+    }
+
+    #[test]
+    fn what_is_not_a_regular_file_is_refused_before_it_is_opened() {
+        let dir = std::env::temp_dir().join(format!("input-file-fifo-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let e = read_to_string(&dir, 100).unwrap_err();
+        assert!(e.to_string().contains("is a directory"), "{e}");
+        let fifo = dir.join("pipe.ron");
+        // A named pipe with no writer: opening it for reading would wait for ever.
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        if made.is_ok_and(|s| s.success()) {
+            let e = read_to_string(&fifo, 100).unwrap_err();
+            assert!(
+                e.to_string()
+                    .contains("must be a regular file, and this is a named pipe"),
+                "{e}"
+            );
+        }
+        let _ = std::fs::remove_dir_all(&dir);
     }
 
     #[test]

@@ -239,6 +239,17 @@ impl Context {
             .collect()
     }
 
+    /// The parameters given (with `--set` or a shorthand), whatever their value, as (name,
+    /// value), in declaration order: what the user typed, where [`Context::changed`] is what
+    /// differs from the defaults.
+    pub fn given(&self) -> Vec<(&'static str, &str)> {
+        self.params
+            .iter()
+            .filter(|p| p.overridden)
+            .map(|p| (p.name, p.value.as_str()))
+            .collect()
+    }
+
     /// Does the experiment declare a parameter called `name`?
     pub fn declares(&self, name: &str) -> bool {
         self.params.iter().any(|p| p.name == name)
@@ -366,7 +377,10 @@ impl Context {
 
     /// A param as a non-negative integer count, at most [`MAX_COUNT`].
     pub fn usize(&self, name: &str) -> Result<usize, RunError> {
-        let n: usize = self.parse(name, "must be a non-negative integer")?;
+        let n: usize = self.parse(
+            name,
+            &format!("must be a non-negative integer, at most {MAX_COUNT} (the limit on counts)"),
+        )?;
         if n > MAX_COUNT {
             return Err(self.reject(
                 self.value(name)?,
@@ -490,7 +504,9 @@ fn check_trials(value: &str) -> Result<(), RunError> {
         RunError::bad(
             "--set",
             "trials",
-            format!("must be a non-negative integer (got `{value}`)"),
+            format!(
+                "must be a non-negative integer, at most {MAX_TRIALS} (the limit on trials; got `{value}`)"
+            ),
         )
     })?;
     if n > MAX_TRIALS {

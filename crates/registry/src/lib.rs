@@ -35,6 +35,7 @@ mod context;
 mod engine;
 mod error;
 mod finite;
+mod lock;
 mod output;
 mod progress;
 mod table;
@@ -47,9 +48,10 @@ pub use context::{
 };
 pub use engine::{TrialEngine, TrialMode};
 pub use error::{DuplicateId, RunError};
+pub use lock::{lock_path, lock_writing, release_locks};
 pub use output::{
-    Agreement, MAX_DATA_ROWS, OutputFile, Report, abandon_writes, tidy, write_file_through,
-    write_results,
+    Agreement, MAX_ANGLE_DEG, MAX_DATA_ROWS, OutputFile, Report, abandon_writes, stopping, tidy,
+    write_file_through, write_results,
 };
 pub use progress::{BatchProgress, Progress};
 pub use table::{Table, fmt_f64, fmt_number};
@@ -226,9 +228,20 @@ impl Kind {
                 Err(because(rule, why))
             }
             Kind::Count { min, max, why } => {
-                let n: u64 = value
-                    .parse()
-                    .map_err(|_| "must be a non-negative integer".to_string())?;
+                let limit = if max as usize == MAX_COUNT {
+                    ", the limit on counts"
+                } else if max == MAX_TRIALS {
+                    ", the limit on trials"
+                } else {
+                    ""
+                };
+                // Not a whole number, or one beyond 64 bits (`1e300`): the range says what is.
+                let n: u64 = value.parse().map_err(|_| {
+                    because(
+                        format!("must be a non-negative integer, from {min} to {max}{limit}"),
+                        why,
+                    )
+                })?;
                 if n < min {
                     Err(because(format!("must be at least {min}"), why))
                 } else if n > max {
@@ -400,7 +413,12 @@ mod kind_tests {
         );
         assert_eq!(
             count.check("-1").unwrap_err(),
-            "must be a non-negative integer"
+            "must be a non-negative integer, from 2 to 10 (an interval needs two trials)"
+        );
+        let trials = Kind::count(2, MAX_TRIALS, "");
+        assert_eq!(
+            trials.check("1e300").unwrap_err(),
+            "must be a non-negative integer, from 2 to 1000000, the limit on trials"
         );
         let counts = Kind::Count {
             min: 0,

@@ -3,7 +3,7 @@
 use std::collections::BTreeSet;
 use std::fs;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Mutex, MutexGuard};
 
 use serde_json::{Value, json};
@@ -14,6 +14,13 @@ use crate::{RunError, Table};
 /// step that would give more (`pair`'s `sample_deg`, `fig2`'s `step`) is refused before
 /// anything runs, naming the smallest step allowed.
 pub const MAX_DATA_ROWS: usize = 1_000_000;
+
+/// The largest angle, in degrees either way, an input may give (a start angle, a tip angle, a
+/// phase): 10^6 degrees (about 2 778 turns). A double holds an angle of 10^6 degrees to about
+/// 1e-10 degrees (2e-12 rad), below the 2.5e-11 rad to which the solver places a contact; at
+/// 10^16 degrees its spacing is 2 degrees, and a run from there ends nowhere or gives another
+/// answer. An angle a whole number of turns smaller names the same position.
+pub const MAX_ANGLE_DEG: f64 = 1.0e6;
 
 /// What an experiment returns.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
@@ -256,11 +263,17 @@ fn leftover(file_name: &str) -> Option<(&str, u32, bool)> {
     Some((name, digits.parse().ok()?, old))
 }
 
-/// Whether the process that left `path` has ended: on Linux, no `/proc/PID`; elsewhere, the
+/// Whether the run that left `path` (a leftover of `<parent>/<name>` by process `pid`) has
+/// ended: nobody holds the run lock of `name` ([`crate::lock`]). A process id alone proves
+/// nothing on a file system shared with other machines (their processes are not this one's, and
+/// ids are reused). Only where the lock cannot be told: on Linux, no `/proc/PID`; elsewhere, the
 /// leftover is more than a day old. This process's own leftovers are never ended ones.
-fn abandoned(path: &Path, pid: u32) -> bool {
+fn abandoned(parent: &Path, name: &str, path: &Path, pid: u32) -> bool {
     if pid == std::process::id() {
         return false;
+    }
+    if let Some(alive) = crate::lock::writer_alive(parent, name) {
+        return !alive;
     }
     if Path::new("/proc/self").exists() {
         return !Path::new("/proc").join(pid.to_string()).exists();
@@ -276,8 +289,10 @@ fn abandoned(path: &Path, pid: u32) -> bool {
 /// or a results directory shards share): removes the hidden temporary folders and files they
 /// left (`.ID.tmp-PID-...`, with up to the whole results in them), and where a kill fell
 /// between the two renames of [`write_results`] - `ID` gone, its previous results still
-/// moved aside as `.ID.old-PID-...` - puts those back as `ID`. Leftovers of processes still
-/// running (a concurrent run) are left alone. A `parent` that does not exist is fine.
+/// moved aside as `.ID.old-PID-...` - puts those back as `ID`; and removes run locks
+/// (`.ID.lock`) nobody holds. Leftovers of runs still going (a concurrent run, here or on
+/// another machine of a shared file system: it holds the run lock of `ID`) are left alone. A
+/// `parent` that does not exist is fine.
 ///
 /// Errors: an I/O failure while removing or renaming ([`RunError::Internal`]).
 pub fn tidy(parent: &Path) -> Result<(), RunError> {
@@ -289,9 +304,11 @@ pub fn tidy(parent: &Path) -> Result<(), RunError> {
         let file_name = entry.file_name().to_string_lossy().into_owned();
         let path = entry.path();
         if let Some((name, pid, old)) = leftover(&file_name)
-            && abandoned(&path, pid)
+            && abandoned(parent, name, &path, pid)
         {
             found.push((path, name.to_owned(), old));
+        } else if file_name.starts_with('.') && file_name.ends_with(".lock") {
+            crate::lock::remove_if_free(&path);
         }
     }
     found.sort();
@@ -330,6 +347,15 @@ static PENDING: Mutex<Pending> = Mutex::new(Pending {
     aside: Vec::new(),
 });
 
+/// Set first thing by [`abandon_writes`], without waiting for any lock.
+static STOPPING: AtomicBool = AtomicBool::new(false);
+
+/// Whether the process is being stopped ([`abandon_writes`] has begun): no write starts any
+/// more, and a process that reaches its end should leave its exit to the stopping thread.
+pub fn stopping() -> bool {
+    STOPPING.load(Ordering::SeqCst)
+}
+
 /// The pending writes, locked (a panic elsewhere while holding it leaves the list usable).
 fn pending() -> MutexGuard<'static, Pending> {
     PENDING
@@ -341,6 +367,13 @@ fn pending() -> MutexGuard<'static, Pending> {
 /// abandoned (the process is being stopped) this waits for the end of the process, so nothing
 /// more is written.
 fn pending_for_write() -> MutexGuard<'static, Pending> {
+    // Seen before the lock is taken: a writer going from one file to the next would otherwise
+    // take the lock again before the stopping thread, and finish the write regardless.
+    if stopping() {
+        loop {
+            std::thread::park();
+        }
+    }
     let guard = pending();
     if guard.abandoned {
         drop(guard);
@@ -392,6 +425,7 @@ pub fn write_file_through(
 /// write done). Writes still running in other threads stop at their next step. Returns the
 /// number of paths it cleaned up.
 pub fn abandon_writes() -> usize {
+    STOPPING.store(true, Ordering::SeqCst);
     let mut p = pending();
     p.abandoned = true;
     let mut cleaned = 0;
@@ -413,6 +447,7 @@ pub fn abandon_writes() -> usize {
     }
     // The lock is kept: a write that reaches for it waits for the end of the process.
     std::mem::forget(p);
+    crate::lock::release_locks();
     cleaned
 }
 

@@ -7,7 +7,9 @@ use std::f64::consts::{PI, TAU};
 
 use contact::{Mesh, Start};
 use geometry::{Gear, Vec2, polar};
-use registry::{MAX_DATA_ROWS, RunError, fmt_number};
+use registry::{
+    MAX_ANGLE_DEG, MAX_DATA_ROWS, MIN_SAMPLES, RunError, SAMPLES_PER_TOOTH, fmt_number,
+};
 use serde::Deserialize;
 
 /// Which way a gear's `tips_deg` (and the y axis of its tips frame) run.
@@ -326,6 +328,7 @@ pub const RON_FILE: input_file::RonFile = input_file::RonFile {
 pub fn load(file: &str, text: &str) -> Result<(Mesh, PairFile), RunError> {
     let spec: PairFile = input_file::parse_ron(&ron::Options::default(), text, &RON_FILE)
         .map_err(|e| RunError::bad(file, e.location, e.rule))?;
+    angles(file, &spec)?;
     let driver = gear(file, Role::Driver, &spec.driver)?;
     let driven = gear(file, Role::Driven, &spec.driven)?;
     let d = match (spec.centre_distance, spec.clearance_percent) {
@@ -370,13 +373,6 @@ pub fn load(file: &str, text: &str) -> Result<(Mesh, PairFile), RunError> {
             file,
             "sample_deg",
             "must be a positive number of degrees",
-        ));
-    }
-    if !spec.start_deg.is_finite() {
-        return Err(RunError::bad(
-            file,
-            "start_deg",
-            "must be a finite number of degrees",
         ));
     }
     if let Some(r) = spec.run_deg
@@ -448,7 +444,112 @@ pub fn load(file: &str, text: &str) -> Result<(Mesh, PairFile), RunError> {
         "clearance_percent"
     };
     proportions(file, &mesh, distance_field)?;
+    // Last: what the file asks of the run's statistics, once the gears themselves are sound.
+    samples(file, &spec, run_deg)?;
     Ok((mesh, spec))
+}
+
+/// Every angle of the file within [`MAX_ANGLE_DEG`] either way (and finite): beyond it a double
+/// no longer holds an angle as finely as the solver places a contact, and a run from there ends
+/// nowhere or gives another answer without a word. Refused naming the field, the value and the
+/// limit.
+fn angles(file: &str, spec: &PairFile) -> Result<(), RunError> {
+    let mut given: Vec<(String, f64)> = vec![("start_deg".into(), spec.start_deg)];
+    for (role, g) in [("driver", &spec.driver), ("driven", &spec.driven)] {
+        if let Some(tips) = &g.tips_deg {
+            given.extend(
+                tips.iter()
+                    .enumerate()
+                    .map(|(k, &a)| (format!("{role}.tips_deg[{k}]"), a)),
+            );
+        }
+        if let Some(a) = g.arbor {
+            given.push((format!("{role}.arbor.angle_deg"), a.angle_deg));
+        }
+    }
+    if let StartSpec::AtRest { theta_deg } = spec.start {
+        given.push(("start.theta_deg".into(), theta_deg));
+    }
+    for (field, angle) in given {
+        if !angle.is_finite() {
+            return Err(RunError::bad(
+                file,
+                field,
+                "must be a finite number of degrees",
+            ));
+        }
+        if angle.abs() > MAX_ANGLE_DEG {
+            return Err(RunError::bad(
+                file,
+                field,
+                format!(
+                    "must be at most {} degrees either way (got {}): beyond, a double holds an angle more coarsely than the solver places a contact (at 1e16 degrees its steps are 2 degrees) and the run would end nowhere or give another answer; an angle a whole number of turns (360 degrees) smaller names the same position",
+                    fmt_number(MAX_ANGLE_DEG),
+                    fmt_number(angle)
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The samples of pair.csv from which sigma, Dm and P are taken must describe the run: at least
+/// [`SAMPLES_PER_TOOTH`] per driver pitch (the Theoretical Difference repeats every driver pitch,
+/// and steps of a whole pitch, such as 360 degrees, see every tooth at the same phase: sigma 0),
+/// and at least [`MIN_SAMPLES`] in all (a run of 1e-9 degrees has one sample). Refused naming the
+/// field to change: `sample_deg` for a step too coarse for the teeth, else `run_deg` when it was
+/// given, else `sample_deg`.
+fn samples(file: &str, spec: &PairFile, run_deg: f64) -> Result<(), RunError> {
+    let step = spec.sample_deg;
+    let pitch = 360.0 / spec.driver.teeth as f64;
+    let finest = pitch / SAMPLES_PER_TOOTH as f64;
+    if step > finest {
+        return Err(RunError::bad(
+            file,
+            "sample_deg",
+            format!(
+                "must be at most {} degrees, a quarter of the driver's pitch 360/{} (got {}{}): sigma, Dm and P need {SAMPLES_PER_TOOTH} samples per tooth engagement, and steps of a whole pitch see every tooth at the same phase",
+                fmt_number(finest),
+                spec.driver.teeth,
+                fmt_number(step),
+                if step == default_sample() {
+                    ", the default"
+                } else {
+                    ""
+                }
+            ),
+        ));
+    }
+    let count = (run_deg / step).floor() + 1.0;
+    if count < MIN_SAMPLES as f64 {
+        let why = format!(
+            "{} degrees of driver angle in steps of {} give {} sample{} of the Theoretical Difference, and sigma, Dm and P need at least {MIN_SAMPLES}",
+            fmt_number(run_deg),
+            fmt_number(step),
+            fmt_number(count),
+            if count == 1.0 { "" } else { "s" }
+        );
+        let longest_step = run_deg / (MIN_SAMPLES - 1) as f64;
+        return Err(match spec.run_deg {
+            Some(_) => RunError::bad(
+                file,
+                "run_deg",
+                format!(
+                    "is too short: {why}; give a run_deg of at least {} degrees",
+                    fmt_number(step * (MIN_SAMPLES - 1) as f64)
+                ),
+            ),
+            None => RunError::bad(
+                file,
+                "sample_deg",
+                format!(
+                    "must be at most {} degrees: {why}",
+                    fmt_number(longest_step)
+                ),
+            ),
+        });
+    }
+    Ok(())
 }
 
 /// The tallest tooth, as a share of its tip radius: half (root radius at least half the tip

@@ -313,6 +313,18 @@ impl Gearing {
     }
 
     fn validate(&self, errors: &Errors<'_>) -> Result<(), GearingError> {
+        self.named(errors)?;
+        // Every experiment runs the gearing's meshes: none would give empty tables that look
+        // like results.
+        if self.meshes.is_empty() {
+            return Err(errors.at(
+                "meshes",
+                format_args!(
+                    "must list at least one mesh: every experiment runs a gearing's meshes, and this one has {} gears and no meshes",
+                    self.gears.len()
+                ),
+            ));
+        }
         // Gears.
         let mut names = BTreeSet::new();
         for gear in &self.gears {
@@ -464,6 +476,46 @@ impl Gearing {
                 }
                 current = arbor_of[mesh.driven.as_str()];
                 previous = Some(label);
+            }
+        }
+        Ok(())
+    }
+
+    /// Every gear, arbor, mesh and pointer has a name that is not blank: messages name items by
+    /// it ("gear : teeth must be at least 3" says nothing), and so do the settings that pick one.
+    /// Refused naming the list and the item's place in it.
+    fn named(&self, errors: &Errors<'_>) -> Result<(), GearingError> {
+        let lists: [(&str, &str, Vec<&str>); 4] = [
+            (
+                "gears",
+                "name",
+                self.gears.iter().map(|g| g.name.as_str()).collect(),
+            ),
+            (
+                "arbors",
+                "name",
+                self.arbors.iter().map(|a| a.name.as_str()).collect(),
+            ),
+            (
+                "meshes",
+                "label",
+                self.meshes.iter().map(|m| m.label.as_str()).collect(),
+            ),
+            (
+                "pointers",
+                "name",
+                self.pointers.iter().map(|p| p.name.as_str()).collect(),
+            ),
+        ];
+        for (list, field, names) in lists {
+            if let Some(i) = names.iter().position(|n| n.trim().is_empty()) {
+                return Err(errors.at(
+                    format_args!("{list}[{i}]"),
+                    format_args!(
+                        "{field} must not be empty (got {:?}): items are named in messages and settings",
+                        names[i]
+                    ),
+                ));
             }
         }
         Ok(())

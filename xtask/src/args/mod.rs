@@ -142,17 +142,25 @@ pub enum ArgError {
 
 /// Parses the arguments after the program name: `-q` / `--quiet` and `-v` / `--verbose` may
 /// stand anywhere (at most one of them); the rest is the command ([`parse`]). `report`, `fuzz`
-/// and `replay` parse their own `-q` (and `-q report` is `report -q`); their verbosity is
-/// [`Verbosity::Normal`].
+/// and `replay` parse their own `-q` (and `-q report` is `report -q`, likewise `fuzz` and
+/// `replay`); their verbosity is [`Verbosity::Normal`].
 pub fn parse_invocation(args: &[String]) -> Result<(Command, Verbosity), ArgError> {
+    // `-q` goes anywhere on the line, as the usage says: `cargo xtask -q report`.
+    let moved: Vec<String>;
+    let args = match args.split_first() {
+        Some((q, rest))
+            if (q == "-q" || q == "--quiet")
+                && rest
+                    .first()
+                    .is_some_and(|c| ["report", "fuzz", "replay"].contains(&c.as_str())) =>
+        {
+            moved = rest.iter().cloned().chain(["-q".to_owned()]).collect();
+            moved.as_slice()
+        }
+        _ => args,
+    };
     let own = match args.split_first().map(|(c, r)| (c.as_str(), r)) {
         Some(("report", rest)) => Some(Command::Report(parse_report(rest)?)),
-        // `-q` goes anywhere on the line, as the usage says: `cargo xtask -q report`.
-        Some(("-q" | "--quiet", rest)) if rest.first().is_some_and(|c| c == "report") => {
-            let mut rest = rest[1..].to_vec();
-            rest.push("-q".into());
-            Some(Command::Report(parse_report(&rest)?))
-        }
         Some(("fuzz", rest)) => Some(Command::Fuzz(parse_fuzz(rest)?)),
         Some(("replay", rest)) => Some(Command::Replay(parse_replay(rest)?)),
         _ => None,
@@ -600,23 +608,46 @@ pub struct FuzzArgs {
     pub seed: u64,
     /// `--findings`, default `<workspace>/target/fuzz-findings`.
     pub findings: PathBuf,
+    /// `-q` / `--quiet`: no note of what is fuzzed (findings are still named).
+    pub quiet: bool,
 }
 
-/// Parses the arguments of `fuzz`.
+/// Parses the arguments of `fuzz`, as `run` parses its own: a flag given twice is refused, and
+/// so are `--seconds` and `--execs` together (both set how long to fuzz); `-q` anywhere.
 fn parse_fuzz(args: &[String]) -> Result<FuzzArgs, ArgError> {
     let mut opts = FuzzArgs {
         budget: Budget::Seconds(DEFAULT_FUZZ_SECONDS),
         seed: DEFAULT_SEED,
         findings: default_findings(),
+        quiet: false,
     };
+    let mut seen = Vec::new();
     let mut it = args.iter();
     while let Some(arg) = it.next() {
+        if arg == "-q" || arg == "--quiet" {
+            opts.quiet = true;
+            continue;
+        }
         let known = ["--seconds", "--execs", "--seed", "--findings"];
         let Some((flag, value)) = flag_value(arg, &mut it, &known).map_err(ArgError::Usage)? else {
             return Err(ArgError::Usage(format!(
-                "fuzz takes --seconds N or --execs N, --seed S and --findings DIR (got `{arg}`)"
+                "fuzz takes --seconds N or --execs N, --seed S, --findings DIR and -q (got `{arg}`)"
             )));
         };
+        once(&mut seen, flag, &value)?;
+        let budgets = ["--seconds", "--execs"];
+        if budgets.contains(&flag)
+            && budgets
+                .iter()
+                .filter(|b| seen.iter().any(|s| s == *b))
+                .count()
+                > 1
+        {
+            return Err(ArgError::Usage(
+                "--seconds and --execs cannot be combined: give one of them (how long to fuzz)"
+                    .into(),
+            ));
+        }
         match flag {
             "--seconds" => {
                 opts.budget = value

@@ -46,6 +46,12 @@ pub fn command(args: &ReportArgs) -> Result<(), Failure> {
     let out = args.out.clone().unwrap_or_else(crate::shared::default_out);
     let quiet = args.quiet;
     let exps = registry::experiments().map_err(|e| Failure::Internal(e.to_string()))?;
+    // No results folder at all: said as such, before the check of --out would make one.
+    if !out.exists() {
+        build(&exps, &out, quiet)?;
+    }
+    // The page's run lock ends with the command (also when it is called on its own, in tests).
+    let _locked = crate::shared::LocksEnd;
     // The page can be written there (checked before the results are read), and results a
     // killed run left moved aside are put back before they are read.
     crate::plan::check_out(&out, &[crate::plan::Target::File(INDEX_HTML.into())])?;

@@ -36,6 +36,7 @@ pub(crate) fn run_shard(
         .0
         .map_err(|err| as_typed(err, e.id, run))?;
     let mut partial = partial::Partial::new(e.id, run.seed, &planned.sets, ctx.config(), shard);
+    partial.inputs = partial::input_files(&ctx);
     partial.batches = ctx.recorded();
     let text = partial.to_json()?;
     let dir = out.join(e.id);
@@ -91,9 +92,9 @@ pub(crate) fn merge(exps: &Registry, m: &MergeArgs) -> Result<(), Failure> {
         parts.push((f, partial, shard));
     }
     partial::agree(&parts)?;
-    let header = parts
+    let (first_file, header) = parts
         .first()
-        .map(|(_, p, _)| p.clone())
+        .map(|(f, p, _)| (f.clone(), p.clone()))
         .ok_or_else(|| Failure::Internal("internal error: no partial file".into()))?;
     let e = lookup(exps, &header.experiment)?;
     let records: Vec<registry::ShardRecords> = parts
@@ -109,6 +110,13 @@ pub(crate) fn merge(exps: &Registry, m: &MergeArgs) -> Result<(), Failure> {
     let threads = m.threads.unwrap_or_else(default_threads);
     let ctx = Context::new(e, header.seed, threads, &header.sets, header.config_file())?
         .with_replay(merged);
+    // The settings are this experiment's: now that the computation is known, it must be this
+    // code's, on the files the shards read.
+    partial::same_code(&first_file, &header)?;
+    partial::same_inputs(&header)?;
+    let flags = ("--hypothesis", "--set measured");
+    experiments::inputs::check(&ctx, flags, &mut std::collections::BTreeSet::new())
+        .map_err(|m| Failure::Bad(format!("merge: {m}")))?;
     let out = m.out.clone().unwrap_or_else(default_out);
     check_out(&out, &[Target::Results(e.id.to_owned())])?;
     keeps_partials(&out.join(e.id), &files, m.out.is_some())?;
@@ -122,16 +130,17 @@ pub(crate) fn merge(exps: &Registry, m: &MergeArgs) -> Result<(), Failure> {
     }
     let config = header.config.as_ref().map(|c| PathBuf::from(&c.path));
     let report = provenance::stamp(&report, e, &ctx, &header.sets, config.as_deref());
-    let mut stdout = |s: &str| print(s);
-    Printer::new(m.format, false, &mut stdout).report(e, &report)?;
+    // Written before printed: a failed print must not cost the merged results.
     let dir = out.join(e.id);
     registry::write_results(&dir, &report)?;
+    let mut stdout = |s: &str| print(s);
+    let printed = Printer::new(m.format, false, &mut stdout).report(e, &report);
     note(&format!(
         "results: {} (merged from {} shards)",
         dir.display(),
         header.shards
     ));
-    Ok(())
+    printed
 }
 
 /// A merge replaces `dir` (`<out>/<id>`) whole: refused (exit 2) when it holds one of the

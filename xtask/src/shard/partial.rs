@@ -4,7 +4,10 @@
 //! A partial file, `<out>/<id>/partial-K-of-N.json`, holds what the merge needs to run the
 //! experiment again exactly as the shards did (the experiment id, seed, `--set` overrides and
 //! config file, K and N, the runner's version) and the trial values the shard recorded
-//! ([`registry::Records`]).
+//! ([`registry::Records`]), with what identifies the computation: the SHA-256 of the code that
+//! computed it ([`crate::provenance::CODE_SHA256`]), the SHA-256 of every file it read, and the
+//! folder it ran in (against which relative paths were read). A merge refuses shards of other
+//! code, or whose files have changed since.
 
 use std::collections::BTreeSet;
 use std::fs;
@@ -56,12 +59,55 @@ pub struct Partial {
     pub shards: u64,
     /// [`VERSION`] of the runner that wrote it.
     pub version: String,
+    /// The SHA-256 of the code that computed the shard ([`crate::provenance::CODE_SHA256`]);
+    /// empty in files written before it was recorded, which a merge refuses as other code.
+    #[serde(default)]
+    pub code: String,
+    /// The files the shard read (a gearing, measured errors), each with the SHA-256 of its
+    /// contents: the merge reads them again and must find the same.
+    #[serde(default)]
+    pub inputs: Vec<InputFile>,
+    /// The folder the shard ran in: relative paths in `sets` were read from there.
+    #[serde(default)]
+    pub folder: String,
     /// The trial batches the shard recorded.
     pub batches: Records,
     /// SHA-256 of the file's other members ([`checksum`]), so that a damaged or edited value
     /// is refused by the merge rather than merged.
     #[serde(default)]
     pub checksum: String,
+}
+
+/// A file a shard read: what it is (`gearing`, `measured errors`), its path as typed, and the
+/// SHA-256 of its contents (empty when it could not be read).
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InputFile {
+    /// What the file is, as `run.json` names it.
+    pub role: String,
+    /// The path as typed (relative to [`Partial::folder`] unless absolute).
+    pub path: String,
+    /// SHA-256 of its contents.
+    pub sha256: String,
+}
+
+/// The SHA-256 of the file at `path` (as [`crate::provenance::sha256`]), or why it cannot be read.
+pub fn file_sha256(path: &Path) -> Result<String, String> {
+    input_file::read_to_string(path, input_file::MAX_INPUT_BYTES)
+        .map(|text| crate::provenance::sha256(text.as_bytes()))
+        .map_err(|e| e.to_string())
+}
+
+/// The files `ctx`'s run reads, with their hashes, for the partial file.
+pub fn input_files(ctx: &registry::Context) -> Vec<InputFile> {
+    experiments::inputs::files(ctx)
+        .into_iter()
+        .map(|(role, path)| InputFile {
+            role: role.to_owned(),
+            sha256: file_sha256(Path::new(&path)).unwrap_or_default(),
+            path,
+        })
+        .collect()
 }
 
 /// The checksum of a partial file's JSON: SHA-256, in lowercase hex, of its value without the
@@ -98,6 +144,11 @@ impl Partial {
             shard: shard.index(),
             shards: shard.count(),
             version: VERSION.into(),
+            code: crate::provenance::CODE_SHA256.into(),
+            inputs: Vec::new(),
+            folder: std::env::current_dir()
+                .map(|d| d.display().to_string())
+                .unwrap_or_default(),
             batches: Records::new(),
             checksum: String::new(),
         }
@@ -130,7 +181,7 @@ pub fn file_name(shard: Shard) -> String {
 }
 
 /// (K, N) of a file named `partial-K-of-N.json`.
-fn parse_name(name: &str) -> Option<(u64, u64)> {
+pub(crate) fn parse_name(name: &str) -> Option<(u64, u64)> {
     let middle = name.strip_prefix("partial-")?.strip_suffix(".json")?;
     let (k, n) = middle.split_once("-of-")?;
     let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
@@ -330,12 +381,120 @@ pub fn agree(parts: &[(PathBuf, Partial, Shard)]) -> Result<(), RunError> {
             };
             return Err(differ("--config", text(&p.config), text(&first.config)));
         }
+        if p.code != first.code {
+            return Err(differ(
+                "code",
+                format!("SHA-256 {}", short(&p.code)),
+                format!("SHA-256 {}", short(&first.code)),
+            ));
+        }
+        if p.inputs != first.inputs {
+            let text = |inputs: &[InputFile]| {
+                if inputs.is_empty() {
+                    return "none".to_owned();
+                }
+                inputs
+                    .iter()
+                    .map(|i| format!("{} `{}` (SHA-256 {})", i.role, i.path, short(&i.sha256)))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            };
+            return Err(differ("inputs", text(&p.inputs), text(&first.inputs)));
+        }
         if p.shards != first.shards {
             return Err(differ(
                 "N (number of shards)",
                 p.shards.to_string(),
                 first.shards.to_string(),
             ));
+        }
+    }
+    Ok(())
+}
+
+/// The first 12 hex digits of a SHA-256, enough to tell two apart in a message (`none` for an
+/// empty one).
+pub fn short(sha: &str) -> String {
+    if sha.is_empty() {
+        "none".to_owned()
+    } else {
+        format!("{}...", &sha[..sha.len().min(12)])
+    }
+}
+
+/// Checks that the shards' code is this build's: results of other code, merged as if they were
+/// this code's, would be a silent mix. Refused naming the file, both hashes and what to do.
+pub fn same_code(path: &Path, p: &Partial) -> Result<(), RunError> {
+    let this = crate::provenance::CODE_SHA256;
+    if p.code == this {
+        return Ok(());
+    }
+    let theirs = if p.code.is_empty() {
+        "code that recorded no hash (an older build)".to_owned()
+    } else {
+        format!("code of SHA-256 {}", short(&p.code))
+    };
+    Err(RunError::bad(
+        path.display().to_string(),
+        "code",
+        format!(
+            "the shard was computed by {theirs}, and this build's code is {}: results of different code cannot be merged; merge with the build that ran the shards, or run the shards again with this one",
+            short(this)
+        ),
+    ))
+}
+
+/// Checks that every file the shards read reads the same now, from the folder the merge runs
+/// in: the merge runs the experiment again and reads them. A file changed since, or a relative
+/// path that names nothing (or something else) from another folder, is refused naming the
+/// setting's file, the folders and the rule.
+pub fn same_inputs(p: &Partial) -> Result<(), RunError> {
+    let here = std::env::current_dir()
+        .map(|d| d.display().to_string())
+        .unwrap_or_default();
+    let moved = !p.folder.is_empty() && p.folder != here && Path::new(&p.folder).is_dir();
+    for input in &p.inputs {
+        let path = Path::new(&input.path);
+        let relative = path.is_relative();
+        let from_their_folder = || {
+            if relative && moved {
+                format!(
+                    "; the shards ran in {} and read `{}` from there, and this merge runs in {here}: run the merge from {}, or give the shards the file's full path",
+                    p.folder, input.path, p.folder
+                )
+            } else {
+                String::new()
+            }
+        };
+        let what = format!("{} `{}`", input.role, input.path);
+        match file_sha256(path) {
+            Err(e) => {
+                return Err(RunError::bad(
+                    "merge",
+                    what,
+                    format!(
+                        "the shards read this file, and the merge must read it again, but it cannot be read from {here}: {e}{}",
+                        from_their_folder()
+                    ),
+                ));
+            }
+            Ok(now) if now != input.sha256 => {
+                return Err(RunError::bad(
+                    "merge",
+                    what,
+                    format!(
+                        "has changed since the shards read it (SHA-256 {} then, {} now){}: the merge reads it again, so it must be the file the shards read; put it back, or run the shards again",
+                        short(&input.sha256),
+                        short(&now),
+                        if relative && moved {
+                            from_their_folder()
+                        } else {
+                            String::new()
+                        }
+                    ),
+                ));
+            }
+            Ok(_) => {}
         }
     }
     Ok(())
