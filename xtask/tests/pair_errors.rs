@@ -177,7 +177,7 @@ fn huge_angles_and_too_few_samples_are_refused_at_once() {
             ),
             "driver.arbor.angle_deg: must be at most 1000000 degrees",
         ),
-        ("one sample a turn", with("sample_deg: 360.0"), "sample_deg: must be at most 4.5 degrees, a quarter of the driver's pitch 360/20 (got 360)"),
+        ("one sample a turn", with("sample_deg: 360.0"), "sample_deg: must be at most 4.5 degrees, a quarter of the driving gear's pitch 360/20 (got 360)"),
         ("a sample past the run", with("sample_deg: 720.0"), "sample_deg: must be at most 4.5 degrees"),
         ("a whole pitch", with("sample_deg: 18.0"), "sample_deg: must be at most 4.5 degrees"),
         (

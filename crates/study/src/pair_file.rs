@@ -445,7 +445,7 @@ pub fn load(file: &str, text: &str) -> Result<(Mesh, PairFile), RunError> {
     };
     proportions(file, &mesh, distance_field)?;
     // Last: what the file asks of the run's statistics, once the gears themselves are sound.
-    samples(file, &spec, run_deg)?;
+    samples(file, &spec, run_deg, spec.driver.teeth)?;
     Ok((mesh, spec))
 }
 
@@ -498,19 +498,25 @@ fn angles(file: &str, spec: &PairFile) -> Result<(), RunError> {
 /// and steps of a whole pitch, such as 360 degrees, see every tooth at the same phase: sigma 0),
 /// and at least [`MIN_SAMPLES`] in all (a run of 1e-9 degrees has one sample). Refused naming the
 /// field to change: `sample_deg` for a step too coarse for the teeth, else `run_deg` when it was
-/// given, else `sample_deg`.
-fn samples(file: &str, spec: &PairFile, run_deg: f64) -> Result<(), RunError> {
+/// given, else `sample_deg`. `driving_teeth` are the driving gear's (the file's driver, or its
+/// driven gear under `drive=other`): its angle is the one sampled.
+fn samples(
+    file: &str,
+    spec: &PairFile,
+    run_deg: f64,
+    driving_teeth: usize,
+) -> Result<(), RunError> {
     let step = spec.sample_deg;
-    let pitch = 360.0 / spec.driver.teeth as f64;
+    let pitch = 360.0 / driving_teeth as f64;
     let finest = pitch / SAMPLES_PER_TOOTH as f64;
     if step > finest {
         return Err(RunError::bad(
             file,
             "sample_deg",
             format!(
-                "must be at most {} degrees, a quarter of the driver's pitch 360/{} (got {}{}): sigma, Dm and P need {SAMPLES_PER_TOOTH} samples per tooth engagement, and steps of a whole pitch see every tooth at the same phase",
+                "must be at most {} degrees, a quarter of the driving gear's pitch 360/{} (got {}{}): sigma, Dm and P need {SAMPLES_PER_TOOTH} samples per tooth engagement, and steps of a whole pitch see every tooth at the same phase",
                 fmt_number(finest),
-                spec.driver.teeth,
+                driving_teeth,
                 fmt_number(step),
                 if step == default_sample() {
                     ", the default"
@@ -671,6 +677,10 @@ impl Prepared {
             .mesh
             .other_driving()
             .map_err(|e| RunError::bad(file, e.field, e.rule))?;
+        // The samples are of the driving gear's angle now: checked against its teeth.
+        let (n1, n2) = (self.spec.driven.teeth, self.spec.driver.teeth);
+        let run_deg = self.spec.run_deg.unwrap_or_else(|| default_run_deg(n1, n2));
+        samples(file, &self.spec, run_deg, n1)?;
         Ok(Prepared {
             mesh,
             driver: self.driven.flipped(),

@@ -732,3 +732,24 @@ fn the_driven_gear_of_a_pair_file_can_drive() {
         "{e}"
     );
 }
+
+/// With its driven gear driving, a pair file's samples are of that gear's angle, and checked
+/// against its own pitch: a step fine enough for the file's driver but not for its driven gear
+/// is refused under `drive=other` only.
+#[test]
+fn the_driving_gears_pitch_bounds_the_samples() {
+    let text = "(driver: (teeth: 20, tip_radius: 10.0, root_radius: 9.0), driven: (teeth: 60, tip_radius: 30.0, root_radius: 29.0), clearance_percent: Some(40.0), sample_deg: 4.0)";
+    let p = prepare("x.ron", text).unwrap();
+    let (n1, n2) = (p.mesh.driver().teeth(), p.mesh.driven().teeth());
+    assert!(
+        360.0 / n1 as f64 / 4.0 >= 4.0,
+        "the file's driver takes 4 deg steps"
+    );
+    assert!(360.0 / n2 as f64 / 4.0 < 4.0, "its driven gear does not");
+    let e = p.other_driving("x.ron").err().unwrap();
+    assert!(
+        e.to_string().contains("sample_deg: must be at most")
+            && e.to_string().contains(&format!("360/{n2}")),
+        "{e}"
+    );
+}
