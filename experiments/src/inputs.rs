@@ -13,12 +13,13 @@ use train::Gearing;
 /// `measured` (with its own help), and the runner checks the file whichever declares it.
 pub const MEASURED: &str = "measured";
 
-/// The value of parameter `name` where the experiment declares it: by name, as the runner
-/// checks every experiment's inputs knowing nothing of their declarations.
+/// The value of the parameter called `name` where the experiment declares one: the runner
+/// checks every experiment's inputs knowing nothing of their declarations (`failure` and `fig6`
+/// each declare their own `measured`, with help of their own).
 fn value(ctx: &Context, name: &str) -> Option<String> {
-    ctx.declares(name)
-        .then(|| ctx.param(name).ok().map(str::to_owned))
-        .flatten()
+    ctx.values()
+        .find(|(p, _)| p.name == name)
+        .map(|(_, v)| v.to_owned())
 }
 
 /// The measured-error tables the `hypothesis` parameter names (its `measured:FILE` layers).
@@ -144,7 +145,7 @@ fn names_no_file(ctx: &Context) -> Result<(), String> {
 /// parse, and the `mesh` must be a mesh of the gearing. With `run all` a bad value is refused
 /// before the first experiment computes, not by each experiment in turn after others ran.
 fn shared_settings(ctx: &Context) -> Result<(), String> {
-    if ctx.declares(study::events::PARAM.name) {
+    if ctx.holds(&study::events::PARAM) {
         crate::settings::rule(ctx).map_err(|e| e.to_string())?;
     }
     if let Some(label) = value(ctx, study::limits::MESH.name)

@@ -100,12 +100,12 @@ pub fn settings(text: &str) -> Result<Outcome, String> {
         // The last value of a key is the one given.
         for (key, value) in &sets {
             let last = sets.iter().rev().find(|(k, _)| k == key).map(|(_, v)| v);
-            match ctx.param(key) {
-                Ok(got) if Some(&got.to_owned()) == last => {}
-                Ok(got) => {
+            match ctx.values().find(|(p, _)| p.name == key) {
+                Some((_, got)) if Some(&got.to_owned()) == last => {}
+                Some((_, got)) => {
                     return Err(format!("{id}: accepted {key}={value:?} but holds {got:?}"));
                 }
-                Err(err) => return Err(format!("{id}: accepted {key}, then: {err}")),
+                None => return Err(format!("{id}: accepted {key}, which it does not declare")),
             }
         }
     }

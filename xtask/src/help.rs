@@ -227,8 +227,12 @@ pub(crate) fn rule_details(r: &rules::Rule, exps: &Registry) -> String {
         s.push_str("Parameters (--set events=NAME:key=value):\n");
         for p in d.params() {
             s.push_str(&format!(
-                "  {} = {} {} ({} to {}): {}\n",
-                p.name, p.default, p.unit, p.min, p.max, p.help
+                "  {} = {} {} ({}): {}\n",
+                p.name,
+                p.default,
+                p.unit,
+                p.kind.describe(),
+                p.help
             ));
         }
     }

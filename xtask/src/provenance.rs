@@ -86,9 +86,7 @@ const NAMED_INPUTS: &[&str] = &[
 fn recorded_inputs(ctx: &Context) -> BTreeMap<String, String> {
     let mut inputs = BTreeMap::new();
     for name in NAMED_INPUTS {
-        if ctx.declares(name)
-            && let Ok(v) = ctx.param(name)
-        {
+        if let Some((_, v)) = ctx.values().find(|(p, _)| p.name == *name) {
             inputs.insert((*name).to_owned(), v.to_owned());
         }
     }
@@ -116,8 +114,11 @@ const READINGS: &[&str] = &["events", "emax", "drive", "end"];
 fn readings(ctx: &Context) -> BTreeMap<&'static str, String> {
     READINGS
         .iter()
-        .filter(|name| ctx.declares(name))
-        .filter_map(|&name| ctx.param(name).ok().map(|v| (name, v.to_owned())))
+        .filter_map(|&name| {
+            ctx.values()
+                .find(|(p, _)| p.name == name)
+                .map(|(_, v)| (name, v.to_owned()))
+        })
         .collect()
 }
 

@@ -453,6 +453,49 @@ fn hypothesis_params_refused_by_edmunds_name_the_setting_typed() {
     assert_none(failures("edmunds-params", cases));
 }
 
+/// A misspelled or unknown parameter of an event rule or an error hypothesis is refused with exit
+/// 2, naming the key as typed and the keys the plugin declares, before anything runs.
+#[test]
+fn misspelled_rule_and_hypothesis_parameters_are_refused_naming_the_key_typed() {
+    let cases = vec![
+        case(
+            "a rule parameter misspelled",
+            None,
+            "run table4 --set events=idle-rotation:pitchs=2 --set trials=1 --out {out}",
+            &[
+                "--set: events: event rule idle-rotation: parameter `pitchs`: unknown key (known keys of idle-rotation: pitches)",
+            ],
+        ),
+        case(
+            "a parameter of a rule that takes none",
+            None,
+            "run table3 --set events=paper:mu=0.3 --set trials=1 --out {out}",
+            &["parameter `mu`: unknown key (paper takes no parameters)"],
+        ),
+        case(
+            "a rule parameter out of its declared range",
+            None,
+            "run table3 --set events=friction:mu=20 --set trials=1 --out {out}",
+            &["parameter `mu`: must be between 0 and 10 (got 20)"],
+        ),
+        case(
+            "a hypothesis parameter misspelled",
+            None,
+            "run fig5 --set hypothesis_params=randum=0.05 --out {out}",
+            &[
+                "--set: hypothesis_params: edmunds-split: parameter `randum`: unknown key (known keys of edmunds-split: random, systematic, split)",
+            ],
+        ),
+        case(
+            "a hypothesis parameter that is no number",
+            None,
+            "run fig5 --hypothesis curved-flanks --set hypothesis_params=sagitta=wide --out {out}",
+            &["curved-flanks: parameter `sagitta`: must be a finite number (got wide)"],
+        ),
+    ];
+    assert_none(failures("plugin-params", cases));
+}
+
 /// Counts too large or malformed name their maximum, a value refused by one of several
 /// experiments names that experiment, and `fuzz` parses its flags as `run` does: a repeated
 /// flag, or both budgets, refused; `--findings` checked before any fuzzing.

@@ -9,7 +9,7 @@ use rand_distr::{Distribution, StandardNormal};
 
 use registry::fmt_number;
 
-use crate::{Hypothesis, HypothesisError, ParamSpec, Params};
+use crate::{Hypothesis, HypothesisError, Kind, Param, Params};
 
 /// Random and systematic errors of one gear, after Edmunds (2011) as the paper adapts them.
 ///
@@ -209,28 +209,30 @@ pub(crate) fn with_valleys_at(gear: &Gear, valleys: Vec<f64>) -> Result<Gear, Ge
 }
 
 /// Parameter `random`.
-pub(crate) const RANDOM: ParamSpec = ParamSpec {
-    name: "random",
-    default: 0.04,
-    unit: "pitch",
-    help: "sd of each tip's displacement, as a fraction of the pitch 360/N",
-};
+pub(crate) const RANDOM: Param = Param::new(
+    "random",
+    "0.04",
+    "sd of each tip's displacement, as a fraction of the pitch 360/N",
+    Kind::ANY_NUMBER,
+)
+.unit("pitch");
 
 /// Parameter `systematic`.
-pub(crate) const SYSTEMATIC: ParamSpec = ParamSpec {
-    name: "systematic",
-    default: 0.5,
-    unit: "deg",
-    help: "systematic amplitude A",
-};
+pub(crate) const SYSTEMATIC: Param = Param::new(
+    "systematic",
+    "0.5",
+    "systematic amplitude A",
+    Kind::ANY_NUMBER,
+)
+.unit("deg");
 
 /// Parameter `split`.
-pub(crate) const SPLIT: ParamSpec = ParamSpec {
-    name: "split",
-    default: 0.5,
-    unit: "",
-    help: "share of A on the sinusoid of tip positions; the rest is an axis shift R·tan((1-split)·A)",
-};
+pub(crate) const SPLIT: Param = Param::new(
+    "split",
+    "0.5",
+    "share of A on the sinusoid of tip positions; the rest is an axis shift R·tan((1-split)·A)",
+    Kind::ANY_NUMBER,
+);
 
 /// Edmunds' random and systematic errors with the split either a parameter or fixed.
 pub(crate) struct EdmundsVariant {
@@ -239,7 +241,7 @@ pub(crate) struct EdmundsVariant {
     /// One-line summary.
     pub summary: &'static str,
     /// Parameters: `random`, `systematic` and, when `split` is `None`, `split`.
-    pub params: &'static [ParamSpec],
+    pub params: &'static [Param],
     /// `Some`: the split, fixed; `None`: the `split` parameter.
     pub split: Option<f64>,
 }
@@ -253,7 +255,7 @@ impl Hypothesis for EdmundsVariant {
         self.summary
     }
 
-    fn params(&self) -> &'static [ParamSpec] {
+    fn params(&self) -> &'static [Param] {
         self.params
     }
 
@@ -278,9 +280,9 @@ impl EdmundsVariant {
     /// Edmunds' errors as `params` set them.
     fn errors(&self, params: &Params) -> EdmundsErrors {
         EdmundsErrors {
-            random: params.get(RANDOM.name),
-            systematic_deg: params.get(SYSTEMATIC.name),
-            split: self.split.unwrap_or_else(|| params.get(SPLIT.name)),
+            random: params.value(&RANDOM),
+            systematic_deg: params.value(&SYSTEMATIC),
+            split: self.split.unwrap_or_else(|| params.value(&SPLIT)),
             phase_deg: None,
         }
     }

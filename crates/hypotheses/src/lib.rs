@@ -59,7 +59,7 @@ impl HypothesisError {
 
     /// An error about parameter `spec` of hypothesis `hypothesis` breaking `rule`: its `what` is
     /// `{hypothesis}: parameter `{name}``.
-    pub fn parameter(hypothesis: &str, spec: &ParamSpec, rule: impl Into<String>) -> Self {
+    pub fn parameter(hypothesis: &str, spec: &Param, rule: impl Into<String>) -> Self {
         Self::new(format!("{hypothesis}: parameter `{}`", spec.name), rule)
     }
 }
@@ -88,36 +88,10 @@ fn one_line(s: String) -> String {
 #[error("error hypothesis name `{0}` is registered twice")]
 pub struct DuplicateName(pub &'static str);
 
-/// One parameter of a hypothesis: a number with a default.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ParamSpec {
-    /// Name used to override it (e.g. `--set random=0.08` in an experiment).
-    pub name: &'static str,
-    /// Value used when it is not overridden.
-    pub default: f64,
-    /// Unit, e.g. "deg" or "pitch"; empty when it has none.
-    pub unit: &'static str,
-    /// One line telling what it does.
-    pub help: &'static str,
-}
-
-impl ParamSpec {
-    /// A parameter called `name`, `default` unless overridden, in `unit` (empty when it has
-    /// none), doing what `help` says in one line.
-    pub const fn new(
-        name: &'static str,
-        default: f64,
-        unit: &'static str,
-        help: &'static str,
-    ) -> Self {
-        Self {
-            name,
-            default,
-            unit,
-            help,
-        }
-    }
-}
+/// One parameter of a hypothesis: declared like every parameter of the toolkit
+/// ([`registry::Param`]: name, default, unit, help, a number [`registry::Kind`]) and read by that
+/// declaration ([`Params::value`]).
+pub use registry::{Kind, Param};
 
 /// A manufacturing-error hypothesis: how a designed gear becomes a manufactured one.
 ///
@@ -137,7 +111,7 @@ pub trait Hypothesis: Sync {
     /// One line telling what it models.
     fn summary(&self) -> &'static str;
     /// Its parameters with their defaults (may be empty).
-    fn params(&self) -> &'static [ParamSpec];
+    fn params(&self) -> &'static [Param];
     /// The model in a few sentences: what it changes, how it draws, what it leaves alone, and
     /// its sources (shown by `cargo xtask help NAME`; empty if the summary says it all).
     fn details(&self) -> &'static str {
@@ -320,7 +294,7 @@ mod tests {
         fn summary(&self) -> &'static str {
             "test"
         }
-        fn params(&self) -> &'static [ParamSpec] {
+        fn params(&self) -> &'static [Param] {
             &[]
         }
         fn apply(

@@ -6,7 +6,7 @@ use std::sync::{LazyLock, Mutex, PoisonError};
 use geometry::Gear;
 use serde::Deserialize;
 
-use crate::{EdmundsErrors, Hypothesis, HypothesisError, ParamSpec, Params};
+use crate::{EdmundsErrors, Hypothesis, HypothesisError, Kind, Param, Params};
 
 /// The example table the registered `measured` hypothesis uses. Its values are INVENTED (the
 /// file says so): Edmunds' per-gear measurements are not public here.
@@ -179,7 +179,7 @@ impl MeasuredTable {
         params: &Params,
         rng: &mut dyn rand::RngCore,
     ) -> Result<Gear, HypothesisError> {
-        let scale = params.get("scale");
+        let scale = params.value(&SCALE);
         if !(scale.is_finite() && scale >= 0.0) {
             return Err(HypothesisError::new(
                 "measured: scale",
@@ -201,12 +201,15 @@ impl MeasuredTable {
 }
 
 /// Parameters of every `measured` hypothesis.
-pub(crate) const MEASURED_PARAMS: &[ParamSpec] = &[ParamSpec {
-    name: "scale",
-    default: 1.0,
-    unit: "",
-    help: "multiplies every random and systematic value of the table",
-}];
+pub(crate) const MEASURED_PARAMS: &[Param] = &[SCALE];
+
+/// Parameter `scale` of every `measured` hypothesis.
+const SCALE: Param = Param::new(
+    "scale",
+    "1",
+    "multiplies every random and systematic value of the table",
+    Kind::ANY_NUMBER,
+);
 
 /// One-line summary of every `measured` hypothesis.
 pub(crate) const MEASURED_SUMMARY: &str = "per-gear random fraction, systematic amplitude (deg) and optional phase from a RON table, 50/50 split unless it says otherwise; registered with an INVENTED example table (crates/hypotheses/data/measured-example.ron)";
@@ -282,7 +285,7 @@ impl Hypothesis for MeasuredHypothesis {
         MEASURED_SUMMARY
     }
 
-    fn params(&self) -> &'static [ParamSpec] {
+    fn params(&self) -> &'static [Param] {
         MEASURED_PARAMS
     }
 

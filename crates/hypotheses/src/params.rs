@@ -1,8 +1,6 @@
 //! The numbers a hypothesis is applied with: its defaults, then the user's overrides.
 
-use std::collections::BTreeMap;
-
-use crate::{Hypothesis, HypothesisError, ParamSpec};
+use crate::{Hypothesis, HypothesisError, Param};
 
 /// The `name=value` pairs of a hypothesis' parameters as typed (`random=0.04,systematic=0.6`),
 /// trimmed, in order; blank text is no pairs.
@@ -44,23 +42,22 @@ pub fn parse_overrides(text: &str) -> Result<Vec<(String, String)>, String> {
     Ok(pairs)
 }
 
-/// Values of a hypothesis' parameters, by name: every declared parameter has one.
+/// Values of a hypothesis' parameters: every declared parameter has one, read by its
+/// declaration (`params.value(&RANDOM)`).
 #[derive(Debug, Clone, PartialEq)]
-pub struct Params {
-    values: BTreeMap<&'static str, f64>,
-}
+pub struct Params(registry::Values);
 
 impl Params {
-    /// `h`'s defaults, then `overrides` (name, value as typed).
+    /// `h`'s defaults, then `overrides` (name, value as typed), each checked against its
+    /// declaration.
     ///
-    /// An unknown name, a name given twice (which value was meant?), or a value that is not a
-    /// finite number, is an error naming the key, the hypothesis and its known keys.
+    /// An unknown name, a name given twice (which value was meant?), or a value its declaration
+    /// refuses (not a finite number, outside its range) is an error naming the key, the
+    /// hypothesis and its known keys.
     pub fn new(
         h: &dyn Hypothesis,
         overrides: &[(String, String)],
     ) -> Result<Self, HypothesisError> {
-        let mut values: BTreeMap<&'static str, f64> =
-            h.params().iter().map(|p| (p.name, p.default)).collect();
         let known = || {
             if h.params().is_empty() {
                 format!("{} takes no parameters", h.name())
@@ -69,71 +66,33 @@ impl Params {
                 format!("known keys of {}: {}", h.name(), names.join(", "))
             }
         };
-        for (key, text) in overrides {
-            let what = format!("{}: parameter `{key}`", h.name());
-            let Some(spec) = h.params().iter().find(|p| p.name == key.trim()) else {
-                return Err(HypothesisError::new(
-                    what,
-                    format!("unknown key ({})", known()),
-                ));
-            };
-            if overrides
-                .iter()
-                .filter(|(other, _)| other.trim() == key.trim())
-                .count()
-                > 1
-            {
-                return Err(HypothesisError::new(
-                    what,
-                    "is given twice: give it once".to_string(),
-                ));
-            }
-            let value: f64 = text.trim().parse().map_err(|_| {
-                HypothesisError::new(
-                    what.clone(),
-                    format!("must be a number (got `{text}`; {})", known()),
-                )
-            })?;
-            if !value.is_finite() {
-                return Err(HypothesisError::new(
-                    what,
-                    format!("must be a finite number (got `{text}`; {})", known()),
-                ));
-            }
-            values.insert(spec.name, value);
-        }
-        Ok(Self { values })
+        registry::Values::new(h.params(), overrides)
+            .map(Self)
+            .map_err(|e| {
+                let what = format!("{}: parameter `{}`", h.name(), e.key);
+                if e.unknown {
+                    HypothesisError::new(what, format!("unknown key ({})", known()))
+                } else {
+                    HypothesisError::new(what, format!("{}; {}", e.rule, known()))
+                }
+            })
     }
 
-    /// The value of parameter `name`.
-    ///
-    /// # Panics
-    ///
-    /// If `name` is not one of the hypothesis' declared parameters: a bug in the hypothesis, not
-    /// bad input (use [`Params::try_get`] to ask).
-    pub fn get(&self, name: &str) -> f64 {
-        match self.try_get(name) {
-            Some(v) => v,
-            None => panic!(
-                "parameter `{name}` is not declared (declared: {})",
-                self.values.keys().copied().collect::<Vec<_>>().join(", ")
-            ),
-        }
+    /// The value of the declared parameter `p` (the declaration is the key: a name cannot be
+    /// misspelled where it is read).
+    pub fn value(&self, p: &Param) -> f64 {
+        self.0.value(p)
     }
 
     /// The value of `spec`, a length of hypothesis `hypothesis` that must be finite and at least
     /// 0; any other value is an error naming the hypothesis and the parameter (`{hypothesis}:
     /// parameter `{name}`: must be a finite length of at least 0 {unit} (got {value})`).
-    ///
-    /// # Panics
-    ///
-    /// As [`Params::get`], if `spec` is not one of the hypothesis' declared parameters.
     pub fn non_negative_length(
         &self,
-        spec: &ParamSpec,
+        spec: &Param,
         hypothesis: &str,
     ) -> Result<f64, HypothesisError> {
-        let x = self.get(spec.name);
+        let x = self.value(spec);
         if x.is_finite() && x >= 0.0 {
             return Ok(x);
         }
@@ -148,14 +107,14 @@ impl Params {
         ))
     }
 
-    /// The value of parameter `name`, or `None` if it is not declared.
-    pub fn try_get(&self, name: &str) -> Option<f64> {
-        self.values.get(name).copied()
+    /// Whether the hypothesis declares `p`.
+    pub fn declares(&self, p: &Param) -> bool {
+        self.0.declarations().iter().any(|d| d == p)
     }
 
     /// Every (name, value), sorted by name.
     pub fn iter(&self) -> impl Iterator<Item = (&'static str, f64)> + '_ {
-        self.values.iter().map(|(&k, &v)| (k, v))
+        self.0.iter()
     }
 }
 

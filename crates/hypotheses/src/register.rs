@@ -19,7 +19,7 @@
 /// }
 /// ```
 ///
-/// `params` is a `&'static [ParamSpec]` (`&[]` for none); `details: TEXT` (the model in a few
+/// `params` is a `&'static [Param]` (`&[]` for none); `details: TEXT` (the model in a few
 /// sentences, what `cargo xtask help NAME` prints) may follow `summary`. `fn apply` takes what
 /// [`Hypothesis::apply`](crate::Hypothesis::apply) takes after `&self`. A hypothesis that needs
 /// more (its own [`Hypothesis::check`](crate::Hypothesis::check)) implements the trait by hand
@@ -53,7 +53,7 @@ macro_rules! hypothesis {
                 }
             )?
 
-            fn params(&self) -> &'static [$crate::ParamSpec] {
+            fn params(&self) -> &'static [$crate::Param] {
                 $params
             }
 

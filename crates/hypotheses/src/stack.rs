@@ -12,7 +12,7 @@ use std::sync::{Mutex, OnceLock};
 
 use geometry::Gear;
 
-use crate::{Hypothesis, HypothesisError, ParamSpec, Params};
+use crate::{Hypothesis, HypothesisError, Param, Params};
 
 /// The separator of layer names in a stack's name.
 pub const SEPARATOR: char = '+';
@@ -21,7 +21,7 @@ struct Stack {
     name: &'static str,
     summary: &'static str,
     layers: Vec<&'static dyn Hypothesis>,
-    params: &'static [ParamSpec],
+    params: &'static [Param],
 }
 
 impl Hypothesis for Stack {
@@ -33,7 +33,7 @@ impl Hypothesis for Stack {
         self.summary
     }
 
-    fn params(&self) -> &'static [ParamSpec] {
+    fn params(&self) -> &'static [Param] {
         self.params
     }
 
@@ -130,7 +130,7 @@ pub(crate) fn lookup_stack(
         }
         layers.push(h);
     }
-    let mut params: Vec<ParamSpec> = Vec::new();
+    let mut params: Vec<Param> = Vec::new();
     for l in &layers {
         for p in l.params() {
             if let Some(owner) = layers

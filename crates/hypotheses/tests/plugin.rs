@@ -5,12 +5,13 @@
 
 use geometry::Gear;
 use hypotheses::rand::RngCore;
-use hypotheses::{Manufactured, ParamSpec, Params, manufacture};
+use hypotheses::{Kind, Manufactured, Param, Params, manufacture};
 
-const SHIFT: ParamSpec = ParamSpec::new("shift", 1.0, "deg", "angle added to every tip");
+const SHIFT: Param =
+    Param::new("shift", "1", "angle added to every tip", Kind::ANY_NUMBER).unit("deg");
 
 fn apply(gear: &Gear, gear_name: &str, params: &Params, _: &mut dyn RngCore) -> Manufactured {
-    let shift = params.get(SHIFT.name).to_radians();
+    let shift = params.value(&SHIFT).to_radians();
     let tips = gear.tip_angles().iter().map(|t| t + shift).collect();
     manufacture(gear, gear_name, tips, gear.rotation_centre())
 }

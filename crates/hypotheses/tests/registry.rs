@@ -60,13 +60,13 @@ fn unknown_name_lists_every_registered_one() {
 fn params_are_defaults_then_overrides() {
     let h = lookup("edmunds-split").unwrap();
     let p = Params::new(h, &[]).unwrap();
-    assert_eq!(p.get("random"), 0.04);
-    assert_eq!(p.get("systematic"), 0.5);
-    assert_eq!(p.get("split"), 0.5);
+    assert_eq!(value(&p, "random").unwrap(), 0.04);
+    assert_eq!(value(&p, "systematic").unwrap(), 0.5);
+    assert_eq!(value(&p, "split").unwrap(), 0.5);
     let p = Params::new(h, &sets(&[("systematic", " 2 "), ("split", "0.25")])).unwrap();
-    assert_eq!(p.get("systematic"), 2.0);
-    assert_eq!(p.get("split"), 0.25);
-    assert_eq!(p.try_get("phase"), None);
+    assert_eq!(value(&p, "systematic").unwrap(), 2.0);
+    assert_eq!(value(&p, "split").unwrap(), 0.25);
+    assert_eq!(value(&p, "phase"), None);
     assert_eq!(
         p.iter().collect::<Vec<_>>(),
         [("random", 0.04), ("split", 0.25), ("systematic", 2.0)]
@@ -172,4 +172,9 @@ fn a_stack_with_an_empty_repeated_or_unknown_layer_or_a_shared_parameter_is_refu
             .contains("declared by both `edmunds-split` and `eccentric-only`"),
         "{e}"
     );
+}
+
+/// A parameter's value by its name, as a test reads it (plugins read by declaration).
+fn value(p: &Params, name: &str) -> Option<f64> {
+    p.iter().find(|(k, _)| *k == name).map(|(_, v)| v)
 }

@@ -121,6 +121,29 @@ struct Value {
 
 /// What the runner hands an experiment: the parameter side (seed, threads, parameters, config
 /// file), read here, and the trial engine behind [`Context::trials`] (`engine.rs`).
+///
+/// An experiment reads a parameter by its declaration (`ctx.get(&CLEARANCE)`, checked against
+/// the one it declares); no reader takes a name, so a literal key does not compile:
+///
+/// ```compile_fail
+/// const NAME: &str = "clearance";
+/// fn clearance(ctx: &registry::Context) -> f64 {
+///     ctx.f64(NAME).unwrap_or(40.0)
+/// }
+/// ```
+///
+/// ```compile_fail
+/// const NAME: &str = "clearance";
+/// fn clearance(ctx: &registry::Context) -> String {
+///     ctx.param(NAME).unwrap_or_default().to_owned()
+/// }
+/// ```
+///
+/// ```
+/// fn clearance(ctx: &registry::Context, p: &registry::Param) -> f64 {
+///     ctx.get(p).unwrap_or(40.0)
+/// }
+/// ```
 #[derive(Debug, Clone)]
 pub struct Context {
     id: &'static str,
@@ -250,9 +273,12 @@ impl Context {
             .collect()
     }
 
-    /// Does the experiment declare a parameter called `name`?
-    pub fn declares(&self, name: &str) -> bool {
-        self.params.iter().any(|p| p.name == name)
+    /// Every declared parameter with its value as typed (or its default), in declaration
+    /// order: how the runner, which knows no experiment's declarations, reads what a run was
+    /// given. An experiment reads its own parameters by declaration ([`Context::get`],
+    /// [`Context::text`]).
+    pub fn values(&self) -> impl Iterator<Item = (&'static Param, &str)> + '_ {
+        self.params.iter().map(|v| (v.decl, v.value.as_str()))
     }
 
     /// This context in shard mode: [`Context::trials`] computes and records only `shard`'s
@@ -298,7 +324,7 @@ impl Context {
     /// (fig5's own `clearance` is not the gearing's) - is a bug ([`RunError::Internal`]).
     pub fn get<T: FromParam>(&self, p: &Param) -> Result<T, RunError> {
         self.declared(p)?;
-        T::from_param(self, p.name)
+        T::from_param(self, p)
     }
 
     /// The text of parameter `p` as typed (a name, a list, a file), by its declaration as for
@@ -326,11 +352,6 @@ impl Context {
             )));
         }
         Ok(v)
-    }
-
-    /// Raw string value of a declared param (an undeclared name is a bug: [`RunError::Internal`]).
-    pub fn param(&self, name: &str) -> Result<&str, RunError> {
-        self.value(name).map(|v| v.value.as_str())
     }
 
     fn value(&self, name: &str) -> Result<&Value, RunError> {
@@ -365,7 +386,7 @@ impl Context {
     }
 
     /// A param as a finite number (`NaN` and infinities are refused).
-    pub fn f64(&self, name: &str) -> Result<f64, RunError> {
+    fn finite(&self, name: &str) -> Result<f64, RunError> {
         let rule = "must be a finite number";
         let x: f64 = self.parse(name, rule)?;
         if x.is_finite() {
@@ -376,7 +397,7 @@ impl Context {
     }
 
     /// A param as a non-negative integer count, at most [`MAX_COUNT`].
-    pub fn usize(&self, name: &str) -> Result<usize, RunError> {
+    fn usize(&self, name: &str) -> Result<usize, RunError> {
         let n: usize = self.parse(
             name,
             &format!("must be a non-negative integer, at most {MAX_COUNT} (the limit on counts)"),
@@ -391,7 +412,7 @@ impl Context {
     }
 
     /// A param as a non-negative 64-bit integer.
-    pub fn u64(&self, name: &str) -> Result<u64, RunError> {
+    fn u64(&self, name: &str) -> Result<u64, RunError> {
         self.parse(name, "must be a non-negative integer")
     }
 
@@ -470,31 +491,31 @@ impl Context {
 /// A type a parameter's value is read as with [`Context::get`]; the parameter's [`crate::Kind`]
 /// has already checked it fits.
 pub trait FromParam: Sized {
-    /// The value of the declared parameter `name`.
-    fn from_param(ctx: &Context, name: &str) -> Result<Self, RunError>;
+    /// The value of the declared parameter `p`.
+    fn from_param(ctx: &Context, p: &Param) -> Result<Self, RunError>;
 }
 
 impl FromParam for f64 {
-    fn from_param(ctx: &Context, name: &str) -> Result<f64, RunError> {
-        ctx.f64(name)
+    fn from_param(ctx: &Context, p: &Param) -> Result<f64, RunError> {
+        ctx.finite(p.name)
     }
 }
 
 impl FromParam for usize {
-    fn from_param(ctx: &Context, name: &str) -> Result<usize, RunError> {
-        ctx.usize(name)
+    fn from_param(ctx: &Context, p: &Param) -> Result<usize, RunError> {
+        ctx.usize(p.name)
     }
 }
 
 impl FromParam for u64 {
-    fn from_param(ctx: &Context, name: &str) -> Result<u64, RunError> {
-        ctx.u64(name)
+    fn from_param(ctx: &Context, p: &Param) -> Result<u64, RunError> {
+        ctx.u64(p.name)
     }
 }
 
 impl FromParam for bool {
-    fn from_param(ctx: &Context, name: &str) -> Result<bool, RunError> {
-        ctx.parse(name, "must be true or false")
+    fn from_param(ctx: &Context, p: &Param) -> Result<bool, RunError> {
+        ctx.parse(p.name, "must be true or false")
     }
 }
 
@@ -598,16 +619,19 @@ mod tests {
         let ctx = Context::new(&EXP, 7, 3, &[], None).unwrap();
         assert_eq!(ctx.seed(), 7);
         assert_eq!(ctx.threads(), 3);
-        assert_eq!(ctx.param("teeth").unwrap(), "24");
+        assert_eq!(
+            ctx.values().find(|(p, _)| p.name == "teeth").unwrap().1,
+            "24"
+        );
         assert_eq!(ctx.usize("teeth").unwrap(), 24);
         assert_eq!(ctx.u64("teeth").unwrap(), 24);
-        assert!((ctx.f64("module").unwrap() - 0.5).abs() < 1e-15);
+        assert!((ctx.finite("module").unwrap() - 0.5).abs() < 1e-15);
         assert!(ctx.config().is_none());
 
         let ctx =
             Context::new(&EXP, 7, 1, &set(&[("teeth", "30"), ("teeth", "31")]), None).unwrap();
         assert_eq!(ctx.usize("teeth").unwrap(), 31, "later --set wins");
-        assert!((ctx.f64("module").unwrap() - 0.5).abs() < 1e-15);
+        assert!((ctx.finite("module").unwrap() - 0.5).abs() < 1e-15);
     }
 
     #[test]
@@ -638,22 +662,22 @@ mod tests {
         assert_eq!(field_of(&e).1, "teeth");
         assert!(!e.to_string().contains('\n'));
         assert!(ctx.u64("teeth").is_err());
-        let e = ctx.f64("module").unwrap_err();
+        let e = ctx.finite("module").unwrap_err();
         assert_eq!(field_of(&e).1, "module");
         assert!(field_of(&e).2.contains("finite"));
 
         let ctx = Context::new(&EXP, 0, 1, &set(&[("module", "inf")]), None).unwrap();
-        assert!(ctx.f64("module").is_err());
+        assert!(ctx.finite("module").is_err());
         let ctx = Context::new(&EXP, 0, 1, &set(&[("module", "abc")]), None).unwrap();
-        assert_eq!(ctx.f64("module").unwrap_err().exit_code(), 2);
+        assert_eq!(ctx.finite("module").unwrap_err().exit_code(), 2);
     }
 
     #[test]
     fn bad_default_and_undeclared_name_are_internal() {
         let ctx = Context::new(&EXP, 0, 1, &[], None).unwrap();
         assert!(matches!(ctx.usize("broken"), Err(RunError::Internal(_))));
-        assert!(matches!(ctx.param("nope"), Err(RunError::Internal(_))));
-        assert!(matches!(ctx.f64("nope"), Err(RunError::Internal(_))));
+        assert!(ctx.values().all(|(p, _)| p.name != "nope"));
+        assert!(matches!(ctx.finite("nope"), Err(RunError::Internal(_))));
     }
 
     static COUNTED: Experiment = Experiment {
@@ -714,8 +738,9 @@ mod tests {
     #[test]
     fn declares_names_the_declared_parameters() {
         let ctx = Context::new(&COUNTED, 0, 1, &[], None).unwrap();
-        assert!(ctx.declares("trials") && ctx.declares("samples"));
-        assert!(!ctx.declares("teeth"));
+        let declares = |name: &str| ctx.values().any(|(p, _)| p.name == name);
+        assert!(declares("trials") && declares("samples"));
+        assert!(!declares("teeth"));
     }
 
     #[test]

@@ -40,6 +40,7 @@ mod output;
 mod progress;
 mod table;
 mod trials;
+mod values;
 
 pub use context::{
     ConfigFile, Context, FromParam, MAX_COUNT, MAX_TRIALS, MIN_PER_ENGAGEMENT,
@@ -56,6 +57,7 @@ pub use output::{
 pub use progress::{BatchProgress, Progress};
 pub use table::{Table, fmt_f64, fmt_number};
 pub use trials::{Batch, Records, Shard, ShardRecords, f64_bits, merge_records};
+pub use values::{ValueError, Values};
 
 /// One parameter of an experiment, settable from the command line with `--set name=value`.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -46,44 +46,10 @@ impl RuleError {
     }
 }
 
-/// One parameter of a rule: a number with a default and a range.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ParamSpec {
-    /// Name, as in `friction:mu=0.3`.
-    pub name: &'static str,
-    /// Value when not given.
-    pub default: f64,
-    /// Smallest allowed value.
-    pub min: f64,
-    /// Largest allowed value.
-    pub max: f64,
-    /// Unit, empty when it has none.
-    pub unit: &'static str,
-    /// One line telling what it does.
-    pub help: &'static str,
-}
-
-impl ParamSpec {
-    /// A parameter called `name`, `default` unless given, allowed from `min` to `max`, in
-    /// `unit` (empty when it has none), doing what `help` says in one line.
-    pub const fn new(
-        name: &'static str,
-        default: f64,
-        min: f64,
-        max: f64,
-        unit: &'static str,
-        help: &'static str,
-    ) -> Self {
-        Self {
-            name,
-            default,
-            min,
-            max,
-            unit,
-            help,
-        }
-    }
-}
+/// One parameter of a rule: declared like every parameter of the toolkit
+/// ([`registry::Param`], a number [`registry::Kind`] with its range) and read by that
+/// declaration ([`Params::value`]).
+pub use registry::{Kind, Param};
 
 /// An event rule: which events are jams and which are disengagements.
 pub trait EventRule: Sync {
@@ -95,7 +61,7 @@ pub trait EventRule: Sync {
     /// NAME`).
     fn details(&self) -> &'static str;
     /// Its parameters (may be empty).
-    fn params(&self) -> &'static [ParamSpec] {
+    fn params(&self) -> &'static [Param] {
         &[]
     }
     /// What it counts as a jam, in a few words: its cell of the README's table of rules
@@ -146,24 +112,9 @@ fn collect(
     Ok(map)
 }
 
-/// A rule's parameter values, by name: every declared parameter has one.
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct Params {
-    values: BTreeMap<&'static str, f64>,
-}
-
-impl Params {
-    /// The value of parameter `name`, or NaN if the rule does not declare it (a bug in the rule:
-    /// NaN makes every comparison false rather than panicking in a worker thread).
-    pub fn get(&self, name: &str) -> f64 {
-        self.values.get(name).copied().unwrap_or(f64::NAN)
-    }
-
-    /// Every (name, value), sorted by name.
-    pub fn iter(&self) -> impl Iterator<Item = (&'static str, f64)> + '_ {
-        self.values.iter().map(|(&k, &v)| (k, v))
-    }
-}
+/// A rule's parameter values: every declared parameter has one, read by its declaration
+/// (`params.value(&MU)`).
+pub type Params = registry::Values;
 
 /// A rule with its parameter values: what an experiment counts with.
 #[derive(Clone)]
@@ -200,19 +151,17 @@ impl Rule {
                 format!("unknown; known rules: {}", known.join(", ")),
             ));
         };
-        let mut values: BTreeMap<&'static str, f64> =
-            def.params().iter().map(|p| (p.name, p.default)).collect();
-        let mut given: Vec<&str> = Vec::new();
+        let keys = || {
+            let names: Vec<&str> = def.params().iter().map(|p| p.name).collect();
+            if names.is_empty() {
+                format!("{name} takes no parameters")
+            } else {
+                format!("known keys of {name}: {}", names.join(", "))
+            }
+        };
+        let mut pairs: Vec<(String, String)> = Vec::new();
         for (i, pair) in args.into_iter().flat_map(|a| a.split(',')).enumerate() {
             let what = |k: &str| format!("event rule {name}: parameter `{}`", k.escape_debug());
-            let keys = || {
-                let names: Vec<&str> = def.params().iter().map(|p| p.name).collect();
-                if names.is_empty() {
-                    format!("{name} takes no parameters")
-                } else {
-                    format!("known keys of {name}: {}", names.join(", "))
-                }
-            };
             if pair.trim().is_empty() {
                 return Err(RuleError::new(
                     format!("event rule {name}"),
@@ -229,40 +178,17 @@ impl Rule {
                     format!("must be key=value ({})", keys()),
                 ));
             };
-            let key = key.trim();
-            if given.contains(&key) {
-                return Err(RuleError::new(what(key), "is given twice: give it once"));
-            }
-            given.push(key);
-            let Some(p) = def.params().iter().find(|p| p.name == key) else {
-                return Err(RuleError::new(
-                    what(key),
-                    format!("unknown key ({})", keys()),
-                ));
-            };
-            let value: f64 = text.trim().parse().map_err(|_| {
-                RuleError::new(
-                    what(key),
-                    format!("must be a number (got `{}`)", text.escape_debug()),
-                )
-            })?;
-            if !(p.min..=p.max).contains(&value) {
-                return Err(RuleError::new(
-                    what(key),
-                    format!(
-                        "must be between {} and {} (got {})",
-                        fmt_number(p.min),
-                        fmt_number(p.max),
-                        fmt_number(value)
-                    ),
-                ));
-            }
-            values.insert(p.name, value);
+            pairs.push((key.trim().to_owned(), text.to_owned()));
         }
-        Ok(Self {
-            def,
-            params: Params { values },
-        })
+        let params = Params::new(def.params(), &pairs).map_err(|e| {
+            let what = format!("event rule {name}: parameter `{}`", e.key.escape_debug());
+            if e.unknown {
+                RuleError::new(what, format!("unknown key ({})", keys()))
+            } else {
+                RuleError::new(what, e.rule)
+            }
+        })?;
+        Ok(Self { def, params })
     }
 
     /// The rule's name.
@@ -344,14 +270,13 @@ pub fn listing() -> String {
         for p in r.params() {
             let _ = writeln!(
                 s,
-                "{:w$}    {}: default {}{}{}, {} to {}: {}",
+                "{:w$}    {}: default {}{}{}, {}: {}",
                 "",
                 p.name,
                 p.default,
                 if p.unit.is_empty() { "" } else { " " },
                 p.unit,
-                p.min,
-                p.max,
+                p.kind.describe(),
                 p.help
             );
         }
@@ -378,7 +303,7 @@ pub fn readme_row(r: &dyn EventRule) -> String {
         let args: Vec<String> = r
             .params()
             .iter()
-            .map(|p| format!("{}={}", p.name, fmt_number(p.default)))
+            .map(|p| format!("{}={}", p.name, p.default))
             .collect();
         notes.push(format!("`events={}:{}`", r.name(), args.join(",")));
     }

@@ -25,7 +25,7 @@
 /// }
 /// ```
 ///
-/// `params` (a `&'static [ParamSpec]`) may be left out when the rule has none.
+/// `params` (a `&'static [Param]`) may be left out when the rule has none.
 macro_rules! rule {
     (
         $(#[$meta:meta])*
@@ -54,7 +54,7 @@ macro_rules! rule {
             }
 
             $(
-                fn params(&self) -> &'static [$crate::ParamSpec] {
+                fn params(&self) -> &'static [$crate::Param] {
                     $params
                 }
             )?

@@ -7,20 +7,15 @@ use rand::RngCore;
 use rand_distr::{Distribution, StandardNormal};
 
 use crate::edmunds::with_valleys_at;
-use crate::{HypothesisError, Manufactured, ParamSpec, Params};
+use crate::{HypothesisError, Kind, Manufactured, Param, Params};
 
-const VALLEY_SHIFT: ParamSpec = ParamSpec::new(
-    "valley_shift",
-    0.05,
-    "gap",
-    "standard deviation of each valley's displacement from midway between its tips, as a fraction of that tip gap (the valley is clamped to 0.05 .. 0.95 of the gap)",
-);
+const VALLEY_SHIFT: Param = Param::new("valley_shift", "0.05", "standard deviation of each valley's displacement from midway between its tips, as a fraction of that tip gap (the valley is clamped to 0.05 .. 0.95 of the gap)", Kind::ANY_NUMBER).unit("gap");
 
 /// The valley's position in its gap is clamped to `[LOWEST, 1 - LOWEST]`.
 const LOWEST: f64 = 0.05;
 
 fn apply(gear: &Gear, gear_name: &str, params: &Params, rng: &mut dyn RngCore) -> Manufactured {
-    let shift = params.get(VALLEY_SHIFT.name);
+    let shift = params.value(&VALLEY_SHIFT);
     if !(0.0..=1.0).contains(&shift) {
         return Err(HypothesisError::parameter(
             "asymmetric-teeth",

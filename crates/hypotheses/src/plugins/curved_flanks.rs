@@ -6,24 +6,20 @@ use geometry::Gear;
 use rand::RngCore;
 use rand_distr::{Distribution, StandardNormal};
 
-use crate::{HypothesisError, Manufactured, ParamSpec, Params};
+use crate::{HypothesisError, Kind, Manufactured, Param, Params};
 
-const SAGITTA: ParamSpec = ParamSpec::new(
-    "sagitta",
-    0.05,
-    "mm",
-    "signed sagitta of every flank (the arc's greatest distance from its chord): + convex (bulging out of the tooth), - concave, 0 straight",
-);
+const SAGITTA: Param = Param::new("sagitta", "0.05", "signed sagitta of every flank (the arc's greatest distance from its chord): + convex (bulging out of the tooth), - concave, 0 straight", Kind::ANY_NUMBER).unit("mm");
 
-const SAGITTA_SPREAD: ParamSpec = ParamSpec::new(
+const SAGITTA_SPREAD: Param = Param::new(
     "sagitta_spread",
-    0.0,
-    "mm",
+    "0",
     "standard deviation of a random addition to the sagitta, drawn once per gear",
-);
+    Kind::ANY_NUMBER,
+)
+.unit("mm");
 
 fn apply(gear: &Gear, gear_name: &str, params: &Params, rng: &mut dyn RngCore) -> Manufactured {
-    let sagitta = params.get(SAGITTA.name);
+    let sagitta = params.value(&SAGITTA);
     if !sagitta.is_finite() {
         return Err(HypothesisError::parameter(
             "curved-flanks",
@@ -92,7 +88,7 @@ mod tests {
     #[test]
     fn defaults_curve_every_flank_and_keep_the_vertices() {
         let (h, p) = crate::test_support::with_defaults("curved-flanks");
-        assert_eq!((p.get("sagitta"), p.get("sagitta_spread")), (0.05, 0.0));
+        assert_eq!((p.value(&SAGITTA), p.value(&SAGITTA_SPREAD)), (0.05, 0.0));
         let designed = Gear::ideal(60, 15.0, 13.9)
             .unwrap()
             .with_radii(vec![15.0; 60], vec![13.9; 60])

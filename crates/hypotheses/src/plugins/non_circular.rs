@@ -7,21 +7,23 @@ use geometry::Gear;
 use rand::{Rng, RngCore};
 use rand_distr::{Distribution, StandardNormal};
 
-use crate::{HypothesisError, Manufactured, ParamSpec, Params};
+use crate::{HypothesisError, Kind, Manufactured, Param, Params};
 
-const RADIAL_ERROR: ParamSpec = ParamSpec::new(
+const RADIAL_ERROR: Param = Param::new(
     "radial_error",
-    0.02,
-    "mm",
+    "0.02",
     "standard deviation of each tip's and each valley's radius about the design",
-);
+    Kind::ANY_NUMBER,
+)
+.unit("mm");
 
-const LOBE: ParamSpec = ParamSpec::new(
+const LOBE: Param = Param::new(
     "lobe",
-    0.0,
-    "mm",
+    "0",
     "amplitude of a once-per-turn out-of-round (radius + lobe·cos(angle − α), α random per gear)",
-);
+    Kind::ANY_NUMBER,
+)
+.unit("mm");
 
 fn apply(gear: &Gear, gear_name: &str, params: &Params, rng: &mut dyn RngCore) -> Manufactured {
     let sd = params.non_negative_length(&RADIAL_ERROR, "non-circular")?;

@@ -6,17 +6,12 @@ use geometry::Gear;
 use rand::RngCore;
 use rand_distr::{Distribution, StandardNormal};
 
-use crate::{HypothesisError, Manufactured, ParamSpec, Params};
+use crate::{HypothesisError, Kind, Manufactured, Param, Params};
 
-const MODULE_SPREAD: ParamSpec = ParamSpec::new(
-    "module_spread",
-    3.3,
-    "%",
-    "standard deviation of each gear's module about the design (3.3 % makes meshing gears differ by 3.7 % on average, as Freeth et al. 2021 measured)",
-);
+const MODULE_SPREAD: Param = Param::new("module_spread", "3.3", "standard deviation of each gear's module about the design (3.3 % makes meshing gears differ by 3.7 % on average, as Freeth et al. 2021 measured)", Kind::ANY_NUMBER).unit("%");
 
 fn apply(gear: &Gear, gear_name: &str, params: &Params, rng: &mut dyn RngCore) -> Manufactured {
-    let spread = params.get(MODULE_SPREAD.name);
+    let spread = params.value(&MODULE_SPREAD);
     if !(0.0..50.0).contains(&spread) {
         return Err(HypothesisError::parameter(
             "ratio-mismatch",

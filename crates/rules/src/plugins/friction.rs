@@ -1,15 +1,11 @@
 //! `friction`: beyond the paper, which is frictionless - a single contact may wedge.
 
-use crate::{Event, EventKind, ParamSpec, Params};
+use crate::{Event, EventKind, Kind, Param, Params};
 
-const MU: ParamSpec = ParamSpec::new(
-    "mu",
-    0.2,
-    0.0,
-    10.0,
-    "",
-    "coefficient of friction at the teeth (bronze on bronze about 0.2)",
-);
+registry::params! {
+    /// `mu`: the coefficient of friction at the teeth.
+    const MU = Param::new("mu", "0.2", "coefficient of friction at the teeth (bronze on bronze about 0.2)", Kind::number(0.0, 10.0, ""));
+}
 
 /// Whether a strike wedges: the line from the contact point to the driven gear's centre lies
 /// inside the friction cone (half-angle atan μ) about the contact normal. A tip meeting a tip
@@ -21,7 +17,7 @@ fn wedges(e: &Event, mu: f64) -> bool {
 fn is_jam(e: &Event, p: &Params) -> bool {
     match e.kind {
         EventKind::Lock | EventKind::BlockedAtStart => true,
-        EventKind::Strike => p.get("mu") > 0.0 && wedges(e, p.get("mu")),
+        EventKind::Strike => p.value(&MU) > 0.0 && wedges(e, p.value(&MU)),
         _ => false,
     }
 }

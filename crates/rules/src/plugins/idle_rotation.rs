@@ -1,16 +1,12 @@
 //! `idle-rotation`: disengagement as the paper's program could see it - the driver turning with
 //! no tooth interference for a driver pitch or more, whatever the tooth phase afterwards.
 
-use crate::{Event, ParamSpec, Params};
+use crate::{Event, Kind, Param, Params};
 
-const PITCHES: ParamSpec = ParamSpec::new(
-    "pitches",
-    1.0,
-    0.0,
-    1000.0,
-    "driver pitches",
-    "the shortest idle rotation (drive lost, no contact pushing the driven gear) counted as a disengagement; 0 counts every loss of drive",
-);
+registry::params! {
+    /// `pitches`: the shortest idle rotation counted as a disengagement.
+    const PITCHES = Param::new("pitches", "1", "the shortest idle rotation (drive lost, no contact pushing the driven gear) counted as a disengagement; 0 counts every loss of drive", Kind::number(0.0, 1000.0, "")).unit("driver pitches");
+}
 
 fn is_jam(e: &Event, _: &Params) -> bool {
     e.kind.is_contact_stop()
@@ -20,7 +16,7 @@ fn is_disengagement(e: &Event, params: &Params) -> bool {
     // A driven gear never pushed in the whole run turned idle throughout, even in a run
     // shorter than the threshold.
     let never_driven = e.idle_start && !e.resumed;
-    e.kind.is_loss() && (e.lost_motion >= params.get("pitches") || never_driven)
+    e.kind.is_loss() && (e.lost_motion >= params.value(&PITCHES) || never_driven)
 }
 
 crate::rule! {
