@@ -23,7 +23,7 @@ use crate::{Experiment, Param, RunError};
 /// seeds.
 pub const MAX_TRIALS: u64 = 1_000_000;
 
-/// The largest value [`Context::usize`] accepts: 10^7. Integer parameters read that way are
+/// The largest count [`Context::get`] accepts as a `usize`: 10^7. Integer parameters read that way are
 /// counts that size the work and its memory (samples, pitches, teeth, trials...); a larger one
 /// is refused, naming this limit, rather than attempted.
 pub const MAX_COUNT: usize = 10_000_000;
