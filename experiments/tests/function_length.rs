@@ -32,7 +32,6 @@ const NOT_YET_SPLIT: &[(&str, &str)] = &[
     ("fig5.rs", TO_SPLIT),
     ("fig6.rs", TO_SPLIT),
     ("fig_iv.rs", TO_SPLIT),
-    ("sensitivity.rs", TO_SPLIT),
     ("sigma_causes.rs", TO_SPLIT),
     ("table1.rs", TO_SPLIT),
     ("table2.rs", TO_SPLIT),

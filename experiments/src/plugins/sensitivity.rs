@@ -174,44 +174,11 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let split = ctx.get(&errors::SPLIT)?;
     let base = crate::settings::hypothesis(ctx)?;
     let rule = crate::settings::rule(ctx)?;
-    let embedded: Vec<(&str, Gearing)> = VARIANTS
-        .iter()
-        .filter_map(|v| v.gearing)
-        .map(|name| {
-            Gearing::builtin(name)
-                .map(|g| (name, g))
-                .ok_or_else(|| RunError::Internal(format!("embedded gearing {name} is missing")))
-        })
-        .collect::<Result<_, _>>()?;
-
-    // The case's values where the base hypothesis declares them (eccentric-only has no split).
-    let case_values: Vec<(String, String)> = [
-        ("random", random),
-        ("systematic", systematic),
-        ("split", split),
-    ]
-    .iter()
-    .filter(|(k, _)| base.params().iter().any(|p| p.name == *k))
-    .map(|(k, v)| ((*k).to_string(), v.to_string()))
-    .collect();
-    let base_params = hypotheses::Params::new(base, &case_values)
-        .map_err(|e| RunError::bad("--hypothesis", e.what, e.rule))?;
+    let embedded = embedded_gearings()?;
+    let base_params = case_params(base, [random, systematic, split])?;
     let mut rows = Vec::with_capacity(VARIANTS.len());
     for v in VARIANTS {
-        let extra = match v.plugin {
-            Some((name, set)) => {
-                let h = hypotheses::lookup(name)
-                    .map_err(|e| RunError::Internal(format!("sensitivity row: {e}")))?;
-                let set: Vec<(String, String)> = set
-                    .iter()
-                    .map(|(k, v)| ((*k).to_string(), v.to_string()))
-                    .collect();
-                let p = hypotheses::Params::new(h, &set)
-                    .map_err(|e| RunError::Internal(format!("sensitivity row: {e}")))?;
-                Some((h, p))
-            }
-            None => None,
-        };
+        let extra = row_hypothesis(v)?;
         let hypotheses = match &extra {
             Some((h, _)) => format!("{}, then {}", base.name(), h.name()),
             None => base.name().to_string(),
@@ -248,7 +215,68 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             outcomes: whole::run_study(ctx.engine(), g, inputs, trials, h, days, &rule, &key)?,
         });
     }
+    report(&rows, case, trials, days, clearance, ctx.seed())
+}
 
+/// The embedded gearings some rows use instead of the `gearing` parameter.
+fn embedded_gearings() -> Result<Vec<(&'static str, Gearing)>, RunError> {
+    VARIANTS
+        .iter()
+        .filter_map(|v| v.gearing)
+        .map(|name| {
+            Gearing::builtin(name)
+                .map(|g| (name, g))
+                .ok_or_else(|| RunError::Internal(format!("embedded gearing {name} is missing")))
+        })
+        .collect()
+}
+
+/// The base hypothesis' parameters: the case's values (random, systematic, split) where it
+/// declares them (eccentric-only has no split).
+fn case_params(
+    base: &dyn hypotheses::Hypothesis,
+    [random, systematic, split]: [f64; 3],
+) -> Result<hypotheses::Params, RunError> {
+    let case_values: Vec<(String, String)> = [
+        ("random", random),
+        ("systematic", systematic),
+        ("split", split),
+    ]
+    .iter()
+    .filter(|(k, _)| base.params().iter().any(|p| p.name == *k))
+    .map(|(k, v)| ((*k).to_string(), v.to_string()))
+    .collect();
+    hypotheses::Params::new(base, &case_values)
+        .map_err(|e| RunError::bad("--hypothesis", e.what, e.rule))
+}
+
+/// The hypothesis a row applies after the case's errors, with its written-out values.
+fn row_hypothesis(
+    v: &Variant,
+) -> Result<Option<(&'static dyn hypotheses::Hypothesis, hypotheses::Params)>, RunError> {
+    let Some((name, set)) = v.plugin else {
+        return Ok(None);
+    };
+    let h = hypotheses::lookup(name)
+        .map_err(|e| RunError::Internal(format!("sensitivity row: {e}")))?;
+    let set: Vec<(String, String)> = set
+        .iter()
+        .map(|(k, v)| ((*k).to_string(), v.to_string()))
+        .collect();
+    let p = hypotheses::Params::new(h, &set)
+        .map_err(|e| RunError::Internal(format!("sensitivity row: {e}")))?;
+    Ok(Some((h, p)))
+}
+
+/// The report: totals over every row, the headline table and the share plot.
+fn report(
+    rows: &[Row<'_>],
+    case: &str,
+    trials: u64,
+    days: f64,
+    clearance: f64,
+    seed: u64,
+) -> Result<Report, RunError> {
     let mut report = Report {
         trials: rows.iter().map(|r| r.outcomes.len() as u64).sum(),
         engagements: rows
@@ -259,17 +287,12 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             .round() as u64,
         ..Default::default()
     };
-    report.tables.push(headline_table(
-        &rows,
-        case,
-        trials,
-        days,
-        clearance,
-        ctx.seed(),
-    ));
+    report
+        .tables
+        .push(headline_table(rows, case, trials, days, clearance, seed));
     report.files.push(OutputFile::new(
         "sensitivity-share.svg",
-        share_plot(&rows, case, days)?,
+        share_plot(rows, case, days)?,
     ));
     Ok(report)
 }
