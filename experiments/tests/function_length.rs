@@ -29,7 +29,6 @@ const NOT_YET_SPLIT: &[(&str, &str)] = &[
     ("failure.rs", TO_SPLIT),
     ("fig2.rs", TO_SPLIT),
     ("fig3.rs", TO_SPLIT),
-    ("fig5.rs", TO_SPLIT),
     ("fig6.rs", TO_SPLIT),
     ("fig_iv.rs", TO_SPLIT),
     ("sigma_causes.rs", TO_SPLIT),

@@ -117,6 +117,79 @@ fn ran_values(ran: &hypotheses::Params) -> String {
         .collect()
 }
 
+/// The table's title and columns.
+fn figure_table(n: usize, big_r: f64, small_r: f64, values: &str, hypothesis: &str) -> Table {
+    Table::new(
+        format!(
+            "Figure 5: {n}:{n} pair, R = {}, r = {}, {values}hypothesis {hypothesis}",
+            fmt_number(big_r),
+            fmt_number(small_r),
+        ),
+        [
+            "split",
+            "Edmunds sigma [deg]",
+            "triangular sigma [deg]",
+            "triangular/Edmunds",
+            "jams",
+            "disengagements",
+        ],
+    )
+}
+
+/// Refuses a hypothesis whose gears Edmunds' radial-line model cannot see.
+fn edmunds_sees(hypothesis: &str, driver: &Gear, driven: &Gear) -> Result<(), RunError> {
+    if let Some(what) = edmunds::unseen(driver).or_else(|| edmunds::unseen(driven)) {
+        return Err(RunError::bad(
+            "--hypothesis",
+            hypothesis,
+            format!(
+                "makes gears with {what}, which Edmunds' radial-line model cannot take (it sees only each tip's angle about the axis), so Figure 5's comparison cannot hold: choose one that moves tips or the axis (edmunds-split, eccentric-only, sinusoid-only, measured)"
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// One split's row: both sigmas, their ratio where Edmunds' is not flat, and the events.
+fn row_cells(
+    name: &str,
+    s_rad: f64,
+    s_tri: f64,
+    idle: bool,
+    (jams, disengagements): (usize, usize),
+) -> Vec<String> {
+    vec![
+        name.into(),
+        fmt_f64(s_rad, 4),
+        if idle {
+            "- (never driven)".into()
+        } else {
+            fmt_f64(s_tri, 4)
+        },
+        if idle {
+            "-".into()
+        } else if s_rad > EDMUNDS_FLAT {
+            fmt_f64(s_tri / s_rad, 3)
+        } else {
+            "n/a".into()
+        },
+        jams.to_string(),
+        disengagements.to_string(),
+    ]
+}
+
+/// The notes under the table: what both models share, and the marks the rows used.
+fn add_notes(table: &mut Table, never_driven: bool, no_ratio: bool) {
+    table.note("Both models run on the same manufactured gears and the same initial angle; one turn of the driver.");
+    if never_driven {
+        table.note("Never driven: no driver tooth reached the driven gear in the whole turn (an idle start, counted as a disengagement by every event rule), so its triangular-teeth sigma describes nothing and is not given.");
+    }
+    if no_ratio {
+        table.note("n/a: Edmunds' sigma is 0 (gears with no tip or axis error keep his pointer exact), so the two cannot be compared by a ratio.");
+    }
+    table.note("The paper's claim: the split does not change the pointer's behaviour significantly. Its Figure 5 gives no numbers in the text.");
+}
+
 fn run(ctx: &Context) -> Result<Report, RunError> {
     crate::settings::labelled(ctx, counted)
 }
@@ -152,22 +225,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     // the experiment's own), and only those it takes.
     let ran = errors.params(&offered)?;
     let values = ran_values(&ran);
-    let mut table = Table::new(
-        format!(
-            "Figure 5: {n}:{n} pair, R = {}, r = {}, {values}hypothesis {}",
-            fmt_number(big_r),
-            fmt_number(small_r),
-            h.name()
-        ),
-        [
-            "split",
-            "Edmunds sigma [deg]",
-            "triangular sigma [deg]",
-            "triangular/Edmunds",
-            "jams",
-            "disengagements",
-        ],
-    );
+    let mut table = figure_table(n, big_r, small_r, &values, h.name());
     let trial = ctx.get(&TRIAL)?;
     let mut series = Vec::new();
     let mut columns = Vec::new();
@@ -177,15 +235,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         let p = errors.params(&[offered[0], offered[1], ("split", split)])?;
         // The same stream for every split: only the split changes between the panels.
         let (driver, driven, phi0) = errors::made_pair(h, &ideal, &p, ctx.seed(), trial)?;
-        if let Some(what) = edmunds::unseen(&driver).or_else(|| edmunds::unseen(&driven)) {
-            return Err(RunError::bad(
-                "--hypothesis",
-                h.name(),
-                format!(
-                    "makes gears with {what}, which Edmunds' radial-line model cannot take (it sees only each tip's angle about the axis), so Figure 5's comparison cannot hold: choose one that moves tips or the axis (edmunds-split, eccentric-only, sinusoid-only, measured)"
-                ),
-            ));
-        }
+        edmunds_sees(h.name(), &driver, &driven)?;
         let tri = pair.run_made((&driver, &driven), clearance, phi0)?;
         let rad = RadialPair::new(&driver, &driven, phi0);
         let td = |f: &dyn Fn(f64) -> f64| -> Vec<f64> {
@@ -202,37 +252,14 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         );
         let idle = tri.never_driven();
         never_driven |= idle;
-        table.row(vec![
-            name.into(),
-            fmt_f64(s_rad, 4),
-            if idle {
-                "- (never driven)".into()
-            } else {
-                fmt_f64(s_tri, 4)
-            },
-            if idle {
-                "-".into()
-            } else if s_rad > EDMUNDS_FLAT {
-                fmt_f64(s_tri / s_rad, 3)
-            } else {
-                no_ratio = true;
-                "n/a".into()
-            },
-            study::events::counts(&rule, &tri).0.to_string(),
-            study::events::counts(&rule, &tri).1.to_string(),
-        ]);
+        let cells = row_cells(name, s_rad, s_tri, idle, study::events::counts(&rule, &tri));
+        no_ratio |= cells[3] == "n/a";
+        table.row(cells);
         series.push((name, td_rad.clone(), td_tri.clone()));
         columns.push(td_rad);
         columns.push(td_tri);
     }
-    table.note("Both models run on the same manufactured gears and the same initial angle; one turn of the driver.");
-    if never_driven {
-        table.note("Never driven: no driver tooth reached the driven gear in the whole turn (an idle start, counted as a disengagement by every event rule), so its triangular-teeth sigma describes nothing and is not given.");
-    }
-    if no_ratio {
-        table.note("n/a: Edmunds' sigma is 0 (gears with no tip or axis error keep his pointer exact), so the two cannot be compared by a ratio.");
-    }
-    table.note("The paper's claim: the split does not change the pointer's behaviour significantly. Its Figure 5 gives no numbers in the text.");
+    add_notes(&mut table, never_driven, no_ratio);
     let files = panels(&series, &columns, &phis)?;
     Ok(Report {
         tables: vec![table],
