@@ -35,7 +35,6 @@ const NOT_YET_SPLIT: &[(&str, &str)] = &[
     ("table1.rs", TO_SPLIT),
     ("table2.rs", TO_SPLIT),
     ("table6.rs", TO_SPLIT),
-    ("tolerance_search.rs", TO_SPLIT),
 ];
 
 /// (name, first line, line count) of each function.

@@ -137,6 +137,63 @@ fn saved(used: u64, grid: u64) -> f64 {
     }
 }
 
+/// The table's title and columns.
+fn search_table(s: &Settings, clearance: f64) -> Table {
+    Table::new(
+        format!(
+            "Largest tolerable random error of each mesh (rule {} %, no systematic error, G = {clearance} %) [fraction of the pitch]: sequential search against Table 4's grid and the paper's E. max; * where the paper's is more than one resolution ({}) from the search's",
+            s.rule,
+            label(s.resolution, 3),
+        ),
+        vec![
+            "mesh",
+            "search",
+            "grid",
+            "paper",
+            "probes",
+            "search pair turns",
+            "grid pair turns",
+            "saved %",
+        ],
+    )
+}
+
+/// One mesh's probes, a CSV line each, in the order the search ran them.
+fn probe_lines(mesh: &str, sr: &Search) -> String {
+    let mut out = String::new();
+    for (i, p) in sr.probes.iter().enumerate() {
+        out.push_str(&format!(
+            "{mesh},{},{},{},{},{},{:?}\n",
+            i + 1,
+            p.value,
+            p.counts.trials,
+            p.counts.jams,
+            p.counts.disengagements,
+            p.decision
+        ));
+    }
+    out
+}
+
+/// Whether the search's tolerable value is within one resolution of the paper's `p`.
+fn within_resolution(pass: Option<f64>, p: f64, resolution: f64) -> bool {
+    pass.is_some_and(|o| (o - p).abs() <= resolution * (1.0 + 1e-9))
+}
+
+/// The last row: probes and pair turns summed over the meshes.
+fn total_row(probes: usize, used: u64, grid: u64) -> Vec<String> {
+    vec![
+        "total".into(),
+        String::new(),
+        String::new(),
+        String::new(),
+        probes.to_string(),
+        used.to_string(),
+        grid.to_string(),
+        format!("{:.0}", saved(used, grid)),
+    ]
+}
+
 fn run(ctx: &Context) -> Result<Report, RunError> {
     crate::settings::labelled(ctx, counted)
 }
@@ -154,23 +211,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let grid_tolerable = grid.tolerable(s.cap, s.rule);
     let grid_per_mesh = grid.values.len() as u64 * s.cap;
 
-    let mut table = Table::new(
-        format!(
-            "Largest tolerable random error of each mesh (rule {} %, no systematic error, G = {clearance} %) [fraction of the pitch]: sequential search against Table 4's grid and the paper's E. max; * where the paper's is more than one resolution ({}) from the search's",
-            s.rule,
-            label(s.resolution, 3),
-        ),
-        vec![
-            "mesh",
-            "search",
-            "grid",
-            "paper",
-            "probes",
-            "search pair turns",
-            "grid pair turns",
-            "saved %",
-        ],
-    );
+    let mut table = search_table(&s, clearance);
     let mut csv = String::from(
         "mesh,search_emax,search_fail,grid_emax,paper_emax,probes,search_trials,grid_trials,saved_percent\n",
     );
@@ -179,10 +220,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let (mut used_total, mut grid_total, mut probes_total) = (0, 0, 0);
     for ((mesh, sr), grid_value) in grid.meshes.iter().zip(&searches).zip(&grid_tolerable) {
         let paper = paper_random(mesh);
-        let agrees = paper.map(|p| {
-            sr.pass
-                .is_some_and(|o| (o - p).abs() <= s.resolution * (1.0 + 1e-9))
-        });
+        let agrees = paper.map(|p| within_resolution(sr.pass, p, s.resolution));
         match agrees {
             Some(true) => inside += 1,
             Some(false) => outside += 1,
@@ -216,28 +254,9 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             sr.probes.len(),
             saved(used, grid_per_mesh)
         ));
-        for (i, p) in sr.probes.iter().enumerate() {
-            probes_csv.push_str(&format!(
-                "{mesh},{},{},{},{},{},{:?}\n",
-                i + 1,
-                p.value,
-                p.counts.trials,
-                p.counts.jams,
-                p.counts.disengagements,
-                p.decision
-            ));
-        }
+        probes_csv.push_str(&probe_lines(mesh, sr));
     }
-    table.row(vec![
-        "total".into(),
-        String::new(),
-        String::new(),
-        String::new(),
-        probes_total.to_string(),
-        used_total.to_string(),
-        grid_total.to_string(),
-        format!("{:.0}", saved(used_total, grid_total)),
-    ]);
+    table.row(total_row(probes_total, used_total, grid_total));
     let step = ctx.get::<f64>(&RANDOM_STEP)?;
     explain(&mut table, &s, &grid, step, (inside, outside));
     let trials = used_total + grid.all().map(|c| c.trials).sum::<u64>();
