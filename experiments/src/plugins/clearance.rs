@@ -83,14 +83,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             fmt_f64(r1, 4),
             fmt_f64(r2, 4)
         ),
-        [
-            "G [% of h]",
-            "D [mm]",
-            "jams",
-            "disengagements",
-            "TD sigma [deg]",
-            "TD Dm [deg]",
-        ],
+        SWEEP_COLUMNS,
     );
     let mut rows = Vec::new();
     let mut sigma_points = Vec::new();
@@ -150,7 +143,26 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         (last_jam, first_free),
         (first_dis, last_engaged),
     )?;
+    report(limits, grid, rows, sigma_points)
+}
 
+/// The sweep table's columns.
+const SWEEP_COLUMNS: [&str; 6] = [
+    "G [% of h]",
+    "D [mm]",
+    "jams",
+    "disengagements",
+    "TD sigma [deg]",
+    "TD Dm [deg]",
+];
+
+/// The report: both tables, the sweep as CSV and the sigma plot of the runs without events.
+fn report(
+    limits: Table,
+    grid: Table,
+    rows: Vec<Vec<f64>>,
+    sigma_points: Vec<(f64, f64)>,
+) -> Result<Report, RunError> {
     let svg = line_plot(
         "Clearance sweep (Appendix II, Figure IV style): TD sigma of the driven gear",
         "clearance G [% of tooth height]",
