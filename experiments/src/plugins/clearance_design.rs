@@ -231,34 +231,8 @@ fn search_table(
     s: &Settings,
     searches: &[MeshSearch],
 ) -> Result<(Table, String, String, u64), RunError> {
-    let (g, hyp, h) = (
-        cells.gearing(),
-        cells.hypothesis(),
-        cells.gearing.tooth_height,
-    );
-    let meshes = cells.meshes();
-    let rl = label(s.reference, 0);
-    let n_final = s.final_trials();
-    let mut header = vec![
-        "case".to_string(),
-        "mesh".to_string(),
-        "years of b per pair run".to_string(),
-    ];
-    header.extend(s.grid.iter().map(|v| format!("{} %", label(*v, 0))));
-    header.extend([
-        "best G [%]".to_string(),
-        format!("best: failed of {n_final} (jams/dis)"),
-        "best: 95 % interval [%]".to_string(),
-        format!("{rl} %: failed of {n_final} (jams/dis)"),
-        format!("{rl} %: 95 % interval [%]"),
-    ]);
-    let mut table = Table::new(
-        format!(
-            "Each mesh on its own, Edmunds' Cases: pair runs (of {}) with a jam or a disengagement at each clearance of the coarse grid, and the clearance that minimises them (best), against the paper's {rl} % for every mesh",
-            s.coarse
-        ),
-        header,
-    );
+    let g = cells.gearing();
+    let mut table = search_header(s);
     let mut best_csv = String::from(
         "case,mesh,best_clearance,coarse_best,trials,failures,jams,disengagements,failure_lo,failure_hi,reference_clearance,reference_trials,reference_failures,reference_jams,reference_disengagements,reference_lo,reference_hi\n",
     );
@@ -298,6 +272,52 @@ fn search_table(
         );
     }
     let used: u64 = searches.iter().map(MeshSearch::trials).sum();
+    search_notes(&mut table, cells, s, searches.len() as u64, used)?;
+    Ok((table, best_csv, probes_csv, used))
+}
+
+/// The search table's title and columns: the coarse grid's, then the best's and the reference's.
+fn search_header(s: &Settings) -> Table {
+    let rl = label(s.reference, 0);
+    let n_final = s.final_trials();
+    let mut header = vec![
+        "case".to_string(),
+        "mesh".to_string(),
+        "years of b per pair run".to_string(),
+    ];
+    header.extend(s.grid.iter().map(|v| format!("{} %", label(*v, 0))));
+    header.extend([
+        "best G [%]".to_string(),
+        format!("best: failed of {n_final} (jams/dis)"),
+        "best: 95 % interval [%]".to_string(),
+        format!("{rl} %: failed of {n_final} (jams/dis)"),
+        format!("{rl} %: 95 % interval [%]"),
+    ]);
+    Table::new(
+        format!(
+            "Each mesh on its own, Edmunds' Cases: pair runs (of {}) with a jam or a disengagement at each clearance of the coarse grid, and the clearance that minimises them (best), against the paper's {rl} % for every mesh",
+            s.coarse
+        ),
+        header,
+    )
+}
+
+/// The search table's notes: what a pair run is, how the search went and what it saved, and
+/// how to read the intervals. `n_searches` meshes were searched in `used` pair runs.
+fn search_notes(
+    table: &mut Table,
+    cells: &CellSettings,
+    s: &Settings,
+    n_searches: u64,
+    used: u64,
+) -> Result<(), RunError> {
+    let (g, hyp, h) = (
+        cells.gearing(),
+        cells.hypothesis(),
+        cells.gearing.tooth_height,
+    );
+    let meshes = cells.meshes();
+    let rl = label(s.reference, 0);
     let years: Vec<f64> = meshes
         .iter()
         .filter_map(|m| years_per_pair_run(g, m))
@@ -318,7 +338,7 @@ fn search_table(
         let lo = s.grid.first().copied().unwrap_or(s.reference);
         let hi = s.grid.last().copied().unwrap_or(s.reference);
         let fine_values = ((hi - lo) / s.step).floor() as u64 + 1;
-        let fine = fine_values * s.refine * searches.len() as u64;
+        let fine = fine_values * s.refine * n_searches;
         table.note(format!(
             "Search: the coarse grid at {} trials each (grid columns; `*`: the coarse best, the fewest failures with ties going to the nearest to {rl} %, then the lower); then the coarse best, the best plus and minus {} % and the reference ({rl} %), each brought to {} trials by adding trials to the same cells, and the one with the fewest failures chosen by the same rule. {used} pair runs in all, where a single grid from {} to {} % by {} % at {} trials each would take {fine} ({} % saved).",
             s.coarse,
@@ -340,7 +360,7 @@ fn search_table(
         "Intervals: exact (Clopper-Pearson) 95 % of the failure rate. The best's count is the smallest of the finalists' on the trials that chose it, so it is biased low (the more finalists, the more); the failure study below, on other trials, is the independent check. A cell at {} trials of the same clearance and case is the same cell as in table3/tableI (same content, same trial streams): `--set coarse_trials=200` reuses their cells when they ran first in the same process.",
         s.coarse
     ));
-    Ok((table, best_csv, probes_csv, used))
+    Ok(())
 }
 
 /// The chosen clearances by case, as a table and as each case's map from mesh to clearance.
@@ -528,7 +548,6 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     whole::check_study(g, h, &Clearances::Uniform(s.reference))?;
     let searches = search(ctx.engine(), &cells, &s.search())?;
     let meshes: Vec<String> = g.meshes().iter().map(|m| m.label.clone()).collect();
-    let rl = label(s.reference, 0);
 
     let (table, best_csv, probes_csv, used) = search_table(&cells, &s, &searches)?;
 
@@ -536,20 +555,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let (design, maps) = design_table(&s, &searches, &meshes);
 
     // The failure study at both settings, on the same gears and initial angles.
-    let mut inputs: Vec<Input<'_>> = Vec::new();
-    for (&ci, map) in s.cases.iter().zip(&maps) {
-        let per_mesh = Clearances::PerMesh {
-            default: s.reference,
-            meshes: map.clone(),
-        };
-        whole::check_study(g, h, &per_mesh)?;
-        let mut at_ref = whole::case_input(&cells.errors, ci, Clearances::Uniform(s.reference))?;
-        at_ref.label = format!("{} at {rl} %", CASES[ci].0);
-        let mut at_best = whole::case_input(&cells.errors, ci, per_mesh)?;
-        at_best.label = format!("{} at best", CASES[ci].0);
-        inputs.push(at_ref);
-        inputs.push(at_best);
-    }
+    let inputs = study_inputs(&cells, &s, &maps)?;
     let key = format!(
         "clearance-design/{}",
         whole::batch_key(&cells.gearing.file, &inputs, s.runs, h, s.reference, s.days)?
@@ -569,6 +575,60 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         .iter()
         .map(|runs| whole::summarise(runs, s.days))
         .collect();
+    let mut study = study_table(&s, &per_input, &summaries);
+    case_notes(&mut study, &s, &searches, &meshes, &summaries, &per_input);
+
+    let csvs = (
+        best_csv,
+        probes_csv,
+        whole::runs_csv(&inputs, &per_input, s.days),
+    );
+    let files = files(&s, &searches, meshes.len(), csvs)?;
+    let pair_engagements: u64 = searches
+        .iter()
+        .flat_map(|sr| sr.probes.iter().map(|p| p.1.engagements))
+        .sum();
+    Ok(Report {
+        tables: vec![table, design, study],
+        files,
+        trials: used + outcomes.len() as u64,
+        engagements: pair_engagements
+            + outcomes.iter().map(|o| o.engagements).sum::<f64>().round() as u64,
+        agreement: None,
+        ..Default::default()
+    })
+}
+
+/// The failure study's inputs: each case at the reference clearance for every mesh, then at its
+/// chosen clearances, on the same gears and initial angles.
+fn study_inputs<'a>(
+    cells: &'a CellSettings,
+    s: &Settings,
+    maps: &[BTreeMap<String, f64>],
+) -> Result<Vec<Input<'a>>, RunError> {
+    let (g, h) = (cells.gearing(), cells.gearing.tooth_height);
+    let rl = label(s.reference, 0);
+    let mut inputs: Vec<Input<'_>> = Vec::new();
+    for (&ci, map) in s.cases.iter().zip(maps) {
+        let per_mesh = Clearances::PerMesh {
+            default: s.reference,
+            meshes: map.clone(),
+        };
+        whole::check_study(g, h, &per_mesh)?;
+        let mut at_ref = whole::case_input(&cells.errors, ci, Clearances::Uniform(s.reference))?;
+        at_ref.label = format!("{} at {rl} %", CASES[ci].0);
+        let mut at_best = whole::case_input(&cells.errors, ci, per_mesh)?;
+        at_best.label = format!("{} at best", CASES[ci].0);
+        inputs.push(at_ref);
+        inputs.push(at_best);
+    }
+    Ok(inputs)
+}
+
+/// The failure study's table: per case and train, both settings side by side and the runs that
+/// jammed at one only.
+fn study_table(s: &Settings, per_input: &[&[MechanismRun]], summaries: &[Vec<Summary>]) -> Table {
+    let rl = label(s.reference, 0);
     let mut study = Table::new(
         format!(
             "The failure study rerun ({} whole mechanisms per case and setting, {} days of b): {rl} % for every mesh against each mesh at its case's chosen clearance, on the same gears and initial angles",
@@ -613,27 +673,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     study.note(format!(
         "Run t of a case draws the same gears and initial angles at both settings (failure's streams), so the {rl} % columns are failure's own runs and the difference is the clearances' alone; the last column pairs them: runs that jammed within a year at one setting and not at the other, with the exact two-sided sign (McNemar) test of that split. Shares: runs with a jam within one year of b, exact 95 % interval; days: b arbor, mean over the runs that jammed within the horizon with its 95 % Student-t interval clipped to the horizon. Only jams stop a run (a disengagement does not), as in failure."
     ));
-    case_notes(&mut study, &s, &searches, &meshes, &summaries, &per_input);
-
-    let csvs = (
-        best_csv,
-        probes_csv,
-        whole::runs_csv(&inputs, &per_input, s.days),
-    );
-    let files = files(&s, &searches, meshes.len(), csvs)?;
-    let pair_engagements: u64 = searches
-        .iter()
-        .flat_map(|sr| sr.probes.iter().map(|p| p.1.engagements))
-        .sum();
-    Ok(Report {
-        tables: vec![table, design, study],
-        files,
-        trials: used + outcomes.len() as u64,
-        engagements: pair_engagements
-            + outcomes.iter().map(|o| o.engagements).sum::<f64>().round() as u64,
-        agreement: None,
-        ..Default::default()
-    })
+    study
 }
 
 /// Failure rate [%] against clearance of the case's `PLOTTED` meshes that fail most at the
