@@ -11,7 +11,7 @@
 //! the simulated stretch (to the horizon or the mesh's first jam) times its teeth: the teeth that
 //! passed through the mesh.
 
-use hypotheses::Params;
+use hypotheses::{MeasuredHypothesis, Params};
 use registry::{Agreement, Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
 use stats::DAYS_PER_YEAR;
 
@@ -60,34 +60,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     gearing::with_pin_and_slot(&settings.file, ideal, pin_and_slot)?;
 
     let measured = measured_table(ctx.text(&MEASURED)?)?;
-    let mut inputs: Vec<Input<'_>> = Vec::new();
-    for ci in parse_cases(ctx.text(&CASES_PARAM)?)? {
-        inputs.push(case_input(&errors, ci, Clearances::Uniform(clearance))?);
-    }
-    if let Some((file, m)) = &measured {
-        inputs.push(Input {
-            label: "measured".into(),
-            legend: format!("measured table {file}"),
-            index: MEASURED_INDEX,
-            source: "--set measured",
-            hypothesis: m,
-            params: Params::new(m, &[])
-                .map_err(|e| RunError::bad("--set measured", e.what, e.rule))?,
-            clearances: Clearances::Uniform(clearance),
-            pin_and_slot: false,
-            extra: None,
-        });
-    }
-    for inp in &mut inputs {
-        inp.pin_and_slot = pin_and_slot;
-    }
-    if inputs.is_empty() {
-        return Err(RunError::bad(
-            "--set",
-            "cases",
-            "no case and no measured table: nothing to run",
-        ));
-    }
+    let inputs = study_inputs(ctx, &errors, measured.as_ref(), clearance, pin_and_slot)?;
 
     let outcomes = run_study(
         ctx.engine(),
@@ -123,10 +96,66 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         "failure-runs.csv",
         runs_csv(&inputs, &per_input, days),
     ));
+    report
+        .files
+        .extend(survival_files(&inputs, &per_input, trials, days)?);
+    Ok(report)
+}
+
+/// The inputs of the study: the cases asked for, then the measured table if one is given, each
+/// with the pin-and-slot as asked; refused when there is nothing to run.
+fn study_inputs<'a>(
+    ctx: &Context,
+    errors: &'a study::errors::Settings,
+    measured: Option<&'a (String, MeasuredHypothesis)>,
+    clearance: f64,
+    pin_and_slot: bool,
+) -> Result<Vec<Input<'a>>, RunError> {
+    let mut inputs: Vec<Input<'_>> = Vec::new();
+    for ci in parse_cases(ctx.text(&CASES_PARAM)?)? {
+        inputs.push(case_input(errors, ci, Clearances::Uniform(clearance))?);
+    }
+    if let Some((file, m)) = measured {
+        inputs.push(Input {
+            label: "measured".into(),
+            legend: format!("measured table {file}"),
+            index: MEASURED_INDEX,
+            source: "--set measured",
+            hypothesis: m,
+            params: Params::new(m, &[])
+                .map_err(|e| RunError::bad("--set measured", e.what, e.rule))?,
+            clearances: Clearances::Uniform(clearance),
+            pin_and_slot: false,
+            extra: None,
+        });
+    }
+    for inp in &mut inputs {
+        inp.pin_and_slot = pin_and_slot;
+    }
+    if inputs.is_empty() {
+        return Err(RunError::bad(
+            "--set",
+            "cases",
+            "no case and no measured table: nothing to run",
+        ));
+    }
+
+    Ok(inputs)
+}
+
+/// Per train, the share of runs not yet jammed against the day (Kaplan-Meier), every input a
+/// curve.
+fn survival_files(
+    inputs: &[Input<'_>],
+    per_input: &[&[MechanismRun]],
+    trials: u64,
+    days: f64,
+) -> Result<Vec<OutputFile>, RunError> {
+    let mut files = Vec::new();
     for (ti, name) in train_names().enumerate() {
         let curves: Vec<(String, Vec<(f64, f64)>)> = inputs
             .iter()
-            .zip(&per_input)
+            .zip(per_input)
             .map(|(inp, runs)| {
                 let times: Vec<Option<f64>> =
                     runs.iter().map(|o| jam_of(o, ti).map(|j| j.day)).collect();
@@ -143,12 +172,28 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             days,
             &curves,
         )?;
-        report.files.push(OutputFile::new(
+        files.push(OutputFile::new(
             format!("failure-{}.svg", file_stem(name)),
             svg,
         ));
     }
-    Ok(report)
+    Ok(files)
+}
+
+/// One input's cell of the paper table, and whether the paper's value `p` is inside its 95 %
+/// interval (none where there is no paper value, or too few jams for a mean's interval).
+fn judged_cell(s: &Summary, share: bool, p: Option<f64>, days: f64) -> (String, Option<bool>) {
+    if share {
+        let inside = p.map(|v| {
+            let r = v / 100.0;
+            s.year.lo <= r && r <= s.year.hi
+        });
+        (percent_cell(&s.year), inside)
+    } else {
+        let e = study::whole_mechanism::mean_days(&s.days, days);
+        let inside = p.filter(|_| s.days.len() >= 2).map(|v| e.contains(v));
+        (mean_cell(&s.days, days), inside)
+    }
 }
 
 fn file_stem(train: &str) -> String {
@@ -199,17 +244,7 @@ fn paper_table(
         let mut row = vec![label, p.map_or_else(|| "-".into(), |v| fmt_f64(v, 0))];
         for (inp, s) in inputs.iter().zip(summaries) {
             let s = &s[ti];
-            let (cell, inside) = if share {
-                let inside = p.map(|v| {
-                    let r = v / 100.0;
-                    s.year.lo <= r && r <= s.year.hi
-                });
-                (percent_cell(&s.year), inside)
-            } else {
-                let e = study::whole_mechanism::mean_days(&s.days, days);
-                let inside = p.filter(|_| s.days.len() >= 2).map(|v| e.contains(v));
-                (mean_cell(&s.days, days), inside)
-            };
+            let (cell, inside) = judged_cell(s, share, p, days);
             let mark = if inside == Some(false) { " *" } else { "" };
             row.push(format!("{cell}{mark}"));
             if inp.index == MEASURED_INDEX
