@@ -3,7 +3,7 @@
 
 use std::f64::consts::TAU;
 
-use contact::Start;
+use contact::{Start, Trajectory};
 use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
 
 use crate::common::{MAX_DATA_ROWS, Series, csv, deg, line_plot, paper_cell};
@@ -143,14 +143,8 @@ fn plots(
     Ok((plot_a, plot_b))
 }
 
-fn run(ctx: &Context) -> Result<Report, RunError> {
-    crate::settings::labelled(ctx, counted)
-}
-
-/// The experiment itself; [`run`] names the event rule in its tables' titles.
-fn counted(ctx: &Context) -> Result<Report, RunError> {
-    // Refused before the mesh is built: the work of a driver turn grows as teeth squared.
-    let asked = ctx.get::<usize>(&equal_pair::TEETH)?;
+/// Refused before the mesh is built: the work of a driver turn grows as teeth squared.
+fn check_teeth(asked: usize) -> Result<(), RunError> {
     if asked > MAX_TEETH {
         return Err(RunError::bad(
             "--set",
@@ -160,14 +154,12 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             ),
         ));
     }
-    let equal_pair::EqualPair {
-        teeth: n,
-        tip_radius: big_r,
-        root_radius: small_r,
-        centre_distance: d,
-        mesh,
-    } = crate::settings::equal_pair(ctx)?;
-    let step: f64 = ctx.get(&STEP)?;
+    Ok(())
+}
+
+/// Refused before anything runs: one driver turn in steps of `step` degrees must fit the data
+/// rows' limit.
+fn check_step(step: f64) -> Result<(), RunError> {
     if 360.0 / step > MAX_DATA_ROWS as f64 {
         return Err(RunError::bad(
             "--set",
@@ -179,6 +171,58 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             ),
         ));
     }
+    Ok(())
+}
+
+/// One driver turn in steps of `step` degrees: the data rows (phi, simulated and closed-form
+/// theta', theta, TD, in degrees), the TD series and the largest gap between the two theta'.
+fn sample(
+    traj: &Trajectory,
+    pair: &thorndike::Pair,
+    step: f64,
+    samples: usize,
+    ratio: f64,
+) -> (Vec<Vec<f64>>, Vec<f64>, f64) {
+    let theta0 = traj.theta_at(0.0);
+    let mut rows = Vec::with_capacity(samples + 1);
+    let mut max_diff: f64 = 0.0;
+    let mut td = Vec::with_capacity(samples + 1);
+    for i in 0..=samples {
+        let phi = (i as f64 * step).to_radians().min(TAU);
+        let sim = traj.theta_at(phi);
+        let closed = thorndike::theta_prime(pair, phi);
+        max_diff = max_diff.max((sim - closed).abs());
+        let t = sim - theta0 - ratio * phi;
+        td.push(deg(t));
+        rows.push(vec![
+            deg(phi),
+            deg(sim),
+            deg(closed),
+            deg(sim - theta0),
+            deg(t),
+        ]);
+    }
+    (rows, td, max_diff)
+}
+
+fn run(ctx: &Context) -> Result<Report, RunError> {
+    crate::settings::labelled(ctx, counted)
+}
+
+/// The experiment itself; [`run`] names the event rule in its tables' titles.
+fn counted(ctx: &Context) -> Result<Report, RunError> {
+    // Refused before the mesh is built: the work of a driver turn grows as teeth squared.
+    let asked = ctx.get::<usize>(&equal_pair::TEETH)?;
+    check_teeth(asked)?;
+    let equal_pair::EqualPair {
+        teeth: n,
+        tip_radius: big_r,
+        root_radius: small_r,
+        centre_distance: d,
+        mesh,
+    } = crate::settings::equal_pair(ctx)?;
+    let step: f64 = ctx.get(&STEP)?;
+    check_step(step)?;
     let teeth = u32::try_from(n).map_err(|_| RunError::bad("--set", "teeth", "too many teeth"))?;
     let pair =
         thorndike::Pair::new(teeth, teeth, big_r, small_r, big_r, small_r, d).map_err(|e| {
@@ -201,24 +245,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let samples = (360.0 / step).round() as usize;
     let ratio = 1.0; // N1 = N2
     let theta0 = traj.theta_at(0.0);
-    let mut rows = Vec::with_capacity(samples + 1);
-    let mut max_diff: f64 = 0.0;
-    let mut td = Vec::with_capacity(samples + 1);
-    for i in 0..=samples {
-        let phi = (i as f64 * step).to_radians().min(TAU);
-        let sim = traj.theta_at(phi);
-        let closed = thorndike::theta_prime(&pair, phi);
-        max_diff = max_diff.max((sim - closed).abs());
-        let t = sim - theta0 - ratio * phi;
-        td.push(deg(t));
-        rows.push(vec![
-            deg(phi),
-            deg(sim),
-            deg(closed),
-            deg(sim - theta0),
-            deg(t),
-        ]);
-    }
+    let (rows, td, max_diff) = sample(&traj, &pair, step, samples, ratio);
     let stats = stats::pointer_stats(&td);
 
     let counts = study::events::counts(&crate::settings::rule(ctx)?, &traj);
