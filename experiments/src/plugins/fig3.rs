@@ -66,18 +66,8 @@ fn initial_angles(long: &Trajectory, p1: f64, ratio: f64) -> (f64, f64, f64) {
     (leading, centred, lagging)
 }
 
-fn run(ctx: &Context) -> Result<Report, RunError> {
-    let equal_pair::EqualPair { teeth: n, mesh, .. } = crate::settings::equal_pair(ctx)?;
-    let pitches: usize = ctx.get(&PITCHES)?;
-    let samples: usize = ctx.get(&SAMPLES)?;
-    registry::samples_cover("samples", samples, pitches, "pitches")?;
-    let p1 = TAU / n as f64;
-    let ratio = 1.0; // equal gears
-
-    // f(x) = theta'(x) - ratio x is periodic in the driver pitch; a run starting at phi'_o has mean
-    // Theoretical Difference C - f(phi'_o), C the mean of f. So the pointer leads most from the
-    // minimum of f, lags most from its maximum, and is centred where f equals its mean.
-    let long = mesh.run(0.0, (pitches + 2) as f64 * p1, Start::Touching(0.0));
+/// Refuses a pair whose driver never pushes the driven gear: there is no curve to show.
+fn check_driven(long: &Trajectory) -> Result<(), RunError> {
     if long.never_driven() {
         return Err(RunError::bad(
             "--set",
@@ -85,9 +75,12 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             "puts the gears out of reach: no driver tooth ever pushes the driven gear, so there is no Theoretical Difference to show (bring the centre distance below the sum of the tip radii)",
         ));
     }
-    let (leading, centred, lagging) = initial_angles(&long, p1, ratio);
+    Ok(())
+}
 
-    let mut table = Table::new(
+/// The table's title and columns.
+fn fig3_table(pitches: usize) -> Table {
+    Table::new(
         format!(
             "Figure 3: Theoretical Difference from three initial angles ({pitches} driver teeth each)"
         ),
@@ -100,7 +93,44 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             "min [deg]",
             "max [deg]",
         ],
-    );
+    )
+}
+
+/// One initial angle's row: where it starts, and its Theoretical Difference's statistics.
+fn td_row(name: &str, phi_o: f64, theta_o: f64, td: &[f64]) -> Vec<String> {
+    let s = stats::pointer_stats(td);
+    let (mn, mx) = td
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+            (a.min(x), b.max(x))
+        });
+    vec![
+        name.into(),
+        fmt_f64(deg(phi_o), 4),
+        fmt_f64(deg(theta_o), 4),
+        fmt_f64(s.mean, 4),
+        fmt_f64(s.sigma, 4),
+        fmt_f64(mn, 4),
+        fmt_f64(mx, 4),
+    ]
+}
+
+fn run(ctx: &Context) -> Result<Report, RunError> {
+    let equal_pair::EqualPair { teeth: n, mesh, .. } = crate::settings::equal_pair(ctx)?;
+    let pitches: usize = ctx.get(&PITCHES)?;
+    let samples: usize = ctx.get(&SAMPLES)?;
+    registry::samples_cover("samples", samples, pitches, "pitches")?;
+    let p1 = TAU / n as f64;
+    let ratio = 1.0; // equal gears
+
+    // f(x) = theta'(x) - ratio x is periodic in the driver pitch; a run starting at phi'_o has mean
+    // Theoretical Difference C - f(phi'_o), C the mean of f. So the pointer leads most from the
+    // minimum of f, lags most from its maximum, and is centred where f equals its mean.
+    let long = mesh.run(0.0, (pitches + 2) as f64 * p1, Start::Touching(0.0));
+    check_driven(&long)?;
+    let (leading, centred, lagging) = initial_angles(&long, p1, ratio);
+
+    let mut table = fig3_table(pitches);
     let mut series = Vec::new();
     let mut columns: Vec<Vec<f64>> = Vec::new();
     let phis: Vec<f64> = (0..samples)
@@ -121,21 +151,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
             .iter()
             .map(|&p| deg(t.theta_at(phi_o + p) - theta_o - ratio * p))
             .collect();
-        let s = stats::pointer_stats(&td);
-        let (mn, mx) = td
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-                (a.min(x), b.max(x))
-            });
-        table.row(vec![
-            name.into(),
-            fmt_f64(deg(phi_o), 4),
-            fmt_f64(deg(theta_o), 4),
-            fmt_f64(s.mean, 4),
-            fmt_f64(s.sigma, 4),
-            fmt_f64(mn, 4),
-            fmt_f64(mx, 4),
-        ]);
+        table.row(td_row(name, phi_o, theta_o, &td));
         series.push(Series {
             label: name,
             points: phis
