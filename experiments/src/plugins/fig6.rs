@@ -103,6 +103,82 @@ fn measured_note(measured: Option<&(String, hypotheses::MeasuredTable)>) -> Stri
     }
 }
 
+/// The gears in mesh order, first appearance, each with the meshes it is in.
+fn gears_in_mesh_order(g: &train::Gearing) -> Vec<(String, Vec<usize>)> {
+    let mut gears: Vec<(String, Vec<usize>)> = Vec::new();
+    for (m, mesh) in g.meshes().iter().enumerate() {
+        for gear in [&mesh.driver, &mesh.driven] {
+            match gears.iter_mut().find(|(n, _)| n == gear) {
+                Some((_, ms)) => ms.push(m),
+                None => gears.push((gear.clone(), vec![m])),
+            }
+        }
+    }
+    gears
+}
+
+/// The paper's value of a gear: the smaller of its meshes' E. max (none if one is missing).
+fn paper_of_gear(g: &train::Gearing, ms: &[usize]) -> Option<f64> {
+    ms.iter()
+        .map(|&m| paper_random(&g.meshes()[m].label))
+        .collect::<Option<Vec<f64>>>()
+        .and_then(|v| v.into_iter().reduce(f64::min))
+}
+
+/// A gear's row: its meshes, ours, the paper's and the measured value (marked above ours).
+fn gear_row(
+    gear: &str,
+    labels: &[&str],
+    [ours, paper, meas]: [Option<f64>; 3],
+    smallest: Option<&f64>,
+) -> Vec<String> {
+    let opt = |v: Option<f64>| v.map_or_else(|| "-".into(), |v| label(v, 3));
+    let meas_text = match (meas, ours) {
+        (Some(v), Some(o)) if v > o => format!("{} (above ours)", label(v, 3)),
+        (v, _) => opt(v),
+    };
+    vec![
+        gear.to_owned(),
+        labels.join(", "),
+        show(ours, smallest, 3),
+        opt(paper),
+        meas_text,
+    ]
+}
+
+/// The table's title and columns.
+fn fig6_table(rule: f64, trials: u64, clearance: f64) -> Table {
+    Table::new(
+        format!(
+            "Figure 6: largest tolerable random error of each gear (rule {rule} % of {trials} trials, no systematic error, G = {clearance} %) [fraction of the pitch]"
+        ),
+        [
+            "gear",
+            "meshes",
+            "ours",
+            "paper (Table 5 E. max)",
+            "measured",
+        ],
+    )
+}
+
+/// How a gear's value is read from Table 4's grid, and how many equal the paper's.
+fn add_notes(
+    table: &mut Table,
+    (rule, trials): (f64, u64),
+    smallest: Option<&f64>,
+    (inside, outside): (u64, u64),
+) {
+    table.note(format!(
+    "Each mesh's value: the largest random error of Table 4's grid up to which every value has at most {} of {trials} trials jammed; each gear takes its mesh's, a gear in two meshes the smaller. `< {}`: below the grid.",
+    tolerance::allowed_jams(trials, rule),
+    smallest.map_or_else(|| "-".into(), |v| label(*v, 3)),
+));
+    table.note(format!(
+    "Gears whose value equals the paper's: {inside}; differ: {outside}. The paper's figure gives no numbers; its per-mesh values are the E. max row of its Table 5, assigned to gears the same way."
+));
+}
+
 fn run(ctx: &Context) -> Result<Report, RunError> {
     crate::settings::labelled(ctx, counted)
 }
@@ -117,39 +193,15 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let grid = study::grids::run_grid(ctx.engine(), &s, values, trials, Purpose::Input)?;
     let tolerable = grid.tolerable(trials, rule);
 
-    // Gears in mesh order, first appearance; each with its meshes.
-    let mut gears: Vec<(String, Vec<usize>)> = Vec::new();
-    for (m, mesh) in g.meshes().iter().enumerate() {
-        for gear in [&mesh.driver, &mesh.driven] {
-            match gears.iter_mut().find(|(n, _)| n == gear) {
-                Some((_, ms)) => ms.push(m),
-                None => gears.push((gear.clone(), vec![m])),
-            }
-        }
-    }
+    let gears = gears_in_mesh_order(g);
     let smallest = grid.values.first();
-    let mut table = Table::new(
-        format!(
-            "Figure 6: largest tolerable random error of each gear (rule {rule} % of {trials} trials, no systematic error, G = {clearance} %) [fraction of the pitch]"
-        ),
-        [
-            "gear",
-            "meshes",
-            "ours",
-            "paper (Table 5 E. max)",
-            "measured",
-        ],
-    );
+    let mut table = fig6_table(rule, trials, clearance);
     let mut csv = String::from("gear,meshes,ours,paper,measured\n");
     let (mut ours_pts, mut paper_pts, mut measured_pts) = (Vec::new(), Vec::new(), Vec::new());
     let (mut inside, mut outside) = (0, 0);
     for (i, (gear, ms)) in gears.iter().enumerate() {
         let ours = ms.iter().map(|&m| tolerable[m]).reduce(smaller).flatten();
-        let paper: Option<f64> = ms
-            .iter()
-            .map(|&m| paper_random(&g.meshes()[m].label))
-            .collect::<Option<Vec<f64>>>()
-            .and_then(|v| v.into_iter().reduce(f64::min));
+        let paper = paper_of_gear(g, ms);
         let meas = measured
             .as_ref()
             .and_then(|(_, t)| t.errors(gear).ok().map(|e| e.random));
@@ -171,18 +223,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             measured_pts.push((x, v));
         }
         let labels: Vec<&str> = ms.iter().map(|&m| g.meshes()[m].label.as_str()).collect();
-        let opt = |v: Option<f64>| v.map_or_else(|| "-".into(), |v| label(v, 3));
-        let meas_text = match (meas, ours) {
-            (Some(v), Some(o)) if v > o => format!("{} (above ours)", label(v, 3)),
-            (v, _) => opt(v),
-        };
-        table.row(vec![
-            gear.clone(),
-            labels.join(", "),
-            show(ours, smallest, 3),
-            opt(paper),
-            meas_text,
-        ]);
+        table.row(gear_row(gear, &labels, [ours, paper, meas], smallest));
         csv.push_str(&format!(
             "{gear},{},{},{},{}\n",
             labels.join(" "),
@@ -191,14 +232,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             meas.map_or_else(String::new, |v| v.to_string()),
         ));
     }
-    table.note(format!(
-        "Each mesh's value: the largest random error of Table 4's grid up to which every value has at most {} of {trials} trials jammed; each gear takes its mesh's, a gear in two meshes the smaller. `< {}`: below the grid.",
-        tolerance::allowed_jams(trials, rule),
-        smallest.map_or_else(|| "-".into(), |v| label(*v, 3)),
-    ));
-    table.note(format!(
-        "Gears whose value equals the paper's: {inside}; differ: {outside}. The paper's figure gives no numbers; its per-mesh values are the E. max row of its Table 5, assigned to gears the same way."
-    ));
+    add_notes(&mut table, (rule, trials), smallest, (inside, outside));
     table.note(measured_note(measured.as_ref()));
     let names: Vec<String> = gears.iter().map(|(n, _)| n.clone()).collect();
     let measured_file = measured.as_ref().map(|(f, _)| f.as_str());
