@@ -90,6 +90,51 @@ fn sweep_table(
     (sweep, csv)
 }
 
+/// Every mesh of the gearing as an ideal pair of tooth height `h`, with its label.
+fn mesh_pairs(g: &train::Gearing, h: f64) -> Result<Vec<(String, IdealPair)>, RunError> {
+    let mut pairs = Vec::new();
+    for m in g.meshes() {
+        let pair = IdealPair::of_mesh(g, &m.label, h).ok_or_else(|| {
+            RunError::bad("gearing", format!("mesh {}", m.label), "cannot be sized")
+        })?;
+        pairs.push((m.label.clone(), pair));
+    }
+    Ok(pairs)
+}
+
+/// The report: both tables, the sweep and the limits as CSV, and Figure IV with each mesh's
+/// limits on its curve.
+fn report(
+    tables: [Table; 2],
+    csv: String,
+    lim_csv: String,
+    series: &[Series<'_>],
+    drawn_limits: &[Limit],
+) -> Result<Report, RunError> {
+    let svg = Plot::new(
+        "Figure IV: sigma of the driven gear against clearance (semi-logarithmic)",
+        "clearance G [% of tooth height]",
+        "sigma [deg], logarithmic scale",
+        series,
+    )
+    .log_y()
+    .limits(
+        drawn_limits,
+        "jam limit: the smallest G without a jam (figIV-limits.csv)",
+        "disengagement limit: the largest G without a disengagement",
+    )
+    .svg()?;
+    Ok(Report {
+        tables: tables.into(),
+        files: vec![
+            OutputFile::new("figIV.csv", csv),
+            OutputFile::new("figIV-limits.csv", lim_csv),
+            OutputFile::new("figIV.svg", svg),
+        ],
+        ..Default::default()
+    })
+}
+
 fn run(ctx: &Context) -> Result<Report, RunError> {
     crate::settings::labelled(ctx, counted)
 }
@@ -109,13 +154,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         .map(|i| from + step * f64::from(i))
         .take_while(|&c| c <= to + 1e-9)
         .collect();
-    let mut pairs = Vec::new();
-    for m in g.meshes() {
-        let pair = IdealPair::of_mesh(&g, &m.label, h).ok_or_else(|| {
-            RunError::bad("gearing", format!("mesh {}", m.label), "cannot be sized")
-        })?;
-        pairs.push((m.label.clone(), pair));
-    }
+    let pairs = mesh_pairs(&g, h)?;
     // Every (mesh, clearance) run and every mesh's limits are independent: run in parallel,
     // collected in order.
     let ideal: Vec<IdealPair> = pairs.iter().map(|(_, p)| *p).collect();
@@ -169,28 +208,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     lim.note(
         "The paper (Appendix II): no values below 10 % (jam) and none above 87 % (decoupling).",
     );
-    let svg = Plot::new(
-        "Figure IV: sigma of the driven gear against clearance (semi-logarithmic)",
-        "clearance G [% of tooth height]",
-        "sigma [deg], logarithmic scale",
-        &series,
-    )
-    .log_y()
-    .limits(
-        &drawn_limits,
-        "jam limit: the smallest G without a jam (figIV-limits.csv)",
-        "disengagement limit: the largest G without a disengagement",
-    )
-    .svg()?;
-    Ok(Report {
-        tables: vec![lim, sweep],
-        files: vec![
-            OutputFile::new("figIV.csv", csv),
-            OutputFile::new("figIV-limits.csv", lim_csv),
-            OutputFile::new("figIV.svg", svg),
-        ],
-        ..Default::default()
-    })
+    report([lim, sweep], csv, lim_csv, &series, &drawn_limits)
 }
 
 #[cfg(test)]
