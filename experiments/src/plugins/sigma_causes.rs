@@ -81,6 +81,40 @@ fn turns(span: f64) -> Result<Vec<(&'static str, f64)>, RunError> {
         .collect()
 }
 
+/// "median (lowest-highest)" of sorted values, `digits` after the point; "-" for none.
+fn median_range(sorted: &[f64], digits: usize) -> String {
+    match (sorted.first(), sorted.last()) {
+        (Some(lo), Some(hi)) => format!(
+            "{} ({}-{})",
+            fmt_f64(sorted[sorted.len() / 2], digits),
+            fmt_f64(*lo, digits),
+            fmt_f64(*hi, digits)
+        ),
+        _ => "-".into(),
+    }
+}
+
+/// Figure IV's notes: what each column reads, and what G and a mesh's minimum are.
+fn figure_iv_notes(fig: &mut Table, draws: usize, case_a: usize, in_backlash: usize) {
+    for (i, r) in GEOMETRY.iter().enumerate() {
+        fig.note(format!(
+            "({}) {} [paper's inputs: {}]",
+            i + 1,
+            r.name,
+            r.stated
+        ));
+    }
+    fig.note(format!(
+        "({}) the gears of (1) with Case A errors (edmunds-split: random 0.04 of the pitch, no systematic error): mean sigma of {draws} manufactured pairs per mesh, each swept over every G from one random initial angle, through jams [paper's inputs: no: Figure IV is read as ideal]",
+        case_a + 1
+    ));
+    fig.note(format!(
+        "({}) the gears of (1), ideal, with the driven gear at rest half-way through the backlash at the start (not touching): it waits until a driver tooth takes it up, and that lost motion is part of the run [paper's inputs: another reading (the paper's initial angles are drawn; this one puts the driven gear mid-way)]",
+        in_backlash + 1
+    ));
+    fig.note("G is the clearance of the paper's formula, D = R1 + R2 - h + G (reading (6) adds its extra centre distance to it; reading (7) reads G in % of the flank length); a mesh's minimum is the grid point of its smallest sigma of the driven gear's Theoretical Difference over one turn of the larger gear (ideal gears: figIV's runs, from driver angle 0, at grid points that run without a jam or disengagement; '-': none does).");
+}
+
 /// Figure IV's table: each mesh's clearance of the smallest σ under each column (`at`), and
 /// per column how many fall within the paper's range, their range, the depth of the minimum
 /// and the largest clearance that runs.
@@ -129,14 +163,10 @@ fn figure_iv_table(
         let cs: Vec<f64> = found.iter().map(|m| m.at).collect();
         let mut lasts: Vec<f64> = found.iter().map(|m| m.last).collect();
         lasts.sort_by(f64::total_cmp);
-        runs.push(match (ri == case_a, lasts.first(), lasts.last()) {
-            (false, Some(lo), Some(hi)) => format!(
-                "{} ({}-{})",
-                fmt_f64(lasts[lasts.len() / 2], 0),
-                fmt_f64(*lo, 0),
-                fmt_f64(*hi, 0)
-            ),
-            _ => "-".into(),
+        runs.push(if ri == case_a {
+            "-".into()
+        } else {
+            median_range(&lasts, 0)
         });
         let mut ds: Vec<f64> = found
             .iter()
@@ -144,15 +174,7 @@ fn figure_iv_table(
             .filter(|d| d.is_finite())
             .collect();
         ds.sort_by(f64::total_cmp);
-        depth.push(match (ds.first(), ds.last()) {
-            (Some(lo), Some(hi)) => format!(
-                "{} ({}-{})",
-                fmt_f64(ds[ds.len() / 2], 2),
-                fmt_f64(*lo, 2),
-                fmt_f64(*hi, 2)
-            ),
-            _ => "-".into(),
-        });
+        depth.push(median_range(&ds, 2));
         let n_in = match (paper_from, paper_to) {
             (Some(a), Some(b)) => cs.iter().filter(|&&c| a <= c && c <= b).count().to_string(),
             _ => "-".into(),
@@ -166,23 +188,7 @@ fn figure_iv_table(
     fig.row(range);
     fig.row(depth);
     fig.row(runs);
-    for (i, r) in GEOMETRY.iter().enumerate() {
-        fig.note(format!(
-            "({}) {} [paper's inputs: {}]",
-            i + 1,
-            r.name,
-            r.stated
-        ));
-    }
-    fig.note(format!(
-        "({}) the gears of (1) with Case A errors (edmunds-split: random 0.04 of the pitch, no systematic error): mean sigma of {draws} manufactured pairs per mesh, each swept over every G from one random initial angle, through jams [paper's inputs: no: Figure IV is read as ideal]",
-        case_a + 1
-    ));
-    fig.note(format!(
-        "({}) the gears of (1), ideal, with the driven gear at rest half-way through the backlash at the start (not touching): it waits until a driver tooth takes it up, and that lost motion is part of the run [paper's inputs: another reading (the paper's initial angles are drawn; this one puts the driven gear mid-way)]",
-        in_backlash + 1
-    ));
-    fig.note("G is the clearance of the paper's formula, D = R1 + R2 - h + G (reading (6) adds its extra centre distance to it; reading (7) reads G in % of the flank length); a mesh's minimum is the grid point of its smallest sigma of the driven gear's Theoretical Difference over one turn of the larger gear (ideal gears: figIV's runs, from driver angle 0, at grid points that run without a jam or disengagement; '-': none does).");
+    figure_iv_notes(&mut fig, draws, case_a, in_backlash);
     fig
 }
 
@@ -190,16 +196,25 @@ fn figure_iv_table(
 /// each pointer's mean σ.
 type Row = (String, &'static str, Vec<f64>);
 
-/// Table 1's σ under every reading: the geometry readings on their own gears (tip radii
-/// `radii`), then the sampling, statistic, span and start readings on the first one's, each
-/// over `trials` trials at `per` samples per engagement.
-fn table1_rows(
+/// Each pointer's mean σ over the trials, by `f` of each trial's pointer statistics.
+fn sigmas(trials: &[Vec<PointerSigma>], f: impl Fn(&PointerSigma) -> f64) -> Vec<f64> {
+    (0..POINTERS.len())
+        .map(|i| mean_of(trials, i, &f))
+        .collect()
+}
+
+/// The trials of one reading.
+type Trials = Vec<Vec<PointerSigma>>;
+
+/// Table 1's σ under each geometry reading, on its own gears, and the first reading's trials
+/// (the baseline the other readings are taken on).
+fn geometry_rows(
     ctx: &Context,
     g: &Gearing,
     radii: &[BTreeMap<String, f64>],
     clearance: f64,
     (per, trials): (usize, u64),
-) -> Result<Vec<Row>, RunError> {
+) -> Result<(Vec<Row>, Option<Trials>), RunError> {
     let mut rows: Vec<Row> = Vec::new();
     let mut baseline: Option<Vec<Vec<PointerSigma>>> = None;
     for (ri, r) in GEOMETRY.iter().enumerate() {
@@ -222,23 +237,33 @@ fn table1_rows(
         rows.push((
             format!("({}) {}", ri + 1, r.name),
             r.stated,
-            (0..POINTERS.len())
-                .map(|i| mean_of(&t, i, |p| p.sigma))
-                .collect(),
+            sigmas(&t, |p| p.sigma),
         ));
         if ri == 0 {
             baseline = Some(t);
         }
     }
+    Ok((rows, baseline))
+}
+
+/// Table 1's σ under every reading: the geometry readings on their own gears (tip radii
+/// `radii`), then the sampling, statistic, span and start readings on the first one's, each
+/// over `trials` trials at `per` samples per engagement.
+fn table1_rows(
+    ctx: &Context,
+    g: &Gearing,
+    radii: &[BTreeMap<String, f64>],
+    clearance: f64,
+    (per, trials): (usize, u64),
+) -> Result<Vec<Row>, RunError> {
+    let (mut rows, baseline) = geometry_rows(ctx, g, radii, clearance, (per, trials))?;
     let base = baseline.ok_or_else(|| RunError::Internal("no baseline reading".into()))?;
     // (GEOMETRY.len() + 1) and (+ 2) are Figure IV's Case A and backlash columns, not run here.
     let next = GEOMETRY.len() + 3;
     rows.push((
         format!("({next}) TD sampled once per engagement of the busiest mesh (on (1))"),
         "another reading (paper silent)",
-        (0..POINTERS.len())
-            .map(|i| mean_of(&base, i, |p| p.sigma_coarse))
-            .collect(),
+        sigmas(&base, |p| p.sigma_coarse),
     ));
     rows.push((
         format!(
@@ -247,9 +272,7 @@ fn table1_rows(
             2 * per
         ),
         "another reading (paper silent)",
-        (0..POINTERS.len())
-            .map(|i| mean_of(&base, i, |p| p.sigma_fine))
-            .collect(),
+        sigmas(&base, |p| p.sigma_fine),
     ));
     rows.push((
         format!(
@@ -278,9 +301,7 @@ fn table1_rows(
             next + 3
         ),
         "no: caption's lengths",
-        (0..POINTERS.len())
-            .map(|i| mean_of(&halved, i, |p| p.sigma))
-            .collect(),
+        sigmas(&halved, |p| p.sigma),
     ));
     let zero = table1_trials(
         ctx.engine(),
@@ -300,9 +321,7 @@ fn table1_rows(
             next + 4
         ),
         "no: paper draws them",
-        (0..POINTERS.len())
-            .map(|i| mean_of(&zero, i, |p| p.sigma))
-            .collect(),
+        sigmas(&zero, |p| p.sigma),
     ));
     Ok(rows)
 }
