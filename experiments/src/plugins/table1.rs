@@ -61,6 +61,59 @@ fn ratios_table(g: &train::Gearing, runs: &[(&str, f64, usize)]) -> Table {
     ratios
 }
 
+/// The detail table's title and columns.
+fn detail_table() -> Table {
+    Table::new(
+        "Table 1 in detail: mean over trials with its 95 % interval, the paper's value and ours/paper",
+        [
+            "pointer",
+            "statistic",
+            "ours [deg]",
+            "95 % interval [deg]",
+            "paper [deg]",
+            "ours/paper",
+            "ours [days]",
+            "paper [days]",
+        ],
+    )
+}
+
+/// One statistic of one pointer (`label`, read from the paper as `key`), over the trials'
+/// `values`: its cell of the paper's layout, its detail row and its CSV line. `days` converts
+/// degrees of the pointer to days.
+fn statistic_cells(
+    (name, turns, days): (&str, f64, Option<f64>),
+    (label, key): (&str, &str),
+    values: &[f64],
+) -> (String, Vec<String>, String) {
+    let e: Estimate = mean_ci95(values);
+    let paper = crate::paper::get("table1", &format!("{name}.{key}")).map(|r| r.value);
+    let paper_days = crate::paper::get("table1", &format!("{name}.{key}.days")).map(|r| r.value);
+    let ratio = paper.map(|p| e.mean / p);
+    let ours_days = days.map(|d| e.mean * d);
+    let cell = |x: Option<f64>, dec: usize| x.map_or_else(|| "-".to_string(), |v| fmt_f64(v, dec));
+    let mut lay = format!("{} / {}", fmt_f64(e.mean, 3), cell(paper, 3));
+    if let Some(d) = ours_days {
+        lay.push_str(&format!(" ({} / {} d)", fmt_f64(d, 3), cell(paper_days, 3)));
+    }
+    let mut cells = crate::common::estimate_cells(name, turns, label, &e);
+    cells.extend([
+        cell(paper, 3),
+        cell(ratio, 2),
+        cell(ours_days, 3),
+        cell(paper_days, 3),
+    ]);
+    let line = format!(
+        "{},{},{},{},{}\n",
+        crate::common::estimate_csv(name, label, &e),
+        paper.map_or(String::new(), |v| v.to_string()),
+        ratio.map_or(String::new(), |v| v.to_string()),
+        ours_days.map_or(String::new(), |v| v.to_string()),
+        paper_days.map_or(String::new(), |v| v.to_string()),
+    );
+    (lay, cells, line)
+}
+
 fn run(ctx: &Context) -> Result<Report, RunError> {
     crate::settings::labelled(ctx, counted)
 }
@@ -89,19 +142,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         ),
         study::pointers::COLUMNS,
     );
-    let mut detail = Table::new(
-        "Table 1 in detail: mean over trials with its 95 % interval, the paper's value and ours/paper",
-        [
-            "pointer",
-            "statistic",
-            "ours [deg]",
-            "95 % interval [deg]",
-            "paper [deg]",
-            "ours/paper",
-            "ours [days]",
-            "paper [days]",
-        ],
-    );
+    let mut detail = detail_table();
     let mut jammed = 0;
     let mut csv = String::from(
         "pointer,statistic,mean_deg,lo_deg,hi_deg,paper_deg,ratio,mean_days,paper_days\n",
@@ -128,35 +169,10 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             ),
         ];
         for (row, (label, key, values)) in columns.into_iter().enumerate() {
-            let e: Estimate = mean_ci95(&values);
-            let paper = crate::paper::get("table1", &format!("{name}.{key}")).map(|r| r.value);
-            let paper_days =
-                crate::paper::get("table1", &format!("{name}.{key}.days")).map(|r| r.value);
-            let ratio = paper.map(|p| e.mean / p);
-            let ours_days = days.map(|d| e.mean * d);
-            let cell =
-                |x: Option<f64>, dec: usize| x.map_or_else(|| "-".to_string(), |v| fmt_f64(v, dec));
-            let mut lay = format!("{} / {}", fmt_f64(e.mean, 3), cell(paper, 3));
-            if let Some(d) = ours_days {
-                lay.push_str(&format!(" ({} / {} d)", fmt_f64(d, 3), cell(paper_days, 3)));
-            }
+            let (lay, cells, line) = statistic_cells((name, turns, days), (label, key), &values);
             layout_rows[row].push(lay);
-            let mut cells = crate::common::estimate_cells(name, turns, label, &e);
-            cells.extend([
-                cell(paper, 3),
-                cell(ratio, 2),
-                cell(ours_days, 3),
-                cell(paper_days, 3),
-            ]);
             detail.row(cells);
-            csv.push_str(&format!(
-                "{},{},{},{},{}\n",
-                crate::common::estimate_csv(name, label, &e),
-                paper.map_or(String::new(), |v| v.to_string()),
-                ratio.map_or(String::new(), |v| v.to_string()),
-                ours_days.map_or(String::new(), |v| v.to_string()),
-                paper_days.map_or(String::new(), |v| v.to_string()),
-            ));
+            csv.push_str(&line);
         }
     }
     for r in layout_rows {
