@@ -24,7 +24,6 @@ const NOT_YET_SPLIT: &[(&str, &str)] = &[
     ("pair.rs", ELSEWHERE),
     ("table5.rs", ELSEWHERE),
     ("table_i.rs", ELSEWHERE),
-    ("table2.rs", TO_SPLIT),
     ("table6.rs", TO_SPLIT),
 ];
 

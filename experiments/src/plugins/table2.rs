@@ -3,7 +3,7 @@
 //! 95 % interval.
 
 use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
-use stats::mean_ci95;
+use stats::{Estimate, mean_ci95};
 
 use crate::common::{Series, semilog_plot};
 use study::gearing;
@@ -168,20 +168,10 @@ fn csv_lines(
     }
 }
 
-fn run(ctx: &Context) -> Result<Report, RunError> {
-    crate::settings::labelled(ctx, counted)
-}
-
-/// The experiment itself; [`run`] names the event rule in its tables' titles.
-fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let cells = crate::settings::cells(ctx, &TRIALS)?;
-    let (g, trials, clearance) = (cells.gearing(), cells.trials as usize, cells.clearance()?);
-    let per = ctx.get(&SAMPLES_PER_ENGAGEMENT)?;
-    let pin_and_slot = ctx.get(&study::gearing::PIN_AND_SLOT)?;
-    let runs = pointer_runs(g, &crate::settings::turns(ctx, &POINTERS)?, per)?;
-    let results = simulate(ctx, &cells, &runs, pin_and_slot)?;
-
-    let mut edm_table = Table::new(
+/// The two tables' titles and columns: Edmunds' model in the paper's layout, and triangular
+/// teeth against it.
+fn tables(trials: usize, clearance: f64) -> (Table, Table) {
+    let edm_table = Table::new(
         format!(
             "Table 2: Edmunds' model (radial lines), {trials} trials per case: sigma - Dm, ours / paper [deg] (days)"
         ),
@@ -194,10 +184,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             "Saros",
         ],
     );
-    // sigma against the systematic error, per pointer and model, for the plot.
-    let mut curves: std::collections::BTreeMap<String, Vec<(f64, f64)>> =
-        std::collections::BTreeMap::new();
-    let mut tri_table = Table::new(
+    let tri_table = Table::new(
         format!(
             "Triangular teeth on the same gears (G = {clearance} %): triangular minus Edmunds, mean and 95 % interval over trials [deg]"
         ),
@@ -213,6 +200,51 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             "trials that jammed",
         ],
     );
+    (edm_table, tri_table)
+}
+
+/// A cell of the paper's layout: our sigma - Dm / the paper's (`paper`: sigma, Dm), and ours in
+/// days where the pointer has a day scale.
+fn edmunds_cell(
+    es_m: &Estimate,
+    ed_m: &Estimate,
+    paper: (Option<f64>, Option<f64>),
+    days: Option<f64>,
+) -> String {
+    let mut cell = format!(
+        "{} - {} / {} - {}",
+        fmt_f64(es_m.mean, 2),
+        fmt_f64(ed_m.mean, 2),
+        paper.0.map_or_else(|| "-".into(), |v| fmt_f64(v, 2)),
+        paper.1.map_or_else(|| "-".into(), |v| fmt_f64(v, 2)),
+    );
+    if let Some(d) = days {
+        cell.push_str(&format!(
+            " ({} - {} d)",
+            fmt_f64(es_m.mean * d, 1),
+            fmt_f64(ed_m.mean * d, 1)
+        ));
+    }
+    cell
+}
+
+fn run(ctx: &Context) -> Result<Report, RunError> {
+    crate::settings::labelled(ctx, counted)
+}
+
+/// The experiment itself; [`run`] names the event rule in its tables' titles.
+fn counted(ctx: &Context) -> Result<Report, RunError> {
+    let cells = crate::settings::cells(ctx, &TRIALS)?;
+    let (g, trials, clearance) = (cells.gearing(), cells.trials as usize, cells.clearance()?);
+    let per = ctx.get(&SAMPLES_PER_ENGAGEMENT)?;
+    let pin_and_slot = ctx.get(&study::gearing::PIN_AND_SLOT)?;
+    let runs = pointer_runs(g, &crate::settings::turns(ctx, &POINTERS)?, per)?;
+    let results = simulate(ctx, &cells, &runs, pin_and_slot)?;
+
+    let (mut edm_table, mut tri_table) = tables(trials, clearance);
+    // sigma against the systematic error, per pointer and model, for the plot.
+    let mut curves: std::collections::BTreeMap<String, Vec<(f64, f64)>> =
+        std::collections::BTreeMap::new();
     let mut csv = String::from("case,pointer,model,statistic,mean_deg,lo_deg,hi_deg,paper_deg\n");
     for (ci, &(case, systematic, random)) in CASES.iter().enumerate() {
         let mut row = vec![case.to_string(), fmt_f64(systematic, 2), fmt_f64(random, 3)];
@@ -226,20 +258,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
                 crate::paper::get("table2", &format!("{case}.{name}.{q}")).map(|r| r.value)
             };
             let days = g.days_per_degree(name);
-            let mut cell = format!(
-                "{} - {} / {} - {}",
-                fmt_f64(es_m.mean, 2),
-                fmt_f64(ed_m.mean, 2),
-                paper("sigma").map_or_else(|| "-".into(), |v| fmt_f64(v, 2)),
-                paper("dm").map_or_else(|| "-".into(), |v| fmt_f64(v, 2)),
-            );
-            if let Some(d) = days {
-                cell.push_str(&format!(
-                    " ({} - {} d)",
-                    fmt_f64(es_m.mean * d, 1),
-                    fmt_f64(ed_m.mean * d, 1)
-                ));
-            }
+            let cell = edmunds_cell(&es_m, &ed_m, (paper("sigma"), paper("dm")), days);
             row.push(cell);
             let mut add = |label: String, y: Option<f64>| {
                 if let Some(y) = y {
