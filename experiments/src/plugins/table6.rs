@@ -187,6 +187,60 @@ fn pointer_rows(
     (detail, csv, (inside, outside))
 }
 
+/// Each gear's hypothesis parameters: its tolerances, with the split the cells run.
+fn gear_params(
+    cells: &study::grids::CellSettings,
+    per_gear: &PerGear,
+    split: f64,
+) -> Result<BTreeMap<String, Params>, RunError> {
+    let mut params: BTreeMap<String, Params> = BTreeMap::new();
+    for (gear, (r, s, _)) in per_gear {
+        params.insert(
+            gear.clone(),
+            cells
+                .errors
+                .params(&[("random", *r), ("systematic", *s), ("split", split)])?,
+        );
+    }
+
+    Ok(params)
+}
+
+/// The trials as recorded, as each pointer's statistics, whether it jammed and its engagements.
+fn pointer_trials(recorded: Vec<Vec<study::pointers::ToFirstJam>>) -> Vec<PointerTrials> {
+    recorded
+        .into_iter()
+        .map(|trial| {
+            trial
+                .into_iter()
+                .map(|r| {
+                    let s = PointerStats {
+                        sigma: r.sigma,
+                        dm: r.dm,
+                        mean: r.mean,
+                    };
+                    (s, r.jammed, r.engaged)
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// The table in the paper's layout, its title saying where the random tolerances come from.
+fn layout_table(emax_from_paper: bool, clearance: f64, trials: usize) -> Table {
+    Table::new(
+        format!(
+            "Table 6: tolerable errors{}, G = {clearance} %, {trials} trials: ours (paper) [deg]; * where the paper's value is outside our 95 % interval",
+            if emax_from_paper {
+                " (random: the paper's E. max row, emax=paper)"
+            } else {
+                ""
+            }
+        ),
+        study::pointers::COLUMNS,
+    )
+}
+
 fn run(ctx: &Context) -> Result<Report, RunError> {
     crate::settings::labelled(ctx, counted)
 }
@@ -213,15 +267,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let tol = study::grids::derive(ctx.engine(), &cells, grids, rule, Purpose::Input, given)?;
 
     let per_gear = per_gear(g, &tol);
-    let mut params: BTreeMap<String, Params> = BTreeMap::new();
-    for (gear, (r, s, _)) in &per_gear {
-        params.insert(
-            gear.clone(),
-            cells
-                .errors
-                .params(&[("random", *r), ("systematic", *s), ("split", split)])?,
-        );
-    }
+    let params = gear_params(&cells, &per_gear, split)?;
 
     // Named by everything that determines the trials (the tolerances are derived from the
     // parameters, so naming those names them), so shards run and merge them.
@@ -246,34 +292,9 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     };
     let recorded =
         study::pointers::tolerated_trials(ctx.engine(), &key, &made, &runs, trials as u64)?;
-    let per_trial: Vec<PointerTrials> = recorded
-        .into_iter()
-        .map(|trial| {
-            trial
-                .into_iter()
-                .map(|r| {
-                    let s = PointerStats {
-                        sigma: r.sigma,
-                        dm: r.dm,
-                        mean: r.mean,
-                    };
-                    (s, r.jammed, r.engaged)
-                })
-                .collect()
-        })
-        .collect();
+    let per_trial = pointer_trials(recorded);
 
-    let mut layout = Table::new(
-        format!(
-            "Table 6: tolerable errors{}, G = {clearance} %, {trials} trials: ours (paper) [deg]; * where the paper's value is outside our 95 % interval",
-            if crate::emax::emax_from_paper(ctx)? {
-                " (random: the paper's E. max row, emax=paper)"
-            } else {
-                ""
-            }
-        ),
-        study::pointers::COLUMNS,
-    );
+    let mut layout = layout_table(crate::emax::emax_from_paper(ctx)?, clearance, trials);
     let (detail, csv, (inside, outside)) = pointer_rows(&mut layout, &runs, &per_trial);
     layout.note(format!(
         "Values of the paper inside our 95 % Student-t intervals: {inside}; outside: {outside}."
