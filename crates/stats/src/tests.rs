@@ -217,7 +217,7 @@ fn t_quantiles_match_tables() {
     ] {
         assert!(close(t975(dof), t, 1e-8), "dof {dof}: {} vs {t}", t975(dof));
     }
-    // The brief's rounded values.
+    // The values as printed, rounded, in the t tables a reader checks them against.
     assert!((t975(29.0) - 2.0452).abs() < 5e-5);
     assert!((t975(1.0) - 12.706).abs() < 5e-4);
     assert!((t975(f64::INFINITY) - 1.95996).abs() < 5e-6);
@@ -378,7 +378,8 @@ fn wilson_reference_values() {
 
     let w = wilson95(2, 200);
     assert!((w.lo - 0.00275).abs() < 5e-6, "{w:?}");
-    // Brief quoted 0.0358; the formula and the bisection below both give 0.035722.
+    // 0.0358 is sometimes quoted for this bound; the formula and the bisection below both give
+    // 0.035722.
     assert!((w.hi - 0.035_72).abs() < 5e-6, "{w:?}");
 
     let w = wilson95(200, 200);
