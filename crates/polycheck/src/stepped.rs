@@ -293,6 +293,53 @@ impl Default for Stepping {
     }
 }
 
+/// Which way the driven gear may be turned after a driver step, and from where. [`SteppedPair::run`]
+/// is [`Correction::Forward`]; the others are read by [`SteppedPair::trace`] only.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Correction {
+    /// The paper's kind of program as [`SteppedPair::run`] runs it: the driven gear stays where
+    /// it was and, where the test finds contact, is turned forward to the first free position.
+    #[default]
+    Forward,
+    /// The driven gear stays where it was and, where the test finds contact, is turned to the
+    /// nearest free position either way: forward when a driver tooth behind has caught it up,
+    /// back when one ahead has closed on it.
+    Nearest,
+    /// The driven gear is first carried by the nominal ratio (driver teeth over driven teeth)
+    /// of the driver's step, then, where the test finds contact, turned to the nearest free
+    /// position either way.
+    CarriedNearest,
+}
+
+/// One driver step of [`SteppedPair::trace`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Step {
+    /// Driver angle after the step (radians).
+    pub phi: f64,
+    /// Driven angle after the step and its correction (radians); after a jam, where the driven
+    /// gear was let go (or, with nothing free, where it stays).
+    pub theta: f64,
+    /// Whether the test found contact after the step, so that the driven gear was turned (a
+    /// correction, or a jam): a tooth met it.
+    pub met: bool,
+    /// Whether no free position lay within the reach (either way where the correction turns
+    /// both ways): a jam.
+    pub jam: bool,
+    /// Driven angle at the jam, before the driven gear was let go (equal to `theta` otherwise).
+    pub jam_theta: f64,
+}
+
+/// What [`SteppedPair::trace`] gave besides its steps.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Traced {
+    /// The driven angle the run started at (the guess where the start was blocked).
+    pub theta0: f64,
+    /// No free driven position near the guess at the start.
+    pub blocked_at_start: bool,
+    /// Driver steps taken (fewer than the run's when `visit` ended it).
+    pub steps: usize,
+}
+
 /// What a stepped run gave.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SteppedRun {
@@ -518,6 +565,135 @@ impl SteppedPair {
             steps,
         }
     }
+
+    /// The nearest free position to `theta` either way at driver angle `phi`, or None if none
+    /// lies within the reach on either side (a jam). Marches outward by the search step on both
+    /// sides at once, then bisects the first bracket found on each side and keeps the nearer
+    /// free end.
+    fn nearest(&self, phi: f64, theta: f64, s: &Stepping) -> Option<f64> {
+        if !self.in_contact(phi, theta) {
+            return Some(theta);
+        }
+        let step = self.driven_pitch() / s.search_steps.max(1) as f64;
+        let limit = s.reach * self.driven_pitch();
+        let (mut ahead, mut behind) = (theta, theta);
+        while ahead - theta < limit {
+            let (next_ahead, next_behind) = (ahead + step, behind - step);
+            let free_ahead = !self.in_contact(phi, next_ahead);
+            let free_behind = !self.in_contact(phi, next_behind);
+            let found_ahead = free_ahead.then(|| self.bisect(phi, ahead, next_ahead));
+            let found_behind = free_behind.then(|| self.bisect(phi, behind, next_behind));
+            match (found_ahead, found_behind) {
+                (Some(a), Some(b)) => {
+                    return Some(if a - theta <= theta - b { a } else { b });
+                }
+                (Some(a), None) => return Some(a),
+                (None, Some(b)) => return Some(b),
+                (None, None) => {}
+            }
+            (ahead, behind) = (next_ahead, next_behind);
+        }
+        None
+    }
+
+    /// The first free position ahead of `theta` within a whole driven turn, marched by the
+    /// search step and bisected: where a jammed driven gear is let go ("allowing the driven gear
+    /// to rotate freely if a jam ... was detected until movement was possible again"). None:
+    /// the teeth overlap all the way round.
+    fn release(&self, phi: f64, theta: f64, s: &Stepping) -> Option<f64> {
+        let step = self.driven_pitch() / s.search_steps.max(1) as f64;
+        let mut at = theta;
+        while at - theta < TAU {
+            let next = at + step;
+            if !self.in_contact(phi, next) {
+                return Some(self.bisect(phi, at, next));
+            }
+            at = next;
+        }
+        None
+    }
+
+    /// Runs the driver from `phi0` through `turn` radians by fixed steps, the driven gear
+    /// started in contact from `guess` ([`SteppedPair::start`]), turned after each step as
+    /// `correction` says, and goes on past a jam: the driven gear is let go to the first free
+    /// position ahead ([`SteppedPair::release`]; with none, it stays until one appears).
+    /// `visit` sees every step in order and ends the run by returning false.
+    ///
+    /// With [`Correction::Forward`] every step up to the first jam is [`SteppedPair::run`]'s:
+    /// the same driven angles, the same jam.
+    pub fn trace(
+        &self,
+        phi0: f64,
+        turn: f64,
+        guess: f64,
+        s: &Stepping,
+        correction: Correction,
+        mut visit: impl FnMut(&Step) -> bool,
+    ) -> Traced {
+        let Some(theta0) = self.start(phi0, guess, s) else {
+            return Traced {
+                theta0: guess,
+                blocked_at_start: true,
+                steps: 0,
+            };
+        };
+        let mut theta = theta0;
+        let dphi = TAU / self.driver_teeth as f64 / s.steps_per_pitch.max(1) as f64;
+        let ratio = self.driver_teeth as f64 / self.driven_teeth as f64;
+        let steps = (turn / dphi).ceil() as usize;
+        let (mut last, mut phi_before) = (0.0, phi0);
+        for i in 1..=steps {
+            let phi = phi0 + (i as f64 * dphi).min(turn);
+            let from = match correction {
+                Correction::Forward | Correction::Nearest => theta,
+                Correction::CarriedNearest => theta + ratio * (phi - phi_before),
+            };
+            phi_before = phi;
+            let found = match correction {
+                Correction::Forward => self.push(phi, from, last, s),
+                Correction::Nearest | Correction::CarriedNearest => self.nearest(phi, from, s),
+            };
+            let step = match found {
+                Some(next) => {
+                    // Moved from where the step left it: a tooth met the driven gear.
+                    let met = next != from;
+                    last = next - theta;
+                    theta = next;
+                    Step {
+                        phi,
+                        theta,
+                        met,
+                        jam: false,
+                        jam_theta: theta,
+                    }
+                }
+                None => {
+                    let jam_theta = from;
+                    last = 0.0;
+                    theta = self.release(phi, from, s).unwrap_or(from);
+                    Step {
+                        phi,
+                        theta,
+                        met: true,
+                        jam: true,
+                        jam_theta,
+                    }
+                }
+            };
+            if !visit(&step) {
+                return Traced {
+                    theta0,
+                    blocked_at_start: false,
+                    steps: i,
+                };
+            }
+        }
+        Traced {
+            theta0,
+            blocked_at_start: false,
+            steps,
+        }
+    }
 }
 
 #[cfg(test)]
@@ -595,6 +771,76 @@ mod tests {
         // Under a tolerance the start is where the area has come down to it (within 5 %).
         let at = loose.overlap_area(0.0, t1);
         assert!((0.95 * 0.003..=0.003).contains(&at), "{at}");
+    }
+
+    #[test]
+    fn a_forward_trace_is_the_forward_run_up_to_its_first_jam() {
+        let s = Stepping::default();
+        for (g, shift) in [(0.4, 0.0), (0.15, 3.0), (0.02, 0.0)] {
+            let (a, mut b, d) = b2_c1(g);
+            if shift > 0.0 {
+                b.tips[5] += TAU / 38.0 / shift;
+            }
+            let pair = SteppedPair::new(&a, &b, d, 0.0, 1.1);
+            let run = pair.run(0.0, TAU, 0.0, &s);
+            let mut first_jam = None;
+            let traced = pair.trace(0.0, TAU, 0.0, &s, Correction::Forward, |step| {
+                if step.jam && first_jam.is_none() {
+                    first_jam = Some(step.phi);
+                }
+                first_jam.is_none()
+            });
+            assert_eq!(first_jam, run.jam, "G {g}");
+            assert_eq!(traced.blocked_at_start, run.blocked_at_start, "G {g}");
+            if !run.blocked_at_start {
+                assert_eq!(traced.steps, run.steps, "G {g}");
+            }
+        }
+    }
+
+    /// The driven gear put just past the end of its free interval, into the driver tooth
+    /// ahead: the forward correction turns it on through that tooth, the two-sided one back to
+    /// where it touches the tooth.
+    #[test]
+    fn a_two_sided_correction_turns_the_driven_gear_back_off_a_tooth_ahead() {
+        let s = Stepping::default();
+        let (a, b, d) = b2_c1(0.4);
+        let pair = SteppedPair::new(&a, &b, d, 0.0, 1.1);
+        let touching = pair.start(0.0, 0.0, &s).expect("starts");
+        // The far end of the backlash: march forward to the first contact ahead.
+        let step = TAU / 38.0 / 512.0;
+        let mut ahead = touching + step;
+        while !pair.in_contact(0.0, ahead) {
+            ahead += step;
+        }
+        let end = pair.bisect(0.0, ahead, ahead - step);
+        let into = end + 0.2 * step;
+        assert!(pair.in_contact(0.0, into));
+        let back = pair.nearest(0.0, into, &s).expect("free nearby");
+        assert!((back - end).abs() < 1e-8, "{back} vs {end}");
+        let on = pair.push(0.0, into, 0.0, &s).expect("free ahead");
+        assert!(on > end + 0.1 * TAU / 38.0, "{on} vs {end}");
+        // Free where it stands: neither correction moves it.
+        let mid = 0.5 * (touching + end);
+        assert_eq!(pair.nearest(0.0, mid, &s), Some(mid));
+    }
+
+    /// Carried by the ratio and corrected either way, an ideal pair's driven gear settles at the
+    /// top of its push curve, where the teeth graze it by less than the tolerance: after the
+    /// first pitches no tooth meets it for the rest of the turn.
+    #[test]
+    fn a_carried_ideal_pair_stops_meeting_teeth() {
+        let s = Stepping::default();
+        let (a, b, d) = b2_c1(0.4);
+        let pair = SteppedPair::new(&a, &b, d, 0.0001, 1.1);
+        let mut met_late = 0;
+        let first_pitch = TAU / 64.0 * 3.0;
+        pair.trace(0.0, TAU, 0.0, &s, Correction::CarriedNearest, |step| {
+            assert!(!step.jam);
+            met_late += usize::from(step.met && step.phi > first_pitch);
+            true
+        });
+        assert_eq!(met_late, 0);
     }
 
     #[test]
