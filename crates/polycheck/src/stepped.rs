@@ -30,6 +30,11 @@ const ANGLE_TOL: f64 = 1e-9;
 /// share of it (or the bracket below [`ANGLE_TOL`]).
 const AREA_REL: f64 = 0.05;
 
+/// How far ahead (driven pitches) a jammed driven gear is looked for a free position to be let
+/// go to: beyond the teeth in mesh (a few pitches) nothing can hold it, so a gear with nothing
+/// free that far stays where it is until a position frees.
+const RELEASE_PITCHES: f64 = 4.0;
+
 /// Teeth on either side of the line of centres whose pieces are tested: contact happens within
 /// about a pitch of it, and tip errors and eccentricities move teeth by a fraction of a pitch,
 /// so three cover every contact with teeth to spare.
@@ -596,14 +601,15 @@ impl SteppedPair {
         None
     }
 
-    /// The first free position ahead of `theta` within a whole driven turn, marched by the
-    /// search step and bisected: where a jammed driven gear is let go ("allowing the driven gear
-    /// to rotate freely if a jam ... was detected until movement was possible again"). None:
-    /// the teeth overlap all the way round.
+    /// The first free position ahead of `theta` within [`RELEASE_PITCHES`] driven pitches,
+    /// marched by the search step and bisected: where a jammed driven gear is let go ("allowing
+    /// the driven gear to rotate freely if a jam ... was detected until movement was possible
+    /// again"). None: the teeth overlap all that way, and the gear stays where it is.
     fn release(&self, phi: f64, theta: f64, s: &Stepping) -> Option<f64> {
         let step = self.driven_pitch() / s.search_steps.max(1) as f64;
+        let limit = RELEASE_PITCHES * self.driven_pitch();
         let mut at = theta;
-        while at - theta < TAU {
+        while at - theta < limit {
             let next = at + step;
             if !self.in_contact(phi, next) {
                 return Some(self.bisect(phi, at, next));
@@ -616,7 +622,7 @@ impl SteppedPair {
     /// Runs the driver from `phi0` through `turn` radians by fixed steps, the driven gear
     /// started in contact from `guess` ([`SteppedPair::start`]), turned after each step as
     /// `correction` says, and goes on past a jam: the driven gear is let go to the first free
-    /// position ahead ([`SteppedPair::release`]; with none, it stays until one appears).
+    /// position ahead ([`SteppedPair::release`]; with none within a few pitches, it stays).
     /// `visit` sees every step in order and ends the run by returning false.
     ///
     /// With [`Correction::Forward`] every step up to the first jam is [`SteppedPair::run`]'s:
