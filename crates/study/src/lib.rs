@@ -11,6 +11,8 @@
 //! - [`anomaly`]: the Lunar pointer without and with the pin-and-slot.
 //! - [`area_test`]: the paper's kind of contact test (an overlap area, blunt tips) on Figure IV's
 //!   ideal pairs.
+//! - [`motion_models`]: the per-mesh tables' cells, Figure 2, Table 1 and Figure IV under each
+//!   registered motion model (`motion`), for `motion-models`.
 //! - Setting groups shared by experiments: [`gearing`] (file, h, G, pin-and-slot), [`errors`]
 //!   (hypothesis and its parameters), [`events`] (the event rule), [`drive`] (which gear of a
 //!   mesh drives its trials), [`trial_end`] (where a trial's counting ends).
@@ -26,6 +28,7 @@ pub mod events;
 pub mod gearing;
 pub mod grids;
 pub mod limits;
+pub mod motion_models;
 pub mod pair_file;
 pub mod pointers;
 pub mod readings;
