@@ -155,7 +155,7 @@ pub struct Figure2 {
 
 /// Figure 2's pair (two N = 8 gears, R = 200, r = 100, D = 310) under `model`, one driver turn
 /// from φ' = 0 with the driven gear touching (θ'o = θ'(0), the paper's Figure III frame), sampled
-/// every `step_deg` degrees against expressions [I] and [II].
+/// every `step_deg` degrees against expressions \[I\] and \[II\].
 ///
 /// Errors: the pair refused by the solver or the closed forms (never, for these sizes).
 pub fn figure2(model: &Model, step_deg: f64) -> Result<Figure2, RunError> {
