@@ -79,7 +79,7 @@ pub enum Side {
 /// Where the driven gear starts.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Placement {
-    /// As the push model starts ([`Start::Touching`] from 0): pushed clear if it overlaps,
+    /// As the push model starts ([`Start::Touching`](contact::Start::Touching) from 0): pushed clear if it overlaps,
     /// otherwise turned back until it rests against a driver tooth behind.
     Touching,
     /// At this angle; where that overlaps a driver tooth, at the nearest free position either

@@ -7,7 +7,7 @@
 //! flanks and at rest between pushes (the exact solver's push model, [`Mesh::run`]), carried at
 //! the nominal ratio N1/N2 and stopped by whichever flank it meets, or turned after each driver
 //! step by a program that detects overlapping areas. Each reading is a plugin: one file in
-//! `src/plugins/`, registered with `inventory` by [`model!`], listed by [`listing`], looked up
+//! `src/plugins/`, registered with `inventory` by `model!`, listed by [`listing`], looked up
 //! by name with [`Model::parse`]. A model turns one [`Trial`] (a mesh, the driver's start and
 //! turn, optionally the driven gear's own drawn angle) into an [`Outcome`]: the run's events in
 //! the solver's terms ([`contact::Event`], so that every event rule counts them) and, when
@@ -102,7 +102,7 @@ pub trait MotionModel: Sync {
     fn run(&self, trial: &Trial<'_>, want: Want<'_>) -> Outcome;
 }
 
-/// The `inventory` item a model registers itself with; a plugin file writes it by [`model!`].
+/// The `inventory` item a model registers itself with; a plugin file writes it by `model!`.
 pub struct Registration(pub &'static dyn MotionModel);
 
 inventory::collect!(Registration);
