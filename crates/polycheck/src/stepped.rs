@@ -622,7 +622,7 @@ impl SteppedPair {
     /// Runs the driver from `phi0` through `turn` radians by fixed steps, the driven gear
     /// started in contact from `guess` ([`SteppedPair::start`]), turned after each step as
     /// `correction` says, and goes on past a jam: the driven gear is let go to the first free
-    /// position ahead ([`SteppedPair::release`]; with none within a few pitches, it stays).
+    /// position ahead (`SteppedPair::release`; with none within a few pitches, it stays).
     /// `visit` sees every step in order and ends the run by returning false.
     ///
     /// With [`Correction::Forward`] every step up to the first jam is [`SteppedPair::run`]'s:
