@@ -137,8 +137,10 @@ fn certified_steps_agree_with_the_exact_step_on_asymmetric_and_out_of_round_teet
         checked += 1;
         events += a.events().len() as u64;
     }
+    // Without the speed layer (the `speed` feature) both runs are the exact core's.
+    let certified_enough = !cfg!(feature = "speed") || certified > 20 * cases;
     assert!(
-        checked * 10 > cases * 8 && events > cases && certified > 20 * cases,
+        checked * 10 > cases * 8 && events > cases && certified_enough,
         "{checked} cases, {events} events, {certified} certified steps"
     );
 }

@@ -1,7 +1,9 @@
 //! The solver crate's modules, read from `crates/contact/src`: the `crate::` paths between its
-//! top-level modules (outside their unit tests) form no cycle, so each layer - one tooth, the
-//! mesh, the contact conditions and their roots, the solver, the certificates it may use for
-//! speed - can be read without the ones above it.
+//! top-level modules (outside their unit tests) form no cycle, and they keep the order of the
+//! crate's layers - the exact core (one tooth, the contact conditions and their roots, the mesh,
+//! closings, held gears, the solver) names neither the speed layer nor the entry points, and the
+//! speed layer does not name the entry points - so each layer can be read without the ones
+//! above it, and the core builds without the speed layer.
 
 #![allow(clippy::unwrap_used, reason = "tests fail loudly on purpose")]
 
@@ -82,8 +84,37 @@ fn uses(
     out
 }
 
+/// The crate's layers, lowest first, and the top-level modules of each.
+const LAYERS: [(&str, &[&str]); 3] = [
+    (
+        "exact core",
+        &[
+            "tooth", "roots", "meet", "mesh", "closing", "held", "solver",
+        ],
+    ),
+    ("speed layer", &["speed"]),
+    ("entry points", &["entry"]),
+];
+
+/// The layer a module belongs to (its index in [`LAYERS`]).
+fn layer(module: &str) -> usize {
+    LAYERS
+        .iter()
+        .position(|(_, modules)| modules.contains(&module))
+        .unwrap_or_else(|| panic!("module `{module}` is in no layer of LAYERS"))
+}
+
+/// Every use of a module of a higher layer than the user's: (user, used).
+fn upward(graph: &BTreeMap<String, BTreeSet<String>>) -> Vec<(String, String)> {
+    graph
+        .iter()
+        .flat_map(|(m, used)| used.iter().map(move |u| (m.clone(), u.clone())))
+        .filter(|(m, u)| layer(u) > layer(m))
+        .collect()
+}
+
 #[test]
-fn the_solver_modules_form_no_cycle() {
+fn the_solver_modules_form_no_cycle_and_keep_their_layers() {
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
     let modules = modules(&src);
     let roots = reexports(&std::fs::read_to_string(src.join("lib.rs")).unwrap());
@@ -97,12 +128,24 @@ fn the_solver_modules_form_no_cycle() {
         })
         .collect();
     assert!(
-        graph["solver"].contains("mesh") && graph["mesh"].contains("certify"),
+        graph["solver"].contains("mesh")
+            && graph["speed"].contains("solver")
+            && graph["entry"].contains("speed"),
         "the reading of `crate::` paths finds nothing: {graph:?}"
     );
     assert_eq!(cycle(&graph), None, "{graph:?}");
-    // The same check finds a cycle where there is one.
+    assert_eq!(upward(&graph), Vec::new(), "a layer names one above it");
+    // The same checks find a cycle and a use across the layers where there is one.
     let mut with_cycle = graph.clone();
     with_cycle.get_mut("tooth").unwrap().insert("solver".into());
     assert!(cycle(&with_cycle).is_some());
+    let mut core_on_speed = graph.clone();
+    core_on_speed
+        .get_mut("mesh")
+        .unwrap()
+        .insert("speed".into());
+    assert_eq!(
+        upward(&core_on_speed),
+        vec![("mesh".to_string(), "speed".to_string())]
+    );
 }

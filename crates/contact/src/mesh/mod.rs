@@ -17,7 +17,6 @@ use std::f64::consts::{PI, TAU};
 use geometry::{Arc, Flank, Gear, Vec2, rotate};
 use smallvec::SmallVec;
 
-use crate::certify::CertTooth;
 use crate::roots::circle_segment;
 use crate::tooth::{ToothData, wrap_pi};
 
@@ -60,9 +59,6 @@ pub(crate) struct Placed {
     /// Per tooth, its two flank arcs relative to the rotation centre (gear frame); empty for
     /// straight flanks.
     pub arcs: Vec<[Arc; 2]>,
-    /// Per tooth, what the step certificates need (`certify.rs`); empty for curved flanks, which
-    /// are always bracketed.
-    pub cert: Vec<CertTooth>,
 }
 
 impl Placed {
@@ -135,7 +131,6 @@ impl Placed {
             valley_reaches: Vec::new(),
             teeth: Vec::new(),
             arcs,
-            cert: Vec::new(),
         }
     }
 
@@ -180,15 +175,6 @@ impl Placed {
                 }
             })
             .collect();
-        if self.arcs.is_empty() {
-            self.cert = self.teeth.iter().map(CertTooth::new).collect();
-        }
-    }
-
-    /// Tooth k's certificate data (straight flanks only).
-    #[inline]
-    pub fn cert(&self, k: i64) -> &CertTooth {
-        &self.cert[self.idx(k)]
     }
 
     /// Tooth k's cached data and the angle of the whole turns that separate k from its index
@@ -211,7 +197,7 @@ impl Placed {
     }
 
     #[inline]
-    fn idx(&self, k: i64) -> usize {
+    pub(crate) fn idx(&self, k: i64) -> usize {
         k.rem_euclid(self.tips.len() as i64) as usize
     }
 

@@ -1,72 +1,30 @@
-//! The push model, solved exactly: the driven gear stays put until a driver tooth pushes it, then
-//! moves only as far as it must to stay clear.
-//!
-//! At a driver angle φ every driver tooth j makes, for every driven tooth k, an obstacle: a closed
-//! interval `[lo, hi]` of driven angles at which the two teeth overlap (see [`Mesh::obstacle`]).
-//! The driven angle θ never lies strictly inside one. Obstacles *behind* θ (hi ≤ θ) push it: θ is
-//! the running maximum of their upper ends. Obstacles *ahead* (lo ≥ θ) are driver teeth the driven
-//! tooth is moving towards. Hence the events, each classified from the contact motion:
-//!
-//! - an obstacle ahead reaches θ: a **lock** if a pair touches behind at that moment (held on both
-//!   sides), a **strike** if nothing does (the push model would have to turn it backwards);
-//! - the pushing obstacle stops rising (its tips slip past each other) while no other driver tooth
-//!   touches: a **gap**, sized when drive resumes and called a **slip** if it lasted a driver
-//!   pitch or more or moved the tooth phase;
-//! - no free driven position at the start: **blocked at start**.
-//!
-//! After a lock or strike the driven gear is let go to the next free position ahead; where there
-//! is none it is **held** until one appears, at the first root where the obstacles that close up
-//! over its turn may give way (`held.rs`, on the exact conditions of `meet.rs`).
-//!
-//! Which of these a table counts as a jam or a disengagement is an event rule's call (the `rules`
-//! crate), not the solver's.
-//!
-//! **How a step finds them** (`step.rs`). The driver turns in steps of a quarter of its pitch
-//! (only to bound the tooth pairs looked at together: no result depends on it). Between events
-//! θ(φ) is a constant (at rest) or the maximum of closed-form contact curves (pushed), exact at
-//! every φ. Each event is a root of the contact conditions of `meet.rs` - a vertex on a flank
-//! line or arc, every one F(φ, θ) = 0 - and is found as one:
-//!
-//! - a driver tooth ahead closing on the path, a pair behind reaching a gear at rest: the first
-//!   root where a condition of the pair meets one of the path's, the sign of the gap checked
-//!   between consecutive roots (`closing.rs`);
-//! - a held gear let go: the first root where the obstacles that hold it may give way
-//!   (`held.rs`);
-//! - where the pushing curves stop rising (a gap): golden-section search, refined where a curve
-//!   peaks smoothly by bisection on the sign of its closed-form slope (`Mesh::smooth_peak`),
-//!   decided by samples at the middle and end of the step; and the side of a pair born within a
-//!   step, by bisection on its existence (`search.rs`).
-//!
-//! **The speed layer** (`certified.rs`, straight flanks): a pushed gear's step is first tried on a
-//! certificate, bounds on the contact conditions over the box of the step's driver angles and
-//! the driven angles it can reach (`certify.rs`) that prove every tooth pair near the gear either
-//! stays clear of it or, behind it, only pushes it forwards; then no event lies in the step and
-//! it ends where the pushing curves end. It changes no result: `tests/differential.rs` holds the
-//! runs with and without it (and with a 64-times finer step) to the same events.
-
-use std::cell::RefCell;
+//! The exact core's run: its state, the main loop that walks the driver through its steps
+//! (`Mesh::solve`, `Run::advance`), and the bookkeeping of events (recorded, sized when the drive
+//! resumes). The crate's documentation says where each event is decided; `step.rs` takes a step,
+//! `cover.rs` finds the next free position, `held.rs` (beside this module) lets a held gear go.
 use std::f64::consts::TAU;
 
 use smallvec::SmallVec;
 
-use crate::certify::{ConfigBox, PlacedTooth, Verdict, vertex_meeting};
 use crate::closing;
 use crate::held;
 use crate::mesh::{End, Mesh, Obstacle, PairMemo};
 
-mod certified;
 mod cover;
 mod search;
+pub(crate) mod shortcut;
+mod stats;
 mod step;
 mod trajectory;
 
-use certified::count;
-pub use certified::{SolverStats, solver_stats};
 use search::{bisect, bracket, golden_max};
+pub(crate) use shortcut::Shortcut;
+pub(crate) use stats::count;
+pub use stats::{SolverStats, solver_stats};
 pub use trajectory::{Answered, Event, EventKind, Motion, Segment, Start, StopAt, Trajectory};
 
 /// Relative tolerance (radians) when deciding on which side of θ an obstacle lies.
-const SIDE_TOL: f64 = 1e-10;
+pub(crate) const SIDE_TOL: f64 = 1e-10;
 /// How near (radians of driven angle, relative to 1 + |θ|) an obstacle's end must be to θ to
 /// count as a contact when an event is classified: located events are far closer than this.
 const CONTACT_TOL: f64 = 1e-9;
@@ -82,7 +40,7 @@ const STEPS_PER_PITCH: f64 = 4.0;
 
 /// When a run may end before its last driver angle.
 #[derive(Clone, Copy)]
-enum Stop<'s, 'a> {
+pub(crate) enum Stop<'s, 'a> {
     /// Never: the run goes to its end.
     Never,
     /// At the first event for which this holds, as it is recorded.
@@ -97,31 +55,29 @@ impl<'s, 'a> From<Option<&'s StopAt<'a>>> for Stop<'s, 'a> {
     }
 }
 
+/// Which side of the driven gear a tooth pair's obstacle lies on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Side {
+pub(crate) enum Side {
     Behind,
     Ahead,
 }
 
 /// A tooth pair whose obstacle is near θ.
 #[derive(Debug, Clone, Copy)]
-struct Tracked {
-    pair: (i64, i64),
-    side: Side,
+pub(crate) struct Tracked {
+    pub(crate) pair: (i64, i64),
+    pub(crate) side: Side,
     /// Upper end of the obstacle at the current driver angle.
-    hi: f64,
+    pub(crate) hi: f64,
 }
 
 /// How a run is solved.
 #[derive(Debug, Clone, Copy)]
-struct Solve {
+pub(crate) struct Solve {
     /// The step is this fraction of the driver's pitch.
-    steps_per_pitch: f64,
+    pub(crate) steps_per_pitch: f64,
     /// Keep every segment (for θ at any φ) or only the events.
-    keep_segments: bool,
-    /// Take steps on certificates where they are found (else take every step exactly: the plain
-    /// solver the differential tests compare against).
-    certify: bool,
+    pub(crate) keep_segments: bool,
 }
 
 impl Default for Solve {
@@ -129,21 +85,20 @@ impl Default for Solve {
         Self {
             steps_per_pitch: STEPS_PER_PITCH,
             keep_segments: true,
-            certify: true,
         }
     }
 }
 
 /// A few tooth pairs (pushers, pairs born or gone in a step): kept inline, as every step of a
 /// run makes several such lists and a heap allocation costs as much as the rest of the list's use.
-type Pairs = SmallVec<[(i64, i64); 4]>;
+pub(crate) type Pairs = SmallVec<[(i64, i64); 4]>;
 
 /// One end of an evaluated tooth pair's obstacle: (driver angle, (driver tooth, driven tooth),
 /// which end, where it is).
 type Memo = (f64, (i64, i64), End, Option<f64>);
 
 /// Working state of one run.
-struct Run<'m> {
+pub(crate) struct Run<'m> {
     mesh: &'m Mesh,
     phi: f64,
     theta: f64,
@@ -161,20 +116,13 @@ struct Run<'m> {
     keep_segments: bool,
     events: Vec<Event>,
     scratch: Vec<Obstacle>,
-    /// The driven teeth a certified step's box has placed, by index in its range: kept here
-    /// and reused, as a fresh list of these 200-byte placements per step cost more to move
-    /// about than to fill.
-    placed: RefCell<Vec<Option<PlacedTooth<'m>>>>,
     /// Tooth phase (driver tooth + driven tooth) of the last known driving pair.
     drive_phase: Option<i64>,
     /// Events whose size waits for the drive to resume: (index in `events`, phase before).
     pending: Vec<(usize, Option<i64>)>,
-    /// Whether steps may be taken on a certificate (straight flanks).
-    certify: bool,
-    /// Untracked tooth pairs known to be ahead of the driven gear, or gone, at (φ, θ): the
-    /// suspects the last certified step ending there proved clear of its path, so the next
-    /// step need not evaluate them to find where they start.
-    clear_ahead: (f64, f64, Pairs),
+    /// The speed layer, if the run has one: it may spare the core work it proves would find
+    /// nothing (`shortcut.rs`).
+    speed: Option<Box<dyn Shortcut>>,
     /// The idle-start candidate (its index in `events`) while no driver tooth has moved the
     /// driven gear yet: see [`Run::record_idle_start`].
     idle_since: Option<usize>,
@@ -184,120 +132,15 @@ struct Run<'m> {
 }
 
 impl Mesh {
-    /// Runs the push model from driver angle `phi_start` to `phi_end` (radians, `phi_end >=
-    /// phi_start`).
-    pub fn run(&self, phi_start: f64, phi_end: f64, start: Start) -> Trajectory {
-        self.run_until(phi_start, phi_end, start, None)
-    }
-
-    /// Like [`Mesh::run`], but the run ends at the first event for which `stop` holds (a jammed
-    /// train stops; which events jam is an event rule's call): the trajectory then ends there and
-    /// holds its last angle beyond. `stop` sees an event as it is recorded, before a later drive
-    /// sizes it (its kind is final except that a gap may still become a slip).
-    pub fn run_until(
+    /// Runs the push model over driver angles `phi_start..phi_end` from `start`, walking the
+    /// driver in steps (`Run::advance`), with the speed layer `speed` if given: the main loop.
+    pub(crate) fn solve(
         &self,
-        phi_start: f64,
-        phi_end: f64,
-        start: Start,
-        stop: Option<&StopAt<'_>>,
-    ) -> Trajectory {
-        let run = self.solve(phi_start, phi_end, start, stop.into(), Solve::default());
-        Trajectory {
-            mesh: self.clone(),
-            segments: run.segments,
-            events: run.events,
-        }
-    }
-
-    /// [`Mesh::run_until`] with the step set to `1 / steps_per_pitch` of the driver's pitch, and,
-    /// with `certify` unset, the plain solver: every step exact, no certificate tried. The result
-    /// must depend on neither (events are roots either way); the differential tests run them
-    /// against each other.
-    #[doc(hidden)]
-    pub fn run_with_steps(
-        &self,
-        phi_start: f64,
-        phi_end: f64,
-        start: Start,
-        stop_at_jam: bool,
-        steps_per_pitch: f64,
-        certify: bool,
-    ) -> Trajectory {
-        let contact_stop = |e: &Event| e.kind.is_contact_stop();
-        let stop: Option<&StopAt<'_>> = if stop_at_jam {
-            Some(&contact_stop)
-        } else {
-            None
-        };
-        let how = Solve {
-            steps_per_pitch,
-            certify,
-            ..Solve::default()
-        };
-        let run = self.solve(phi_start, phi_end, start, stop.into(), how);
-        Trajectory {
-            mesh: self.clone(),
-            segments: run.segments,
-            events: run.events,
-        }
-    }
-
-    /// The jams and disengagements of [`Mesh::run`] over the same range, without its segments:
-    /// all that jam statistics need, in memory that does not grow with the range.
-    pub fn run_events(&self, phi_start: f64, phi_end: f64, start: Start) -> Vec<Event> {
-        self.events_only(phi_start, phi_end, start, Stop::Never)
-    }
-
-    /// [`Mesh::run_events`] that ends at the first event for which `stop` holds (checked from
-    /// the start on, so a blocked start ends the run at once): the events up to and including
-    /// it are those of the whole run. For a caller that needs only whether some event occurs.
-    pub fn run_events_until(
-        &self,
-        phi_start: f64,
-        phi_end: f64,
-        start: Start,
-        stop: &StopAt<'_>,
-    ) -> Vec<Event> {
-        self.events_only(phi_start, phi_end, start, Stop::AtEvent(stop))
-    }
-
-    /// [`Mesh::run_events`] that ends as soon as `answered` holds for the events so far, asked
-    /// each time new events are sized and none waits to be (the drive has resumed after each),
-    /// so that it sees every event as the whole run records it. For a caller whose answer, once
-    /// found, more events cannot change (has each rule seen a jam and a disengagement?): the
-    /// events returned are then the whole run's up to the cut, and the answer is the whole run's.
-    pub fn run_events_until_answered(
-        &self,
-        phi_start: f64,
-        phi_end: f64,
-        start: Start,
-        answered: &Answered<'_>,
-    ) -> Vec<Event> {
-        self.events_only(phi_start, phi_end, start, Stop::Answered(answered))
-    }
-
-    /// The events of a run that keeps no segments (cheaper), ending at `stop` if given.
-    fn events_only(
-        &self,
-        phi_start: f64,
-        phi_end: f64,
-        start: Start,
-        stop: Stop<'_, '_>,
-    ) -> Vec<Event> {
-        let how = Solve {
-            keep_segments: false,
-            ..Solve::default()
-        };
-        self.solve(phi_start, phi_end, start, stop, how).events
-    }
-
-    fn solve(
-        &self,
-        phi_start: f64,
-        phi_end: f64,
+        (phi_start, phi_end): (f64, f64),
         start: Start,
         stop: Stop<'_, '_>,
         how: Solve,
+        speed: Option<Box<dyn Shortcut>>,
     ) -> Run<'_> {
         let mut run = Run {
             mesh: self,
@@ -311,11 +154,9 @@ impl Mesh {
             keep_segments: how.keep_segments,
             events: Vec::new(),
             scratch: Vec::new(),
-            placed: RefCell::new(Vec::new()),
             drive_phase: None,
             pending: Vec::new(),
-            certify: how.certify && !self.curved,
-            clear_ahead: (f64::NAN, f64::NAN, Pairs::new()),
+            speed,
             idle_since: None,
             dropped_idle_start: false,
         };
@@ -343,25 +184,6 @@ impl Mesh {
         }
         run.close_pending();
         run
-    }
-
-    /// Where two vertices of tooth pair (j, k) first meet (or, with `last`, meet last) while the
-    /// driver turns from `phi0` to `phi1` (`certify::vertex_meeting`; straight flanks).
-    pub(crate) fn vertex_meeting(
-        &self,
-        (j, k): (i64, i64),
-        phi0: f64,
-        phi1: f64,
-        last: bool,
-    ) -> Option<(f64, f64)> {
-        vertex_meeting(
-            self.driver.cert(j),
-            self.driven.cert(k),
-            phi0,
-            phi1,
-            self.centre_distance,
-            last,
-        )
     }
 
     /// Where the pushers' upper envelope `env` peaks, refined from `phi_pk` (a golden-section
@@ -411,7 +233,7 @@ impl Mesh {
     }
 
     /// Upper end of the (j, k) obstacle at φ, or −∞ when it does not exist.
-    fn hi(&self, phi: f64, pair: (i64, i64)) -> f64 {
+    pub(crate) fn hi(&self, phi: f64, pair: (i64, i64)) -> f64 {
         self.obstacle_end(phi, pair.0, pair.1, End::Upper)
             .unwrap_or(f64::NEG_INFINITY)
     }
@@ -648,7 +470,7 @@ impl Run<'_> {
     }
 
     /// The pushing pairs: those behind the driven gear whose upper end is at θ.
-    fn pushers(&self) -> Pairs {
+    pub(crate) fn pushers(&self) -> Pairs {
         self.sides
             .iter()
             .filter(|t| t.side == Side::Behind && (t.hi - self.theta).abs() <= SIDE_TOL)
@@ -656,14 +478,8 @@ impl Run<'_> {
             .collect()
     }
 
-    /// Whether the last certified step proved `pair` ahead of the driven gear (or gone) at the
-    /// current (φ, θ).
-    fn known_clear_ahead(&self, pair: (i64, i64)) -> bool {
-        let (phi, theta, pairs) = &self.clear_ahead;
-        *phi == self.phi && *theta == self.theta && pairs.contains(&pair)
-    }
-
-    fn side_of(&self, pair: (i64, i64)) -> Option<Side> {
+    /// The side of the driven gear `pair` is known to lie on, if it is tracked.
+    pub(crate) fn side_of(&self, pair: (i64, i64)) -> Option<Side> {
         self.sides.iter().find(|t| t.pair == pair).map(|t| t.side)
     }
 
@@ -695,22 +511,6 @@ impl Run<'_> {
         });
         self.phi = phi_end;
         self.theta = theta_end;
-    }
-
-    /// An empty list for the pairs of the next segment: the last segment's own when only the last
-    /// is kept (it is about to be replaced), so that a step allocates nothing for it.
-    fn spare_pairs(&mut self) -> Vec<(i64, i64)> {
-        match self.segments.last_mut() {
-            Some(Segment {
-                motion: Motion::Push(pairs),
-                ..
-            }) if !self.keep_segments => {
-                let mut spare = std::mem::take(pairs);
-                spare.clear();
-                spare
-            }
-            _ => Vec::new(),
-        }
     }
 
     fn rest_to(&mut self, phi_end: f64) {
@@ -805,21 +605,48 @@ impl Run<'_> {
     }
 
     /// Advance from `self.phi` to `phi1`, locating every event in between: a held gear waits
-    /// for its release (`held_step`); a pushed one is first tried on a certificate (the speed
-    /// layer, `certified.rs`), and otherwise, as a gear at rest always, takes the exact step
-    /// (`step.rs`).
+    /// for its release (`held_step`); a pushed one is first offered to the speed layer, if the
+    /// run has one (`Shortcut::pushed_step`), and otherwise, as a gear at rest always, takes the
+    /// exact step (`step.rs`).
     fn advance(&mut self, phi1: f64) {
         if self.held {
             self.held_step(phi1);
             return;
         }
         let pushers = self.pushers();
-        let certifiable = self.certify && !pushers.is_empty() && self.unheld_at != Some(self.phi);
-        if certifiable && self.try_certified(phi1, &pushers) {
+        // Just after a closing that held nothing (`Run::jam`) the exact step takes the rest of
+        // the step, asking only for the roots after its start.
+        if !pushers.is_empty() && self.unheld_at != Some(self.phi) && self.shortcut(phi1, &pushers)
+        {
             return;
         }
         count(|st| st.bracketed += 1);
         self.exact_step(phi1, pushers);
+    }
+
+    /// Offers the pushed step to `phi1` to the speed layer, if the run has one, and returns
+    /// whether it took it.
+    fn shortcut(&mut self, phi1: f64, pushers: &[(i64, i64)]) -> bool {
+        let Some(mut speed) = self.speed.take() else {
+            return false;
+        };
+        let taken = speed.pushed_step(self, phi1, pushers);
+        self.speed = Some(speed);
+        taken
+    }
+
+    /// The run as a trajectory: its segments and events.
+    pub(crate) fn into_trajectory(self) -> Trajectory {
+        Trajectory {
+            mesh: self.mesh.clone(),
+            segments: self.segments,
+            events: self.events,
+        }
+    }
+
+    /// The run's events.
+    pub(crate) fn into_events(self) -> Vec<Event> {
+        self.events
     }
 }
 

@@ -202,9 +202,11 @@ impl ConfigBox {
     pub(crate) fn place_driver<'t>(&self, a: &'t CertTooth) -> PlacedTooth<'t> {
         PlacedTooth {
             tooth: a,
-            disc: self.driver_disc(a),
-            turned: a.v.map(|v| turn(self.driver_turn, v)),
-            normal: a.normal.map(|n| turn(self.driver_turn, n)),
+            at: Placement {
+                disc: self.driver_disc(a),
+                turned: a.v.map(|v| turn(self.driver_turn, v)),
+                normal: a.normal.map(|n| turn(self.driver_turn, n)),
+            },
         }
     }
 
@@ -212,9 +214,11 @@ impl ConfigBox {
     pub(crate) fn place_driven<'t>(&self, b: &'t CertTooth) -> PlacedTooth<'t> {
         PlacedTooth {
             tooth: b,
-            disc: self.driven_disc(b),
-            turned: b.v.map(|v| turn(self.driven_turn, v)),
-            normal: b.normal.map(|n| turn(self.driven_turn, n)),
+            at: Placement {
+                disc: self.driven_disc(b),
+                turned: b.v.map(|v| turn(self.driven_turn, v)),
+                normal: b.normal.map(|n| turn(self.driven_turn, n)),
+            },
         }
     }
 
@@ -259,7 +263,7 @@ impl ConfigBox {
             }
             // P in the world, and relative to the driven centre (its distance is what a driven
             // turn moves it by).
-            let pw = a.turned[i];
+            let pw = a.at.turned[i];
             let x = pw - self.c2;
             let dist = x.norm();
             let rp = a.tooth.rad[i];
@@ -268,12 +272,12 @@ impl ConfigBox {
             for f in 0..2 {
                 // Both points are relative to the driven centre.
                 // The flank's direction: its normal a quarter turn on (`CertTooth::new`).
-                let e = &quarter(b.normal[f]);
+                let e = &quarter(b.at.normal[f]);
                 let along = e.dot(&x) - b.tooth.start[f];
                 if along < -moved || along > b.tooth.len[f] + moved {
                     continue;
                 }
-                let m = &b.normal[f];
+                let m = &b.at.normal[f];
                 visit(Condition {
                     value: m.dot(&x) - b.tooth.offset[f],
                     rate_phi: rp,
@@ -296,19 +300,19 @@ impl ConfigBox {
             if !b.tooth.reaches[i] {
                 continue;
             }
-            let q = b.turned[i];
+            let q = b.at.turned[i];
             let qw = q + self.c2;
             let dist = qw.norm();
             let rq = b.tooth.rad[i];
             // How far Q can move from qw, seen from the driver, within the box.
             let moved = dp * (dist + rq * dt) + dt * rq + self.round;
             for f in 0..2 {
-                let e = &quarter(a.normal[f]);
+                let e = &quarter(a.at.normal[f]);
                 let along = e.dot(&qw) - a.tooth.start[f];
                 if along < -moved || along > a.tooth.len[f] + moved {
                     continue;
                 }
-                let n = &a.normal[f];
+                let n = &a.at.normal[f];
                 visit(Condition {
                     value: n.dot(&qw) - a.tooth.offset[f],
                     rate_phi: dist,
@@ -332,7 +336,7 @@ impl ConfigBox {
     /// [`ConfigBox::place_driven`], can do within the box; for `Rising` and `Falling`, also the
     /// range of the slopes dθ/dφ of their contact curves there.
     pub(crate) fn pair(&self, a: &PlacedTooth<'_>, b: &PlacedTooth<'_>) -> (Verdict, (f64, f64)) {
-        if self.apart(a.disc, b.disc) {
+        if self.apart(a.at.disc, b.at.disc) {
             return (Verdict::Clear, (0.0, 0.0));
         }
         let (dp, dt) = (self.d_phi, self.d_theta);
@@ -449,7 +453,14 @@ struct Beside {
 /// per tooth and box rather than once per pair.
 #[derive(Clone, Copy)]
 pub(crate) struct PlacedTooth<'t> {
-    tooth: &'t CertTooth,
+    pub(crate) tooth: &'t CertTooth,
+    pub(crate) at: Placement,
+}
+
+/// Where a tooth stands at a box's centre: kept apart from the tooth, so that a step can keep
+/// the placements it made in a list of its own.
+#[derive(Clone, Copy)]
+pub(crate) struct Placement {
     /// A disc holding the tooth throughout the box: centre and radius.
     disc: (Vec2, f64),
     /// Vertices turned about their gear's centre: in the world for the driver, relative to its
@@ -532,6 +543,7 @@ mod tests {
     use rand_chacha::ChaCha8Rng;
 
     use super::*;
+    use crate::speed::Certifier;
     use crate::{Mesh, Obstacle, Start};
 
     fn gear(n: usize, r_tip: f64, sigma: f64, ecc: f64, rng: &mut ChaCha8Rng) -> Gear {
@@ -577,6 +589,7 @@ mod tests {
         let mut seen = [0usize; 4];
         for _ in 0..150 {
             let Some(m) = mesh(&mut rng) else { continue };
+            let c = Certifier::new(&m).unwrap();
             let pitch = TAU / m.driver.tips.len() as f64;
             let phi0 = rng.random::<f64>() * TAU;
             let run = m.run(phi0, phi0 + 2.0 * pitch, Start::Touching(0.0));
@@ -595,8 +608,8 @@ mod tests {
             for j in drivers {
                 for k in drivens.clone() {
                     let (verdict, _) = cell.pair(
-                        &cell.place_driver(m.driver.cert(j)),
-                        &cell.place_driven(m.driven.cert(k)),
+                        &cell.place_driver(c.driver_tooth(j)),
+                        &cell.place_driven(c.driven_tooth(k)),
                     );
                     seen[verdict as usize] += 1;
                     let mut last: Option<Obstacle> = None;
@@ -650,6 +663,7 @@ mod tests {
         let (mut clear, mut paths) = (0, 0);
         for _ in 0..200 {
             let Some(m) = mesh(&mut rng) else { continue };
+            let c = Certifier::new(&m).unwrap();
             let pitch = TAU / m.driver.tips.len() as f64;
             let ratio = m.driver.tips.len() as f64 / m.driven.tips.len() as f64;
             let phi0 = rng.random::<f64>() * TAU;
@@ -675,8 +689,8 @@ mod tests {
             for j in drivers {
                 for k in drivens.clone() {
                     let (a, b) = (
-                        path.place_driver(m.driver.cert(j)),
-                        path.place_driven(m.driven.cert(k)),
+                        path.place_driver(c.driver_tooth(j)),
+                        path.place_driven(c.driven_tooth(k)),
                     );
                     if !path.clear_along(&a, &b, slopes, margin) {
                         continue;
@@ -722,6 +736,7 @@ mod tests {
         let mut met = 0;
         for _ in 0..100 {
             let Some(m) = mesh(&mut rng) else { continue };
+            let c = Certifier::new(&m).unwrap();
             let phi0 = rng.random::<f64>() * TAU;
             let phi1 = phi0 + 0.3;
             for j in m
@@ -730,7 +745,8 @@ mod tests {
             {
                 let k = rng.random_range(0..m.driven.tips.len() as i64);
                 for last in [false, true] {
-                    let Some((phi, theta)) = m.vertex_meeting((j, k), phi0, phi1, last) else {
+                    let Some((phi, theta)) = c.vertex_meeting(&m, (j, k), (phi0, phi1), last)
+                    else {
                         continue;
                     };
                     assert!((phi0..=phi1).contains(&phi));

@@ -1,38 +1,28 @@
-//! The speed layer of the solver: a step taken on a certificate, where bounds on the contact
-//! conditions over the step prove that no event lies in it, so that the step ends where the
-//! pushing curves end without any search (`certify.rs` has the bounds). Everything here may be
-//! left out without changing a result: a step with no certificate is taken by the exact step of
-//! `mod.rs` (`tests/differential.rs` holds the two to the same events). Its one entry is
-//! [`Run::certified_step`] (and its halves); it reads the run's state and, when it succeeds,
-//! moves it on as the exact step would.
+//! A pushed gear's step taken on a certificate, where bounds on the contact conditions over the
+//! step prove that no event lies in it, so that the step ends where the pushing curves end
+//! without any search (`certify.rs` has the bounds). Its one entry is
+//! [`Certifier::try_certified`] (the whole step, or else its two halves); it reads the run's state
+//! and, when it succeeds, moves it on as the exact step would (`Run::take_proved_step`).
 
 use smallvec::SmallVec;
 
-use super::*;
+use super::Certifier;
+use super::certify::{ConfigBox, PlacedTooth, Placement, Verdict};
+use crate::mesh::End;
+use crate::solver::shortcut::PairAtEnd;
+use crate::solver::{Pairs, Run, SIDE_TOL, Side, count};
 
 /// How far a certified step's first box reaches above the pushers' end, as a share of their rise
 /// over the step (a performance choice only: any box holding the path is sound; 0.1 judged the
 /// fewest boxes again on `examples/turns`, 0.25 and 0.5 more pairs in taller boxes).
 const BOX_HEADROOM: f64 = 0.1;
 
-/// A tooth pair judged over a certified step.
-#[derive(Debug, Clone, Copy)]
-struct Judged {
-    pair: (i64, i64),
-    /// Upper end of its obstacle at the step's end (−∞ if gone, or not needed).
-    hi: f64,
-    /// Whether its contacts in the box rise (else they fall).
-    rising: bool,
-}
-
-impl Judged {
-    /// A pair behind the driven gear that does not carry it at the step's end.
-    fn not_carrying(pair: (i64, i64)) -> Self {
-        Self {
-            pair,
-            hi: f64::NEG_INFINITY,
-            rising: false,
-        }
+/// A pair behind the driven gear that does not carry it at a certified step's end.
+fn not_carrying(pair: (i64, i64)) -> PairAtEnd {
+    PairAtEnd {
+        pair,
+        hi: f64::NEG_INFINITY,
+        rising: false,
     }
 }
 
@@ -62,7 +52,7 @@ enum Role {
 /// or gone within it.
 #[derive(Debug, Default)]
 struct JudgedStep {
-    pairs: SmallVec<[Judged; 8]>,
+    pairs: SmallVec<[PairAtEnd; 8]>,
     /// Rising pairs not there at the step's start and there at its end.
     newborn: Pairs,
     /// Rising pairs there at the step's start and gone at its end.
@@ -76,12 +66,18 @@ struct JudgedStep {
     clear_ahead: Pairs,
 }
 
-impl Run<'_> {
+impl Certifier {
     /// Takes the step to `phi1` on a certificate - the whole step, or else its two halves - and
     /// returns whether it did (having changed nothing if not), counting the attempt.
-    pub(super) fn try_certified(&mut self, phi1: f64, pushers: &[(i64, i64)]) -> bool {
+    pub(super) fn try_certified(
+        &mut self,
+        run: &mut Run<'_>,
+        phi1: f64,
+        pushers: &[(i64, i64)],
+    ) -> bool {
         let e0 = crate::mesh::tooth_pair_evaluations();
-        let certified = self.certified_step(phi1, pushers) || self.certified_halves(phi1, pushers);
+        let certified =
+            self.certified_step(run, phi1, pushers) || self.certified_halves(run, phi1, pushers);
         let spent = crate::mesh::tooth_pair_evaluations() - e0;
         count(|st| {
             if certified {
@@ -126,8 +122,8 @@ impl Run<'_> {
     // One copy of this large step for its three callers (a whole step and two halves): inlined
     // into each it made the program's resident code larger than before the halves.
     #[inline(never)]
-    fn certified_step(&mut self, phi1: f64, pushers: &[(i64, i64)]) -> bool {
-        let Some(mut judged) = self.judge_step(phi1, pushers) else {
+    fn certified_step(&mut self, run: &mut Run<'_>, phi1: f64, pushers: &[(i64, i64)]) -> bool {
+        let Some(mut judged) = self.judge_step(run, phi1, pushers) else {
             return false;
         };
         // Every pusher is among the rising pairs (`judge_step` refuses a box where one is not):
@@ -138,35 +134,11 @@ impl Run<'_> {
                 .all(|p| judged.pairs.iter().any(|m| m.pair == *p && m.rising)),
             "a pusher not judged rising"
         );
-        if !self.births_and_deaths_hold(&judged, phi1) {
+        if !self.births_and_deaths_hold(run, &judged, phi1) {
             return false;
         }
         self.clear_ahead = (phi1, judged.theta1, std::mem::take(&mut judged.clear_ahead));
-        let mut rising = self.spare_pairs();
-        rising.extend(judged.pairs.iter().filter(|m| m.rising).map(|m| m.pair));
-        self.push_segment(phi1, judged.theta1, Motion::Push(rising));
-        // Pairs whose driver tooth has left the window (teeth enter it at lower indices as the
-        // driver turns, and leave it at higher ones) are done with.
-        let last = *self.mesh.driver_teeth(phi1).end();
-        self.sides.retain(|t| t.pair.0 <= last);
-        // Sides stay (nothing crossed θ). Upper ends at φ1 are known for the evaluated pairs; a
-        // pair behind that was not evaluated stayed clear of the path, so it is no pusher at φ1.
-        for t in &mut self.sides {
-            match judged.pairs.iter().find(|m| m.pair == t.pair) {
-                Some(m) => t.hi = m.hi,
-                None if t.side == Side::Behind => t.hi = f64::NEG_INFINITY,
-                None => {}
-            }
-        }
-        for m in &judged.pairs {
-            if self.side_of(m.pair).is_none() {
-                self.sides.push(Tracked {
-                    pair: m.pair,
-                    side: Side::Behind,
-                    hi: m.hi,
-                });
-            }
-        }
+        run.take_proved_step(phi1, judged.theta1, &judged.pairs);
         true
     }
 
@@ -176,48 +148,29 @@ impl Run<'_> {
     /// first is undone and the whole step is bracketed as before, over the same driver angles, so
     /// that no event is located differently. (Not tried while an event waits for the drive to
     /// resume and size it: a certified push would size it, and that is not undone.)
-    fn certified_halves(&mut self, phi1: f64, pushers: &[(i64, i64)]) -> bool {
-        if !self.pending.is_empty() {
+    fn certified_halves(&mut self, run: &mut Run<'_>, phi1: f64, pushers: &[(i64, i64)]) -> bool {
+        if run.sizing_waits() {
             return false;
         }
-        let mid = 0.5 * (self.phi + phi1);
-        let (phi0, theta0) = (self.phi, self.theta);
-        let sides: SmallVec<[Tracked; 16]> = SmallVec::from_slice(&self.sides);
+        let mid = 0.5 * (run.at().0 + phi1);
         let clear_ahead = self.clear_ahead.clone();
-        let segments = self.segments.len();
-        // A run that keeps no trajectory keeps only its last segment, which a step replaces: it
-        // is set aside (not copied) until the halves are known to stand.
-        let last = if self.keep_segments {
-            None
-        } else {
-            self.segments.pop()
-        };
-        if !self.certified_step(mid, pushers) {
-            self.segments.extend(last);
-            return false;
+        let checkpoint = run.checkpoint();
+        if self.certified_step(run, mid, pushers) {
+            let pushers = run.pushers();
+            if !pushers.is_empty() && self.certified_step(run, phi1, &pushers) {
+                return true;
+            }
         }
-        let pushers = self.pushers();
-        if !pushers.is_empty() && self.certified_step(phi1, &pushers) {
-            return true;
-        }
-        (self.phi, self.theta) = (phi0, theta0);
-        self.sides.clear();
-        self.sides.extend_from_slice(&sides);
+        run.restore(checkpoint);
         self.clear_ahead = clear_ahead;
-        if self.keep_segments {
-            self.segments.truncate(segments);
-        } else {
-            self.segments.clear();
-            self.segments.extend(last);
-        }
         false
     }
 
     /// The verdicts of a certified step to `phi1` (see [`Run::certified_step`]), or None when a
     /// pair may meet the driven gear other than by pushing it.
-    fn judge_step(&self, phi1: f64, pushers: &[(i64, i64)]) -> Option<JudgedStep> {
-        let mesh = self.mesh;
-        let (phi0, theta0) = (self.phi, self.theta);
+    fn judge_step(&self, run: &Run<'_>, phi1: f64, pushers: &[(i64, i64)]) -> Option<JudgedStep> {
+        let mesh = run.mesh();
+        let (phi0, theta0) = run.at();
         // Each pair is evaluated at φ1 once, however often the box grows or θ1 moves; only the
         // upper ends are asked for (where the pairs behind end).
         let mut at1: SmallVec<[Evaluated; 8]> = SmallVec::new();
@@ -233,7 +186,7 @@ impl Run<'_> {
             .iter()
             .filter_map(|&p| end_of(p))
             .fold(theta0, f64::max);
-        let (overtakers, mut theta1) = self.overtakers(pushers, pushed, &mut end_of);
+        let (overtakers, mut theta1) = overtakers(run, pushers, pushed, &mut end_of);
         'grow: for grown in 0..4 {
             // The first box reaches a little above where the pushers end: the next pusher, taking
             // over within the step, often ends higher, and a box found too low is judged again.
@@ -243,7 +196,7 @@ impl Run<'_> {
                 theta1
             };
             let cell = ConfigBox::new(phi0, phi1, theta0 - SIDE_TOL, top, mesh.centre_distance);
-            let boxed = self.box_verdicts(&cell, phi1, top)?;
+            let boxed = self.box_verdicts(run, &cell, phi1, top)?;
             // A pusher whose contacts are not all rising cannot be followed: no certificate.
             if !pushers.iter().all(|&p| rises(&boxed, p)) {
                 return None;
@@ -259,8 +212,8 @@ impl Run<'_> {
                 let path = cell.with_driven(theta0, theta1);
                 let clear = |(j, k): (i64, i64)| {
                     path.clear_along(
-                        &path.place_driver(mesh.driver.cert(j)),
-                        &path.place_driven(mesh.driven.cert(k)),
+                        &path.place_driver(self.driver_tooth(j)),
+                        &path.place_driven(self.driven_tooth(k)),
                         slopes,
                         SIDE_TOL,
                     )
@@ -281,9 +234,9 @@ impl Run<'_> {
                         Role::Falling if pushed - theta0 > 2.0 * SIDE_TOL => {
                             // Falling from behind θ0: it never reaches θ, whatever becomes of
                             // it, and ends too far below θ1 to push at the next step.
-                            judged.pairs.push(Judged::not_carrying(pair));
+                            judged.pairs.push(not_carrying(pair));
                         }
-                        Role::Falling => judged.pairs.push(Judged {
+                        Role::Falling => judged.pairs.push(PairAtEnd {
                             pair,
                             hi: end_of(pair).unwrap_or(f64::NEG_INFINITY),
                             rising: false,
@@ -293,7 +246,7 @@ impl Run<'_> {
                         // may be on either side of the driven gear (left untracked).
                         Role::Rising { born, .. } if !carriers.contains(&pair) && clear(pair) => {
                             if !born {
-                                judged.pairs.push(Judged::not_carrying(pair));
+                                judged.pairs.push(not_carrying(pair));
                             }
                         }
                         Role::Rising { born, slopes: r } => {
@@ -314,7 +267,7 @@ impl Run<'_> {
                                     continue 'path;
                                 }
                                 Some(hi) => {
-                                    judged.pairs.push(Judged {
+                                    judged.pairs.push(PairAtEnd {
                                         pair,
                                         hi,
                                         rising: true,
@@ -327,13 +280,16 @@ impl Run<'_> {
                                     // Neither at φ0 nor at φ1: a pair whose contacts only rise is
                                     // born and dies where two of its vertices meet; with no meeting
                                     // in the step it never touches.
-                                    if mesh.vertex_meeting(pair, phi0, phi1, false).is_some() {
+                                    if self
+                                        .vertex_meeting(mesh, pair, (phi0, phi1), false)
+                                        .is_some()
+                                    {
                                         return None;
                                     }
                                 }
                                 None => {
                                     judged.dead.push(pair);
-                                    judged.pairs.push(Judged {
+                                    judged.pairs.push(PairAtEnd {
                                         pair,
                                         hi: f64::NEG_INFINITY,
                                         rising: true,
@@ -349,40 +305,19 @@ impl Run<'_> {
         None
     }
 
-    /// The pairs behind the driven gear that end the step above where the pushers do (`pushed`),
-    /// and the highest end of all: such a pair has taken the gear over within the step, so it is
-    /// a carrier from the start, that the first box be tall enough and the path's tube wide
-    /// enough (else the box grows, and every pair is judged again, once it is found). Only pairs
-    /// near enough to overtake are evaluated: within twice the pushers' rise below θ0.
-    fn overtakers(
-        &self,
-        pushers: &[(i64, i64)],
-        pushed: f64,
-        end_of: &mut impl FnMut((i64, i64)) -> Option<f64>,
-    ) -> (Pairs, f64) {
-        let theta0 = self.theta;
-        let (mut overtakers, mut theta1) = (Pairs::new(), pushed);
-        for t in &self.sides {
-            if t.side == Side::Behind
-                && !pushers.contains(&t.pair)
-                && t.hi > theta0 - 2.0 * (pushed - theta0)
-                && let Some(hi) = end_of(t.pair)
-                && hi > pushed
-            {
-                theta1 = theta1.max(hi);
-                overtakers.push(t.pair);
-            }
-        }
-        (overtakers, theta1)
-    }
-
     /// Every tooth pair that touches `cell`, the box of the step to `phi1` and driven angles
     /// from θ0 (less the side tolerance) to `top`, with its role (for a rising pair, with the range of
     /// slopes of its contact curves in the box); None when an untracked pair straddles the
     /// driven angle at the step's start.
-    fn box_verdicts(&self, cell: &ConfigBox, phi1: f64, top: f64) -> Option<BoxedPairs> {
-        let mesh = self.mesh;
-        let (phi0, theta0) = (self.phi, self.theta);
+    fn box_verdicts(
+        &self,
+        run: &Run<'_>,
+        cell: &ConfigBox,
+        phi1: f64,
+        top: f64,
+    ) -> Option<BoxedPairs> {
+        let mesh = run.mesh();
+        let (phi0, theta0) = run.at();
         let (driver, driven) = (&mesh.driver, &mesh.driven);
         let bottom = theta0 - SIDE_TOL;
         let drivers = driver.teeth_between(-phi1 - driver.window, -phi0 + driver.window);
@@ -390,24 +325,23 @@ impl Run<'_> {
         // Each tooth is placed in the box once, and only if its disc comes near another's.
         let discs: SmallVec<[_; 16]> = drivens
             .clone()
-            .map(|k| cell.driven_disc(driven.cert(k)))
+            .map(|k| cell.driven_disc(self.driven_tooth(k)))
             .collect();
-        let mut placed = self.placed.borrow_mut();
-        placed.clear();
-        placed.resize(discs.len(), None);
+        let mut placed: SmallVec<[Option<Placement>; 16]> = SmallVec::from_elem(None, discs.len());
         let mut boxed = SmallVec::new();
         for j in drivers {
-            let disc = cell.driver_disc(driver.cert(j));
+            let disc = cell.driver_disc(self.driver_tooth(j));
             let mut a = None;
             for (i, k) in drivens.clone().enumerate() {
                 if cell.apart(disc, discs[i]) {
                     continue;
                 }
-                let a = a.get_or_insert_with(|| cell.place_driver(driver.cert(j)));
-                let b = placed[i].get_or_insert_with(|| cell.place_driven(driven.cert(k)));
+                let a = a.get_or_insert_with(|| cell.place_driver(self.driver_tooth(j)));
+                let tooth = self.driven_tooth(k);
+                let b = placed[i].get_or_insert_with(|| cell.place_driven(tooth).at);
                 let pair = (j, k);
-                let (verdict, range) = cell.pair(a, b);
-                let role = match (verdict, self.side_of(pair)) {
+                let (verdict, range) = cell.pair(a, &PlacedTooth { tooth, at: *b });
+                let role = match (verdict, run.side_of(pair)) {
                     (Verdict::Clear, _) => continue,
                     (Verdict::Rising, Some(Side::Behind)) => Role::Rising {
                         born: false,
@@ -423,7 +357,7 @@ impl Run<'_> {
                     // path (untracked, as a bracketed step finds it ahead where it starts).
                     // One the last step proved ahead (or gone) here is taken as ahead: a
                     // suspect whatever it does, it must stay clear of the path.
-                    (Verdict::Rising, None) if self.known_clear_ahead(pair) => {
+                    (Verdict::Rising, None) if self.known_clear_ahead(run, pair) => {
                         Role::Suspect { ahead: true }
                     }
                     (Verdict::Rising, None) => match mesh.obstacle(phi0, j, k) {
@@ -452,9 +386,9 @@ impl Run<'_> {
     /// ahead: a pair whose contacts only rise is born, and dies, where two of its vertices meet
     /// (`certify::vertex_meeting`). A pair born above the driven gear would be an obstacle ahead;
     /// one that died while carrying it must hand it to another there.
-    fn births_and_deaths_hold(&self, judged: &JudgedStep, phi1: f64) -> bool {
-        let mesh = self.mesh;
-        let (phi0, theta0) = (self.phi, self.theta);
+    fn births_and_deaths_hold(&self, run: &Run<'_>, judged: &JudgedStep, phi1: f64) -> bool {
+        let mesh = run.mesh();
+        let (phi0, theta0) = run.at();
         // The driven angle at φ without pair `except`: the largest upper end of the other rising
         // pairs, at least θ0.
         let others = |phi: f64, except: (i64, i64)| {
@@ -465,7 +399,8 @@ impl Run<'_> {
                 .map(|m| mesh.hi(phi, m.pair))
                 .fold(theta0, f64::max)
         };
-        let meeting = |pair: (i64, i64), last: bool| mesh.vertex_meeting(pair, phi0, phi1, last);
+        let meeting =
+            |pair: (i64, i64), last: bool| self.vertex_meeting(mesh, pair, (phi0, phi1), last);
 
         // Where the driven gear is at least, by the path's tube (`ConfigBox::clear_along`): when
         // a pair is born below that, nothing need be evaluated.
@@ -490,45 +425,31 @@ impl Run<'_> {
     }
 }
 
-/// How the steps of the runs on this thread were taken, for benchmarks and profiling.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct SolverStats {
-    /// Steps taken on a certificate.
-    pub certified: u64,
-    /// Tooth-pair evaluations made by certified steps.
-    pub certified_evaluations: u64,
-    /// Certificates tried and not found.
-    pub refused: u64,
-    /// Tooth-pair evaluations made by those attempts.
-    pub refused_evaluations: u64,
-    /// Steps bracketed (no certificate tried, or none found), while the driven gear was free.
-    pub bracketed: u64,
-}
-
-thread_local! {
-    static STATS: std::cell::Cell<SolverStats> = const {
-        std::cell::Cell::new(SolverStats {
-            certified: 0,
-            certified_evaluations: 0,
-            refused: 0,
-            refused_evaluations: 0,
-            bracketed: 0,
-        })
-    };
-}
-
-/// The step counts of the runs on this thread so far.
-pub fn solver_stats() -> SolverStats {
-    STATS.with(std::cell::Cell::get)
-}
-
-/// Updates this thread's step counts.
-pub(super) fn count(update: impl FnOnce(&mut SolverStats)) {
-    STATS.with(|c| {
-        let mut st = c.get();
-        update(&mut st);
-        c.set(st);
-    });
+/// The pairs behind the driven gear that end the step above where the pushers do (`pushed`),
+/// and the highest end of all: such a pair has taken the gear over within the step, so it is
+/// a carrier from the start, that the first box be tall enough and the path's tube wide
+/// enough (else the box grows, and every pair is judged again, once it is found). Only pairs
+/// near enough to overtake are evaluated: within twice the pushers' rise below θ0.
+fn overtakers(
+    run: &Run<'_>,
+    pushers: &[(i64, i64)],
+    pushed: f64,
+    end_of: &mut impl FnMut((i64, i64)) -> Option<f64>,
+) -> (Pairs, f64) {
+    let theta0 = run.at().1;
+    let (mut overtakers, mut theta1) = (Pairs::new(), pushed);
+    for t in run.tracked() {
+        if t.side == Side::Behind
+            && !pushers.contains(&t.pair)
+            && t.hi > theta0 - 2.0 * (pushed - theta0)
+            && let Some(hi) = end_of(t.pair)
+            && hi > pushed
+        {
+            theta1 = theta1.max(hi);
+            overtakers.push(t.pair);
+        }
+    }
+    (overtakers, theta1)
 }
 
 /// Whether `pair`'s contacts in the box all rise.
