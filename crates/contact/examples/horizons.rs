@@ -11,7 +11,7 @@
 //! m0 + m0′Δ − MΔ²/2 > 0, M the largest second difference of the sampled margin up to Δ: any
 //! rigorous bound on the second derivative is at least that, so no second-order certificate on
 //! these margins along the exact path reaches farther (one on the signed distances of
-//! `certify.rs` has its own second derivatives). Kinks (a pair's end switching from one contact to
+//! `speed/certify.rs` has its own second derivatives). Kinks (a pair's end switching from one contact to
 //! another, a hand-over) are where such a bound must stop and start again; the third figure
 //! leaves them out (second differences above twenty times the median's).
 #![allow(missing_docs, clippy::unwrap_used, reason = "measurement harness")]

@@ -1,10 +1,10 @@
 //! Where a held driven gear may be let go, solved exactly.
 //!
 //! A held gear at θ has no free position ahead: the obstacles at φ, swept in order of their lower
-//! ends (`cover_from` in `solver.rs`, as at the jam that held it: one joins the cover when its
+//! ends (`cover_from` in `solver/cover.rs`, as at the jam that held it: one joins the cover when its
 //! lower end is within the side tolerance `tol` of the top so far, so that a driver tooth
-//! touching the gear from ahead holds it), close up from θ past a threshold more than a turn on. Take the **chain** c_1 … c_m of obstacles that lifted
-//! the top, and these **joints**:
+//! touching the gear from ahead holds it), close up from θ past a threshold more than
+//! a turn on. Take the **chain** c_1 … c_m of obstacles that lifted the top, and these **joints**:
 //!
 //! - joint 0: lo_1 ≤ θ + tol;
 //! - joint i (0 < i < m): lo_{i+1} ≤ hi_i + tol and hi_i > θ;
@@ -86,10 +86,45 @@ pub(crate) fn first_change(
         (phi0, phi1),
         &mut found,
     );
+    joints_roots(
+        mesh,
+        chain,
+        (&lower, &upper),
+        (theta, tol),
+        (phi0, phi1),
+        &mut found,
+    );
+    if m == 1 {
+        partings(
+            (&lower[0], &upper[0]),
+            0,
+            &chain[0],
+            (phi0, phi1),
+            &mut found,
+        );
+    }
+    found.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let i = found
+        .iter()
+        .position(|&(phi, change)| changes(mesh, chain, phi, change, tol))?;
+    Some(break_at(&found[i..], phi1))
+}
+
+/// The roots where a joint between two links of `chain` (at `phi0`) may fail over the range, or
+/// where either link's teeth may part, into `found`: for each joint (the same teeth a turn apart
+/// are taken once), after the stretch it is proved to hold by points.
+fn joints_roots(
+    mesh: &Mesh,
+    chain: &[Obstacle],
+    (lower, upper): (&[Conditions], &[Conditions]),
+    (theta, tol): (f64, f64),
+    (phi0, phi1): (f64, f64),
+    found: &mut Vec<(f64, Change)>,
+) {
     // A cover longer than a turn meets the same teeth again a turn on: the same roots.
     let n2 = mesh.driven.tips.len() as i64;
     let mut seen: Vec<(i64, i64, i64, i64)> = Vec::new();
-    let mut parted = vec![false; m];
+    let mut parted = vec![false; chain.len()];
     for (i, pair) in chain.windows(2).enumerate() {
         let (link, next) = (pair[0], pair[1]);
         let key = (
@@ -112,13 +147,7 @@ pub(crate) fn first_change(
         }
         for l in [i, i + 1] {
             if !std::mem::replace(&mut parted[l], true) {
-                partings(
-                    (&lower[l], &upper[l]),
-                    l,
-                    &chain[l],
-                    (from, phi1),
-                    &mut found,
-                );
+                partings((&lower[l], &upper[l]), l, &chain[l], (from, phi1), found);
             }
         }
         let below: Conditions = upper[i].iter().map(|c| c.shifted(tol)).collect();
@@ -130,37 +159,27 @@ pub(crate) fn first_change(
             }
         }
     }
-    if m == 1 {
-        partings(
-            (&lower[0], &upper[0]),
-            0,
-            &chain[0],
-            (phi0, phi1),
-            &mut found,
-        );
-    }
-    found.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let i = found
-        .iter()
-        .position(|&(phi, change)| changes(mesh, chain, phi, change, tol))?;
-    let root = found[i].0;
+}
+
+/// The chain break whose first root is `roots[0]` (`roots` sorted, the rest after it): roots
+/// within `SIMULTANEOUS` of the first are one change (see there), and the turn is swept again
+/// past the last of them, halfway to the next root or `SIMULTANEOUS` on, whichever is nearer.
+fn break_at(roots: &[(f64, Change)], phi1: f64) -> ChainBreak {
+    let root = roots[0].0;
     let scale = 1.0 + root.abs();
-    // Roots within `SIMULTANEOUS` of the first are one change (see there): the turn is swept
-    // again past the last of them, halfway to the next root or `SIMULTANEOUS` on, whichever
-    // is nearer.
-    let last = found[i..]
+    let last = roots
         .iter()
         .map(|&(phi, _)| phi)
         .take_while(|&phi| phi <= root + SIMULTANEOUS * scale)
         .last()
         .unwrap_or(root);
-    let next = found[i..]
+    let next = roots
         .iter()
         .map(|&(phi, _)| phi)
         .find(|&phi| phi > last)
         .unwrap_or(phi1);
     let look_at = last + (SIMULTANEOUS * scale).min(0.5 * (next - last));
-    Some(ChainBreak { root, look_at })
+    ChainBreak { root, look_at }
 }
 
 /// Where a held gear's chain may break: the first root of the change, and the driver angle
@@ -295,101 +314,5 @@ fn changes(mesh: &Mesh, chain: &[Obstacle], phi: f64, change: Change, tol: f64) 
 }
 
 #[cfg(test)]
-mod tests {
-    //! The conditions each end of an obstacle is a root of, checked on random meshes of every
-    //! kind the solver takes.
-    #![allow(clippy::unwrap_used, reason = "tests")]
-
-    use std::f64::consts::TAU;
-
-    use geometry::{Gear, Vec2};
-    use rand::{Rng, SeedableRng};
-    use rand_chacha::ChaCha8Rng;
-
-    use super::*;
-
-    fn gear(n: usize, r_tip: f64, rng: &mut ChaCha8Rng) -> Gear {
-        let pitch = TAU / n as f64;
-        let jitter = [0.0, 0.1, 0.3][rng.random_range(0..3)];
-        let tips: Vec<f64> = (0..n)
-            .map(|k| pitch * k as f64 + jitter * pitch * (rng.random::<f64>() - 0.5))
-            .collect();
-        let ecc = [0.0, 0.2][rng.random_range(0..2)];
-        let a = rng.random::<f64>() * TAU;
-        let centre = Vec2::new(ecc * a.cos(), ecc * a.sin());
-        let root = r_tip - 1.1;
-        let mut g = if rng.random_bool(0.3) {
-            // Asymmetric teeth: each valley off the middle of its gap.
-            let valleys = (0..n)
-                .map(|k| {
-                    let next = if k + 1 == n {
-                        tips[0] + TAU
-                    } else {
-                        tips[k + 1]
-                    };
-                    tips[k] + (next - tips[k]) * (0.35 + 0.3 * rng.random::<f64>())
-                })
-                .collect();
-            Gear::with_valleys(r_tip, root, tips, valleys, centre).unwrap()
-        } else {
-            Gear::new(r_tip, root, tips, centre).unwrap()
-        };
-        if rng.random_bool(0.3) {
-            let tip_radii = (0..n).map(|_| r_tip + 0.05 * rng.random::<f64>()).collect();
-            let root_radii = (0..n).map(|_| root - 0.05 * rng.random::<f64>()).collect();
-            g = g.with_radii(tip_radii, root_radii).unwrap();
-        }
-        if rng.random_bool(0.3) {
-            g = g
-                .with_flank_sagitta(0.05 * (rng.random::<f64>() - 0.5))
-                .unwrap();
-        }
-        g
-    }
-
-    #[test]
-    fn every_obstacle_end_is_a_root_of_its_ends_conditions() {
-        let mut rng = ChaCha8Rng::seed_from_u64(11);
-        let (mut ends, mut narrow) = (0, 0);
-        for _ in 0..300 {
-            let n1 = rng.random_range(8..40);
-            let n2 = rng.random_range(n1..90);
-            let (r1, r2) = (0.5 * n1 as f64, 0.5 * n2 as f64);
-            let g = 2.0 + 98.0 * rng.random::<f64>();
-            let d = geometry::centre_distance(r1, r2, 1.1, g);
-            let Ok(mesh) = Mesh::new(gear(n1, r1, &mut rng), gear(n2, r2, &mut rng), d) else {
-                continue;
-            };
-            for _ in 0..20 {
-                let phi = rng.random::<f64>() * TAU;
-                let mut obs = Vec::new();
-                let theta = rng.random::<f64>() * TAU;
-                mesh.obstacles(phi, theta - 1.0, theta + 1.0, &mut obs);
-                for o in obs {
-                    // An obstacle only just met (a tip crossing a flank's corner twice) may have
-                    // both ends on one side of the teeth.
-                    narrow += usize::from(o.hi - o.lo < 0.01);
-                    for (end, at) in [(End::Lower, o.lo), (End::Upper, o.hi)] {
-                        let cs = mesh.conditions_of_both_sides(o.driver_tooth, o.driven_tooth);
-                        let residual = cs
-                            .iter()
-                            .map(|c| c.at(phi, at).abs())
-                            .fold(f64::INFINITY, f64::min);
-                        // A length, or for a distance to an arc's centre a squared length (mm²).
-                        assert!(
-                            residual < 1e-7,
-                            "{end:?} end of {o:?} at φ {phi}: {residual}; curved {}, {} conditions, G {g}",
-                            mesh.curved,
-                            cs.len()
-                        );
-                        ends += 1;
-                    }
-                }
-            }
-        }
-        assert!(
-            ends > 10_000 && narrow > 100,
-            "{ends} ends, {narrow} narrow"
-        );
-    }
-}
+#[path = "../tests/unit/held.rs"]
+mod tests;

@@ -1,50 +1,59 @@
 //! Exact push-model contact solver for one mesh of triangular-tooth gears: θ(φ), jams, disengagements.
 //!
-//! The push model, solved exactly: the driven gear stays put until a driver tooth pushes it, then
-//! moves only as far as it must to stay clear.
+//! # The model
 //!
-//! At a driver angle φ every driver tooth j makes, for every driven tooth k, an obstacle: a closed
-//! interval `[lo, hi]` of driven angles at which the two teeth overlap (see [`Mesh::obstacle`]).
-//! The driven angle θ never lies strictly inside one. Obstacles *behind* θ (hi ≤ θ) push it: θ is
-//! the running maximum of their upper ends. Obstacles *ahead* (lo ≥ θ) are driver teeth the driven
-//! tooth is moving towards. Hence the events, each classified from the contact motion:
+//! The driven gear stays put until a driver tooth pushes it, then moves only as far as it must
+//! to stay clear. At a driver angle φ every driver tooth j makes, for every driven tooth k, an
+//! obstacle: a closed interval `[lo, hi]` of driven angles at which the two teeth overlap
+//! ([`Mesh::obstacle`]). The driven angle θ never lies strictly inside one. Obstacles *behind* θ
+//! (hi ≤ θ) push it: θ is the running maximum of their upper ends. Obstacles *ahead* (lo ≥ θ) are
+//! driver teeth the driven tooth is moving towards. So the driven gear is **pushed** (θ follows a
+//! pushing pair's contact curve), **at rest** (θ constant) or **held** (jammed, with no free
+//! position ahead), and each event ends one of these states:
 //!
-//! - an obstacle ahead reaches θ: a **lock** if a pair touches behind at that moment (held on both
-//!   sides), a **strike** if nothing does (the push model would have to turn it backwards);
+//! - an obstacle ahead reaches θ (a **closing**): a **lock** if a pair touches behind at that
+//!   moment (held on both sides), a **strike** if nothing does (the push model would have to turn
+//!   it backwards);
 //! - the pushing obstacle stops rising (its tips slip past each other) while no other driver tooth
 //!   touches: a **gap**, sized when drive resumes and called a **slip** if it lasted a driver
 //!   pitch or more or moved the tooth phase;
 //! - no free driven position at the start: **blocked at start**.
 //!
 //! After a lock or strike the driven gear is let go to the next free position ahead; where there
-//! is none it is **held** until one appears, at the first root where the obstacles that close up
-//! over its turn may give way (`held.rs`, on the exact conditions of `meet.rs`).
+//! is none it is **held** until one appears. Which of these events a table counts as a jam or a
+//! disengagement is an event rule's call (the `rules` crate), not the solver's.
 //!
-//! Which of these a table counts as a jam or a disengagement is an event rule's call (the `rules`
-//! crate), not the solver's.
+//! Every event is a root of the contact conditions - a vertex of one tooth on a flank (line or
+//! arc) of the other, each F(φ, θ) = 0 with F bilinear in the cosines and sines of the two angles
+//! (`src/meet.rs`, the conditions of an obstacle's ends in `src/mesh/conditions.rs`) - found as a
+//! root, not by sampling. Between events θ(φ) is a constant or the maximum of closed-form contact
+//! curves, exact at every φ ([`Trajectory::theta_at`]).
 //!
-//! **How a step finds them** (`step.rs`). The driver turns in steps of a quarter of its pitch
-//! (only to bound the tooth pairs looked at together: no result depends on it). Between events
-//! θ(φ) is a constant (at rest) or the maximum of closed-form contact curves (pushed), exact at
-//! every φ. Each event is a root of the contact conditions of `meet.rs` - a vertex on a flank
-//! line or arc, every one F(φ, θ) = 0 - and is found as one:
+//! # Where each is decided
 //!
-//! - a driver tooth ahead closing on the path, a pair behind reaching a gear at rest: the first
-//!   root where a condition of the pair meets one of the path's, the sign of the gap checked
-//!   between consecutive roots (`closing.rs`);
-//! - a held gear let go: the first root where the obstacles that hold it may give way
-//!   (`held.rs`);
-//! - where the pushing curves stop rising (a gap): golden-section search, refined where a curve
-//!   peaks smoothly by bisection on the sign of its closed-form slope (`Mesh::smooth_peak`),
-//!   decided by samples at the middle and end of the step; and the side of a pair born within a
-//!   step, by bisection on its existence (`search.rs`).
+//! | what | where (files under `src/`) |
+//! |---|---|
+//! | the main loop: the driver walked in steps of a quarter of its pitch (only to bound the tooth pairs looked at together: no result depends on it), each step held, taken by the speed layer or taken exactly | `Mesh::solve` and `Run::advance` in `solver/mod.rs` |
+//! | one exact step: the pairs near the gear sorted behind or ahead, the path planned from those behind (push, gap, rest, push again) | `Run::exact_step`, `Run::plan_step` in `solver/step.rs` |
+//! | a closing: the first root where a lower-end condition of a pair ahead holds together with a condition of the path, the sign of the backlash read once between consecutive roots | `closing::first_closing` in `closing.rs`, asked by `first_jam` in `solver/step.rs` |
+//! | a lock or a strike: the closing judged (a pair touching behind, or none), the gear let go to the next free position or held | `Run::jam` in `solver/step.rs`; the free position, or the chain of obstacles that holds, by `Mesh::free_or_cover_in` in `solver/cover.rs` |
+//! | a gap: where the pushing curves stop rising, by golden-section search refined by bisection on the sign of the closed-form slope where a curve peaks smoothly | `Run::plan_step` in `solver/step.rs`, `Mesh::smooth_peak` in `solver/mod.rs`, the searches in `solver/search.rs`; sized (gap or slip) by `Run::resume_drive` in `solver/mod.rs` |
+//! | a held gear: held while the chain of obstacles that closes up over its turn holds, let go at the first root where a joint of the chain may give way | `Run::held_step` in `solver/mod.rs`, on `held::first_change` in `held.rs` |
+//! | a pair behind reaching a gear at rest (drive resumed) | `closing::first_reach` in `closing.rs` |
+//! | blocked at start, the idle-start candidate | `Run::start`, `Run::record_idle_start` in `solver/mod.rs` |
 //!
-//! **The speed layer** (`certified.rs`, straight flanks): a pushed gear's step is first tried on a
-//! certificate, bounds on the contact conditions over the box of the step's driver angles and
-//! the driven angles it can reach (`certify.rs`) that prove every tooth pair near the gear either
-//! stays clear of it or, behind it, only pushes it forwards; then no event lies in the step and
-//! it ends where the pushing curves end. It changes no result: `tests/differential.rs` holds the
-//! runs with and without it (and with a 64-times finer step) to the same events.
+//! # Layers
+//!
+//! The **exact core** is everything above: it alone decides every result. The **speed layer**
+//! (`src/speed/`, the `speed` feature, on by default) sits on top of it: per run a `Certifier`
+//! (`speed/mod.rs`) proves, where it can, that an exact search would find nothing - a pushed
+//! gear's step free of events (`speed/certified.rs`, on the bounds of `speed/certify.rs`) - and
+//! the core skips it. The core offers it that work through one trait, `Shortcut`
+//! (`solver/shortcut.rs`), and never names it; `entry.rs`, the public ways to run a mesh, builds
+//! it for each run. No result depends on it: `tests/differential.rs` holds runs with and without
+//! it (and with a 64-times-finer step) to the same events, and `cargo test -p contact
+//! --no-default-features` tests the core without it. `tests/module_graph.rs` checks that no layer
+//! names one above it.
 
 mod closing;
 mod entry;

@@ -1,5 +1,5 @@
-//! One tooth as the contact roots and the step certificates both read it, and the angle
-//! reduction they share: below both `mesh/` and `certify.rs`, so neither depends on the other's
+//! One tooth as the contact roots read it (and the speed layer builds its certificates from), and
+//! the angle reduction both use: below `mesh/` and `speed/`, so neither depends on the other's
 //! internals for it.
 
 use std::f64::consts::{PI, TAU};

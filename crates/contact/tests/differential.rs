@@ -86,7 +86,7 @@ fn every_event_agrees_with_a_64_times_finer_step_at_working_clearances() {
     );
 }
 
-/// Steps taken on certificates (`certify.rs`) find exactly the events that the exact step alone
+/// Steps taken on certificates (`speed/certify.rs`) find exactly the events that the exact step alone
 /// finds, bit for bit, on every hard mesh, after releases too.
 #[test]
 fn certified_steps_find_the_events_the_exact_step_finds() {

@@ -10,6 +10,12 @@ use super::{EVALS, FirstAfter, Mesh, conj, pseudo_angle};
 use crate::roots::{circle_circle, circle_segment};
 use crate::tooth::ToothData;
 
+/// The flanks of a tooth as pairs of its vertices (valley k−1, tip k, valley k).
+const FLANKS: [(usize, usize); 2] = [(0, 1), (1, 2)];
+
+/// A tooth's three vertices and its two flank arcs (None where a flank is straight).
+type Outline = ([Vec2; 3], [Option<Arc>; 2]);
+
 impl Mesh {
     /// [`Mesh::first_touch`] when a gear has curved flanks. With θ fixed every contact condition
     /// is again a crossing of two known curves: a driver vertex (on a circle about the origin) on
@@ -23,111 +29,12 @@ impl Mesh {
         let place = |v: Vec2| rest.place(v);
         let mut first = FirstAfter::new(phi0, phi1);
         let mut take = |phi: f64| first.take(phi);
-        let arg = |v: Vec2| v.y.atan2(v.x);
-        const FLANKS: [(usize, usize); 2] = [(0, 1), (1, 2)];
         for k in ks {
-            let b = d2.tooth(k).map(place);
-            let fb = d2.flank_arcs(k, place);
+            let b = (d2.tooth(k).map(place), d2.flank_arcs(k, place));
             for j in lo_j..=hi_j {
-                let a = d1.tooth(j);
-                let fa = d1.flank_arcs(j, |v| v);
-                // Driver vertex (turning about the origin) on a fixed driven flank.
-                for p in a {
-                    let base = arg(p);
-                    for (f, (u, v)) in FLANKS.into_iter().enumerate() {
-                        let rho2 = p.norm_squared();
-                        match fb[f] {
-                            None => circle_segment(
-                                Vec2::zeros(),
-                                rho2,
-                                b[u],
-                                b[v],
-                                1.0 / (b[v] - b[u]).norm_squared(),
-                                |x| take(arg(x) - base),
-                            ),
-                            Some(arc) => {
-                                circle_circle(Vec2::zeros(), rho2, arc.centre, arc.radius, |x| {
-                                    if on_arc(&arc, x) {
-                                        take(arg(x) - base);
-                                    }
-                                });
-                            }
-                        }
-                    }
-                }
-                // Fixed driven vertex on a driver flank: in the driver's frame it turns backwards.
-                for q in b {
-                    let base = arg(q);
-                    for (f, (u, v)) in FLANKS.into_iter().enumerate() {
-                        let rho2 = q.norm_squared();
-                        match fa[f] {
-                            None => circle_segment(
-                                Vec2::zeros(),
-                                rho2,
-                                a[u],
-                                a[v],
-                                1.0 / (a[v] - a[u]).norm_squared(),
-                                |x| take(base - arg(x)),
-                            ),
-                            Some(arc) => {
-                                circle_circle(Vec2::zeros(), rho2, arc.centre, arc.radius, |x| {
-                                    if on_arc(&arc, x) {
-                                        take(base - arg(x));
-                                    }
-                                });
-                            }
-                        }
-                    }
-                }
-                // Flank on flank, through an arc's centre (see `tooth_pair_curved`).
-                for (fi, (au, av)) in FLANKS.into_iter().enumerate() {
-                    for (fj, (bu, bv)) in FLANKS.into_iter().enumerate() {
-                        match (fa[fi], fb[fj]) {
-                            (Some(arc), None) if arc.is_convex() => {
-                                let n = outward(b[bu], b[bv]) * arc.radius;
-                                let base = arg(arc.centre);
-                                circle_segment(
-                                    Vec2::zeros(),
-                                    arc.centre.norm_squared(),
-                                    b[bu] + n,
-                                    b[bv] + n,
-                                    1.0 / (b[bv] - b[bu]).norm_squared(),
-                                    |x| take(arg(x) - base),
-                                );
-                            }
-                            (None, Some(arc)) if arc.is_convex() => {
-                                let n = outward(a[au], a[av]) * arc.radius;
-                                let base = arg(arc.centre);
-                                circle_segment(
-                                    Vec2::zeros(),
-                                    arc.centre.norm_squared(),
-                                    a[au] + n,
-                                    a[av] + n,
-                                    1.0 / (a[av] - a[au]).norm_squared(),
-                                    |x| take(base - arg(x)),
-                                );
-                            }
-                            (Some(fa), Some(fb)) => {
-                                let Some(dist) = tangent_distance(&fa, &fb) else {
-                                    continue;
-                                };
-                                let ca = fa.centre;
-                                let ca2 = ca.norm_squared();
-                                // x: the driver arc's centre once the driver has turned to touch.
-                                circle_circle(Vec2::zeros(), ca2, fb.centre, dist, |x| {
-                                    let t = tangent_point(&fa, &fb, x, fb.centre, dist);
-                                    // t turned back into the driver's frame at φ = 0:
-                                    // t·conj(x)·ca / |ca|², as x = ca turned.
-                                    let back = mul(mul(t, conj(x)), ca) / ca2;
-                                    if on_arc(&fb, t) && on_arc(&fa, back) {
-                                        take(arg(x) - arg(ca));
-                                    }
-                                });
-                            }
-                            _ => {}
-                        }
-                    }
-                }
+                let a = (d1.tooth(j), d1.flank_arcs(j, |v| v));
+                vertices_at_rest(a, b, &mut take);
+                flanks_at_rest(a, b, &mut take);
             }
         }
         first.get()
@@ -158,105 +65,219 @@ impl Mesh {
         EVALS.with(|c| c.set(c.get() + 1));
         let c2 = self.c2();
         let (db, _) = self.driven.data(k);
-        let b = db.v;
         let fb = self.driven.flank_arcs(k, |v| v);
         let mut ends = Extremes::new(db.tip_dir);
-        const FLANKS: [(usize, usize); 2] = [(0, 1), (1, 2)];
-        // Driver vertex P on a driven flank (driven frame): θ = arg X − arg(P − c2) + π.
-        for (p, reaches) in a.into_iter().zip(da.reaches) {
-            if !reaches {
-                continue;
-            }
-            let rel = p - c2;
-            let rho2 = rel.norm_squared();
-            for (f, (s, e)) in FLANKS.into_iter().enumerate() {
-                match fb[f] {
-                    None => circle_segment(Vec2::zeros(), rho2, b[s], b[e], db.inv_len2[f], |x| {
-                        ends.add(x, rel);
-                    }),
-                    Some(arc) => circle_circle(Vec2::zeros(), rho2, arc.centre, arc.radius, |x| {
-                        if on_arc(&arc, x) {
-                            ends.add(x, rel);
-                        }
-                    }),
-                }
-            }
-        }
-        // Driven vertex Q on a driver flank (world): θ = arg Q + π − arg(X − c2).
-        for (q, reaches) in b.into_iter().zip(db.reaches) {
-            if !reaches {
-                continue;
-            }
-            let rho2 = q.norm_squared();
-            for (f, (s, e)) in FLANKS.into_iter().enumerate() {
-                match fa[f] {
-                    None => circle_segment(c2, rho2, a[s], a[e], da.inv_len2[f], |x| {
-                        ends.add(q, x - c2);
-                    }),
-                    Some(arc) => circle_circle(c2, rho2, arc.centre, arc.radius, |x| {
-                        if on_arc(&arc, x) {
-                            ends.add(q, x - c2);
-                        }
-                    }),
-                }
-            }
-        }
-        // Flank on flank.
-        for (fi, (as_, ae)) in FLANKS.into_iter().enumerate() {
-            for (fj, (bs, be)) in FLANKS.into_iter().enumerate() {
-                match (fa[fi], fb[fj]) {
-                    // The driver arc's centre W, seen from the driven gear, runs on the circle
-                    // |W − c2| and must reach the driven flank offset outwards by the radius;
-                    // the touching point, W's foot on the flank, lies on it exactly when W lies
-                    // on the offset segment.
-                    (Some(arc), None) if arc.is_convex() => {
-                        let n = outward(b[bs], b[be]) * arc.radius;
-                        let w = arc.centre - c2;
-                        circle_segment(
-                            Vec2::zeros(),
-                            w.norm_squared(),
-                            b[bs] + n,
-                            b[be] + n,
-                            db.inv_len2[fj],
-                            |x| ends.add(x, w),
-                        );
-                    }
-                    // The driven arc's centre C runs on the circle |C| about c2 and must reach the
-                    // driver flank offset outwards by the radius.
-                    (None, Some(arc)) if arc.is_convex() => {
-                        let n = outward(a[as_], a[ae]) * arc.radius;
-                        circle_segment(
-                            c2,
-                            arc.centre.norm_squared(),
-                            a[as_] + n,
-                            a[ae] + n,
-                            da.inv_len2[fi],
-                            |x| ends.add(arc.centre, x - c2),
-                        );
-                    }
-                    (Some(fa), Some(fb)) => {
-                        let Some(dist) = tangent_distance(&fa, &fb) else {
-                            continue;
-                        };
-                        let cb = fb.centre;
-                        let cb2 = cb.norm_squared();
-                        // x: the driven arc's centre in the world once the gears touch.
-                        circle_circle(c2, cb2, fa.centre, dist, |x| {
-                            let t = tangent_point(&fa, &fb, fa.centre, x, dist);
-                            // t in the driven frame: (t − c2)·cb·conj(x − c2) / |cb|², as x − c2
-                            // is cb turned.
-                            let w = x - c2;
-                            let own = mul(t - c2, mul(cb, conj(w))) / cb2;
-                            if on_arc(&fa, t) && on_arc(&fb, own) {
-                                ends.add(cb, w);
-                            }
-                        });
-                    }
-                    _ => {}
-                }
-            }
-        }
+        vertex_roots(c2, (a, fa), da, (db.v, fb), db, &mut ends);
+        flank_roots(c2, (a, fa), da, (db.v, fb), db, &mut ends);
         ends.get()
+    }
+}
+
+/// Every point X of a flank - the segment `s → e` (`inv_len2` its inverse squared length), or
+/// `arc` where the flank is one - with |X − `c`|² = `rho2`, into `found`.
+#[inline]
+fn circle_on_flank(
+    (c, rho2): (Vec2, f64),
+    (s, e): (Vec2, Vec2),
+    inv_len2: f64,
+    arc: Option<Arc>,
+    mut found: impl FnMut(Vec2),
+) {
+    match arc {
+        None => circle_segment(c, rho2, s, e, inv_len2, found),
+        Some(arc) => circle_circle(c, rho2, arc.centre, arc.radius, |x| {
+            if on_arc(&arc, x) {
+                found(x);
+            }
+        }),
+    }
+}
+
+/// The argument of `v`.
+fn arg(v: Vec2) -> f64 {
+    v.y.atan2(v.x)
+}
+
+/// [`Mesh::first_touch_curved`]'s vertex-on-flank roots: the driver angles (any turn) at which a
+/// vertex of driver tooth `a` (gear frame, at φ = 0) meets a flank of driven tooth `b` (resting,
+/// world frame), or a vertex of `b` a flank of `a`, into `take`.
+fn vertices_at_rest((a, fa): Outline, (b, fb): Outline, take: &mut impl FnMut(f64)) {
+    // Driver vertex (turning about the origin) on a fixed driven flank.
+    for p in a {
+        let base = arg(p);
+        for (f, (u, v)) in FLANKS.into_iter().enumerate() {
+            let circle = (Vec2::zeros(), p.norm_squared());
+            let inv_len2 = 1.0 / (b[v] - b[u]).norm_squared();
+            circle_on_flank(circle, (b[u], b[v]), inv_len2, fb[f], |x| {
+                take(arg(x) - base);
+            });
+        }
+    }
+    // Fixed driven vertex on a driver flank: in the driver's frame it turns backwards.
+    for q in b {
+        let base = arg(q);
+        for (f, (u, v)) in FLANKS.into_iter().enumerate() {
+            let circle = (Vec2::zeros(), q.norm_squared());
+            let inv_len2 = 1.0 / (a[v] - a[u]).norm_squared();
+            circle_on_flank(circle, (a[u], a[v]), inv_len2, fa[f], |x| {
+                take(base - arg(x));
+            });
+        }
+    }
+}
+
+/// [`Mesh::first_touch_curved`]'s flank-on-flank roots, through an arc's centre (see
+/// [`Mesh::tooth_pair_curved`]), into `take`.
+fn flanks_at_rest((a, fa): Outline, (b, fb): Outline, take: &mut impl FnMut(f64)) {
+    for (fi, (au, av)) in FLANKS.into_iter().enumerate() {
+        for (fj, (bu, bv)) in FLANKS.into_iter().enumerate() {
+            match (fa[fi], fb[fj]) {
+                (Some(arc), None) if arc.is_convex() => {
+                    let n = outward(b[bu], b[bv]) * arc.radius;
+                    let base = arg(arc.centre);
+                    circle_segment(
+                        Vec2::zeros(),
+                        arc.centre.norm_squared(),
+                        b[bu] + n,
+                        b[bv] + n,
+                        1.0 / (b[bv] - b[bu]).norm_squared(),
+                        |x| take(arg(x) - base),
+                    );
+                }
+                (None, Some(arc)) if arc.is_convex() => {
+                    let n = outward(a[au], a[av]) * arc.radius;
+                    let base = arg(arc.centre);
+                    circle_segment(
+                        Vec2::zeros(),
+                        arc.centre.norm_squared(),
+                        a[au] + n,
+                        a[av] + n,
+                        1.0 / (a[av] - a[au]).norm_squared(),
+                        |x| take(base - arg(x)),
+                    );
+                }
+                (Some(fa), Some(fb)) => {
+                    let Some(dist) = tangent_distance(&fa, &fb) else {
+                        continue;
+                    };
+                    let ca = fa.centre;
+                    let ca2 = ca.norm_squared();
+                    // x: the driver arc's centre once the driver has turned to touch.
+                    circle_circle(Vec2::zeros(), ca2, fb.centre, dist, |x| {
+                        let t = tangent_point(&fa, &fb, x, fb.centre, dist);
+                        // t turned back into the driver's frame at φ = 0:
+                        // t·conj(x)·ca / |ca|², as x = ca turned.
+                        let back = mul(mul(t, conj(x)), ca) / ca2;
+                        if on_arc(&fb, t) && on_arc(&fa, back) {
+                            take(arg(x) - arg(ca));
+                        }
+                    });
+                }
+                _ => {}
+            }
+        }
+    }
+}
+
+/// [`Mesh::tooth_pair_curved`]'s vertex-on-flank roots, with driver tooth `a` placed in the
+/// world and driven tooth `b` in its own frame, into `ends`.
+fn vertex_roots(
+    c2: Vec2,
+    (a, fa): Outline,
+    da: &ToothData,
+    (b, fb): Outline,
+    db: &ToothData,
+    ends: &mut Extremes,
+) {
+    // Driver vertex P on a driven flank (driven frame): θ = arg X − arg(P − c2) + π.
+    for (p, reaches) in a.into_iter().zip(da.reaches) {
+        if !reaches {
+            continue;
+        }
+        let rel = p - c2;
+        let circle = (Vec2::zeros(), rel.norm_squared());
+        for (f, (s, e)) in FLANKS.into_iter().enumerate() {
+            circle_on_flank(circle, (b[s], b[e]), db.inv_len2[f], fb[f], |x| {
+                ends.add(x, rel);
+            });
+        }
+    }
+    // Driven vertex Q on a driver flank (world): θ = arg Q + π − arg(X − c2).
+    for (q, reaches) in b.into_iter().zip(db.reaches) {
+        if !reaches {
+            continue;
+        }
+        let circle = (c2, q.norm_squared());
+        for (f, (s, e)) in FLANKS.into_iter().enumerate() {
+            circle_on_flank(circle, (a[s], a[e]), da.inv_len2[f], fa[f], |x| {
+                ends.add(q, x - c2);
+            });
+        }
+    }
+}
+
+/// [`Mesh::tooth_pair_curved`]'s flank-on-flank roots, into `ends`.
+fn flank_roots(
+    c2: Vec2,
+    (a, fa): Outline,
+    da: &ToothData,
+    (b, fb): Outline,
+    db: &ToothData,
+    ends: &mut Extremes,
+) {
+    for (fi, (as_, ae)) in FLANKS.into_iter().enumerate() {
+        for (fj, (bs, be)) in FLANKS.into_iter().enumerate() {
+            match (fa[fi], fb[fj]) {
+                // The driver arc's centre W, seen from the driven gear, runs on the circle
+                // |W − c2| and must reach the driven flank offset outwards by the radius; the
+                // touching point, W's foot on the flank, lies on it exactly when W lies on the
+                // offset segment.
+                (Some(arc), None) if arc.is_convex() => {
+                    let n = outward(b[bs], b[be]) * arc.radius;
+                    let w = arc.centre - c2;
+                    circle_segment(
+                        Vec2::zeros(),
+                        w.norm_squared(),
+                        b[bs] + n,
+                        b[be] + n,
+                        db.inv_len2[fj],
+                        |x| ends.add(x, w),
+                    );
+                }
+                // The driven arc's centre C runs on the circle |C| about c2 and must reach the
+                // driver flank offset outwards by the radius.
+                (None, Some(arc)) if arc.is_convex() => {
+                    let n = outward(a[as_], a[ae]) * arc.radius;
+                    circle_segment(
+                        c2,
+                        arc.centre.norm_squared(),
+                        a[as_] + n,
+                        a[ae] + n,
+                        da.inv_len2[fi],
+                        |x| ends.add(arc.centre, x - c2),
+                    );
+                }
+                (Some(fa), Some(fb)) => {
+                    let Some(dist) = tangent_distance(&fa, &fb) else {
+                        continue;
+                    };
+                    let cb = fb.centre;
+                    let cb2 = cb.norm_squared();
+                    // x: the driven arc's centre in the world once the gears touch.
+                    circle_circle(c2, cb2, fa.centre, dist, |x| {
+                        let t = tangent_point(&fa, &fb, fa.centre, x, dist);
+                        // t in the driven frame: (t − c2)·cb·conj(x − c2) / |cb|², as x − c2 is
+                        // cb turned.
+                        let w = x - c2;
+                        let own = mul(t - c2, mul(cb, conj(w))) / cb2;
+                        if on_arc(&fa, t) && on_arc(&fb, own) {
+                            ends.add(cb, w);
+                        }
+                    });
+                }
+                _ => {}
+            }
+        }
     }
 }
 

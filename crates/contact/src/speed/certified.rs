@@ -166,7 +166,7 @@ impl Certifier {
         false
     }
 
-    /// The verdicts of a certified step to `phi1` (see [`Run::certified_step`]), or None when a
+    /// The verdicts of a certified step to `phi1` (see [`Certifier::certified_step`]), or None when a
     /// pair may meet the driven gear other than by pushing it.
     fn judge_step(&self, run: &Run<'_>, phi1: f64, pushers: &[(i64, i64)]) -> Option<JudgedStep> {
         let mesh = run.mesh();

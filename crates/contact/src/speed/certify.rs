@@ -1,7 +1,7 @@
 //! Proofs about a box of configurations: which tooth pairs cannot touch the driven gear while the
 //! driver turns through a step, and, for those that can, whether their contact can only move the
 //! driven gear forwards. The solver takes a step without searching it for roots when every pair
-//! near the driven gear is proved harmless (see `Run::certified_step` in `solver/certified.rs`).
+//! near the driven gear is proved harmless (`Certifier::certified_step` in `certified.rs`).
 //!
 //! # The contact functions
 //!
