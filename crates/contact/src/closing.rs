@@ -16,7 +16,7 @@
 use smallvec::SmallVec;
 
 use crate::meet::{Condition, meetings};
-use crate::mesh::Mesh;
+use crate::mesh::{ConditionSet, Mesh};
 
 /// How the driven gear moves over one stretch of a planned step.
 #[derive(Debug, Clone, Copy)]
@@ -40,18 +40,21 @@ pub(crate) struct Stretch<'a> {
 /// The first driver angle of `stretches` (in order, end to end) at which the backlash of the
 /// pairs `ahead` stops being positive - `backlash(φ)`, their lowest lower end less the driven
 /// angle on the path - or None if it stays positive. The first stretch's start counts (a
-/// backlash that closes from exactly zero there closes at it) unless `after_start`.
+/// backlash that closes from exactly zero there closes at it) unless `after_start`. Of each
+/// pair's conditions (ahead, or on the path) only those of `sets` are taken: the others must
+/// hold nowhere in the stretches' driver angles and the driven angles of the path (a closing is
+/// a root of two conditions at once on the path, so no closing is lost).
 pub(crate) fn first_closing(
     mesh: &Mesh,
     stretches: &[Stretch<'_>],
     ahead: &[(i64, i64)],
-    after_start: bool,
+    (after_start, sets): (bool, &mut dyn FnMut((i64, i64)) -> ConditionSet),
     backlash: impl Fn(f64) -> f64,
 ) -> Option<f64> {
     let first = stretches.first()?;
     let lower: SmallVec<[Condition; 32]> = ahead
         .iter()
-        .flat_map(|&(j, k)| mesh.conditions_of_both_sides(j, k))
+        .flat_map(|&pair| mesh.conditions_in(pair, sets(pair)))
         .collect();
     let mut roots: Vec<f64> = Vec::new();
     for s in stretches {
@@ -60,7 +63,7 @@ pub(crate) fn first_closing(
             continue;
         }
         roots.push(b);
-        roots_in_stretch(mesh, s, &lower, &mut roots);
+        roots_in_stretch(mesh, s, &lower, sets, &mut roots);
     }
     if after_start {
         // The search starts at the first root: whatever the backlash does before it (a pair
@@ -156,8 +159,14 @@ fn open_side(root: f64, open: f64, gap: &impl Fn(f64) -> f64) -> f64 {
 }
 
 /// Every driver angle in the stretch where a lower-end condition of `lower` holds together with
-/// a condition of the path, into `out`.
-fn roots_in_stretch(mesh: &Mesh, s: &Stretch<'_>, lower: &[Condition], out: &mut Vec<f64>) {
+/// a condition of the path (of those in `sets`), into `out`.
+fn roots_in_stretch(
+    mesh: &Mesh,
+    s: &Stretch<'_>,
+    lower: &[Condition],
+    sets: &mut dyn FnMut((i64, i64)) -> ConditionSet,
+    out: &mut Vec<f64>,
+) {
     let (a, b) = s.phi;
     let at_level = |theta: f64, out: &mut Vec<f64>| {
         for c in lower {
@@ -170,8 +179,8 @@ fn roots_in_stretch(mesh: &Mesh, s: &Stretch<'_>, lower: &[Condition], out: &mut
             for theta in levels {
                 at_level(theta, out);
             }
-            for &(j, k) in pairs {
-                for up in mesh.conditions_of_both_sides(j, k) {
+            for &pair in pairs {
+                for up in mesh.conditions_in(pair, sets(pair)) {
                     for c in lower {
                         out.extend(meetings(&up, c, a, b, levels[0]).iter().map(|m| m.0));
                     }

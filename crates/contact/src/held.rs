@@ -25,16 +25,24 @@
 //! link's two ends meeting (its teeth parting). [`first_change`] gives the first of these over a
 //! range of driver angles; there the solver sweeps the turn again, and either lets the gear go or
 //! takes the new chain.
+//!
+//! Each joint's roots are its own: those of joint i (0 < i < m) are the upper end of c_i at θ,
+//! the meetings of c_i's upper end with c_{i+1}'s lower end, and the partings of both links, found
+//! from the links alone; a root counts only where the change it stands for is there, and where
+//! several changes come together only they are taken together. So a joint that the speed layer
+//! proves to hold over a range (`Shortcut::held_joints`) may be left out of the search without
+//! changing its answer.
 
 use smallvec::SmallVec;
 
 use crate::meet::{Condition, meetings};
 use crate::mesh::{End, Mesh, Obstacle};
+use crate::stats::count;
 
 /// How near (radians, relative to 1 + |angle|) an obstacle's end must be to a root for the root
 /// to be that end's: a root of a condition that is not the end (a flank's line beyond the tooth,
 /// the other branch of a circle) lies far off it.
-const AT_ROOT: f64 = 1e-9;
+pub(crate) const AT_ROOT: f64 = 1e-9;
 
 /// How close (radians of driver angle, relative to 1 + |φ|) roots of a held gear's chain are
 /// taken as one change. Teeth alike (a driven gear without errors of its own) open joints a
@@ -58,126 +66,237 @@ enum Change {
     Parting { link: usize },
 }
 
-/// The first driver angle in `(phi0, phi1]` at which the held gear's `chain` (at `phi0`, see the
-/// module's docs) may stop holding it at θ, or None if every joint holds throughout.
-pub(crate) fn first_change(
-    mesh: &Mesh,
-    chain: &[Obstacle],
-    theta: f64,
-    threshold: f64,
-    tol: f64,
-    (phi0, phi1): (f64, f64),
-) -> Option<ChainBreak> {
-    let m = chain.iter().position(|c| c.hi >= threshold)? + 1;
-    let chain = &chain[..m];
-    let of = |end: End| -> Vec<Conditions> {
-        chain
+/// A held gear's chain at one driver angle: its links' tooth pairs, in the order the sweep took
+/// them, up to the first that reaches the threshold, and each link's obstacle there, evaluated
+/// when first asked for (a chain carried from the step before is not evaluated again where a
+/// joint is proved to hold).
+pub(crate) struct Chain<'m> {
+    mesh: &'m Mesh,
+    phi: f64,
+    pairs: Vec<(i64, i64)>,
+    at: Vec<Option<Option<Obstacle>>>,
+}
+
+impl<'m> Chain<'m> {
+    /// The chain a sweep of the turn at `phi` took (`links`, its obstacles there), up to the
+    /// first link that reaches `threshold` (none if none does).
+    pub(crate) fn swept(mesh: &'m Mesh, phi: f64, links: &[Obstacle], threshold: f64) -> Self {
+        let m = links
             .iter()
-            .map(|c| mesh.conditions(c.driver_tooth, c.driven_tooth, end))
-            .collect()
-    };
-    let (lower, upper) = (of(End::Lower), of(End::Upper));
+            .position(|c| c.hi >= threshold)
+            .map_or(0, |i| i + 1);
+        Self {
+            mesh,
+            phi,
+            pairs: links[..m]
+                .iter()
+                .map(|o| (o.driver_tooth, o.driven_tooth))
+                .collect(),
+            at: links[..m].iter().map(|&o| Some(Some(o))).collect(),
+        }
+    }
+
+    /// The chain of tooth pairs `pairs` that held the gear through the step before, at `phi`.
+    pub(crate) fn carried(mesh: &'m Mesh, phi: f64, pairs: Vec<(i64, i64)>) -> Self {
+        let at = vec![None; pairs.len()];
+        Self {
+            mesh,
+            phi,
+            pairs,
+            at,
+        }
+    }
+
+    /// The mesh the chain is on.
+    #[cfg_attr(
+        not(feature = "speed"),
+        expect(dead_code, reason = "the speed layer's proofs read the chain")
+    )]
+    pub(crate) fn mesh(&self) -> &'m Mesh {
+        self.mesh
+    }
+
+    /// The driver angle the chain is at.
+    #[cfg_attr(
+        not(feature = "speed"),
+        expect(dead_code, reason = "the speed layer's proofs read the chain")
+    )]
+    pub(crate) fn phi(&self) -> f64 {
+        self.phi
+    }
+
+    /// The links' tooth pairs, in order.
+    #[cfg_attr(
+        not(feature = "speed"),
+        expect(dead_code, reason = "the speed layer's proofs read the chain")
+    )]
+    pub(crate) fn pairs(&self) -> &[(i64, i64)] {
+        &self.pairs
+    }
+
+    /// Link `i`'s obstacle at the chain's driver angle (None where its teeth no longer touch).
+    pub(crate) fn link(&mut self, i: usize) -> Option<Obstacle> {
+        let (mesh, phi, (j, k)) = (self.mesh, self.phi, self.pairs[i]);
+        *self.at[i].get_or_insert_with(|| mesh.obstacle(phi, j, k))
+    }
+
+    /// The links' tooth pairs, to carry to the next step.
+    pub(crate) fn into_pairs(self) -> Vec<(i64, i64)> {
+        self.pairs
+    }
+}
+
+/// A joint's teeth with its driven teeth taken within the turn: joints a whole turn apart, which
+/// a chain longer than a turn meets twice, have the same teeth and the same roots.
+pub(crate) fn joint_key(n2: i64, link: (i64, i64), next: (i64, i64)) -> (i64, i64, i64, i64) {
+    (link.0, link.1.rem_euclid(n2), next.0, next.1 - link.1)
+}
+
+/// Where a held gear's chain can no longer be read at its driver angle: a link's teeth no longer
+/// touch there.
+#[derive(Debug)]
+pub(crate) struct LinkGone;
+
+/// The first driver angle in `(phi0, phi1]` (`phi0` the chain's angle) at which the held gear's
+/// `chain` (see the module's docs) may stop holding it at θ, or None if every joint holds
+/// throughout. Of the joints between links, the first of those a turn apart are searched, or,
+/// given `joints`, only those (the rest proved to hold: see the module's docs).
+pub(crate) fn first_change(
+    chain: &mut Chain<'_>,
+    (theta, threshold, tol): (f64, f64, f64),
+    phi1: f64,
+    joints: Option<&[usize]>,
+) -> Result<Option<ChainBreak>, LinkGone> {
+    let (mesh, phi0) = (chain.mesh, chain.phi);
+    let m = chain.pairs.len();
+    if m == 0 {
+        return Ok(None);
+    }
+    let cond = |(j, k): (i64, i64), end: End| mesh.conditions(j, k, end);
     let mut found: Vec<(f64, Change)> = Vec::new();
-    ends_at_fixed_angles(
-        (&lower, &upper),
-        theta,
-        threshold,
-        tol,
-        (phi0, phi1),
+    // Joint 0 and joint m.
+    let (first, last) = (chain.pairs[0], chain.pairs[m - 1]);
+    let range = (phi0, phi1);
+    end_roots(
+        &cond(first, End::Lower),
+        (0, false, theta + tol),
+        range,
         &mut found,
     );
-    joints_roots(
-        mesh,
-        chain,
-        (&lower, &upper),
-        (theta, tol),
-        (phi0, phi1),
+    end_roots(
+        &cond(last, End::Upper),
+        (m - 1, true, threshold),
+        range,
         &mut found,
     );
     if m == 1 {
-        partings(
-            (&lower[0], &upper[0]),
-            0,
-            &chain[0],
-            (phi0, phi1),
-            &mut found,
-        );
+        let link = chain.link(0).ok_or(LinkGone)?;
+        let ends = (&cond(first, End::Lower), &cond(first, End::Upper));
+        partings(ends, 0, &link, range, &mut found);
+    }
+    let joints = joints_to_search(chain, joints);
+    count(|st| {
+        st.held_searches += 1;
+        st.joints_searched += joints.len() as u64;
+    });
+    for i in joints {
+        joint_roots(chain, i, (theta, tol), phi1, &mut found)?;
     }
     found.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let i = found
-        .iter()
-        .position(|&(phi, change)| changes(mesh, chain, phi, change, tol))?;
-    Some(break_at(&found[i..], phi1))
+    let is_change = |&(phi, change): &(f64, Change)| changes(chain, phi, change, tol);
+    let Some(i) = found.iter().position(is_change) else {
+        return Ok(None);
+    };
+    Ok(Some(break_at(&found[i..], is_change, phi1)))
 }
 
-/// The roots where a joint between two links of `chain` (at `phi0`) may fail over the range, or
-/// where either link's teeth may part, into `found`: for each joint (the same teeth a turn apart
-/// are taken once), after the stretch it is proved to hold by points.
-fn joints_roots(
-    mesh: &Mesh,
-    chain: &[Obstacle],
-    (lower, upper): (&[Conditions], &[Conditions]),
+/// The joints (each by the index of its lower link) [`first_change`] searches: `joints` if
+/// given, else the first of each that a turn apart share their teeth.
+fn joints_to_search(chain: &Chain<'_>, joints: Option<&[usize]>) -> Vec<usize> {
+    if let Some(joints) = joints {
+        return joints.to_vec();
+    }
+    let n2 = chain.mesh.driven.tips.len() as i64;
+    let mut keyed: Vec<_> = chain
+        .pairs
+        .windows(2)
+        .enumerate()
+        .map(|(i, w)| (joint_key(n2, w[0], w[1]), i))
+        .collect();
+    keyed.sort_unstable();
+    keyed.dedup_by_key(|(key, _)| *key);
+    let mut first: Vec<usize> = keyed.into_iter().map(|(_, i)| i).collect();
+    first.sort_unstable();
+    first
+}
+
+/// The roots of joint `i` (between links i and i + 1) over the range from the chain's angle to
+/// `phi1`, into `found`: the upper end of link i at θ, and, after the stretch the joint is proved
+/// to hold by points, the meetings of link i's upper end (plus the tolerance) with link i + 1's
+/// lower end and the partings of both links.
+fn joint_roots(
+    chain: &mut Chain<'_>,
+    i: usize,
     (theta, tol): (f64, f64),
-    (phi0, phi1): (f64, f64),
+    phi1: f64,
     found: &mut Vec<(f64, Change)>,
-) {
-    // A cover longer than a turn meets the same teeth again a turn on: the same roots.
-    let n2 = mesh.driven.tips.len() as i64;
-    let mut seen: Vec<(i64, i64, i64, i64)> = Vec::new();
-    let mut parted = vec![false; chain.len()];
-    for (i, pair) in chain.windows(2).enumerate() {
-        let (link, next) = (pair[0], pair[1]);
-        let key = (
-            link.driver_tooth,
-            link.driven_tooth.rem_euclid(n2),
-            next.driver_tooth,
-            next.driven_tooth - link.driven_tooth,
-        );
-        if seen.contains(&key) {
-            continue;
-        }
-        seen.push(key);
-        // Most joints overlap by far more than their links move: a driven angle inside both
-        // that no end of either crosses proves the joint held (closed form), and only what is
-        // left of the range after a few such proofs is searched for meetings.
-        let ends = [&lower[i], &upper[i], &lower[i + 1], &upper[i + 1]];
-        let from = held_by_points(mesh, (link, next), ends, theta, (phi0, phi1));
-        if from >= phi1 {
-            continue;
-        }
-        for l in [i, i + 1] {
-            if !std::mem::replace(&mut parted[l], true) {
-                partings((&lower[l], &upper[l]), l, &chain[l], (from, phi1), found);
-            }
-        }
-        let below: Conditions = upper[i].iter().map(|c| c.shifted(tol)).collect();
-        for above in &lower[i + 1] {
-            for below in &below {
-                for (phi, theta) in meetings(above, below, from, phi1, next.lo) {
-                    found.push((phi, Change::Joint { below: i, theta }));
-                }
+) -> Result<(), LinkGone> {
+    let (mesh, phi0) = (chain.mesh, chain.phi);
+    let (link, next) = (
+        chain.link(i).ok_or(LinkGone)?,
+        chain.link(i + 1).ok_or(LinkGone)?,
+    );
+    let of = |o: &Obstacle, end: End| mesh.conditions(o.driver_tooth, o.driven_tooth, end);
+    let lower = [of(&link, End::Lower), of(&next, End::Lower)];
+    let upper = [of(&link, End::Upper), of(&next, End::Upper)];
+    end_roots(&upper[0], (i, true, theta), (phi0, phi1), found);
+    // Most joints overlap by far more than their links move: a driven angle inside both that no
+    // end of either crosses proves the joint held (closed form), and only what is left of the
+    // range after a few such proofs is searched for meetings.
+    let ends = [&lower[0], &upper[0], &lower[1], &upper[1]];
+    let from = held_by_points(mesh, (link, next), ends, theta, (phi0, phi1));
+    if from >= phi1 {
+        return Ok(());
+    }
+    for (l, o) in [link, next].iter().enumerate() {
+        partings((&lower[l], &upper[l]), i + l, o, (from, phi1), found);
+    }
+    let below: Conditions = upper[0].iter().map(|c| c.shifted(tol)).collect();
+    for above in &lower[1] {
+        for below in &below {
+            for (phi, theta) in meetings(above, below, from, phi1, next.lo) {
+                found.push((phi, Change::Joint { below: i, theta }));
             }
         }
     }
+    Ok(())
 }
 
-/// The chain break whose first root is `roots[0]` (`roots` sorted, the rest after it): roots
-/// within `SIMULTANEOUS` of the first are one change (see there), and the turn is swept again
-/// past the last of them, halfway to the next root or `SIMULTANEOUS` on, whichever is nearer.
-fn break_at(roots: &[(f64, Change)], phi1: f64) -> ChainBreak {
+/// The chain break whose first change is at `roots[0]` (`roots` sorted, the candidates after
+/// it, `is_change` telling a change): changes within `SIMULTANEOUS` of the first are one change
+/// (see there), and the turn is swept again past the last of them, halfway to the next change
+/// or `SIMULTANEOUS` on, whichever is nearer. Only changes count: a root where nothing changes,
+/// of any joint, moves nothing.
+fn break_at(
+    roots: &[(f64, Change)],
+    is_change: impl Fn(&(f64, Change)) -> bool,
+    phi1: f64,
+) -> ChainBreak {
     let root = roots[0].0;
     let scale = 1.0 + root.abs();
     let last = roots
         .iter()
-        .map(|&(phi, _)| phi)
-        .take_while(|&phi| phi <= root + SIMULTANEOUS * scale)
+        .take_while(|r| r.0 <= root + SIMULTANEOUS * scale)
+        .filter(|r| is_change(r))
         .last()
-        .unwrap_or(root);
+        .map_or(root, |r| r.0);
+    // Past twice `SIMULTANEOUS`, the next change no longer moves where the turn is swept.
     let next = roots
         .iter()
-        .map(|&(phi, _)| phi)
-        .find(|&phi| phi > last)
-        .unwrap_or(phi1);
+        .filter(|r| r.0 > last)
+        .take_while(|r| r.0 < last + 2.0 * SIMULTANEOUS * scale)
+        .find(|r| is_change(r))
+        .map_or(phi1, |r| r.0);
     let look_at = last + (SIMULTANEOUS * scale).min(0.5 * (next - last));
     ChainBreak { root, look_at }
 }
@@ -186,7 +305,7 @@ fn break_at(roots: &[(f64, Change)], phi1: f64) -> ChainBreak {
 /// just past it where the turn is to be swept again. Not at the root itself: there a joint's
 /// gap equals the side tolerance, and the ends' rounding (about 1e-14 rad) would decide whether
 /// the gear is free, differently for roots found over different ranges. A little past it (but
-/// short of the chain's next root) the gap has opened by its slope times that, far above the
+/// short of the chain's next change) the gap has opened by its slope times that, far above the
 /// rounding and far below the events' accuracy.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct ChainBreak {
@@ -194,38 +313,20 @@ pub(crate) struct ChainBreak {
     pub look_at: f64,
 }
 
-/// Roots where an end of a link reaches a fixed driven angle: the first link's lower end
-/// θ + tol (joint 0), any link's upper end θ (joints 1 to m − 1), the last link's upper end the
-/// threshold (joint m).
-fn ends_at_fixed_angles(
-    (lower, upper): (&[Conditions], &[Conditions]),
-    theta: f64,
-    threshold: f64,
-    tol: f64,
+/// Roots where an end of link `link` (its upper end if `upper`), with conditions `conditions`,
+/// reaches the fixed driven angle `at`: θ + tol for the first link's lower end (joint 0), θ for
+/// a link's upper end (joints 1 to m − 1), the threshold for the last link's (joint m).
+fn end_roots(
+    conditions: &Conditions,
+    (link, upper, at): (usize, bool, f64),
     (phi0, phi1): (f64, f64),
     found: &mut Vec<(f64, Change)>,
 ) {
-    let m = lower.len();
-    let mut at = |link: usize, is_upper: bool, at: f64| {
-        let conditions = if is_upper { &upper[link] } else { &lower[link] };
-        for c in conditions {
-            for phi in c.roots_at_theta(at, phi0, phi1) {
-                found.push((
-                    phi,
-                    Change::End {
-                        link,
-                        upper: is_upper,
-                        at,
-                    },
-                ));
-            }
+    for c in conditions {
+        for phi in c.roots_at_theta(at, phi0, phi1) {
+            found.push((phi, Change::End { link, upper, at }));
         }
-    };
-    at(0, false, theta + tol);
-    for link in 0..m.saturating_sub(1) {
-        at(link, true, theta);
     }
-    at(m - 1, true, threshold);
 }
 
 /// How far past `phi0` (up to `phi1`) the joint of `link` and `next` (the obstacles at `phi0`)
@@ -297,9 +398,12 @@ fn partings(
 
 /// Whether the root at φ is the change it stands for: the ends it names are there (or the
 /// link's teeth no longer touch at all, which changes the chain too).
-fn changes(mesh: &Mesh, chain: &[Obstacle], phi: f64, change: Change, tol: f64) -> bool {
+fn changes(chain: &Chain<'_>, phi: f64, change: Change, tol: f64) -> bool {
     let near = |x: f64, y: f64| (x - y).abs() <= AT_ROOT * (1.0 + y.abs());
-    let at = |i: usize| mesh.obstacle(phi, chain[i].driver_tooth, chain[i].driven_tooth);
+    let at = |i: usize| {
+        let (j, k) = chain.pairs[i];
+        chain.mesh.obstacle(phi, j, k)
+    };
     match change {
         Change::End { link, upper, at: a } => at(link).is_none_or(|o| {
             let end = if upper { o.hi } else { o.lo };

@@ -38,7 +38,7 @@
 //! | a closing: the first root where a lower-end condition of a pair ahead holds together with a condition of the path, the sign of the backlash read once between consecutive roots | `closing::first_closing` in `closing.rs`, asked by `first_jam` in `solver/step.rs` |
 //! | a lock or a strike: the closing judged (a pair touching behind, or none), the gear let go to the next free position or held | `Run::jam` in `solver/step.rs`; the free position, or the chain of obstacles that holds, by `Mesh::free_or_cover_in` in `solver/cover.rs` |
 //! | a gap: where the pushing curves stop rising, by golden-section search refined by bisection on the sign of the closed-form slope where a curve peaks smoothly | `Run::plan_step` in `solver/step.rs`, `Mesh::smooth_peak` in `solver/mod.rs`, the searches in `solver/search.rs`; sized (gap or slip) by `Run::resume_drive` in `solver/mod.rs` |
-//! | a held gear: held while the chain of obstacles that closes up over its turn holds, let go at the first root where a joint of the chain may give way | `Run::held_step` in `solver/mod.rs`, on `held::first_change` in `held.rs` |
+//! | a held gear: held while the chain of obstacles that closes up over its turn holds, let go at the first root where a joint of the chain may give way (each joint's roots its own) | `Run::held_step` in `solver/mod.rs`, on `held::first_change` in `held.rs` |
 //! | a pair behind reaching a gear at rest (drive resumed) | `closing::first_reach` in `closing.rs` |
 //! | blocked at start, the idle-start candidate | `Run::start`, `Run::record_idle_start` in `solver/mod.rs` |
 //!
@@ -46,10 +46,13 @@
 //!
 //! The **exact core** is everything above: it alone decides every result. The **speed layer**
 //! (`src/speed/`, the `speed` feature, on by default) sits on top of it: per run a `Certifier`
-//! (`speed/mod.rs`) proves, where it can, that an exact search would find nothing - a pushed
-//! gear's step free of events (`speed/certified.rs`, on the bounds of `speed/certify.rs`) - and
-//! the core skips it. The core offers it that work through one trait, `Shortcut`
-//! (`solver/shortcut.rs`), and never names it; `entry.rs`, the public ways to run a mesh, builds
+//! (`speed/mod.rs`) proves, where it can, that part of an exact search would find nothing, and
+//! the core leaves that part out - a pushed gear's step free of events (`speed/certified.rs`, on
+//! the bounds of `speed/certify.rs`), the joints of a held gear's chain that hold through a step
+//! (`speed/held.rs`: a proof per joint that moves with its links' overlap, in a queue ordered by
+//! where each proof ends), the contact conditions a closing's search need not take (those that
+//! hold nowhere near the step's path). The core offers it that work through one trait,
+//! `Shortcut` (`solver/shortcut.rs`), and never names it; `entry.rs`, the public ways to run a mesh, builds
 //! it for each run. No result depends on it: `tests/differential.rs` holds runs with and without
 //! it (and with a 64-times-finer step) to the same events, and `cargo test -p contact
 //! --no-default-features` tests the core without it. `tests/module_graph.rs` checks that no layer
@@ -64,10 +67,9 @@ mod roots;
 mod solver;
 #[cfg(feature = "speed")]
 mod speed;
+mod stats;
 mod tooth;
 
 pub use mesh::{Mesh, MeshError, Obstacle, tooth_pair_evaluations};
-pub use solver::{
-    Answered, Event, EventKind, Motion, Segment, SolverStats, Start, StopAt, Trajectory,
-    solver_stats,
-};
+pub use solver::{Answered, Event, EventKind, Motion, Segment, Start, StopAt, Trajectory};
+pub use stats::{SolverStats, solver_stats};

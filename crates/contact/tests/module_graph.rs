@@ -1,7 +1,7 @@
 //! The solver crate's modules, read from `crates/contact/src`: the `crate::` paths between its
 //! top-level modules (outside their unit tests) form no cycle, and they keep the order of the
 //! crate's layers - the exact core (one tooth, the contact conditions and their roots, the mesh,
-//! closings, held gears, the solver) names neither the speed layer nor the entry points, and the
+//! closings, held gears, the solver, the step counts) names neither the speed layer nor the entry points, and the
 //! speed layer does not name the entry points - so each layer can be read without the ones
 //! above it, and the core builds without the speed layer.
 
@@ -89,7 +89,7 @@ const LAYERS: [(&str, &[&str]); 3] = [
     (
         "exact core",
         &[
-            "tooth", "roots", "meet", "mesh", "closing", "held", "solver",
+            "tooth", "roots", "meet", "mesh", "closing", "held", "solver", "stats",
         ],
     ),
     ("speed layer", &["speed"]),

@@ -33,6 +33,25 @@ impl Placed {
     }
 }
 
+/// A set of the contact conditions of one tooth pair, one bit each: bit `2i + g` for the
+/// driver's vertex i (valley k−1, tip k, valley k) on the driven tooth's flank g, bit
+/// `6 + 2i + g` for the driven vertex i on the driver tooth's flank g. (Where flanks are arcs,
+/// the conditions of two flanks tangent are always in it.)
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct ConditionSet(pub(crate) u16);
+
+impl ConditionSet {
+    /// Every condition.
+    pub(crate) const ALL: Self = Self(u16::MAX);
+
+    /// Whether the condition of vertex `i` on flank `g` is in the set (a driver vertex on a
+    /// driven flank, or with `driven_vertex` a driven vertex on a driver flank).
+    fn has(self, driven_vertex: bool, i: usize, g: usize) -> bool {
+        let bit = 6 * usize::from(driven_vertex) + 2 * i + g;
+        self.0 & (1 << bit) != 0
+    }
+}
+
 impl Mesh {
     /// The contact conditions (`meet.rs`) of which one end of the obstacle of driver tooth `j`
     /// against driven tooth `k` is a root wherever the obstacle is wider than a just-met one: at
@@ -47,22 +66,32 @@ impl Mesh {
             End::Lower => 0,
             End::Upper => 1,
         };
-        self.conditions_on(j, k, f..f + 1)
+        self.conditions_on(j, k, f..f + 1, ConditionSet::ALL)
     }
 
     /// The conditions of both sides of the (j, k) obstacle: either end of it is always a root of
     /// one of these (a lock of the wider class was missed where the lower end of a just-met
     /// obstacle lay on the side of its upper end).
     pub(crate) fn conditions_of_both_sides(&self, j: i64, k: i64) -> SmallVec<[Condition; 8]> {
-        self.conditions_on(j, k, 0..2)
+        self.conditions_on(j, k, 0..2, ConditionSet::ALL)
     }
 
-    /// [`Mesh::conditions`] for the flanks `sides` (0, 1 or both).
+    /// [`Mesh::conditions_of_both_sides`] of the set `set` alone.
+    pub(crate) fn conditions_in(
+        &self,
+        (j, k): (i64, i64),
+        set: ConditionSet,
+    ) -> SmallVec<[Condition; 8]> {
+        self.conditions_on(j, k, 0..2, set)
+    }
+
+    /// [`Mesh::conditions`] for the flanks `sides` (0, 1 or both), of the set `set`.
     fn conditions_on(
         &self,
         j: i64,
         k: i64,
         sides: std::ops::Range<usize>,
+        set: ConditionSet,
     ) -> SmallVec<[Condition; 8]> {
         let d = self.centre_distance;
         let (da, _) = self.driver.data(j);
@@ -76,10 +105,10 @@ impl Mesh {
         for g in sides {
             let vertices = if self.curved { 0..3 } else { g..g + 2 };
             for i in vertices {
-                if da.reaches[i] {
+                if da.reaches[i] && set.has(false, i, g) {
                     out.push(vertex_on(sb[g], da.v[i], d, true));
                 }
-                if db.reaches[i] {
+                if db.reaches[i] && set.has(true, i, g) {
                     out.push(vertex_on(sa[g], db.v[i], d, false));
                 }
             }

@@ -23,6 +23,8 @@ use crate::tooth::{ToothData, wrap_pi};
 mod conditions;
 mod curved;
 
+pub(crate) use conditions::ConditionSet;
+
 /// Why a mesh cannot be built.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error("{field}: {rule}")]

@@ -14,14 +14,12 @@ use crate::mesh::{End, Mesh, Obstacle, PairMemo};
 mod cover;
 mod search;
 pub(crate) mod shortcut;
-mod stats;
 mod step;
 mod trajectory;
 
+pub(crate) use crate::stats::count;
 use search::{bisect, bracket, golden_max};
 pub(crate) use shortcut::Shortcut;
-pub(crate) use stats::count;
-pub use stats::{SolverStats, solver_stats};
 pub use trajectory::{Answered, Event, EventKind, Motion, Segment, Start, StopAt, Trajectory};
 
 /// Relative tolerance (radians) when deciding on which side of θ an obstacle lies.
@@ -240,7 +238,7 @@ impl Mesh {
     }
 }
 
-impl Run<'_> {
+impl<'m> Run<'m> {
     /// Whether the run ends here by `stop`, given that the events before `seen` were asked
     /// about already (`seen` is moved past those asked about now).
     fn stops(&mut self, stop: Stop<'_, '_>, seen: &mut usize) -> bool {
@@ -527,7 +525,8 @@ impl Run<'_> {
     /// position first appears ahead of it, located exactly (`held.rs`: the first root at which
     /// the chain of obstacles that holds it may give way; there the turn is swept again, and the
     /// gear either let go to the free position or held by the new chain), or to `phi1`. A chain
-    /// proved to hold through the step is taken up by the next one.
+    /// proved to hold through the step is taken up by the next one; the joints of a chain the
+    /// speed layer proves to hold are not searched (`Shortcut::held_joints`).
     fn held_step(&mut self, phi1: f64) {
         let mesh = self.mesh;
         let theta = self.theta;
@@ -539,62 +538,72 @@ impl Run<'_> {
             change.look_at.max(least).min(phi1)
         };
         let mut phi = self.phi;
-        let mut links = Vec::new();
-        // The chain the last step proved to hold through its end: no scan of the turn needed.
-        for (j, k) in std::mem::take(&mut self.held_links) {
-            match mesh.obstacle(phi, j, k) {
-                Some(o) => links.push(o),
-                None => {
-                    links.clear();
-                    break;
-                }
-            }
-        }
+        // The chain the last step proved to hold through its end: no sweep of the turn needed.
+        let carried = std::mem::take(&mut self.held_links);
+        let mut chain = (!carried.is_empty()).then(|| held::Chain::carried(mesh, phi, carried));
         loop {
-            if links.is_empty() {
-                let mut memo = PairMemo::new(mesh, phi);
-                let found = mesh.free_or_cover_in(phi, theta, true, Some(&mut links), &mut memo);
-                if let Ok(t) = found {
-                    if phi > self.phi {
-                        self.release(phi, t, &mut memo);
-                        return;
-                    }
-                    // Free where the step starts: let go just after it.
-                    let phi_r = (phi + LOCATE_TOL).min(phi1);
-                    let mut memo = PairMemo::new(mesh, phi_r);
-                    match mesh.free_or_cover_in(phi_r, theta, true, None, &mut memo) {
-                        Ok(t) => self.release(phi_r, t, &mut memo),
-                        Err(_) if phi_r < phi1 => {
-                            phi = phi_r;
-                            links.clear();
-                            continue;
-                        }
-                        Err(_) => self.rest_to(phi1),
-                    }
-                    return;
-                }
-            }
-            match held::first_change(mesh, &links, theta, threshold, SIDE_TOL, (phi, phi1)) {
-                Some(change) if change.root < phi1 => {
-                    phi = past(change);
-                    links.clear();
-                }
-                found => {
+            let mut held = match chain.take() {
+                Some(held) => held,
+                None => match self.sweep_held(&mut phi, phi1, threshold) {
+                    Some(held) => held,
+                    None => return,
+                },
+            };
+            let joints = self.held_joints(&mut held, phi1);
+            let tols = (theta, threshold, SIDE_TOL);
+            match held::first_change(&mut held, tols, phi1, joints.as_deref()) {
+                // A link's teeth parted where the step starts: the turn is swept there.
+                Err(held::LinkGone) => {}
+                Ok(Some(change)) if change.root < phi1 => phi = past(change),
+                Ok(found) => {
                     if found.is_none() {
-                        let m = links
-                            .iter()
-                            .position(|c| c.hi >= threshold)
-                            .map_or(0, |i| i + 1);
-                        self.held_links = links[..m]
-                            .iter()
-                            .map(|o| (o.driver_tooth, o.driven_tooth))
-                            .collect();
+                        self.held_links = held.into_pairs();
                     }
                     self.rest_to(phi1);
                     return;
                 }
             }
         }
+    }
+
+    /// The turn swept at `phi` for the held gear: the chain that holds it there, or, where there
+    /// is a free position, the gear let go to it (just after `phi` if that is where the step
+    /// starts, `phi` moved there) and None, as None where it rests to `phi1` instead.
+    fn sweep_held(&mut self, phi: &mut f64, phi1: f64, threshold: f64) -> Option<held::Chain<'m>> {
+        let (mesh, theta) = (self.mesh, self.theta);
+        loop {
+            let mut links = Vec::new();
+            let mut memo = PairMemo::new(mesh, *phi);
+            let Ok(t) = mesh.free_or_cover_in(*phi, theta, true, Some(&mut links), &mut memo)
+            else {
+                return Some(held::Chain::swept(mesh, *phi, &links, threshold));
+            };
+            if *phi > self.phi {
+                self.release(*phi, t, &mut memo);
+                return None;
+            }
+            // Free where the step starts: let go just after it.
+            let phi_r = (*phi + LOCATE_TOL).min(phi1);
+            let mut memo = PairMemo::new(mesh, phi_r);
+            match mesh.free_or_cover_in(phi_r, theta, true, None, &mut memo) {
+                Ok(t) => self.release(phi_r, t, &mut memo),
+                Err(_) if phi_r < phi1 => {
+                    *phi = phi_r;
+                    continue;
+                }
+                Err(_) => self.rest_to(phi1),
+            }
+            return None;
+        }
+    }
+
+    /// The joints of the held gear's `chain` to search up to `phi1`: those the speed layer, if
+    /// the run has one, has not proved to hold (None: all).
+    fn held_joints(&mut self, chain: &mut held::Chain<'_>, phi1: f64) -> Option<Vec<usize>> {
+        let mut speed = self.speed.take()?;
+        let joints = speed.held_joints(chain, self.theta, phi1);
+        self.speed = Some(speed);
+        joints
     }
 
     /// The held gear let go at φ to the free position θ = `to`.

@@ -14,15 +14,41 @@
 use smallvec::SmallVec;
 
 use super::{Motion, Run, Segment, Side, Tracked};
-use crate::mesh::Mesh;
+use crate::held::Chain;
+use crate::mesh::{ConditionSet, Mesh};
 
-/// What the speed layer may do for the exact core, one run at a time.
+/// What the speed layer may do for the exact core, one run at a time. Each method may prove that
+/// part of an exact search would find nothing, so that the core leaves it out; or prove nothing
+/// (the defaults), so that the core searches it all.
 pub(crate) trait Shortcut {
     /// Takes the pushed step from the run's (φ, θ) to `phi1` (`pushers` push the driven gear
     /// there) on a proof that no event lies in it, moving the run on exactly as the exact step
     /// would ([`Run::take_proved_step`]), and returns whether it did; if not, the run is as it
     /// was.
     fn pushed_step(&mut self, run: &mut Run<'_>, phi1: f64, pushers: &[(i64, i64)]) -> bool;
+
+    /// The joints of a held gear's `chain` (each by the index of its lower link, the first of
+    /// those a turn apart) that the core must search from the chain's driver angle to `phi1`,
+    /// the gear held at `theta`: every other joint is proved to hold throughout, by a margin that
+    /// no root of its search could come within (`held.rs`). None: every joint is searched.
+    fn held_joints(&mut self, chain: &mut Chain<'_>, theta: f64, phi1: f64) -> Option<Vec<usize>> {
+        let _ = (chain, theta, phi1);
+        None
+    }
+
+    /// Of the contact conditions of tooth pair `pair` (those of both sides), the ones that may
+    /// hold somewhere in the box of driver angles `phi` and driven angles `theta`: a search for
+    /// roots in the box may leave the others out. All, unless proved otherwise.
+    fn conditions_in_box(
+        &mut self,
+        mesh: &Mesh,
+        pair: (i64, i64),
+        phi: (f64, f64),
+        theta: (f64, f64),
+    ) -> ConditionSet {
+        let _ = (mesh, pair, phi, theta);
+        ConditionSet::ALL
+    }
 }
 
 /// A tooth pair as a proved step leaves it.

@@ -7,6 +7,13 @@
 use std::cell::{OnceCell, RefCell};
 
 use super::*;
+use crate::mesh::ConditionSet;
+
+/// How far (radians of driven angle, relative to 1 + |θ|) the box a closing is searched in
+/// reaches past the driven angles of the step's path: far past the rounding of the roots and the
+/// obstacles' ends (about 1e-14 rad), so that no condition with a root the search reads is left
+/// out of it.
+const BOX_MARGIN: f64 = 1e-9;
 
 /// A planned stretch of a step: its last driver angle, its last driven angle, the motion over
 /// it, and the event at its end, if any.
@@ -162,7 +169,8 @@ impl Run<'_> {
         // Just after a closing that held nothing (its pair now counts as behind), a closing at
         // the step's very start is that one again: only later roots are asked for, so that the
         // run moves on, and a pair ahead closing later in the step is still found.
-        let jam = first_jam(&step, &plan, &ahead, self.unheld_at == Some(phi0));
+        let after_start = self.unheld_at == Some(phi0);
+        let jam = first_jam(&step, &plan, &ahead, after_start, self.speed.as_mut());
         match jam {
             None => self.follow_plan(&step, plan, &all_behind, theta1),
             Some(phi_j) => self.jam(&step, plan, phi_j, &ahead),
@@ -431,12 +439,15 @@ fn rest_then_maybe_push(
 
 /// Where the first pair of `ahead` closes on the planned path in the step: at its start if one
 /// overlaps the gear there already, else at the first root where the backlash stops being
-/// positive (`closing::first_closing`); with `after_start`, at a root after the start only.
+/// positive (`closing::first_closing`); with `after_start`, at a root after the start only. The
+/// speed layer, if given, may leave out of the search the conditions that hold nowhere in the
+/// box of the step's driver angles and the path's driven angles (`Shortcut::conditions_in_box`).
 fn first_jam(
     step: &Step<'_>,
     plan: &[Planned],
     ahead: &[(i64, i64)],
     after_start: bool,
+    mut speed: Option<&mut Box<dyn Shortcut>>,
 ) -> Option<f64> {
     if ahead.is_empty() {
         return None;
@@ -452,7 +463,23 @@ fn first_jam(
         return Some(step.phi0);
     }
     let stretches = stretches_of(plan, step.phi0, step.theta0);
-    closing::first_closing(step.mesh, &stretches, ahead, after_start, backlash)
+    let theta1 = step.theta_on(plan, step.phi1);
+    let widen = BOX_MARGIN * (1.0 + theta1.abs());
+    let (phis, thetas) = (
+        (step.phi0, step.phi1),
+        (step.theta0 - widen, theta1 + widen),
+    );
+    // After a closing that held nothing the search starts at its first root, whichever
+    // conditions it comes from: then every condition is taken.
+    let mut sets = |pair: (i64, i64)| match speed.as_mut() {
+        Some(speed) if !after_start => speed.conditions_in_box(step.mesh, pair, phis, thetas),
+        _ => ConditionSet::ALL,
+    };
+    let search = (
+        after_start,
+        &mut sets as &mut dyn FnMut((i64, i64)) -> ConditionSet,
+    );
+    closing::first_closing(step.mesh, &stretches, ahead, search, backlash)
 }
 
 /// The stretches of a step's plan from (φ0, θ0), as the closing search reads them.

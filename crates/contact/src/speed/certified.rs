@@ -10,7 +10,8 @@ use super::Certifier;
 use super::certify::{ConfigBox, PlacedTooth, Placement, Verdict};
 use crate::mesh::End;
 use crate::solver::shortcut::PairAtEnd;
-use crate::solver::{Pairs, Run, SIDE_TOL, Side, count};
+use crate::solver::{Pairs, Run, SIDE_TOL, Side};
+use crate::stats::count;
 
 /// How far a certified step's first box reaches above the pushers' end, as a share of their rise
 /// over the step (a performance choice only: any box holding the path is sound; 0.1 judged the

@@ -131,6 +131,8 @@ pub(crate) enum Verdict {
 pub(crate) struct ConfigBox {
     d_phi: f64,
     d_theta: f64,
+    /// Whether the chord through the box falls (from its upper left corner to its lower right).
+    falls: bool,
     /// (sin, cos) of φc: the driver's turn.
     driver_turn: (f64, f64),
     /// (sin, cos) of π − θc: the driven gear's turn.
@@ -182,17 +184,21 @@ impl ConfigBox {
             round: round_for(centre_distance),
             // Set by `with_driven` below.
             d_theta: 0.0,
+            falls: false,
             driven_turn: (0.0, 1.0),
         }
         .with_driven(theta0, theta1)
     }
 
-    /// The box over the same driver angles and driven angles `[theta0, theta1]` (the driver's
-    /// turn at the centre is this box's, not computed again).
+    /// The box over the same driver angles and driven angles between `theta0` and `theta1`
+    /// (the driver's turn at the centre is this box's, not computed again). The box's chord,
+    /// which [`ConfigBox::clear_along`] follows, runs from `theta0` at its first driver angle to
+    /// `theta1` at its last: it falls where `theta1` is the lower.
     pub(crate) fn with_driven(&self, theta0: f64, theta1: f64) -> Self {
         let theta_c = 0.5 * (theta0 + theta1);
         Self {
-            d_theta: 0.5 * (theta1 - theta0) * (1.0 + 1e-12) + 1e-15 * theta_c.abs(),
+            d_theta: 0.5 * (theta1 - theta0).abs() * (1.0 + 1e-12) + 1e-15 * theta_c.abs(),
+            falls: theta1 < theta0,
             driven_turn: (std::f64::consts::PI - theta_c).sin_cos(),
             ..*self
         }
@@ -279,6 +285,7 @@ impl ConfigBox {
                 }
                 let m = &b.at.normal[f];
                 visit(Condition {
+                    bit: 2 * i + f,
                     value: m.dot(&x) - b.tooth.offset[f],
                     rate_phi: rp,
                     rate_theta: dist,
@@ -314,6 +321,7 @@ impl ConfigBox {
                 }
                 let n = &a.at.normal[f];
                 visit(Condition {
+                    bit: 6 + 2 * i + f,
                     value: n.dot(&qw) - a.tooth.offset[f],
                     rate_phi: dist,
                     rate_theta: rq,
@@ -330,6 +338,24 @@ impl ConfigBox {
                 });
             }
         }
+    }
+
+    /// The contact conditions of driver tooth `a` and driven tooth `b` that may hold somewhere
+    /// in the box, one bit each as `ConditionSet` numbers them (bit `2i + f` for driver vertex i
+    /// on driven flank f, `6 + 2i + f` for driven vertex i on driver flank f): the others hold
+    /// nowhere in it, or only where their vertex lies beyond the flank.
+    pub(crate) fn conditions_in_box(&self, a: &PlacedTooth<'_>, b: &PlacedTooth<'_>) -> u16 {
+        if self.apart(a.at.disc, b.at.disc) {
+            return 0;
+        }
+        let (dp, dt) = (self.d_phi, self.d_theta);
+        let mut set = 0;
+        self.conditions(a, b, |c| {
+            if c.value.abs() <= dt * c.rate_theta + dp * c.rate_phi + self.round {
+                set |= 1 << c.bit;
+            }
+        });
+        set
     }
 
     /// What driver tooth `a` and driven tooth `b`, placed by [`ConfigBox::place_driver`] and
@@ -374,9 +400,9 @@ impl ConfigBox {
     }
 
     /// Whether teeth `a` and `b` stay apart, by `margin` of driven angle at least, along every
-    /// path θ(φ) through the box from its lower-left to its upper-right corner whose slope stays
-    /// within `slopes` (the driven gear, pushed by curves with those slopes, from (φ0, θ0) to
-    /// (φ1, θ1)).
+    /// path θ(φ) through the box between the ends of its chord, from (φ0, θ0) to (φ1, θ1) (see
+    /// [`ConfigBox::with_driven`]), whose slope stays within `slopes`: the driven gear pushed by
+    /// curves with those slopes, or a driven angle that moves with a held gear's links.
     ///
     /// Such a path stays within `w = (s_max − s_min)·(φ1 − φ0)/4` of the chord θ_d(φ) through the
     /// corners, whose slope is s̄. Along the chord G(φ) = F(φ, θ_d(φ)) changes at
@@ -400,13 +426,18 @@ impl ConfigBox {
         margin: f64,
     ) -> bool {
         let dp = self.d_phi;
-        let chord = if dp > 0.0 { self.d_theta / dp } else { 0.0 };
+        let rise = if self.falls {
+            -self.d_theta
+        } else {
+            self.d_theta
+        };
+        let chord = if dp > 0.0 { rise / dp } else { 0.0 };
         let width = (slopes.1 - slopes.0).max(0.0) * dp / 2.0 + self.d_theta * 1e-12;
         let mut clear = true;
         // How far a function of the configuration with these derivatives at the centre (and
         // the condition's bounds on how they change) can move from its centre value on the tube.
         let reach = |f_phi: f64, f_theta: f64, c: &Condition| {
-            let along = (f_phi + chord * f_theta).abs() + c.e_phi + chord * c.e_theta;
+            let along = (f_phi + chord * f_theta).abs() + c.e_phi + chord.abs() * c.e_theta;
             let across = f_theta.abs() + c.e_theta;
             dp * along + (width + margin) * across + self.round
         };
@@ -427,6 +458,8 @@ impl ConfigBox {
 /// the bounds on |F_φ| and |F_θ| used for the box test (each exact on the leg where the other
 /// angle is held at the centre), and `F_φ`, `F_θ` there with how far they can change in the box.
 struct Condition {
+    /// Its bit in a `ConditionSet`.
+    bit: usize,
     value: f64,
     rate_phi: f64,
     rate_theta: f64,
@@ -671,11 +704,17 @@ mod tests {
             let theta0 = run.theta_at(phi0);
             let span = pitch * (0.05 + 0.5 * rng.random::<f64>());
             let phi1 = phi0 + span;
-            // Slopes about the ratio, the chord's among them.
+            // Slopes about the ratio, the chord's among them; a third of them falling (a held
+            // gear's links moving back).
             let slopes = (
                 ratio * (0.5 + 0.5 * rng.random::<f64>()),
                 ratio * (1.0 + rng.random::<f64>()),
             );
+            let slopes = if rng.random_bool(1.0 / 3.0) {
+                (-slopes.1, -slopes.0)
+            } else {
+                slopes
+            };
             let chord = slopes.0 + (slopes.1 - slopes.0) * rng.random::<f64>();
             let theta1 = theta0 + chord * span;
             let margin = 1e-10;
@@ -683,9 +722,10 @@ mod tests {
             let drivers = m
                 .driver
                 .teeth_between(-phi1 - m.driver.window, -phi0 + m.driver.window);
+            let (low, high) = (theta0.min(theta1), theta0.max(theta1));
             let drivens = m
                 .driven
-                .teeth_between(theta0 - m.driven.window, theta1 + m.driven.window);
+                .teeth_between(low - m.driven.window, high + m.driven.window);
             for j in drivers {
                 for k in drivens.clone() {
                     let (a, b) = (

@@ -1,4 +1,5 @@
-//! How the steps of the runs on a thread were taken: counts for benchmarks and profiling.
+//! How the steps of the runs on a thread were taken, and the held gears' joints searched: counts
+//! for benchmarks and profiling, kept by the core and the speed layer alike.
 
 use std::cell::Cell;
 
@@ -15,6 +16,12 @@ pub struct SolverStats {
     pub refused_evaluations: u64,
     /// Steps taken exactly (no certificate tried, or none found), while the driven gear was free.
     pub bracketed: u64,
+    /// Searches of a held gear's chain for where it may give way.
+    pub held_searches: u64,
+    /// Joints of held gears' chains those searches searched.
+    pub joints_searched: u64,
+    /// Joints the speed layer proved to hold through a step, each time it did.
+    pub joints_proved: u64,
 }
 
 thread_local! {
@@ -25,6 +32,9 @@ thread_local! {
             refused: 0,
             refused_evaluations: 0,
             bracketed: 0,
+            held_searches: 0,
+            joints_searched: 0,
+            joints_proved: 0,
         })
     };
 }
