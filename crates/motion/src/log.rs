@@ -131,21 +131,7 @@ impl Log {
 
 /// An event of `kind` at (φ, θ) on `pair`, not yet sized.
 fn event(kind: EventKind, phi: f64, theta: f64, pair: (i64, i64)) -> Event {
-    Event {
-        phi,
-        theta,
-        kind,
-        driver_tooth: pair.0,
-        driven_tooth: pair.1,
-        theta_after: theta,
-        lost_motion: 0.0,
-        resumed: false,
-        resumed_by: None,
-        phase_shift: 0,
-        lag: 0.0,
-        wedge_angle: None,
-        idle_start: false,
-    }
+    Event::new(kind, phi, theta, pair)
 }
 
 #[cfg(test)]

@@ -122,8 +122,9 @@ impl Event {
         }
     }
 
-    /// An event of `kind` at (φ, θ) on tooth pair `pair`, with no size yet.
-    pub(super) fn new(kind: EventKind, phi: f64, theta: f64, pair: (i64, i64)) -> Self {
+    /// An event of `kind` at (φ, θ) on tooth pair `pair`, with no size yet (a caller that
+    /// finds events by a motion of its own, as `motion`'s models do, sizes them itself).
+    pub fn new(kind: EventKind, phi: f64, theta: f64, pair: (i64, i64)) -> Self {
         Self {
             phi,
             theta,

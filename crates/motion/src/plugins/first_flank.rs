@@ -95,21 +95,7 @@ fn held_ahead(mesh: &Mesh, phi: f64, theta: f64, end: f64, ratio: f64, want: Wan
 
 /// A blocked start at (φ, θ): gears that cannot be placed the other way round.
 fn blocked(phi: f64, theta: f64) -> Event {
-    Event {
-        phi,
-        theta,
-        kind: contact::EventKind::BlockedAtStart,
-        driver_tooth: 0,
-        driven_tooth: 0,
-        theta_after: theta,
-        lost_motion: 0.0,
-        resumed: false,
-        resumed_by: None,
-        phase_shift: 0,
-        lag: 0.0,
-        wedge_angle: None,
-        idle_start: false,
-    }
+    Event::new(contact::EventKind::BlockedAtStart, phi, theta, (0, 0))
 }
 
 crate::model! {
