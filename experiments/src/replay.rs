@@ -358,8 +358,17 @@ fn one_trial(
             "pair.html",
             crate::pair_html::page(&title, traj, &counted, &teeth),
         ));
-        for (name, svg) in crate::pair_html::event_pictures(traj, &counted, &teeth, 20) {
+        for (name, svg) in crate::event_picture::event_pictures(&title, traj, &counted, &teeth) {
             files.push(OutputFile::new(name, svg));
+        }
+        if let Some(n) = crate::event_picture::pictures_note(events.len()) {
+            table.note(n);
+        }
+        if events
+            .iter()
+            .any(|e| e.kind.is_contact_stop() && e.theta_after != e.theta)
+        {
+            table.note(crate::pair_html::RELEASE_NOTE);
         }
     }
     match pair {
@@ -476,7 +485,16 @@ fn verdict(jam: bool, dis: bool) -> &'static str {
     }
 }
 
-/// The trials of the cell that failed, by kind (the first [`LISTED`] of each).
+/// The file of a listing that names every failed trial of the cell, one line each:
+/// `trial,jammed,disengaged`.
+pub const FAILED_TRIALS_CSV: &str = "failed-trials.csv";
+
+/// The same as JSON: `{"experiment", "cell", "seed", "trials", "jammed": [...], "disengaged": [...]}`.
+pub const FAILED_TRIALS_JSON: &str = "failed-trials.json";
+
+/// The trials of the cell that failed, by kind: the printed table shows the first [`LISTED`]
+/// of each and says where the rest are; [`FAILED_TRIALS_CSV`] and [`FAILED_TRIALS_JSON`] list
+/// every one.
 fn listing(
     ctx: &Context,
     g: &Gearing,
@@ -496,26 +514,33 @@ fn listing(
             Counting::of(spec).tally(&r.events())
         })
     })?;
-    let which = |f: fn(&(bool, bool)) -> bool| -> (usize, String) {
-        let all: Vec<String> = outcomes
-            .iter()
-            .enumerate()
+    let which = |f: fn(&(bool, bool)) -> bool| -> Vec<u64> {
+        (0..trials)
+            .zip(&outcomes)
             .filter(|(_, o)| f(o))
-            .map(|(t, _)| t.to_string())
-            .collect();
+            .map(|(t, _)| t)
+            .collect()
+    };
+    let (jammed, disengaged) = (which(|o| o.0), which(|o| o.1));
+    let shown = |all: &[u64]| -> String {
+        if all.is_empty() {
+            return "-".into();
+        }
         let mut s = all
             .iter()
             .take(LISTED)
-            .cloned()
+            .map(u64::to_string)
             .collect::<Vec<_>>()
             .join(", ");
         if all.len() > LISTED {
-            let _ = write!(s, ", ... ({} more)", all.len() - LISTED);
+            let _ = write!(
+                s,
+                ", ... ({} more: every one in {FAILED_TRIALS_CSV})",
+                all.len() - LISTED
+            );
         }
-        (all.len(), if s.is_empty() { "-".into() } else { s })
+        s
     };
-    let (jams, jam_list) = which(|o| o.0);
-    let (dis, dis_list) = which(|o| o.1);
     let mut table = Table::new(
         format!(
             "{id} {cell}: the trials that failed, of {trials} (seed {seed}) [events: {}; drive: {}{}]",
@@ -525,16 +550,58 @@ fn listing(
         ),
         ["failure", "trials", "trial indices"],
     );
-    table.row(vec!["jam".into(), jams.to_string(), jam_list]);
-    table.row(vec!["disengagement".into(), dis.to_string(), dis_list]);
+    table.row(vec!["jam".into(), jammed.len().to_string(), shown(&jammed)]);
+    table.row(vec![
+        "disengagement".into(),
+        disengaged.len().to_string(),
+        shown(&disengaged),
+    ]);
+    table.note(format!(
+        "Every failed trial, one line each, in {FAILED_TRIALS_CSV} (trial,jammed,disengaged) and {FAILED_TRIALS_JSON}; this table shows the first {LISTED} of each kind."
+    ));
     table.note(format!(
         "Replay one: cargo xtask replay {id} {cell} TRIAL (with the same --seed and --set as the table's run)."
     ));
+    let mut csv = String::from("trial,jammed,disengaged\n");
+    for (t, (j, d)) in (0..trials).zip(&outcomes) {
+        if *j || *d {
+            let _ = writeln!(csv, "{t},{j},{d}");
+        }
+    }
+    let list = |v: &[u64]| v.iter().map(u64::to_string).collect::<Vec<_>>().join(", ");
+    let json = format!(
+        "{{\n  \"experiment\": {},\n  \"cell\": {},\n  \"seed\": {seed},\n  \"trials\": {trials},\n  \"jammed\": [{}],\n  \"disengaged\": [{}]\n}}",
+        json_string(id),
+        json_string(cell),
+        list(&jammed),
+        list(&disengaged)
+    );
     Ok(Report {
-        tables: vec![table],
+        tables: vec![table.data_in(FAILED_TRIALS_CSV)],
+        files: vec![
+            OutputFile::new(FAILED_TRIALS_CSV, csv),
+            OutputFile::new(FAILED_TRIALS_JSON, json + "\n"),
+        ],
         trials,
         ..Default::default()
     })
+}
+
+/// `s` as a JSON string: quoted, with quotes, backslashes and control characters escaped.
+fn json_string(s: &str) -> String {
+    let mut o = String::from("\"");
+    for c in s.chars() {
+        match c {
+            '"' => o.push_str("\\\""),
+            '\\' => o.push_str("\\\\"),
+            c if (c as u32) < 0x20 => {
+                let _ = write!(o, "\\u{:04x}", c as u32);
+            }
+            c => o.push(c),
+        }
+    }
+    o.push('"');
+    o
 }
 
 /// The trial as a `pair` file: explicit tip angles and arbor offsets in the solver's frame
