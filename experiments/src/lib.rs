@@ -9,6 +9,7 @@ pub mod cells;
 pub mod chart;
 pub mod common;
 pub mod emax;
+pub mod event_picture;
 pub mod inputs;
 pub mod pair_html;
 pub mod pair_svg;
@@ -17,6 +18,7 @@ mod register;
 pub mod replay;
 pub mod settings;
 pub mod table_cells;
+pub mod td_plot;
 
 pub(crate) use register::experiment;
 

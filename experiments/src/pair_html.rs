@@ -36,7 +36,7 @@ fn samples(traj: &Trajectory, n: usize) -> Vec<(f64, f64, f64)> {
         .collect()
 }
 
-fn points(outline: &[Vec2]) -> String {
+pub(crate) fn points(outline: &[Vec2]) -> String {
     let mut s = String::new();
     for v in outline {
         let _ = write!(s, "{:.5},{:.5} ", v.x, v.y);
@@ -44,7 +44,7 @@ fn points(outline: &[Vec2]) -> String {
     s.trim_end().to_owned()
 }
 
-fn escape(s: &str) -> String {
+pub(crate) fn escape(s: &str) -> String {
     s.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
@@ -85,37 +85,56 @@ fn pushes_at(mesh: &contact::Mesh, phi: f64, theta: f64, (j, k): (i64, i64)) -> 
 }
 
 /// The contact of driver tooth `j` and driven tooth `k` at (φ, θ), labelled `role`; where the
-/// contact has no normal, the point half-way between the two tips.
+/// contact has no normal (tip on tip), the point half-way between the two tips, if they touch.
+/// `None` where the two teeth do not touch at all: nothing to draw.
 fn contact_at(
     mesh: &contact::Mesh,
     (phi, theta): (f64, f64),
     (j, k): (i64, i64),
     role: &'static str,
-) -> Contact {
+) -> Option<Contact> {
     if let Some((point, normal)) = mesh.contact_normal(phi, theta, j, k) {
-        return Contact {
+        return Some(Contact {
             point,
             normal: Some(normal),
             role,
-        };
+        });
     }
     let (driver, driven) = mesh.world_outlines(phi, theta);
     let (n1, n2) = (mesh.driver().teeth() as i64, mesh.driven().teeth() as i64);
     let tip1 = driver[2 * j.rem_euclid(n1) as usize];
     let tip2 = driven[2 * k.rem_euclid(n2) as usize];
-    Contact {
+    // Tips that touch, to rounding of the tooth's size.
+    let size = mesh
+        .driver()
+        .tooth_height()
+        .max(mesh.driven().tooth_height());
+    ((tip1 - tip2).norm() <= 1e-6 * size).then(|| Contact {
         point: (tip1 + tip2) * 0.5,
         normal: None,
         role,
-    }
+    })
+}
+
+/// Is `e` an idle start (a slip from the start: no driver tooth moved the driven gear within a
+/// driver pitch of it, or at all)? It has no contact: its teeth are the pair that would push
+/// next, if any, which does not touch the gear.
+pub fn is_idle_start(e: &contact::Event) -> bool {
+    e.idle_start && e.kind == contact::EventKind::Slip
 }
 
 /// The contacts of event `e` at its own (φ, θ): the event's pair, and at a lock (or a strike
-/// while pushed) the pair that was pushing, so that both sides of the driven tooth show.
+/// while pushed) the pair that was pushing, so that both sides of the driven tooth show. None
+/// for an idle start, where no tooth touches the driven gear.
 pub fn contacts_at_event(traj: &Trajectory, e: &contact::Event) -> Vec<Contact> {
+    if is_idle_start(e) {
+        return Vec::new();
+    }
     let mesh = traj.mesh();
     let pair = (e.driver_tooth, e.driven_tooth);
-    let mut out = vec![contact_at(mesh, (e.phi, e.theta), pair, "closing")];
+    let mut out: Vec<Contact> = contact_at(mesh, (e.phi, e.theta), pair, "closing")
+        .into_iter()
+        .collect();
     if e.kind.is_contact_stop() {
         // The pushing pair: of the pairs pushing on the segment that ends at the event, the one
         // whose contact holds θ there.
@@ -132,7 +151,7 @@ pub fn contacts_at_event(traj: &Trajectory, e: &contact::Event) -> Vec<Contact> 
                 _ => None,
             });
         if let Some(p) = pusher {
-            out.push(contact_at(mesh, (e.phi, e.theta), p, "pushing"));
+            out.extend(contact_at(mesh, (e.phi, e.theta), p, "pushing"));
         }
     }
     out
@@ -148,10 +167,24 @@ pub fn release_of(traj: &Trajectory, e: &contact::Event) -> Option<(f64, Vec<Con
     let contacts = e
         .resumed_by
         .filter(|&p| pushes_at(mesh, e.phi, e.theta_after, p))
-        .map(|p| contact_at(mesh, (e.phi, e.theta_after), p, "resumed"))
+        .and_then(|p| contact_at(mesh, (e.phi, e.theta_after), p, "resumed"))
         .into_iter()
         .collect();
     Some((e.theta_after, contacts))
+}
+
+/// Why a lock's release moves the driven gear on, in a sentence for the outputs that show a
+/// release.
+pub const RELEASE_NOTE: &str = "A lock's release: the driven gear, held from both sides, is let go to the next position ahead at which no driver tooth overlaps it, as the paper's program did (\"allowing the driven gear to rotate freely ... until movement was possible again\"); that is usually a fraction of a driven pitch, but where eccentricity brings the gears too close for the teeth to pass (Case D, large systematic errors) the next free position can be a pitch or many pitches ahead, so the Theoretical Difference jumps by as much. The jump changes no jam count (a trial that locked has jammed).";
+
+/// A lock's release jump in words: `jump X deg (n driven pitches)` for a driven gear of `n2`
+/// teeth.
+pub fn jump_text(e: &contact::Event, n2: usize) -> String {
+    let jump = (e.theta_after - e.theta).to_degrees();
+    format!(
+        "jump {jump:.3} deg ({:.2} driven pitches)",
+        jump / (360.0 / n2 as f64)
+    )
 }
 
 /// `x,y,nx,ny,role` per contact, `;` between them (no normal: `x,y,,,role`).
@@ -203,32 +236,52 @@ pub fn page(
     json.push(']');
     let td_of = |phi: f64, theta: f64| ((theta - theta0) - ratio * (phi - phi0)).to_degrees();
     let mut events = String::new();
+    let n2 = mesh.driven().teeth();
+    let mut released = false;
     for (i, e) in traj.events().iter().enumerate() {
         let at = (e.phi - phi0).to_degrees();
         let (j, k) = teeth(e);
-        let link = |class: &str, theta: f64, contacts: &[Contact], text: &str| {
+        let release = release_of(traj, e);
+        let link = |class: &str, theta: f64, contacts: &[Contact], text: &str, place: &str| {
             format!(
-                "<a class=\"{class}\" href=\"#event={}{}\" data-phi=\"{at:.12}\" data-theta=\"{:.12}\" data-td=\"{:.12}\" data-contacts=\"{}\">{text}</a>",
+                "<a class=\"{class}\" href=\"#event={}{}\" data-phi=\"{at:.12}\" data-theta=\"{:.12}\" data-td=\"{:.12}\" data-contacts=\"{}\" data-where=\"{}\">{text}</a>",
                 i + 1,
                 if class == "release" { "-release" } else { "" },
                 theta.to_degrees(),
                 td_of(e.phi, theta),
                 contacts_attr(contacts),
+                escape(place),
             )
+        };
+        let what = if is_idle_start(e) {
+            if e.resumed {
+                "no driver tooth touches the driven gear: none moves it within a driver pitch of the start".to_string()
+            } else {
+                "no driver tooth touches the driven gear: none moves it in the whole run"
+                    .to_string()
+            }
+        } else {
+            format!("driver tooth {j}, driven tooth {k}")
         };
         let main = link(
             "event",
             e.theta,
             &contacts_at_event(traj, e),
             &format!(
-                "phi - phi0 = {at:.4} deg (phi = {:.4} deg, theta = {:.4} deg): {} ({}), driver tooth {j}, driven tooth {k}",
+                "phi - phi0 = {at:.4} deg (phi = {:.4} deg, theta = {:.4} deg): {} ({}), {what}",
                 e.phi.to_degrees(),
                 e.theta.to_degrees(),
                 e.label(),
                 counted(e),
             ),
+            if release.is_some() {
+                "(the event, before its release)"
+            } else {
+                "(the event)"
+            },
         );
-        let release = release_of(traj, e).map_or_else(String::new, |(after, contacts)| {
+        let release = release.map_or_else(String::new, |(after, contacts)| {
+            released = true;
             format!(
                 " - {}",
                 link(
@@ -236,9 +289,11 @@ pub fn page(
                     after,
                     &contacts,
                     &format!(
-                        "its release: the driven gear let go to theta = {:.4} deg",
-                        after.to_degrees()
-                    )
+                        "its release: the driven gear let go to the next free position, theta = {:.4} deg, {}",
+                        after.to_degrees(),
+                        jump_text(e, n2)
+                    ),
+                    "(its release: the driven gear let go to the next free position; the Theoretical Difference includes every earlier release's jump)",
                 )
             )
         });
@@ -248,6 +303,11 @@ pub fn page(
             kind = e.kind.name(),
         );
     }
+    let release_note = if released {
+        format!("<p class=\"release-note\">{}</p>", escape(RELEASE_NOTE))
+    } else {
+        String::new()
+    };
     if events.is_empty() {
         events.push_str("<li>no event: the driven gear was driven throughout</li>\n");
     }
@@ -306,6 +366,7 @@ TD = <span id="td"></span> deg <span id="where"></span></p>
 <p>Each link draws the gears at the event's own driver and driven angles, with its contacts (red: the teeth of the event; orange: the tooth pushing the driven gear when a lock closed; grey: the contact that drives it after its release).</p>
 <ol id="events">
 {events}</ol>
+{release_note}
 <p id="status">loading</p>
 <p id="selftest-slider"></p><p id="selftest-event"></p><ol id="selftest-events"></ol>
 <script>
@@ -360,7 +421,7 @@ function jumpTo(a) {{
   const phi = parseFloat(a.dataset.phi), theta = parseFloat(a.dataset.theta);
   slider.value = nearest(phi);
   const contacts = a.dataset.contacts ? a.dataset.contacts.split(";").map(c => c.split(",")) : [];
-  draw(phi, theta, parseFloat(a.dataset.td), a.classList.contains("release") ? "(the release)" : "(the event)");
+  draw(phi, theta, parseFloat(a.dataset.td), a.dataset.where || "");
   contactsG.replaceChildren();
   const z = parseFloat(meshSvg.dataset.zoom.split(" ")[2]);
   for (const [xs, ys, nxs, nys, role] of contacts) {{
@@ -471,31 +532,36 @@ if (document.getElementById("status").textContent === "loading") document.getEle
 /// The TD strip's plot area in its 900 × 230 box: left edge, width, top, bottom.
 const PLOT: (f64, f64, f64, f64) = (80.0, 800.0, 12.0, 180.0);
 
-/// The TD strip's axes: φ − φ0 along the bottom and TD up the left, each with three ticks
-/// labelled in degrees, and each axis named with its unit.
+/// The TD strip's axes: φ − φ0 along the bottom and TD up the left, each with round ticks
+/// labelled in degrees ([`crate::chart::nice_ticks`]), and each axis named with its unit.
 fn td_axes(phi_max: f64, td_min: f64, td_max: f64) -> String {
+    use crate::chart::{nice_ticks, tick_label};
     let (left, width, top, bottom) = PLOT;
     let mut s = format!(
         "<line x1=\"{left}\" y1=\"{bottom}\" x2=\"{}\" y2=\"{bottom}\" stroke=\"#000\"/>\n<line x1=\"{left}\" y1=\"{top}\" x2=\"{left}\" y2=\"{bottom}\" stroke=\"#000\"/>\n",
         left + width
     );
-    for f in [0.0, 0.5, 1.0] {
-        let x = left + width * f;
+    let (xs, x_decimals) = nice_ticks(0.0, phi_max, 6);
+    for v in xs {
+        let x = left + width * v / phi_max;
         let _ = writeln!(
             s,
-            "<line x1=\"{x}\" y1=\"{bottom}\" x2=\"{x}\" y2=\"{}\" stroke=\"#000\"/><text x=\"{x}\" y=\"{}\" text-anchor=\"middle\">{}</text>",
+            "<line class=\"tick\" x1=\"{x:.2}\" y1=\"{bottom}\" x2=\"{x:.2}\" y2=\"{}\" stroke=\"#000\"/><text class=\"tick\" x=\"{x:.2}\" y=\"{}\" text-anchor=\"middle\">{}</text>",
             bottom + 5.0,
             bottom + 18.0,
-            tick(phi_max * f)
+            tick_label(v, x_decimals)
         );
-        let y = bottom - (bottom - top) * f;
+    }
+    let (ys, y_decimals) = nice_ticks(td_min, td_max, 4);
+    for v in ys {
+        let y = bottom - (bottom - top) * (v - td_min) / (td_max - td_min);
         let _ = writeln!(
             s,
-            "<line x1=\"{}\" y1=\"{y}\" x2=\"{left}\" y2=\"{y}\" stroke=\"#000\"/><text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>",
+            "<line class=\"tick\" x1=\"{}\" y1=\"{y:.2}\" x2=\"{left}\" y2=\"{y:.2}\" stroke=\"#000\"/><text class=\"tick\" x=\"{}\" y=\"{:.2}\" text-anchor=\"end\">{}</text>",
             left - 5.0,
             left - 8.0,
             y + 4.0,
-            tick(td_min + (td_max - td_min) * f)
+            tick_label(v, y_decimals)
         );
     }
     let _ = writeln!(
@@ -507,165 +573,6 @@ fn td_axes(phi_max: f64, td_min: f64, td_max: f64) -> String {
         0.5 * (top + bottom)
     );
     s
-}
-
-/// A tick label: enough digits to tell the ticks apart.
-fn tick(v: f64) -> String {
-    let a = v.abs();
-    if a == 0.0 {
-        "0".into()
-    } else if a >= 100.0 {
-        format!("{v:.0}")
-    } else if a >= 1.0 {
-        format!("{v:.2}")
-    } else {
-        format!("{v:.4}")
-    }
-}
-
-/// A picture of the mesh at event `e`, zoomed on the two teeth involved (driver tooth
-/// `e.driver_tooth`, driven tooth `e.driven_tooth`), like the paper's Figures V_A (a jam) and
-/// V_B (a decoupling): both outlines at (φ, θ) of the event, its contacts (at a lock both: the
-/// closing one and the pushing one) as rings with their normals, the two teeth's tips as dots
-/// drawn over them, and a caption in a band of its own beneath the teeth. `counted` is what the
-/// event rule counts it as, `shown` the tooth numbers its caption gives (the user's numbering;
-/// the outlines are indexed by the solver's).
-pub fn event_svg(
-    traj: &Trajectory,
-    e: &contact::Event,
-    counted: &str,
-    shown: (i64, i64),
-) -> String {
-    let mesh = traj.mesh();
-    let (driver, driven) = mesh.world_outlines(e.phi, e.theta);
-    let (n1, n2) = (mesh.driver().teeth() as i64, mesh.driven().teeth() as i64);
-    let (j, k) = (e.driver_tooth.rem_euclid(n1), e.driven_tooth.rem_euclid(n2));
-    // Outlines alternate tip, valley: tooth j's tip is vertex 2j.
-    let tip1 = driver[2 * j as usize];
-    let tip2 = driven[2 * k as usize];
-    let contacts = contacts_at_event(traj, e);
-    let centre = contacts[0].point;
-    let h = mesh
-        .driver()
-        .tooth_height()
-        .max(mesh.driven().tooth_height());
-    let half = 2.5 * h;
-    // The picture is 600 × 600 of the mesh, and beneath it a band of 105 for the caption.
-    let (width, picture, band) = (600.0, 600.0, 105.0);
-    let scale = 2.0 * half / width;
-    let (x0, y0) = (centre.x - half, -centre.y - half);
-    let sw = half / 200.0;
-    let total = (picture + band) * scale;
-    let mut svg = format!(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width}\" height=\"{}\" viewBox=\"{x0:.6} {y0:.6} {w:.6} {total:.6}\" font-family=\"sans-serif\">\n<rect x=\"{x0:.6}\" y=\"{y0:.6}\" width=\"{w:.6}\" height=\"{total:.6}\" fill=\"white\"/>\n<g transform=\"scale(1,-1)\">\n<polygon points=\"{}\" fill=\"#dde\" stroke=\"#226\" stroke-width=\"{sw:.6}\"/>\n<polygon points=\"{}\" fill=\"#ede\" stroke=\"#626\" stroke-width=\"{sw:.6}\"/>\n",
-        picture + band,
-        points(&driver),
-        points(&driven),
-        w = 2.0 * half,
-    );
-    let dot = half / 60.0;
-    // Contacts first, as rings, so that the tips' dots drawn next stay visible on them.
-    for c in &contacts {
-        let colour = if c.role == "pushing" { "#e80" } else { "#c00" };
-        let _ = writeln!(
-            svg,
-            "<circle class=\"contact {}\" cx=\"{:.6}\" cy=\"{:.6}\" r=\"{:.6}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"{:.6}\"/>",
-            c.role,
-            c.point.x,
-            c.point.y,
-            2.2 * dot,
-            1.5 * sw
-        );
-        if let Some(n) = c.normal {
-            let end = c.point + n * (0.6 * h);
-            let _ = writeln!(
-                svg,
-                "<line x1=\"{:.6}\" y1=\"{:.6}\" x2=\"{:.6}\" y2=\"{:.6}\" stroke=\"{colour}\" stroke-width=\"{:.6}\"/>",
-                c.point.x,
-                c.point.y,
-                end.x,
-                end.y,
-                2.0 * sw
-            );
-        }
-    }
-    for (p, colour, who) in [(tip1, "#226", "driver-tip"), (tip2, "#626", "driven-tip")] {
-        let _ = writeln!(
-            svg,
-            "<circle class=\"{who}\" cx=\"{:.6}\" cy=\"{:.6}\" r=\"{dot:.6}\" fill=\"{colour}\"/>",
-            p.x, p.y
-        );
-    }
-    svg.push_str("</g>\n");
-    // The caption's band, over anything of the gears that reaches below the picture.
-    let band_top = y0 + picture * scale;
-    let _ = writeln!(
-        svg,
-        "<rect x=\"{x0:.6}\" y=\"{band_top:.6}\" width=\"{:.6}\" height=\"{:.6}\" fill=\"white\"/>\n<line x1=\"{x0:.6}\" y1=\"{band_top:.6}\" x2=\"{:.6}\" y2=\"{band_top:.6}\" stroke=\"#999\" stroke-width=\"{sw:.6}\"/>",
-        2.0 * half,
-        band * scale,
-        x0 + 2.0 * half
-    );
-    let mut lines = vec![
-        format!(
-            "{} ({counted}) at phi - phi0 = {:.4} deg (phi = {:.4} deg)",
-            e.label(),
-            (e.phi - traj.phi_start()).to_degrees(),
-            e.phi.to_degrees(),
-        ),
-        format!(
-            "theta = {:.4} deg (absolute, before any release)",
-            e.theta.to_degrees()
-        ),
-        format!(
-            "driver tooth {} (dot, blue), driven tooth {} (dot, purple)",
-            shown.0, shown.1
-        ),
-        format!(
-            "red ring: the contact of these teeth{}",
-            if contacts[0].normal.is_some() {
-                ", with its normal"
-            } else {
-                " (tip on tip: no normal)"
-            }
-        ),
-    ];
-    if contacts.iter().any(|c| c.role == "pushing") {
-        lines.push("orange ring: the driver tooth pushing the driven gear, with its normal".into());
-    }
-    let size = 14.0 * scale;
-    for (i, line) in lines.iter().enumerate() {
-        let _ = writeln!(
-            svg,
-            "<text x=\"{:.6}\" y=\"{:.6}\" font-size=\"{size:.6}\">{}</text>",
-            x0 + 8.0 * scale,
-            band_top + (20.0 + 19.0 * i as f64) * scale,
-            escape(line)
-        );
-    }
-    svg.push_str("</svg>\n");
-    svg
-}
-
-/// The event pictures of a run, for its first `most` events: `(file name, SVG)`, named
-/// `event-<n>-<kind>.svg` in event order.
-pub fn event_pictures(
-    traj: &Trajectory,
-    counted: &dyn Fn(&contact::Event) -> &'static str,
-    teeth: Teeth<'_>,
-    most: usize,
-) -> Vec<(String, String)> {
-    traj.events()
-        .iter()
-        .take(most)
-        .enumerate()
-        .map(|(i, e)| {
-            (
-                format!("event-{}-{}.svg", i + 1, e.kind.name()),
-                event_svg(traj, e, counted(e), teeth(e)),
-            )
-        })
-        .collect()
 }
 
 #[cfg(test)]
@@ -702,31 +609,5 @@ mod tests {
         assert!(html.contains("id=\"driven\"") && html.contains("id=\"status\""));
         // Nothing is fetched: no address of any kind in the page.
         assert!(!html.contains("http"), "the page must work offline");
-    }
-
-    #[test]
-    fn an_event_picture_shows_both_teeth_and_the_contact() {
-        // Gears so far apart that the tips slip past each other: the run loses drive.
-        let mesh = Mesh::new(
-            Gear::ideal(20, 20.0, 18.9).unwrap(),
-            Gear::ideal(30, 30.0, 28.9).unwrap(),
-            20.0 + 30.0 - 1.1 + 1.09,
-        )
-        .unwrap();
-        let traj = mesh.run(0.0, std::f64::consts::TAU * 1.5, Start::Touching(0.0));
-        let pictures = event_pictures(&traj, &|_| "jam", &solver_teeth(&mesh), 5);
-        assert!(!pictures.is_empty(), "the close mesh must have an event");
-        let (name, svg) = &pictures[0];
-        let e = &traj.events()[0];
-        assert_eq!(name, &format!("event-1-{}.svg", e.kind.name()));
-        assert_eq!(svg.matches("<polygon").count(), 2);
-        assert!(svg.contains(&format!("{} (jam)", e.kind.name())), "{svg}");
-        assert!(
-            svg.contains("red ring: the contact of these teeth"),
-            "{svg}"
-        );
-        // The tips' dots come after the contact rings: nothing hides them.
-        let last_ring = svg.rfind("class=\"contact").unwrap();
-        assert!(svg.find("class=\"driven-tip\"").unwrap() > last_ring);
     }
 }

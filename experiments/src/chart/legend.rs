@@ -20,6 +20,13 @@ pub(super) enum Sample {
     Series { style: Style, line: bool },
     /// A limit bracket, in black.
     Limit(LimitKind),
+    /// A series drawn as a line only, without markers.
+    Line(Style),
+    /// A kind of mark: its marker in its colour.
+    Mark {
+        colour: &'static str,
+        marker: super::Marker,
+    },
 }
 
 /// One legend entry.
@@ -154,6 +161,12 @@ pub(super) fn legend_svg(entries: &[Entry], layout: &LegendLayout, top: f64) -> 
             }
             Sample::Limit(kind) => {
                 s.push_str(&bracket_svg(kind, x + SAMPLE / 2.0, y, 12.0, "#000000"));
+            }
+            Sample::Line(style) => {
+                s.push_str(&polyline_svg(&[(x, y), (x + SAMPLE, y)], &style, 2.0));
+            }
+            Sample::Mark { colour, marker } => {
+                s.push_str(&marker_svg(marker, x + SAMPLE / 2.0, y, 4.5, colour));
             }
         }
         for (l, line) in lines.iter().enumerate() {

@@ -50,14 +50,33 @@ impl<'a> Series<'a> {
     }
 }
 
-/// A vertical mark on a plot: an event at `x`, labelled (e.g. its kind and size).
+/// A mark on a plot: an event at `x`, drawn as a marker on the curve at `y` (its value there)
+/// and as a tick in a band above the data, numbered there where the numbers do not crowd.
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Mark {
     /// Where (x axis units).
     pub x: f64,
-    /// Text written beside the mark.
-    pub label: String,
-    /// Colour group (marks of one kind share a colour).
+    /// The series' value at `x`, where the marker sits; `None`: only the tick above the data.
+    pub y: Option<f64>,
+    /// Its number (the event's, as the event table numbers it).
+    pub number: usize,
+    /// Its kind: an index into the kinds given with the marks ([`Plot::marks`]); marks of one
+    /// kind share a colour, a marker and a legend entry.
     pub group: usize,
+}
+
+/// How the marks of kind `g` are drawn: dark colours that read on white and stay apart from
+/// the series' first colours, each with a marker of its own.
+pub fn mark_style(g: usize) -> (&'static str, Marker) {
+    const STYLES: [(&str, Marker); 6] = [
+        ("#b2182b", Marker::TriangleDown),
+        ("#5e3c99", Marker::Diamond),
+        ("#b35806", Marker::Square),
+        ("#1b7837", Marker::TriangleUp),
+        ("#222222", Marker::Cross),
+        ("#8c510a", Marker::Plus),
+    ];
+    STYLES[g % STYLES.len()]
 }
 
 /// Which end of a series' running range a [`Limit`] marks.
@@ -226,6 +245,39 @@ pub fn drawable(lo: f64, hi: f64) -> (f64, f64) {
     };
     let half = (mid.abs() * 5e-4).max(0.5);
     (mid - half, mid + half)
+}
+
+/// Round ticks for an axis from `lo` to `hi`: every multiple of a step of 1, 2 or 5 times a
+/// power of ten within the range, the step chosen to give about `target` of them (at least
+/// two where the range allows), and the decimals that step needs to print each exactly.
+pub fn nice_ticks(lo: f64, hi: f64, target: usize) -> (Vec<f64>, usize) {
+    let (lo, hi) = drawable(lo.min(hi), lo.max(hi));
+    let raw = (hi - lo) / target.max(1) as f64;
+    let decade = 10f64.powf(raw.log10().floor());
+    let step = [1.0, 2.0, 5.0, 10.0]
+        .iter()
+        .map(|m| m * decade)
+        .find(|s| *s >= raw)
+        .unwrap_or(10.0 * decade);
+    let first = (lo / step).ceil();
+    let last = (hi / step).floor();
+    let ticks: Vec<f64> = (0..=((last - first).max(0.0) as usize).min(1000))
+        .map(|i| {
+            let v = (first + i as f64) * step;
+            if v.abs() < step * 1e-9 { 0.0 } else { v }
+        })
+        .collect();
+    let decimals = (-(step.log10().floor())).max(0.0) as usize;
+    (ticks, decimals)
+}
+
+/// A tick value printed with `decimals` decimals, a negative zero without its sign.
+pub fn tick_label(v: f64, decimals: usize) -> String {
+    let t = format!("{v:.decimals$}");
+    match t.strip_prefix('-') {
+        Some(rest) if rest.chars().all(|c| c == '0' || c == '.') => rest.to_owned(),
+        _ => t,
+    }
 }
 
 /// Width and height of the area `plotters` draws the axes in; the legend goes below it.
@@ -439,6 +491,8 @@ pub struct Plot<'a> {
     series: &'a [Series<'a>],
     log_y: bool,
     marks: &'a [Mark],
+    mark_kinds: &'a [String],
+    plain: bool,
     limits: &'a [Limit],
     limit_labels: (&'a str, &'a str),
     x_range: Option<(f64, f64)>,
@@ -461,6 +515,8 @@ impl<'a> Plot<'a> {
             series,
             log_y: false,
             marks: &[],
+            mark_kinds: &[],
+            plain: false,
             limits: &[],
             limit_labels: ("lower limit", "upper limit"),
             x_range: None,
@@ -476,9 +532,18 @@ impl<'a> Plot<'a> {
         self
     }
 
-    /// Vertical marks (events), each labelled.
-    pub fn marks(mut self, marks: &'a [Mark]) -> Self {
+    /// Marks (events) on the series, of the kinds `kinds` (each a legend entry, e.g. `lock,
+    /// counted as a jam: 25`): each a marker on the curve in its kind's style ([`mark_style`])
+    /// and a tick in a band above the data, numbered there where numbers do not crowd.
+    pub fn marks(mut self, marks: &'a [Mark], kinds: &'a [String]) -> Self {
         self.marks = marks;
+        self.mark_kinds = kinds;
+        self
+    }
+
+    /// Lines without markers: for a dense series whose markers would be taken for marks.
+    pub fn plain_lines(mut self) -> Self {
+        self.plain = true;
         self
     }
 
@@ -506,6 +571,23 @@ impl<'a> Plot<'a> {
     /// The legend's entries: the series, then one per kind of limit drawn.
     fn entries(&self) -> Vec<Entry> {
         let mut entries = series_entries(self.series, true);
+        if self.plain {
+            for e in &mut entries {
+                if let Sample::Series { style, .. } = e.sample {
+                    e.sample = Sample::Line(style);
+                }
+            }
+        }
+        for (g, kind) in self.mark_kinds.iter().enumerate() {
+            if self.marks.iter().any(|m| m.group == g) {
+                let (colour, marker) = mark_style(g);
+                entries.push(Entry {
+                    label: kind.clone(),
+                    sample: Sample::Mark { colour, marker },
+                    series: None,
+                });
+            }
+        }
         for (kind, label) in [
             (LimitKind::Lower, self.limit_labels.0),
             (LimitKind::Upper, self.limit_labels.1),
@@ -588,7 +670,14 @@ impl<'a> Plot<'a> {
             Some(r) => drawable(r.0, r.1),
             None => {
                 let pad = ((y1 - y0) * 0.05).max(1e-9);
-                drawable(y0 - pad, y1 + pad)
+                // Marks get a band of their own above the data: ticks and numbers never sit on
+                // the curve.
+                let band = if self.marks.is_empty() {
+                    0.0
+                } else {
+                    (y1 - y0) * MARK_BAND
+                };
+                drawable(y0 - pad, y1 + pad + band)
             }
         };
         let log_y = self.log_y;
@@ -624,25 +713,6 @@ impl<'a> Plot<'a> {
                     mesh.x_label_formatter(&whole_x);
                 }
                 mesh.draw().map_err(|e| plot_err(&e))?;
-                let mark_colours = [RED, MAGENTA, CYAN, GREEN, BLACK];
-                for (i, m) in self.marks.iter().enumerate() {
-                    let colour = mark_colours[m.group % mark_colours.len()];
-                    chart
-                        .draw_series(std::iter::once(PathElement::new(
-                            vec![(m.x, y0), (m.x, y1)],
-                            colour.mix(0.6).stroke_width(1),
-                        )))
-                        .map_err(|e| plot_err(&e))?;
-                    // Labels step down the plot so that neighbouring events stay legible.
-                    let y = y1 - (y1 - y0) * (0.04 + 0.06 * (i % 8) as f64);
-                    chart
-                        .draw_series(std::iter::once(Text::new(
-                            m.label.clone(),
-                            (m.x, y),
-                            ("sans-serif", 11).into_font().color(&colour),
-                        )))
-                        .map_err(|e| plot_err(&e))?;
-                }
                 let (xr, yr) = chart.plotting_area().get_pixel_range();
                 let (left, right) = (f64::from(xr.start), f64::from(xr.end));
                 let (top, bottom) = (f64::from(yr.start), f64::from(yr.end));
@@ -652,7 +722,7 @@ impl<'a> Plot<'a> {
                         bottom - (y - y0) / (y1 - y0) * (bottom - top),
                     )
                 };
-                let mut out = String::new();
+                let mut out = marks_svg(self.marks, at, (top, bottom));
                 for (k, points) in series.iter().enumerate() {
                     let st = style(k);
                     let _ = writeln!(
@@ -665,7 +735,12 @@ impl<'a> Plot<'a> {
                             thinned(&run).iter().map(|&(x, y)| at(x, y)).collect();
                         out.push_str(&polyline_svg(&pts, &st, 1.5));
                         out.push('\n');
-                        for i in marked_points(pts.len(), k) {
+                        let marked = if self.plain {
+                            Vec::new()
+                        } else {
+                            marked_points(pts.len(), k)
+                        };
+                        for i in marked {
                             out.push_str(&marker_svg(
                                 st.marker, pts[i].0, pts[i].1, 3.5, st.colour,
                             ));
@@ -702,6 +777,62 @@ impl<'a> Plot<'a> {
     }
 }
 
+/// The share of the data's height added above it as the band of the marks' ticks and numbers.
+const MARK_BAND: f64 = 0.16;
+
+/// The marks of a plot as SVG, in pixels (`at` places a point of the axes; the plot area runs
+/// from `top` to `bottom`): in the band above the data, a tick per mark and its number where it
+/// does not crowd the numbers already placed (three rows, left to right: a number that would
+/// overlap one in every row is left out, its tick and marker still drawn); on the curve, a
+/// marker in its kind's style, outlined in white so that it stands out of the line.
+fn marks_svg(
+    marks: &[Mark],
+    at: impl Fn(f64, f64) -> (f64, f64),
+    (top, bottom): (f64, f64),
+) -> String {
+    if marks.is_empty() {
+        return String::new();
+    }
+    let mut s = String::from("<g class=\"marks\" font-family=\"sans-serif\" font-size=\"11\">\n");
+    let band = (bottom - top) * MARK_BAND / (1.0 + 0.1 + MARK_BAND);
+    let row_h = (band / 4.0).max(10.0);
+    let mut order: Vec<&Mark> = marks.iter().filter(|m| m.x.is_finite()).collect();
+    order.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.number.cmp(&b.number)));
+    // The right end of the last number placed in each row.
+    let mut rows = [f64::NEG_INFINITY; 3];
+    for m in &order {
+        let (colour, marker) = mark_style(m.group);
+        let (x, _) = at(m.x, 0.0);
+        let _ = writeln!(
+            s,
+            "<line class=\"mark-tick\" x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"{colour}\" stroke-width=\"1.5\"/>",
+            px(x),
+            px(top + 3.0 * row_h),
+            px(x),
+            px(top + band)
+        );
+        let text = m.number.to_string();
+        let half = 3.4 * text.len() as f64 + 1.0;
+        if let Some(r) = rows.iter().position(|&end| x - half > end + 2.0) {
+            rows[r] = x + half;
+            let _ = writeln!(
+                s,
+                "<text class=\"mark-number\" x=\"{}\" y=\"{}\" text-anchor=\"middle\" fill=\"{colour}\">{text}</text>",
+                px(x),
+                px(top + (r as f64 + 0.85) * row_h)
+            );
+        }
+        if let Some(y) = m.y.filter(|y| y.is_finite()) {
+            let (mx, my) = at(m.x, y);
+            s.push_str(&marker_svg(marker, mx, my, 6.5, "#ffffff"));
+            s.push_str(&marker_svg(marker, mx, my, 4.5, colour));
+            s.push('\n');
+        }
+    }
+    s.push_str("</g>\n");
+    s
+}
+
 /// A line plot as SVG text: title naming the paper item, labelled axes with units, a legend.
 pub fn line_plot(
     title: &str,
@@ -712,16 +843,18 @@ pub fn line_plot(
     Plot::new(title, x_label, y_label, series).svg()
 }
 
-/// [`line_plot`] with vertical marks (events), each labelled.
+/// [`line_plot`] of lines without markers and with marks (events) of `kinds`
+/// ([`Plot::marks`]).
 pub fn marked_plot(
     title: &str,
     x_label: &str,
     y_label: &str,
     series: &[Series<'_>],
-    marks: &[Mark],
+    (marks, kinds): (&[Mark], &[String]),
 ) -> Result<String, RunError> {
     Plot::new(title, x_label, y_label, series)
-        .marks(marks)
+        .plain_lines()
+        .marks(marks, kinds)
         .svg()
 }
 

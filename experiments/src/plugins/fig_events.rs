@@ -93,13 +93,27 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         match found {
             Some((t, e)) => {
                 let counted = if jam { "jam" } else { "disengagement" };
+                let g = at.unwrap_or_default();
+                let side = if jam {
+                    format!("{margin} % of h inside its jam limit")
+                } else {
+                    format!("{margin} % of h beyond its disengagement limit")
+                };
+                let picture_title = format!(
+                    "Figure {}: {label} ({}:{}), ideal teeth, h = {h} mm, G = {} % of h ({side})",
+                    figure.split(' ').next().unwrap_or(figure),
+                    pair.n1,
+                    pair.n2,
+                    fmt_f64(g, 2),
+                );
                 files.push(OutputFile::new(
                     file,
-                    crate::pair_html::event_svg(
+                    crate::event_picture::event_svg(
+                        &picture_title,
                         &t,
                         &e,
                         counted,
-                        crate::pair_html::solver_teeth(t.mesh())(&e),
+                        &crate::pair_html::solver_teeth(t.mesh()),
                     ),
                 ));
                 row.extend([

@@ -3,7 +3,7 @@
 
 use registry::{Context, OutputFile, Report, RunError, Table, fmt_f64};
 
-use crate::common::{Mark, Series, csv, deg, marked_plot};
+use crate::common::{csv, deg};
 use crate::pair_svg::check_svg;
 use study::drive::Drive;
 use study::pair_file::{Prepared, default_run_deg, prepare};
@@ -136,13 +136,20 @@ fn summary_table(
     rowf(&mut summary, "Theoretical Difference Dm", stat(s.dm), "deg");
     rowf(
         &mut summary,
-        "Theoretical Difference mean P",
+        "Theoretical Difference P (absolute mean)",
+        stat(s.mean.abs()),
+        "deg",
+    );
+    rowf(
+        &mut summary,
+        "Theoretical Difference mean (signed)",
         stat(s.mean),
         "deg",
     );
     if traj.never_driven() {
         summary.note("The driven gear was never pushed: no driver tooth reached it in the whole run (an idle start, counted as a disengagement by every event rule), so sigma, Dm and P are not given.");
     }
+    summary.note("P is the absolute value of the mean Theoretical Difference, as the paper's P (\"the average absolute value of the oscillation mean\"; averaged over trials in its tables); the signed mean says on which side of the ideal pointer the driven gear runs.");
     summary.note(ABSOLUTE_NOTE);
     summary
 }
@@ -199,16 +206,12 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
 
     let summary = summary_table(&name, mesh, &traj, &rule, run_deg, (phi0, theta0), &s);
 
-    let (events, ev_rows, marks) = event_log(&traj, &rule, (phi0, theta0), &prepared);
-    let svg = marked_plot(
-        "Theoretical Difference of the mesh (sections 2-3), events marked with kind and size",
-        "driver angle from the start phi - phi0 [deg]",
-        "Theoretical Difference [deg]",
-        &[Series {
-            label: "simulated",
-            points: rows.iter().map(|r| (r[0], r[2])).collect(),
-        }],
-        &marks,
+    let (events, ev_rows) = event_log(&traj, &rule, (phi0, theta0), &prepared);
+    let svg = crate::td_plot::td_plot(
+        &format!("the mesh from {name}"),
+        &traj,
+        &|e| counted_as(&rule, e),
+        &rows.iter().map(|r| (r[0], r[2])).collect::<Vec<_>>(),
     )?;
     let data = csv(
         &[
@@ -255,11 +258,11 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         ]
         .into_iter()
         .chain(
-            crate::pair_html::event_pictures(
+            crate::event_picture::event_pictures(
+                &format!("Mesh from {name}"),
                 &traj,
                 &|e| counted_as(&rule, e),
                 &user_teeth,
-                EVENT_PICTURES,
             )
             .into_iter()
             .map(|(n, svg)| OutputFile::new(n, svg)),
@@ -269,9 +272,8 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     })
 }
 
-/// How many events get a picture of their own (`event-<n>-<kind>.svg`): as many as the event
-/// table shows.
-const EVENT_PICTURES: usize = 20;
+/// How many events the printed event table shows; `event-log.csv` has every one.
+const EVENTS_SHOWN: usize = 20;
 
 /// What `rule` counts an event as: `jam`, `disengagement` or `-` (reported, not a failure).
 fn counted_as(rule: &rules::Rule, e: &contact::Event) -> &'static str {
@@ -285,7 +287,7 @@ fn counted_as(rule: &rules::Rule, e: &contact::Event) -> &'static str {
 }
 
 /// An event's size in words: what a reader needs to judge it.
-fn size_text(e: &contact::Event) -> String {
+fn size_text(e: &contact::Event, n2: usize) -> String {
     use contact::EventKind;
     match e.kind {
         EventKind::Lock | EventKind::Strike => {
@@ -293,7 +295,7 @@ fn size_text(e: &contact::Event) -> String {
                 || "tip on tip".to_string(),
                 |a| format!("wedge {:.1} deg", deg(a)),
             );
-            format!("jump {:.3} deg, {wedge}", deg(e.theta_after - e.theta))
+            format!("{}, {wedge}", crate::pair_html::jump_text(e, n2))
         }
         EventKind::Slip if e.idle_start && !e.resumed => format!(
             "never pushed: idle for the whole run ({:.3} pitches)",
@@ -315,15 +317,16 @@ fn size_text(e: &contact::Event) -> String {
     }
 }
 
-/// The event table (first 20), `event-log.csv` (every event: kind, what the rule counts it as,
-/// and its sizes) and the marks of `pair.svg`. Angles relative to the start (φ0, θ0); teeth
-/// within one turn.
+/// The event table (first [`EVENTS_SHOWN`]), `event-log.csv` (every event: kind, what the rule
+/// counts it as, and its sizes). Angles relative to the start (φ0, θ0); teeth within one turn
+/// (none for an idle start, where no tooth touches).
 fn event_log(
     traj: &contact::Trajectory,
     rule: &rules::Rule,
     (phi0, theta0): (f64, f64),
     prepared: &Prepared,
-) -> (Table, String, Vec<Mark>) {
+) -> (Table, String) {
+    let n2 = traj.mesh().driven().teeth();
     let mut events = Table::new(
         "Events (kind from the contact motion, and what the rule counts it as)",
         [
@@ -341,20 +344,26 @@ fn event_log(
     let mut ev_rows = String::from(
         "phi_minus_phi0_deg,kind,counted_as,driver_tooth,driven_tooth,theta_minus_theta0_deg,theta_after_minus_theta0_deg,lost_motion_pitches,resumed,phase_shift,lag_deg,wedge_angle_deg,phi_abs_deg,theta_abs_deg,theta_after_abs_deg\n",
     );
-    let mut marks = Vec::new();
     for e in traj.events() {
         let kind = e.label();
         let counted = counted_as(rule, e);
         // Tooth numbers as the user wrote them (a driven gear measured in its own sense is
-        // numbered the other way round inside the solver).
-        let j = prepared.driver.user(e.driver_tooth);
-        let k = prepared.driven.user(e.driven_tooth);
+        // numbered the other way round inside the solver); an idle start has no teeth.
+        let (j, k) = if crate::pair_html::is_idle_start(e) {
+            (String::new(), String::new())
+        } else {
+            (
+                prepared.driver.user(e.driver_tooth).to_string(),
+                prepared.driven.user(e.driven_tooth).to_string(),
+            )
+        };
+        let shown = |t: &str| if t.is_empty() { "-".to_string() } else { t.to_string() };
         let cells = [
             format!("{:.9}", deg(e.phi - phi0)),
             kind.to_string(),
             counted.to_string(),
-            j.to_string(),
-            k.to_string(),
+            j.clone(),
+            k.clone(),
             format!("{:.9}", deg(e.theta - theta0)),
             format!("{:.9}", deg(e.theta_after - theta0)),
             format!("{:.9}", e.lost_motion),
@@ -369,43 +378,49 @@ fn event_log(
         ];
         ev_rows.push_str(&cells.join(","));
         ev_rows.push('\n');
-        if events.rows.len() < 20 {
+        if events.rows.len() < EVENTS_SHOWN {
             events.row(vec![
                 fmt_f64(deg(e.phi - phi0), 6),
                 fmt_f64(deg(e.phi), 6),
                 kind.into(),
                 counted.into(),
-                j.to_string(),
-                k.to_string(),
+                shown(&j),
+                shown(&k),
                 fmt_f64(deg(e.theta - theta0), 6),
                 fmt_f64(deg(e.theta_after - theta0), 6),
-                size_text(e),
+                size_text(e, n2),
             ]);
-        }
-        if marks.len() < 40 {
-            let group = contact::EventKind::ALL
-                .iter()
-                .position(|&x| x == e.kind)
-                .unwrap_or(0);
-            marks.push(Mark {
-                x: deg(e.phi - phi0),
-                label: format!("{kind}: {}", size_text(e)),
-                group,
-            });
         }
     }
     events.note(crate::pair_html::ANGLES_NOTE);
-    if traj.events().len() > 20 {
+    if traj.events().len() > EVENTS_SHOWN {
         events.note(format!(
-            "{} more in event-log.csv",
-            traj.events().len() - 20
+            "{} more in event-log.csv (every event, one a line)",
+            traj.events().len() - EVENTS_SHOWN
         ));
+    }
+    if traj
+        .events()
+        .iter()
+        .any(|e| e.kind.is_contact_stop() && e.theta_after != e.theta)
+    {
+        events.note(crate::pair_html::RELEASE_NOTE);
+    }
+    if traj
+        .events()
+        .iter()
+        .any(crate::pair_html::is_idle_start)
+    {
+        events.note("An idle start has no driver or driven tooth (`-`): no tooth touches the driven gear; its picture shows where the two gears come nearest.");
+    }
+    if let Some(n) = crate::event_picture::pictures_note(traj.events().len()) {
+        events.note(n);
     }
     if traj.events().is_empty() {
         events.note("no event: the driven gear was driven throughout");
     }
     // The table is an excerpt of event-log.csv: the run writes the events once.
-    (events.data_in("event-log.csv"), ev_rows, marks)
+    (events.data_in("event-log.csv"), ev_rows)
 }
 
 /// The note under the summary table: the frames of the absolute angles.
