@@ -4,6 +4,7 @@
 use registry::{Report, RunError, fmt_f64};
 use study::cell::{CellSpec, Counts, PAPER_TRIALS};
 use study::grids::CellSettings;
+use study::tolerance;
 
 /// One cell of the paper's per-mesh tables: `mesh` under the settings' hypothesis with `errors`
 /// at clearance `g` (% of h) and the settings' tooth height. Its rule is the default, for the
@@ -193,42 +194,113 @@ pub fn share(k: u64, n: u64) -> String {
     }
 }
 
+/// The mark after a side of a printed cell (ours, or the paper's in brackets) that keeps the
+/// paper's 1 % rule ([`keeps_rule`]): the cells the paper shades.
+pub const RULE_MARK: char = '✓';
+
+/// The mark after a cell whose paper counts come from other inputs than ours (Table 5's meshes
+/// run at our own E. max): shown for reference, not compared.
+pub const NOT_COMPARED_MARK: char = '†';
+
+/// The paper's failure rule, in % of the trials (section 5: "a failure rate threshold of 1 %
+/// ... in 200 trials, a maximum of 2 jams is acceptable").
+pub const PAPER_RULE_PERCENT: f64 = 1.0;
+
+/// Does a cell of `trials` trials with `jams` and `disengagements` keep the failure rule of
+/// `rule_percent` % ([`tolerance::allowed_jams`]: 2 of 200 at 1 %)? The paper's text states the
+/// rule for jams and its derived E. max row tolerates 2 jams of 200 (m2-n1 at 0.035); its
+/// captions shade "cells with one or fewer trials showing jamming or disengagement", so a
+/// disengagement counts against a cell as a jam does: both counts must be within the rule.
+pub fn keeps_rule(jams: u64, disengagements: u64, trials: u64, rule_percent: f64) -> bool {
+    let allowed = tolerance::allowed_jams(trials, rule_percent);
+    jams <= allowed && disengagements <= allowed
+}
+
+/// The note under a table of cells on the rule marks, for a rule of `rule_percent` % and our
+/// `trials` per cell.
+pub fn rule_note(rule_percent: f64, trials: u64) -> String {
+    let ours = tolerance::allowed_jams(trials, rule_percent);
+    let paper = tolerance::allowed_jams(PAPER_TRIALS, rule_percent);
+    format!(
+        "`{RULE_MARK}` after a side of a cell (ours, or the paper's in brackets): that side keeps the paper's {} % rule, at most {paper} of {PAPER_TRIALS} trials jammed and at most {paper} disengaged (ours: at most {ours} of {trials} each), the cells the paper shades. The paper's text allows 2 of 200 (\"a maximum of 2 jams is acceptable\", and its E. max row tolerates m2-n1's 2 jams at 0.035); its captions word the shading as \"the jamming percentage was below 1%\" and \"one or fewer trials showing jamming or disengagement\", which would leave its cells with exactly 2 unshaded.",
+        registry::fmt_number(rule_percent),
+    )
+}
+
 /// A printed cell, `jams/dis (paper jams/paper dis)`, with `*` after each of our counts that
-/// the two-sample test separates from the paper's ([`consistent_with_paper`]); the cell's
-/// comparison is added to `tally`.
-pub fn cell_text(c: &Counts, paper: (Option<u64>, Option<u64>), tally: &mut Tally) -> String {
-    tally.add(c, paper);
+/// the two-sample test separates from the paper's ([`consistent_with_paper`]) and
+/// [`RULE_MARK`] after each side that keeps the rule of `rule_percent` % ([`keeps_rule`]);
+/// the cell's comparison is added to `tally`. A cell not `compared` (its paper counts come from
+/// other inputs) gets no `*`, is not tallied, and ends with [`NOT_COMPARED_MARK`].
+pub fn cell_text(
+    c: &Counts,
+    paper: (Option<u64>, Option<u64>),
+    (rule_percent, compared): (f64, bool),
+    tally: &mut Tally,
+) -> String {
+    if compared {
+        tally.add(c, paper);
+    }
     let mark = |k: u64, p: Option<u64>| {
-        if consistent_with_paper(k, c.trials, p) {
+        if !compared || consistent_with_paper(k, c.trials, p) {
             ""
         } else {
             "*"
         }
     };
     let show = |p: Option<u64>| p.map_or_else(|| "-".to_string(), |v| v.to_string());
+    let rule = |kept: bool| {
+        if kept {
+            RULE_MARK.to_string()
+        } else {
+            String::new()
+        }
+    };
+    let paper_rule = match paper {
+        (Some(j), Some(d)) => rule(keeps_rule(j, d, PAPER_TRIALS, rule_percent)),
+        _ => String::new(),
+    };
     format!(
-        "{}{}/{}{} ({}/{})",
+        "{}{}/{}{}{} ({}/{}{paper_rule}){}",
         c.jams,
         mark(c.jams, paper.0),
         c.disengagements,
         mark(c.disengagements, paper.1),
+        rule(keeps_rule(c.jams, c.disengagements, c.trials, rule_percent)),
         show(paper.0),
         show(paper.1),
+        if compared {
+            String::new()
+        } else {
+            NOT_COMPARED_MARK.to_string()
+        },
     )
 }
 
 /// CSV columns of one cell's counts, after [`CSV_COLUMNS`]: counts, interval bounds (as counts
-/// out of our trials), the paper's counts (out of 200; empty when it gives none) and the
-/// two-sample test's p-values.
-pub fn csv_columns(c: &Counts, paper: (Option<u64>, Option<u64>)) -> String {
+/// out of our trials), the paper's counts (out of 200; empty when it gives none), the
+/// two-sample test's p-values (empty where not compared), whether each side keeps the rule of
+/// `rule_percent` % and whether the cell is compared with the paper's.
+pub fn csv_columns(
+    c: &Counts,
+    paper: (Option<u64>, Option<u64>),
+    (rule_percent, compared): (f64, bool),
+) -> String {
     let (wj, wd) = (c.jam_interval(), c.dis_interval());
     let n = c.trials as f64;
     let show = |p: Option<u64>| p.map_or_else(String::new, |v| v.to_string());
     let p_value = |k: u64, p: Option<u64>| {
+        if !compared {
+            return String::new();
+        }
         paper_p_value(k, c.trials, p).map_or_else(String::new, |v| format!("{v:.4}"))
     };
+    let paper_rule = match paper {
+        (Some(j), Some(d)) => keeps_rule(j, d, PAPER_TRIALS, rule_percent).to_string(),
+        _ => String::new(),
+    };
     format!(
-        "{},{},{},{},{},{},{},{},{},{},{}",
+        "{},{},{},{},{},{},{},{},{},{},{},{},{paper_rule},{compared}",
         c.trials,
         c.jams,
         wj.lo * n,
@@ -240,39 +312,172 @@ pub fn csv_columns(c: &Counts, paper: (Option<u64>, Option<u64>)) -> String {
         wd.hi * n,
         show(paper.1),
         p_value(c.disengagements, paper.1),
+        keeps_rule(c.jams, c.disengagements, c.trials, rule_percent),
     )
 }
 
 /// Header of [`csv_columns`]: `*_p_fisher` is the two-sided p-value of Fisher's exact test of
-/// our count against the paper's (empty where the paper gives none).
-pub const CSV_COLUMNS: &str = "trials,jams,jam_lo,jam_hi,paper_jams,jam_p_fisher,disengagements,dis_lo,dis_hi,paper_disengagements,dis_p_fisher";
+/// our count against the paper's (empty where the paper gives none or the cell is not
+/// compared); `rule_kept` and `paper_rule_kept` whether our cell and the paper's keep the
+/// paper's 1 % rule ([`keeps_rule`]; the run's `rule` where it has one); `compared` whether the
+/// paper's counts come from the same inputs as ours.
+pub const CSV_COLUMNS: &str = "trials,jams,jam_lo,jam_hi,paper_jams,jam_p_fisher,disengagements,dis_lo,dis_hi,paper_disengagements,dis_p_fisher,rule_kept,paper_rule_kept,compared";
+
+/// One row of a jam table by the rule: how many of its cells keep it, ours and the paper's,
+/// and the meshes where the two verdicts differ.
+#[derive(Debug, Clone, Default)]
+struct RuleRow {
+    /// The row as the table labels it (a Case, an error, a Case and G).
+    label: String,
+    /// Our cells in the row, and those that keep the rule.
+    ours: (u64, u64),
+    /// The paper's cells in the row (where it gives both counts), and those that keep it.
+    paper: (u64, u64),
+    /// The compared cells where one side keeps the rule and the other does not: mesh, ours,
+    /// the paper's (`jams/dis`).
+    differ: Vec<(String, String, String)>,
+}
 
 /// The cells of a jam table as they are filled: each printed beside the paper's counts, its CSV
-/// line (key columns, then [`CSV_COLUMNS`]) and the [`Tally`] of the two-sample marks.
-#[derive(Debug, Clone, Default)]
+/// line (key columns, then [`CSV_COLUMNS`]), the [`Tally`] of the two-sample marks and the
+/// verdicts of the paper's 1 % rule by row.
+#[derive(Debug, Clone)]
 pub struct JamCells {
     /// The CSV: the header, then one line per cell.
     pub csv: String,
     /// The comparison with the paper's counts so far.
     pub tally: Tally,
+    /// The failure rule the cells are marked by, % of trials.
+    rule_percent: f64,
+    /// Our trials per cell (the last cell's), for the notes.
+    trials: u64,
+    rows: Vec<RuleRow>,
 }
 
 impl JamCells {
     /// No cells yet; the CSV's header is `keys` (the key columns, e.g. `case,mesh`), then
-    /// [`CSV_COLUMNS`].
+    /// [`CSV_COLUMNS`]; cells are marked by the paper's 1 % rule.
     pub fn new(keys: &str) -> JamCells {
         JamCells {
             csv: format!("{keys},{CSV_COLUMNS}\n"),
             tally: Tally::default(),
+            rule_percent: PAPER_RULE_PERCENT,
+            trials: PAPER_TRIALS,
+            rows: Vec::new(),
         }
     }
 
-    /// One cell: its CSV line (`keys`, the values of the key columns, then [`csv_columns`]),
-    /// added to the tally; returns the printed cell ([`cell_text`]).
-    pub fn cell(&mut self, keys: &str, c: &Counts, paper: (Option<u64>, Option<u64>)) -> String {
+    /// The same, marked by a rule of `percent` % instead (a run that sets its `rule`).
+    pub fn with_rule(mut self, percent: f64) -> JamCells {
+        self.rule_percent = percent;
+        self
+    }
+
+    /// One cell of row `row` (as the table labels it) and mesh `mesh`: its CSV line (`keys`, the
+    /// values of the key columns, then [`csv_columns`]), added to the tally; returns the printed
+    /// cell ([`cell_text`]).
+    pub fn cell(
+        &mut self,
+        (row, mesh): (&str, &str),
+        keys: &str,
+        c: &Counts,
+        paper: (Option<u64>, Option<u64>),
+    ) -> String {
+        self.cell_compared((row, mesh), keys, c, paper, true)
+    }
+
+    /// [`JamCells::cell`] for a cell whose paper counts may come from other inputs: not
+    /// `compared`, it gets no two-sample mark and is not tallied.
+    pub fn cell_compared(
+        &mut self,
+        (row, mesh): (&str, &str),
+        keys: &str,
+        c: &Counts,
+        paper: (Option<u64>, Option<u64>),
+        compared: bool,
+    ) -> String {
+        let how = (self.rule_percent, compared);
         self.csv
-            .push_str(&format!("{keys},{}\n", csv_columns(c, paper)));
-        cell_text(c, paper, &mut self.tally)
+            .push_str(&format!("{keys},{}\n", csv_columns(c, paper, how)));
+        self.trials = c.trials;
+        if self.rows.last().is_none_or(|r| r.label != row) {
+            self.rows.push(RuleRow {
+                label: row.to_owned(),
+                ..RuleRow::default()
+            });
+        }
+        let ours = keeps_rule(c.jams, c.disengagements, c.trials, self.rule_percent);
+        let theirs = match paper {
+            (Some(j), Some(d)) => Some(keeps_rule(j, d, PAPER_TRIALS, self.rule_percent)),
+            _ => None,
+        };
+        if let Some(r) = self.rows.last_mut() {
+            r.ours.0 += 1;
+            r.ours.1 += u64::from(ours);
+            if let Some(t) = theirs {
+                r.paper.0 += 1;
+                r.paper.1 += u64::from(t);
+                if compared && t != ours {
+                    r.differ.push((
+                        mesh.to_owned(),
+                        format!("{}/{}", c.jams, c.disengagements),
+                        format!("{}/{}", paper.0.unwrap_or(0), paper.1.unwrap_or(0)),
+                    ));
+                }
+            }
+        }
+        cell_text(c, paper, how, &mut self.tally)
+    }
+
+    /// The note on the rule marks ([`rule_note`]).
+    pub fn rule_note(&self) -> String {
+        rule_note(self.rule_percent, self.trials)
+    }
+
+    /// The table of the rule's verdicts by row, titled after `name` (e.g. `Table 3`) with the
+    /// column heading `row` (e.g. `case`): per row, the cells that keep it, ours and the
+    /// paper's, and the compared cells where the two verdicts differ.
+    pub fn rule_table(&self, name: &str, row: &str) -> registry::Table {
+        let percent = registry::fmt_number(self.rule_percent);
+        let allowed = tolerance::allowed_jams(PAPER_TRIALS, self.rule_percent);
+        let mut t = registry::Table::new(
+            format!(
+                "{name} by the paper's {percent} % rule: cells that keep it (at most {allowed} of {PAPER_TRIALS} trials jammed and at most {allowed} disengaged), ours and the paper's"
+            ),
+            [
+                row,
+                "cells kept: ours",
+                "cells kept: paper",
+                "verdicts differ at: mesh ours (paper)",
+            ],
+        );
+        for r in &self.rows {
+            let differ: Vec<String> = r
+                .differ
+                .iter()
+                .map(|(m, o, p)| format!("{m} {o} ({p})"))
+                .collect();
+            t.row(vec![
+                r.label.clone(),
+                format!("{} of {}", r.ours.1, r.ours.0),
+                if r.paper.0 == 0 {
+                    "-".into()
+                } else {
+                    format!("{} of {}", r.paper.1, r.paper.0)
+                },
+                if differ.is_empty() {
+                    "-".into()
+                } else {
+                    differ.join(", ")
+                },
+            ]);
+        }
+        t.note(format!(
+            "The paper's conclusions rest on this rule (section 5, footnote 4: at 1 % per mesh, 15 meshes fail together about 14 % of the time). Ours keep it where at most {} of our {} trials jammed and at most as many disengaged. A verdict that differs is listed only where the two cells are compared (the same inputs).",
+            tolerance::allowed_jams(self.trials, self.rule_percent),
+            self.trials
+        ));
+        t
     }
 }
 
@@ -320,12 +525,13 @@ mod tests {
         // No paper value: nothing to separate.
         assert!(consistent_with_paper(3, 200, None));
         let mut tally = Tally::default();
+        let paper_rule = (PAPER_RULE_PERCENT, true);
         assert_eq!(
-            cell_text(&c(40, 5), (Some(55), Some(30)), &mut tally),
+            cell_text(&c(40, 5), (Some(55), Some(30)), paper_rule, &mut tally),
             "40/5* (55/30)"
         );
         assert_eq!(
-            cell_text(&c(40, 30), (Some(70), None), &mut tally),
+            cell_text(&c(40, 30), (Some(70), None), paper_rule, &mut tally),
             "40*/30 (70/-)"
         );
         assert_eq!(
@@ -352,5 +558,72 @@ mod tests {
         // A run of another size is compared as a sample of its own size.
         assert!(consistent_with_paper(4, 20, Some(55)));
         assert!(!consistent_with_paper(20, 20, Some(55)));
+    }
+
+    /// The paper's 1 % rule marks each side of a cell: at most 2 of 200 trials jammed and at most
+    /// 2 disengaged (Table 3's Case A m3-e3: ours 3, the paper's 2 - the paper's cell keeps the
+    /// rule, ours does not), each side judged on its own trials.
+    #[test]
+    fn the_one_percent_rule_marks_each_side_of_a_cell() {
+        let c = |jams: u64, dis: u64, trials: u64| Counts {
+            jams,
+            disengagements: dis,
+            trials,
+            ..Counts::default()
+        };
+        let rule = (PAPER_RULE_PERCENT, true);
+        let mut tally = Tally::default();
+        assert_eq!(
+            cell_text(&c(3, 0, 200), (Some(2), Some(0)), rule, &mut tally),
+            "3/0 (2/0✓)"
+        );
+        assert_eq!(
+            cell_text(&c(2, 0, 200), (Some(2), Some(0)), rule, &mut tally),
+            "2/0✓ (2/0✓)"
+        );
+        // A disengagement counts against a cell as a jam does (Case D's m3-e3: 0/200).
+        assert_eq!(
+            cell_text(&c(0, 3, 200), (Some(0), Some(200)), rule, &mut tally),
+            "0/3* (0/200)"
+        );
+        // 20 trials allow no failure at 1 %; the paper's side is judged on its 200.
+        assert_eq!(
+            cell_text(&c(1, 0, 20), (Some(1), Some(0)), rule, &mut tally),
+            "1/0 (1/0✓)"
+        );
+        // Another rule: 5 % of 200 is 10.
+        assert!(keeps_rule(10, 0, 200, 5.0) && !keeps_rule(11, 0, 200, 5.0));
+        // No paper count: only our side is judged.
+        assert_eq!(
+            cell_text(&c(0, 0, 200), (None, None), rule, &mut tally),
+            "0/0✓ (-/-)"
+        );
+        // A cell whose paper counts come from other inputs: no `*`, not tallied, marked `†`.
+        let before = tally;
+        assert_eq!(
+            cell_text(&c(40, 0, 200), (Some(1), Some(0)), (1.0, false), &mut tally),
+            "40/0 (1/0✓)†"
+        );
+        assert_eq!(tally, before);
+        // The verdicts by row: kept cells on each side, and where they differ.
+        let mut cells = JamCells::new("case,mesh");
+        cells.cell(("A", "m3-e3"), "A,m3-e3", &c(3, 0, 200), (Some(2), Some(0)));
+        cells.cell(("A", "b2-c1"), "A,b2-c1", &c(0, 0, 200), (Some(0), Some(0)));
+        cells.cell(
+            ("B", "m3-e3"),
+            "B,m3-e3",
+            &c(141, 0, 200),
+            (Some(168), Some(0)),
+        );
+        let t = cells.rule_table("Table 3", "case");
+        assert_eq!(
+            t.rows,
+            vec![
+                vec!["A", "1 of 2", "2 of 2", "m3-e3 3/0 (2/0)"],
+                vec!["B", "0 of 1", "0 of 1", "-"],
+            ]
+        );
+        let line = cells.csv.lines().nth(1).unwrap();
+        assert!(line.ends_with(",false,true,true"), "{line}");
     }
 }

@@ -55,7 +55,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
 
     let mut ours = Table::new(
         format!(
-            "Table 3: trials (of {trials}) with at least one jam / disengagement, G = {clearance} %: ours (paper); * where a two-sample test separates our count from the paper's"
+            "Table 3: trials (of {trials}) with at least one jam / disengagement, G = {clearance} %: ours (paper); * where a two-sample test separates our count from the paper's; ✓ where a cell keeps the paper's 1 % rule"
         ),
         ours_header(&meshes),
     );
@@ -99,15 +99,16 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         for (m, mesh) in meshes.iter().enumerate() {
             let n = &counts[c * meshes.len() + m];
             let paper = case_paper_counts(cases_apply, "table3", &format!("{case}.{mesh}"));
-            row.push(cells.cell(&format!("{case},{mesh}"), n, paper));
+            row.push(cells.cell((case, mesh), &format!("{case},{mesh}"), n, paper));
         }
         ours.row(row);
     }
     ours.note(cells.tally.note());
+    ours.note(cells.rule_note());
     ours.note(CASE_TRIAL_NOTE);
     ours.note(replay_note("table3", "B/m3-e3"));
     Ok(Report {
-        tables: vec![ours, intervals],
+        tables: vec![ours, cells.rule_table("Table 3", "case"), intervals],
         files: vec![OutputFile::new("table3-data.csv", cells.csv)],
         agreement: Some(cells.tally.agreement()),
         ..counts_report(counts.iter())

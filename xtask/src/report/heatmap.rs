@@ -1,11 +1,13 @@
 //! Tables 3, 4, 5 and I as heatmaps on the report page: ours against the paper's per cell,
-//! coloured by the two-sample verdict the table marks with `*`, each differing cell linking to
-//! its `replay` listing.
+//! coloured by the two-sample verdict the table marks with `*`, each side marked where its cell
+//! keeps the paper's 1 % rule (the table's `✓`), each differing cell linking to a replayed
+//! trial's page of that cell, or to the commands that write one.
 
 use std::fmt::Write as _;
 
 use registry::Table;
 
+use super::replays::Replayed;
 use super::{Results, esc, url_part};
 
 /// The per-mesh count tables shown as heatmaps too: experiment id, how the table's title
@@ -17,6 +19,12 @@ const HEATMAPS: [(&str, &str, usize); 4] = [
     ("tableI", "Table I:", 2),
 ];
 
+/// The table's mark after a side that keeps the paper's 1 % rule.
+const RULE_MARK: char = experiments::cells::RULE_MARK;
+
+/// The table's mark after a cell not compared with the paper's (other inputs).
+const NOT_COMPARED_MARK: char = experiments::cells::NOT_COMPARED_MARK;
+
 /// One count of a cell: ours, the paper's, and whether the two-sample test separates them (the
 /// table's `*`).
 #[derive(Debug, PartialEq, Eq)]
@@ -26,11 +34,37 @@ pub(super) struct Count {
     pub(super) differs: bool,
 }
 
-/// A per-mesh cell as the tables print it, `ours[*]/ours[*] (paper/paper)` (jams, then
-/// disengagements; `-` for no paper count): the two counts, or `None` for any other text.
-pub(super) fn count_cell(cell: &str) -> Option<(Count, Count)> {
-    let (ours, paper) = cell.trim().split_once(" (")?;
+/// A per-mesh cell as the tables print it: its two counts, whether each side keeps the paper's
+/// 1 % rule (the paper's side: `None` without its counts), and whether the cell is compared
+/// with the paper's at all.
+#[derive(Debug, PartialEq, Eq)]
+pub(super) struct CountCell {
+    pub(super) jams: Count,
+    pub(super) dis: Count,
+    pub(super) ours_keep_rule: bool,
+    pub(super) paper_keeps_rule: Option<bool>,
+    pub(super) compared: bool,
+}
+
+/// A per-mesh cell as the tables print it, `ours[*]/ours[*][✓] (paper/paper[✓])[†]` (jams,
+/// then disengagements; `-` for no paper count): its counts and marks, or `None` for any other
+/// text.
+pub(super) fn count_cell(cell: &str) -> Option<CountCell> {
+    let cell = cell.trim();
+    let (cell, compared) = match cell.strip_suffix(NOT_COMPARED_MARK) {
+        Some(c) => (c, false),
+        None => (cell, true),
+    };
+    let (ours, paper) = cell.split_once(" (")?;
     let paper = paper.strip_suffix(')')?;
+    let kept = |s: &str| -> (String, bool) {
+        match s.strip_suffix(RULE_MARK) {
+            Some(rest) => (rest.to_owned(), true),
+            None => (s.to_owned(), false),
+        }
+    };
+    let (ours, ours_keep_rule) = kept(ours);
+    let (paper, paper_kept) = kept(paper);
     let (oj, od) = ours.split_once('/')?;
     let (pj, pd) = paper.split_once('/')?;
     let one = |o: &str, p: &str| -> Option<Count> {
@@ -46,11 +80,19 @@ pub(super) fn count_cell(cell: &str) -> Option<(Count, Count)> {
             differs,
         })
     };
-    Some((one(oj, pj)?, one(od, pd)?))
+    let (jams, dis) = (one(oj, pj)?, one(od, pd)?);
+    let paper_keeps_rule = (jams.paper.is_some() && dis.paper.is_some()).then_some(paper_kept);
+    Some(CountCell {
+        jams,
+        dis,
+        ours_keep_rule,
+        paper_keeps_rule,
+        compared,
+    })
 }
 
 /// A heatmap's row: its label and, per mesh, the cell as `replay` names it with its counts.
-type HeatRow = (String, Vec<Option<(String, Count, Count)>>);
+type HeatRow = (String, Vec<Option<(String, CountCell)>>);
 
 /// The rows of `t` (experiment `id`, with `lead` label columns) that hold counts.
 pub(super) fn heat_rows(id: &str, t: &Table, lead: usize) -> Vec<HeatRow> {
@@ -82,18 +124,18 @@ pub(super) fn heat_rows(id: &str, t: &Table, lead: usize) -> Vec<HeatRow> {
             "table4" => (format!("random error {label}"), label.to_owned()),
             _ => (format!("E. sys {label} deg"), label.to_owned()),
         };
-        let cells: Vec<Option<(String, Count, Count)>> = row
+        let cells: Vec<Option<(String, CountCell)>> = row
             .iter()
             .skip(lead)
             .zip(meshes)
             .enumerate()
             .map(|(m, (cell, mesh))| {
-                let (j, d) = count_cell(cell)?;
+                let counts = count_cell(cell)?;
                 let name = match id {
                     "table5" => format!("{}/{key}/{mesh}", emax[m].as_deref()?),
                     _ => format!("{key}/{mesh}"),
                 };
-                Some((name, j, d))
+                Some((name, counts))
             })
             .collect();
         if cells.iter().any(Option::is_some) {
@@ -103,10 +145,9 @@ pub(super) fn heat_rows(id: &str, t: &Table, lead: usize) -> Vec<HeatRow> {
     rows
 }
 
-/// The folder `cargo xtask replay <id> <cell>` writes its listing of failed trials to.
-pub(super) fn listing_folder(id: &str, cell: &str) -> String {
-    let cell: String = cell
-        .chars()
+/// `cell` as a part of a folder name: the characters `replay` keeps, any other `-`.
+fn plain(cell: &str) -> String {
+    cell.chars()
         .map(|c| {
             if c.is_ascii_alphanumeric() || c == '.' || c == '-' {
                 c
@@ -114,20 +155,62 @@ pub(super) fn listing_folder(id: &str, cell: &str) -> String {
                 '-'
             }
         })
-        .collect();
-    format!("replay-{id}-{cell}-failed")
+        .collect()
+}
+
+/// The folder `cargo xtask replay <id> <cell>` writes its listing of failed trials to.
+pub(super) fn listing_folder(id: &str, cell: &str) -> String {
+    format!("replay-{id}-{}-failed", plain(cell))
+}
+
+/// The replayed trial of `cell` (experiment `id`) with a page, among `replays`, made under the
+/// run's `settings` (seed and the settings set, `trials` aside): its folder. A trial's folder
+/// is `replay-<id>-<cell>-<trial>`, with its settings' name after it where they are not the
+/// defaults; the settings are read from its `run.json`, not from the name.
+pub(super) fn replayed_trial<'a>(
+    id: &str,
+    cell: &str,
+    replays: &'a [Replayed],
+    settings: &super::replays::Settings,
+) -> Option<&'a Replayed> {
+    let prefix = format!("replay-{id}-{}-", plain(cell));
+    replays
+        .iter()
+        .filter(|r| r.page && r.settings.as_ref() == Some(settings))
+        .filter(|r| {
+            r.folder.strip_prefix(&prefix).is_some_and(|rest| {
+                let trial = rest.split('-').next().unwrap_or("");
+                !trial.is_empty() && trial.bytes().all(|b| b.is_ascii_digit())
+            })
+        })
+        .min_by(|a, b| a.folder.cmp(&b.folder))
+}
+
+/// The words of a cell's rule marks for its tooltip.
+fn rule_words(c: &CountCell) -> String {
+    let side = |kept: bool| if kept { "keeps" } else { "breaks" };
+    match c.paper_keeps_rule {
+        Some(p) => format!(
+            "1 % rule: ours {}, the paper's {}",
+            side(c.ours_keep_rule),
+            side(p)
+        ),
+        None => format!("1 % rule: ours {}", side(c.ours_keep_rule)),
+    }
 }
 
 /// Table `t` of experiment `id` (its first) as heatmaps, jams and disengagements: ours against
-/// the paper's per cell, coloured by the two-sample test the table marks; each differing cell
-/// links to its `replay` listing (the folder `replay` wrote, when it is there; else the
-/// command that writes it, listed below). None for a run on other inputs than the paper's.
+/// the paper's per cell, coloured by the two-sample test the table marks, each side marked `✓`
+/// where its cell keeps the paper's 1 % rule and the cell outlined where the two sides' verdicts
+/// differ; each differing cell links to a replayed trial's page of that cell (one replayed
+/// under this run's settings), else to the commands that write one, listed below. None for a
+/// run on other inputs than the paper's.
 pub(super) fn heatmaps(
     h: &mut String,
     id: &str,
     t: &Table,
     r: &Results,
-    replays: &[(String, bool)],
+    replays: &[Replayed],
     reference: bool,
 ) {
     let Some(&(_, prefix, lead)) = HEATMAPS.iter().find(|(e, _, _)| *e == id) else {
@@ -151,14 +234,11 @@ pub(super) fn heatmaps(
     let meshes = &t.columns[lead..];
     let name = prefix.trim_end_matches(':');
     let mut commands: Vec<(String, String)> = Vec::new();
-    let (seed, sets) = r
-        .run
-        .as_ref()
-        .map_or((None, Vec::new()), |p| (Some(p.seed), p.overrides.clone()));
+    let settings = super::replays::settings_of(r.run.as_ref());
     for (kind, pick) in [("jams", 0), ("disengagements", 1)] {
         let _ = write!(
             h,
-            "<p class=\"table-title\">{} as a heatmap, {kind}: ours | the paper's per cell, coloured by Fisher's exact two-sample test at 5 % (the table's <code>*</code>)</p>\n<div class=\"table-wrap\">\n<table class=\"heatmap\" data-table=\"{}\" data-kind=\"{kind}\">\n<thead><tr><th></th>",
+            "<p class=\"table-title\">{} as a heatmap, {kind}: ours | the paper's per cell, coloured by Fisher's exact two-sample test at 5 % (the table's <code>*</code>); <code>{RULE_MARK}</code> after a side whose cell keeps the paper's 1 % rule (the cells the paper shades), a dashed outline where ours and the paper's verdicts on the rule differ</p>\n<div class=\"table-wrap wide\">\n<table class=\"heatmap\" data-table=\"{}\" data-kind=\"{kind}\">\n<thead><tr><th></th>",
             esc(name),
             esc(id)
         );
@@ -169,44 +249,69 @@ pub(super) fn heatmaps(
         for (label, cells) in &rows {
             let _ = write!(h, "<tr><th>{}</th>", esc(label));
             for cell in cells {
-                let Some((cell_name, j, d)) = cell else {
+                let Some((cell_name, cc)) = cell else {
                     h.push_str("<td class=\"hm none\">-</td>");
                     continue;
                 };
-                let c = if pick == 0 { j } else { d };
+                let c = if pick == 0 { &cc.jams } else { &cc.dis };
                 let paper = c.paper.map_or_else(|| "-".to_owned(), |p| p.to_string());
-                let text = format!("{} | {paper}", c.ours);
+                let mark = |kept: bool| {
+                    if kept {
+                        RULE_MARK.to_string()
+                    } else {
+                        String::new()
+                    }
+                };
+                let text = format!(
+                    "{}{} | {paper}{}",
+                    c.ours,
+                    mark(cc.ours_keep_rule),
+                    mark(cc.paper_keeps_rule == Some(true))
+                );
                 let (class, verdict) = match (c.paper, c.differs) {
+                    _ if !cc.compared => (
+                        "apart",
+                        "not compared: the paper's count comes from other inputs (this mesh ran at our own E. max)",
+                    ),
                     (None, _) => ("none", "no count in the paper"),
                     (Some(_), true) => {
                         ("differs", "differs from the paper's by the two-sample test")
                     }
                     (Some(_), false) => ("consistent", "consistent with the paper's"),
                 };
+                let rule_differs =
+                    cc.compared && cc.paper_keeps_rule.is_some_and(|p| p != cc.ours_keep_rule);
+                let classes = if rule_differs {
+                    format!("hm {class} rule-differs")
+                } else {
+                    format!("hm {class}")
+                };
                 let tip = format!(
-                    "{cell_name} {kind}: ours {}, the paper's {paper}: {verdict}",
-                    c.ours
+                    "{cell_name} {kind}: ours {}, the paper's {paper}: {verdict}; {}",
+                    c.ours,
+                    rule_words(cc)
                 );
                 if c.differs {
-                    let folder = listing_folder(id, cell_name);
-                    let href = if replays.iter().any(|(f, _)| *f == folder) {
-                        format!("{}/table.md", url_part(&folder))
-                    } else {
-                        if !commands.iter().any(|(f, _)| *f == folder) {
-                            commands.push((folder.clone(), cell_name.clone()));
+                    let href = match replayed_trial(id, cell_name, replays, &settings) {
+                        Some(trial) => format!("{}/pair.html", url_part(&trial.folder)),
+                        None => {
+                            let folder = listing_folder(id, cell_name);
+                            if !commands.iter().any(|(f, _)| *f == folder) {
+                                commands.push((folder.clone(), cell_name.clone()));
+                            }
+                            format!("#{}", esc(&folder))
                         }
-                        format!("#{}", esc(&folder))
                     };
                     let _ = write!(
                         h,
-                        "<td class=\"hm {class}\" title=\"{}\"><a href=\"{href}\">{}</a></td>",
+                        "<td class=\"{classes}\" title=\"{}\"><a href=\"{href}\">{}</a></td>",
                         esc(&tip),
                         esc(&text)
                     );
                 } else {
                     let _ = write!(
                         h,
-                        "<td class=\"hm {class}\" title=\"{}\">{}</td>",
+                        "<td class=\"{classes}\" title=\"{}\">{}</td>",
                         esc(&tip),
                         esc(&text)
                     );
@@ -216,30 +321,78 @@ pub(super) fn heatmaps(
         }
         h.push_str("</tbody>\n</table>\n</div>\n");
     }
-    h.push_str("<p class=\"heat-key\"><span class=\"hm consistent\">consistent</span> <span class=\"hm differs\">differs</span> <span class=\"hm none\">no count in the paper</span> Each cell: our count | the paper's. A differing cell links to its replay listing: the trials of that cell that jammed or disengaged.</p>\n");
-    if !commands.is_empty() {
-        let mut flags = String::new();
-        if let Some(seed) = seed {
-            let _ = write!(flags, " --seed {seed}");
-        }
-        for (k, v) in &sets {
+    let _ = writeln!(
+        h,
+        "<p class=\"heat-key\"><span class=\"hm consistent\">consistent</span> <span class=\"hm differs\">differs</span> <span class=\"hm none\">no count in the paper</span> <span class=\"hm apart\">not compared (other inputs)</span> <span class=\"hm consistent rule-differs\">the 1 % rule's verdicts differ</span> Each cell: our count | the paper's; <code>{RULE_MARK}</code>: that side's cell keeps the paper's 1 % rule (at most 2 of 200 trials jammed and at most 2 disengaged). A differing cell links to the page of a replayed trial of that cell, or to the commands that write one.</p>"
+    );
+    replay_commands(h, id, r, &commands, replays, &settings);
+}
+
+/// The commands that replay the differing cells not yet replayed (`commands`: anchor, cell):
+/// the listing of a cell's failed trials and one trial's page, with the failed trials where a
+/// listing under the run's settings is there to read.
+fn replay_commands(
+    h: &mut String,
+    id: &str,
+    r: &Results,
+    commands: &[(String, String)],
+    replays: &[Replayed],
+    settings: &super::replays::Settings,
+) {
+    if commands.is_empty() {
+        return;
+    }
+    let mut flags = String::new();
+    if let Some(p) = &r.run {
+        let _ = write!(flags, " --seed {}", p.seed);
+        for (k, v) in &p.overrides {
             let _ = write!(flags, " --set {k}={v}");
         }
+    }
+    let _ = writeln!(
+        h,
+        "<p class=\"meta\">No trial of these cells replayed yet. For each: the first command lists the cell's trials that failed, the second (a trial from that list for <code>TRIAL</code>) writes that trial's page, <code>replay-{}-&lt;cell&gt;-&lt;trial&gt;/pair.html</code> beside this page, which the cell then links:</p>\n<ul class=\"replay-commands\">",
+        esc(id)
+    );
+    for (folder, cell) in commands {
+        let failed = replays
+            .iter()
+            .find(|x| x.folder == *folder && x.settings.as_ref() == Some(settings))
+            .and_then(|x| super::replays::failed_trials(&x.dir));
+        let trial = failed
+            .as_ref()
+            .and_then(|f| f.first().map(|(t, _)| t.to_string()))
+            .unwrap_or_else(|| "TRIAL".to_owned());
+        let listed = match &failed {
+            Some(f) if !f.is_empty() => {
+                let shown: Vec<String> = f
+                    .iter()
+                    .take(12)
+                    .map(|(t, what)| format!("{t} ({what})"))
+                    .collect();
+                format!(
+                    " Failed trials (from <a href=\"{}/failed-trials.csv\">its listing</a>, {} in all): {}{}.",
+                    url_part(folder),
+                    f.len(),
+                    esc(&shown.join(", ")),
+                    if f.len() > 12 { ", ..." } else { "" }
+                )
+            }
+            _ => String::new(),
+        };
         let _ = writeln!(
             h,
-            "<p class=\"meta\">Listings not written yet; each of these commands writes one to <code>replay-{}-&lt;cell&gt;-failed/</code> beside this page, which the cell then links:</p>\n<ul class=\"replay-commands\">",
-            esc(id)
+            "<li id=\"{}\"><b>{}</b>: <code>cargo xtask replay {} {}{}</code>, then <code>cargo xtask replay {} {} {}{}</code>.{listed}</li>",
+            esc(folder),
+            esc(cell),
+            esc(id),
+            esc(cell),
+            esc(&flags),
+            esc(id),
+            esc(cell),
+            esc(&trial),
+            esc(&flags)
         );
-        for (folder, cell) in &commands {
-            let _ = writeln!(
-                h,
-                "<li id=\"{}\"><code>cargo xtask replay {} {}{}</code></li>",
-                esc(folder),
-                esc(id),
-                esc(cell),
-                esc(&flags)
-            );
-        }
-        h.push_str("</ul>\n");
     }
+    h.push_str("</ul>\n");
 }

@@ -32,8 +32,11 @@ use crate::args::ReportArgs;
 use crate::failure::Failure;
 use crate::provenance::{self, RUN_JSON};
 use crate::shared::Registry;
+use replays::{Replayed, Replays};
 
 mod heatmap;
+mod order;
+mod replays;
 #[cfg(test)]
 #[allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
 mod tests;
@@ -119,7 +122,7 @@ fn bad(path: &Path, field: &str, rule: impl std::fmt::Display) -> Failure {
 
 /// The HTML page for the results under `out`.
 fn build(exps: &Registry, out: &Path, quiet: bool) -> Result<String, Failure> {
-    let (found, replays) = split_replays(scan(out)?);
+    let (found, replays) = replays::split_replays(scan(out)?);
     if found.is_empty() {
         return Err(Failure::Bad(format!(
             "--out: {}: no results (no <id>/tables.json); run `cargo xtask run <id> --out {}` first",
@@ -151,36 +154,9 @@ fn build(exps: &Registry, out: &Path, quiet: bool) -> Result<String, Failure> {
     ids.extend(results.keys().cloned());
     ids.sort();
     ids.dedup();
+    let ids = order::in_paper_order(ids);
     Ok(render(exps, &ids, &results, &replays))
 }
-
-/// The replayed trials among the result folders (`replay-<id>-<cell>-<trial>/`, written by
-/// `cargo xtask replay`), by the experiment they come from, and the other folders. A replay is
-/// linked from its experiment's section (its `pair.html` where it has one), not shown as an
-/// experiment of its own.
-fn split_replays(found: Vec<(String, PathBuf)>) -> (Vec<(String, PathBuf)>, Replays) {
-    let mut replays = Replays::new();
-    let mut rest = Vec::new();
-    for (name, path) in found {
-        let from = name.strip_prefix("replay-").and_then(|r| {
-            experiments::replay::REPLAYABLE
-                .iter()
-                .map(|(id, _)| *id)
-                .find(|id| r.starts_with(&format!("{id}-")))
-        });
-        match from {
-            Some(id) => {
-                let page = path.join("pair.html").is_file();
-                replays.entry(id.to_owned()).or_default().push((name, page));
-            }
-            None => rest.push((name, path)),
-        }
-    }
-    (rest, replays)
-}
-
-/// Replayed trials by experiment id: (folder name, whether it has a `pair.html`).
-type Replays = BTreeMap<String, Vec<(String, bool)>>;
 
 /// The result directories under `out`: `(id, path)` for each visible subdirectory holding a
 /// `tables.json`, sorted by id.
@@ -544,8 +520,21 @@ table.heatmap th { white-space: nowrap; }
 .hm.differs { background: #c0392b; color: #fff; font-weight: 600; }
 .hm.differs a { color: #fff; }
 .hm.none { background: #eeeeee; color: #666; }
+.hm.apart { background: repeating-linear-gradient(135deg, #f4f4f4 0 4px, #e2e2e2 4px 8px); color: #444; }
+.hm.rule-differs { outline: 2px dashed #111; outline-offset: -4px; }
 .heat-key .hm { padding: 0 0.5em; border: 1px solid #c9d3e0; }
-ul.replay-commands { font-size: 0.85em; columns: 2; }
+ul.replay-commands { font-size: 0.85em; }
+ul.replay-commands li { margin: 0.2em 0; }
+.table-wrap.wide { width: calc(100vw - 4em); margin-left: calc(50% - 50vw + 2em); }
+.table-wrap.wide table { font-size: 0.8em; }
+.table-wrap.wide th, .table-wrap.wide td { padding: 0.2em 0.35em; }
+td .paper-part { color: #6b5200; }
+.table-wrap { background: linear-gradient(to right, #fff 30%, rgba(255,255,255,0)) left / 2em 100% no-repeat local,
+  linear-gradient(to left, #fff 30%, rgba(255,255,255,0)) right / 2em 100% no-repeat local,
+  linear-gradient(to right, rgba(0,0,0,0.18), rgba(0,0,0,0)) left / 0.8em 100% no-repeat scroll,
+  linear-gradient(to left, rgba(0,0,0,0.18), rgba(0,0,0,0)) right / 0.8em 100% no-repeat scroll; }
+details.not-run-list { margin-top: 2.5em; border-top: 2px solid #c9d3e0; padding-top: 0.5em; }
+details.not-run-list summary { cursor: pointer; font-weight: 600; color: #a33; }
 ";
 
 /// The whole page.
@@ -591,10 +580,16 @@ appear in columns labelled &ldquo;paper&rdquo; or in parentheses, as in the prin
         let agreement = r
             .and_then(|r| r.agreement)
             .map_or_else(|| "-".to_owned(), |(i, o)| format!("{i} / {o}"));
+        // A stub of an experiment not run sits in the closed list at the end: the link opens it.
+        let anchor = if r.is_some() {
+            format!("exp-{id}")
+        } else {
+            "not-run".to_owned()
+        };
         let _ = writeln!(
             h,
-            "<tr><td><a href=\"#exp-{}\">{}</a></td><td>{}</td><td>{}</td><td class=\"{class}\">{status}</td><td class=\"num\">{}</td><td class=\"num\">{}</td></tr>",
-            esc(id),
+            "<tr><td><a href=\"#{}\">{}</a></td><td>{}</td><td>{}</td><td class=\"{class}\">{status}</td><td class=\"num\">{}</td><td class=\"num\">{}</td></tr>",
+            esc(&anchor),
             esc(id),
             esc(item),
             esc(title),
@@ -604,26 +599,36 @@ appear in columns labelled &ldquo;paper&rdquo; or in parentheses, as in the prin
     }
     h.push_str("</tbody>\n</table>\n</div>\n</nav>\n<main>\n");
 
+    // The experiments that were run, in the paper's order; then, collapsed, those that were not.
     for id in ids {
-        let (title, item) = describe(exps, id);
-        match results.get(id) {
-            None => {
-                let _ = write!(
-                    h,
-                    "<section id=\"exp-{}\" class=\"experiment not-run\">\n<h2>{}: {}</h2>\n\
-<p class=\"meta\">Paper item: {}</p>\n<p class=\"status\">not run</p>\n</section>\n",
-                    esc(id),
-                    esc(id),
-                    esc(title),
-                    esc(item)
-                );
-            }
-            Some(r) => {
-                let listed = replays.get(id.as_str()).map_or(&[][..], Vec::as_slice);
-                section(&mut h, id, title, item, r, listed);
-                replay_links(&mut h, listed);
-            }
+        if let Some(r) = results.get(id) {
+            let (title, item) = describe(exps, id);
+            let listed = replays.get(id.as_str()).map_or(&[][..], Vec::as_slice);
+            section(&mut h, id, title, item, r, listed);
+            replay_links(&mut h, listed);
         }
+    }
+    let not_run: Vec<&String> = ids.iter().filter(|id| !results.contains_key(*id)).collect();
+    if !not_run.is_empty() {
+        let _ = writeln!(
+            h,
+            "<details id=\"not-run\" class=\"not-run-list\">\n<summary>Not run: {} experiment{} (<code>cargo xtask run ID --out DIR</code>, then <code>cargo xtask report --out DIR</code> again)</summary>",
+            not_run.len(),
+            if not_run.len() == 1 { "" } else { "s" }
+        );
+        for id in not_run {
+            let (title, item) = describe(exps, id);
+            let _ = write!(
+                h,
+                "<section id=\"exp-{}\" class=\"experiment not-run\">\n<h2>{}: {}</h2>\n\
+<p class=\"meta\">Paper item: {}</p>\n<p class=\"status\">not run</p>\n</section>\n",
+                esc(id),
+                esc(id),
+                esc(title),
+                esc(item)
+            );
+        }
+        h.push_str("</details>\n");
     }
     let _ = write!(
         h,
@@ -643,13 +648,13 @@ fn describe<'a>(exps: &'a Registry, id: &str) -> (&'a str, &'a str) {
 
 /// Links to an experiment's replayed trials (after its section): each trial's moving page, or
 /// its folder when it has none.
-fn replay_links(h: &mut String, replays: &[(String, bool)]) {
+fn replay_links(h: &mut String, replays: &[Replayed]) {
     if replays.is_empty() {
         return;
     }
     let links: Vec<String> = replays
         .iter()
-        .map(|(folder, page)| {
+        .map(|Replayed { folder, page, .. }| {
             let target = if *page {
                 format!("{}/pair.html", url_part(folder))
             } else {
@@ -665,14 +670,7 @@ fn replay_links(h: &mut String, replays: &[(String, bool)]) {
     );
 }
 
-fn section(
-    h: &mut String,
-    id: &str,
-    title: &str,
-    item: &str,
-    r: &Results,
-    replays: &[(String, bool)],
-) {
+fn section(h: &mut String, id: &str, title: &str, item: &str, r: &Results, replays: &[Replayed]) {
     // The registered title states the defaults ("200 trials per cell"); a run that changed
     // them is headed by its first table's title, which states what was run.
     let changed = r.run.as_ref().is_some_and(|p| !p.overrides.is_empty());
@@ -803,7 +801,13 @@ against the paper (<code>*</code>), no agreement figures and no heatmap are show
 fn without_marks(title: &str) -> String {
     match title.find("; * where") {
         Some(i) => {
-            let end = title[i..].find(" [").map_or(title.len(), |j| i + j);
+            // Up to the next phrase of the title that is no test's mark (the 1 % rule's `✓`
+            // stays: it judges each side on its own) or the next bracket.
+            let end = [" [", "; ✓"]
+                .iter()
+                .filter_map(|p| title[i + 1..].find(p).map(|j| i + 1 + j))
+                .min()
+                .unwrap_or(title.len());
             format!("{}{}", &title[..i], &title[end..])
         }
         None => title.to_owned(),
@@ -817,6 +821,9 @@ fn states_agreement(note: &str) -> bool {
         || note.contains("counted as agreement")
         || note.contains("agree with the paper")
 }
+
+/// A table with more columns than this is drawn the window's width ([`table`]).
+const WIDE_COLUMNS: usize = 10;
 
 /// One table. With `reference` (a run on other inputs than the paper's) its cells lose their
 /// `*` marks, its title the phrase on them, and its notes on agreement are labelled for
@@ -832,10 +839,14 @@ fn table(h: &mut String, t: &Table, reference: bool) {
     } else {
         t.title.clone()
     };
+    // A table of many columns (the 15 meshes) takes the window's width, and its `ours (paper)`
+    // cells break before the paper's part, so that it fits a common screen.
+    let wide = t.columns.len() > WIDE_COLUMNS;
     let _ = write!(
         h,
-        "<p class=\"table-title\">{}</p>\n<div class=\"table-wrap\">\n<table>\n<thead><tr>",
-        esc(&title)
+        "<p class=\"table-title\">{}</p>\n<div class=\"table-wrap{}\">\n<table>\n<thead><tr>",
+        esc(&title),
+        if wide { " wide" } else { "" }
     );
     for (c, p) in t.columns.iter().zip(&paper) {
         let class = if *p { " class=\"paper\"" } else { "" };
@@ -859,10 +870,18 @@ fn table(h: &mut String, t: &Table, reference: bool) {
             if paper.get(i).copied().unwrap_or(false) {
                 classes.push("paper");
             }
+            let text = match cell.split_once(" (") {
+                Some((ours, theirs)) if wide => format!(
+                    "{}<br><span class=\"paper-part\">({})</span>",
+                    esc(ours),
+                    esc(theirs)
+                ),
+                _ => esc(cell),
+            };
             if classes.is_empty() {
-                let _ = write!(h, "<td>{}</td>", esc(cell));
+                let _ = write!(h, "<td>{text}</td>");
             } else {
-                let _ = write!(h, "<td class=\"{}\">{}</td>", classes.join(" "), esc(cell));
+                let _ = write!(h, "<td class=\"{}\">{text}</td>", classes.join(" "));
             }
         }
         h.push_str("</tr>\n");

@@ -1,6 +1,6 @@
 //! The report page's tests: results read, bad results refused, the page and its heatmaps.
 
-use super::heatmap::{Count, count_cell, heat_rows, listing_folder};
+use super::heatmap::{Count, CountCell, count_cell, heat_rows, listing_folder};
 use super::*;
 use registry::{Context, Experiment, OutputFile, Report, RunError};
 
@@ -249,17 +249,64 @@ fn count_cells_are_read_as_printed() {
         paper,
         differs,
     };
+    let cell = |jams, dis, ours_keep_rule, paper_keeps_rule, compared| CountCell {
+        jams,
+        dis,
+        ours_keep_rule,
+        paper_keeps_rule,
+        compared,
+    };
     assert_eq!(
         count_cell("141*/0 (168/0)"),
-        Some((c(141, Some(168), true), c(0, Some(0), false)))
+        Some(cell(
+            c(141, Some(168), true),
+            c(0, Some(0), false),
+            false,
+            Some(false),
+            true
+        ))
     );
     assert_eq!(
         count_cell("200/3* (200/189)"),
-        Some((c(200, Some(200), false), c(3, Some(189), true)))
+        Some(cell(
+            c(200, Some(200), false),
+            c(3, Some(189), true),
+            false,
+            Some(false),
+            true
+        ))
+    );
+    // Both sides keep the 1 % rule: each marked.
+    assert_eq!(
+        count_cell("2/0✓ (1/0✓)"),
+        Some(cell(
+            c(2, Some(1), false),
+            c(0, Some(0), false),
+            true,
+            Some(true),
+            true
+        ))
+    );
+    // Ours keeps it, the paper's does not; the cell ran on other inputs than the paper's.
+    assert_eq!(
+        count_cell("0/0✓ (3/0)†"),
+        Some(cell(
+            c(0, Some(3), false),
+            c(0, Some(0), false),
+            true,
+            Some(false),
+            false
+        ))
     );
     assert_eq!(
         count_cell("5/0 (-/-)"),
-        Some((c(5, None, false), c(0, None, false)))
+        Some(cell(
+            c(5, None, false),
+            c(0, None, false),
+            false,
+            None,
+            true
+        ))
     );
     for other in ["-", "0.055 (0.045)*", "< 0.1 (0.2)", "1/2", ""] {
         assert_eq!(count_cell(other), None, "{other}");

@@ -1,0 +1,84 @@
+//! The order of the report's sections: the paper's items in the order the paper gives them,
+//! then the studies beyond it, then anything else by id.
+
+/// The experiments that reproduce an item of the paper, in the order the paper presents them:
+/// section 2 (Figures 2 and 3, and any pair of gears), section 3 (Figure 4, Table 1), section 4
+/// (Table 2, Figure 5), section 5 (Tables 3-5, Figure 6, Table 6, the 30-run study), then
+/// Appendix II (Figure IV, the clearance limits, Figures V_A and V_B, Table I).
+pub(super) const PAPER_ORDER: [&str; 17] = [
+    "fig2",
+    "fig3",
+    "pair",
+    "fig4",
+    "table1",
+    "table2",
+    "fig5",
+    "table3",
+    "table4",
+    "table5",
+    "fig6",
+    "table6",
+    "failure",
+    "figIV",
+    "clearance",
+    "fig-events",
+    "tableI",
+];
+
+/// The studies beyond the paper, in the order the README discusses them.
+pub(super) const BEYOND_ORDER: [&str; 8] = [
+    "tolerance",
+    "clearance-design",
+    "lunar-anomaly",
+    "sensitivity",
+    "event-rules",
+    "jam-readings",
+    "sigma-causes",
+    "contact-tolerance",
+];
+
+/// `ids` in the report's order: [`PAPER_ORDER`], then [`BEYOND_ORDER`], then any other (an
+/// experiment added since, a folder of results no experiment of this build owns) by id.
+pub(super) fn in_paper_order(mut ids: Vec<String>) -> Vec<String> {
+    let rank = |id: &str| {
+        PAPER_ORDER
+            .iter()
+            .chain(BEYOND_ORDER.iter())
+            .position(|p| *p == id)
+            .unwrap_or(usize::MAX)
+    };
+    ids.sort_by(|a, b| rank(a).cmp(&rank(b)).then_with(|| a.cmp(b)));
+    ids
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, reason = "tests")]
+    use super::*;
+
+    /// Every registered experiment has its place in the report's order, and none is listed
+    /// twice; a folder no experiment of this build owns lands after them, by id.
+    #[test]
+    fn every_paper_item_has_its_place() {
+        experiments::link();
+        let exps = registry::experiments().unwrap();
+        let listed: Vec<&str> = PAPER_ORDER.iter().chain(&BEYOND_ORDER).copied().collect();
+        let mut unique = listed.clone();
+        unique.sort_unstable();
+        unique.dedup();
+        assert_eq!(unique.len(), listed.len(), "an id listed twice");
+        // Every experiment of this build has its place: one that reproduces an item of the
+        // paper among the paper's, any other among the studies beyond it.
+        for (id, e) in &exps {
+            assert!(listed.contains(id), "{id} ({}) has no place", e.paper_item);
+        }
+        let ids: Vec<String> = ["zzz-new", "table3", "event-rules", "fig2", "tableI"]
+            .iter()
+            .map(|s| (*s).to_owned())
+            .collect();
+        assert_eq!(
+            in_paper_order(ids),
+            ["fig2", "table3", "tableI", "event-rules", "zzz-new"]
+        );
+    }
+}
