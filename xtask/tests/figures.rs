@@ -10,47 +10,8 @@
 mod support;
 
 use std::path::Path;
-use std::process::{Command, Stdio};
-use std::time::Duration;
 
-use support::{Scratch, chromium_or_skip, stderr, xtask};
-
-/// Runs `chrome` headless on `url` with `extra` arguments, within 90 s; its stdout.
-fn headless(chrome: &Path, profile: &Path, extra: &[String], url: &str) -> String {
-    let child = Command::new(chrome)
-        .args([
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--no-first-run",
-            "--disable-background-networking",
-            "--disable-component-update",
-            "--disable-sync",
-            "--hide-scrollbars",
-        ])
-        .args(extra)
-        .arg(format!("--user-data-dir={}", profile.display()))
-        .arg(url)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap();
-    // Read while Chromium writes (a full pipe would stall it), with a time limit.
-    let pid = child.id();
-    let (done, got) = std::sync::mpsc::channel();
-    std::thread::spawn(move || {
-        let _ = done.send(child.wait_with_output());
-    });
-    let out = got
-        .recv_timeout(Duration::from_secs(90))
-        .unwrap_or_else(|_| {
-            let _ = Command::new("kill").arg(pid.to_string()).status();
-            panic!("chromium took more than 90 s")
-        })
-        .unwrap();
-    assert!(out.status.success(), "chromium failed on {url}");
-    String::from_utf8(out.stdout).unwrap()
-}
+use support::{Scratch, browser, chromium_or_skip, stderr, xtask};
 
 /// The experiments that write figures, with settings that make them quick (a few seconds in
 /// all); `contact-tolerance` runs on its own, as its `samples` means something else in `figIV`.
@@ -207,31 +168,6 @@ fn check_page(out: &Path, files: &[String]) -> String {
     page
 }
 
-/// A screenshot that is not blank: many colours, and some strongly coloured pixels.
-fn check_screenshot(png: &Path) {
-    let bytes = std::fs::read(png).unwrap();
-    let mut decoder = png::Decoder::new(std::io::Cursor::new(bytes));
-    decoder.set_transformations(png::Transformations::normalize_to_color8());
-    let mut reader = decoder.read_info().unwrap();
-    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
-    let info = reader.next_frame(&mut buf).unwrap();
-    let channels = info.color_type.samples();
-    let mut colours = std::collections::HashSet::new();
-    let mut chromatic = 0u64;
-    for px in buf[..info.buffer_size()].chunks(channels) {
-        colours.insert((px[0], px[1], px[2]));
-        if px[0].max(px[1]).max(px[2]) - px[0].min(px[1]).min(px[2]) > 120 {
-            chromatic += 1;
-        }
-    }
-    assert!(
-        colours.len() >= 32,
-        "blank screenshot: {} colours",
-        colours.len()
-    );
-    assert!(chromatic >= 500, "no coloured series: {chromatic} pixels");
-}
-
 #[test]
 fn every_chart_gives_each_series_its_own_style_and_keeps_its_legend_off_the_data() {
     let Some(chrome) = chromium_or_skip() else {
@@ -279,12 +215,7 @@ fn every_chart_gives_each_series_its_own_style_and_keeps_its_legend_off_the_data
     std::fs::write(s.0.join("figures.html"), check_page(&out, &files)).unwrap();
     s.keep(true); // Kept while checking, for a failure to be looked at.
     let url = format!("file://{}", s.0.join("figures.html").display());
-    let dom = headless(
-        &chrome,
-        &s.0.join(".chromium-dom"),
-        &["--dump-dom".to_owned()],
-        &url,
-    );
+    let dom = browser::dump_dom(&chrome, &s.0.join(".chromium-dom"), &url);
     assert!(
         dom.contains("<p id=\"status\">done</p>"),
         "the check script did not finish (see {})",
@@ -322,15 +253,13 @@ fn every_chart_gives_each_series_its_own_style_and_keeps_its_legend_off_the_data
     }
     assert!(charts >= 20, "{charts} charts checked");
     let png = s.0.join("figures.png");
-    headless(
+    browser::screenshot(
         &chrome,
         &s.0.join(".chromium-shot"),
-        &[
-            "--window-size=1100,6000".to_owned(),
-            format!("--screenshot={}", png.display()),
-        ],
         &url,
+        &png,
+        (1100, 6000),
     );
-    check_screenshot(&png);
+    browser::Pixels::read(&png).assert_not_blank("figures.png", 32, 500);
     s.keep(false);
 }

@@ -7,48 +7,13 @@
 
 mod support;
 
-use std::path::PathBuf;
-use std::process::{Command, Stdio};
-use std::time::Duration;
+use std::path::Path;
 
-use support::{Scratch, chromium_or_skip, stderr, xtask};
+use support::{Scratch, browser, chromium_or_skip, stderr, xtask};
 
 /// The DOM after the page's script ran (`--dump-dom`).
-fn dom(chrome: &PathBuf, dir: &std::path::Path, url: &str) -> String {
-    let child = Command::new(chrome)
-        .args([
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--no-first-run",
-            "--disable-background-networking",
-            "--disable-component-update",
-            "--disable-sync",
-            "--dump-dom",
-        ])
-        .arg(format!(
-            "--user-data-dir={}",
-            dir.join(".chromium-profile").display()
-        ))
-        .arg(url)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap();
-    // Read the DOM while Chromium writes it (a full pipe would stall it), with a time limit.
-    let pid = child.id();
-    let (done, got) = std::sync::mpsc::channel();
-    std::thread::spawn(move || {
-        let _ = done.send(child.wait_with_output());
-    });
-    let out = got
-        .recv_timeout(Duration::from_secs(90))
-        .unwrap_or_else(|_| {
-            let _ = Command::new("kill").arg(pid.to_string()).status();
-            panic!("chromium took more than 90 s")
-        })
-        .unwrap();
-    String::from_utf8(out.stdout).unwrap()
+fn dom(chrome: &Path, dir: &Path, url: &str) -> String {
+    browser::dump_dom(chrome, &dir.join(".chromium-profile"), url)
 }
 
 /// A mesh far enough apart that its tips slip past each other: a run with events.
@@ -59,37 +24,11 @@ const SLIPPING: &str = "(
 )";
 
 /// Headless screenshot of `url` into `png`, which must then be a picture with more than one colour.
-fn screenshot_not_blank(chrome: &PathBuf, dir: &std::path::Path, url: &str, png: &std::path::Path) {
-    let status = Command::new(chrome)
-        .args([
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--no-first-run",
-            "--hide-scrollbars",
-            "--window-size=960,1000",
-        ])
-        .arg(format!(
-            "--user-data-dir={}",
-            dir.join(".chromium-shot").display()
-        ))
-        .arg(format!("--screenshot={}", png.display()))
-        .arg(url)
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .status()
-        .unwrap();
-    assert!(status.success(), "chromium failed to screenshot {url}");
-    let bytes = std::fs::read(png).unwrap();
-    let mut decoder = png::Decoder::new(std::io::Cursor::new(bytes));
-    decoder.set_transformations(png::Transformations::normalize_to_color8());
-    let mut reader = decoder.read_info().unwrap();
-    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
-    let info = reader.next_frame(&mut buf).unwrap();
-    let pixels = &buf[..info.buffer_size()];
-    let first = &pixels[..3];
-    let differing = pixels.chunks(3).filter(|p| p != &first).count();
-    assert!(differing > 1000, "the screenshot of {url} is blank");
+fn screenshot_not_blank(chrome: &Path, dir: &Path, url: &str, png: &Path) {
+    browser::screenshot(chrome, &dir.join(".chromium-shot"), url, png, (960, 1000));
+    let pixels = browser::Pixels::read(png);
+    assert!(pixels.ink() > 1000, "the screenshot of {url} is blank");
+    pixels.assert_not_blank(url, 8, 0);
 }
 
 /// The value of attribute `name` in the tag that starts at `tag`.

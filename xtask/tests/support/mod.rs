@@ -6,6 +6,7 @@
     reason = "each test file uses its own subset of these helpers"
 )]
 
+pub mod browser;
 pub mod hostile;
 
 use std::collections::BTreeMap;
