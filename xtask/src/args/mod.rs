@@ -552,11 +552,14 @@ pub struct ReportArgs {
     pub out: Option<PathBuf>,
     /// `-q` / `--quiet`: no note on stderr.
     pub quiet: bool,
+    /// `--bundle FILE`: also write one `.tar.gz` of the results and their inputs.
+    pub bundle: Option<PathBuf>,
 }
 
-/// Parses the arguments of `report`: `--out DIR` and `-q`.
+/// Parses the arguments of `report`: `--out DIR`, `--bundle FILE` and `-q`.
 fn parse_report(args: &[String]) -> Result<ReportArgs, ArgError> {
     let mut out = None;
+    let mut bundle = None;
     let mut quiet = false;
     let mut it = args.iter();
     while let Some(arg) = it.next() {
@@ -564,27 +567,32 @@ fn parse_report(args: &[String]) -> Result<ReportArgs, ArgError> {
             quiet = true;
             continue;
         }
-        if out.is_some() && (arg == "--out" || arg.starts_with("--out=")) {
-            return Err(ArgError::Usage("--out given twice".into()));
-        }
-        let value = match arg.split_once('=') {
-            Some(("--out", v)) => v.to_owned(),
-            None if arg == "--out" => match it.next() {
-                Some(v) if !v.starts_with("--") => v.clone(),
-                _ => return Err(ArgError::Usage("--out needs a value".into())),
+        let (flag, value) = match arg.split_once('=') {
+            Some((f @ ("--out" | "--bundle"), v)) => (f, v.to_owned()),
+            None if arg == "--out" || arg == "--bundle" => match it.next() {
+                Some(v) if !v.starts_with("--") => (arg.as_str(), v.clone()),
+                _ => return Err(ArgError::Usage(format!("{arg} needs a value"))),
             },
             _ => {
                 return Err(ArgError::Usage(format!(
-                    "report takes only --out DIR and -q (got `{arg}`)"
+                    "report takes only --out DIR, --bundle FILE and -q (got `{arg}`)"
                 )));
             }
         };
-        if value.is_empty() {
-            return Err(ArgError::Value("--out: must not be empty".into()));
+        let slot = if flag == "--out" {
+            &mut out
+        } else {
+            &mut bundle
+        };
+        if slot.is_some() {
+            return Err(ArgError::Usage(format!("{flag} given twice")));
         }
-        out = Some(PathBuf::from(value));
+        if value.is_empty() {
+            return Err(ArgError::Value(format!("{flag}: must not be empty")));
+        }
+        *slot = Some(PathBuf::from(value));
     }
-    Ok(ReportArgs { out, quiet })
+    Ok(ReportArgs { out, quiet, bundle })
 }
 
 /// `fuzz`'s run time when neither `--seconds` nor `--execs` is given.

@@ -244,15 +244,29 @@ fn report_arguments() {
         parse_report(&["--out=x".into()]).unwrap(),
         ReportArgs {
             out: Some(PathBuf::from("x")),
-            quiet: false
+            quiet: false,
+            bundle: None,
         }
     );
     assert_eq!(
         parse_report(&["-q".into(), "--out".into(), "y".into()]).unwrap(),
         ReportArgs {
             out: Some(PathBuf::from("y")),
-            quiet: true
+            quiet: true,
+            bundle: None,
         }
+    );
+    assert_eq!(
+        parse_report(&["--bundle".into(), "s.tar.gz".into()]).unwrap(),
+        ReportArgs {
+            out: None,
+            quiet: false,
+            bundle: Some(PathBuf::from("s.tar.gz")),
+        }
+    );
+    assert_eq!(
+        parse_report(&["--bundle=a".into(), "--bundle=b".into()]).unwrap_err(),
+        ArgError::Usage("--bundle given twice".into())
     );
     assert_eq!(
         parse_report(&["--out=x".into(), "--out=y".into()]).unwrap_err(),

@@ -34,6 +34,9 @@ use crate::provenance::{self, RUN_JSON};
 use crate::shared::Registry;
 use replays::{Replayed, Replays};
 
+mod bundle;
+#[cfg(test)]
+use bundle::archive_path as bundle_path_of;
 mod heatmap;
 mod order;
 mod replays;
@@ -63,6 +66,12 @@ pub fn command(args: &ReportArgs) -> Result<(), Failure> {
     crate::shared::write_atomically(&index, &page)?;
     if !quiet {
         eprintln!("report: {}", index.display());
+    }
+    if let Some(file) = &args.bundle {
+        bundle::write(&out, file)?;
+        if !quiet {
+            eprintln!("bundle: {}", file.display());
+        }
     }
     Ok(())
 }

@@ -198,6 +198,7 @@ fn out_at(dir: &Path) -> ReportArgs {
     ReportArgs {
         out: Some(dir.to_path_buf()),
         quiet: false,
+        bundle: None,
     }
 }
 
@@ -368,4 +369,69 @@ fn runs_on_other_inputs_show_no_marks_and_no_agreement_as_a_check() {
     table(&mut h, &t, false);
     assert!(h.contains("141*/0 (168/0)"));
     assert!(!h.contains("For reference only"));
+}
+
+/// The names and contents of the files in the gzipped tar archive `file`.
+fn archive_entries(file: &Path) -> Vec<(String, Vec<u8>)> {
+    use std::io::Read as _;
+    let gz = flate2::read::GzDecoder::new(fs::File::open(file).unwrap());
+    let mut tar = tar::Archive::new(gz);
+    tar.entries()
+        .unwrap()
+        .map(|e| {
+            let mut e = e.unwrap();
+            let name = e.path().unwrap().to_string_lossy().into_owned();
+            let mut bytes = Vec::new();
+            e.read_to_end(&mut bytes).unwrap();
+            (name, bytes)
+        })
+        .filter(|(n, _)| !n.ends_with('/'))
+        .collect()
+}
+
+/// `report --bundle FILE` archives the page, every experiment's folder and every input file
+/// a `run.json` names (checked against its SHA-256); an input changed since the run is refused
+/// naming both files, and nothing is written.
+#[test]
+fn bundle_holds_results_and_inputs_and_refuses_a_changed_input() {
+    let dir = Scratch::new("bundle");
+    let out = dir.0.join("results");
+    write_a(&out);
+    let gearing = dir.0.join("gearing.ron");
+    fs::write(&gearing, "(gears: [])\n").unwrap();
+    let run_json = out.join("a").join("run.json");
+    let mut v: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(&run_json).unwrap()).unwrap();
+    v["inputs"] = serde_json::json!([{
+        "role": "gearing",
+        "path": gearing.display().to_string(),
+        "sha256": crate::provenance::sha256(b"(gears: [])\n"),
+    }]);
+    fs::write(&run_json, v.to_string()).unwrap();
+    let file = dir.0.join("supplement.tar.gz");
+    let args = ReportArgs {
+        bundle: Some(file.clone()),
+        ..out_at(&out)
+    };
+    command(&args).unwrap();
+    let entries = archive_entries(&file);
+    let names: Vec<&str> = entries.iter().map(|(n, _)| n.as_str()).collect();
+    assert!(names.contains(&"results/index.html"), "{names:?}");
+    assert!(names.contains(&"results/a/run.json"), "{names:?}");
+    assert!(names.contains(&"results/a/tables.json"), "{names:?}");
+    let input = format!("inputs/{}", super::bundle_path_of(&gearing));
+    let (_, bytes) = entries.iter().find(|(n, _)| *n == input).unwrap();
+    assert_eq!(bytes, b"(gears: [])\n");
+
+    // The input changed since the run: refused, the earlier archive left as it was.
+    fs::write(&gearing, "(gears: [1])\n").unwrap();
+    let before = fs::read(&file).unwrap();
+    let Err(Failure::Bad(m)) = command(&args) else {
+        panic!("a changed input must be refused")
+    };
+    assert!(
+        m.contains("run.json") && m.contains("gearing.ron") && m.contains("changed"),
+        "{m}"
+    );
+    assert_eq!(fs::read(&file).unwrap(), before);
 }
