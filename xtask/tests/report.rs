@@ -11,11 +11,9 @@
 #![allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
 
 mod support;
-use support::{Scratch, chromium, stderr, stdout, xtask};
+use support::{Scratch, browser, chromium, stderr, stdout, xtask};
 
 /// The cheap experiments whose results the page is built from.
 const RUN: [&str; 2] = ["fig2", "fig3"];
@@ -111,93 +109,33 @@ fn check_page(out: &Path, run: &[&str]) {
 /// Takes a 1280x4000 headless screenshot of `out/index.html` into `out/report.png`.
 fn screenshot(chrome: &Path, out: &Path) -> PathBuf {
     let png = out.join("report.png");
-    let log = std::fs::File::create(out.join("chromium.log")).unwrap();
-    let mut child = Command::new(chrome)
-        .args([
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--disable-quic",
-            "--no-first-run",
-            "--disable-background-networking",
-            "--disable-component-update",
-            "--disable-sync",
-            "--hide-scrollbars",
-            "--window-size=1280,4000",
-        ])
-        .arg(format!(
-            "--user-data-dir={}",
-            out.join(".chromium-profile").display()
-        ))
-        .arg(format!("--screenshot={}", png.display()))
-        .arg(format!("file://{}", out.join("index.html").display()))
-        .stdout(Stdio::null())
-        .stderr(log)
-        .spawn()
-        .unwrap();
-    let start = Instant::now();
-    loop {
-        if let Some(status) = child.try_wait().unwrap() {
-            assert!(
-                status.success(),
-                "chromium failed ({status}); see {}",
-                out.join("chromium.log").display()
-            );
-            break;
-        }
-        if start.elapsed() > Duration::from_secs(90) {
-            let _ = child.kill();
-            let _ = child.wait();
-            panic!("chromium took more than 90 s");
-        }
-        std::thread::sleep(Duration::from_millis(100));
-    }
+    let url = format!("file://{}", out.join("index.html").display());
+    browser::screenshot(
+        chrome,
+        &out.join(".chromium-profile"),
+        &url,
+        &png,
+        (1280, 4000),
+    );
     png
 }
 
 /// The screenshot is a real page: many colours, a fair share of ink, and coloured plot lines.
 fn check_png(png: &Path) {
-    let bytes = std::fs::read(png).unwrap();
-    assert!(!bytes.is_empty(), "{} is empty", png.display());
-    let mut decoder = png::Decoder::new(std::io::Cursor::new(bytes));
-    decoder.set_transformations(png::Transformations::normalize_to_color8());
-    let mut reader = decoder.read_info().unwrap();
-    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
-    let info = reader.next_frame(&mut buf).unwrap();
-    let channels = match info.color_type {
-        png::ColorType::Rgb => 3,
-        png::ColorType::Rgba => 4,
-        other => panic!("unexpected colour type {other:?}"),
-    };
-    assert!(info.width >= 1000 && info.height >= 1000, "{info:?}");
-    let mut colours = std::collections::HashSet::new();
-    let (mut ink, mut chromatic, mut total) = (0u64, 0u64, 0u64);
-    for row in buf.chunks(info.line_size).take(info.height as usize) {
-        for px in row[..info.width as usize * channels].chunks(channels) {
-            let (r, g, b) = (px[0], px[1], px[2]);
-            colours.insert((r, g, b));
-            total += 1;
-            if u16::from(r) + u16::from(g) + u16::from(b) < 600 {
-                ink += 1;
-            }
-            if r.max(g).max(b) - r.min(g).min(b) > 120 {
-                chromatic += 1;
-            }
-        }
-    }
+    let pixels = browser::Pixels::read(png);
     assert!(
-        colours.len() >= 32,
-        "blank screenshot: {} colours",
-        colours.len()
+        pixels.width >= 1000 && pixels.height >= 1000,
+        "{}x{}",
+        pixels.width,
+        pixels.height
     );
+    let total = pixels.rgb.len();
     assert!(
-        ink * 100 >= total,
-        "blank screenshot: {ink} of {total} pixels are not near white"
+        pixels.ink() * 100 >= total,
+        "blank screenshot: {} of {total} pixels are not near white",
+        pixels.ink()
     );
-    assert!(
-        chromatic >= 500,
-        "no plot lines in the screenshot: {chromatic} strongly coloured pixels"
-    );
+    pixels.assert_not_blank("report.png", 32, 500);
 }
 
 #[test]
@@ -361,7 +299,21 @@ fn per_mesh_tables_show_as_heatmaps_linking_differing_cells_to_their_replays() {
         ],
         &[],
     );
-    // B/m3-e3 has been replayed: its listing is there to link; D/b2-c1 has not.
+    // B/m3-e3 has been replayed, trial 7 of it under the table's settings, so its cell links
+    // to that trial's page; D/b2-c1 has not, so its cell links to the command that lists it.
+    let trial = out.join("replay-table3-B-m3-e3-7");
+    std::fs::create_dir_all(&trial).unwrap();
+    std::fs::write(trial.join("pair.html"), "<html></html>\n").unwrap();
+    std::fs::write(
+        trial.join("tables.json"),
+        serde_json::json!({"tables": []}).to_string(),
+    )
+    .unwrap();
+    std::fs::write(
+        trial.join("run.json"),
+        serde_json::json!({"id": "table3", "seed": 2025, "overrides": {}}).to_string(),
+    )
+    .unwrap();
     let listing = out.join("replay-table3-B-m3-e3-failed");
     std::fs::create_dir_all(&listing).unwrap();
     std::fs::write(listing.join("table.md"), "listing\n").unwrap();
@@ -400,8 +352,11 @@ fn per_mesh_tables_show_as_heatmaps_linking_differing_cells_to_their_replays() {
         2,
         "jams and disengagements"
     );
-    assert!(t3.contains("<a href=\"replay-table3-B-m3-e3-failed/table.md\">141 | 168</a>"));
-    assert!(t3.contains("<li id=\"replay-table3-D-b2-c1-failed\"><code>cargo xtask replay table3 D/b2-c1 --seed 2025</code></li>"), "{t3}");
+    assert!(
+        t3.contains("<a href=\"replay-table3-B-m3-e3-7/pair.html\">141 | 168</a>"),
+        "{t3}"
+    );
+    assert!(t3.contains("<li id=\"replay-table3-D-b2-c1-failed\"><b>D/b2-c1</b>: <code>cargo xtask replay table3 D/b2-c1 --seed 2025</code>"), "{t3}");
     let t_i = section("tableI");
     assert!(
         !t_i.contains("class=\"heatmap\""),
@@ -447,41 +402,15 @@ fn per_mesh_tables_show_as_heatmaps_linking_differing_cells_to_their_replays() {
         ),
     );
     std::fs::write(out.join("check.html"), checked).unwrap();
-    let child = Command::new(&chrome)
-        .args([
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--no-first-run",
-            "--disable-background-networking",
-            "--disable-component-update",
-            "--disable-sync",
-            "--hide-scrollbars",
-            "--window-size=1280,4000",
-            "--dump-dom",
-        ])
-        .arg(format!(
-            "--user-data-dir={}",
-            out.join(".chromium-heat").display()
-        ))
-        .arg(format!("file://{}", out.join("check.html").display()))
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap();
-    let pid = child.id();
-    let (done, got) = std::sync::mpsc::channel();
-    std::thread::spawn(move || {
-        let _ = done.send(child.wait_with_output());
-    });
-    let dom = got
-        .recv_timeout(Duration::from_secs(90))
-        .unwrap_or_else(|_| {
-            let _ = Command::new("kill").arg(pid.to_string()).status();
-            panic!("chromium took more than 90 s")
-        })
-        .unwrap();
-    let dom = String::from_utf8(dom.stdout).unwrap();
+    let dom = browser::headless(
+        &chrome,
+        &out.join(".chromium-heat"),
+        &[
+            "--window-size=1280,4000".to_owned(),
+            "--dump-dom".to_owned(),
+        ],
+        &format!("file://{}", out.join("check.html").display()),
+    );
     assert!(
         dom.contains("<p id=\"heat-status\">done</p>"),
         "script did not finish"
