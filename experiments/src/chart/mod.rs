@@ -794,8 +794,10 @@ fn marks_svg(
         return String::new();
     }
     let mut s = String::from("<g class=\"marks\" font-family=\"sans-serif\" font-size=\"11\">\n");
-    let band = (bottom - top) * MARK_BAND / (1.0 + 0.1 + MARK_BAND);
-    let row_h = (band / 4.0).max(10.0);
+    // Rows as tall as the numbers' 11 px type and its line gap, so that rows never overlap;
+    // the ticks hang below the three rows.
+    let row_h = 14.0;
+    let band = ((bottom - top) * MARK_BAND / (1.0 + 0.1 + MARK_BAND)).max(3.0 * row_h + 8.0);
     let mut order: Vec<&Mark> = marks.iter().filter(|m| m.x.is_finite()).collect();
     order.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.number.cmp(&b.number)));
     // The right end of the last number placed in each row.
@@ -812,8 +814,9 @@ fn marks_svg(
             px(top + band)
         );
         let text = m.number.to_string();
-        let half = 3.4 * text.len() as f64 + 1.0;
-        if let Some(r) = rows.iter().position(|&end| x - half > end + 2.0) {
+        // Half the number's width at 11 px (digits about 6.5 px wide), with a margin.
+        let half = 3.4 * text.len() as f64 + 1.5;
+        if let Some(r) = rows.iter().position(|&end| x - half > end + 3.0) {
             rows[r] = x + half;
             let _ = writeln!(
                 s,

@@ -1,0 +1,134 @@
+//! In a real browser: the Theoretical Difference plot of a run with many events stays readable
+//! (every event ticked, its numbers apart from one another and inside the picture), and an
+//! idle start's picture shows the gap it is, with no contact ring.
+
+mod support;
+
+use std::path::Path;
+
+use support::{Scratch, browser, chromium_or_skip, stderr, xtask};
+
+/// Lays out the inline SVG and reports what a reader sees: the events ticked, the numbers
+/// drawn, numbers that overlap one another, numbers outside the picture, and for an event
+/// picture its rings, its dashed gap and the gap's ends against the two tip dots.
+const SCRIPT: &str = r#"
+const svg = document.querySelector("svg");
+const box = svg.getBoundingClientRect();
+const nums = [...svg.querySelectorAll("text.mark-number")].map(t => t.getBoundingClientRect());
+let overlaps = 0, outside = 0;
+nums.forEach((a, i) => {
+  if (a.left < box.left || a.right > box.right || a.top < box.top || a.bottom > box.bottom) outside++;
+  nums.slice(i + 1).forEach(b => {
+    if (a.left < b.right && b.left < a.right && a.top < b.bottom && b.top < a.bottom) overlaps++;
+  });
+});
+const gap = svg.querySelector("line.nearest");
+document.getElementById("result").textContent = [
+  svg.querySelectorAll("line.mark-tick").length, nums.length, overlaps, outside,
+  svg.querySelectorAll("circle.contact").length, gap ? 1 : 0,
+].join("\t");
+document.getElementById("status").textContent = "done";
+"#;
+
+/// `svg` inline in a page with [`SCRIPT`]; the page's DOM after it ran, as numbers.
+/// `chromatic`: the strongly coloured pixels the screenshot must have at least.
+fn seen(chrome: &Path, dir: &Path, name: &str, svg: &str, chromatic: usize) -> Vec<usize> {
+    let page = dir.join(format!("{name}.html"));
+    std::fs::write(
+        &page,
+        format!("<!doctype html><html><body style=\"margin:0\">{svg}<pre id=\"result\"></pre><p id=\"status\">not run</p><script>{SCRIPT}</script></body></html>"),
+    )
+    .unwrap();
+    let url = format!("file://{}", page.display());
+    let dom = browser::dump_dom(chrome, &dir.join(format!(".chromium-{name}")), &url);
+    assert!(
+        dom.contains("<p id=\"status\">done</p>"),
+        "{name}: the script did not finish"
+    );
+    let png = dir.join(format!("{name}.png"));
+    browser::screenshot(
+        chrome,
+        &dir.join(format!(".chromium-{name}-shot")),
+        &url,
+        &png,
+        (900, 900),
+    );
+    browser::Pixels::read(&png).assert_not_blank(name, 8, chromatic);
+    let start = dom.find("<pre id=\"result\">").unwrap() + "<pre id=\"result\">".len();
+    dom[start..start + dom[start..].find("</pre>").unwrap()]
+        .split('\t')
+        .map(|v| v.parse().unwrap())
+        .collect()
+}
+
+/// Runs `pair` on `config` into `dir/out`; the run's folder.
+fn run_pair(dir: &Scratch, config: &str) -> std::path::PathBuf {
+    let o = xtask(&[
+        "run",
+        "pair",
+        "-q",
+        "--config",
+        config,
+        "--out",
+        &dir.path("out"),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    dir.0.join("out/pair")
+}
+
+#[test]
+fn an_event_plot_with_many_events_keeps_its_numbers_apart_and_inside() {
+    let Some(chrome) = chromium_or_skip() else {
+        return;
+    };
+    let s = Scratch::new("event-plot");
+    let config = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/many-events.ron");
+    let dir = run_pair(&s, config.to_str().unwrap());
+    let events = std::fs::read_to_string(dir.join("event-log.csv"))
+        .unwrap()
+        .lines()
+        .count()
+        - 1;
+    assert!(
+        events >= 30,
+        "{events} events: the test needs a crowded plot"
+    );
+    let svg = std::fs::read_to_string(dir.join("pair.svg")).unwrap();
+    assert!(
+        svg.contains(&format!("its {events} events")),
+        "the title counts the events"
+    );
+    let v = seen(&chrome, &s.0, "pair", &svg, 200);
+    assert_eq!(v[0], events, "every event has its tick");
+    assert!(v[1] >= 10, "{} numbers drawn", v[1]);
+    assert_eq!(v[2], 0, "numbers over one another");
+    assert_eq!(v[3], 0, "numbers outside the picture");
+    // One picture per event.
+    let pictures = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter(|e| {
+            e.as_ref()
+                .unwrap()
+                .file_name()
+                .to_string_lossy()
+                .starts_with("event-")
+        })
+        .count()
+        - 1; // event-log.csv
+    assert_eq!(pictures, events);
+}
+
+#[test]
+fn an_idle_start_is_pictured_as_a_gap_not_a_contact() {
+    let Some(chrome) = chromium_or_skip() else {
+        return;
+    };
+    let s = Scratch::new("idle-start");
+    let config = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/idle-start.ron");
+    let dir = run_pair(&s, config.to_str().unwrap());
+    let svg = std::fs::read_to_string(dir.join("event-1-slip.svg")).unwrap();
+    assert!(svg.contains("No contact"), "{svg}");
+    let v = seen(&chrome, &s.0, "idle", &svg, 0);
+    assert_eq!(v[4], 0, "a contact ring where nothing touches");
+    assert_eq!(v[5], 1, "the gap is drawn");
+}
