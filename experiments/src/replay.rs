@@ -330,19 +330,28 @@ fn one_trial(
         (m.driver().teeth() as i64, m.driven().teeth() as i64)
     });
     for e in &events {
+        // An idle start has no teeth: none touches the driven gear.
+        let idle = crate::pair_html::is_idle_start(e);
+        let tooth = |t: i64, n: i64| {
+            if idle {
+                "-".to_string()
+            } else {
+                t.rem_euclid(n).to_string()
+            }
+        };
         table.row(vec![
             fmt_f64((e.phi - rebuilt.phi0).to_degrees(), 6),
             fmt_f64(e.phi.to_degrees(), 6),
             e.label().into(),
             counted(e).into(),
-            e.driver_tooth.rem_euclid(n1).to_string(),
-            e.driven_tooth.rem_euclid(n2).to_string(),
+            tooth(e.driver_tooth, n1),
+            tooth(e.driven_tooth, n2),
             theta0.map_or_else(|| "-".into(), |t0| fmt_f64((e.theta - t0).to_degrees(), 6)),
             fmt_f64(e.theta.to_degrees(), 6),
         ]);
     }
     table.note(format!(
-        "Cell: {}. Initial driver angle phi0 = {} deg; one full turn of the gear with more teeth ({} deg of the driver). Teeth numbered 0 to N - 1 as in pair.ron's tips_deg.",
+        "Cell: {}. Initial driver angle phi0 = {} deg; one full turn of the gear with more teeth ({} deg of the driver). Teeth numbered 0 to N - 1 as in pair.ron's tips_deg; an idle start has none (`-`): no tooth touches the driven gear.",
         spec.canonical(),
         fmt_f64(rebuilt.phi0.to_degrees(), 9),
         fmt_f64(rebuilt.turn.to_degrees(), 6),

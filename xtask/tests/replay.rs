@@ -188,6 +188,9 @@ fn an_idle_start_is_reported_and_every_rule_counts_it() {
         assert!(title.contains("disengaged"), "{rule}: {text}");
         let row = text.lines().find(|l| l.contains("| idle start ")).unwrap();
         assert!(row.contains("| disengagement "), "{rule}: {text}");
+        // No tooth touches the driven gear: the row names none.
+        let cells: Vec<&str> = row.split('|').map(str::trim).collect();
+        assert_eq!(&cells[5..7], ["-", "-"], "{rule}: {row}");
     }
     let pair = succeeded(&[
         "run",
@@ -199,6 +202,9 @@ fn an_idle_start_is_reported_and_every_rule_counts_it() {
         &s.path("pair"),
     ]);
     assert!(pair.contains("| idle start "), "{pair}");
+    let row = pair.lines().find(|l| l.contains("| idle start ")).unwrap();
+    let cells: Vec<&str> = row.split('|').map(str::trim).collect();
+    assert_eq!(&cells[5..7], ["-", "-"], "{row}");
     assert!(pair.contains("never pushed"), "{pair}");
     assert!(!pair.contains("driven throughout"), "{pair}");
 }
@@ -414,5 +420,35 @@ fn a_replay_under_other_settings_keeps_the_default_replays_results() {
     assert_eq!(
         title(&read2("replay-table3-B-m3-e3-0-clearance-50")),
         title(&changed)
+    );
+}
+
+/// A cell's listing names every failed trial in its data files, not the first few the printed
+/// table shows: Table 3's Case B m3-e3 fails in over a hundred of its 200 trials.
+#[test]
+fn a_listing_writes_every_failed_trial() {
+    let s = Scratch::new("replay-listing");
+    let out = s.path("out");
+    let text = succeeded(&["replay", "table3", "B/m3-e3", "-q", "--out", &out]);
+    let row = text.lines().find(|l| l.starts_with("| jam ")).unwrap();
+    let jams: usize = row.split('|').nth(2).unwrap().trim().parse().unwrap();
+    assert!(jams > 20, "{text}");
+    assert!(text.contains("every one in failed-trials.csv"), "{text}");
+    let dir = s.0.join("out/replay-table3-B-m3-e3-failed");
+    let csv = std::fs::read_to_string(dir.join("failed-trials.csv")).unwrap();
+    let jammed: Vec<&str> = csv
+        .lines()
+        .skip(1)
+        .filter(|l| l.split(',').nth(1) == Some("true"))
+        .collect();
+    assert_eq!(jammed.len(), jams, "{csv}");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("failed-trials.json")).unwrap())
+            .unwrap();
+    assert_eq!(json["jammed"].as_array().unwrap().len(), jams);
+    let tables = std::fs::read_to_string(dir.join("tables.json")).unwrap();
+    assert!(
+        !tables.contains("more)\""),
+        "tables.json cuts the list short"
     );
 }
