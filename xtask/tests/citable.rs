@@ -1,6 +1,8 @@
 //! The toolkit can be cited and reused: its licence files exist and match Cargo.toml's
 //! licence, and CITATION.cff names the toolkit and the paper it reproduces.
 
+#![allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
+
 use std::path::Path;
 
 fn repo_file(name: &str) -> String {

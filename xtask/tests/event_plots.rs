@@ -2,6 +2,8 @@
 //! (every event ticked, its numbers apart from one another and inside the picture), and an
 //! idle start's picture shows the gap it is, with no contact ring.
 
+#![allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
+
 mod support;
 
 use std::path::Path;
