@@ -357,7 +357,13 @@ fn event_log(
                 prepared.driven.user(e.driven_tooth).to_string(),
             )
         };
-        let shown = |t: &str| if t.is_empty() { "-".to_string() } else { t.to_string() };
+        let shown = |t: &str| {
+            if t.is_empty() {
+                "-".to_string()
+            } else {
+                t.to_string()
+            }
+        };
         let cells = [
             format!("{:.9}", deg(e.phi - phi0)),
             kind.to_string(),
@@ -406,11 +412,7 @@ fn event_log(
     {
         events.note(crate::pair_html::RELEASE_NOTE);
     }
-    if traj
-        .events()
-        .iter()
-        .any(crate::pair_html::is_idle_start)
-    {
+    if traj.events().iter().any(crate::pair_html::is_idle_start) {
         events.note("An idle start has no driver or driven tooth (`-`): no tooth touches the driven gear; its picture shows where the two gears come nearest.");
     }
     if let Some(n) = crate::event_picture::pictures_note(traj.events().len()) {
