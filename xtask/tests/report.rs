@@ -245,6 +245,12 @@ fn count_rows(labels: &[Vec<&str>], differs: &[(usize, usize)]) -> Vec<Vec<Strin
             for m in 0..MESHES.len() {
                 row.push(if differs.contains(&(r, m)) {
                     "141*/0 (168/0)".to_owned()
+                } else if (r, m) == (0, 1) {
+                    // Ours keeps the 1 % rule, the paper's does not: the verdicts differ.
+                    "2/0✓ (3/0)".to_owned()
+                } else if (r, m) == (0, 2) {
+                    // Both keep it.
+                    "0/0✓ (1/0✓)".to_owned()
                 } else {
                     format!("{}/0 ({}/0)", 100 + m, 99 + m)
                 });
@@ -266,13 +272,16 @@ const HEATMAP_SCRIPT: &str = r#"
     const linked = t.querySelectorAll('td.hm.differs a[href]');
     const one = t.querySelector('td.hm.consistent'), two = t.querySelector('td.hm.differs');
     const apart = one && two && getComputedStyle(one).backgroundColor !== getComputedStyle(two).backgroundColor;
-    out.push(['heatmap', t.dataset.table, t.dataset.kind, cells.length, differs.length, linked.length, !!apart].join('\t'));
+    const marked = Array.from(cells).filter(c => c.textContent.includes('\u2713')).length;
+    const outlined = Array.from(t.querySelectorAll('td.hm.rule-differs')).filter(c => getComputedStyle(c).outlineStyle === 'dashed').length;
+    out.push(['heatmap', t.dataset.table, t.dataset.kind, cells.length, differs.length, linked.length, !!apart, marked, outlined].join('\t'));
     linked.forEach(function (a) {
       const h = a.getAttribute('href');
       const inPage = h.startsWith('#') ? !!document.getElementById(decodeURIComponent(h.slice(1))) : 'file';
       out.push(['link', t.dataset.table, h, inPage].join('\t'));
     });
   });
+  out.push(['order'].concat(Array.from(document.querySelectorAll('section.experiment')).map(e => e.id + (e.classList.contains('run') ? ':run' : ''))).join('\t'));
   const widest = Math.max(...Array.from(document.querySelectorAll('main, nav, section, .table-wrap')).map(e => e.getBoundingClientRect().right));
   out.push(['width', document.documentElement.scrollWidth, window.innerWidth, Math.round(widest)].join('\t'));
   document.getElementById('heat-result').textContent = out.join('\n');
@@ -431,6 +440,13 @@ fn per_mesh_tables_show_as_heatmaps_linking_differing_cells_to_their_replays() {
                 m[6], "true",
                 "differing and consistent cells look alike: {result}"
             );
+            // The 1 % rule: the two cells that keep it on some side show its mark, and the one
+            // whose two sides' verdicts differ is outlined, dashed, where a reader sees it.
+            assert_eq!(m[7], "2", "cells marked as keeping the 1 % rule: {result}");
+            assert_eq!(
+                m[8], "1",
+                "cells outlined as the rule's verdicts differing: {result}"
+            );
         }
     }
     for l in lines.iter().filter(|l| l[0] == "link") {
@@ -438,6 +454,24 @@ fn per_mesh_tables_show_as_heatmaps_linking_differing_cells_to_their_replays() {
             "file" => assert!(out.join(l[2]).is_file(), "{} links nothing", l[2]),
             inpage => assert_eq!(inpage, "true", "{} has no target on the page", l[2]),
         }
+    }
+    // The report's order as a reader meets it: the paper's items in the paper's order (Table 3
+    // before Table I, its appendix), the results before the experiments not run.
+    let order = lines.iter().find(|l| l[0] == "order").unwrap();
+    let at = |id: &str| {
+        order
+            .iter()
+            .position(|s| s.starts_with(&format!("exp-{id}")))
+    };
+    assert!(at("table3").unwrap() < at("tableI").unwrap(), "{result}");
+    assert!(
+        order.len() > 20,
+        "every experiment has its section: {result}"
+    );
+    let first_not_run = order[1..].iter().position(|s| !s.ends_with(":run"));
+    let last_run = order[1..].iter().rposition(|s| s.ends_with(":run"));
+    if let (Some(n), Some(r)) = (first_not_run, last_run) {
+        assert!(r < n, "an experiment not run before a result: {result}");
     }
     let width = lines.iter().find(|l| l[0] == "width").unwrap();
     let (scroll, window, widest): (f64, f64, f64) = (
