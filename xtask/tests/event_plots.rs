@@ -134,3 +134,30 @@ fn an_idle_start_is_pictured_as_a_gap_not_a_contact() {
     assert_eq!(v[4], 0, "a contact ring where nothing touches");
     assert_eq!(v[5], 1, "the gap is drawn");
 }
+
+/// A lock's release can throw the driven gear pitches on: the event table gives each jump in
+/// driven pitches, and the table and the page say why the gear moves so far.
+#[test]
+fn a_locks_release_is_measured_in_pitches_and_explained() {
+    let s = Scratch::new("release");
+    let config = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/many-events.ron");
+    let o = xtask(&[
+        "run",
+        "pair",
+        "--config",
+        config.to_str().unwrap(),
+        "--out",
+        &s.path("out"),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = support::stdout(&o);
+    let row = text
+        .lines()
+        .find(|l| l.contains("| lock ") && l.contains("driven pitches)"))
+        .unwrap_or_else(|| panic!("no lock with its jump in pitches:\n{text}"));
+    assert!(row.contains("jump "), "{row}");
+    let why = "let go to the next position ahead at which no driver tooth overlaps it";
+    assert!(text.contains(why), "{text}");
+    let page = std::fs::read_to_string(s.0.join("out/pair/pair.html")).unwrap();
+    assert!(page.contains("class=\"release-note\"") && page.contains(why));
+}
