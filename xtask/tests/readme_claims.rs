@@ -49,7 +49,7 @@ fn the_readme_starts_with_the_paper_its_symbols_and_table5() {
         ci.contains("\ncargo test --workspace --release\n"),
         "CI runs the README's test command"
     );
-    // The wall time of the first command is stated.
+    // The time of the first command is stated, with how it was measured.
     let start =
         &readme[readme.find("## Start here").unwrap()..readme.find("## Experiments").unwrap()];
     assert!(
