@@ -90,9 +90,13 @@ pub fn event_svg(
     let contacts = contacts_at_event(traj, e);
     let idle = is_idle_start(e);
     // The teeth drawn: the event's; at an idle start, the nearest two (no pair touches).
-    let (gap, (j, k)) = if idle || contacts.is_empty() {
+    // An event whose teeth have no contact to draw keeps its own teeth, with the gap shown.
+    let (gap, (j, k)) = if idle {
         let (p1, p2, j, k) = nearest_approach(mesh, e.phi, e.theta);
         (Some((p1, p2)), (j, k))
+    } else if contacts.is_empty() {
+        let (p1, p2, _, _) = nearest_approach(mesh, e.phi, e.theta);
+        (Some((p1, p2)), (e.driver_tooth, e.driven_tooth))
     } else {
         (None, (e.driver_tooth, e.driven_tooth))
     };
@@ -224,8 +228,8 @@ fn caption(
             e.theta.to_degrees()
         ),
     ];
-    if let Some((p1, p2)) = gap {
-        if is_idle_start(e) {
+    match gap {
+        Some((p1, p2)) if is_idle_start(e) => {
             said.push(format!(
                 "No contact: no driver tooth touches the driven gear, and none moves it {}.",
                 if e.resumed {
@@ -234,17 +238,25 @@ fn caption(
                     "in the whole run"
                 }
             ));
-        } else {
-            said.push("No contact of the event's teeth to draw at this instant.".into());
+            said.push(format!(
+                "Dashed: where the gears come nearest, {:.4} mm apart, driver tooth {} (dot, blue) and driven tooth {} (dot, purple).",
+                (p1 - p2).norm(),
+                shown.0,
+                shown.1
+            ));
         }
-        said.push(format!(
-            "Dashed: where the gears come nearest, {:.4} mm apart, driver tooth {} (dot, blue) and driven tooth {} (dot, purple).",
-            (p1 - p2).norm(),
-            shown.0,
-            shown.1
-        ));
-    } else {
-        said.push(format!(
+        Some((p1, p2)) => {
+            said.push(format!(
+                "Driver tooth {} (dot, blue), driven tooth {} (dot, purple): no contact of these teeth to draw at this instant.",
+                shown.0, shown.1
+            ));
+            said.push(format!(
+                "Dashed: where the gears come nearest, {:.4} mm apart.",
+                (p1 - p2).norm()
+            ));
+        }
+        None => {
+            said.push(format!(
             "Driver tooth {} (dot, blue), driven tooth {} (dot, purple); red ring: the contact of these teeth{}.",
             shown.0,
             shown.1,
@@ -254,6 +266,7 @@ fn caption(
                 " (tip on tip: no normal)"
             }
         ));
+        }
     }
     if contacts.iter().any(|c| c.role == "pushing") {
         said.push("Orange ring: the driver tooth pushing the driven gear, with its normal.".into());
