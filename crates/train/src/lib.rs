@@ -836,6 +836,25 @@ impl Gearing {
             .map(|a| a.name.as_str())
     }
 
+    /// The name the mesh labels write for `gear`: its own name, or, where the label of a mesh it
+    /// is in names it otherwise, that name. The paper writes the Games mesh `n2-o1`; the gearing
+    /// file names its 57-tooth driver `n3`, after Freeth 2008, so tables print the paper's `n2`.
+    #[must_use]
+    pub fn label_name<'a>(&'a self, gear: &'a str) -> &'a str {
+        for m in &self.meshes {
+            let Some((driver, driven)) = m.label.split_once('-') else {
+                continue;
+            };
+            if m.driver == gear && driver != gear {
+                return driver;
+            }
+            if m.driven == gear && driven != gear {
+                return driven;
+            }
+        }
+        gear
+    }
+
     /// The mesh labelled `label`.
     #[must_use]
     pub fn mesh(&self, label: &str) -> Option<&MeshData> {

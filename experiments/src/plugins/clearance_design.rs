@@ -15,7 +15,7 @@ use registry::{Context, MAX_TRIALS, OutputFile, Param, Report, RunError, Table, 
 use stats::{Proportion, clopper_pearson95};
 use train::Gearing;
 
-use crate::common::{Series, line_plot};
+use crate::common::{Plot, Series};
 use crate::settings::clearance_list;
 use study::cell::{Counts, label};
 use study::clearance_search::{MeshSearch, Search, search};
@@ -482,11 +482,17 @@ fn files(
         OutputFile::new("clearance-design-probes.csv", probes_csv),
         OutputFile::new("clearance-design-runs.csv", runs_csv),
     ];
+    // The clearances every case tried, from the least to the greatest: the plots' shared x axis.
+    let tried = searches.iter().flat_map(|sr| sr.probes.iter().map(|(g, _)| *g));
+    let range = tried.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), g| {
+        (lo.min(g), hi.max(g))
+    });
+    let range = crate::common::drawable(range.0, range.1);
     for (k, &ci) in s.cases.iter().enumerate() {
         let rows = &searches[k * meshes..(k + 1) * meshes];
         files.push(OutputFile::new(
             format!("clearance-design-case-{}.svg", CASES[ci].0),
-            worst_plot(CASES[ci].0, rows, s.reference)?,
+            worst_plot(CASES[ci].0, rows, s.reference, range)?,
         ));
     }
     Ok(files)
@@ -678,7 +684,12 @@ fn study_table(s: &Settings, per_input: &[&[MechanismRun]], summaries: &[Vec<Sum
 
 /// Failure rate [%] against clearance of the case's `PLOTTED` meshes that fail most at the
 /// reference (every clearance tried, each at the trials it had).
-fn worst_plot(case: &str, rows: &[MeshSearch], reference: f64) -> Result<String, RunError> {
+fn worst_plot(
+    case: &str,
+    rows: &[MeshSearch],
+    reference: f64,
+    clearance_range: (f64, f64),
+) -> Result<String, RunError> {
     let rate = |c: &Counts| {
         if c.trials == 0 {
             0.0
@@ -691,7 +702,7 @@ fn worst_plot(case: &str, rows: &[MeshSearch], reference: f64) -> Result<String,
     let legends: Vec<String> = order
         .iter()
         .take(PLOTTED)
-        .map(|sr| format!("{} (best {} %)", sr.mesh, label(sr.best, 0)))
+        .map(|sr| worst_legend(sr))
         .collect();
     let series: Vec<Series<'_>> = order
         .iter()
@@ -705,15 +716,38 @@ fn worst_plot(case: &str, rows: &[MeshSearch], reference: f64) -> Result<String,
                 .collect(),
         })
         .collect();
-    line_plot(
-        &format!(
-            "Case {case}: pair runs with a jam or a disengagement against the clearance, the {PLOTTED} meshes failing most at {} % (beyond the paper)",
-            label(reference, 0)
-        ),
+    let title = format!(
+        "Case {case}: pair runs with a jam or a disengagement against the clearance, the {PLOTTED} meshes failing most at {} % (beyond the paper)",
+        label(reference, 0)
+    );
+    // Every case on the same axes (the whole clearance range searched, 0-100 % failed), so
+    // that the cases' plots compare side by side.
+    Plot::new(
+        &title,
         "clearance G [% of the tooth height h]",
         "pair runs failed [%]",
         &series,
     )
+    .ranges(clearance_range, (0.0, 102.0))
+    .svg()
+}
+
+/// A plotted mesh's legend: its chosen clearance, or, where even that one still fails in more
+/// than [`STILL_FAILING`] of its pair runs, that no clearance tried saves it (the chosen one is
+/// then only the least bad).
+fn worst_legend(sr: &MeshSearch) -> String {
+    let c = sr.at(sr.best);
+    if clopper_pearson95(c.failures, c.trials).lo > STILL_FAILING {
+        format!(
+            "{} (fails at every G tried; fewest at {} %: {}/{})",
+            sr.mesh,
+            label(sr.best, 0),
+            c.failures,
+            c.trials
+        )
+    } else {
+        format!("{} (best {} %)", sr.mesh, label(sr.best, 0))
+    }
 }
 
 #[cfg(test)]

@@ -7,7 +7,7 @@ use edmunds::RadialPair;
 use geometry::Gear;
 use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64, fmt_number};
 
-use crate::common::{Series, csv, line_plot};
+use crate::common::{Plot, Series, csv, drawable};
 use study::errors;
 
 /// `tip_radius`: R of both gears.
@@ -55,6 +55,25 @@ const EDMUNDS_FLAT: f64 = 1e-9;
 /// A split's two Theoretical Differences: (split name, Edmunds', triangular teeth'), degrees.
 type Panel<'a> = (&'a str, Vec<f64>, Vec<f64>);
 
+/// The axis ranges the three panels share (degrees): the driver angles, and every panel's
+/// finite Theoretical Differences with a tenth of their span on each side.
+fn shared_ranges(series: &[Panel<'_>], phis: &[f64]) -> ((f64, f64), (f64, f64)) {
+    let x = phis.iter().map(|p| p.to_degrees());
+    let x0 = x.clone().fold(f64::INFINITY, f64::min);
+    let x1 = x.fold(f64::NEG_INFINITY, f64::max);
+    let ys = series.iter().flat_map(|(_, rad, tri)| rad.iter().chain(tri));
+    let (mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY);
+    for y in ys.filter(|y| y.is_finite()) {
+        y0 = y0.min(*y);
+        y1 = y1.max(*y);
+    }
+    if y0 > y1 {
+        (y0, y1) = (0.0, 1.0);
+    }
+    let pad = ((y1 - y0) * 0.1).max(1e-3);
+    (drawable(x0, x1), drawable(y0 - pad, y1 + pad))
+}
+
 /// The three panels' plots (fig5a-c.svg) and fig5.csv (every panel's curves as `columns`,
 /// over the driver angles `phis`).
 fn panels(
@@ -63,21 +82,27 @@ fn panels(
     phis: &[f64],
 ) -> Result<Vec<OutputFile>, RunError> {
     let samples = phis.len();
+    let (x_range, y_range) = shared_ranges(series, phis);
     let mut files = Vec::new();
     for (i, (name, rad, tri)) in series.iter().enumerate() {
         let label = ["a", "b", "c"][i];
-        let svg = line_plot(
-            &format!(
-                "Figure 5 {}: Theoretical Difference, {name}",
-                label.to_uppercase()
-            ),
+        // The split's name starts with its panel letter ("A: all eccentricity"): the title
+        // gives the letter once.
+        let (letter, split) = name.split_once(": ").unwrap_or((name, ""));
+        let title = format!("Figure 5 {letter}: Theoretical Difference, {split}");
+        let curves = [
+            Series::in_degrees("Edmunds (radial lines)", phis, rad),
+            Series::in_degrees("triangular teeth", phis, tri),
+        ];
+        // One y range for the three panels, so that their curves compare at a glance.
+        let svg = Plot::new(
+            &title,
             "driver angle phi [deg]",
             "Theoretical Difference [deg]",
-            &[
-                Series::in_degrees("Edmunds (radial lines)", phis, rad),
-                Series::in_degrees("triangular teeth", phis, tri),
-            ],
-        )?;
+            &curves,
+        )
+        .ranges(x_range, y_range)
+        .svg()?;
         files.push(OutputFile::new(format!("fig5{label}.svg"), svg));
     }
     let rows = (0..samples).map(|i| {

@@ -117,6 +117,28 @@ fn gears_in_mesh_order(g: &train::Gearing) -> Vec<(String, Vec<usize>)> {
     gears
 }
 
+/// A gear as the tables show it: the paper's name (the one its mesh's label writes), with the
+/// gearing file's name beside it where the two differ (`n2 (n3)`).
+fn shown_name(g: &train::Gearing, gear: &str) -> String {
+    match g.label_name(gear) {
+        paper if paper == gear => gear.to_owned(),
+        paper => format!("{paper} ({gear})"),
+    }
+}
+
+/// The note that explains each gear shown under two names, or none.
+fn renamed_note(g: &train::Gearing, gears: &[(String, Vec<usize>)]) -> Option<String> {
+    let renamed: Vec<String> = gears
+        .iter()
+        .filter(|(n, _)| g.label_name(n) != n)
+        .map(|(n, _)| {
+            let paper = g.label_name(n);
+            format!("{paper} ({n}) is named {paper} by its mesh's label, as in the paper, and {n} by the gearing file (its source: {})", g.gear(n).map_or("-", |d| d.source.as_str()))
+        })
+        .collect();
+    (!renamed.is_empty()).then(|| format!("Names: {}.", renamed.join("; ")))
+}
+
 /// The paper's value of a gear: the smaller of its meshes' E. max (none if one is missing).
 fn paper_of_gear(g: &train::Gearing, ms: &[usize]) -> Option<f64> {
     ms.iter()
@@ -223,7 +245,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             measured_pts.push((x, v));
         }
         let labels: Vec<&str> = ms.iter().map(|&m| g.meshes()[m].label.as_str()).collect();
-        table.row(gear_row(gear, &labels, [ours, paper, meas], smallest));
+        table.row(gear_row(&shown_name(g, gear), &labels, [ours, paper, meas], smallest));
         csv.push_str(&format!(
             "{gear},{},{},{},{}\n",
             labels.join(" "),
@@ -234,7 +256,10 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     }
     add_notes(&mut table, (rule, trials), smallest, (inside, outside));
     table.note(measured_note(measured.as_ref()));
-    let names: Vec<String> = gears.iter().map(|(n, _)| n.clone()).collect();
+    if let Some(note) = renamed_note(g, &gears) {
+        table.note(note);
+    }
+    let names: Vec<String> = gears.iter().map(|(n, _)| shown_name(g, n)).collect();
     let measured_file = measured.as_ref().map(|(f, _)| f.as_str());
     let svg = plot(
         &names,

@@ -26,13 +26,14 @@ pub(super) const PAPER_ORDER: [&str; 17] = [
 ];
 
 /// The studies beyond the paper, in the order the README discusses them.
-pub(super) const BEYOND_ORDER: [&str; 8] = [
+pub(super) const BEYOND_ORDER: [&str; 9] = [
     "tolerance",
     "clearance-design",
     "lunar-anomaly",
     "sensitivity",
     "event-rules",
     "jam-readings",
+    "motion-models",
     "sigma-causes",
     "contact-tolerance",
 ];
