@@ -11,6 +11,7 @@ pub mod common;
 pub mod emax;
 pub mod event_picture;
 pub mod inputs;
+pub mod label_place;
 pub mod pair_html;
 pub mod pair_svg;
 pub mod paper;

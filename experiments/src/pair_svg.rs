@@ -10,6 +10,17 @@ use std::f64::consts::PI;
 use study::pair_file::{Prepared, Role, Sense, StartSpec};
 
 use crate::common::deg;
+use crate::label_place::{Anchor, Label, Placer, edges, nearest_on, text_box};
+
+/// Page directions (y grows downwards) in which a label that does not fit where it belongs is
+/// moved.
+const UP: (f64, f64) = (0.0, -1.0);
+/// See [`UP`].
+const DOWN: (f64, f64) = (0.0, 1.0);
+/// See [`UP`].
+const LEFT: (f64, f64) = (-1.0, 0.0);
+/// See [`UP`].
+const RIGHT: (f64, f64) = (1.0, 0.0);
 
 /// The tips `pair-check.svg` labels: (gear, the user's tooth number, world position at φ = 0 and
 /// θ = 0), teeth 0 and 1 of each gear, so that the picture shows where the numbering starts and
@@ -251,10 +262,41 @@ pub fn check_svg(name: &str, p: &Prepared, (phi0, theta0): (f64, f64)) -> String
     let mut svg = format!(
         "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width}\" height=\"{height:.0}\" viewBox=\"0 0 {width} {height:.0}\" font-family=\"sans-serif\" font-size=\"13\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
     );
-    let text = |svg: &mut String, v: Vec2, anchor: &str, colour: &str, s: &str| {
-        let (x, y) = at(v);
+    // Every label of the picture keeps off both outlines and off the labels placed before it.
+    let outline_px = |o: &[Vec2]| edges(&o.iter().map(|&v| at(v)).collect::<Vec<_>>());
+    // The line of centres (the x axis and both zero rays lie on it) is kept clear too.
+    let centres_line = vec![(at(Vec2::new(x_min, 0.0)), at(Vec2::new(x_max, 0.0)))];
+    let mut placer = Placer::new([outline_px(&out1), outline_px(&out2), centres_line].concat());
+    let title = format!("Check of {name}: both gears at phi = 0 and theta = 0");
+    placer.block(text_box((margin, 24.0), Anchor::Start, &title, 16.0));
+    // A label that belongs at `v` (world), tried there and then along `dirs` (page directions):
+    // where it had to move, a thin leader joins it to the point it labels.
+    let mut text = |svg: &mut String,
+                    v: Vec2,
+                    anchor: Anchor,
+                    colour: &str,
+                    s: &str,
+                    dirs: &[(f64, f64)]| {
+        let label = Label {
+            text: s,
+            font: 13.0,
+            anchor,
+            at: at(v),
+        };
+        let (x, y) = placer.place(&label, dirs);
+        let (from, to) = (
+            label.at,
+            nearest_on(&text_box((x, y), anchor, s, 13.0), label.at),
+        );
+        if (to.0 - from.0).hypot(to.1 - from.1) > 8.0 {
+            svg.push_str(&format!(
+                "<line class=\"leader\" x1=\"{:.2}\" y1=\"{:.2}\" x2=\"{:.2}\" y2=\"{:.2}\" stroke=\"{colour}\" stroke-width=\"0.75\"/>\n",
+                from.0, from.1, to.0, to.1
+            ));
+        }
         svg.push_str(&format!(
-            "<text x=\"{x:.2}\" y=\"{y:.2}\" text-anchor=\"{anchor}\" fill=\"{colour}\" stroke=\"white\" stroke-width=\"3\" paint-order=\"stroke\">{}</text>\n",
+            "<text x=\"{x:.2}\" y=\"{y:.2}\" text-anchor=\"{}\" fill=\"{colour}\" stroke=\"white\" stroke-width=\"3\" paint-order=\"stroke\">{}</text>\n",
+            anchor.svg(),
             escape(s)
         ));
     };
@@ -277,9 +319,7 @@ pub fn check_svg(name: &str, p: &Prepared, (phi0, theta0): (f64, f64)) -> String
     };
     svg.push_str(&format!(
         "<text x=\"{margin}\" y=\"24\" font-size=\"16\">{}</text>\n",
-        escape(&format!(
-            "Check of {name}: both gears at phi = 0 and theta = 0"
-        ))
+        escape(&title)
     ));
     let size = 0.05 * r1.min(r2);
     // Axes: x along the line of centres, y through the driver's arbor.
@@ -295,9 +335,10 @@ pub fn check_svg(name: &str, p: &Prepared, (phi0, theta0): (f64, f64)) -> String
     text(
         &mut svg,
         x_end + Vec2::new(0.0, 1.2 * size),
-        "end",
+        Anchor::End,
         "black",
-        "x: line of centres, driver arbor -> driven arbor",
+        "x",
+        &[UP, DOWN],
     );
     let y_end = Vec2::new(0.0, y_max * 0.98);
     line(
@@ -311,9 +352,10 @@ pub fn check_svg(name: &str, p: &Prepared, (phi0, theta0): (f64, f64)) -> String
     text(
         &mut svg,
         y_end + Vec2::new(size, -size),
-        "start",
+        Anchor::Start,
         "black",
-        "y: 90 deg from x in the driver's turning sense",
+        "y",
+        &[RIGHT, UP],
     );
     let gears = [
         (
@@ -349,8 +391,8 @@ pub fn check_svg(name: &str, p: &Prepared, (phi0, theta0): (f64, f64)) -> String
         );
         head(&mut svg, ray_end, towards, size, colour);
         let (angle, anchor) = match role {
-            Role::Driver => ("phi = 0", "end"),
-            Role::Driven => ("theta = 0", "start"),
+            Role::Driver => ("phi = 0", Anchor::End),
+            Role::Driven => ("theta = 0", Anchor::Start),
         };
         // Beside the centre, clear of the mesh, where the two rays meet.
         text(
@@ -358,7 +400,8 @@ pub fn check_svg(name: &str, p: &Prepared, (phi0, theta0): (f64, f64)) -> String
             centre - towards * (0.05 * radius) - Vec2::new(0.0, 1.8 * size),
             anchor,
             colour,
-            &format!("{} zero ray (tips_deg = 0, {angle})", role.name()),
+            &format!("{} zero ray: {angle}", role.name()),
+            &[DOWN, UP, LEFT, RIGHT],
         );
         // The arbor (+) and the tip-circle centre (o).
         let arm = 0.6 * size;
@@ -383,9 +426,10 @@ pub fn check_svg(name: &str, p: &Prepared, (phi0, theta0): (f64, f64)) -> String
         text(
             &mut svg,
             arbor - Vec2::new(0.0, 3.8 * size),
-            "middle",
+            Anchor::Middle,
             colour,
             &format!("{} arbor (+), tip-circle centre (o)", role.name()),
+            &[DOWN, UP, LEFT, RIGHT],
         );
         // The turning sense: an arc away from the mesh, arrowhead where the turn goes.
         let (from, to): (f64, f64) = match role {
@@ -413,63 +457,46 @@ pub fn check_svg(name: &str, p: &Prepared, (phi0, theta0): (f64, f64)) -> String
             Role::Driven => "driven gear turns this way: theta increases",
         };
         let mid = (0.5 * (from + to)).to_radians();
+        // Away from the mesh first: up, then outwards.
+        let outwards = if role == Role::Driver { LEFT } else { RIGHT };
         text(
             &mut svg,
             arbor + polar(arc_r + 2.0 * size, mid),
-            "middle",
+            Anchor::Middle,
             colour,
             turns,
+            &[UP, outwards, DOWN],
         );
     }
-    // Labels of tips in the mesh, where the gears crowd each other, go up or down on leaders of
-    // growing length, the driver's to the left and the driven gear's to the right.
-    let mut stacked = [0.0, 0.0];
+    // Tooth labels start at their tips and move, on leaders, to the nearest place clear of the
+    // teeth, the rays and each other: the driver's to its side (left), the driven gear's to its
+    // side (right), up above the line of centres and down below it.
     for (role, user, tip) in labelled_tips(p) {
-        let (colour, centre, other, other_r) = match role {
-            Role::Driver => ("#1f4e9c", c1, c2, r2),
-            Role::Driven => ("#a3261f", c2, c1, r1),
+        let (colour, anchor, side) = match role {
+            Role::Driver => ("#1f4e9c", Anchor::End, -1.0),
+            Role::Driven => ("#a3261f", Anchor::Start, 1.0),
         };
-        let out = (tip - centre).normalize();
         let (x, y) = at(tip);
         svg.push_str(&format!(
             "<circle id=\"{}-tooth-{user}\" cx=\"{x:.2}\" cy=\"{y:.2}\" r=\"4\" fill=\"{colour}\"/>\n",
             role.name()
         ));
-        let radial = tip + out * (3.0 * size);
-        let (label, anchor) = if (radial - other).norm() < other_r + 3.0 * size {
-            let up = tip.y > 0.0 || (tip.y == 0.0 && role == Role::Driver);
-            let slot = &mut stacked[usize::from(!up)];
-            *slot += 1.0;
-            // Rows 22 px apart, the first well clear of the tips, each side of the mesh its
-            // own gear's labels, set aside from the line of centres.
-            let row = 22.0 / k;
-            let dy = 4.0 * size + *slot * row;
-            let (anchor, aside) = match role {
-                Role::Driver => ("end", -2.0 * size),
-                Role::Driven => ("start", 2.0 * size),
-            };
-            (tip + Vec2::new(aside, if up { dy } else { -dy }), anchor)
-        } else {
-            (radial, if out.x >= 0.0 { "start" } else { "end" })
-        };
-        line(&mut svg, tip, label, colour, "stroke-width=\"1\"");
-        // A little clear of the leader, on the side the text runs to.
-        let nudge = match anchor {
-            "end" => -0.5 * size,
-            _ => 0.5 * size,
-        };
+        let away = if tip.y >= 0.0 { -1.0 } else { 1.0 };
+        let h = std::f64::consts::FRAC_1_SQRT_2;
         text(
             &mut svg,
-            label + Vec2::new(nudge, 0.0),
+            tip,
             anchor,
             colour,
             &format!("{} tooth {user}", role.name()),
+            &[(side * h, away * h), (side, 0.0), (0.0, away), (0.0, -away)],
         );
     }
     eccentricity_insets(&mut svg, p, margin, width, inset_top);
     // The file's conventions in words, and the start.
     let mut lines = vec![
-        "Seen from the side on which the driver turns counter-clockwise. Each zero ray starts at its gear's tip-circle centre (o) and, at phi = 0 and theta = 0, points along the line of centres at the other gear.".to_string(),
+        "Axes: x: line of centres, driver arbor -> driven arbor; y: 90 deg from x in the driver's turning sense.".to_string(),
+        "Seen from the side on which the driver turns counter-clockwise. Each zero ray (dashed: the direction of tips_deg = 0) starts at its gear's tip-circle centre (o) and, at phi = 0 and theta = 0, points along the line of centres at the other gear.".to_string(),
         "The gears may overlap in this picture: it shows your frames, not a meshing position. Teeth 0 and 1 show where your numbering starts and which way it runs.".to_string(),
     ];
     for (role, gear, spec, numbering) in [

@@ -11,6 +11,7 @@ use geometry::{Vec2, polar, rotate};
 use std::f64::consts::PI;
 use study::pair_file::Role;
 
+use crate::label_place::{Anchor, Segment, edges, segment_meets, text_box};
 use crate::pair_svg::{exaggeration, labelled_tips};
 
 /// `help pair` states the proportions the loader refuses with the loader's own limits.
@@ -585,8 +586,9 @@ fn check_picture_labels_what_the_user_entered() {
     let svg = check_svg("my <pair>.ron", &p, (0.0, traj.theta_at(0.0)));
     for words in [
         "Check of my &lt;pair&gt;.ron: both gears at phi = 0 and theta = 0",
-        "driver zero ray (tips_deg = 0, phi = 0)",
-        "driven zero ray (tips_deg = 0, theta = 0)",
+        ">driver zero ray: phi = 0<",
+        ">driven zero ray: theta = 0<",
+        "(dashed: the direction of tips_deg = 0)",
         ">driver tooth 0<",
         ">driver tooth 1<",
         ">driven tooth 0<",
@@ -752,4 +754,89 @@ fn the_driving_gears_pitch_bounds_the_samples() {
             && e.to_string().contains(&format!("360/{n2}")),
         "{e}"
     );
+}
+
+/// The labels of a check picture's drawing (above its insets): (x, y, anchor, font size, text).
+fn drawing_labels(svg: &str) -> Vec<((f64, f64), Anchor, f64, String)> {
+    let drawing = &svg[..svg.find("<g class=\"inset\"").unwrap()];
+    let attr = |tag: &str, name: &str| -> Option<String> {
+        let at = tag.find(&format!(" {name}=\""))? + name.len() + 3;
+        Some(tag[at..at + tag[at..].find('"')?].to_owned())
+    };
+    let mut labels = Vec::new();
+    for piece in drawing.split("<text").skip(1) {
+        let (tag, rest) = piece.split_once('>').unwrap();
+        let text = rest[..rest.find("</text>").unwrap()]
+            .replace("&gt;", ">")
+            .replace("&lt;", "<")
+            .replace("&amp;", "&");
+        let num = |n: &str| attr(tag, n).map(|v| v.parse::<f64>().unwrap());
+        let anchor = match attr(tag, "text-anchor").as_deref() {
+            Some("middle") => Anchor::Middle,
+            Some("end") => Anchor::End,
+            _ => Anchor::Start,
+        };
+        let font = num("font-size").unwrap_or(13.0);
+        labels.push(((num("x").unwrap(), num("y").unwrap()), anchor, font, text));
+    }
+    labels
+}
+
+/// A gear outline of the check picture as its edges, px.
+fn outline_edges(svg: &str, id: &str) -> Vec<Segment> {
+    let at = svg.find(&format!("<polygon id=\"{id}\" points=\"")).unwrap() + id.len() + 23;
+    let points: Vec<(f64, f64)> = svg[at..at + svg[at..].find('"').unwrap()]
+        .split(' ')
+        .map(|p| {
+            let (x, y) = p.split_once(',').unwrap();
+            (x.parse().unwrap(), y.parse().unwrap())
+        })
+        .collect();
+    edges(&points)
+}
+
+#[test]
+fn check_picture_labels_keep_off_the_teeth_and_each_other() {
+    // The example (two 50-tooth gears), the known 17:23 eccentric pair, and a small pinion on a
+    // large wheel, where the labels have least room.
+    let (small_large, ..) = measured_file(
+        Convention {
+            own: false,
+            world: false,
+            polar: false,
+        },
+        "",
+    );
+    let pinion = EXAMPLE.replacen(
+        "teeth: 50,\n        tip_radius: 200.0,   // R, any length unit\n        root_radius: 180.0,",
+        "teeth: 15,\n        tip_radius: 60.0,\n        root_radius: 40.0,",
+        1,
+    );
+    assert_ne!(pinion, EXAMPLE, "the pinion replaces the example's driver");
+    for (name, text) in [
+        ("example", EXAMPLE.to_owned()),
+        ("17:23", small_large),
+        ("pinion", pinion),
+    ] {
+        let p = prepare("x.ron", &text).unwrap();
+        let svg = check_svg(name, &p, (0.0, 0.0));
+        let labels = drawing_labels(&svg);
+        assert!(labels.len() >= 11, "{name}: {} labels", labels.len());
+        let boxes: Vec<_> = labels
+            .iter()
+            .map(|(at, anchor, font, t)| (text_box(*at, *anchor, t, *font), t))
+            .collect();
+        let teeth = [
+            outline_edges(&svg, "driver-outline"),
+            outline_edges(&svg, "driven-outline"),
+        ]
+        .concat();
+        for (i, (b, t)) in boxes.iter().enumerate() {
+            let crossed = teeth.iter().filter(|(a, c)| segment_meets(b, *a, *c)).count();
+            assert_eq!(crossed, 0, "{name}: label {t:?} crosses {crossed} tooth edges");
+            for (o, u) in &boxes[i + 1..] {
+                assert!(!b.intersects(o), "{name}: labels {t:?} and {u:?} overlap");
+            }
+        }
+    }
 }
