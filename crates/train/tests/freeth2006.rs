@@ -216,3 +216,21 @@ fn pin_and_slot_section_is_read_and_the_turntable_is_reached() {
     assert_eq!(g.mesh_path("e turntable", "b"), None);
     assert_eq!(g.mesh_path("b", "nowhere"), None);
 }
+
+/// Tables print a gear by the name its mesh's label writes: the paper's Games mesh `n2-o1` is
+/// driven by the file's `n3` (Freeth 2008's name), which tables call `n2`; every other gear
+/// keeps its own name.
+#[test]
+fn gears_are_named_as_the_mesh_labels_write_them() {
+    let g = Gearing::freeth2006();
+    assert_eq!(g.label_name("n3"), "n2");
+    assert_eq!(g.label_name("o1"), "o1");
+    assert_eq!(g.label_name("b2"), "b2");
+    let renamed: Vec<&str> = g
+        .gears()
+        .iter()
+        .map(|gear| gear.name.as_str())
+        .filter(|n| g.label_name(n) != *n)
+        .collect();
+    assert_eq!(renamed, ["n3"]);
+}

@@ -709,8 +709,11 @@ impl<'a> Plot<'a> {
                 mesh.x_desc(self.x_label)
                     .y_desc(self.y_label)
                     .y_label_formatter(y_fmt);
+                // x ticks as plainly as y's: 50, not 50.0.
                 if whole {
                     mesh.x_label_formatter(&whole_x);
+                } else {
+                    mesh.x_label_formatter(&plain);
                 }
                 mesh.draw().map_err(|e| plot_err(&e))?;
                 let (xr, yr) = chart.plotting_area().get_pixel_range();

@@ -276,3 +276,45 @@ fn limits_widen_the_axis_and_sit_on_their_series() {
         assert!(x >= plot.x - 6.0 && x <= plot.x + plot.w + 6.0, "{b}");
     }
 }
+
+/// The numbers of an SVG's axis labels (plotters writes each tick label as its own `<text>`).
+fn tick_numbers(svg: &str) -> Vec<String> {
+    svg.split("<text")
+        .skip(1)
+        .filter_map(|t| {
+            let body = t[t.find('>')? + 1..t.find("</text>")?].trim();
+            body.parse::<f64>().is_ok().then(|| body.to_owned())
+        })
+        .collect()
+}
+
+#[test]
+fn ticks_are_round_numbers_written_plainly() {
+    let points: Vec<(f64, f64)> = (0..=36)
+        .map(|i| (10.0 * f64::from(i), 0.01 * f64::from(i)))
+        .collect();
+    let series = [Series {
+        label: "s",
+        points: points.clone(),
+    }];
+    for svg in [
+        Plot::new("t", "x", "y", &series).svg().unwrap(),
+        Plot::new("t", "x", "y", &series)
+            .ranges((0.0, 360.0), (-0.1, 0.4))
+            .svg()
+            .unwrap(),
+    ] {
+        let ticks = tick_numbers(&svg);
+        assert!(ticks.len() >= 8, "{ticks:?}");
+        for t in &ticks {
+            assert!(
+                !t.ends_with(".0"),
+                "tick {t} written with a needless decimal"
+            );
+            // A round number: at most two significant digits after its leading zeros.
+            let digits: String = t.chars().filter(char::is_ascii_digit).collect();
+            let significant = digits.trim_start_matches('0').trim_end_matches('0');
+            assert!(significant.len() <= 2, "tick {t} is not a round number");
+        }
+    }
+}

@@ -157,3 +157,56 @@ fn without_refinement_the_coarse_grid_decides() {
     // 15 meshes x (30, 40, 50) x 2 trials, and one mechanism per setting.
     assert_eq!(r.trials, 15 * 3 * 2 + 2);
 }
+
+/// The `<text>` bodies of an SVG, trimmed.
+fn texts(svg: &str) -> Vec<String> {
+    svg.split("<text")
+        .skip(1)
+        .filter_map(|t| Some(t[t.find('>')? + 1..t.find("</text>")?].trim().to_owned()))
+        .collect()
+}
+
+#[test]
+fn every_cases_plot_shares_its_axes_and_names_meshes_no_clearance_saves() {
+    let sets = [
+        ("cases", "A,D"),
+        ("grid", "30,50"),
+        ("coarse_trials", "2"),
+        ("refine_step", "0"),
+        ("runs", "1"),
+    ];
+    let r = run_with(2, &sets).unwrap();
+    let plots: Vec<String> = r
+        .files
+        .iter()
+        .filter(|f| f.name.starts_with("clearance-design-case-"))
+        .map(|f| String::from_utf8(f.contents.clone()).unwrap())
+        .collect();
+    assert_eq!(plots.len(), 2);
+    // The same tick labels on both: one x range (every clearance tried), y 0-100 %.
+    let ticks = |svg: &str| -> Vec<String> {
+        texts(svg)
+            .into_iter()
+            .filter(|t| t.parse::<f64>().is_ok())
+            .collect()
+    };
+    assert_eq!(ticks(&plots[0]), ticks(&plots[1]));
+    assert!(ticks(&plots[0]).contains(&"100".to_owned()), "{:?}", ticks(&plots[0]));
+    // Case D at 2 trials a clearance: its worst meshes fail every run at every clearance, and
+    // the legend says so instead of calling one clearance the best.
+    let legends: Vec<String> = texts(&plots[1])
+        .into_iter()
+        .filter(|t| t.contains(" (") && t.contains('-'))
+        .collect();
+    assert!(!legends.is_empty(), "{:?}", texts(&plots[1]));
+    for l in &legends {
+        assert!(
+            l.contains("fails at every G tried; fewest at") || l.contains("(best "),
+            "{l}"
+        );
+    }
+    assert!(
+        legends.iter().any(|l| l.contains("fails at every G tried")),
+        "{legends:?}"
+    );
+}

@@ -292,3 +292,38 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         ..Default::default()
     })
 }
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, reason = "tests")]
+
+    /// The y tick labels of a panel (the numbers written at the left axis).
+    fn y_ticks(svg: &str) -> Vec<String> {
+        svg.split("<text")
+            .skip(1)
+            .filter(|t| t.contains("text-anchor=\"end\""))
+            .filter_map(|t| Some(t[t.find('>')? + 1..t.find("</text>")?].trim().to_owned()))
+            .filter(|t| t.parse::<f64>().is_ok())
+            .collect()
+    }
+
+    #[test]
+    fn the_three_panels_share_one_y_range_and_name_their_letter_once() {
+        let r = crate::run("fig5", 2025, 1, &[("samples", "400")]).unwrap();
+        let panels: Vec<(String, String)> = r
+            .files
+            .iter()
+            .filter(|f| f.name.ends_with(".svg"))
+            .map(|f| (f.name.clone(), String::from_utf8(f.contents.clone()).unwrap()))
+            .collect();
+        assert_eq!(panels.len(), 3);
+        let first = y_ticks(&panels[0].1);
+        assert!(first.len() >= 4, "{first:?}");
+        for ((name, svg), letter) in panels.iter().zip(["A", "B", "C"]) {
+            assert_eq!(y_ticks(svg), first, "{name}: its own y range");
+            let title = format!("Figure 5 {letter}: Theoretical Difference, ");
+            assert!(svg.contains(&title), "{name}");
+            assert!(!svg.contains(&format!("{title}{letter}:")), "{name}: letter twice");
+        }
+    }
+}
