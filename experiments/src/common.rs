@@ -90,3 +90,24 @@ pub fn estimate_cells(name: &str, turns: f64, reading: &str, e: &stats::Estimate
 pub fn estimate_csv(name: &str, reading: &str, e: &stats::Estimate) -> String {
     format!("{name},{reading},{},{},{}", e.mean, e.lo, e.hi)
 }
+
+/// `text` broken at spaces into lines of at most `width` characters; a word longer than `width`
+/// stays whole on a line of its own. For captions and notes drawn or printed in lines.
+pub fn wrap_at_spaces(text: &str, width: usize) -> Vec<String> {
+    let mut lines = vec![String::new()];
+    for word in text.split_whitespace() {
+        let fits = lines
+            .last()
+            .is_some_and(|l| l.is_empty() || l.chars().count() + 1 + word.chars().count() <= width);
+        if !fits {
+            lines.push(String::new());
+        }
+        if let Some(l) = lines.last_mut() {
+            if !l.is_empty() {
+                l.push(' ');
+            }
+            l.push_str(word);
+        }
+    }
+    lines
+}

@@ -7,6 +7,7 @@ use std::fmt::Write as _;
 use contact::Trajectory;
 use geometry::Vec2;
 
+use crate::common::wrap_at_spaces;
 use crate::pair_html::{Teeth, contacts_at_event, escape, is_idle_start, jump_text, points};
 
 /// The most event pictures a run writes (`event-1-...svg` to `event-500-...svg`); `pair.html`
@@ -47,26 +48,6 @@ pub fn nearest_approach(mesh: &contact::Mesh, phi: f64, theta: f64) -> (Vec2, Ve
     };
     let (_, p1, p2) = best;
     (p1, p2, nearest_tip(&driver, p1), nearest_tip(&driven, p2))
-}
-
-/// `s` broken at spaces into lines of at most `width` characters.
-fn wrapped(s: &str, width: usize) -> Vec<String> {
-    let mut lines = vec![String::new()];
-    for word in s.split(' ') {
-        let fits = lines
-            .last()
-            .is_some_and(|l| l.is_empty() || l.chars().count() + 1 + word.chars().count() <= width);
-        if !fits {
-            lines.push(String::new());
-        }
-        if let Some(l) = lines.last_mut() {
-            if !l.is_empty() {
-                l.push(' ');
-            }
-            l.push_str(word);
-        }
-    }
-    lines
 }
 
 /// A picture of the mesh at event `e` of run `traj`, titled `title` (the run and the event:
@@ -277,7 +258,7 @@ fn caption(
             jump_text(e, traj.mesh().driven().teeth())
         ));
     }
-    said.iter().flat_map(|l| wrapped(l, 80)).collect()
+    said.iter().flat_map(|l| wrap_at_spaces(l, 80)).collect()
 }
 
 /// The event pictures of run `traj`, one per event up to [`MAX_EVENT_PICTURES`]: `(file name,

@@ -9,7 +9,7 @@ use registry::fmt_f64;
 use std::f64::consts::PI;
 use study::pair_file::{Prepared, Role, Sense, StartSpec};
 
-use crate::common::deg;
+use crate::common::{deg, wrap_at_spaces};
 use crate::label_place::{Anchor, Label, Placer, edges, nearest_on, text_box};
 
 /// Page directions (y grows downwards) in which a label that does not fit where it belongs is
@@ -41,24 +41,6 @@ pub fn labelled_tips(p: &Prepared) -> Vec<(Role, i64, Vec2)> {
         }
     }
     out
-}
-
-/// `s` broken at spaces into lines of at most `width` characters (longer words stay whole).
-fn wrap(s: &str, width: usize) -> Vec<String> {
-    let mut lines = vec![String::new()];
-    for word in s.split(' ') {
-        let last = lines.len() - 1;
-        if !lines[last].is_empty() && lines[last].chars().count() + 1 + word.chars().count() > width
-        {
-            lines.push(String::new());
-        }
-        let last = lines.len() - 1;
-        if !lines[last].is_empty() {
-            lines[last].push(' ');
-        }
-        lines[last].push_str(word);
-    }
-    lines
 }
 
 /// Text safe inside SVG markup.
@@ -220,7 +202,7 @@ fn eccentricity_insets(svg: &mut String, p: &Prepared, margin: f64, width: f64, 
             escape(&format!("{}, offset x{}", role.name(), fmt_f64(factor, 0)))
         ));
         let chars = ((x0 + box_w - text_x - 8.0) / 6.6).max(12.0) as usize;
-        for (l, line) in wrap(&words, chars).iter().enumerate() {
+        for (l, line) in wrap_at_spaces(&words, chars).iter().enumerate() {
             svg.push_str(&format!(
                 "<text x=\"{text_x:.1}\" y=\"{:.1}\" font-size=\"11\">{}</text>\n",
                 y0 + 42.0 + 15.0 * l as f64,
@@ -550,7 +532,7 @@ pub fn check_svg(name: &str, p: &Prepared, (phi0, theta0): (f64, f64)) -> String
         fmt_f64(deg(theta0), 6),
         fmt_f64(d, 4)
     ));
-    let wrapped: Vec<String> = lines.iter().flat_map(|l| wrap(l, 150)).collect();
+    let wrapped: Vec<String> = lines.iter().flat_map(|l| wrap_at_spaces(l, 150)).collect();
     for (i, l) in wrapped.iter().enumerate() {
         svg.push_str(&format!(
             "<text x=\"{margin}\" y=\"{:.0}\" font-size=\"12\">{}</text>\n",

@@ -624,7 +624,7 @@ fn pair_file(r: &Rebuilt, drive: &str) -> Result<String, String> {
         .ok_or("the gears overlap at every angle, so there is no run to rerun")?;
     let mut s =
         String::from("// Rebuilt by `cargo xtask replay`: one trial of a per-mesh table.\n");
-    for line in wrapped(drive, 96) {
+    for line in crate::common::wrap_at_spaces(drive, 96) {
         let _ = writeln!(s, "// {line}");
     }
     s.push_str("(\n");
@@ -697,24 +697,6 @@ fn drive_note(g: &Gearing, spec: &CellSpec, r: &Rebuilt) -> String {
             "Driver: {gear} ({why}); both gears turn their own way as in the train, so here `driver` is {gear} and `driven` the mesh's listed driver, each seen from its other face: tooth k here (and in pair.ron) is tooth N - 1 - k of the gear as the table's cell made it, and phi and theta are {gear}'s and its partner's own angles."
         ),
     }
-}
-
-/// `text` cut into lines of at most about `width` characters at spaces.
-fn wrapped(text: &str, width: usize) -> Vec<String> {
-    let mut lines = vec![String::new()];
-    for word in text.split_whitespace() {
-        let last = lines.last_mut().map_or(0, |l| l.len());
-        if last > 0 && last + 1 + word.len() > width {
-            lines.push(String::new());
-        }
-        if let Some(l) = lines.last_mut() {
-            if !l.is_empty() {
-                l.push(' ');
-            }
-            l.push_str(word);
-        }
-    }
-    lines
 }
 
 /// Whether the pair format can describe `gear`: one tip and one root radius, straight flanks,
