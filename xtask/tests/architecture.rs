@@ -21,25 +21,57 @@ const NOT_MAPPED: &[&str] = &["target"];
 /// Folders a run creates rather than the repository holds; mapped even where absent.
 const MADE_BY_RUNS: &[&str] = &["results"];
 
-/// The folders that need a heading: every crate and every top-level folder that is not hidden.
+/// The top-level folders and `crates/*` folders that hold a file git tracks, or `None` where git
+/// cannot say (no git, or not a checkout): a stray folder of a local checkout is not the
+/// project's and needs no heading.
+fn tracked_folders(root: &Path) -> Option<std::collections::BTreeSet<String>> {
+    let out = std::process::Command::new("git")
+        .args(["ls-files", "-z"])
+        .current_dir(root)
+        .output()
+        .ok()?;
+    if !out.status.success() || out.stdout.is_empty() {
+        return None;
+    }
+    let mut folders = std::collections::BTreeSet::new();
+    for path in String::from_utf8_lossy(&out.stdout).split('\0') {
+        let parts: Vec<&str> = path.split('/').collect();
+        if parts.len() > 1 {
+            folders.insert(parts[0].to_owned());
+        }
+        if parts.len() > 2 && parts[0] == "crates" {
+            folders.insert(format!("crates/{}", parts[1]));
+        }
+    }
+    Some(folders)
+}
+
+/// The folders that need a heading: every crate and every top-level folder that is not hidden
+/// (of those git tracks, where git can say).
 fn folders() -> Vec<String> {
     let root = root();
-    let names = |dir: &Path| -> Vec<String> {
+    let tracked = tracked_folders(&root);
+    let names = |dir: &Path, prefix: &str| -> Vec<String> {
         let mut out: Vec<String> = fs::read_dir(dir)
             .unwrap()
             .map(|e| e.unwrap().path())
             .filter(|p| p.is_dir())
             .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
             .filter(|n| !n.starts_with('.') && !NOT_MAPPED.contains(&n.as_str()))
+            .filter(|n| {
+                tracked
+                    .as_ref()
+                    .is_none_or(|t| t.contains(&format!("{prefix}{n}")))
+            })
             .collect();
         out.sort();
         out
     };
-    let mut out: Vec<String> = names(&root.join("crates"))
+    let mut out: Vec<String> = names(&root.join("crates"), "crates/")
         .into_iter()
         .map(|c| format!("crates/{c}"))
         .collect();
-    out.extend(names(&root).into_iter().filter(|n| n != "crates"));
+    out.extend(names(&root, "").into_iter().filter(|n| n != "crates"));
     out
 }
 
