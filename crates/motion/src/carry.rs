@@ -474,12 +474,6 @@ impl<'m> Carried<'m> {
                         self.refresh();
                         continue;
                     }
-                    if std::env::var_os("CARRY_DEBUG").is_some() && taken > MAX_IN_A_STEP - 10 {
-                        eprintln!(
-                            "at {phi}: {what:?} rule {:?} theta {}",
-                            self.rule, self.theta
-                        );
-                    }
                     self.take(phi, what);
                 }
             }
@@ -494,73 +488,94 @@ impl<'m> Carried<'m> {
             let free = |phi: f64| self.mesh.next_free(phi, theta, true).is_some();
             return free(b).then(|| (bisect(a, b, free), Transition::Release));
         }
-        let mut first: Option<(f64, Transition)> = None;
-        let mut offer = |phi: f64, what: Transition| {
-            if first.is_none_or(|(f, _)| phi < f) {
-                first = Some((phi, what));
-            }
-        };
-        let (theta_a, mover_b) = (self.theta, self.theta_at(b));
-        // The pair moving the gear: where its end jumps, and where it lets go (before a jump).
-        if let Some((pair, side)) = self.mover() {
-            let exists = |phi: f64| self.end(phi, pair, side).is_some();
-            let lets_go_with = |phi: f64, end: Option<f64>| match end
-                .and_then(|e| self.slope_with(phi, pair, side, e))
-            {
-                None => true,
-                Some(s) => match side {
-                    Side::Behind => s <= self.ratio,
-                    Side::Ahead => s >= self.ratio,
-                },
-            };
-            let lets_go = |phi: f64| lets_go_with(phi, self.end(phi, pair, side));
-            let rate = self
-                .slope_with(a, pair, side, theta_a)
-                .map_or(self.ratio, f64::abs)
-                + self.ratio;
-            let jumped = |phi: f64, end: Option<f64>| {
-                end.is_some_and(|e| (e - theta_a).abs() > JUMP_RATE * rate * (phi - a) + JUMP_TOL)
-            };
-            let mut until = (b, mover_b);
-            if jumped(b, mover_b) {
-                let (before, at) = bracket(a, b, |phi| jumped(phi, self.end(phi, pair, side)));
-                match self.end(before, pair, side) {
-                    Some(t) => offer(at, Transition::Jump(t)),
-                    None => offer(at, Transition::Depart),
-                }
-                until = (before, self.end(before, pair, side));
-            }
-            let (mut b_mover, mut end_b) = until;
-            // The end's contact changes where two contact conditions cross (a kink: the
-            // paper's switch from Phase 1 to Phase 2, or tip on tip): the slope may fall below
-            // the ratio just before one and rise above it after. Such a switch within the step
-            // is located, and the gear let go before it if the slope fell there.
-            if let Some(e) = end_b
-                && !self.same_contact((a, theta_a), (b_mover, e), pair)
-            {
-                let (before, _) = bracket(a, b_mover, |phi| {
-                    self.end(phi, pair, side)
-                        .is_none_or(|e| !self.same_contact((a, theta_a), (phi, e), pair))
-                });
-                // Just short of the switch, where the old contact is still the nearest.
-                let probe = (before - SWITCH_PROBE).max(a);
-                if self.end(probe, pair, side).is_some() && lets_go(probe) {
-                    (b_mover, end_b) = (probe, self.end(probe, pair, side));
-                }
-            }
-            if lets_go_with(a, Some(theta_a)) {
-                offer(a, Transition::Depart);
-            } else if end_b.is_none() {
-                let gone = bisect(a, b_mover, |phi| !exists(phi));
-                offer(bisect(a, gone, lets_go), Transition::Depart);
-            } else if lets_go_with(b_mover, end_b) {
-                offer(bisect(a, b_mover, lets_go), Transition::Depart);
-            }
-        }
-        let theta_b = mover_b.unwrap_or(theta_a + self.ratio * (b - a));
+        let mover_b = self.theta_at(b);
+        let mut first = self.mover_transition(a, b, mover_b);
+        let theta_b = mover_b.unwrap_or(self.theta + self.ratio * (b - a));
         let w = self.window;
         let mut at_b = std::mem::take(&mut self.scratch);
         self.mesh.obstacles(b, theta_b - w, theta_b + w, &mut at_b);
+        // Earlier phases win ties, as the order they are looked at.
+        for found in [
+            self.known_pairs_contact((a, b), theta_b, &at_b),
+            self.new_pairs_contact((a, b), theta_b, &at_b),
+        ] {
+            first = earliest(first, found);
+        }
+        self.scratch = at_b;
+        first
+    }
+
+    /// The first transition of the pair moving the gear within `(a, b]`, if one moves it: where
+    /// its end jumps, and where it lets go (before a jump). `mover_b`: its end at `b`.
+    fn mover_transition(&self, a: f64, b: f64, mover_b: Option<f64>) -> Option<(f64, Transition)> {
+        let (pair, side) = self.mover()?;
+        let theta_a = self.theta;
+        let mut first: Option<(f64, Transition)> = None;
+        let mut offer = |phi: f64, what: Transition| first = earliest(first, Some((phi, what)));
+        let exists = |phi: f64| self.end(phi, pair, side).is_some();
+        let lets_go_with = |phi: f64, end: Option<f64>| match end
+            .and_then(|e| self.slope_with(phi, pair, side, e))
+        {
+            None => true,
+            Some(s) => match side {
+                Side::Behind => s <= self.ratio,
+                Side::Ahead => s >= self.ratio,
+            },
+        };
+        let lets_go = |phi: f64| lets_go_with(phi, self.end(phi, pair, side));
+        let rate = self
+            .slope_with(a, pair, side, theta_a)
+            .map_or(self.ratio, f64::abs)
+            + self.ratio;
+        let jumped = |phi: f64, end: Option<f64>| {
+            end.is_some_and(|e| (e - theta_a).abs() > JUMP_RATE * rate * (phi - a) + JUMP_TOL)
+        };
+        let mut until = (b, mover_b);
+        if jumped(b, mover_b) {
+            let (before, at) = bracket(a, b, |phi| jumped(phi, self.end(phi, pair, side)));
+            match self.end(before, pair, side) {
+                Some(t) => offer(at, Transition::Jump(t)),
+                None => offer(at, Transition::Depart),
+            }
+            until = (before, self.end(before, pair, side));
+        }
+        let (mut b_mover, mut end_b) = until;
+        // The end's contact changes where two contact conditions cross (a kink: the paper's
+        // switch from Phase 1 to Phase 2, or tip on tip): the slope may fall below the ratio
+        // just before one and rise above it after. Such a switch within the step is located,
+        // and the gear let go before it if the slope fell there.
+        if let Some(e) = end_b
+            && !self.same_contact((a, theta_a), (b_mover, e), pair)
+        {
+            let (before, _) = bracket(a, b_mover, |phi| {
+                self.end(phi, pair, side)
+                    .is_none_or(|e| !self.same_contact((a, theta_a), (phi, e), pair))
+            });
+            // Just short of the switch, where the old contact is still the nearest.
+            let probe = (before - SWITCH_PROBE).max(a);
+            if self.end(probe, pair, side).is_some() && lets_go(probe) {
+                (b_mover, end_b) = (probe, self.end(probe, pair, side));
+            }
+        }
+        if lets_go_with(a, Some(theta_a)) {
+            offer(a, Transition::Depart);
+        } else if end_b.is_none() {
+            let gone = bisect(a, b_mover, |phi| !exists(phi));
+            offer(bisect(a, gone, lets_go), Transition::Depart);
+        } else if lets_go_with(b_mover, end_b) {
+            offer(bisect(a, b_mover, lets_go), Transition::Depart);
+        }
+        first
+    }
+
+    /// The first contact within `(a, b)` of a pair already beside the gear (other than the one
+    /// moving it): where its end reaches into the gear's path. `at_b`: the obstacles at `b`.
+    fn known_pairs_contact(
+        &self,
+        (a, b): (f64, f64),
+        theta_b: f64,
+        at_b: &[Obstacle],
+    ) -> Option<(f64, Transition)> {
         let mover = self.mover().map(|m| m.0);
         let end_in = |list: &[Obstacle], pair: (i64, i64), side: Side| {
             list.iter()
@@ -570,19 +585,29 @@ impl<'m> Carried<'m> {
                     Side::Ahead => o.lo,
                 })
         };
-        // Every other pair near the gear: where its end reaches into the gear's path.
+        let mut first = None;
         for &(pair, side) in &self.sides {
             if Some(pair) == mover {
                 continue;
             }
-            let ends = (end_in(&self.near, pair, side), end_in(&at_b, pair, side));
-            if let Some(phi) = self.contact_in((a, b), (theta_a, theta_b), ends, pair, side) {
-                offer(phi, Transition::Contact(pair, side));
+            let ends = (end_in(&self.near, pair, side), end_in(at_b, pair, side));
+            if let Some(phi) = self.contact_in((a, b), (self.theta, theta_b), ends, pair, side) {
+                first = earliest(first, Some((phi, Transition::Contact(pair, side))));
             }
         }
-        // Pairs that come near the gear within the step: one found straddling its path met it
-        // on the side where its obstacle was born.
-        for o in &at_b {
+        first
+    }
+
+    /// The first contact within `(a, b]` of a pair that comes near the gear within the step: one
+    /// found straddling its path at `b` met it on the side where its obstacle was born.
+    fn new_pairs_contact(
+        &self,
+        (a, b): (f64, f64),
+        theta_b: f64,
+        at_b: &[Obstacle],
+    ) -> Option<(f64, Transition)> {
+        let mut first = None;
+        for o in at_b {
             let pair = (o.driver_tooth, o.driven_tooth);
             let straddles = o.hi > theta_b + SIDE_TOL && o.lo < theta_b - SIDE_TOL;
             if !straddles || self.sides.iter().any(|(p, _)| *p == pair) {
@@ -603,9 +628,8 @@ impl<'m> Carried<'m> {
             } else {
                 bisect(born, b, reaches)
             };
-            offer(phi, Transition::Contact(pair, side));
+            first = earliest(first, Some((phi, Transition::Contact(pair, side))));
         }
-        self.scratch = at_b;
         first
     }
 
@@ -911,5 +935,17 @@ pub(crate) fn outcome(
     crate::Outcome {
         events: run.events,
         path,
+    }
+}
+
+/// The earlier of two found transitions; on a tie, the one found first (`a`).
+fn earliest(
+    a: Option<(f64, Transition)>,
+    b: Option<(f64, Transition)>,
+) -> Option<(f64, Transition)> {
+    match (a, b) {
+        (Some(x), Some(y)) => Some(if y.0 < x.0 { y } else { x }),
+        (x, None) => x,
+        (None, y) => y,
     }
 }
