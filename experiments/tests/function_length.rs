@@ -12,18 +12,6 @@ use syn::visit::Visit;
 /// The most lines a function may span.
 const MAX_LINES: usize = 80;
 
-/// Reason: its run (or its event log) is still one body of settings, study calls and report.
-const ONE_BODY: &str = "settings, study calls and report still in one body";
-
-/// Plugin files not yet split into named phases, each with its reason. This list only shrinks:
-/// a file leaves it once its functions fit, and the test then holds it to the limit.
-const NOT_YET_SPLIT: &[(&str, &str)] = &[
-    ("fig_events.rs", ONE_BODY),
-    ("pair.rs", ONE_BODY),
-    ("table5.rs", ONE_BODY),
-    ("table_i.rs", ONE_BODY),
-];
-
 /// (name, first line, line count) of each function.
 type Functions = Vec<(String, usize, usize)>;
 
@@ -85,7 +73,6 @@ fn no_plugin_function_is_over_80_lines() {
     assert!(all.len() >= 20, "{} plugin files", all.len());
     let long: Vec<String> = all
         .iter()
-        .filter(|(file, _)| !NOT_YET_SPLIT.iter().any(|(f, _)| f == file))
         .flat_map(|(file, fns)| {
             fns.iter()
                 .filter(|(_, _, lines)| *lines > MAX_LINES)
@@ -112,22 +99,4 @@ fn the_measure_sees_long_functions() {
         lengths.0,
         vec![("long".to_owned(), 1, 100), ("m".to_owned(), 103, 100)]
     );
-}
-
-#[test]
-fn every_allowed_file_exists_and_still_needs_its_place() {
-    // An entry whose file is gone, or whose functions already fit, is dropped from the list.
-    let all = plugin_functions();
-    for (file, reason) in NOT_YET_SPLIT {
-        assert!(!reason.is_empty());
-        let fns = &all
-            .iter()
-            .find(|(f, _)| f == file)
-            .unwrap_or_else(|| panic!("{file} is listed but not a plugin file"))
-            .1;
-        assert!(
-            fns.iter().any(|(_, _, lines)| *lines > MAX_LINES),
-            "{file} fits the limit now: drop it from NOT_YET_SPLIT"
-        );
-    }
 }

@@ -53,86 +53,17 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         ],
     );
     let mut files = Vec::new();
-    let cases = [
-        (
-            "V_A (a jam)",
-            jam_limit.map(|l| l - margin),
-            true,
-            "fig-V_A.svg",
-        ),
-        (
-            "V_B (a decoupling)",
-            dis_limit.map(|l| l + margin),
-            false,
-            "fig-V_B.svg",
-        ),
-    ];
-    for ((figure, at, jam, file), limit) in cases.into_iter().zip([jam_limit, dis_limit]) {
-        let mut row = vec![
-            figure.to_string(),
-            limit.map_or_else(|| "-".into(), |l| fmt_f64(l, 2)),
-            at.map_or_else(|| "-".into(), |g| fmt_f64(g, 2)),
-        ];
-        let found = match at {
-            Some(gc) if gc > 0.0 => pair.run(gc)?.and_then(|t| {
-                let e = t
-                    .events()
-                    .iter()
-                    .find(|e| {
-                        if jam {
-                            rule.is_jam(e)
-                        } else {
-                            rule.is_disengagement(e)
-                        }
-                    })
-                    .cloned()?;
-                Some((t, e))
-            }),
-            _ => None,
-        };
-        match found {
-            Some((t, e)) => {
-                let counted = if jam { "jam" } else { "disengagement" };
-                let g = at.unwrap_or_default();
-                let side = if jam {
-                    format!("{margin} % of h inside its jam limit")
-                } else {
-                    format!("{margin} % of h beyond its disengagement limit")
-                };
-                let picture_title = format!(
-                    "Figure {}: {label} ({}:{}), ideal teeth, h = {h} mm, G = {} % of h ({side})",
-                    figure.split(' ').next().unwrap_or(figure),
-                    pair.n1,
-                    pair.n2,
-                    fmt_f64(g, 2),
-                );
-                files.push(OutputFile::new(
-                    file,
-                    crate::event_picture::event_svg(
-                        &picture_title,
-                        &t,
-                        &e,
-                        counted,
-                        &crate::pair_html::solver_teeth(t.mesh()),
-                    ),
-                ));
-                row.extend([
-                    e.label().to_string(),
-                    fmt_f64(e.phi.to_degrees(), 4),
-                    e.driver_tooth.rem_euclid(pair.n1 as i64).to_string(),
-                    e.driven_tooth.rem_euclid(pair.n2 as i64).to_string(),
-                    file.to_string(),
-                ]);
-            }
-            None => row.extend([
-                "none found".to_string(),
-                "-".into(),
-                "-".into(),
-                "-".into(),
-                "-".into(),
-            ]),
-        }
+    let mesh = Mesh {
+        label,
+        h,
+        pair: &pair,
+        rule: &rule,
+        margin,
+    };
+    for (figure, limit) in [Figure::Jam, Figure::Decoupling].into_iter().zip([jam_limit, dis_limit]) {
+        let (row, picture) = mesh.figure(figure, limit)?;
         table.row(row);
+        files.extend(picture);
     }
     table.note(format!(
         "Limits as `clearance` finds them (located to {LIMIT_TOLERANCE} % of h), then a run {margin} % of h inside the jam limit and beyond the disengagement limit; each picture shows the mesh at its first jam or disengagement, zoomed on the two teeth, with the contact point and its normal. The paper's Figure V_A shows a lock (one driver tip pushes a driven flank while another meets a preceding tooth), V_B tips that no longer reach each other."
@@ -142,4 +73,132 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         files,
         ..Default::default()
     })
+}
+
+/// Which of the two figures: V_A (a jam, just inside the jam limit) or V_B (a decoupling, just
+/// beyond the disengagement limit).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Figure {
+    /// Figure V_A.
+    Jam,
+    /// Figure V_B.
+    Decoupling,
+}
+
+impl Figure {
+    /// The figure's name in the table, its short name in the picture's title, and its file.
+    fn names(self) -> (&'static str, &'static str, &'static str) {
+        match self {
+            Figure::Jam => ("V_A (a jam)", "V_A", "fig-V_A.svg"),
+            Figure::Decoupling => ("V_B (a decoupling)", "V_B", "fig-V_B.svg"),
+        }
+    }
+}
+
+/// The mesh both figures draw, and how they are found.
+struct Mesh<'a> {
+    /// The mesh's label, e.g. `b2-c1`.
+    label: &'a str,
+    /// Tooth height h, mm.
+    h: f64,
+    /// Its two ideal gears.
+    pair: &'a study::limits::IdealPair,
+    /// The event rule that says what is a jam and what a disengagement.
+    rule: &'a rules::Rule,
+    /// How far past each limit the run is made, % of h.
+    margin: f64,
+}
+
+impl Mesh<'_> {
+    /// `figure`'s table row and picture: a run `margin` past its `limit`, drawn at its first
+    /// event of the figure's kind (a row of dashes and no picture where none is found).
+    fn figure(
+        &self,
+        figure: Figure,
+        limit: Option<f64>,
+    ) -> Result<(Vec<String>, Option<OutputFile>), RunError> {
+        let (name, _, file) = figure.names();
+        let at = limit.map(|l| match figure {
+            Figure::Jam => l - self.margin,
+            Figure::Decoupling => l + self.margin,
+        });
+        let mut row = vec![
+            name.to_string(),
+            limit.map_or_else(|| "-".into(), |l| fmt_f64(l, 2)),
+            at.map_or_else(|| "-".into(), |g| fmt_f64(g, 2)),
+        ];
+        let found = match at {
+            Some(gc) if gc > 0.0 => self.first_event(figure, gc)?,
+            _ => None,
+        };
+        let Some((t, e)) = found else {
+            row.extend(["none found", "-", "-", "-", "-"].map(String::from));
+            return Ok((row, None));
+        };
+        let picture = self.picture(figure, at.unwrap_or_default(), &t, &e);
+        row.extend([
+            e.label().to_string(),
+            fmt_f64(e.phi.to_degrees(), 4),
+            e.driver_tooth.rem_euclid(self.pair.n1 as i64).to_string(),
+            e.driven_tooth.rem_euclid(self.pair.n2 as i64).to_string(),
+            file.to_string(),
+        ]);
+        Ok((row, Some(picture)))
+    }
+
+    /// The run at clearance `gc` and its first event counted as the figure's kind, if any.
+    fn first_event(
+        &self,
+        figure: Figure,
+        gc: f64,
+    ) -> Result<Option<(contact::Trajectory, contact::Event)>, RunError> {
+        Ok(self.pair.run(gc)?.and_then(|t| {
+            let e = t
+                .events()
+                .iter()
+                .find(|e| match figure {
+                    Figure::Jam => self.rule.is_jam(e),
+                    Figure::Decoupling => self.rule.is_disengagement(e),
+                })
+                .cloned()?;
+            Some((t, e))
+        }))
+    }
+
+    /// The picture of event `e` of run `t` at clearance `g`, titled with the mesh, its teeth and
+    /// how far past its limit it ran.
+    fn picture(
+        &self,
+        figure: Figure,
+        g: f64,
+        t: &contact::Trajectory,
+        e: &contact::Event,
+    ) -> OutputFile {
+        let (_, short, file) = figure.names();
+        let (counted, side) = match figure {
+            Figure::Jam => ("jam", format!("{} % of h inside its jam limit", self.margin)),
+            Figure::Decoupling => (
+                "disengagement",
+                format!("{} % of h beyond its disengagement limit", self.margin),
+            ),
+        };
+        let title = format!(
+            "Figure {short}: {} ({}:{}), ideal teeth, h = {} mm, G = {} % of h ({side})",
+            self.label,
+            self.pair.n1,
+            self.pair.n2,
+            self.h,
+            fmt_f64(g, 2),
+        );
+        OutputFile::new(
+            file,
+            crate::event_picture::event_svg(
+                &title,
+                t,
+                e,
+                counted,
+                &crate::pair_html::solver_teeth(t.mesh()),
+            ),
+        )
+    }
 }

@@ -161,6 +161,40 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
     let rule = crate::settings::rule(ctx)?;
+    let (name, as_written, prepared, drive) = pair_file(ctx)?;
+    let run = simulate(&prepared);
+    let td: Vec<f64> = run.rows.iter().map(|r| r[2]).collect();
+    let s = stats::pointer_stats(&td);
+    let summary = summary_table(
+        &name,
+        &prepared.mesh,
+        &run.traj,
+        &rule,
+        run.run_deg,
+        (run.phi0, run.theta0),
+        &s,
+    );
+    let (events, ev_rows) = event_log(&run.traj, &rule, (run.phi0, run.theta0), &prepared);
+    // pair-check.svg draws the file as written; its start line gives the file's own angles (with
+    // the driven gear driving, the run's phi is the file's theta and the other way round).
+    let start = match drive {
+        Drive::Other => (run.theta0, run.phi0),
+        _ => (run.phi0, run.theta0),
+    };
+    let ([data, td, page], pictures) = run_files(&name, &run, &prepared, &rule)?;
+    let check = OutputFile::new("pair-check.svg", check_svg(&name, &as_written, start));
+    let mut files = vec![data, OutputFile::new("event-log.csv", ev_rows), td, check, page];
+    files.extend(pictures);
+    Ok(Report {
+        tables: vec![summary, events],
+        files,
+        ..Default::default()
+    })
+}
+
+/// The pair file (the `--config` file, or the example) as written and as run under `drive`,
+/// with its name and the drive.
+fn pair_file(ctx: &Context) -> Result<(String, Prepared, Prepared, Drive), RunError> {
     let (name, text) = match ctx.config() {
         Some(c) => (c.path.display().to_string(), c.text.as_str()),
         None => (EXAMPLE_NAME.to_string(), EXAMPLE),
@@ -178,6 +212,25 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             ));
         }
     };
+    Ok((name, as_written, prepared, drive))
+}
+
+/// One run of the pair and its samples.
+struct Run {
+    /// The contact motion.
+    traj: contact::Trajectory,
+    /// The driver angle at the start, radians.
+    phi0: f64,
+    /// The driven angle at the start, radians.
+    theta0: f64,
+    /// How far the driver turns, degrees.
+    run_deg: f64,
+    /// A row per sample: φ − φ0, θ − θ0, the Theoretical Difference, φ and θ, degrees.
+    rows: Vec<Vec<f64>>,
+}
+
+/// The run the file asks for, sampled every `sample_deg` of the driver.
+fn simulate(prepared: &Prepared) -> Run {
     let (mesh, spec) = (&prepared.mesh, &prepared.spec);
     let (n1, n2) = (mesh.driver().teeth(), mesh.driven().teeth());
     let ratio = n1 as f64 / n2 as f64;
@@ -201,17 +254,29 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             ]
         })
         .collect();
-    let td: Vec<f64> = rows.iter().map(|r| r[2]).collect();
-    let s = stats::pointer_stats(&td);
+    Run {
+        traj,
+        phi0,
+        theta0,
+        run_deg,
+        rows,
+    }
+}
 
-    let summary = summary_table(&name, mesh, &traj, &rule, run_deg, (phi0, theta0), &s);
-
-    let (events, ev_rows) = event_log(&traj, &rule, (phi0, theta0), &prepared);
+/// The run's own files: pair.csv, the Theoretical Difference (pair.svg) and the page
+/// (pair.html), then a picture per event, every tooth numbered as the file numbers it.
+fn run_files(
+    name: &str,
+    run: &Run,
+    prepared: &Prepared,
+    rule: &rules::Rule,
+) -> Result<([OutputFile; 3], Vec<OutputFile>), RunError> {
+    let traj = &run.traj;
     let svg = crate::td_plot::td_plot(
         &format!("the mesh from {name}"),
-        &traj,
-        &|e| counted_as(&rule, e),
-        &rows.iter().map(|r| (r[0], r[2])).collect::<Vec<_>>(),
+        traj,
+        &|e| counted_as(rule, e),
+        &run.rows.iter().map(|r| (r[0], r[2])).collect::<Vec<_>>(),
     )?;
     let data = csv(
         &[
@@ -221,55 +286,31 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             "phi_abs_deg",
             "theta_abs_deg",
         ],
-        rows.into_iter(),
+        run.rows.iter().cloned(),
         9,
     );
-    // pair-check.svg draws the file as written; its start line gives the file's own angles (with
-    // the driven gear driving, the run's phi is the file's theta and the other way round).
-    let start = match drive {
-        Drive::Other => (theta0, phi0),
-        _ => (phi0, theta0),
-    };
-    let check = check_svg(&name, &as_written, start);
-    // Every output numbers the teeth as the file does (a driven gear measured in its own sense is
-    // numbered the other way round inside the solver).
-    let user_teeth = |e: &contact::Event| {
+    // A driven gear measured in its own sense is numbered the other way round in the solver.
+    let numbered = |e: &contact::Event| {
         (
             prepared.driver.user(e.driver_tooth),
             prepared.driven.user(e.driven_tooth),
         )
     };
-    Ok(Report {
-        tables: vec![summary, events],
-        files: vec![
+    let title = format!("Mesh from {name}");
+    let page = crate::pair_html::page(&title, traj, &|e| counted_as(rule, e), &numbered);
+    let pictures =
+        crate::event_picture::event_pictures(&title, traj, &|e| counted_as(rule, e), &numbered);
+    Ok((
+        [
             OutputFile::new("pair.csv", data),
-            OutputFile::new("event-log.csv", ev_rows),
             OutputFile::new("pair.svg", svg),
-            OutputFile::new("pair-check.svg", check),
-            OutputFile::new(
-                "pair.html",
-                crate::pair_html::page(
-                    &format!("Mesh from {name}"),
-                    &traj,
-                    &|e| counted_as(&rule, e),
-                    &user_teeth,
-                ),
-            ),
-        ]
-        .into_iter()
-        .chain(
-            crate::event_picture::event_pictures(
-                &format!("Mesh from {name}"),
-                &traj,
-                &|e| counted_as(&rule, e),
-                &user_teeth,
-            )
+            OutputFile::new("pair.html", page),
+        ],
+        pictures
             .into_iter()
-            .map(|(n, svg)| OutputFile::new(n, svg)),
-        )
-        .collect(),
-        ..Default::default()
-    })
+            .map(|(n, svg)| OutputFile::new(n, svg))
+            .collect(),
+    ))
 }
 
 /// How many events the printed event table shows; `event-log.csv` has every one.
@@ -323,7 +364,7 @@ fn size_text(e: &contact::Event, n2: usize) -> String {
 fn event_log(
     traj: &contact::Trajectory,
     rule: &rules::Rule,
-    (phi0, theta0): (f64, f64),
+    start: (f64, f64),
     prepared: &Prepared,
 ) -> (Table, String) {
     let n2 = traj.mesh().driven().teeth();
@@ -345,59 +386,90 @@ fn event_log(
         "phi_minus_phi0_deg,kind,counted_as,driver_tooth,driven_tooth,theta_minus_theta0_deg,theta_after_minus_theta0_deg,lost_motion_pitches,resumed,phase_shift,lag_deg,wedge_angle_deg,phi_abs_deg,theta_abs_deg,theta_after_abs_deg\n",
     );
     for e in traj.events() {
-        let kind = e.label();
         let counted = counted_as(rule, e);
-        // Tooth numbers as the user wrote them (a driven gear measured in its own sense is
-        // numbered the other way round inside the solver); an idle start has no teeth.
-        let (j, k) = if crate::pair_html::is_idle_start(e) {
-            (String::new(), String::new())
-        } else {
-            (
-                prepared.driver.user(e.driver_tooth).to_string(),
-                prepared.driven.user(e.driven_tooth).to_string(),
-            )
-        };
-        let shown = |t: &str| {
-            if t.is_empty() {
-                "-".to_string()
-            } else {
-                t.to_string()
-            }
-        };
-        let cells = [
-            format!("{:.9}", deg(e.phi - phi0)),
-            kind.to_string(),
-            counted.to_string(),
-            j.clone(),
-            k.clone(),
-            format!("{:.9}", deg(e.theta - theta0)),
-            format!("{:.9}", deg(e.theta_after - theta0)),
-            format!("{:.9}", e.lost_motion),
-            e.resumed.to_string(),
-            e.phase_shift.to_string(),
-            format!("{:.9}", deg(e.lag)),
-            e.wedge_angle
-                .map_or_else(String::new, |a| format!("{:.9}", deg(a))),
-            format!("{:.9}", deg(e.phi)),
-            format!("{:.9}", deg(e.theta)),
-            format!("{:.9}", deg(e.theta_after)),
-        ];
-        ev_rows.push_str(&cells.join(","));
+        let teeth = user_teeth(e, prepared);
+        ev_rows.push_str(&log_line(e, counted, &teeth, start).join(","));
         ev_rows.push('\n');
         if events.rows.len() < EVENTS_SHOWN {
-            events.row(vec![
-                fmt_f64(deg(e.phi - phi0), 6),
-                fmt_f64(deg(e.phi), 6),
-                kind.into(),
-                counted.into(),
-                shown(&j),
-                shown(&k),
-                fmt_f64(deg(e.theta - theta0), 6),
-                fmt_f64(deg(e.theta_after - theta0), 6),
-                size_text(e, n2),
-            ]);
+            events.row(table_row(e, counted, &teeth, start, n2));
         }
     }
+    add_event_notes(&mut events, traj);
+    // The table is an excerpt of event-log.csv: the run writes the events once.
+    (events.data_in("event-log.csv"), ev_rows)
+}
+
+/// An event's driver and driven tooth as the user wrote them (a driven gear measured in its own
+/// sense is numbered the other way round inside the solver); none (empty) for an idle start.
+fn user_teeth(e: &contact::Event, prepared: &Prepared) -> (String, String) {
+    if crate::pair_html::is_idle_start(e) {
+        (String::new(), String::new())
+    } else {
+        (
+            prepared.driver.user(e.driver_tooth).to_string(),
+            prepared.driven.user(e.driven_tooth).to_string(),
+        )
+    }
+}
+
+/// An event's line of `event-log.csv`, as its cells.
+fn log_line(
+    e: &contact::Event,
+    counted: &str,
+    (j, k): &(String, String),
+    (phi0, theta0): (f64, f64),
+) -> [String; 15] {
+    [
+        format!("{:.9}", deg(e.phi - phi0)),
+        e.label().to_string(),
+        counted.to_string(),
+        j.clone(),
+        k.clone(),
+        format!("{:.9}", deg(e.theta - theta0)),
+        format!("{:.9}", deg(e.theta_after - theta0)),
+        format!("{:.9}", e.lost_motion),
+        e.resumed.to_string(),
+        e.phase_shift.to_string(),
+        format!("{:.9}", deg(e.lag)),
+        e.wedge_angle
+            .map_or_else(String::new, |a| format!("{:.9}", deg(a))),
+        format!("{:.9}", deg(e.phi)),
+        format!("{:.9}", deg(e.theta)),
+        format!("{:.9}", deg(e.theta_after)),
+    ]
+}
+
+/// An event's row of the printed table (`-` for a tooth it has none of).
+fn table_row(
+    e: &contact::Event,
+    counted: &str,
+    (j, k): &(String, String),
+    (phi0, theta0): (f64, f64),
+    n2: usize,
+) -> Vec<String> {
+    let shown = |t: &str| {
+        if t.is_empty() {
+            "-".to_string()
+        } else {
+            t.to_string()
+        }
+    };
+    vec![
+        fmt_f64(deg(e.phi - phi0), 6),
+        fmt_f64(deg(e.phi), 6),
+        e.label().into(),
+        counted.into(),
+        shown(j),
+        shown(k),
+        fmt_f64(deg(e.theta - theta0), 6),
+        fmt_f64(deg(e.theta_after - theta0), 6),
+        size_text(e, n2),
+    ]
+}
+
+/// The notes under the event table: the angles, what is not shown, and what the events need
+/// explained (a lock's release, an idle start, the pictures).
+fn add_event_notes(events: &mut Table, traj: &contact::Trajectory) {
     events.note(crate::pair_html::ANGLES_NOTE);
     if traj.events().len() > EVENTS_SHOWN {
         events.note(format!(
@@ -421,8 +493,6 @@ fn event_log(
     if traj.events().is_empty() {
         events.note("no event: the driven gear was driven throughout");
     }
-    // The table is an excerpt of event-log.csv: the run writes the events once.
-    (events.data_in("event-log.csv"), ev_rows)
 }
 
 /// The note under the summary table: the frames of the absolute angles.

@@ -57,9 +57,7 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
     let s = crate::settings::cells(ctx, &TRIALS)?;
-    let trials = s.trials;
     let rule = ctx.get(&study::tolerance::RULE)?;
-    let (clearance, split) = (s.clearance()?, s.errors.split()?);
     let grids = (
         crate::settings::random_grid(ctx)?,
         crate::settings::systematic_grid(ctx)?,
@@ -67,48 +65,78 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let given = given_random(ctx, s.gearing())?;
     let t = derive(ctx.engine(), &s, grids, rule, Purpose::Own, given)?;
     let given = emax_from_paper(ctx)?;
-    let meshes = &t.random_grid.meshes;
-    let allowed = tolerance::allowed_jams(trials, rule);
+    let like_for_like = like_for_like(&t);
+    let mut table = Table::new(
+        title(&s, rule, given, &like_for_like)?,
+        std::iter::once("E. sys [deg]".to_string()).chain(t.random_grid.meshes.iter().cloned()),
+    );
+    let (row, same) = random_row(&t);
+    table.row(row);
+    let mut jam_cells = JamCells::new("systematic,mesh,random").with_rule(rule);
+    for row in count_rows(&t, &like_for_like, &mut jam_cells) {
+        table.row(row);
+    }
+    let emax_csv = String::from(
+        "mesh,random_emax,paper_random_emax,systematic_emax_deg,paper_systematic_emax_deg_by_rule\n",
+    );
+    let (row, emax_csv) = systematic_row(&t, rule, emax_csv);
+    table.row(row);
+    table.note(jam_cells.tally.note());
+    table.note(jam_cells.rule_note());
+    add_notes(&mut table, &t, (rule, s.trials), given, (&like_for_like, same));
+    Ok(Report {
+        tables: vec![table, jam_cells.rule_table("Table 5", "E. sys [deg]")],
+        files: vec![
+            OutputFile::new("table5-data.csv", jam_cells.csv),
+            OutputFile::new("table5-emax.csv", emax_csv),
+        ],
+        agreement: Some(jam_cells.tally.agreement()),
+        ..counts_report(t.all())
+    })
+}
 
-    // A mesh's cells are compared with the paper's only where they ran on the paper's inputs:
-    // its E. max is the paper's (always under emax=paper).
-    let like_for_like: Vec<bool> = meshes
+/// Whether each mesh's cells compare with the paper's: only where they ran on the paper's
+/// inputs, its E. max being the paper's (always under emax=paper).
+fn like_for_like(t: &study::grids::Tolerances) -> Vec<bool> {
+    t.random_grid
+        .meshes
         .iter()
         .enumerate()
         .map(|(m, mesh)| match (t.random[m], paper_random(mesh)) {
             (Some(o), Some(p)) => (o - p).abs() <= 1e-9,
             _ => false,
         })
-        .collect();
+        .collect()
+}
+
+/// The table's title: the split, G, the E. max it ran at, and the marks it uses.
+fn title(s: &CellSettings, rule: f64, given: bool, like_for_like: &[bool]) -> Result<String, RunError> {
+    let (trials, clearance, split) = (s.trials, s.clearance()?, s.errors.split()?);
     let apart = like_for_like.iter().filter(|l| !**l).count();
-    let mut header = vec!["E. sys [deg]".to_string()];
-    header.extend(meshes.iter().cloned());
-    let mut table = Table::new(
-        format!(
-            "Table 5: trials (of {trials}) with at least one jam / disengagement against the systematic error (share {split} on the sinusoid, the rest on the axis) at each mesh's largest tolerable random error (row E. max{}), G = {clearance} %: ours (paper); * where a two-sample test separates our count from the paper's (E. max: differs); ✓ where a cell keeps the {rule} % rule{}",
-            if given {
-                ": the paper's own, emax=paper"
-            } else {
-                ""
-            },
-            if apart == 0 {
-                String::new()
-            } else {
-                format!(
-                    "; † where the mesh ran at our own E. max, not the paper's ({apart} of {} meshes): not compared, emax=paper runs every cell like for like",
-                    meshes.len()
-                )
-            }
-        ),
-        header,
-    );
-    let mut jam_cells = JamCells::new("systematic,mesh,random").with_rule(rule);
-    let emax_csv = String::from(
-        "mesh,random_emax,paper_random_emax,systematic_emax_deg,paper_systematic_emax_deg_by_rule\n",
-    );
+    Ok(format!(
+        "Table 5: trials (of {trials}) with at least one jam / disengagement against the systematic error (share {split} on the sinusoid, the rest on the axis) at each mesh's largest tolerable random error (row E. max{}), G = {clearance} %: ours (paper); * where a two-sample test separates our count from the paper's (E. max: differs); ✓ where a cell keeps the {rule} % rule{}",
+        if given {
+            ": the paper's own, emax=paper"
+        } else {
+            ""
+        },
+        if apart == 0 {
+            String::new()
+        } else {
+            format!(
+                "; † where the mesh ran at our own E. max, not the paper's ({apart} of {} meshes): not compared, emax=paper runs every cell like for like",
+                like_for_like.len()
+            )
+        }
+    ))
+}
+
+/// The first row, each mesh's largest tolerable random error beside the paper's (`*` where
+/// they differ), and how many agree.
+fn random_row(t: &study::grids::Tolerances) -> (Vec<String>, usize) {
     let mut row = vec!["E. max (random)".to_string()];
     let mut same = 0;
-    for (m, mesh) in meshes.iter().enumerate() {
+    for (m, mesh) in t.random_grid.meshes.iter().enumerate() {
         let ours = t.random[m];
         let paper = paper_random(mesh);
         let differs = paper.is_some_and(|p| ours.is_none_or(|o| (o - p).abs() > 1e-9));
@@ -122,7 +150,18 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             if differs { "*" } else { "" }
         ));
     }
-    table.row(row);
+    (row, same)
+}
+
+/// A row per systematic error: each mesh's counts beside the paper's, compared where
+/// `like_for_like`.
+fn count_rows(
+    t: &study::grids::Tolerances,
+    like_for_like: &[bool],
+    jam_cells: &mut JamCells,
+) -> Vec<Vec<String>> {
+    let meshes = &t.random_grid.meshes;
+    let mut rows = Vec::new();
     for (s, counts) in t.sys_values.iter().zip(&t.sys_counts) {
         let key = label(*s, 1);
         let mut row = vec![key.clone()];
@@ -141,16 +180,26 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
                 like_for_like[m],
             ));
         }
-        table.row(row);
+        rows.push(row);
     }
-    let (row, emax_csv) = systematic_row(&t, rule, emax_csv);
-    table.row(row);
-    table.note(jam_cells.tally.note());
-    table.note(jam_cells.rule_note());
+    rows
+}
+
+/// The notes under the table: which meshes are not compared, how each E. max was found, and the
+/// split of the systematic error.
+fn add_notes(
+    table: &mut Table,
+    t: &study::grids::Tolerances,
+    (rule, trials): (f64, u64),
+    given: bool,
+    (like_for_like, same): (&[bool], usize),
+) {
+    let meshes = &t.random_grid.meshes;
+    let apart = like_for_like.iter().filter(|l| !**l).count();
     if apart > 0 {
         let names: Vec<&str> = meshes
             .iter()
-            .zip(&like_for_like)
+            .zip(like_for_like)
             .filter(|(_, l)| !**l)
             .map(|(m, _)| m.as_str())
             .collect();
@@ -164,13 +213,14 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         table.note("E. max (random): the paper's own row (emax=paper), not derived from Table 4: every cell runs on the paper's inputs, so all of them are compared like for like.");
     } else {
         table.note(format!(
-        "E. max (random): the largest random error of Table 4's grid up to which every value has at most {allowed} of {trials} trials jammed (rule {rule} %); ours agree with the paper's row for {same} of {} meshes. Below the grid: `< {}`, and the column is not run.",
-        meshes.len(),
-        t.random_grid
-            .values
-            .first()
-            .map_or_else(|| "-".into(), |v| label(*v, 3)),
-    ));
+            "E. max (random): the largest random error of Table 4's grid up to which every value has at most {} of {trials} trials jammed (rule {rule} %); ours agree with the paper's row for {same} of {} meshes. Below the grid: `< {}`, and the column is not run.",
+            tolerance::allowed_jams(trials, rule),
+            meshes.len(),
+            t.random_grid
+                .values
+                .first()
+                .map_or_else(|| "-".into(), |v| label(*v, 3)),
+        ));
     }
     table.note(format!(
         "E. max (systematic): the same rule on this table's jams (disengagements are not counted, as in the paper); in brackets the value the paper's own counts give by that rule (its text: e1-b3 up to 0.6, d2-e2 up to 0.1). `< {}`: even the smallest amplitude fails.",
@@ -179,15 +229,6 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             .map_or_else(|| "-".into(), |v| label(*v, 1)),
     ));
     table.note("Systematic amplitude A split as in the paper: split x A on a sinusoid of tip positions, the rest an eccentric axis R tan((1 - split) A); random error as a fraction of the pitch.");
-    Ok(Report {
-        tables: vec![table, jam_cells.rule_table("Table 5", "E. sys [deg]")],
-        files: vec![
-            OutputFile::new("table5-data.csv", jam_cells.csv),
-            OutputFile::new("table5-emax.csv", emax_csv),
-        ],
-        agreement: Some(jam_cells.tally.agreement()),
-        ..counts_report(t.all())
-    })
 }
 
 /// Table 5's last row, each mesh's largest tolerable systematic amplitude beside the one the

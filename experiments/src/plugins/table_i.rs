@@ -47,22 +47,71 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
     let s = crate::settings::cells(ctx, &TRIALS)?;
-    let (g, hyp, trials) = (s.gearing(), s.hypothesis(), s.trials);
     let gs = clearances(ctx)?;
-    let meshes: Vec<String> = g.meshes().iter().map(|m| m.label.clone()).collect();
-    // All cells in one call: Cases by clearance, as case_cells lays them out. A hypothesis the
-    // Cases do not reach makes them the same cells: Case A's alone, in one row per clearance.
-    let cases_apply = study::grids::cases_apply(hyp);
+    let meshes: Vec<String> = s.gearing().meshes().iter().map(|m| m.label.clone()).collect();
+    let grid = run_grid(ctx, &s, &gs, meshes.len())?;
+    let mut jam_cells = JamCells::new("case,clearance,mesh");
+    let mut table = counts_table(&s, &gs, &meshes, &grid, &mut jam_cells);
+    table.note(jam_cells.tally.note());
+    table.note(jam_cells.rule_note());
+    table.note(format!(
+        "{CASE_TRIAL_NOTE} The 40 % rows are the cells of table3 (same streams, so the same counts)."
+    ));
+    table.note(replay_note("tableI", "B/70/m3-e3"));
+    if let Some(note) = paper_printings_note(&meshes) {
+        table.note(note);
+    }
+    Ok(Report {
+        tables: vec![table, jam_cells.rule_table("Table I", "case and G")],
+        files: vec![OutputFile::new("tableI-data.csv", jam_cells.csv)],
+        agreement: Some(jam_cells.tally.agreement()),
+        ..counts_report(grid.counts.iter())
+    })
+}
+
+/// Table I's counts: every (clearance, case, mesh) cell, run in one call.
+struct Grid {
+    /// Counts by clearance, then case, then mesh.
+    counts: Vec<study::cell::Counts>,
+    /// Whether the hypothesis takes the Cases' errors; if not, Case A's cells stand for all.
+    cases_apply: bool,
+    /// Cases run: four, or one where they would be the same cells.
+    cases: usize,
+}
+
+/// Runs every cell in one call: Cases by clearance, as case_cells lays them out. A hypothesis
+/// the Cases do not reach makes them the same cells: Case A's alone, in one row per clearance.
+fn run_grid(
+    ctx: &Context,
+    s: &CellSettings,
+    gs: &[f64],
+    meshes: usize,
+) -> Result<Grid, RunError> {
+    let cases_apply = study::grids::cases_apply(s.hypothesis());
     let cases = if cases_apply { CASES.len() } else { 1 };
     let mut cells = Vec::new();
-    for &clearance in &gs {
-        let mut these = case_cells(&s, clearance)?;
-        these.truncate(cases * meshes.len());
+    for &clearance in gs {
+        let mut these = case_cells(s, clearance)?;
+        these.truncate(cases * meshes);
         cells.extend(these);
     }
-    let counts = run_cells(ctx.engine(), g, &cells, trials, Purpose::Own)?;
-    let per_g = cases * meshes.len();
+    let counts = run_cells(ctx.engine(), s.gearing(), &cells, s.trials, Purpose::Own)?;
+    Ok(Grid {
+        counts,
+        cases_apply,
+        cases,
+    })
+}
 
+/// The table: a row per case and clearance, ours beside the paper's in each mesh's cell.
+fn counts_table(
+    s: &CellSettings,
+    gs: &[f64],
+    meshes: &[String],
+    grid: &Grid,
+    jam_cells: &mut JamCells,
+) -> Table {
+    let trials = s.trials;
     let mut header = vec!["case".to_string(), "G [%]".to_string()];
     header.extend(meshes.iter().cloned());
     let mut table = Table::new(
@@ -71,27 +120,21 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         ),
         header,
     );
-    let mut jam_cells = JamCells::new("case,clearance,mesh");
     let alike = format!(
         "Cases A-D alike ({} takes no random or systematic error)",
-        hyp.name()
+        s.hypothesis().name()
     );
-    for (c, &(case, _, _)) in CASES.iter().enumerate().take(cases) {
-        let case = if cases_apply { case } else { alike.as_str() };
+    let per_g = grid.cases * meshes.len();
+    for (c, &(case, _, _)) in CASES.iter().enumerate().take(grid.cases) {
+        let case = if grid.cases_apply { case } else { alike.as_str() };
         for (k, &clearance) in gs.iter().enumerate() {
             let gl = label(clearance, 0);
-            let mut row = vec![
-                if k == 0 {
-                    case.to_string()
-                } else {
-                    String::new()
-                },
-                gl.clone(),
-            ];
+            let first = if k == 0 { case.to_string() } else { String::new() };
+            let mut row = vec![first, gl.clone()];
             for (m, mesh) in meshes.iter().enumerate() {
-                let n = &counts[k * per_g + c * meshes.len() + m];
+                let n = &grid.counts[k * per_g + c * meshes.len() + m];
                 let paper =
-                    case_paper_counts(cases_apply, "tableI", &format!("{case}.{gl}.{mesh}"));
+                    case_paper_counts(grid.cases_apply, "tableI", &format!("{case}.{gl}.{mesh}"));
                 row.push(jam_cells.cell(
                     (&format!("{case}, G = {gl} %"), mesh),
                     &format!("{case},{gl},{mesh}"),
@@ -102,16 +145,15 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             table.row(row);
         }
     }
-    table.note(jam_cells.tally.note());
-    table.note(jam_cells.rule_note());
-    table.note(format!(
-        "{CASE_TRIAL_NOTE} The 40 % rows are the cells of table3 (same streams, so the same counts)."
-    ));
-    table.note(replay_note("tableI", "B/70/m3-e3"));
-    // The paper's own two printings of the 40 % cells, compared.
+    table
+}
+
+/// The paper's own two printings of the 40 % cells (Table I's and Table 3's), compared: a note
+/// naming the cells where they differ, if any.
+fn paper_printings_note(meshes: &[String]) -> Option<String> {
     let mut differ = Vec::new();
     for &(case, _, _) in &CASES {
-        for mesh in &meshes {
+        for mesh in meshes {
             let a = paper_counts("tableI", &format!("{case}.40.{mesh}"));
             let b = paper_counts("table3", &format!("{case}.{mesh}"));
             if a.0.is_some() && b.0.is_some() && a != b {
@@ -119,17 +161,11 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             }
         }
     }
-    if !differ.is_empty() {
-        table.note(format!(
+    (!differ.is_empty()).then(|| {
+        format!(
             "The paper says its 40 % rows are those of Table 3, but {} of its cells differ from Table 3 ({}); we compare with Table I as printed.",
             differ.len(),
             differ.join(", ")
-        ));
-    }
-    Ok(Report {
-        tables: vec![table, jam_cells.rule_table("Table I", "case and G")],
-        files: vec![OutputFile::new("tableI-data.csv", jam_cells.csv)],
-        agreement: Some(jam_cells.tally.agreement()),
-        ..counts_report(counts.iter())
+        )
     })
 }
