@@ -191,7 +191,11 @@ fn every_cases_plot_shares_its_axes_and_names_meshes_no_clearance_saves() {
             .collect()
     };
     assert_eq!(ticks(&plots[0]), ticks(&plots[1]));
-    assert!(ticks(&plots[0]).contains(&"100".to_owned()), "{:?}", ticks(&plots[0]));
+    assert!(
+        ticks(&plots[0]).contains(&"100".to_owned()),
+        "{:?}",
+        ticks(&plots[0])
+    );
     // Case D at 2 trials a clearance: its worst meshes fail every run at every clearance, and
     // the legend says so instead of calling one clearance the best.
     let legends: Vec<String> = texts(&plots[1])

@@ -784,7 +784,11 @@ fn drawing_labels(svg: &str) -> Vec<((f64, f64), Anchor, f64, String)> {
 
 /// A gear outline of the check picture as its edges, px.
 fn outline_edges(svg: &str, id: &str) -> Vec<Segment> {
-    let at = svg.find(&format!("<polygon id=\"{id}\" points=\"")).unwrap() + id.len() + 23;
+    let at = svg
+        .find(&format!("<polygon id=\"{id}\" points=\""))
+        .unwrap()
+        + id.len()
+        + 23;
     let points: Vec<(f64, f64)> = svg[at..at + svg[at..].find('"').unwrap()]
         .split(' ')
         .map(|p| {
@@ -832,8 +836,14 @@ fn check_picture_labels_keep_off_the_teeth_and_each_other() {
         ]
         .concat();
         for (i, (b, t)) in boxes.iter().enumerate() {
-            let crossed = teeth.iter().filter(|(a, c)| segment_meets(b, *a, *c)).count();
-            assert_eq!(crossed, 0, "{name}: label {t:?} crosses {crossed} tooth edges");
+            let crossed = teeth
+                .iter()
+                .filter(|(a, c)| segment_meets(b, *a, *c))
+                .count();
+            assert_eq!(
+                crossed, 0,
+                "{name}: label {t:?} crosses {crossed} tooth edges"
+            );
             for (o, u) in &boxes[i + 1..] {
                 assert!(!b.intersects(o), "{name}: labels {t:?} and {u:?} overlap");
             }

@@ -483,7 +483,9 @@ fn files(
         OutputFile::new("clearance-design-runs.csv", runs_csv),
     ];
     // The clearances every case tried, from the least to the greatest: the plots' shared x axis.
-    let tried = searches.iter().flat_map(|sr| sr.probes.iter().map(|(g, _)| *g));
+    let tried = searches
+        .iter()
+        .flat_map(|sr| sr.probes.iter().map(|(g, _)| *g));
     let range = tried.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), g| {
         (lo.min(g), hi.max(g))
     });

@@ -61,7 +61,9 @@ fn shared_ranges(series: &[Panel<'_>], phis: &[f64]) -> ((f64, f64), (f64, f64))
     let x = phis.iter().map(|p| p.to_degrees());
     let x0 = x.clone().fold(f64::INFINITY, f64::min);
     let x1 = x.fold(f64::NEG_INFINITY, f64::max);
-    let ys = series.iter().flat_map(|(_, rad, tri)| rad.iter().chain(tri));
+    let ys = series
+        .iter()
+        .flat_map(|(_, rad, tri)| rad.iter().chain(tri));
     let (mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY);
     for y in ys.filter(|y| y.is_finite()) {
         y0 = y0.min(*y);
@@ -314,7 +316,12 @@ mod tests {
             .files
             .iter()
             .filter(|f| f.name.ends_with(".svg"))
-            .map(|f| (f.name.clone(), String::from_utf8(f.contents.clone()).unwrap()))
+            .map(|f| {
+                (
+                    f.name.clone(),
+                    String::from_utf8(f.contents.clone()).unwrap(),
+                )
+            })
             .collect();
         assert_eq!(panels.len(), 3);
         let first = y_ticks(&panels[0].1);
@@ -323,7 +330,10 @@ mod tests {
             assert_eq!(y_ticks(svg), first, "{name}: its own y range");
             let title = format!("Figure 5 {letter}: Theoretical Difference, ");
             assert!(svg.contains(&title), "{name}");
-            assert!(!svg.contains(&format!("{title}{letter}:")), "{name}: letter twice");
+            assert!(
+                !svg.contains(&format!("{title}{letter}:")),
+                "{name}: letter twice"
+            );
         }
     }
 }

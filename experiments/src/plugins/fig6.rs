@@ -245,7 +245,12 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             measured_pts.push((x, v));
         }
         let labels: Vec<&str> = ms.iter().map(|&m| g.meshes()[m].label.as_str()).collect();
-        table.row(gear_row(&shown_name(g, gear), &labels, [ours, paper, meas], smallest));
+        table.row(gear_row(
+            &shown_name(g, gear),
+            &labels,
+            [ours, paper, meas],
+            smallest,
+        ));
         csv.push_str(&format!(
             "{gear},{},{},{},{}\n",
             labels.join(" "),

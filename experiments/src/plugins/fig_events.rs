@@ -60,7 +60,10 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         rule: &rule,
         margin,
     };
-    for (figure, limit) in [Figure::Jam, Figure::Decoupling].into_iter().zip([jam_limit, dis_limit]) {
+    for (figure, limit) in [Figure::Jam, Figure::Decoupling]
+        .into_iter()
+        .zip([jam_limit, dis_limit])
+    {
         let (row, picture) = mesh.figure(figure, limit)?;
         table.row(row);
         files.extend(picture);
@@ -176,7 +179,10 @@ impl Mesh<'_> {
     ) -> OutputFile {
         let (_, short, file) = figure.names();
         let (counted, side) = match figure {
-            Figure::Jam => ("jam", format!("{} % of h inside its jam limit", self.margin)),
+            Figure::Jam => (
+                "jam",
+                format!("{} % of h inside its jam limit", self.margin),
+            ),
             Figure::Decoupling => (
                 "disengagement",
                 format!("{} % of h beyond its disengagement limit", self.margin),

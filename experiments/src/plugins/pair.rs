@@ -183,7 +183,13 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     };
     let ([data, td, page], pictures) = run_files(&name, &run, &prepared, &rule)?;
     let check = OutputFile::new("pair-check.svg", check_svg(&name, &as_written, start));
-    let mut files = vec![data, OutputFile::new("event-log.csv", ev_rows), td, check, page];
+    let mut files = vec![
+        data,
+        OutputFile::new("event-log.csv", ev_rows),
+        td,
+        check,
+        page,
+    ];
     files.extend(pictures);
     Ok(Report {
         tables: vec![summary, events],

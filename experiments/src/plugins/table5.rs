@@ -83,7 +83,13 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     table.row(row);
     table.note(jam_cells.tally.note());
     table.note(jam_cells.rule_note());
-    add_notes(&mut table, &t, (rule, s.trials), given, (&like_for_like, same));
+    add_notes(
+        &mut table,
+        &t,
+        (rule, s.trials),
+        given,
+        (&like_for_like, same),
+    );
     Ok(Report {
         tables: vec![table, jam_cells.rule_table("Table 5", "E. sys [deg]")],
         files: vec![
@@ -110,7 +116,12 @@ fn like_for_like(t: &study::grids::Tolerances) -> Vec<bool> {
 }
 
 /// The table's title: the split, G, the E. max it ran at, and the marks it uses.
-fn title(s: &CellSettings, rule: f64, given: bool, like_for_like: &[bool]) -> Result<String, RunError> {
+fn title(
+    s: &CellSettings,
+    rule: f64,
+    given: bool,
+    like_for_like: &[bool],
+) -> Result<String, RunError> {
     let (trials, clearance, split) = (s.trials, s.clearance()?, s.errors.split()?);
     let apart = like_for_like.iter().filter(|l| !**l).count();
     Ok(format!(

@@ -48,7 +48,12 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
 fn counted(ctx: &Context) -> Result<Report, RunError> {
     let s = crate::settings::cells(ctx, &TRIALS)?;
     let gs = clearances(ctx)?;
-    let meshes: Vec<String> = s.gearing().meshes().iter().map(|m| m.label.clone()).collect();
+    let meshes: Vec<String> = s
+        .gearing()
+        .meshes()
+        .iter()
+        .map(|m| m.label.clone())
+        .collect();
     let grid = run_grid(ctx, &s, &gs, meshes.len())?;
     let mut jam_cells = JamCells::new("case,clearance,mesh");
     let mut table = counts_table(&s, &gs, &meshes, &grid, &mut jam_cells);
@@ -81,12 +86,7 @@ struct Grid {
 
 /// Runs every cell in one call: Cases by clearance, as case_cells lays them out. A hypothesis
 /// the Cases do not reach makes them the same cells: Case A's alone, in one row per clearance.
-fn run_grid(
-    ctx: &Context,
-    s: &CellSettings,
-    gs: &[f64],
-    meshes: usize,
-) -> Result<Grid, RunError> {
+fn run_grid(ctx: &Context, s: &CellSettings, gs: &[f64], meshes: usize) -> Result<Grid, RunError> {
     let cases_apply = study::grids::cases_apply(s.hypothesis());
     let cases = if cases_apply { CASES.len() } else { 1 };
     let mut cells = Vec::new();
@@ -126,10 +126,18 @@ fn counts_table(
     );
     let per_g = grid.cases * meshes.len();
     for (c, &(case, _, _)) in CASES.iter().enumerate().take(grid.cases) {
-        let case = if grid.cases_apply { case } else { alike.as_str() };
+        let case = if grid.cases_apply {
+            case
+        } else {
+            alike.as_str()
+        };
         for (k, &clearance) in gs.iter().enumerate() {
             let gl = label(clearance, 0);
-            let first = if k == 0 { case.to_string() } else { String::new() };
+            let first = if k == 0 {
+                case.to_string()
+            } else {
+                String::new()
+            };
             let mut row = vec![first, gl.clone()];
             for (m, mesh) in meshes.iter().enumerate() {
                 let n = &grid.counts[k * per_g + c * meshes.len() + m];
