@@ -338,6 +338,16 @@ struct RuleRow {
     differ: Vec<(String, String, String)>,
 }
 
+/// The inputs in which this run departs from the paper's ([`registry::Context::departures`]), as
+/// `name=value`: where any does, the paper's values beside ours come from other inputs and are
+/// not compared with ours (the runner says so under every table).
+pub fn off_paper_inputs(ctx: &registry::Context) -> Vec<String> {
+    ctx.departures()
+        .into_iter()
+        .map(|(name, value)| format!("{name}={value}"))
+        .collect()
+}
+
 /// The cells of a jam table as they are filled: each printed beside the paper's counts, its CSV
 /// line (key columns, then [`CSV_COLUMNS`]), the [`Tally`] of the two-sample marks and the
 /// verdicts of the paper's 1 % rule by row.
@@ -345,6 +355,9 @@ struct RuleRow {
 pub struct JamCells {
     /// The CSV: the header, then one line per cell.
     pub csv: String,
+    /// The inputs of this run that differ from the paper's (`name=value`): where any does, no
+    /// cell is compared with the paper's counts.
+    off_paper: Vec<String>,
     /// The comparison with the paper's counts so far.
     pub tally: Tally,
     /// The failure rule the cells are marked by, % of trials.
@@ -360,11 +373,30 @@ impl JamCells {
     pub fn new(keys: &str) -> JamCells {
         JamCells {
             csv: format!("{keys},{CSV_COLUMNS}\n"),
+            off_paper: Vec::new(),
             tally: Tally::default(),
             rule_percent: PAPER_RULE_PERCENT,
             trials: PAPER_TRIALS,
             rows: Vec::new(),
         }
+    }
+
+    /// The same, for a run whose inputs differ from the paper's in `inputs` (`name=value`, see
+    /// [`off_paper_inputs`]): none of its cells is compared with the paper's counts, which came
+    /// from other inputs; they are shown for reference.
+    pub fn off_paper(mut self, inputs: Vec<String>) -> JamCells {
+        self.off_paper = inputs;
+        self
+    }
+
+    /// The note on the `†` of a run off the paper's inputs: what it marks, and the inputs.
+    pub fn off_paper_note(&self) -> Option<String> {
+        (!self.off_paper.is_empty()).then(|| {
+            format!(
+                "`†`: not compared with the paper's counts, which come from other inputs than this run's ({}): no `*`, not tallied, not coloured in the report; the paper's 1 % rule marks stand on each side.",
+                self.off_paper.join(", ")
+            )
+        })
     }
 
     /// The same, marked by a rule of `percent` % instead (a run that sets its `rule`).
@@ -396,6 +428,7 @@ impl JamCells {
         paper: (Option<u64>, Option<u64>),
         compared: bool,
     ) -> String {
+        let compared = compared && self.off_paper.is_empty();
         let how = (self.rule_percent, compared);
         self.csv
             .push_str(&format!("{keys},{}\n", csv_columns(c, paper, how)));
@@ -625,5 +658,38 @@ mod tests {
         );
         let line = cells.csv.lines().nth(1).unwrap();
         assert!(line.ends_with(",false,true,true"), "{line}");
+    }
+
+    /// A run off the paper's inputs (here G = 50 %, where the paper's Table 3 is at 40 %) is not
+    /// compared with the paper's column: no `*`, every cell `†`, a note naming the input, and
+    /// no tally; a run that changes only readings of the paper (the event rule, the drive) is.
+    #[test]
+    fn a_run_off_the_papers_inputs_is_not_compared_with_its_column() {
+        let off = crate::run("table3", 2025, 2, &[("trials", "3"), ("clearance", "50")]).unwrap();
+        let t = &off.tables[0];
+        let cells: Vec<&String> = t.rows.iter().flat_map(|r| &r[1..]).collect();
+        assert!(
+            cells.iter().all(|c| c.ends_with('†') && !c.contains('*')),
+            "{cells:?}"
+        );
+        assert!(
+            t.notes
+                .iter()
+                .any(|n| n.starts_with("`†`: not compared") && n.contains("clearance=50")),
+            "{:?}",
+            t.notes
+        );
+        let agreement = off.agreement.unwrap();
+        assert_eq!((agreement.consistent, agreement.differ), (0, 0));
+
+        // A reading of the paper (the event rule, the drive) is no departure; the trial count is.
+        let map = registry::experiments().unwrap();
+        let set = |k: &str, v: &str| vec![(k.to_owned(), v.to_owned())];
+        let ctx = |sets: Vec<(String, String)>| {
+            registry::Context::new(map["table3"], 2025, 1, &sets, None).unwrap()
+        };
+        assert!(off_paper_inputs(&ctx(set("events", "strict"))).is_empty());
+        assert!(off_paper_inputs(&ctx(set("drive", "other"))).is_empty());
+        assert_eq!(off_paper_inputs(&ctx(set("trials", "40"))), ["trials=40"]);
     }
 }

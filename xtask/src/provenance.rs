@@ -7,7 +7,7 @@ use std::path::Path;
 use std::sync::OnceLock;
 use std::time::{SystemTime, UNIX_EPOCH};
 
-use registry::{Context, Experiment, OutputFile, Report};
+use registry::{Context, Experiment, OutputFile, READINGS, Report};
 use serde_json::json;
 
 /// The SHA-256 of the code this runner was built from (see `xtask/build.rs`): what a shard's
@@ -101,14 +101,6 @@ fn recorded_inputs(ctx: &Context) -> BTreeMap<String, String> {
     inputs
 }
 
-/// Parameters that choose how the paper is read, not what is simulated: the event rule (which
-/// events count as jams and disengagements; the experiments name it in every title),
-/// `emax=paper` (Tables 5 and 6 on the paper's own E. max row, itself the paper's input) and the
-/// drive (which gear of each mesh its program turned, which the paper does not say; named in
-/// every title too) and where a trial's counting ends. A run that changes only these still runs on the paper's inputs and is
-/// compared with it.
-const READINGS: &[&str] = &["events", "emax", "drive", "end"];
-
 /// The readings of the paper the run was made under ([`READINGS`] the experiment declares),
 /// whatever their value: `run.json` says which event rule counted and which gear drove.
 fn readings(ctx: &Context) -> BTreeMap<&'static str, String> {
@@ -131,8 +123,7 @@ pub const DEPARTURE: &str = "[inputs differ from the defaults: ";
 /// paper (the summary shows `-`). Runs at the defaults, or differing only in a reading of the
 /// paper ([`READINGS`]), are left exactly as they print.
 fn label_departures(report: &mut Report, ctx: &Context) {
-    let mut changed = ctx.changed();
-    changed.retain(|(k, _)| !READINGS.contains(k));
+    let changed = ctx.departures();
     if changed.is_empty() {
         return;
     }

@@ -119,6 +119,14 @@ struct Value {
     overridden: bool,
 }
 
+/// Parameters that choose how the paper is read, not what is simulated: the event rule (which
+/// events count as jams and disengagements; the experiments name it in every title),
+/// `emax=paper` (Tables 5 and 6 on the paper's own E. max row, itself the paper's input), the
+/// drive (which gear of each mesh its program turned, which the paper does not say; named in
+/// every title too) and where a trial's counting ends. A run that changes only these still runs
+/// on the paper's inputs and is compared with it.
+pub const READINGS: &[&str] = &["events", "emax", "drive", "end"];
+
 /// What the runner hands an experiment: the parameter side (seed, threads, parameters, config
 /// file), read here, and the trial engine behind [`Context::trials`] (`engine.rs`).
 ///
@@ -260,6 +268,15 @@ impl Context {
             .filter(|(p, default)| p.overridden && p.value.trim() != default.trim())
             .map(|(p, _)| (p.name, p.value.as_str()))
             .collect()
+    }
+
+    /// [`Context::changed`] without the readings of the paper ([`READINGS`]): the inputs in
+    /// which this run departs from the paper's, so that the paper's numbers beside ours come from
+    /// other inputs and are not compared with them.
+    pub fn departures(&self) -> Vec<(&'static str, &str)> {
+        let mut changed = self.changed();
+        changed.retain(|(k, _)| !READINGS.contains(k));
+        changed
     }
 
     /// The parameters given (with `--set` or a shorthand), whatever their value, as (name,

@@ -44,8 +44,8 @@ mod values;
 
 pub use context::{
     ConfigFile, Context, FromParam, MAX_COUNT, MAX_TRIALS, MIN_PER_ENGAGEMENT,
-    MIN_PER_ENGAGEMENT_WHY, MIN_SAMPLES, MIN_SAMPLES_WHY, SAMPLES_PER_TOOTH, interval_trials,
-    samples, samples_cover,
+    MIN_PER_ENGAGEMENT_WHY, MIN_SAMPLES, MIN_SAMPLES_WHY, READINGS, SAMPLES_PER_TOOTH,
+    interval_trials, samples, samples_cover,
 };
 pub use engine::{TrialEngine, TrialMode};
 pub use error::{DuplicateId, RunError};

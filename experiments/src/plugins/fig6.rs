@@ -205,6 +205,45 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     crate::settings::labelled(ctx, counted)
 }
 
+/// A gear's values: ours (the smaller of its meshes'), the paper's, and the measured one.
+fn gear_values(
+    g: &train::Gearing,
+    (gear, ms): (&str, &[usize]),
+    tolerable: &[Option<f64>],
+    measured: Option<&(String, hypotheses::MeasuredTable)>,
+) -> [Option<f64>; 3] {
+    let ours = ms.iter().map(|&m| tolerable[m]).reduce(smaller).flatten();
+    let meas = measured.and_then(|(_, t)| t.errors(gear).ok().map(|e| e.random));
+    [ours, paper_of_gear(g, ms), meas]
+}
+
+/// How many gears' values equal the paper's, and how many differ (of those it gives).
+fn equal_to_paper(values: &[[Option<f64>; 3]]) -> (u64, u64) {
+    let (mut inside, mut outside) = (0, 0);
+    for [ours, paper, _] in values {
+        if let Some(p) = paper {
+            if ours.is_some_and(|o| (o - p).abs() < 1e-9) {
+                inside += 1;
+            } else {
+                outside += 1;
+            }
+        }
+    }
+    (inside, outside)
+}
+
+/// The plotted series, ours, the paper's and the measured, as (gear index, value) points.
+fn series_points(values: &[[Option<f64>; 3]]) -> (Points, Points, Points) {
+    let column = |k: usize| -> Points {
+        values
+            .iter()
+            .enumerate()
+            .filter_map(|(i, v)| v[k].map(|y| (i as f64, y)))
+            .collect()
+    };
+    (column(0), column(1), column(2))
+}
+
 /// The experiment itself; [`run`] names the event rule in its tables' titles.
 fn counted(ctx: &Context) -> Result<Report, RunError> {
     let s = crate::settings::cells(ctx, &TRIALS)?;
@@ -219,31 +258,12 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let smallest = grid.values.first();
     let mut table = fig6_table(rule, trials, clearance);
     let mut csv = String::from("gear,meshes,ours,paper,measured\n");
-    let (mut ours_pts, mut paper_pts, mut measured_pts) = (Vec::new(), Vec::new(), Vec::new());
-    let (mut inside, mut outside) = (0, 0);
-    for (i, (gear, ms)) in gears.iter().enumerate() {
-        let ours = ms.iter().map(|&m| tolerable[m]).reduce(smaller).flatten();
-        let paper = paper_of_gear(g, ms);
-        let meas = measured
-            .as_ref()
-            .and_then(|(_, t)| t.errors(gear).ok().map(|e| e.random));
-        if let Some(p) = paper {
-            if ours.is_some_and(|o| (o - p).abs() < 1e-9) {
-                inside += 1;
-            } else {
-                outside += 1;
-            }
-        }
-        let x = i as f64;
-        if let Some(o) = ours {
-            ours_pts.push((x, o));
-        }
-        if let Some(p) = paper {
-            paper_pts.push((x, p));
-        }
-        if let Some(v) = meas {
-            measured_pts.push((x, v));
-        }
+    let values: Vec<[Option<f64>; 3]> = gears
+        .iter()
+        .map(|(gear, ms)| gear_values(g, (gear, ms), &tolerable, measured.as_ref()))
+        .collect();
+    let (inside, outside) = equal_to_paper(&values);
+    for ((gear, ms), &[ours, paper, meas]) in gears.iter().zip(&values) {
         let labels: Vec<&str> = ms.iter().map(|&m| g.meshes()[m].label.as_str()).collect();
         table.row(gear_row(
             &shown_name(g, gear),
@@ -251,34 +271,31 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             [ours, paper, meas],
             smallest,
         ));
+        let opt = |v: Option<f64>| v.map_or_else(String::new, |v| v.to_string());
         csv.push_str(&format!(
             "{gear},{},{},{},{}\n",
             labels.join(" "),
-            ours.map_or_else(String::new, |v| v.to_string()),
-            paper.map_or_else(String::new, |v| v.to_string()),
-            meas.map_or_else(String::new, |v| v.to_string()),
+            opt(ours),
+            opt(paper),
+            opt(meas),
         ));
     }
     add_notes(&mut table, (rule, trials), smallest, (inside, outside));
     table.note(measured_note(measured.as_ref()));
+    let off_paper = crate::cells::off_paper_inputs(ctx);
     if let Some(note) = renamed_note(g, &gears) {
         table.note(note);
     }
     let names: Vec<String> = gears.iter().map(|(n, _)| shown_name(g, n)).collect();
     let measured_file = measured.as_ref().map(|(f, _)| f.as_str());
-    let svg = plot(
-        &names,
-        rule,
-        measured_file,
-        (ours_pts, paper_pts, measured_pts),
-    )?;
+    let svg = plot(&names, rule, measured_file, series_points(&values))?;
     Ok(Report {
         tables: vec![table],
         files: vec![
             OutputFile::new("fig6-data.csv", csv),
             OutputFile::new("fig6.svg", svg),
         ],
-        agreement: Some(registry::Agreement {
+        agreement: off_paper.is_empty().then_some(registry::Agreement {
             consistent: inside,
             differ: outside,
         }),

@@ -59,7 +59,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         ),
         ours_header(&meshes),
     );
-    let mut cells = JamCells::new("case,mesh");
+    let mut cells = JamCells::new("case,mesh").off_paper(crate::cells::off_paper_inputs(ctx));
     let rows: Vec<String> = if cases_apply {
         CASES.iter().map(|c| c.0.to_string()).collect()
     } else {
@@ -104,6 +104,9 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         ours.row(row);
     }
     ours.note(cells.tally.note());
+    if let Some(note) = cells.off_paper_note() {
+        ours.note(note);
+    }
     ours.note(cells.rule_note());
     ours.note(CASE_TRIAL_NOTE);
     ours.note(replay_note("table3", "B/m3-e3"));

@@ -54,7 +54,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         ),
         header,
     );
-    let mut jam_cells = JamCells::new("random,mesh");
+    let mut jam_cells = JamCells::new("random,mesh").off_paper(crate::cells::off_paper_inputs(ctx));
     for (e, row) in grid.values.iter().zip(&grid.counts) {
         let key = label(*e, 3);
         let mut cells = vec![key.clone()];
@@ -65,6 +65,9 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         table.row(cells);
     }
     table.note(jam_cells.tally.note());
+    if let Some(note) = jam_cells.off_paper_note() {
+        table.note(note);
+    }
     table.note(jam_cells.rule_note());
     table.note("Random error: sd of each tip's displacement as a fraction of the pitch 360/N (Edmunds' tooth error; Case A's 0.04). No systematic error. Each trial: both gears manufactured afresh, a random initial angle, one full turn of the gear with more teeth.");
     table.note(replay_note("table4", "0.065/m3-e3"));

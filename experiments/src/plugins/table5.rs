@@ -72,7 +72,9 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     );
     let (row, same) = random_row(&t);
     table.row(row);
-    let mut jam_cells = JamCells::new("systematic,mesh,random").with_rule(rule);
+    let mut jam_cells = JamCells::new("systematic,mesh,random")
+        .with_rule(rule)
+        .off_paper(crate::cells::off_paper_inputs(ctx));
     for row in count_rows(&t, &like_for_like, &mut jam_cells) {
         table.row(row);
     }
@@ -82,6 +84,9 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let (row, emax_csv) = systematic_row(&t, rule, emax_csv);
     table.row(row);
     table.note(jam_cells.tally.note());
+    if let Some(note) = jam_cells.off_paper_note() {
+        table.note(note);
+    }
     table.note(jam_cells.rule_note());
     add_notes(
         &mut table,

@@ -118,11 +118,13 @@ fn inputs_table(
 
 /// The pointers' rows: σ, Dm and P of each over the trials beside the paper's (into `layout`),
 /// the detail table, table6-data.csv, and how many of the paper's values lie inside and outside
-/// our intervals.
+/// our intervals (none compared, and no `*`, unless `compared`: the run's inputs are the
+/// paper's).
 fn pointer_rows(
     layout: &mut Table,
     runs: &[(&str, f64, usize)],
     per_trial: &[PointerTrials],
+    compared: bool,
 ) -> (Table, String, (u64, u64)) {
     let trials = per_trial.len();
     let mut detail = Table::new(
@@ -161,8 +163,8 @@ fn pointer_rows(
         for (row, (label_text, key, values)) in columns.into_iter().enumerate() {
             let e: Estimate = mean_ci95(&values);
             let paper = crate::paper::get("table6", &format!("{name}.{key}")).map(|r| r.value);
-            let ok = paper.is_none_or(|p| e.contains(p));
-            if paper.is_some() {
+            let ok = !compared || paper.is_none_or(|p| e.contains(p));
+            if compared && paper.is_some() {
                 if ok { inside += 1 } else { outside += 1 }
             }
             let cell =
@@ -295,7 +297,9 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let per_trial = pointer_trials(recorded);
 
     let mut layout = layout_table(crate::emax::emax_from_paper(ctx)?, clearance, trials);
-    let (detail, csv, (inside, outside)) = pointer_rows(&mut layout, &runs, &per_trial);
+    let off_paper = crate::cells::off_paper_inputs(ctx);
+    let (detail, csv, (inside, outside)) =
+        pointer_rows(&mut layout, &runs, &per_trial, off_paper.is_empty());
     layout.note(format!(
         "Values of the paper inside our 95 % Student-t intervals: {inside}; outside: {outside}."
     ));
@@ -314,7 +318,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         ],
         trials: cells().map(|c| c.trials).sum::<u64>() + trains,
         engagements: cells().map(|c| c.engagements).sum::<u64>() + train_engagements,
-        agreement: Some(registry::Agreement {
+        agreement: off_paper.is_empty().then_some(registry::Agreement {
             consistent: inside,
             differ: outside,
         }),

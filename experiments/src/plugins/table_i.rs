@@ -55,9 +55,13 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         .map(|m| m.label.clone())
         .collect();
     let grid = run_grid(ctx, &s, &gs, meshes.len())?;
-    let mut jam_cells = JamCells::new("case,clearance,mesh");
+    let mut jam_cells =
+        JamCells::new("case,clearance,mesh").off_paper(crate::cells::off_paper_inputs(ctx));
     let mut table = counts_table(&s, &gs, &meshes, &grid, &mut jam_cells);
     table.note(jam_cells.tally.note());
+    if let Some(note) = jam_cells.off_paper_note() {
+        table.note(note);
+    }
     table.note(jam_cells.rule_note());
     table.note(format!(
         "{CASE_TRIAL_NOTE} The 40 % rows are the cells of table3 (same streams, so the same counts)."
