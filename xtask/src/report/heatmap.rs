@@ -271,7 +271,7 @@ pub(super) fn heatmaps(
                 let (class, verdict) = match (c.paper, c.differs) {
                     _ if !cc.compared => (
                         "apart",
-                        "not compared: the paper's count comes from other inputs (this mesh ran at our own E. max)",
+                        "not compared: the paper's count comes from other inputs (this mesh ran at our own E. max, or the run's inputs differ from the paper's)",
                     ),
                     (None, _) => ("none", "no count in the paper"),
                     (Some(_), true) => {
