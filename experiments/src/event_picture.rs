@@ -304,8 +304,7 @@ mod tests {
     #![allow(clippy::unwrap_used, reason = "tests")]
     use super::*;
     use crate::pair_html::solver_teeth;
-    use contact::{Mesh, Start};
-    use geometry::Gear;
+    use contact::Start;
 
     /// The caption's text, its wrapped lines joined by spaces.
     fn caption_text(svg: &str) -> String {
@@ -320,12 +319,7 @@ mod tests {
     #[test]
     fn an_event_picture_shows_both_teeth_and_the_contact() {
         // Gears so far apart that the tips slip past each other: the run loses drive.
-        let mesh = Mesh::new(
-            Gear::ideal(20, 20.0, 18.9).unwrap(),
-            Gear::ideal(30, 30.0, 28.9).unwrap(),
-            20.0 + 30.0 - 1.1 + 1.09,
-        )
-        .unwrap();
+        let mesh = crate::test_pair::ideal_20_30(1.09);
         let traj = mesh.run(0.0, std::f64::consts::TAU * 1.5, Start::Touching(0.0));
         let pictures = event_pictures("a run", &traj, &|_| "jam", &solver_teeth(&mesh));
         assert_eq!(pictures.len(), traj.events().len(), "one picture per event");
@@ -356,12 +350,7 @@ mod tests {
     #[test]
     fn an_idle_start_is_drawn_as_the_gap_it_is() {
         // Gears too far apart for any tip to reach the other gear: never driven.
-        let mesh = Mesh::new(
-            Gear::ideal(20, 20.0, 18.9).unwrap(),
-            Gear::ideal(30, 30.0, 28.9).unwrap(),
-            20.0 + 30.0 - 1.1 + 1.3,
-        )
-        .unwrap();
+        let mesh = crate::test_pair::ideal_20_30(1.3);
         let traj = mesh.run(0.0, std::f64::consts::TAU, Start::Touching(0.0));
         let e = traj.events().iter().find(|e| is_idle_start(e)).unwrap();
         assert!(contacts_at_event(&traj, e).is_empty());

@@ -20,6 +20,8 @@ pub mod replay;
 pub mod settings;
 pub mod table_cells;
 pub mod td_plot;
+#[cfg(test)]
+mod test_pair;
 
 pub(crate) use register::experiment;
 

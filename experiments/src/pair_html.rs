@@ -579,17 +579,11 @@ fn td_axes(phi_max: f64, td_min: f64, td_max: f64) -> String {
 mod tests {
     #![allow(clippy::unwrap_used, reason = "tests")]
     use super::*;
-    use contact::{Mesh, Start};
-    use geometry::Gear;
+    use contact::Start;
 
     #[test]
     fn the_page_turns_the_gears_as_the_mesh_places_them() {
-        let mesh = Mesh::new(
-            Gear::ideal(20, 20.0, 18.9).unwrap(),
-            Gear::ideal(30, 30.0, 28.9).unwrap(),
-            20.0 + 30.0 - 1.1 + 0.44,
-        )
-        .unwrap();
+        let mesh = crate::test_pair::ideal_20_30(0.44);
         // The page rotates the θ = 0 outline by −θ about (D, 0): what world_outlines draws.
         let (_, at0) = mesh.world_outlines(0.0, 0.0);
         let theta: f64 = 0.3;
