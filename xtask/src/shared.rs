@@ -36,14 +36,20 @@ pub(crate) fn default_out() -> PathBuf {
         .join("results")
 }
 
-/// Writes `text` to `path` through a temporary sibling renamed into place.
-pub(crate) fn write_atomically(path: &Path, text: &str) -> Result<(), Failure> {
-    let tmp = path.with_file_name(format!(
+/// The hidden temporary sibling `path` is written through before it is renamed into place:
+/// `.<name>.tmp-<pid>` (`fallback` names a path without a file name).
+pub(crate) fn temp_sibling(path: &Path, fallback: &str) -> std::path::PathBuf {
+    path.with_file_name(format!(
         ".{}.tmp-{}",
         path.file_name()
-            .map_or_else(|| "summary".into(), |n| n.to_string_lossy().into_owned()),
+            .map_or_else(|| fallback.into(), |n| n.to_string_lossy().into_owned()),
         std::process::id()
-    ));
+    ))
+}
+
+/// Writes `text` to `path` through a temporary sibling renamed into place.
+pub(crate) fn write_atomically(path: &Path, text: &str) -> Result<(), Failure> {
+    let tmp = temp_sibling(path, "summary");
     let fail = |what: &str, e: std::io::Error| {
         Failure::Internal(format!(
             "internal error: cannot {what} {}: {e}",

@@ -76,12 +76,7 @@ fn result_folders(out: &Path) -> Result<Vec<PathBuf>, Failure> {
 pub(crate) fn write(out: &Path, file: &Path) -> Result<(), Failure> {
     let dirs = result_folders(out)?;
     let inputs = named_inputs(out, &dirs)?;
-    let tmp = file.with_file_name(format!(
-        ".{}.tmp-{}",
-        file.file_name()
-            .map_or_else(|| "bundle".into(), |n| n.to_string_lossy().into_owned()),
-        std::process::id()
-    ));
+    let tmp = crate::shared::temp_sibling(file, "bundle");
     let internal = |what: &str, e: std::io::Error| {
         Failure::Internal(format!("cannot {what} {}: {e}", file.display()))
     };
