@@ -12,10 +12,14 @@ fn main() -> io::Result<()> {
     snapshot_tests()
 }
 
-/// The id an experiment file registers: the first `id: "..."` after its `crate::experiment!`.
+/// The id an experiment file registers: its `const ID: &'static str = "...";` (a typed
+/// experiment), or the first `id: "..."` after its `crate::experiment!` (the untyped form).
 fn registered_id(text: &str) -> Option<&str> {
-    let after = &text[text.find("crate::experiment!")?..];
-    let start = after.find("id: \"")? + 5;
+    let (after, mark) = match text.find("const ID: &'static str = \"") {
+        Some(at) => (&text[at..], "= \""),
+        None => (&text[text.find("crate::experiment!")?..], "id: \""),
+    };
+    let start = after.find(mark)? + mark.len();
     let len = after[start..].find('"')?;
     Some(&after[start..start + len])
 }

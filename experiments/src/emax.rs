@@ -15,6 +15,7 @@ pub const EMAX: Param = Param {
     unit: "",
     help: "each mesh's random error (row E. max): `derived` from Table 4's grid by the rule, as the paper did, or `paper`, the paper's own E. max row, so that every cell is run on the paper's inputs and compared like for like",
     kind: registry::Kind::Choice(&["derived", "paper"]),
+    reading: true,
 };
 
 /// The `emax` parameter: `true` for the paper's own E. max row (its kind admits only `derived`

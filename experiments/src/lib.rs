@@ -23,7 +23,7 @@ pub mod td_plot;
 #[cfg(test)]
 mod test_pair;
 
-pub(crate) use register::experiment;
+pub(crate) use register::{experiment, replay_cells};
 
 mod plugins {
     include!(concat!(env!("OUT_DIR"), "/plugins.rs"));
@@ -47,7 +47,7 @@ pub fn context(
     seed: u64,
     threads: usize,
     sets: &[(&str, &str)],
-) -> Result<(&'static registry::Experiment, registry::Context), registry::RunError> {
+) -> Result<(&'static registry::Entry, registry::Context), registry::RunError> {
     link();
     let map = registry::experiments().map_err(|e| registry::RunError::Internal(e.to_string()))?;
     let exp = *map.get(id).ok_or_else(|| {
@@ -71,10 +71,20 @@ pub fn run(
     threads: usize,
     sets: &[(&str, &str)],
 ) -> Result<registry::Report, registry::RunError> {
+    Ok(outcome(id, seed, threads, sets)?.report)
+}
+
+/// [`run`], with the experiment's stored data (its settings and results) beside the report.
+pub fn outcome(
+    id: &str,
+    seed: u64,
+    threads: usize,
+    sets: &[(&str, &str)],
+) -> Result<registry::Outcome, registry::RunError> {
     let (exp, ctx) = context(id, seed, threads, sets)?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
         .map_err(|e| registry::RunError::Internal(format!("thread pool: {e}")))?;
-    pool.install(|| (exp.run)(&ctx))
+    pool.install(|| (exp.run)(&ctx, ctx.engine()))
 }

@@ -40,7 +40,11 @@ pub fn check(ctx: &Context, s: &CellSettings, id: &str, cell: &str) -> Result<()
             let [_, g, _] = parts.as_slice() else {
                 return Ok(());
             };
-            let listed = clearances(ctx, id)?;
+            let listed = crate::settings::clearance_list(
+                ctx,
+                &study::gearing::TABLE_I_CLEARANCES,
+                study::gearing::MAX_LISTED_CLEARANCE,
+            )?;
             one_of(spec.clearance, &listed).map_err(|near| {
                 bad(format!(
                     "G `{}`: {near}one of the table's clearances ({}; --set clearances=... runs others)",
@@ -113,16 +117,6 @@ fn list(values: &[f64]) -> String {
         .map(|v| fmt_number(*v))
         .collect::<Vec<_>>()
         .join(", ")
-}
-
-/// The clearances experiment `id` runs: its `clearances` parameter, read by its declaration.
-fn clearances(ctx: &Context, id: &str) -> Result<Vec<f64>, RunError> {
-    let map = registry::experiments().map_err(|e| RunError::Internal(e.to_string()))?;
-    let declared = map
-        .get(id)
-        .and_then(|e| e.params.iter().find(|p| p.name == "clearances"))
-        .ok_or_else(|| RunError::Internal(format!("{id} declares no clearances")))?;
-    crate::settings::clearance_list(ctx, declared, study::gearing::MAX_LISTED_CLEARANCE)
 }
 
 /// The random error Table 5 runs `mesh` at, and how it was found: the paper's (`--set

@@ -32,6 +32,7 @@ pub mod motion_models;
 pub mod pair_file;
 pub mod pointers;
 pub mod readings;
+pub mod results;
 pub mod tolerance;
 pub mod tolerance_search;
 pub mod trial_end;

@@ -35,6 +35,7 @@ pub const MESH: registry::Param = registry::Param {
     unit: "",
     help: "mesh label in the gearing (radii sized as crates/train sizes them)",
     kind: registry::Kind::Text,
+    reading: false,
 };
 
 impl IdealPair {

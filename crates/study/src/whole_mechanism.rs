@@ -30,6 +30,7 @@ pub const DAYS: Param = Param {
         100.0 * stats::DAYS_PER_YEAR,
         "one year of b: jams are counted within a year",
     ),
+    reading: false,
 };
 
 /// The `cases` parameter: which of Edmunds' cases to run.
@@ -39,6 +40,7 @@ pub const CASES_PARAM: Param = Param {
     unit: "",
     help: "Edmunds' cases to run, comma-separated (empty: none)",
     kind: registry::Kind::Text,
+    reading: false,
 };
 
 /// Whole-mechanism runs per input at the defaults (the paper: 30).

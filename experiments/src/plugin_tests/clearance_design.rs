@@ -103,7 +103,7 @@ fn a_small_design_runs_and_its_reference_arm_is_the_failure_study() {
         None,
     )
     .unwrap();
-    let f = (map["failure"].run)(&ctx).unwrap();
+    let f = (map["failure"].run)(&ctx, ctx.engine()).unwrap().report;
     let theirs = String::from_utf8(f.files[0].contents.clone()).unwrap();
     let ours = String::from_utf8(r.files[2].contents.clone()).unwrap();
     let ours_at_40: Vec<String> = ours

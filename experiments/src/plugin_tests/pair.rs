@@ -690,7 +690,7 @@ fn the_readmes_measured_wheel_is_one_gear_in_both_spellings() {
 fn the_driven_gear_of_a_pair_file_can_drive() {
     let run = |sets: &[(&str, &str)]| {
         let (exp, ctx) = crate::context("pair", 2025, 1, sets).unwrap();
-        (exp.run)(&ctx)
+        (exp.run)(&ctx, ctx.engine()).map(|o| o.report)
     };
     let listed = run(&[]).unwrap();
     let other = run(&[("drive", "other")]).unwrap();

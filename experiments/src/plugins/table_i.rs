@@ -2,7 +2,7 @@
 //! 10, 40 and 70 % (Appendix II), 200 trials per cell. The 40 % rows are Table 3's cells.
 
 use crate::replay::{Cell, CellText};
-use registry::{Context, OutputFile, Param, Report, RunError, Table};
+use registry::{Context, OutputFile, Report, RunError, Table};
 
 use crate::cells::{
     CASE_TRIAL_NOTE, JamCells, case_paper_counts, counts_report, paper_counts, replay_note,
@@ -10,10 +10,7 @@ use crate::cells::{
 use study::cell::{Purpose, label, run_cells};
 use study::grids::{CASES, CellSettings, TRIALS, case_cells};
 
-registry::params! {
-    /// `clearances`: Table I's clearances G, comma-separated (the paper: 10, 40 and 70).
-    const CLEARANCES = Param::new("clearances", "10,40,70", "clearances G, comma-separated (the paper: 10, 40 and 70)", registry::Kind::Text).unit("% of h");
-}
+use study::gearing::TABLE_I_CLEARANCES as CLEARANCES;
 
 crate::experiment! {
     id: "tableI", paper_item: "Table I (Appendix II)", run,

@@ -71,7 +71,7 @@ impl CellSpec {
 }
 
 /// What the trials of one cell gave.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct Counts {
     /// Trials with at least one jam.
     pub jams: u64,
