@@ -1,6 +1,4 @@
-//! Results that several experiments store and later ones read typed: a table of jam cells (its
-//! rows, its meshes, each cell's counts). An experiment's own results live in its plugin; these
-//! are shared so that the claims ledger reads Table 3's counts as counts, not as text.
+//! A table of jam cells (rows by meshes, each cell's counts): Tables 3, 4, 5 and I.
 
 use serde::{Deserialize, Serialize};
 

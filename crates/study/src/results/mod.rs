@@ -1,0 +1,7 @@
+//! Results that experiments store and later ones read typed (the claims ledger reads Table 3's
+//! counts as counts, not as text): each experiment whose results another reads keeps their type
+//! here, one module per family.
+
+pub mod jam;
+
+pub use jam::{JamRow, JamTable};
