@@ -36,4 +36,5 @@ pub mod results;
 pub mod tolerance;
 pub mod tolerance_search;
 pub mod trial_end;
+pub mod units;
 pub mod whole_mechanism;
