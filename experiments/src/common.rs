@@ -111,3 +111,12 @@ pub fn wrap_at_spaces(text: &str, width: usize) -> Vec<String> {
     }
     lines
 }
+
+/// `s` with the characters XML text and attributes must escape escaped (`&`, `<`, `>`, `"`):
+/// for SVG and HTML pages.
+pub fn escape_xml(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}

@@ -22,6 +22,7 @@ pub mod table_cells;
 pub mod td_plot;
 #[cfg(test)]
 mod test_pair;
+pub mod train_picture;
 
 pub(crate) use register::{experiment, replay_cells};
 
