@@ -13,7 +13,7 @@ use study::errors::CaseParams;
 use study::events::EventParams;
 use study::gearing::GearingParams;
 use study::grids::{CASES, CellSettings, TRIALS, case_cells, cases_apply};
-use study::results::JamTable;
+use study::results::{CaseTable as Results, JamTable};
 
 /// Table 3's settings: trials per cell, the gearing with h and G, the Cases' errors, the event
 /// rule and the pair-trial protocol.
@@ -34,20 +34,6 @@ pub struct Settings {
     /// Which gear drives, where counting ends.
     #[group]
     pub drive: DriveParams,
-}
-
-/// Table 3's results: each Case's cells (one row of them when the hypothesis takes no Case's
-/// errors), the hypothesis that made the gears and the clearance they ran at.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Results {
-    /// Rows `A`-`D` (or the one row of a hypothesis the Cases do not apply to) by meshes.
-    pub table: JamTable,
-    /// Whether the Cases' errors applied to the hypothesis (else one row, compared with no Case).
-    pub cases_apply: bool,
-    /// The hypothesis the gears were made with.
-    pub hypothesis: String,
-    /// Clearance G of every mesh, % of h.
-    pub clearance: f64,
 }
 
 /// Table 3.

@@ -48,3 +48,17 @@ impl JamTable {
         self.rows.iter().flat_map(|r| r.cells.iter())
     }
 }
+
+/// Table 3's results: each Case's cells at one clearance (one row of them when the hypothesis
+/// takes no Case's errors), the hypothesis that made the gears and the clearance they ran at.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CaseTable {
+    /// Rows `A`-`D` (or the one row of a hypothesis the Cases do not apply to) by meshes.
+    pub table: JamTable,
+    /// Whether the Cases' errors applied to the hypothesis (else one row, compared with no Case).
+    pub cases_apply: bool,
+    /// The hypothesis the gears were made with.
+    pub hypothesis: String,
+    /// Clearance G of every mesh, % of h.
+    pub clearance: f64,
+}

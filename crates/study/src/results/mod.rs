@@ -4,4 +4,4 @@
 
 pub mod jam;
 
-pub use jam::{JamRow, JamTable};
+pub use jam::{CaseTable, JamRow, JamTable};
