@@ -33,10 +33,12 @@ mod plugins {
 /// Does nothing; calling it makes a binary link this crate, and with it every experiment it registers.
 pub fn link() {}
 
-/// Forgets the per-mesh jam cells this process has run (see `study::cell::run_cells`), so that
-/// the next experiment computes them again: for benchmarks, which must time the work itself.
+/// Forgets the per-mesh jam cells this process has run (see `study::cell::run_cells`) and the
+/// results it has computed ([`registry::forget_computed`]), so that the next experiment computes
+/// them again: for benchmarks, which must time the work itself.
 pub fn forget_cached_cells() {
     study::cell::forget_cache();
+    registry::forget_computed();
 }
 
 /// The context registered experiment `id` runs in with `seed`, `threads` and the `--set` pairs

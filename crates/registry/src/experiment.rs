@@ -1,13 +1,15 @@
 //! A typed experiment: settings in, results out (saved as data), a report drawn from them; and
 //! the entry `inventory` collects for it.
 
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use std::sync::{Mutex, PoisonError};
 
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 use serde_json::{Value, json};
 
-use crate::{ConfigFile, Context, Param, Report, RunError, Settings, TrialEngine};
+use crate::{ConfigFile, Context, Param, Report, RunError, Settings, TrialEngine, TrialMode};
 
 /// Where an experiment's section stands in the report: the paper's items in the order the paper
 /// presents them, then the studies beyond it (each plugin declares its own place, so that adding
@@ -144,6 +146,11 @@ impl<'a> Run<'a> {
         {
             return Ok((decode(id, stored)?, Source::Stored(dir.join(id))));
         }
+        if let Some(data) = cached(id, self.seed(), &settings)
+            && let Some(results) = data.get("results")
+        {
+            return Ok((decode(id, results.clone())?, Source::Computed));
+        }
         // Through this run's engine: a shard of this run computes (and records) its share of
         // the other experiment's trials too, and a merge replays them.
         let outcome = (entry.run)(&ctx, self.engine)?;
@@ -250,6 +257,23 @@ impl Entry {
     pub fn results_type(&self) -> &'static str {
         (self.results_type)()
     }
+
+    /// Its outcome under `ctx` if this process has already computed it (as the run of another
+    /// experiment's results, [`Run::results_of`]): the stored data and the report drawn from
+    /// them, computing nothing; `None` if it has not.
+    ///
+    /// # Errors
+    /// Settings `ctx` refuses, or stored data that does not draw.
+    pub fn computed_outcome(&self, ctx: &Context) -> Result<Option<Outcome>, RunError> {
+        let settings = (self.settings_of)(ctx)?;
+        match cached(self.id, ctx.seed(), &settings) {
+            Some(data) => Ok(Some(Outcome {
+                report: (self.render)(&data)?,
+                data,
+            })),
+            None => Ok(None),
+        }
+    }
 }
 
 fn settings_of<E: Experiment>(ctx: &Context) -> Result<Value, RunError> {
@@ -264,13 +288,51 @@ fn run<E: Experiment>(ctx: &Context, engine: &TrialEngine) -> Result<Outcome, Ru
     let settings = E::Settings::read(ctx)?;
     let results = E::compute(&settings, &Run::new(ctx, engine))?;
     let report = E::report(&settings, &results)?;
+    let settings = to_value(&settings)?;
     let data = json!({
         "experiment": E::ID,
         "seed": ctx.seed(),
-        "settings": to_value(&settings)?,
+        "settings": settings,
         "results": to_value(&results)?,
     });
+    // A shard's results hold only its share of the trials: kept for no one else.
+    if engine.mode() == TrialMode::Normal {
+        remember(E::ID, ctx.seed(), &settings, &data);
+    }
     Ok(Outcome { report, data })
+}
+
+/// The results this process has computed, by experiment, seed and settings: an experiment whose
+/// results another asks for ([`Run::results_of`]) is computed once per process (the claims
+/// ledger reads a dozen experiments' results, under several readings, that the same test run
+/// or `run all` computes too). Results depend only on these three, so a hit is the same bits.
+static COMPUTED: Mutex<BTreeMap<String, Value>> = Mutex::new(BTreeMap::new());
+
+fn cache_key(id: &str, seed: u64, settings: &Value) -> String {
+    format!("{id}\n{seed}\n{settings}")
+}
+
+fn remember(id: &str, seed: u64, settings: &Value, data: &Value) {
+    COMPUTED
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner)
+        .insert(cache_key(id, seed, settings), data.clone());
+}
+
+fn cached(id: &str, seed: u64, settings: &Value) -> Option<Value> {
+    COMPUTED
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner)
+        .get(&cache_key(id, seed, settings))
+        .cloned()
+}
+
+/// Forgets every result this process has computed (benchmarks time the work itself).
+pub fn forget_computed() {
+    COMPUTED
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner)
+        .clear();
 }
 
 fn render<E: Experiment>(data: &Value) -> Result<Report, RunError> {

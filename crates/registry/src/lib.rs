@@ -56,7 +56,9 @@ pub use context::{
 };
 pub use engine::{TrialEngine, TrialMode};
 pub use error::{DuplicateId, RunError};
-pub use experiment::{Entry, Experiment, Outcome, Place, RESULTS_JSON, Run, Source};
+pub use experiment::{
+    Entry, Experiment, Outcome, Place, RESULTS_JSON, Run, Source, forget_computed,
+};
 pub use lock::{lock_path, lock_writing, release_locks};
 pub use output::{
     Agreement, MAX_ANGLE_DEG, MAX_DATA_ROWS, OutputFile, Report, abandon_writes, stopping, tidy,
