@@ -202,19 +202,7 @@ pub const RULE_MARK: char = '✓';
 /// run at our own E. max): shown for reference, not compared.
 pub const NOT_COMPARED_MARK: char = '†';
 
-/// The paper's failure rule, in % of the trials (section 5: "a failure rate threshold of 1 %
-/// ... in 200 trials, a maximum of 2 jams is acceptable").
-pub const PAPER_RULE_PERCENT: f64 = 1.0;
-
-/// Does a cell of `trials` trials with `jams` and `disengagements` keep the failure rule of
-/// `rule_percent` % ([`tolerance::allowed_jams`]: 2 of 200 at 1 %)? The paper's text states the
-/// rule for jams and its derived E. max row tolerates 2 jams of 200 (m2-n1 at 0.035); its
-/// captions shade "cells with one or fewer trials showing jamming or disengagement", so a
-/// disengagement counts against a cell as a jam does: both counts must be within the rule.
-pub fn keeps_rule(jams: u64, disengagements: u64, trials: u64, rule_percent: f64) -> bool {
-    let allowed = tolerance::allowed_jams(trials, rule_percent);
-    jams <= allowed && disengagements <= allowed
-}
+pub use study::tolerance::{PAPER_RULE_PERCENT, keeps_rule};
 
 /// The note under a table of cells on the rule marks, for a rule of `rule_percent` % and our
 /// `trials` per cell.

@@ -20,6 +20,7 @@
 pub mod anomaly;
 pub mod area_test;
 pub mod cell;
+pub mod claims;
 pub mod clearance_search;
 pub mod drive;
 pub mod equal_pair;

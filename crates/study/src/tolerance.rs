@@ -155,6 +155,20 @@ pub fn allowed_jams(trials: u64, rule_percent: f64) -> u64 {
     (x + 1e-9).floor().max(0.0) as u64
 }
 
+/// The paper's failure rule, in % of the trials (section 5: "a failure rate threshold of 1 %
+/// ... in 200 trials, a maximum of 2 jams is acceptable").
+pub const PAPER_RULE_PERCENT: f64 = 1.0;
+
+/// Does a cell of `trials` trials with `jams` and `disengagements` keep the failure rule of
+/// `rule_percent` % ([`allowed_jams`]: 2 of 200 at 1 %)? The paper's text states the rule for
+/// jams and its derived E. max row tolerates 2 jams of 200 (m2-n1 at 0.035); its captions shade
+/// "cells with one or fewer trials showing jamming or disengagement", so a disengagement counts
+/// against a cell as a jam does: both counts must be within the rule.
+pub fn keeps_rule(jams: u64, disengagements: u64, trials: u64, rule_percent: f64) -> bool {
+    let allowed = allowed_jams(trials, rule_percent);
+    jams <= allowed && disengagements <= allowed
+}
+
 /// The largest grid value `e` such that every grid value up to `e` has at most
 /// [`allowed_jams`] jams; `None` when even the smallest fails. `grid` holds (value, jams) in any
 /// order.
