@@ -8,7 +8,7 @@
 
 use registry::{Param, Place, Report, Run, RunError, Table};
 use serde::{Deserialize, Serialize};
-use study::claims::{Judged, Verdict};
+use study::claims::{ClaimRow, Judged, Ledger as Results, MeshStanding};
 use study::errors::ErrorParams;
 use study::results::CaseTable;
 
@@ -163,45 +163,6 @@ fn larger_radii(t: &CaseTable) -> Result<Vec<f64>, RunError> {
             Ok(r(&m.driver).max(r(&m.driven)))
         })
         .collect()
-}
-
-/// One claim judged under every reading.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct ClaimRow {
-    /// `C1` ... `C12`.
-    pub id: String,
-    /// The claim in our words.
-    pub words: String,
-    /// Where the paper makes it.
-    pub place: String,
-    /// As run (the paper's defaults).
-    pub judged: Judged,
-    /// Its verdict under each reading, in [`Results::readings`]' order.
-    pub under: Vec<Verdict>,
-}
-
-/// One mesh's margin under Case B, for the drawing of the train.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct MeshStanding {
-    /// The mesh.
-    pub mesh: String,
-    /// Trials with a jam or a disengagement, of `trials`, under Case B at G = 40 %.
-    pub failures: u64,
-    /// Trials run.
-    pub trials: u64,
-    /// Whether the mesh keeps the paper's 1 % rule.
-    pub keeps_rule: bool,
-}
-
-/// The ledger: every claim judged, the readings' names, and Case B's meshes for the drawing.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Results {
-    /// The claims in order.
-    pub claims: Vec<ClaimRow>,
-    /// The readings, the columns of [`ClaimRow::under`].
-    pub readings: Vec<String>,
-    /// Case B's meshes as run.
-    pub case_b: Vec<MeshStanding>,
 }
 
 /// The ledger of the paper's claims.

@@ -77,6 +77,46 @@ pub struct Judged {
     pub reason: String,
 }
 
+/// One claim judged under every reading.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ClaimRow {
+    /// `C1` ... `C12`.
+    pub id: String,
+    /// The claim in our words.
+    pub words: String,
+    /// Where the paper makes it.
+    pub place: String,
+    /// As run (the paper's defaults).
+    pub judged: Judged,
+    /// Its verdict under each reading, in [`Ledger::readings`]' order.
+    pub under: Vec<Verdict>,
+}
+
+/// One mesh's margin under Case B, for the drawing of the train.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MeshStanding {
+    /// The mesh.
+    pub mesh: String,
+    /// Trials with a jam or a disengagement, of `trials`, under Case B at G = 40 %.
+    pub failures: u64,
+    /// Trials run.
+    pub trials: u64,
+    /// Whether the mesh keeps the paper's 1 % rule.
+    pub keeps_rule: bool,
+}
+
+/// The ledger (`claims`' results): every claim judged, the readings' names, and Case B's meshes
+/// for the drawing of the train.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Ledger {
+    /// The claims in order.
+    pub claims: Vec<ClaimRow>,
+    /// The readings, the columns of [`ClaimRow::under`].
+    pub readings: Vec<String>,
+    /// Case B's meshes as run.
+    pub case_b: Vec<MeshStanding>,
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
