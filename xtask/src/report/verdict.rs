@@ -80,9 +80,9 @@ pub(super) fn block(h: &mut String, v: &VerdictScreen) {
     }
     h.push_str("</tbody>\n</table>\n</div>\n<p class=\"meta\">Each verdict is computed by the <code>claims</code> run from the other experiments' results; hover a verdict for its reason, and see the ledger's section below for the paper's figure and ours.</p>\n");
     if let Some(svg) = &v.train {
-        let _ = write!(
+        let _ = writeln!(
             h,
-            "<figure class=\"train\">{}</figure>\n",
+            "<figure class=\"train\">{}</figure>",
             svg.trim_start_matches(|c| c != '<')
         );
     }
