@@ -3,5 +3,7 @@
 //! here, one module per family.
 
 pub mod jam;
+pub mod pointers;
 
 pub use jam::{JamRow, JamTable};
+pub use pointers::{IdealPointer, IdealPointers};
