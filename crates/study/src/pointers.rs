@@ -366,7 +366,7 @@ pub fn tolerated_trials(
 
 /// One pointer of one trial under both contact models, as [`TrialEngine::trials`] records it;
 /// NaN statistics are recorded as bits.
-#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
 pub struct BothModels {
     /// σ under Edmunds' radial-line model, through any jams (degrees).
     #[serde(with = "registry::f64_bits")]

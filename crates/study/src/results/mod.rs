@@ -6,4 +6,4 @@ pub mod jam;
 pub mod pointers;
 
 pub use jam::{JamRow, JamTable};
-pub use pointers::{IdealPointer, IdealPointers};
+pub use pointers::{CasePointer, CasePointers, CaseRun, IdealPointer, IdealPointers};
