@@ -3,7 +3,9 @@
 //! here, one module per family.
 
 pub mod jam;
+pub mod pairs;
 pub mod pointers;
 
 pub use jam::{JamRow, JamTable};
+pub use pairs::{SplitPairs, SplitRun};
 pub use pointers::{CasePointer, CasePointers, CaseRun, IdealPointer, IdealPointers};

@@ -1,0 +1,67 @@
+//! One pair of gears at a time: Figure 5 (three splits of the systematic error, Edmunds' model
+//! against triangular teeth).
+
+use serde::{Deserialize, Serialize};
+
+/// Figure 5's results: a pair of equal gears made with random and systematic errors, the
+/// systematic error split three ways, each run under Edmunds' radial-line model and with
+/// triangular teeth on the same gears from the same initial angle.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SplitPairs {
+    /// Teeth of each gear.
+    pub teeth: usize,
+    /// Tip radius R of both gears, mm.
+    pub tip_radius: f64,
+    /// Root radius r of both gears, mm.
+    pub root_radius: f64,
+    /// The hypothesis the gears were made with.
+    pub hypothesis: String,
+    /// The hypothesis' parameters as they ran, split aside (each split has its own), in its
+    /// order, e.g. (`random`, 0.05 of the pitch), (`systematic`, 0.6 degrees).
+    pub values: Vec<(String, f64)>,
+    /// Driver angle of every sample from the initial angle, radians (one turn).
+    pub driver_angles: Vec<f64>,
+    /// The three splits, in the figure's order.
+    pub splits: Vec<SplitRun>,
+}
+
+/// One split of Figure 5.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SplitRun {
+    /// The split as the figure names it, e.g. `A: all eccentricity`.
+    pub name: String,
+    /// Share of the systematic error on the sinusoid of tip position (0: all eccentricity,
+    /// 1: all sinusoid).
+    pub sinusoid_share: f64,
+    /// The Theoretical Difference under Edmunds' model at each of
+    /// [`SplitPairs::driver_angles`], degrees.
+    pub edmunds_td: Vec<f64>,
+    /// The Theoretical Difference with triangular teeth at each driver angle, degrees.
+    pub triangular_td: Vec<f64>,
+    /// σ of [`SplitRun::edmunds_td`], degrees.
+    pub edmunds_sigma: f64,
+    /// σ of [`SplitRun::triangular_td`], degrees (meaningless where never driven).
+    pub triangular_sigma: f64,
+    /// No driver tooth reached the driven gear in the whole turn (triangular teeth).
+    pub never_driven: bool,
+    /// Jams in the turn with triangular teeth, as the event rule counts them.
+    pub jams: usize,
+    /// Disengagements in the turn with triangular teeth, as the event rule counts them.
+    pub disengagements: usize,
+}
+
+impl SplitPairs {
+    /// The largest and smallest σ with triangular teeth over the splits that were driven,
+    /// degrees: how far the split moves the pointer's error (the paper's claim is that it does
+    /// not, significantly). `None` when no split was driven.
+    pub fn triangular_sigma_range(&self) -> Option<(f64, f64)> {
+        let driven = self
+            .splits
+            .iter()
+            .filter(|s| !s.never_driven)
+            .map(|s| s.triangular_sigma);
+        let lo = driven.clone().reduce(f64::min)?;
+        let hi = driven.reduce(f64::max)?;
+        Some((lo, hi))
+    }
+}
