@@ -7,5 +7,5 @@ pub mod pairs;
 pub mod pointers;
 
 pub use jam::{JamRow, JamTable};
-pub use pairs::{SplitPairs, SplitRun};
+pub use pairs::{MeshSweep, SigmaAgainstClearance, SplitPairs, SplitRun};
 pub use pointers::{CasePointer, CasePointers, CaseRun, IdealPointer, IdealPointers};

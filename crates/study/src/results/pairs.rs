@@ -1,5 +1,6 @@
 //! One pair of gears at a time: Figure 5 (three splits of the systematic error, Edmunds' model
-//! against triangular teeth).
+//! against triangular teeth) and Figure IV (σ against the clearance G for ideal gears of every
+//! mesh, with each pair's limits).
 
 use serde::{Deserialize, Serialize};
 
@@ -63,5 +64,47 @@ impl SplitPairs {
         let lo = driven.clone().reduce(f64::min)?;
         let hi = driven.reduce(f64::max)?;
         Some((lo, hi))
+    }
+}
+
+/// Figure IV's results: σ of each driven gear's Theoretical Difference against the clearance G,
+/// for ideal gears of every mesh of the gearing, with each pair's limits.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SigmaAgainstClearance {
+    /// Tooth height h of every gear, mm.
+    pub tooth_height: f64,
+    /// The clearances swept, % of h, in order.
+    pub clearances: Vec<f64>,
+    /// Every mesh, in the gearing's order.
+    pub meshes: Vec<MeshSweep>,
+}
+
+/// One mesh of Figure IV.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MeshSweep {
+    /// The mesh's label, driver-driven (e.g. `b2-c1`).
+    pub mesh: String,
+    /// σ of the driven gear's Theoretical Difference over one turn of the larger gear at each
+    /// of [`SigmaAgainstClearance::clearances`], degrees; `None` where the turn jammed or
+    /// disengaged, or the gears overlap at every tooth.
+    pub sigma: Vec<Option<f64>>,
+    /// The smallest G running a full turn without a jam, % of h (bisected to 0.01 % of h;
+    /// `None`: not found).
+    pub jam_limit: Option<f64>,
+    /// The largest G running a full turn without a disengagement, % of h (`None`: not found).
+    pub disengagement_limit: Option<f64>,
+    /// The swept G with the smallest σ, % of h (`None`: no clearance ran clean).
+    pub smallest_sigma_at: Option<f64>,
+}
+
+impl MeshSweep {
+    /// The swept clearance (of `clearances`, the sweep's) with the smallest σ, % of h.
+    pub fn smallest_sigma(clearances: &[f64], sigma: &[Option<f64>]) -> Option<f64> {
+        clearances
+            .iter()
+            .zip(sigma)
+            .filter_map(|(&g, s)| s.map(|s| (g, s)))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(g, _)| g)
     }
 }
