@@ -7,5 +7,7 @@ pub mod pairs;
 pub mod pointers;
 
 pub use jam::{JamRow, JamTable};
-pub use pairs::{MeshSweep, SigmaAgainstClearance, SplitPairs, SplitRun};
+pub use pairs::{
+    ClearanceLimits, ClearanceRun, MeshSweep, SigmaAgainstClearance, SplitPairs, SplitRun, TurnRun,
+};
 pub use pointers::{CasePointer, CasePointers, CaseRun, IdealPointer, IdealPointers};

@@ -1,6 +1,6 @@
 //! One pair of gears at a time: Figure 5 (three splits of the systematic error, Edmunds' model
-//! against triangular teeth) and Figure IV (σ against the clearance G for ideal gears of every
-//! mesh, with each pair's limits).
+//! against triangular teeth), Figure IV (σ against the clearance G for ideal gears of every mesh,
+//! with each pair's limits) and the clearance limits of one mesh (Appendix II).
 
 use serde::{Deserialize, Serialize};
 
@@ -107,4 +107,51 @@ impl MeshSweep {
             .min_by(|a, b| a.1.total_cmp(&b.1))
             .map(|(g, _)| g)
     }
+}
+
+/// The clearance limits of one mesh of ideal gears (Appendix II): a sweep of G over 0-100 % of
+/// h, then each limit bisected between the swept values that bracket it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ClearanceLimits {
+    /// The mesh's label, driver-driven.
+    pub mesh: String,
+    /// Teeth of the driver and of the driven gear.
+    pub teeth: (usize, usize),
+    /// Tip radii R1 and R2, mm.
+    pub tip_radii: (f64, f64),
+    /// Tooth height h of both gears, mm.
+    pub tooth_height: f64,
+    /// The sweep, in order of G.
+    pub sweep: Vec<ClearanceRun>,
+    /// The smallest G running a full turn without a jam, % of h (bisected to 1e-4 % of h;
+    /// `None`: not bracketed on the sweep).
+    pub jam_limit: Option<f64>,
+    /// The largest G running a full turn without a disengagement, % of h (`None`: not
+    /// bracketed on the sweep).
+    pub disengagement_limit: Option<f64>,
+}
+
+/// One clearance of the sweep of [`ClearanceLimits`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ClearanceRun {
+    /// Clearance G, % of h.
+    pub clearance: f64,
+    /// Centre distance D at that clearance, mm.
+    pub centre_distance: f64,
+    /// The turn's events and Theoretical Difference; `None` where the gears overlap at every
+    /// tooth (no run).
+    pub run: Option<TurnRun>,
+}
+
+/// One turn of the larger gear of an ideal pair.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct TurnRun {
+    /// Jams, as the event rule counts them.
+    pub jams: usize,
+    /// Disengagements, as the event rule counts them.
+    pub disengagements: usize,
+    /// σ of the driven gear's Theoretical Difference, degrees.
+    pub sigma: f64,
+    /// Dm, the largest |TD|, degrees.
+    pub dm: f64,
 }
