@@ -44,16 +44,18 @@ fn no_experiment_imports_another() {
 fn every_plugin_file_registers_exactly_one_experiment() {
     let all = plugins();
     for (stem, text) in &all {
-        // One `crate::experiment!` (its cell grammar, if any, inside it), nothing registered
-        // around it.
+        // One registration: `registry::register!` of a typed experiment (its cell grammar, if
+        // any, by `crate::replay_cells!`), or the untyped `crate::experiment!` (its cell grammar
+        // inside it); nothing registered around it.
+        let registered = text.matches("registry::register!").count()
+            + text.matches("crate::experiment!").count();
         assert_eq!(
-            text.matches("crate::experiment!").count(),
-            1,
-            "{stem}.rs should register exactly one experiment, with `crate::experiment!`"
+            registered, 1,
+            "{stem}.rs should register exactly one experiment, with `registry::register!` (or the untyped `crate::experiment!`)"
         );
         assert!(
             !text.contains("inventory::submit!"),
-            "{stem}.rs registers something beside its experiment: one `crate::experiment!` (with `replay:` for its cell grammar)"
+            "{stem}.rs registers something beside its experiment: one `registry::register!` (with `crate::replay_cells!` for its cell grammar)"
         );
     }
     experiments::link();

@@ -198,7 +198,7 @@ pub fn samples_for(g: &train::Gearing, pointer: &str, turns: f64, per: usize) ->
 
 /// One pointer's run of one trial: its σ, Dm and mean, and whether it stopped. A pointer that
 /// could not run has NaN statistics, which JSON cannot carry: they are recorded as bits.
-#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
 pub struct PointerTrial {
     /// σ of the Theoretical Difference (degrees).
     #[serde(with = "registry::f64_bits")]
@@ -366,7 +366,7 @@ pub fn tolerated_trials(
 
 /// One pointer of one trial under both contact models, as [`TrialEngine::trials`] records it;
 /// NaN statistics are recorded as bits.
-#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
 pub struct BothModels {
     /// σ under Edmunds' radial-line model, through any jams (degrees).
     #[serde(with = "registry::f64_bits")]

@@ -3,5 +3,11 @@
 //! here, one module per family.
 
 pub mod jam;
+pub mod pairs;
+pub mod pointers;
 
 pub use jam::{CaseTable, JamRow, JamTable};
+pub use pairs::{
+    ClearanceLimits, ClearanceRun, MeshSweep, SigmaAgainstClearance, SplitPairs, SplitRun, TurnRun,
+};
+pub use pointers::{CasePointer, CasePointers, CaseRun, IdealPointer, IdealPointers};
