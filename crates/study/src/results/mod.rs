@@ -2,6 +2,10 @@
 //! counts as counts, not as text): each experiment whose results another reads keeps their type
 //! here, one module per family.
 
+pub mod failure;
 pub mod jam;
 
+pub use failure::{
+    FailureInput, FailureRun, FailureStudy, MeanDay, Share, SurvivalStep, TrainSummary,
+};
 pub use jam::{JamRow, JamTable};
