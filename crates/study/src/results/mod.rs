@@ -4,6 +4,7 @@
 
 pub mod failure;
 pub mod jam;
+pub mod jam_readings;
 
 pub use failure::{
     FailureInput, FailureRun, FailureStudy, MeanDay, Share, SurvivalStep, TrainSummary,
