@@ -2,6 +2,7 @@
 //! counts as counts, not as text): each experiment whose results another reads keeps their type
 //! here, one module per family.
 
+pub mod contact_tolerance;
 pub mod event_rules;
 pub mod failure;
 pub mod jam;
