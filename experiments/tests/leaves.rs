@@ -44,16 +44,23 @@ fn no_experiment_imports_another() {
 fn every_plugin_file_registers_exactly_one_experiment() {
     let all = plugins();
     for (stem, text) in &all {
-        // One `crate::experiment!` (its cell grammar, if any, inside it), nothing registered
-        // around it.
+        // One registration: `registry::register!` of a typed experiment (its cell grammar, if
+        // any, beside it in `crate::replay_cells!`), or the untyped `crate::experiment!` (its
+        // cell grammar inside it); nothing else registered around it.
+        let typed = text.matches("registry::register!(").count();
+        let untyped = text.matches("crate::experiment!").count();
         assert_eq!(
-            text.matches("crate::experiment!").count(),
+            typed + untyped,
             1,
-            "{stem}.rs should register exactly one experiment, with `crate::experiment!`"
+            "{stem}.rs should register exactly one experiment, with `registry::register!` (or the untyped `crate::experiment!`)"
+        );
+        assert!(
+            text.matches("crate::replay_cells!").count() <= typed,
+            "{stem}.rs registers a cell grammar without a typed experiment"
         );
         assert!(
             !text.contains("inventory::submit!"),
-            "{stem}.rs registers something beside its experiment: one `crate::experiment!` (with `replay:` for its cell grammar)"
+            "{stem}.rs registers something beside its experiment: one `registry::register!` (with `crate::replay_cells!` for its cell grammar)"
         );
     }
     experiments::link();
