@@ -45,13 +45,18 @@ fn every_plugin_file_registers_exactly_one_experiment() {
     let all = plugins();
     for (stem, text) in &all {
         // One registration: `registry::register!` of a typed experiment (its cell grammar, if
-        // any, by `crate::replay_cells!`), or the untyped `crate::experiment!` (its cell grammar
-        // inside it); nothing registered around it.
-        let registered = text.matches("registry::register!").count()
-            + text.matches("crate::experiment!").count();
+        // any, beside it in `crate::replay_cells!`), or the untyped `crate::experiment!` (its
+        // cell grammar inside it); nothing else registered around it.
+        let typed = text.matches("registry::register!(").count();
+        let untyped = text.matches("crate::experiment!").count();
         assert_eq!(
-            registered, 1,
+            typed + untyped,
+            1,
             "{stem}.rs should register exactly one experiment, with `registry::register!` (or the untyped `crate::experiment!`)"
+        );
+        assert!(
+            text.matches("crate::replay_cells!").count() <= typed,
+            "{stem}.rs registers a cell grammar without a typed experiment"
         );
         assert!(
             !text.contains("inventory::submit!"),

@@ -2,10 +2,17 @@
 //! counts as counts, not as text): each experiment whose results another reads keeps their type
 //! here, one module per family.
 
+pub mod contact_tolerance;
+pub mod event_rules;
+pub mod failure;
 pub mod jam;
+pub mod jam_readings;
 pub mod pairs;
 pub mod pointers;
 
+pub use failure::{
+    FailureInput, FailureRun, FailureStudy, MeanDay, Share, SurvivalStep, TrainSummary,
+};
 pub use jam::{CaseTable, JamRow, JamTable};
 pub use pairs::{
     ClearanceLimits, ClearanceRun, MeshSweep, SigmaAgainstClearance, SplitPairs, SplitRun, TurnRun,
