@@ -3,7 +3,7 @@
 
 use std::f64::consts::TAU;
 
-use contact::{Start, Trajectory};
+use contact::{Solve, Start, Trajectory};
 use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
 
 use crate::common::{MAX_DATA_ROWS, Series, csv, deg, line_plot, paper_cell};
@@ -234,7 +234,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         })?;
 
     // Figure III frame: phi'_o = 0, theta'_o = theta'(0); one full driver turn.
-    let traj = mesh.run(0.0, TAU, Start::Touching(0.0));
+    let traj = mesh.solve(0.0..=TAU, Start::Touching(0.0), Solve::path());
     if traj.never_driven() {
         return Err(RunError::bad(
             "--set",
