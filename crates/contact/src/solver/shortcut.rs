@@ -148,6 +148,8 @@ impl<'m> Moved<'m> {
 /// The tooth pairs near the driven gear as a step proved free of events leaves them, at its end
 /// `phi1`: each of `pairs` with its upper end there; the sides stay (nothing crossed θ), and a
 /// pair behind that `pairs` does not hold stayed clear of the path, so it is no pusher at `phi1`.
+// Inlined into the proved step, which takes it at every certified step.
+#[inline(always)]
 fn proved_sides(sides: &mut Vec<Tracked>, mesh: &Mesh, phi1: f64, pairs: &[PairAtEnd]) {
     // Pairs whose driver tooth has left the window (teeth enter it at lower indices as the
     // driver turns, and leave it at higher ones) are done with.

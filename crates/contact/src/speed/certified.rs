@@ -93,19 +93,26 @@ impl Certifier {
         certified
     }
 
-    /// Takes the whole step to `phi1` on a certificate ([`Certifier::proved_step`]), if one is
+    /// Takes the whole step to `phi1` on a certificate ([`Certifier::proved`]), if one is
     /// found, and returns whether it did (having changed nothing if not).
+    // One copy of this large step, its verdicts judged where they are taken (not handed back to
+    // a caller: a few hundred bytes copied at every step cost 0.7 % of table5's instructions).
+    #[inline(never)]
     fn certified_whole(&mut self, run: &mut Run<'_>, phi1: f64, pushers: &[(i64, i64)]) -> bool {
-        let Some(judged) = self.proved_step(&run.stand(), phi1, pushers) else {
+        let at = run.stand();
+        let Some(mut judged) = self.judge_step(&at, phi1, pushers) else {
             return false;
         };
+        if !self.proved(&at, &mut judged, phi1, pushers) {
+            return false;
+        }
         run.take_proved_step(phi1, judged.theta1, &judged.pairs);
         true
     }
 
-    /// The verdicts of the step from where the run stands (`at`) to `phi1`, if a certificate is
-    /// found for it, with the pairs it proves ahead remembered for the next step. The
-    /// certificate (`certify.rs` has the bounds):
+    /// Whether the verdicts `judged` of the step from where the run stands (`at`) to `phi1`
+    /// ([`Certifier::judge_step`]) are a certificate for it; if so the pairs it proves ahead are
+    /// remembered for the next step. The certificate (`certify.rs` has the bounds):
     ///
     /// - Over the **box** of the step's driver angles and the driven angles from θ0 (less the
     ///   side tolerance) to θ1, every tooth pair near the driven gear either touches nowhere, or
@@ -132,16 +139,13 @@ impl Certifier {
     /// - Pairs born or gone within the step meet the conditions of `births_and_deaths_hold`.
     ///
     /// Then no event lies in the step, and it ends at θ1, exactly as the exact step would end it.
-    // One copy of this large step for its three callers (a whole step and two halves): inlined
-    // into each it made the program's resident code larger than before the halves.
-    #[inline(never)]
-    fn proved_step(
+    fn proved(
         &mut self,
         at: &Stand<'_, '_>,
+        judged: &mut JudgedStep,
         phi1: f64,
         pushers: &[(i64, i64)],
-    ) -> Option<JudgedStep> {
-        let mut judged = self.judge_step(at, phi1, pushers)?;
+    ) -> bool {
         // Every pusher is among the rising pairs (`judge_step` refuses a box where one is not):
         // one that fell would leave the driven gear.
         debug_assert!(
@@ -150,11 +154,24 @@ impl Certifier {
                 .all(|p| judged.pairs.iter().any(|m| m.pair == *p && m.rising)),
             "a pusher not judged rising"
         );
-        if !self.births_and_deaths_hold(at, &judged, phi1) {
-            return None;
+        if !self.births_and_deaths_hold(at, judged, phi1) {
+            return false;
         }
         self.clear_ahead = (phi1, judged.theta1, std::mem::take(&mut judged.clear_ahead));
-        Some(judged)
+        true
+    }
+
+    /// The verdicts of the step from `at` to `phi1`, if they are a certificate for it
+    /// ([`Certifier::proved`]).
+    fn proved_step(
+        &mut self,
+        at: &Stand<'_, '_>,
+        phi1: f64,
+        pushers: &[(i64, i64)],
+    ) -> Option<JudgedStep> {
+        let mut judged = self.judge_step(at, phi1, pushers)?;
+        self.proved(at, &mut judged, phi1, pushers)
+            .then_some(judged)
     }
 
     /// Takes the step to `phi1` as two certified half steps when the whole step has no
@@ -186,7 +203,7 @@ impl Certifier {
         false
     }
 
-    /// The verdicts of a certified step to `phi1` (see [`Certifier::proved_step`]), or None when a
+    /// The verdicts of a certified step to `phi1` (see [`Certifier::proved`]), or None when a
     /// pair may meet the driven gear other than by pushing it.
     fn judge_step(
         &self,

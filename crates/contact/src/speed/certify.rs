@@ -1,7 +1,7 @@
 //! Proofs about a box of configurations: which tooth pairs cannot touch the driven gear while the
 //! driver turns through a step, and, for those that can, whether their contact can only move the
 //! driven gear forwards. The solver takes a step without searching it for roots when every pair
-//! near the driven gear is proved harmless (`Certifier::proved_step` in `certified.rs`).
+//! near the driven gear is proved harmless (`Certifier::proved` in `certified.rs`).
 //!
 //! # The contact functions
 //!
