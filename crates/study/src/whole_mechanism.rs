@@ -9,7 +9,7 @@
 use std::collections::BTreeMap;
 use std::f64::consts::TAU;
 
-use contact::Start;
+use contact::{Solve, Start};
 use hypotheses::{Hypothesis, MeasuredHypothesis, Params};
 use mechanism::{Mechanism, PointerRun, Stage, StageRun, trial_rng};
 use rand::Rng;
@@ -428,8 +428,11 @@ fn one_run(
                             return Err(RunError::Internal(format!("mesh {label} was not built")));
                         };
                         let is_jam = |e: &contact::Event| mech.rule().is_jam(e);
-                        let traj =
-                            mesh.run_until(phi0, phi0 + range, Start::Touching(0.0), Some(&is_jam));
+                        let traj = mesh.solve(
+                            phi0..=phi0 + range,
+                            Start::Touching(0.0),
+                            Solve::path().stop_at(&is_jam),
+                        );
                         engagements += (traj.phi_end() - traj.phi_start()) / TAU
                             * mesh.driver().teeth() as f64;
                         let s = Stage {

@@ -3,7 +3,7 @@
 
 use std::f64::consts::TAU;
 
-use contact::{Start, Trajectory};
+use contact::{Solve, Start, Trajectory};
 use registry::{OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64};
 use serde::{Deserialize, Serialize};
 
@@ -253,7 +253,7 @@ fn compute(s: &Settings) -> Result<Results, RunError> {
         })?;
 
     // Figure III frame: phi'_o = 0, theta'_o = theta'(0); one full driver turn.
-    let traj = mesh.run(0.0, TAU, Start::Touching(0.0));
+    let traj = mesh.solve(0.0..=TAU, Start::Touching(0.0), Solve::path());
     if traj.never_driven() {
         return Err(RunError::bad(
             "--set",

@@ -3,7 +3,7 @@
 
 use std::f64::consts::TAU;
 
-use contact::{Start, Trajectory};
+use contact::{Solve, Start, Trajectory};
 use registry::{OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64};
 use serde::{Deserialize, Serialize};
 
@@ -181,7 +181,11 @@ fn compute(s: &Settings) -> Result<Results, RunError> {
     // f(x) = theta'(x) - ratio x is periodic in the driver pitch; a run starting at phi'_o has mean
     // Theoretical Difference C - f(phi'_o), C the mean of f. So the pointer leads most from the
     // minimum of f, lags most from its maximum, and is centred where f equals its mean.
-    let long = mesh.run(0.0, (pitches + 2) as f64 * p1, Start::Touching(0.0));
+    let long = mesh.solve(
+        0.0..=(pitches + 2) as f64 * p1,
+        Start::Touching(0.0),
+        Solve::path(),
+    );
     check_driven(&long)?;
     let (leading, centred, lagging) = initial_angles(&long, p1, ratio);
     let phis: Vec<f64> = (0..samples)
@@ -193,10 +197,10 @@ fn compute(s: &Settings) -> Result<Results, RunError> {
         ("B: centred", centred),
         ("C: lagging", lagging),
     ] {
-        let t: Trajectory = mesh.run(
-            phi_o,
-            phi_o + pitches as f64 * p1,
+        let t: Trajectory = mesh.solve(
+            phi_o..=phi_o + pitches as f64 * p1,
             Start::Touching(long.theta_at(phi_o)),
+            Solve::path(),
         );
         let theta_o = t.theta_at(phi_o);
         let td: Vec<f64> = phis

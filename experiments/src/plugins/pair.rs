@@ -1,6 +1,7 @@
 //! `pair`: any mesh described in a RON file (tooth counts, radii, optional measured tip angles and
 //! eccentricity, centre distance or clearance): θ(φ), Theoretical Difference and every event.
 
+use contact::Solve;
 use registry::{OutputFile, Place, Report, Run, RunError, Table, fmt_f64};
 use serde::{Deserialize, Serialize};
 
@@ -294,7 +295,7 @@ fn simulate(prepared: &Prepared) -> Sampled {
     let run_deg = spec.run_deg.unwrap_or_else(|| default_run_deg(n1, n2));
     let phi0 = spec.start_deg.to_radians();
     let phi_end = phi0 + run_deg.to_radians();
-    let traj = mesh.run(phi0, phi_end, prepared.start);
+    let traj = mesh.solve(phi0..=phi_end, prepared.start, Solve::path());
     let theta0 = traj.theta_at(phi0);
     let samples = (run_deg / spec.sample_deg).floor() as usize;
     let rows: Vec<[f64; 5]> = (0..=samples)

@@ -169,11 +169,11 @@ pub struct Segment {
     pub motion: Motion,
 }
 
-/// Which events end a run early ([`Mesh::run_until`]).
+/// Which events end a run early ([`Solve::stop_at`](crate::Solve::stop_at)).
 pub type StopAt<'a> = dyn Fn(&Event) -> bool + 'a;
 
 /// Whether the events of a run so far, every one of them sized, answer the caller's question
-/// for good (see [`Mesh::run_events_until_answered`]).
+/// for good (see [`Solve::until_answered`](crate::Solve::until_answered)).
 pub type Answered<'a> = dyn Fn(&[Event]) -> bool + 'a;
 
 /// How the driven gear starts.
@@ -192,9 +192,9 @@ pub enum Start {
 /// the events and the contacts at them) is drawn again from stored results without running it.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Trajectory {
-    pub(super) mesh: Mesh,
-    pub(super) segments: Vec<Segment>,
-    pub(super) events: Vec<Event>,
+    pub(crate) mesh: Mesh,
+    pub(crate) segments: Vec<Segment>,
+    pub(crate) events: Vec<Event>,
 }
 
 impl Trajectory {
