@@ -3,7 +3,7 @@
 //! θ(φ) bit for bit, so that a report drawn again from stored results draws the same pictures.
 #![allow(clippy::unwrap_used, reason = "tests")]
 
-use contact::{Start, Trajectory};
+use contact::{Solve, Start, Trajectory};
 
 #[path = "support/hard_meshes.rs"]
 mod hard_meshes;
@@ -22,7 +22,7 @@ fn a_stored_run_reads_back_as_the_same_run() {
         else {
             continue;
         };
-        let run = mesh.run(phi0, end, Start::Touching(0.0));
+        let run = mesh.solve(phi0..=end, Start::Touching(0.0), Solve::path());
         let text = serde_json::to_string(&run).unwrap();
         let back: Trajectory = serde_json::from_str(&text).unwrap();
         assert_eq!(back.mesh().driver(), run.mesh().driver(), "{what}");
