@@ -3,5 +3,11 @@
 //! here, one module per family.
 
 pub mod jam;
+pub mod tolerances;
 
-pub use jam::{JamRow, JamTable};
+pub use jam::{CaseClearanceTable, JamRow, JamTable, RandomErrorTable};
+pub use tolerances::{
+    DerivedTolerances, Estimate95, GearRandom, GearTolerance, GearTolerances, MeasuredFile,
+    MeshSearchResult, MeshTolerance, PointerEstimates, RandomFrom, SearchedTolerances,
+    SystematicRow, TolerableMechanism,
+};
