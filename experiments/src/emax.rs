@@ -1,11 +1,10 @@
 //! The paper's largest tolerable errors (Table 5's E. max row and the systematic tolerances its
 //! counts give) beside ours, and the `emax` setting that runs Tables 5 and 6 on the paper's row.
 
-use registry::{Context, Param, RunError};
+use registry::{Param, RunError};
 use study::cell::{PAPER_TRIALS, label};
 use study::results::RandomFrom;
 use study::tolerance;
-use train::Gearing;
 
 use crate::cells::paper_counts;
 
@@ -87,16 +86,4 @@ pub fn given_row(
         RandomFrom::Grid => Ok(None),
         RandomFrom::Paper => paper_emax_row(meshes).map(Some),
     }
-}
-
-/// The `emax` parameter: `true` for the paper's own E. max row (its kind admits only `derived`
-/// and `paper`).
-pub fn emax_from_paper(ctx: &Context) -> Result<bool, RunError> {
-    Ok(random_from(ctx.text(&EMAX)?) == RandomFrom::Paper)
-}
-
-/// [`given_row`] of the `emax` parameter in `ctx`, for the meshes of `g`.
-pub fn given_random(ctx: &Context, g: &Gearing) -> Result<Option<Vec<Option<f64>>>, RunError> {
-    let meshes: Vec<String> = g.meshes().iter().map(|m| m.label.clone()).collect();
-    given_row(random_from(ctx.text(&EMAX)?), &meshes)
 }
