@@ -44,16 +44,18 @@ fn no_experiment_imports_another() {
 fn every_plugin_file_registers_exactly_one_experiment() {
     let all = plugins();
     for (stem, text) in &all {
-        // One `crate::experiment!` (its cell grammar, if any, inside it), nothing registered
-        // around it.
+        // One experiment, typed (`registry::register!`, its cell grammar beside it with
+        // `crate::replay_cells!`) or untyped (`crate::experiment!`, its grammar inside it),
+        // nothing else registered around it.
         assert_eq!(
-            text.matches("crate::experiment!").count(),
+            text.matches("crate::experiment!").count()
+                + text.matches("registry::register!(").count(),
             1,
-            "{stem}.rs should register exactly one experiment, with `crate::experiment!`"
+            "{stem}.rs should register exactly one experiment, with `registry::register!` (or the untyped `crate::experiment!`)"
         );
         assert!(
             !text.contains("inventory::submit!"),
-            "{stem}.rs registers something beside its experiment: one `crate::experiment!` (with `replay:` for its cell grammar)"
+            "{stem}.rs registers something beside its experiment: one `registry::register!` (with `crate::replay_cells!` for its cell grammar)"
         );
     }
     experiments::link();
