@@ -12,16 +12,12 @@ fn main() -> io::Result<()> {
     snapshot_tests()
 }
 
-/// The id an experiment file registers: its `const ID: &'static str = "...";` (a typed
-/// experiment), or the first `id: "..."` after its `crate::experiment!` (the untyped form).
+/// The id an experiment file registers: its `const ID: &'static str = "...";`.
 fn registered_id(text: &str) -> Option<&str> {
-    let (after, mark) = match text.find("const ID: &'static str = \"") {
-        Some(at) => (&text[at..], "= \""),
-        None => (&text[text.find("crate::experiment!")?..], "id: \""),
-    };
-    let start = after.find(mark)? + mark.len();
-    let len = after[start..].find('"')?;
-    Some(&after[start..start + len])
+    let mark = "const ID: &'static str = \"";
+    let start = text.find(mark)? + mark.len();
+    let len = text[start..].find('"')?;
+    Some(&text[start..start + len])
 }
 
 /// `$OUT_DIR/snapshot_tests.rs`: `PINNED_IDS`, and a `#[test]` per experiment calling `pinned`.

@@ -24,7 +24,7 @@ pub mod td_plot;
 mod test_pair;
 pub mod train_picture;
 
-pub(crate) use register::{experiment, replay_cells};
+pub(crate) use register::replay_cells;
 
 mod plugins {
     include!(concat!(env!("OUT_DIR"), "/plugins.rs"));

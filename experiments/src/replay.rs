@@ -23,14 +23,11 @@ use study::drive::{Drive, Driver};
 use study::grids::{CASES, CellSettings};
 
 /// How the cells of a per-mesh table are named and what each one names: an experiment whose
-/// trials can be replayed registers one in its own file, with its experiment (`replay:` in `crate::experiment!`):
+/// trials can be replayed registers one in its own file, beside its experiment:
 ///
 /// ```ignore
-/// crate::experiment! {
-///     id: "table3", paper_item: "Table 3 (section 5)", run,
-///     // title, params, groups ...
-///     replay: "CASE/MESH, e.g. B/m3-e3" => cell,
-/// }
+/// registry::register!(Table3);
+/// crate::replay_cells! { "table3", "CASE/MESH, e.g. B/m3-e3" => cell }
 /// ```
 pub struct CellGrammar {
     /// The id of the experiment whose cells these are.

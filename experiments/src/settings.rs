@@ -210,6 +210,7 @@ pub fn label(ctx: &Context, report: Report) -> Result<Report, RunError> {
 pub mod typed {
     use registry::{Report, RunError, Settings};
     use study::drive::DriveParams;
+    use study::errors::ErrorParams;
     use study::events::EventParams;
     use study::gearing::{GearingParams, ShapeParams};
     use study::grids::CellSettings;
@@ -236,22 +237,7 @@ pub mod typed {
         trials: u64,
         whole: &S,
     ) -> Result<CellSettings, RunError> {
-        let (shape, clearance) = match gearing {
-            Gearing::WithClearance(g) => (g.shape().load()?, Some(g.clearance)),
-            Gearing::Shape(s) => (s.load()?, None),
-        };
-        Ok(CellSettings {
-            gearing: shape,
-            clearance,
-            errors: errors.load(whole)?,
-            rule: match events {
-                Some(e) => e.rule()?,
-                None => study::events::default_rule()?,
-            },
-            drive: drive.map_or(Ok(study::drive::Drive::Listed), DriveParams::drive)?,
-            end: drive.map_or(Ok(study::trial_end::End::Turn), DriveParams::end)?,
-            trials,
-        })
+        loaded_cells(gearing, errors.load(whole)?, events, drive, trials)
     }
 
     /// `report` with every table's title naming the event rule of the run, and the drive and end
@@ -275,5 +261,44 @@ pub mod typed {
             .into_iter()
             .map(|(p, value)| format!("{}={value}", p.name))
             .collect()
+    }
+
+    /// [`cells`] for an experiment whose error group has no split ([`ErrorParams`]: a random
+    /// error alone, as Table 4 and what reads its grid run it).
+    pub fn unsplit_cells<S: Settings>(
+        gearing: Gearing<'_>,
+        errors: &ErrorParams,
+        events: Option<&EventParams>,
+        drive: Option<&DriveParams>,
+        trials: u64,
+        whole: &S,
+    ) -> Result<CellSettings, RunError> {
+        loaded_cells(gearing, errors.load(None, whole)?, events, drive, trials)
+    }
+
+    /// The cells' settings with the error group already loaded (with or without its split).
+    fn loaded_cells(
+        gearing: Gearing<'_>,
+        errors: study::errors::Settings,
+        events: Option<&EventParams>,
+        drive: Option<&DriveParams>,
+        trials: u64,
+    ) -> Result<CellSettings, RunError> {
+        let (shape, clearance) = match gearing {
+            Gearing::WithClearance(g) => (g.shape().load()?, Some(g.clearance)),
+            Gearing::Shape(s) => (s.load()?, None),
+        };
+        Ok(CellSettings {
+            gearing: shape,
+            clearance,
+            errors,
+            rule: match events {
+                Some(e) => e.rule()?,
+                None => study::events::default_rule()?,
+            },
+            drive: drive.map_or(Ok(study::drive::Drive::Listed), DriveParams::drive)?,
+            end: drive.map_or(Ok(study::trial_end::End::Turn), DriveParams::end)?,
+            trials,
+        })
     }
 }

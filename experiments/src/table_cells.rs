@@ -127,8 +127,9 @@ fn mesh_emax(
     s: &CellSettings,
     mesh: &str,
 ) -> Result<Option<(f64, String)>, RunError> {
-    if let Some(row) = crate::emax::given_random(ctx, s.gearing())? {
-        let meshes = s.meshes();
+    let from = crate::emax::random_from(ctx.text(&crate::emax::EMAX)?);
+    let meshes = s.meshes();
+    if let Some(row) = crate::emax::given_row(from, &meshes)? {
         let at = meshes.iter().position(|m| m == mesh);
         return Ok(at
             .and_then(|i| row.get(i).copied().flatten())

@@ -44,19 +44,16 @@ fn no_experiment_imports_another() {
 fn every_plugin_file_registers_exactly_one_experiment() {
     let all = plugins();
     for (stem, text) in &all {
-        // One registration: `registry::register!` of a typed experiment (its cell grammar, if
-        // any, beside it in `crate::replay_cells!`), or the untyped `crate::experiment!` (its
-        // cell grammar inside it); nothing else registered around it.
+        // One registration: `registry::register!` of a typed experiment, its cell grammar (if
+        // any) beside it in `crate::replay_cells!`; nothing else registered around it.
         let typed = text.matches("registry::register!(").count();
-        let untyped = text.matches("crate::experiment!").count();
         assert_eq!(
-            typed + untyped,
-            1,
-            "{stem}.rs should register exactly one experiment, with `registry::register!` (or the untyped `crate::experiment!`)"
+            typed, 1,
+            "{stem}.rs should register exactly one experiment, with `registry::register!`"
         );
         assert!(
-            text.matches("crate::replay_cells!").count() <= typed,
-            "{stem}.rs registers a cell grammar without a typed experiment"
+            text.matches("crate::replay_cells!").count() <= 1,
+            "{stem}.rs registers more than one cell grammar"
         );
         assert!(
             !text.contains("inventory::submit!"),

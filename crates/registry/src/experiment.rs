@@ -100,13 +100,6 @@ impl<'a> Run<'a> {
         self.ctx.config()
     }
 
-    /// The whole context, for experiments registered by the old untyped form (their `run`
-    /// reads its parameters from it) until each is written as an [`Experiment`].
-    #[doc(hidden)]
-    pub fn legacy_context(&self) -> &'a Context {
-        self.ctx
-    }
-
     /// The results of experiment `id` run with its parameters at their defaults but for `sets`
     /// (declaration, value as typed), read typed: from `<results folder>/<id>/results.json` when
     /// a run there was made with exactly these settings and this seed, else computed now

@@ -549,13 +549,23 @@ pub fn mean_days(days: &[f64], horizon: f64) -> stats::Estimate {
 
 /// Per run and train: the day of the first jam, or the horizon and "censored".
 pub fn runs_csv(inputs: &[Input<'_>], per_input: &[&[MechanismRun]], days: f64) -> String {
+    labelled_runs_csv(inputs.iter().map(|i| i.label.as_str()), per_input, days)
+}
+
+/// [`runs_csv`] of runs stored with their inputs' labels (`labels`, one per input) rather than
+/// the inputs themselves.
+pub fn labelled_runs_csv<'a>(
+    labels: impl IntoIterator<Item = &'a str>,
+    per_input: &[&[MechanismRun]],
+    days: f64,
+) -> String {
     let mut csv = String::from("input,trial,train,first_jam_day,status,mesh\n");
-    for (inp, runs) in inputs.iter().zip(per_input) {
+    for (label, runs) in labels.into_iter().zip(per_input) {
         for (t, o) in runs.iter().enumerate() {
             for (ti, name) in train_names().enumerate() {
                 let line = match jam_of(o, ti).filter(|j| j.day <= days) {
-                    Some(j) => format!("{},{t},{name},{},jammed,{}\n", inp.label, j.day, j.mesh),
-                    None => format!("{},{t},{name},{days},censored,\n", inp.label),
+                    Some(j) => format!("{label},{t},{name},{},jammed,{}\n", j.day, j.mesh),
+                    None => format!("{label},{t},{name},{days},censored,\n"),
                 };
                 csv.push_str(&line);
             }

@@ -95,7 +95,7 @@ fn a_small_design_runs_and_its_reference_arm_is_the_failure_study() {
     // The reference arm's runs are failure's runs with the same seed, cases and count.
     let map = registry::experiments().unwrap();
     let set = |k: &str, v: &str| (k.to_string(), v.to_string());
-    let ctx = Context::new(
+    let ctx = registry::Context::new(
         map["failure"],
         2025,
         2,

@@ -1,4 +1,5 @@
-//! A table of jam cells (rows by meshes, each cell's counts): Tables 3, 4, 5 and I.
+//! Tables of jam cells (rows by meshes, each cell's counts): Tables 3, 4 and I, and Table 4's
+//! grid where Tables 5 and 6, Figure 6 and the tolerance search read it.
 
 use serde::{Deserialize, Serialize};
 
@@ -61,4 +62,69 @@ pub struct CaseTable {
     pub hypothesis: String,
     /// Clearance G of every mesh, % of h.
     pub clearance: f64,
+}
+
+/// Table 4's results: each mesh's counts against the random tooth error, no systematic error,
+/// at one clearance (Table 5, Table 6, Figure 6 and the tolerance search read their E. max from
+/// the same cells).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct RandomErrorTable {
+    /// The grid's random errors, ascending: each the standard deviation of a tip's displacement
+    /// as a fraction of the pitch 360/N (Edmunds' tooth error).
+    pub random: Vec<f64>,
+    /// The counts: a row per random error of [`RandomErrorTable::random`], labelled as printed
+    /// (three decimals at least, `0.035`), a column per mesh. No rows where the grid was not
+    /// run (Table 5 and Table 6 on the paper's own E. max row, `emax=paper`).
+    pub table: JamTable,
+    /// Clearance G of every mesh, % of the tooth height h.
+    pub clearance: f64,
+}
+
+impl RandomErrorTable {
+    /// The cells of a grid Table 4's way ([`crate::grids::run_grid`]) ran at `clearance`.
+    pub fn from_grid(grid: &crate::grids::RandomGrid, clearance: f64) -> RandomErrorTable {
+        let rows = grid
+            .counts
+            .iter()
+            .zip(&grid.values)
+            .map(|(cells, &e)| JamRow {
+                label: crate::cell::label(e, 3),
+                cells: cells.clone(),
+            })
+            .collect();
+        RandomErrorTable {
+            random: grid.values.clone(),
+            table: JamTable {
+                meshes: grid.meshes.clone(),
+                rows,
+            },
+            clearance,
+        }
+    }
+}
+
+/// Table I's results: each mesh's counts for Edmunds' Cases A-D at each of several clearances.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct CaseClearanceTable {
+    /// The clearances G run, % of the tooth height h, in the order listed (`clearances`).
+    pub clearances: Vec<f64>,
+    /// Whether the Cases' errors reach the hypothesis; if not, the four Cases are the same
+    /// cells and Case A's stand for all (one row per clearance).
+    pub cases_apply: bool,
+    /// The hypothesis the gears were made with.
+    pub hypothesis: String,
+    /// The counts: a row per Case and clearance, Case by Case and each Case's clearances in
+    /// [`CaseClearanceTable::clearances`]' order, labelled `CASE/G` (`B/70`; `A-D/70` where
+    /// the Cases do not apply); a column per mesh.
+    pub table: JamTable,
+}
+
+impl CaseClearanceTable {
+    /// The row of Case number `case` (0 for A) at clearance number `clearance` of
+    /// [`CaseClearanceTable::clearances`].
+    pub fn row(&self, case: usize, clearance: usize) -> Option<&JamRow> {
+        self.table
+            .rows
+            .get(case * self.clearances.len() + clearance)
+    }
 }

@@ -9,12 +9,18 @@ pub mod jam;
 pub mod jam_readings;
 pub mod pairs;
 pub mod pointers;
+pub mod tolerances;
 
 pub use failure::{
     FailureInput, FailureRun, FailureStudy, MeanDay, Share, SurvivalStep, TrainSummary,
 };
-pub use jam::{CaseTable, JamRow, JamTable};
+pub use jam::{CaseClearanceTable, CaseTable, JamRow, JamTable, RandomErrorTable};
 pub use pairs::{
     ClearanceLimits, ClearanceRun, MeshSweep, SigmaAgainstClearance, SplitPairs, SplitRun, TurnRun,
 };
 pub use pointers::{CasePointer, CasePointers, CaseRun, IdealPointer, IdealPointers};
+pub use tolerances::{
+    DerivedTolerances, Estimate95, GearRandom, GearTolerance, GearTolerances, MeasuredFile,
+    MeshSearchResult, MeshTolerance, PointerEstimates, RandomFrom, SearchedTolerances,
+    SystematicRow, TolerableMechanism,
+};
