@@ -485,13 +485,74 @@ fn oracle_note(mesh: &contact::Mesh, traj: &contact::Trajectory) -> String {
     )
 }
 
+/// The verdicts a replayed trial's title gives, by what the trial did (jammed, disengaged).
+const VERDICTS: [(&str, bool, bool); 4] = [
+    ("jammed and disengaged", true, true),
+    ("jammed", true, false),
+    ("disengaged", false, true),
+    ("neither jammed nor disengaged", false, false),
+];
+
 fn verdict(jam: bool, dis: bool) -> &'static str {
-    match (jam, dis) {
-        (true, true) => "jammed and disengaged",
-        (true, false) => "jammed",
-        (false, true) => "disengaged",
-        (false, false) => "neither jammed nor disengaged",
+    VERDICTS
+        .iter()
+        .find(|v| (v.1, v.2) == (jam, dis))
+        .map_or("?", |v| v.0)
+}
+
+/// A replayed trial as its table's title names it (`table3 D/m3-e3, trial 0 (seed 2025):
+/// disengaged [...]`, as [`replay`] writes it): the experiment, the cell, the trial and what it
+/// did, so that a page linking to the trial can say it is one of the failure it links from.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ReplayedTrial {
+    /// The experiment whose cell it is.
+    pub experiment: String,
+    /// The cell as typed.
+    pub cell: String,
+    /// The trial's index.
+    pub trial: u64,
+    /// Whether the trial jammed (as its table counts it).
+    pub jammed: bool,
+    /// Whether it disengaged.
+    pub disengaged: bool,
+}
+
+impl ReplayedTrial {
+    /// Reads a title [`replay`] wrote for one trial; `None` for any other text.
+    pub fn from_title(title: &str) -> Option<Self> {
+        let (head, rest) = title.split_once(", trial ")?;
+        let (experiment, cell) = head.split_once(' ')?;
+        let (trial, rest) = rest.split_once(' ')?;
+        let (_, rest) = rest.split_once("): ")?;
+        let said = rest.split(" [").next()?;
+        let &(_, jammed, disengaged) = VERDICTS.iter().find(|v| v.0 == said)?;
+        Some(Self {
+            experiment: experiment.to_owned(),
+            cell: cell.to_owned(),
+            trial: trial.parse().ok()?,
+            jammed,
+            disengaged,
+        })
     }
+}
+
+/// What makes trial `t` of cell `cell` of experiment `id` (under the settings of `ctx`) the
+/// trial it is, whichever table counts it: the cell's content, the gearing, how its events are
+/// counted (rule, drive, end) and the seed. Two cells of two tables with the same key (Table
+/// 3's `B/m3-e3` and Table I's `B/40/m3-e3`) have the same trials, index for index, counted
+/// alike, so a replay of one is a replay of the other.
+pub fn trial_key(ctx: &Context, id: &str, cell: &str) -> Result<String, RunError> {
+    let s = crate::settings::cells(ctx, &study::grids::TRIALS)?;
+    let (spec, _) = unchecked_cell_spec(&s, id, cell)?;
+    Ok(format!(
+        "{};gearing={};events={};drive={}{};seed={}",
+        spec.canonical(),
+        s.gearing.file,
+        spec.events.label(),
+        spec.drive.name(),
+        end_tag(&spec),
+        ctx.seed()
+    ))
 }
 
 /// The file of a listing that names every failed trial of the cell, one line each:
@@ -819,6 +880,13 @@ mod tests {
                     jammed.contains(&t),
                     "{id} {cell} trial {t}: {title}"
                 );
+                // The title names the trial and what it did, for the report's links to read.
+                let named = ReplayedTrial::from_title(title).unwrap();
+                assert_eq!(
+                    (named.experiment.as_str(), named.cell.as_str(), named.trial),
+                    (id, cell, t)
+                );
+                assert_eq!(named.jammed, jammed.contains(&t), "{title}");
             }
         }
     }
@@ -871,6 +939,22 @@ mod tests {
             [true, true],
             "the coin picked both gears in 12 trials"
         );
+    }
+
+    /// Table 3's `B/m3-e3` and Table I's `B/40/m3-e3` are one cell, counted alike: one trial
+    /// key; another G, another rule or another seed is another.
+    #[test]
+    fn one_cell_of_two_tables_has_one_trial_key() {
+        let key = |id: &str, cell: &str, sets: &[(&str, &str)], seed: u64| {
+            let ctx = crate::context(id, seed, 1, sets).unwrap().1;
+            trial_key(&ctx, id, cell).unwrap()
+        };
+        let b = key("table3", "B/m3-e3", &[], 2025);
+        assert_eq!(b, key("tableI", "B/40/m3-e3", &[], 2025));
+        assert_ne!(b, key("tableI", "B/70/m3-e3", &[], 2025));
+        assert_ne!(b, key("table3", "B/m3-e3", &[("events", "strict")], 2025));
+        assert_ne!(b, key("table3", "B/m3-e3", &[], 7));
+        assert_eq!(b, key("table3", "B/m3-e3", &[("trials", "12")], 2025));
     }
 
     /// Each grammar is its experiment's: registered in its file, for a registered experiment;

@@ -10,9 +10,10 @@
 //! figures. Tables scroll within their box when wider than the page.
 //!
 //! Tables 3, 4, 5 and I are also shown as heatmaps (jams, disengagements): ours against the
-//! paper's per cell, coloured by the two-sample verdict the table marks with `*`, each differing
-//! cell linking to its `replay` listing (or, before one is written, to the command that writes
-//! it). A run whose inputs differ from the paper's ([`provenance::DEPARTURE`] in its titles) shows
+//! paper's per cell, coloured by the two-sample verdict the table marks with `*`. A cell links to
+//! a replayed trial of that cell (of this table or another whose cell has the same trials, Table
+//! 3's `B/m3-e3` and Table I's `B/40/m3-e3`) that had the heatmap's failure; a differing cell
+//! with none links to the commands that write one, which carry the page's `--out`. A run whose inputs differ from the paper's ([`provenance::DEPARTURE`] in its titles) shows
 //! no `*` marks, no heatmap, and its notes on agreement labelled for reference only.
 //!
 //! The page is written through a temporary file renamed into place. Results that cannot be read
@@ -32,7 +33,7 @@ use crate::args::ReportArgs;
 use crate::failure::Failure;
 use crate::provenance::{self, RUN_JSON};
 use crate::shared::Registry;
-use replays::{Replayed, Replays};
+use replays::Replayed;
 
 mod bundle;
 #[cfg(test)]
@@ -53,15 +54,16 @@ pub fn command(args: &ReportArgs) -> Result<(), Failure> {
     let quiet = args.quiet;
     let exps = registry::experiments().map_err(|e| Failure::Internal(e.to_string()))?;
     // No results folder at all: said as such, before the check of --out would make one.
+    let out_flag = out_flag(args.out.as_deref());
     if !out.exists() {
-        build(&exps, &out, quiet)?;
+        build(&exps, &out, &out_flag, quiet)?;
     }
     // The page's run lock ends with the command (also when it is called on its own, in tests).
     let _locked = crate::shared::LocksEnd;
     // The page can be written there (checked before the results are read), and results a
     // killed run left moved aside are put back before they are read.
     crate::plan::check_out(&out, &[crate::plan::Target::File(INDEX_HTML.into())])?;
-    let page = build(&exps, &out, quiet)?;
+    let page = build(&exps, &out, &out_flag, quiet)?;
     let index = out.join(INDEX_HTML);
     crate::shared::write_atomically(&index, &page)?;
     if !quiet {
@@ -129,9 +131,32 @@ fn bad(path: &Path, field: &str, rule: impl std::fmt::Display) -> Failure {
     }
 }
 
-/// The HTML page for the results under `out`.
-fn build(exps: &Registry, out: &Path, quiet: bool) -> Result<String, Failure> {
-    let (found, replays) = replays::split_replays(scan(out)?);
+/// ` --out DIR` for the commands the page prints, where it was built with `--out DIR` (so that
+/// a replay run as printed lands beside the page, which then links it); empty at the default.
+fn out_flag(out: Option<&Path>) -> String {
+    match out {
+        Some(dir) => format!(" --out {}", shell_word(&dir.to_string_lossy())),
+        None => String::new(),
+    }
+}
+
+/// `s` as one word of a POSIX shell: as it is when it holds only characters no shell treats
+/// specially, else in single quotes.
+fn shell_word(s: &str) -> String {
+    let plain = !s.is_empty()
+        && s.chars()
+            .all(|c| c.is_ascii_alphanumeric() || "-_./:=+,@%".contains(c));
+    if plain {
+        s.to_owned()
+    } else {
+        format!("'{}'", s.replace('\'', "'\\''"))
+    }
+}
+
+/// The HTML page for the results under `out`; `out_flag` is what its commands carry to write
+/// there ([`out_flag`]).
+fn build(exps: &Registry, out: &Path, out_flag: &str, quiet: bool) -> Result<String, Failure> {
+    let (found, replays) = replays::split_replays(exps, scan(out)?);
     if found.is_empty() {
         return Err(Failure::Bad(format!(
             "--out: {}: no results (no <id>/tables.json); run `cargo xtask run <id> --out {}` first",
@@ -164,7 +189,12 @@ fn build(exps: &Registry, out: &Path, quiet: bool) -> Result<String, Failure> {
     ids.sort();
     ids.dedup();
     let ids = order::in_paper_order(ids);
-    Ok(render(exps, &ids, &results, &replays))
+    let links = heatmap::Links {
+        exps,
+        replays: &replays,
+        out_flag: out_flag.to_owned(),
+    };
+    Ok(render(exps, &ids, &results, &links))
 }
 
 /// The result directories under `out`: `(id, path)` for each visible subdirectory holding a
@@ -551,7 +581,7 @@ fn render(
     exps: &Registry,
     ids: &[String],
     results: &BTreeMap<String, Results>,
-    replays: &Replays,
+    links: &heatmap::Links<'_>,
 ) -> String {
     let mut h = String::new();
     let now = provenance::utc_now();
@@ -612,8 +642,11 @@ appear in columns labelled &ldquo;paper&rdquo; or in parentheses, as in the prin
     for id in ids {
         if let Some(r) = results.get(id) {
             let (title, item) = describe(exps, id);
-            let listed = replays.get(id.as_str()).map_or(&[][..], Vec::as_slice);
-            section(&mut h, id, title, item, r, listed);
+            let listed = links
+                .replays
+                .get(id.as_str())
+                .map_or(&[][..], Vec::as_slice);
+            section(&mut h, (id, title, item), r, links);
             replay_links(&mut h, listed);
         }
     }
@@ -679,7 +712,12 @@ fn replay_links(h: &mut String, replays: &[Replayed]) {
     );
 }
 
-fn section(h: &mut String, id: &str, title: &str, item: &str, r: &Results, replays: &[Replayed]) {
+fn section(
+    h: &mut String,
+    (id, title, item): (&str, &str, &str),
+    r: &Results,
+    links: &heatmap::Links<'_>,
+) {
     // The registered title states the defaults ("200 trials per cell"); a run that changed
     // them is headed by its first table's title, which states what was run.
     let changed = r.run.as_ref().is_some_and(|p| !p.overrides.is_empty());
@@ -754,7 +792,7 @@ xtask {} (git <code>{}</code>), {}.</p>",
     for (i, t) in r.tables.iter().enumerate() {
         table(h, t, reference);
         if i == 0 {
-            heatmap::heatmaps(h, id, t, r, replays, reference);
+            heatmap::heatmaps(h, id, t, r, links, reference);
         }
     }
     for (name, embed) in &r.figures {

@@ -82,7 +82,7 @@ fn page_has_tables_figures_provenance_and_not_run() {
     let s = Scratch::new("page");
     write_a(&s.0);
     fs::create_dir_all(s.0.join(".a.tmp-1")).unwrap(); // hidden: ignored
-    let page = build(&registry(), &s.0, true).unwrap();
+    let page = build(&registry(), &s.0, "", true).unwrap();
     assert!(page.contains("<section id=\"exp-a\" class=\"experiment run\">"));
     assert!(page.contains("<h2>a: First &lt;one&gt;</h2>"));
     assert!(page.contains("<p class=\"table-title\">Ours &amp; the paper&#39;s</p>"));
@@ -118,7 +118,7 @@ fn replayed_trials_are_linked_from_their_experiment_not_shown_as_one() {
         ..Default::default()
     };
     registry::write_results(&s.0.join("replay-table3-B-m3-e3-1"), &replay).unwrap();
-    let page = build(&registry(), &s.0, true).unwrap();
+    let page = build(&registry(), &s.0, "", true).unwrap();
     assert!(
         page.contains("<a href=\"replay-table3-B-m3-e3-1/pair.html\">replay-table3-B-m3-e3-1</a>"),
         "{page}"
@@ -146,13 +146,13 @@ fn command_writes_the_page_atomically() {
 #[test]
 fn no_results_is_bad_input_and_writes_nothing() {
     let s = Scratch::new("empty");
-    let e = build(&registry(), &s.0, true).unwrap_err();
+    let e = build(&registry(), &s.0, "", true).unwrap_err();
     assert_eq!(e.code(), 2);
     assert!(format!("{e:?}").contains("no results"), "{e:?}");
     let e = command(&out_at(&s.0)).unwrap_err();
     assert_eq!(e.code(), 2);
     assert!(!s.0.join(INDEX_HTML).exists());
-    let e = build(&registry(), &s.0.join("missing"), true).unwrap_err();
+    let e = build(&registry(), &s.0.join("missing"), "", true).unwrap_err();
     assert_eq!(e.code(), 2);
     assert!(format!("{e:?}").contains("no such directory"), "{e:?}");
 }
@@ -241,6 +241,13 @@ fn helpers() {
     assert_eq!(url_part("fig 2/ä.svg"), "fig%202%2F%C3%A4.svg");
     assert!(numeric("17.96") && numeric("< 1e-12") && numeric("-0.5") && numeric("0 / 0"));
     assert!(!numeric("theta") && !numeric("-") && !numeric(""));
+    // The page's commands carry its --out as one word of the shell.
+    assert_eq!(out_flag(None), "");
+    assert_eq!(out_flag(Some(Path::new("runs/a"))), " --out runs/a");
+    assert_eq!(
+        out_flag(Some(Path::new("my 'runs'"))),
+        r" --out 'my '\''runs'\'''"
+    );
 }
 
 #[test]
