@@ -8,7 +8,10 @@ use contact::Trajectory;
 use geometry::Vec2;
 
 use crate::common::wrap_at_spaces;
-use crate::pair_html::{Teeth, contacts_at_event, escape, is_idle_start, jump_text, points};
+use crate::pair_html::{
+    Teeth, contacts_at_event, escape, first_lock, is_idle_start, moves_pointer, points,
+    release_text, size_text,
+};
 
 /// The most event pictures a run writes (`event-1-...svg` to `event-500-...svg`); `pair.html`
 /// draws any event, and the outputs say where the pictures stop.
@@ -252,10 +255,24 @@ fn caption(
     if contacts.iter().any(|c| c.role == "pushing") {
         said.push("Orange ring: the driver tooth pushing the driven gear, with its normal.".into());
     }
-    if e.kind.is_contact_stop() && e.theta_after != e.theta {
+    let n2 = traj.mesh().driven().teeth();
+    if e.kind.is_contact_stop() && moves_pointer(e) {
         said.push(format!(
-            "Released: the driven gear is let go to the next position ahead where no driver tooth overlaps it, {} (\"allowing the driven gear to rotate freely ... until movement was possible again\").",
-            jump_text(e, traj.mesh().driven().teeth())
+            "Released: the driven gear is let go to the next position ahead where no driver tooth overlaps it (\"allowing the driven gear to rotate freely ... until movement was possible again\"), {}.",
+            release_text(e, n2)
+        ));
+    } else if e.phase_shift != 0 {
+        said.push(format!(
+            "Drive resumed with the tooth phase shifted: {}.",
+            size_text(e, n2)
+        ));
+    }
+    if let Some(f) = first_lock(traj.events()).map(|f| &traj.events()[f])
+        && e.phi > f.phi
+    {
+        said.push(format!(
+            "After the trial's first lock (phi - phi0 = {:.4} deg): the paper's protocol, the gear let go and driven on, not a physical motion.",
+            (f.phi - traj.phi_start()).to_degrees()
         ));
     }
     said.iter().flat_map(|l| wrap_at_spaces(l, 80)).collect()

@@ -282,41 +282,6 @@ fn one_trial(
         study::pair_file::prepare("pair.ron", text)
             .map_err(|e| refused_pair_file(ctx, e, id, cell, t))?;
     }
-    let events = rebuilt.events();
-    let (jam, dis) = if rebuilt.mesh.is_none() {
-        (true, false)
-    } else {
-        Counting::of(spec).tally(&events)
-    };
-    let drove = driving_gear(g, spec, &rebuilt);
-    let mut table = Table::new(
-        format!(
-            "{id} {cell}, trial {t} (seed {seed}): {} [events: {}; drive: {}, {drove} drove{}]",
-            verdict(jam, dis),
-            spec.events.label(),
-            spec.drive.name(),
-            end_tag(spec),
-        ),
-        [
-            "phi - phi0 [deg]",
-            "phi [deg]",
-            "kind",
-            "counted as",
-            "driver tooth",
-            "driven tooth",
-            "theta - theta0 [deg]",
-            "theta [deg]",
-        ],
-    );
-    let counted = |e: &contact::Event| {
-        if spec.events.is_jam(e) {
-            "jam"
-        } else if spec.events.is_disengagement(e) {
-            "disengagement"
-        } else {
-            "-"
-        }
-    };
     // The run `pair.html` and `run pair --config pair.ron` show: its start gives θ0.
     let traj = rebuilt.mesh.as_ref().map(|mesh| {
         mesh.run(
@@ -325,60 +290,17 @@ fn one_trial(
             contact::Start::Touching(0.0),
         )
     });
-    let theta0 = traj.as_ref().map(|tr| tr.theta_at(rebuilt.phi0));
-    let (n1, n2) = rebuilt.mesh.as_ref().map_or((1, 1), |m| {
-        (m.driver().teeth() as i64, m.driven().teeth() as i64)
-    });
-    for e in &events {
-        // An idle start has no teeth: none touches the driven gear.
-        let idle = crate::pair_html::is_idle_start(e);
-        let tooth = |t: i64, n: i64| {
-            if idle {
-                "-".to_string()
-            } else {
-                t.rem_euclid(n).to_string()
-            }
-        };
-        table.row(vec![
-            fmt_f64((e.phi - rebuilt.phi0).to_degrees(), 6),
-            fmt_f64(e.phi.to_degrees(), 6),
-            e.label().into(),
-            counted(e).into(),
-            tooth(e.driver_tooth, n1),
-            tooth(e.driven_tooth, n2),
-            theta0.map_or_else(|| "-".into(), |t0| fmt_f64((e.theta - t0).to_degrees(), 6)),
-            fmt_f64(e.theta.to_degrees(), 6),
-        ]);
-    }
-    table.note(format!(
-        "Cell: {}. Initial driver angle phi0 = {} deg; one full turn of the gear with more teeth ({} deg of the driver). Teeth numbered 0 to N - 1 as in pair.ron's tips_deg; an idle start has none (`-`): no tooth touches the driven gear.",
-        spec.canonical(),
-        fmt_f64(rebuilt.phi0.to_degrees(), 9),
-        fmt_f64(rebuilt.turn.to_degrees(), 6),
-    ));
-    table.note(drive_note(g, spec, &rebuilt));
-    table.note(crate::pair_html::ANGLES_NOTE);
+    let mut table = events_table(g, spec, &rebuilt, traj.as_ref(), (id, cell, t, seed));
     let mut files = Vec::new();
     if let (Some(mesh), Some(traj)) = (&rebuilt.mesh, &traj) {
-        table.note(oracle_note(mesh, traj));
-        let title = format!("{id} {cell}, trial {t} (seed {seed})");
-        let teeth = crate::pair_html::solver_teeth(mesh);
-        files.push(OutputFile::new(
-            "pair.html",
-            crate::pair_html::page(&title, traj, &counted, &teeth),
-        ));
-        for (name, svg) in crate::event_picture::event_pictures(&title, traj, &counted, &teeth) {
-            files.push(OutputFile::new(name, svg));
-        }
-        if let Some(n) = crate::event_picture::pictures_note(events.len()) {
-            table.note(n);
-        }
-        if events
-            .iter()
-            .any(|e| e.kind.is_contact_stop() && e.theta_after != e.theta)
-        {
-            table.note(crate::pair_html::RELEASE_NOTE);
-        }
+        trial_files(
+            &mut table,
+            &mut files,
+            mesh,
+            traj,
+            spec,
+            &format!("{id} {cell}, trial {t} (seed {seed})"),
+        );
     }
     match pair {
         Ok(ron) => {
@@ -392,6 +314,134 @@ fn one_trial(
         files,
         ..Default::default()
     })
+}
+
+/// What the cell's event rule counts an event as: `jam`, `disengagement` or `-`.
+fn counted_by(spec: &CellSpec, e: &contact::Event) -> &'static str {
+    if spec.events.is_jam(e) {
+        "jam"
+    } else if spec.events.is_disengagement(e) {
+        "disengagement"
+    } else {
+        "-"
+    }
+}
+
+/// The trial's events, one a row: where, what, what the rule counts it as, its teeth, its
+/// angles, its size in driven pitches and whether the paper's protocol after the first lock
+/// led to it; titled with the trial and what it did ([`ReplayedTrial`] reads the title back).
+fn events_table(
+    g: &Gearing,
+    spec: &CellSpec,
+    rebuilt: &Rebuilt,
+    traj: Option<&contact::Trajectory>,
+    (id, cell, t, seed): (&str, &str, u64, u64),
+) -> Table {
+    let events = rebuilt.events();
+    let (jam, dis) = if rebuilt.mesh.is_none() {
+        (true, false)
+    } else {
+        Counting::of(spec).tally(&events)
+    };
+    let mut table = Table::new(
+        format!(
+            "{id} {cell}, trial {t} (seed {seed}): {} [events: {}; drive: {}, {} drove{}]",
+            verdict(jam, dis),
+            spec.events.label(),
+            spec.drive.name(),
+            driving_gear(g, spec, rebuilt),
+            end_tag(spec),
+        ),
+        [
+            "phi - phi0 [deg]",
+            "phi [deg]",
+            "kind",
+            "counted as",
+            "driver tooth",
+            "driven tooth",
+            "theta - theta0 [deg]",
+            "theta [deg]",
+            "size",
+            "motion",
+        ],
+    );
+    let theta0 = traj.map(|tr| tr.theta_at(rebuilt.phi0));
+    let (n1, n2) = rebuilt.mesh.as_ref().map_or((1, 1), |m| {
+        (m.driver().teeth() as i64, m.driven().teeth() as i64)
+    });
+    let first = crate::pair_html::first_lock(&events);
+    for (i, e) in events.iter().enumerate() {
+        // An idle start has no teeth: none touches the driven gear.
+        let idle = crate::pair_html::is_idle_start(e);
+        let tooth = |t: i64, n: i64| {
+            if idle {
+                "-".to_string()
+            } else {
+                t.rem_euclid(n).to_string()
+            }
+        };
+        table.row(vec![
+            fmt_f64((e.phi - rebuilt.phi0).to_degrees(), 6),
+            fmt_f64(e.phi.to_degrees(), 6),
+            e.label().into(),
+            counted_by(spec, e).into(),
+            tooth(e.driver_tooth, n1),
+            tooth(e.driven_tooth, n2),
+            theta0.map_or_else(|| "-".into(), |t0| fmt_f64((e.theta - t0).to_degrees(), 6)),
+            fmt_f64(e.theta.to_degrees(), 6),
+            crate::pair_html::size_text(e, n2 as usize),
+            crate::pair_html::motion_word(i, first).into(),
+        ]);
+    }
+    table.note(format!(
+        "Cell: {}. Initial driver angle phi0 = {} deg; one full turn of the gear with more teeth ({} deg of the driver). Teeth numbered 0 to N - 1 as in pair.ron's tips_deg; an idle start has none (`-`): no tooth touches the driven gear.",
+        spec.canonical(),
+        fmt_f64(rebuilt.phi0.to_degrees(), 9),
+        fmt_f64(rebuilt.turn.to_degrees(), 6),
+    ));
+    table.note(drive_note(g, spec, rebuilt));
+    table.note(crate::pair_html::ANGLES_NOTE);
+    table.note("size: a release's (lock, strike) or a loss of drive's (gap, slip) effect on the driven gear, in driven pitches: how far ahead of the ideal ratio the gear was when drive resumed (behind it, for a loss), and the change of tooth phase.");
+    if first.is_some() {
+        table.note(crate::pair_html::MOTION_NOTE);
+        table.note(crate::pair_html::PROTOCOL_NOTE);
+    }
+    if let Some(n) = crate::pair_html::releases_note(&events, n2 as usize) {
+        table.note(n);
+    }
+    table
+}
+
+/// The files of a replayed trial that ran (`pair.html`, a picture per event), and the notes
+/// they need under the table: the polygon oracle's check, the pictures written, a release.
+fn trial_files(
+    table: &mut Table,
+    files: &mut Vec<OutputFile>,
+    mesh: &contact::Mesh,
+    traj: &contact::Trajectory,
+    spec: &CellSpec,
+    title: &str,
+) {
+    let counted = |e: &contact::Event| counted_by(spec, e);
+    table.note(oracle_note(mesh, traj));
+    let teeth = crate::pair_html::solver_teeth(mesh);
+    files.push(OutputFile::new(
+        "pair.html",
+        crate::pair_html::page(title, traj, &counted, &teeth),
+    ));
+    for (name, svg) in crate::event_picture::event_pictures(title, traj, &counted, &teeth) {
+        files.push(OutputFile::new(name, svg));
+    }
+    if let Some(n) = crate::event_picture::pictures_note(traj.events().len()) {
+        table.note(n);
+    }
+    if traj
+        .events()
+        .iter()
+        .any(|e| e.kind.is_contact_stop() && crate::pair_html::moves_pointer(e))
+    {
+        table.note(crate::pair_html::RELEASE_NOTE);
+    }
 }
 
 /// Settings that do not reach a trial's gears: never the cause of a refused pair file.

@@ -97,15 +97,26 @@ pub fn td_plot(
         label: "Theoretical Difference of the run (line; sampled)",
         points: td.to_vec(),
     }];
-    Plot::new(
-        &title(name, marks.len()),
+    let first = crate::pair_html::first_lock(traj.events());
+    let protocol = first.map(|f| {
+        format!(
+            "grey: after the first lock (event {}), the paper's protocol - the driven gear let go to the next free position and driven on - not a physical motion",
+            f + 1
+        )
+    });
+    let title = title(name, marks.len());
+    let plot = Plot::new(
+        &title,
         "driver angle from the start phi - phi0 [deg]",
         "Theoretical Difference [deg]",
         &series,
     )
     .plain_lines()
-    .marks(&marks, &kinds)
-    .svg()
+    .marks(&marks, &kinds);
+    match (first, &protocol) {
+        (Some(f), Some(label)) => plot.shaded_from(marks[f].x, label).svg(),
+        _ => plot.svg(),
+    }
 }
 
 #[cfg(test)]

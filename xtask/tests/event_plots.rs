@@ -153,9 +153,12 @@ fn a_locks_release_is_measured_in_pitches_and_explained() {
     let text = support::stdout(&o);
     let row = text
         .lines()
-        .find(|l| l.contains("| lock ") && l.contains("driven pitches)"))
-        .unwrap_or_else(|| panic!("no lock with its jump in pitches:\n{text}"));
-    assert!(row.contains("jump "), "{row}");
+        .find(|l| l.contains("| lock ") && l.contains("driven pitches ahead of the ideal ("))
+        .unwrap_or_else(|| panic!("no lock with its release in pitches:\n{text}"));
+    assert!(
+        row.contains("released at once") || row.contains("then let go"),
+        "{row}"
+    );
     let why = "let go to the next position ahead at which no driver tooth overlaps it";
     assert!(text.contains(why), "{text}");
     let page = std::fs::read_to_string(s.0.join("out/pair/pair.html")).unwrap();

@@ -498,6 +498,7 @@ pub struct Plot<'a> {
     x_range: Option<(f64, f64)>,
     y_range: Option<(f64, f64)>,
     whole_ticks: bool,
+    shade: Option<(f64, &'a str)>,
 }
 
 impl<'a> Plot<'a> {
@@ -522,7 +523,16 @@ impl<'a> Plot<'a> {
             x_range: None,
             y_range: None,
             whole_ticks: false,
+            shade: None,
         }
+    }
+
+    /// The plot greyed from `x` on to its right end, named in the legend by `label`: a stretch
+    /// of the series read differently (a run's motion after its first lock, the paper's
+    /// protocol rather than a physical motion).
+    pub fn shaded_from(mut self, x: f64, label: &'a str) -> Self {
+        self.shade = Some((x, label));
+        self
     }
 
     /// A logarithmic y axis: the series hold positive values (others are left out), drawn on a
@@ -587,6 +597,13 @@ impl<'a> Plot<'a> {
                     series: None,
                 });
             }
+        }
+        if let Some((_, label)) = self.shade {
+            entries.push(Entry {
+                label: label.to_owned(),
+                sample: Sample::Shade,
+                series: None,
+            });
         }
         for (kind, label) in [
             (LimitKind::Lower, self.limit_labels.0),
@@ -725,7 +742,17 @@ impl<'a> Plot<'a> {
                         bottom - (y - y0) / (y1 - y0) * (bottom - top),
                     )
                 };
-                let mut out = marks_svg(self.marks, at, (top, bottom));
+                let mut out = self.shade.map_or_else(String::new, |(x, _)| {
+                    let (sx, _) = at(x.clamp(x0, x1), y0);
+                    format!(
+                        "<rect class=\"shade\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"{SHADE}\"/>\n",
+                        px(sx),
+                        px(top),
+                        px(right - sx),
+                        px(bottom - top)
+                    )
+                });
+                out.push_str(&marks_svg(self.marks, at, (top, bottom)));
                 for (k, points) in series.iter().enumerate() {
                     let st = style(k);
                     let _ = writeln!(
@@ -779,6 +806,9 @@ impl<'a> Plot<'a> {
         )
     }
 }
+
+/// The grey of a shaded stretch of a plot ([`Plot::shaded_from`]).
+pub(crate) const SHADE: &str = "#e4e4e4";
 
 /// The share of the data's height added above it as the band of the marks' ticks and numbers.
 const MARK_BAND: f64 = 0.16;
