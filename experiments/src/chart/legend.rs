@@ -173,7 +173,7 @@ pub(super) fn legend_svg(entries: &[Entry], layout: &LegendLayout, top: f64) -> 
             Sample::Shade => {
                 let _ = write!(
                     s,
-                    "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"{}\" stroke=\"#aaaaaa\"/>",
+                    "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" {} stroke=\"#aaaaaa\"/>",
                     px(x),
                     px(y - 6.0),
                     px(SAMPLE),
