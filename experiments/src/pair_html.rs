@@ -14,6 +14,16 @@ use std::fmt::Write as _;
 use contact::Trajectory;
 use geometry::Vec2;
 
+/// The driver's colour in the pictures of a mesh (its outline, its tooth's dot), and its fill.
+pub const DRIVER_COLOUR: &str = "#1f4e9c";
+/// See [`DRIVER_COLOUR`].
+pub const DRIVER_FILL: &str = "#d5e0f3";
+/// The driven gear's colour in the pictures of a mesh: a green that no reader takes for the
+/// driver's blue, and apart from the red and orange of the contacts.
+pub const DRIVEN_COLOUR: &str = "#1b7837";
+/// See [`DRIVEN_COLOUR`].
+pub const DRIVEN_FILL: &str = "#d5ecd0";
+
 /// The note under the event tables of `pair` and `replay`: the two kinds of angle, named apart.
 pub const ANGLES_NOTE: &str = "phi - phi0 and theta - theta0: angles from the start of the run (pair.csv's phi_minus_phi0_deg and theta_minus_theta0_deg, pair.html's slider); phi and theta: absolute angles, as replay prints them (pair.csv's phi_abs_deg and theta_abs_deg)";
 
@@ -114,6 +124,42 @@ fn contact_at(
         normal: None,
         role,
     })
+}
+
+/// Where the two gears' outlines come nearest at (φ, θ): the points on the driver and on the
+/// driven gear, and the teeth whose tips are nearest them (the solver's numbers).
+pub fn nearest_approach(mesh: &contact::Mesh, phi: f64, theta: f64) -> (Vec2, Vec2, i64, i64) {
+    let (driver, driven) = mesh.world_outlines(phi, theta);
+    let on_segment = |p: Vec2, a: Vec2, b: Vec2| {
+        let ab = b - a;
+        let t = ((p - a).dot(&ab) / ab.dot(&ab)).clamp(0.0, 1.0);
+        a + ab * t
+    };
+    let mut best = (f64::INFINITY, Vec2::new(0.0, 0.0), Vec2::new(0.0, 0.0));
+    let mut consider = |from: &[Vec2], to: &[Vec2], swap: bool| {
+        for &p in from {
+            for (i, &a) in to.iter().enumerate() {
+                let q = on_segment(p, a, to[(i + 1) % to.len()]);
+                let d = (p - q).norm();
+                if d < best.0 {
+                    best = if swap { (d, q, p) } else { (d, p, q) };
+                }
+            }
+        }
+    };
+    consider(&driver, &driven, false);
+    consider(&driven, &driver, true);
+    let nearest_tip = |outline: &[Vec2], p: Vec2| {
+        (0..outline.len() / 2)
+            .min_by(|&a, &b| {
+                (outline[2 * a] - p)
+                    .norm()
+                    .total_cmp(&(outline[2 * b] - p).norm())
+            })
+            .unwrap_or(0) as i64
+    };
+    let (_, p1, p2) = best;
+    (p1, p2, nearest_tip(&driver, p1), nearest_tip(&driven, p2))
 }
 
 /// Is `e` an idle start (a slip from the start: no driver tooth moved the driven gear within a
@@ -394,8 +440,18 @@ fn event_list(
                     contacts: &[Contact],
                     text: &str,
                     place: &str| {
+            // No contact to draw at the event itself: where the gears come nearest instead.
+            let gap = if class == "event" && contacts.is_empty() {
+                let (p1, p2, _, _) = nearest_approach(mesh, phi, theta);
+                format!(
+                    " data-gap=\"{:.9},{:.9},{:.9},{:.9}\"",
+                    p1.x, p1.y, p2.x, p2.y
+                )
+            } else {
+                String::new()
+            };
             format!(
-                "<a class=\"{class}\" href=\"#event={}{}\" data-phi=\"{:.12}\" data-theta=\"{:.12}\" data-td=\"{:.12}\" data-contacts=\"{}\" data-where=\"{}\">{text}</a>",
+                "<a class=\"{class}\" href=\"#event={}{}\" data-phi=\"{:.12}\" data-theta=\"{:.12}\" data-td=\"{:.12}\" data-contacts=\"{}\"{gap} data-where=\"{}\">{text}</a>",
                 i + 1,
                 if class == "release" { "-release" } else { "" },
                 (phi - phi0).to_degrees(),
@@ -525,6 +581,9 @@ struct Strip {
     td_max: f64,
     /// φ − φ0 of the first lock, degrees, where the paper's protocol starts.
     protocol_from: Option<f64>,
+    /// Each event on the curve: φ − φ0 and the Theoretical Difference there (before any
+    /// release), degrees, and what it is (a contact's stop or a loss of drive).
+    events: Vec<(f64, f64, &'static str, bool)>,
 }
 
 impl Strip {
@@ -540,14 +599,50 @@ impl Strip {
         } else {
             (lo - 1.0, lo + 1.0)
         };
-        let protocol_from = first_lock(traj.events())
-            .map(|i| (traj.events()[i].phi - traj.phi_start()).to_degrees());
+        let phi0 = traj.phi_start();
+        let protocol_from =
+            first_lock(traj.events()).map(|i| (traj.events()[i].phi - phi0).to_degrees());
+        let mesh = traj.mesh();
+        let ratio = mesh.driver().teeth() as f64 / mesh.driven().teeth() as f64;
+        let theta0 = traj.theta_at(phi0);
+        let events = traj
+            .events()
+            .iter()
+            .map(|e| {
+                let td = (e.theta - theta0) - ratio * (e.phi - phi0);
+                (
+                    (e.phi - phi0).to_degrees(),
+                    td.to_degrees(),
+                    e.label(),
+                    e.kind.is_contact_stop(),
+                )
+            })
+            .collect();
         Strip {
             phi_max,
             td_min,
             td_max,
             protocol_from,
+            events,
         }
+    }
+
+    /// Each event as a marker on the curve, numbered in its tooltip: red for a contact's stop
+    /// (lock, strike), blue for a loss of drive (gap, slip), as the event list colours them.
+    fn event_marks(&self) -> String {
+        let (left, width, top, bottom) = PLOT;
+        let mut s = String::new();
+        for (i, &(phi, td, label, stop)) in self.events.iter().enumerate() {
+            let x = left + width * phi / self.phi_max;
+            let y = bottom - (bottom - top) * (td - self.td_min) / (self.td_max - self.td_min);
+            let colour = if stop { "#b00" } else { "#06c" };
+            let _ = writeln!(
+                s,
+                "<circle class=\"event-mark\" cx=\"{x:.2}\" cy=\"{y:.2}\" r=\"3\" fill=\"{colour}\" stroke=\"white\" stroke-width=\"1\"><title>event {}: {label}</title></circle>",
+                i + 1
+            );
+        }
+        s
     }
 
     /// The strip's SVG: the stretch after the first lock greyed and named, then the axes.
@@ -676,14 +771,17 @@ phi - phi0 = <span id="phi">0</span> deg, theta = <span id="theta"></span> deg (
 TD = <span id="td"></span> deg <span id="where"></span></p>
 <svg id="mesh" viewBox="{whole}" data-full="{whole}" data-zoom="{zoom}">
 <g transform="scale(1,-1)">
-<g id="driver" transform="rotate(0 0 0)"><polygon points="{driver}" fill="#dde" stroke="#226" stroke-width="1.2" vector-effect="non-scaling-stroke"/></g>
-<g id="driven" transform="rotate(0 {d:.9} 0)" data-theta-deg=""><polygon points="{driven}" fill="#ede" stroke="#626" stroke-width="1.2" vector-effect="non-scaling-stroke"/></g>
-<circle cx="0" cy="0" r="{dot:.5}" fill="#226"/><circle cx="{d:.9}" cy="0" r="{dot:.5}" fill="#626"/>
+<g id="driver" transform="rotate(0 0 0)"><polygon points="{driver}" fill="{DRIVER_FILL}" stroke="{DRIVER_COLOUR}" stroke-width="1.2" vector-effect="non-scaling-stroke"/></g>
+<g id="driven" transform="rotate(0 {d:.9} 0)" data-theta-deg=""><polygon points="{driven}" fill="{DRIVEN_FILL}" stroke="{DRIVEN_COLOUR}" stroke-width="1.2" vector-effect="non-scaling-stroke"/></g>
+<circle cx="0" cy="0" r="{dot:.5}" fill="{DRIVER_COLOUR}"/><circle cx="{d:.9}" cy="0" r="{dot:.5}" fill="{DRIVEN_COLOUR}"/>
 <g id="contacts"></g>
-</g></svg>
+</g>
+<text class="arbor-label" x="{dot:.5}" y="{below:.5}" fill="{DRIVER_COLOUR}" stroke="white" stroke-width="{halo:.5}" paint-order="stroke" font-size="{font:.5}">driver arbor</text>
+<text class="arbor-label" x="{right_of:.5}" y="{below:.5}" fill="{DRIVEN_COLOUR}" stroke="white" stroke-width="{halo:.5}" paint-order="stroke" font-size="{font:.5}">driven arbor</text>
+</svg>
 <svg id="plot" viewBox="0 0 900 230">
 {axes}<polyline id="td-line" fill="none" stroke="#333" stroke-width="1" points=""/>
-<line id="cursor" x1="{left}" y1="{top}" x2="{left}" y2="{bottom}" stroke="#c00"/></svg>
+{marks}<line id="cursor" x1="{left}" y1="{top}" x2="{left}" y2="{bottom}" stroke="#c00"/></svg>
 "##,
         n = MAX_SAMPLES,
         whole = view_box(view.whole),
@@ -691,7 +789,12 @@ TD = <span id="td"></span> deg <span id="where"></span></p>
         driver = points(&driver),
         driven = points(&driven),
         dot = view.dot,
+        below = 4.0 * view.dot,
+        right_of = d + view.dot,
+        font = view.whole[3] / 32.0,
+        halo = view.whole[3] / 160.0,
         axes = strip.svg(),
+        marks = strip.event_marks(),
     )
 }
 
@@ -736,6 +839,12 @@ function nearest(phi) {
 function setView(box) {
   meshSvg.setAttribute("viewBox", box);
   zoomButton.textContent = box === meshSvg.dataset.full ? "zoom on the mesh" : "show the whole mesh";
+  // The arbors' labels keep their size on the screen whatever the view.
+  const h = parseFloat(box.split(" ")[3]);
+  for (const t of meshSvg.querySelectorAll(".arbor-label")) {
+    t.setAttribute("font-size", h / 32);
+    t.setAttribute("stroke-width", h / 160);
+  }
 }
 const COLOURS = { closing: "#c00", pushing: "#e80", resumed: "#666" };
 // Jump to an event (or its release): the gears at its exact angles, the view zoomed on its
@@ -763,8 +872,22 @@ function jumpTo(a) {
       contactsG.appendChild(line);
     }
   }
+  // An event with no contact (an idle start): where the two gears come nearest, dashed.
+  const gap = a.dataset.gap ? a.dataset.gap.split(",").map(parseFloat) : null;
+  if (gap) {
+    const line = document.createElementNS(SVGNS, "line");
+    line.setAttribute("x1", gap[0]); line.setAttribute("y1", gap[1]);
+    line.setAttribute("x2", gap[2]); line.setAttribute("y2", gap[3]);
+    line.setAttribute("stroke", "#000"); line.setAttribute("stroke-width", "2");
+    line.setAttribute("stroke-dasharray", "6 4"); line.setAttribute("class", "nearest");
+    line.setAttribute("vector-effect", "non-scaling-stroke");
+    contactsG.appendChild(line);
+  }
   if (contacts.length) {
     const x = parseFloat(contacts[0][0]), y = parseFloat(contacts[0][1]);
+    setView((x - z / 2) + " " + (-y - z / 2) + " " + z + " " + z);
+  } else if (gap) {
+    const x = (gap[0] + gap[2]) / 2, y = (gap[1] + gap[3]) / 2;
     setView((x - z / 2) + " " + (-y - z / 2) + " " + z + " " + z);
   } else {
     setView(meshSvg.dataset.zoom);
@@ -841,7 +964,7 @@ fn td_axes(phi_max: f64, td_min: f64, td_max: f64) -> String {
         "<line x1=\"{left}\" y1=\"{bottom}\" x2=\"{}\" y2=\"{bottom}\" stroke=\"#000\"/>\n<line x1=\"{left}\" y1=\"{top}\" x2=\"{left}\" y2=\"{bottom}\" stroke=\"#000\"/>\n",
         left + width
     );
-    let (xs, x_decimals) = nice_ticks(0.0, phi_max, 6);
+    let (xs, x_decimals) = nice_ticks(0.0, phi_max, 10);
     for v in xs {
         let x = left + width * v / phi_max;
         let _ = writeln!(
@@ -852,7 +975,7 @@ fn td_axes(phi_max: f64, td_min: f64, td_max: f64) -> String {
             tick_label(v, x_decimals)
         );
     }
-    let (ys, y_decimals) = nice_ticks(td_min, td_max, 4);
+    let (ys, y_decimals) = nice_ticks(td_min, td_max, 6);
     for v in ys {
         let y = bottom - (bottom - top) * (v - td_min) / (td_max - td_min);
         let _ = writeln!(

@@ -11,6 +11,7 @@ use study::pair_file::{Prepared, Role, Sense, StartSpec};
 
 use crate::common::{deg, wrap_at_spaces};
 use crate::label_place::{Anchor, LINE_GAP, Label, Placer, Segment, edges, nearest_on, text_box};
+use crate::pair_html::{DRIVEN_COLOUR, DRIVEN_FILL, DRIVER_COLOUR, DRIVER_FILL};
 
 /// Page directions (y grows downwards) in which a label that does not fit where it belongs is
 /// moved.
@@ -80,8 +81,8 @@ pub fn exaggeration(offsets: &[(f64, f64)]) -> f64 {
 /// millimetre, invisible at the picture's scale, shown in the frame it was entered in.
 fn eccentricity_insets(svg: &mut String, p: &Prepared, margin: f64, width: f64, top: f64) {
     let gears = [
-        (Role::Driver, p.mesh.driver(), p.driver, "#1f4e9c"),
-        (Role::Driven, p.mesh.driven(), p.driven, "#a3261f"),
+        (Role::Driver, p.mesh.driver(), p.driver, DRIVER_COLOUR),
+        (Role::Driven, p.mesh.driven(), p.driven, DRIVEN_COLOUR),
     ];
     // The arbor minus the tip-circle centre in the view's frame (see check_svg).
     let world = |role: Role, g: &geometry::Gear| match role {
@@ -455,8 +456,8 @@ fn gear_drawing(
     size: f64,
 ) {
     let (colour, fill) = match role {
-        Role::Driver => ("#1f4e9c", "#cfdcf3"),
-        Role::Driven => ("#a3261f", "#f5d3cf"),
+        Role::Driver => (DRIVER_COLOUR, DRIVER_FILL),
+        Role::Driven => (DRIVEN_COLOUR, DRIVEN_FILL),
     };
     let points: Vec<String> = outline.iter().map(|&v| c.pt(v)).collect();
     svg.push_str(&format!(
@@ -594,8 +595,8 @@ fn tooth_labels(svg: &mut String, c: &Canvas, labels: &mut Labels, p: &Prepared)
     let h = std::f64::consts::FRAC_1_SQRT_2;
     for (role, user, tip) in labelled_tips(p) {
         let (colour, anchor, side) = match role {
-            Role::Driver => ("#1f4e9c", Anchor::End, -1.0),
-            Role::Driven => ("#a3261f", Anchor::Start, 1.0),
+            Role::Driver => (DRIVER_COLOUR, Anchor::End, -1.0),
+            Role::Driven => (DRIVEN_COLOUR, Anchor::Start, 1.0),
         };
         let (x, y) = c.at(tip);
         svg.push_str(&format!(
