@@ -88,6 +88,7 @@ fn total_agreement(rows: &[Row]) -> Option<Agreement> {
         .reduce(|a, b| Agreement {
             consistent: a.consistent + b.consistent,
             differ: a.differ + b.differ,
+            what: if a.what == b.what { a.what } else { "" },
         })
 }
 
@@ -215,6 +216,7 @@ mod tests {
             agreement: Some(Agreement {
                 consistent: 17,
                 differ: 43,
+                what: "",
             }),
             ..Default::default()
         };
@@ -224,6 +226,7 @@ mod tests {
             agreement: Some(Agreement {
                 consistent: 1,
                 differ: 3,
+                what: "",
             }),
             ..Default::default()
         };

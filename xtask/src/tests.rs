@@ -32,6 +32,7 @@ fn fine(ctx: &Context) -> Result<Report, RunError> {
         agreement: Some(registry::Agreement {
             consistent: 2,
             differ: 1,
+            what: "numbers of a test",
         }),
         ..Default::default()
     })

@@ -281,6 +281,9 @@ const HEATMAP_SCRIPT: &str = r#"
       out.push(['link', t.dataset.table, h, inPage].join('\t'));
     });
   });
+  const key = document.querySelector('p.heat-key');
+  const swatch = key.querySelector('span.hm.consistent'), green = document.querySelector('table.heatmap td.hm.consistent');
+  out.push(['key', getComputedStyle(swatch).backgroundColor === getComputedStyle(green).backgroundColor, key.textContent.includes('however many trials failed')].join('\t'));
   out.push(['order'].concat(Array.from(document.querySelectorAll('section.experiment')).map(e => e.id + (e.classList.contains('run') ? ':run' : ''))).join('\t'));
   const widest = Math.max(...Array.from(document.querySelectorAll('main, nav, section, .table-wrap')).map(e => e.getBoundingClientRect().right));
   out.push(['width', document.documentElement.scrollWidth, window.innerWidth, Math.round(widest)].join('\t'));
@@ -455,6 +458,10 @@ fn per_mesh_tables_show_as_heatmaps_linking_differing_cells_to_their_replays() {
             inpage => assert_eq!(inpage, "true", "{} has no target on the page", l[2]),
         }
     }
+    // The key names the consistent cells' colour and says what it means: agreement, not a
+    // mesh that works.
+    let key = lines.iter().find(|l| l[0] == "key").unwrap();
+    assert_eq!(key[1..], ["true", "true"], "{result}");
     // The report's order as a reader meets it: the paper's items in the paper's order (Table 3
     // before Table I, its appendix), the results before the experiments not run.
     let order = lines.iter().find(|l| l[0] == "order").unwrap();

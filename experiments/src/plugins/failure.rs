@@ -222,7 +222,10 @@ fn paper_table(
         header,
     );
     let paper = |q: &str| crate::paper::get("failure", q).map(|r| r.value);
-    let mut agreement = Agreement::default();
+    let mut agreement = Agreement {
+        what: "the paper's values inside / outside our 95 % intervals, the measured input's column",
+        ..Agreement::default()
+    };
     let mut judged = false;
     // (label, paper quantity, train index, is the share row)
     let mut rows: Vec<(String, String, usize, bool)> = vec![(

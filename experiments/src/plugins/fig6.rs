@@ -298,6 +298,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         agreement: off_paper.is_empty().then_some(registry::Agreement {
             consistent: inside,
             differ: outside,
+            what: "gears whose largest tolerable random error, a value of Table 4's grid, equals the paper's E. max / does not (one grid step apart counts as differing; no test; each mesh's value counted once for each of its two gears)",
         }),
         ..crate::cells::counts_report(grid.all())
     })

@@ -365,6 +365,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         agreement: off_paper.is_empty().then_some(registry::Agreement {
             consistent: inside,
             differ: outside,
+            what: "the paper's values inside / outside our 95 % Student-t intervals",
         }),
         ..Default::default()
     })

@@ -280,6 +280,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         agreement: off_paper.is_empty().then_some(registry::Agreement {
             consistent: inside,
             differ: outside,
+            what: "meshes whose E. max in the paper lies within one resolution of the search's / further (no test)",
         }),
         ..Default::default()
     })

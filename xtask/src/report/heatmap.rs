@@ -331,7 +331,7 @@ fn heatmap(
     let kind = kind_name(failure);
     let _ = write!(
         h,
-        "<p class=\"table-title\">{} as a heatmap, {kind}: ours | the paper's per cell, coloured by Fisher's exact two-sample test at 5 % (the table's <code>*</code>); <code>{RULE_MARK}</code> after a side whose cell keeps the paper's 1 % rule (the cells the paper shades), a dashed outline where ours and the paper's verdicts on the rule differ</p>\n<div class=\"table-wrap wide\">\n<table class=\"heatmap\" data-table=\"{}\" data-kind=\"{kind}\">\n<thead><tr><th></th>",
+        "<p class=\"table-title\">{} as a heatmap, {kind}: ours | the paper's per cell, coloured by Fisher's exact two-sample test at 5 % (the table's <code>*</code>): green where the two counts agree, however high, red where they differ; <code>{RULE_MARK}</code> after a side whose cell keeps the paper's 1 % rule (the cells the paper shades), a dashed outline where ours and the paper's verdicts on the rule differ</p>\n<div class=\"table-wrap wide\">\n<table class=\"heatmap\" data-table=\"{}\" data-kind=\"{kind}\">\n<thead><tr><th></th>",
         esc(prefix.trim_end_matches(':')),
         esc(id)
     );
@@ -451,11 +451,12 @@ fn heat_cell(
     }
 }
 
-/// The key under the heatmaps: what each colour and mark means.
+/// The key under the heatmaps: what each colour and mark means. Green says the paper's count
+/// and ours agree, not that the mesh works: a cell where both jam in nearly every trial is green.
 fn heat_key(h: &mut String) {
     let _ = writeln!(
         h,
-        "<p class=\"heat-key\"><span class=\"hm consistent\">consistent</span> <span class=\"hm differs\">differs</span> <span class=\"hm none\">no count in the paper</span> <span class=\"hm apart\">not compared (other inputs)</span> <span class=\"hm consistent rule-differs\">the 1 % rule's verdicts differ</span> Each cell: our count | the paper's; <code>{RULE_MARK}</code>: that side's cell keeps the paper's 1 % rule (at most 2 of 200 trials jammed and at most 2 disengaged). A cell links to the page of a replayed trial of that cell that had the heatmap's failure; a differing cell with none replayed links to the commands that write one.</p>"
+        "<p class=\"heat-key\"><span class=\"hm consistent\">green: consistent</span> Fisher's exact test at 5 % does not tell our count from the paper's: the two agree, however many trials failed (a cell where both jam in 199 or 200 of 200 trials is green); green does not say the mesh works, the 1 % rule does (<code>{RULE_MARK}</code>). <span class=\"hm differs\">red: differs</span> the test separates our count from the paper's. <span class=\"hm none\">no count in the paper</span> <span class=\"hm apart\">not compared (other inputs)</span> <span class=\"hm consistent rule-differs\">dashed: the 1 % rule's verdicts differ</span> Each cell: our count | the paper's; <code>{RULE_MARK}</code>: that side's cell keeps the paper's 1 % rule (at most 2 of 200 trials jammed and at most 2 disengaged). A cell links to the page of a replayed trial of that cell that had the heatmap's failure; a differing cell with none replayed links to the commands that write one.</p>"
     );
 }
 

@@ -92,8 +92,11 @@ struct Results {
     tables: Vec<Table>,
     trials: u64,
     engagements: u64,
-    /// The paper's numbers consistent with ours, and those that differ.
-    agreement: Option<(u64, u64)>,
+    /// The paper's numbers consistent with ours, those that differ, and what they count.
+    agreement: Option<(u64, u64, String)>,
+    /// The smallest and largest ratio of ours to the paper's its tables print (a column
+    /// `ours/paper`), for an experiment that judges no agreement.
+    ratios: Option<(f64, f64)>,
     /// Every file of the directory, sorted.
     files: Vec<String>,
     /// SVG figures in the experiment's order: file name and how it is embedded.
@@ -308,6 +311,7 @@ fn read_results(dir: &Path) -> Result<Results, Failure> {
             a["differ"]
                 .as_u64()
                 .ok_or_else(|| bad(&path, "agreement.differ", "must be a non-negative integer"))?,
+            a["what"].as_str().unwrap_or_default().to_owned(),
         )),
     };
 
@@ -355,8 +359,10 @@ fn read_results(dir: &Path) -> Result<Results, Failure> {
     } else {
         None
     };
+    let ratios = ratio_range(&tables);
     Ok(Results {
         tables,
+        ratios,
         trials: count(&json["trials"], &path, "trials")?,
         engagements: count(&json["engagements"], &path, "engagements")?,
         agreement,
@@ -364,6 +370,49 @@ fn read_results(dir: &Path) -> Result<Results, Failure> {
         figures,
         run,
     })
+}
+
+/// The smallest and largest number of the columns headed `ours/paper` of `tables`; `None`
+/// where there is none.
+fn ratio_range(tables: &[Table]) -> Option<(f64, f64)> {
+    let values: Vec<f64> = tables
+        .iter()
+        .flat_map(|t| {
+            let at = t.columns.iter().position(|c| c.trim() == "ours/paper");
+            t.rows
+                .iter()
+                .filter_map(move |r| r.get(at?)?.trim().parse::<f64>().ok())
+        })
+        .filter(|v| v.is_finite())
+        .collect();
+    let lo = values.iter().copied().reduce(f64::min)?;
+    let hi = values.iter().copied().reduce(f64::max)?;
+    Some((lo, hi))
+}
+
+/// An experiment's cell of the page's overview: how its numbers compare with the paper's and
+/// what that counts (`9 / 20 gears whose ...`), or the range of ours over the paper's where it
+/// judges none, or `-`.
+fn overview_cell(r: Option<&Results>) -> String {
+    match r {
+        // On other inputs the paper's numbers are no check of ours.
+        Some(r) if departs(r) => "-".to_owned(),
+        Some(Results {
+            agreement: Some((c, d, what)),
+            ..
+        }) if what.is_empty() => {
+            format!("{c} / {d}: the paper's numbers consistent with ours / differing")
+        }
+        Some(Results {
+            agreement: Some((c, d, what)),
+            ..
+        }) => format!("{c} / {d}: {what}"),
+        Some(Results {
+            ratios: Some((lo, hi)),
+            ..
+        }) => format!("ours/paper {lo:.2} to {hi:.2} (no test: the paper gives no interval)"),
+        _ => "-".to_owned(),
+    }
 }
 
 fn read_provenance(path: &Path) -> Result<Provenance, Failure> {
@@ -549,6 +598,7 @@ figcaption { color: #555; font-size: 0.85em; }
 .not-run .status { color: #a33; font-weight: 600; }
 table.toc td.status-run { color: #1d6b2f; white-space: nowrap; }
 table.toc td.status-not-run { color: #a33; white-space: nowrap; }
+table.toc td.agreement { font-size: 0.88em; min-width: 16em; }
 .files { font-size: 0.85em; color: #555; }
 footer { margin-top: 3em; color: #777; font-size: 0.85em; }
 .reference { background: #fff3cd; border: 1px solid #e0c36a; padding: 0.4em 0.7em; }
@@ -604,7 +654,7 @@ appear in columns labelled &ldquo;paper&rdquo; or in parentheses, as in the prin
     );
 
     // Contents.
-    h.push_str("<nav>\n<div class=\"table-wrap\">\n<table class=\"toc\">\n<caption>Experiments</caption>\n<thead><tr><th>id</th><th>paper item</th><th>title</th><th>status</th><th>seed</th><th>paper's numbers consistent / differing (two-sample test for counts)</th></tr></thead>\n<tbody>\n");
+    h.push_str("<nav>\n<div class=\"table-wrap\">\n<table class=\"toc\">\n<caption>Experiments</caption>\n<thead><tr><th>id</th><th>paper item</th><th>title</th><th>status</th><th>seed</th><th>against the paper: consistent / differing, and what is counted</th></tr></thead>\n<tbody>\n");
     for id in ids {
         let (title, item) = describe(exps, id);
         let r = results.get(id);
@@ -616,9 +666,7 @@ appear in columns labelled &ldquo;paper&rdquo; or in parentheses, as in the prin
         let seed = r
             .and_then(|r| r.run.as_ref())
             .map_or_else(|| "-".to_owned(), |p| p.seed.to_string());
-        let agreement = r
-            .and_then(|r| r.agreement)
-            .map_or_else(|| "-".to_owned(), |(i, o)| format!("{i} / {o}"));
+        let agreement = overview_cell(r);
         // A stub of an experiment not run sits in the closed list at the end: the link opens it.
         let anchor = if r.is_some() {
             format!("exp-{id}")
@@ -627,7 +675,7 @@ appear in columns labelled &ldquo;paper&rdquo; or in parentheses, as in the prin
         };
         let _ = writeln!(
             h,
-            "<tr><td><a href=\"#{}\">{}</a></td><td>{}</td><td>{}</td><td class=\"{class}\">{status}</td><td class=\"num\">{}</td><td class=\"num\">{}</td></tr>",
+            "<tr><td><a href=\"#{}\">{}</a></td><td>{}</td><td>{}</td><td class=\"{class}\">{status}</td><td class=\"num\">{}</td><td class=\"agreement\">{}</td></tr>",
             esc(&anchor),
             esc(id),
             esc(item),
@@ -778,10 +826,8 @@ xtask {} (git <code>{}</code>), {}.</p>",
     if r.engagements > 0 {
         facts.push(format!("tooth engagements: {}", r.engagements));
     }
-    if let Some((i, o)) = r.agreement {
-        facts.push(format!(
-            "the paper's numbers consistent with ours / differing: {i} / {o}"
-        ));
+    if r.agreement.is_some() || r.ratios.is_some() {
+        facts.push(format!("against the paper: {}", overview_cell(Some(r))));
     }
     if !facts.is_empty() {
         let _ = writeln!(h, "<p class=\"meta\">{}</p>", esc(&facts.join("; ")));

@@ -66,6 +66,7 @@ fn write_a(out: &Path) {
         agreement: Some(registry::Agreement {
             consistent: 3,
             differ: 1,
+            what: "values of a test",
         }),
         ..Default::default()
     };
@@ -91,7 +92,7 @@ fn page_has_tables_figures_provenance_and_not_run() {
     assert!(page.contains("<figure data-file=\"a/a.svg\">\n<svg xmlns"));
     assert!(!page.contains("<?xml"));
     assert!(page.contains("seed <b>11</b>, 2 threads"));
-    assert!(page.contains("consistent with ours / differing: 3 / 1"));
+    assert!(page.contains("against the paper: 3 / 1: values of a test"));
     assert!(page.contains("<section id=\"exp-b\" class=\"experiment not-run\">"));
     assert!(page.contains("<p class=\"status\">not run</p>"));
     assert!(!page.contains("tmp-1"));
@@ -441,4 +442,100 @@ fn bundle_holds_results_and_inputs_and_refuses_a_changed_input() {
         "{m}"
     );
     assert_eq!(fs::read(&file).unwrap(), before);
+}
+
+/// The overview says what each count counts: a count of gears equal on a grid is not read as
+/// mostly wrong, and an experiment that judges no agreement but prints ours over the paper's
+/// shows that ratio rather than `-`.
+#[test]
+fn the_overview_says_what_its_counts_count() {
+    let s = Scratch::new("overview");
+    let mut t = Table::new("Figure 6", ["gear", "ours", "paper"]);
+    t.row(vec!["b2".into(), "0.050".into(), "0.055".into()]);
+    let fig = Report {
+        tables: vec![t],
+        agreement: Some(registry::Agreement {
+            consistent: 9,
+            differ: 20,
+            what: "gears whose value equals the paper's / does not (no test)",
+        }),
+        ..Default::default()
+    };
+    registry::write_results(&s.0.join("a"), &fig).unwrap();
+    let mut t = Table::new("Table 1", ["pointer", "ours", "paper", "ours/paper"]);
+    t.row(vec![
+        "Lunar".into(),
+        "0.75".into(),
+        "0.60".into(),
+        "1.26".into(),
+    ]);
+    t.row(vec![
+        "Games".into(),
+        "0.07".into(),
+        "0.04".into(),
+        "1.76".into(),
+    ]);
+    t.row(vec![
+        "Lunar P".into(),
+        "0.50".into(),
+        "0.66".into(),
+        "0.76".into(),
+    ]);
+    let table1 = Report {
+        tables: vec![t],
+        ..Default::default()
+    };
+    registry::write_results(&s.0.join("b"), &table1).unwrap();
+    let page = build(&registry(), &s.0, "", true).unwrap();
+    let row = |id: &str| {
+        let at = page.find(&format!("<a href=\"#exp-{id}\">")).unwrap();
+        page[at..at + page[at..].find("</tr>").unwrap()].to_owned()
+    };
+    assert!(
+        row("a").contains("9 / 20: gears whose value equals the paper&#39;s / does not (no test)"),
+        "{}",
+        row("a")
+    );
+    assert!(row("b").contains("ours/paper 0.76 to 1.76"), "{}", row("b"));
+    assert!(page.contains("against the paper: 9 / 20: gears whose"));
+}
+
+/// The heatmaps' key says what green means: agreement with the paper's count, however many
+/// trials failed, not a mesh that works.
+#[test]
+fn the_heatmap_key_says_what_green_means() {
+    let s = Scratch::new("heat-key");
+    let mut columns = vec!["case".to_owned()];
+    columns.extend(["b2-c1", "c2-d1"].map(str::to_owned));
+    let mut t = Table::new(
+        "Table 3: trials (of 200) with at least one jam / disengagement, G = 40 %: ours (paper); * where a two-sample test separates our count from the paper's",
+        columns,
+    );
+    t.row(vec![
+        "D".into(),
+        "199/0 (200/0)".into(),
+        "150*/0 (195/0)".into(),
+    ]);
+    let report = Report {
+        tables: vec![t],
+        ..Default::default()
+    };
+    registry::write_results(&s.0.join("table3"), &report).unwrap();
+    let mut exps = registry();
+    exps.insert("table3", &A);
+    let page = build(&exps, &s.0, "", true).unwrap();
+    let key = &page[page.find("<p class=\"heat-key\">").unwrap()..];
+    let key = &key[..key.find("</p>").unwrap()];
+    for words in [
+        "green: consistent",
+        "however many trials failed",
+        "green does not say the mesh works",
+        "red: differs",
+    ] {
+        assert!(key.contains(words), "`{words}` missing from the key: {key}");
+    }
+    assert!(
+        page.contains("<td class=\"hm consistent\""),
+        "the 199 | 200 cell is green"
+    );
 }
