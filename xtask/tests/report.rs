@@ -512,6 +512,10 @@ const LINKS_SCRIPT: &str = r#"
     });
   });
   document.querySelectorAll('ul.replay-commands code').forEach(c => out.push(['command', c.textContent].join('\t')));
+  // A table cut off at the right: wider than its box, the rest hidden.
+  document.querySelectorAll('.table-wrap').forEach(w => {
+    if (w.scrollWidth > w.clientWidth + 1) out.push(['cut', w.previousElementSibling.textContent.slice(0, 80) + ': ' + w.scrollWidth + ' > ' + w.clientWidth].join('\t'));
+  });
   document.getElementById('link-result').textContent = out.join('\n');
   document.getElementById('link-status').textContent = 'done';
 })();
@@ -531,7 +535,10 @@ fn linked_cells(chrome: &Path, out: &Path, page: &str) -> (Vec<[String; 5]>, Vec
     let dom = browser::headless(
         chrome,
         &out.join(".chromium-links"),
-        &["--dump-dom".to_owned()],
+        &[
+            "--window-size=1280,4000".to_owned(),
+            "--dump-dom".to_owned(),
+        ],
         &url,
     );
     assert!(
@@ -549,6 +556,7 @@ fn linked_cells(chrome: &Path, out: &Path, page: &str) -> (Vec<[String; 5]>, Vec
     for l in result.lines() {
         let f: Vec<&str> = l.split('\t').collect();
         match f[0] {
+            "cut" => panic!("a table cut off at the right of a 1280 px window: {}", f[1]),
             "cell" => {
                 assert_ne!(f[6], "false", "{l}: the link has no target on the page");
                 cells.push([f[1], f[2], f[3], f[4], f[5]].map(str::to_owned));
@@ -593,7 +601,9 @@ fn trial_did(out: &Path, href: &str) -> (bool, bool) {
 /// only disengages, D/d2-e2 trial 4 that only jams, B/m3-e3 trial 1 that jams) and a Table I
 /// whose B/40/m3-e3 is Table 3's B/m3-e3: every heatmap cell with a link to a trial links one
 /// that had the heatmap's failure; a cell whose trial with that failure is there links to it,
-/// a consistent cell too and across tables; the commands the page prints carry its `--out`.
+/// a consistent cell too and across tables; the commands the page prints carry its `--out`;
+/// no table, Wilson intervals and Table I's heatmaps among them, is cut off at the right of a
+/// 1280 px window.
 #[test]
 fn heatmap_cells_link_replayed_trials_that_had_their_failure() {
     let Some(chrome) = chromium_or_skip() else {
@@ -619,11 +629,12 @@ fn heatmap_cells_link_replayed_trials_that_had_their_failure() {
     let mut columns = vec!["case".to_owned(), "G [%]".to_owned()];
     columns.extend(MESHES.iter().map(|m| (*m).to_owned()));
     let mut row = vec!["B".to_owned(), "40".to_owned()];
+    // Cells as wide as Table I's widest, so that the page must fit them.
     row.extend(MESHES.iter().map(|m| {
         if *m == "m3-e3" {
             "141*/0 (168/0)"
         } else {
-            "0/0✓ (0/0✓)"
+            "200*/161* (151/49)"
         }
         .to_owned()
     }));

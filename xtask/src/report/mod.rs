@@ -604,6 +604,8 @@ footer { margin-top: 3em; color: #777; font-size: 0.85em; }
 .reference { background: #fff3cd; border: 1px solid #e0c36a; padding: 0.4em 0.7em; }
 table.heatmap { font-size: 0.8em; }
 table.heatmap th { white-space: nowrap; }
+table.heatmap tbody th { white-space: normal; min-width: 5em; }
+.table-wrap.wide table.heatmap td, .table-wrap.wide table.heatmap th { padding: 0.2em 0.25em; }
 .hm { text-align: center; white-space: nowrap; font-variant-numeric: tabular-nums; }
 .hm.consistent { background: #d9efd3; }
 .hm.differs { background: #c0392b; color: #fff; font-weight: 600; }
@@ -736,28 +738,67 @@ fn describe<'a>(exps: &'a Registry, id: &str) -> (&'a str, &'a str) {
         })
 }
 
-/// Links to an experiment's replayed trials (after its section): each trial's moving page, or
-/// its folder when it has none.
+/// Links to an experiment's replayed trials (after its section): each trial's moving page,
+/// named with what the trial did, and each listing of a cell's failed trials drawn on this page
+/// (its table, as `replay` printed it), where the link leads.
 fn replay_links(h: &mut String, replays: &[Replayed]) {
     if replays.is_empty() {
         return;
     }
+    let mut listings = String::new();
     let links: Vec<String> = replays
         .iter()
-        .map(|Replayed { folder, page, .. }| {
-            let target = if *page {
-                format!("{}/pair.html", url_part(folder))
-            } else {
-                format!("{}/table.md", url_part(folder))
-            };
-            format!("<a href=\"{target}\">{}</a>", esc(folder))
+        .map(|r| {
+            if r.page {
+                let did = r.trial.as_ref().map_or(String::new(), |t| {
+                    let what = match (t.jammed, t.disengaged) {
+                        (true, true) => "jammed and disengaged",
+                        (true, false) => "jammed",
+                        (false, true) => "disengaged",
+                        (false, false) => "neither",
+                    };
+                    format!(" ({what})")
+                });
+                return format!(
+                    "<a href=\"{}/pair.html\">{}</a>{}",
+                    url_part(&r.folder),
+                    esc(&r.folder),
+                    esc(&did)
+                );
+            }
+            match read_results(&r.dir) {
+                Ok(listing) => {
+                    let _ = write!(
+                        listings,
+                        "<details class=\"listing\" id=\"listing-{}\"><summary>{}: the cell's failed trials (<a href=\"{}/failed-trials.csv\">failed-trials.csv</a>)</summary>\n",
+                        esc(&r.folder),
+                        esc(&r.folder),
+                        url_part(&r.folder)
+                    );
+                    for t in &listing.tables {
+                        table(&mut listings, t, false);
+                    }
+                    listings.push_str("</details>\n");
+                    format!(
+                        "<a href=\"#listing-{}\">{}</a> (a listing)",
+                        esc(&r.folder),
+                        esc(&r.folder)
+                    )
+                }
+                Err(_) => format!(
+                    "<a href=\"{}/failed-trials.csv\">{}</a> (a listing)",
+                    url_part(&r.folder),
+                    esc(&r.folder)
+                ),
+            }
         })
         .collect();
     let _ = writeln!(
         h,
         "<p class=\"replays\">Replayed trials (<code>cargo xtask replay</code>; each page shows the gears moving through the trial): {}</p>",
-        links.join(" ")
+        links.join(", ")
     );
+    h.push_str(&listings);
 }
 
 fn section(
@@ -918,58 +959,167 @@ fn states_agreement(note: &str) -> bool {
 /// A table with more columns than this is drawn the window's width ([`table`]).
 const WIDE_COLUMNS: usize = 10;
 
+/// The width a wide table may take, px: a 1280 px window less the page's margins. A wider one
+/// is drawn in parts, each with the table's label columns ([`column_groups`]), so that no
+/// column is cut off at the right.
+const WIDE_ROOM: f64 = 1180.0;
+
+/// The lines a cell shows: in a wide table an `ours (paper)` cell breaks before the paper's
+/// part and a `jams / disengagements` cell (with their intervals) after the ` / `.
+fn cell_lines(cell: &str, wide: bool) -> Vec<String> {
+    if !wide {
+        return vec![cell.to_owned()];
+    }
+    if let Some((ours, theirs)) = cell.split_once(" (") {
+        return vec![ours.to_owned(), format!("({theirs}")];
+    }
+    if cell.contains(" [") {
+        if let Some((jams, dis)) = cell.split_once(" / ") {
+            return vec![format!("{jams} /"), dis.to_owned()];
+        }
+    }
+    vec![cell.to_owned()]
+}
+
+/// The width a column of a wide table takes, about, px: its widest line at the wide tables'
+/// 0.8 em type (digits some 8 px) and its padding.
+fn column_px(t: &Table, c: usize) -> f64 {
+    let widest = std::iter::once(t.columns[c].clone())
+        .chain(
+            t.rows
+                .iter()
+                .filter_map(|r| r.get(c))
+                .flat_map(|cell| cell_lines(cell, true)),
+        )
+        .map(|l| l.chars().count())
+        .max()
+        .unwrap_or(0);
+    8.0 * widest as f64 + 14.0
+}
+
+/// The label columns a wide table repeats in each of its parts: those before the first whose
+/// header names a mesh (`b2-c1`), at least one.
+fn label_columns(t: &Table) -> usize {
+    t.columns
+        .iter()
+        .position(|c| c.contains('-'))
+        .unwrap_or(1)
+        .clamp(1, 3)
+}
+
+/// The columns of table `t` after its `lead` label columns, in groups that each fit
+/// [`WIDE_ROOM`] beside the label columns (one group where the table fits as it is).
+fn column_groups(t: &Table, lead: usize) -> Vec<std::ops::Range<usize>> {
+    let labels: f64 = (0..lead.min(t.columns.len()))
+        .map(|c| column_px(t, c))
+        .sum();
+    let mut groups = Vec::new();
+    let (mut start, mut used) = (lead, labels);
+    for c in lead..t.columns.len() {
+        let w = column_px(t, c);
+        if c > start && used + w > WIDE_ROOM {
+            groups.push(start..c);
+            (start, used) = (c, labels);
+        }
+        used += w;
+    }
+    if start < t.columns.len() || groups.is_empty() {
+        groups.push(start..t.columns.len());
+    }
+    groups
+}
+
 /// One table. With `reference` (a run on other inputs than the paper's) its cells lose their
 /// `*` marks, its title the phrase on them, and its notes on agreement are labelled for
-/// reference only.
+/// reference only. A table of many columns (the 15 meshes) takes the window's width, its cells
+/// broken onto lines, and, where it is still too wide, is drawn in parts of its columns.
 fn table(h: &mut String, t: &Table, reference: bool) {
-    let paper: Vec<bool> = t
-        .columns
-        .iter()
-        .map(|c| c.to_ascii_lowercase().contains("paper"))
-        .collect();
     let title = if reference {
         without_marks(&t.title)
     } else {
         t.title.clone()
     };
-    // A table of many columns (the 15 meshes) takes the window's width, and its `ours (paper)`
-    // cells break before the paper's part, so that it fits a common screen.
     let wide = t.columns.len() > WIDE_COLUMNS;
+    if !wide {
+        let _ = write!(h, "<p class=\"table-title\">{}</p>\n", esc(&title));
+        table_part(h, t, (0..0, 0..t.columns.len()), reference, false);
+    } else {
+        let lead = label_columns(t);
+        let groups = column_groups(t, lead);
+        for (i, g) in groups.iter().enumerate() {
+            let part = if groups.len() == 1 {
+                String::new()
+            } else {
+                format!(
+                    " (part {} of {}: {} to {})",
+                    i + 1,
+                    groups.len(),
+                    t.columns[g.start],
+                    t.columns[g.end - 1]
+                )
+            };
+            let _ = write!(
+                h,
+                "<p class=\"table-title\">{}{}</p>\n",
+                esc(&title),
+                esc(&part)
+            );
+            table_part(h, t, (0..lead, g.clone()), reference, true);
+        }
+    }
+    table_notes(h, t, reference);
+}
+
+/// The columns `labels` and `group` of table `t` as an HTML table (see [`table`]).
+fn table_part(
+    h: &mut String,
+    t: &Table,
+    (labels, group): (std::ops::Range<usize>, std::ops::Range<usize>),
+    reference: bool,
+    wide: bool,
+) {
+    let columns: Vec<usize> = labels.chain(group).collect();
+    let paper = |c: usize| t.columns[c].to_ascii_lowercase().contains("paper");
     let _ = write!(
         h,
-        "<p class=\"table-title\">{}</p>\n<div class=\"table-wrap{}\">\n<table>\n<thead><tr>",
-        esc(&title),
+        "<div class=\"table-wrap{}\">\n<table>\n<thead><tr>",
         if wide { " wide" } else { "" }
     );
-    for (c, p) in t.columns.iter().zip(&paper) {
-        let class = if *p { " class=\"paper\"" } else { "" };
-        let _ = write!(h, "<th{class}>{}</th>", esc(c));
+    for &c in &columns {
+        let class = if paper(c) { " class=\"paper\"" } else { "" };
+        let _ = write!(h, "<th{class}>{}</th>", esc(&t.columns[c]));
     }
     h.push_str("</tr></thead>\n<tbody>\n");
     for row in &t.rows {
         h.push_str("<tr>");
-        for (i, cell) in row.iter().enumerate() {
+        for &c in &columns {
+            let cell = row.get(c).map_or("", String::as_str);
             let unmarked;
             let cell = if reference {
                 unmarked = cell.replace('*', "");
                 unmarked.trim_end()
             } else {
-                cell.as_str()
+                cell
             };
             let mut classes = Vec::new();
             if numeric(cell) {
                 classes.push("num");
             }
-            if paper.get(i).copied().unwrap_or(false) {
+            if paper(c) {
                 classes.push("paper");
             }
-            let text = match cell.split_once(" (") {
-                Some((ours, theirs)) if wide => format!(
-                    "{}<br><span class=\"paper-part\">({})</span>",
+            let lines = cell_lines(cell, wide);
+            let text = match lines.as_slice() {
+                [ours, theirs] if theirs.starts_with('(') => format!(
+                    "{}<br><span class=\"paper-part\">{}</span>",
                     esc(ours),
                     esc(theirs)
                 ),
-                _ => esc(cell),
+                _ => lines
+                    .iter()
+                    .map(|l| esc(l))
+                    .collect::<Vec<_>>()
+                    .join("<br>"),
             };
             if classes.is_empty() {
                 let _ = write!(h, "<td>{text}</td>");
@@ -980,19 +1130,24 @@ fn table(h: &mut String, t: &Table, reference: bool) {
         h.push_str("</tr>\n");
     }
     h.push_str("</tbody>\n</table>\n</div>\n");
-    if !t.notes.is_empty() {
-        h.push_str("<ul class=\"notes\">\n");
-        for n in &t.notes {
-            if reference && states_agreement(n) {
-                let _ = writeln!(
-                    h,
-                    "<li><b>For reference only, not a check (this run's inputs differ from the paper's; its marks are not shown):</b> {}</li>",
-                    esc(n)
-                );
-            } else {
-                let _ = writeln!(h, "<li>{}</li>", esc(n));
-            }
-        }
-        h.push_str("</ul>\n");
+}
+
+/// The notes under a table; with `reference`, a note on agreement labelled for reference only.
+fn table_notes(h: &mut String, t: &Table, reference: bool) {
+    if t.notes.is_empty() {
+        return;
     }
+    h.push_str("<ul class=\"notes\">\n");
+    for n in &t.notes {
+        if reference && states_agreement(n) {
+            let _ = writeln!(
+                h,
+                "<li><b>For reference only, not a check (this run's inputs differ from the paper's; its marks are not shown):</b> {}</li>",
+                esc(n)
+            );
+        } else {
+            let _ = writeln!(h, "<li>{}</li>", esc(n));
+        }
+    }
+    h.push_str("</ul>\n");
 }

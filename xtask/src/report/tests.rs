@@ -119,10 +119,37 @@ fn replayed_trials_are_linked_from_their_experiment_not_shown_as_one() {
         ..Default::default()
     };
     registry::write_results(&s.0.join("replay-table3-B-m3-e3-1"), &replay).unwrap();
+    // A listing of the cell's failed trials: shown on the page, not as its raw table.md.
+    let mut failed = Table::new(
+        "table3 B/m3-e3: the trials that failed, of 200 (seed 2025)",
+        ["failure", "trials", "trial indices"],
+    );
+    failed.row(vec!["jam".into(), "141".into(), "1, 2, 3".into()]);
+    let listing = Report {
+        tables: vec![failed],
+        files: vec![OutputFile::new(
+            "failed-trials.csv",
+            "trial,jammed,disengaged\n1,true,false\n",
+        )],
+        ..Default::default()
+    };
+    registry::write_results(&s.0.join("replay-table3-B-m3-e3-failed"), &listing).unwrap();
     let page = build(&registry(), &s.0, "", true).unwrap();
     assert!(
         page.contains("<a href=\"replay-table3-B-m3-e3-1/pair.html\">replay-table3-B-m3-e3-1</a>"),
         "{page}"
+    );
+    assert!(
+        page.contains("<a href=\"#listing-replay-table3-B-m3-e3-failed\">")
+            && page.contains(
+                "<details class=\"listing\" id=\"listing-replay-table3-B-m3-e3-failed\">"
+            )
+            && page.contains("<td class=\"num\">141</td>"),
+        "the listing is drawn on the page: {page}"
+    );
+    assert!(
+        !page.contains("replay-table3-B-m3-e3-failed/table.md"),
+        "no link opens the listing's raw table.md: {page}"
     );
     assert!(
         !page.contains("id=\"exp-replay-"),
@@ -381,6 +408,15 @@ fn runs_on_other_inputs_show_no_marks_and_no_agreement_as_a_check() {
 
 /// The names and contents of the files in the gzipped tar archive `file`.
 fn archive_entries(file: &Path) -> Vec<(String, Vec<u8>)> {
+    archive_dated(file)
+        .into_iter()
+        .map(|(n, b, _)| (n, b))
+        .filter(|(n, _)| !n.ends_with('/'))
+        .collect()
+}
+
+/// Every entry of the archive `file`, folders too: name, contents and date (seconds since 1970).
+fn archive_dated(file: &Path) -> Vec<(String, Vec<u8>, u64)> {
     use std::io::Read as _;
     let gz = flate2::read::GzDecoder::new(fs::File::open(file).unwrap());
     let mut tar = tar::Archive::new(gz);
@@ -389,11 +425,11 @@ fn archive_entries(file: &Path) -> Vec<(String, Vec<u8>)> {
         .map(|e| {
             let mut e = e.unwrap();
             let name = e.path().unwrap().to_string_lossy().into_owned();
+            let mtime = e.header().mtime().unwrap();
             let mut bytes = Vec::new();
             e.read_to_end(&mut bytes).unwrap();
-            (name, bytes)
+            (name, bytes, mtime)
         })
-        .filter(|(n, _)| !n.ends_with('/'))
         .collect()
 }
 
@@ -421,7 +457,16 @@ fn bundle_holds_results_and_inputs_and_refuses_a_changed_input() {
         bundle: Some(file.clone()),
         ..out_at(&out)
     };
+    let before = super::bundle::now_seconds();
     command(&args).unwrap();
+    let after = super::bundle::now_seconds();
+    // Every entry, folders too, dated when the bundle was written.
+    for (name, _, mtime) in archive_dated(&file) {
+        assert!(
+            (before..=after).contains(&mtime),
+            "{name} dated {mtime}, not {before}..{after}"
+        );
+    }
     let entries = archive_entries(&file);
     let names: Vec<&str> = entries.iter().map(|(n, _)| n.as_str()).collect();
     assert!(names.contains(&"results/index.html"), "{names:?}");
