@@ -321,6 +321,15 @@ fn caption(
     if contacts.iter().any(|c| c.role == "pushing") {
         said.push("Orange ring: the driver tooth pushing the driven gear, with its normal.".into());
     }
+    said.extend(motion_lines(traj, e));
+    said.iter().flat_map(|l| wrap_at_spaces(l, 80)).collect()
+}
+
+/// The caption's lines on what the event did to the driven gear's motion: a release, in driven
+/// pitches, or a change of tooth phase; and, after the trial's first lock, that the motion is
+/// the paper's protocol.
+fn motion_lines(traj: &Trajectory, e: &contact::Event) -> Vec<String> {
+    let mut said = Vec::new();
     let n2 = traj.mesh().driven().teeth();
     if e.kind.is_contact_stop() && moves_pointer(e) {
         said.push(format!(
@@ -341,7 +350,7 @@ fn caption(
             (f.phi - traj.phi_start()).to_degrees()
         ));
     }
-    said.iter().flat_map(|l| wrap_at_spaces(l, 80)).collect()
+    said
 }
 
 /// The event pictures of run `traj`, one per event up to [`MAX_EVENT_PICTURES`]: `(file name,

@@ -413,6 +413,89 @@ fn contacts_attr(contacts: &[Contact]) -> String {
 /// Said beside the gears on the page wherever the slider or a link is past the first lock.
 const PROTOCOL_WORDS: &str = "(after the first lock: the paper's protocol, the gear let go and driven on, not a physical motion)";
 
+/// What an event's links need of the run: where it starts, and its Theoretical Difference at
+/// any (φ, θ).
+struct Linker<'a> {
+    traj: &'a Trajectory,
+    phi0: f64,
+    theta0: f64,
+    ratio: f64,
+}
+
+impl<'a> Linker<'a> {
+    fn of(traj: &'a Trajectory) -> Self {
+        let mesh = traj.mesh();
+        let phi0 = traj.phi_start();
+        Linker {
+            traj,
+            phi0,
+            theta0: traj.theta_at(phi0),
+            ratio: mesh.driver().teeth() as f64 / mesh.driven().teeth() as f64,
+        }
+    }
+
+    /// A link of event `i` (`class` `event` or `release`) drawing the gears at (φ, θ) with
+    /// `contacts` (or, an event with none, where the gears come nearest), saying `place` (and
+    /// `protocol`, after the first lock) beside the gears.
+    fn link(
+        &self,
+        (i, class): (usize, &str),
+        (phi, theta): (f64, f64),
+        contacts: &[Contact],
+        (text, place, protocol): (&str, &str, &str),
+    ) -> String {
+        let gap = if class == "event" && contacts.is_empty() {
+            let (p1, p2, _, _) = nearest_approach(self.traj.mesh(), phi, theta);
+            format!(
+                " data-gap=\"{:.9},{:.9},{:.9},{:.9}\"",
+                p1.x, p1.y, p2.x, p2.y
+            )
+        } else {
+            String::new()
+        };
+        let td = ((theta - self.theta0) - self.ratio * (phi - self.phi0)).to_degrees();
+        let place = if protocol.is_empty() {
+            place.to_owned()
+        } else {
+            format!("{place} {protocol}")
+        };
+        format!(
+            "<a class=\"{class}\" href=\"#event={}{}\" data-phi=\"{:.12}\" data-theta=\"{:.12}\" data-td=\"{td:.12}\" data-contacts=\"{}\"{gap} data-where=\"{}\">{text}</a>",
+            i + 1,
+            if class == "release" { "-release" } else { "" },
+            (phi - self.phi0).to_degrees(),
+            theta.to_degrees(),
+            contacts_attr(contacts),
+            escape(&place),
+        )
+    }
+
+    /// Event `i`'s release link, where it has a release.
+    fn release(&self, i: usize, e: &contact::Event, protocol: &str) -> Option<String> {
+        let r = release_of(self.traj, e)?;
+        let at = if r.phi == e.phi {
+            String::new()
+        } else {
+            format!(
+                " at phi - phi0 = {:.4} deg",
+                (r.phi - self.phi0).to_degrees()
+            )
+        };
+        let text = format!(
+            "its release{at}: the driven gear let go to the next free position, theta = {:.4} deg; {}",
+            r.theta.to_degrees(),
+            release_text(e, self.traj.mesh().driven().teeth())
+        );
+        let place = "(its release: the driven gear let go to the next free position; the Theoretical Difference includes every earlier release's jump)";
+        Some(self.link(
+            (i, "release"),
+            (r.phi, r.theta),
+            &r.contacts,
+            (&text, place, protocol),
+        ))
+    }
+}
+
 /// The event list of the page: each event a link drawing the gears at its own φ and θ, with its
 /// contacts, and a lock's or strike's release a second link drawing them where the gear was let
 /// go; the events after the first lock greyed as the paper's protocol. With it, whether any
@@ -422,79 +505,29 @@ fn event_list(
     counted: &dyn Fn(&contact::Event) -> &'static str,
     teeth: Teeth<'_>,
 ) -> (String, bool) {
-    let mesh = traj.mesh();
-    let phi0 = traj.phi_start();
-    let theta0 = traj.theta_at(phi0);
-    let ratio = mesh.driver().teeth() as f64 / mesh.driven().teeth() as f64;
-    let td_of = |phi: f64, theta: f64| ((theta - theta0) - ratio * (phi - phi0)).to_degrees();
-    let n2 = mesh.driven().teeth();
+    let linker = Linker::of(traj);
+    let n2 = traj.mesh().driven().teeth();
     let protocol_from = first_lock(traj.events());
     let mut events = String::new();
     let mut released = false;
     for (i, e) in traj.events().iter().enumerate() {
         let after = protocol_from.is_some_and(|f| i > f);
-        let mark = if after { " " } else { "" };
         let protocol = if after { PROTOCOL_WORDS } else { "" };
-        let link = |class: &str,
-                    (phi, theta): (f64, f64),
-                    contacts: &[Contact],
-                    text: &str,
-                    place: &str| {
-            // No contact to draw at the event itself: where the gears come nearest instead.
-            let gap = if class == "event" && contacts.is_empty() {
-                let (p1, p2, _, _) = nearest_approach(mesh, phi, theta);
-                format!(
-                    " data-gap=\"{:.9},{:.9},{:.9},{:.9}\"",
-                    p1.x, p1.y, p2.x, p2.y
-                )
-            } else {
-                String::new()
-            };
-            format!(
-                "<a class=\"{class}\" href=\"#event={}{}\" data-phi=\"{:.12}\" data-theta=\"{:.12}\" data-td=\"{:.12}\" data-contacts=\"{}\"{gap} data-where=\"{}\">{text}</a>",
-                i + 1,
-                if class == "release" { "-release" } else { "" },
-                (phi - phi0).to_degrees(),
-                theta.to_degrees(),
-                td_of(phi, theta),
-                contacts_attr(contacts),
-                escape(&format!("{place}{mark}{protocol}")),
-            )
+        let release = linker.release(i, e, protocol);
+        let place = if release.is_some() {
+            "(the event, before its release)"
+        } else {
+            "(the event)"
         };
-        let release = release_of(traj, e);
-        let main = link(
-            "event",
+        let words = event_words(traj, e, counted(e), teeth);
+        let main = linker.link(
+            (i, "event"),
             (e.phi, e.theta),
             &contacts_at_event(traj, e),
-            &event_words(traj, e, counted(e), teeth),
-            if release.is_some() {
-                "(the event, before its release)"
-            } else {
-                "(the event)"
-            },
+            (&words, place, protocol),
         );
-        let release = release.map_or_else(String::new, |r| {
-            released = true;
-            let at = if r.phi == e.phi {
-                String::new()
-            } else {
-                format!(" at phi - phi0 = {:.4} deg", (r.phi - phi0).to_degrees())
-            };
-            format!(
-                " - {}",
-                link(
-                    "release",
-                    (r.phi, r.theta),
-                    &r.contacts,
-                    &format!(
-                        "its release{at}: the driven gear let go to the next free position, theta = {:.4} deg; {}",
-                        r.theta.to_degrees(),
-                        release_text(e, n2)
-                    ),
-                    "(its release: the driven gear let go to the next free position; the Theoretical Difference includes every earlier release's jump)",
-                )
-            )
-        });
+        released |= release.is_some();
+        let release = release.map_or_else(String::new, |r| format!(" - {r}"));
         let shift = if e.kind.is_loss() && e.phase_shift != 0 {
             format!(" - {}", escape(&size_text(e, n2)))
         } else {

@@ -84,18 +84,12 @@ fn eccentricity_insets(svg: &mut String, p: &Prepared, margin: f64, width: f64, 
         (Role::Driver, p.mesh.driver(), p.driver, DRIVER_COLOUR),
         (Role::Driven, p.mesh.driven(), p.driven, DRIVEN_COLOUR),
     ];
-    // The arbor minus the tip-circle centre in the view's frame (see check_svg).
-    let world = |role: Role, g: &geometry::Gear| match role {
-        Role::Driver => g.rotation_centre(),
-        Role::Driven => -g.rotation_centre(),
-    };
     let offsets: Vec<(f64, f64)> = gears
         .iter()
-        .map(|(role, g, ..)| (world(*role, g).norm(), g.max_tip_radius()))
+        .map(|(role, g, ..)| (arbor_in_view(*role, g).norm(), g.max_tip_radius()))
         .collect();
     let factor = exaggeration(&offsets);
     let box_w = (width - 2.0 * margin - 20.0) / 2.0;
-    let radius = 70.0;
     svg.push_str(&format!(
         "<g class=\"inset\" data-exaggeration=\"{factor}\">\n<text x=\"{margin}\" y=\"{:.1}\" font-size=\"13\" font-weight=\"bold\">{}</text>\n",
         top + 4.0,
@@ -104,114 +98,166 @@ fn eccentricity_insets(svg: &mut String, p: &Prepared, margin: f64, width: f64, 
             fmt_f64(factor, 0),
         ))
     ));
-    for (i, ((role, g, numbering, colour), (offset, tip_r))) in
-        gears.iter().zip(&offsets).enumerate()
-    {
+    for (i, (gear, offset)) in gears.iter().zip(&offsets).enumerate() {
         let x0 = margin + i as f64 * (box_w + 20.0);
-        let y0 = top + 14.0;
-        let h = INSET_HEIGHT - 14.0;
-        let (cx, cy) = (x0 + 20.0 + radius + 20.0, y0 + h / 2.0);
-        let at = |v: Vec2| (cx + v.x, cy - v.y);
-        svg.push_str(&format!(
-            "<rect x=\"{x0:.1}\" y=\"{y0:.1}\" width=\"{box_w:.1}\" height=\"{h:.1}\" fill=\"#fbfbfb\" stroke=\"#999999\"/>\n"
-        ));
-        // The tips frame's axes in the view: x along the zero ray (towards the other gear), y
-        // 90 deg from it the way the gear's tips_deg run.
-        let x_axis = match role {
-            Role::Driver => Vec2::new(1.0, 0.0),
-            Role::Driven => Vec2::new(-1.0, 0.0),
-        };
-        let ccw = match role {
-            Role::Driver => true,
-            Role::Driven => !numbering.mirrored,
-        };
-        let y_axis = if ccw {
-            Vec2::new(-x_axis.y, x_axis.x)
-        } else {
-            Vec2::new(x_axis.y, -x_axis.x)
-        };
-        svg.push_str(&format!(
-            "<circle cx=\"{cx:.1}\" cy=\"{cy:.1}\" r=\"{radius}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"1\"/>\n"
-        ));
-        for (axis, name) in [(x_axis, "x"), (y_axis, "y")] {
-            let end = at(axis * (radius + 18.0));
-            let base = axis * (radius + 10.0);
-            let n = Vec2::new(-axis.y, axis.x) * 4.0;
-            let (a, b) = (at(base + n), at(base - n));
-            svg.push_str(&format!(
-                "<line x1=\"{cx:.1}\" y1=\"{cy:.1}\" x2=\"{:.1}\" y2=\"{:.1}\" stroke=\"#555555\" stroke-width=\"1\"/>\n<polygon points=\"{:.1},{:.1} {:.1},{:.1} {:.1},{:.1}\" fill=\"#555555\"/>\n",
-                end.0, end.1, end.0, end.1, a.0, a.1, b.0, b.1
-            ));
-            let label =
-                at(axis * (radius + 24.0)
-                    + Vec2::new(0.0, if axis.y.abs() > 0.5 { 0.0 } else { 6.0 }));
-            let anchor = if axis.x > 0.5 {
-                "start"
-            } else if axis.x < -0.5 {
-                "end"
-            } else {
-                "middle"
-            };
-            svg.push_str(&format!(
-                "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"{anchor}\" font-size=\"11\" fill=\"#555555\">{}</text>\n",
-                label.0,
-                label.1 + if axis.y < -0.5 { 10.0 } else { 0.0 },
-                escape(name)
-            ));
-        }
-        let e = world(*role, g);
-        let drawn = e * (factor * radius / tip_r);
-        let (ax, ay) = at(drawn);
-        if *offset > 0.0 {
-            // The components along the frame's axes, dotted, and the offset itself.
-            let along = x_axis * drawn.dot(&x_axis);
-            let (px_, py_) = at(along);
-            svg.push_str(&format!(
-                "<polyline points=\"{cx:.1},{cy:.1} {px_:.1},{py_:.1} {ax:.1},{ay:.1}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"1\" stroke-dasharray=\"2 3\"/>\n<line x1=\"{cx:.1}\" y1=\"{cy:.1}\" x2=\"{ax:.1}\" y2=\"{ay:.1}\" stroke=\"{colour}\" stroke-width=\"2.5\"/>\n"
-            ));
-        }
-        svg.push_str(&format!(
-            "<circle cx=\"{cx:.1}\" cy=\"{cy:.1}\" r=\"4\" fill=\"white\" stroke=\"{colour}\" stroke-width=\"1.5\"/>\n<path d=\"M{:.1} {ay:.1}H{:.1}M{ax:.1} {:.1}V{:.1}\" stroke=\"{colour}\" stroke-width=\"2\"/>\n",
-            ax - 6.0,
-            ax + 6.0,
-            ay - 6.0,
-            ay + 6.0
-        ));
-        let tips = if numbering.mirrored {
-            Vec2::new(g.rotation_centre().x, -g.rotation_centre().y)
-        } else {
-            g.rotation_centre()
-        };
-        let xy = |v: Vec2| format!("({}, {})", fmt_f64(v.x, 4), fmt_f64(v.y, 4));
-        let words = if *offset > 0.0 {
-            format!(
-                "arbor minus tip-circle centre: {} in the tips frame (offset {}, angle_deg {}), {} in the view's frame; drawn {} times its size against a tip radius of {}.",
-                xy(tips),
-                fmt_f64(tips.norm(), 4),
-                fmt_f64(deg(tips.y.atan2(tips.x)), 3),
-                xy(e),
-                fmt_f64(factor, 0),
-                fmt_f64(*tip_r, 4)
-            )
-        } else {
-            "no eccentricity: the arbor is at the tip-circle centre.".to_string()
-        };
-        let text_x = cx + radius + 40.0;
-        svg.push_str(&format!(
-            "<text x=\"{text_x:.1}\" y=\"{:.1}\" font-size=\"13\" fill=\"{colour}\" font-weight=\"bold\">{}</text>\n",
-            y0 + 22.0,
-            escape(&format!("{}, offset x{}", role.name(), fmt_f64(factor, 0)))
-        ));
-        let chars = ((x0 + box_w - text_x - 8.0) / 6.6).max(12.0) as usize;
-        for (l, line) in wrap_at_spaces(&words, chars).iter().enumerate() {
-            svg.push_str(&format!(
-                "<text x=\"{text_x:.1}\" y=\"{:.1}\" font-size=\"11\">{}</text>\n",
-                y0 + 42.0 + 15.0 * l as f64,
-                escape(line)
-            ));
-        }
+        gear_inset(svg, *gear, *offset, factor, (x0, top + 14.0, box_w));
     }
     svg.push_str("</g>\n");
+}
+
+/// A gear's arbor minus its tip-circle centre in the view's frame (see [`check_svg`]).
+fn arbor_in_view(role: Role, g: &geometry::Gear) -> Vec2 {
+    match role {
+        Role::Driver => g.rotation_centre(),
+        Role::Driven => -g.rotation_centre(),
+    }
+}
+
+/// A gear of the insets: its role, the gear, its numbering and its colour.
+type InsetGear<'a> = (
+    Role,
+    &'a geometry::Gear,
+    study::pair_file::Numbering,
+    &'static str,
+);
+
+/// One gear's inset at `(x0, y0)`, `box_w` wide: its tip circle, its tips frame's axes, its
+/// arbor drawn at its `offset` from the tip-circle centre times `factor` (against a tip radius
+/// `tip_r`), and the offset in words.
+fn gear_inset(
+    svg: &mut String,
+    (role, g, numbering, colour): InsetGear<'_>,
+    (offset, tip_r): (f64, f64),
+    factor: f64,
+    (x0, y0, box_w): (f64, f64, f64),
+) {
+    let (offset, tip_r) = (&offset, &tip_r);
+    let radius = 70.0;
+    let h = INSET_HEIGHT - 14.0;
+    let (cx, cy) = (x0 + 20.0 + radius + 20.0, y0 + h / 2.0);
+    let at = |v: Vec2| (cx + v.x, cy - v.y);
+    svg.push_str(&format!(
+        "<rect x=\"{x0:.1}\" y=\"{y0:.1}\" width=\"{box_w:.1}\" height=\"{h:.1}\" fill=\"#fbfbfb\" stroke=\"#999999\"/>\n"
+    ));
+    // The tips frame's axes in the view: x along the zero ray (towards the other gear), y
+    // 90 deg from it the way the gear's tips_deg run.
+    let x_axis = match role {
+        Role::Driver => Vec2::new(1.0, 0.0),
+        Role::Driven => Vec2::new(-1.0, 0.0),
+    };
+    let ccw = match role {
+        Role::Driver => true,
+        Role::Driven => !numbering.mirrored,
+    };
+    let y_axis = if ccw {
+        Vec2::new(-x_axis.y, x_axis.x)
+    } else {
+        Vec2::new(x_axis.y, -x_axis.x)
+    };
+    svg.push_str(&format!(
+        "<circle cx=\"{cx:.1}\" cy=\"{cy:.1}\" r=\"{radius}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"1\"/>\n"
+    ));
+    inset_axes(svg, (cx, cy), radius, (x_axis, y_axis));
+    let e = arbor_in_view(role, g);
+    let drawn = e * (factor * radius / tip_r);
+    let (ax, ay) = at(drawn);
+    if *offset > 0.0 {
+        // The components along the frame's axes, dotted, and the offset itself.
+        let along = x_axis * drawn.dot(&x_axis);
+        let (px_, py_) = at(along);
+        svg.push_str(&format!(
+            "<polyline points=\"{cx:.1},{cy:.1} {px_:.1},{py_:.1} {ax:.1},{ay:.1}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"1\" stroke-dasharray=\"2 3\"/>\n<line x1=\"{cx:.1}\" y1=\"{cy:.1}\" x2=\"{ax:.1}\" y2=\"{ay:.1}\" stroke=\"{colour}\" stroke-width=\"2.5\"/>\n"
+        ));
+    }
+    svg.push_str(&format!(
+        "<circle cx=\"{cx:.1}\" cy=\"{cy:.1}\" r=\"4\" fill=\"white\" stroke=\"{colour}\" stroke-width=\"1.5\"/>\n<path d=\"M{:.1} {ay:.1}H{:.1}M{ax:.1} {:.1}V{:.1}\" stroke=\"{colour}\" stroke-width=\"2\"/>\n",
+        ax - 6.0,
+        ax + 6.0,
+        ay - 6.0,
+        ay + 6.0
+    ));
+    let text_x = cx + radius + 40.0;
+    inset_words(
+        svg,
+        (role, g, numbering, colour),
+        (e, *offset, *tip_r),
+        factor,
+        (text_x, x0 + box_w, y0),
+    );
+}
+
+/// An inset's axes from its centre `(cx, cy)`: its gear's tips frame, x along the zero ray and
+/// y 90 deg from it the way the gear's tips_deg run, each an arrow named at its end.
+fn inset_axes(svg: &mut String, (cx, cy): (f64, f64), radius: f64, (x_axis, y_axis): (Vec2, Vec2)) {
+    let at = |v: Vec2| (cx + v.x, cy - v.y);
+    for (axis, name) in [(x_axis, "x"), (y_axis, "y")] {
+        let end = at(axis * (radius + 18.0));
+        let base = axis * (radius + 10.0);
+        let n = Vec2::new(-axis.y, axis.x) * 4.0;
+        let (a, b) = (at(base + n), at(base - n));
+        svg.push_str(&format!(
+            "<line x1=\"{cx:.1}\" y1=\"{cy:.1}\" x2=\"{:.1}\" y2=\"{:.1}\" stroke=\"#555555\" stroke-width=\"1\"/>\n<polygon points=\"{:.1},{:.1} {:.1},{:.1} {:.1},{:.1}\" fill=\"#555555\"/>\n",
+            end.0, end.1, end.0, end.1, a.0, a.1, b.0, b.1
+        ));
+        let label =
+            at(axis * (radius + 24.0) + Vec2::new(0.0, if axis.y.abs() > 0.5 { 0.0 } else { 6.0 }));
+        let anchor = if axis.x > 0.5 {
+            "start"
+        } else if axis.x < -0.5 {
+            "end"
+        } else {
+            "middle"
+        };
+        svg.push_str(&format!(
+            "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"{anchor}\" font-size=\"11\" fill=\"#555555\">{}</text>\n",
+            label.0,
+            label.1 + if axis.y < -0.5 { 10.0 } else { 0.0 },
+            escape(name)
+        ));
+    }
+}
+
+/// An inset's words, from `text_x` to `right` below `y0`: the gear and the factor its offset is
+/// drawn by, and its arbor minus its tip-circle centre `e` (view's frame) in both frames.
+fn inset_words(
+    svg: &mut String,
+    (role, g, numbering, colour): InsetGear<'_>,
+    (e, offset, tip_r): (Vec2, f64, f64),
+    factor: f64,
+    (text_x, right, y0): (f64, f64, f64),
+) {
+    let tips = if numbering.mirrored {
+        Vec2::new(g.rotation_centre().x, -g.rotation_centre().y)
+    } else {
+        g.rotation_centre()
+    };
+    let xy = |v: Vec2| format!("({}, {})", fmt_f64(v.x, 4), fmt_f64(v.y, 4));
+    let words = if offset > 0.0 {
+        format!(
+            "arbor minus tip-circle centre: {} in the tips frame (offset {}, angle_deg {}), {} in the view's frame; drawn {} times its size against a tip radius of {}.",
+            xy(tips),
+            fmt_f64(tips.norm(), 4),
+            fmt_f64(deg(tips.y.atan2(tips.x)), 3),
+            xy(e),
+            fmt_f64(factor, 0),
+            fmt_f64(tip_r, 4)
+        )
+    } else {
+        "no eccentricity: the arbor is at the tip-circle centre.".to_string()
+    };
+    svg.push_str(&format!(
+        "<text x=\"{text_x:.1}\" y=\"{:.1}\" font-size=\"13\" fill=\"{colour}\" font-weight=\"bold\">{}</text>\n",
+        y0 + 22.0,
+        escape(&format!("{}, offset x{}", role.name(), fmt_f64(factor, 0)))
+    ));
+    let chars = ((right - text_x - 8.0) / 6.6).max(12.0) as usize;
+    for (l, line) in wrap_at_spaces(&words, chars).iter().enumerate() {
+        svg.push_str(&format!(
+            "<text x=\"{text_x:.1}\" y=\"{:.1}\" font-size=\"11\">{}</text>\n",
+            y0 + 42.0 + 15.0 * l as f64,
+            escape(line)
+        ));
+    }
 }
 
 /// Room kept clear beside the gears of `pair-check.svg` for their labels, px: the driver's to
@@ -490,6 +536,29 @@ fn gear_drawing(
     ));
     let turn = turning_arrow(svg, c, role, (arbor, radius), size, colour);
     labels.placer.keep_off(&turn);
+    let mid = c.world(turn[turn.len() / 2].0);
+    gear_labels(svg, c, labels, role, (arbor, centre, radius, mid), size);
+}
+
+/// One gear's labels: its zero ray's beside the tip-circle centre, its arbor's and tip-circle
+/// centre's below the arbor, its turning sense's at the middle of its arrow `mid` (world); the
+/// driver's to its left, the driven gear's to its right.
+fn gear_labels(
+    svg: &mut String,
+    c: &Canvas,
+    labels: &mut Labels,
+    role: Role,
+    (arbor, centre, radius, mid): (Vec2, Vec2, f64, Vec2),
+    size: f64,
+) {
+    let colour = match role {
+        Role::Driver => DRIVER_COLOUR,
+        Role::Driven => DRIVEN_COLOUR,
+    };
+    let towards = match role {
+        Role::Driver => Vec2::new(1.0, 0.0),
+        Role::Driven => Vec2::new(-1.0, 0.0),
+    };
     let (outwards, anchor) = match role {
         Role::Driver => (LEFT, Anchor::End),
         Role::Driven => (RIGHT, Anchor::Start),
@@ -501,7 +570,6 @@ fn gear_drawing(
     };
     let ray = format!("{name} zero ray: {angle}");
     let centres = format!("{name} arbor (+),\ntip-circle centre (o)");
-    let mid = turn[turn.len() / 2].0;
     let sayings = [
         // Beside the centre, clear of the mesh, where the two rays meet.
         (
@@ -518,13 +586,7 @@ fn gear_drawing(
             "arbor",
             [DOWN, outwards, UP],
         ),
-        (
-            c.world(mid),
-            Anchor::Middle,
-            turns,
-            "turn",
-            [UP, outwards, DOWN],
-        ),
+        (mid, Anchor::Middle, turns, "turn", [UP, outwards, DOWN]),
     ];
     for (at, anchor, text, what, dirs) in sayings {
         let what = format!("{name}-{what}");

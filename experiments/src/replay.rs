@@ -393,6 +393,14 @@ fn events_table(
             crate::pair_html::motion_word(i, first).into(),
         ]);
     }
+    events_notes(&mut table, g, spec, rebuilt, n2 as usize);
+    table
+}
+
+/// The notes under a replayed trial's events: the cell and the start, which gear drove, the
+/// angles, the sizes, the motion after the first lock and the releases.
+fn events_notes(table: &mut Table, g: &Gearing, spec: &CellSpec, rebuilt: &Rebuilt, n2: usize) {
+    let events = rebuilt.events();
     table.note(format!(
         "Cell: {}. Initial driver angle phi0 = {} deg; one full turn of the gear with more teeth ({} deg of the driver). Teeth numbered 0 to N - 1 as in pair.ron's tips_deg; an idle start has none (`-`): no tooth touches the driven gear.",
         spec.canonical(),
@@ -402,14 +410,13 @@ fn events_table(
     table.note(drive_note(g, spec, rebuilt));
     table.note(crate::pair_html::ANGLES_NOTE);
     table.note("size: a release's (lock, strike) or a loss of drive's (gap, slip) effect on the driven gear, in driven pitches: how far ahead of the ideal ratio the gear was when drive resumed (behind it, for a loss), and the change of tooth phase.");
-    if first.is_some() {
+    if crate::pair_html::first_lock(&events).is_some() {
         table.note(crate::pair_html::MOTION_NOTE);
         table.note(crate::pair_html::PROTOCOL_NOTE);
     }
-    if let Some(n) = crate::pair_html::releases_note(&events, n2 as usize) {
+    if let Some(n) = crate::pair_html::releases_note(&events, n2) {
         table.note(n);
     }
-    table
 }
 
 /// The files of a replayed trial that ran (`pair.html`, a picture per event), and the notes

@@ -772,13 +772,20 @@ fn drawing_labels(svg: &str) -> Vec<((f64, f64), Anchor, f64, String)> {
         let inner = &rest[..rest.find("</text>").unwrap()];
         let lines: Vec<&str> = inner
             .split("<tspan")
-            .filter_map(|t| t.split_once('>').map(|(_, l)| l.trim_end_matches("</tspan>")))
+            .filter_map(|t| {
+                t.split_once('>')
+                    .map(|(_, l)| l.trim_end_matches("</tspan>"))
+            })
             .filter(|l| !l.is_empty())
             .collect();
-        let text = if lines.is_empty() { inner.to_owned() } else { lines.join("\n") }
-            .replace("&gt;", ">")
-            .replace("&lt;", "<")
-            .replace("&amp;", "&");
+        let text = if lines.is_empty() {
+            inner.to_owned()
+        } else {
+            lines.join("\n")
+        }
+        .replace("&gt;", ">")
+        .replace("&lt;", "<")
+        .replace("&amp;", "&");
         let num = |n: &str| attr(tag, n).map(|v| v.parse::<f64>().unwrap());
         let anchor = match attr(tag, "text-anchor").as_deref() {
             Some("middle") => Anchor::Middle,

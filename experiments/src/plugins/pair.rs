@@ -230,7 +230,12 @@ fn before_first_lock(run: &Run) -> Option<String> {
     let events = run.traj.events();
     let first = &events[crate::pair_html::first_lock(events)?];
     let at = deg(first.phi - run.phi0);
-    let td: Vec<f64> = run.rows.iter().filter(|r| r[0] <= at).map(|r| r[2]).collect();
+    let td: Vec<f64> = run
+        .rows
+        .iter()
+        .filter(|r| r[0] <= at)
+        .map(|r| r[2])
+        .collect();
     let up_to = if td.len() >= 2 {
         let s = stats::pointer_stats(&td);
         format!(
@@ -393,7 +398,12 @@ fn event_log(
         let counted = counted_as(rule, e);
         let teeth = user_teeth(e, prepared);
         ev_rows.push_str(&log_line(e, counted, &teeth, start).join(","));
-        ev_rows.push_str(&protocol_cells(traj, e, first.is_some_and(|f| i > f), start.0));
+        ev_rows.push_str(&protocol_cells(
+            traj,
+            e,
+            first.is_some_and(|f| i > f),
+            start.0,
+        ));
         ev_rows.push('\n');
         if events.rows.len() < EVENTS_SHOWN {
             let mut row = table_row(e, counted, &teeth, start, n2);
@@ -449,7 +459,12 @@ fn log_line(
 /// The cells `event-log.csv` adds after [`log_line`]'s, each after a comma: how far the event
 /// left the driven gear ahead of the ideal ratio (driven pitches), whether it came after the
 /// first lock (the paper's protocol), and where a release let the gear go (empty without one).
-fn protocol_cells(traj: &contact::Trajectory, e: &contact::Event, after: bool, phi0: f64) -> String {
+fn protocol_cells(
+    traj: &contact::Trajectory,
+    e: &contact::Event,
+    after: bool,
+    phi0: f64,
+) -> String {
     let n2 = traj.mesh().driven().teeth();
     let release = crate::pair_html::release_of(traj, e).map_or_else(
         || ",".to_owned(),
@@ -506,9 +521,7 @@ fn add_event_notes(events: &mut Table, traj: &contact::Trajectory) {
     {
         events.note(crate::pair_html::RELEASE_NOTE);
     }
-    if let Some(n) =
-        crate::pair_html::releases_note(traj.events(), traj.mesh().driven().teeth())
-    {
+    if let Some(n) = crate::pair_html::releases_note(traj.events(), traj.mesh().driven().teeth()) {
         events.note(n);
     }
     if crate::pair_html::first_lock(traj.events()).is_some() {

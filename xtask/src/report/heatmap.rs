@@ -411,26 +411,7 @@ fn heat_cell(
         c.ours,
         rule_words(cc)
     );
-    let href = match finder.trial(name, failure) {
-        Some(trial) => {
-            let _ = write!(
-                tip,
-                "; opens {} (a {} of this cell)",
-                trial.folder,
-                failure.word()
-            );
-            Some(format!("{}/pair.html", url_part(&trial.folder)))
-        }
-        None if c.differs => {
-            let folder = listing_folder(id, name);
-            match wanted.iter_mut().find(|(f, _, _)| *f == folder) {
-                Some(w) => w.2.push(failure),
-                None => wanted.push((folder.clone(), name.to_owned(), vec![failure])),
-            }
-            Some(format!("#{}", esc(&folder)))
-        }
-        None => None,
-    };
+    let href = cell_link((id, name), failure, c.differs, finder, wanted, &mut tip);
     match href {
         Some(href) => {
             let _ = write!(
@@ -449,6 +430,37 @@ fn heat_cell(
             );
         }
     }
+}
+
+/// Where a cell of a heatmap of `failure` links: a replayed trial of the cell that had it (its
+/// folder named in the tooltip `tip`), or, for a differing cell with none, the commands that
+/// write one (the cell added to `wanted`); `None` for a consistent cell with none.
+fn cell_link(
+    (id, name): (&str, &str),
+    failure: TrialFailure,
+    differs: bool,
+    finder: &Finder<'_>,
+    wanted: &mut Vec<Wanted>,
+    tip: &mut String,
+) -> Option<String> {
+    if let Some(trial) = finder.trial(name, failure) {
+        let _ = write!(
+            tip,
+            "; opens {} (a {} of this cell)",
+            trial.folder,
+            failure.word()
+        );
+        return Some(format!("{}/pair.html", url_part(&trial.folder)));
+    }
+    if !differs {
+        return None;
+    }
+    let folder = listing_folder(id, name);
+    match wanted.iter_mut().find(|(f, _, _)| *f == folder) {
+        Some(w) => w.2.push(failure),
+        None => wanted.push((folder.clone(), name.to_owned(), vec![failure])),
+    }
+    Some(format!("#{}", esc(&folder)))
 }
 
 /// The key under the heatmaps: what each colour and mark means. Green says the paper's count

@@ -270,89 +270,14 @@ fn read_results(dir: &Path) -> Result<Results, Failure> {
     if !json.is_object() {
         return Err(bad(&path, "", "must be a JSON object"));
     }
-    let raw_tables = json["tables"]
-        .as_array()
-        .ok_or_else(|| bad(&path, "tables", "must be an array"))?;
-    let mut tables = Vec::new();
-    for (i, t) in raw_tables.iter().enumerate() {
-        let field = |f: &str| format!("tables[{i}].{f}");
-        let title = t["title"]
-            .as_str()
-            .ok_or_else(|| bad(&path, &field("title"), "must be a string"))?;
-        let columns = strings(&t["columns"], &path, &field("columns"))?;
-        let mut table = Table::new(title, columns);
-        let rows = t["rows"]
-            .as_array()
-            .ok_or_else(|| bad(&path, &field("rows"), "must be an array"))?;
-        for (j, row) in rows.iter().enumerate() {
-            table
-                .rows
-                .push(strings(row, &path, &field(&format!("rows[{j}]")))?);
-        }
-        if !t["notes"].is_null() {
-            table.notes = strings(&t["notes"], &path, &field("notes"))?;
-        }
-        tables.push(table);
-    }
+    let tables = read_tables(&json, &path)?;
     let listed = match &json["files"] {
         Value::Null => Vec::new(),
         v => strings(v, &path, "files")?,
     };
-    let agreement = match &json["agreement"] {
-        Value::Null => None,
-        a => Some((
-            a["consistent"].as_u64().ok_or_else(|| {
-                bad(
-                    &path,
-                    "agreement.consistent",
-                    "must be a non-negative integer",
-                )
-            })?,
-            a["differ"]
-                .as_u64()
-                .ok_or_else(|| bad(&path, "agreement.differ", "must be a non-negative integer"))?,
-            a["what"].as_str().unwrap_or_default().to_owned(),
-        )),
-    };
-
-    let mut files = Vec::new();
-    let entries = fs::read_dir(dir).map_err(|e| bad(dir, "", format!("cannot read: {e}")))?;
-    for entry in entries {
-        let entry = entry.map_err(|e| bad(dir, "", format!("cannot read: {e}")))?;
-        if let Ok(name) = entry.file_name().into_string()
-            && !name.starts_with('.')
-            && entry.path().is_file()
-        {
-            files.push(name);
-        }
-    }
-    files.sort();
-    for name in &listed {
-        if !files.contains(name) {
-            return Err(bad(
-                &path,
-                "files",
-                format!("lists {name}, which is not in {}", dir.display()),
-            ));
-        }
-    }
-    // Figures: those tables.json lists, in its order, then any other SVG.
-    let mut svg_names: Vec<&String> = listed.iter().filter(|n| is_svg(n)).collect();
-    svg_names.extend(files.iter().filter(|n| is_svg(n) && !listed.contains(*n)));
-    let mut figures = Vec::new();
-    for name in svg_names {
-        let file = dir.join(name);
-        let text = read_text(&file)?;
-        if !has_drawing(&text) {
-            return Err(bad(
-                &file,
-                "",
-                "must be an SVG drawing something (a path, polyline, polygon or line)",
-            ));
-        }
-        figures.push((name.clone(), embed_svg(&text)));
-    }
-
+    let agreement = read_agreement(&json, &path)?;
+    let files = dir_files(dir, &path, &listed)?;
+    let figures = read_figures(dir, &listed, &files)?;
     let run_path = dir.join(RUN_JSON);
     let run = if run_path.is_file() {
         Some(read_provenance(&run_path)?)
@@ -370,6 +295,108 @@ fn read_results(dir: &Path) -> Result<Results, Failure> {
         figures,
         run,
     })
+}
+
+/// The tables of `tables.json` (`json`, read from `path`).
+fn read_tables(json: &Value, path: &Path) -> Result<Vec<Table>, Failure> {
+    let raw_tables = json["tables"]
+        .as_array()
+        .ok_or_else(|| bad(path, "tables", "must be an array"))?;
+    let mut tables = Vec::new();
+    for (i, t) in raw_tables.iter().enumerate() {
+        let field = |f: &str| format!("tables[{i}].{f}");
+        let title = t["title"]
+            .as_str()
+            .ok_or_else(|| bad(path, &field("title"), "must be a string"))?;
+        let columns = strings(&t["columns"], path, &field("columns"))?;
+        let mut table = Table::new(title, columns);
+        let rows = t["rows"]
+            .as_array()
+            .ok_or_else(|| bad(path, &field("rows"), "must be an array"))?;
+        for (j, row) in rows.iter().enumerate() {
+            table
+                .rows
+                .push(strings(row, path, &field(&format!("rows[{j}]")))?);
+        }
+        if !t["notes"].is_null() {
+            table.notes = strings(&t["notes"], path, &field("notes"))?;
+        }
+        tables.push(table);
+    }
+    Ok(tables)
+}
+
+/// The agreement `tables.json` records: consistent, differing, and what they count.
+fn read_agreement(json: &Value, path: &Path) -> Result<Option<(u64, u64, String)>, Failure> {
+    let a = match &json["agreement"] {
+        Value::Null => return Ok(None),
+        a => a,
+    };
+    let number = |field: &str| {
+        a[field].as_u64().ok_or_else(|| {
+            bad(
+                path,
+                &format!("agreement.{field}"),
+                "must be a non-negative integer",
+            )
+        })
+    };
+    Ok(Some((
+        number("consistent")?,
+        number("differ")?,
+        a["what"].as_str().unwrap_or_default().to_owned(),
+    )))
+}
+
+/// The visible files of `dir`, sorted; each file `tables.json` (`path`) lists must be there.
+fn dir_files(dir: &Path, path: &Path, listed: &[String]) -> Result<Vec<String>, Failure> {
+    let mut files = Vec::new();
+    let entries = fs::read_dir(dir).map_err(|e| bad(dir, "", format!("cannot read: {e}")))?;
+    for entry in entries {
+        let entry = entry.map_err(|e| bad(dir, "", format!("cannot read: {e}")))?;
+        if let Ok(name) = entry.file_name().into_string()
+            && !name.starts_with('.')
+            && entry.path().is_file()
+        {
+            files.push(name);
+        }
+    }
+    files.sort();
+    for name in listed {
+        if !files.contains(name) {
+            return Err(bad(
+                path,
+                "files",
+                format!("lists {name}, which is not in {}", dir.display()),
+            ));
+        }
+    }
+    Ok(files)
+}
+
+/// The SVG figures of `dir`: those `tables.json` lists, in its order, then any other SVG; each
+/// must draw something.
+fn read_figures(
+    dir: &Path,
+    listed: &[String],
+    files: &[String],
+) -> Result<Vec<(String, Embed)>, Failure> {
+    let mut svg_names: Vec<&String> = listed.iter().filter(|n| is_svg(n)).collect();
+    svg_names.extend(files.iter().filter(|n| is_svg(n) && !listed.contains(*n)));
+    let mut figures = Vec::new();
+    for name in svg_names {
+        let file = dir.join(name);
+        let text = read_text(&file)?;
+        if !has_drawing(&text) {
+            return Err(bad(
+                &file,
+                "",
+                "must be an SVG drawing something (a path, polyline, polygon or line)",
+            ));
+        }
+        figures.push((name.clone(), embed_svg(&text)));
+    }
+    Ok(figures)
 }
 
 /// The smallest and largest number of the columns headed `ours/paper` of `tables`; `None`
@@ -655,37 +682,7 @@ appear in columns labelled &ldquo;paper&rdquo; or in parentheses, as in the prin
         esc(provenance::git_describe())
     );
 
-    // Contents.
-    h.push_str("<nav>\n<div class=\"table-wrap\">\n<table class=\"toc\">\n<caption>Experiments</caption>\n<thead><tr><th>id</th><th>paper item</th><th>title</th><th>status</th><th>seed</th><th>against the paper: consistent / differing, and what is counted</th></tr></thead>\n<tbody>\n");
-    for id in ids {
-        let (title, item) = describe(exps, id);
-        let r = results.get(id);
-        let (status, class) = if r.is_some() {
-            ("run", "status-run")
-        } else {
-            ("not run", "status-not-run")
-        };
-        let seed = r
-            .and_then(|r| r.run.as_ref())
-            .map_or_else(|| "-".to_owned(), |p| p.seed.to_string());
-        let agreement = overview_cell(r);
-        // A stub of an experiment not run sits in the closed list at the end: the link opens it.
-        let anchor = if r.is_some() {
-            format!("exp-{id}")
-        } else {
-            "not-run".to_owned()
-        };
-        let _ = writeln!(
-            h,
-            "<tr><td><a href=\"#{}\">{}</a></td><td>{}</td><td>{}</td><td class=\"{class}\">{status}</td><td class=\"num\">{}</td><td class=\"agreement\">{}</td></tr>",
-            esc(&anchor),
-            esc(id),
-            esc(item),
-            esc(title),
-            esc(&seed),
-            esc(&agreement)
-        );
-    }
+    contents(&mut h, exps, ids, results);
     h.push_str("</tbody>\n</table>\n</div>\n</nav>\n<main>\n");
 
     // The experiments that were run, in the paper's order; then, collapsed, those that were not.
@@ -700,34 +697,79 @@ appear in columns labelled &ldquo;paper&rdquo; or in parentheses, as in the prin
             replay_links(&mut h, listed);
         }
     }
-    let not_run: Vec<&String> = ids.iter().filter(|id| !results.contains_key(*id)).collect();
-    if !not_run.is_empty() {
-        let _ = writeln!(
-            h,
-            "<details id=\"not-run\" class=\"not-run-list\">\n<summary>Not run: {} experiment{} (<code>cargo xtask run ID --out DIR</code>, then <code>cargo xtask report --out DIR</code> again)</summary>",
-            not_run.len(),
-            if not_run.len() == 1 { "" } else { "s" }
-        );
-        for id in not_run {
-            let (title, item) = describe(exps, id);
-            let _ = write!(
-                h,
-                "<section id=\"exp-{}\" class=\"experiment not-run\">\n<h2>{}: {}</h2>\n\
-<p class=\"meta\">Paper item: {}</p>\n<p class=\"status\">not run</p>\n</section>\n",
-                esc(id),
-                esc(id),
-                esc(title),
-                esc(item)
-            );
-        }
-        h.push_str("</details>\n");
-    }
+    not_run_list(&mut h, exps, ids, results);
     let _ = write!(
         h,
         "</main>\n<footer>Generated by <code>cargo xtask report</code> at {}. Each section's files are linked relative to this page.</footer>\n</body>\n</html>\n",
         esc(&now)
     );
     h
+}
+
+/// The page's overview: a row per experiment, its status, its seed and how its numbers
+/// compare with the paper's ([`overview_cell`]).
+fn contents(h: &mut String, exps: &Registry, ids: &[String], results: &BTreeMap<String, Results>) {
+    h.push_str("<nav>\n<div class=\"table-wrap\">\n<table class=\"toc\">\n<caption>Experiments</caption>\n<thead><tr><th>id</th><th>paper item</th><th>title</th><th>status</th><th>seed</th><th>against the paper: consistent / differing, and what is counted</th></tr></thead>\n<tbody>\n");
+    for id in ids {
+        let (title, item) = describe(exps, id);
+        let r = results.get(id);
+        let (status, class) = if r.is_some() {
+            ("run", "status-run")
+        } else {
+            ("not run", "status-not-run")
+        };
+        let seed = r
+            .and_then(|r| r.run.as_ref())
+            .map_or_else(|| "-".to_owned(), |p| p.seed.to_string());
+        // A stub of an experiment not run sits in the closed list at the end: the link opens it.
+        let anchor = if r.is_some() {
+            format!("exp-{id}")
+        } else {
+            "not-run".to_owned()
+        };
+        let _ = writeln!(
+            h,
+            "<tr><td><a href=\"#{}\">{}</a></td><td>{}</td><td>{}</td><td class=\"{class}\">{status}</td><td class=\"num\">{}</td><td class=\"agreement\">{}</td></tr>",
+            esc(&anchor),
+            esc(id),
+            esc(item),
+            esc(title),
+            esc(&seed),
+            esc(&overview_cell(r))
+        );
+    }
+}
+
+/// The experiments not run, collapsed at the end of the page.
+fn not_run_list(
+    h: &mut String,
+    exps: &Registry,
+    ids: &[String],
+    results: &BTreeMap<String, Results>,
+) {
+    let not_run: Vec<&String> = ids.iter().filter(|id| !results.contains_key(*id)).collect();
+    if not_run.is_empty() {
+        return;
+    }
+    let _ = writeln!(
+        h,
+        "<details id=\"not-run\" class=\"not-run-list\">\n<summary>Not run: {} experiment{} (<code>cargo xtask run ID --out DIR</code>, then <code>cargo xtask report --out DIR</code> again)</summary>",
+        not_run.len(),
+        if not_run.len() == 1 { "" } else { "s" }
+    );
+    for id in not_run {
+        let (title, item) = describe(exps, id);
+        let _ = write!(
+            h,
+            "<section id=\"exp-{}\" class=\"experiment not-run\">\n<h2>{}: {}</h2>\n\
+<p class=\"meta\">Paper item: {}</p>\n<p class=\"status\">not run</p>\n</section>\n",
+            esc(id),
+            esc(id),
+            esc(title),
+            esc(item)
+        );
+    }
+    h.push_str("</details>\n");
 }
 
 /// Title and paper item from the registry.
@@ -830,36 +872,57 @@ fn section(
         esc(title),
         esc(item)
     );
-    match &r.run {
-        Some(p) => {
-            let overrides = if p.overrides.is_empty() {
-                "none (defaults)".to_owned()
-            } else {
-                p.overrides
-                    .iter()
-                    .map(|(k, v)| format!("<code>{}={}</code>", esc(k), esc(v)))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            };
-            let config = p.config.as_ref().map_or_else(String::new, |c| {
-                format!("; config file <code>{}</code>", esc(c))
-            });
-            let _ = writeln!(
-                h,
-                "<p class=\"meta provenance\">Produced with seed <b>{}</b>, {} thread{}, overrides: {overrides}{config}; \
-xtask {} (git <code>{}</code>), {}.</p>",
-                p.seed,
-                p.threads,
-                if p.threads == 1 { "" } else { "s" },
-                esc(&p.version),
-                esc(&p.git),
-                esc(&p.date)
-            );
-        }
-        None => h.push_str(
-            "<p class=\"meta provenance\">Provenance not recorded (no run.json: these results predate it).</p>\n",
-        ),
+    provenance_line(h, r.run.as_ref());
+    facts_line(h, r);
+    if reference {
+        h.push_str(REFERENCE_BANNER);
     }
+    for (i, t) in r.tables.iter().enumerate() {
+        table(h, t, reference);
+        if i == 0 {
+            heatmap::heatmaps(h, id, t, r, links, reference);
+        }
+    }
+    figures_and_files(h, id, r);
+    h.push_str("</section>\n");
+}
+
+/// The line that says what produced a section's results: seed, threads, settings, version.
+fn provenance_line(h: &mut String, run: Option<&Provenance>) {
+    let Some(p) = run else {
+        h.push_str(
+            "<p class=\"meta provenance\">Provenance not recorded (no run.json: these results predate it).</p>\n",
+        );
+        return;
+    };
+    let overrides = if p.overrides.is_empty() {
+        "none (defaults)".to_owned()
+    } else {
+        p.overrides
+            .iter()
+            .map(|(k, v)| format!("<code>{}={}</code>", esc(k), esc(v)))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let config = p.config.as_ref().map_or_else(String::new, |c| {
+        format!("; config file <code>{}</code>", esc(c))
+    });
+    let _ = writeln!(
+        h,
+        "<p class=\"meta provenance\">Produced with seed <b>{}</b>, {} thread{}, overrides: {overrides}{config}; \
+xtask {} (git <code>{}</code>), {}.</p>",
+        p.seed,
+        p.threads,
+        if p.threads == 1 { "" } else { "s" },
+        esc(&p.version),
+        esc(&p.git),
+        esc(&p.date)
+    );
+}
+
+/// A section's facts: its trials, tooth engagements and how its numbers compare with the
+/// paper's.
+fn facts_line(h: &mut String, r: &Results) {
     let mut facts = Vec::new();
     if r.trials > 0 {
         facts.push(format!("trials: {}", r.trials));
@@ -873,15 +936,10 @@ xtask {} (git <code>{}</code>), {}.</p>",
     if !facts.is_empty() {
         let _ = writeln!(h, "<p class=\"meta\">{}</p>", esc(&facts.join("; ")));
     }
-    if reference {
-        h.push_str(REFERENCE_BANNER);
-    }
-    for (i, t) in r.tables.iter().enumerate() {
-        table(h, t, reference);
-        if i == 0 {
-            heatmap::heatmaps(h, id, t, r, links, reference);
-        }
-    }
+}
+
+/// A section's figures, each embedded with a link to its file, and the links to all its files.
+fn figures_and_files(h: &mut String, id: &str, r: &Results) {
     for (name, embed) in &r.figures {
         let file = format!("{id}/{name}");
         let _ = writeln!(h, "<figure data-file=\"{}\">", esc(&file));
@@ -911,11 +969,7 @@ xtask {} (git <code>{}</code>), {}.</p>",
             )
         })
         .collect();
-    let _ = write!(
-        h,
-        "<p class=\"files\">Files: {}</p>\n</section>\n",
-        links.join(" ")
-    );
+    let _ = writeln!(h, "<p class=\"files\">Files: {}</p>", links.join(" "));
 }
 
 /// Has this run inputs other than the paper's ([`provenance::stamp`] says so in every title)?
