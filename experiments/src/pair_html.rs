@@ -256,8 +256,7 @@ fn held_release(traj: &Trajectory, e: &contact::Event) -> Option<(f64, f64)> {
         return None;
     }
     held.iter()
-        .skip_while(|s| s.motion == contact::Motion::Held)
-        .next()
+        .find(|s| s.motion != contact::Motion::Held)
         .filter(|s| s.theta_start > e.theta)
         .map(|s| (s.phi_start, s.theta_start))
 }
@@ -755,21 +754,21 @@ pub fn page(
     let (events, released) = event_list(traj, counted, teeth);
     let mut notes = String::new();
     if released {
-        let _ = write!(
+        let _ = writeln!(
             notes,
-            "<p class=\"release-note\">{}</p>\n",
+            "<p class=\"release-note\">{}</p>",
             escape(RELEASE_NOTE)
         );
     }
     if strip.protocol_from.is_some() {
-        let _ = write!(
+        let _ = writeln!(
             notes,
-            "<p class=\"protocol-note\">{}</p>\n",
+            "<p class=\"protocol-note\">{}</p>",
             escape(PROTOCOL_NOTE)
         );
     }
     if let Some(n) = releases_note(traj.events(), mesh.driven().teeth()) {
-        let _ = write!(notes, "<p class=\"releases\">{}</p>\n", escape(&n));
+        let _ = writeln!(notes, "<p class=\"releases\">{}</p>", escape(&n));
     }
     let constants = format!(
         "const S = {};\nconst PHI0 = {:.12};\nconst D = {:.9};\nconst CDOT = {:.5};\n{}",

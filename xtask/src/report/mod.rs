@@ -810,9 +810,9 @@ fn replay_links(h: &mut String, replays: &[Replayed]) {
             }
             match read_results(&r.dir) {
                 Ok(listing) => {
-                    let _ = write!(
+                    let _ = writeln!(
                         listings,
-                        "<details class=\"listing\" id=\"listing-{}\"><summary>{}: the cell's failed trials (<a href=\"{}/failed-trials.csv\">failed-trials.csv</a>)</summary>\n",
+                        "<details class=\"listing\" id=\"listing-{}\"><summary>{}: the cell's failed trials (<a href=\"{}/failed-trials.csv\">failed-trials.csv</a>)</summary>",
                         esc(&r.folder),
                         esc(&r.folder),
                         url_part(&r.folder)
@@ -1027,10 +1027,10 @@ fn cell_lines(cell: &str, wide: bool) -> Vec<String> {
     if let Some((ours, theirs)) = cell.split_once(" (") {
         return vec![ours.to_owned(), format!("({theirs}")];
     }
-    if cell.contains(" [") {
-        if let Some((jams, dis)) = cell.split_once(" / ") {
-            return vec![format!("{jams} /"), dis.to_owned()];
-        }
+    if cell.contains(" [")
+        && let Some((jams, dis)) = cell.split_once(" / ")
+    {
+        return vec![format!("{jams} /"), dis.to_owned()];
     }
     vec![cell.to_owned()]
 }
@@ -1095,7 +1095,7 @@ fn table(h: &mut String, t: &Table, reference: bool) {
     };
     let wide = t.columns.len() > WIDE_COLUMNS;
     if !wide {
-        let _ = write!(h, "<p class=\"table-title\">{}</p>\n", esc(&title));
+        let _ = writeln!(h, "<p class=\"table-title\">{}</p>", esc(&title));
         table_part(h, t, (0..0, 0..t.columns.len()), reference, false);
     } else {
         let lead = label_columns(t);
@@ -1112,9 +1112,9 @@ fn table(h: &mut String, t: &Table, reference: bool) {
                     t.columns[g.end - 1]
                 )
             };
-            let _ = write!(
+            let _ = writeln!(
                 h,
-                "<p class=\"table-title\">{}{}</p>\n",
+                "<p class=\"table-title\">{}{}</p>",
                 esc(&title),
                 esc(&part)
             );
