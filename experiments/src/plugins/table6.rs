@@ -362,11 +362,17 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         ],
         trials: cells().map(|c| c.trials).sum::<u64>() + trains,
         engagements: cells().map(|c| c.engagements).sum::<u64>() + train_engagements,
-        agreement: off_paper.is_empty().then_some(registry::Agreement {
-            consistent: inside,
-            differ: outside,
-            what: "the paper's values inside / outside our 95 % Student-t intervals",
-        }),
+        agreement: agreement(off_paper.is_empty(), (inside, outside)),
         ..Default::default()
+    })
+}
+
+/// How the paper's pointer values compare with ours (`inside` and `outside` our intervals),
+/// where they are compared at all (`judged`: a run on the paper's inputs).
+fn agreement(judged: bool, (inside, outside): (u64, u64)) -> Option<registry::Agreement> {
+    judged.then_some(registry::Agreement {
+        consistent: inside,
+        differ: outside,
+        what: "the paper's values inside / outside our 95 % Student-t intervals",
     })
 }
