@@ -152,6 +152,10 @@ pub struct Tally {
     pub dis_compared: u64,
 }
 
+/// What a per-mesh table's agreement counts ([`Tally::agreement`]): its cells' counts, jams and
+/// disengagements, each judged against the paper's by Fisher's exact two-sample test.
+pub const COUNTS_COMPARED: &str = "counts (jams and disengagements of the cells compared): Fisher's exact test at 5 % does not separate the paper's count from ours / separates them";
+
 impl Tally {
     /// Adds the comparison of one cell with the paper's counts (those it gives).
     pub fn add(&mut self, c: &Counts, paper: (Option<u64>, Option<u64>)) {
@@ -172,6 +176,7 @@ impl Tally {
         registry::Agreement {
             consistent,
             differ: self.jams_compared + self.dis_compared - consistent,
+            what: COUNTS_COMPARED.into(),
         }
     }
 
@@ -558,7 +563,8 @@ mod tests {
             tally.agreement(),
             registry::Agreement {
                 consistent: 1,
-                differ: 2
+                differ: 2,
+                what: COUNTS_COMPARED.into(),
             }
         );
         assert!(

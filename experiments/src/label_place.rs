@@ -1,6 +1,7 @@
 //! Labels of a picture placed clear of each other and of its outlines: each label tries
 //! positions at growing distance from where it belongs, nearest first, and takes the first whose
-//! box crosses no outline and no label already placed. Presentation only.
+//! box crosses no outline and no label already placed, lies within the canvas and, where asked,
+//! outside the areas it must keep off (a gear's body). Presentation only.
 
 use crate::chart::Rect;
 
@@ -34,10 +35,16 @@ const CHAR_WIDTH: f64 = 0.6;
 /// Space kept clear around a label's box, px.
 const PAD: f64 = 2.0;
 
-/// The box of `text` drawn at `(x, y)` (`y` its baseline) with `anchor` and font size `font`
-/// px: the ascent above the baseline is 0.8 of the font size, the descent 0.25.
+/// Distance between the baselines of a label's lines, as a share of the font size.
+pub const LINE_GAP: f64 = 1.2;
+
+/// The box of `text` drawn at `(x, y)` (`y` the first line's baseline) with `anchor` and font
+/// size `font` px, its lines (split at `\n`) [`LINE_GAP`] apart: the ascent above the baseline
+/// is 0.8 of the font size, the descent 0.25.
 pub fn text_box((x, y): (f64, f64), anchor: Anchor, text: &str, font: f64) -> Rect {
-    let w = CHAR_WIDTH * font * text.chars().count() as f64;
+    let chars = text.lines().map(|l| l.chars().count()).max().unwrap_or(0);
+    let lines = text.lines().count().max(1) as f64;
+    let w = CHAR_WIDTH * font * chars as f64;
     let left = match anchor {
         Anchor::Start => x,
         Anchor::Middle => x - 0.5 * w,
@@ -47,8 +54,21 @@ pub fn text_box((x, y): (f64, f64), anchor: Anchor, text: &str, font: f64) -> Re
         x: left,
         y: y - 0.8 * font,
         w,
-        h: 1.05 * font,
+        h: 1.05 * font + (lines - 1.0) * LINE_GAP * font,
     }
+}
+
+/// Whether `p` lies inside the closed polygon through `points` (even-odd rule).
+pub fn inside(points: &[(f64, f64)], p: (f64, f64)) -> bool {
+    let n = points.len();
+    let mut within = false;
+    for i in 0..n {
+        let (a, b) = (points[i], points[(i + 1) % n]);
+        if (a.1 > p.1) != (b.1 > p.1) && p.0 < a.0 + (p.1 - a.1) / (b.1 - a.1) * (b.0 - a.0) {
+            within = !within;
+        }
+    }
+    within
 }
 
 /// `r` grown by `d` on every side.
@@ -103,7 +123,12 @@ pub struct Placer {
     taken: Vec<Rect>,
     /// Outline segments no label may cross.
     lines: Vec<Segment>,
+    /// The canvas every label stays within, if any.
+    canvas: Option<Rect>,
 }
+
+/// What a position outside the canvas counts as: more than anything it could meet inside.
+const OFF_CANVAS: usize = 1_000_000;
 
 /// One label to place: its text, font size, anchor, and the point it belongs at.
 pub struct Label<'a> {
@@ -129,7 +154,19 @@ impl Placer {
         Placer {
             taken: Vec::new(),
             lines,
+            canvas: None,
         }
+    }
+
+    /// Keep every label within `canvas` too.
+    pub fn within(mut self, canvas: Rect) -> Placer {
+        self.canvas = Some(canvas);
+        self
+    }
+
+    /// Keep labels off the segments `lines` too (an axis, an arrow).
+    pub fn keep_off(&mut self, lines: &[Segment]) {
+        self.lines.extend_from_slice(lines);
     }
 
     /// Keep labels off `r` too (a dot, an arrowhead).
@@ -137,8 +174,12 @@ impl Placer {
         self.taken.push(r);
     }
 
-    /// How many outlines and taken boxes the box `r` (padded) meets.
-    fn hits(&self, r: &Rect) -> usize {
+    /// How many outlines and taken boxes the box `r` (padded) meets, and of `areas` it lies
+    /// in; [`OFF_CANVAS`] more where it leaves the canvas.
+    fn hits(&self, r: &Rect, areas: &[&[(f64, f64)]]) -> usize {
+        let off = self.canvas.is_some_and(|c| {
+            r.x < c.x || r.y < c.y || r.x + r.w > c.x + c.w || r.y + r.h > c.y + c.h
+        });
         let r = grown(r, PAD);
         let boxes = self.taken.iter().filter(|t| t.intersects(&r)).count();
         let lines = self
@@ -146,7 +187,9 @@ impl Placer {
             .iter()
             .filter(|(a, b)| segment_meets(&r, *a, *b))
             .count();
-        boxes + lines
+        let centre = (r.x + 0.5 * r.w, r.y + 0.5 * r.h);
+        let within = areas.iter().filter(|a| inside(a, centre)).count();
+        boxes + lines + within + if off { OFF_CANVAS } else { 0 }
     }
 
     /// The position of `label`: the nearest to where it belongs along `directions` (unit
@@ -154,12 +197,23 @@ impl Placer {
     /// every tried position meets something, the one that meets least (the nearest of those).
     /// The label's box is then taken.
     pub fn place(&mut self, label: &Label<'_>, directions: &[(f64, f64)]) -> (f64, f64) {
+        self.place_off(label, directions, &[])
+    }
+
+    /// [`Placer::place`], the label's box kept out of `areas` too (closed polygons, px: a box
+    /// that crosses none of their edges is out of one when its centre is).
+    pub fn place_off(
+        &mut self,
+        label: &Label<'_>,
+        directions: &[(f64, f64)],
+        areas: &[&[(f64, f64)]],
+    ) -> (f64, f64) {
         let mut best = (label.at, usize::MAX);
         'search: for k in 0..=STEPS {
             let d = STEP * k as f64;
             for dir in directions {
                 let p = (label.at.0 + d * dir.0, label.at.1 + d * dir.1);
-                let hits = self.hits(&text_box(p, label.anchor, label.text, label.font));
+                let hits = self.hits(&text_box(p, label.anchor, label.text, label.font), areas);
                 if hits < best.1 {
                     best = (p, hits);
                 }

@@ -280,41 +280,6 @@ fn one_trial(
         study::pair_file::prepare("pair.ron", text)
             .map_err(|e| refused_pair_file(ctx, e, id, cell, t))?;
     }
-    let events = rebuilt.events();
-    let (jam, dis) = if rebuilt.mesh.is_none() {
-        (true, false)
-    } else {
-        Counting::of(spec).tally(&events)
-    };
-    let drove = driving_gear(g, spec, &rebuilt);
-    let mut table = Table::new(
-        format!(
-            "{id} {cell}, trial {t} (seed {seed}): {} [events: {}; drive: {}, {drove} drove{}]",
-            verdict(jam, dis),
-            spec.events.label(),
-            spec.drive.name(),
-            end_tag(spec),
-        ),
-        [
-            "phi - phi0 [deg]",
-            "phi [deg]",
-            "kind",
-            "counted as",
-            "driver tooth",
-            "driven tooth",
-            "theta - theta0 [deg]",
-            "theta [deg]",
-        ],
-    );
-    let counted = |e: &contact::Event| {
-        if spec.events.is_jam(e) {
-            "jam"
-        } else if spec.events.is_disengagement(e) {
-            "disengagement"
-        } else {
-            "-"
-        }
-    };
     // The run `pair.html` and `run pair --config pair.ron` show: its start gives θ0.
     let traj = rebuilt.mesh.as_ref().map(|mesh| {
         mesh.solve(
@@ -323,60 +288,17 @@ fn one_trial(
             Solve::path(),
         )
     });
-    let theta0 = traj.as_ref().map(|tr| tr.theta_at(rebuilt.phi0));
-    let (n1, n2) = rebuilt.mesh.as_ref().map_or((1, 1), |m| {
-        (m.driver().teeth() as i64, m.driven().teeth() as i64)
-    });
-    for e in &events {
-        // An idle start has no teeth: none touches the driven gear.
-        let idle = crate::pair_html::is_idle_start(e);
-        let tooth = |t: i64, n: i64| {
-            if idle {
-                "-".to_string()
-            } else {
-                t.rem_euclid(n).to_string()
-            }
-        };
-        table.row(vec![
-            fmt_f64((e.phi - rebuilt.phi0).to_degrees(), 6),
-            fmt_f64(e.phi.to_degrees(), 6),
-            e.label().into(),
-            counted(e).into(),
-            tooth(e.driver_tooth, n1),
-            tooth(e.driven_tooth, n2),
-            theta0.map_or_else(|| "-".into(), |t0| fmt_f64((e.theta - t0).to_degrees(), 6)),
-            fmt_f64(e.theta.to_degrees(), 6),
-        ]);
-    }
-    table.note(format!(
-        "Cell: {}. Initial driver angle phi0 = {} deg; one full turn of the gear with more teeth ({} deg of the driver). Teeth numbered 0 to N - 1 as in pair.ron's tips_deg; an idle start has none (`-`): no tooth touches the driven gear.",
-        spec.canonical(),
-        fmt_f64(rebuilt.phi0.to_degrees(), 9),
-        fmt_f64(rebuilt.turn.to_degrees(), 6),
-    ));
-    table.note(drive_note(g, spec, &rebuilt));
-    table.note(crate::pair_html::ANGLES_NOTE);
+    let mut table = events_table(g, spec, &rebuilt, traj.as_ref(), (id, cell, t, seed));
     let mut files = Vec::new();
     if let (Some(mesh), Some(traj)) = (&rebuilt.mesh, &traj) {
-        table.note(oracle_note(mesh, traj));
-        let title = format!("{id} {cell}, trial {t} (seed {seed})");
-        let teeth = crate::pair_html::solver_teeth(mesh);
-        files.push(OutputFile::new(
-            "pair.html",
-            crate::pair_html::page(&title, traj, &counted, &teeth),
-        ));
-        for (name, svg) in crate::event_picture::event_pictures(&title, traj, &counted, &teeth) {
-            files.push(OutputFile::new(name, svg));
-        }
-        if let Some(n) = crate::event_picture::pictures_note(events.len()) {
-            table.note(n);
-        }
-        if events
-            .iter()
-            .any(|e| e.kind.is_contact_stop() && e.theta_after != e.theta)
-        {
-            table.note(crate::pair_html::RELEASE_NOTE);
-        }
+        trial_files(
+            &mut table,
+            &mut files,
+            mesh,
+            traj,
+            spec,
+            &format!("{id} {cell}, trial {t} (seed {seed})"),
+        );
     }
     match pair {
         Ok(ron) => {
@@ -390,6 +312,141 @@ fn one_trial(
         files,
         ..Default::default()
     })
+}
+
+/// What the cell's event rule counts an event as: `jam`, `disengagement` or `-`.
+fn counted_by(spec: &CellSpec, e: &contact::Event) -> &'static str {
+    if spec.events.is_jam(e) {
+        "jam"
+    } else if spec.events.is_disengagement(e) {
+        "disengagement"
+    } else {
+        "-"
+    }
+}
+
+/// The trial's events, one a row: where, what, what the rule counts it as, its teeth, its
+/// angles, its size in driven pitches and whether the paper's protocol after the first lock
+/// led to it; titled with the trial and what it did ([`ReplayedTrial`] reads the title back).
+fn events_table(
+    g: &Gearing,
+    spec: &CellSpec,
+    rebuilt: &Rebuilt,
+    traj: Option<&contact::Trajectory>,
+    (id, cell, t, seed): (&str, &str, u64, u64),
+) -> Table {
+    let events = rebuilt.events();
+    let (jam, dis) = if rebuilt.mesh.is_none() {
+        (true, false)
+    } else {
+        Counting::of(spec).tally(&events)
+    };
+    let mut table = Table::new(
+        format!(
+            "{id} {cell}, trial {t} (seed {seed}): {} [events: {}; drive: {}, {} drove{}]",
+            verdict(jam, dis),
+            spec.events.label(),
+            spec.drive.name(),
+            driving_gear(g, spec, rebuilt),
+            end_tag(spec),
+        ),
+        [
+            "phi - phi0 [deg]",
+            "phi [deg]",
+            "kind",
+            "counted as",
+            "driver tooth",
+            "driven tooth",
+            "theta - theta0 [deg]",
+            "theta [deg]",
+            "size",
+            "motion",
+        ],
+    );
+    let theta0 = traj.map(|tr| tr.theta_at(rebuilt.phi0));
+    let (n1, n2) = rebuilt.mesh.as_ref().map_or((1, 1), |m| {
+        (m.driver().teeth() as i64, m.driven().teeth() as i64)
+    });
+    let first = crate::pair_html::first_lock(&events);
+    for (i, e) in events.iter().enumerate() {
+        // An idle start has no teeth: none touches the driven gear.
+        let idle = crate::pair_html::is_idle_start(e);
+        let tooth = |t: i64, n: i64| {
+            if idle {
+                "-".to_string()
+            } else {
+                t.rem_euclid(n).to_string()
+            }
+        };
+        table.row(vec![
+            fmt_f64((e.phi - rebuilt.phi0).to_degrees(), 6),
+            fmt_f64(e.phi.to_degrees(), 6),
+            e.label().into(),
+            counted_by(spec, e).into(),
+            tooth(e.driver_tooth, n1),
+            tooth(e.driven_tooth, n2),
+            theta0.map_or_else(|| "-".into(), |t0| fmt_f64((e.theta - t0).to_degrees(), 6)),
+            fmt_f64(e.theta.to_degrees(), 6),
+            crate::pair_html::size_text(e, n2 as usize),
+            crate::pair_html::motion_word(i, first).into(),
+        ]);
+    }
+    events_notes(&mut table, g, spec, rebuilt, n2 as usize);
+    table
+}
+
+/// The notes under a replayed trial's events: the cell and the start, which gear drove, the
+/// angles, the sizes, the motion after the first lock and the releases.
+fn events_notes(table: &mut Table, g: &Gearing, spec: &CellSpec, rebuilt: &Rebuilt, n2: usize) {
+    let events = rebuilt.events();
+    table.note(format!(
+        "Cell: {}. Initial driver angle phi0 = {} deg; one full turn of the gear with more teeth ({} deg of the driver). Teeth numbered 0 to N - 1 as in pair.ron's tips_deg; an idle start has none (`-`): no tooth touches the driven gear.",
+        spec.canonical(),
+        fmt_f64(rebuilt.phi0.to_degrees(), 9),
+        fmt_f64(rebuilt.turn.to_degrees(), 6),
+    ));
+    table.note(drive_note(g, spec, rebuilt));
+    table.note(crate::pair_html::ANGLES_NOTE);
+    table.note("size: a release's (lock, strike) or a loss of drive's (gap, slip) effect on the driven gear, in driven pitches: how far ahead of the ideal ratio the gear was when drive resumed (behind it, for a loss), and the change of tooth phase.");
+    if crate::pair_html::first_lock(&events).is_some() {
+        table.note(crate::pair_html::MOTION_NOTE);
+        table.note(crate::pair_html::PROTOCOL_NOTE);
+    }
+    if let Some(n) = crate::pair_html::releases_note(&events, n2) {
+        table.note(n);
+    }
+}
+
+/// The files of a replayed trial that ran (`pair.html`, a picture per event), and the notes
+/// they need under the table: the polygon oracle's check, the pictures written, a release.
+fn trial_files(
+    table: &mut Table,
+    files: &mut Vec<OutputFile>,
+    mesh: &contact::Mesh,
+    traj: &contact::Trajectory,
+    spec: &CellSpec,
+    title: &str,
+) {
+    let counted = |e: &contact::Event| counted_by(spec, e);
+    table.note(oracle_note(mesh, traj));
+    let teeth = crate::pair_html::solver_teeth(mesh);
+    files.push(OutputFile::new(
+        "pair.html",
+        crate::pair_html::page(title, traj, &counted, &teeth),
+    ));
+    for (name, svg) in crate::event_picture::event_pictures(title, traj, &counted, &teeth) {
+        files.push(OutputFile::new(name, svg));
+    }
+    if let Some(n) = crate::event_picture::pictures_note(traj.events().len()) {
+        table.note(n);
+    }
+    if traj
+        .events()
+        .iter()
+        .any(|e| e.kind.is_contact_stop() && crate::pair_html::moves_pointer(e))
+    {
+        table.note(crate::pair_html::RELEASE_NOTE);
+    }
 }
 
 /// Settings that do not reach a trial's gears: never the cause of a refused pair file.
@@ -483,13 +540,74 @@ fn oracle_note(mesh: &contact::Mesh, traj: &contact::Trajectory) -> String {
     )
 }
 
+/// The verdicts a replayed trial's title gives, by what the trial did (jammed, disengaged).
+const VERDICTS: [(&str, bool, bool); 4] = [
+    ("jammed and disengaged", true, true),
+    ("jammed", true, false),
+    ("disengaged", false, true),
+    ("neither jammed nor disengaged", false, false),
+];
+
 fn verdict(jam: bool, dis: bool) -> &'static str {
-    match (jam, dis) {
-        (true, true) => "jammed and disengaged",
-        (true, false) => "jammed",
-        (false, true) => "disengaged",
-        (false, false) => "neither jammed nor disengaged",
+    VERDICTS
+        .iter()
+        .find(|v| (v.1, v.2) == (jam, dis))
+        .map_or("?", |v| v.0)
+}
+
+/// A replayed trial as its table's title names it (`table3 D/m3-e3, trial 0 (seed 2025):
+/// disengaged [...]`, as [`replay`] writes it): the experiment, the cell, the trial and what it
+/// did, so that a page linking to the trial can say it is one of the failure it links from.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ReplayedTrial {
+    /// The experiment whose cell it is.
+    pub experiment: String,
+    /// The cell as typed.
+    pub cell: String,
+    /// The trial's index.
+    pub trial: u64,
+    /// Whether the trial jammed (as its table counts it).
+    pub jammed: bool,
+    /// Whether it disengaged.
+    pub disengaged: bool,
+}
+
+impl ReplayedTrial {
+    /// Reads a title [`replay`] wrote for one trial; `None` for any other text.
+    pub fn from_title(title: &str) -> Option<Self> {
+        let (head, rest) = title.split_once(", trial ")?;
+        let (experiment, cell) = head.split_once(' ')?;
+        let (trial, rest) = rest.split_once(' ')?;
+        let (_, rest) = rest.split_once("): ")?;
+        let said = rest.split(" [").next()?;
+        let &(_, jammed, disengaged) = VERDICTS.iter().find(|v| v.0 == said)?;
+        Some(Self {
+            experiment: experiment.to_owned(),
+            cell: cell.to_owned(),
+            trial: trial.parse().ok()?,
+            jammed,
+            disengaged,
+        })
     }
+}
+
+/// What makes trial `t` of cell `cell` of experiment `id` (under the settings of `ctx`) the
+/// trial it is, whichever table counts it: the cell's content, the gearing, how its events are
+/// counted (rule, drive, end) and the seed. Two cells of two tables with the same key (Table
+/// 3's `B/m3-e3` and Table I's `B/40/m3-e3`) have the same trials, index for index, counted
+/// alike, so a replay of one is a replay of the other.
+pub fn trial_key(ctx: &Context, id: &str, cell: &str) -> Result<String, RunError> {
+    let s = crate::settings::cells(ctx, &study::grids::TRIALS)?;
+    let (spec, _) = unchecked_cell_spec(&s, id, cell)?;
+    Ok(format!(
+        "{};gearing={};events={};drive={}{};seed={}",
+        spec.canonical(),
+        s.gearing.file,
+        spec.events.label(),
+        spec.drive.name(),
+        end_tag(&spec),
+        ctx.seed()
+    ))
 }
 
 /// The file of a listing that names every failed trial of the cell, one line each:
@@ -817,6 +935,13 @@ mod tests {
                     jammed.contains(&t),
                     "{id} {cell} trial {t}: {title}"
                 );
+                // The title names the trial and what it did, for the report's links to read.
+                let named = ReplayedTrial::from_title(title).unwrap();
+                assert_eq!(
+                    (named.experiment.as_str(), named.cell.as_str(), named.trial),
+                    (id, cell, t)
+                );
+                assert_eq!(named.jammed, jammed.contains(&t), "{title}");
             }
         }
     }
@@ -871,6 +996,22 @@ mod tests {
             [true, true],
             "the coin picked both gears in 12 trials"
         );
+    }
+
+    /// Table 3's `B/m3-e3` and Table I's `B/40/m3-e3` are one cell, counted alike: one trial
+    /// key; another G, another rule or another seed is another.
+    #[test]
+    fn one_cell_of_two_tables_has_one_trial_key() {
+        let key = |id: &str, cell: &str, sets: &[(&str, &str)], seed: u64| {
+            let ctx = crate::context(id, seed, 1, sets).unwrap().1;
+            trial_key(&ctx, id, cell).unwrap()
+        };
+        let b = key("table3", "B/m3-e3", &[], 2025);
+        assert_eq!(b, key("tableI", "B/40/m3-e3", &[], 2025));
+        assert_ne!(b, key("tableI", "B/70/m3-e3", &[], 2025));
+        assert_ne!(b, key("table3", "B/m3-e3", &[("events", "strict")], 2025));
+        assert_ne!(b, key("table3", "B/m3-e3", &[], 7));
+        assert_eq!(b, key("table3", "B/m3-e3", &[("trials", "12")], 2025));
     }
 
     /// Each grammar is its experiment's: registered in its file, for a registered experiment;

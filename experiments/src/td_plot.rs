@@ -50,26 +50,29 @@ fn value_at(points: &[(f64, f64)], x: f64) -> Option<f64> {
     }
 }
 
-/// The title of the plot of run `name` with `events` events.
-fn title(name: &str, events: usize) -> String {
+/// The title of the plot of run `name` with `events` events, all of them numbered or (`every`
+/// false) as many as there is room for.
+fn title(name: &str, events: usize, every: bool) -> String {
+    let numbered = if every {
+        "numbered as in the event table"
+    } else {
+        "numbered as in the event table where there is room (event-log.csv lists every one)"
+    };
     match events {
         0 => format!(
             "Theoretical Difference of {name} (sections 2-3): no event, the driven gear driven throughout"
         ),
-        1 => format!(
-            "Theoretical Difference of {name} (sections 2-3): its one event, numbered as in the event table"
-        ),
-        n => format!(
-            "Theoretical Difference of {name} (sections 2-3): its {n} events, numbered as in the event table"
-        ),
+        1 => format!("Theoretical Difference of {name} (sections 2-3): its one event, {numbered}"),
+        n => format!("Theoretical Difference of {name} (sections 2-3): its {n} events, {numbered}"),
     }
 }
 
 /// `pair.svg`: the Theoretical Difference `td` (points of φ − φ0 and TD, in degrees) of run
 /// `traj` of `name`, drawn as a line without markers; each event a marker on the curve in the
 /// style of its kind (what `counted` counts it as), and a numbered tick in a band above the
-/// data, the numbers left out where they would crowd (the event table and `event-log.csv` have
-/// every one).
+/// data, every number inside the frame and apart from the others (in as many rows as they
+/// need, on a leader where one had to move; the title says so if some had to be left out); the
+/// stretch after the first lock greyed as the paper's protocol.
 pub fn td_plot(
     name: &str,
     traj: &Trajectory,
@@ -97,15 +100,33 @@ pub fn td_plot(
         label: "Theoretical Difference of the run (line; sampled)",
         points: td.to_vec(),
     }];
-    Plot::new(
-        &title(name, marks.len()),
-        "driver angle from the start phi - phi0 [deg]",
-        "Theoretical Difference [deg]",
-        &series,
-    )
-    .plain_lines()
-    .marks(&marks, &kinds)
-    .svg()
+    let first = crate::pair_html::first_lock(traj.events());
+    let protocol = first.map(|f| {
+        format!(
+            "grey: after the first lock (event {}), the paper's protocol - the driven gear let go to the next free position and driven on - not a physical motion",
+            f + 1
+        )
+    });
+    let drawn = |title: &str| {
+        let plot = Plot::new(
+            title,
+            "driver angle from the start phi - phi0 [deg]",
+            "Theoretical Difference [deg]",
+            &series,
+        )
+        .plain_lines()
+        .marks(&marks, &kinds);
+        match (first, &protocol) {
+            (Some(f), Some(label)) => plot.shaded_from(marks[f].x, label).svg(),
+            _ => plot.svg(),
+        }
+    };
+    let svg = drawn(&title(name, marks.len(), true))?;
+    if crate::chart::every_mark_numbered(&svg, marks.len()) {
+        Ok(svg)
+    } else {
+        drawn(&title(name, marks.len(), false))
+    }
 }
 
 #[cfg(test)]

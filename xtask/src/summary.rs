@@ -66,7 +66,7 @@ impl Row {
                 seconds,
                 trials: r.trials,
                 engagements: r.engagements,
-                agreement: r.agreement,
+                agreement: r.agreement.clone(),
                 status: Status::Ok,
             },
             Err(e) => Row {
@@ -84,10 +84,11 @@ impl Row {
 /// Sum of the agreements of the rows that judge it; `None` when none does.
 fn total_agreement(rows: &[Row]) -> Option<Agreement> {
     rows.iter()
-        .filter_map(|r| r.agreement)
+        .filter_map(|r| r.agreement.clone())
         .reduce(|a, b| Agreement {
             consistent: a.consistent + b.consistent,
             differ: a.differ + b.differ,
+            what: if a.what == b.what { a.what } else { "".into() },
         })
 }
 
@@ -121,7 +122,7 @@ pub fn table(rows: &[Row]) -> Table {
             fmt_f64(r.seconds, 2),
             r.trials.to_string(),
             count_cell(r.engagements),
-            agreement_cell(r.agreement),
+            agreement_cell(r.agreement.clone()),
             r.status.word().into(),
         ]);
     }
@@ -215,6 +216,7 @@ mod tests {
             agreement: Some(Agreement {
                 consistent: 17,
                 differ: 43,
+                what: "".into(),
             }),
             ..Default::default()
         };
@@ -224,6 +226,7 @@ mod tests {
             agreement: Some(Agreement {
                 consistent: 1,
                 differ: 3,
+                what: "".into(),
             }),
             ..Default::default()
         };

@@ -53,6 +53,7 @@ impl registry::Experiment for Fine {
             agreement: Some(registry::Agreement {
                 consistent: 2,
                 differ: 1,
+                what: "numbers of a test".into(),
             }),
             ..Default::default()
         })

@@ -5,7 +5,7 @@
 
 mod support;
 
-use support::{Scratch, stderr, stdout, xtask};
+use support::{Scratch, browser, chromium_or_skip, stderr, stdout, xtask};
 
 #[test]
 fn help_states_every_convention_of_the_pair_file() {
@@ -122,7 +122,7 @@ fn a_run_writes_the_check_picture_absolute_angles_and_the_users_tooth_numbers() 
     assert_eq!(
         events.next(),
         Some(
-            "phi_minus_phi0_deg,kind,counted_as,driver_tooth,driven_tooth,theta_minus_theta0_deg,theta_after_minus_theta0_deg,lost_motion_pitches,resumed,phase_shift,lag_deg,wedge_angle_deg,phi_abs_deg,theta_abs_deg,theta_after_abs_deg"
+            "phi_minus_phi0_deg,kind,counted_as,driver_tooth,driven_tooth,theta_minus_theta0_deg,theta_after_minus_theta0_deg,lost_motion_pitches,resumed,phase_shift,lag_deg,wedge_angle_deg,phi_abs_deg,theta_abs_deg,theta_after_abs_deg,ahead_of_ideal_driven_pitches,after_first_lock,release_phi_minus_phi0_deg,release_theta_abs_deg"
         )
     );
     let first: Vec<&str> = events.next().unwrap().split(',').collect();
@@ -161,5 +161,123 @@ fn a_start_that_cannot_be_taken_is_refused_naming_the_field() {
         assert!(line.contains(expected), "{start}: {err}");
         assert!(!err.contains("panicked"), "{err}");
         assert!(!s.0.join("out").exists(), "{start}: results were written");
+    }
+}
+
+/// The script run on a page holding one `pair-check.svg`: one line per problem a reader would
+/// see in the drawing (above the insets), then `done`: a label leaving the canvas, crossing a
+/// tooth, lying on a gear's body (a tooth label), struck through by an axis or by a turning
+/// arrow, or overlapping another label.
+const CHECK_SCRIPT: &str = r#"
+const svg = document.querySelector("svg");
+const W = svg.viewBox.baseVal.width;
+const problems = [];
+const poly = id => Array.from(svg.getElementById(id).points).map(p => [p.x, p.y]);
+const edges = pts => pts.map((p, i) => [p, pts[(i + 1) % pts.length]]);
+const gears = [poly("driver-outline"), poly("driven-outline")];
+const teeth = edges(gears[0]).concat(edges(gears[1]));
+const segs = sel => Array.from(svg.querySelectorAll(sel)).flatMap(e => e.tagName === "line"
+  ? [[[e.x1.baseVal.value, e.y1.baseVal.value], [e.x2.baseVal.value, e.y2.baseVal.value]]]
+  : edges(Array.from(e.points).map(p => [p.x, p.y])).slice(0, -1));
+const axes = segs("line.axis"), arrows = segs("polyline.turn");
+// Does the segment a-b meet the box r (Liang-Barsky)?
+function meets(r, a, b) {
+  const dx = b[0] - a[0], dy = b[1] - a[1];
+  let t0 = 0, t1 = 1;
+  for (const [p, q] of [[-dx, a[0] - r.x], [dx, r.x + r.width - a[0]], [-dy, a[1] - r.y], [dy, r.y + r.height - a[1]]]) {
+    if (p === 0) { if (q < 0) return false; } else { const t = q / p; if (p < 0) t0 = Math.max(t0, t); else t1 = Math.min(t1, t); }
+  }
+  return t0 <= t1;
+}
+function inside(pts, x, y) {
+  let w = false;
+  for (let i = 0, j = pts.length - 1; i < pts.length; j = i++) {
+    const [a, b] = [pts[i], pts[j]];
+    if ((a[1] > y) !== (b[1] > y) && x < a[0] + (y - a[1]) / (b[1] - a[1]) * (b[0] - a[0])) w = !w;
+  }
+  return w;
+}
+const labels = Array.from(svg.querySelectorAll("text.label")).map(t => [t.dataset.label, t.getBBox()]);
+labels.forEach(([name, r], i) => {
+  if (r.x < 0 || r.x + r.width > W || r.y < 0) problems.push(name + " leaves the canvas");
+  if (teeth.some(([a, b]) => meets(r, a, b))) problems.push(name + " crosses a tooth");
+  if (name.includes("tooth") && gears.some(g => inside(g, r.x + r.width / 2, r.y + r.height / 2))) problems.push(name + " lies on a gear");
+  if (axes.some(([a, b]) => meets(r, a, b))) problems.push(name + " is struck through by an axis");
+  if (arrows.some(([a, b]) => meets(r, a, b))) problems.push(name + " is crossed by a turning arrow");
+  labels.slice(i + 1).forEach(([other, o]) => {
+    if (r.x < o.x + o.width && o.x < r.x + r.width && r.y < o.y + o.height && o.y < r.y + r.height) problems.push(name + " overlaps " + other);
+  });
+});
+problems.push("labels " + labels.length);
+document.getElementById("result").textContent = problems.join("\n");
+document.getElementById("status").textContent = "done";
+"#;
+
+/// A pair of `n1` and `n2` teeth on the mechanism's module (tip radius about a quarter of a
+/// millimetre a tooth, h = 1.1 mm), both arbors a little off their tip-circle centres.
+fn pair_of(n1: u32, n2: u32) -> String {
+    let tip = |n: u32| 0.24 * f64::from(n) + 0.55;
+    format!(
+        "(driver: (teeth: {n1}, tip_radius: {}, root_radius: {}, eccentricity: Some((0.05, 0.02))), driven: (teeth: {n2}, tip_radius: {}, root_radius: {}, eccentricity: Some((0.1, 0.05))), clearance_percent: Some(40.0), start_deg: 0.0, run_deg: Some(30.0))",
+        tip(n1),
+        tip(n1) - 1.1,
+        tip(n2),
+        tip(n2) - 1.1
+    )
+}
+
+/// `pair-check.svg` of a small driver on a large wheel (27:223, as Table 3's m3-e3), a large
+/// driver on a small wheel (127:32, d2-e2), a pinion driving (15:53, m2-n1) and a pinion driven
+/// (48:15), laid out in a browser: every label on the canvas, off the teeth (a tooth's label off
+/// both gears' bodies), clear of the axes, the turning arrows and the other labels.
+#[test]
+fn check_picture_labels_stay_on_the_canvas_and_off_the_teeth() {
+    let Some(chrome) = chromium_or_skip() else {
+        return;
+    };
+    let s = Scratch::new("pair-check-labels");
+    for (n1, n2) in [(27, 223), (127, 32), (15, 53), (48, 15)] {
+        let name = format!("{n1}-{n2}");
+        std::fs::write(s.path(&format!("{name}.ron")), pair_of(n1, n2)).unwrap();
+        let out = s.path(&format!("out-{name}"));
+        let o = xtask(&[
+            "run",
+            "pair",
+            "-q",
+            "--config",
+            &s.path(&format!("{name}.ron")),
+            "--out",
+            &out,
+        ]);
+        assert!(o.status.success(), "{name}: {}", stderr(&o));
+        let svg =
+            std::fs::read_to_string(s.0.join(format!("out-{name}/pair/pair-check.svg"))).unwrap();
+        let page = s.0.join(format!("{name}.html"));
+        std::fs::write(
+            &page,
+            format!("<!doctype html><html><body style=\"margin:0\">{svg}<pre id=\"result\"></pre><p id=\"status\">not run</p><script>{CHECK_SCRIPT}</script></body></html>"),
+        )
+        .unwrap();
+        let url = format!("file://{}", page.display());
+        let dom = browser::dump_dom(&chrome, &s.0.join(format!(".chromium-{name}")), &url);
+        assert!(
+            dom.contains("<p id=\"status\">done</p>"),
+            "{name}: the script did not finish"
+        );
+        let start = dom.find("<pre id=\"result\">").unwrap() + "<pre id=\"result\">".len();
+        let result = &dom[start..start + dom[start..].find("</pre>").unwrap()];
+        let lines: Vec<&str> = result.lines().collect();
+        assert_eq!(lines.len(), 1, "{name}: {result}");
+        let labels: usize = lines[0].trim_start_matches("labels ").parse().unwrap();
+        assert!(labels >= 12, "{name}: {labels} labels");
+        let png = s.0.join(format!("{name}.png"));
+        browser::screenshot(
+            &chrome,
+            &s.0.join(format!(".chromium-{name}-shot")),
+            &url,
+            &png,
+            (1000, 1200),
+        );
+        browser::Pixels::read(&png).assert_not_blank(&name, 8, 100);
     }
 }

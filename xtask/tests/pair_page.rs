@@ -233,18 +233,20 @@ fn each_event_link_draws_the_event_itself() {
     assert!(o.status.success(), "{}", stderr(&o));
     let rerun = s.0.join("rerun/pair");
     let log = std::fs::read_to_string(rerun.join("event-log.csv")).unwrap();
-    // (kind, phi - phi0, theta absolute, theta after absolute)
-    let events: Vec<(String, f64, f64, f64)> = log
+    // (kind, phi - phi0, theta absolute, where a release let the gear go: phi - phi0 and theta
+    // absolute, the event's own where it has none)
+    let events: Vec<(String, f64, f64, (f64, f64))> = log
         .lines()
         .skip(1)
         .map(|l| {
             let c: Vec<&str> = l.split(',').collect();
-            (
-                c[1].to_owned(),
-                c[0].parse().unwrap(),
-                c[13].parse().unwrap(),
-                c[14].parse().unwrap(),
-            )
+            let num = |i: usize| c[i].parse::<f64>().unwrap();
+            let release = if c[17].is_empty() {
+                (num(0), num(14))
+            } else {
+                (num(17), num(18))
+            };
+            (c[1].to_owned(), num(0), num(13), release)
         })
         .collect();
     let kinds: Vec<&str> = events.iter().map(|e| e.0.as_str()).collect();
@@ -268,17 +270,21 @@ fn each_event_link_draws_the_event_itself() {
                 .trim_end_matches("-release")
                 .parse()
                 .unwrap();
-            let (kind, event_phi, event_theta, after) = &events[n - 1];
+            let (kind, event_phi, event_theta, (release_phi, after)) = &events[n - 1];
             let release = link.ends_with("-release");
-            let want = if release { after } else { event_theta };
+            let (want_phi, want) = if release {
+                (release_phi, after)
+            } else {
+                (event_phi, event_theta)
+            };
             assert!(
                 (theta - want).abs() < 1e-6 && (expected - want).abs() < 1e-6,
                 "{link} ({kind}): drawn theta {theta}, the event's {want}"
             );
             assert!((angle + theta).abs() < 1e-9, "{link}: rotation {angle}");
             assert!(
-                (phi - event_phi).abs() < 1e-6,
-                "{link}: phi {phi}, {event_phi}"
+                (phi - want_phi).abs() < 1e-6,
+                "{link}: phi {phi}, {want_phi}"
             );
             assert_eq!(drawn, wanted, "{link}: every contact drawn");
             if kind == "lock" && !release {

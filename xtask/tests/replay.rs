@@ -452,3 +452,188 @@ fn a_listing_writes_every_failed_trial() {
         "tables.json cuts the list short"
     );
 }
+
+/// The cells of the markdown table row `row`, trimmed.
+fn cells(row: &str) -> Vec<&str> {
+    row.trim_matches('|').split('|').map(str::trim).collect()
+}
+
+/// The script appended to a copy of a replayed trial's page: the colour of an event before
+/// and after the first lock, the greyed stretch of the TD strip against where the first lock
+/// is drawn, and the release links.
+const PROTOCOL_SCRIPT: &str = r#"
+(function () {
+  const out = [];
+  const items = document.querySelectorAll('#events > li');
+  const colour = li => getComputedStyle(li.querySelector('a.event')).color;
+  out.push(['before', colour(items[0])].join('\t'));
+  out.push(['after', colour(document.querySelector('#events > li.protocol'))].join('\t'));
+  out.push(['protocol-items', document.querySelectorAll('#events > li.protocol').length, items.length].join('\t'));
+  out.push(['releases', document.querySelectorAll('#events a.release').length].join('\t'));
+  const shade = document.querySelector('#plot rect.protocol');
+  const b = shade.getBBox();
+  out.push(['shade', b.x, b.width, getComputedStyle(shade).fill, PX0 + PW * PROTOCOL_FROM / PHI_MAX].join('\t'));
+  document.getElementById('protocol-result').textContent = out.join('\n');
+})();
+"#;
+
+/// Table 3's D/d2-e2, trial 4 locks 58 times, each released by letting the driven gear go to
+/// the next free position (the paper's protocol), which takes its Theoretical Difference to
+/// thousands of degrees. The replay and `run pair` mark the motion after the first lock as that
+/// protocol (a motion column, a note, the Theoretical Difference greyed from there in pair.svg
+/// and pair.html, the events after it greyed), and size every release and tooth-phase shift in
+/// driven pitches - the held lock of event 59 too, 29 teeth on; the table's counts stay.
+#[test]
+fn motion_after_the_first_lock_is_marked_as_the_papers_protocol() {
+    let s = Scratch::new("replay-protocol");
+    let out = s.path("out");
+    let text = succeeded(&["replay", "table3", "D/d2-e2", "4", "-q", "--out", &out]);
+    assert!(text.contains("): jammed ["), "{text}");
+    let header = text
+        .lines()
+        .find(|l| l.starts_with("| phi - phi0"))
+        .unwrap();
+    let columns = cells(header);
+    let (size, motion) = (
+        columns
+            .iter()
+            .position(|c| *c == "size")
+            .expect("a size column"),
+        columns
+            .iter()
+            .position(|c| *c == "motion")
+            .expect("a motion column"),
+    );
+    let rows: Vec<Vec<&str>> = text
+        .lines()
+        .filter(|l| {
+            l.starts_with("| ") && l.contains(" | lock ")
+                || l.contains(" | gap ")
+                || l.contains(" | slip ")
+        })
+        .map(cells)
+        .collect();
+    assert_eq!(rows.len(), 74, "{text}");
+    assert!(rows[0][motion].contains("first lock"), "{:?}", rows[0]);
+    for r in &rows[1..] {
+        assert_eq!(r[motion], "protocol (after the first lock)", "{r:?}");
+    }
+    let locks: Vec<&Vec<&str>> = rows.iter().filter(|r| r[2] == "lock").collect();
+    assert_eq!(locks.len(), 58);
+    for r in &locks {
+        assert!(
+            r[size].contains("driven pitches") && r[size].contains("tooth phase"),
+            "{r:?}"
+        );
+    }
+    // Event 59: held, then let go 29 teeth on.
+    assert!(
+        rows[58][size].starts_with("held ")
+            && rows[58][size].contains("28.95 driven pitches ahead")
+            && rows[58][size].contains("tooth phase +29"),
+        "{:?}",
+        rows[58]
+    );
+    for words in [
+        "After the first lock the motion is the paper's protocol",
+        "Releases and tooth-phase shifts",
+    ] {
+        assert!(text.contains(words), "`{words}` missing:\n{text}");
+    }
+    let dir = s.0.join("out/replay-table3-D-d2-e2-4");
+    let caption = std::fs::read_to_string(dir.join("event-59-lock.svg")).unwrap();
+    for words in ["28.95 driven pitches", "After the trial's first lock"] {
+        assert!(
+            caption.contains(words),
+            "event 59's caption lacks `{words}`"
+        );
+    }
+    // The same trial through `run pair`: its statistics up to the first lock, the greyed TD,
+    // and the event log's sizes.
+    let rerun = succeeded(&[
+        "run",
+        "pair",
+        "-q",
+        "--config",
+        dir.join("pair.ron").to_str().unwrap(),
+        "--out",
+        &s.path("rerun"),
+    ]);
+    assert!(
+        rerun.contains("The run's first lock is at phi - phi0 = 3.102385 deg")
+            && rerun.contains("up to it, sigma = "),
+        "{rerun}"
+    );
+    let pair = s.0.join("rerun/pair");
+    let svg = std::fs::read_to_string(pair.join("pair.svg")).unwrap();
+    assert!(
+        svg.contains("class=\"shade\"") && svg.contains("after the first lock (event 1)"),
+        "pair.svg"
+    );
+    let log = std::fs::read_to_string(pair.join("event-log.csv")).unwrap();
+    let head: Vec<&str> = log.lines().next().unwrap().split(',').collect();
+    let col = |n: &str| head.iter().position(|c| *c == n).unwrap();
+    let line59: Vec<&str> = log.lines().nth(59).unwrap().split(',').collect();
+    let ahead: f64 = line59[col("ahead_of_ideal_driven_pitches")]
+        .parse()
+        .unwrap();
+    assert!((ahead - 28.95).abs() < 0.01, "{line59:?}");
+    assert_eq!(line59[col("after_first_lock")], "true");
+    assert!(
+        !line59[col("release_phi_minus_phi0_deg")].is_empty(),
+        "{line59:?}"
+    );
+
+    let Some(chrome) = support::chromium_or_skip() else {
+        return;
+    };
+    let page = std::fs::read_to_string(dir.join("pair.html")).unwrap();
+    let checked = page.replace(
+        "</body>",
+        &format!("<pre id=\"protocol-result\"></pre><script>{PROTOCOL_SCRIPT}</script></body>"),
+    );
+    std::fs::write(dir.join("check.html"), checked).unwrap();
+    let url = format!("file://{}", dir.join("check.html").display());
+    let dom = support::browser::dump_dom(&chrome, &s.0.join(".chromium"), &url);
+    let start =
+        dom.find("<pre id=\"protocol-result\">").unwrap() + "<pre id=\"protocol-result\">".len();
+    let result = &dom[start..start + dom[start..].find("</pre>").unwrap()];
+    let lines: Vec<Vec<&str>> = result.lines().map(|l| l.split('\t').collect()).collect();
+    let get = |k: &str| {
+        lines
+            .iter()
+            .find(|l| l[0] == k)
+            .unwrap_or_else(|| panic!("{k}: {result}"))
+    };
+    assert_ne!(
+        get("before")[1],
+        get("after")[1],
+        "the protocol's events are not greyed: {result}"
+    );
+    assert_eq!(get("after")[1], "rgb(136, 136, 136)", "{result}");
+    assert_eq!(get("protocol-items")[1..], ["73", "74"], "{result}");
+    assert_eq!(
+        get("releases")[1],
+        "58",
+        "every lock's release has its line: {result}"
+    );
+    let shade = get("shade");
+    let (x, w, at): (f64, f64, f64) = (
+        shade[1].parse().unwrap(),
+        shade[2].parse().unwrap(),
+        shade[4].parse().unwrap(),
+    );
+    assert!(
+        (x - at).abs() < 0.5 && w > 100.0,
+        "the grey starts at the first lock: {result}"
+    );
+    let png = s.0.join("protocol.png");
+    support::browser::screenshot(
+        &chrome,
+        &s.0.join(".chromium-shot"),
+        &url,
+        &png,
+        (1000, 1400),
+    );
+    support::browser::Pixels::read(&png).assert_not_blank("protocol.png", 16, 100);
+}

@@ -13,7 +13,7 @@
 use std::path::{Path, PathBuf};
 
 mod support;
-use support::{Scratch, browser, chromium, stderr, stdout, xtask};
+use support::{Scratch, browser, chromium, chromium_or_skip, stderr, stdout, xtask};
 
 /// The cheap experiments whose results the page is built from.
 const RUN: [&str; 2] = ["fig2", "fig3"];
@@ -281,6 +281,9 @@ const HEATMAP_SCRIPT: &str = r#"
       out.push(['link', t.dataset.table, h, inPage].join('\t'));
     });
   });
+  const key = document.querySelector('p.heat-key');
+  const swatch = key.querySelector('span.hm.consistent'), green = document.querySelector('table.heatmap td.hm.consistent');
+  out.push(['key', getComputedStyle(swatch).backgroundColor === getComputedStyle(green).backgroundColor, key.textContent.includes('however many trials failed')].join('\t'));
   out.push(['order'].concat(Array.from(document.querySelectorAll('section.experiment')).map(e => e.id + (e.classList.contains('run') ? ':run' : ''))).join('\t'));
   const widest = Math.max(...Array.from(document.querySelectorAll('main, nav, section, .table-wrap')).map(e => e.getBoundingClientRect().right));
   out.push(['width', document.documentElement.scrollWidth, window.innerWidth, Math.round(widest)].join('\t'));
@@ -315,7 +318,7 @@ fn per_mesh_tables_show_as_heatmaps_linking_differing_cells_to_their_replays() {
     std::fs::write(trial.join("pair.html"), "<html></html>\n").unwrap();
     std::fs::write(
         trial.join("tables.json"),
-        serde_json::json!({"tables": []}).to_string(),
+        serde_json::json!({"tables": [{"title": "table3 B/m3-e3, trial 7 (seed 2025): jammed [events: idle-rotation(pitches=1); drive: listed, m3 drove]", "columns": [], "rows": []}]}).to_string(),
     )
     .unwrap();
     std::fs::write(
@@ -365,7 +368,7 @@ fn per_mesh_tables_show_as_heatmaps_linking_differing_cells_to_their_replays() {
         t3.contains("<a href=\"replay-table3-B-m3-e3-7/pair.html\">141 | 168</a>"),
         "{t3}"
     );
-    assert!(t3.contains("<li id=\"replay-table3-D-b2-c1-failed\"><b>D/b2-c1</b>: <code>cargo xtask replay table3 D/b2-c1 --seed 2025</code>"), "{t3}");
+    assert!(t3.contains(&format!("<li id=\"replay-table3-D-b2-c1-failed\"><b>D/b2-c1</b>: <code>cargo xtask replay table3 D/b2-c1 --seed 2025 --out {}</code>", out.display())), "{t3}");
     let t_i = section("tableI");
     assert!(
         !t_i.contains("class=\"heatmap\""),
@@ -455,6 +458,10 @@ fn per_mesh_tables_show_as_heatmaps_linking_differing_cells_to_their_replays() {
             inpage => assert_eq!(inpage, "true", "{} has no target on the page", l[2]),
         }
     }
+    // The key names the consistent cells' colour and says what it means: agreement, not a
+    // mesh that works.
+    let key = lines.iter().find(|l| l[0] == "key").unwrap();
+    assert_eq!(key[1..], ["true", "true"], "{result}");
     // The report's order as a reader meets it: the paper's items in the paper's order (Table 3
     // before Table I, its appendix), the results before the experiments not run.
     let order = lines.iter().find(|l| l[0] == "order").unwrap();
@@ -482,6 +489,219 @@ fn per_mesh_tables_show_as_heatmaps_linking_differing_cells_to_their_replays() {
     assert!(
         scroll <= window && widest <= window,
         "the page is wider than its window: {result}"
+    );
+    scratch.keep(false);
+}
+
+/// The script appended to a copy of the page: one line per linked heatmap cell (table, kind,
+/// row, mesh, link), and where each in-page link's target is.
+const LINKS_SCRIPT: &str = r#"
+(function () {
+  const out = [];
+  document.querySelectorAll('table.heatmap').forEach(function (t) {
+    const meshes = Array.from(t.querySelectorAll('thead th')).map(th => th.textContent);
+    t.querySelectorAll('tbody tr').forEach(function (tr) {
+      const row = tr.querySelector('th').textContent;
+      tr.querySelectorAll('td').forEach(function (td, i) {
+        const a = td.querySelector('a[href]');
+        if (!a) return;
+        const h = a.getAttribute('href');
+        const target = h.startsWith('#') ? !!document.getElementById(decodeURIComponent(h.slice(1))) : 'file';
+        out.push(['cell', t.dataset.table, t.dataset.kind, row, meshes[i + 1], h, target].join('\t'));
+      });
+    });
+  });
+  document.querySelectorAll('ul.replay-commands code').forEach(c => out.push(['command', c.textContent].join('\t')));
+  // A table cut off at the right: wider than its box, the rest hidden.
+  document.querySelectorAll('.table-wrap').forEach(w => {
+    if (w.scrollWidth > w.clientWidth + 1) out.push(['cut', w.previousElementSibling.textContent.slice(0, 80) + ': ' + w.scrollWidth + ' > ' + w.clientWidth].join('\t'));
+  });
+  document.getElementById('link-result').textContent = out.join('\n');
+  document.getElementById('link-status').textContent = 'done';
+})();
+"#;
+
+/// The heatmap cells with links, as [`LINKS_SCRIPT`] reads them in the browser: (table, kind,
+/// row, mesh, href), and the commands listed.
+fn linked_cells(chrome: &Path, out: &Path, page: &str) -> (Vec<[String; 5]>, Vec<String>) {
+    let checked = page.replace(
+        "</body>",
+        &format!(
+            "<pre id=\"link-result\"></pre><p id=\"link-status\">not run</p><script>{LINKS_SCRIPT}</script></body>"
+        ),
+    );
+    std::fs::write(out.join("links.html"), checked).unwrap();
+    let url = format!("file://{}", out.join("links.html").display());
+    let dom = browser::headless(
+        chrome,
+        &out.join(".chromium-links"),
+        &[
+            "--window-size=1280,4000".to_owned(),
+            "--dump-dom".to_owned(),
+        ],
+        &url,
+    );
+    assert!(
+        dom.contains("<p id=\"link-status\">done</p>"),
+        "script did not finish"
+    );
+    let start = dom.find("<pre id=\"link-result\">").unwrap() + "<pre id=\"link-result\">".len();
+    let result = &dom[start..start + dom[start..].find("</pre>").unwrap()];
+    let result = result
+        .replace("&amp;", "&")
+        .replace("&lt;", "<")
+        .replace("&gt;", ">");
+    let mut cells = Vec::new();
+    let mut commands = Vec::new();
+    for l in result.lines() {
+        let f: Vec<&str> = l.split('\t').collect();
+        match f[0] {
+            "cut" => panic!("a table cut off at the right of a 1280 px window: {}", f[1]),
+            "cell" => {
+                assert_ne!(f[6], "false", "{l}: the link has no target on the page");
+                cells.push([f[1], f[2], f[3], f[4], f[5]].map(str::to_owned));
+            }
+            _ => commands.push(f[1].to_owned()),
+        }
+    }
+    let png = out.join("links.png");
+    browser::screenshot(
+        chrome,
+        &out.join(".chromium-links-shot"),
+        &url,
+        &png,
+        (1280, 4000),
+    );
+    browser::Pixels::read(&png).assert_not_blank("links.png", 32, 500);
+    (cells, commands)
+}
+
+/// What a replayed trial did, from its table's title: (jammed, disengaged).
+fn trial_did(out: &Path, href: &str) -> (bool, bool) {
+    let folder = href.trim_end_matches("/pair.html");
+    let tables: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(out.join(folder).join("tables.json")).unwrap(),
+    )
+    .unwrap();
+    let title = tables["tables"][0]["title"].as_str().unwrap();
+    let said = title
+        .split("): ")
+        .nth(1)
+        .unwrap()
+        .split(" [")
+        .next()
+        .unwrap();
+    (
+        said.starts_with("jammed"),
+        said.ends_with("disengaged") && !said.starts_with("neither"),
+    )
+}
+
+/// Table 3 at its defaults, three of its trials replayed (D/m3-e3 trial 0 an idle start that
+/// only disengages, D/d2-e2 trial 4 that only jams, B/m3-e3 trial 1 that jams) and a Table I
+/// whose B/40/m3-e3 is Table 3's B/m3-e3: every heatmap cell with a link to a trial links one
+/// that had the heatmap's failure; a cell whose trial with that failure is there links to it,
+/// a consistent cell too and across tables; the commands the page prints carry its `--out`;
+/// no table, Wilson intervals and Table I's heatmaps among them, is cut off at the right of a
+/// 1280 px window.
+#[test]
+fn heatmap_cells_link_replayed_trials_that_had_their_failure() {
+    let Some(chrome) = chromium_or_skip() else {
+        return;
+    };
+    let mut scratch = Scratch::new("report-links");
+    let out = scratch.0.clone();
+    let o = out.to_str().unwrap();
+    let ran = xtask(&["run", "table3", "-q", "--threads", "2", "--out", o]);
+    assert!(ran.status.success(), "{}", stderr(&ran));
+    for args in [
+        &["D/m3-e3", "0"][..],
+        &["D/d2-e2", "4"],
+        &["B/m3-e3", "1"],
+        &["D/d2-e2"],
+    ] {
+        let mut a = vec!["replay", "table3", "-q", "--out", o];
+        a.extend(args);
+        let r = xtask(&a);
+        assert!(r.status.success(), "{a:?}: {}", stderr(&r));
+    }
+    // Table I's B/40 row, as a run at the defaults prints it, on the trials of Table 3's B row.
+    let mut columns = vec!["case".to_owned(), "G [%]".to_owned()];
+    columns.extend(MESHES.iter().map(|m| (*m).to_owned()));
+    let mut row = vec!["B".to_owned(), "40".to_owned()];
+    // Cells as wide as Table I's widest, so that the page must fit them.
+    row.extend(MESHES.iter().map(|m| {
+        if *m == "m3-e3" {
+            "141*/0 (168/0)"
+        } else {
+            "200*/161* (151/49)"
+        }
+        .to_owned()
+    }));
+    write_table(
+        &out,
+        "tableI",
+        "Table I: trials (of 200) with at least one jam / disengagement, Cases A-D at several clearances: ours (paper); * where a two-sample test separates our count from the paper's [events: idle-rotation(pitches=1)]",
+        &columns,
+        &[row],
+        &[],
+        &[],
+    );
+    let rep = xtask(&["report", "-q", "--out", o]);
+    assert!(rep.status.success(), "{}", stderr(&rep));
+    let page = std::fs::read_to_string(out.join("index.html")).unwrap();
+    scratch.keep(true);
+    let (cells, commands) = linked_cells(&chrome, &out, &page);
+    let link = |table: &str, kind: &str, row: &str, mesh: &str| {
+        cells
+            .iter()
+            .find(|c| c[0] == table && c[1] == kind && c[2] == row && c[3] == mesh)
+            .map(|c| c[4].clone())
+    };
+    for [table, kind, row, mesh, href] in &cells {
+        if href.ends_with("/pair.html") {
+            let (jammed, disengaged) = trial_did(&out, href);
+            let had = if kind == "jams" { jammed } else { disengaged };
+            assert!(
+                had,
+                "{table} {kind} {row} {mesh} links {href}, a trial without that failure"
+            );
+        }
+    }
+    assert_eq!(
+        link("table3", "disengagements", "Case D", "m3-e3").as_deref(),
+        Some("replay-table3-D-m3-e3-0/pair.html"),
+        "a consistent cell whose failed trial is replayed links it: {cells:?}"
+    );
+    assert_eq!(
+        link("table3", "jams", "Case D", "d2-e2").as_deref(),
+        Some("replay-table3-D-d2-e2-4/pair.html")
+    );
+    for (kind, row, mesh) in [
+        ("jams", "Case D", "m3-e3"),
+        ("disengagements", "Case D", "d2-e2"),
+    ] {
+        let href = link("table3", kind, row, mesh).unwrap();
+        assert!(
+            href.starts_with('#'),
+            "{kind} {row} {mesh}: {href}, no replayed trial of its failure"
+        );
+    }
+    assert_eq!(
+        link("tableI", "jams", "Case B, G = 40 %", "m3-e3").as_deref(),
+        Some("replay-table3-B-m3-e3-1/pair.html"),
+        "Table I's B/40/m3-e3 is Table 3's B/m3-e3: {cells:?}"
+    );
+    // The commands carry the page's --out, and a disengagement's trial from the listing.
+    assert!(!commands.is_empty());
+    for c in &commands {
+        assert!(c.ends_with(&format!("--out {o}")), "{c}");
+    }
+    assert!(
+        commands.contains(&format!(
+            "cargo xtask replay table3 D/d2-e2 0 --seed 2025 --out {o}"
+        )),
+        "{commands:?}"
     );
     scratch.keep(false);
 }

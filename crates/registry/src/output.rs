@@ -44,13 +44,19 @@ pub struct Report {
 /// Agreement with the paper: how many of the paper's numbers are consistent with ours and how
 /// many differ. Counts out of trials (the paper's are samples of 200 too) are compared by a
 /// two-sample test (Fisher's exact, 5 %); other numbers by whether the paper's lies inside our
-/// 95 % interval (or stated tolerance). Each experiment's note says which.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+/// 95 % interval (or stated tolerance). Each experiment's note says which, and `what` says it
+/// beside the two numbers wherever they are shown on their own (an overview of experiments).
+#[derive(Debug, Clone, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct Agreement {
     /// The paper's numbers consistent with ours.
     pub consistent: u64,
     /// The paper's numbers that differ from ours.
     pub differ: u64,
+    /// What the two numbers count and how they were judged, read after `consistent / differ`
+    /// (`counts of the table: Fisher's exact test at 5 % does not separate / separates the
+    /// paper's from ours`); empty where the experiment's notes say it. Borrowed where an
+    /// experiment writes it, owned where a stored report is read back.
+    pub what: std::borrow::Cow<'static, str>,
 }
 
 impl Report {

@@ -27,6 +27,8 @@ pub(super) enum Sample {
         colour: &'static str,
         marker: super::Marker,
     },
+    /// A shaded stretch of the plot: a grey swatch.
+    Shade,
 }
 
 /// One legend entry.
@@ -167,6 +169,17 @@ pub(super) fn legend_svg(entries: &[Entry], layout: &LegendLayout, top: f64) -> 
             }
             Sample::Mark { colour, marker } => {
                 s.push_str(&marker_svg(marker, x + SAMPLE / 2.0, y, 4.5, colour));
+            }
+            Sample::Shade => {
+                let _ = write!(
+                    s,
+                    "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" {} stroke=\"#aaaaaa\"/>",
+                    px(x),
+                    px(y - 6.0),
+                    px(SAMPLE),
+                    px(12.0),
+                    super::SHADE
+                );
             }
         }
         for (l, line) in lines.iter().enumerate() {

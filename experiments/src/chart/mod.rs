@@ -498,6 +498,7 @@ pub struct Plot<'a> {
     x_range: Option<(f64, f64)>,
     y_range: Option<(f64, f64)>,
     whole_ticks: bool,
+    shade: Option<(f64, &'a str)>,
 }
 
 impl<'a> Plot<'a> {
@@ -522,7 +523,16 @@ impl<'a> Plot<'a> {
             x_range: None,
             y_range: None,
             whole_ticks: false,
+            shade: None,
         }
+    }
+
+    /// The plot greyed from `x` on to its right end, named in the legend by `label`: a stretch
+    /// of the series read differently (a run's motion after its first lock, the paper's
+    /// protocol rather than a physical motion).
+    pub fn shaded_from(mut self, x: f64, label: &'a str) -> Self {
+        self.shade = Some((x, label));
+        self
     }
 
     /// A logarithmic y axis: the series hold positive values (others are left out), drawn on a
@@ -588,6 +598,13 @@ impl<'a> Plot<'a> {
                 });
             }
         }
+        if let Some((_, label)) = self.shade {
+            entries.push(Entry {
+                label: label.to_owned(),
+                sample: Sample::Shade,
+                series: None,
+            });
+        }
         for (kind, label) in [
             (LimitKind::Lower, self.limit_labels.0),
             (LimitKind::Upper, self.limit_labels.1),
@@ -603,8 +620,8 @@ impl<'a> Plot<'a> {
         entries
     }
 
-    /// The chart as SVG text.
-    pub fn svg(&self) -> Result<String, RunError> {
+    /// The series as drawn: on a log axis, the log10 of the positive values only.
+    fn drawn_series(&self) -> Vec<Vec<(f64, f64)>> {
         let y_of = |y: f64| {
             if self.log_y {
                 if y > 0.0 { y.log10() } else { f64::NAN }
@@ -612,8 +629,7 @@ impl<'a> Plot<'a> {
                 y
             }
         };
-        let series: Vec<Vec<(f64, f64)>> = self
-            .series
+        self.series
             .iter()
             .map(|s| {
                 s.points
@@ -622,10 +638,13 @@ impl<'a> Plot<'a> {
                     .map(|&(x, y)| (x, y_of(y)))
                     .collect()
             })
-            .collect();
-        // Each limit at the value of its series nearest to it (none: at the bottom).
-        let limits: Vec<(usize, f64, Option<f64>, LimitKind)> = self
-            .limits
+            .collect()
+    }
+
+    /// Each limit at the value of its series nearest to it (none: at the bottom): (series, x,
+    /// that value, kind).
+    fn placed_limits(&self, series: &[Vec<(f64, f64)>]) -> Vec<PlacedLimit> {
+        self.limits
             .iter()
             .filter(|l| l.x.is_finite() && l.series < series.len())
             .map(|l| {
@@ -636,15 +655,25 @@ impl<'a> Plot<'a> {
                     .map(|p| p.1);
                 (l.series, l.x, near, l.kind)
             })
-            .collect();
+            .collect()
+    }
+
+    /// The axes' ranges: what can be placed on them (an infinite coordinate cannot; a NaN is
+    /// passed over by `min` and `max`), or the fixed ranges. With marks, the x range leaves
+    /// room for a marker at either end and the y range a band above the data for their ticks
+    /// and numbers ([`mark_band`]), so that nothing of a mark leaves the frame or sits on the
+    /// curve.
+    fn axis_ranges(
+        &self,
+        series: &[Vec<(f64, f64)>],
+        limits: &[PlacedLimit],
+    ) -> ((f64, f64), (f64, f64)) {
         let (mut x0, mut x1, mut y0, mut y1) = (
             f64::INFINITY,
             f64::NEG_INFINITY,
             f64::INFINITY,
             f64::NEG_INFINITY,
         );
-        // The axes span what can be placed on them: an infinite coordinate cannot (a NaN is
-        // passed over by `min` and `max`).
         for p in series.iter().flatten() {
             if !p.0.is_infinite() {
                 x0 = x0.min(p.0);
@@ -655,7 +684,7 @@ impl<'a> Plot<'a> {
                 y1 = y1.max(p.1);
             }
         }
-        for l in &limits {
+        for l in limits {
             x0 = x0.min(l.1);
             x1 = x1.max(l.1);
         }
@@ -664,21 +693,34 @@ impl<'a> Plot<'a> {
         }
         let (x0, x1) = match self.x_range {
             Some(r) => drawable(r.0, r.1),
+            None if !self.marks.is_empty() => {
+                let room = (x1 - x0) * MARK_ROOM;
+                drawable(x0 - room, x1 + room)
+            }
             None => drawable(x0, x1),
         };
-        let (y0, y1) = match self.y_range {
+        let y = match self.y_range {
             Some(r) => drawable(r.0, r.1),
             None => {
                 let pad = ((y1 - y0) * 0.05).max(1e-9);
-                // Marks get a band of their own above the data: ticks and numbers never sit on
-                // the curve.
-                let band = if self.marks.is_empty() {
-                    0.0
-                } else {
-                    (y1 - y0) * MARK_BAND
-                };
+                let band = mark_band(self.marks, (x0, x1), self.title) * (y1 - y0 + 2.0 * pad);
                 drawable(y0 - pad, y1 + pad + band)
             }
+        };
+        ((x0, x1), y)
+    }
+
+    /// The chart as SVG text.
+    pub fn svg(&self) -> Result<String, RunError> {
+        let series = self.drawn_series();
+        let limits = self.placed_limits(&series);
+        let ((x0, x1), (y0, y1)) = self.axis_ranges(&series, &limits);
+        // The top of the data, below the marks' band.
+        let data_top = if self.y_range.is_none() && !self.marks.is_empty() {
+            let band = mark_band(self.marks, (x0, x1), self.title);
+            y1 - (y1 - y0) * band / (1.0 + band)
+        } else {
+            y1
         };
         let log_y = self.log_y;
         let whole = self.whole_ticks;
@@ -717,115 +759,294 @@ impl<'a> Plot<'a> {
                 }
                 mesh.draw().map_err(|e| plot_err(&e))?;
                 let (xr, yr) = chart.plotting_area().get_pixel_range();
-                let (left, right) = (f64::from(xr.start), f64::from(xr.end));
-                let (top, bottom) = (f64::from(yr.start), f64::from(yr.end));
+                let frame = Rect {
+                    x: f64::from(xr.start),
+                    y: f64::from(yr.start),
+                    w: f64::from(xr.end - xr.start),
+                    h: f64::from(yr.end - yr.start),
+                };
                 let at = |x: f64, y: f64| {
                     (
-                        left + (x - x0) / (x1 - x0) * (right - left),
-                        bottom - (y - y0) / (y1 - y0) * (bottom - top),
+                        frame.x + (x - x0) / (x1 - x0) * frame.w,
+                        frame.y + frame.h - (y - y0) / (y1 - y0) * frame.h,
                     )
                 };
-                let mut out = marks_svg(self.marks, at, (top, bottom));
-                for (k, points) in series.iter().enumerate() {
-                    let st = style(k);
-                    let _ = writeln!(
-                        out,
-                        "<g class=\"series\" data-series=\"{k}\" data-style=\"{}\">",
-                        st.key()
-                    );
-                    for run in finite_runs(points) {
-                        let pts: Vec<(f64, f64)> =
-                            thinned(&run).iter().map(|&(x, y)| at(x, y)).collect();
-                        out.push_str(&polyline_svg(&pts, &st, 1.5));
-                        out.push('\n');
-                        let marked = if self.plain {
-                            Vec::new()
-                        } else {
-                            marked_points(pts.len(), k)
-                        };
-                        for i in marked {
-                            out.push_str(&marker_svg(
-                                st.marker, pts[i].0, pts[i].1, 3.5, st.colour,
-                            ));
-                        }
-                        out.push('\n');
-                    }
-                    for &(_, x, near, kind) in limits.iter().filter(|l| l.0 == k) {
-                        let y = near.unwrap_or(y0);
-                        let (bx, by) = at(x, y);
-                        if let Some(p) = points
-                            .iter()
-                            .filter(|p| p.0.is_finite() && p.1.is_finite())
-                            .min_by(|a, b| (a.0 - x).abs().total_cmp(&(b.0 - x).abs()))
-                        {
-                            let (sx, sy) = at(p.0, p.1);
-                            let _ = write!(
-                                out,
-                                "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"{}\" stroke-width=\"1\" stroke-dasharray=\"1 2\"/>",
-                                px(sx),
-                                px(sy),
-                                px(bx),
-                                px(by),
-                                st.colour
-                            );
-                        }
-                        out.push_str(&bracket_svg(kind, bx, by, 14.0, st.colour));
-                        out.push('\n');
-                    }
-                    out.push_str("</g>\n");
-                }
-                Ok(out)
+                Ok(self.drawn(&series, &limits, (y0, at(x0, data_top).1), &frame, &at))
             },
         )
     }
+
+    /// What the chart draws itself on the axes `plotters` drew, in pixels (`at` places a point
+    /// of the axes in the plot area `frame`; `y0` is the bottom of the y axis and `band_bottom`
+    /// the pixel row where the marks' band ends): the shaded stretch, the marks, each series
+    /// with its markers and limits.
+    fn drawn(
+        &self,
+        series: &[Vec<(f64, f64)>],
+        limits: &[PlacedLimit],
+        (y0, band_bottom): (f64, f64),
+        frame: &Rect,
+        at: &dyn Fn(f64, f64) -> (f64, f64),
+    ) -> String {
+        let (top, right) = (frame.y, frame.x + frame.w);
+        let mut out = self.shade.map_or_else(String::new, |(x, _)| {
+            let sx = at(x, y0).0.clamp(frame.x, right);
+            format!(
+                "<rect class=\"shade\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" {SHADE}/>\n",
+                px(sx),
+                px(top),
+                px(right - sx),
+                px(frame.h)
+            )
+        });
+        out.push_str(&marks_svg(self.marks, at, frame, band_bottom));
+        for (k, points) in series.iter().enumerate() {
+            let st = style(k);
+            let _ = writeln!(
+                out,
+                "<g class=\"series\" data-series=\"{k}\" data-style=\"{}\">",
+                st.key()
+            );
+            for run in finite_runs(points) {
+                let pts: Vec<(f64, f64)> = thinned(&run).iter().map(|&(x, y)| at(x, y)).collect();
+                out.push_str(&polyline_svg(&pts, &st, 1.5));
+                out.push('\n');
+                let marked = if self.plain {
+                    Vec::new()
+                } else {
+                    marked_points(pts.len(), k)
+                };
+                for i in marked {
+                    out.push_str(&marker_svg(st.marker, pts[i].0, pts[i].1, 3.5, st.colour));
+                }
+                out.push('\n');
+            }
+            for &(_, x, near, kind) in limits.iter().filter(|l| l.0 == k) {
+                out.push_str(&limit_svg(points, (x, near.unwrap_or(y0)), kind, &st, at));
+            }
+            out.push_str("</g>\n");
+        }
+        out
+    }
 }
 
-/// The share of the data's height added above it as the band of the marks' ticks and numbers.
-const MARK_BAND: f64 = 0.16;
+/// A limit as placed on its series: (series, x, the series' value nearest it, kind).
+type PlacedLimit = (usize, f64, Option<f64>, LimitKind);
 
-/// The marks of a plot as SVG, in pixels (`at` places a point of the axes; the plot area runs
-/// from `top` to `bottom`): in the band above the data, a tick per mark and its number where it
-/// does not crowd the numbers already placed (three rows, left to right: a number that would
-/// overlap one in every row is left out, its tick and marker still drawn); on the curve, a
-/// marker in its kind's style, outlined in white so that it stands out of the line.
+/// A limit's bracket at `(x, y)` of the axes, joined by a dotted line to the point of `points`
+/// nearest in x.
+fn limit_svg(
+    points: &[(f64, f64)],
+    (x, y): (f64, f64),
+    kind: LimitKind,
+    st: &Style,
+    at: &dyn Fn(f64, f64) -> (f64, f64),
+) -> String {
+    let (bx, by) = at(x, y);
+    let mut out = String::new();
+    if let Some(p) = points
+        .iter()
+        .filter(|p| p.0.is_finite() && p.1.is_finite())
+        .min_by(|a, b| (a.0 - x).abs().total_cmp(&(b.0 - x).abs()))
+    {
+        let (sx, sy) = at(p.0, p.1);
+        let _ = write!(
+            out,
+            "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"{}\" stroke-width=\"1\" stroke-dasharray=\"1 2\"/>",
+            px(sx),
+            px(sy),
+            px(bx),
+            px(by),
+            st.colour
+        );
+    }
+    out.push_str(&bracket_svg(kind, bx, by, 14.0, st.colour));
+    out.push('\n');
+    out
+}
+
+/// The fill of a shaded stretch of a plot ([`Plot::shaded_from`]): a grey through which the
+/// grid still shows.
+pub(crate) const SHADE: &str = "fill=\"#808080\" fill-opacity=\"0.2\"";
+
+/// The share of the x range added at each end of a plot with marks: room for a marker at the
+/// first or the last point (an idle start's, at the very start), inside the frame.
+const MARK_ROOM: f64 = 0.02;
+
+/// Height of a row of mark numbers, px: their 11 px type and its line gap.
+const NUMBER_ROW: f64 = 14.0;
+
+/// Height of the marks' ticks below their numbers, px, with the space above and below them.
+const MARK_TICK: f64 = 14.0;
+
+/// The most rows of numbers above the data.
+const MAX_NUMBER_ROWS: usize = 12;
+
+/// The farthest a number may sit from its tick, px, before another row of numbers is tried.
+const NUMBER_SHIFT: f64 = 24.0;
+
+/// Space between two numbers of a row, and between a number and the frame, px.
+const NUMBER_GAP: f64 = 3.0;
+
+/// Half the width of mark number `n` at 11 px, px: digits about 7 px wide in the common
+/// sans-serif faces (DejaVu Sans 0.64 em), with a margin.
+fn number_half(n: usize) -> f64 {
+    3.6 * n.to_string().len() as f64 + 1.0
+}
+
+/// The width of the plot area of an 800 px chart: the canvas less its 12 px margins and the
+/// 70 px of the y axis' labels ([`chart_svg`]).
+const PLOT_WIDTH: f64 = 800.0 - 2.0 * 12.0 - 70.0;
+
+/// The band above the data that the marks' ticks and numbers take, as a share of the data's
+/// y range (padding included): as many rows of numbers as every number needs to sit apart
+/// ([`number_rows`], laid out on the plot's width) and the ticks below them, within the plot
+/// area's height under a title of `title`'s lines. 0 without marks.
+fn mark_band(marks: &[Mark], (x0, x1): (f64, f64), title: &str) -> f64 {
+    if marks.is_empty() {
+        return 0.0;
+    }
+    let left = 12.0 + 70.0;
+    let xs: Vec<(f64, usize)> = sorted_marks(marks)
+        .iter()
+        .map(|m| (left + (m.x - x0) / (x1 - x0) * PLOT_WIDTH, m.number))
+        .collect();
+    let rows = number_rows(&xs, (left, left + PLOT_WIDTH), MAX_NUMBER_ROWS)
+        .map_or(MAX_NUMBER_ROWS, |(rows, _)| rows);
+    let title_lines = wrap_words(title, ((800.0 - 24.0) / TITLE_CHAR) as usize).len();
+    let height = f64::from(AXES_HEIGHT - title_height(title_lines)) - 12.0 - 40.0;
+    let band = (rows as f64 * NUMBER_ROW + MARK_TICK).min(0.5 * height);
+    band / (height - band)
+}
+
+/// The marks with a finite x, in order of x (then number).
+fn sorted_marks(marks: &[Mark]) -> Vec<&Mark> {
+    let mut order: Vec<&Mark> = marks.iter().filter(|m| m.x.is_finite()).collect();
+    order.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.number.cmp(&b.number)));
+    order
+}
+
+/// The numbers of marks at pixel x `marks` (sorted; each with its number) laid out in `rows`
+/// rows within `(left, right)`: each in the row where it sits nearest its tick, moved right of
+/// the number before it where that one is in the way, and every row then moved back left from
+/// the right edge where it ran past it. Per mark, its row and the number's centre; `None`
+/// where they do not fit.
+fn number_layout(
+    marks: &[(f64, usize)],
+    (left, right): (f64, f64),
+    rows: usize,
+) -> Option<Vec<(usize, f64)>> {
+    let mut ends = vec![f64::NEG_INFINITY; rows];
+    let mut placed = Vec::with_capacity(marks.len());
+    for &(x, n) in marks {
+        let half = number_half(n);
+        let want = x.clamp(left + NUMBER_GAP + half, right - NUMBER_GAP - half);
+        let (r, centre) = (0..rows)
+            .map(|r| (r, want.max(ends[r] + NUMBER_GAP + half)))
+            .min_by(|a, b| (a.1 - want).total_cmp(&(b.1 - want)))?;
+        ends[r] = centre + half;
+        placed.push((r, centre));
+    }
+    for r in 0..rows {
+        let mut limit = right - NUMBER_GAP;
+        for i in (0..marks.len()).rev() {
+            if placed[i].0 != r {
+                continue;
+            }
+            let half = number_half(marks[i].1);
+            placed[i].1 = placed[i].1.min(limit - half);
+            limit = placed[i].1 - half - NUMBER_GAP;
+        }
+        if limit < left {
+            return None;
+        }
+    }
+    Some(placed)
+}
+
+/// The fewest rows, up to `max_rows`, in which every number of `marks` (as [`number_layout`]
+/// takes them) fits within [`NUMBER_SHIFT`] of its tick, or, where none does, the layout that
+/// fits with the numbers least moved; with its layout. `None` where they fit in no layout.
+fn number_rows(
+    marks: &[(f64, usize)],
+    bounds: (f64, f64),
+    max_rows: usize,
+) -> Option<(usize, Vec<(usize, f64)>)> {
+    let shift = |l: &[(usize, f64)]| {
+        l.iter()
+            .zip(marks)
+            .map(|(p, m)| (p.1 - m.0).abs())
+            .fold(0.0, f64::max)
+    };
+    let mut best: Option<(usize, Vec<(usize, f64)>)> = None;
+    for rows in 1..=max_rows.max(1) {
+        let Some(layout) = number_layout(marks, bounds, rows) else {
+            continue;
+        };
+        if shift(&layout) <= NUMBER_SHIFT {
+            return Some((rows, layout));
+        }
+        if best.as_ref().is_none_or(|b| shift(&layout) < shift(&b.1)) {
+            best = Some((rows, layout));
+        }
+    }
+    best
+}
+
+/// The marks of a plot as SVG, in pixels (`at` places a point of the axes in the plot area
+/// `frame`; the marks' band runs from its top to `band_bottom`): in the band, every mark's
+/// number in rows ([`number_rows`]), on a thin leader where it had to move from above its
+/// tick, and below them its tick; on the curve, a marker in its kind's style, outlined in
+/// white so that it stands out of the line. Where the numbers fit in no layout the band has
+/// room for, a number that would overlap one in every row is left out (its tick and marker
+/// still drawn).
 fn marks_svg(
     marks: &[Mark],
-    at: impl Fn(f64, f64) -> (f64, f64),
-    (top, bottom): (f64, f64),
+    at: &dyn Fn(f64, f64) -> (f64, f64),
+    frame: &Rect,
+    band_bottom: f64,
 ) -> String {
     if marks.is_empty() {
         return String::new();
     }
+    let top = frame.y;
+    let order = sorted_marks(marks);
+    let xs: Vec<(f64, usize)> = order.iter().map(|m| (at(m.x, 0.0).0, m.number)).collect();
+    let room = (((band_bottom - top - MARK_TICK) / NUMBER_ROW).floor() as usize).max(1);
+    let layout = number_rows(&xs, (frame.x, frame.x + frame.w), room)
+        .map(|(rows, l)| (rows, l.into_iter().map(Some).collect()))
+        .unwrap_or_else(|| (room, crowded_layout(&xs, room)));
+    let (rows, placed): (usize, Vec<Option<(usize, f64)>>) = layout;
+    let tick_top = top + rows as f64 * NUMBER_ROW + 3.0;
     let mut s = String::from("<g class=\"marks\" font-family=\"sans-serif\" font-size=\"11\">\n");
-    // Rows as tall as the numbers' 11 px type and its line gap, so that rows never overlap;
-    // the ticks hang below the three rows.
-    let row_h = 14.0;
-    let band = ((bottom - top) * MARK_BAND / (1.0 + 0.1 + MARK_BAND)).max(3.0 * row_h + 8.0);
-    let mut order: Vec<&Mark> = marks.iter().filter(|m| m.x.is_finite()).collect();
-    order.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.number.cmp(&b.number)));
-    // The right end of the last number placed in each row.
-    let mut rows = [f64::NEG_INFINITY; 3];
-    for m in &order {
+    for (m, (&(x, _), place)) in order.iter().zip(xs.iter().zip(&placed)) {
         let (colour, marker) = mark_style(m.group);
-        let (x, _) = at(m.x, 0.0);
         let _ = writeln!(
             s,
             "<line class=\"mark-tick\" x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"{colour}\" stroke-width=\"1.5\"/>",
             px(x),
-            px(top + 3.0 * row_h),
+            px(tick_top),
             px(x),
-            px(top + band)
+            px(band_bottom - 2.0)
         );
-        let text = m.number.to_string();
-        // Half the number's width at 11 px (digits about 6.5 px wide), with a margin.
-        let half = 3.4 * text.len() as f64 + 1.5;
-        if let Some(r) = rows.iter().position(|&end| x - half > end + 3.0) {
-            rows[r] = x + half;
+        if let Some((r, centre)) = *place {
+            let baseline = top + (r as f64 + 0.85) * NUMBER_ROW;
+            if (centre - x).abs() > 1.5 {
+                let _ = writeln!(
+                    s,
+                    "<line class=\"mark-leader\" x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#999999\" stroke-width=\"0.6\"/>",
+                    px(centre),
+                    px(baseline + 2.0),
+                    px(x),
+                    px(tick_top)
+                );
+            }
             let _ = writeln!(
                 s,
-                "<text class=\"mark-number\" x=\"{}\" y=\"{}\" text-anchor=\"middle\" fill=\"{colour}\">{text}</text>",
-                px(x),
-                px(top + (r as f64 + 0.85) * row_h)
+                "<text class=\"mark-number\" x=\"{}\" y=\"{}\" text-anchor=\"middle\" fill=\"{colour}\" stroke=\"#ffffff\" stroke-width=\"3\" paint-order=\"stroke\">{}</text>",
+                px(centre),
+                px(baseline),
+                m.number
             );
         }
         if let Some(y) = m.y.filter(|y| y.is_finite()) {
@@ -837,6 +1058,27 @@ fn marks_svg(
     }
     s.push_str("</g>\n");
     s
+}
+
+/// The numbers of `marks` where they do not all fit: each above its tick in the first of
+/// `rows` rows where it overlaps no number placed before it, else left out.
+fn crowded_layout(marks: &[(f64, usize)], rows: usize) -> Vec<Option<(usize, f64)>> {
+    let mut ends = vec![f64::NEG_INFINITY; rows];
+    marks
+        .iter()
+        .map(|&(x, n)| {
+            let half = number_half(n);
+            let r = ends.iter().position(|&end| x - half > end + NUMBER_GAP)?;
+            ends[r] = x + half;
+            Some((r, x))
+        })
+        .collect()
+}
+
+/// Whether every mark of the SVG of a plot with `marks` marks carries its number: a figure whose
+/// numbers had to be left out says so in its title.
+pub fn every_mark_numbered(svg: &str, marks: usize) -> bool {
+    svg.matches("class=\"mark-number\"").count() == marks
 }
 
 /// A line plot as SVG text: title naming the paper item, labelled axes with units, a legend.

@@ -591,16 +591,18 @@ fn check_picture_labels_what_the_user_entered() {
     let svg = check_svg("my <pair>.ron", &p, (0.0, traj.theta_at(0.0)));
     for words in [
         "Check of my &lt;pair&gt;.ron: both gears at phi = 0 and theta = 0",
-        ">driver zero ray: phi = 0<",
-        ">driven zero ray: theta = 0<",
+        ">driver zero ray: phi = 0</tspan>",
+        ">driven zero ray: theta = 0</tspan>",
         "(dashed: the direction of tips_deg = 0)",
-        ">driver tooth 0<",
-        ">driver tooth 1<",
-        ">driven tooth 0<",
-        ">driven tooth 1<",
+        ">driver tooth 0</tspan>",
+        ">driver tooth 1</tspan>",
+        ">driven tooth 0</tspan>",
+        ">driven tooth 1</tspan>",
         "id=\"driven-tooth-0\"",
-        "driver turns this way: phi increases",
-        "driven gear turns this way: theta increases",
+        ">driver turns this way:</tspan>",
+        ">phi increases</tspan>",
+        ">driven gear turns this way:</tspan>",
+        ">theta increases</tspan>",
         "x: line of centres, driver arbor -&gt; driven arbor",
         "y: 90 deg from x in the driver's turning sense",
         "driver: 17 teeth, tips_deg run counter-clockwise here (sense: own)",
@@ -771,10 +773,24 @@ fn drawing_labels(svg: &str) -> Vec<((f64, f64), Anchor, f64, String)> {
     let mut labels = Vec::new();
     for piece in drawing.split("<text").skip(1) {
         let (tag, rest) = piece.split_once('>').unwrap();
-        let text = rest[..rest.find("</text>").unwrap()]
-            .replace("&gt;", ">")
-            .replace("&lt;", "<")
-            .replace("&amp;", "&");
+        // A label's lines are its tspans.
+        let inner = &rest[..rest.find("</text>").unwrap()];
+        let lines: Vec<&str> = inner
+            .split("<tspan")
+            .filter_map(|t| {
+                t.split_once('>')
+                    .map(|(_, l)| l.trim_end_matches("</tspan>"))
+            })
+            .filter(|l| !l.is_empty())
+            .collect();
+        let text = if lines.is_empty() {
+            inner.to_owned()
+        } else {
+            lines.join("\n")
+        }
+        .replace("&gt;", ">")
+        .replace("&lt;", "<")
+        .replace("&amp;", "&");
         let num = |n: &str| attr(tag, n).map(|v| v.parse::<f64>().unwrap());
         let anchor = match attr(tag, "text-anchor").as_deref() {
             Some("middle") => Anchor::Middle,

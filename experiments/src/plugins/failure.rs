@@ -255,7 +255,11 @@ fn paper_table(r: &FailureStudy, clearance: f64) -> (Table, Option<Agreement>) {
         header,
     );
     let paper = |q: &str| crate::paper::get("failure", q).map(|r| r.value);
-    let mut agreement = Agreement::default();
+    let mut agreement = Agreement {
+        what: "the paper's values inside / outside our 95 % intervals, the measured input's column"
+            .into(),
+        ..Agreement::default()
+    };
     let mut judged = false;
     // (label, paper quantity, train index, is the share row)
     let mut rows: Vec<(String, String, usize, bool)> = vec![(

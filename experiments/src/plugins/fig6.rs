@@ -139,6 +139,7 @@ impl registry::Experiment for Fig6 {
                 .then_some(registry::Agreement {
                     consistent: inside,
                     differ: outside,
+                    what: "gears whose largest tolerable random error, a value of Table 4's grid, equals the paper's E. max / does not (one grid step apart counts as differing; no test; each mesh's value counted once for each of its two gears)".into(),
                 }),
             ..crate::cells::counts_report(r.random_grid.table.counts())
         };

@@ -225,7 +225,10 @@ fn figures(s: &Settings, r: &Results) -> Result<Report, RunError> {
     let rule = s.events.rule()?;
     let td: Vec<f64> = r.rows.iter().map(|row| row[2]).collect();
     let stats = stats::pointer_stats(&td);
-    let summary = summary_table(r, &rule, &stats);
+    let mut summary = summary_table(r, &rule, &stats);
+    if let Some(note) = before_first_lock(r) {
+        summary.note(note);
+    }
     let (events, ev_rows) = event_log(&r.traj, &rule, (r.phi0, r.theta0), r.numbering);
     // pair-check.svg draws the file as written; its start line gives the file's own angles (with
     // the driven gear driving, the run's phi is the file's theta and the other way round).
@@ -271,6 +274,35 @@ fn pair_file(s: &Settings, run: &Run) -> Result<(String, Prepared, Prepared), Ru
         }
     };
     Ok((name, as_written, prepared))
+}
+
+/// The Theoretical Difference's statistics up to the run's first lock, in a note: those of the
+/// whole run include the motion the paper's protocol gives after it. `None` without a lock.
+fn before_first_lock(run: &Results) -> Option<String> {
+    let events = run.traj.events();
+    let first = &events[crate::pair_html::first_lock(events)?];
+    let at = deg(first.phi - run.phi0);
+    let td: Vec<f64> = run
+        .rows
+        .iter()
+        .filter(|r| r[0] <= at)
+        .map(|r| r[2])
+        .collect();
+    let up_to = if td.len() >= 2 {
+        let s = stats::pointer_stats(&td);
+        format!(
+            "up to it, sigma = {} deg, Dm = {} deg, P = {} deg",
+            fmt_f64(s.sigma, 4),
+            fmt_f64(s.dm, 4),
+            fmt_f64(s.mean.abs(), 4)
+        )
+    } else {
+        "it comes before the second sample, so there is nothing to measure before it".to_owned()
+    };
+    Some(format!(
+        "The run's first lock is at phi - phi0 = {} deg: sigma, Dm and P above include the motion after it, which is the paper's protocol (the driven gear let go to the next free position and driven on), not a physical motion; {up_to}.",
+        fmt_f64(at, 6)
+    ))
 }
 
 /// One run of the pair and its samples.
@@ -378,37 +410,6 @@ fn counted_as(rule: &rules::Rule, e: &contact::Event) -> &'static str {
     }
 }
 
-/// An event's size in words: what a reader needs to judge it.
-fn size_text(e: &contact::Event, n2: usize) -> String {
-    use contact::EventKind;
-    match e.kind {
-        EventKind::Lock | EventKind::Strike => {
-            let wedge = e.wedge_angle.map_or_else(
-                || "tip on tip".to_string(),
-                |a| format!("wedge {:.1} deg", deg(a)),
-            );
-            format!("{}, {wedge}", crate::pair_html::jump_text(e, n2))
-        }
-        EventKind::Slip if e.idle_start && !e.resumed => format!(
-            "never pushed: idle for the whole run ({:.3} pitches)",
-            e.lost_motion
-        ),
-        EventKind::Slip if e.idle_start => format!(
-            "first pushed {:.3} pitches after the start, lag {:.3} deg",
-            e.lost_motion,
-            deg(e.lag)
-        ),
-        EventKind::Gap | EventKind::Slip => format!(
-            "lost motion {:.3} pitch{}, lag {:.3} deg, phase {:+}",
-            e.lost_motion,
-            if e.resumed { "" } else { " (not resumed)" },
-            deg(e.lag),
-            e.phase_shift
-        ),
-        EventKind::BlockedAtStart => "no free position".to_string(),
-    }
-}
-
 /// The event table (first [`EVENTS_SHOWN`]), `event-log.csv` (every event: kind, what the rule
 /// counts it as, and its sizes). Angles relative to the start (φ0, θ0); teeth within one turn
 /// (none for an idle start, where no tooth touches).
@@ -431,18 +432,28 @@ fn event_log(
             "theta - theta0 [deg]",
             "theta after - theta0 [deg]",
             "size",
+            "motion",
         ],
     );
     let mut ev_rows = String::from(
-        "phi_minus_phi0_deg,kind,counted_as,driver_tooth,driven_tooth,theta_minus_theta0_deg,theta_after_minus_theta0_deg,lost_motion_pitches,resumed,phase_shift,lag_deg,wedge_angle_deg,phi_abs_deg,theta_abs_deg,theta_after_abs_deg\n",
+        "phi_minus_phi0_deg,kind,counted_as,driver_tooth,driven_tooth,theta_minus_theta0_deg,theta_after_minus_theta0_deg,lost_motion_pitches,resumed,phase_shift,lag_deg,wedge_angle_deg,phi_abs_deg,theta_abs_deg,theta_after_abs_deg,ahead_of_ideal_driven_pitches,after_first_lock,release_phi_minus_phi0_deg,release_theta_abs_deg\n",
     );
-    for e in traj.events() {
+    let first = crate::pair_html::first_lock(traj.events());
+    for (i, e) in traj.events().iter().enumerate() {
         let counted = counted_as(rule, e);
         let teeth = user_teeth(e, numbering);
         ev_rows.push_str(&log_line(e, counted, &teeth, start).join(","));
+        ev_rows.push_str(&protocol_cells(
+            traj,
+            e,
+            first.is_some_and(|f| i > f),
+            start.0,
+        ));
         ev_rows.push('\n');
         if events.rows.len() < EVENTS_SHOWN {
-            events.row(table_row(e, counted, &teeth, start, n2));
+            let mut row = table_row(e, counted, &teeth, start, n2);
+            row.push(crate::pair_html::motion_word(i, first).into());
+            events.row(row);
         }
     }
     add_event_notes(&mut events, traj);
@@ -490,6 +501,26 @@ fn log_line(
     ]
 }
 
+/// The cells `event-log.csv` adds after [`log_line`]'s, each after a comma: how far the event
+/// left the driven gear ahead of the ideal ratio (driven pitches), whether it came after the
+/// first lock (the paper's protocol), and where a release let the gear go (empty without one).
+fn protocol_cells(
+    traj: &contact::Trajectory,
+    e: &contact::Event,
+    after: bool,
+    phi0: f64,
+) -> String {
+    let n2 = traj.mesh().driven().teeth();
+    let release = crate::pair_html::release_of(traj, e).map_or_else(
+        || ",".to_owned(),
+        |r| format!("{:.9},{:.9}", deg(r.phi - phi0), deg(r.theta)),
+    );
+    format!(
+        ",{:.9},{after},{release}",
+        crate::pair_html::ahead_pitches(e, n2)
+    )
+}
+
 /// An event's row of the printed table (`-` for a tooth it has none of).
 fn table_row(
     e: &contact::Event,
@@ -514,7 +545,7 @@ fn table_row(
         shown(k),
         fmt_f64(deg(e.theta - theta0), 6),
         fmt_f64(deg(e.theta_after - theta0), 6),
-        size_text(e, n2),
+        crate::pair_html::size_text(e, n2),
     ]
 }
 
@@ -531,9 +562,16 @@ fn add_event_notes(events: &mut Table, traj: &contact::Trajectory) {
     if traj
         .events()
         .iter()
-        .any(|e| e.kind.is_contact_stop() && e.theta_after != e.theta)
+        .any(|e| e.kind.is_contact_stop() && crate::pair_html::moves_pointer(e))
     {
         events.note(crate::pair_html::RELEASE_NOTE);
+    }
+    if let Some(n) = crate::pair_html::releases_note(traj.events(), traj.mesh().driven().teeth()) {
+        events.note(n);
+    }
+    if crate::pair_html::first_lock(traj.events()).is_some() {
+        events.note(crate::pair_html::MOTION_NOTE);
+        events.note(crate::pair_html::PROTOCOL_NOTE);
     }
     if traj.events().iter().any(crate::pair_html::is_idle_start) {
         events.note("An idle start has no driver or driven tooth (`-`): no tooth touches the driven gear; its picture shows where the two gears come nearest.");

@@ -178,7 +178,7 @@ fn title(s: &Settings, given: bool, like_for_like: &[bool]) -> String {
     let (trials, clearance, split, rule) = (s.trials, s.gearing.clearance, s.errors.split, s.rule);
     let apart = like_for_like.iter().filter(|l| !**l).count();
     format!(
-        "Table 5: trials (of {trials}) with at least one jam / disengagement against the systematic error (share {split} on the sinusoid, the rest on the axis) at each mesh's largest tolerable random error (row E. max{}), G = {clearance} %: ours (paper); * where a two-sample test separates our count from the paper's (E. max: differs); ✓ where a cell keeps the {rule} % rule{}",
+        "Table 5: trials (of {trials}) with at least one jam / disengagement against the systematic error (share {split} on the sinusoid, the rest on the axis) at each mesh's largest tolerable random error (row E. max{}), G = {clearance} %: ours (paper); * where a two-sample test separates our count from the paper's; ≠ where our E. max is not the paper's; ✓ where a cell keeps the {rule} % rule{}",
         if given {
             ": the paper's own, emax=paper"
         } else {
@@ -195,8 +195,9 @@ fn title(s: &Settings, given: bool, like_for_like: &[bool]) -> String {
     )
 }
 
-/// The first row, each mesh's largest tolerable random error beside the paper's (`*` where
-/// they differ), and how many agree.
+/// The first row, each mesh's largest tolerable random error beside the paper's (`≠` where
+/// they differ: values of a grid compared, no test, so not the counts' `*`), and how many
+/// agree.
 fn random_row(t: &DerivedTolerances) -> (Vec<String>, usize) {
     let mut row = vec!["E. max (random)".to_string()];
     let mut same = 0;
@@ -211,7 +212,7 @@ fn random_row(t: &DerivedTolerances) -> (Vec<String>, usize) {
             "{} ({}){}",
             show(ours, t.random_grid.random.first(), 3),
             paper.map_or_else(|| "-".into(), |p| label(p, 3)),
-            if differs { "*" } else { "" }
+            if differs { "≠" } else { "" }
         ));
     }
     (row, same)
@@ -277,7 +278,7 @@ fn add_notes(
         table.note("E. max (random): the paper's own row (emax=paper), not derived from Table 4: every cell runs on the paper's inputs, so all of them are compared like for like.");
     } else {
         table.note(format!(
-            "E. max (random): the largest random error of Table 4's grid up to which every value has at most {} of {trials} trials jammed (rule {rule} %); ours agree with the paper's row for {same} of {} meshes. Below the grid: `< {}`, and the column is not run.",
+            "E. max (random): the largest random error of Table 4's grid up to which every value has at most {} of {trials} trials jammed (rule {rule} %); ours agree with the paper's row for {same} of {} meshes (`≠` where not: two values of the grid compared, no test of counts, unlike the cells' `*`). Below the grid: `< {}`, and the column is not run.",
             tolerance::allowed_jams(trials, rule),
             meshes.len(),
             t.random_grid
@@ -380,6 +381,34 @@ mod tests {
             e.to_string()
                 .contains("--set: emax: must be one of derived, paper (got `derive`)"),
             "{e}"
+        );
+    }
+
+    /// `*` means one thing in the table, a count Fisher's test separates from the paper's: the
+    /// E. max row, grid values compared with no test, marks a value unlike the paper's `≠`.
+    #[test]
+    fn the_e_max_row_marks_a_differing_value_apart_from_the_counts_star() {
+        let row = emax_row("1");
+        assert!(row.iter().any(|c| c.ends_with('≠')), "{row:?}");
+        assert!(row.iter().all(|c| !c.contains('*')), "{row:?}");
+        let report = crate::run(
+            "table5",
+            2025,
+            2,
+            &[
+                ("trials", "20"),
+                ("random_from", "0.04"),
+                ("random_to", "0.06"),
+                ("random_step", "0.01"),
+                ("systematic_from", "0.1"),
+                ("systematic_to", "0.1"),
+            ],
+        )
+        .unwrap();
+        let title = &report.tables[0].title;
+        assert!(
+            title.contains("* where a two-sample test separates our count from the paper's; ≠ where our E. max is not the paper's"),
+            "{title}"
         );
     }
 

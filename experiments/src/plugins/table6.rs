@@ -148,6 +148,7 @@ impl registry::Experiment for Table6 {
             agreement: off_paper.is_empty().then_some(registry::Agreement {
                 consistent: inside,
                 differ: outside,
+                what: "the paper's values inside / outside our 95 % Student-t intervals".into(),
             }),
             ..Default::default()
         };

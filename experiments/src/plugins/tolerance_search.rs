@@ -165,6 +165,7 @@ impl registry::Experiment for ToleranceSearch {
             agreement: compared.then_some(registry::Agreement {
                 consistent: inside,
                 differ: outside,
+                what: "meshes whose E. max in the paper lies within one resolution of the search's / further (no test)".into(),
             }),
             ..Default::default()
         };

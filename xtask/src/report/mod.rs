@@ -10,9 +10,10 @@
 //! figures. Tables scroll within their box when wider than the page.
 //!
 //! Tables 3, 4, 5 and I are also shown as heatmaps (jams, disengagements): ours against the
-//! paper's per cell, coloured by the two-sample verdict the table marks with `*`, each differing
-//! cell linking to its `replay` listing (or, before one is written, to the command that writes
-//! it). A run whose inputs differ from the paper's ([`provenance::DEPARTURE`] in its titles) shows
+//! paper's per cell, coloured by the two-sample verdict the table marks with `*`. A cell links to
+//! a replayed trial of that cell (of this table or another whose cell has the same trials, Table
+//! 3's `B/m3-e3` and Table I's `B/40/m3-e3`) that had the heatmap's failure; a differing cell
+//! with none links to the commands that write one, which carry the page's `--out`. A run whose inputs differ from the paper's ([`provenance::DEPARTURE`] in its titles) shows
 //! no `*` marks, no heatmap, and its notes on agreement labelled for reference only.
 //!
 //! The page is written through a temporary file renamed into place. Results that cannot be read
@@ -32,7 +33,7 @@ use crate::args::ReportArgs;
 use crate::failure::Failure;
 use crate::provenance::{self, RUN_JSON};
 use crate::shared::Registry;
-use replays::{Replayed, Replays};
+use replays::Replayed;
 
 mod bundle;
 #[cfg(test)]
@@ -54,15 +55,16 @@ pub fn command(args: &ReportArgs) -> Result<(), Failure> {
     let quiet = args.quiet;
     let exps = registry::experiments().map_err(|e| Failure::Internal(e.to_string()))?;
     // No results folder at all: said as such, before the check of --out would make one.
+    let out_flag = out_flag(args.out.as_deref());
     if !out.exists() {
-        build(&exps, &out, quiet)?;
+        build(&exps, &out, &out_flag, quiet)?;
     }
     // The page's run lock ends with the command (also when it is called on its own, in tests).
     let _locked = crate::shared::LocksEnd;
     // The page can be written there (checked before the results are read), and results a
     // killed run left moved aside are put back before they are read.
     crate::plan::check_out(&out, &[crate::plan::Target::File(INDEX_HTML.into())])?;
-    let page = build(&exps, &out, quiet)?;
+    let page = build(&exps, &out, &out_flag, quiet)?;
     let index = out.join(INDEX_HTML);
     crate::shared::write_atomically(&index, &page)?;
     if !quiet {
@@ -91,8 +93,11 @@ struct Results {
     tables: Vec<Table>,
     trials: u64,
     engagements: u64,
-    /// The paper's numbers consistent with ours, and those that differ.
-    agreement: Option<(u64, u64)>,
+    /// The paper's numbers consistent with ours, those that differ, and what they count.
+    agreement: Option<(u64, u64, String)>,
+    /// The smallest and largest ratio of ours to the paper's its tables print (a column
+    /// `ours/paper`), for an experiment that judges no agreement.
+    ratios: Option<(f64, f64)>,
     /// Every file of the directory, sorted.
     files: Vec<String>,
     /// SVG figures in the experiment's order: file name and how it is embedded.
@@ -130,9 +135,32 @@ fn bad(path: &Path, field: &str, rule: impl std::fmt::Display) -> Failure {
     }
 }
 
-/// The HTML page for the results under `out`.
-fn build(exps: &Registry, out: &Path, quiet: bool) -> Result<String, Failure> {
-    let (found, replays) = replays::split_replays(scan(out)?);
+/// ` --out DIR` for the commands the page prints, where it was built with `--out DIR` (so that
+/// a replay run as printed lands beside the page, which then links it); empty at the default.
+fn out_flag(out: Option<&Path>) -> String {
+    match out {
+        Some(dir) => format!(" --out {}", shell_word(&dir.to_string_lossy())),
+        None => String::new(),
+    }
+}
+
+/// `s` as one word of a POSIX shell: as it is when it holds only characters no shell treats
+/// specially, else in single quotes.
+fn shell_word(s: &str) -> String {
+    let plain = !s.is_empty()
+        && s.chars()
+            .all(|c| c.is_ascii_alphanumeric() || "-_./:=+,@%".contains(c));
+    if plain {
+        s.to_owned()
+    } else {
+        format!("'{}'", s.replace('\'', "'\\''"))
+    }
+}
+
+/// The HTML page for the results under `out`; `out_flag` is what its commands carry to write
+/// there ([`out_flag`]).
+fn build(exps: &Registry, out: &Path, out_flag: &str, quiet: bool) -> Result<String, Failure> {
+    let (found, replays) = replays::split_replays(exps, scan(out)?);
     if found.is_empty() {
         return Err(Failure::Bad(format!(
             "--out: {}: no results (no <id>/tables.json); run `cargo xtask run <id> --out {}` first",
@@ -166,7 +194,12 @@ fn build(exps: &Registry, out: &Path, quiet: bool) -> Result<String, Failure> {
     ids.dedup();
     let ids = order::in_paper_order(ids);
     let verdict = verdict::read(out)?;
-    Ok(render(exps, &ids, &results, &replays, verdict.as_ref()))
+    let links = heatmap::Links {
+        exps,
+        replays: &replays,
+        out_flag: out_flag.to_owned(),
+    };
+    Ok(render(exps, &ids, &results, &links, verdict.as_ref()))
 }
 
 /// The result directories under `out`: `(id, path)` for each visible subdirectory holding a
@@ -239,50 +272,86 @@ fn read_results(dir: &Path) -> Result<Results, Failure> {
     if !json.is_object() {
         return Err(bad(&path, "", "must be a JSON object"));
     }
+    let tables = read_tables(&json, &path)?;
+    let listed = match &json["files"] {
+        Value::Null => Vec::new(),
+        v => strings(v, &path, "files")?,
+    };
+    let agreement = read_agreement(&json, &path)?;
+    let files = dir_files(dir, &path, &listed)?;
+    let figures = read_figures(dir, &listed, &files)?;
+    let run_path = dir.join(RUN_JSON);
+    let run = if run_path.is_file() {
+        Some(read_provenance(&run_path)?)
+    } else {
+        None
+    };
+    let ratios = ratio_range(&tables);
+    Ok(Results {
+        tables,
+        ratios,
+        trials: count(&json["trials"], &path, "trials")?,
+        engagements: count(&json["engagements"], &path, "engagements")?,
+        agreement,
+        files,
+        figures,
+        run,
+    })
+}
+
+/// The tables of `tables.json` (`json`, read from `path`).
+fn read_tables(json: &Value, path: &Path) -> Result<Vec<Table>, Failure> {
     let raw_tables = json["tables"]
         .as_array()
-        .ok_or_else(|| bad(&path, "tables", "must be an array"))?;
+        .ok_or_else(|| bad(path, "tables", "must be an array"))?;
     let mut tables = Vec::new();
     for (i, t) in raw_tables.iter().enumerate() {
         let field = |f: &str| format!("tables[{i}].{f}");
         let title = t["title"]
             .as_str()
-            .ok_or_else(|| bad(&path, &field("title"), "must be a string"))?;
-        let columns = strings(&t["columns"], &path, &field("columns"))?;
+            .ok_or_else(|| bad(path, &field("title"), "must be a string"))?;
+        let columns = strings(&t["columns"], path, &field("columns"))?;
         let mut table = Table::new(title, columns);
         let rows = t["rows"]
             .as_array()
-            .ok_or_else(|| bad(&path, &field("rows"), "must be an array"))?;
+            .ok_or_else(|| bad(path, &field("rows"), "must be an array"))?;
         for (j, row) in rows.iter().enumerate() {
             table
                 .rows
-                .push(strings(row, &path, &field(&format!("rows[{j}]")))?);
+                .push(strings(row, path, &field(&format!("rows[{j}]")))?);
         }
         if !t["notes"].is_null() {
-            table.notes = strings(&t["notes"], &path, &field("notes"))?;
+            table.notes = strings(&t["notes"], path, &field("notes"))?;
         }
         tables.push(table);
     }
-    let listed = match &json["files"] {
-        Value::Null => Vec::new(),
-        v => strings(v, &path, "files")?,
-    };
-    let agreement = match &json["agreement"] {
-        Value::Null => None,
-        a => Some((
-            a["consistent"].as_u64().ok_or_else(|| {
-                bad(
-                    &path,
-                    "agreement.consistent",
-                    "must be a non-negative integer",
-                )
-            })?,
-            a["differ"]
-                .as_u64()
-                .ok_or_else(|| bad(&path, "agreement.differ", "must be a non-negative integer"))?,
-        )),
-    };
+    Ok(tables)
+}
 
+/// The agreement `tables.json` records: consistent, differing, and what they count.
+fn read_agreement(json: &Value, path: &Path) -> Result<Option<(u64, u64, String)>, Failure> {
+    let a = match &json["agreement"] {
+        Value::Null => return Ok(None),
+        a => a,
+    };
+    let number = |field: &str| {
+        a[field].as_u64().ok_or_else(|| {
+            bad(
+                path,
+                &format!("agreement.{field}"),
+                "must be a non-negative integer",
+            )
+        })
+    };
+    Ok(Some((
+        number("consistent")?,
+        number("differ")?,
+        a["what"].as_str().unwrap_or_default().to_owned(),
+    )))
+}
+
+/// The visible files of `dir`, sorted; each file `tables.json` (`path`) lists must be there.
+fn dir_files(dir: &Path, path: &Path, listed: &[String]) -> Result<Vec<String>, Failure> {
     let mut files = Vec::new();
     let entries = fs::read_dir(dir).map_err(|e| bad(dir, "", format!("cannot read: {e}")))?;
     for entry in entries {
@@ -295,16 +364,25 @@ fn read_results(dir: &Path) -> Result<Results, Failure> {
         }
     }
     files.sort();
-    for name in &listed {
+    for name in listed {
         if !files.contains(name) {
             return Err(bad(
-                &path,
+                path,
                 "files",
                 format!("lists {name}, which is not in {}", dir.display()),
             ));
         }
     }
-    // Figures: those tables.json lists, in its order, then any other SVG.
+    Ok(files)
+}
+
+/// The SVG figures of `dir`: those `tables.json` lists, in its order, then any other SVG; each
+/// must draw something.
+fn read_figures(
+    dir: &Path,
+    listed: &[String],
+    files: &[String],
+) -> Result<Vec<(String, Embed)>, Failure> {
     let mut svg_names: Vec<&String> = listed.iter().filter(|n| is_svg(n)).collect();
     svg_names.extend(files.iter().filter(|n| is_svg(n) && !listed.contains(*n)));
     let mut figures = Vec::new();
@@ -320,22 +398,50 @@ fn read_results(dir: &Path) -> Result<Results, Failure> {
         }
         figures.push((name.clone(), embed_svg(&text)));
     }
+    Ok(figures)
+}
 
-    let run_path = dir.join(RUN_JSON);
-    let run = if run_path.is_file() {
-        Some(read_provenance(&run_path)?)
-    } else {
-        None
-    };
-    Ok(Results {
-        tables,
-        trials: count(&json["trials"], &path, "trials")?,
-        engagements: count(&json["engagements"], &path, "engagements")?,
-        agreement,
-        files,
-        figures,
-        run,
-    })
+/// The smallest and largest number of the columns headed `ours/paper` of `tables`; `None`
+/// where there is none.
+fn ratio_range(tables: &[Table]) -> Option<(f64, f64)> {
+    let values: Vec<f64> = tables
+        .iter()
+        .flat_map(|t| {
+            let at = t.columns.iter().position(|c| c.trim() == "ours/paper");
+            t.rows
+                .iter()
+                .filter_map(move |r| r.get(at?)?.trim().parse::<f64>().ok())
+        })
+        .filter(|v| v.is_finite())
+        .collect();
+    let lo = values.iter().copied().reduce(f64::min)?;
+    let hi = values.iter().copied().reduce(f64::max)?;
+    Some((lo, hi))
+}
+
+/// An experiment's cell of the page's overview: how its numbers compare with the paper's and
+/// what that counts (`9 / 20 gears whose ...`), or the range of ours over the paper's where it
+/// judges none, or `-`.
+fn overview_cell(r: Option<&Results>) -> String {
+    match r {
+        // On other inputs the paper's numbers are no check of ours.
+        Some(r) if departs(r) => "-".to_owned(),
+        Some(Results {
+            agreement: Some((c, d, what)),
+            ..
+        }) if what.is_empty() => {
+            format!("{c} / {d}: the paper's numbers consistent with ours / differing")
+        }
+        Some(Results {
+            agreement: Some((c, d, what)),
+            ..
+        }) => format!("{c} / {d}: {what}"),
+        Some(Results {
+            ratios: Some((lo, hi)),
+            ..
+        }) => format!("ours/paper {lo:.2} to {hi:.2} (no test: the paper gives no interval)"),
+        _ => "-".to_owned(),
+    }
 }
 
 fn read_provenance(path: &Path) -> Result<Provenance, Failure> {
@@ -521,11 +627,14 @@ figcaption { color: #555; font-size: 0.85em; }
 .not-run .status { color: #a33; font-weight: 600; }
 table.toc td.status-run { color: #1d6b2f; white-space: nowrap; }
 table.toc td.status-not-run { color: #a33; white-space: nowrap; }
+table.toc td.agreement { font-size: 0.88em; min-width: 16em; }
 .files { font-size: 0.85em; color: #555; }
 footer { margin-top: 3em; color: #777; font-size: 0.85em; }
 .reference { background: #fff3cd; border: 1px solid #e0c36a; padding: 0.4em 0.7em; }
 table.heatmap { font-size: 0.8em; }
 table.heatmap th { white-space: nowrap; }
+table.heatmap tbody th { white-space: normal; min-width: 5em; }
+.table-wrap.wide table.heatmap td, .table-wrap.wide table.heatmap th { padding: 0.2em 0.25em; }
 .hm { text-align: center; white-space: nowrap; font-variant-numeric: tabular-nums; }
 .hm.consistent { background: #d9efd3; }
 .hm.differs { background: #c0392b; color: #fff; font-weight: 600; }
@@ -553,7 +662,7 @@ fn render(
     exps: &Registry,
     ids: &[String],
     results: &BTreeMap<String, Results>,
-    replays: &Replays,
+    links: &heatmap::Links<'_>,
     verdict: Option<&verdict::VerdictScreen>,
 ) -> String {
     let mut h = String::new();
@@ -581,8 +690,34 @@ appear in columns labelled &ldquo;paper&rdquo; or in parentheses, as in the prin
         verdict::block(&mut h, v);
     }
 
-    // Contents.
-    h.push_str("<nav>\n<div class=\"table-wrap\">\n<table class=\"toc\">\n<caption>Experiments</caption>\n<thead><tr><th>id</th><th>paper item</th><th>title</th><th>status</th><th>seed</th><th>paper's numbers consistent / differing (two-sample test for counts)</th></tr></thead>\n<tbody>\n");
+    contents(&mut h, exps, ids, results);
+    h.push_str("</tbody>\n</table>\n</div>\n</nav>\n<main>\n");
+
+    // The experiments that were run, in the paper's order; then, collapsed, those that were not.
+    for id in ids {
+        if let Some(r) = results.get(id) {
+            let (title, item) = describe(exps, id);
+            let listed = links
+                .replays
+                .get(id.as_str())
+                .map_or(&[][..], Vec::as_slice);
+            section(&mut h, (id, title, item), r, links);
+            replay_links(&mut h, listed);
+        }
+    }
+    not_run_list(&mut h, exps, ids, results);
+    let _ = write!(
+        h,
+        "</main>\n<footer>Generated by <code>cargo xtask report</code> at {}. Each section's files are linked relative to this page.</footer>\n</body>\n</html>\n",
+        esc(&now)
+    );
+    h
+}
+
+/// The page's overview: a row per experiment, its status, its seed and how its numbers
+/// compare with the paper's ([`overview_cell`]).
+fn contents(h: &mut String, exps: &Registry, ids: &[String], results: &BTreeMap<String, Results>) {
+    h.push_str("<nav>\n<div class=\"table-wrap\">\n<table class=\"toc\">\n<caption>Experiments</caption>\n<thead><tr><th>id</th><th>paper item</th><th>title</th><th>status</th><th>seed</th><th>against the paper: consistent / differing, and what is counted</th></tr></thead>\n<tbody>\n");
     for id in ids {
         let (title, item) = describe(exps, id);
         let r = results.get(id);
@@ -594,9 +729,6 @@ appear in columns labelled &ldquo;paper&rdquo; or in parentheses, as in the prin
         let seed = r
             .and_then(|r| r.run.as_ref())
             .map_or_else(|| "-".to_owned(), |p| p.seed.to_string());
-        let agreement = r
-            .and_then(|r| r.agreement)
-            .map_or_else(|| "-".to_owned(), |(i, o)| format!("{i} / {o}"));
         // A stub of an experiment not run sits in the closed list at the end: the link opens it.
         let anchor = if r.is_some() {
             format!("exp-{id}")
@@ -605,54 +737,47 @@ appear in columns labelled &ldquo;paper&rdquo; or in parentheses, as in the prin
         };
         let _ = writeln!(
             h,
-            "<tr><td><a href=\"#{}\">{}</a></td><td>{}</td><td>{}</td><td class=\"{class}\">{status}</td><td class=\"num\">{}</td><td class=\"num\">{}</td></tr>",
+            "<tr><td><a href=\"#{}\">{}</a></td><td>{}</td><td>{}</td><td class=\"{class}\">{status}</td><td class=\"num\">{}</td><td class=\"agreement\">{}</td></tr>",
             esc(&anchor),
             esc(id),
             esc(item),
             esc(title),
             esc(&seed),
-            esc(&agreement)
+            esc(&overview_cell(r))
         );
     }
-    h.push_str("</tbody>\n</table>\n</div>\n</nav>\n<main>\n");
+}
 
-    // The experiments that were run, in the paper's order; then, collapsed, those that were not.
-    for id in ids {
-        if let Some(r) = results.get(id) {
-            let (title, item) = describe(exps, id);
-            let listed = replays.get(id.as_str()).map_or(&[][..], Vec::as_slice);
-            section(&mut h, id, title, item, r, listed);
-            replay_links(&mut h, listed);
-        }
-    }
+/// The experiments not run, collapsed at the end of the page.
+fn not_run_list(
+    h: &mut String,
+    exps: &Registry,
+    ids: &[String],
+    results: &BTreeMap<String, Results>,
+) {
     let not_run: Vec<&String> = ids.iter().filter(|id| !results.contains_key(*id)).collect();
-    if !not_run.is_empty() {
-        let _ = writeln!(
-            h,
-            "<details id=\"not-run\" class=\"not-run-list\">\n<summary>Not run: {} experiment{} (<code>cargo xtask run ID --out DIR</code>, then <code>cargo xtask report --out DIR</code> again)</summary>",
-            not_run.len(),
-            if not_run.len() == 1 { "" } else { "s" }
-        );
-        for id in not_run {
-            let (title, item) = describe(exps, id);
-            let _ = write!(
-                h,
-                "<section id=\"exp-{}\" class=\"experiment not-run\">\n<h2>{}: {}</h2>\n\
-<p class=\"meta\">Paper item: {}</p>\n<p class=\"status\">not run</p>\n</section>\n",
-                esc(id),
-                esc(id),
-                esc(title),
-                esc(item)
-            );
-        }
-        h.push_str("</details>\n");
+    if not_run.is_empty() {
+        return;
     }
-    let _ = write!(
+    let _ = writeln!(
         h,
-        "</main>\n<footer>Generated by <code>cargo xtask report</code> at {}. Each section's files are linked relative to this page.</footer>\n</body>\n</html>\n",
-        esc(&now)
+        "<details id=\"not-run\" class=\"not-run-list\">\n<summary>Not run: {} experiment{} (<code>cargo xtask run ID --out DIR</code>, then <code>cargo xtask report --out DIR</code> again)</summary>",
+        not_run.len(),
+        if not_run.len() == 1 { "" } else { "s" }
     );
-    h
+    for id in not_run {
+        let (title, item) = describe(exps, id);
+        let _ = write!(
+            h,
+            "<section id=\"exp-{}\" class=\"experiment not-run\">\n<h2>{}: {}</h2>\n\
+<p class=\"meta\">Paper item: {}</p>\n<p class=\"status\">not run</p>\n</section>\n",
+            esc(id),
+            esc(id),
+            esc(title),
+            esc(item)
+        );
+    }
+    h.push_str("</details>\n");
 }
 
 /// Title and paper item from the registry.
@@ -663,31 +788,75 @@ fn describe<'a>(exps: &'a Registry, id: &str) -> (&'a str, &'a str) {
         })
 }
 
-/// Links to an experiment's replayed trials (after its section): each trial's moving page, or
-/// its folder when it has none.
+/// Links to an experiment's replayed trials (after its section): each trial's moving page,
+/// named with what the trial did, and each listing of a cell's failed trials drawn on this page
+/// (its table, as `replay` printed it), where the link leads.
 fn replay_links(h: &mut String, replays: &[Replayed]) {
     if replays.is_empty() {
         return;
     }
+    let mut listings = String::new();
     let links: Vec<String> = replays
         .iter()
-        .map(|Replayed { folder, page, .. }| {
-            let target = if *page {
-                format!("{}/pair.html", url_part(folder))
-            } else {
-                format!("{}/table.md", url_part(folder))
-            };
-            format!("<a href=\"{target}\">{}</a>", esc(folder))
+        .map(|r| {
+            if r.page {
+                let did = r.trial.as_ref().map_or(String::new(), |t| {
+                    let what = match (t.jammed, t.disengaged) {
+                        (true, true) => "jammed and disengaged",
+                        (true, false) => "jammed",
+                        (false, true) => "disengaged",
+                        (false, false) => "neither",
+                    };
+                    format!(" ({what})")
+                });
+                return format!(
+                    "<a href=\"{}/pair.html\">{}</a>{}",
+                    url_part(&r.folder),
+                    esc(&r.folder),
+                    esc(&did)
+                );
+            }
+            match read_results(&r.dir) {
+                Ok(listing) => {
+                    let _ = writeln!(
+                        listings,
+                        "<details class=\"listing\" id=\"listing-{}\"><summary>{}: the cell's failed trials (<a href=\"{}/failed-trials.csv\">failed-trials.csv</a>)</summary>",
+                        esc(&r.folder),
+                        esc(&r.folder),
+                        url_part(&r.folder)
+                    );
+                    for t in &listing.tables {
+                        table(&mut listings, t, false);
+                    }
+                    listings.push_str("</details>\n");
+                    format!(
+                        "<a href=\"#listing-{}\">{}</a> (a listing)",
+                        esc(&r.folder),
+                        esc(&r.folder)
+                    )
+                }
+                Err(_) => format!(
+                    "<a href=\"{}/failed-trials.csv\">{}</a> (a listing)",
+                    url_part(&r.folder),
+                    esc(&r.folder)
+                ),
+            }
         })
         .collect();
     let _ = writeln!(
         h,
         "<p class=\"replays\">Replayed trials (<code>cargo xtask replay</code>; each page shows the gears moving through the trial): {}</p>",
-        links.join(" ")
+        links.join(", ")
     );
+    h.push_str(&listings);
 }
 
-fn section(h: &mut String, id: &str, title: &str, item: &str, r: &Results, replays: &[Replayed]) {
+fn section(
+    h: &mut String,
+    (id, title, item): (&str, &str, &str),
+    r: &Results,
+    links: &heatmap::Links<'_>,
+) {
     // The registered title states the defaults ("200 trials per cell"); a run that changed
     // them is headed by its first table's title, which states what was run.
     let changed = r.run.as_ref().is_some_and(|p| !p.overrides.is_empty());
@@ -711,36 +880,57 @@ fn section(h: &mut String, id: &str, title: &str, item: &str, r: &Results, repla
         esc(title),
         esc(item)
     );
-    match &r.run {
-        Some(p) => {
-            let overrides = if p.overrides.is_empty() {
-                "none (defaults)".to_owned()
-            } else {
-                p.overrides
-                    .iter()
-                    .map(|(k, v)| format!("<code>{}={}</code>", esc(k), esc(v)))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            };
-            let config = p.config.as_ref().map_or_else(String::new, |c| {
-                format!("; config file <code>{}</code>", esc(c))
-            });
-            let _ = writeln!(
-                h,
-                "<p class=\"meta provenance\">Produced with seed <b>{}</b>, {} thread{}, overrides: {overrides}{config}; \
-xtask {} (git <code>{}</code>), {}.</p>",
-                p.seed,
-                p.threads,
-                if p.threads == 1 { "" } else { "s" },
-                esc(&p.version),
-                esc(&p.git),
-                esc(&p.date)
-            );
-        }
-        None => h.push_str(
-            "<p class=\"meta provenance\">Provenance not recorded (no run.json: these results predate it).</p>\n",
-        ),
+    provenance_line(h, r.run.as_ref());
+    facts_line(h, r);
+    if reference {
+        h.push_str(REFERENCE_BANNER);
     }
+    for (i, t) in r.tables.iter().enumerate() {
+        table(h, t, reference);
+        if i == 0 {
+            heatmap::heatmaps(h, id, t, r, links, reference);
+        }
+    }
+    figures_and_files(h, id, r);
+    h.push_str("</section>\n");
+}
+
+/// The line that says what produced a section's results: seed, threads, settings, version.
+fn provenance_line(h: &mut String, run: Option<&Provenance>) {
+    let Some(p) = run else {
+        h.push_str(
+            "<p class=\"meta provenance\">Provenance not recorded (no run.json: these results predate it).</p>\n",
+        );
+        return;
+    };
+    let overrides = if p.overrides.is_empty() {
+        "none (defaults)".to_owned()
+    } else {
+        p.overrides
+            .iter()
+            .map(|(k, v)| format!("<code>{}={}</code>", esc(k), esc(v)))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let config = p.config.as_ref().map_or_else(String::new, |c| {
+        format!("; config file <code>{}</code>", esc(c))
+    });
+    let _ = writeln!(
+        h,
+        "<p class=\"meta provenance\">Produced with seed <b>{}</b>, {} thread{}, overrides: {overrides}{config}; \
+xtask {} (git <code>{}</code>), {}.</p>",
+        p.seed,
+        p.threads,
+        if p.threads == 1 { "" } else { "s" },
+        esc(&p.version),
+        esc(&p.git),
+        esc(&p.date)
+    );
+}
+
+/// A section's facts: its trials, tooth engagements and how its numbers compare with the
+/// paper's.
+fn facts_line(h: &mut String, r: &Results) {
     let mut facts = Vec::new();
     if r.trials > 0 {
         facts.push(format!("trials: {}", r.trials));
@@ -748,23 +938,16 @@ xtask {} (git <code>{}</code>), {}.</p>",
     if r.engagements > 0 {
         facts.push(format!("tooth engagements: {}", r.engagements));
     }
-    if let Some((i, o)) = r.agreement {
-        facts.push(format!(
-            "the paper's numbers consistent with ours / differing: {i} / {o}"
-        ));
+    if r.agreement.is_some() || r.ratios.is_some() {
+        facts.push(format!("against the paper: {}", overview_cell(Some(r))));
     }
     if !facts.is_empty() {
         let _ = writeln!(h, "<p class=\"meta\">{}</p>", esc(&facts.join("; ")));
     }
-    if reference {
-        h.push_str(REFERENCE_BANNER);
-    }
-    for (i, t) in r.tables.iter().enumerate() {
-        table(h, t, reference);
-        if i == 0 {
-            heatmap::heatmaps(h, id, t, r, replays, reference);
-        }
-    }
+}
+
+/// A section's figures, each embedded with a link to its file, and the links to all its files.
+fn figures_and_files(h: &mut String, id: &str, r: &Results) {
     for (name, embed) in &r.figures {
         let file = format!("{id}/{name}");
         let _ = writeln!(h, "<figure data-file=\"{}\">", esc(&file));
@@ -794,11 +977,7 @@ xtask {} (git <code>{}</code>), {}.</p>",
             )
         })
         .collect();
-    let _ = write!(
-        h,
-        "<p class=\"files\">Files: {}</p>\n</section>\n",
-        links.join(" ")
-    );
+    let _ = writeln!(h, "<p class=\"files\">Files: {}</p>", links.join(" "));
 }
 
 /// Has this run inputs other than the paper's ([`provenance::stamp`] says so in every title)?
@@ -842,58 +1021,167 @@ fn states_agreement(note: &str) -> bool {
 /// A table with more columns than this is drawn the window's width ([`table`]).
 const WIDE_COLUMNS: usize = 10;
 
+/// The width a wide table may take, px: a 1280 px window less the page's margins. A wider one
+/// is drawn in parts, each with the table's label columns ([`column_groups`]), so that no
+/// column is cut off at the right.
+const WIDE_ROOM: f64 = 1180.0;
+
+/// The lines a cell shows: in a wide table an `ours (paper)` cell breaks before the paper's
+/// part and a `jams / disengagements` cell (with their intervals) after the ` / `.
+fn cell_lines(cell: &str, wide: bool) -> Vec<String> {
+    if !wide {
+        return vec![cell.to_owned()];
+    }
+    if let Some((ours, theirs)) = cell.split_once(" (") {
+        return vec![ours.to_owned(), format!("({theirs}")];
+    }
+    if cell.contains(" [")
+        && let Some((jams, dis)) = cell.split_once(" / ")
+    {
+        return vec![format!("{jams} /"), dis.to_owned()];
+    }
+    vec![cell.to_owned()]
+}
+
+/// The width a column of a wide table takes, about, px: its widest line at the wide tables'
+/// 0.8 em type (digits some 8 px) and its padding.
+fn column_px(t: &Table, c: usize) -> f64 {
+    let widest = std::iter::once(t.columns[c].clone())
+        .chain(
+            t.rows
+                .iter()
+                .filter_map(|r| r.get(c))
+                .flat_map(|cell| cell_lines(cell, true)),
+        )
+        .map(|l| l.chars().count())
+        .max()
+        .unwrap_or(0);
+    8.0 * widest as f64 + 14.0
+}
+
+/// The label columns a wide table repeats in each of its parts: those before the first whose
+/// header names a mesh (`b2-c1`), at least one.
+fn label_columns(t: &Table) -> usize {
+    t.columns
+        .iter()
+        .position(|c| c.contains('-'))
+        .unwrap_or(1)
+        .clamp(1, 3)
+}
+
+/// The columns of table `t` after its `lead` label columns, in groups that each fit
+/// [`WIDE_ROOM`] beside the label columns (one group where the table fits as it is).
+fn column_groups(t: &Table, lead: usize) -> Vec<std::ops::Range<usize>> {
+    let labels: f64 = (0..lead.min(t.columns.len()))
+        .map(|c| column_px(t, c))
+        .sum();
+    let mut groups = Vec::new();
+    let (mut start, mut used) = (lead, labels);
+    for c in lead..t.columns.len() {
+        let w = column_px(t, c);
+        if c > start && used + w > WIDE_ROOM {
+            groups.push(start..c);
+            (start, used) = (c, labels);
+        }
+        used += w;
+    }
+    if start < t.columns.len() || groups.is_empty() {
+        groups.push(start..t.columns.len());
+    }
+    groups
+}
+
 /// One table. With `reference` (a run on other inputs than the paper's) its cells lose their
 /// `*` marks, its title the phrase on them, and its notes on agreement are labelled for
-/// reference only.
+/// reference only. A table of many columns (the 15 meshes) takes the window's width, its cells
+/// broken onto lines, and, where it is still too wide, is drawn in parts of its columns.
 fn table(h: &mut String, t: &Table, reference: bool) {
-    let paper: Vec<bool> = t
-        .columns
-        .iter()
-        .map(|c| c.to_ascii_lowercase().contains("paper"))
-        .collect();
     let title = if reference {
         without_marks(&t.title)
     } else {
         t.title.clone()
     };
-    // A table of many columns (the 15 meshes) takes the window's width, and its `ours (paper)`
-    // cells break before the paper's part, so that it fits a common screen.
     let wide = t.columns.len() > WIDE_COLUMNS;
+    if !wide {
+        let _ = writeln!(h, "<p class=\"table-title\">{}</p>", esc(&title));
+        table_part(h, t, (0..0, 0..t.columns.len()), reference, false);
+    } else {
+        let lead = label_columns(t);
+        let groups = column_groups(t, lead);
+        for (i, g) in groups.iter().enumerate() {
+            let part = if groups.len() == 1 {
+                String::new()
+            } else {
+                format!(
+                    " (part {} of {}: {} to {})",
+                    i + 1,
+                    groups.len(),
+                    t.columns[g.start],
+                    t.columns[g.end - 1]
+                )
+            };
+            let _ = writeln!(
+                h,
+                "<p class=\"table-title\">{}{}</p>",
+                esc(&title),
+                esc(&part)
+            );
+            table_part(h, t, (0..lead, g.clone()), reference, true);
+        }
+    }
+    table_notes(h, t, reference);
+}
+
+/// The columns `labels` and `group` of table `t` as an HTML table (see [`table`]).
+fn table_part(
+    h: &mut String,
+    t: &Table,
+    (labels, group): (std::ops::Range<usize>, std::ops::Range<usize>),
+    reference: bool,
+    wide: bool,
+) {
+    let columns: Vec<usize> = labels.chain(group).collect();
+    let paper = |c: usize| t.columns[c].to_ascii_lowercase().contains("paper");
     let _ = write!(
         h,
-        "<p class=\"table-title\">{}</p>\n<div class=\"table-wrap{}\">\n<table>\n<thead><tr>",
-        esc(&title),
+        "<div class=\"table-wrap{}\">\n<table>\n<thead><tr>",
         if wide { " wide" } else { "" }
     );
-    for (c, p) in t.columns.iter().zip(&paper) {
-        let class = if *p { " class=\"paper\"" } else { "" };
-        let _ = write!(h, "<th{class}>{}</th>", esc(c));
+    for &c in &columns {
+        let class = if paper(c) { " class=\"paper\"" } else { "" };
+        let _ = write!(h, "<th{class}>{}</th>", esc(&t.columns[c]));
     }
     h.push_str("</tr></thead>\n<tbody>\n");
     for row in &t.rows {
         h.push_str("<tr>");
-        for (i, cell) in row.iter().enumerate() {
+        for &c in &columns {
+            let cell = row.get(c).map_or("", String::as_str);
             let unmarked;
             let cell = if reference {
                 unmarked = cell.replace('*', "");
                 unmarked.trim_end()
             } else {
-                cell.as_str()
+                cell
             };
             let mut classes = Vec::new();
             if numeric(cell) {
                 classes.push("num");
             }
-            if paper.get(i).copied().unwrap_or(false) {
+            if paper(c) {
                 classes.push("paper");
             }
-            let text = match cell.split_once(" (") {
-                Some((ours, theirs)) if wide => format!(
-                    "{}<br><span class=\"paper-part\">({})</span>",
+            let lines = cell_lines(cell, wide);
+            let text = match lines.as_slice() {
+                [ours, theirs] if theirs.starts_with('(') => format!(
+                    "{}<br><span class=\"paper-part\">{}</span>",
                     esc(ours),
                     esc(theirs)
                 ),
-                _ => esc(cell),
+                _ => lines
+                    .iter()
+                    .map(|l| esc(l))
+                    .collect::<Vec<_>>()
+                    .join("<br>"),
             };
             if classes.is_empty() {
                 let _ = write!(h, "<td>{text}</td>");
@@ -904,19 +1192,24 @@ fn table(h: &mut String, t: &Table, reference: bool) {
         h.push_str("</tr>\n");
     }
     h.push_str("</tbody>\n</table>\n</div>\n");
-    if !t.notes.is_empty() {
-        h.push_str("<ul class=\"notes\">\n");
-        for n in &t.notes {
-            if reference && states_agreement(n) {
-                let _ = writeln!(
-                    h,
-                    "<li><b>For reference only, not a check (this run's inputs differ from the paper's; its marks are not shown):</b> {}</li>",
-                    esc(n)
-                );
-            } else {
-                let _ = writeln!(h, "<li>{}</li>", esc(n));
-            }
-        }
-        h.push_str("</ul>\n");
+}
+
+/// The notes under a table; with `reference`, a note on agreement labelled for reference only.
+fn table_notes(h: &mut String, t: &Table, reference: bool) {
+    if t.notes.is_empty() {
+        return;
     }
+    h.push_str("<ul class=\"notes\">\n");
+    for n in &t.notes {
+        if reference && states_agreement(n) {
+            let _ = writeln!(
+                h,
+                "<li><b>For reference only, not a check (this run's inputs differ from the paper's; its marks are not shown):</b> {}</li>",
+                esc(n)
+            );
+        } else {
+            let _ = writeln!(h, "<li>{}</li>", esc(n));
+        }
+    }
+    h.push_str("</ul>\n");
 }

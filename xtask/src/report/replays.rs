@@ -5,9 +5,11 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
+use experiments::replay::ReplayedTrial;
 use serde_json::Value;
 
 use super::Provenance;
+use crate::shared::Registry;
 
 /// The settings a replay or a run was made under: the seed and every setting set, but
 /// `trials` (which changes neither a trial's gears nor its events), sorted by name.
@@ -24,6 +26,42 @@ pub(super) struct Replayed {
     pub(super) page: bool,
     /// The settings its `run.json` records; `None` when there is none to read.
     pub(super) settings: Option<Settings>,
+    /// The trial it replays and what that trial did, from its table's title (`None` for a
+    /// listing, or a title that cannot be read).
+    pub(super) trial: Option<ReplayedTrial>,
+    /// What makes its trial the trial it is, whichever table counts it
+    /// ([`experiments::replay::trial_key`]); `None` where it cannot be worked out.
+    pub(super) key: Option<String>,
+}
+
+impl Replayed {
+    /// Whether this is a replayed trial (with its page) that had `failure`.
+    pub(super) fn had(&self, failure: TrialFailure) -> bool {
+        self.page
+            && self.trial.as_ref().is_some_and(|t| match failure {
+                TrialFailure::Jam => t.jammed,
+                TrialFailure::Disengagement => t.disengaged,
+            })
+    }
+}
+
+/// The failure a heatmap counts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum TrialFailure {
+    /// Trials with at least one jam.
+    Jam,
+    /// Trials with at least one disengagement.
+    Disengagement,
+}
+
+impl TrialFailure {
+    /// The failure in words, as a listing of failed trials names it.
+    pub(super) fn word(self) -> &'static str {
+        match self {
+            TrialFailure::Jam => "jam",
+            TrialFailure::Disengagement => "disengagement",
+        }
+    }
 }
 
 /// Replayed trials and listings by experiment id.
@@ -64,9 +102,27 @@ fn recorded(dir: &Path) -> Option<Settings> {
     Some(normalised(seed, &overrides))
 }
 
+/// The trial key ([`experiments::replay::trial_key`]) of cell `cell` of experiment `id` under
+/// `settings`; `None` where the settings or the cell cannot be read.
+pub(super) fn key_of(exps: &Registry, id: &str, cell: &str, settings: &Settings) -> Option<String> {
+    let e = exps.get(id)?;
+    let ctx = registry::Context::new(e, settings.0, 1, &settings.1, None).ok()?;
+    experiments::replay::trial_key(&ctx, id, cell).ok()
+}
+
+/// The trial a replay's `tables.json` names in its first title.
+fn replayed_trial(dir: &Path) -> Option<ReplayedTrial> {
+    let text = input_file::read_to_string(&dir.join("tables.json"), 64 << 20).ok()?;
+    let tables: Value = serde_json::from_str(&text).ok()?;
+    ReplayedTrial::from_title(tables["tables"][0]["title"].as_str()?)
+}
+
 /// The replayed trials among the result folders, by the experiment they come from, and the
 /// other folders.
-pub(super) fn split_replays(found: Vec<(String, PathBuf)>) -> (Vec<(String, PathBuf)>, Replays) {
+pub(super) fn split_replays(
+    exps: &Registry,
+    found: Vec<(String, PathBuf)>,
+) -> (Vec<(String, PathBuf)>, Replays) {
     let mut replays = Replays::new();
     let mut rest = Vec::new();
     for (name, path) in found {
@@ -80,11 +136,18 @@ pub(super) fn split_replays(found: Vec<(String, PathBuf)>) -> (Vec<(String, Path
             Some(id) => {
                 let page = path.join("pair.html").is_file();
                 let settings = recorded(&path);
+                let trial = if page { replayed_trial(&path) } else { None };
+                let key = match (&trial, &settings) {
+                    (Some(t), Some(s)) if t.experiment == id => key_of(exps, id, &t.cell, s),
+                    _ => None,
+                };
                 replays.entry(id.to_owned()).or_default().push(Replayed {
                     folder: name,
                     dir: path,
                     page,
                     settings,
+                    trial,
+                    key,
                 });
             }
             None => rest.push((name, path)),

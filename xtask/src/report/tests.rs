@@ -49,6 +49,7 @@ fn write_a(out: &Path) {
         agreement: Some(registry::Agreement {
             consistent: 3,
             differ: 1,
+            what: "values of a test".into(),
         }),
         ..Default::default()
     };
@@ -65,7 +66,7 @@ fn page_has_tables_figures_provenance_and_not_run() {
     let s = Scratch::new("page");
     write_a(&s.0);
     fs::create_dir_all(s.0.join(".a.tmp-1")).unwrap(); // hidden: ignored
-    let page = build(&registry(), &s.0, true).unwrap();
+    let page = build(&registry(), &s.0, "", true).unwrap();
     assert!(page.contains("<section id=\"exp-a\" class=\"experiment run\">"));
     assert!(page.contains("<h2>a: First &lt;one&gt;</h2>"));
     assert!(page.contains("<p class=\"table-title\">Ours &amp; the paper&#39;s</p>"));
@@ -74,7 +75,7 @@ fn page_has_tables_figures_provenance_and_not_run() {
     assert!(page.contains("<figure data-file=\"a/a.svg\">\n<svg xmlns"));
     assert!(!page.contains("<?xml"));
     assert!(page.contains("seed <b>11</b>, 2 threads"));
-    assert!(page.contains("consistent with ours / differing: 3 / 1"));
+    assert!(page.contains("against the paper: 3 / 1: values of a test"));
     assert!(page.contains("<section id=\"exp-b\" class=\"experiment not-run\">"));
     assert!(page.contains("<p class=\"status\">not run</p>"));
     assert!(!page.contains("tmp-1"));
@@ -101,10 +102,37 @@ fn replayed_trials_are_linked_from_their_experiment_not_shown_as_one() {
         ..Default::default()
     };
     registry::write_results(&s.0.join("replay-table3-B-m3-e3-1"), &replay).unwrap();
-    let page = build(&registry(), &s.0, true).unwrap();
+    // A listing of the cell's failed trials: shown on the page, not as its raw table.md.
+    let mut failed = Table::new(
+        "table3 B/m3-e3: the trials that failed, of 200 (seed 2025)",
+        ["failure", "trials", "trial indices"],
+    );
+    failed.row(vec!["jam".into(), "141".into(), "1, 2, 3".into()]);
+    let listing = Report {
+        tables: vec![failed],
+        files: vec![OutputFile::new(
+            "failed-trials.csv",
+            "trial,jammed,disengaged\n1,true,false\n",
+        )],
+        ..Default::default()
+    };
+    registry::write_results(&s.0.join("replay-table3-B-m3-e3-failed"), &listing).unwrap();
+    let page = build(&registry(), &s.0, "", true).unwrap();
     assert!(
         page.contains("<a href=\"replay-table3-B-m3-e3-1/pair.html\">replay-table3-B-m3-e3-1</a>"),
         "{page}"
+    );
+    assert!(
+        page.contains("<a href=\"#listing-replay-table3-B-m3-e3-failed\">")
+            && page.contains(
+                "<details class=\"listing\" id=\"listing-replay-table3-B-m3-e3-failed\">"
+            )
+            && page.contains("<td class=\"num\">141</td>"),
+        "the listing is drawn on the page: {page}"
+    );
+    assert!(
+        !page.contains("replay-table3-B-m3-e3-failed/table.md"),
+        "no link opens the listing's raw table.md: {page}"
     );
     assert!(
         !page.contains("id=\"exp-replay-"),
@@ -129,13 +157,13 @@ fn command_writes_the_page_atomically() {
 #[test]
 fn no_results_is_bad_input_and_writes_nothing() {
     let s = Scratch::new("empty");
-    let e = build(&registry(), &s.0, true).unwrap_err();
+    let e = build(&registry(), &s.0, "", true).unwrap_err();
     assert_eq!(e.code(), 2);
     assert!(format!("{e:?}").contains("no results"), "{e:?}");
     let e = command(&out_at(&s.0)).unwrap_err();
     assert_eq!(e.code(), 2);
     assert!(!s.0.join(INDEX_HTML).exists());
-    let e = build(&registry(), &s.0.join("missing"), true).unwrap_err();
+    let e = build(&registry(), &s.0.join("missing"), "", true).unwrap_err();
     assert_eq!(e.code(), 2);
     assert!(format!("{e:?}").contains("no such directory"), "{e:?}");
 }
@@ -224,6 +252,13 @@ fn helpers() {
     assert_eq!(url_part("fig 2/ä.svg"), "fig%202%2F%C3%A4.svg");
     assert!(numeric("17.96") && numeric("< 1e-12") && numeric("-0.5") && numeric("0 / 0"));
     assert!(!numeric("theta") && !numeric("-") && !numeric(""));
+    // The page's commands carry its --out as one word of the shell.
+    assert_eq!(out_flag(None), "");
+    assert_eq!(out_flag(Some(Path::new("runs/a"))), " --out runs/a");
+    assert_eq!(
+        out_flag(Some(Path::new("my 'runs'"))),
+        r" --out 'my '\''runs'\'''"
+    );
 }
 
 #[test]
@@ -356,6 +391,15 @@ fn runs_on_other_inputs_show_no_marks_and_no_agreement_as_a_check() {
 
 /// The names and contents of the files in the gzipped tar archive `file`.
 fn archive_entries(file: &Path) -> Vec<(String, Vec<u8>)> {
+    archive_dated(file)
+        .into_iter()
+        .map(|(n, b, _)| (n, b))
+        .filter(|(n, _)| !n.ends_with('/'))
+        .collect()
+}
+
+/// Every entry of the archive `file`, folders too: name, contents and date (seconds since 1970).
+fn archive_dated(file: &Path) -> Vec<(String, Vec<u8>, u64)> {
     use std::io::Read as _;
     let gz = flate2::read::GzDecoder::new(fs::File::open(file).unwrap());
     let mut tar = tar::Archive::new(gz);
@@ -364,11 +408,11 @@ fn archive_entries(file: &Path) -> Vec<(String, Vec<u8>)> {
         .map(|e| {
             let mut e = e.unwrap();
             let name = e.path().unwrap().to_string_lossy().into_owned();
+            let mtime = e.header().mtime().unwrap();
             let mut bytes = Vec::new();
             e.read_to_end(&mut bytes).unwrap();
-            (name, bytes)
+            (name, bytes, mtime)
         })
-        .filter(|(n, _)| !n.ends_with('/'))
         .collect()
 }
 
@@ -396,7 +440,16 @@ fn bundle_holds_results_and_inputs_and_refuses_a_changed_input() {
         bundle: Some(file.clone()),
         ..out_at(&out)
     };
+    let before = super::bundle::now_seconds();
     command(&args).unwrap();
+    let after = super::bundle::now_seconds();
+    // Every entry, folders too, dated when the bundle was written.
+    for (name, _, mtime) in archive_dated(&file) {
+        assert!(
+            (before..=after).contains(&mtime),
+            "{name} dated {mtime}, not {before}..{after}"
+        );
+    }
     let entries = archive_entries(&file);
     let names: Vec<&str> = entries.iter().map(|(n, _)| n.as_str()).collect();
     assert!(names.contains(&"results/index.html"), "{names:?}");
@@ -417,4 +470,100 @@ fn bundle_holds_results_and_inputs_and_refuses_a_changed_input() {
         "{m}"
     );
     assert_eq!(fs::read(&file).unwrap(), before);
+}
+
+/// The overview says what each count counts: a count of gears equal on a grid is not read as
+/// mostly wrong, and an experiment that judges no agreement but prints ours over the paper's
+/// shows that ratio rather than `-`.
+#[test]
+fn the_overview_says_what_its_counts_count() {
+    let s = Scratch::new("overview");
+    let mut t = Table::new("Figure 6", ["gear", "ours", "paper"]);
+    t.row(vec!["b2".into(), "0.050".into(), "0.055".into()]);
+    let fig = Report {
+        tables: vec![t],
+        agreement: Some(registry::Agreement {
+            consistent: 9,
+            differ: 20,
+            what: "gears whose value equals the paper's / does not (no test)".into(),
+        }),
+        ..Default::default()
+    };
+    registry::write_results(&s.0.join("a"), &fig).unwrap();
+    let mut t = Table::new("Table 1", ["pointer", "ours", "paper", "ours/paper"]);
+    t.row(vec![
+        "Lunar".into(),
+        "0.75".into(),
+        "0.60".into(),
+        "1.26".into(),
+    ]);
+    t.row(vec![
+        "Games".into(),
+        "0.07".into(),
+        "0.04".into(),
+        "1.76".into(),
+    ]);
+    t.row(vec![
+        "Lunar P".into(),
+        "0.50".into(),
+        "0.66".into(),
+        "0.76".into(),
+    ]);
+    let table1 = Report {
+        tables: vec![t],
+        ..Default::default()
+    };
+    registry::write_results(&s.0.join("b"), &table1).unwrap();
+    let page = build(&registry(), &s.0, "", true).unwrap();
+    let row = |id: &str| {
+        let at = page.find(&format!("<a href=\"#exp-{id}\">")).unwrap();
+        page[at..at + page[at..].find("</tr>").unwrap()].to_owned()
+    };
+    assert!(
+        row("a").contains("9 / 20: gears whose value equals the paper&#39;s / does not (no test)"),
+        "{}",
+        row("a")
+    );
+    assert!(row("b").contains("ours/paper 0.76 to 1.76"), "{}", row("b"));
+    assert!(page.contains("against the paper: 9 / 20: gears whose"));
+}
+
+/// The heatmaps' key says what green means: agreement with the paper's count, however many
+/// trials failed, not a mesh that works.
+#[test]
+fn the_heatmap_key_says_what_green_means() {
+    let s = Scratch::new("heat-key");
+    let mut columns = vec!["case".to_owned()];
+    columns.extend(["b2-c1", "c2-d1"].map(str::to_owned));
+    let mut t = Table::new(
+        "Table 3: trials (of 200) with at least one jam / disengagement, G = 40 %: ours (paper); * where a two-sample test separates our count from the paper's",
+        columns,
+    );
+    t.row(vec![
+        "D".into(),
+        "199/0 (200/0)".into(),
+        "150*/0 (195/0)".into(),
+    ]);
+    let report = Report {
+        tables: vec![t],
+        ..Default::default()
+    };
+    registry::write_results(&s.0.join("table3"), &report).unwrap();
+    let mut exps = registry();
+    exps.insert("table3", &A);
+    let page = build(&exps, &s.0, "", true).unwrap();
+    let key = &page[page.find("<p class=\"heat-key\">").unwrap()..];
+    let key = &key[..key.find("</p>").unwrap()];
+    for words in [
+        "green: consistent",
+        "however many trials failed",
+        "green does not say the mesh works",
+        "red: differs",
+    ] {
+        assert!(key.contains(words), "`{words}` missing from the key: {key}");
+    }
+    assert!(
+        page.contains("<td class=\"hm consistent\""),
+        "the 199 | 200 cell is green"
+    );
 }
