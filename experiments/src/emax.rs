@@ -16,6 +16,8 @@ pub const EMAX: Param = Param {
     help: "each mesh's random error (row E. max): `derived` from Table 4's grid by the rule, as the paper did, or `paper`, the paper's own E. max row, so that every cell is run on the paper's inputs and compared like for like",
     kind: registry::Kind::Choice(&["derived", "paper"]),
     reading: true,
+    clearance: false,
+    recorded: false,
 };
 
 /// Where the `emax` parameter's value `emax` takes each mesh's random error from: the paper's

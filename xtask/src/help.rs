@@ -238,7 +238,7 @@ pub(crate) fn rule_details(r: &rules::Rule, exps: &Registry) -> String {
     }
     let users: Vec<&str> = exps
         .values()
-        .filter(|e| e.all_params().any(|p| p.name == "events"))
+        .filter(|e| e.all_params().any(|p| *p == study::events::PARAM))
         .map(|e| e.id)
         .collect();
     s.push_str(&format!(
@@ -277,7 +277,7 @@ pub(crate) fn hypothesis_details(h: &dyn hypotheses::Hypothesis, exps: &Registry
     }
     let takes: Vec<&str> = exps
         .values()
-        .filter(|e| e.all_params().any(|p| p.name == "hypothesis"))
+        .filter(|e| e.all_params().any(|p| *p == study::errors::PARAM))
         .map(|e| e.id)
         .collect();
     let example = h

@@ -180,18 +180,21 @@ pub(crate) fn warnings(
         let Some(p) = e.all_params().find(|p| p.name == key) else {
             continue;
         };
-        if p.unit != "% of h" || !["clearance", "clearances", "grid"].contains(&p.name) {
+        if !p.clearance {
             continue;
         }
+        // One clearance, or a list of them (a text parameter).
+        let one = !matches!(p.kind, registry::Kind::Text);
         for item in value.split(',') {
             let Ok(v) = item.trim().parse::<f64>() else {
                 continue;
             };
-            if fraction_of_a_clearance(v) && p.name == "clearance" {
+            if fraction_of_a_clearance(v) && one {
                 let meant = percent(v);
                 out.push(format!(
-                    "warning: {}: --set clearance={value} is {value} % of the tooth height h (the unit is % of h, not a fraction of it); for {meant} % write --set clearance={meant}",
+                    "warning: {}: --set {name}={value} is {value} % of the tooth height h (the unit is % of h, not a fraction of it); for {meant} % write --set {name}={meant}",
                     e.id,
+                    name = p.name,
                 ));
             } else if fraction_of_a_clearance(v) {
                 let meant = percent(v);

@@ -64,37 +64,22 @@ pub fn stamp(
     stamped
 }
 
-/// The parameters `tables.json` names whatever their value (those an experiment declares):
-/// what the numbers depend on beyond counts.
-const NAMED_INPUTS: &[&str] = &[
-    "hypothesis",
-    "hypothesis_params",
-    "rule",
-    "gearing",
-    "measured",
-    "clearance",
-    "tooth_height",
-    "split",
-    "trials",
-    "events",
-    "drive",
-];
-
-/// The inputs `tables.json` records: every declared parameter of [`NAMED_INPUTS`] with its
-/// value, every other parameter set away from its default, and `errors`, the measured-errors
+/// The inputs `tables.json` records: every declared parameter marked
+/// [`registry::Param::recorded`] with its value, every other parameter set away from its default, and `errors`, the measured-errors
 /// file of a `measured:FILE` hypothesis.
 fn recorded_inputs(ctx: &Context) -> BTreeMap<String, String> {
     let mut inputs = BTreeMap::new();
-    for name in NAMED_INPUTS {
-        if let Some((_, v)) = ctx.values().find(|(p, _)| p.name == *name) {
-            inputs.insert((*name).to_owned(), v.to_owned());
-        }
+    for (p, v) in ctx.values().filter(|(p, _)| p.recorded) {
+        inputs.insert(p.name.to_owned(), v.to_owned());
     }
     for (name, v) in ctx.changed() {
         inputs.insert(name.to_owned(), v.to_owned());
     }
-    if let Some(h) = inputs.get("hypothesis").cloned() {
-        for f in experiments::inputs::measured_in_hypothesis(&h) {
+    let hypothesis = ctx
+        .holds(&study::errors::PARAM)
+        .then(|| ctx.text(&study::errors::PARAM));
+    if let Some(Ok(h)) = hypothesis {
+        for f in experiments::inputs::measured_in_hypothesis(h) {
             inputs.insert("errors".to_owned(), f);
         }
     }

@@ -21,6 +21,8 @@ const N: Param = Param {
     help: "trials",
     kind: registry::Kind::Text,
     reading: false,
+    clearance: false,
+    recorded: false,
 };
 
 /// `a-fine`'s settings: its one parameter as typed.

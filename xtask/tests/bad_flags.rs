@@ -56,7 +56,7 @@ fn enormous_counts() {
             "--set trials u64::MAX",
             None,
             "run table3 --set trials=18446744073709551615 --out {out}",
-            &["--set: trials: must be at most 1000000 (the limit on trials"],
+            &["--set: trials: must be at most 1000000, the limit on trials"],
         ),
         case(
             "--set trials u64::MAX, failure",
@@ -512,7 +512,7 @@ fn counts_name_their_limits_and_fuzz_flags_are_parsed_as_runs_are() {
             None,
             "run table3 --set trials=1e300 --out {out}",
             &[
-                "--set: trials: must be a non-negative integer, at most 1000000 (the limit on trials; got `1e300`)",
+                "--set: trials: must be a non-negative integer, from 1 to 1000000, the limit on trials (got `1e300`)",
             ],
         ),
         case(

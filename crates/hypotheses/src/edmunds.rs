@@ -209,7 +209,7 @@ pub(crate) fn with_valleys_at(gear: &Gear, valleys: Vec<f64>) -> Result<Gear, Ge
 }
 
 /// Parameter `random`.
-pub(crate) const RANDOM: Param = Param::new(
+pub const RANDOM: Param = Param::new(
     "random",
     "0.04",
     "sd of each tip's displacement, as a fraction of the pitch 360/N",
@@ -218,7 +218,7 @@ pub(crate) const RANDOM: Param = Param::new(
 .unit("pitch");
 
 /// Parameter `systematic`.
-pub(crate) const SYSTEMATIC: Param = Param::new(
+pub const SYSTEMATIC: Param = Param::new(
     "systematic",
     "0.5",
     "systematic amplitude A",
@@ -227,7 +227,7 @@ pub(crate) const SYSTEMATIC: Param = Param::new(
 .unit("deg");
 
 /// Parameter `split`.
-pub(crate) const SPLIT: Param = Param::new(
+pub const SPLIT: Param = Param::new(
     "split",
     "0.5",
     "share of A on the sinusoid of tip positions; the rest is an axis shift R·tan((1-split)·A)",

@@ -21,6 +21,9 @@ mod register;
 mod stack;
 
 pub use edmunds::{EdmundsErrors, MAX_RANDOM, eccentricity, manufacture};
+/// Edmunds' three parameters, as Cases A-D and the tolerance grids set them (by declaration,
+/// not by a name typed again).
+pub use edmunds::{RANDOM, SPLIT, SYSTEMATIC};
 pub use measured::{
     MEASURED_EXAMPLE, MeasuredEntry, MeasuredHypothesis, MeasuredTable, measured_file,
     measured_file_given, measured_from_ron,

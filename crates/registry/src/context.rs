@@ -46,6 +46,8 @@ pub const fn interval_trials(default: &'static str, help: &'static str) -> Param
         help,
         kind: crate::Kind::count(2, MAX_TRIALS, "an interval needs two trials"),
         reading: false,
+        clearance: false,
+        recorded: true,
     }
 }
 
@@ -59,6 +61,8 @@ pub const fn samples(default: &'static str, help: &'static str) -> Param {
         help,
         kind: crate::Kind::count(MIN_SAMPLES, MAX_COUNT as u64, MIN_SAMPLES_WHY),
         reading: false,
+        clearance: false,
+        recorded: false,
     }
 }
 
@@ -167,8 +171,8 @@ impl Context {
     /// (from `--set key=value`, later ones winning) replace them.
     ///
     /// Errors ([`RunError::BadInput`]): an unknown key (naming it and listing the known ones);
-    /// `threads == 0`; a config file for an experiment that takes none; a `trials` value that
-    /// is not an integer from 0 to [`MAX_TRIALS`].
+    /// `threads == 0`; a config file for an experiment that takes none; a value its parameter's
+    /// kind refuses (a count of trials above [`MAX_TRIALS`] among them).
     pub fn new(
         exp: &Entry,
         seed: u64,
@@ -208,9 +212,6 @@ impl Context {
                     return Err(RunError::bad("--set", key.as_str(), known));
                 }
             }
-        }
-        if let Some(p) = params.iter().find(|p| p.name == "trials" && p.overridden) {
-            check_trials(&p.value)?;
         }
         // Every value against its parameter's kind, before anything runs.
         for (v, p) in params.iter().zip(exp.all_params()) {
@@ -553,27 +554,6 @@ impl FromParam for bool {
     }
 }
 
-/// Checks an overridden `trials` value: an integer from 0 to [`MAX_TRIALS`].
-fn check_trials(value: &str) -> Result<(), RunError> {
-    let n: u64 = value.trim().parse().map_err(|_| {
-        RunError::bad(
-            "--set",
-            "trials",
-            format!(
-                "must be a non-negative integer, at most {MAX_TRIALS} (the limit on trials; got `{value}`)"
-            ),
-        )
-    })?;
-    if n > MAX_TRIALS {
-        return Err(RunError::bad(
-            "--set",
-            "trials",
-            format!("must be at most {MAX_TRIALS} (the limit on trials; got {n})"),
-        ));
-    }
-    Ok(())
-}
-
 #[cfg(test)]
 #[allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
 mod tests {
@@ -691,7 +671,7 @@ mod tests {
         assert!(matches!(ctx.finite("nope"), Err(RunError::Internal(_))));
     }
 
-    const TRIALS: Param = Param::new("trials", "30", "trials", Kind::Text);
+    const TRIALS: Param = Param::new("trials", "30", "trials", Kind::count(0, MAX_TRIALS, ""));
     const SAMPLES: Param = Param::new("samples", "100", "samples", Kind::Text);
 
     /// A `trials` and a `samples` parameter, as text.
@@ -711,7 +691,7 @@ mod tests {
         let ok = Context::new(&COUNTED, 0, 1, &set(&[("trials", "1000000")]), None).unwrap();
         assert_eq!(ok.u64("trials").unwrap(), MAX_TRIALS);
         for (value, words) in [
-            ("1000001", "at most 1000000 "),
+            ("1000001", "at most 1000000, the limit on trials"),
             ("18446744073709551615", "the limit on trials"),
             ("99999999999999999999999", "non-negative integer"),
             ("-1", "non-negative integer"),
@@ -722,7 +702,7 @@ mod tests {
             assert_eq!((source, field), ("--set", "trials"), "{value}");
             assert!(rule.contains(words), "{value}: {rule}");
         }
-        // Only a parameter named `trials` is checked up front.
+        // A text parameter is checked where it is read, not up front.
         assert!(Context::new(&EXP, 0, 1, &set(&[("teeth", "99999999999")]), None).is_ok());
     }
 

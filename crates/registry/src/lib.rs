@@ -90,6 +90,14 @@ pub struct Param {
     /// paper's own E. max row). A run that changes only readings still runs on the paper's
     /// inputs and is compared with it ([`Settings::departures`]).
     pub reading: bool,
+    /// A clearance G (or a list of them) in % of the tooth height h, where a value below 1 is
+    /// more likely a fraction typed for a percentage (the runner warns); not a step or margin
+    /// between clearances, which are differences.
+    pub clearance: bool,
+    /// Recorded with every run's results whatever its value (what the numbers depend on beyond
+    /// counts: the gearing, the hypothesis, the rule, G, h, trials); every other parameter is
+    /// recorded where it departs from its default.
+    pub recorded: bool,
 }
 
 impl Param {
@@ -110,6 +118,8 @@ impl Param {
             help,
             kind,
             reading: false,
+            clearance: false,
+            recorded: false,
         }
     }
 
@@ -122,6 +132,22 @@ impl Param {
     pub const fn reading(self) -> Param {
         Param {
             reading: true,
+            ..self
+        }
+    }
+
+    /// The same parameter as a clearance in % of h ([`Param::clearance`]).
+    pub const fn a_clearance(self) -> Param {
+        Param {
+            clearance: true,
+            ..self
+        }
+    }
+
+    /// The same parameter recorded with every run whatever its value ([`Param::recorded`]).
+    pub const fn recorded(self) -> Param {
+        Param {
+            recorded: true,
             ..self
         }
     }
@@ -273,11 +299,6 @@ impl Kind {
                 if n < min {
                     Err(because(format!("must be at least {min}"), why))
                 } else if n > max {
-                    let limit = if max as usize == MAX_COUNT {
-                        ", the limit on counts"
-                    } else {
-                        ""
-                    };
                     Err(because(format!("must be at most {max}{limit}"), why))
                 } else {
                     Ok(())

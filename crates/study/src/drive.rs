@@ -84,6 +84,8 @@ pub const PARAM: Param = Param {
     help: "which gear of each mesh drives its trials: `listed` (the first gear of the mesh's name, as the train runs), `other` (the second, both gears still turning their own way), or `either` (drawn per trial, a fair coin from the trial's own stream after its gears and initial angle)",
     kind: registry::Kind::Choice(&["listed", "other", "either"]),
     reading: true,
+    clearance: false,
+    recorded: true,
 };
 
 /// The pair-trial protocol group of the per-mesh tables: which gear drives, and where a

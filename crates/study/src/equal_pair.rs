@@ -19,6 +19,8 @@ pub const fn length(name: &'static str, default: &'static str, help: &'static st
         help,
         kind: registry::Kind::positive(MAX_LENGTH, "a length; larger is no gear"),
         reading: false,
+        clearance: false,
+        recorded: false,
     }
 }
 
@@ -30,6 +32,8 @@ pub const TEETH: Param = Param {
     help: "teeth N of both gears",
     kind: registry::Kind::count(3, geometry::MAX_TEETH as u64, "a gear needs three teeth"),
     reading: false,
+    clearance: false,
+    recorded: false,
 };
 /// Outer radius R of both gears.
 pub const TIP_RADIUS: Param = length("tip_radius", "200", "outer radius R of both gears");

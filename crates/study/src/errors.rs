@@ -13,6 +13,8 @@ pub const PARAM: Param = Param {
     help: "error hypothesis (cargo xtask hypotheses lists them)",
     kind: registry::Kind::Text,
     reading: false,
+    clearance: false,
+    recorded: true,
 };
 
 /// The `hypothesis_params` parameter: the chosen hypothesis's own parameters, `name=value`
@@ -24,6 +26,8 @@ pub const PARAMS_PARAM: Param = Param {
     help: "parameters of the hypothesis, name=value[,name=value] (cargo xtask hypotheses lists them)",
     kind: registry::Kind::Text,
     reading: false,
+    clearance: false,
+    recorded: true,
 };
 
 /// Share of the systematic error put on the sinusoid of tip positions (the rest on the axis).
@@ -34,6 +38,8 @@ pub const SPLIT: Param = Param {
     help: "share of the systematic error on the sinusoid (rest: eccentricity); 0.5 as in the paper",
     kind: registry::Kind::number(0.0, 1.0, ""),
     reading: false,
+    clearance: false,
+    recorded: true,
 };
 
 /// The error setting group: the hypothesis and its parameters.
@@ -237,9 +243,9 @@ impl Settings {
     /// Edmunds' Cases give them), with the split: [`Settings::params`] of the three.
     pub fn case_params(&self, (systematic, random): (f64, f64)) -> Result<Params, RunError> {
         let values = [
-            ("random", random),
-            ("systematic", systematic),
-            ("split", self.split()?),
+            (hypotheses::RANDOM.name, random),
+            (hypotheses::SYSTEMATIC.name, systematic),
+            (hypotheses::SPLIT.name, self.split()?),
         ];
         self.params(&values)
     }

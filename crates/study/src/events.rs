@@ -12,6 +12,8 @@ pub const PARAM: Param = Param {
     help: "event rule: which events count as jams and disengagements, NAME or NAME:key=value (cargo xtask rules lists them)",
     kind: registry::Kind::Text,
     reading: true,
+    clearance: false,
+    recorded: true,
 };
 
 /// The event setting group: the event rule.

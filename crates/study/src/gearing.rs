@@ -12,6 +12,8 @@ pub const PARAM: Param = Param {
     help: "gearing RON file, or an embedded one: freeth2006 (the default, crates/train/data/freeth2006.ron) or freeth2021 (the same gearing with the outer radii of Freeth et al. 2021)",
     kind: registry::Kind::Text,
     reading: false,
+    clearance: false,
+    recorded: true,
 };
 
 /// Clearance G of every mesh of the gearing (the paper's working value, Appendix II).
@@ -22,6 +24,8 @@ pub const CLEARANCE: Param = Param {
     help: "clearance G of every mesh",
     kind: registry::Kind::positive(100.0, "% of the tooth height h"),
     reading: false,
+    clearance: true,
+    recorded: true,
 };
 
 /// The tooth heights a `tooth_height` parameter takes: 0.01 mm (a hundredth of the paper's
@@ -40,6 +44,8 @@ pub const TOOTH_HEIGHT: Param = Param {
     help: "h = R - r of every gear (Efstathiou et al. 2012)",
     kind: TOOTH_HEIGHT_KIND,
     reading: false,
+    clearance: false,
+    recorded: true,
 };
 
 /// Whether the Lunar train includes the pin-and-slot (Freeth 2006's lunar anomaly mechanism).
@@ -50,6 +56,8 @@ pub const PIN_AND_SLOT: Param = Param {
     help: "true: the Lunar train includes the pin-and-slot (k1's pin in k2's slot on the turning e3 turntable) and its TD is taken against the anomaly-bearing ideal; false: left out, as in the paper",
     kind: registry::Kind::Switch,
     reading: false,
+    clearance: false,
+    recorded: false,
 };
 
 /// `clearances`: Table I's clearances G, comma-separated (the paper: 10, 40 and 70). Declared
@@ -60,7 +68,8 @@ pub const TABLE_I_CLEARANCES: Param = Param::new(
     "clearances G, comma-separated (the paper: 10, 40 and 70)",
     registry::Kind::Text,
 )
-.unit("% of h");
+.unit("% of h")
+.a_clearance();
 
 /// The gearing setting group: the gearing file, G and h of every mesh.
 pub const GROUP: &[Param] = &[PARAM, CLEARANCE, TOOTH_HEIGHT];

@@ -39,7 +39,7 @@ pub fn case_cells(s: &CellSettings, clearance: f64) -> Result<Vec<CellSpec>, Run
 pub fn cases_apply(hyp: &dyn hypotheses::Hypothesis) -> bool {
     hyp.params()
         .iter()
-        .any(|p| p.name == "random" || p.name == "systematic")
+        .any(|p| *p == hypotheses::RANDOM || *p == hypotheses::SYSTEMATIC)
 }
 
 /// The `trials` parameter of the per-cell experiments (Tables 4, 5, I and Figure 6).
@@ -50,6 +50,8 @@ pub const TRIALS: Param = Param {
     help: "trials per cell (the paper: 200)",
     kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
     reading: false,
+    clearance: false,
+    recorded: true,
 };
 
 /// Table 4's results: counts for every (random error, mesh).
@@ -244,9 +246,11 @@ pub fn derive(
                 index.push(None);
                 continue;
             };
-            let params =
-                s.errors
-                    .params(&[("random", e), ("systematic", sys), ("split", split)])?;
+            let params = s.errors.params(&[
+                (hypotheses::RANDOM.name, e),
+                (hypotheses::SYSTEMATIC.name, sys),
+                (hypotheses::SPLIT.name, split),
+            ])?;
             index.push(Some(cells.len()));
             cells.push(s.cell(mesh, params, clearance));
         }

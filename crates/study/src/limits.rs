@@ -36,6 +36,8 @@ pub const MESH: registry::Param = registry::Param {
     help: "mesh label in the gearing (radii sized as crates/train sizes them)",
     kind: registry::Kind::Text,
     reading: false,
+    clearance: false,
+    recorded: false,
 };
 
 impl IdealPair {

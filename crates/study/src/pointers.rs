@@ -31,6 +31,8 @@ pub const fn turns(name: &'static str, default: &'static str, help: &'static str
         help,
         kind: TURNS_KIND,
         reading: false,
+        clearance: false,
+        recorded: false,
     }
 }
 
@@ -48,6 +50,8 @@ pub const fn per_engagement(default: &'static str, help: &'static str) -> Param 
             registry::MIN_PER_ENGAGEMENT_WHY,
         ),
         reading: false,
+        clearance: false,
+        recorded: false,
     }
 }
 

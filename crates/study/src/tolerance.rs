@@ -21,6 +21,8 @@ pub const RANDOM_FROM: Param = Param {
     help: "smallest random error (sd of a tip's displacement / pitch 360/N); the paper's Table 4: 0.035",
     kind: RANDOM_KIND,
     reading: false,
+    clearance: false,
+    recorded: false,
 };
 
 /// End of the random-error grid.
@@ -31,6 +33,8 @@ pub const RANDOM_TO: Param = Param {
     help: "largest random error of the grid (the paper: 0.065)",
     kind: RANDOM_KIND,
     reading: false,
+    clearance: false,
+    recorded: false,
 };
 
 /// Step of the random-error grid.
@@ -41,6 +45,8 @@ pub const RANDOM_STEP: Param = Param {
     help: "step of the random-error grid (the paper: 0.005)",
     kind: registry::Kind::positive(f64::INFINITY, ""),
     reading: false,
+    clearance: false,
+    recorded: false,
 };
 
 /// Start of the systematic-error grid (Table 5's first row).
@@ -51,6 +57,8 @@ pub const SYSTEMATIC_FROM: Param = Param {
     help: "smallest systematic amplitude A of the grid (the paper's Table 5: 0.1)",
     kind: registry::Kind::number(0.0, f64::INFINITY, ""),
     reading: false,
+    clearance: false,
+    recorded: false,
 };
 
 /// End of the systematic-error grid.
@@ -61,6 +69,8 @@ pub const SYSTEMATIC_TO: Param = Param {
     help: "largest systematic amplitude of the grid (the paper: 1.1)",
     kind: registry::Kind::ANY_NUMBER,
     reading: false,
+    clearance: false,
+    recorded: false,
 };
 
 /// Step of the systematic-error grid.
@@ -71,6 +81,8 @@ pub const SYSTEMATIC_STEP: Param = Param {
     help: "step of the systematic grid (the paper: 0.1)",
     kind: registry::Kind::positive(f64::INFINITY, ""),
     reading: false,
+    clearance: false,
+    recorded: false,
 };
 
 /// The failure threshold.
@@ -81,6 +93,8 @@ pub const RULE: Param = Param {
     help: "a value is tolerable when at most this share of trials jam (the paper: 1 %, 2 of 200)",
     kind: registry::Kind::number(0.0, 100.0, "a percentage"),
     reading: false,
+    clearance: false,
+    recorded: true,
 };
 
 /// The random-error grid (Table 4's rows).

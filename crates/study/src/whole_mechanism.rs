@@ -31,6 +31,8 @@ pub const DAYS: Param = Param {
         "one year of b: jams are counted within a year",
     ),
     reading: false,
+    clearance: false,
+    recorded: false,
 };
 
 /// The `cases` parameter: which of Edmunds' cases to run.
@@ -41,6 +43,8 @@ pub const CASES_PARAM: Param = Param {
     help: "Edmunds' cases to run, comma-separated (empty: none)",
     kind: registry::Kind::Text,
     reading: false,
+    clearance: false,
+    recorded: false,
 };
 
 /// Whole-mechanism runs per input at the defaults (the paper: 30).

@@ -29,7 +29,7 @@ use study::grids::CellSettings;
 use study::whole_mechanism::{self as whole, Clearances, Input, MechanismRun, Summary};
 
 registry::params! {
-    const GRID = Param::new("grid", "20,30,40,50,60,70", "coarse grid of clearances tried for every mesh and case, comma-separated (the reference clearance is always added)", registry::Kind::Text).unit("% of h");
+    const GRID = Param::new("grid", "20,30,40,50,60,70", "coarse grid of clearances tried for every mesh and case, comma-separated (the reference clearance is always added)", registry::Kind::Text).unit("% of h").a_clearance();
     const COARSE_TRIALS = Param::new("coarse_trials", "20", "trials per mesh, case and clearance of the coarse grid", registry::Kind::count(1, registry::MAX_TRIALS, "")).unit("pair runs");
     const REFINE_STEP = Param::new("refine_step", "5", "the refinement tries the coarse grid's best clearance plus and minus this (0: no refinement; the coarse grid decides)", registry::Kind::number(0.0, 100.0, "% of h")).unit("% of h");
     const REFINE_TRIALS = Param::new("refine_trials", "40", "trials per clearance compared in the refinement: the coarse best, its two neighbours and the reference, each brought to this count (at least coarse_trials)", registry::Kind::count(1, registry::MAX_TRIALS, "")).unit("pair runs");
@@ -37,7 +37,7 @@ registry::params! {
     /// The reference clearance, typed as `clearance` like the gearing group's
     /// ([`study::gearing::CLEARANCE`]), which this experiment does not declare: here it is not every
     /// mesh's clearance but the one the search always tries and measures the chosen ones against.
-    const REFERENCE_CLEARANCE = Param::new("clearance", "40", "reference clearance: the paper's one value for every mesh, always tried, and the failure study's first setting", registry::Kind::positive(100.0, "% of the tooth height h")).unit("% of h");
+    const REFERENCE_CLEARANCE = Param::new("clearance", "40", "reference clearance: the paper's one value for every mesh, always tried, and the failure study's first setting", registry::Kind::positive(100.0, "% of the tooth height h")).unit("% of h").a_clearance();
 }
 
 /// The clearance design's settings: the search's grid, trials and refinement, the failure

@@ -30,7 +30,7 @@ use study::trial_end::End;
 
 registry::params! {
     /// `clearances`: Table I's clearances G, comma-separated (the paper: 10, 40 and 70).
-    const CLEARANCES = Param::new("clearances", "10,40,70", "Table I's clearances G, comma-separated (the paper: 10, 40 and 70)", registry::Kind::Text).unit("% of h");
+    const CLEARANCES = Param::new("clearances", "10,40,70", "Table I's clearances G, comma-separated (the paper: 10, 40 and 70)", registry::Kind::Text).unit("% of h").a_clearance();
     /// `limit_tolerance`: how closely each ideal mesh's clearance limits are located (bisection).
     const LIMIT_TOLERANCE = Param::new("limit_tolerance", "0.1", "how closely each ideal mesh's clearance limits are located (bisection)", registry::Kind::number(0.001, 10.0, "% of h")).unit("% of h");
 }

@@ -30,9 +30,9 @@ use crate::settings::typed::label;
 
 registry::params! {
     /// `trials`: whole-mechanism runs per input (the paper: 30).
-    const TRIALS = Param::new("trials", RUNS_DEFAULT, "whole-mechanism runs per input (the paper: 30)", registry::Kind::count(1, registry::MAX_TRIALS, ""));
+    const TRIALS = Param::new("trials", RUNS_DEFAULT, "whole-mechanism runs per input (the paper: 30)", registry::Kind::count(1, registry::MAX_TRIALS, "")).recorded();
     /// `measured`: per-gear error table (RON, as crates/hypotheses/data/measured-example.ron), run with the measured hypothesis; empty: not run.
-    const MEASURED = Param::new("measured", "", "per-gear error table (RON, as crates/hypotheses/data/measured-example.ron), run with the measured hypothesis; empty: not run", registry::Kind::Text);
+    const MEASURED = Param::new("measured", "", "per-gear error table (RON, as crates/hypotheses/data/measured-example.ron), run with the measured hypothesis; empty: not run", registry::Kind::Text).recorded();
 }
 
 /// The failure study's settings: runs per input, the horizon, the Cases and the measured table

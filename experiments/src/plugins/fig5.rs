@@ -24,7 +24,7 @@ registry::params! {
     /// `clearance`: clearance G of the pair. Not the gearing group's `clearance`
     /// ([`study::gearing::CLEARANCE`], default 40): Figure 5 runs a pair of its own, not the
     /// gearing, with a default of its own (50 %) under the same name.
-    const PAIR_CLEARANCE = Param::new("clearance", "50", "clearance G", registry::Kind::positive(100.0, "% of the tooth height h")).unit("% of h");
+    const PAIR_CLEARANCE = Param::new("clearance", "50", "clearance G", registry::Kind::positive(100.0, "% of the tooth height h")).unit("% of h").a_clearance();
     /// `random`: random tooth error (sd).
     const RANDOM = Param::new("random", "0.05", "random tooth error (sd)", registry::Kind::number(0.0, hypotheses::MAX_RANDOM, "of the pitch")).unit("of the pitch");
     /// `systematic`: systematic error amplitude A.

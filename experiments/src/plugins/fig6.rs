@@ -19,7 +19,7 @@ use study::tolerance::{self, RULE, RandomGrid};
 
 registry::params! {
     /// `measured`: RON table of measured per-gear errors (the `measured` hypothesis' format) to draw beside ours; empty (or none): no measured values.
-    const MEASURED = Param::new("measured", "", "RON table of measured per-gear errors (the `measured` hypothesis' format) to draw beside ours; empty (or none): no measured values", registry::Kind::Text);
+    const MEASURED = Param::new("measured", "", "RON table of measured per-gear errors (the `measured` hypothesis' format) to draw beside ours; empty (or none): no measured values", registry::Kind::Text).recorded();
 }
 
 /// Figure 6's settings: trials per cell, the rule, the measured table, the gearing with h and

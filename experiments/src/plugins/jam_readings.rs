@@ -30,9 +30,9 @@ use crate::settings::typed::{Gearing, cells};
 
 registry::params! {
     /// `trials`: trials per cell (a screening count; the paper: 200).
-    const TRIALS = Param::new("trials", "10", "trials per cell (a screening count; the paper: 200)", registry::Kind::count(1, registry::MAX_TRIALS, ""));
+    const TRIALS = Param::new("trials", "10", "trials per cell (a screening count; the paper: 200)", registry::Kind::count(1, registry::MAX_TRIALS, "")).recorded();
     /// `clearances`: Table I's clearances G, comma-separated (the paper: 10, 40 and 70).
-    const CLEARANCES = Param::new("clearances", "10,40,70", "Table I's clearances G, comma-separated (the paper: 10, 40 and 70)", registry::Kind::Text).unit("% of h");
+    const CLEARANCES = Param::new("clearances", "10,40,70", "Table I's clearances G, comma-separated (the paper: 10, 40 and 70)", registry::Kind::Text).unit("% of h").a_clearance();
     /// `tolerances`: overlap areas the area test ignores, one reading each, comma-separated.
     const TOLERANCES = Param::new("tolerances", "0.0001,0.001,0.003", "overlap areas the area test ignores, one reading each, comma-separated", registry::Kind::Text).unit("mm^2");
     /// `steps_per_pitch`: driver steps per driver pitch of the area test (the driver turns by a fixed step).

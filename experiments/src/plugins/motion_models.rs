@@ -24,11 +24,11 @@ use crate::settings::typed::{Gearing, cells};
 
 registry::params! {
     /// `trials`: trials per cell of Tables 3, 4 and I (a screening count; the paper: 200).
-    const TRIALS = Param::new("trials", "2", "trials per cell of Tables 3, 4 and I (the default is a smoke test of six models on 270 cells; the paper: 200)", registry::Kind::count(1, registry::MAX_TRIALS, ""));
+    const TRIALS = Param::new("trials", "2", "trials per cell of Tables 3, 4 and I (the default is a smoke test of six models on 270 cells; the paper: 200)", registry::Kind::count(1, registry::MAX_TRIALS, "")).recorded();
     /// `models`: the motion models compared, comma-separated, or `all`.
     const MODELS = Param::new("models", "all", "the motion models compared, comma-separated, or `all` (every registered model)", registry::Kind::Text);
     /// `clearances`: Table I's clearances G, comma-separated (the paper: 10, 40 and 70).
-    const CLEARANCES = Param::new("clearances", "10,40,70", "Table I's clearances G, comma-separated (the paper: 10, 40 and 70)", registry::Kind::Text).unit("% of h");
+    const CLEARANCES = Param::new("clearances", "10,40,70", "Table I's clearances G, comma-separated (the paper: 10, 40 and 70)", registry::Kind::Text).unit("% of h").a_clearance();
     /// `fig2_step`: Figure 2's sampling step.
     const FIG2_STEP = Param::new("fig2_step", "0.05", "Figure 2's sampling step", registry::Kind::number(0.001, 10.0, "degrees")).unit("deg");
     /// `pointer_trials`: Table 1's trials (the paper: 30).

@@ -27,7 +27,7 @@ use study::whole_mechanism::{self as whole, Clearances, Input, TRAINS};
 
 registry::params! {
     /// `trials`: whole-mechanism runs per row (the paper's failure study: 30).
-    const TRIALS = Param::new("trials", "60", "whole-mechanism runs per row (the paper's failure study: 30)", registry::Kind::count(2, registry::MAX_TRIALS, "an interval needs two runs"));
+    const TRIALS = Param::new("trials", "60", "whole-mechanism runs per row (the paper's failure study: 30)", registry::Kind::count(2, registry::MAX_TRIALS, "an interval needs two runs")).recorded();
     /// `case`: Edmunds' case every row starts from (A, B, C or D).
     const CASE = Param::new("case", "B", "Edmunds' case every row starts from (A, B, C or D)", registry::Kind::Text);
 }

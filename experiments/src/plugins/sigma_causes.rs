@@ -18,11 +18,11 @@ use study::readings::{
 
 registry::params! {
     /// `trials`: Table 1 trials per reading (random initial angles; the same draws for every reading).
-    const TRIALS = Param::new("trials", "2", "Table 1 trials per reading (random initial angles; the same draws for every reading)", registry::Kind::count(2, registry::MAX_TRIALS, "a pooled sigma needs two trials"));
+    const TRIALS = Param::new("trials", "2", "Table 1 trials per reading (random initial angles; the same draws for every reading)", registry::Kind::count(2, registry::MAX_TRIALS, "a pooled sigma needs two trials")).recorded();
     /// `clearance`: Table 1's clearance G of every mesh (before a reading's extra centre distance).
     /// Not the gearing group's `clearance` ([`study::gearing::CLEARANCE`]): this experiment runs the
     /// embedded gearings only, so its clearance is Table 1's input alone, under the same name.
-    const TABLE1_CLEARANCE = Param::new("clearance", "40", "Table 1's clearance G of every mesh (before a reading's extra centre distance)", registry::Kind::positive(100.0, "% of the tooth height h")).unit("% of h");
+    const TABLE1_CLEARANCE = Param::new("clearance", "40", "Table 1's clearance G of every mesh (before a reading's extra centre distance)", registry::Kind::positive(100.0, "% of the tooth height h")).unit("% of h").a_clearance();
 }
 
 /// `samples_per_engagement`: TD samples per tooth engagement of the busiest mesh (Table 1's default).
