@@ -29,6 +29,26 @@ pub fn stamp(
     sets: &[(String, String)],
     config: Option<&std::path::Path>,
 ) -> Report {
+    stamp_with(report, (e, ctx), sets, config, &context_departures(ctx))
+}
+
+/// The parameters `ctx` sets away from their defaults, readings of the paper aside.
+fn context_departures(ctx: &Context) -> Vec<(&'static registry::Param, String)> {
+    let departed = ctx.departures();
+    ctx.values()
+        .filter(|(p, _)| departed.iter().any(|(name, _)| *name == p.name))
+        .map(|(p, v)| (p, v.trim().to_owned()))
+        .collect()
+}
+
+/// [`stamp`], its tables labelled by `departures` ([`Report::label_departures`]).
+fn stamp_with(
+    report: &Report,
+    (e, ctx): (&Entry, &Context),
+    sets: &[(String, String)],
+    config: Option<&std::path::Path>,
+    departures: &[(&'static registry::Param, String)],
+) -> Report {
     let overrides: BTreeMap<&str, &str> = sets
         .iter()
         .filter(|(k, _)| e.all_params().any(|p| p.name == k))
@@ -58,7 +78,7 @@ pub fn stamp(
     text.push('\n');
     let mut stamped = report.clone();
     stamped.inputs = recorded_inputs(ctx);
-    label_departures(&mut stamped, ctx);
+    stamped.label_departures(departures);
     stamped.files.retain(|f| f.name != RUN_JSON);
     stamped.files.push(OutputFile::new(RUN_JSON, text));
     stamped
@@ -95,7 +115,11 @@ pub fn stamp_outcome(
     sets: &[(String, String)],
     config: Option<&std::path::Path>,
 ) -> Report {
-    let mut stamped = stamp(&outcome.report, e, ctx, sets, config);
+    // Labelled by the typed settings stored with the results, as Entry::redraw labels them.
+    let departures = e
+        .departures(&outcome.data)
+        .unwrap_or_else(|_| context_departures(ctx));
+    let mut stamped = stamp_with(&outcome.report, (e, ctx), sets, config, &departures);
     let mut data = format!("{:#}", outcome.data);
     data.push('\n');
     stamped
@@ -114,39 +138,7 @@ fn readings(ctx: &Context) -> BTreeMap<&'static str, String> {
         .collect()
 }
 
-/// What begins the label [`stamp`] adds to every table title of a run whose inputs differ from
-/// the paper's (`cargo xtask report` reads it there).
-pub const DEPARTURE: &str = "[inputs differ from the defaults: ";
-
-/// A run whose inputs differ from the defaults (the paper's) says so in every table's title,
-/// labels the paper's numbers as coming from other inputs, and judges no agreement with the
-/// paper (the summary shows `-`). Runs at the defaults, or differing only in a reading of the
-/// paper ([`registry::Param::reading`]), are left exactly as they print.
-fn label_departures(report: &mut Report, ctx: &Context) {
-    let changed = ctx.departures();
-    if changed.is_empty() {
-        return;
-    }
-    let list = changed
-        .iter()
-        .map(|(k, v)| format!("{k}={v}"))
-        .collect::<Vec<_>>()
-        .join(", ");
-    let compares = report.agreement.is_some()
-        || report
-            .tables
-            .iter()
-            .any(|t| t.title.contains("paper") || t.columns.iter().any(|c| c.contains("paper")));
-    for t in &mut report.tables {
-        t.title = format!("{} {DEPARTURE}{list}]", t.title);
-        if compares {
-            t.note(format!(
-                "This run's inputs differ from the paper's ({list}): the paper's numbers shown beside ours come from its own inputs, for reference, not as a check of these."
-            ));
-        }
-    }
-    report.agreement = None;
-}
+pub use registry::DEPARTURE;
 
 /// SHA-256 of `bytes`, in lowercase hex.
 pub fn sha256(bytes: &[u8]) -> String {
@@ -336,5 +328,47 @@ mod tests {
         assert_eq!(v["version"]["crate"], env!("CARGO_PKG_VERSION"));
         assert!(!v["version"]["git"].as_str().unwrap().is_empty());
         assert_eq!(v["date"].as_str().unwrap().len(), 20);
+    }
+
+    /// What a run writes is what its stored results draw again, computing nothing: the tables
+    /// (their departure labels too, read from the stored typed settings) and every file.
+    #[test]
+    fn a_report_is_drawn_again_from_results_json_alone() {
+        experiments::link();
+        let exps = registry::experiments().unwrap();
+        for (id, sets) in [
+            ("table3", vec![("trials", "2"), ("clearance", "30")]),
+            ("table1", vec![("trials", "2")]),
+        ] {
+            let e = exps[id];
+            let sets: Vec<(String, String)> = sets
+                .iter()
+                .map(|(k, v)| ((*k).to_owned(), (*v).to_owned()))
+                .collect();
+            let ctx = Context::new(e, 2025, 1, &sets, None).unwrap();
+            let outcome = (e.run)(&ctx, ctx.engine()).unwrap();
+            let written = stamp_outcome(&outcome, e, &ctx, &sets, None);
+            let stored = written
+                .files
+                .iter()
+                .find(|f| f.name == registry::RESULTS_JSON)
+                .unwrap();
+            let data: serde_json::Value = serde_json::from_slice(&stored.contents).unwrap();
+            let drawn = e.redraw(&data).unwrap();
+            assert_eq!(drawn.text(), written.text(), "{id}");
+            assert!(
+                written.text().contains(DEPARTURE),
+                "{id}: a run off the defaults is labelled"
+            );
+            let files = |r: &Report| -> Vec<(String, Vec<u8>)> {
+                r.files
+                    .iter()
+                    .filter(|f| f.name != RUN_JSON && f.name != registry::RESULTS_JSON)
+                    .map(|f| (f.name.clone(), f.contents.clone()))
+                    .collect()
+            };
+            assert_eq!(files(&drawn), files(&written), "{id}");
+            assert_eq!(drawn.agreement, written.agreement, "{id}");
+        }
     }
 }

@@ -193,6 +193,9 @@ pub struct Outcome {
     pub data: Value,
 }
 
+/// The parameters a run sets away from the paper's inputs, each with its value as typed.
+pub type Departures = Vec<(&'static Param, String)>;
+
 /// A registered experiment, as `inventory` collects it: what it is, what it accepts, and its
 /// typed functions behind plain function pointers. Made by [`Entry::of`] (through
 /// [`crate::register!`]).
@@ -214,6 +217,7 @@ pub struct Entry {
     /// Draws the report again from stored data (`results.json`), computing nothing.
     pub render: fn(&Value) -> Result<Report, RunError>,
     settings_of: fn(&Context) -> Result<Value, RunError>,
+    departures_of: fn(&Value) -> Result<Departures, RunError>,
     results_type: fn() -> &'static str,
 }
 
@@ -230,6 +234,7 @@ impl Entry {
             run: run::<E>,
             render: render::<E>,
             settings_of: settings_of::<E>,
+            departures_of: departures_of::<E>,
             results_type: std::any::type_name::<E::Results>,
         }
     }
@@ -244,6 +249,27 @@ impl Entry {
     /// Whether the experiment declares `p` itself (the same declaration, not only its name).
     pub fn declares(&self, p: &Param) -> bool {
         self.all_params().any(|q| q == p)
+    }
+
+    /// The inputs in which the run stored as `data` (`results.json`) departs from the paper's:
+    /// its settings' [`Settings::departures`], read typed from the stored settings.
+    ///
+    /// # Errors
+    /// Stored data whose settings do not read as this experiment's.
+    pub fn departures(&self, data: &Value) -> Result<Departures, RunError> {
+        (self.departures_of)(data)
+    }
+
+    /// The report of the run stored as `data` (`results.json`), drawn again from it and computing
+    /// nothing, as the runner printed it: [`Entry::render`], then labelled where the run's
+    /// inputs depart from the paper's ([`Report::label_departures`]).
+    ///
+    /// # Errors
+    /// Stored data that does not read as this experiment's, or does not draw.
+    pub fn redraw(&self, data: &Value) -> Result<Report, RunError> {
+        let mut report = (self.render)(data)?;
+        report.label_departures(&self.departures(data)?);
+        Ok(report)
     }
 
     /// The name of the type it stores as its results (`std::any::type_name`).
@@ -328,20 +354,29 @@ pub fn forget_computed() {
         .clear();
 }
 
+fn departures_of<E: Experiment>(data: &Value) -> Result<Departures, RunError> {
+    let settings: E::Settings = stored::<E, _>(data, "settings")?;
+    Ok(settings.departures())
+}
+
+/// Part `name` (`settings` or `results`) of experiment `E`'s stored data, read typed.
+fn stored<E: Experiment, T: serde::de::DeserializeOwned>(
+    data: &Value,
+    name: &str,
+) -> Result<T, RunError> {
+    let part = data.get(name).cloned().ok_or_else(|| {
+        RunError::bad(
+            RESULTS_JSON,
+            name,
+            format!("is missing (`{}`'s stored data)", E::ID),
+        )
+    })?;
+    serde_json::from_value(part).map_err(|e| RunError::bad(RESULTS_JSON, name, e.to_string()))
+}
+
 fn render<E: Experiment>(data: &Value) -> Result<Report, RunError> {
-    let part = |name: &str| {
-        data.get(name).cloned().ok_or_else(|| {
-            RunError::bad(
-                RESULTS_JSON,
-                name,
-                format!("is missing (`{}`'s stored data)", E::ID),
-            )
-        })
-    };
-    let settings: E::Settings = serde_json::from_value(part("settings")?)
-        .map_err(|e| RunError::bad(RESULTS_JSON, "settings", e.to_string()))?;
-    let results: E::Results = serde_json::from_value(part("results")?)
-        .map_err(|e| RunError::bad(RESULTS_JSON, "results", e.to_string()))?;
+    let settings: E::Settings = stored::<E, _>(data, "settings")?;
+    let results: E::Results = stored::<E, _>(data, "results")?;
     E::report(&settings, &results)
 }
 

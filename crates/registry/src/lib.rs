@@ -61,8 +61,8 @@ pub use experiment::{
 };
 pub use lock::{lock_path, lock_writing, release_locks};
 pub use output::{
-    Agreement, MAX_ANGLE_DEG, MAX_DATA_ROWS, OutputFile, Report, abandon_writes, stopping, tidy,
-    write_file_through, write_results,
+    Agreement, DEPARTURE, MAX_ANGLE_DEG, MAX_DATA_ROWS, OutputFile, Report, abandon_writes,
+    stopping, tidy, write_file_through, write_results,
 };
 pub use progress::{BatchProgress, Progress};
 pub use settings::{NoSettings, ParamValue, Settings, changed_from_default};

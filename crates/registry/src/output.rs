@@ -59,7 +59,40 @@ pub struct Agreement {
     pub what: std::borrow::Cow<'static, str>,
 }
 
+/// What begins the label [`Report::label_departures`] adds to every table title of a run whose
+/// inputs differ from the paper's (`cargo xtask report` reads it there).
+pub const DEPARTURE: &str = "[inputs differ from the defaults: ";
+
 impl Report {
+    /// A run whose inputs differ from the defaults (the paper's), `departures` (a parameter and
+    /// its value as typed), says so in every table's title, labels the paper's numbers as coming
+    /// from other inputs, and judges no agreement with the paper (the summary shows `-`). Runs at
+    /// the defaults, or differing only in a reading of the paper ([`crate::Param::reading`]),
+    /// are left exactly as they print.
+    pub fn label_departures(&mut self, departures: &[(&'static crate::Param, String)]) {
+        if departures.is_empty() {
+            return;
+        }
+        let list = departures
+            .iter()
+            .map(|(p, v)| format!("{}={v}", p.name))
+            .collect::<Vec<_>>()
+            .join(", ");
+        let compares = self.agreement.is_some()
+            || self.tables.iter().any(|t| {
+                t.title.contains("paper") || t.columns.iter().any(|c| c.contains("paper"))
+            });
+        for t in &mut self.tables {
+            t.title = format!("{} {DEPARTURE}{list}]", t.title);
+            if compares {
+                t.note(format!(
+                    "This run's inputs differ from the paper's ({list}): the paper's numbers shown beside ours come from its own inputs, for reference, not as a check of these."
+                ));
+            }
+        }
+        self.agreement = None;
+    }
+
     /// All tables rendered ([`Table::render`]), separated by blank lines; this is what is
     /// printed and snapshotted.
     pub fn text(&self) -> String {

@@ -192,7 +192,7 @@ fn build(exps: &Registry, out: &Path, out_flag: &str, quiet: bool) -> Result<Str
     ids.extend(results.keys().cloned());
     ids.sort();
     ids.dedup();
-    let ids = order::in_paper_order(ids);
+    let ids = order::in_paper_order(ids, exps);
     let verdict = verdict::read(out)?;
     let links = heatmap::Links {
         exps,
