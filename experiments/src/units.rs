@@ -75,14 +75,7 @@ pub fn columns(what: &str, split: Option<f64>) -> Vec<String> {
     .map(String::from)
     .to_vec();
     if split.is_some() {
-        c.extend(
-            [
-                "systematic A [deg]",
-                "eccentricity [mm]",
-                "tooth wave [mm]",
-            ]
-            .map(String::from),
-        );
+        c.extend(["systematic A [deg]", "eccentricity [mm]", "tooth wave [mm]"].map(String::from));
     }
     c
 }
@@ -102,9 +95,10 @@ fn cells(r: &GearRow, split: Option<f64>) -> Vec<String> {
     ];
     if let Some(split) = split {
         c.push(r.systematic.cell(|a| label(a, 1)));
-        c.push(r.systematic.cell(|a| {
-            fmt_f64(g.systematic(a, split).eccentricity_mm, DECIMALS)
-        }));
+        c.push(
+            r.systematic
+                .cell(|a| fmt_f64(g.systematic(a, split).eccentricity_mm, DECIMALS)),
+        );
         c.push(
             r.systematic
                 .cell(|a| fmt_f64(g.systematic(a, split).wave_mm, DECIMALS)),

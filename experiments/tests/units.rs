@@ -104,7 +104,10 @@ fn agrees_with_study_units(id: &str, t: &Table, gear: &str, systematic: bool) {
     let r = study::units::random_error(fraction, teeth, radius);
     let deg = &row[column(t, "random [deg]")];
     let mm = &row[column(t, "random at tip [mm]")];
-    assert!(deg.ends_with(&fmt_f64(r.degrees, 3)), "{id}: {deg} vs {r:?}");
+    assert!(
+        deg.ends_with(&fmt_f64(r.degrees, 3)),
+        "{id}: {deg} vs {r:?}"
+    );
     assert!(mm.ends_with(&fmt_f64(r.tip_mm, 3)), "{id}: {mm} vs {r:?}");
     if systematic {
         let a = &row[column(t, "systematic A [deg]")];

@@ -6,9 +6,9 @@ use registry::{OutputFile, Param, Place, Report, Run, RunError, Table};
 use serde::{Deserialize, Serialize};
 
 use crate::common::{Band, Series, category_plot_band};
-use crate::units::{GearRow, Value};
 use crate::emax::{paper_random, show};
 use crate::settings::typed::{Gearing, label, off_paper_inputs, unsplit_cells};
+use crate::units::{GearRow, Value};
 use study::cell::Purpose;
 use study::drive::DriveParams;
 use study::errors::ErrorParams;
