@@ -7,8 +7,12 @@
 
 use registry::{Table, fmt_f64};
 
-/// Each tolerance output at a reduced size, with whether its tolerance has a systematic part.
-const OUTPUTS: [(&str, &[(&str, &str)], bool); 5] = [
+/// An output: its id, the `--set` pairs that make it small, whether its tolerance has a
+/// systematic part.
+type Output = (&'static str, &'static [(&'static str, &'static str)], bool);
+
+/// Each tolerance output at a reduced size.
+const OUTPUTS: [Output; 5] = [
     (
         "table4",
         &[
