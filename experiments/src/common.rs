@@ -14,8 +14,8 @@ pub fn paper_cell(id: &str, quantity: &str, decimals: usize) -> String {
 }
 
 pub use crate::chart::{
-    Limit, LimitKind, Mark, Plot, Series, category_plot, drawable, line_plot, marked_plot,
-    semilog_plot,
+    Band, Limit, LimitKind, Mark, Plot, Series, category_plot, category_plot_band, drawable,
+    line_plot, marked_plot, semilog_plot,
 };
 pub use registry::MAX_DATA_ROWS;
 

@@ -23,6 +23,7 @@ pub mod td_plot;
 #[cfg(test)]
 mod test_pair;
 pub mod train_picture;
+pub mod units;
 
 pub(crate) use register::replay_cells;
 

@@ -705,3 +705,127 @@ fn heatmap_cells_link_replayed_trials_that_had_their_failure() {
     );
     scratch.keep(false);
 }
+
+/// The first screen's window, as a reader on a laptop or desktop sees it.
+const FIRST_SCREEN: (u32, u32) = (1400, 1000);
+
+/// The script appended to a copy of the page: the box (left, top, right, bottom, in CSS pixels
+/// of the page) of the ledger's verdict column - its heading and every verdict - and of the
+/// train's picture.
+const FIRST_SCREEN_SCRIPT: &str = r#"
+(function () {
+  const box = e => { const r = e.getBoundingClientRect(); return [r.left, r.top, r.right, r.bottom].map(Math.round).join('\t'); };
+  const out = [];
+  const heads = Array.from(document.querySelectorAll('.verdict-table thead th')).filter(e => e.textContent === 'verdict');
+  heads.forEach(e => out.push('verdict-head\t' + box(e)));
+  document.querySelectorAll('.verdict-table td.verdict-cell').forEach(e => out.push('verdict\t' + box(e)));
+  document.querySelectorAll('figure.train svg').forEach(e => out.push('train\t' + box(e)));
+  document.getElementById('first-result').textContent = out.join('\n');
+  document.getElementById('first-status').textContent = 'done';
+})();
+"#;
+
+/// The boxes the script measured, by kind: (left, top, right, bottom).
+fn first_screen_boxes(result: &str, kind: &str) -> Vec<[f64; 4]> {
+    result
+        .lines()
+        .map(|l| l.split('\t').collect::<Vec<_>>())
+        .filter(|l| l[0] == kind)
+        .map(|l| [1, 2, 3, 4].map(|i| l[i].parse::<f64>().unwrap()))
+        .collect()
+}
+
+#[test]
+fn first_screen_holds_the_verdict_column_and_the_train() {
+    let mut scratch = Scratch::new("report-first-screen");
+    let out = scratch.0.clone();
+    let o = out.to_str().unwrap();
+    // The ledger at a few trials a cell: its layout is what is checked, not its numbers.
+    let ran = xtask(&[
+        "run",
+        "claims",
+        "--set",
+        "trials=2",
+        "--threads",
+        "2",
+        "-q",
+        "--out",
+        o,
+    ]);
+    assert!(ran.status.success(), "{}", stderr(&ran));
+    let rep = xtask(&["report", "-q", "--out", o]);
+    assert!(rep.status.success(), "{}", stderr(&rep));
+    let page = std::fs::read_to_string(out.join("index.html")).unwrap();
+    let verdict = page
+        .find("<section id=\"verdict\"")
+        .expect("no verdict block");
+    assert!(
+        verdict < page.find("<nav>").unwrap(),
+        "the verdict comes before the contents"
+    );
+    let Some(chrome) = chromium() else {
+        assert!(
+            std::env::var("CI").map_or(true, |v| v != "true"),
+            "CI=true but Chromium is not installed: run `scripts/check-report.sh install`"
+        );
+        eprintln!("report: Chromium not found: the first screen's browser check is skipped");
+        return;
+    };
+    scratch.keep(true);
+    let (width, height) = FIRST_SCREEN;
+    let checked = page.replace(
+        "</body>",
+        &format!(
+            "<pre id=\"first-result\"></pre><p id=\"first-status\">not run</p><script>{FIRST_SCREEN_SCRIPT}</script></body>"
+        ),
+    );
+    std::fs::write(out.join("check.html"), checked).unwrap();
+    let dom = browser::headless(
+        &chrome,
+        &out.join(".chromium-first"),
+        &[
+            format!("--window-size={width},{height}"),
+            "--dump-dom".to_owned(),
+        ],
+        &format!("file://{}", out.join("check.html").display()),
+    );
+    assert!(
+        dom.contains("<p id=\"first-status\">done</p>"),
+        "script did not finish"
+    );
+    let start = dom.find("<pre id=\"first-result\">").unwrap() + "<pre id=\"first-result\">".len();
+    let result = &dom[start..start + dom[start..].find("</pre>").unwrap()];
+    let heads = first_screen_boxes(result, "verdict-head");
+    let verdicts = first_screen_boxes(result, "verdict");
+    let train = first_screen_boxes(result, "train");
+    assert_eq!(heads.len(), 1, "the ledger's verdict column: {result}");
+    assert!(!verdicts.is_empty(), "no verdicts: {result}");
+    assert_eq!(train.len(), 1, "the train's picture: {result}");
+    let (w, h) = (f64::from(width), f64::from(height));
+    for (what, b) in heads
+        .iter()
+        .chain(&verdicts)
+        .map(|b| ("verdict column", b))
+        .chain(train.iter().map(|b| ("train", b)))
+    {
+        assert!(
+            b[0] >= 0.0 && b[1] >= 0.0 && b[2] <= w && b[3] <= h,
+            "the {what} ({b:?}) is not on the first {width}x{height} screen: {result}"
+        );
+        assert!(b[2] > b[0] && b[3] > b[1], "the {what} is empty: {result}");
+    }
+    // The picture of that screen, kept for a reader to look at.
+    let png = Path::new(env!("CARGO_TARGET_TMPDIR")).join("report-first-screen.png");
+    let url = format!("file://{}", out.join("index.html").display());
+    browser::screenshot(
+        &chrome,
+        &out.join(".chromium-shot"),
+        &url,
+        &png,
+        FIRST_SCREEN,
+    );
+    let pixels = browser::Pixels::read(&png);
+    assert_eq!((pixels.width, pixels.height), FIRST_SCREEN);
+    pixels.assert_not_blank("report-first-screen.png", 32, 500);
+    scratch.keep(false);
+}

@@ -62,6 +62,9 @@ pub struct RandomGrid {
     pub meshes: Vec<String>,
     /// `counts[row][mesh]`.
     pub counts: Vec<Vec<Counts>>,
+    /// Each mesh's gears (teeth and tip radius), in the meshes' order: what the tolerances
+    /// read from the grid are converted on.
+    pub gears: Vec<crate::units::MeshGears>,
 }
 
 impl RandomGrid {
@@ -112,6 +115,7 @@ pub fn run_grid(
         values,
         meshes,
         counts,
+        gears: crate::units::mesh_gears(&s.gearing.gearing),
     })
 }
 
@@ -231,6 +235,7 @@ pub fn derive(
             values: random_values,
             meshes: s.meshes(),
             counts: Vec::new(),
+            gears: crate::units::mesh_gears(s.gearing()),
         };
         (grid, random)
     } else {

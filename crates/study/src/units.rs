@@ -52,6 +52,72 @@ pub fn systematic_error(degrees: f64, split: f64, tip_radius: f64) -> Systematic
     }
 }
 
+/// One gear as the tolerance tables convert on it: its tooth count and tip radius, as the
+/// gearing the cells ran on sizes it ([`train::Gearing::tip_radius`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct GearSize {
+    /// The gear as the mesh labels write it (the paper's name: `n2`, where the gearing file
+    /// names that gear `n3`).
+    pub gear: String,
+    /// Number of teeth N.
+    pub teeth: usize,
+    /// Tip radius R, mm.
+    pub tip_radius: f64,
+}
+
+impl GearSize {
+    /// The random error `fraction` of the pitch on this gear.
+    pub fn random(&self, fraction: f64) -> RandomInUnits {
+        random_error(fraction, self.teeth, self.tip_radius)
+    }
+
+    /// The systematic error of `degrees`, `split` of it on the teeth, on this gear.
+    pub fn systematic(&self, degrees: f64, split: f64) -> SystematicInUnits {
+        systematic_error(degrees, split, self.tip_radius)
+    }
+}
+
+/// The two gears of one mesh.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MeshGears {
+    /// The mesh, driver-driven (`b2-c1`).
+    pub mesh: String,
+    /// The driving gear.
+    pub driver: GearSize,
+    /// The driven gear.
+    pub driven: GearSize,
+}
+
+impl MeshGears {
+    /// Both gears, driver first.
+    pub fn gears(&self) -> [&GearSize; 2] {
+        [&self.driver, &self.driven]
+    }
+}
+
+/// One gear of `g` sized: `None` for a gear the gearing does not size (a gear in no mesh).
+fn gear_size(g: &train::Gearing, gear: &str) -> Option<GearSize> {
+    Some(GearSize {
+        gear: g.label_name(gear).to_owned(),
+        teeth: g.gear(gear)?.teeth as usize,
+        tip_radius: g.tip_radius(gear)?,
+    })
+}
+
+/// The gears of each mesh of `g`, in the gearing's order.
+pub fn mesh_gears(g: &train::Gearing) -> Vec<MeshGears> {
+    g.meshes()
+        .iter()
+        .filter_map(|m| {
+            Some(MeshGears {
+                mesh: m.label.clone(),
+                driver: gear_size(g, &m.driver)?,
+                driven: gear_size(g, &m.driven)?,
+            })
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -66,6 +132,21 @@ mod tests {
         // All on the teeth: no eccentricity; all on the axis: no wave.
         assert_eq!(systematic_error(1.0, 1.0, 50.0).eccentricity_mm, 0.0);
         assert_eq!(systematic_error(1.0, 0.0, 50.0).wave_mm, 0.0);
+    }
+
+    #[test]
+    fn each_mesh_carries_its_gears_sizes() {
+        let g = train::Gearing::freeth2006();
+        let meshes = mesh_gears(&g);
+        assert_eq!(meshes.len(), g.meshes().len());
+        let b2c1 = &meshes[0];
+        assert_eq!(b2c1.mesh, "b2-c1");
+        assert_eq!(b2c1.driver.gear, "b2");
+        assert_eq!(b2c1.driver.teeth, 64);
+        assert_eq!(Some(b2c1.driver.tip_radius), g.tip_radius("b2"));
+        // The Games mesh writes its driver as the paper does.
+        let games = meshes.iter().find(|m| m.mesh == "n2-o1").map(|m| &m.driver);
+        assert_eq!(games.map(|d| d.gear.as_str()), Some("n2"));
     }
 
     #[test]

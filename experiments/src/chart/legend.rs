@@ -4,7 +4,7 @@
 use std::fmt::Write as _;
 
 use super::svg::{esc, marker_svg, px};
-use super::{LimitKind, Style, bracket_svg, polyline_svg, wrap_words};
+use super::{BAND_OPACITY, LimitKind, Style, bracket_svg, polyline_svg, wrap_words};
 
 /// Height of one legend row, px.
 const LEGEND_ROW: f64 = 18.0;
@@ -29,6 +29,8 @@ pub(super) enum Sample {
     },
     /// A shaded stretch of the plot: a grey swatch.
     Shade,
+    /// A band of values: a shaded box in its colour.
+    Band(&'static str),
 }
 
 /// One legend entry.
@@ -179,6 +181,15 @@ pub(super) fn legend_svg(entries: &[Entry], layout: &LegendLayout, top: f64) -> 
                     px(SAMPLE),
                     px(12.0),
                     super::SHADE
+                );
+            }
+            Sample::Band(colour) => {
+                let _ = write!(
+                    s,
+                    "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"10\" fill=\"{colour}\" fill-opacity=\"{BAND_OPACITY}\" stroke=\"{colour}\"/>",
+                    px(x),
+                    px(y - 5.0),
+                    px(SAMPLE)
                 );
             }
         }

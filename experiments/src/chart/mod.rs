@@ -1117,11 +1117,23 @@ pub fn semilog_plot(
     Plot::new(title, x_label, y_label, series).log_y().svg()
 }
 
-/// A chart of values by category (e.g. one per gear) as SVG text: the categories along the x
-/// axis, one marker per value, each series in a style of its own (its colour and marker; see
-/// [`style`]) and set a little aside from the others within its category, so that equal values
-/// stay visible, and the legend below the axes. `series` points are (category index, value); a
-/// category with no value in a series simply has no marker.
+/// A band of values drawn across every category (a published range beside the points): a shaded
+/// box from `lo` to `hi` on the y axis, with its legend entry.
+pub struct Band<'a> {
+    /// Legend text.
+    pub label: &'a str,
+    /// Its lower end (y axis units).
+    pub lo: f64,
+    /// Its upper end.
+    pub hi: f64,
+}
+
+/// The colour of a [`Band`]: a grey that the series' colours read on.
+pub const BAND_COLOUR: &str = "#7f7f7f";
+/// How opaque a band's shading is.
+pub const BAND_OPACITY: f64 = 0.18;
+
+/// [`category_plot`] with no band.
 pub fn category_plot(
     title: &str,
     categories: &[String],
@@ -1129,7 +1141,27 @@ pub fn category_plot(
     y_label: &str,
     series: &[Series<'_>],
 ) -> Result<String, RunError> {
-    let values = series.iter().flat_map(|s| s.points.iter().map(|p| p.1));
+    category_plot_band(title, categories, (x_label, y_label), series, None)
+}
+
+/// A chart of values by category (e.g. one per gear) as SVG text: the categories along the x
+/// axis, one marker per value, each series in a style of its own (its colour and marker; see
+/// [`style`]) and set a little aside from the others within its category, so that equal values
+/// stay visible, and the legend below the axes. `series` points are (category index, value); a
+/// category with no value in a series simply has no marker. A `band`, when given, is shaded
+/// behind the markers across the whole axis.
+pub fn category_plot_band(
+    title: &str,
+    categories: &[String],
+    (x_label, y_label): (&str, &str),
+    series: &[Series<'_>],
+    band: Option<&Band<'_>>,
+) -> Result<String, RunError> {
+    let ends = band.iter().flat_map(|b| [b.lo, b.hi]);
+    let values = series
+        .iter()
+        .flat_map(|s| s.points.iter().map(|p| p.1))
+        .chain(ends);
     let (mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY);
     for y in values.filter(|y| y.is_finite()) {
         y0 = y0.min(y);
@@ -1141,7 +1173,14 @@ pub fn category_plot(
     let pad = ((y1 - y0) * 0.1).max(1e-3);
     let (y0, y1) = drawable((y0 - pad).max(0.0), y1 + pad);
     let n = categories.len().max(1) as i32;
-    let entries = series_entries(series, false);
+    let mut entries = series_entries(series, false);
+    if let Some(b) = band {
+        entries.push(Entry {
+            label: b.label.to_owned(),
+            sample: Sample::Band(BAND_COLOUR),
+            series: None,
+        });
+    }
     chart_svg(
         title,
         1000,
@@ -1170,6 +1209,18 @@ pub fn category_plot(
             let slot = f64::from(xr.end - xr.start) / f64::from(n);
             let spread = (slot / 3.0).min(10.0 * series.len() as f64);
             let mut out = String::new();
+            if let Some(b) = band {
+                let (_, top) = chart.backend_coord(&(SegmentValue::CenterOf(0), b.hi));
+                let (_, bottom) = chart.backend_coord(&(SegmentValue::CenterOf(0), b.lo));
+                let _ = writeln!(
+                    out,
+                    "<rect class=\"band\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"{BAND_COLOUR}\" fill-opacity=\"{BAND_OPACITY}\" stroke=\"{BAND_COLOUR}\"/>",
+                    xr.start,
+                    top,
+                    xr.end - xr.start,
+                    (bottom - top).max(1)
+                );
+            }
             for (k, s) in series.iter().enumerate() {
                 let st = style(k);
                 let shift = if series.len() > 1 {

@@ -118,6 +118,10 @@ pub struct Results {
     pub hypothesis: String,
     /// The failure study: each case at the reference, then at its chosen clearances.
     pub study: Vec<StudyArm>,
+    /// Each mesh's gears (teeth, tip radius), in the gearing's order: the Cases' errors in
+    /// millimetres and degrees. Empty in results stored before they were kept.
+    #[serde(default)]
+    pub gears: Vec<study::units::MeshGears>,
 }
 
 /// The clearance design.
@@ -159,6 +163,7 @@ impl registry::Experiment for ClearanceDesign {
             searches,
             hypothesis: cells.hypothesis().name().to_owned(),
             study,
+            gears: study::units::mesh_gears(g),
         })
     }
 
@@ -188,7 +193,7 @@ impl registry::Experiment for ClearanceDesign {
             .sum();
         let runs = per_input.iter().flat_map(|runs| runs.iter());
         let report = Report {
-            tables: vec![table, design, study],
+            tables: vec![table, design, study, cases_in_units(&d, s.errors.split, r)],
             files,
             trials: used + per_input.iter().map(|runs| runs.len() as u64).sum::<u64>(),
             engagements: pair_engagements + runs.map(|o| o.engagements).sum::<f64>().round() as u64,
@@ -200,6 +205,30 @@ impl registry::Experiment for ClearanceDesign {
 }
 
 registry::register!(ClearanceDesign);
+
+/// The errors of each Case the design ran, on each gear once, in units of the gear: what each
+/// mesh's chosen clearance is designed to tolerate.
+fn cases_in_units(d: &Design, split: f64, r: &Results) -> Table {
+    let gears = crate::units::gears_once(&r.gears);
+    let mut rows = Vec::new();
+    for &c in &d.cases {
+        let (case, systematic, random) = CASES[c];
+        for (gear, meshes) in &gears {
+            rows.push(crate::units::GearRow {
+                label: format!("{case}: {}", meshes.join(", ")),
+                gear: gear.clone(),
+                random: crate::units::Value::At(random),
+                systematic: crate::units::Value::At(systematic),
+            });
+        }
+    }
+    crate::units::table(
+        "Edmunds' Cases the clearances are designed for, in units of each gear".to_string(),
+        "case: meshes",
+        Some(split),
+        &rows,
+    )
+}
 
 /// How many worst meshes each case's plot draws.
 const PLOTTED: usize = 4;

@@ -5,9 +5,10 @@
 use registry::{OutputFile, Param, Place, Report, Run, RunError, Table};
 use serde::{Deserialize, Serialize};
 
-use crate::common::{Series, category_plot};
+use crate::common::{Band, Series, category_plot_band};
 use crate::emax::{paper_random, show};
 use crate::settings::typed::{Gearing, label, off_paper_inputs, unsplit_cells};
+use crate::units::{GearRow, Value};
 use study::cell::Purpose;
 use study::drive::DriveParams;
 use study::errors::ErrorParams;
@@ -129,7 +130,7 @@ impl registry::Experiment for Fig6 {
         let measured_file = r.measured.as_ref().map(|m| m.file.as_str());
         let svg = plot(&names, rule, measured_file, series_points(&values))?;
         let report = Report {
-            tables: vec![table],
+            tables: vec![table, in_units(r)],
             files: vec![
                 OutputFile::new("fig6-data.csv", csv),
                 OutputFile::new("fig6.svg", svg),
@@ -206,13 +207,76 @@ fn plot(
             points: measured_pts,
         });
     }
-    category_plot(
+    let band_label = edmunds_range().map(|(lo, hi)| {
+        format!(
+            "Edmunds' published range of the random error ({} to {}, the paper's section 4)",
+            study::cell::label(lo, 2),
+            study::cell::label(hi, 2)
+        )
+    });
+    let band = edmunds_range()
+        .zip(band_label.as_deref())
+        .map(|((lo, hi), label)| Band { label, lo, hi });
+    category_plot_band(
         "Figure 6: largest tolerable random error of each gear",
         names,
-        "gear",
-        "random error [fraction of the pitch]",
+        ("gear", "random error [fraction of the pitch]"),
         &series,
+        band.as_ref(),
     )
+}
+
+/// The range of random errors Edmunds published (the paper's section 4), as paper.ron keeps it.
+fn edmunds_range() -> Option<(f64, f64)> {
+    let end = |q: &str| crate::paper::get("fig6", q).map(|r| r.value);
+    end("edmunds_random_from").zip(end("edmunds_random_to"))
+}
+
+/// Two columns of Edmunds' published range `(lo, hi)` (fractions of the pitch) on each gear of
+/// `rows`, in degrees and millimetres at the tip, beside ours.
+fn add_range_columns(t: &mut Table, rows: &[GearRow], (lo, hi): (f64, f64)) {
+    let range = |a: f64, b: f64| format!("{}-{}", registry::fmt_f64(a, 3), registry::fmt_f64(b, 3));
+    t.columns.push("Edmunds' range [deg]".into());
+    t.columns.push("Edmunds' range at tip [mm]".into());
+    for (cells, row) in t.rows.iter_mut().zip(rows) {
+        let (a, b) = (row.gear.random(lo), row.gear.random(hi));
+        cells.push(range(a.degrees, b.degrees));
+        cells.push(range(a.tip_mm, b.tip_mm));
+    }
+    t.note(format!(
+        "Edmunds' range: the random error he published, {} to {} of the pitch (the paper's section 4; the band of the figure), converted on each gear the same way.",
+        study::cell::label(lo, 2),
+        study::cell::label(hi, 2)
+    ));
+}
+
+/// Each gear's largest tolerable random error in units of the gear, beside Edmunds' published
+/// range in the same units.
+fn in_units(r: &GearTolerances) -> Table {
+    let smallest = r.random_grid.random.first().copied();
+    let rows: Vec<GearRow> = r
+        .gears
+        .iter()
+        .filter_map(|gr| {
+            let size = crate::units::gear_named(&r.random_grid.gears, &gr.paper_name)?;
+            Some(GearRow {
+                label: gr.meshes.join(", "),
+                gear: size.clone(),
+                random: Value::of(gr.tolerable, smallest),
+                systematic: Value::Missing,
+            })
+        })
+        .collect();
+    let mut t = crate::units::table(
+        "Figure 6 in units of each gear: its largest tolerable random error".to_string(),
+        "meshes",
+        None,
+        &rows,
+    );
+    if let Some((lo, hi)) = edmunds_range() {
+        add_range_columns(&mut t, &rows, (lo, hi));
+    }
+    t
 }
 
 /// The note on the measured column: the file and how many gears it lists, or how to give one.

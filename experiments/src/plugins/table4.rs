@@ -14,7 +14,9 @@ use study::events::EventParams;
 use study::gearing::GearingParams;
 use study::grids::{CellSettings, TRIALS, run_grid};
 use study::results::RandomErrorTable;
-use study::tolerance::RandomGrid;
+use study::tolerance::{PAPER_RULE_PERCENT, RandomGrid, allowed_jams};
+
+use crate::units::Value;
 
 /// Table 4's settings: trials per cell, the gearing with h and G, the hypothesis, the grid of
 /// random errors, the event rule and the pair-trial protocol.
@@ -88,7 +90,11 @@ impl registry::Experiment for Table4 {
         table.note(replay_note("table4", "0.065/m3-e3"));
         table.note("The paper's text says the error went from 0.04 to 0.65 by 0.005; its table shows 0.035 to 0.065, which is what we run.");
         let report = Report {
-            tables: vec![table, jam_cells.rule_table("Table 4", "random error")],
+            tables: vec![
+                table,
+                jam_cells.rule_table("Table 4", "random error"),
+                emax_in_units(s, r),
+            ],
             files: vec![OutputFile::new("table4-data.csv", jam_cells.csv)],
             agreement: Some(jam_cells.tally.agreement()),
             ..counts_report(r.table.counts())
@@ -100,6 +106,23 @@ impl registry::Experiment for Table4 {
 registry::register!(Table4);
 
 crate::replay_cells! { "table4", "RANDOM/MESH, e.g. 0.050/m3-e3" => cell }
+
+/// Each mesh's E. max read from the table by the paper's 1 % rule (the row Table 5 starts
+/// from), in units of both its gears.
+fn emax_in_units(s: &Settings, r: &RandomErrorTable) -> Table {
+    let tolerable = r.tolerable(s.trials, PAPER_RULE_PERCENT);
+    let smallest = r.random.first().copied();
+    crate::units::emax_table(
+        format!(
+            "Table 4's E. max, the largest random error up to which every value keeps the {PAPER_RULE_PERCENT} % rule (at most {} of {} trials jammed), in units of each gear",
+            allowed_jams(s.trials, PAPER_RULE_PERCENT),
+            s.trials
+        ),
+        &r.gears,
+        None,
+        |m| (Value::of(tolerable[m], smallest), Value::Missing),
+    )
+}
 
 /// The cells' settings read from Table 4's.
 fn cell_settings(s: &Settings) -> Result<CellSettings, RunError> {

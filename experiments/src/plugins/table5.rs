@@ -18,6 +18,8 @@ use study::grids::{CellSettings, TRIALS, derive};
 use study::results::{DerivedTolerances, RandomFrom};
 use study::tolerance::{self, RULE, RandomGrid, SystematicGrid};
 
+use crate::units::Value;
+
 /// Table 5's settings: trials per cell, the rule, where the random E. max comes from, the
 /// gearing with h and G, the split and hypothesis, the grids of Tables 4 and 5, the event rule
 /// and the pair-trial protocol.
@@ -113,7 +115,11 @@ impl registry::Experiment for Table5 {
             (&like_for_like, same),
         );
         let report = Report {
-            tables: vec![table, jam_cells.rule_table("Table 5", "E. sys [deg]")],
+            tables: vec![
+                table,
+                jam_cells.rule_table("Table 5", "E. sys [deg]"),
+                emax_in_units(t, s.errors.split),
+            ],
             files: vec![
                 OutputFile::new("table5-data.csv", jam_cells.csv),
                 OutputFile::new("table5-emax.csv", emax_csv),
@@ -294,6 +300,26 @@ fn add_notes(
             .map_or_else(|| "-".into(), |r| label(r.systematic, 1)),
     ));
     table.note("Systematic amplitude A split as in the paper: split x A on a sinusoid of tip positions, the rest an eccentric axis R tan((1 - split) A); random error as a fraction of the pitch.");
+}
+
+/// Rows E. max (random) and E. max (systematic) in units of both gears of each mesh, the
+/// systematic amplitude split `split` on the teeth as the cells ran.
+fn emax_in_units(t: &DerivedTolerances, split: f64) -> Table {
+    let smallest_random = t.random_grid.random.first().copied();
+    let smallest_sys = t.rows.first().map(|r| r.systematic);
+    crate::units::emax_table(
+        "Table 5's E. max in units of each gear: the largest tolerable random error (row E. max (random)) and systematic amplitude on top of it (row E. max (systematic))".to_string(),
+        &t.random_grid.gears,
+        Some(split),
+        |m| {
+            let tol = &t.meshes[m];
+            let systematic = match tol.random {
+                Some(_) => Value::of(tol.systematic, smallest_sys),
+                None => Value::Missing,
+            };
+            (Value::of(tol.random, smallest_random), systematic)
+        },
+    )
 }
 
 /// Table 5's last row, each mesh's largest tolerable systematic amplitude beside the one the

@@ -19,6 +19,8 @@ use study::results::{MeshSearchResult, RandomErrorTable, SearchedTolerances};
 use study::tolerance::{self, RULE, RandomGrid};
 use study::tolerance_search::{self as sequential, Search, search};
 
+use crate::units::Value;
+
 registry::params! {
     const SEARCH_LO = Param::new("search_lo", "0.02", "lower end of the searched random error (fraction of the pitch 360/N)", study::tolerance::RANDOM_KIND).unit("pitch");
     const SEARCH_HI = Param::new("search_hi", "0.08", "upper end of the searched random error", study::tolerance::RANDOM_KIND).unit("pitch");
@@ -155,7 +157,7 @@ impl registry::Experiment for ToleranceSearch {
         let engagements = r.meshes.iter().map(|m| m.search.engagements()).sum::<u64>()
             + grid.table.counts().map(|c| c.engagements).sum::<u64>();
         let report = Report {
-            tables: vec![table],
+            tables: vec![table, emax_in_units(r)],
             files: vec![
                 OutputFile::new("tolerance.csv", csv),
                 OutputFile::new("tolerance-probes.csv", probes_csv),
@@ -174,6 +176,24 @@ impl registry::Experiment for ToleranceSearch {
 }
 
 registry::register!(ToleranceSearch);
+
+/// Each mesh's largest tolerable random error by the search, in units of both its gears.
+fn emax_in_units(r: &SearchedTolerances) -> Table {
+    crate::units::emax_table(
+        "The search's largest tolerable random error in units of each gear".to_string(),
+        &r.random_grid.gears,
+        None,
+        |m| {
+            let sr = &r.meshes[m].search;
+            let random = match (sr.pass, sr.fail) {
+                (Some(p), None) => Value::AtLeast(p),
+                (Some(p), Some(_)) => Value::At(p),
+                (None, _) => Value::Below(sr.lo),
+            };
+            (random, Value::Missing)
+        },
+    )
+}
 
 /// What the sequential search runs.
 fn sequential_settings(s: &Settings) -> sequential::Settings {

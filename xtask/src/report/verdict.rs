@@ -61,11 +61,12 @@ pub(super) fn block(h: &mut String, v: &VerdictScreen) {
     for c in &v.ledger.claims {
         let _ = write!(
             h,
-            "<tr><td><a href=\"#exp-claims\">{}</a></td><td class=\"verdict-cell {}\" title=\"{}\">{}</td><td class=\"claim-words\">{}</td>",
+            "<tr><td><a href=\"#exp-claims\">{}</a></td><td class=\"verdict-cell {}\" title=\"{}\">{}</td><td class=\"claim-words\" title=\"{}\">{}</td>",
             esc(&c.id),
             class(c.judged.verdict),
             esc(&c.judged.reason),
             esc(c.judged.verdict.words()),
+            esc(&c.words),
             esc(&c.words)
         );
         for u in c.under.iter().skip(1) {
@@ -89,16 +90,20 @@ pub(super) fn block(h: &mut String, v: &VerdictScreen) {
     h.push_str("</section>\n");
 }
 
-/// The verdicts' colours and the compact table of the first screen.
+/// The verdicts' colours and the compact table of the first screen: a claim a line (its words
+/// cut to the column, whole on hover), so that at 1400x1000 the ledger of a dozen claims, its
+/// verdict column and the train all stand on the first screenful.
 pub(super) const CSS: &str = "
-.verdict-table td, .verdict-table th { font-size: 0.82em; padding: 2px 6px; }
-.verdict-table .claim-words { max-width: 34em; }
+section.verdict h2 { margin-top: 0.6em; }
+section.verdict .meta { font-size: 0.85em; }
+.verdict-table td, .verdict-table th { font-size: 0.82em; padding: 1px 6px; line-height: 1.3; }
+.verdict-table .claim-words { max-width: 36em; white-space: nowrap; overflow: hidden; text-overflow: ellipsis; }
 .verdict-cell { font-weight: bold; white-space: nowrap; }
 .reading { white-space: nowrap; }
 .v-holds { background: #dcefdc; }
 .v-part { background: #fbeecb; }
 .v-differs { background: #f6d3d3; }
 .v-untestable { background: #e6e6e6; }
-figure.train { margin: 0.5em 0; }
+figure.train { margin: 0.3em 0; }
 figure.train svg { width: 100%; height: auto; }
 ";

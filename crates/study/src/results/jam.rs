@@ -78,6 +78,10 @@ pub struct RandomErrorTable {
     pub table: JamTable,
     /// Clearance G of every mesh, % of the tooth height h.
     pub clearance: f64,
+    /// Each mesh's gears (teeth and tip radius), in [`JamTable::meshes`]' order, for the
+    /// tolerances in millimetres and degrees. Empty in results stored before they were kept.
+    #[serde(default)]
+    pub gears: Vec<crate::units::MeshGears>,
 }
 
 impl RandomErrorTable {
@@ -99,7 +103,28 @@ impl RandomErrorTable {
                 rows,
             },
             clearance,
+            gears: grid.gears.clone(),
         }
+    }
+
+    /// Each mesh's largest tolerable random error read from the table's counts by the rule
+    /// (`rule_percent` % of `trials`, [`crate::tolerance::largest_tolerable`]): `None` below the
+    /// grid, or where the grid was not run.
+    pub fn tolerable(&self, trials: u64, rule_percent: f64) -> Vec<Option<f64>> {
+        (0..self.table.meshes.len())
+            .map(|m| {
+                let column: Vec<(f64, u64)> = self
+                    .random
+                    .iter()
+                    .zip(&self.table.rows)
+                    .map(|(&e, row)| (e, row.cells[m].jams))
+                    .collect();
+                if column.is_empty() {
+                    return None;
+                }
+                crate::tolerance::largest_tolerable(&column, trials, rule_percent)
+            })
+            .collect()
     }
 }
 
