@@ -16,7 +16,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::fmt;
 use std::path::Path;
 
-use registry::fmt_number;
+use stdx::fmt_number;
 use serde::{Deserialize, Serialize};
 
 pub use ratio::Ratio;
