@@ -137,8 +137,7 @@ pub trait Plugin: 'static {
         Ok(())
     }
     /// The manufactured version of `gear` ([`Hypothesis::apply`]).
-    fn apply(gear: &Gear, gear_name: &str, params: &Params, rng: &mut dyn RngCore)
-    -> Manufactured;
+    fn apply(gear: &Gear, gear_name: &str, params: &Params, rng: &mut dyn RngCore) -> Manufactured;
 }
 
 /// A manufacturing-error hypothesis: how a designed gear becomes a manufactured one.
@@ -241,7 +240,11 @@ macro_rules! register {
 
 /// Every registered hypothesis, sorted by name; a name registered twice is an error naming it.
 pub fn hypotheses() -> Result<BTreeMap<&'static str, &'static dyn Hypothesis>, Duplicate> {
-    collect(inventory::iter::<Entry>.into_iter().map(|e| e as &'static dyn Hypothesis))
+    collect(
+        inventory::iter::<Entry>
+            .into_iter()
+            .map(|e| e as &'static dyn Hypothesis),
+    )
 }
 
 /// Sorts `items` by name, refusing a duplicate.

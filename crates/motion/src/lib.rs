@@ -184,9 +184,11 @@ pub struct ModelError {
 /// Every registered model, sorted by name; a name registered twice is an error naming it.
 pub fn models() -> Result<BTreeMap<&'static str, &'static dyn MotionModel>, ModelError> {
     let entries = inventory::iter::<Entry>.into_iter();
-    stdx::by_name("motion model name", entries.map(|e| e as &'static dyn MotionModel), |m| {
-        m.name()
-    })
+    stdx::by_name(
+        "motion model name",
+        entries.map(|e| e as &'static dyn MotionModel),
+        |m| m.name(),
+    )
     .map_err(|e| ModelError {
         what: format!("motion model `{}`", e.name),
         rule: "is registered twice".into(),

@@ -186,7 +186,11 @@ macro_rules! register {
 
 /// Every registered rule, sorted by name; a name registered twice is an error naming it.
 pub fn rules() -> Result<BTreeMap<&'static str, &'static dyn EventRule>, Duplicate> {
-    collect(inventory::iter::<Entry>.into_iter().map(|e| e as &'static dyn EventRule))
+    collect(
+        inventory::iter::<Entry>
+            .into_iter()
+            .map(|e| e as &'static dyn EventRule),
+    )
 }
 
 fn collect(

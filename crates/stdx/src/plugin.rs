@@ -122,7 +122,10 @@ mod tests {
 
     #[test]
     fn by_name_refuses_a_name_registered_twice() {
-        let again = About { summary: "again", ..A };
+        let again = About {
+            summary: "again",
+            ..A
+        };
         let err = by_name("event rule name", [A, B, again], |x| x.name).unwrap_err();
         assert_eq!(
             err,

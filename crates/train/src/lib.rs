@@ -16,8 +16,8 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::fmt;
 use std::path::Path;
 
-use stdx::fmt_number;
 use serde::{Deserialize, Serialize};
+use stdx::fmt_number;
 
 pub use ratio::Ratio;
 
