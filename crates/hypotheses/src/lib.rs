@@ -5,7 +5,7 @@ use std::fmt::Write as _;
 
 use geometry::Gear;
 use rand::RngCore;
-use stdx::Duplicate;
+use stdx::{Duplicate, one_line};
 
 pub use geometry;
 pub use inventory;
@@ -47,8 +47,8 @@ impl HypothesisError {
     /// gear's name, say) are escaped so that the message stays one line.
     pub fn new(what: impl Into<String>, rule: impl Into<String>) -> Self {
         Self {
-            what: one_line(what.into()),
-            rule: one_line(rule.into()),
+            what: one_line(&what.into()),
+            rule: one_line(&rule.into()),
         }
     }
 
@@ -67,22 +67,6 @@ impl HypothesisError {
 
 /// What [`Hypothesis::apply`] returns: the manufactured gear, or why it could not be made.
 pub type Manufactured = Result<Gear, HypothesisError>;
-
-/// `s` with control characters escaped (`\n`, `\u{1b}`...).
-fn one_line(s: String) -> String {
-    if !s.contains(char::is_control) {
-        return s;
-    }
-    let mut o = String::with_capacity(s.len() + 8);
-    for c in s.chars() {
-        if c.is_control() {
-            o.extend(c.escape_default());
-        } else {
-            o.push(c);
-        }
-    }
-    o
-}
 
 /// One parameter of a hypothesis: declared like every parameter of the toolkit
 /// ([`registry::Param`]: name, default, unit, help, a number [`registry::Kind`]) and read by that
