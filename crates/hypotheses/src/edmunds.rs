@@ -9,7 +9,7 @@ use rand_distr::{Distribution, StandardNormal};
 
 use registry::fmt_number;
 
-use crate::{Hypothesis, HypothesisError, Kind, Param, Params};
+use crate::{About, HypothesisError, Kind, Param, Params, Plugin};
 
 /// Random and systematic errors of one gear, after Edmunds (2011) as the paper adapts them.
 ///
@@ -234,57 +234,46 @@ pub const SPLIT: Param = Param::new(
     Kind::ANY_NUMBER,
 );
 
-/// Edmunds' random and systematic errors with the split either a parameter or fixed.
-pub(crate) struct EdmundsVariant {
-    /// Registered name.
-    pub name: &'static str,
-    /// One-line summary.
-    pub summary: &'static str,
-    /// Parameters: `random`, `systematic` and, when `split` is `None`, `split`.
-    pub params: &'static [Param],
+/// Edmunds' random and systematic errors with the split a parameter or fixed: what
+/// `edmunds-split`, `eccentric-only` and `sinusoid-only` are. Each is a unit struct implementing
+/// this, which differs from the others only in its split (and so in its parameters); each is
+/// then a [`Plugin`], registered as any other.
+pub(crate) trait EdmundsVariant: 'static {
+    /// Its name, summary and details.
+    const ABOUT: About;
+    /// `random`, `systematic` and, when [`EdmundsVariant::SPLIT`] is `None`, `split`.
+    const PARAMS: &'static [Param];
     /// `Some`: the split, fixed; `None`: the `split` parameter.
-    pub split: Option<f64>,
+    const SPLIT: Option<f64>;
+
+    /// Edmunds' errors as `params` set them.
+    fn errors(params: &Params) -> EdmundsErrors {
+        EdmundsErrors {
+            random: params.value(&RANDOM),
+            systematic_deg: params.value(&SYSTEMATIC),
+            split: Self::SPLIT.unwrap_or_else(|| params.value(&SPLIT)),
+            phase_deg: None,
+        }
+    }
 }
 
-impl Hypothesis for EdmundsVariant {
-    fn name(&self) -> &'static str {
-        self.name
-    }
+impl<V: EdmundsVariant> Plugin for V {
+    const ABOUT: About = <V as EdmundsVariant>::ABOUT;
+    const PARAMS: &'static [Param] = <V as EdmundsVariant>::PARAMS;
 
-    fn summary(&self) -> &'static str {
-        self.summary
-    }
-
-    fn params(&self) -> &'static [Param] {
-        self.params
-    }
-
-    fn check(&self, params: &Params) -> Result<(), HypothesisError> {
-        self.errors(params).check(self.name)
+    fn check(params: &Params) -> Result<(), HypothesisError> {
+        V::errors(params).check(<V as EdmundsVariant>::ABOUT.name)
     }
 
     fn apply(
-        &self,
         gear: &Gear,
         gear_name: &str,
         params: &Params,
         rng: &mut dyn rand::RngCore,
     ) -> Result<Gear, HypothesisError> {
-        let errors = self.errors(params);
-        errors.check(self.name)?;
+        let errors = V::errors(params);
+        errors.check(<V as EdmundsVariant>::ABOUT.name)?;
         errors.apply(gear, gear_name, rng)
-    }
-}
-
-impl EdmundsVariant {
-    /// Edmunds' errors as `params` set them.
-    fn errors(&self, params: &Params) -> EdmundsErrors {
-        EdmundsErrors {
-            random: params.value(&RANDOM),
-            systematic_deg: params.value(&SYSTEMATIC),
-            split: self.split.unwrap_or_else(|| params.value(&SPLIT)),
-            phase_deg: None,
-        }
     }
 }
 

@@ -4,6 +4,8 @@ use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
 use geometry::Gear;
+use rand::RngCore;
+use stdx::{Duplicate, one_line};
 
 pub use geometry;
 pub use inventory;
@@ -17,7 +19,6 @@ mod plugins {
 }
 mod measured;
 mod params;
-mod register;
 mod stack;
 
 pub use edmunds::{EdmundsErrors, MAX_RANDOM, eccentricity, manufacture};
@@ -49,8 +50,8 @@ impl HypothesisError {
     /// gear's name, say) are escaped so that the message stays one line.
     pub fn new(what: impl Into<String>, rule: impl Into<String>) -> Self {
         Self {
-            what: one_line(what.into()),
-            rule: one_line(rule.into()),
+            what: one_line(&what.into()),
+            rule: one_line(&rule.into()),
         }
     }
 
@@ -70,31 +71,61 @@ impl HypothesisError {
 /// What [`Hypothesis::apply`] returns: the manufactured gear, or why it could not be made.
 pub type Manufactured = Result<Gear, HypothesisError>;
 
-/// `s` with control characters escaped (`\n`, `\u{1b}`...).
-fn one_line(s: String) -> String {
-    if !s.contains(char::is_control) {
-        return s;
-    }
-    let mut o = String::with_capacity(s.len() + 8);
-    for c in s.chars() {
-        if c.is_control() {
-            o.extend(c.escape_default());
-        } else {
-            o.push(c);
-        }
-    }
-    o
-}
-
-/// Two hypotheses were registered with the same name.
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("error hypothesis name `{0}` is registered twice")]
-pub struct DuplicateName(pub &'static str);
-
 /// One parameter of a hypothesis: declared like every parameter of the toolkit
 /// ([`registry::Param`]: name, default, unit, help, a number [`registry::Kind`]) and read by that
 /// declaration ([`Params::value`]).
 pub use registry::{Kind, Param};
+
+/// What a hypothesis says of itself ([`Plugin::ABOUT`]), and how every hypothesis answers
+/// `name()`, `summary()` and `details()`: the same for every plugin kind.
+pub use stdx::{About, Describe};
+
+/// A manufacturing-error hypothesis as its plugin file writes it: a unit struct implementing
+/// this, registered with [`register!`] (the crate's own plugins and any other crate's alike;
+/// `tests/plugin.rs` is one written outside):
+///
+/// ```
+/// use hypotheses::geometry::Gear;
+/// use hypotheses::rand::RngCore;
+/// use hypotheses::{About, Manufactured, Params};
+///
+/// /// The whole toothing turned on its blank by 0.01 rad (an example plugin).
+/// struct ToyTurn;
+///
+/// impl hypotheses::Plugin for ToyTurn {
+///     const ABOUT: About = About {
+///         name: "toy-turn",
+///         summary: "every tip turned by 0.01 rad",
+///         details: "",
+///     };
+///
+///     fn apply(gear: &Gear, name: &str, _: &Params, _: &mut dyn RngCore) -> Manufactured {
+///         let tips = gear.tip_angles().iter().map(|t| t + 0.01).collect();
+///         hypotheses::manufacture(gear, name, tips, gear.rotation_centre())
+///     }
+/// }
+///
+/// hypotheses::register!(ToyTurn);
+///
+/// let h = hypotheses::lookup("toy-turn").unwrap();
+/// assert_eq!(h.summary(), "every tip turned by 0.01 rad");
+/// ```
+pub trait Plugin: 'static {
+    /// Its name (`--hypothesis NAME`), one line telling what it models, and the model in a few
+    /// sentences: what it changes, how it draws, what it leaves alone, and its sources (shown by
+    /// `cargo xtask help NAME`; empty if the summary says it all).
+    const ABOUT: About;
+    /// Its parameters with their defaults; none unless given.
+    const PARAMS: &'static [Param] = &[];
+    /// Refuses values of `params` that no gear can take ([`Hypothesis::check`]); the default
+    /// accepts every value.
+    fn check(params: &Params) -> Result<(), HypothesisError> {
+        let _ = params;
+        Ok(())
+    }
+    /// The manufactured version of `gear` ([`Hypothesis::apply`]).
+    fn apply(gear: &Gear, gear_name: &str, params: &Params, rng: &mut dyn RngCore) -> Manufactured;
+}
 
 /// A manufacturing-error hypothesis: how a designed gear becomes a manufactured one.
 ///
@@ -105,21 +136,14 @@ pub use registry::{Kind, Param};
 /// too (radii in `ratio-mismatch`, valley angles via [`geometry::Gear::with_valleys`] in
 /// `asymmetric-teeth`, per-tooth radii via [`geometry::Gear::with_radii`] in `non-circular`,
 /// arc flanks via [`geometry::Gear::with_flank_sagitta`] in `curved-flanks`). One file each in
-/// `src/plugins/`: `ideal`, `edmunds-split` (the paper's model, section 4), `eccentric-only`,
-/// `sinusoid-only` and `measured` (per-gear values from a RON table; the registered one uses an
-/// embedded table of invented example values), beside the other plugins.
-pub trait Hypothesis: Sync {
-    /// Unique name, e.g. `edmunds-split`.
-    fn name(&self) -> &'static str;
-    /// One line telling what it models.
-    fn summary(&self) -> &'static str;
+/// `src/plugins/` ([`Plugin`]): `ideal`, `edmunds-split` (the paper's model, section 4),
+/// `eccentric-only`, `sinusoid-only` and `measured` (per-gear values from a RON table; the
+/// registered one uses an embedded table of invented example values), beside the other
+/// plugins. A stack of them (`a+b`) and a `measured:FILE` are hypotheses too, made when looked
+/// up. Its name, summary and details come from [`Describe`].
+pub trait Hypothesis: Describe + Sync {
     /// Its parameters with their defaults (may be empty).
     fn params(&self) -> &'static [Param];
-    /// The model in a few sentences: what it changes, how it draws, what it leaves alone, and
-    /// its sources (shown by `cargo xtask help NAME`; empty if the summary says it all).
-    fn details(&self) -> &'static str {
-        ""
-    }
     /// Refuses values of `params` that no gear can take, as [`Hypothesis::apply`] would, without
     /// a gear: the error's `what` ends with the parameter's name (`NAME: key`), so that a caller
     /// can name where the value came from (a `--set` the user typed, a value of its own) before
@@ -137,40 +161,84 @@ pub trait Hypothesis: Sync {
         gear: &Gear,
         gear_name: &str,
         params: &Params,
-        rng: &mut dyn rand::RngCore,
+        rng: &mut dyn RngCore,
     ) -> Result<Gear, HypothesisError>;
 }
 
-/// The `inventory` item a hypothesis registers itself with; adding one is one file and one
-/// registration, most simply with [`hypothesis!`] (which writes this one), or by hand:
-///
-/// ```ignore
-/// struct ToyShift;
-/// impl hypotheses::Hypothesis for ToyShift { /* name, summary, params, apply */ }
-/// hypotheses::inventory::submit! { hypotheses::Registration(&ToyShift) }
-/// ```
-///
-/// A binary must name the crate that registers it (e.g. [`link`]) or the linker drops it.
-pub struct Registration(pub &'static dyn Hypothesis);
+/// A registered hypothesis as `inventory` collects it: a plain descriptor of plugin `H`, made
+/// by [`Entry::of`] (through [`register!`]). A binary must name the crate that registers it
+/// (e.g. [`link`]) or the linker drops it.
+#[derive(Debug)]
+pub struct Entry {
+    about: About,
+    params: &'static [Param],
+    check: fn(&Params) -> Result<(), HypothesisError>,
+    apply: fn(&Gear, &str, &Params, &mut dyn RngCore) -> Manufactured,
+}
 
-inventory::collect!(Registration);
+impl Entry {
+    /// The entry of hypothesis `H`.
+    pub const fn of<H: Plugin>() -> Entry {
+        Entry {
+            about: H::ABOUT,
+            params: H::PARAMS,
+            check: H::check,
+            apply: H::apply,
+        }
+    }
+}
+
+impl Describe for Entry {
+    fn about(&self) -> &About {
+        &self.about
+    }
+}
+
+impl Hypothesis for Entry {
+    fn params(&self) -> &'static [Param] {
+        self.params
+    }
+
+    fn check(&self, params: &Params) -> Result<(), HypothesisError> {
+        (self.check)(params)
+    }
+
+    fn apply(
+        &self,
+        gear: &Gear,
+        gear_name: &str,
+        params: &Params,
+        rng: &mut dyn RngCore,
+    ) -> Result<Gear, HypothesisError> {
+        (self.apply)(gear, gear_name, params, rng)
+    }
+}
+
+inventory::collect!(Entry);
+
+/// Registers hypothesis `$ty` (a type implementing [`Plugin`]) with `inventory`:
+/// `hypotheses::register!(ToyShift);` (`crate::register!(Ideal);` in this crate's plugin files).
+#[macro_export]
+macro_rules! register {
+    ($ty:ty) => {
+        $crate::inventory::submit! { $crate::Entry::of::<$ty>() }
+    };
+}
 
 /// Every registered hypothesis, sorted by name; a name registered twice is an error naming it.
-pub fn hypotheses() -> Result<BTreeMap<&'static str, &'static dyn Hypothesis>, DuplicateName> {
-    collect(inventory::iter::<Registration>.into_iter().map(|r| r.0))
+pub fn hypotheses() -> Result<BTreeMap<&'static str, &'static dyn Hypothesis>, Duplicate> {
+    collect(
+        inventory::iter::<Entry>
+            .into_iter()
+            .map(|e| e as &'static dyn Hypothesis),
+    )
 }
 
 /// Sorts `items` by name, refusing a duplicate.
 fn collect(
     items: impl Iterator<Item = &'static dyn Hypothesis>,
-) -> Result<BTreeMap<&'static str, &'static dyn Hypothesis>, DuplicateName> {
-    let mut map = BTreeMap::new();
-    for h in items {
-        if map.insert(h.name(), h).is_some() {
-            return Err(DuplicateName(h.name()));
-        }
-    }
-    Ok(map)
+) -> Result<BTreeMap<&'static str, &'static dyn Hypothesis>, Duplicate> {
+    stdx::by_name("error hypothesis name", items, |h| h.name())
 }
 
 /// The registered hypothesis called `name`, or for `measured:FILE` the `measured` hypothesis
@@ -288,15 +356,15 @@ pub fn link() {}
 mod tests {
     use super::*;
 
-    struct Named(&'static str);
+    struct Named(About);
+
+    impl Describe for Named {
+        fn about(&self) -> &About {
+            &self.0
+        }
+    }
 
     impl Hypothesis for Named {
-        fn name(&self) -> &'static str {
-            self.0
-        }
-        fn summary(&self) -> &'static str {
-            "test"
-        }
         fn params(&self) -> &'static [Param] {
             &[]
         }
@@ -311,9 +379,17 @@ mod tests {
         }
     }
 
-    static A: Named = Named("a");
-    static B: Named = Named("b");
-    static A2: Named = Named("a");
+    const fn named(name: &'static str) -> Named {
+        Named(About {
+            name,
+            summary: "test",
+            details: "",
+        })
+    }
+
+    static A: Named = named("a");
+    static B: Named = named("b");
+    static A2: Named = named("a");
 
     #[test]
     fn collect_sorts_by_name() {
@@ -326,7 +402,7 @@ mod tests {
         let err = collect([&A as &dyn Hypothesis, &B, &A2].into_iter())
             .err()
             .unwrap();
-        assert_eq!(err.0, "a");
+        assert_eq!(err.name, "a");
         assert_eq!(
             err.to_string(),
             "error hypothesis name `a` is registered twice"

@@ -6,7 +6,7 @@ use std::sync::{LazyLock, Mutex, PoisonError};
 use geometry::Gear;
 use serde::Deserialize;
 
-use crate::{EdmundsErrors, Hypothesis, HypothesisError, Kind, Param, Params};
+use crate::{About, Describe, EdmundsErrors, Hypothesis, HypothesisError, Kind, Param, Params};
 
 /// The example table the registered `measured` hypothesis uses. Its values are INVENTED (the
 /// file says so): Edmunds' per-gear measurements are not public here.
@@ -166,7 +166,7 @@ impl MeasuredTable {
     /// user's file.
     pub fn hypothesis(&self) -> MeasuredHypothesis {
         MeasuredHypothesis {
-            name: "measured",
+            about: MEASURED,
             table: self.clone(),
         }
     }
@@ -211,15 +211,20 @@ const SCALE: Param = Param::new(
     Kind::ANY_NUMBER,
 );
 
-/// One-line summary of every `measured` hypothesis.
-pub(crate) const MEASURED_SUMMARY: &str = "per-gear random fraction, systematic amplitude (deg) and optional phase from a RON table, 50/50 split unless it says otherwise; registered with an INVENTED example table (crates/hypotheses/data/measured-example.ron)";
+/// What every `measured` hypothesis says of itself; one over a file read by [`measured_file`]
+/// is named `measured:FILE`.
+pub(crate) const MEASURED: About = About {
+    name: "measured",
+    summary: "per-gear random fraction, systematic amplitude (deg) and optional phase from a RON table, 50/50 split unless it says otherwise; registered with an INVENTED example table (crates/hypotheses/data/measured-example.ron)",
+    details: "",
+};
 
 /// The `measured` hypothesis over a given table (see [`MeasuredTable::hypothesis`] and
 /// [`measured_file`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct MeasuredHypothesis {
-    /// `measured`, or `measured:FILE` for a table read by [`measured_file`].
-    name: &'static str,
+    /// Named `measured`, or `measured:FILE` for a table read by [`measured_file`].
+    about: About,
     table: MeasuredTable,
 }
 
@@ -264,7 +269,10 @@ pub fn measured_file(path: &str) -> Result<&'static MeasuredHypothesis, Hypothes
     }
     let table = measured_from_ron(path, &key.1)?;
     let name: &'static str = Box::leak(format!("measured:{path}").into_boxed_str());
-    let h: &'static MeasuredHypothesis = Box::leak(Box::new(MeasuredHypothesis { name, table }));
+    let h: &'static MeasuredHypothesis = Box::leak(Box::new(MeasuredHypothesis {
+        about: About { name, ..MEASURED },
+        table,
+    }));
     loaded.insert(key, h);
     Ok(h)
 }
@@ -276,15 +284,13 @@ impl MeasuredHypothesis {
     }
 }
 
+impl Describe for MeasuredHypothesis {
+    fn about(&self) -> &About {
+        &self.about
+    }
+}
+
 impl Hypothesis for MeasuredHypothesis {
-    fn name(&self) -> &'static str {
-        self.name
-    }
-
-    fn summary(&self) -> &'static str {
-        MEASURED_SUMMARY
-    }
-
     fn params(&self) -> &'static [Param] {
         MEASURED_PARAMS
     }

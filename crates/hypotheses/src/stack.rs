@@ -12,27 +12,24 @@ use std::sync::{Mutex, OnceLock};
 
 use geometry::Gear;
 
-use crate::{Hypothesis, HypothesisError, Param, Params};
+use crate::{About, Describe, Hypothesis, HypothesisError, Param, Params};
 
 /// The separator of layer names in a stack's name.
 pub const SEPARATOR: char = '+';
 
 struct Stack {
-    name: &'static str,
-    summary: &'static str,
+    about: About,
     layers: Vec<&'static dyn Hypothesis>,
     params: &'static [Param],
 }
 
+impl Describe for Stack {
+    fn about(&self) -> &About {
+        &self.about
+    }
+}
+
 impl Hypothesis for Stack {
-    fn name(&self) -> &'static str {
-        self.name
-    }
-
-    fn summary(&self) -> &'static str {
-        self.summary
-    }
-
     fn params(&self) -> &'static [Param] {
         self.params
     }
@@ -152,7 +149,7 @@ pub(crate) fn lookup_stack(
         }
     }
     let names: Vec<&str> = layers.iter().map(|l| l.name()).collect();
-    let stack: &'static Stack = Box::leak(Box::new(Stack {
+    let about = About {
         name: Box::leak(names.join("+").into_boxed_str()),
         summary: Box::leak(
             format!(
@@ -165,6 +162,10 @@ pub(crate) fn lookup_stack(
             )
             .into_boxed_str(),
         ),
+        details: "",
+    };
+    let stack: &'static Stack = Box::leak(Box::new(Stack {
+        about,
         layers,
         params: Box::leak(params.into_boxed_slice()),
     }));

@@ -5,7 +5,7 @@
 use std::f64::consts::TAU;
 
 use geometry::Gear;
-use hypotheses::{Hypothesis, MEASURED_EXAMPLE, Params, lookup, measured_from_ron};
+use hypotheses::{Describe, Hypothesis, MEASURED_EXAMPLE, Params, lookup, measured_from_ron};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 

@@ -5,25 +5,30 @@
 
 use geometry::Gear;
 use hypotheses::rand::RngCore;
-use hypotheses::{Kind, Manufactured, Param, Params, manufacture};
+use hypotheses::{About, Kind, Manufactured, Param, Params, manufacture};
 
 const SHIFT: Param =
     Param::new("shift", "1", "angle added to every tip", Kind::ANY_NUMBER).unit("deg");
 
-fn apply(gear: &Gear, gear_name: &str, params: &Params, _: &mut dyn RngCore) -> Manufactured {
-    let shift = params.value(&SHIFT).to_radians();
-    let tips = gear.tip_angles().iter().map(|t| t + shift).collect();
-    manufacture(gear, gear_name, tips, gear.rotation_centre())
+/// Every tip moved by the same angle: the whole toothing turned on its blank.
+struct ToyShift;
+
+impl hypotheses::Plugin for ToyShift {
+    const ABOUT: About = About {
+        name: "toy-shift",
+        summary: "every tip shifted by the same angle (an example plugin)",
+        details: "",
+    };
+    const PARAMS: &[Param] = &[SHIFT];
+
+    fn apply(gear: &Gear, gear_name: &str, params: &Params, _: &mut dyn RngCore) -> Manufactured {
+        let shift = params.value(&SHIFT).to_radians();
+        let tips = gear.tip_angles().iter().map(|t| t + shift).collect();
+        manufacture(gear, gear_name, tips, gear.rotation_centre())
+    }
 }
 
-hypotheses::hypothesis! {
-    /// Every tip moved by the same angle: the whole toothing turned on its blank.
-    struct ToyShift;
-    name: "toy-shift",
-    summary: "every tip shifted by the same angle (an example plugin)",
-    params: &[SHIFT],
-    apply,
-}
+hypotheses::register!(ToyShift);
 
 #[test]
 fn a_plugin_is_listed_looked_up_and_applied() {

@@ -7,11 +7,11 @@
 //! flanks and at rest between pushes (the exact solver's push model, [`Mesh::solve`]), carried at
 //! the nominal ratio N1/N2 and stopped by whichever flank it meets, or turned after each driver
 //! step by a program that detects overlapping areas. Each reading is a plugin: one file in
-//! `src/plugins/`, registered with `inventory` by `model!`, listed by [`listing`], looked up
-//! by name with [`Model::parse`]. A model turns one [`Trial`] (a mesh, the driver's start and
-//! turn, optionally the driven gear's own drawn angle) into an [`Outcome`]: the run's events in
-//! the solver's terms ([`contact::Event`], so that every event rule counts them) and, when
-//! asked, its path θ(φ) ([`Path`]).
+//! `src/plugins/` implementing [`Plugin`] on a unit struct, registered with `inventory` by
+//! [`register!`], listed by [`listing`], looked up by name with [`Model::parse`]. A model turns
+//! one [`Trial`] (a mesh, the driver's start and turn, optionally the driven gear's own drawn
+//! angle) into an [`Outcome`]: the run's events in the solver's terms ([`contact::Event`], so
+//! that every event rule counts them) and, when asked, its path θ(φ) ([`Path`]).
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -26,12 +26,9 @@ mod path;
 mod plugins {
     include!(concat!(env!("OUT_DIR"), "/plugins.rs"));
 }
-mod register;
 pub mod stepped;
 
 pub use path::{Path, Piece, Rule};
-
-pub(crate) use register::model;
 
 /// The model of every table unless asked otherwise: the exact solver's push model.
 pub const DEFAULT: &str = "push";
@@ -89,23 +86,90 @@ pub struct Outcome {
     pub path: Option<Path>,
 }
 
-/// A motion model: how the driven gear of one mesh moves between and at its contacts.
-pub trait MotionModel: Sync {
-    /// Unique name, e.g. `carried`.
-    fn name(&self) -> &'static str;
-    /// One line telling what the driven gear does.
-    fn summary(&self) -> &'static str;
-    /// The model in a few sentences: its definition from the contact, and why it is a reading
-    /// of the paper.
-    fn details(&self) -> &'static str;
+/// What a model says of itself ([`Plugin::ABOUT`]), and how a registered one answers `name()`,
+/// `summary()` and `details()`: the same for every plugin kind.
+pub use stdx::{About, Describe};
+
+/// A motion model as its plugin file writes it: a unit struct implementing this, registered with
+/// [`register!`]:
+///
+/// ```
+/// use motion::{About, Outcome, Trial, Want};
+///
+/// /// A driven gear that never moves and never meets a tooth (an example plugin).
+/// struct Still;
+///
+/// impl motion::Plugin for Still {
+///     const ABOUT: About = About {
+///         name: "still",
+///         summary: "never moves",
+///         details: "The model in a few sentences: its definition from the contact, and why it is a reading of the paper.",
+///     };
+///
+///     fn run(_: &Trial<'_>, _: Want<'_>) -> Outcome {
+///         Outcome { events: Vec::new(), path: None }
+///     }
+/// }
+///
+/// motion::register!(Still);
+///
+/// assert_eq!(motion::Model::parse("still").unwrap().definition().summary(), "never moves");
+/// ```
+pub trait Plugin: 'static {
+    /// Its name, one line telling what the driven gear does, and the model in a few sentences:
+    /// its definition from the contact, and why it is a reading of the paper.
+    const ABOUT: About;
+    /// Runs one trial.
+    fn run(trial: &Trial<'_>, want: Want<'_>) -> Outcome;
+}
+
+/// A registered motion model (held through [`Model`]): how the driven gear of one mesh moves
+/// between and at its contacts, and what it says of itself ([`Describe`]).
+pub trait MotionModel: Describe + Sync {
     /// Runs one trial.
     fn run(&self, trial: &Trial<'_>, want: Want<'_>) -> Outcome;
 }
 
-/// The `inventory` item a model registers itself with; a plugin file writes it by `model!`.
-pub struct Registration(pub &'static dyn MotionModel);
+/// A registered model as `inventory` collects it: a plain descriptor of model `M`, made by
+/// [`Entry::of`] (through [`register!`]).
+#[derive(Debug)]
+pub struct Entry {
+    about: About,
+    run: fn(&Trial<'_>, Want<'_>) -> Outcome,
+}
 
-inventory::collect!(Registration);
+impl Entry {
+    /// The entry of model `M`.
+    pub const fn of<M: Plugin>() -> Entry {
+        Entry {
+            about: M::ABOUT,
+            run: M::run,
+        }
+    }
+}
+
+impl Describe for Entry {
+    fn about(&self) -> &About {
+        &self.about
+    }
+}
+
+impl MotionModel for Entry {
+    fn run(&self, trial: &Trial<'_>, want: Want<'_>) -> Outcome {
+        (self.run)(trial, want)
+    }
+}
+
+inventory::collect!(Entry);
+
+/// Registers model `$ty` (a type implementing [`Plugin`]) with `inventory`:
+/// `crate::register!(Push);` in a plugin file.
+#[macro_export]
+macro_rules! register {
+    ($ty:ty) => {
+        $crate::inventory::submit! { $crate::Entry::of::<$ty>() }
+    };
+}
 
 /// Why a model could not be looked up.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -119,16 +183,16 @@ pub struct ModelError {
 
 /// Every registered model, sorted by name; a name registered twice is an error naming it.
 pub fn models() -> Result<BTreeMap<&'static str, &'static dyn MotionModel>, ModelError> {
-    let mut map = BTreeMap::new();
-    for r in inventory::iter::<Registration> {
-        if map.insert(r.0.name(), r.0).is_some() {
-            return Err(ModelError {
-                what: format!("motion model `{}`", r.0.name()),
-                rule: "is registered twice".into(),
-            });
-        }
-    }
-    Ok(map)
+    let entries = inventory::iter::<Entry>.into_iter();
+    stdx::by_name(
+        "motion model name",
+        entries.map(|e| e as &'static dyn MotionModel),
+        |m| m.name(),
+    )
+    .map_err(|e| ModelError {
+        what: format!("motion model `{}`", e.name),
+        rule: "is registered twice".into(),
+    })
 }
 
 /// A registered model, looked up by name.

@@ -2,11 +2,6 @@
 
 use std::fmt;
 
-/// Two experiments were registered with the same id.
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("experiment id `{0}` is registered twice")]
-pub struct DuplicateId(pub &'static str);
-
 /// Why an experiment did not produce a report.
 ///
 /// `Display` and `Error` are written by hand rather than derived with `thiserror`, because

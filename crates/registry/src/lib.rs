@@ -55,7 +55,7 @@ pub use context::{
     samples, samples_cover,
 };
 pub use engine::{TrialEngine, TrialMode};
-pub use error::{DuplicateId, RunError};
+pub use error::RunError;
 pub use experiment::{
     Entry, Experiment, Outcome, Place, RESULTS_JSON, Run, Source, forget_computed,
 };
@@ -67,7 +67,9 @@ pub use output::{
 pub use progress::{BatchProgress, Progress};
 pub use settings::{NoSettings, ParamValue, Settings, changed_from_default};
 pub use settings_derive::Settings;
-pub use table::{Table, fmt_f64, fmt_number};
+// Shared with crates below `registry` (`train`), and kept here for every crate above it.
+pub use stdx::{fmt_f64, fmt_number};
+pub use table::Table;
 pub use trials::{Batch, Records, Shard, ShardRecords, f64_bits, merge_records};
 pub use values::{ValueError, Values};
 
@@ -369,21 +371,15 @@ macro_rules! test_experiment {
 }
 
 /// All registered experiments sorted by id; a duplicate id is an error naming it.
-pub fn experiments() -> Result<BTreeMap<&'static str, &'static Entry>, DuplicateId> {
+pub fn experiments() -> Result<BTreeMap<&'static str, &'static Entry>, stdx::Duplicate> {
     collect(inventory::iter::<Entry>.into_iter())
 }
 
 /// Sorts `items` by id, refusing a duplicate id.
 fn collect(
     items: impl Iterator<Item = &'static Entry>,
-) -> Result<BTreeMap<&'static str, &'static Entry>, DuplicateId> {
-    let mut map = BTreeMap::new();
-    for exp in items {
-        if map.insert(exp.id, exp).is_some() {
-            return Err(DuplicateId(exp.id));
-        }
-    }
-    Ok(map)
+) -> Result<BTreeMap<&'static str, &'static Entry>, stdx::Duplicate> {
+    stdx::by_name("experiment id", items, |e| e.id)
 }
 
 #[cfg(test)]
@@ -407,7 +403,7 @@ mod tests {
     #[test]
     fn collect_refuses_duplicate_id() {
         let err = collect([&A, &B, &A2].into_iter()).unwrap_err();
-        assert_eq!(err.0, "a");
+        assert_eq!(err.name, "a");
         assert_eq!(err.to_string(), "experiment id `a` is registered twice");
     }
 }

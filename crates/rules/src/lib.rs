@@ -3,14 +3,16 @@
 //! The contact solver reports what the gears do ([`contact::EventKind`] with its sizes); the
 //! paper prints two columns, jams and disengagements. A rule is the map between them, and
 //! since the paper's words admit more than one reading, each reading is a plugin: one file in
-//! `src/plugins/`, registered with `inventory`, listed by `cargo xtask rules`, chosen with
+//! `src/plugins/` implementing [`Plugin`] on a unit struct and registered with [`register!`]
+//! (a plain [`Entry`] collected by `inventory`), listed by `cargo xtask rules`, chosen with
 //! `--set events=NAME` (parameters as `NAME:key=value,key=value`). A rule looks at one event at
 //! a time and at nothing but the contact motion: never at the clearance formula, never at a
 //! table.
 
-use registry::fmt_number;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
+
+use stdx::{Duplicate, fmt_number};
 
 pub use contact::{Event, EventKind};
 pub use inventory;
@@ -19,9 +21,6 @@ pub use inventory;
 mod plugins {
     include!(concat!(env!("OUT_DIR"), "/plugins.rs"));
 }
-mod register;
-
-pub(crate) use register::rule;
 
 /// The rule of the paper's tables unless `--set events=NAME` says otherwise (see the README's
 /// results section for the evidence that chose it).
@@ -51,24 +50,68 @@ impl RuleError {
 /// declaration ([`Params::value`]).
 pub use registry::{Kind, Param};
 
-/// An event rule: which events are jams and which are disengagements.
-pub trait EventRule: Sync {
-    /// Unique name, e.g. `paper`.
-    fn name(&self) -> &'static str;
-    /// One line telling what it counts.
-    fn summary(&self) -> &'static str;
-    /// The reading in a few sentences, with the quoted sentences it rests on (`cargo xtask help
-    /// NAME`).
-    fn details(&self) -> &'static str;
-    /// Its parameters (may be empty).
-    fn params(&self) -> &'static [Param] {
-        &[]
-    }
+/// What a rule says of itself ([`Plugin::ABOUT`]), and how a registered one answers `name()`,
+/// `summary()` and `details()`: the same for every plugin kind.
+pub use stdx::{About, Describe};
+
+/// An event rule as its plugin file writes it: a unit struct implementing this, registered with
+/// [`register!`]:
+///
+/// ```
+/// use rules::{About, Event, EventKind, Params};
+///
+/// /// Jams as interference; disengagement as a slip.
+/// struct Mine;
+///
+/// impl rules::Plugin for Mine {
+///     const ABOUT: About = About {
+///         name: "mine",
+///         summary: "jam: lock, strike or blocked start; disengagement: a slip",
+///         details: "The reading in a few sentences, with the sentences it rests on.",
+///     };
+///     const JAMS: &str = "lock, strike, blocked start";
+///     const DISENGAGEMENTS: &str = "slip";
+///
+///     fn is_jam(e: &Event, _: &Params) -> bool {
+///         e.kind.is_contact_stop()
+///     }
+///
+///     fn is_disengagement(e: &Event, _: &Params) -> bool {
+///         e.kind == EventKind::Slip
+///     }
+/// }
+///
+/// rules::register!(Mine);
+///
+/// let mine = rules::Rule::parse("mine").unwrap();
+/// assert_eq!(mine.definition().jams(), "lock, strike, blocked start");
+/// ```
+pub trait Plugin: 'static {
+    /// Its name (`--set events=NAME`), one line telling what it counts, and the reading in a
+    /// few sentences with the quoted sentences it rests on (`cargo xtask help NAME`).
+    const ABOUT: About;
+    /// Its parameters (`--set events=NAME:key=value`); none unless given.
+    const PARAMS: &'static [Param] = &[];
     /// What it counts as a jam, in a few words: its cell of the README's table of rules
     /// ([`readme_row`]).
-    fn jams(&self) -> &'static str;
+    const JAMS: &'static str;
     /// What it counts as a disengagement, in a few words: its cell of the README's table of
     /// rules.
+    const DISENGAGEMENTS: &'static str;
+    /// Whether `e` counts as a jam, with `params` holding a value for every declared parameter.
+    fn is_jam(e: &Event, params: &Params) -> bool;
+    /// Whether `e` counts as a disengagement.
+    fn is_disengagement(e: &Event, params: &Params) -> bool;
+}
+
+/// A registered event rule, as an experiment holds it (through [`Rule`]): which events are jams
+/// and which are disengagements, and what it says of itself ([`Describe`]).
+pub trait EventRule: Describe + Sync {
+    /// Its parameters (may be empty).
+    fn params(&self) -> &'static [Param];
+    /// What it counts as a jam, in a few words ([`Plugin::JAMS`]).
+    fn jams(&self) -> &'static str;
+    /// What it counts as a disengagement, in a few words ([`Plugin::DISENGAGEMENTS`]).
     fn disengagements(&self) -> &'static str;
     /// Whether `e` counts as a jam, with `params` holding a value for every declared parameter.
     fn is_jam(&self, e: &Event, params: &Params) -> bool;
@@ -76,40 +119,84 @@ pub trait EventRule: Sync {
     fn is_disengagement(&self, e: &Event, params: &Params) -> bool;
 }
 
-/// The `inventory` item a rule registers itself with; a plugin file of this crate writes it, with
-/// the trait's methods, by `crate::rule!`; by hand it is:
-///
-/// ```ignore
-/// struct Mine;
-/// impl rules::EventRule for Mine {
-///     /* name, summary, details, jams, disengagements, is_jam, is_disengagement */
-/// }
-/// rules::inventory::submit! { rules::Registration(&Mine) }
-/// ```
-pub struct Registration(pub &'static dyn EventRule);
+/// A registered rule as `inventory` collects it: a plain descriptor of rule `R`, made by
+/// [`Entry::of`] (through [`register!`]).
+#[derive(Debug)]
+pub struct Entry {
+    about: About,
+    params: &'static [Param],
+    jams: &'static str,
+    disengagements: &'static str,
+    is_jam: fn(&Event, &Params) -> bool,
+    is_disengagement: fn(&Event, &Params) -> bool,
+}
 
-inventory::collect!(Registration);
+impl Entry {
+    /// The entry of rule `R`.
+    pub const fn of<R: Plugin>() -> Entry {
+        Entry {
+            about: R::ABOUT,
+            params: R::PARAMS,
+            jams: R::JAMS,
+            disengagements: R::DISENGAGEMENTS,
+            is_jam: R::is_jam,
+            is_disengagement: R::is_disengagement,
+        }
+    }
+}
 
-/// Two rules were registered with the same name.
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("event rule name `{0}` is registered twice")]
-pub struct DuplicateName(pub &'static str);
+impl Describe for Entry {
+    fn about(&self) -> &About {
+        &self.about
+    }
+}
+
+impl EventRule for Entry {
+    fn params(&self) -> &'static [Param] {
+        self.params
+    }
+
+    fn jams(&self) -> &'static str {
+        self.jams
+    }
+
+    fn disengagements(&self) -> &'static str {
+        self.disengagements
+    }
+
+    fn is_jam(&self, e: &Event, params: &Params) -> bool {
+        (self.is_jam)(e, params)
+    }
+
+    fn is_disengagement(&self, e: &Event, params: &Params) -> bool {
+        (self.is_disengagement)(e, params)
+    }
+}
+
+inventory::collect!(Entry);
+
+/// Registers rule `$ty` (a type implementing [`Plugin`]) with `inventory`:
+/// `rules::register!(Paper);` (`crate::register!(Paper);` in this crate's plugin files).
+#[macro_export]
+macro_rules! register {
+    ($ty:ty) => {
+        $crate::inventory::submit! { $crate::Entry::of::<$ty>() }
+    };
+}
 
 /// Every registered rule, sorted by name; a name registered twice is an error naming it.
-pub fn rules() -> Result<BTreeMap<&'static str, &'static dyn EventRule>, DuplicateName> {
-    collect(inventory::iter::<Registration>.into_iter().map(|r| r.0))
+pub fn rules() -> Result<BTreeMap<&'static str, &'static dyn EventRule>, Duplicate> {
+    collect(
+        inventory::iter::<Entry>
+            .into_iter()
+            .map(|e| e as &'static dyn EventRule),
+    )
 }
 
 fn collect(
     items: impl Iterator<Item = &'static dyn EventRule>,
-) -> Result<BTreeMap<&'static str, &'static dyn EventRule>, DuplicateName> {
-    let mut map = BTreeMap::new();
-    for r in items {
-        if map.insert(r.name(), r).is_some() {
-            return Err(DuplicateName(r.name()));
-        }
-    }
-    Ok(map)
+) -> Result<BTreeMap<&'static str, &'static dyn EventRule>, Duplicate> {
+    stdx::by_name("event rule name", items, |r| r.name())
 }
 
 /// A rule's parameter values: every declared parameter has one, read by its declaration

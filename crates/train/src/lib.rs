@@ -16,8 +16,8 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::fmt;
 use std::path::Path;
 
-use registry::fmt_number;
 use serde::{Deserialize, Serialize};
+use stdx::{fmt_number, one_line};
 
 pub use ratio::Ratio;
 
@@ -212,20 +212,6 @@ impl Errors<'_> {
             rule: one_line(&rule.to_string()),
         }
     }
-}
-
-/// `s` with control characters (a newline in a name, say) escaped, so a message stays one line.
-fn one_line(s: &str) -> String {
-    s.chars()
-        .flat_map(|c| {
-            let escaped: Vec<char> = if c.is_control() {
-                c.escape_default().collect()
-            } else {
-                vec![c]
-            };
-            escaped
-        })
-        .collect()
 }
 
 /// Finds `x`'s root in a union-find forest, halving paths.

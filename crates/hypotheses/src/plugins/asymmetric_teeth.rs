@@ -7,48 +7,52 @@ use rand::RngCore;
 use rand_distr::{Distribution, StandardNormal};
 
 use crate::edmunds::with_valleys_at;
-use crate::{HypothesisError, Kind, Manufactured, Param, Params};
+use crate::{About, HypothesisError, Kind, Manufactured, Param, Params, Plugin};
 
 const VALLEY_SHIFT: Param = Param::new("valley_shift", "0.05", "standard deviation of each valley's displacement from midway between its tips, as a fraction of that tip gap (the valley is clamped to 0.05 .. 0.95 of the gap)", Kind::ANY_NUMBER).unit("gap");
 
 /// The valley's position in its gap is clamped to `[LOWEST, 1 - LOWEST]`.
 const LOWEST: f64 = 0.05;
 
-fn apply(gear: &Gear, gear_name: &str, params: &Params, rng: &mut dyn RngCore) -> Manufactured {
-    let shift = params.value(&VALLEY_SHIFT);
-    if !(0.0..=1.0).contains(&shift) {
-        return Err(HypothesisError::parameter(
-            "asymmetric-teeth",
-            &VALLEY_SHIFT,
-            format!(
-                "must be between 0 and 1 (a fraction of the tip gap; got {})",
-                registry::fmt_number(shift)
-            ),
-        ));
-    }
-    let valleys = (0..gear.teeth() as i64)
-        .map(|k| {
-            let (lo, hi) = (gear.tip_angle(k), gear.tip_angle(k + 1));
-            let z: f64 = StandardNormal.sample(rng);
-            let at = (0.5 + shift * z).clamp(LOWEST, 1.0 - LOWEST);
-            lo + at * (hi - lo)
-        })
-        .collect();
-    with_valleys_at(gear, valleys).map_err(|e| HypothesisError::gear(gear_name, e))
-}
-
 /// The model in words, printed by `cargo xtask help`.
 const DETAILS: &str = "Valley k is placed at the fraction `0.5 + s·z` of the angular gap from tip k to tip k + 1, z a standard normal draw and s the parameter `valley_shift`; the fraction is clamped to 0.05 ..= 0.95 so that the valley stays strictly between its tips (no flank degenerates). Tips, radii and rotation centre are unchanged.";
 
-crate::hypothesis! {
-    /// The hypothesis.
-    struct AsymmetricTeeth;
-    name: "asymmetric-teeth",
-    summary: "each valley displaced from midway between its tips, so the teeth lean (assumption 3); tips unchanged",
-    details: DETAILS,
-    params: &[VALLEY_SHIFT],
-    apply,
+/// The hypothesis.
+struct AsymmetricTeeth;
+
+impl Plugin for AsymmetricTeeth {
+    const ABOUT: About = About {
+        name: "asymmetric-teeth",
+        summary: "each valley displaced from midway between its tips, so the teeth lean (assumption 3); tips unchanged",
+        details: DETAILS,
+    };
+    const PARAMS: &[Param] = &[VALLEY_SHIFT];
+
+    fn apply(gear: &Gear, gear_name: &str, params: &Params, rng: &mut dyn RngCore) -> Manufactured {
+        let shift = params.value(&VALLEY_SHIFT);
+        if !(0.0..=1.0).contains(&shift) {
+            return Err(HypothesisError::parameter(
+                "asymmetric-teeth",
+                &VALLEY_SHIFT,
+                format!(
+                    "must be between 0 and 1 (a fraction of the tip gap; got {})",
+                    registry::fmt_number(shift)
+                ),
+            ));
+        }
+        let valleys = (0..gear.teeth() as i64)
+            .map(|k| {
+                let (lo, hi) = (gear.tip_angle(k), gear.tip_angle(k + 1));
+                let z: f64 = StandardNormal.sample(rng);
+                let at = (0.5 + shift * z).clamp(LOWEST, 1.0 - LOWEST);
+                lo + at * (hi - lo)
+            })
+            .collect();
+        with_valleys_at(gear, valleys).map_err(|e| HypothesisError::gear(gear_name, e))
+    }
 }
+
+crate::register!(AsymmetricTeeth);
 
 #[cfg(test)]
 mod tests {

@@ -6,7 +6,7 @@ use geometry::Gear;
 use rand::RngCore;
 use rand_distr::{Distribution, StandardNormal};
 
-use crate::{HypothesisError, Kind, Manufactured, Param, Params};
+use crate::{About, HypothesisError, Kind, Manufactured, Param, Params, Plugin};
 
 const SAGITTA: Param = Param::new("sagitta", "0.05", "signed sagitta of every flank (the arc's greatest distance from its chord): + convex (bulging out of the tooth), - concave, 0 straight", Kind::ANY_NUMBER).unit("mm");
 
@@ -18,56 +18,60 @@ const SAGITTA_SPREAD: Param = Param::new(
 )
 .unit("mm");
 
-fn apply(gear: &Gear, gear_name: &str, params: &Params, rng: &mut dyn RngCore) -> Manufactured {
-    let sagitta = params.value(&SAGITTA);
-    if !sagitta.is_finite() {
-        return Err(HypothesisError::parameter(
-            "curved-flanks",
-            &SAGITTA,
-            format!(
-                "must be a finite length in mm (got {})",
-                registry::fmt_number(sagitta)
-            ),
-        ));
-    }
-    let spread = params.non_negative_length(&SAGITTA_SPREAD, "curved-flanks")?;
-    let s = if spread > 0.0 {
-        let z: f64 = StandardNormal.sample(rng);
-        sagitta + spread * z
-    } else {
-        sagitta
-    };
-    // The gear's rule, said of the parameter the user set (the drawn s is the sagitta's, or
-    // the sagitta's plus the spread's draw).
-    gear.clone().with_flank_sagitta(s).map_err(|e| {
-        let param = if spread > 0.0 {
-            "parameters `sagitta` and `sagitta_spread`"
-        } else {
-            "parameter `sagitta`"
-        };
-        HypothesisError::new(
-            format!("gear `{gear_name}`: curved-flanks: {param}"),
-            format!(
-                "the sagitta s = {} mm drawn for this gear is too large for its teeth: {}",
-                registry::fmt_number(s),
-                e.rule
-            ),
-        )
-    })
-}
-
 /// The model in words, printed by `cargo xtask help`.
 const DETAILS: &str = "Every flank of a gear becomes the arc through its two vertices with one signed sagitta `s` (mm, the arc's greatest distance from the chord): `s > 0` bulges out of the tooth (convex, as a file rounds a tooth), `s < 0` hollows it (concave). Each gear gets `s = sagitta + sagitta_spread · z`, z a standard normal draw per gear (none is drawn when the spread is 0). Tips, valleys, radii and rotation centre are kept, so the hypothesis composes after the others (e.g. `edmunds-split`, then `curved-flanks`). A sagitta too large for a gear's teeth (see geometry::Gear::with_flank_sagitta) is an error naming the gear.";
 
-crate::hypothesis! {
-    /// The hypothesis.
-    struct CurvedFlanks;
-    name: "curved-flanks",
-    summary: "every flank a circular arc of a signed sagitta, convex or concave, instead of a straight line (assumption 2); vertices unchanged",
-    details: DETAILS,
-    params: &[SAGITTA, SAGITTA_SPREAD],
-    apply,
+/// The hypothesis.
+struct CurvedFlanks;
+
+impl Plugin for CurvedFlanks {
+    const ABOUT: About = About {
+        name: "curved-flanks",
+        summary: "every flank a circular arc of a signed sagitta, convex or concave, instead of a straight line (assumption 2); vertices unchanged",
+        details: DETAILS,
+    };
+    const PARAMS: &[Param] = &[SAGITTA, SAGITTA_SPREAD];
+
+    fn apply(gear: &Gear, gear_name: &str, params: &Params, rng: &mut dyn RngCore) -> Manufactured {
+        let sagitta = params.value(&SAGITTA);
+        if !sagitta.is_finite() {
+            return Err(HypothesisError::parameter(
+                "curved-flanks",
+                &SAGITTA,
+                format!(
+                    "must be a finite length in mm (got {})",
+                    registry::fmt_number(sagitta)
+                ),
+            ));
+        }
+        let spread = params.non_negative_length(&SAGITTA_SPREAD, "curved-flanks")?;
+        let s = if spread > 0.0 {
+            let z: f64 = StandardNormal.sample(rng);
+            sagitta + spread * z
+        } else {
+            sagitta
+        };
+        // The gear's rule, said of the parameter the user set (the drawn s is the sagitta's, or
+        // the sagitta's plus the spread's draw).
+        gear.clone().with_flank_sagitta(s).map_err(|e| {
+            let param = if spread > 0.0 {
+                "parameters `sagitta` and `sagitta_spread`"
+            } else {
+                "parameter `sagitta`"
+            };
+            HypothesisError::new(
+                format!("gear `{gear_name}`: curved-flanks: {param}"),
+                format!(
+                    "the sagitta s = {} mm drawn for this gear is too large for its teeth: {}",
+                    registry::fmt_number(s),
+                    e.rule
+                ),
+            )
+        })
+    }
 }
+
+crate::register!(CurvedFlanks);
 
 #[cfg(test)]
 mod tests {

@@ -11,34 +11,37 @@ use geometry::Gear;
 use rand::RngCore;
 
 use crate::edmunds::with_valleys_at;
-use crate::{HypothesisError, Manufactured, Params};
-
-fn apply(gear: &Gear, gear_name: &str, _: &Params, _: &mut dyn RngCore) -> Manufactured {
-    let n = gear.teeth();
-    let valleys = (0..n).map(|k| TAU * (k as f64 + 0.5) / n as f64).collect();
-    with_valleys_at(gear, valleys).map_err(|e| {
-        HypothesisError::new(
-            format!("design-valleys: gear `{gear_name}`"),
-            format!(
-                "a tip has moved past its design valley ({}: {})",
-                e.field, e.rule
-            ),
-        )
-    })
-}
+use crate::{About, HypothesisError, Manufactured, Params, Plugin};
 
 /// The model in words, printed by `cargo xtask help`.
 const DETAILS: &str = "Valley k is put at its design angle 360·(k + 1/2)/N degrees of the gear frame (midway between the design tips), whatever the hypotheses before it did to the tips; tips, radii and rotation centre are kept. After `edmunds-split` this reads the paper's tooth error as moving the tip alone, the flanks pivoting about fixed valleys, instead of the whole tooth (valleys midway between the displaced tips, the paper's own sentence and the default). A valley must stay strictly between its tips: a tip moved by half a pitch or more is refused, naming the gear.";
 
-crate::hypothesis! {
-    /// The hypothesis.
-    struct DesignValleys;
-    name: "design-valleys",
-    summary: "every valley at its design angle, so that a tooth error moves the tip alone (a reading of section 4; stack it after the errors: edmunds-split+design-valleys)",
-    details: DETAILS,
-    params: &[],
-    apply,
+/// The hypothesis.
+struct DesignValleys;
+
+impl Plugin for DesignValleys {
+    const ABOUT: About = About {
+        name: "design-valleys",
+        summary: "every valley at its design angle, so that a tooth error moves the tip alone (a reading of section 4; stack it after the errors: edmunds-split+design-valleys)",
+        details: DETAILS,
+    };
+
+    fn apply(gear: &Gear, gear_name: &str, _: &Params, _: &mut dyn RngCore) -> Manufactured {
+        let n = gear.teeth();
+        let valleys = (0..n).map(|k| TAU * (k as f64 + 0.5) / n as f64).collect();
+        with_valleys_at(gear, valleys).map_err(|e| {
+            HypothesisError::new(
+                format!("design-valleys: gear `{gear_name}`"),
+                format!(
+                    "a tip has moved past its design valley ({}: {})",
+                    e.field, e.rule
+                ),
+            )
+        })
+    }
 }
+
+crate::register!(DesignValleys);
 
 #[cfg(test)]
 mod tests {
@@ -48,12 +51,12 @@ mod tests {
     use rand_chacha::ChaCha8Rng;
 
     use super::*;
-    use crate::Hypothesis;
+    use crate::test_support::with_defaults;
 
-    /// `design-valleys` applied to `moved`, a gear named `name`.
+    /// `design-valleys` (as registered) applied to `moved`, a gear named `name`.
     fn put_back(moved: &Gear, name: &str) -> Manufactured {
-        let params = Params::new(&DesignValleys, &[]).unwrap();
-        DesignValleys.apply(moved, name, &params, &mut ChaCha8Rng::seed_from_u64(1))
+        let (h, params) = with_defaults("design-valleys");
+        h.apply(moved, name, &params, &mut ChaCha8Rng::seed_from_u64(1))
     }
 
     #[test]

@@ -3,17 +3,21 @@
 use geometry::Gear;
 use rand::RngCore;
 
-use crate::{Manufactured, Params};
+use crate::{About, Manufactured, Params, Plugin};
 
-crate::hypothesis! {
-    /// The gear exactly as designed.
-    struct Ideal;
-    name: "ideal",
-    summary: "no manufacturing error: the gear exactly as designed",
-    params: &[],
-    apply,
+/// The gear exactly as designed.
+struct Ideal;
+
+impl Plugin for Ideal {
+    const ABOUT: About = About {
+        name: "ideal",
+        summary: "no manufacturing error: the gear exactly as designed",
+        details: "",
+    };
+
+    fn apply(gear: &Gear, _: &str, _: &Params, _: &mut dyn RngCore) -> Manufactured {
+        Ok(gear.clone())
+    }
 }
 
-fn apply(gear: &Gear, _: &str, _: &Params, _: &mut dyn RngCore) -> Manufactured {
-    Ok(gear.clone())
-}
+crate::register!(Ideal);

@@ -7,7 +7,7 @@ use geometry::Gear;
 use rand::{Rng, RngCore};
 use rand_distr::{Distribution, StandardNormal};
 
-use crate::{HypothesisError, Kind, Manufactured, Param, Params};
+use crate::{About, HypothesisError, Kind, Manufactured, Param, Params, Plugin};
 
 const RADIAL_ERROR: Param = Param::new(
     "radial_error",
@@ -25,63 +25,67 @@ const LOBE: Param = Param::new(
 )
 .unit("mm");
 
-fn apply(gear: &Gear, gear_name: &str, params: &Params, rng: &mut dyn RngCore) -> Manufactured {
-    let sd = params.non_negative_length(&RADIAL_ERROR, "non-circular")?;
-    let lobe = params.non_negative_length(&LOBE, "non-circular")?;
-    let alpha = rng.random::<f64>() * TAU;
-    let mut radius = |designed: f64, angle: f64| {
-        let z: f64 = StandardNormal.sample(rng);
-        designed + sd * z.clamp(-4.0, 4.0) + lobe * (angle - alpha).cos()
-    };
-    let tips: Vec<f64> = gear
-        .tip_angles()
-        .iter()
-        .map(|&a| radius(gear.tip_radius(), a))
-        .collect();
-    let roots: Vec<f64> = gear
-        .valley_angles()
-        .iter()
-        .map(|&a| radius(gear.root_radius(), a))
-        .collect();
-    // The gear's rule names its radii by index; said instead of the parameters the user
-    // set, with what the draw did.
-    gear.clone().with_radii(tips, roots).map_err(|e| {
-        let param = match (sd > 0.0, lobe > 0.0) {
-            (true, true) => "parameters `radial_error` and `lobe`",
-            (false, true) => "parameter `lobe`",
-            _ => "parameter `radial_error`",
-        };
-        let what = if e.field.starts_with("rotation_centre") {
-            "the smallest valley radius drawn reaches the gear's axis".to_string()
-        } else if e.field.starts_with("root_radii") {
-            "a valley was drawn at or above one of its tips".to_string()
-        } else {
-            "a radius drawn is not above 0".to_string()
-        };
-        HypothesisError::new(
-            format!("gear `{gear_name}`: non-circular: {param}"),
-            format!(
-                "too large for teeth {} mm high (radial_error = {} mm, lobe = {} mm): {what}",
-                registry::fmt_f64(gear.tip_radius() - gear.root_radius(), 3),
-                registry::fmt_number(sd),
-                registry::fmt_number(lobe)
-            ),
-        )
-    })
-}
-
 /// The model in words, printed by `cargo xtask help`.
 const DETAILS: &str = "Every tip and every valley gets its own radius: the designed one plus `radial_error · z` (z a standard normal draw, one per vertex, clamped to ±4) plus a once-per-turn out-of-round `lobe · cos(angle − α)` with α uniform over the turn (one per gear). Tip and valley angles and the rotation centre are unchanged; the designed radii stay the gear's nominal ones (Gear::tip_radius, Gear::root_radius). A draw that puts a valley above one of its tips, or the axis outside the smallest valley, is an error naming the gear.";
 
-crate::hypothesis! {
-    /// The hypothesis.
-    struct NonCircular;
-    name: "non-circular",
-    summary: "each tip and valley at its own radius, optionally with a once-per-turn lobe (assumption 1); angles unchanged",
-    details: DETAILS,
-    params: &[RADIAL_ERROR, LOBE],
-    apply,
+/// The hypothesis.
+struct NonCircular;
+
+impl Plugin for NonCircular {
+    const ABOUT: About = About {
+        name: "non-circular",
+        summary: "each tip and valley at its own radius, optionally with a once-per-turn lobe (assumption 1); angles unchanged",
+        details: DETAILS,
+    };
+    const PARAMS: &[Param] = &[RADIAL_ERROR, LOBE];
+
+    fn apply(gear: &Gear, gear_name: &str, params: &Params, rng: &mut dyn RngCore) -> Manufactured {
+        let sd = params.non_negative_length(&RADIAL_ERROR, "non-circular")?;
+        let lobe = params.non_negative_length(&LOBE, "non-circular")?;
+        let alpha = rng.random::<f64>() * TAU;
+        let mut radius = |designed: f64, angle: f64| {
+            let z: f64 = StandardNormal.sample(rng);
+            designed + sd * z.clamp(-4.0, 4.0) + lobe * (angle - alpha).cos()
+        };
+        let tips: Vec<f64> = gear
+            .tip_angles()
+            .iter()
+            .map(|&a| radius(gear.tip_radius(), a))
+            .collect();
+        let roots: Vec<f64> = gear
+            .valley_angles()
+            .iter()
+            .map(|&a| radius(gear.root_radius(), a))
+            .collect();
+        // The gear's rule names its radii by index; said instead of the parameters the user
+        // set, with what the draw did.
+        gear.clone().with_radii(tips, roots).map_err(|e| {
+            let param = match (sd > 0.0, lobe > 0.0) {
+                (true, true) => "parameters `radial_error` and `lobe`",
+                (false, true) => "parameter `lobe`",
+                _ => "parameter `radial_error`",
+            };
+            let what = if e.field.starts_with("rotation_centre") {
+                "the smallest valley radius drawn reaches the gear's axis".to_string()
+            } else if e.field.starts_with("root_radii") {
+                "a valley was drawn at or above one of its tips".to_string()
+            } else {
+                "a radius drawn is not above 0".to_string()
+            };
+            HypothesisError::new(
+                format!("gear `{gear_name}`: non-circular: {param}"),
+                format!(
+                    "too large for teeth {} mm high (radial_error = {} mm, lobe = {} mm): {what}",
+                    registry::fmt_f64(gear.tip_radius() - gear.root_radius(), 3),
+                    registry::fmt_number(sd),
+                    registry::fmt_number(lobe)
+                ),
+            )
+        })
+    }
 }
+
+crate::register!(NonCircular);
 
 #[cfg(test)]
 mod tests {

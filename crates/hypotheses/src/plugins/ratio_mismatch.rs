@@ -6,48 +6,52 @@ use geometry::Gear;
 use rand::RngCore;
 use rand_distr::{Distribution, StandardNormal};
 
-use crate::{HypothesisError, Kind, Manufactured, Param, Params};
+use crate::{About, HypothesisError, Kind, Manufactured, Param, Params, Plugin};
 
 const MODULE_SPREAD: Param = Param::new("module_spread", "3.3", "standard deviation of each gear's module about the design (3.3 % makes meshing gears differ by 3.7 % on average, as Freeth et al. 2021 measured)", Kind::ANY_NUMBER).unit("%");
-
-fn apply(gear: &Gear, gear_name: &str, params: &Params, rng: &mut dyn RngCore) -> Manufactured {
-    let spread = params.value(&MODULE_SPREAD);
-    if !(0.0..50.0).contains(&spread) {
-        return Err(HypothesisError::parameter(
-            "ratio-mismatch",
-            &MODULE_SPREAD,
-            format!(
-                "must be at least 0 and below 50 % (got {})",
-                registry::fmt_number(spread)
-            ),
-        ));
-    }
-    let z: f64 = StandardNormal.sample(rng);
-    // A module cannot shrink to nothing: beyond four standard deviations is not a gear.
-    let scale = 1.0 + spread / 100.0 * z.clamp(-4.0, 4.0);
-    let tip = gear.tip_radius() * scale;
-    let root = tip - gear.tooth_height() * scale;
-    Gear::new(
-        tip,
-        root,
-        gear.tip_angles().to_vec(),
-        gear.rotation_centre(),
-    )
-    .map_err(|e| HypothesisError::gear(gear_name, e))
-}
 
 /// The model in words, printed by `cargo xtask help`.
 const DETAILS: &str = "Freeth et al. (2021) report the modules of meshing gears differing by 3.7 % on average and by up to 7.6 %. Here each gear's module is the designed one times (1 + m·z), z a standard normal draw, so tip radius and tooth height scale together and the tip angles stay. Two gears' modules then differ by about 1.13·m on average: m = 3.3 % gives the reported 3.7 %. The arbors stay where the design puts them, so the clearance of the mesh changes with the radii (a larger gear reaches deeper).";
 
-crate::hypothesis! {
-    /// The hypothesis.
-    struct RatioMismatch;
-    name: "ratio-mismatch",
-    summary: "each gear cut with its own module (radius and tooth height scaled together), so R1/R2 != N1/N2 (assumption 5)",
-    details: DETAILS,
-    params: &[MODULE_SPREAD],
-    apply,
+/// The hypothesis.
+struct RatioMismatch;
+
+impl Plugin for RatioMismatch {
+    const ABOUT: About = About {
+        name: "ratio-mismatch",
+        summary: "each gear cut with its own module (radius and tooth height scaled together), so R1/R2 != N1/N2 (assumption 5)",
+        details: DETAILS,
+    };
+    const PARAMS: &[Param] = &[MODULE_SPREAD];
+
+    fn apply(gear: &Gear, gear_name: &str, params: &Params, rng: &mut dyn RngCore) -> Manufactured {
+        let spread = params.value(&MODULE_SPREAD);
+        if !(0.0..50.0).contains(&spread) {
+            return Err(HypothesisError::parameter(
+                "ratio-mismatch",
+                &MODULE_SPREAD,
+                format!(
+                    "must be at least 0 and below 50 % (got {})",
+                    registry::fmt_number(spread)
+                ),
+            ));
+        }
+        let z: f64 = StandardNormal.sample(rng);
+        // A module cannot shrink to nothing: beyond four standard deviations is not a gear.
+        let scale = 1.0 + spread / 100.0 * z.clamp(-4.0, 4.0);
+        let tip = gear.tip_radius() * scale;
+        let root = tip - gear.tooth_height() * scale;
+        Gear::new(
+            tip,
+            root,
+            gear.tip_angles().to_vec(),
+            gear.rotation_centre(),
+        )
+        .map_err(|e| HypothesisError::gear(gear_name, e))
+    }
 }
+
+crate::register!(RatioMismatch);
 
 #[cfg(test)]
 mod tests {

@@ -1,13 +1,19 @@
 //! `sinusoid-only`: `edmunds-split` with the whole systematic error on the tip positions (split 1).
 
-use crate::Registration;
 use crate::edmunds::{EdmundsVariant, RANDOM, SYSTEMATIC};
+use crate::{About, Param};
 
-inventory::submit! {
-    Registration(&EdmundsVariant {
+/// Edmunds' errors, all of A on the tips.
+struct SinusoidOnly;
+
+impl EdmundsVariant for SinusoidOnly {
+    const ABOUT: About = About {
         name: "sinusoid-only",
         summary: "edmunds-split with split 1: random tip error, all of A as a sinusoid of tip positions (the paper's Figure 5 C)",
-        params: &[RANDOM, SYSTEMATIC],
-        split: Some(1.0),
-    })
+        details: "",
+    };
+    const PARAMS: &[Param] = &[RANDOM, SYSTEMATIC];
+    const SPLIT: Option<f64> = Some(1.0);
 }
+
+crate::register!(SinusoidOnly);
