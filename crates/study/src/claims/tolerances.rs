@@ -31,18 +31,15 @@ pub fn tolerable(column: &[(f64, Counts)], rule_percent: f64) -> Tolerable {
 }
 
 impl Tolerable {
-    /// The value with the deciding cell's share and its 95 % Wilson interval, e.g.
-    /// `0.035 (0.040: 5/200 jammed, 2.5 % [1.1 .. 5.7])`.
-    pub fn words(&self, decimals: usize) -> String {
-        let v = self.value.map_or_else(
-            || "below the grid".to_owned(),
-            |v| format!("{v:.decimals$}"),
-        );
+    /// The value in `unit` with the deciding cell's share and its 95 % Wilson interval, e.g.
+    /// `0.035 (at 0.040: 5/200 jammed, 2.5 % [1.1 .. 5.7])`.
+    pub fn words(&self, decimals: usize, unit: &str) -> String {
+        let v = show(self.value, decimals, unit);
         match self.broken_at {
             Some((at, c)) => {
                 let w = stats::wilson95(c.jams, c.trials);
                 format!(
-                    "{v} ({at:.decimals$}: {}/{} jammed, {:.1} % [{:.1} .. {:.1}])",
+                    "{v} (at {at:.decimals$}{unit}: {}/{} jammed, {:.1} % [{:.1} .. {:.1}])",
                     c.jams,
                     c.trials,
                     100.0 * c.jams as f64 / c.trials.max(1) as f64,
@@ -122,8 +119,8 @@ fn smallest(row: &[(String, Option<f64>)]) -> (Option<f64>, Vec<String>) {
     (low, at)
 }
 
-fn show(v: Option<f64>, decimals: usize) -> String {
-    v.map_or_else(|| "below the grid".into(), |v| format!("{v:.decimals$}"))
+fn show(v: Option<f64>, decimals: usize, unit: &str) -> String {
+    v.map_or_else(|| "below the grid".into(), |v| format!("{v:.decimals$}{unit}"))
 }
 
 /// The words of a judge with parts: which parts hold and which do not.
@@ -194,12 +191,12 @@ pub fn random_limits(
         )),
     ];
     let trials = ours.table.counts().map(|c| c.trials).max().unwrap_or(0);
-    let named_words = |t: Option<&Tolerable>| t.map_or_else(|| "not run".into(), |t| t.words(3));
+    let named_words = |t: Option<&Tolerable>| t.map_or_else(|| "not run".into(), |t| t.words(3, ""));
     Judged {
         verdict: Verdict::of_parts(&parts),
         ours: format!(
             "smallest E. max {} ({}); {} {}; {} {} (rule {rule_percent} % of {trials} trials)",
-            show(our_low, 3),
+            show(our_low, 3, ""),
             our_at.join(", "),
             named.least,
             named_words(least),
@@ -208,12 +205,12 @@ pub fn random_limits(
         ),
         paper: format!(
             "smallest E. max {} ({}); {} {}; {} {}",
-            show(paper_low, 3),
+            show(paper_low, 3, ""),
             paper_at.join(", "),
             named.least,
-            show(paper_of(paper, named.least), 3),
+            show(paper_of(paper, named.least), 3, ""),
             named.most,
-            show(paper_of(paper, named.most), 3)
+            show(paper_of(paper, named.most), 3, "")
         ),
         reason: parts_reason(
             &[
@@ -295,12 +292,12 @@ pub fn systematic_limits(
         .meshes
         .iter()
         .all(|m| m.random_from == RandomFrom::Paper);
-    let words = |t: Option<&Tolerable>| t.map_or_else(|| "not run".into(), |t| t.words(1));
+    let words = |t: Option<&Tolerable>| t.map_or_else(|| "not run".into(), |t| t.words(1, "°"));
     Judged {
         verdict: Verdict::of_parts(&parts),
         ours: format!(
-            "smallest {}° ({}); below the paper's smallest: {}; {} {}°; {} {}° ({})",
-            show(our_low, 1),
+            "smallest {} ({}); below the paper's smallest: {}; {} {}; {} {} ({})",
+            show(our_low, 1, "°"),
             our_at.join(", "),
             if below.is_empty() {
                 "none".to_owned()
@@ -318,12 +315,12 @@ pub fn systematic_limits(
             }
         ),
         paper: format!(
-            "smallest {}°; {} {}°; {} {}° (by the rule on its own counts)",
-            show(paper_low, 1),
+            "smallest {}; {} {}; {} {} (by the rule on its own counts)",
+            show(paper_low, 1, "°"),
             named.least,
-            show(paper_of(paper, named.least), 1),
+            show(paper_of(paper, named.least), 1, "°"),
             named.most,
-            show(paper_of(paper, named.most), 1)
+            show(paper_of(paper, named.most), 1, "°")
         ),
         reason: parts_reason(
             &[
@@ -353,8 +350,8 @@ pub fn measured_exceed_tolerable(ours: &GearTolerances, edmunds: (f64, f64)) -> 
         .count();
     let range = format!(
         "tolerable random error {} to {} of the pitch over {} gears ({below_grid} below the grid); {under_from} tolerate less than Edmunds' lowest, {:.2}",
-        show(lo, 3),
-        show(hi, 3),
+        show(lo, 3, ""),
+        show(hi, 3, ""),
         ours.gears.len(),
         edmunds.0
     );
@@ -451,7 +448,7 @@ mod tests {
         let like = table4(&[[0, 0], [2, 0], [5, 1], [9, 1], [20, 2], [30, 9]]);
         let j = random_limits(&like, &paper, NAMED, 1.0);
         assert_eq!(j.verdict, Verdict::Holds, "{j:?}");
-        assert!(j.ours.contains("m2-n1 0.040 (0.045: 5/200"), "{}", j.ours);
+        assert!(j.ours.contains("m2-n1 0.040 (at 0.045: 5/200"), "{}", j.ours);
         // Nothing jams: every mesh tolerates the whole grid, m2-n1 more than the paper allows
         // (b2-c1 one step above the paper's, within a step).
         let ideal = table4(&[[0, 0]; 6]);
