@@ -5,10 +5,10 @@
 use study::claims::{Ledger, Verdict};
 
 /// The verdicts (as run, then under each reading) of claim `id`, the ledger run on it alone
-/// with `sets` beside reduced counts.
-fn verdicts(id: &str, sets: &[(&str, &str)]) -> Vec<Verdict> {
+/// with `sets` beside reduced counts (`trials` per cell).
+fn verdicts(id: &str, trials: &str, sets: &[(&str, &str)]) -> Vec<Verdict> {
     experiments::link();
-    let mut all = vec![("only", id), ("trials", "10"), ("runs", "2")];
+    let mut all = vec![("only", id), ("trials", trials), ("runs", "2")];
     all.extend_from_slice(sets);
     let outcome = experiments::outcome("claims", 2025, 2, &all).unwrap();
     let ledger: Ledger = serde_json::from_value(outcome.data["results"].clone()).unwrap();
@@ -23,8 +23,8 @@ fn verdicts(id: &str, sets: &[(&str, &str)]) -> Vec<Verdict> {
 /// than the paper's 0.04, so the claim on the random error no longer holds as a whole.
 #[test]
 fn the_random_error_claim_moves_with_the_hypothesis() {
-    let edmunds = verdicts("C7", &[]);
-    let ideal = verdicts("C7", &[("hypothesis", "ideal")]);
+    let edmunds = verdicts("C7", "20", &[]);
+    let ideal = verdicts("C7", "20", &[("hypothesis", "ideal")]);
     assert_eq!(edmunds[0], Verdict::Holds, "{edmunds:?}");
     assert_eq!(ideal[0], Verdict::HoldsInPart, "{ideal:?}");
 }
@@ -32,9 +32,9 @@ fn the_random_error_claim_moves_with_the_hypothesis() {
 /// With no Case's errors there is no Table 3 of Cases to judge.
 #[test]
 fn the_cases_claim_moves_with_the_hypothesis() {
-    assert_eq!(verdicts("C5", &[])[0], Verdict::Holds);
+    assert_eq!(verdicts("C5", "10", &[])[0], Verdict::Holds);
     assert_eq!(
-        verdicts("C5", &[("hypothesis", "ideal")])[0],
+        verdicts("C5", "10", &[("hypothesis", "ideal")])[0],
         Verdict::NotTestable
     );
 }
