@@ -489,7 +489,7 @@ impl registry::Experiment for Claims {
             ],
         );
         Ok(Report {
-            tables: vec![ledger],
+            tables: vec![ledger, findings(s, r)],
             files: vec![registry::OutputFile::new("train.svg", train)],
             ..Default::default()
         })
@@ -569,6 +569,39 @@ fn margins(case_b: &[MeshStanding]) -> Vec<MeshMargin> {
         .collect()
 }
 
+/// The verdicts alone, one line per claim and a column per reading: the README's Findings.
+fn findings(s: &Settings, r: &Results) -> Table {
+    let mut columns = vec!["claim".to_owned(), "the paper says".to_owned()];
+    columns.extend(r.readings.iter().map(|name| match name.as_str() {
+        "as run" => "verdict".to_owned(),
+        other => format!("under {other}"),
+    }));
+    let mut t = Table::new(
+        format!(
+            "Findings: the paper's claims, our verdicts ({} trials per cell, {})",
+            s.trials,
+            runs_words(s.runs)
+        ),
+        columns,
+    );
+    for c in &r.claims {
+        let mut row = vec![c.id.clone(), c.words.clone()];
+        row.extend(c.under.iter().map(|v| v.words().to_owned()));
+        t.row(row);
+    }
+    t.note("Each verdict, its figures and its reason: `cargo xtask run claims` (the first table of its report).");
+    t
+}
+
+/// What [`RUNS`] set, in the title's words.
+fn runs_words(runs: u64) -> String {
+    if runs == 0 {
+        "Tables 1 and 2 and the failure study at their own counts".into()
+    } else {
+        format!("{runs} trials of Tables 1 and 2 and runs of the failure study")
+    }
+}
+
 /// The ledger as a table: a row per claim, a column per reading.
 fn ledger_table(s: &Settings, r: &Results) -> Table {
     let mut columns = vec![
@@ -591,8 +624,10 @@ fn ledger_table(s: &Settings, r: &Results) -> Table {
     );
     let mut t = Table::new(
         format!(
-            "The paper's claims and what we find ({} trials per cell, hypothesis {})",
-            s.trials, s.errors.hypothesis
+            "The paper's claims and what we find ({} trials per cell, {}, hypothesis {})",
+            s.trials,
+            runs_words(s.runs),
+            s.errors.hypothesis
         ),
         columns,
     );

@@ -120,7 +120,10 @@ fn smallest(row: &[(String, Option<f64>)]) -> (Option<f64>, Vec<String>) {
 }
 
 fn show(v: Option<f64>, decimals: usize, unit: &str) -> String {
-    v.map_or_else(|| "below the grid".into(), |v| format!("{v:.decimals$}{unit}"))
+    v.map_or_else(
+        || "below the grid".into(),
+        |v| format!("{v:.decimals$}{unit}"),
+    )
 }
 
 /// The words of a judge with parts: which parts hold and which do not.
@@ -191,7 +194,8 @@ pub fn random_limits(
         )),
     ];
     let trials = ours.table.counts().map(|c| c.trials).max().unwrap_or(0);
-    let named_words = |t: Option<&Tolerable>| t.map_or_else(|| "not run".into(), |t| t.words(3, ""));
+    let named_words =
+        |t: Option<&Tolerable>| t.map_or_else(|| "not run".into(), |t| t.words(3, ""));
     Judged {
         verdict: Verdict::of_parts(&parts),
         ours: format!(
@@ -448,7 +452,11 @@ mod tests {
         let like = table4(&[[0, 0], [2, 0], [5, 1], [9, 1], [20, 2], [30, 9]]);
         let j = random_limits(&like, &paper, NAMED, 1.0);
         assert_eq!(j.verdict, Verdict::Holds, "{j:?}");
-        assert!(j.ours.contains("m2-n1 0.040 (at 0.045: 5/200"), "{}", j.ours);
+        assert!(
+            j.ours.contains("m2-n1 0.040 (at 0.045: 5/200"),
+            "{}",
+            j.ours
+        );
         // Nothing jams: every mesh tolerates the whole grid, m2-n1 more than the paper allows
         // (b2-c1 one step above the paper's, within a step).
         let ideal = table4(&[[0, 0]; 6]);
