@@ -15,7 +15,10 @@ fn verdicts(id: &str, trials: &str, sets: &[(&str, &str)]) -> Vec<Verdict> {
     assert_eq!(ledger.claims.len(), 1, "only {id} was asked for");
     let row = &ledger.claims[0];
     assert_eq!(row.id, id);
-    assert_eq!(row.under[0], row.judged.verdict, "the first reading is as run");
+    assert_eq!(
+        row.under[0], row.judged.verdict,
+        "the first reading is as run"
+    );
     row.under.clone()
 }
 
