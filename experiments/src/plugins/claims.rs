@@ -17,16 +17,17 @@ use study::results::{
 };
 use study::tolerance::PAPER_RULE_PERCENT;
 
+use crate::train_picture::{Margin, MeshMargin};
+
 registry::params! {
-    const RUNS = Param::new("runs", "0", "trials of the pointer tables (Tables 1 and 2) and runs of the whole-mechanism study (failure) the ledger reads; 0: each experiment's own default (the paper's 30 for Table 1 and the failure study, 20 for Table 2)", registry::Kind::count(0, registry::MAX_TRIALS, ""));
+    const RUNS = Param::new("runs", "0", "trials of the pointer tables (Tables 1 and 2) and runs of the whole-mechanism study (failure) the ledger reads; 0: each experiment's own default (Table 1 and the failure study: the paper's 30; Table 2: 20)", registry::Kind::count(0, registry::MAX_TRIALS, ""));
     const MEASURED = Param::new("measured", "", "Edmunds' per-gear measured errors (RON, the `measured` hypothesis' format), passed to Figure 6 and the failure study; empty: none (their claims are then not testable)", registry::Kind::Text);
     const ONLY = Param::new("only", "", "the claims to judge, comma-separated ids (C1,C7); empty: every claim", registry::Kind::Text);
 }
 
-use crate::train_picture::{Margin, MeshMargin};
-
-/// The ledger's settings: the trials of the per-mesh tables it reads, and the error hypothesis
-/// their gears are made with (the paper's, Edmunds' split, by default).
+/// The ledger's settings: the trials of the per-mesh tables it reads and the runs of the pointer
+/// tables and the failure study, the measured errors given, the claims asked for, and the error
+/// hypothesis the gears are made with (the paper's, Edmunds' split, by default).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, registry::Settings)]
 pub struct Settings {
     /// Trials per cell of the per-mesh tables ([`study::grids::TRIALS`]).
