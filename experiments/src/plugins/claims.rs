@@ -8,19 +8,40 @@
 
 use registry::{Param, Place, Report, Run, RunError, Table};
 use serde::{Deserialize, Serialize};
-use study::claims::{ClaimRow, Judged, Ledger as Results, MeshStanding};
+use study::claims::tolerances::Named;
+use study::claims::{ClaimRow, Judged, Ledger as Results, MeshStanding, Verdict};
 use study::errors::ErrorParams;
-use study::results::CaseTable;
+use study::results::{
+    CasePointers, CaseTable, DerivedTolerances, FailureStudy, GearTolerances, IdealPointers,
+    RandomErrorTable, SigmaAgainstClearance, SplitPairs,
+};
+use study::tolerance::PAPER_RULE_PERCENT;
 
 use crate::train_picture::{Margin, MeshMargin};
 
-/// The ledger's settings: the trials of the per-mesh tables it reads, and the error hypothesis
-/// their gears are made with (the paper's, Edmunds' split, by default).
+registry::params! {
+    const RUNS = Param::new("runs", "0", "trials of the pointer tables (Tables 1 and 2) and runs of the whole-mechanism study (failure) the ledger reads; 0: each experiment's own default (Table 1 and the failure study: the paper's 30; Table 2: 20)", registry::Kind::count(0, registry::MAX_TRIALS, ""));
+    const MEASURED = Param::new("measured", "", "Edmunds' per-gear measured errors (RON, the `measured` hypothesis' format), passed to Figure 6 and the failure study; empty: none (their claims are then not testable)", registry::Kind::Text);
+    const ONLY = Param::new("only", "", "the claims to judge, comma-separated ids (C1,C7); empty: every claim", registry::Kind::Text);
+}
+
+/// The ledger's settings: the trials of the per-mesh tables it reads and the runs of the pointer
+/// tables and the failure study, the measured errors given, the claims asked for, and the error
+/// hypothesis the gears are made with (the paper's, Edmunds' split, by default).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, registry::Settings)]
 pub struct Settings {
     /// Trials per cell of the per-mesh tables ([`study::grids::TRIALS`]).
     #[param(study::grids::TRIALS)]
     pub trials: u64,
+    /// Trials of Tables 1 and 2 and runs of the failure study; 0: their own ([`RUNS`]).
+    #[param(RUNS)]
+    pub runs: u64,
+    /// Edmunds' measured errors for Figure 6 and the failure study ([`MEASURED`]).
+    #[param(MEASURED)]
+    pub measured: String,
+    /// The claims to judge; empty: all ([`ONLY`]).
+    #[param(ONLY)]
+    pub only: String,
     /// The hypothesis (and its parameters) the per-mesh tables' gears are made with.
     #[group]
     pub errors: ErrorParams,
@@ -60,16 +81,61 @@ struct Claim {
     id: &'static str,
     words: &'static str,
     place: &'static str,
-    judge: fn(&Evidence) -> Result<Judged, RunError>,
+    judge: fn(&Evidence, &[ClaimRow]) -> Result<Judged, RunError>,
 }
 
 /// The claims, in the order the paper's argument makes them.
 const CLAIMS: &[Claim] = &[
     Claim {
+        id: "C1",
+        words: "ideal triangular teeth alone give pointer errors about seven times smaller than Edmunds' errors do",
+        place: "conclusions; Table 1 against Table 2",
+        judge: |e, _| {
+            Ok(study::claims::pointers::ideal_teeth_negligible(
+                &e.results::<IdealPointers>("table1")?,
+                &e.results::<CasePointers>("table2")?,
+                &paper_sigmas()?,
+            ))
+        },
+    },
+    Claim {
+        id: "C2",
+        words: "gears jam below about 10 % of h and disengage above about 87-90 %; G = 40 % is close to the best, the smallest sigma at 40-50 %",
+        place: "section 3, Appendix II, Figure IV",
+        judge: |e, _| {
+            let mut j = study::claims::pointers::clearance_limits(
+                &e.results::<SigmaAgainstClearance>("figIV")?,
+                paper_clearance()?,
+            );
+            j.reason.push_str("; no column for the paper's contact tolerance: it is a contact model of its own (overlaps up to an area ignored, `contact-tolerance`), not a setting Figure IV or the jam tables take");
+            Ok(j)
+        },
+    },
+    Claim {
+        id: "C3",
+        words: "with Edmunds' errors, triangular teeth give pointer errors not significantly different from his radial model",
+        place: "conclusions; Table 2, Figure 5",
+        judge: |e, _| {
+            Ok(study::claims::pointers::same_as_edmunds(
+                &e.results::<CasePointers>("table2")?,
+            ))
+        },
+    },
+    Claim {
+        id: "C4",
+        words: "how the systematic error is split (eccentricity or tooth wave) does not matter significantly",
+        place: "section 4, Figure 5",
+        judge: |e, _| {
+            Ok(study::claims::pointers::split_does_not_matter(
+                &e.results::<SplitPairs>("fig5")?,
+            ))
+        },
+    },
+    Claim {
         id: "C5",
         words: "by the 1 % rule, Cases C and D are unusable, Case A has no issues, Case B is problematic through m3-e3 and e4-f1",
         place: "section 5, Table 3",
-        judge: |e| {
+        judge: |e, _| {
             let paper = paper_case_table(&e.table3()?);
             Ok(study::claims::cells::cases_by_the_rule(
                 &e.table3()?,
@@ -81,7 +147,7 @@ const CLAIMS: &[Claim] = &[
         id: "C6",
         words: "pairs with a large gear (d2-e2, m3-e3, e4-f1, l2-m1) fail more, as the eccentricity grows with the radius",
         place: "section 5, Table 3's text",
-        judge: |e| {
+        judge: |e, _| {
             let ours = e.table3()?;
             let radii = larger_radii(&ours)?;
             Ok(study::claims::cells::large_gears_fail_more(
@@ -91,7 +157,110 @@ const CLAIMS: &[Claim] = &[
             ))
         },
     },
+    Claim {
+        id: "C7",
+        words: "a uniform random error must not exceed 0.04 of the pitch; m2-n1 tolerates no more than 0.04, b2-c1 up to 0.055",
+        place: "section 5, Table 4 (Table 5's row E. max)",
+        judge: |e, _| {
+            let ours = e.results::<RandomErrorTable>("table4")?;
+            let paper = paper_random_row(&ours.table.meshes);
+            let named = Named {
+                least: "m2-n1",
+                most: "b2-c1",
+            };
+            Ok(study::claims::tolerances::random_limits(
+                &ours,
+                &paper,
+                named,
+                PAPER_RULE_PERCENT,
+            ))
+        },
+    },
+    Claim {
+        id: "C8",
+        words: "the tolerable systematic error ranges from 0.1 deg (d2-e2) to 0.6 deg (e1-b3), like for like",
+        place: "section 5, Table 5",
+        judge: |e, _| {
+            let ours = e.results::<DerivedTolerances>("table5")?;
+            let values = ours.systematic_values();
+            let paper: Vec<(String, Option<f64>)> = ours
+                .meshes
+                .iter()
+                .map(|m| {
+                    let p = crate::emax::paper_systematic(&m.mesh, &values, PAPER_RULE_PERCENT);
+                    (m.mesh.clone(), p.flatten())
+                })
+                .collect();
+            let named = Named {
+                least: "d2-e2",
+                most: "e1-b3",
+            };
+            Ok(study::claims::tolerances::systematic_limits(
+                &ours,
+                &paper,
+                named,
+                PAPER_RULE_PERCENT,
+            ))
+        },
+    },
+    Claim {
+        id: "C9",
+        words: "Edmunds' measured errors typically exceed the tolerable ones",
+        place: "section 5, Figure 6",
+        judge: |e, _| {
+            let range = (
+                paper_value("fig6", "edmunds_random_from")?,
+                paper_value("fig6", "edmunds_random_to")?,
+            );
+            Ok(study::claims::tolerances::measured_exceed_tolerable(
+                &e.results::<GearTolerances>("fig6")?,
+                range,
+            ))
+        },
+    },
+    Claim {
+        id: "C10",
+        words: "30 whole mechanisms with Edmunds' errors: 90 % jam; the Lunar train stops after about 129 days, Metonic and Games 234, Saros and Exeligmos 121",
+        place: "section 5, after Figure 6",
+        judge: |e, _| {
+            Ok(study::claims::mechanism::thirty_runs(
+                &e.results::<FailureStudy>("failure")?,
+                &paper_runs()?,
+            ))
+        },
+    },
+    Claim {
+        id: "C11",
+        words: "with Edmunds' errors the mechanism generally stops before the Sun pointer has turned a third (120 deg)",
+        place: "introduction, conclusions",
+        judge: |e, _| {
+            Ok(study::claims::mechanism::stops_within_a_third(
+                &e.results::<FailureStudy>("failure")?,
+                paper_value("failure", "stop_angle")?,
+            ))
+        },
+    },
+    Claim {
+        id: "C12",
+        words: "the conclusion: either the mechanism never worked, or its errors were smaller than Edmunds measured",
+        place: "abstract, conclusions",
+        judge: |e, rows| {
+            let supporting: Vec<(&str, Verdict)> = rows
+                .iter()
+                .filter(|r| CONCLUSION_RESTS_ON.contains(&r.id.as_str()))
+                .map(|r| (r.id.as_str(), r.under[e.index]))
+                .collect();
+            Ok(study::claims::mechanism::the_conclusion(
+                &e.results::<FailureStudy>("failure")?,
+                &supporting,
+            ))
+        },
+    },
 ];
+
+/// The claims the conclusion (C12) rests on: the Cases by the rule, the tolerances, the measured
+/// errors and the whole mechanisms.
+const CONCLUSION_RESTS_ON: [&str; 6] = ["C5", "C7", "C8", "C9", "C10", "C11"];
 
 /// What a claim's judge may ask for: the results of the experiments it rests on, under one
 /// reading.
@@ -99,6 +268,8 @@ struct Evidence<'a> {
     run: &'a Run<'a>,
     settings: &'a Settings,
     reading: &'a Reading,
+    /// The reading's column, in [`READINGS`]' order.
+    index: usize,
 }
 
 impl Evidence<'_> {
@@ -123,7 +294,28 @@ impl Evidence<'_> {
         ];
         sets.extend(self.reading.sets.iter().map(|&(p, v)| (p, v.to_owned())));
         sets.retain(|(p, _)| entry.declares(p));
+        sets.extend(self.by_name(entry));
         Ok(self.run.results_of::<T>(id, &sets)?.0)
+    }
+
+    /// The ledger's settings that experiments declare each with a declaration of its own, set by
+    /// its name: the runs of the pointer tables and the failure study (their `trials`, which is
+    /// not the per-cell [`study::grids::TRIALS`]), and the measured table of Figure 6 and the
+    /// failure study.
+    fn by_name(&self, entry: &registry::Entry) -> Vec<(&'static Param, String)> {
+        let s = self.settings;
+        entry
+            .all_params()
+            .filter_map(|q| {
+                if q.name == "trials" && *q != study::grids::TRIALS && s.runs > 0 {
+                    Some((q, s.runs.to_string()))
+                } else if q.name == crate::inputs::MEASURED && !s.measured.trim().is_empty() {
+                    Some((q, s.measured.clone()))
+                } else {
+                    None
+                }
+            })
+            .collect()
     }
 
     fn table3(&self) -> Result<CaseTable, RunError> {
@@ -165,6 +357,90 @@ fn larger_radii(t: &CaseTable) -> Result<Vec<f64>, RunError> {
         .collect()
 }
 
+/// The paper's value of `quantity` in experiment `id` (`paper.ron`).
+fn paper_value(id: &str, quantity: &str) -> Result<f64, RunError> {
+    crate::paper::get(id, quantity)
+        .map(|r| r.value)
+        .ok_or_else(|| RunError::Internal(format!("paper.ron has no {id} {quantity}")))
+}
+
+/// (pointer, σ with ideal teeth in Table 1, σ of Edmunds' Case A in Table 2) for every pointer
+/// both give.
+fn paper_sigmas() -> Result<Vec<(String, f64, f64)>, RunError> {
+    let out: Vec<(String, f64, f64)> = ["Lunar", "Metonic", "Saros"]
+        .iter()
+        .filter_map(|p| {
+            let ideal = crate::paper::get("table1", &format!("{p}.sigma"))?.value;
+            let case_a = crate::paper::get("table2", &format!("A.{p}.sigma"))?.value;
+            Some(((*p).to_owned(), ideal, case_a))
+        })
+        .collect();
+    if out.is_empty() {
+        return Err(RunError::Internal(
+            "paper.ron gives no pointer's sigma in both Table 1 and Table 2".into(),
+        ));
+    }
+    Ok(out)
+}
+
+fn paper_clearance() -> Result<study::claims::pointers::PaperClearance, RunError> {
+    Ok(study::claims::pointers::PaperClearance {
+        jam_below: paper_value("clearance", "jam_below")?,
+        disengage_above: paper_value("clearance", "disengage_above")?,
+        minimum_from: paper_value("sigma-causes", "figIV.minimum_from")?,
+        minimum_to: paper_value("sigma-causes", "figIV.minimum_to")?,
+    })
+}
+
+/// The paper's E. max row for `meshes` (`None` for a mesh it gives none for).
+fn paper_random_row(meshes: &[String]) -> Vec<(String, Option<f64>)> {
+    meshes
+        .iter()
+        .map(|m| (m.clone(), crate::emax::paper_random(m)))
+        .collect()
+}
+
+/// The paper's 30-run study: the share that jammed and each train's mean day.
+fn paper_runs() -> Result<study::claims::mechanism::PaperRuns, RunError> {
+    let runs = study::whole_mechanism::RUNS_DEFAULT
+        .parse()
+        .map_err(|e| RunError::Internal(format!("the paper's runs: {e}")))?;
+    let mean_days = study::whole_mechanism::TRAINS
+        .iter()
+        .map(|(train, _)| {
+            paper_value("failure", &format!("{train}.mean_days")).map(|d| ((*train).to_owned(), d))
+        })
+        .collect::<Result<_, _>>()?;
+    Ok(study::claims::mechanism::PaperRuns {
+        jammed_percent: paper_value("failure", "mechanisms_jammed")?,
+        runs,
+        mean_days,
+    })
+}
+
+/// The claims `only` asks for (every claim when it is empty); an unknown id is refused.
+fn chosen(only: &str) -> Result<Vec<&'static Claim>, RunError> {
+    let ids: Vec<&str> = only
+        .split(',')
+        .map(str::trim)
+        .filter(|s| !s.is_empty())
+        .collect();
+    for id in &ids {
+        if !CLAIMS.iter().any(|c| c.id.eq_ignore_ascii_case(id)) {
+            let known: Vec<&str> = CLAIMS.iter().map(|c| c.id).collect();
+            return Err(RunError::bad(
+                "--set",
+                ONLY.name,
+                format!("no claim `{id}`; the claims are {}", known.join(", ")),
+            ));
+        }
+    }
+    Ok(CLAIMS
+        .iter()
+        .filter(|c| ids.is_empty() || ids.iter().any(|id| c.id.eq_ignore_ascii_case(id)))
+        .collect())
+}
+
 /// The ledger of the paper's claims.
 pub struct Claims;
 
@@ -178,13 +454,15 @@ impl registry::Experiment for Claims {
 
     fn compute(s: &Settings, run: &Run) -> Result<Results, RunError> {
         let mut claims = Vec::with_capacity(CLAIMS.len());
-        for c in CLAIMS {
-            claims.push(judge_everywhere(c, s, run)?);
+        for c in chosen(&s.only)? {
+            let row = judge_everywhere(c, s, run, &claims)?;
+            claims.push(row);
         }
         let as_run = Evidence {
             run,
             settings: s,
             reading: &READINGS[0],
+            index: 0,
         };
         Ok(Results {
             claims,
@@ -212,7 +490,7 @@ impl registry::Experiment for Claims {
             ],
         );
         Ok(Report {
-            tables: vec![ledger],
+            tables: vec![ledger, findings(s, r)],
             files: vec![registry::OutputFile::new("train.svg", train)],
             ..Default::default()
         })
@@ -222,15 +500,23 @@ impl registry::Experiment for Claims {
 registry::register!(Claims);
 
 /// Claim `c` judged as run and its verdict under every other reading.
-fn judge_everywhere(c: &Claim, s: &Settings, run: &Run) -> Result<ClaimRow, RunError> {
+/// `before`: the claims judged before it.
+fn judge_everywhere(
+    c: &Claim,
+    s: &Settings,
+    run: &Run,
+    before: &[ClaimRow],
+) -> Result<ClaimRow, RunError> {
     let mut under = Vec::with_capacity(READINGS.len());
     let mut judged = None;
-    for reading in &READINGS {
-        let j = (c.judge)(&Evidence {
+    for (index, reading) in READINGS.iter().enumerate() {
+        let evidence = Evidence {
             run,
             settings: s,
             reading,
-        })?;
+            index,
+        };
+        let j = (c.judge)(&evidence, before)?;
         under.push(j.verdict);
         judged.get_or_insert(j);
     }
@@ -284,6 +570,39 @@ fn margins(case_b: &[MeshStanding]) -> Vec<MeshMargin> {
         .collect()
 }
 
+/// The verdicts alone, one line per claim and a column per reading: the README's Findings.
+fn findings(s: &Settings, r: &Results) -> Table {
+    let mut columns = vec!["claim".to_owned(), "the paper says".to_owned()];
+    columns.extend(r.readings.iter().map(|name| match name.as_str() {
+        "as run" => "verdict".to_owned(),
+        other => format!("under {other}"),
+    }));
+    let mut t = Table::new(
+        format!(
+            "Findings: the paper's claims, our verdicts ({} trials per cell, {})",
+            s.trials,
+            runs_words(s.runs)
+        ),
+        columns,
+    );
+    for c in &r.claims {
+        let mut row = vec![c.id.clone(), c.words.clone()];
+        row.extend(c.under.iter().map(|v| v.words().to_owned()));
+        t.row(row);
+    }
+    t.note("Each verdict, its figures and its reason: `cargo xtask run claims` (the first table of its report).");
+    t
+}
+
+/// What [`RUNS`] set, in the title's words.
+fn runs_words(runs: u64) -> String {
+    if runs == 0 {
+        "Tables 1 and 2 and the failure study at their own counts".into()
+    } else {
+        format!("{runs} trials of Tables 1 and 2 and runs of the failure study")
+    }
+}
+
 /// The ledger as a table: a row per claim, a column per reading.
 fn ledger_table(s: &Settings, r: &Results) -> Table {
     let mut columns = vec![
@@ -306,8 +625,10 @@ fn ledger_table(s: &Settings, r: &Results) -> Table {
     );
     let mut t = Table::new(
         format!(
-            "The paper's claims and what we find ({} trials per cell, hypothesis {})",
-            s.trials, s.errors.hypothesis
+            "The paper's claims and what we find ({} trials per cell, {}, hypothesis {})",
+            s.trials,
+            runs_words(s.runs),
+            s.errors.hypothesis
         ),
         columns,
     );

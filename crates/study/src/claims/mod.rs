@@ -9,6 +9,9 @@
 use serde::{Deserialize, Serialize};
 
 pub mod cells;
+pub mod mechanism;
+pub mod pointers;
+pub mod tolerances;
 
 /// What our results say of a claim.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
