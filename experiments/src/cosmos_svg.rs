@@ -80,7 +80,7 @@ fn layout(g: &Gearing, clearance_mm: f64, h: f64) -> BTreeMap<String, (f64, f64,
             let a = if arbor == e.fixed {
                 TAU * k as f64 / n.max(1) as f64 + 0.3
             } else {
-                dir + 0.45 * (k as f64 - (n as f64 - 1.0) / 2.0) + 0.25
+                dir + 1.1 * (k as f64 - (n as f64 - 1.0) / 2.0) + 0.3
             };
             at.insert(next.to_owned(), (x + d * a.cos(), y + d * a.sin(), a));
             queue.push_back(next.to_owned());
@@ -95,20 +95,24 @@ pub fn train_picture(g: &Gearing, clearance: f64, h: f64, r: &GearingResults) ->
     let pitch = |name: &str| g.tip_radius_at(name, h).map_or(0.0, |x| x - h / 2.0);
     let tolerance: BTreeMap<&str, &MeshTolerance> =
         r.meshes.iter().map(|m| (m.mesh.as_str(), m)).collect();
-    let reach = pos
-        .iter()
-        .flat_map(|(a, &(x, y, _))| {
-            let gears = g.arbor(a).map(|x| x.gears.clone()).unwrap_or_default();
-            gears
-                .into_iter()
-                .map(move |n| (x.hypot(y) + pitch(&n)).max(0.0))
-                .collect::<Vec<_>>()
-        })
-        .fold(70.0_f64, f64::max);
-    let half = (reach + 8.0) * SCALE;
-    let (w, top) = (2.0 * half, 60.0);
-    let height = 2.0 * half + top + 40.0 + 22.0 * CLASSES.len() as f64;
-    let px = |x: f64, y: f64| (half + x * SCALE, top + half - y * SCALE);
+    // The drawing's extent (mm): every gear's circle and b1's.
+    let b1 = g.fitted_radius("b1").unwrap_or(64.4);
+    let mut bounds = (-b1, b1, -b1, b1);
+    for (a, &(x, y, _)) in &pos {
+        for n in g.arbor(a).map(|x| x.gears.clone()).unwrap_or_default() {
+            let r = pitch(&n) + 6.0;
+            bounds = (
+                bounds.0.min(x - r),
+                bounds.1.max(x + r),
+                bounds.2.min(y - r),
+                bounds.3.max(y + r),
+            );
+        }
+    }
+    let (w, top) = (((bounds.1 - bounds.0) * SCALE).max(900.0), 60.0);
+    let drawing = (bounds.3 - bounds.2) * SCALE;
+    let height = drawing + top + 40.0 + 22.0 * CLASSES.len() as f64;
+    let px = |x: f64, y: f64| ((x - bounds.0) * SCALE, top + (bounds.3 - y) * SCALE);
     let mut svg = String::new();
     let _ = write!(
         svg,
@@ -121,7 +125,6 @@ pub fn train_picture(g: &Gearing, clearance: f64, h: f64, r: &GearingResults) ->
         registry::fmt_f64(clearance, 0)
     );
     // b1, the carrier, round the centre.
-    let b1 = g.fitted_radius("b1").unwrap_or(64.4);
     let (cx, cy) = px(0.0, 0.0);
     let _ = write!(
         svg,
@@ -132,7 +135,7 @@ pub fn train_picture(g: &Gearing, clearance: f64, h: f64, r: &GearingResults) ->
     );
     meshes_svg(&mut svg, g, &pos, &tolerance, &px);
     gears_svg(&mut svg, g, &pos, &pitch, &px);
-    legend_svg(&mut svg, 2.0 * half + top + 10.0);
+    legend_svg(&mut svg, drawing + top + 20.0);
     svg.push_str("</svg>\n");
     svg
 }
@@ -157,13 +160,12 @@ fn meshes_svg(
         let text = e.map_or_else(|| "< grid".into(), |x| registry::fmt_f64(x, 3));
         let _ = write!(
             svg,
-            r#"<line x1="{u1:.1}" y1="{v1:.1}" x2="{u2:.1}" y2="{v2:.1}" stroke="{}" stroke-width="5" stroke-linecap="round" opacity="0.85"><title>{}: E. max {text}</title></line><text x="{:.1}" y="{:.1}" font-size="10" fill="{}">{} {text}</text>"#,
+            r#"<line x1="{u1:.1}" y1="{v1:.1}" x2="{u2:.1}" y2="{v2:.1}" stroke="{}" stroke-width="5" stroke-linecap="round" opacity="0.85"><title>{}: E. max {text}</title></line><text x="{:.1}" y="{:.1}" font-size="10" font-weight="bold" fill="{}">{text}</text>"#,
             colour(e),
             esc(&m.label),
-            (u1 + u2) / 2.0 + 4.0,
-            (v1 + v2) / 2.0 - 4.0,
+            (u1 + u2) / 2.0 + 5.0,
+            (v1 + v2) / 2.0 + 3.0,
             colour(e),
-            esc(&m.label),
         );
     }
 }
@@ -210,7 +212,7 @@ fn gears_svg(
 fn legend_svg(svg: &mut String, y: f64) {
     let _ = write!(
         svg,
-        r#"<text x="10" y="{y:.1}">Mesh colour: its largest tolerable random error (Table 4's grid and rule; fraction of the pitch)</text>"#
+        r#"<text x="10" y="{y:.1}">Mesh colour and number: its largest tolerable random error (Table 4's grid and rule; fraction of the pitch); gears named with their teeth</text>"#
     );
     for (k, (_, c, label)) in CLASSES.iter().enumerate() {
         let yy = y + 18.0 + 20.0 * k as f64;
