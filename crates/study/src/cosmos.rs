@@ -97,6 +97,14 @@ impl Interval {
             n: e.n,
         }
     }
+
+    /// [`Interval::of`] for a quantity that cannot be negative (a σ, a Dm, a |P|): the
+    /// Student-t interval's lower end clipped at 0, as few trials reach below it.
+    pub fn of_nonnegative(values: impl Iterator<Item = f64>) -> Interval {
+        let mut i = Interval::of(values);
+        i.lo = i.lo.max(0.0);
+        i
+    }
 }
 
 /// One output of the display: its exact rates and its device.
@@ -402,8 +410,8 @@ fn display_row(
     k: usize,
 ) -> DisplayRow {
     let col: Vec<&PlanetTrial> = per_trial.iter().filter_map(|t| t.get(k)).collect();
-    let train_sigma = Interval::of(col.iter().map(|t| t.train.sigma));
-    let sigma = Interval::of(col.iter().map(|t| t.display.sigma));
+    let train_sigma = Interval::of_nonnegative(col.iter().map(|t| t.train.sigma));
+    let sigma = Interval::of_nonnegative(col.iter().map(|t| t.display.sigma));
     DisplayRow {
         planet: planet.to_owned(),
         input: input.to_owned(),
@@ -413,8 +421,8 @@ fn display_row(
         jammed: col.iter().filter(|t| t.jam_day.is_some()).count() as u64,
         train_sigma,
         sigma,
-        dm: Interval::of(col.iter().map(|t| t.display.dm)),
-        p: Interval::of(col.iter().map(|t| t.display.mean.abs())),
+        dm: Interval::of_nonnegative(col.iter().map(|t| t.display.dm)),
+        p: Interval::of_nonnegative(col.iter().map(|t| t.display.mean.abs())),
         gain: sigma.mean / train_sigma.mean,
     }
 }
@@ -747,7 +755,16 @@ pub fn failure(
                 jammed: sum.days.len() as u64,
                 runs: chunk.len() as u64,
                 share: (sum.year.lo, sum.year.hi),
-                mean_day: Interval::of(sum.days.iter().copied()),
+                mean_day: {
+                    // Clipped to the days a jam can have, 0 to the horizon.
+                    let e = whole_mechanism::mean_days(&sum.days, s.days);
+                    Interval {
+                        mean: e.mean,
+                        lo: e.lo,
+                        hi: e.hi,
+                        n: e.n,
+                    }
+                },
                 median_day: stats::median(&sum.days),
                 meshes: sum.meshes.clone(),
                 curve: stats::kaplan_meier(&times, s.days)
