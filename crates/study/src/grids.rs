@@ -236,7 +236,7 @@ pub fn derive(
     derive_of(engine, s, s.meshes(), grids, rule, purpose, given_random)
 }
 
-/// [`derive`] for the meshes `meshes` of the settings' gearing only.
+/// [`derive()`] for the meshes `meshes` of the settings' gearing only.
 pub fn derive_of(
     engine: &TrialEngine,
     s: &CellSettings,
