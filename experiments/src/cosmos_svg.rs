@@ -1,117 +1,77 @@
-//! The picture of a cosmos train (`cosmos`): the fixed gears at b's axis inside b1, the arbors
-//! b1 carries, each gear drawn at its pitch radius, each mesh a line between the two axes
-//! coloured by the mesh's largest tolerable random error.
+//! The picture of a cosmos train (`cosmos`), drawn from its stored plan
+//! ([`study::cosmos::TrainPlan`]): the fixed gears at b's axis inside b1, the arbors b1
+//! carries, each gear drawn at its pitch radius, each mesh a line between the two axes coloured
+//! by the mesh's largest tolerable random error in the grades of the 2006 train's picture
+//! ([`crate::train_picture::Margin`]).
 //!
-//! The layout is a schematic: every arbor sits at its true centre distance from the arbor that
-//! drives it (pitch radii plus the run's clearance G), but the directions are chosen for
-//! legibility, trains fanned out from the centre; the output tubes that turn on b's axis are
-//! drawn where their mesh puts them, not at the centre. The caption says so.
+//! The plan is a schematic: every arbor at its true centre distance from the arbor that drives
+//! it, the directions chosen for legibility. The caption says so.
 
 use std::collections::BTreeMap;
-use std::f64::consts::TAU;
 use std::fmt::Write as _;
 
-use study::cosmos::{GearingResults, MeshTolerance};
-use train::Gearing;
+use crate::common::escape_xml as esc;
+use crate::train_picture::Margin;
+use study::cosmos::{GearingResults, MeshTolerance, PlannedArbor, TrainPlan};
 
 /// Pixels per millimetre.
 const SCALE: f64 = 4.0;
 
-/// Colour classes of a mesh by its largest tolerable random error (fraction of the pitch): the
-/// upper bound of each class, its colour and its legend. Below Edmunds' Cases A-C (0.04) the
-/// mesh fails his gentlest measurements; at 0.08 (Case D) it tolerates his roughest.
-const CLASSES: [(f64, &str, &str); 4] = [
+/// The grades of a mesh by its largest tolerable random error (fraction of the pitch), each
+/// with its legend: below Edmunds' Cases A-C (0.04) the mesh fails his gentlest measurements;
+/// from 0.08 (Case D) it tolerates his roughest.
+const GRADES: [(Margin, &str); 3] = [
     (
-        0.04,
-        "#c0392b",
-        "below 0.04 of the pitch (fails Cases A-C's random error)",
+        Margin::Failing,
+        "below 0.04 of the pitch: fails the random error of Edmunds' Cases A-C",
     ),
-    (0.05, "#e67e22", "0.04 to 0.05"),
-    (0.08, "#d4ac0d", "0.05 to 0.08"),
     (
-        f64::INFINITY,
-        "#1e8449",
-        "0.08 or more (tolerates Case D's random error)",
+        Margin::Near,
+        "0.04 to 0.08: tolerates Cases A-C's random error, not Case D's",
+    ),
+    (
+        Margin::Clear,
+        "0.08 or more: tolerates Case D's random error",
     ),
 ];
 
-/// Colour of a mesh with largest tolerable random error `e` (None: below the grid, red).
-fn colour(e: Option<f64>) -> &'static str {
-    let e = e.unwrap_or(0.0);
-    CLASSES
-        .iter()
-        .find(|(up, _, _)| e < *up)
-        .map_or("#1e8449", |c| c.1)
-}
-
-/// `s` with the characters XML gives meaning escaped.
-fn esc(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-}
-
-/// Each carried arbor's position (mm, b's axis at the origin), placed breadth-first from the
-/// fixed arbor at its centre distance from the arbor that drives it; the first arbors fanned
-/// evenly round, each later one turned from its parent's ray.
-fn layout(g: &Gearing, clearance_mm: f64, h: f64) -> BTreeMap<String, (f64, f64, f64)> {
-    let Some(e) = g.epicyclic() else {
-        return BTreeMap::new();
-    };
-    // (x, y, direction of the ray that reached it)
-    let mut at: BTreeMap<String, (f64, f64, f64)> = BTreeMap::new();
-    at.insert(e.fixed.clone(), (0.0, 0.0, 0.0));
-    let mut queue = std::collections::VecDeque::from([e.fixed.clone()]);
-    while let Some(arbor) = queue.pop_front() {
-        let (x, y, dir) = at[&arbor];
-        let out: Vec<&train::MeshData> = g
-            .meshes()
-            .iter()
-            .filter(|m| g.arbor_of(&m.driver) == Some(arbor.as_str()))
-            .filter(|m| g.arbor_of(&m.driven).is_some_and(|a| !at.contains_key(a)))
-            .collect();
-        let n = out.len();
-        for (k, m) in out.into_iter().enumerate() {
-            let Some(next) = g.arbor_of(&m.driven) else {
-                continue;
-            };
-            let pitch = |name: &str| g.tip_radius_at(name, h).map_or(0.0, |r| r - h / 2.0);
-            let d = pitch(&m.driver) + pitch(&m.driven) + clearance_mm;
-            let a = if arbor == e.fixed {
-                TAU * k as f64 / n.max(1) as f64 + 0.3
-            } else {
-                dir + 1.1 * (k as f64 - (n as f64 - 1.0) / 2.0) + 0.3
-            };
-            at.insert(next.to_owned(), (x + d * a.cos(), y + d * a.sin(), a));
-            queue.push_back(next.to_owned());
-        }
+/// The grade of a mesh with largest tolerable random error `e` (None: below the grid).
+fn grade(e: Option<f64>) -> Margin {
+    match e {
+        Some(x) if x >= 0.08 => Margin::Clear,
+        Some(x) if x >= 0.04 => Margin::Near,
+        _ => Margin::Failing,
     }
-    at
 }
 
-/// The SVG picture of `g`'s cosmos train with the tolerances of `r` (at clearance G % of h).
-pub fn train_picture(g: &Gearing, clearance: f64, h: f64, r: &GearingResults) -> String {
-    let pos = layout(g, clearance / 100.0 * h, h);
-    let pitch = |name: &str| g.tip_radius_at(name, h).map_or(0.0, |x| x - h / 2.0);
-    let tolerance: BTreeMap<&str, &MeshTolerance> =
-        r.meshes.iter().map(|m| (m.mesh.as_str(), m)).collect();
-    // The drawing's extent (mm): every gear's circle and b1's.
-    let b1 = g.fitted_radius("b1").unwrap_or(64.4);
-    let mut bounds = (-b1, b1, -b1, b1);
-    for (a, &(x, y, _)) in &pos {
-        for n in g.arbor(a).map(|x| x.gears.clone()).unwrap_or_default() {
-            let r = pitch(&n) + 6.0;
-            bounds = (
-                bounds.0.min(x - r),
-                bounds.1.max(x + r),
-                bounds.2.min(y - r),
-                bounds.3.max(y + r),
+/// The drawing's extent (mm) as (left, right, bottom, top): b1 and every gear's circle.
+fn bounds(plan: &TrainPlan) -> (f64, f64, f64, f64) {
+    let b1 = plan.carrier_radius;
+    let mut b = (-b1, b1, -b1, b1);
+    for a in &plan.arbors {
+        for gear in &a.gears {
+            let r = gear.pitch_radius + 6.0;
+            b = (
+                b.0.min(a.x - r),
+                b.1.max(a.x + r),
+                b.2.min(a.y - r),
+                b.3.max(a.y + r),
             );
         }
     }
+    b
+}
+
+/// The SVG picture of one gearing's cosmos train with its meshes' tolerances, at clearance G
+/// (% of h).
+pub fn train_picture(r: &GearingResults, clearance: f64) -> String {
+    let plan = &r.plan;
+    let tolerance: BTreeMap<&str, &MeshTolerance> =
+        r.meshes.iter().map(|m| (m.mesh.as_str(), m)).collect();
+    let bounds = bounds(plan);
     let (w, top) = (((bounds.1 - bounds.0) * SCALE).max(900.0), 60.0);
     let drawing = (bounds.3 - bounds.2) * SCALE;
-    let height = drawing + top + 40.0 + 22.0 * CLASSES.len() as f64;
+    let height = drawing + top + 40.0 + 22.0 * (GRADES.len() + 1) as f64;
     let px = |x: f64, y: f64| ((x - bounds.0) * SCALE, top + (bounds.3 - y) * SCALE);
     let mut svg = String::new();
     let _ = write!(
@@ -126,102 +86,88 @@ pub fn train_picture(g: &Gearing, clearance: f64, h: f64, r: &GearingResults) ->
     );
     // b1, the carrier, round the centre.
     let (cx, cy) = px(0.0, 0.0);
+    let b1 = plan.carrier_radius * SCALE;
     let _ = write!(
         svg,
-        r##"<circle cx="{cx:.1}" cy="{cy:.1}" r="{:.1}" fill="none" stroke="#999" stroke-dasharray="6 4"/><text x="{:.1}" y="{:.1}" fill="#777">b1 (carrier)</text>"##,
-        b1 * SCALE,
-        cx + b1 * SCALE * 0.72,
-        cy - b1 * SCALE * 0.72
+        r##"<circle cx="{cx:.1}" cy="{cy:.1}" r="{b1:.1}" fill="none" stroke="#999" stroke-dasharray="6 4"/><text x="{:.1}" y="{:.1}" fill="#777">b1 (carrier)</text>"##,
+        cx + b1 * 0.72,
+        cy - b1 * 0.72
     );
-    meshes_svg(&mut svg, g, &pos, &tolerance, &px);
-    gears_svg(&mut svg, g, &pos, &pitch, &px);
+    meshes_svg(&mut svg, plan, &tolerance, &px);
+    for a in &plan.arbors {
+        arbor_svg(&mut svg, a, &px);
+    }
     legend_svg(&mut svg, drawing + top + 20.0);
     svg.push_str("</svg>\n");
     svg
 }
 
-/// Each mesh: a line between the two axes in its class's colour, its E. max written beside it.
+/// Each mesh: a line between the two axes in its grade's colour, its E. max written beside it.
 fn meshes_svg(
     svg: &mut String,
-    g: &Gearing,
-    pos: &BTreeMap<String, (f64, f64, f64)>,
+    plan: &TrainPlan,
     tolerance: &BTreeMap<&str, &MeshTolerance>,
     px: &dyn Fn(f64, f64) -> (f64, f64),
 ) {
-    for m in g.meshes() {
-        let (Some(a), Some(b)) = (g.arbor_of(&m.driver), g.arbor_of(&m.driven)) else {
+    let axis = |name: &str| plan.arbors.iter().find(|a| a.name == name);
+    for m in &plan.meshes {
+        let (Some(a), Some(b)) = (axis(&m.from), axis(&m.to)) else {
             continue;
         };
-        let (Some(&(x1, y1, _)), Some(&(x2, y2, _))) = (pos.get(a), pos.get(b)) else {
-            continue;
-        };
-        let e = tolerance.get(m.label.as_str()).and_then(|t| t.random);
-        let ((u1, v1), (u2, v2)) = (px(x1, y1), px(x2, y2));
+        let e = tolerance.get(m.mesh.as_str()).and_then(|t| t.random);
+        let colour = grade(e).colour();
+        let ((u1, v1), (u2, v2)) = (px(a.x, a.y), px(b.x, b.y));
         let text = e.map_or_else(|| "< grid".into(), |x| registry::fmt_f64(x, 3));
         let _ = write!(
             svg,
-            r#"<line x1="{u1:.1}" y1="{v1:.1}" x2="{u2:.1}" y2="{v2:.1}" stroke="{}" stroke-width="5" stroke-linecap="round" opacity="0.85"><title>{}: E. max {text}</title></line><text x="{:.1}" y="{:.1}" font-size="10" font-weight="bold" fill="{}">{text}</text>"#,
-            colour(e),
-            esc(&m.label),
+            r#"<g class="mesh" data-mesh="{label}"><line x1="{u1:.1}" y1="{v1:.1}" x2="{u2:.1}" y2="{v2:.1}" stroke="{colour}" stroke-width="5" stroke-linecap="round" opacity="0.85"><title>{label}: E. max {text}</title></line><text x="{:.1}" y="{:.1}" font-size="10" font-weight="bold" fill="{colour}">{text}</text></g>"#,
             (u1 + u2) / 2.0 + 5.0,
             (v1 + v2) / 2.0 + 3.0,
-            colour(e),
+            label = esc(&m.mesh),
         );
     }
 }
 
-/// Each gear of the cosmos at its pitch radius round its arbor's axis, named with its teeth; the
+/// One arbor: each of its gears at its pitch radius round the axis, named with its teeth; the
 /// fixed gears dashed.
-fn gears_svg(
-    svg: &mut String,
-    g: &Gearing,
-    pos: &BTreeMap<String, (f64, f64, f64)>,
-    pitch: &dyn Fn(&str) -> f64,
-    px: &dyn Fn(f64, f64) -> (f64, f64),
-) {
-    let fixed = g.epicyclic().map(|e| e.fixed.clone()).unwrap_or_default();
-    for (arbor, &(x, y, _)) in pos {
-        let Some(a) = g.arbor(arbor) else {
-            continue;
-        };
-        let (u, v) = px(x, y);
-        let dash = if *arbor == fixed {
-            r#" stroke-dasharray="3 3""#
-        } else {
-            ""
-        };
-        for (k, name) in a.gears.iter().enumerate() {
-            let teeth = g.gear(name).map_or(0, |d| d.teeth);
-            let r = pitch(name) * SCALE;
-            let _ = write!(
-                svg,
-                r##"<circle cx="{u:.1}" cy="{v:.1}" r="{r:.1}" fill="none" stroke="#333" stroke-width="1"{dash}/><text x="{:.1}" y="{:.1}" font-size="9" fill="#222">{} ({teeth})</text>"##,
-                u + 3.0,
-                v + 11.0 + 10.0 * k as f64,
-                esc(name)
-            );
-        }
+fn arbor_svg(svg: &mut String, a: &PlannedArbor, px: &dyn Fn(f64, f64) -> (f64, f64)) {
+    let (u, v) = px(a.x, a.y);
+    let dash = if a.fixed {
+        r#" stroke-dasharray="3 3""#
+    } else {
+        ""
+    };
+    for (k, gear) in a.gears.iter().enumerate() {
+        let r = gear.pitch_radius * SCALE;
         let _ = write!(
             svg,
-            r##"<circle cx="{u:.1}" cy="{v:.1}" r="2" fill="#333"/>"##
+            r##"<circle cx="{u:.1}" cy="{v:.1}" r="{r:.1}" fill="none" stroke="#333" stroke-width="1"{dash}/><text x="{:.1}" y="{:.1}" font-size="9" fill="#222">{} ({})</text>"##,
+            u + 3.0,
+            v + 11.0 + 10.0 * k as f64,
+            esc(&gear.name),
+            gear.teeth
         );
     }
+    let _ = write!(
+        svg,
+        r##"<circle cx="{u:.1}" cy="{v:.1}" r="2" fill="#333"/>"##
+    );
 }
 
-/// The colour classes' legend, from `y` down.
+/// The grades' legend, from `y` down.
 fn legend_svg(svg: &mut String, y: f64) {
     let _ = write!(
         svg,
         r#"<text x="10" y="{y:.1}">Mesh colour and number: its largest tolerable random error (Table 4's grid and rule; fraction of the pitch); gears named with their teeth</text>"#
     );
-    for (k, (_, c, label)) in CLASSES.iter().enumerate() {
+    for (k, (margin, label)) in GRADES.iter().enumerate() {
         let yy = y + 18.0 + 20.0 * k as f64;
         let _ = write!(
             svg,
-            r#"<line x1="14" y1="{:.1}" x2="44" y2="{:.1}" stroke="{c}" stroke-width="5"/><text x="52" y="{:.1}">{}</text>"#,
+            r#"<line x1="14" y1="{:.1}" x2="44" y2="{:.1}" stroke="{}" stroke-width="5"/><text x="52" y="{yy:.1}">{}</text>"#,
             yy - 4.0,
             yy - 4.0,
-            yy,
+            margin.colour(),
             esc(label)
         );
     }
@@ -232,20 +178,54 @@ mod tests {
     #![allow(clippy::unwrap_used, reason = "tests")]
     use super::*;
 
+    /// The plan of the 2021 cosmos with every mesh given a tolerance, below the grid for the
+    /// first.
+    fn results() -> GearingResults {
+        let g = train::Gearing::builtin("freeth2021-cosmos").unwrap();
+        let plan = study::cosmos::plan(&g, 0.44, 1.1);
+        let meshes = plan
+            .meshes
+            .iter()
+            .enumerate()
+            .map(|(k, m)| MeshTolerance {
+                mesh: m.mesh.clone(),
+                gears: Default::default(),
+                pointers: Vec::new(),
+                margin_mm: None,
+                random: (k > 0).then_some(0.09),
+                random_deg: None,
+                random_mm: None,
+                systematic: None,
+                eccentricity_mm: None,
+                cases: Vec::new(),
+            })
+            .collect();
+        GearingResults {
+            gearing: "freeth2021-cosmos".into(),
+            outputs: Vec::new(),
+            display: Vec::new(),
+            meshes,
+            failure: Vec::new(),
+            plan,
+        }
+    }
+
     #[test]
-    fn arbors_sit_at_their_centre_distances() {
-        let g = Gearing::builtin("freeth2021-cosmos").unwrap();
-        let (h, gmm) = (1.1, 0.44);
-        let pos = layout(&g, gmm, h);
-        // Every carried arbor and the fixed one are placed.
-        assert_eq!(pos.len(), 1 + g.epicyclic().unwrap().arbors.len());
-        // Each arbor is its mesh's centre distance from the arbor that drives it.
-        let (a, b) = (pos["frame"], pos["ve1"]);
-        let d = (a.0 - b.0).hypot(a.1 - b.1);
-        let want = 0.25 * (51.0 + 44.0) + gmm;
-        assert!((d - want).abs() < 1e-9, "{d} vs {want}");
-        assert_eq!(colour(None), CLASSES[0].1);
-        assert_eq!(colour(Some(0.1)), CLASSES[3].1);
-        assert_eq!(esc("a<b&c"), "a&lt;b&amp;c");
+    fn every_mesh_and_gear_is_drawn_in_its_grade() {
+        let r = results();
+        let svg = train_picture(&r, 40.0);
+        for m in &r.plan.meshes {
+            assert!(svg.contains(&format!(r#"data-mesh="{}""#, m.mesh)), "{}", m.mesh);
+        }
+        for a in &r.plan.arbors {
+            for g in &a.gears {
+                assert!(svg.contains(&format!(">{} ({})</text>", g.name, g.teeth)));
+            }
+        }
+        assert!(svg.contains("< grid") && svg.contains(">0.090<"));
+        assert!(svg.contains(Margin::Failing.colour()) && svg.contains(Margin::Clear.colour()));
+        assert_eq!(grade(None), Margin::Failing);
+        assert_eq!(grade(Some(0.05)), Margin::Near);
+        assert_eq!(grade(Some(0.08)), Margin::Clear);
     }
 }

@@ -5,13 +5,20 @@
 //! 4-5's rule); the whole mechanism's first jams with the cosmos trains; the two designs side by
 //! side; and a picture of each cosmos train coloured by its meshes' tolerances.
 //!
-//! Settings in, one call to `study::cosmos::compute`, tables and pictures out.
+//! Settings in, one call to `study::cosmos::compute`, its results (`study::cosmos::Results`)
+//! stored; the tables and pictures drawn from them.
 
-use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use registry::{OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64};
+use serde::{Deserialize, Serialize};
 
 use crate::common::interval;
+use crate::settings::typed::label;
 use study::cosmos::{self, DisplayRow, GearingResults, Interval, MeshTolerance, Results};
+use study::errors::CaseParams;
+use study::events::EventParams;
 use study::gearing;
+use study::tolerance::{RULE, RandomGrid, SystematicGrid};
+use study::whole_mechanism::{CASES_PARAM, DAYS, RUNS_DEFAULT, parse_cases};
 
 registry::params! {
     /// `gearings`: the cosmos gearings to run, comma-separated.
@@ -25,33 +32,90 @@ registry::params! {
     /// `cell_trials`: trials per cell of the tolerance grids.
     const CELL_TRIALS = Param::new("cell_trials", "200", "trials per cell of the tolerance grids (Tables 4-5: 200)", registry::Kind::count(1, registry::MAX_TRIALS, ""));
     /// `runs`: whole mechanisms per Case.
-    const RUNS = Param::new("runs", study::whole_mechanism::RUNS_DEFAULT, "whole-mechanism runs per Case (the paper's study: 30)", registry::Kind::count(1, registry::MAX_TRIALS, ""));
+    const RUNS = Param::new("runs", RUNS_DEFAULT, "whole-mechanism runs per Case (the paper's study: 30)", registry::Kind::count(1, registry::MAX_TRIALS, ""));
 }
 
-crate::experiment! {
-    id: "cosmos", paper_item: "Beyond the paper: the cosmos display (Freeth et al. 2021; Freeth & Jones 2012)", run,
-    title: "The cosmos display with triangular teeth and Edmunds' errors: each planet's pointer, the meshes that limit it, the whole mechanism's first jams; 2021 beside 2012",
-    params: [GEARINGS, DISPLAY_TRIALS, PERIOD_CAP, SAMPLES, CELL_TRIALS, RUNS, study::tolerance::RULE, study::whole_mechanism::DAYS, study::whole_mechanism::CASES_PARAM, gearing::CLEARANCE, gearing::TOOTH_HEIGHT],
-    groups: [study::errors::CASES_GROUP, study::tolerance::RANDOM_GRID, study::tolerance::SYSTEMATIC_GRID, study::events::GROUP],
+/// The cosmos study's settings: the gearings, the display trials and run lengths, the
+/// tolerance grids with their trials and rule, the whole-mechanism runs with their horizon and
+/// Cases, G and h, the Cases' errors and the event rule.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, registry::Settings)]
+pub struct Settings {
+    /// The cosmos gearings, comma-separated ([`GEARINGS`]).
+    #[param(GEARINGS)]
+    pub gearings: String,
+    /// Trials per planet, input and run length ([`DISPLAY_TRIALS`]).
+    #[param(DISPLAY_TRIALS)]
+    pub display_trials: u64,
+    /// The longest run over a period relation, years ([`PERIOD_CAP`]).
+    #[param(PERIOD_CAP)]
+    pub period_cap: f64,
+    /// TD samples per engagement of a train's busiest mesh ([`SAMPLES`]).
+    #[param(SAMPLES)]
+    pub samples_per_engagement: usize,
+    /// Trials per cell of the tolerance grids ([`CELL_TRIALS`]).
+    #[param(CELL_TRIALS)]
+    pub cell_trials: u64,
+    /// Whole-mechanism runs per Case ([`RUNS`]).
+    #[param(RUNS)]
+    pub runs: u64,
+    /// The tolerance rule, % of trials jamming ([`RULE`]).
+    #[param(RULE)]
+    pub rule: f64,
+    /// Horizon of each whole-mechanism run, days of b ([`DAYS`]).
+    #[param(DAYS)]
+    pub days: f64,
+    /// Edmunds' Cases to run, comma-separated ([`CASES_PARAM`]).
+    #[param(CASES_PARAM)]
+    pub cases: String,
+    /// Clearance G of every mesh, % of h ([`gearing::CLEARANCE`]).
+    #[param(gearing::CLEARANCE)]
+    pub clearance: f64,
+    /// Tooth height h of every gear, mm ([`gearing::TOOTH_HEIGHT`]).
+    #[param(gearing::TOOTH_HEIGHT)]
+    pub tooth_height: f64,
+    /// The split, the hypothesis and its parameters.
+    #[group]
+    pub errors: CaseParams,
+    /// Table 4's random errors.
+    #[group]
+    pub random: RandomGrid,
+    /// Table 5's systematic amplitudes.
+    #[group]
+    pub systematic: SystematicGrid,
+    /// The event rule.
+    #[group]
+    pub events: EventParams,
 }
 
-fn run(ctx: &Context) -> Result<Report, RunError> {
-    crate::settings::labelled(ctx, counted)
+/// The cosmos study.
+pub struct Cosmos;
+
+impl registry::Experiment for Cosmos {
+    const ID: &'static str = "cosmos";
+    const TITLE: &'static str = "The cosmos display with triangular teeth and Edmunds' errors: each planet's pointer, the meshes that limit it, the whole mechanism's first jams; 2021 beside 2012";
+    const PAPER_ITEM: &'static str =
+        "Beyond the paper: the cosmos display (Freeth et al. 2021; Freeth & Jones 2012)";
+    const PLACE: Place = Place::Beyond(100);
+    type Settings = Settings;
+    type Results = Results;
+
+    fn compute(s: &Settings, run: &Run) -> Result<Results, RunError> {
+        cosmos::compute(run.engine(), &study_settings(s)?)
+    }
+
+    fn report(s: &Settings, r: &Results) -> Result<Report, RunError> {
+        label(&s.events, None, tables(s, r)?)
+    }
 }
 
-/// The experiment itself; [`run`] names the event rule in its tables' titles.
-fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let s = settings(ctx)?;
-    let results = cosmos::compute(ctx.engine(), &s)?;
-    report(&s, &results)
-}
+registry::register!(Cosmos);
 
-/// Every setting, read and checked before anything runs: each gearing must have a cosmos.
-fn settings(ctx: &Context) -> Result<cosmos::Settings, RunError> {
-    let h = ctx.get(&gearing::TOOTH_HEIGHT)?;
+/// Every setting read and checked before anything runs: each gearing loaded, and refused
+/// where it has no cosmos.
+fn study_settings(s: &Settings) -> Result<cosmos::Settings, RunError> {
     let mut gearings = Vec::new();
-    for name in ctx.text(&GEARINGS)?.split(',').map(str::trim) {
-        let shape = gearing::Shape::load(name, h)?;
+    for name in s.gearings.split(',').map(str::trim) {
+        let shape = gearing::Shape::load(name, s.tooth_height)?;
         if shape.gearing.epicyclic().is_none() {
             return Err(RunError::bad(
                 "--set gearings",
@@ -63,43 +127,40 @@ fn settings(ctx: &Context) -> Result<cosmos::Settings, RunError> {
     }
     Ok(cosmos::Settings {
         gearings,
-        clearance: ctx.get(&gearing::CLEARANCE)?,
-        errors: crate::settings::errors(ctx)?,
-        rule: crate::settings::rule(ctx)?,
-        display_trials: ctx.get(&DISPLAY_TRIALS)?,
-        period_cap_years: ctx.get(&PERIOD_CAP)?,
-        samples_per_engagement: ctx.get(&SAMPLES)?,
-        cell_trials: ctx.get(&CELL_TRIALS)?,
-        grids: (
-            crate::settings::random_grid(ctx)?,
-            crate::settings::systematic_grid(ctx)?,
-        ),
-        rule_percent: ctx.get(&study::tolerance::RULE)?,
-        failure_runs: ctx.get(&RUNS)?,
-        days: ctx.get(&study::whole_mechanism::DAYS)?,
-        cases: study::whole_mechanism::parse_cases(
-            ctx.text(&study::whole_mechanism::CASES_PARAM)?,
-        )?,
+        clearance: s.clearance,
+        errors: s.errors.load(s)?,
+        rule: s.events.rule()?,
+        display_trials: s.display_trials,
+        period_cap_years: s.period_cap,
+        samples_per_engagement: s.samples_per_engagement,
+        cell_trials: s.cell_trials,
+        grids: (s.random.values(s)?, s.systematic.values(s)?),
+        rule_percent: s.rule,
+        failure_runs: s.runs,
+        days: s.days,
+        cases: parse_cases(&s.cases)?,
     })
 }
 
-/// The tables, the pictures and the data files.
-fn report(s: &cosmos::Settings, r: &Results) -> Result<Report, RunError> {
+/// The tables, the pictures and the data files, drawn from the results.
+fn tables(s: &Settings, r: &Results) -> Result<Report, RunError> {
+    let cases = parse_cases(&s.cases)?;
+    let grids = (s.random.values(s)?, s.systematic.values(s)?);
     let mut tables = vec![outputs_table(r)];
     tables.push(display_table(s, r, false));
     tables.push(display_table(s, r, true));
-    tables.push(limiting_table(s, r));
+    tables.push(limiting_table(s, r, &grids));
     tables.push(failure_table(s, r));
     if !r.compared.is_empty() {
         tables.push(compared_table(s, r));
     }
-    tables.push(verdict_table(s, r));
+    tables.push(verdict_table(s, r, &cases));
     let mut files = Vec::new();
-    for (shape, g) in s.gearings.iter().zip(&r.gearings) {
-        let stem = file_stem(&shape.file);
+    for g in &r.gearings {
+        let stem = file_stem(&g.gearing);
         files.push(OutputFile::new(
             format!("cosmos-train-{stem}.svg"),
-            crate::cosmos_svg::train_picture(&shape.gearing, s.clearance, shape.tooth_height, g),
+            crate::cosmos_svg::train_picture(g, s.clearance),
         ));
         files.push(OutputFile::new(
             format!("cosmos-survival-{stem}.svg"),
@@ -164,11 +225,11 @@ fn mean_cell(i: &Interval, decimals: usize) -> String {
 
 /// Table: each planet's pointer under each input, over a year (`period` false) or its period
 /// relation.
-fn display_table(s: &cosmos::Settings, r: &Results, period: bool) -> Table {
+fn display_table(s: &Settings, r: &Results, period: bool) -> Table {
     let what = if period {
         format!(
             "over its period relation (at most {} years)",
-            fmt_f64(s.period_cap_years, 0)
+            fmt_f64(s.period_cap, 0)
         )
     } else {
         "over a year".into()
@@ -224,11 +285,11 @@ fn display_cells(g: &GearingResults, d: &DisplayRow) -> Vec<String> {
 }
 
 /// Table: every cosmos mesh's tolerances, least tolerant first.
-fn limiting_table(s: &cosmos::Settings, r: &Results) -> Table {
+fn limiting_table(s: &Settings, r: &Results, grids: &(Vec<f64>, Vec<f64>)) -> Table {
     let mut t = Table::new(
         format!(
             "The meshes that limit the cosmos: each mesh's largest tolerable random error (Table 4's grid), then systematic error on top of it (Table 5's), rule {} %, {} trials per cell, G = {} %, least tolerant first",
-            fmt_f64(s.rule_percent, 0),
+            fmt_f64(s.rule, 0),
             s.cell_trials,
             fmt_f64(s.clearance, 0)
         ),
@@ -250,7 +311,7 @@ fn limiting_table(s: &cosmos::Settings, r: &Results) -> Table {
     );
     for g in &r.gearings {
         for m in g.limiting() {
-            t.row(limiting_cells(&g.gearing, m, s));
+            t.row(limiting_cells(&g.gearing, m, grids));
         }
     }
     t.note("E. max random: the largest value of the grid up to which every value keeps the rule (`<` the grid's first: even that fails); in degrees of each gear (fraction × 360 / N) and as the tip's displacement (fraction × 2π R / N). E. max systematic: the same on the systematic grid at that random error, split as the paper splits it; the eccentricity is the share on the axis, R tan((1 - split) A). Stated margin: the centre-distance margin over the pitch radii the gearing's source gives (the runs use G). Table 3's cells: each Case at G (trials as the grids'), `✓` where the cell keeps the rule.");
@@ -265,7 +326,7 @@ fn pair(p: Option<(f64, f64)>, decimals: usize) -> String {
     )
 }
 
-fn limiting_cells(gearing: &str, m: &MeshTolerance, s: &cosmos::Settings) -> Vec<String> {
+fn limiting_cells(gearing: &str, m: &MeshTolerance, grids: &(Vec<f64>, Vec<f64>)) -> Vec<String> {
     let below = |grid: &[f64], decimals| {
         grid.first()
             .map_or_else(|| "-".into(), |v| format!("< {}", fmt_f64(*v, decimals)))
@@ -277,12 +338,12 @@ fn limiting_cells(gearing: &str, m: &MeshTolerance, s: &cosmos::Settings) -> Vec
         format!("{}:{}", m.gears.0.teeth, m.gears.1.teeth),
         m.margin_mm.map_or_else(|| "-".into(), |x| fmt_f64(x, 2)),
         m.random
-            .map_or_else(|| below(&s.grids.0, 3), |x| fmt_f64(x, 3)),
+            .map_or_else(|| below(&grids.0, 3), |x| fmt_f64(x, 3)),
         pair(m.random_deg, 3),
         pair(m.random_mm, 4),
         match (m.random, m.systematic) {
             (None, _) => "-".into(),
-            (_, None) => below(&s.grids.1, 1),
+            (_, None) => below(&grids.1, 1),
             (_, Some(x)) => fmt_f64(x, 1),
         },
         pair(m.eccentricity_mm, 4),
@@ -310,7 +371,7 @@ fn survival_at(curve: &[cosmos::Step], day: f64) -> String {
 }
 
 /// Table: the whole mechanism (the back and the cosmos) per train and Case.
-fn failure_table(s: &cosmos::Settings, r: &Results) -> Table {
+fn failure_table(s: &Settings, r: &Results) -> Table {
     let mut header = [
         "gearing",
         "input",
@@ -329,7 +390,7 @@ fn failure_table(s: &cosmos::Settings, r: &Results) -> Table {
     let mut t = Table::new(
         format!(
             "Whole mechanisms with the cosmos: {} runs per Case, {} days of b, G = {} %, first jam per train (Kaplan-Meier with 95 % bands)",
-            s.failure_runs,
+            s.runs,
             fmt_f64(s.days, 2),
             fmt_f64(s.clearance, 0)
         ),
@@ -360,7 +421,7 @@ fn failure_table(s: &cosmos::Settings, r: &Results) -> Table {
 }
 
 /// Table: the first two gearings' trains side by side, with Fisher's exact test.
-fn compared_table(s: &cosmos::Settings, r: &Results) -> Table {
+fn compared_table(s: &Settings, r: &Results) -> Table {
     let names: Vec<&str> = r.gearings.iter().map(|g| g.gearing.as_str()).collect();
     let mut t = Table::new(
         format!(
@@ -411,13 +472,13 @@ fn p_value(p: f64) -> String {
 }
 
 /// Table: the verdict, computed from the tables above.
-fn verdict_table(s: &cosmos::Settings, r: &Results) -> Table {
+fn verdict_table(s: &Settings, r: &Results, cases: &[usize]) -> Table {
     let mut header = vec![
         "gearing".to_owned(),
         "cosmos meshes".into(),
         "limiting mesh".into(),
     ];
-    let cases: Vec<(&str, f64, f64)> = s.cases.iter().map(|&c| study::grids::CASES[c]).collect();
+    let cases: Vec<(&str, f64, f64)> = cases.iter().map(|&c| study::grids::CASES[c]).collect();
     header.extend(cases.iter().map(|(c, sys, rnd)| {
         format!("meshes keeping the rule, Case {c} (random {rnd}, systematic {sys} deg)")
     }));
@@ -439,7 +500,7 @@ fn verdict_table(s: &cosmos::Settings, r: &Results) -> Table {
     }
     t.note(format!(
         "A mesh keeps the rule under a Case when at most {} % of its trials (Table 3's protocol: both gears made afresh, one turn of the larger) jam and at most as many disengage. Edmunds' Cases A-D are the range of his measurements the paper runs (random 0.04-0.08 of the pitch, systematic 0-2 deg). The limiting mesh is the least tolerant of the table above; mechanism jammed: the whole mechanism (the back and the cosmos) within the horizon.",
-        fmt_f64(s.rule_percent, 0)
+        fmt_f64(s.rule, 0)
     ));
     t
 }
@@ -498,7 +559,7 @@ fn verdict_cells(g: &GearingResults, cases: &[(&str, f64, f64)]) -> Vec<String> 
 }
 
 /// The whole mechanism's survival per Case (one curve each), for one gearing.
-fn survival_plot(s: &cosmos::Settings, g: &GearingResults) -> Result<String, RunError> {
+fn survival_plot(s: &Settings, g: &GearingResults) -> Result<String, RunError> {
     let curves: Vec<(String, Vec<(f64, f64)>)> = g
         .failure
         .iter()
@@ -527,7 +588,7 @@ fn survival_plot(s: &cosmos::Settings, g: &GearingResults) -> Result<String, Run
     crate::common::Plot::new(
         &format!(
             "{}: whole mechanisms with the cosmos, {} runs per Case, runs not yet jammed (Kaplan-Meier)",
-            g.gearing, s.failure_runs
+            g.gearing, s.runs
         ),
         "days of the b arbor (solar pointer; 365.25 d per turn)",
         "runs not yet jammed [%]",
