@@ -215,7 +215,11 @@ mod tests {
         let r = results();
         let svg = train_picture(&r, 40.0);
         for m in &r.plan.meshes {
-            assert!(svg.contains(&format!(r#"data-mesh="{}""#, m.mesh)), "{}", m.mesh);
+            assert!(
+                svg.contains(&format!(r#"data-mesh="{}""#, m.mesh)),
+                "{}",
+                m.mesh
+            );
         }
         for a in &r.plan.arbors {
             for g in &a.gears {
