@@ -71,7 +71,7 @@ pub fn check(
         return Err(registry::RunError::bad(
             "--set",
             study::gearing::PARAM.name,
-            "must name an embedded gearing (freeth2006, freeth2021) or a RON file, not be empty",
+            "must name an embedded gearing (freeth2006, freeth2021, freeth2021-cosmos, freeth2012-cosmos) or a RON file, not be empty",
         )
         .to_string());
     }

@@ -8,6 +8,7 @@
 pub mod cells;
 pub mod chart;
 pub mod common;
+pub mod cosmos_svg;
 pub mod emax;
 pub mod event_picture;
 pub mod inputs;

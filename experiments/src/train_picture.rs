@@ -34,7 +34,8 @@ pub enum Margin {
 }
 
 impl Margin {
-    fn colour(self) -> &'static str {
+    /// The colour a mesh of this grade is drawn in.
+    pub fn colour(self) -> &'static str {
         match self {
             Margin::Clear => "#1a7f37",
             Margin::Near => "#b7791f",

@@ -135,10 +135,13 @@ impl Mechanism {
     /// the pin-and-slot coupling the two ([`PinSlotTrain`]); its Theoretical Difference is taken
     /// against the anomaly-bearing ideal motion. Other pointers are run as without it.
     ///
+    /// The cosmos's slot-gear devices (`train::PinDevice`) come in with it too: their pointers
+    /// run with the slot gear's mesh driven through the pin, in b1's frame.
+    ///
     /// # Errors
-    /// `true` for a gearing without a `pin_and_slot` section.
+    /// `true` for a gearing with neither a `pin_and_slot` section nor devices.
     pub fn with_pin_and_slot(mut self, on: bool) -> Result<Self, MechanismError> {
-        if on && self.gearing.pin_and_slot().is_none() {
+        if on && self.gearing.pin_and_slot().is_none() && self.gearing.devices().is_empty() {
             return Err(MechanismError {
                 mesh: "(pin-and-slot)".into(),
                 rule: "the gearing has no pin_and_slot section".into(),

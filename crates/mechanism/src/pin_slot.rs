@@ -29,6 +29,13 @@
 //! output     s T + c2 (b(k0 + k) - b(k0))        c2 = ratio of the slot gear's mesh
 //! pointer    c3 * output                         c3 = ratio of the meshes after it
 //! ```
+//!
+//! The cosmos's devices (`train::PinDevice`) are the same geometry in b1's frame: a superior
+//! planet's pin gear and slot gear ride on b1, which is the whole train's frame, so the
+//! turntable stands still (`turntable_ratio` 0, [`PinSlotTrain::new`]); an inferior planet's (and
+//! the true Sun's) pin drives a slotted follower on b's axis, further from the pin gear's axis
+//! than the pin ([`follower_angle`]), so the follower swings about b1's direction instead of
+//! turning round.
 
 use std::f64::consts::TAU;
 
@@ -41,6 +48,25 @@ use train::Gearing;
 #[must_use]
 pub fn slot_angle(a: f64, offset: f64, pin_radius: f64) -> f64 {
     a + (offset * a.sin()).atan2(pin_radius - offset * a.cos())
+}
+
+/// A slotted follower's angle from the line of centres (the follower's axis towards the pin
+/// gear's), for the pin gear at angle `a` from that line (both in the frame the axes are fixed
+/// in): the direction of the pin seen from the follower's axis, `atan2(pin sin a, offset + pin cos
+/// a)`, where `offset` is the distance between the axes and `pin_radius` the pin's from the pin
+/// gear's axis (`pin_radius < offset`: the follower swings, never turns round). An inferior
+/// planet's elongation from the mean Sun in the cosmos.
+#[must_use]
+pub fn follower_angle(a: f64, offset: f64, pin_radius: f64) -> f64 {
+    (pin_radius * a.sin()).atan2(offset + pin_radius * a.cos())
+}
+
+/// A follower's largest swing either side of the line of centres, `asin(pin_radius / offset)`
+/// radians, reached where the slot is tangent to the pin's circle (an inferior planet's greatest
+/// elongation: Venus about 46 degrees).
+#[must_use]
+pub fn greatest_elongation(offset: f64, pin_radius: f64) -> f64 {
+    (pin_radius / offset).asin()
 }
 
 /// The largest deviation of the slot gear from the pin gear, `asin(offset / pin_radius)`
@@ -80,10 +106,14 @@ pub struct PinSlotTrain {
 
 impl PinSlotTrain {
     /// The gearing's pin-and-slot in `pointer`'s train, the pin starting at `pin_phase` radians
-    /// from the line of centres; `None` if the gearing has no pin-and-slot section or the
-    /// pointer's train does not run through its pin gear (a validated gearing guarantees the rest).
+    /// from the line of centres: the cosmos's slot-gear device of the pointer if it has one
+    /// ([`PinSlotTrain::carried`]), else the lunar one; `None` if neither is in the pointer's
+    /// train (a validated gearing guarantees the rest).
     #[must_use]
     pub fn new(gearing: &Gearing, pointer: &str, pin_phase: f64) -> Option<PinSlotTrain> {
+        if let Some(d) = gearing.device(pointer) {
+            return PinSlotTrain::carried(gearing, pointer, d, pin_phase);
+        }
         let ps = gearing.pin_and_slot()?;
         let p = gearing.pointer(pointer)?;
         let pin_stage = p
@@ -115,6 +145,45 @@ impl PinSlotTrain {
             driver_ratio: product(&p.meshes[..pin_stage])?,
             pin_mesh_ratio: product(&p.meshes[pin_stage..=pin_stage])?,
             slot_mesh_ratio: product(&p.meshes[pin_stage + 1..pin_stage + 2])?,
+            after_ratio: product(&p.meshes[pin_stage + 2..])?,
+        })
+    }
+
+    /// A cosmos device of kind `SlotGear` in `pointer`'s train, in the frame the train runs in
+    /// (b1's), where the pin and slot gears' axes stand still: the turntable's rate is zero.
+    /// `None` for a follower (it drives no mesh) or a device not in the pointer's train.
+    #[must_use]
+    pub fn carried(
+        gearing: &Gearing,
+        pointer: &str,
+        device: &train::PinDevice,
+        pin_phase: f64,
+    ) -> Option<PinSlotTrain> {
+        if device.kind != train::DeviceKind::SlotGear {
+            return None;
+        }
+        let p = gearing.pointer(pointer)?;
+        let pin_stage = p.meshes.iter().position(|label| {
+            gearing
+                .mesh(label)
+                .is_some_and(|m| m.driven == device.pin_gear)
+        })?;
+        let product = |labels: &[String]| -> Option<f64> {
+            labels
+                .iter()
+                .map(|l| gearing.mesh_ratio(l).map(train::Ratio::to_f64))
+                .product()
+        };
+        Some(PinSlotTrain {
+            pin_stage,
+            offset: device.axis_offset,
+            pin_radius: device.pin_radius,
+            pin_phase,
+            turntable_ratio: 0.0,
+            turntable_sign: 1.0,
+            driver_ratio: product(&p.meshes[..pin_stage])?,
+            pin_mesh_ratio: product(&p.meshes[pin_stage..=pin_stage])?,
+            slot_mesh_ratio: product(p.meshes.get(pin_stage + 1..pin_stage + 2)?)?,
             after_ratio: product(&p.meshes[pin_stage + 2..])?,
         })
     }
@@ -295,5 +364,40 @@ mod tests {
         );
         // Other pointers do not run through it.
         assert!(PinSlotTrain::new(&g, "Metonic", 0.0).is_none());
+    }
+
+    #[test]
+    fn a_follower_swings_by_the_greatest_elongation() {
+        // Freeth 2021's Venus: pin 20.01 mm, axes 27.8 mm apart: 46 degrees either side.
+        let (d, p) = (27.8, 20.01);
+        let e = greatest_elongation(d, p);
+        assert!((e.to_degrees() - 46.0).abs() < 0.05, "{}", e.to_degrees());
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for i in 0..=100_000 {
+            let x = follower_angle(TAU * f64::from(i) / 100_000.0, d, p);
+            lo = lo.min(x);
+            hi = hi.max(x);
+        }
+        assert!((hi - e).abs() < 1e-8 && (lo + e).abs() < 1e-8, "{lo} {hi}");
+        // On the line of centres, pin outward or inward: the follower on the line.
+        assert_eq!(follower_angle(0.0, d, p), 0.0);
+        assert!(follower_angle(std::f64::consts::PI, d, p).abs() < 1e-15);
+    }
+
+    #[test]
+    fn cosmos_slot_gears_turn_in_b1s_frame() {
+        let g = Gearing::builtin("freeth2021-cosmos").unwrap();
+        let t = PinSlotTrain::new(&g, "Mars", 0.3).unwrap();
+        assert_eq!((t.pin_stage, t.offset, t.pin_radius), (2, 6.58, 10.0));
+        assert_eq!(t.turntable_ratio, 0.0);
+        // The mean rate is the rigid train's: 133/284 relative to b1.
+        let ratio = g.pointer_ratio("Mars").unwrap().to_f64();
+        assert!((t.mean_ratio() - ratio).abs() < 1e-15);
+        assert!((ratio - 133.0 / 284.0).abs() < 1e-15);
+        // The anomaly's period is the synodic period, 284/133 years.
+        assert!((t.anomaly_period_turns() - 284.0 / 133.0).abs() < 1e-12);
+        // A follower drives no mesh; the Lunar train keeps its own device.
+        assert!(PinSlotTrain::new(&g, "Venus", 0.0).is_none());
+        assert_eq!(PinSlotTrain::new(&g, "Lunar", 0.0).unwrap().pin_stage, 3);
     }
 }

@@ -1,4 +1,4 @@
-//! The gearing an experiment runs on: the embedded Freeth 2006 (or 2021) data, or a user's RON file given
+//! The gearing an experiment runs on: the embedded Freeth 2006 (or 2021, or either cosmos) data, or a user's RON file given
 //! with `--set gearing=FILE`; and the gearing-wide parameters declared beside it.
 
 use registry::{Param, RunError};
@@ -9,7 +9,7 @@ pub const PARAM: Param = Param {
     name: "gearing",
     default: "freeth2006",
     unit: "",
-    help: "gearing RON file, or an embedded one: freeth2006 (the default, crates/train/data/freeth2006.ron) or freeth2021 (the same gearing with the outer radii of Freeth et al. 2021)",
+    help: "gearing RON file, or an embedded one: freeth2006 (the default, crates/train/data/freeth2006.ron), freeth2021 (the same gearing with the outer radii of Freeth et al. 2021), freeth2021-cosmos or freeth2012-cosmos (freeth2006 with the cosmos display of Freeth et al. 2021 or of Freeth & Jones 2012 in front of b1)",
     kind: registry::Kind::Text,
     reading: false,
     clearance: false,
@@ -227,7 +227,7 @@ pub fn check(file: &str, g: &Gearing, h: f64) -> Result<(), RunError> {
         .iter()
         .flat_map(|m| [m.driver.as_str(), m.driven.as_str()]);
     let smallest = meshed
-        .filter_map(|name| Some((name, g.tip_radius(name)?)))
+        .filter_map(|name| Some((name, g.tip_radius_at(name, h)?)))
         .min_by(|a, b| a.1.total_cmp(&b.1));
     if let Some((gear, r)) = smallest
         && h >= r

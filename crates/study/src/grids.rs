@@ -100,8 +100,20 @@ pub fn run_grid(
     trials: u64,
     purpose: Purpose,
 ) -> Result<RandomGrid, RunError> {
+    run_grid_of(engine, s, s.meshes(), values, trials, purpose)
+}
+
+/// [`run_grid`] for the meshes `meshes` of the settings' gearing only (the cosmos study runs
+/// the display's meshes, not the back's).
+pub fn run_grid_of(
+    engine: &TrialEngine,
+    s: &CellSettings,
+    meshes: Vec<String>,
+    values: Vec<f64>,
+    trials: u64,
+    purpose: Purpose,
+) -> Result<RandomGrid, RunError> {
     let clearance = s.clearance()?;
-    let meshes: Vec<String> = s.meshes();
     let mut cells = Vec::new();
     for &e in &values {
         let params = s.errors.params(&[("random", e), ("systematic", 0.0)])?;
@@ -223,6 +235,19 @@ impl Tolerances {
 pub fn derive(
     engine: &TrialEngine,
     s: &CellSettings,
+    grids: (Vec<f64>, Vec<f64>),
+    rule: f64,
+    purpose: Purpose,
+    given_random: Option<Vec<Option<f64>>>,
+) -> Result<Tolerances, RunError> {
+    derive_of(engine, s, s.meshes(), grids, rule, purpose, given_random)
+}
+
+/// [`derive()`] for the meshes `meshes` of the settings' gearing only.
+pub fn derive_of(
+    engine: &TrialEngine,
+    s: &CellSettings,
+    meshes: Vec<String>,
     (random_values, sys_values): (Vec<f64>, Vec<f64>),
     rule: f64,
     purpose: Purpose,
@@ -233,13 +258,13 @@ pub fn derive(
     let (random_grid, random) = if let Some(random) = given_random {
         let grid = RandomGrid {
             values: random_values,
-            meshes: s.meshes(),
+            meshes,
             counts: Vec::new(),
             gears: crate::units::mesh_gears(s.gearing()),
         };
         (grid, random)
     } else {
-        let grid = run_grid(engine, s, random_values, trials, Purpose::Input)?;
+        let grid = run_grid_of(engine, s, meshes, random_values, trials, Purpose::Input)?;
         let random = grid.tolerable(trials, rule);
         (grid, random)
     };

@@ -9,6 +9,8 @@
 //! - [`equal_pair`]: the paper's pair of equal gears (Figures 2 and 3).
 //! - [`readings`]: the candidate readings of the paper's inputs that `sigma-causes` compares.
 //! - [`anomaly`]: the Lunar pointer without and with the pin-and-slot.
+//! - [`cosmos`]: the cosmos display (Freeth et al. 2021, Freeth & Jones 2012) through the
+//!   paper's tests, beyond the paper.
 //! - [`area_test`]: the paper's kind of contact test (an overlap area, blunt tips) on Figure IV's
 //!   ideal pairs.
 //! - [`motion_models`]: the per-mesh tables' cells, Figure 2, Table 1 and Figure IV under each
@@ -22,6 +24,7 @@ pub mod area_test;
 pub mod cell;
 pub mod claims;
 pub mod clearance_search;
+pub mod cosmos;
 pub mod drive;
 pub mod equal_pair;
 pub mod errors;

@@ -268,6 +268,28 @@ pub fn grid(
         .collect())
 }
 
+/// A random tooth error given as a fraction of the pitch (the paper's Tables 4-5), in degrees of
+/// its gear: `fraction × 360 / N`, the standard deviation of a tooth's angular place.
+#[must_use]
+pub fn random_error_deg(fraction: f64, teeth: u32) -> f64 {
+    fraction * 360.0 / f64::from(teeth)
+}
+
+/// The same random error as a displacement of a tooth's tip along its tip circle, mm:
+/// `fraction × 2π R / N` with tip radius `R`.
+#[must_use]
+pub fn random_error_mm(fraction: f64, tip_radius: f64, teeth: u32) -> f64 {
+    fraction * std::f64::consts::TAU * tip_radius / f64::from(teeth)
+}
+
+/// Edmunds' systematic amplitude `A` (degrees) split as the paper splits it (`split` of it on the
+/// sinusoid of tip positions, the rest on the axis), as the eccentricity of the gear's axis in
+/// mm: `R tan((1 - split) A)`, the shift `hypotheses::eccentricity` gives the gear.
+#[must_use]
+pub fn systematic_eccentricity_mm(amplitude_deg: f64, split: f64, tip_radius: f64) -> f64 {
+    hypotheses::eccentricity(tip_radius, (1.0 - split) * amplitude_deg)
+}
+
 #[cfg(test)]
 mod tests {
     #![allow(clippy::unwrap_used, reason = "tests")]
@@ -316,5 +338,22 @@ mod tests {
         assert_eq!(largest_tolerable(&[], 200, 1.0), None);
         // A looser rule moves it up.
         assert_eq!(largest_tolerable(&col, 200, 10.0), Some(0.065));
+    }
+
+    #[test]
+    fn tolerances_in_degrees_and_millimetres() {
+        // 0.04 of the pitch of a 40-tooth gear: 0.36 deg; on a 10 mm tip circle 0.0628 mm.
+        assert!((random_error_deg(0.04, 40) - 0.36).abs() < 1e-12);
+        assert!(
+            (random_error_mm(0.04, 10.0, 40) - 0.04 * std::f64::consts::TAU / 4.0).abs() < 1e-12
+        );
+        // The degrees and the millimetres are one displacement: arc = R x angle.
+        let (f, r, n) = (0.05, 17.3, 71);
+        let arc = r * random_error_deg(f, n).to_radians();
+        assert!((random_error_mm(f, r, n) - arc).abs() < 1e-12);
+        // Half of 1 deg on the axis of a 20 mm gear: 20 tan(0.5 deg).
+        let e = systematic_eccentricity_mm(1.0, 0.5, 20.0);
+        assert!((e - 20.0 * 0.5_f64.to_radians().tan()).abs() < 1e-12, "{e}");
+        assert_eq!(systematic_eccentricity_mm(1.0, 1.0, 20.0), 0.0);
     }
 }

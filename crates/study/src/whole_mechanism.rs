@@ -50,8 +50,11 @@ pub const CASES_PARAM: Param = Param {
 /// Whole-mechanism runs per input at the defaults (the paper: 30).
 pub const RUNS_DEFAULT: &str = "30";
 
+/// A train of the study: (name, the pointers whose meshes make it up).
+pub type Train = (&'static str, &'static [&'static str]);
+
 /// The trains the paper reports: (name, the pointers whose meshes make it up).
-pub const TRAINS: [(&str, &[&str]); 3] = [
+pub const TRAINS: [Train; 3] = [
     ("Lunar", &["Lunar"]),
     ("Metonic/Games", &["Metonic", "Games"]),
     ("Saros/Exeligmos", &["Saros", "Exeligmos"]),
@@ -158,9 +161,19 @@ impl MechanismRun {
 /// clearance or tooth height that breaks a mesh is bad input), and every train's pointers are in
 /// the gearing.
 pub fn check_study(g: &train::Gearing, h: f64, clearances: &Clearances) -> Result<(), RunError> {
+    check_trains(g, h, clearances, &TRAINS)
+}
+
+/// [`check_study`] for the trains `trains`.
+pub fn check_trains(
+    g: &train::Gearing,
+    h: f64,
+    clearances: &Clearances,
+    trains: &[Train],
+) -> Result<(), RunError> {
     Mechanism::build_with_clearances(g, h, |m| clearances.of(m), |_name, gear| Ok(gear))
         .map_err(crate::gearing::mechanism_error)?;
-    for (_, pointers) in TRAINS {
+    for &(_, pointers) in trains {
         for p in pointers {
             if g.pointer(p).is_none() || g.pointer_ratio(p).is_none() {
                 return Err(RunError::bad(
@@ -215,6 +228,41 @@ pub fn run_study(
     events: &rules::Rule,
     batch: &str,
 ) -> Result<Vec<MechanismRun>, RunError> {
+    let study = Study {
+        gearing: g,
+        trains: &TRAINS,
+        h,
+        days,
+        events,
+    };
+    run_study_of(engine, &study, inputs, trials, batch)
+}
+
+/// What a whole-mechanism study runs: the gearing, its trains (each a run's [`MechanismRun`]
+/// entry, in order), h, the horizon in days of b and the event rule that stops a train.
+pub struct Study<'a> {
+    /// The gearing.
+    pub gearing: &'a train::Gearing,
+    /// The trains whose first jams a run records.
+    pub trains: &'a [Train],
+    /// Tooth height h (mm).
+    pub h: f64,
+    /// Horizon of each run, days of b.
+    pub days: f64,
+    /// The event rule that counts a jam.
+    pub events: &'a rules::Rule,
+}
+
+/// [`run_study`] for any trains: `trials` runs of every input, as the batch `batch`.
+pub fn run_study_of(
+    engine: &TrialEngine,
+    study: &Study<'_>,
+    inputs: &[Input<'_>],
+    trials: u64,
+    batch: &str,
+) -> Result<Vec<MechanismRun>, RunError> {
+    let (g, days, events) = (study.gearing, study.days, study.events);
+    let h = study.h;
     let horizon = days / DAYS_PER_YEAR * TAU;
     let seed = engine.seed();
     // The rule decides where a train stops, so it names the batch too.
@@ -225,7 +273,7 @@ pub fn run_study(
         let input = inputs
             .get((j / trials) as usize)
             .ok_or_else(|| RunError::Internal(format!("run {j} of {jobs}")))?;
-        one_run(g, input, h, seed, j % trials, horizon, events)
+        one_run(g, input, h, seed, j % trials, horizon, events, study.trains)
     })
 }
 
@@ -319,7 +367,12 @@ pub fn train_names() -> impl Iterator<Item = &'static str> {
 
 /// The jam of train `ti` (`TRAINS.len()`: the mechanism).
 pub fn jam_of(o: &MechanismRun, ti: usize) -> Option<&Jam> {
-    if ti < TRAINS.len() {
+    jam_of_in(o, ti, TRAINS.len())
+}
+
+/// The jam of train `ti` of a study of `trains` trains (`trains`: the mechanism).
+pub fn jam_of_in(o: &MechanismRun, ti: usize, trains: usize) -> Option<&Jam> {
+    if ti < trains {
         o.trains.get(ti).and_then(Option::as_ref)
     } else {
         o.mechanism()
@@ -327,6 +380,10 @@ pub fn jam_of(o: &MechanismRun, ti: usize) -> Option<&Jam> {
 }
 
 /// One whole-mechanism run: trial `t` of `input`, at the input's clearances.
+#[allow(
+    clippy::too_many_arguments,
+    reason = "the run's inputs, each a value of its own"
+)]
 fn one_run(
     g: &train::Gearing,
     input: &Input<'_>,
@@ -335,6 +392,7 @@ fn one_run(
     t: u64,
     horizon: f64,
     events: &rules::Rule,
+    trains_run: &[Train],
 ) -> Result<MechanismRun, RunError> {
     // One stream per (input, trial): every gear's errors, then every mesh's initial angle.
     let mut rng = trial_rng(seed, (input.index << 32) | t);
@@ -371,7 +429,7 @@ fn one_run(
                         day: 0.0,
                         mesh: e.mesh.clone(),
                     });
-                    TRAINS.len()
+                    trains_run.len()
                 ],
                 engagements: 0.0,
                 unplaceable: Some(e.to_string()),
@@ -394,9 +452,9 @@ fn one_run(
     // Stages by the chain of meshes leading to them: each mesh is simulated once per run.
     let mut memo: BTreeMap<String, Stage> = BTreeMap::new();
     let mut engagements = 0.0;
-    let mut trains = Vec::with_capacity(TRAINS.len());
+    let mut trains = Vec::with_capacity(trains_run.len());
     let mut lunar_sigma = None;
-    for (_, pointers) in TRAINS {
+    for &(_, pointers) in trains_run {
         let mut first: Option<Jam> = None;
         for &p in pointers {
             let missing = || RunError::Internal(format!("pointer {p} vanished from the gearing"));
@@ -516,11 +574,16 @@ pub struct Summary {
 
 /// Per train, then the mechanism.
 pub fn summarise(runs: &[MechanismRun], horizon_days: f64) -> Vec<Summary> {
-    (0..=TRAINS.len())
+    summarise_trains(runs, horizon_days, TRAINS.len())
+}
+
+/// [`summarise`] for a study of `trains` trains.
+pub fn summarise_trains(runs: &[MechanismRun], horizon_days: f64, trains: usize) -> Vec<Summary> {
+    (0..=trains)
         .map(|ti| {
             let jams: Vec<&Jam> = runs
                 .iter()
-                .filter_map(|o| jam_of(o, ti))
+                .filter_map(|o| jam_of_in(o, ti, trains))
                 .filter(|j| j.day <= horizon_days)
                 .collect();
             let in_year = jams.iter().filter(|j| j.day <= DAYS_PER_YEAR).count() as u64;

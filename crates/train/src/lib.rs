@@ -5,6 +5,13 @@
 //! gearing is validated when it is read, so the queries on a [`Gearing`] never fail on
 //! inconsistent data.
 //!
+//! Beyond the paper, a gearing may carry a cosmos display (`data/freeth2021-cosmos.ron`,
+//! `data/freeth2012-cosmos.ron`): gears fixed to the frame and arbors carried round by b1
+//! ([`Epicyclic`]), where every mesh runs as an ordinary pair in b1's frame and rates compose
+//! exactly with signs ([`Rate`], [`Gearing::pointer_rate`]); the pin-and-slot devices of the
+//! planets ([`PinDevice`]); the Moon phase's differential ([`Differential`]); and gears sized by
+//! Freeth & Jones' rule from a pitch radius ([`Sizing::Pitch`]).
+//!
 //! Conventions (the paper's section 3): every angle is positive in its own gear's direction of
 //! rotation, so all ratios are positive; one turn of the input arbor `b` is one year of 365.25
 //! days; in every mesh the tip radii keep `R1/R2 = N1/N2` exactly (see [`Gearing::tip_radii`]
@@ -19,7 +26,7 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 use stdx::{fmt_number, one_line};
 
-pub use ratio::Ratio;
+pub use ratio::{Rate, Ratio};
 
 /// The text of the embedded default gearing, `data/freeth2006.ron`.
 pub const FREETH2006_RON: &str = include_str!("../data/freeth2006.ron");
@@ -28,10 +35,29 @@ pub const FREETH2006_RON: &str = include_str!("../data/freeth2006.ron");
 /// for asking how much the results depend on the radii the paper took.
 pub const FREETH2021_RON: &str = include_str!("../data/freeth2021.ron");
 
+/// The Freeth 2006 gearing with the cosmos display of Freeth et al. 2021 (Sci. Rep. 11:5821) in
+/// front of b1, `data/freeth2021-cosmos.ron`: its planetary trains from secondary transcriptions,
+/// the hypothetical gears sized by Freeth & Jones' rule.
+pub const FREETH2021_COSMOS_RON: &str = include_str!("../data/freeth2021-cosmos.ron");
+
+/// The Freeth 2006 gearing with the cosmos display of Freeth & Jones 2012 (ISAW Papers 4) in
+/// front of b1, `data/freeth2012-cosmos.ron`: tooth counts, radii and pins from its Figs. 42-43.
+pub const FREETH2012_COSMOS_RON: &str = include_str!("../data/freeth2012-cosmos.ron");
+
 /// The embedded gearings by name, for `--set gearing=NAME`: (name, file name, text).
-pub const BUILTIN: [(&str, &str, &str); 2] = [
+pub const BUILTIN: [(&str, &str, &str); 4] = [
     ("freeth2006", "freeth2006.ron", FREETH2006_RON),
     ("freeth2021", "freeth2021.ron", FREETH2021_RON),
+    (
+        "freeth2021-cosmos",
+        "freeth2021-cosmos.ron",
+        FREETH2021_COSMOS_RON,
+    ),
+    (
+        "freeth2012-cosmos",
+        "freeth2012-cosmos.ron",
+        FREETH2012_COSMOS_RON,
+    ),
 ];
 
 /// The most teeth a gear of a gearing file may have: 10^5, the limit of `geometry::MAX_TEETH`
@@ -58,6 +84,38 @@ pub struct GearData {
     pub measured_radius: Option<f64>,
     /// Provenance of the tooth count and radius.
     pub source: String,
+    /// What the radius given stands for, and so how the gear is sized ([`Sizing`]; the default,
+    /// [`Sizing::Fitted`], is the paper's).
+    #[serde(default, skip_serializing_if = "Sizing::is_fitted")]
+    pub sizing: Sizing,
+    /// A pitch radius in mm that a reconstruction designed rather than measured (a hypothetical
+    /// gear sized by a rule: `source` says which); only with [`Sizing::Pitch`], never beside
+    /// `measured_radius`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub design_radius: Option<f64>,
+}
+
+/// How a gear's radius becomes its tip and root radii. Every gear of a group of meshed gears
+/// (a [`Component`]) is sized the same way.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Sizing {
+    /// The paper's rule: the radius given (Freeth 2006's mean of the fragment's inner and outer
+    /// radius) is fitted as the tip radius `R`, the root radius is `R - h`.
+    #[default]
+    Fitted,
+    /// Freeth & Jones' rule (ISAW Papers 4, Figs. 42-43): the radius given is the pitch radius
+    /// `p` (the mean of tip and root), so `R = p + h/2` and the root radius is `p - h/2`; a
+    /// mesh's centre distance `p1 + p2 + margin` is then `R1 + R2 - h + margin`, the paper's
+    /// `D` with `G = margin`.
+    Pitch,
+}
+
+impl Sizing {
+    /// Whether this is the paper's rule (left out when a gearing is written).
+    #[must_use]
+    pub fn is_fitted(&self) -> bool {
+        *self == Sizing::Fitted
+    }
 }
 
 /// Gears fixed together on one arbor: they turn as one body.
@@ -71,7 +129,7 @@ pub struct Arbor {
 }
 
 /// One external mesh between two gears.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MeshData {
     /// The label as the paper writes it, e.g. `b2-c1` (the paper's `n2-o1` has driver `n3`).
@@ -80,6 +138,12 @@ pub struct MeshData {
     pub driver: String,
     /// Name of the driven gear.
     pub driven: String,
+    /// The centre-distance margin (mm) a reconstruction states over the sum of the two pitch
+    /// radii (Freeth & Jones: 0.2-0.4 mm, "since triangular-toothed gears cannot mesh too
+    /// closely"); with [`Sizing::Pitch`] it is the clearance `G` in mm. Only recorded: the
+    /// simulations take their clearance from their settings.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub margin: Option<f64>,
 }
 
 /// A pointer: the train of meshes from the input arbor to the pointer's arbor.
@@ -118,6 +182,89 @@ pub struct PinAndSlot {
     /// Distance of the pin from the pin gear's axis, mm (greater than `axis_offset`).
     pub pin_radius: f64,
     /// Provenance of the geometry.
+    pub source: String,
+}
+
+/// Arbors carried round by a turning wheel (the carrier, b1 in the cosmos) about gears fixed to
+/// the frame: an epicyclic system, an optional section of a gearing file.
+///
+/// Seen from the carrier every arbor of the system turns on a fixed axis and the fixed arbor
+/// turns once backwards per turn of the carrier, so each mesh of the system is an ordinary pair
+/// in the carrier's frame, and a pointer whose input is the fixed arbor is run in that frame.
+/// An arbor's rate in the frame of the mechanism is the carrier's plus its rate relative to the
+/// carrier ([`Gearing::rate_from`]).
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Epicyclic {
+    /// The arbor that carries the system (the cosmos: `b`, whose b1 turns once a year).
+    pub carrier: String,
+    /// The arbor of the gears fixed to the frame (rate zero in the frame of the mechanism).
+    pub fixed: String,
+    /// The arbors whose meshes run in the carrier's frame: those it carries, and the output
+    /// tubes on its axis that their gears drive. Each is turned from `fixed` by a chain of
+    /// meshes.
+    pub arbors: Vec<String>,
+    /// Provenance of the arrangement.
+    pub source: String,
+}
+
+/// What a pin-and-slot device of the cosmos drives.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum DeviceKind {
+    /// The pin drives a slotted gear on an axis `axis_offset` from the pin gear's, both carried
+    /// (the superior planets, as the lunar pin-and-slot): in the file the two gears share one
+    /// arbor (the rigid coupling the device replaces) and the pointer's next mesh is driven by
+    /// the slot gear. The offset is less than the pin radius, so the slot gear turns round.
+    SlotGear,
+    /// The pin drives a slotted follower on the carrier's axis, `axis_offset` from the pin
+    /// gear's axis: the follower is the pointer (the inferior planets and the true Sun). The pin
+    /// radius is less than the offset, so the follower swings either side of the carrier's
+    /// direction (a planet's elongation from the mean Sun) by at most `asin(pin / offset)`.
+    Follower,
+}
+
+/// A pin-and-slot device at the end (or in the train) of a cosmos pointer: its pin and offset.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PinDevice {
+    /// The pointer it belongs to.
+    pub pointer: String,
+    /// What it drives.
+    pub kind: DeviceKind,
+    /// The gear carrying the pin.
+    pub pin_gear: String,
+    /// The gear with the slot ([`DeviceKind::SlotGear`] only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub slot_gear: Option<String>,
+    /// Distance between the pin gear's axis and the slot's axis (the slot gear's, or the
+    /// carrier's for a follower), mm.
+    pub axis_offset: f64,
+    /// Distance of the pin from the pin gear's axis, mm.
+    pub pin_radius: f64,
+    /// Provenance of the geometry.
+    pub source: String,
+}
+
+/// A differential: two arbors' rates subtracted through a pair of gears (the cosmos's Moon phase:
+/// the mean-Sun tube's gear driving a crown gear on the Moon pointer, so that the phase ball
+/// turns at the Moon's rate less the Sun's). Not a mesh of the contact simulation: a crown gear
+/// is no pair of plane gears.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Differential {
+    /// The output's name (`Moon phase`).
+    pub name: String,
+    /// The arbor all rates are counted per turn of (`b`).
+    pub input: String,
+    /// The arbor whose rate is added (the Moon pointer's).
+    pub plus: String,
+    /// The arbor whose rate is subtracted (the mean Sun's).
+    pub minus: String,
+    /// Teeth of the gear on `minus` that drives.
+    pub driver_teeth: u32,
+    /// Teeth of the gear it drives (the crown gear).
+    pub driven_teeth: u32,
+    /// Provenance.
     pub source: String,
 }
 
@@ -176,6 +323,12 @@ pub struct Gearing {
     meshes: Vec<MeshData>,
     pointers: Vec<Pointer>,
     pin_and_slot: Option<PinAndSlot>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    epicyclic: Option<Epicyclic>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    devices: Vec<PinDevice>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    differentials: Vec<Differential>,
     #[serde(skip)]
     components: Vec<Component>,
 }
@@ -197,6 +350,15 @@ struct RawGearing {
     /// Optional: files without it (the format before the pin-and-slot) still load.
     #[serde(default)]
     pin_and_slot: Option<PinAndSlot>,
+    /// Optional: the cosmos's carried arbors.
+    #[serde(default)]
+    epicyclic: Option<Epicyclic>,
+    /// Optional: the cosmos's pin-and-slot devices.
+    #[serde(default)]
+    devices: Vec<PinDevice>,
+    /// Optional: the Moon phase's differential.
+    #[serde(default)]
+    differentials: Vec<Differential>,
 }
 
 /// Builds [`GearingError`]s for one file.
@@ -278,8 +440,18 @@ impl Gearing {
     /// radius that is not positive and finite or an offset not less than the pin radius, no
     /// pointer whose train runs through it, or such a pointer whose train enters the arbor by
     /// another gear than the pin gear, leaves it by another than the slot gear, or has no chain
-    /// of meshes from its input arbor to the turntable. The message is one line: control
-    /// characters in names are escaped.
+    /// of meshes from its input arbor to the turntable. The cosmos's sections (location
+    /// `epicyclic.FIELD`, `devices[i].FIELD`, `differentials[i].FIELD`, or the gear or mesh):
+    /// an unknown arbor, pointer or gear; a fixed arbor that is the carrier; a listed arbor
+    /// twice, or not turned from the fixed arbor by a chain of meshes; a mesh joining an arbor
+    /// of the epicyclic system to one outside it; a pointer entering the system elsewhere than
+    /// at the fixed arbor; a device on a pointer not run in the carrier's frame, or a second
+    /// device on one pointer, or a pin gear (slot gear) where its kind does not drive (go on
+    /// from) it, or a pin radius not below the offset of a follower (an offset not below the
+    /// pin radius of a slot gear); a negative margin; a design radius beside a measured one or
+    /// without `sizing: Pitch`; gears of one group of meshed gears sized by two rules; a
+    /// differential whose rates no chain gives. The message is one line: control characters in
+    /// names are escaped.
     pub fn from_ron(file_name: &str, text: &str) -> Result<Gearing, GearingError> {
         let errors = Errors { file: file_name };
         let raw: RawGearing = input_file::parse_ron(&ron::Options::default(), text, &RON_FILE)
@@ -290,10 +462,14 @@ impl Gearing {
             meshes: raw.meshes,
             pointers: raw.pointers,
             pin_and_slot: raw.pin_and_slot,
+            epicyclic: raw.epicyclic,
+            devices: raw.devices,
+            differentials: raw.differentials,
             components: Vec::new(),
         };
         gearing.validate(&errors)?;
         gearing.validate_pin_and_slot(&errors)?;
+        gearing.validate_cosmos(&errors)?;
         gearing.components = gearing.find_components(&errors)?;
         Ok(gearing)
     }
@@ -345,6 +521,7 @@ impl Gearing {
                     ),
                 ));
             }
+            Self::check_design_radius(gear).map_err(|rule| errors.at(&at, rule))?;
         }
 
         // Arbors: each gear on exactly one.
@@ -463,6 +640,31 @@ impl Gearing {
                 current = arbor_of[mesh.driven.as_str()];
                 previous = Some(label);
             }
+        }
+        Ok(())
+    }
+
+    /// The rules of a gear's `design_radius`: a positive finite size, never beside a measured
+    /// radius, and a pitch radius (so only with [`Sizing::Pitch`]).
+    fn check_design_radius(gear: &GearData) -> Result<(), String> {
+        let Some(d) = gear.design_radius else {
+            return Ok(());
+        };
+        if !(d.is_finite() && d > 0.0 && d <= MAX_SIZE_MM) {
+            return Err(format!(
+                "design_radius must be above 0 and at most {} mm, got {}",
+                fmt_number(MAX_SIZE_MM),
+                fmt_number(d)
+            ));
+        }
+        if gear.measured_radius.is_some() {
+            return Err(
+                "has both measured_radius and design_radius: a radius is measured or designed, give one"
+                    .into(),
+            );
+        }
+        if gear.sizing != Sizing::Pitch {
+            return Err("design_radius is a pitch radius: the gear needs `sizing: Pitch`".into());
         }
         Ok(())
     }
@@ -634,6 +836,231 @@ impl Gearing {
         Ok(())
     }
 
+    /// The rules of the cosmos's sections (after [`Gearing::validate`]): the epicyclic system,
+    /// the pin-and-slot devices, the differentials, and each mesh's stated margin.
+    fn validate_cosmos(&self, errors: &Errors<'_>) -> Result<(), GearingError> {
+        for m in &self.meshes {
+            if let Some(margin) = m.margin
+                && !(margin.is_finite() && (0.0..=MAX_SIZE_MM).contains(&margin))
+            {
+                return Err(errors.at(
+                    format_args!("mesh {}", m.label),
+                    format_args!(
+                        "margin must be at least 0 and at most {} mm, got {}",
+                        fmt_number(MAX_SIZE_MM),
+                        fmt_number(margin)
+                    ),
+                ));
+            }
+        }
+        self.validate_epicyclic(errors)?;
+        for (i, d) in self.devices.iter().enumerate() {
+            self.validate_device(d)
+                .map_err(|(field, rule)| errors.at(format_args!("devices[{i}].{field}"), rule))?;
+        }
+        let mut names = BTreeSet::new();
+        for (i, d) in self.differentials.iter().enumerate() {
+            let at = |field: &str| format!("differentials[{i}].{field}");
+            if d.name.trim().is_empty() || !names.insert(d.name.as_str()) {
+                return Err(errors.at(at("name"), "must be a name not empty and not used twice"));
+            }
+            for (field, arbor) in [("input", &d.input), ("plus", &d.plus), ("minus", &d.minus)] {
+                if self.arbor(arbor).is_none() {
+                    return Err(errors.at(at(field), format_args!("unknown arbor {arbor}")));
+                }
+            }
+            for (field, teeth) in [
+                ("driver_teeth", d.driver_teeth),
+                ("driven_teeth", d.driven_teeth),
+            ] {
+                if !(3..=MAX_TEETH).contains(&teeth) {
+                    return Err(errors.at(
+                        at(field),
+                        format_args!("must be at least 3 and at most {MAX_TEETH}, got {teeth}"),
+                    ));
+                }
+            }
+            if self.differential_rate(&d.name).is_none() {
+                return Err(errors.at(
+                    at("plus"),
+                    format_args!(
+                        "no chain of meshes gives the rates of {} and {} from {}",
+                        d.plus, d.minus, d.input
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The rules of the `epicyclic` section: known and distinct arbors, every mesh within the
+    /// system or outside it, every listed arbor turned from the fixed one, every pointer into
+    /// the system entering by the fixed arbor.
+    fn validate_epicyclic(&self, errors: &Errors<'_>) -> Result<(), GearingError> {
+        let Some(e) = &self.epicyclic else {
+            return Ok(());
+        };
+        let at = |field: &str| format!("epicyclic.{field}");
+        for (field, arbor) in [("carrier", &e.carrier), ("fixed", &e.fixed)] {
+            if self.arbor(arbor).is_none() {
+                return Err(errors.at(at(field), format_args!("unknown arbor {arbor}")));
+            }
+        }
+        if e.carrier == e.fixed {
+            return Err(errors.at(
+                at("fixed"),
+                "must differ from the carrier: the fixed gears stay still while the carrier turns",
+            ));
+        }
+        let mut seen = BTreeSet::new();
+        for a in &e.arbors {
+            if self.arbor(a).is_none() {
+                return Err(errors.at(at("arbors"), format_args!("unknown arbor {a}")));
+            }
+            if a == &e.carrier || a == &e.fixed || !seen.insert(a.as_str()) {
+                return Err(errors.at(
+                    at("arbors"),
+                    format_args!("arbor {a} is listed twice, or is the carrier or the fixed arbor"),
+                ));
+            }
+            if self.mesh_path(&e.fixed, a).is_none() {
+                return Err(errors.at(
+                    at("arbors"),
+                    format_args!(
+                        "no chain of meshes turns arbor {a} from the fixed arbor {}",
+                        e.fixed
+                    ),
+                ));
+            }
+        }
+        for m in &self.meshes {
+            let (a1, a2) = (self.arbor_of(&m.driver), self.arbor_of(&m.driven));
+            let (i1, i2) = (
+                a1.is_some_and(|a| self.in_epicyclic(a)),
+                a2.is_some_and(|a| self.in_epicyclic(a)),
+            );
+            if i1 != i2 {
+                return Err(errors.at(
+                    format_args!("mesh {}", m.label),
+                    "joins an arbor of the epicyclic system to one outside it: a mesh runs in one frame (list both arbors in epicyclic.arbors, or neither)",
+                ));
+            }
+        }
+        for p in &self.pointers {
+            if p.input != e.fixed && self.in_epicyclic(&p.input) {
+                return Err(errors.at(
+                    format_args!("pointer {}", p.name),
+                    format_args!(
+                        "its input {} is a carried arbor: a train in the carrier's frame starts at the fixed arbor {}",
+                        p.input, e.fixed
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The rules of one pin-and-slot device, as (field, rule) when broken: a pointer run in the
+    /// carrier's frame, one device per pointer, the pin gear where its kind needs it, and a pin
+    /// radius on the right side of the offset.
+    fn validate_device(&self, d: &PinDevice) -> Result<(), (&'static str, String)> {
+        let Some(p) = self.pointer(&d.pointer) else {
+            return Err(("pointer", format!("unknown pointer {}", d.pointer)));
+        };
+        if !self.is_epicyclic_pointer(&p.name) {
+            return Err((
+                "pointer",
+                format!(
+                    "pointer {} is not run in a carrier's frame (its input is not an epicyclic section's fixed arbor)",
+                    p.name
+                ),
+            ));
+        }
+        if self
+            .devices
+            .iter()
+            .filter(|x| x.pointer == d.pointer)
+            .count()
+            > 1
+        {
+            return Err(("pointer", format!("pointer {} has two devices", p.name)));
+        }
+        for (field, v) in [("axis_offset", d.axis_offset), ("pin_radius", d.pin_radius)] {
+            if !(v.is_finite() && v > 0.0 && v <= MAX_SIZE_MM) {
+                return Err((
+                    field,
+                    format!(
+                        "must be above 0 and at most {} mm, got {}",
+                        fmt_number(MAX_SIZE_MM),
+                        fmt_number(v)
+                    ),
+                ));
+            }
+        }
+        let driven = |i: usize| self.mesh(&p.meshes[i]).map(|m| m.driven.as_str());
+        let driver = |i: usize| {
+            p.meshes
+                .get(i)
+                .and_then(|l| self.mesh(l))
+                .map(|m| m.driver.as_str())
+        };
+        match d.kind {
+            DeviceKind::Follower => {
+                if d.slot_gear.is_some() {
+                    return Err(("slot_gear", "a follower has no slot gear".into()));
+                }
+                if driven(p.meshes.len() - 1) != Some(d.pin_gear.as_str()) {
+                    return Err((
+                        "pin_gear",
+                        format!(
+                            "{} is not the gear pointer {}'s last mesh drives (the follower is the pointer)",
+                            d.pin_gear, p.name
+                        ),
+                    ));
+                }
+                if d.pin_radius >= d.axis_offset {
+                    return Err((
+                        "pin_radius",
+                        format!(
+                            "must be less than the axis offset {} mm (the pin stays off the follower's axis), got {}",
+                            fmt_number(d.axis_offset),
+                            fmt_number(d.pin_radius)
+                        ),
+                    ));
+                }
+            }
+            DeviceKind::SlotGear => {
+                let Some(slot) = &d.slot_gear else {
+                    return Err(("slot_gear", "a slot-gear device names its slot gear".into()));
+                };
+                let stage = (0..p.meshes.len()).find(|&i| driven(i) == Some(d.pin_gear.as_str()));
+                let ok = stage.is_some_and(|i| driver(i + 1) == Some(slot.as_str()))
+                    && slot != &d.pin_gear
+                    && self.arbor_of(slot) == self.arbor_of(&d.pin_gear);
+                if !ok {
+                    return Err((
+                        "slot_gear",
+                        format!(
+                            "pointer {}'s train must drive the pin gear {} and go on from the slot gear {}, on the pin gear's arbor",
+                            p.name, d.pin_gear, slot
+                        ),
+                    ));
+                }
+                if d.axis_offset >= d.pin_radius {
+                    return Err((
+                        "axis_offset",
+                        format!(
+                            "must be less than the pin radius {} mm (the pin must stay in the slot), got {}",
+                            fmt_number(d.pin_radius),
+                            fmt_number(d.axis_offset)
+                        ),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// Groups the gears into mesh-connected components and fits one `mu` to each.
     fn find_components(&self, errors: &Errors<'_>) -> Result<Vec<Component>, GearingError> {
         let index: BTreeMap<&str, usize> = self
@@ -671,9 +1098,19 @@ impl Gearing {
         let mut components: Vec<Component> = by_root.into_values().collect();
         for c in &mut components {
             let (mut na, mut nn) = (0.0_f64, 0.0_f64);
+            let first = &self.gears[index[c.gears[0].as_str()]];
             for name in &c.gears {
                 let gear = &self.gears[index[name.as_str()]];
-                if let Some(a) = gear.measured_radius {
+                if gear.sizing != first.sizing {
+                    return Err(errors.at(
+                        format_args!("gear {name}"),
+                        format_args!(
+                            "sizing {:?} differs from gear {}'s {:?} in the same group of meshed gears (one rule sizes a group)",
+                            gear.sizing, first.name, first.sizing
+                        ),
+                    ));
+                }
+                if let Some(a) = gear.measured_radius.or(gear.design_radius) {
                     let n = f64::from(gear.teeth);
                     na += n * a;
                     nn += n * n;
@@ -685,7 +1122,7 @@ impl Gearing {
                     Some(label) => errors.at(
                         format_args!("mesh {label}"),
                         format_args!(
-                            "no gear of its mesh component ({gears}) has a measured radius; it cannot be sized"
+                            "no gear of its mesh component ({gears}) has a measured or design radius; it cannot be sized"
                         ),
                     ),
                     None => errors.at(
@@ -748,6 +1185,124 @@ impl Gearing {
     #[must_use]
     pub fn pin_and_slot(&self) -> Option<&PinAndSlot> {
         self.pin_and_slot.as_ref()
+    }
+
+    /// The epicyclic section, if the file has one (the cosmos files do).
+    #[must_use]
+    pub fn epicyclic(&self) -> Option<&Epicyclic> {
+        self.epicyclic.as_ref()
+    }
+
+    /// The cosmos's pin-and-slot devices, in file order.
+    #[must_use]
+    pub fn devices(&self) -> &[PinDevice] {
+        &self.devices
+    }
+
+    /// The pin-and-slot device of `pointer`, if it has one.
+    #[must_use]
+    pub fn device(&self, pointer: &str) -> Option<&PinDevice> {
+        self.devices.iter().find(|d| d.pointer == pointer)
+    }
+
+    /// The differentials, in file order.
+    #[must_use]
+    pub fn differentials(&self) -> &[Differential] {
+        &self.differentials
+    }
+
+    /// Whether `arbor` belongs to the epicyclic system (its fixed arbor or one it lists).
+    #[must_use]
+    pub fn in_epicyclic(&self, arbor: &str) -> bool {
+        self.epicyclic
+            .as_ref()
+            .is_some_and(|e| e.fixed == arbor || e.arbors.iter().any(|a| a == arbor))
+    }
+
+    /// Whether `pointer`'s train runs in the carrier's frame (its input is the fixed arbor).
+    #[must_use]
+    pub fn is_epicyclic_pointer(&self, pointer: &str) -> bool {
+        match (self.pointer(pointer), &self.epicyclic) {
+            (Some(p), Some(e)) => p.input == e.fixed,
+            _ => false,
+        }
+    }
+
+    /// The signed rate of arbor `to` along the chain of meshes from `from`, both in one frame:
+    /// `(-1)^k` times the chain's ratio, `k` its meshes (each external mesh reverses the sense).
+    fn chain_rate(&self, from: &str, to: &str) -> Option<Rate> {
+        let path = self.mesh_path(from, to)?;
+        let ratio = self.path_ratio(from, to)?;
+        Rate::from_ratio(ratio, path.len() % 2 == 1)
+    }
+
+    /// The rate of `arbor` relative to the carrier, per turn of the carrier, counted in the
+    /// carrier's sense: the fixed arbor's is -1, and each mesh in the carrier's frame multiplies
+    /// by minus its ratio. `None` for an arbor outside the epicyclic system.
+    #[must_use]
+    pub fn relative_rate(&self, arbor: &str) -> Option<Rate> {
+        let e = self.epicyclic.as_ref()?;
+        if !self.in_epicyclic(arbor) {
+            return None;
+        }
+        (-Rate::ONE).checked_mul(self.chain_rate(&e.fixed, arbor)?)
+    }
+
+    /// Signed turns of arbor `to` per turn of arbor `from`, both in the frame of the mechanism
+    /// and counted in `from`'s sense. Outside an epicyclic system: the chain of meshes from
+    /// `from` ([`Gearing::mesh_path`]), each mesh reversing the sense. In one: the carrier's
+    /// rate plus the arbor's rate relative to it ([`Gearing::relative_rate`]) times the
+    /// carrier's. `None` where no chain joins them, or `from` is in the epicyclic system and
+    /// `to` is not `from`.
+    #[must_use]
+    pub fn rate_from(&self, from: &str, to: &str) -> Option<Rate> {
+        if from == to {
+            self.arbor(from)?;
+            return Some(Rate::ONE);
+        }
+        if self.in_epicyclic(from) {
+            return None;
+        }
+        if self.in_epicyclic(to) {
+            let carrier = self.rate_from(from, &self.epicyclic.as_ref()?.carrier)?;
+            let relative = self.relative_rate(to)?.checked_mul(carrier)?;
+            return carrier.checked_add(relative);
+        }
+        self.chain_rate(from, to)
+    }
+
+    /// The arbor `pointer` shows: the one its last mesh drives.
+    #[must_use]
+    pub fn pointer_arbor(&self, pointer: &str) -> Option<&str> {
+        let last = self.pointer(pointer)?.meshes.last()?;
+        self.arbor_of(&self.mesh(last)?.driven)
+    }
+
+    /// The signed rate of `pointer`'s arbor in the frame of the mechanism, per turn of its input
+    /// arbor (of the carrier, for a pointer run in the carrier's frame), in that arbor's sense:
+    /// exact, so each period relation can be checked as its source states it (the Lunar
+    /// pointer 254/19; Freeth 2021's Mars 151/284, the nodes -5/93). `None` for an unknown
+    /// pointer or a rate that does not fit in `i128`.
+    #[must_use]
+    pub fn pointer_rate(&self, pointer: &str) -> Option<Rate> {
+        let p = self.pointer(pointer)?;
+        let from = match &self.epicyclic {
+            Some(e) if p.input == e.fixed => e.carrier.as_str(),
+            _ => p.input.as_str(),
+        };
+        self.rate_from(from, self.pointer_arbor(pointer)?)
+    }
+
+    /// The signed rate of differential `name`'s output per turn of its input arbor: `plus`'s
+    /// rate less `minus`'s, times `driver_teeth / driven_teeth` (the Moon phase: 254/19 - 1 =
+    /// 235/19 turns a year).
+    #[must_use]
+    pub fn differential_rate(&self, name: &str) -> Option<Rate> {
+        let d = self.differentials.iter().find(|d| d.name == name)?;
+        let plus = self.rate_from(&d.input, &d.plus)?;
+        let minus = self.rate_from(&d.input, &d.minus)?;
+        let gears = Rate::new(d.driver_teeth.into(), d.driven_teeth.into())?;
+        plus.checked_sub(minus)?.checked_mul(gears)
     }
 
     /// The chain of meshes (labels, driver to driven) that turns arbor `to` from arbor `from`:
@@ -889,9 +1444,22 @@ impl Gearing {
         Some(DAYS_PER_TURN / (360.0 * ratio.to_f64()))
     }
 
-    /// The tip (outer) radius `R` of `gear` in mm (see [`Gearing::tip_radii`]).
+    /// The tip (outer) radius `R` of `gear` in mm (see [`Gearing::tip_radii`]), for a gear sized
+    /// by the paper's rule ([`Sizing::Fitted`]); `None` for a gear sized from its pitch radius,
+    /// whose tip radius depends on the tooth height ([`Gearing::tip_radius_at`]).
     #[must_use]
     pub fn tip_radius(&self, gear: &str) -> Option<f64> {
+        match self.gear(gear)?.sizing {
+            Sizing::Fitted => self.fitted_radius(gear),
+            Sizing::Pitch => None,
+        }
+    }
+
+    /// The radius the sizing rule fits to `gear`, `mu * N` with its group's `mu` (see
+    /// [`Gearing::tip_radii`]): the tip radius under [`Sizing::Fitted`], the pitch radius under
+    /// [`Sizing::Pitch`].
+    #[must_use]
+    pub fn fitted_radius(&self, gear: &str) -> Option<f64> {
         let teeth = self.gear(gear)?.teeth;
         let c = self
             .components
@@ -900,20 +1468,32 @@ impl Gearing {
         Some(c.mu * f64::from(teeth))
     }
 
+    /// The tip radius `R` of `gear` in mm with teeth `h` mm high: the fitted radius itself under
+    /// the paper's rule, the pitch radius plus `h/2` under Freeth & Jones' ([`Sizing`]).
+    #[must_use]
+    pub fn tip_radius_at(&self, gear: &str, h: f64) -> Option<f64> {
+        let fitted = self.fitted_radius(gear)?;
+        Some(match self.gear(gear)?.sizing {
+            Sizing::Fitted => fitted,
+            Sizing::Pitch => fitted + 0.5 * h,
+        })
+    }
+
     /// `gear` with ideal triangular teeth of height `h` mm, sized as every experiment sizes it
-    /// (tip radius [`Gearing::tip_radius`], root radius `R - h`): the one place a gearing's gear
-    /// becomes a [`geometry::Gear`]. None for a gear the gearing does not have.
+    /// (tip radius [`Gearing::tip_radius_at`], root radius `R - h`): the one place a gearing's
+    /// gear becomes a [`geometry::Gear`]. None for a gear the gearing does not have.
     pub fn ideal_gear(
         &self,
         gear: &str,
         h: f64,
     ) -> Option<Result<geometry::Gear, geometry::GeometryError>> {
         let teeth = self.gear(gear)?.teeth as usize;
-        let radius = self.tip_radius(gear)?;
+        let radius = self.tip_radius_at(gear, h)?;
         Some(geometry::Gear::ideal(teeth, radius, radius - h))
     }
 
-    /// Tip (outer) radius `R` of every gear in mm, by name.
+    /// Tip (outer) radius `R` of every gear sized by the paper's rule in mm, by name (a gear sized
+    /// from its pitch radius has its tip radius at a tooth height: [`Gearing::tip_radius_at`]).
     ///
     /// The paper keeps `R1/R2 = N1/N2` exactly in every mesh, with `R` as close as possible to
     /// Freeth's measured radii, one radius per gear (b2 has one radius for both of its meshes)
@@ -934,7 +1514,7 @@ impl Gearing {
 
     /// Dimensions of mesh `label` with tooth height `tooth_height_mm` (the paper uses 1.1 mm)
     /// and clearance `G` given as a percentage of the tooth height (the paper's working value
-    /// is 40): tip radii from [`Gearing::tip_radii`], root radii `r = R - h`, centre distance
+    /// is 40): tip radii from [`Gearing::tip_radius_at`], root radii `r = R - h`, centre distance
     /// `D = R1 + R2 - h + h * G / 100`. `None` for an unknown mesh. The parameters are not
     /// checked: `h` should be positive and smaller than both tip radii.
     #[must_use]
@@ -946,8 +1526,8 @@ impl Gearing {
     ) -> Option<MeshGeometry> {
         let mesh = self.mesh(label)?;
         let h = tooth_height_mm;
-        let r1 = self.tip_radius(&mesh.driver)?;
-        let r2 = self.tip_radius(&mesh.driven)?;
+        let r1 = self.tip_radius_at(&mesh.driver, h)?;
+        let r2 = self.tip_radius_at(&mesh.driven, h)?;
         Some(MeshGeometry {
             label: mesh.label.clone(),
             driver_teeth: self.gear(&mesh.driver)?.teeth,
