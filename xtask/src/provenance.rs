@@ -47,6 +47,10 @@ pub fn stamp(
             "readings": readings(ctx),
             "config": config,
             "inputs": inputs(ctx),
+            // Relative input paths were read from here (`report --bundle` reads them again).
+            "folder": std::env::current_dir()
+                .map(|d| d.display().to_string())
+                .unwrap_or_default(),
             "version": {
                 "crate": env!("CARGO_PKG_VERSION"),
                 "git": git_describe(),

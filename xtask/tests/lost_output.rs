@@ -206,6 +206,7 @@ fn previous_results_that_cannot_be_removed_are_refused_before_computing() {
     fs::create_dir_all(&old).unwrap();
     let file = old.join("table.md");
     fs::write(&file, "previous fig2 results").unwrap();
+    fs::write(old.join("tables.json"), "{}").unwrap();
     // An immutable file: not even root can remove it (where chattr works here).
     let chattr = |flag: &str| {
         std::process::Command::new("chattr")
@@ -548,4 +549,200 @@ fn results_are_written_when_stdout_cannot_take_them() {
         );
         assert!(err.contains("results: "), "{err}");
     }
+}
+
+/// The names of the entries of the gzipped tar archive `file`.
+fn archive_names(file: &std::path::Path) -> Vec<String> {
+    let o = std::process::Command::new("tar")
+        .arg("tzf")
+        .arg(file)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    support::stdout(&o).lines().map(str::to_owned).collect()
+}
+
+/// Runs `report` with `args` and asserts it is refused at once (exit 2, one line holding each of
+/// `words`) and wrote no page.
+fn report_refused(out: &std::path::Path, args: &[&str], words: &[&str]) {
+    let _ = fs::remove_file(out.join("index.html"));
+    let mut all = vec!["report", "--out", out.to_str().unwrap()];
+    all.extend(args);
+    let start = Instant::now();
+    let o = xtask(&all);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{all:?}: {err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{all:?}: {err}");
+    for w in words {
+        assert!(err.contains(w), "{all:?}: missing {w:?}: {err}");
+    }
+    assert!(
+        !out.join("index.html").exists(),
+        "{all:?}: the page was written before the refusal"
+    );
+    assert!(
+        start.elapsed().as_secs() < 20,
+        "{all:?}: took {:?}",
+        start.elapsed()
+    );
+}
+
+/// `report --bundle B/fig3/x.tar.gz` archived its own growing temporary file for ever (1.9 GB
+/// in a minute), and bundles then archived the leftovers of killed ones. A bundle inside a
+/// folder it archives is refused before anything is written, and a bundle holds no hidden
+/// temporary file of a run or a bundle under way.
+#[test]
+fn a_bundle_never_archives_itself_or_a_temporary_file() {
+    let s = Scratch::new("bundle-itself");
+    let out = s.0.join("B");
+    let o = xtask(&["run", "fig3", "-q", "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let inside = out.join("fig3/x.tar.gz");
+    report_refused(
+        &out,
+        &["--bundle", inside.to_str().unwrap()],
+        &["--bundle: ", "inside", "it would archive itself"],
+    );
+    assert!(!inside.exists());
+    // Through another name for the same folder: still inside.
+    std::os::unix::fs::symlink(out.join("fig3"), s.0.join("alias")).unwrap();
+    let aliased = s.0.join("alias/x.tar.gz");
+    report_refused(
+        &out,
+        &["--bundle", aliased.to_str().unwrap()],
+        &["it would archive itself"],
+    );
+    // A killed bundle's leftover and a run's temporary folder in the results: not archived.
+    let dead = dead_pid();
+    fs::write(
+        out.join(format!("fig3/.x.tar.gz.tmp-{dead}")),
+        vec![0u8; 4096],
+    )
+    .unwrap();
+    fs::create_dir_all(out.join(format!("fig3/.fig3.tmp-{dead}-0-1"))).unwrap();
+    let bundle = s.0.join("b.tar.gz");
+    let o = xtask(&[
+        "report",
+        "-q",
+        "--out",
+        out.to_str().unwrap(),
+        "--bundle",
+        bundle.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let names = archive_names(&bundle);
+    assert!(
+        names.iter().any(|n| n == "results/fig3/tables.json"),
+        "{names:?}"
+    );
+    assert!(
+        !names
+            .iter()
+            .any(|n| n.split('/').any(|part| part.starts_with('.'))),
+        "hidden files archived: {names:?}"
+    );
+}
+
+/// `--bundle` onto an existing file replaced it without a word: a results file, a device node
+/// (`/dev/null` as root), a folder or a missing folder failed only after the page was written.
+/// What a command writes replaces only a file of its own kind, and everything is checked before
+/// anything is written. New instances: a link in a results folder to `/dev/zero` (which the
+/// archive would read for ever), a user's folder named as an experiment (which a run would
+/// delete), a user's file named as the page or the summary.
+#[test]
+fn a_write_never_replaces_what_it_did_not_write() {
+    let s = Scratch::new("not-mine");
+    let out = s.0.join("B");
+    let o = xtask(&["run", "fig3", "-q", "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let table = out.join("fig3/table.md");
+    let before = fs::read(&table).unwrap();
+    let notes = s.0.join("notes.txt");
+    fs::write(&notes, "my notes").unwrap();
+    fs::create_dir_all(s.0.join("adir")).unwrap();
+    for (target, words) in [
+        (table.clone(), &["not a bundle the toolkit wrote"][..]),
+        (notes.clone(), &["not a bundle the toolkit wrote"]),
+        (s.0.join("adir"), &["is a directory"]),
+        (s.0.join("nodir/x.tgz"), &["nodir", "No such file"]),
+    ] {
+        report_refused(&out, &["--bundle", target.to_str().unwrap()], words);
+    }
+    assert_eq!(fs::read(&table).unwrap(), before);
+    assert_eq!(fs::read_to_string(&notes).unwrap(), "my notes");
+    let node = s.0.join("node");
+    let made = std::process::Command::new("mknod")
+        .arg(&node)
+        .args(["c", "1", "7"])
+        .status()
+        .is_ok_and(|st| st.success());
+    if made {
+        report_refused(
+            &out,
+            &["--bundle", node.to_str().unwrap()],
+            &["is a device"],
+        );
+        use std::os::unix::fs::FileTypeExt;
+        assert!(
+            fs::symlink_metadata(&node)
+                .unwrap()
+                .file_type()
+                .is_char_device()
+        );
+    } else {
+        eprintln!("mknod not permitted here: the device case is skipped");
+    }
+    // A bundle replaces an earlier bundle.
+    let bundle = s.0.join("b.tgz");
+    for _ in 0..2 {
+        let o = xtask(&[
+            "report",
+            "-q",
+            "--out",
+            out.to_str().unwrap(),
+            "--bundle",
+            bundle.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    // A link to /dev/zero in a results folder: refused at once, not read for ever.
+    std::os::unix::fs::symlink("/dev/zero", out.join("fig3/zero.csv")).unwrap();
+    report_refused(
+        &out,
+        &["--bundle", bundle.to_str().unwrap()],
+        &["zero.csv is not a file or a folder"],
+    );
+    fs::remove_file(out.join("fig3/zero.csv")).unwrap();
+    // A user's file where the page goes.
+    fs::write(out.join("index.html"), "my page").unwrap();
+    let o = xtask(&["report", "--out", out.to_str().unwrap()]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("index.html: exists and is not the report page"),
+        "{err}"
+    );
+    assert_eq!(
+        fs::read_to_string(out.join("index.html")).unwrap(),
+        "my page"
+    );
+    fs::remove_file(out.join("index.html")).unwrap();
+    // A user's folder named as an experiment, and a user's file named as the summary.
+    fs::create_dir_all(out.join("pair")).unwrap();
+    fs::write(out.join("pair/my-pair.ron"), "(mine)").unwrap();
+    refused_before_computing(
+        &["run", "pair", "--out", out.to_str().unwrap()],
+        &["pair: holds files that are not results"],
+    );
+    assert!(out.join("pair/my-pair.ron").exists());
+    fs::remove_dir_all(out.join("pair")).unwrap();
+    fs::write(out.join("summary.md"), "my summary").unwrap();
+    refused_before_computing(
+        &["run", "all", "--out", out.to_str().unwrap()],
+        &["summary.md: exists and is not the summary"],
+    );
+    assert_eq!(
+        fs::read_to_string(out.join("summary.md")).unwrap(),
+        "my summary"
+    );
 }

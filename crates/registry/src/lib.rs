@@ -51,8 +51,9 @@ pub use engine::{TrialEngine, TrialMode};
 pub use error::{DuplicateId, RunError};
 pub use lock::{lock_path, lock_writing, release_locks};
 pub use output::{
-    Agreement, MAX_ANGLE_DEG, MAX_DATA_ROWS, OutputFile, Report, abandon_writes, stopping, tidy,
-    write_file_through, write_results,
+    Agreement, FileKind, MAX_ANGLE_DEG, MAX_DATA_ROWS, OutputFile, RECOGNISED_BYTES, Report,
+    WriteError, abandon_writes, check_replace, read_one_version, results_replaceable, stopping,
+    tidy, write_file, write_results,
 };
 pub use progress::{BatchProgress, Progress};
 pub use table::{Table, fmt_f64, fmt_number};

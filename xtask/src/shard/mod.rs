@@ -48,7 +48,7 @@ pub(crate) fn run_shard(
     })?;
     registry::tidy(&dir)?;
     let path = dir.join(partial::file_name(shard));
-    write_atomically(&path, &text)?;
+    write_atomically(&path, &partial::KIND, text.as_bytes())?;
     let (mut here, mut whole) = (0, 0);
     for b in partial.batches.values() {
         if b.whole {

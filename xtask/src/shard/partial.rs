@@ -175,6 +175,12 @@ impl Partial {
     }
 }
 
+/// A partial file, as [`Partial::to_json`] writes it: a shard replaces only another.
+pub(crate) const KIND: registry::FileKind = registry::FileKind {
+    what: "a partial file",
+    recognise: |head| head.starts_with(b"{\"format\":\"cargo-xtask-partial/"),
+};
+
 /// `partial-K-of-N.json`.
 pub fn file_name(shard: Shard) -> String {
     format!("partial-{}-of-{}.json", shard.index(), shard.count())
