@@ -67,7 +67,7 @@ pub(crate) fn run_every(
             Err(err) => Err(as_typed(err, p.e.id, run)),
         };
         if let Err(err) = &result {
-            eprintln!("{}: {err}", p.e.id);
+            crate::progress::say(&format!("{}: {err}", p.e.id));
         }
         rows.push(summary::Row::new(p.e.id, seconds, result.as_ref()));
     }

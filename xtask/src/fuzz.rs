@@ -57,7 +57,7 @@ pub fn command(opts: &FuzzArgs) -> Result<(), Failure> {
         ),
     };
     if !opts.quiet {
-        eprintln!("{note}");
+        crate::progress::say(&note);
     }
     let summary = run(opts.budget, opts.seed);
     crate::shared::print(&summary.table().render())?;
@@ -73,13 +73,13 @@ pub fn command(opts: &FuzzArgs) -> Result<(), Failure> {
             .join(format!("{}-{}-{i}.ron", f.target, f.kind));
         std::fs::write(&path, &f.input)
             .map_err(|e| Failure::Internal(format!("cannot write {}: {e}", path.display())))?;
-        eprintln!(
+        crate::progress::say(&format!(
             "fuzz: {} {}: {} ({})",
             f.target,
             f.kind,
             f.message,
             path.display()
-        );
+        ));
     }
     Err(Failure::Internal(format!(
         "fuzz: {} finding(s); inputs in {}",

@@ -128,6 +128,9 @@ pub fn init(verbosity: Verbosity) {
         let bars = IndicatifLayer::new().with_max_progress_bars(4, None);
         let logs = fmt::layer()
             .with_writer(bars.get_stderr_writer())
+            // A log line that cannot be written is not printed again with `eprintln!`, which
+            // panics when stderr is full.
+            .log_internal_errors(false)
             .with_ansi(colour)
             .with_target(false)
             .with_filter(filter);
@@ -142,7 +145,8 @@ pub fn init(verbosity: Verbosity) {
     } else {
         let _ = fmt()
             .with_env_filter(filter)
-            .with_writer(std::io::stderr)
+            .with_writer(|| Stderr)
+            .log_internal_errors(false)
             .with_ansi(colour)
             .with_target(false)
             .try_init();
@@ -159,6 +163,23 @@ pub fn say(text: &str) {
     let mut err = std::io::stderr().lock();
     if writeln!(err, "{text}").and_then(|()| err.flush()).is_err() {
         STDERR_FAILED.store(true, Ordering::Relaxed);
+    }
+}
+
+/// Stderr for the logs: a failed write is recorded as [`say`] records it.
+struct Stderr;
+
+impl std::io::Write for Stderr {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        std::io::stderr().write(buf).inspect_err(|_| {
+            STDERR_FAILED.store(true, Ordering::Relaxed);
+        })
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        std::io::stderr().flush().inspect_err(|_| {
+            STDERR_FAILED.store(true, Ordering::Relaxed);
+        })
     }
 }
 

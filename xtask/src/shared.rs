@@ -72,14 +72,14 @@ impl Drop for LocksEnd {
 /// ([`registry::abandon_writes`]), says so in one line and exits with `status`.
 fn stop(status: i32) -> ! {
     let cleaned = registry::abandon_writes();
-    eprintln!(
+    crate::progress::say(&format!(
         "stopped by a signal{}",
         if cleaned == 0 {
             String::new()
         } else {
             format!("; {cleaned} unfinished results removed or put back")
         }
-    );
+    ));
     std::process::exit(status);
 }
 

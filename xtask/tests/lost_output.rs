@@ -890,3 +890,50 @@ fn a_bundle_being_written_is_never_joined() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(hidden_in(&s.0).is_empty(), "{:?}", hidden_in(&s.0));
 }
+
+/// Standard error on a full device (`2>/dev/full`, or a full file system): the run panicked
+/// ("failed printing to stderr", exit 101) and left its `.fig2.lock` behind. A write to stderr
+/// that fails ends the command with status 1 once its work is done (results written, nothing
+/// left behind), never a panic. New instances: the debug logs of `-v`, the report's note, a
+/// refusal's own line (its exit status stays 2), and stdout and stderr full at once.
+#[test]
+fn stderr_that_cannot_be_written_ends_in_status_1_without_a_panic_or_a_lock() {
+    let Ok(full) = fs::OpenOptions::new().write(true).open("/dev/full") else {
+        eprintln!("skipped: no /dev/full");
+        return;
+    };
+    let s = Scratch::new("stderr-full");
+    let out = s.0.join("F");
+    let o_ = out.to_str().unwrap();
+    let run = |args: &[&str], stdout_full: bool| {
+        let mut c = std::process::Command::new(env!("CARGO_BIN_EXE_xtask"));
+        c.args(args)
+            .env_remove("RUST_LOG")
+            .stderr(full.try_clone().unwrap());
+        if stdout_full {
+            c.stdout(full.try_clone().unwrap());
+        } else {
+            c.stdout(std::process::Stdio::null());
+        }
+        c.status().unwrap().code()
+    };
+    for (args, stdout_full, status) in [
+        (&["run", "fig2", "--out", o_][..], false, Some(1)),
+        (&["run", "fig3", "-v", "--out", o_], false, Some(1)),
+        (&["report", "--out", o_], false, Some(1)),
+        (&["run", "fig3", "--out", o_], true, Some(1)),
+        (&["run", "nosuch", "--out", o_], false, Some(2)),
+    ] {
+        assert_eq!(run(args, stdout_full), status, "{args:?}");
+        assert!(
+            hidden_in(&out).is_empty(),
+            "{args:?}: left {:?}",
+            hidden_in(&out)
+        );
+    }
+    assert!(
+        out.join("fig2/tables.json").is_file(),
+        "the results were lost"
+    );
+    assert!(out.join("index.html").is_file(), "the page was lost");
+}
