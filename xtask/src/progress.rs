@@ -156,11 +156,14 @@ pub fn init(verbosity: Verbosity) {
 /// Set when a line could not be written to stderr: the command then ends with exit status 1.
 static STDERR_FAILED: AtomicBool = AtomicBool::new(false);
 
-/// Writes `text` and a line end to stderr. A failure (stderr closed, or its disk full) is
-/// recorded for the exit status ([`stderr_failed`]), never a panic as `eprintln!` would make it.
+/// Writes `text` and a line end to stderr, its control characters escaped
+/// ([`registry::terminal_text`]: a path or a name from a user's file holding an escape sequence
+/// cannot change the terminal). A failure (stderr closed, or its disk full) is recorded for the
+/// exit status ([`stderr_failed`]), never a panic as `eprintln!` would make it.
 pub fn say(text: &str) {
     use std::io::Write as _;
     let mut err = std::io::stderr().lock();
+    let text = registry::terminal_text(text);
     if writeln!(err, "{text}").and_then(|()| err.flush()).is_err() {
         STDERR_FAILED.store(true, Ordering::Relaxed);
     }

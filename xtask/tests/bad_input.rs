@@ -900,3 +900,164 @@ fn a_builtin_gearing_name_that_is_also_a_file_is_refused() {
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert!(err.starts_with("./freeth2021: line 1"), "{err}");
 }
+
+/// A mesh label `b2-c1\nX`, a gear name holding a NUL byte or an escape sequence
+/// (`b2\u{1b}[31mRED`) was written raw to the terminal, `table.md` and the CSV files; a label
+/// `m3/e3` or `40/m3` ran, but its cells could not be replayed. Names with a control character,
+/// and mesh labels with a `/`, are refused when the gearing is read, naming the item. New
+/// instances: an arbor name with a tab, a pointer name with an escape.
+#[test]
+fn names_that_would_break_a_line_a_terminal_or_a_cell_are_refused() {
+    let run = "run table3 --trials 2 --gearing {file} --out {out}";
+    let control = "must not contain a control character";
+    let cases = vec![
+        case(
+            "a line break in a mesh label",
+            gearing("(label: \"b2-c1\"", "(label: \"b2-c1\\nX\""),
+            run,
+            &["{file}: meshes[", control],
+        ),
+        case(
+            "a NUL in a gear name",
+            gearing("(name: \"b2\"", "(name: \"b2\\u{0}\""),
+            run,
+            &["{file}: gears[", control],
+        ),
+        case(
+            "an escape in a gear name",
+            gearing("(name: \"b2\"", "(name: \"b2\\u{1b}[31mRED\""),
+            run,
+            &["{file}: gears[", control, "\\u{1b}[31mRED"],
+        ),
+        case(
+            "a slash in a mesh label",
+            gearing("(label: \"m3-e3\"", "(label: \"m3/e3\""),
+            run,
+            &[
+                "label `m3/e3` must not contain `/`",
+                "could not be replayed",
+            ],
+        ),
+        case(
+            "a clearance-like slash in a mesh label",
+            gearing("(label: \"m3-e3\"", "(label: \"40/m3\""),
+            run,
+            &["label `40/m3` must not contain `/`"],
+        ),
+        case(
+            "a tab in an arbor name",
+            gearing("(name: \"b\"", "(name: \"b\\t\""),
+            run,
+            &["{file}: arbors[", control],
+        ),
+        case(
+            "an escape in a pointer name",
+            gearing("(name: \"Lunar\"", "(name: \"Lunar\\u{1b}]0;x\\u{7}\""),
+            run,
+            &["{file}: pointers[", control],
+        ),
+    ];
+    let bad = failures("names", cases);
+    for b in &bad {
+        assert!(!b.contains('\u{1b}'), "raw escape on stderr: {b:?}");
+    }
+    assert_none(bad);
+}
+
+/// The fields of a CSV file as a CSV reader reads them, row by row.
+fn csv_rows(path: &std::path::Path) -> Vec<Vec<String>> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut rows = Vec::new();
+    let (mut row, mut field, mut quoted, mut chars) =
+        (Vec::new(), String::new(), false, text.chars().peekable());
+    while let Some(c) = chars.next() {
+        match (c, quoted) {
+            ('"', true) if chars.peek() == Some(&'"') => {
+                chars.next();
+                field.push('"');
+            }
+            ('"', _) => quoted = !quoted,
+            (',', false) => row.push(std::mem::take(&mut field)),
+            ('\n', false) => {
+                row.push(std::mem::take(&mut field));
+                rows.push(std::mem::take(&mut row));
+            }
+            (c, _) => field.push(c),
+        }
+    }
+    rows
+}
+
+/// A mesh label `b2,c1`: `table3-data.csv` had 17 fields under its 16-column header, and
+/// `table4-data.csv` 7 bad rows. Every data file is written by one CSV writer: each row has its
+/// header's fields and the label reads back whole. New instance: `failure-runs.csv`, whose
+/// `mesh` column names where a run jammed; and a path with an escape sequence, shown escaped on
+/// the terminal.
+#[test]
+fn every_data_file_quotes_its_fields() {
+    let s = support::Scratch::new("csv-quoting");
+    let g = s.0.join("gearing.ron");
+    let text = freeth()
+        .replace("\"b2-c1\"", "\"b2,c1\"")
+        .replace("\"d2-e2\"", "\"d2,e2\"");
+    std::fs::write(&g, text).unwrap();
+    let out = s.0.join("out");
+    let (g, o_) = (g.to_str().unwrap(), out.to_str().unwrap());
+    for (run, file, label) in [
+        (
+            &["table3", "--trials", "2"][..],
+            "table3/table3-data.csv",
+            "b2,c1",
+        ),
+        (
+            &["table4", "--trials", "2"],
+            "table4/table4-data.csv",
+            "b2,c1",
+        ),
+        (
+            &[
+                "failure",
+                "--set",
+                "cases=D",
+                "--trials",
+                "2",
+                "--set",
+                "days=2000",
+            ],
+            "failure/failure-runs.csv",
+            "d2,e2",
+        ),
+    ] {
+        let o = support::run_args(run, &["-q", "--gearing", g, "--out", o_]);
+        assert!(o.status.success(), "{run:?}: {}", stderr(&o));
+        let rows = csv_rows(&out.join(file));
+        let width = rows[0].len();
+        for (i, r) in rows.iter().enumerate() {
+            assert_eq!(
+                r.len(),
+                width,
+                "{file}: row {i} has {} fields: {r:?}",
+                r.len()
+            );
+        }
+        assert!(
+            rows.iter().any(|r| r.iter().any(|f| f == label)),
+            "{file}: no field {label:?}"
+        );
+    }
+    // A path holding an escape sequence: shown escaped on stderr.
+    let o = support::xtask(&[
+        "run",
+        "table1",
+        "--gearing",
+        "no\u{1b}[31mRED.ron",
+        "--out",
+        o_,
+    ]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        !err.contains('\u{1b}') && err.contains("no\\u{1b}[31mRED.ron"),
+        "{err:?}"
+    );
+}

@@ -32,6 +32,7 @@ use std::collections::BTreeMap;
 pub use inventory;
 
 mod context;
+mod csv_file;
 mod engine;
 mod error;
 mod finite;
@@ -47,6 +48,7 @@ pub use context::{
     MIN_PER_ENGAGEMENT_WHY, MIN_SAMPLES, MIN_SAMPLES_WHY, READINGS, SAMPLES_PER_TOOTH,
     interval_trials, samples, samples_cover,
 };
+pub use csv_file::{Csv, csv_line};
 pub use engine::{TrialEngine, TrialMode};
 pub use error::{DuplicateId, RunError};
 pub use lock::{lock_path, lock_writing, release_locks};
@@ -56,7 +58,7 @@ pub use output::{
     tidy, write_file, write_results,
 };
 pub use progress::{BatchProgress, Progress};
-pub use table::{Table, fmt_f64, fmt_number};
+pub use table::{Table, fmt_f64, fmt_number, terminal_text};
 pub use trials::{Batch, Records, Shard, ShardRecords, f64_bits, merge_records};
 pub use values::{ValueError, Values};
 

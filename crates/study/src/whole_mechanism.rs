@@ -549,8 +549,8 @@ pub fn runs_csv(inputs: &[Input<'_>], per_input: &[&[MechanismRun]], days: f64) 
         for (t, o) in runs.iter().enumerate() {
             for (ti, name) in train_names().enumerate() {
                 let line = match jam_of(o, ti).filter(|j| j.day <= days) {
-                    Some(j) => format!("{},{t},{name},{},jammed,{}\n", inp.label, j.day, j.mesh),
-                    None => format!("{},{t},{name},{days},censored,\n", inp.label),
+                    Some(j) => registry::csv_row!(inp.label, t, name, j.day, "jammed", j.mesh),
+                    None => registry::csv_row!(inp.label, t, name, days, "censored", ""),
                 };
                 csv.push_str(&line);
             }

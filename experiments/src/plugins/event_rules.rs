@@ -540,8 +540,7 @@ fn limits_csv(g: &Gearing, rules: &[Rule], limits: &RuleLimits) -> String {
     let show = |v: Option<f64>| v.map_or_else(String::new, |v| fmt_f64(v, 3));
     for (m, per_rule) in g.meshes().iter().zip(&limits.per_mesh) {
         for (rule, (jam, dis)) in rules.iter().zip(per_rule) {
-            s.push_str(&format!(
-                "{},{},{},{}\n",
+            s.push_str(&registry::csv_row!(
                 m.label,
                 rule.label(),
                 show(*jam),
@@ -570,8 +569,7 @@ fn cells_csv(
                     consistent_with_paper(k, c.trials, q).to_string()
                 })
             };
-            s.push_str(&format!(
-                "{},{},{},{},{},{},{},{},{},{},{},{}\n",
+            s.push_str(&registry::csv_row!(
                 p.table,
                 p.key,
                 counting.rule.label(),

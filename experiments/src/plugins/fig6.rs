@@ -272,8 +272,8 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             smallest,
         ));
         let opt = |v: Option<f64>| v.map_or_else(String::new, |v| v.to_string());
-        csv.push_str(&format!(
-            "{gear},{},{},{},{}\n",
+        csv.push_str(&registry::csv_row!(
+            gear,
             labels.join(" "),
             opt(ours),
             opt(paper),

@@ -70,8 +70,7 @@ fn sweep_table(
         ),
         header.clone(),
     );
-    let mut csv = header.join(",");
-    csv.push('\n');
+    let mut csv = registry::csv_line(&header);
     for (i, &c) in clearances.iter().enumerate() {
         let mut row = vec![fmt_f64(c, 1)];
         let mut line = vec![c.to_string()];
@@ -80,8 +79,7 @@ fn sweep_table(
             line.push(col[i].map_or_else(String::new, |s| s.to_string()));
         }
         sweep.row(row);
-        csv.push_str(&line.join(","));
-        csv.push('\n');
+        csv.push_str(&registry::csv_line(line));
     }
     sweep.note(
         "'-': the full turn jammed or disengaged (no sigma), or the gears overlap at every tooth.",
@@ -189,8 +187,8 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             other => show(other),
         };
         lim.row(vec![label.clone(), jam_cell, show(dis)]);
-        lim_csv.push_str(&format!(
-            "{label},{},{}\n",
+        lim_csv.push_str(&registry::csv_row!(
+            label,
             jam.map_or(String::new(), |v| v.to_string()),
             dis.map_or(String::new(), |v| v.to_string())
         ));

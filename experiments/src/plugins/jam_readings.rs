@@ -281,14 +281,16 @@ fn cells_csv(cells: &Cells, readings: &[Reading], jams: &[Vec<u64>], trials: u64
             let verdict = paper.map_or_else(String::new, |_| {
                 consistent_with_paper(ours, trials, paper).to_string()
             });
-            s.push_str(&format!(
-                "{},{},{},{},{},{trials},{ours},{},{verdict}\n",
+            s.push_str(&registry::csv_row!(
                 p.table,
                 p.key,
                 p.region,
                 p.mesh,
                 reading_name(*reading),
+                trials,
+                ours,
                 paper.map_or_else(String::new, |v| v.to_string()),
+                verdict,
             ));
         }
     }

@@ -359,9 +359,8 @@ fn td_csv(rows: &[Row], per_row: &[&[AnomalyTrial]]) -> String {
     for (row, trials_of) in rows.iter().zip(per_row) {
         for (t, x) in trials_of.iter().enumerate() {
             for (on, s) in [(false, x.rigid), (true, x.pin_slot)] {
-                out.push_str(&format!(
-                    "{},{t},{on},{},{},{},{}\n",
-                    row.label, s.sigma, s.dm, s.p, s.jammed
+                out.push_str(&registry::csv_row!(
+                    row.label, t, on, s.sigma, s.dm, s.p, s.jammed
                 ));
             }
         }

@@ -424,8 +424,7 @@ fn cells_csv(paper: &[PaperCell], counts: &[Vec<Counts>], models: &[Model]) -> S
         let show = |v: Option<u64>| v.map_or_else(String::new, |v| v.to_string());
         for (m, model) in models.iter().enumerate() {
             let c = &counts[p.run][m];
-            s.push_str(&format!(
-                "{},{},{},{},{},{},{},{},{}\n",
+            s.push_str(&registry::csv_row!(
                 p.table,
                 p.key,
                 p.mesh,
@@ -457,9 +456,11 @@ fn fig_iv_csv(
                 } else {
                     String::new()
                 };
-                s.push_str(&format!(
-                    "{},{label},{g},{sigma},{},{}\n",
+                s.push_str(&registry::csv_row!(
                     m.name(),
+                    label,
+                    g,
+                    sigma,
                     p.jammed,
                     p.disengaged
                 ));

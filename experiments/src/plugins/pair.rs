@@ -394,8 +394,7 @@ fn event_log(
     for e in traj.events() {
         let counted = counted_as(rule, e);
         let teeth = user_teeth(e, prepared);
-        ev_rows.push_str(&log_line(e, counted, &teeth, start).join(","));
-        ev_rows.push('\n');
+        ev_rows.push_str(&registry::csv_line(log_line(e, counted, &teeth, start)));
         if events.rows.len() < EVENTS_SHOWN {
             events.row(table_row(e, counted, &teeth, start, n2));
         }

@@ -158,13 +158,16 @@ fn csv_lines(
         ("triangular", "dm", td, None),
     ] {
         let e = mean_ci95(v);
-        csv.push_str(&format!(
-            "{case},{name},{model},{stat},{},{},{},{}\n",
-            e.mean,
-            e.lo,
-            e.hi,
-            p.map_or(String::new(), |x| x.to_string())
-        ));
+        csv.push_str(&registry::csv_line([
+            case.to_owned(),
+            name.to_owned(),
+            model.to_owned(),
+            stat.to_owned(),
+            e.mean.to_string(),
+            e.lo.to_string(),
+            e.hi.to_string(),
+            p.map_or(String::new(), |x| x.to_string()),
+        ]));
     }
 }
 

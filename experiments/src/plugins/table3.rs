@@ -59,7 +59,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         ),
         ours_header(&meshes),
     );
-    let mut cells = JamCells::new("case,mesh").off_paper(crate::cells::off_paper_inputs(ctx));
+    let mut cells = JamCells::new(&["case", "mesh"]).off_paper(crate::cells::off_paper_inputs(ctx));
     let rows: Vec<String> = if cases_apply {
         CASES.iter().map(|c| c.0.to_string()).collect()
     } else {
@@ -99,7 +99,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         for (m, mesh) in meshes.iter().enumerate() {
             let n = &counts[c * meshes.len() + m];
             let paper = case_paper_counts(cases_apply, "table3", &format!("{case}.{mesh}"));
-            row.push(cells.cell((case, mesh), &format!("{case},{mesh}"), n, paper));
+            row.push(cells.cell((case, mesh), &[case, mesh], n, paper));
         }
         ours.row(row);
     }

@@ -54,13 +54,14 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         ),
         header,
     );
-    let mut jam_cells = JamCells::new("random,mesh").off_paper(crate::cells::off_paper_inputs(ctx));
+    let mut jam_cells =
+        JamCells::new(&["random", "mesh"]).off_paper(crate::cells::off_paper_inputs(ctx));
     for (e, row) in grid.values.iter().zip(&grid.counts) {
         let key = label(*e, 3);
         let mut cells = vec![key.clone()];
         for (mesh, c) in grid.meshes.iter().zip(row) {
             let paper = paper_counts("table4", &format!("{key}.{mesh}"));
-            cells.push(jam_cells.cell((&key, mesh), &format!("{key},{mesh}"), c, paper));
+            cells.push(jam_cells.cell((&key, mesh), &[&key, mesh], c, paper));
         }
         table.row(cells);
     }

@@ -72,7 +72,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     );
     let (row, same) = random_row(&t);
     table.row(row);
-    let mut jam_cells = JamCells::new("systematic,mesh,random")
+    let mut jam_cells = JamCells::new(&["systematic", "mesh", "random"])
         .with_rule(rule)
         .off_paper(crate::cells::off_paper_inputs(ctx));
     for row in count_rows(&t, &like_for_like, &mut jam_cells) {
@@ -190,7 +190,7 @@ fn count_rows(
             let random = t.random[m].map_or_else(String::new, |e| e.to_string());
             row.push(jam_cells.cell_compared(
                 (&key, mesh),
-                &format!("{key},{mesh},{random}"),
+                &[&key, mesh, &random],
                 c,
                 paper,
                 like_for_like[m],
@@ -269,8 +269,8 @@ fn systematic_row(
             None => "-".into(),
         };
         row.push(format!("{ours} ({paper_text})"));
-        emax_csv.push_str(&format!(
-            "{mesh},{},{},{},{}\n",
+        emax_csv.push_str(&registry::csv_row!(
+            mesh,
             t.random[m].map_or_else(String::new, |v| v.to_string()),
             paper_random(mesh).map_or_else(String::new, |v| v.to_string()),
             t.systematic[m].map_or_else(String::new, |v| v.to_string()),

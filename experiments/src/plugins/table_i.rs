@@ -55,8 +55,8 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         .map(|m| m.label.clone())
         .collect();
     let grid = run_grid(ctx, &s, &gs, meshes.len())?;
-    let mut jam_cells =
-        JamCells::new("case,clearance,mesh").off_paper(crate::cells::off_paper_inputs(ctx));
+    let mut jam_cells = JamCells::new(&["case", "clearance", "mesh"])
+        .off_paper(crate::cells::off_paper_inputs(ctx));
     let mut table = counts_table(&s, &gs, &meshes, &grid, &mut jam_cells);
     table.note(jam_cells.tally.note());
     if let Some(note) = jam_cells.off_paper_note() {
@@ -149,7 +149,7 @@ fn counts_table(
                     case_paper_counts(grid.cases_apply, "tableI", &format!("{case}.{gl}.{mesh}"));
                 row.push(jam_cells.cell(
                     (&format!("{case}, G = {gl} %"), mesh),
-                    &format!("{case},{gl},{mesh}"),
+                    &[case, gl.as_str(), mesh],
                     n,
                     paper,
                 ));

@@ -162,14 +162,14 @@ fn search_table(s: &Settings, clearance: f64) -> Table {
 fn probe_lines(mesh: &str, sr: &Search) -> String {
     let mut out = String::new();
     for (i, p) in sr.probes.iter().enumerate() {
-        out.push_str(&format!(
-            "{mesh},{},{},{},{},{},{:?}\n",
+        out.push_str(&registry::csv_row!(
+            mesh,
             i + 1,
             p.value,
             p.counts.trials,
             p.counts.jams,
             p.counts.disengagements,
-            p.decision
+            format!("{:?}", p.decision)
         ));
     }
     out
@@ -252,14 +252,16 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             format!("{:.0}", saved(used, grid_per_mesh)),
         ]);
         let opt = |v: Option<f64>| v.map_or_else(String::new, |v| v.to_string());
-        csv.push_str(&format!(
-            "{mesh},{},{},{},{},{},{used},{grid_per_mesh},{:.1}\n",
+        csv.push_str(&registry::csv_row!(
+            mesh,
             opt(sr.pass),
             opt(sr.fail),
             opt(*grid_value),
             opt(paper),
             sr.probes.len(),
-            saved(used, grid_per_mesh)
+            used,
+            grid_per_mesh,
+            format!("{:.1}", saved(used, grid_per_mesh))
         ));
         probes_csv.push_str(&probe_lines(mesh, sr));
     }
