@@ -127,6 +127,11 @@ pub const DEPARTURE: &str = "[inputs differ from the defaults: ";
 /// paper (the summary shows `-`). Runs at the defaults, or differing only in a reading of the
 /// paper ([`READINGS`]), are left exactly as they print.
 fn label_departures(report: &mut Report, ctx: &Context) {
+    if runs_example_table(ctx) {
+        for t in &mut report.tables {
+            t.note(EXAMPLE_TABLE);
+        }
+    }
     let changed = ctx.departures();
     if changed.is_empty() {
         return;
@@ -150,6 +155,24 @@ fn label_departures(report: &mut Report, ctx: &Context) {
         }
     }
     report.agreement = None;
+}
+
+/// Said of a run whose hypothesis has a `measured` layer without a file: it runs on the example
+/// table embedded in the toolkit, whose values are invented.
+pub const EXAMPLE_TABLE: &str = "The hypothesis `measured` without a file of your own uses the example table shipped with the toolkit (crates/hypotheses/data/measured-example.ron), whose values are INVENTED: these numbers describe no real mechanism; give your own table with --errors FILE or --hypothesis measured:FILE.";
+
+/// Whether `ctx`'s hypothesis has a `measured` layer without a file ([`EXAMPLE_TABLE`]).
+pub fn runs_example_table(ctx: &Context) -> bool {
+    ctx.values()
+        .find(|(p, _)| p.name == "hypothesis")
+        .is_some_and(|(_, h)| uses_example_table(h))
+}
+
+/// Whether the hypothesis `h` (a stack `a+b`) has a `measured` layer without a file.
+pub fn uses_example_table(h: &str) -> bool {
+    hypotheses::stack_layers(h)
+        .iter()
+        .any(|layer| layer.trim() == "measured")
 }
 
 /// SHA-256 of `bytes`, in lowercase hex.
