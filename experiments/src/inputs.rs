@@ -80,7 +80,9 @@ pub fn check(
         && Gearing::builtin(&g).is_none()
         && seen.insert(("gearing", g.clone()))
     {
-        Gearing::load(Path::new(&g)).map_err(|e| e.to_string())?;
+        // Named by the setting, as the other files a run reads are (`--errors: FILE: ...`).
+        Gearing::load(Path::new(&g))
+            .map_err(|e| format!("--set: {}: {e}", study::gearing::PARAM.name))?;
     }
     if let Some(h) = value(ctx, study::errors::PARAM.name)
         && seen.insert(("hypothesis", h.clone()))
@@ -190,6 +192,27 @@ fn measured_gears_in_gearing(ctx: &Context, flags: (&str, &str)) -> Result<(), S
         Some(g) => g,
         None => Gearing::load(Path::new(&gearing_name)).map_err(|e| e.to_string())?,
     };
+    // Every gear the run makes needs a row (the hypothesis refuses a gear without one, but only
+    // once the run reaches it, after other Cases or experiments have been computed): the gears
+    // of every mesh, or of the one mesh the run studies.
+    let meshes: Vec<&train::MeshData> = match value(ctx, study::limits::MESH.name) {
+        Some(label) => gearing
+            .meshes()
+            .iter()
+            .filter(|m| m.label == label)
+            .collect(),
+        None => gearing.meshes().iter().collect(),
+    };
+    let listed: BTreeSet<&str> = h.table().entries().map(|(g, _)| g).collect();
+    if let Some(gear) = meshes
+        .iter()
+        .flat_map(|m| [m.driver.as_str(), m.driven.as_str()])
+        .find(|g| !listed.contains(g))
+    {
+        return Err(format!(
+            "{flag}: {file}: gear {gear}: missing from the table: every gear the run makes needs a row (the gearing `{gearing_name}` meshes {gear})"
+        ));
+    }
     for (gear, _) in h.table().entries() {
         if gearing.gear(gear).is_none() {
             return Err(format!(

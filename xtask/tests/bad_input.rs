@@ -898,7 +898,7 @@ fn a_builtin_gearing_name_that_is_also_a_file_is_refused() {
     );
     let err = stderr(&o);
     assert_eq!(o.status.code(), Some(2), "{err}");
-    assert!(err.starts_with("./freeth2021: line 1"), "{err}");
+    assert!(err.starts_with("--gearing: ./freeth2021: line 1"), "{err}");
 }
 
 /// A mesh label `b2-c1\nX`, a gear name holding a NUL byte or an escape sequence
@@ -1060,4 +1060,122 @@ fn every_data_file_quotes_its_fields() {
         !err.contains('\u{1b}') && err.contains("no\\u{1b}[31mRED.ron"),
         "{err:?}"
     );
+}
+
+/// `run failure --errors m.ron` with a table lacking b2 was refused only after Cases A-D were
+/// computed (8 s at 300 trials), naming `--set measured:` though `--errors` was typed; `run
+/// tableI --set clearances=10,10,10` gave three identical rows and counted 15 cells three
+/// times; `report` over a results folder it could not read said "not run" and exited 0;
+/// `TMPDIR=/nonexistent fuzz` skipped its file check and found nothing. Each is refused before
+/// any work, naming what was typed. New instances: the same table through `--hypothesis
+/// measured:FILE`, a Case named twice, a tolerance named twice, a results folder whose
+/// `tables.json` is a link that leads nowhere.
+#[test]
+fn every_input_is_checked_before_any_work() {
+    let s = support::Scratch::new("before-work");
+    let example = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../crates/hypotheses/data/measured-example.ron"
+    ))
+    .unwrap();
+    let lacking: String = example
+        .lines()
+        .filter(|l| !l.contains("\"b2\""))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    std::fs::write(s.0.join("m.ron"), lacking).unwrap();
+    let m = s.path("m.ron");
+    let out = s.path("out");
+    for (args, words) in [
+        (
+            vec!["run", "failure", "--errors", &m, "--trials", "300"],
+            &["--errors: ", "gear b2: missing from the table"][..],
+        ),
+        (
+            vec!["run", "table3", "--hypothesis", &format!("measured:{m}")],
+            &["--hypothesis: ", "gear b2: missing from the table"],
+        ),
+        (
+            vec!["run", "tableI", "--set", "clearances=10,10,10"],
+            &["--set: clearances: names the clearance 10 twice"],
+        ),
+        (
+            vec!["run", "failure", "--set", "cases=A,a"],
+            &["--set: cases: names the case `a` twice"],
+        ),
+        (
+            vec!["run", "jam-readings", "--set", "tolerances=0.001,0.0010"],
+            &["--set: tolerances: names the tolerance 0.0010 twice"],
+        ),
+    ] {
+        let mut all = args.clone();
+        all.extend(["--out", &out]);
+        let start = std::time::Instant::now();
+        let o = support::xtask(&all);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{all:?}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{all:?}: {err}");
+        for w in words {
+            assert!(err.contains(w), "{all:?}: missing {w:?}: {err}");
+        }
+        assert!(
+            start.elapsed().as_secs() < 5,
+            "{all:?}: refused after {:?}",
+            start.elapsed()
+        );
+        assert!(!s.0.join("out").exists(), "{all:?} wrote results");
+    }
+    // Results the report cannot read: refused naming them, no page.
+    let results = s.0.join("results");
+    let o = support::xtask(&["run", "fig3", "-q", "--out", results.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let unreadable: Vec<(std::path::PathBuf, Box<dyn Fn()>)> = vec![
+        (results.join("fig2"), {
+            let p = results.join("fig2");
+            Box::new(move || std::os::unix::fs::symlink("fig2", &p).unwrap())
+        }),
+        (results.join("fig4"), {
+            let p = results.join("fig4");
+            Box::new(move || std::os::unix::fs::symlink("/nonexistent/fig4", &p).unwrap())
+        }),
+        (results.join("fig5/tables.json"), {
+            let p = results.join("fig5");
+            Box::new(move || {
+                std::fs::create_dir_all(&p).unwrap();
+                std::os::unix::fs::symlink("gone.json", p.join("tables.json")).unwrap();
+            })
+        }),
+    ];
+    for (path, make) in unreadable {
+        make();
+        let o = support::xtask(&["report", "--out", results.to_str().unwrap()]);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{}: {err}", path.display());
+        assert!(
+            err.contains(path.to_str().unwrap()) && err.contains("cannot be read"),
+            "{err}"
+        );
+        assert!(!results.join("index.html").exists());
+        let _ = std::fs::remove_file(&path);
+        let _ = std::fs::remove_dir_all(results.join("fig5"));
+    }
+    // A folder that cannot be read, where this process is not root (root reads everything).
+    let root = std::process::Command::new("id")
+        .arg("-u")
+        .output()
+        .is_ok_and(|o| String::from_utf8_lossy(&o.stdout).trim() == "0");
+    if !root {
+        use std::os::unix::fs::PermissionsExt;
+        let locked = results.join("fig2");
+        std::fs::create_dir_all(&locked).unwrap();
+        std::fs::set_permissions(&locked, std::fs::Permissions::from_mode(0o000)).unwrap();
+        let o = support::xtask(&["report", "--out", results.to_str().unwrap()]);
+        std::fs::set_permissions(&locked, std::fs::Permissions::from_mode(0o755)).unwrap();
+        assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    }
+    // The fuzzer's scratch folder.
+    let o = support::xtask_env(&["fuzz", "--execs", "300"], &[("TMPDIR", "/nonexistent")]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.starts_with("TMPDIR: /nonexistent: "), "{err}");
 }

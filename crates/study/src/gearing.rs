@@ -204,7 +204,8 @@ pub fn check(file: &str, g: &Gearing, h: f64) -> Result<(), RunError> {
 }
 
 /// `text`, the value of the parameter `name`: a comma-separated list of clearances (% of h),
-/// each above 0 and at most `max`.
+/// each above 0 and at most `max`, each once (a clearance named twice would be one row of the
+/// table twice over, and its cells counted twice).
 pub fn clearance_list(text: &str, name: &str, max: f64) -> Result<Vec<f64>, RunError> {
     let mut out = Vec::new();
     for part in text.split(',').map(str::trim) {
@@ -216,6 +217,13 @@ pub fn clearance_list(text: &str, name: &str, max: f64) -> Result<Vec<f64>, RunE
             };
             RunError::bad("--set", name, rule)
         })?;
+        if out.contains(&g) {
+            return Err(RunError::bad(
+                "--set",
+                name,
+                format!("names the clearance {part} twice: give each once (got `{text}`)"),
+            ));
+        }
         out.push(g);
     }
     Ok(out)

@@ -115,21 +115,30 @@ fn all_cells(ctx: &Context, s: &CellSettings) -> Result<Cells, RunError> {
 /// The tolerances of the area readings, from a comma-separated parameter.
 fn tolerances(ctx: &Context) -> Result<Vec<f64>, RunError> {
     let text = ctx.text(&TOLERANCES)?;
-    text.split(',')
-        .map(str::trim)
-        .map(|part| {
-            part.parse::<f64>()
-                .ok()
-                .filter(|t| t.is_finite() && *t >= 0.0 && *t <= 1.0)
-                .ok_or_else(|| {
-                    RunError::bad(
-                        "--set",
-                        TOLERANCES.name,
-                        format!("each must be a number from 0 to 1 mm^2 (got `{part}`)"),
-                    )
-                })
-        })
-        .collect()
+    let mut out: Vec<f64> = Vec::new();
+    for part in text.split(',').map(str::trim) {
+        let t = part
+            .parse::<f64>()
+            .ok()
+            .filter(|t| t.is_finite() && *t >= 0.0 && *t <= 1.0)
+            .ok_or_else(|| {
+                RunError::bad(
+                    "--set",
+                    TOLERANCES.name,
+                    format!("each must be a number from 0 to 1 mm^2 (got `{part}`)"),
+                )
+            })?;
+        // A reading named twice would be one column twice over.
+        if out.contains(&t) {
+            return Err(RunError::bad(
+                "--set",
+                TOLERANCES.name,
+                format!("names the tolerance {part} twice: give each once (got `{text}`)"),
+            ));
+        }
+        out.push(t);
+    }
+    Ok(out)
 }
 
 /// Consistent and compared jam counts, and among the separated ones how many of ours are
