@@ -723,7 +723,7 @@ fn named_pipes_and_folders_given_as_input_files_are_refused_at_once() {
         return;
     }
     std::fs::create_dir_all(s.0.join("folder.ron")).unwrap();
-    let pipe = "must be a regular file, and this is a named pipe (FIFO)";
+    let pipe = "must be a regular file, and this is a pipe (a named pipe or FIFO";
     for (args, words) in [
         (
             &["run", "pair", "--config", "pipe.ron"][..],
@@ -731,7 +731,7 @@ fn named_pipes_and_folders_given_as_input_files_are_refused_at_once() {
         ),
         (
             &["run", "table1", "--gearing", "pipe.ron"],
-            &["pipe.ron: read: ", pipe],
+            &["--gearing: pipe.ron: read: ", pipe],
         ),
         (
             &["run", "table2", "--errors", "pipe.ron"],
@@ -762,7 +762,7 @@ fn named_pipes_and_folders_given_as_input_files_are_refused_at_once() {
         ),
         (
             &["run", "table1", "--gearing", "folder.ron"],
-            &["folder.ron: read: ", "is a directory"],
+            &["--gearing: folder.ron: read: ", "is a directory"],
         ),
     ] {
         let mut all = args.to_vec();
@@ -1178,4 +1178,53 @@ fn every_input_is_checked_before_any_work() {
     let err = stderr(&o);
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert!(err.starts_with("TMPDIR: /nonexistent: "), "{err}");
+}
+
+/// `--gearing <(...)`: the message lacked the `--gearing:` prefix the other file flags have, and
+/// called a live pipe one "which waits for a writer that may never come". Every file flag names
+/// itself, and a pipe is said to be read only once. New instances: `--errors <(...)` and
+/// `--config <(...)`.
+#[test]
+fn a_pipe_given_as_an_input_file_is_named_by_its_flag() {
+    if std::process::Command::new("bash")
+        .arg("-c")
+        .arg("true")
+        .status()
+        .is_err()
+    {
+        eprintln!("skipped: no bash");
+        return;
+    }
+    let s = support::Scratch::new("process-substitution");
+    let gearing = s.0.join("g.ron");
+    std::fs::write(&gearing, freeth()).unwrap();
+    let xtask = env!("CARGO_BIN_EXE_xtask");
+    for (flag, run) in [
+        ("--gearing", "run table1"),
+        ("--errors", "run table2"),
+        ("--config", "run pair"),
+    ] {
+        let line = format!(
+            "{xtask} {run} {flag} <(cat {}) --out {}",
+            gearing.display(),
+            s.0.join("out").display()
+        );
+        let o = std::process::Command::new("bash")
+            .args(["-c", &line])
+            .env_remove("RUST_LOG")
+            .output()
+            .unwrap();
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{line}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{line}: {err}");
+        assert!(
+            err.starts_with(&format!("{flag}: /dev/fd/")),
+            "{line}: {err}"
+        );
+        assert!(
+            err.contains("can be read only once") && !err.contains("waits for a writer"),
+            "{line}: {err}"
+        );
+        assert!(!s.0.join("out").exists());
+    }
 }

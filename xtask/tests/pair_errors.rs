@@ -234,3 +234,75 @@ fn huge_angles_and_too_few_samples_are_refused_at_once() {
     };
     assert_eq!(sigma("0.0"), sigma("999720.0"), "999720 = 2777 turns");
 }
+
+/// A refusal names a field the file has and the gear at fault: uneven tooth heights with
+/// `clearance_percent`, or a large `eccentricity`, were blamed on `centre_distance`, which the
+/// file did not have, and an oversized driver on the driven gear's `tip_radius`/`root_radius`.
+/// New instances: the offset given as `arbor`, and an oversized driver's tooth height.
+#[test]
+fn a_refusal_names_the_field_the_file_has_and_the_gear_at_fault() {
+    let driven = |extra: &str| format!("(teeth: 20, tip_radius: 10.0, root_radius: 9.0{extra})");
+    let pair = |driver: &str, driven: &str, distance: &str| {
+        format!("(driver: {driver}, driven: {driven}, {distance})")
+    };
+    let cases = [
+        (
+            "uneven heights",
+            pair(
+                GOOD_DRIVER,
+                "(teeth: 20, tip_radius: 10.0, root_radius: 6.2)",
+                "clearance_percent: Some(40.0)",
+            ),
+            "mesh.ron: clearance_percent: must exceed",
+        ),
+        (
+            "eccentricity",
+            pair(
+                GOOD_DRIVER,
+                &driven(", eccentricity: Some((3.0, 0.0))"),
+                "clearance_percent: Some(40.0)",
+            ),
+            "mesh.ron: driven.eccentricity: must exceed",
+        ),
+        (
+            "arbor",
+            pair(
+                &format!(
+                    "(teeth: 20, tip_radius: 10.0, root_radius: 9.0, arbor: Some((offset: 3.0, angle_deg: 0.0)))"
+                ),
+                &driven(""),
+                "clearance_percent: Some(40.0)",
+            ),
+            "mesh.ron: driver.arbor: must exceed",
+        ),
+        (
+            "oversized driver pitch",
+            pair(
+                "(teeth: 20, tip_radius: 200.0, root_radius: 199.0)",
+                &driven(""),
+                "clearance_percent: Some(40.0)",
+            ),
+            "mesh.ron: driver.tip_radius: the gears' teeth must be of one size: the driver gear's tooth pitch",
+        ),
+        (
+            "oversized driver height",
+            pair(
+                "(teeth: 20, tip_radius: 10.0, root_radius: 5.5)",
+                &driven(""),
+                "centre_distance: Some(19.5)",
+            ),
+            "mesh.ron: driver.root_radius: the gears' teeth must be of one size: the driver gear's tooth height",
+        ),
+    ];
+    for (tag, text, expected) in cases {
+        let (code, err, written) = run_pair(tag, &text);
+        assert_eq!(code, Some(2), "{tag}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{tag}: {err}");
+        assert!(err.contains(expected), "{tag}: {err}");
+        assert!(
+            !err.contains("centre_distance") || text.contains("centre_distance"),
+            "{tag}: {err}"
+        );
+        assert!(!written, "{tag}: results were written");
+    }
+}

@@ -437,16 +437,50 @@ pub fn load(file: &str, text: &str) -> Result<(Mesh, PairFile), RunError> {
             ),
         ));
     }
-    let mesh = Mesh::new(driver, driven, d).map_err(|e| RunError::bad(file, e.field, e.rule))?;
     let distance_field = if spec.centre_distance.is_some() {
         "centre_distance"
     } else {
         "clearance_percent"
     };
+    let blamed = mesh_field(&spec, (&driver, &driven), d, distance_field);
+    let mesh = Mesh::new(driver, driven, d).map_err(|e| {
+        let field = if e.field == "centre_distance" {
+            blamed.clone()
+        } else {
+            e.field
+        };
+        RunError::bad(file, field, e.rule)
+    })?;
     proportions(file, &mesh, distance_field)?;
     // Last: what the file asks of the run's statistics, once the gears themselves are sound.
     samples(file, &spec, run_deg, spec.driver.teeth)?;
     Ok((mesh, spec))
+}
+
+/// The field of the file a refusal of the mesh's centre distance names: the one the file has
+/// (`centre_distance`, or `clearance_percent` from which the distance was made), but the
+/// eccentricity of a gear where it alone makes the bodies overlap (the distance clears the two
+/// root circles, and the arbors' offsets take it below them).
+fn mesh_field(spec: &PairFile, (driver, driven): (&Gear, &Gear), d: f64, distance: &str) -> String {
+    let (e1, e2) = (
+        driver.rotation_centre().norm(),
+        driven.rotation_centre().norm(),
+    );
+    let roots = driver.min_root_radius() + driven.min_root_radius();
+    if d > roots && d <= roots + e1 + e2 {
+        let (which, g) = if e1 >= e2 {
+            ("driver", &spec.driver)
+        } else {
+            ("driven", &spec.driven)
+        };
+        let offset = if g.arbor.is_some() {
+            "arbor"
+        } else {
+            "eccentricity"
+        };
+        return format!("{which}.{offset}");
+    }
+    distance.to_owned()
 }
 
 /// Every angle of the file within [`MAX_ANGLE_DEG`] either way (and finite): beyond it a double
@@ -595,28 +629,38 @@ fn proportions(file: &str, mesh: &Mesh, distance_field: &str) -> Result<(), RunE
         }
     }
     let [(_, g1), (_, g2)] = gears;
+    // The larger of the two is named: the gear whose size is out of line with the other's.
+    let larger = |a: f64, b: f64| {
+        if a >= b {
+            ("driver", "driven", a, b)
+        } else {
+            ("driven", "driver", b, a)
+        }
+    };
     let pitch = |g: &Gear| TAU * g.tip_radius() / g.teeth() as f64;
     let (p1, p2) = (pitch(g1), pitch(g2));
     if p1.max(p2) > MAX_PITCH_RATIO * p1.min(p2) {
+        let (big, small, pb, ps) = larger(p1, p2);
         return Err(RunError::bad(
             file,
-            "driven.tip_radius",
+            format!("{big}.tip_radius"),
             format!(
-                "the gears' teeth must be of one size: the driven gear's tooth pitch 2π·tip_radius/teeth = {} and the driver's {} are more than {MAX_PITCH_RATIO} times apart (meshing gears have teeth of one pitch)",
-                fmt_number(p2),
-                fmt_number(p1)
+                "the gears' teeth must be of one size: the {big} gear's tooth pitch 2π·tip_radius/teeth = {} is more than {MAX_PITCH_RATIO} times the {small} gear's {} (meshing gears have teeth of one pitch)",
+                fmt_number(pb),
+                fmt_number(ps)
             ),
         ));
     }
     let (h1, h2) = (g1.tooth_height(), g2.tooth_height());
     if h1.max(h2) > MAX_HEIGHT_RATIO * h1.min(h2) {
+        let (big, small, hb, hs) = larger(h1, h2);
         return Err(RunError::bad(
             file,
-            "driven.root_radius",
+            format!("{big}.root_radius"),
             format!(
-                "the gears' teeth must be of one size: the driven gear's tooth height tip_radius - root_radius = {} and the driver's {} are more than {MAX_HEIGHT_RATIO} times apart (meshing gears have teeth of one height)",
-                fmt_number(h2),
-                fmt_number(h1)
+                "the gears' teeth must be of one size: the {big} gear's tooth height tip_radius - root_radius = {} is more than {MAX_HEIGHT_RATIO} times the {small} gear's {} (meshing gears have teeth of one height)",
+                fmt_number(hb),
+                fmt_number(hs)
             ),
         ));
     }
