@@ -150,6 +150,23 @@ fn shared_settings(ctx: &Context) -> Result<(), String> {
     if ctx.holds(&study::events::PARAM) {
         crate::settings::rule(ctx).map_err(|e| e.to_string())?;
     }
+    // The gearing's clearance, large enough for the solver to tell from touching.
+    if ctx.holds(&study::gearing::CLEARANCE)
+        && ctx.holds(&study::gearing::TOOTH_HEIGHT)
+        && let Some(name) = value(ctx, study::gearing::PARAM.name)
+    {
+        let g = match Gearing::builtin(&name) {
+            Some(g) => g,
+            None => Gearing::load(Path::new(&name)).map_err(|e| e.to_string())?,
+        };
+        let read = |p: &registry::Param| ctx.get::<f64>(p).map_err(|e| e.to_string());
+        let (h, clearance) = (
+            read(&study::gearing::TOOTH_HEIGHT)?,
+            read(&study::gearing::CLEARANCE)?,
+        );
+        study::gearing::check_clearance(&g, h, clearance, study::gearing::CLEARANCE.name)
+            .map_err(|e| e.to_string())?;
+    }
     if let Some(label) = value(ctx, study::limits::MESH.name)
         && let Some(gearing) = value(ctx, study::gearing::PARAM.name)
     {
