@@ -937,3 +937,53 @@ fn stderr_that_cannot_be_written_ends_in_status_1_without_a_panic_or_a_lock() {
     );
     assert!(out.join("index.html").is_file(), "the page was lost");
 }
+
+/// A bundle killed while it was written left its `.x.tar.gz.tmp-PID` (1.7 GB) for later bundles
+/// to archive. Its temporary file is removed by the stop, as a run's temporary folder is: the
+/// bundle is frozen as soon as its temporary file appears, then sent SIGTERM.
+#[test]
+fn a_bundle_stopped_while_writing_leaves_no_temporary_file() {
+    let s = Scratch::new("bundle-stopped");
+    let out = s.0.join("B");
+    // fig2 writes some 5 MB of figures and data: long enough to archive to be caught.
+    let o = xtask(&["run", "fig2", "-q", "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let bundle = s.0.join("b.tgz");
+    for _attempt in 0..10 {
+        let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_xtask"))
+            .args(["report", "-q", "--out"])
+            .arg(&out)
+            .arg("--bundle")
+            .arg(&bundle)
+            .env_remove("RUST_LOG")
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        let pid = child.id();
+        let started = Instant::now();
+        let mut frozen = false;
+        while started.elapsed().as_secs() < 60 && child.try_wait().unwrap().is_none() {
+            if hidden_in(&s.0).iter().any(|n| n.starts_with(".b.tgz.tmp-")) {
+                signal(pid, "STOP");
+                frozen = hidden_in(&s.0).iter().any(|n| n.starts_with(".b.tgz.tmp-"));
+                if !frozen {
+                    signal(pid, "CONT");
+                }
+                break;
+            }
+        }
+        if !frozen {
+            let _ = child.wait();
+            let _ = fs::remove_file(&bundle);
+            continue;
+        }
+        signal(pid, "TERM");
+        signal(pid, "CONT");
+        let o = child.wait_with_output().unwrap();
+        assert_eq!(o.status.code(), Some(143), "{}", stderr(&o));
+        assert!(hidden_in(&s.0).is_empty(), "left {:?}", hidden_in(&s.0));
+        return;
+    }
+    eprintln!("the bundle was never caught while being written: nothing checked");
+}
