@@ -209,6 +209,21 @@ fn measured_gears_in_gearing(ctx: &Context, flags: (&str, &str)) -> Result<(), S
         Some(g) => g,
         None => Gearing::load(Path::new(&gearing_name)).map_err(|e| e.to_string())?,
     };
+    for (gear, _) in h.table().entries() {
+        if gearing.gear(gear).is_none() {
+            return Err(format!(
+                "{flag}: {file}: gear {gear}: is not a gear of the gearing `{gearing_name}` ({} gears, e.g. {}), so its row would be silently unused",
+                gearing.gears().len(),
+                gearing
+                    .gears()
+                    .iter()
+                    .take(3)
+                    .map(|g| g.name.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ));
+        }
+    }
     // Every gear the run makes needs a row (the hypothesis refuses a gear without one, but only
     // once the run reaches it, after other Cases or experiments have been computed): the gears
     // of every mesh, or of the one mesh the run studies.
@@ -229,21 +244,6 @@ fn measured_gears_in_gearing(ctx: &Context, flags: (&str, &str)) -> Result<(), S
         return Err(format!(
             "{flag}: {file}: gear {gear}: missing from the table: every gear the run makes needs a row (the gearing `{gearing_name}` meshes {gear})"
         ));
-    }
-    for (gear, _) in h.table().entries() {
-        if gearing.gear(gear).is_none() {
-            return Err(format!(
-                "{flag}: {file}: gear {gear}: is not a gear of the gearing `{gearing_name}` ({} gears, e.g. {}), so its row would be silently unused",
-                gearing.gears().len(),
-                gearing
-                    .gears()
-                    .iter()
-                    .take(3)
-                    .map(|g| g.name.as_str())
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ));
-        }
     }
     Ok(())
 }

@@ -316,11 +316,14 @@ pub(crate) fn writable_dir(flag: &str, out: &Path) -> Result<(), Failure> {
     while !base.as_os_str().is_empty() {
         match std::fs::symlink_metadata(&base) {
             Ok(_) => break,
-            // Missing, or a name the probe below finds too long.
+            // Missing, below a file (said of the file below), or a name the probe below finds
+            // too long.
             Err(e)
                 if matches!(
                     e.kind(),
-                    std::io::ErrorKind::NotFound | std::io::ErrorKind::InvalidFilename
+                    std::io::ErrorKind::NotFound
+                        | std::io::ErrorKind::NotADirectory
+                        | std::io::ErrorKind::InvalidFilename
                 ) => {}
             Err(e) => return Err(refuse(format!("cannot be inspected ({e})"))),
         }
