@@ -12,12 +12,12 @@ fn main() -> io::Result<()> {
     snapshot_tests()
 }
 
-/// The id an experiment file registers: the first `id: "..."` after its `crate::experiment!`.
+/// The id an experiment file registers: its `const ID: &'static str = "...";`.
 fn registered_id(text: &str) -> Option<&str> {
-    let after = &text[text.find("crate::experiment!")?..];
-    let start = after.find("id: \"")? + 5;
-    let len = after[start..].find('"')?;
-    Some(&after[start..start + len])
+    let mark = "const ID: &'static str = \"";
+    let start = text.find(mark)? + mark.len();
+    let len = text[start..].find('"')?;
+    Some(&text[start..start + len])
 }
 
 /// `$OUT_DIR/snapshot_tests.rs`: `PINNED_IDS`, and a `#[test]` per experiment calling `pinned`.

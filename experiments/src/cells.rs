@@ -202,19 +202,7 @@ pub const RULE_MARK: char = '✓';
 /// run at our own E. max): shown for reference, not compared.
 pub const NOT_COMPARED_MARK: char = '†';
 
-/// The paper's failure rule, in % of the trials (section 5: "a failure rate threshold of 1 %
-/// ... in 200 trials, a maximum of 2 jams is acceptable").
-pub const PAPER_RULE_PERCENT: f64 = 1.0;
-
-/// Does a cell of `trials` trials with `jams` and `disengagements` keep the failure rule of
-/// `rule_percent` % ([`tolerance::allowed_jams`]: 2 of 200 at 1 %)? The paper's text states the
-/// rule for jams and its derived E. max row tolerates 2 jams of 200 (m2-n1 at 0.035); its
-/// captions shade "cells with one or fewer trials showing jamming or disengagement", so a
-/// disengagement counts against a cell as a jam does: both counts must be within the rule.
-pub fn keeps_rule(jams: u64, disengagements: u64, trials: u64, rule_percent: f64) -> bool {
-    let allowed = tolerance::allowed_jams(trials, rule_percent);
-    jams <= allowed && disengagements <= allowed
-}
+pub use study::tolerance::{PAPER_RULE_PERCENT, keeps_rule};
 
 /// The note under a table of cells on the rule marks, for a rule of `rule_percent` % and our
 /// `trials` per cell.
@@ -339,16 +327,6 @@ struct RuleRow {
     differ: Vec<(String, String, String)>,
 }
 
-/// The inputs in which this run departs from the paper's ([`registry::Context::departures`]), as
-/// `name=value`: where any does, the paper's values beside ours come from other inputs and are
-/// not compared with ours (the runner says so under every table).
-pub fn off_paper_inputs(ctx: &registry::Context) -> Vec<String> {
-    ctx.departures()
-        .into_iter()
-        .map(|(name, value)| format!("{name}={value}"))
-        .collect()
-}
-
 /// The cells of a jam table as they are filled: each printed beside the paper's counts, its CSV
 /// line (key columns, then [`CSV_COLUMNS`]), the [`Tally`] of the two-sample marks and the
 /// verdicts of the paper's 1 % rule by row.
@@ -383,7 +361,7 @@ impl JamCells {
     }
 
     /// The same, for a run whose inputs differ from the paper's in `inputs` (`name=value`, see
-    /// [`off_paper_inputs`]): none of its cells is compared with the paper's counts, which came
+    /// [`crate::settings::typed::off_paper_inputs`]): none of its cells is compared with the paper's counts, which came
     /// from other inputs; they are shown for reference.
     pub fn off_paper(mut self, inputs: Vec<String>) -> JamCells {
         self.off_paper = inputs;
@@ -696,13 +674,24 @@ mod tests {
         assert_eq!((agreement.consistent, agreement.differ), (0, 0));
 
         // A reading of the paper (the event rule, the drive) is no departure; the trial count is.
-        let map = registry::experiments().unwrap();
-        let set = |k: &str, v: &str| vec![(k.to_owned(), v.to_owned())];
-        let ctx = |sets: Vec<(String, String)>| {
-            registry::Context::new(map["table3"], 2025, 1, &sets, None).unwrap()
+        #[derive(
+            Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, registry::Settings,
+        )]
+        struct Cells {
+            #[param(study::grids::TRIALS)]
+            trials: u64,
+            #[group]
+            events: study::events::EventParams,
+            #[group]
+            drive: study::drive::DriveParams,
+        }
+        let off_paper = |k: &str, v: &str| {
+            let (_, ctx) = crate::context("table3", 2025, 1, &[(k, v)]).unwrap();
+            let s = <Cells as registry::Settings>::read(&ctx).unwrap();
+            crate::settings::typed::off_paper_inputs(&s)
         };
-        assert!(off_paper_inputs(&ctx(set("events", "strict"))).is_empty());
-        assert!(off_paper_inputs(&ctx(set("drive", "other"))).is_empty());
-        assert_eq!(off_paper_inputs(&ctx(set("trials", "40"))), ["trials=40"]);
+        assert!(off_paper("events", "strict").is_empty());
+        assert!(off_paper("drive", "other").is_empty());
+        assert_eq!(off_paper("trials", "40"), ["trials=40"]);
     }
 }

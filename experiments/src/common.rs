@@ -115,3 +115,22 @@ pub fn wrap_at_spaces(text: &str, width: usize) -> Vec<String> {
     }
     lines
 }
+
+/// `s` with the characters XML text and attributes must escape escaped (`&`, `<`, `>`, `"`):
+/// for SVG and HTML pages.
+pub fn escape_xml(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// "mean [lo .. hi]" of a stored mean day (no interval for one day, "-" for none): what
+/// [`mean_cell`] prints, read from the stored estimate.
+pub fn mean_day_cell(m: Option<&study::results::MeanDay>) -> String {
+    match m {
+        None => "-".into(),
+        Some(e) if e.n == 1 => format!("{} (n = 1)", fmt_f64(e.mean, 0)),
+        Some(e) => interval(e.mean, e.lo, e.hi, 0),
+    }
+}

@@ -1,10 +1,10 @@
 //! The paper's largest tolerable errors (Table 5's E. max row and the systematic tolerances its
 //! counts give) beside ours, and the `emax` setting that runs Tables 5 and 6 on the paper's row.
 
-use registry::{Context, Param, RunError};
+use registry::{Param, RunError};
 use study::cell::{PAPER_TRIALS, label};
+use study::results::RandomFrom;
 use study::tolerance;
-use train::Gearing;
 
 use crate::cells::paper_counts;
 
@@ -15,12 +15,18 @@ pub const EMAX: Param = Param {
     unit: "",
     help: "each mesh's random error (row E. max): `derived` from Table 4's grid by the rule, as the paper did, or `paper`, the paper's own E. max row, so that every cell is run on the paper's inputs and compared like for like",
     kind: registry::Kind::Choice(&["derived", "paper"]),
+    reading: true,
 };
 
-/// The `emax` parameter: `true` for the paper's own E. max row (its kind admits only `derived`
+/// Where the `emax` parameter's value `emax` takes each mesh's random error from: the paper's
+/// own E. max row for `paper`, else derived from Table 4's grid (its kind admits only `derived`
 /// and `paper`).
-pub fn emax_from_paper(ctx: &Context) -> Result<bool, RunError> {
-    Ok(ctx.text(&EMAX)?.trim() == "paper")
+pub fn random_from(emax: &str) -> RandomFrom {
+    if emax.trim() == "paper" {
+        RandomFrom::Paper
+    } else {
+        RandomFrom::Grid
+    }
 }
 
 /// Each mesh's random error from the paper's E. max row; an error naming the first mesh the
@@ -70,11 +76,14 @@ pub fn show(v: Option<f64>, smallest: Option<&f64>, decimals: usize) -> String {
 }
 
 /// The random errors `--set emax` asks [`study::grids::derive`] to use: the paper's E. max row
-/// (one per mesh of `g`) with `emax=paper`, `None` (derive them) with `emax=derived`.
-pub fn given_random(ctx: &Context, g: &Gearing) -> Result<Option<Vec<Option<f64>>>, RunError> {
-    if !emax_from_paper(ctx)? {
-        return Ok(None);
+/// (one per mesh of `meshes`) where they come `from` the paper, `None` (derive them) where from
+/// Table 4's grid.
+pub fn given_row(
+    from: RandomFrom,
+    meshes: &[String],
+) -> Result<Option<Vec<Option<f64>>>, RunError> {
+    match from {
+        RandomFrom::Grid => Ok(None),
+        RandomFrom::Paper => paper_emax_row(meshes).map(Some),
     }
-    let meshes: Vec<String> = g.meshes().iter().map(|m| m.label.clone()).collect();
-    paper_emax_row(&meshes).map(Some)
 }

@@ -304,7 +304,7 @@ mod tests {
     #![allow(clippy::unwrap_used, reason = "tests")]
     use super::*;
     use crate::pair_html::solver_teeth;
-    use contact::Start;
+    use contact::{Solve, Start};
 
     /// The caption's text, its wrapped lines joined by spaces.
     fn caption_text(svg: &str) -> String {
@@ -320,7 +320,11 @@ mod tests {
     fn an_event_picture_shows_both_teeth_and_the_contact() {
         // Gears so far apart that the tips slip past each other: the run loses drive.
         let mesh = crate::test_pair::ideal_20_30(1.09);
-        let traj = mesh.run(0.0, std::f64::consts::TAU * 1.5, Start::Touching(0.0));
+        let traj = mesh.solve(
+            0.0..=std::f64::consts::TAU * 1.5,
+            Start::Touching(0.0),
+            Solve::path(),
+        );
         let pictures = event_pictures("a run", &traj, &|_| "jam", &solver_teeth(&mesh));
         assert_eq!(pictures.len(), traj.events().len(), "one picture per event");
         let (name, svg) = &pictures[0];
@@ -351,7 +355,11 @@ mod tests {
     fn an_idle_start_is_drawn_as_the_gap_it_is() {
         // Gears too far apart for any tip to reach the other gear: never driven.
         let mesh = crate::test_pair::ideal_20_30(1.3);
-        let traj = mesh.run(0.0, std::f64::consts::TAU, Start::Touching(0.0));
+        let traj = mesh.solve(
+            0.0..=std::f64::consts::TAU,
+            Start::Touching(0.0),
+            Solve::path(),
+        );
         let e = traj.events().iter().find(|e| is_idle_start(e)).unwrap();
         assert!(contacts_at_event(&traj, e).is_empty());
         let svg = event_svg("idle", &traj, e, "disengagement", &solver_teeth(&mesh));

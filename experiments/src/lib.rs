@@ -22,8 +22,9 @@ pub mod table_cells;
 pub mod td_plot;
 #[cfg(test)]
 mod test_pair;
+pub mod train_picture;
 
-pub(crate) use register::experiment;
+pub(crate) use register::replay_cells;
 
 mod plugins {
     include!(concat!(env!("OUT_DIR"), "/plugins.rs"));
@@ -32,10 +33,12 @@ mod plugins {
 /// Does nothing; calling it makes a binary link this crate, and with it every experiment it registers.
 pub fn link() {}
 
-/// Forgets the per-mesh jam cells this process has run (see `study::cell::run_cells`), so that
-/// the next experiment computes them again: for benchmarks, which must time the work itself.
+/// Forgets the per-mesh jam cells this process has run (see `study::cell::run_cells`) and the
+/// results it has computed ([`registry::forget_computed`]), so that the next experiment computes
+/// them again: for benchmarks, which must time the work itself.
 pub fn forget_cached_cells() {
     study::cell::forget_cache();
+    registry::forget_computed();
 }
 
 /// The context registered experiment `id` runs in with `seed`, `threads` and the `--set` pairs
@@ -47,7 +50,7 @@ pub fn context(
     seed: u64,
     threads: usize,
     sets: &[(&str, &str)],
-) -> Result<(&'static registry::Experiment, registry::Context), registry::RunError> {
+) -> Result<(&'static registry::Entry, registry::Context), registry::RunError> {
     link();
     let map = registry::experiments().map_err(|e| registry::RunError::Internal(e.to_string()))?;
     let exp = *map.get(id).ok_or_else(|| {
@@ -71,10 +74,20 @@ pub fn run(
     threads: usize,
     sets: &[(&str, &str)],
 ) -> Result<registry::Report, registry::RunError> {
+    Ok(outcome(id, seed, threads, sets)?.report)
+}
+
+/// [`run`], with the experiment's stored data (its settings and results) beside the report.
+pub fn outcome(
+    id: &str,
+    seed: u64,
+    threads: usize,
+    sets: &[(&str, &str)],
+) -> Result<registry::Outcome, registry::RunError> {
     let (exp, ctx) = context(id, seed, threads, sets)?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
         .map_err(|e| registry::RunError::Internal(format!("thread pool: {e}")))?;
-    pool.install(|| (exp.run)(&ctx))
+    pool.install(|| (exp.run)(&ctx, ctx.engine()))
 }

@@ -579,7 +579,7 @@ fn td_axes(phi_max: f64, td_min: f64, td_max: f64) -> String {
 mod tests {
     #![allow(clippy::unwrap_used, reason = "tests")]
     use super::*;
-    use contact::Start;
+    use contact::{Solve, Start};
 
     #[test]
     fn the_page_turns_the_gears_as_the_mesh_places_them() {
@@ -597,7 +597,7 @@ mod tests {
             );
             assert!((turned - b).norm() < 1e-9);
         }
-        let traj = mesh.run(0.1, 1.0, Start::Touching(0.0));
+        let traj = mesh.solve(0.1..=1.0, Start::Touching(0.0), Solve::path());
         let html = page("a <test>", &traj, &|_| "-", &solver_teeth(&mesh));
         assert!(html.contains("<title>a &lt;test&gt;</title>"));
         assert!(html.contains("id=\"driven\"") && html.contains("id=\"status\""));

@@ -14,6 +14,7 @@ use std::f64::consts::TAU;
 use std::fmt::Write as _;
 use std::sync::LazyLock;
 
+use contact::Solve;
 use registry::{Context, OutputFile, Report, RunError, Table, fmt_f64};
 use train::Gearing;
 
@@ -22,14 +23,11 @@ use study::drive::{Drive, Driver};
 use study::grids::{CASES, CellSettings};
 
 /// How the cells of a per-mesh table are named and what each one names: an experiment whose
-/// trials can be replayed registers one in its own file, with its experiment (`replay:` in `crate::experiment!`):
+/// trials can be replayed registers one in its own file, beside its experiment:
 ///
 /// ```ignore
-/// crate::experiment! {
-///     id: "table3", paper_item: "Table 3 (section 5)", run,
-///     // title, params, groups ...
-///     replay: "CASE/MESH, e.g. B/m3-e3" => cell,
-/// }
+/// registry::register!(Table3);
+/// crate::replay_cells! { "table3", "CASE/MESH, e.g. B/m3-e3" => cell }
 /// ```
 pub struct CellGrammar {
     /// The id of the experiment whose cells these are.
@@ -319,10 +317,10 @@ fn one_trial(
     };
     // The run `pair.html` and `run pair --config pair.ron` show: its start gives θ0.
     let traj = rebuilt.mesh.as_ref().map(|mesh| {
-        mesh.run(
-            rebuilt.phi0,
-            rebuilt.phi0 + rebuilt.turn,
+        mesh.solve(
+            rebuilt.phi0..=rebuilt.phi0 + rebuilt.turn,
             contact::Start::Touching(0.0),
+            Solve::path(),
         )
     });
     let theta0 = traj.as_ref().map(|tr| tr.theta_at(rebuilt.phi0));
@@ -853,7 +851,9 @@ mod tests {
             let rebuilt = rebuild(s.gearing(), &spec, ctx.seed(), t).unwrap();
             let p = study::pair_file::prepare("pair.ron", &text).unwrap();
             let phi0 = p.spec.start_deg.to_radians();
-            let again = p.mesh.run_events(phi0, phi0 + rebuilt.turn, p.start);
+            let again = p
+                .mesh
+                .solve(phi0..=phi0 + rebuilt.turn, p.start, Solve::events());
             let events = rebuilt.events();
             assert_eq!(again.len(), events.len(), "trial {t}");
             for (a, b) in again.iter().zip(&events) {

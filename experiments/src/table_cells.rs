@@ -40,7 +40,11 @@ pub fn check(ctx: &Context, s: &CellSettings, id: &str, cell: &str) -> Result<()
             let [_, g, _] = parts.as_slice() else {
                 return Ok(());
             };
-            let listed = clearances(ctx, id)?;
+            let listed = crate::settings::clearance_list(
+                ctx,
+                &study::gearing::TABLE_I_CLEARANCES,
+                study::gearing::MAX_LISTED_CLEARANCE,
+            )?;
             one_of(spec.clearance, &listed).map_err(|near| {
                 bad(format!(
                     "G `{}`: {near}one of the table's clearances ({}; --set clearances=... runs others)",
@@ -115,16 +119,6 @@ fn list(values: &[f64]) -> String {
         .join(", ")
 }
 
-/// The clearances experiment `id` runs: its `clearances` parameter, read by its declaration.
-fn clearances(ctx: &Context, id: &str) -> Result<Vec<f64>, RunError> {
-    let map = registry::experiments().map_err(|e| RunError::Internal(e.to_string()))?;
-    let declared = map
-        .get(id)
-        .and_then(|e| e.params.iter().find(|p| p.name == "clearances"))
-        .ok_or_else(|| RunError::Internal(format!("{id} declares no clearances")))?;
-    crate::settings::clearance_list(ctx, declared, study::gearing::MAX_LISTED_CLEARANCE)
-}
-
 /// The random error Table 5 runs `mesh` at, and how it was found: the paper's (`--set
 /// emax=paper`) or the largest of Table 4's grid within the rule, from the mesh's column of
 /// Table 4 run here (`None`: no value of the grid is within the rule).
@@ -133,8 +127,9 @@ fn mesh_emax(
     s: &CellSettings,
     mesh: &str,
 ) -> Result<Option<(f64, String)>, RunError> {
-    if let Some(row) = crate::emax::given_random(ctx, s.gearing())? {
-        let meshes = s.meshes();
+    let from = crate::emax::random_from(ctx.text(&crate::emax::EMAX)?);
+    let meshes = s.meshes();
+    if let Some(row) = crate::emax::given_row(from, &meshes)? {
         let at = meshes.iter().position(|m| m == mesh);
         return Ok(at
             .and_then(|i| row.get(i).copied().flatten())

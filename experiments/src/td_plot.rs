@@ -113,7 +113,7 @@ mod tests {
     #![allow(clippy::unwrap_used, reason = "tests")]
 
     use super::*;
-    use contact::Start;
+    use contact::{Solve, Start};
 
     fn td_of(traj: &Trajectory, n: usize) -> Vec<(f64, f64)> {
         let (phi0, phi1) = (traj.phi_start(), traj.phi_end());
@@ -133,7 +133,7 @@ mod tests {
     #[test]
     fn a_run_without_events_promises_no_marks() {
         let mesh = crate::test_pair::ideal_20_30(0.3);
-        let traj = mesh.run(0.0, 1.0, Start::Touching(0.0));
+        let traj = mesh.solve(0.0..=1.0, Start::Touching(0.0), Solve::path());
         assert!(traj.events().is_empty());
         let svg = td_plot("a test pair", &traj, &|_| "-", &td_of(&traj, 50)).unwrap();
         assert!(svg.contains("no event"), "{svg}");
@@ -144,7 +144,11 @@ mod tests {
     fn every_event_gets_a_tick_and_the_legend_names_its_kind() {
         // Gears so far apart that the tips slip past each other again and again.
         let mesh = crate::test_pair::ideal_20_30(1.09);
-        let traj = mesh.run(0.0, std::f64::consts::TAU * 3.0, Start::Touching(0.0));
+        let traj = mesh.solve(
+            0.0..=std::f64::consts::TAU * 3.0,
+            Start::Touching(0.0),
+            Solve::path(),
+        );
         let n = traj.events().len();
         assert!(n >= 1, "the loose mesh must have an event");
         let svg = td_plot(

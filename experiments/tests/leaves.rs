@@ -44,16 +44,20 @@ fn no_experiment_imports_another() {
 fn every_plugin_file_registers_exactly_one_experiment() {
     let all = plugins();
     for (stem, text) in &all {
-        // One `crate::experiment!` (its cell grammar, if any, inside it), nothing registered
-        // around it.
+        // One registration: `registry::register!` of a typed experiment, its cell grammar (if
+        // any) beside it in `crate::replay_cells!`; nothing else registered around it.
+        let typed = text.matches("registry::register!(").count();
         assert_eq!(
-            text.matches("crate::experiment!").count(),
-            1,
-            "{stem}.rs should register exactly one experiment, with `crate::experiment!`"
+            typed, 1,
+            "{stem}.rs should register exactly one experiment, with `registry::register!`"
+        );
+        assert!(
+            text.matches("crate::replay_cells!").count() <= 1,
+            "{stem}.rs registers more than one cell grammar"
         );
         assert!(
             !text.contains("inventory::submit!"),
-            "{stem}.rs registers something beside its experiment: one `crate::experiment!` (with `replay:` for its cell grammar)"
+            "{stem}.rs registers something beside its experiment: one `registry::register!` (with `crate::replay_cells!` for its cell grammar)"
         );
     }
     experiments::link();

@@ -15,7 +15,9 @@ fn run(id: &str, ctx: &Context) -> Report {
         .num_threads(2)
         .build()
         .unwrap();
-    pool.install(|| (map[id].run)(ctx)).unwrap()
+    pool.install(|| (map[id].run)(ctx, ctx.engine()))
+        .unwrap()
+        .report
 }
 
 /// A single run, and `n` shards joined (their records sent through JSON text) and replayed.

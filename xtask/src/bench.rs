@@ -2,7 +2,7 @@
 
 use std::time::Instant;
 
-use registry::{Context, Experiment, Table};
+use registry::{Context, Entry, Table};
 
 use crate::args::{BenchArgs, BenchTarget, DEFAULT_SEED};
 use crate::compute::{execute, make_pool};
@@ -31,7 +31,7 @@ pub(crate) fn bench(exps: &Registry, b: &BenchArgs) -> Result<(), Failure> {
     );
     let mut rows_all = Vec::new();
     for &target in &b.targets {
-        let chosen: Vec<&'static Experiment> = match target {
+        let chosen: Vec<&'static Entry> = match target {
             BenchTarget::Table5 => match exps.get("table5") {
                 Some(e) => vec![*e],
                 None => {
@@ -64,6 +64,7 @@ pub(crate) fn bench(exps: &Registry, b: &BenchArgs) -> Result<(), Failure> {
                         e.id
                     ));
                 }
+                let result = result.map(|o| o.report);
                 rows.push(summary::Row::new(e.id, seconds, result.as_ref()));
             }
             let wall = start.elapsed().as_secs_f64();

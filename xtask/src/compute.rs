@@ -3,7 +3,7 @@
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::time::Instant;
 
-use registry::{Context, Experiment, RunError};
+use registry::{Context, Entry, Outcome, RunError};
 
 use crate::failure::Failure;
 use crate::progress;
@@ -16,18 +16,19 @@ pub(crate) fn make_pool(threads: usize) -> Result<rayon::ThreadPool, Failure> {
         .map_err(|e| Failure::Internal(format!("cannot start {threads} threads: {e}")))
 }
 
-/// Runs `e` in `pool`: its report (a panic is an internal error) and the wall time in seconds.
+/// Runs `e` in `pool`: its report and data (a panic is an internal error) and the wall time in
+/// seconds.
 pub(crate) fn execute(
-    e: &Experiment,
+    e: &Entry,
     ctx: &Context,
     pool: &rayon::ThreadPool,
-) -> (Result<registry::Report, RunError>, f64) {
+) -> (Result<Outcome, RunError>, f64) {
     let _span = tracing::info_span!("run", id = e.id).entered();
     tracing::info!(seed = ctx.seed(), threads = ctx.threads(), "start");
     progress::experiment_starts();
     let start = Instant::now();
     let result = progress::watch(e.id, || {
-        pool.install(|| catch_unwind(AssertUnwindSafe(|| (e.run)(ctx))))
+        pool.install(|| catch_unwind(AssertUnwindSafe(|| (e.run)(ctx, ctx.engine()))))
     })
     .unwrap_or_else(|_| {
         Err(RunError::Internal(format!(

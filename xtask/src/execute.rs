@@ -1,7 +1,7 @@
 //! Running experiments: `run <id>...` and `run all` with its summary (one experiment is computed
 //! by [`crate::compute`]).
 
-use registry::Experiment;
+use registry::Entry;
 
 use crate::args::RunArgs;
 use crate::compute::{execute, make_pool};
@@ -29,7 +29,7 @@ pub(crate) fn run_every(
     run: &RunArgs,
     out: &mut dyn FnMut(&str) -> Result<(), Failure>,
 ) -> Result<Vec<summary::Row>, Failure> {
-    let chosen: Vec<&'static Experiment> = exps.values().copied().collect();
+    let chosen: Vec<&'static Entry> = exps.values().copied().collect();
     let config = read_config(run)?;
     if config.is_some() && !chosen.iter().any(|e| e.config.is_some()) {
         return Err(Failure::Bad(
@@ -55,7 +55,7 @@ pub(crate) fn run_every(
                 // before it is printed, so that a failed print (a full disk behind stdout)
                 // loses no results.
                 let report =
-                    provenance::stamp(&report, p.e, &p.ctx, &p.sets, run.config.as_deref());
+                    provenance::stamp_outcome(&report, p.e, &p.ctx, &p.sets, run.config.as_deref());
                 let results = dir.join(p.e.id);
                 let written = registry::write_results(&results, &report);
                 if written.is_ok() {
@@ -130,7 +130,8 @@ pub(crate) fn run_all(exps: &Registry, run: &RunArgs) -> Result<(), Failure> {
                 return Err(as_typed(e, p.e.id, run).into());
             }
         };
-        let report = provenance::stamp(&report, p.e, &p.ctx, &p.sets, run.config.as_deref());
+        let report =
+            provenance::stamp_outcome(&report, p.e, &p.ctx, &p.sets, run.config.as_deref());
         // Written before printed: a print that fails (stdout closed or its disk full) must not
         // cost the results.
         let dir = out.join(p.e.id);

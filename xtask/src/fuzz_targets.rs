@@ -22,6 +22,8 @@
 
 use std::collections::BTreeSet;
 
+use contact::Solve;
+
 /// The file name the loaders are given; every refusal must name it.
 pub const FILE: &str = "fuzz.ron";
 
@@ -385,7 +387,7 @@ pub fn pair(text: &str) -> Result<Outcome, String> {
     }
     let pitch = std::f64::consts::TAU / mesh.driver().teeth() as f64;
     let phi0 = prepared.spec.start_deg.to_radians();
-    let traj = mesh.run(phi0, phi0 + pitch, prepared.start);
+    let traj = mesh.solve(phi0..=phi0 + pitch, prepared.start, Solve::path());
     let theta = traj.theta_at(phi0 + pitch);
     if !theta.is_finite() {
         return Err(format!("the accepted mesh ran to driven angle {theta}"));

@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use registry::{Experiment, Table};
+use registry::{Entry, Table};
 use serde_json::Value;
 
 use crate::args::{DEFAULT_SEED, MAX_THREADS};
@@ -165,7 +165,7 @@ pub(crate) fn overview(exps: &Registry) -> String {
 /// `help <id>`: what the experiment reproduces, its parameters, the flags that reach it, its
 /// config file and its outputs (with the files of its last run in the default results
 /// directory, when there is one).
-pub(crate) fn details(e: &Experiment) -> String {
+pub(crate) fn details(e: &Entry) -> String {
     let mut s = format!("{}: {}\nPaper item: {}\n\n", e.id, e.title, e.paper_item);
     if e.all_params().next().is_none() {
         s.push_str("Parameters: none.\n");
@@ -324,7 +324,7 @@ pub(crate) fn wrap(text: &str, width: usize) -> String {
 
 /// The outputs part of `help <id>`: the files every run writes, and the experiment's own files
 /// as its last run in `out` listed them (they are only known once it has run).
-pub(crate) fn outputs(e: &Experiment, out: &Path) -> String {
+pub(crate) fn outputs(e: &Entry, out: &Path) -> String {
     let dir = out.join(e.id);
     let mut s = format!(
         "\nOutputs, written to <out>/{id}/ (default {dir}), replacing it whole:\n",

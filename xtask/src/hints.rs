@@ -3,7 +3,7 @@
 //! but is probably not what was meant (tip angles in radians, a clearance of a fraction of a per
 //! cent, `run pair` with no file).
 
-use registry::{ConfigFile, Experiment};
+use registry::{ConfigFile, Entry};
 
 /// Edit distance (insertions, deletions, substitutions and swaps of neighbours), ASCII
 /// case-insensitive.
@@ -169,7 +169,7 @@ fn ron_option_hint(msg: &str) -> Option<String> {
 /// Warnings for a run about to start (stderr, unless `-q`): values that run but are probably
 /// not what was meant.
 pub(crate) fn warnings(
-    e: &Experiment,
+    e: &Entry,
     sets: &[(String, String)],
     config: Option<&ConfigFile>,
 ) -> Vec<String> {

@@ -2,7 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
-use registry::{ConfigFile, Context, Experiment, RunError};
+use registry::{ConfigFile, Context, Entry, RunError};
 
 use crate::args::RunArgs;
 use crate::failure::Failure;
@@ -10,15 +10,15 @@ use crate::help::known;
 use crate::progress;
 use crate::shared::{Registry, default_out};
 
-pub(crate) fn lookup(exps: &Registry, id: &str) -> Result<&'static Experiment, Failure> {
+pub(crate) fn lookup(exps: &Registry, id: &str) -> Result<&'static Entry, Failure> {
     exps.get(id)
         .copied()
         .ok_or_else(|| Failure::Bad(format!("unknown experiment `{id}` ({})", known(exps))))
 }
 
 /// The experiments `ids` names, in order, without repeats (`run all` is handled by [`crate::execute::run_every`]).
-pub(crate) fn select(exps: &Registry, ids: &[String]) -> Result<Vec<&'static Experiment>, Failure> {
-    let mut chosen: Vec<&'static Experiment> = Vec::new();
+pub(crate) fn select(exps: &Registry, ids: &[String]) -> Result<Vec<&'static Entry>, Failure> {
+    let mut chosen: Vec<&'static Entry> = Vec::new();
     for id in ids {
         let e = lookup(exps, id)?;
         if !chosen.iter().any(|c| c.id == e.id) {
@@ -47,7 +47,7 @@ pub(crate) fn read_config(run: &RunArgs) -> Result<Option<ConfigFile>, Failure> 
 
 /// With several experiments each gets the `--set` keys it declares, but every key must be someone's.
 pub(crate) fn check_sets(
-    chosen: &[&'static Experiment],
+    chosen: &[&'static Entry],
     sets: &[(String, String)],
 ) -> Result<(), Failure> {
     for (key, _) in sets {
@@ -60,12 +60,12 @@ pub(crate) fn check_sets(
     Ok(())
 }
 
-pub(crate) fn declares(e: &Experiment, name: &str) -> bool {
+pub(crate) fn declares(e: &Entry, name: &str) -> bool {
     e.all_params().any(|p| p.name == name)
 }
 
 /// The `--set` pairs `e` declares.
-pub(crate) fn declared_sets(e: &Experiment, sets: &[(String, String)]) -> Vec<(String, String)> {
+pub(crate) fn declared_sets(e: &Entry, sets: &[(String, String)]) -> Vec<(String, String)> {
     sets.iter()
         .filter(|(k, _)| declares(e, k))
         .cloned()
@@ -75,7 +75,7 @@ pub(crate) fn declared_sets(e: &Experiment, sets: &[(String, String)]) -> Vec<(S
 /// The shorthand flags given, as (flag, the parameter it sets in `e`, value) for an experiment
 /// `e`; `None` where `e` declares no parameter the flag sets.
 pub(crate) fn shorthands(
-    e: &Experiment,
+    e: &Entry,
     run: &RunArgs,
 ) -> Vec<(&'static str, Option<(String, String)>)> {
     let mut out = Vec::new();
@@ -103,10 +103,7 @@ pub(crate) fn shorthands(
 }
 
 /// Every shorthand flag given must reach at least one of `chosen`.
-pub(crate) fn check_shorthands(
-    chosen: &[&'static Experiment],
-    run: &RunArgs,
-) -> Result<(), Failure> {
+pub(crate) fn check_shorthands(chosen: &[&'static Entry], run: &RunArgs) -> Result<(), Failure> {
     let Some(first) = chosen.first() else {
         return Ok(());
     };
@@ -131,7 +128,7 @@ pub(crate) fn check_shorthands(
 /// One selected experiment, ready to run: its context and the `--set` pairs it was given
 /// (recorded in a shard's partial file).
 pub(crate) struct Planned {
-    pub(crate) e: &'static Experiment,
+    pub(crate) e: &'static Entry,
     pub(crate) ctx: Context,
     pub(crate) sets: Vec<(String, String)>,
 }
@@ -142,7 +139,7 @@ pub(crate) struct Planned {
 /// those that take one. Everything the user gave is checked here, before anything runs:
 /// [`preflight`].
 pub(crate) fn plan(
-    chosen: &[&'static Experiment],
+    chosen: &[&'static Entry],
     run: &RunArgs,
     config: Option<&ConfigFile>,
     alone: bool,
@@ -169,6 +166,18 @@ pub(crate) fn plan(
         planned.push(Planned { e, ctx, sets });
     }
     preflight(&planned, run)?;
+    // Every experiment's settings read and checked across their fields (a grid's end below its
+    // start, a tolerance named twice) before any of them computes.
+    for p in &planned {
+        p.e.check_settings(&p.ctx).map_err(|err| {
+            let err = as_typed(err, p.e.id, run);
+            if alone {
+                err
+            } else {
+                of_experiment(err, p.e.id)
+            }
+        })?;
+    }
     // What runs but is probably not what was meant, said before it runs.
     for p in &planned {
         for w in crate::hints::warnings(p.e, &p.sets, p.ctx.config()) {

@@ -1,6 +1,6 @@
 //! Printing a report's tables on stdout in the chosen format (Markdown, CSV, JSON).
 
-use registry::{Experiment, Report, Table};
+use registry::{Entry, Report, Table};
 use serde_json::Value;
 
 use crate::args::Format;
@@ -35,7 +35,7 @@ impl<'a> Printer<'a> {
         }
     }
 
-    pub(crate) fn report(&mut self, e: &Experiment, report: &Report) -> Result<(), Failure> {
+    pub(crate) fn report(&mut self, e: &Entry, report: &Report) -> Result<(), Failure> {
         let gap = if self.printed == 0 { "" } else { "\n" };
         self.printed += 1;
         match self.format {

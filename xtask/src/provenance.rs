@@ -7,7 +7,7 @@ use std::path::Path;
 use std::sync::OnceLock;
 use std::time::{SystemTime, UNIX_EPOCH};
 
-use registry::{Context, Experiment, OutputFile, READINGS, Report};
+use registry::{Context, Entry, Outcome, OutputFile, Report};
 use serde_json::json;
 
 /// The SHA-256 of the code this runner was built from (see `xtask/build.rs`): what a shard's
@@ -24,7 +24,7 @@ pub const RUN_JSON: &str = "run.json";
 /// the config file is recorded only for an experiment that takes one.
 pub fn stamp(
     report: &Report,
-    e: &Experiment,
+    e: &Entry,
     ctx: &Context,
     sets: &[(String, String)],
     config: Option<&std::path::Path>,
@@ -105,16 +105,31 @@ fn recorded_inputs(ctx: &Context) -> BTreeMap<String, String> {
     inputs
 }
 
-/// The readings of the paper the run was made under ([`READINGS`] the experiment declares),
-/// whatever their value: `run.json` says which event rule counted and which gear drove.
+/// [`stamp`] on `outcome`'s report, with `results.json` (the experiment's settings and results
+/// as data: what `report` draws again and later experiments read typed) among its files.
+pub fn stamp_outcome(
+    outcome: &Outcome,
+    e: &Entry,
+    ctx: &Context,
+    sets: &[(String, String)],
+    config: Option<&std::path::Path>,
+) -> Report {
+    let mut stamped = stamp(&outcome.report, e, ctx, sets, config);
+    let mut data = format!("{:#}", outcome.data);
+    data.push('\n');
+    stamped
+        .files
+        .push(OutputFile::new(registry::RESULTS_JSON, data));
+    stamped
+}
+
+/// The readings of the paper the run was made under (the parameters the experiment declares as
+/// readings, [`registry::Param::reading`]), whatever their value: `run.json` says which event
+/// rule counted and which gear drove.
 fn readings(ctx: &Context) -> BTreeMap<&'static str, String> {
-    READINGS
-        .iter()
-        .filter_map(|&name| {
-            ctx.values()
-                .find(|(p, _)| p.name == name)
-                .map(|(_, v)| (name, v.to_owned()))
-        })
+    ctx.values()
+        .filter(|(p, _)| p.reading)
+        .map(|(p, v)| (p.name, v.to_owned()))
         .collect()
 }
 
@@ -125,7 +140,7 @@ pub const DEPARTURE: &str = "[inputs differ from the defaults: ";
 /// A run whose inputs differ from the defaults (the paper's) says so in every table's title,
 /// labels the paper's numbers as coming from other inputs, and judges no agreement with the
 /// paper (the summary shows `-`). Runs at the defaults, or differing only in a reading of the
-/// paper ([`READINGS`]), are left exactly as they print.
+/// paper ([`registry::Param::reading`]), are left exactly as they print.
 fn label_departures(report: &mut Report, ctx: &Context) {
     if runs_example_table(ctx) {
         for t in &mut report.tables {
@@ -271,50 +286,28 @@ mod tests {
     use super::*;
     use registry::Param;
 
-    fn nothing(_: &Context) -> Result<Report, registry::RunError> {
-        Ok(Report::default())
+    const N: Param = Param::new("n", "1", "h", registry::Kind::Text);
+    const GEARING: Param = Param::new("gearing", "freeth2006", "h", registry::Kind::Text);
+    const HYPOTHESIS: Param = Param::new("hypothesis", "edmunds-split", "h", registry::Kind::Text);
+
+    #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, registry::Settings)]
+    struct OneN {
+        #[param(N)]
+        n: String,
     }
 
-    static E: Experiment = Experiment {
-        id: "e",
-        title: "t",
-        paper_item: "p",
-        params: &[Param {
-            name: "n",
-            default: "1",
-            unit: "",
-            help: "h",
-            kind: registry::Kind::Text,
-        }],
-        groups: &[],
-        config: None,
-        run: nothing,
-    };
+    #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, registry::Settings)]
+    struct Inputs {
+        #[param(GEARING)]
+        gearing: String,
+        #[param(HYPOTHESIS)]
+        hypothesis: String,
+    }
 
-    static G: Experiment = Experiment {
-        id: "g",
-        title: "t",
-        paper_item: "p",
-        params: &[
-            Param {
-                name: "gearing",
-                default: "freeth2006",
-                unit: "",
-                help: "h",
-                kind: registry::Kind::Text,
-            },
-            Param {
-                name: "hypothesis",
-                default: "edmunds-split",
-                unit: "",
-                help: "h",
-                kind: registry::Kind::Text,
-            },
-        ],
-        groups: &[],
-        config: None,
-        run: nothing,
-    };
+    registry::test_experiment!(ExpE, "e", "p", OneN);
+    registry::test_experiment!(ExpG, "g", "p", Inputs);
+    static E: Entry = Entry::of::<ExpE>();
+    static G: Entry = Entry::of::<ExpG>();
 
     #[test]
     fn run_json_hashes_every_input_file() {

@@ -74,7 +74,7 @@ fn folder(a: &ReplayArgs, changed: &[(&str, &str)]) -> String {
 
 /// The [`suffix`] of the replay whose results are in `dir`, from its `run.json` (`None` when
 /// there is none to read: no folder, or one written before replays recorded their settings).
-fn recorded_suffix(e: &registry::Experiment, dir: &std::path::Path) -> Option<String> {
+fn recorded_suffix(e: &registry::Entry, dir: &std::path::Path) -> Option<String> {
     let text = input_file::read_to_string(&dir.join(crate::provenance::RUN_JSON), 1 << 20).ok()?;
     let run: serde_json::Value = serde_json::from_str(&text).ok()?;
     let seed = run["seed"].as_u64()?;
@@ -97,7 +97,7 @@ fn recorded_suffix(e: &registry::Experiment, dir: &std::path::Path) -> Option<St
 /// settings found there moves to its own name, [`folder`]); a replay of other settings takes
 /// [`base`] when it is free or holds the same settings' replay, and its own name otherwise.
 fn placed(
-    e: &registry::Experiment,
+    e: &registry::Entry,
     a: &ReplayArgs,
     changed: &[(&str, &str)],
     out: &std::path::Path,

@@ -5,12 +5,12 @@ use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use registry::Experiment;
+use registry::Entry;
 
 use crate::failure::Failure;
 
 /// Experiments by id.
-pub(crate) type Registry = BTreeMap<&'static str, &'static Experiment>;
+pub(crate) type Registry = BTreeMap<&'static str, &'static Entry>;
 
 /// Writes to stdout; a closed pipe (`cargo xtask list | head -1`) is not an error.
 pub(crate) fn print(s: &str) -> Result<(), Failure> {

@@ -4,7 +4,7 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use registry::{Context, Experiment, Param, Report, RunError, Table};
+use registry::{Entry, Param, Report, RunError, Table};
 
 use crate::args::{Format, RunArgs};
 use crate::bench::bench_row;
@@ -20,59 +20,82 @@ const N: Param = Param {
     unit: "",
     help: "trials",
     kind: registry::Kind::Text,
+    reading: false,
 };
 
-fn fine(ctx: &Context) -> Result<Report, RunError> {
-    let mut t = Table::new("Fine", ["n"]);
-    t.row(vec![ctx.text(&N)?.to_owned()]);
-    Ok(Report {
-        tables: vec![t],
-        trials: ctx.get(&N)?,
-        engagements: 10,
-        agreement: Some(registry::Agreement {
-            consistent: 2,
-            differ: 1,
-        }),
-        ..Default::default()
-    })
+/// `a-fine`'s settings: its one parameter as typed.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, registry::Settings)]
+struct FineSettings {
+    #[param(N)]
+    n: String,
 }
 
-fn refuses(ctx: &Context) -> Result<Report, RunError> {
-    let _ = ctx;
-    Err(RunError::bad("--set", "x", "must be sensible"))
+/// Reports its parameter, trials and agreement.
+struct Fine;
+impl registry::Experiment for Fine {
+    const ID: &'static str = "a-fine";
+    const TITLE: &'static str = "fine";
+    const PAPER_ITEM: &'static str = "Table 0";
+    const PLACE: registry::Place = registry::Place::Beyond(0);
+    type Settings = FineSettings;
+    type Results = u64;
+    fn compute(s: &FineSettings, _: &registry::Run) -> Result<u64, RunError> {
+        s.n.parse()
+            .map_err(|_| RunError::bad("--set", "n", "must be a count"))
+    }
+    fn report(s: &FineSettings, n: &u64) -> Result<Report, RunError> {
+        let mut t = Table::new("Fine", ["n"]);
+        t.row(vec![s.n.clone()]);
+        Ok(Report {
+            tables: vec![t],
+            trials: *n,
+            engagements: 10,
+            agreement: Some(registry::Agreement {
+                consistent: 2,
+                differ: 1,
+            }),
+            ..Default::default()
+        })
+    }
 }
 
-fn panics(_: &Context) -> Result<Report, RunError> {
-    panic!("deliberately")
+/// Refuses its input.
+struct Refuses;
+impl registry::Experiment for Refuses {
+    const ID: &'static str = "b-bad";
+    const TITLE: &'static str = "refuses";
+    const PAPER_ITEM: &'static str = "Table 0";
+    const PLACE: registry::Place = registry::Place::Beyond(1);
+    type Settings = registry::NoSettings;
+    type Results = ();
+    fn compute(_: &registry::NoSettings, _: &registry::Run) -> Result<(), RunError> {
+        Err(RunError::bad("--set", "x", "must be sensible"))
+    }
+    fn report(_: &registry::NoSettings, _: &()) -> Result<Report, RunError> {
+        Ok(Report::default())
+    }
 }
 
-static A_FINE: Experiment = Experiment {
-    id: "a-fine",
-    title: "fine",
-    paper_item: "Table 0",
-    params: &[N],
-    groups: &[],
-    config: None,
-    run: fine,
-};
-static B_BAD: Experiment = Experiment {
-    id: "b-bad",
-    title: "refuses",
-    paper_item: "Table 0",
-    params: &[],
-    groups: &[],
-    config: None,
-    run: refuses,
-};
-static C_PANIC: Experiment = Experiment {
-    id: "c-panic",
-    title: "panics",
-    paper_item: "Table 0",
-    params: &[],
-    groups: &[],
-    config: None,
-    run: panics,
-};
+/// Panics.
+struct Panics;
+impl registry::Experiment for Panics {
+    const ID: &'static str = "c-panic";
+    const TITLE: &'static str = "panics";
+    const PAPER_ITEM: &'static str = "Table 0";
+    const PLACE: registry::Place = registry::Place::Beyond(2);
+    type Settings = registry::NoSettings;
+    type Results = ();
+    fn compute(_: &registry::NoSettings, _: &registry::Run) -> Result<(), RunError> {
+        panic!("deliberately")
+    }
+    fn report(_: &registry::NoSettings, _: &()) -> Result<Report, RunError> {
+        Ok(Report::default())
+    }
+}
+
+static A_FINE: Entry = Entry::of::<Fine>();
+static B_BAD: Entry = Entry::of::<Refuses>();
+static C_PANIC: Entry = Entry::of::<Panics>();
 
 fn registry(with_panic: bool) -> Registry {
     let mut r: Registry = BTreeMap::new();

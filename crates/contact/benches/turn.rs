@@ -8,7 +8,7 @@
 use std::f64::consts::TAU;
 use std::hint::black_box;
 
-use contact::{Mesh, Start};
+use contact::{Mesh, Solve, Start};
 use criterion::{Criterion, criterion_group, criterion_main};
 use geometry::{Gear, Vec2};
 use rand::SeedableRng;
@@ -78,7 +78,7 @@ fn turn(c: &mut Criterion) {
             (format!("tooth-error-{TOOTH_ERROR}"), TOOTH_ERROR),
         ] {
             let m = mesh(&p, sigma, 1);
-            let t = m.run(0.0, phi_end, Start::Touching(0.0));
+            let t = m.solve(0.0..=phi_end, Start::Touching(0.0), Solve::path());
             eprintln!(
                 "turn/{}/{label}: {} segments, {} jams, {} disengagements",
                 p.name,
@@ -87,7 +87,13 @@ fn turn(c: &mut Criterion) {
                 t.disengagements()
             );
             c.bench_function(&format!("turn/{}/{label}", p.name), |b| {
-                b.iter(|| black_box(&m).run(0.0, black_box(phi_end), Start::Touching(0.0)));
+                b.iter(|| {
+                    black_box(&m).solve(
+                        0.0..=black_box(phi_end),
+                        Start::Touching(0.0),
+                        Solve::path(),
+                    )
+                });
             });
         }
     }

@@ -6,7 +6,7 @@
 use std::f64::consts::TAU;
 use std::time::Instant;
 
-use contact::{Mesh, Start};
+use contact::{Mesh, Solve, Start};
 use geometry::{Gear, Vec2};
 
 fn main() {
@@ -20,7 +20,11 @@ fn main() {
         let m = Mesh::new(gear(n1, r1), gear(n2, r2), d).unwrap();
         let evals0 = contact::tooth_pair_evaluations();
         let t0 = Instant::now();
-        let events = m.run_events(0.0, TAU * n2 as f64 / n1 as f64, Start::Touching(0.0));
+        let events = m.solve(
+            0.0..=TAU * n2 as f64 / n1 as f64,
+            Start::Touching(0.0),
+            Solve::events(),
+        );
         println!(
             "G {g} %: {} events, {:.1} ms, {} tooth-pair evaluations",
             events.len(),

@@ -6,7 +6,7 @@
 //! in any event, and in jammed at all or disengaged at all, by band of clearance).
 #![allow(missing_docs, clippy::unwrap_used, reason = "harness")]
 
-use contact::Start;
+use contact::{Solve, Start};
 
 #[path = "../tests/support/hard_meshes.rs"]
 mod hard_meshes;
@@ -27,8 +27,16 @@ fn wide(cases: u64, clearances: (f64, f64), curved: bool) {
     } in wide_meshes::wide_meshes(cases, clearances, curved)
     {
         let band = &mut bands[((clearance / 10.0) as usize).min(9)];
-        let a = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, true);
-        let b = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 64.0, false);
+        let a = m.solve(
+            phi0..=end,
+            Start::Touching(0.0),
+            Solve::path().steps_per_pitch(4.0),
+        );
+        let b = m.solve(
+            phi0..=end,
+            Start::Touching(0.0),
+            Solve::path().steps_per_pitch(64.0).exact_core(),
+        );
         let same = same_events(a.events(), b.events());
         let answer = |t: &contact::Trajectory| (t.jams() > 0, t.disengagements() > 0);
         band.0 += 1;
@@ -90,10 +98,16 @@ fn main() {
             continue;
         };
         let (m, phi0, end, what) = (h.mesh, h.phi0, h.end, h.what);
-        let a = m.run_with_steps(phi0, end, Start::Touching(0.0), false, reference, false);
+        let a = m.solve(
+            phi0..=end,
+            Start::Touching(0.0),
+            Solve::path().steps_per_pitch(reference).exact_core(),
+        );
         let e0 = contact::tooth_pair_evaluations();
         let t0 = std::time::Instant::now();
-        let b = m.run_with_steps(phi0, end, Start::Touching(0.0), false, steps, certify);
+        let how = Solve::path().steps_per_pitch(steps);
+        let how = if certify { how } else { how.exact_core() };
+        let b = m.solve(phi0..=end, Start::Touching(0.0), how);
         b_evals += contact::tooth_pair_evaluations() - e0;
         b_time += t0.elapsed().as_secs_f64();
         events += a.events().len();

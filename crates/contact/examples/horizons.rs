@@ -18,7 +18,7 @@
 
 use std::f64::consts::TAU;
 
-use contact::{Mesh, Start};
+use contact::{Mesh, Solve, Start};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
@@ -55,7 +55,7 @@ fn main() {
                 .unwrap();
                 let pitch = TAU / n1 as f64;
                 let end = TAU * n2 as f64 / n1 as f64;
-                let t = m.run(0.0, end, Start::Touching(0.0));
+                let t = m.solve(0.0..=end, Start::Touching(0.0), Solve::path());
                 let gap = TAU / n2 as f64;
                 let h = pitch / N as f64;
                 let mut obs = Vec::new();

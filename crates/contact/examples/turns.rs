@@ -5,7 +5,7 @@
 use std::f64::consts::TAU;
 use std::time::Instant;
 
-use contact::{Mesh, Start};
+use contact::{Mesh, Solve, Start};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
@@ -18,7 +18,7 @@ fn main() {
     for (name, n1, n2, r1, r2) in MESHES {
         let t0 = Instant::now();
         let evals0 = contact::tooth_pair_evaluations();
-        let stats0 = contact::solver_stats();
+        let (stats0, speed0) = (contact::solver_stats(), contact::speed_stats());
         let (mut segs, mut events) = (0, 0);
         for s in 0..turns as u64 {
             let mut rng = ChaCha8Rng::seed_from_u64(s);
@@ -29,7 +29,11 @@ fn main() {
                 d,
             )
             .unwrap();
-            let t = m.run(0.0, TAU * n2 as f64 / n1 as f64, Start::Touching(0.0));
+            let t = m.solve(
+                0.0..=TAU * n2 as f64 / n1 as f64,
+                Start::Touching(0.0),
+                Solve::path(),
+            );
             segs += t.segments().len();
             events += t.events().len();
         }
@@ -38,14 +42,14 @@ fn main() {
             "evaluations per driven tooth: {:.1}",
             (contact::tooth_pair_evaluations() - evals0) as f64 / turns as f64 / n2 as f64
         );
-        let st = contact::solver_stats();
+        let (st, sp) = (contact::solver_stats(), contact::speed_stats());
         let per = |x: u64| x as f64 / turns as f64 / n2 as f64;
         println!(
             "per driven tooth: {:.2} certified steps ({:.1} evaluations), {:.2} refused ({:.1}), {:.2} bracketed",
-            per(st.certified - stats0.certified),
-            per(st.certified_evaluations - stats0.certified_evaluations),
-            per(st.refused - stats0.refused),
-            per(st.refused_evaluations - stats0.refused_evaluations),
+            per(sp.certified - speed0.certified),
+            per(sp.certified_evaluations - speed0.certified_evaluations),
+            per(sp.refused - speed0.refused),
+            per(sp.refused_evaluations - speed0.refused_evaluations),
             per(st.bracketed - stats0.bracketed),
         );
         println!(

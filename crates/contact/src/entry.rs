@@ -1,121 +1,172 @@
-//! The ways a caller runs a mesh: each solves the push model with the exact core (`solver/`),
-//! with the speed layer (`speed/`) on top wherever it applies. The one module above both: the
-//! core never names the speed layer, and the speed layer never names this.
+//! The one way a caller runs a mesh, [`Mesh::solve`]: the push model solved by the exact core
+//! (`solver/`), with the speed layer (`speed/`) passed to each step wherever it applies. The one
+//! module above both: the core never names the speed layer, and the speed layer never names this.
+
+use std::marker::PhantomData;
+use std::ops::RangeInclusive;
 
 use crate::mesh::Mesh;
-use crate::solver::{Answered, Event, Shortcut, Solve, Start, Stop, StopAt, Trajectory};
+use crate::solver::{
+    Answered, Event, ExactOnly, STEPS_PER_PITCH, Segment, Start, Stop, StopAt, Trajectory,
+};
 
-impl Mesh {
-    /// Runs the push model from driver angle `phi_start` to `phi_end` (radians, `phi_end >=
-    /// phi_start`).
-    pub fn run(&self, phi_start: f64, phi_end: f64, start: Start) -> Trajectory {
-        self.run_until(phi_start, phi_end, start, None)
-    }
-
-    /// Like [`Mesh::run`], but the run ends at the first event for which `stop` holds (a jammed
-    /// train stops; which events jam is an event rule's call): the trajectory then ends there and
-    /// holds its last angle beyond. `stop` sees an event as it is recorded, before a later drive
-    /// sizes it (its kind is final except that a gap may still become a slip).
-    pub fn run_until(
-        &self,
-        phi_start: f64,
-        phi_end: f64,
-        start: Start,
-        stop: Option<&StopAt<'_>>,
-    ) -> Trajectory {
-        let how = Solve::default();
-        self.solve(
-            (phi_start, phi_end),
-            start,
-            stop.into(),
-            how,
-            speed_layer(self),
-        )
-        .into_trajectory()
-    }
-
-    /// [`Mesh::run_until`] with the step set to `1 / steps_per_pitch` of the driver's pitch, and,
-    /// with `certify` unset (or the crate built without its `speed` feature), the exact core
-    /// alone: every step exact, no proof of the speed layer tried. The result must depend on
-    /// neither (events are roots either way); the differential tests run them against each other.
+/// What a run keeps, and so what [`Mesh::solve`] returns: [`Path`] or [`Events`].
+pub trait Keep: sealed::Sealed {
+    /// What the run returns.
+    type Output;
+    /// Whether every segment is kept.
     #[doc(hidden)]
-    pub fn run_with_steps(
-        &self,
-        phi_start: f64,
-        phi_end: f64,
-        start: Start,
-        stop_at_jam: bool,
-        steps_per_pitch: f64,
-        certify: bool,
-    ) -> Trajectory {
-        let contact_stop = |e: &Event| e.kind.is_contact_stop();
-        let stop: Option<&StopAt<'_>> = if stop_at_jam {
-            Some(&contact_stop)
-        } else {
-            None
-        };
-        let how = Solve {
-            steps_per_pitch,
-            ..Solve::default()
-        };
-        let speed = if certify { speed_layer(self) } else { None };
-        self.solve((phi_start, phi_end), start, stop.into(), how, speed)
-            .into_trajectory()
-    }
+    const SEGMENTS: bool;
+    /// The run's segments (only the last where they are not kept) and events, handed over.
+    #[doc(hidden)]
+    fn output(mesh: &Mesh, segments: Vec<Segment>, events: Vec<Event>) -> Self::Output;
+}
 
-    /// The jams and disengagements of [`Mesh::run`] over the same range, without its segments:
-    /// all that jam statistics need, in memory that does not grow with the range.
-    pub fn run_events(&self, phi_start: f64, phi_end: f64, start: Start) -> Vec<Event> {
-        self.events_only((phi_start, phi_end), start, Stop::Never)
-    }
+/// Keep every segment: the run returns its [`Trajectory`] (θ at any φ, and the events).
+#[derive(Debug, Clone, Copy)]
+pub struct Path;
 
-    /// [`Mesh::run_events`] that ends at the first event for which `stop` holds (checked from
-    /// the start on, so a blocked start ends the run at once): the events up to and including
-    /// it are those of the whole run. For a caller that needs only whether some event occurs.
-    pub fn run_events_until(
-        &self,
-        phi_start: f64,
-        phi_end: f64,
-        start: Start,
-        stop: &StopAt<'_>,
-    ) -> Vec<Event> {
-        self.events_only((phi_start, phi_end), start, Stop::AtEvent(stop))
-    }
+/// Keep only the events: the run returns them, in memory that does not grow with its range
+/// (all that jam statistics need).
+#[derive(Debug, Clone, Copy)]
+pub struct Events;
 
-    /// [`Mesh::run_events`] that ends as soon as `answered` holds for the events so far, asked
-    /// each time new events are sized and none waits to be (the drive has resumed after each),
-    /// so that it sees every event as the whole run records it. For a caller whose answer, once
-    /// found, more events cannot change (has each rule seen a jam and a disengagement?): the
-    /// events returned are then the whole run's up to the cut, and the answer is the whole run's.
-    pub fn run_events_until_answered(
-        &self,
-        phi_start: f64,
-        phi_end: f64,
-        start: Start,
-        answered: &Answered<'_>,
-    ) -> Vec<Event> {
-        self.events_only((phi_start, phi_end), start, Stop::Answered(answered))
-    }
-
-    /// The events of a run that keeps no segments (cheaper), ending at `stop` if given.
-    fn events_only(&self, range: (f64, f64), start: Start, stop: Stop<'_, '_>) -> Vec<Event> {
-        let how = Solve {
-            keep_segments: false,
-            ..Solve::default()
-        };
-        self.solve(range, start, stop, how, speed_layer(self))
-            .into_events()
+impl Keep for Path {
+    type Output = Trajectory;
+    const SEGMENTS: bool = true;
+    fn output(mesh: &Mesh, segments: Vec<Segment>, events: Vec<Event>) -> Trajectory {
+        Trajectory {
+            mesh: mesh.clone(),
+            segments,
+            events,
+        }
     }
 }
 
-/// The speed layer for one run on `mesh`, where it applies (straight flanks) and the crate is
-/// built with it (the `speed` feature, on by default).
-fn speed_layer(mesh: &Mesh) -> Option<Box<dyn Shortcut>> {
-    #[cfg(feature = "speed")]
-    if let Some(certifier) = crate::speed::Certifier::new(mesh) {
-        return Some(Box::new(certifier));
+impl Keep for Events {
+    type Output = Vec<Event>;
+    const SEGMENTS: bool = false;
+    fn output(_: &Mesh, _: Vec<Segment>, events: Vec<Event>) -> Vec<Event> {
+        events
     }
-    #[cfg(not(feature = "speed"))]
-    let _ = mesh;
-    None
+}
+
+mod sealed {
+    /// Only [`super::Path`] and [`super::Events`] are ways of keeping a run.
+    pub trait Sealed {}
+    impl Sealed for super::Path {}
+    impl Sealed for super::Events {}
+}
+
+/// How [`Mesh::solve`] runs the push model: what it keeps ([`Solve::path`], [`Solve::events`]),
+/// where it may end early, and, for the differential tests, the step and whether the speed layer
+/// may take work. No result depends on the last two (events are roots either way).
+#[derive(Clone, Copy)]
+pub struct Solve<'s, K> {
+    stop: Stop<'s>,
+    steps_per_pitch: f64,
+    #[cfg_attr(
+        not(feature = "speed"),
+        expect(dead_code, reason = "no speed layer to leave out")
+    )]
+    speed_layer: bool,
+    keep: PhantomData<K>,
+}
+
+impl Solve<'_, Path> {
+    /// The whole trajectory: every segment and every event.
+    pub fn path() -> Self {
+        Self::keeping()
+    }
+}
+
+impl Solve<'_, Events> {
+    /// The events alone, without the segments: cheaper, in memory that does not grow with the
+    /// range.
+    pub fn events() -> Self {
+        Self::keeping()
+    }
+}
+
+impl<'s, K> Solve<'s, K> {
+    fn keeping() -> Self {
+        Self {
+            stop: Stop::Never,
+            steps_per_pitch: STEPS_PER_PITCH,
+            speed_layer: true,
+            keep: PhantomData,
+        }
+    }
+
+    /// The run ends at the first event for which `stop` holds (a jammed train stops; which
+    /// events jam is an event rule's call): a trajectory then ends there and holds its last angle
+    /// beyond. `stop` sees an event as it is recorded, before a later drive sizes it (its kind is
+    /// final except that a gap may still become a slip). Where only the events are kept it is
+    /// asked from the start on, so a blocked start ends the run at once; the events up to and
+    /// including the stopping one are those of the whole run.
+    pub fn stop_at(self, stop: &'s StopAt<'s>) -> Self {
+        Self {
+            stop: Stop::AtEvent(stop),
+            ..self
+        }
+    }
+
+    /// The run ends as soon as `answered` holds for the events so far, asked each time new events
+    /// are sized and none waits to be (the drive has resumed after each), so that it sees every
+    /// event as the whole run records it. For a caller whose answer, once found, more events
+    /// cannot change (has each rule seen a jam and a disengagement?): the events returned are
+    /// then the whole run's up to the cut, and the answer is the whole run's.
+    pub fn until_answered(self, answered: &'s Answered<'s>) -> Self {
+        Self {
+            stop: Stop::Answered(answered),
+            ..self
+        }
+    }
+
+    /// The step set to `1 / steps` of the driver's pitch (a quarter by default): only how far
+    /// apart the core looks at the tooth pairs together, which no result may depend on.
+    #[doc(hidden)]
+    pub fn steps_per_pitch(self, steps: f64) -> Self {
+        Self {
+            steps_per_pitch: steps,
+            ..self
+        }
+    }
+
+    /// The exact core alone: every step exact, no proof of the speed layer tried (as in a
+    /// crate built without its `speed` feature). The differential tests run it against the
+    /// default.
+    #[doc(hidden)]
+    pub fn exact_core(self) -> Self {
+        Self {
+            speed_layer: false,
+            ..self
+        }
+    }
+}
+
+impl Mesh {
+    /// Runs the push model over the driver angles `phi` (radians, start to end) from `start`,
+    /// as `how` says ([`Solve`]): the trajectory ([`Solve::path`]) or the events
+    /// ([`Solve::events`]). The speed layer, where it applies (straight flanks) and the crate is
+    /// built with it (the `speed` feature, on by default), is made for the run and passed to its
+    /// steps.
+    pub fn solve<K: Keep>(
+        &self,
+        phi: RangeInclusive<f64>,
+        start: Start,
+        how: Solve<'_, K>,
+    ) -> K::Output {
+        let range = (*phi.start(), *phi.end());
+        let core = (how.stop, how.steps_per_pitch, K::SEGMENTS);
+        #[cfg(feature = "speed")]
+        if how.speed_layer
+            && let Some(mut layer) = crate::speed::Certifier::new(self)
+        {
+            let (segments, events) = self.walk(range, start, core, &mut layer);
+            return K::output(self, segments, events);
+        }
+        let (segments, events) = self.walk(range, start, core, &mut ExactOnly);
+        K::output(self, segments, events)
+    }
 }

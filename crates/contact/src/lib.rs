@@ -33,7 +33,7 @@
 //!
 //! | what | where (files under `src/`) |
 //! |---|---|
-//! | the main loop: the driver walked in steps of a quarter of its pitch (only to bound the tooth pairs looked at together: no result depends on it), each step held, taken by the speed layer or taken exactly | `Mesh::solve` and `Run::advance` in `solver/mod.rs` |
+//! | the main loop: the driver walked in steps of a quarter of its pitch (only to bound the tooth pairs looked at together: no result depends on it), each step taken by the driven gear's `Drive` - held, pushed (offered to the speed layer first) or at rest - exactly unless the speed layer took it | `Mesh::walk` and `Run::advance` in `solver/mod.rs` |
 //! | one exact step: the pairs near the gear sorted behind or ahead, the path planned from those behind (push, gap, rest, push again) | `Run::exact_step`, `Run::plan_step` in `solver/step.rs` |
 //! | a closing: the first root where a lower-end condition of a pair ahead holds together with a condition of the path, the sign of the backlash read once between consecutive roots | `closing::first_closing` in `closing.rs`, asked by `first_jam` in `solver/step.rs` |
 //! | a lock or a strike: the closing judged (a pair touching behind, or none), the gear let go to the next free position or held | `Run::jam` in `solver/step.rs`; the free position, or the chain of obstacles that holds, by `Mesh::free_or_cover_in` in `solver/cover.rs` |
@@ -46,17 +46,19 @@
 //!
 //! The **exact core** is everything above: it alone decides every result. The **speed layer**
 //! (`src/speed/`, the `speed` feature, on by default) sits on top of it: per run a `Certifier`
-//! (`speed/mod.rs`) proves, where it can, that part of an exact search would find nothing, and
-//! the core leaves that part out - a pushed gear's step free of events (`speed/certified.rs`, on
+//! (`speed/mod.rs`), passed to each step of the run, proves where it can that part of an exact
+//! search would find nothing, and the core leaves that part out - a pushed gear's step free of events (`speed/certified.rs`, on
 //! the bounds of `speed/certify.rs`), the joints of a held gear's chain that hold through a step
 //! (`speed/held.rs`: a proof per joint that moves with its links' overlap, in a queue ordered by
 //! where each proof ends), the contact conditions a closing's search need not take (those that
 //! hold nowhere near the step's path). The core offers it that work through one trait,
-//! `Shortcut` (`solver/shortcut.rs`), and never names it; `entry.rs`, the public ways to run a mesh, builds
-//! it for each run. No result depends on it: `tests/differential.rs` holds runs with and without
-//! it (and with a 64-times-finer step) to the same events, and `cargo test -p contact
-//! --no-default-features` tests the core without it. `tests/module_graph.rs` checks that no layer
-//! names one above it.
+//! `Shortcut` (`solver/shortcut.rs`), and never names it: the run holds no state of the layer,
+//! and the layer keeps its own (its proofs; its counts, `speed_stats`). [`Mesh::solve`]
+//! (`entry.rs`), the one public way to run a mesh, builds the layer for each run, or leaves it out
+//! ([`Solve::exact_core`]). No result depends on it: `tests/differential.rs` holds runs with and
+//! without it (and with a 64-times-finer step) to the same events, and `cargo test -p contact
+//! --no-default-features` tests the core without it (CI runs it, and clippy on it).
+//! `tests/module_graph.rs` checks that no layer names one above it.
 
 mod closing;
 mod entry;
@@ -70,6 +72,9 @@ mod speed;
 mod stats;
 mod tooth;
 
+pub use entry::{Events, Keep, Path, Solve};
 pub use mesh::{Mesh, MeshError, Obstacle, tooth_pair_evaluations};
 pub use solver::{Answered, Event, EventKind, Motion, Segment, Start, StopAt, Trajectory};
+#[cfg(feature = "speed")]
+pub use speed::{SpeedStats, speed_stats};
 pub use stats::{SolverStats, solver_stats};

@@ -6,7 +6,7 @@
 
 use std::f64::consts::{PI, TAU};
 
-use contact::{Mesh, Start};
+use contact::{Mesh, Solve, Start};
 use geometry::{Gear, Vec2};
 
 /// The paper's N = 8 example (R = 200, r = 100, D = 310), the driver with flank sagitta
@@ -48,9 +48,9 @@ fn small_mesh(s: f64) -> Mesh {
 fn vanishing_sagitta_gives_the_straight_trajectory() {
     let straight = small_mesh(0.0);
     let span = 3.0 * TAU / 27.0;
-    let reference = straight.run(0.0, span, Start::Touching(0.0));
+    let reference = straight.solve(0.0..=span, Start::Touching(0.0), Solve::path());
     for s in [1e-9, -1e-9] {
-        let curved = small_mesh(s).run(0.0, span, Start::Touching(0.0));
+        let curved = small_mesh(s).solve(0.0..=span, Start::Touching(0.0), Solve::path());
         assert_eq!(curved.jams(), reference.jams(), "s = {s}");
         for i in 0..=300 {
             let phi = span * f64::from(i) / 300.0;
@@ -71,7 +71,7 @@ fn convex_teeth_touch_earlier_and_push_further() {
     // driven gear further.
     let sagittas = [-3.0, -1.5, -0.5, 0.0, 0.5, 1.5, 3.0];
     let theta = small_mesh(0.0)
-        .run(0.0, 0.0, Start::Touching(0.0))
+        .solve(0.0..=0.0, Start::Touching(0.0), Solve::path())
         .theta_at(0.0)
         + 0.002;
     let mut obstacles = Vec::new();

@@ -6,7 +6,7 @@
 //! the meshes that differ, by clearance).
 #![allow(clippy::unwrap_used, reason = "tests")]
 
-use contact::Start;
+use contact::{Solve, Start};
 
 #[path = "support/hard_meshes.rs"]
 mod hard_meshes;
@@ -28,13 +28,17 @@ fn first_events_do_not_depend_on_the_step() {
         else {
             continue;
         };
-        let coarse = m.run(phi0, end, Start::Touching(0.0));
-        let fine = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 32.0, false);
+        let coarse = m.solve(phi0..=end, Start::Touching(0.0), Solve::path());
+        let fine = m.solve(
+            phi0..=end,
+            Start::Touching(0.0),
+            Solve::path().steps_per_pitch(32.0).exact_core(),
+        );
         // The events-only run (no segments kept) finds exactly the same events.
         assert_eq!(
-            m.run_events(phi0, end, Start::Touching(0.0)),
+            m.solve(phi0..=end, Start::Touching(0.0), Solve::events()),
             coarse.events(),
-            "{what}: run_events"
+            "{what}: events only"
         );
         assert_eq!(coarse.jams() > 0, fine.jams() > 0, "{what}: jammed at all");
         assert_eq!(
@@ -96,8 +100,16 @@ fn certified_steps_find_the_events_the_exact_step_finds() {
             continue;
         };
         let (m, phi0, end, what) = (h.mesh, h.phi0, h.end, h.what);
-        let certified = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, true);
-        let bracketed = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, false);
+        let certified = m.solve(
+            phi0..=end,
+            Start::Touching(0.0),
+            Solve::path().steps_per_pitch(4.0),
+        );
+        let bracketed = m.solve(
+            phi0..=end,
+            Start::Touching(0.0),
+            Solve::path().steps_per_pitch(4.0).exact_core(),
+        );
         let (a, b) = (certified.events(), bracketed.events());
         assert_eq!(a, b, "{what}");
         // θ agrees between the events too.
@@ -115,6 +127,14 @@ fn certified_steps_find_the_events_the_exact_step_finds() {
     );
 }
 
+/// Steps the speed layer has taken on certificates on this thread so far (none without it).
+fn certified_steps() -> u64 {
+    #[cfg(feature = "speed")]
+    return contact::speed_stats().certified;
+    #[cfg(not(feature = "speed"))]
+    0
+}
+
 /// As `certified_steps_find_the_events_the_exact_step_finds`, bit for bit, on 1,000 meshes of the
 /// wider class at G = 5-95 % (`CERTIFY_CASES` sets another count; 3000 pass).
 #[test]
@@ -129,10 +149,18 @@ fn certified_steps_agree_with_the_exact_step_on_asymmetric_and_out_of_round_teet
         ..
     } in wide_meshes(cases, (5.0, 95.0), false)
     {
-        let before = contact::solver_stats().certified;
-        let a = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, true);
-        certified += contact::solver_stats().certified - before;
-        let b = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, false);
+        let before = certified_steps();
+        let a = m.solve(
+            phi0..=end,
+            Start::Touching(0.0),
+            Solve::path().steps_per_pitch(4.0),
+        );
+        certified += certified_steps() - before;
+        let b = m.solve(
+            phi0..=end,
+            Start::Touching(0.0),
+            Solve::path().steps_per_pitch(4.0).exact_core(),
+        );
         assert_eq!(a.events(), b.events(), "{what}");
         checked += 1;
         events += a.events().len() as u64;
@@ -237,8 +265,16 @@ fn tight_meshes_agree_with_the_plain_solver() {
                 continue;
             };
             let (m, phi0, end, what) = (h.mesh, h.phi0, h.end, h.what);
-            let a = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, true);
-            let b = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, false);
+            let a = m.solve(
+                phi0..=end,
+                Start::Touching(0.0),
+                Solve::path().steps_per_pitch(4.0),
+            );
+            let b = m.solve(
+                phi0..=end,
+                Start::Touching(0.0),
+                Solve::path().steps_per_pitch(4.0).exact_core(),
+            );
             assert_eq!(a.events(), b.events(), "{what}");
             checked += 1;
             events += a.events().len();
@@ -363,8 +399,16 @@ fn quarter_and_fine_runs(
     phi0: f64,
     end: f64,
 ) -> (contact::Trajectory, contact::Trajectory) {
-    let quarter = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 4.0, true);
-    let fine = m.run_with_steps(phi0, end, Start::Touching(0.0), false, 64.0, false);
+    let quarter = m.solve(
+        phi0..=end,
+        Start::Touching(0.0),
+        Solve::path().steps_per_pitch(4.0),
+    );
+    let fine = m.solve(
+        phi0..=end,
+        Start::Touching(0.0),
+        Solve::path().steps_per_pitch(64.0).exact_core(),
+    );
     (quarter, fine)
 }
 

@@ -3,7 +3,7 @@
 
 use std::f64::consts::TAU;
 
-use contact::{Mesh, Start};
+use contact::{Mesh, Solve, Start};
 use geometry::Gear;
 
 fn paper_example() -> Mesh {
@@ -14,7 +14,7 @@ fn paper_example() -> Mesh {
 #[test]
 fn initial_contact_is_thorndike_theta_prime_zero() {
     let m = paper_example();
-    let t = m.run(0.0, 0.0, Start::Touching(0.0));
+    let t = m.solve(0.0..=0.0, Start::Touching(0.0), Solve::path());
     let deg = t.theta_at(0.0).to_degrees();
     assert!((deg - 17.96).abs() < 0.005, "theta'(0) = {deg}");
 }
@@ -37,7 +37,7 @@ fn whole_driver_teeth_give_exact_ratio() {
         .unwrap();
         let p1 = TAU / n1 as f64;
         let phi0 = 0.3 * p1;
-        let t = m.run(phi0, phi0 + TAU, Start::Touching(0.0));
+        let t = m.solve(phi0..=phi0 + TAU, Start::Touching(0.0), Solve::path());
         assert_eq!(
             t.jams(),
             0,
@@ -64,7 +64,7 @@ fn whole_driver_teeth_give_exact_ratio() {
 fn paper_example_matches_appendix_closed_forms_every_hundredth_of_a_degree() {
     let m = paper_example();
     let pair = thorndike::Pair::new(8, 8, 200.0, 100.0, 200.0, 100.0, 310.0).unwrap();
-    let t = m.run(0.0, TAU, Start::Touching(0.0));
+    let t = m.solve(0.0..=TAU, Start::Touching(0.0), Solve::path());
     let mut worst: f64 = 0.0;
     let mut phases = std::collections::BTreeSet::new();
     for i in 0..=36_000 {
@@ -98,7 +98,7 @@ fn gears_whose_tips_cannot_engage_are_never_driven() {
     };
     for &d in clearances {
         let m = Mesh::new(g.clone(), g.clone(), d).unwrap();
-        let t = m.run(0.0, 3.0 * p1, Start::Touching(0.0));
+        let t = m.solve(0.0..=3.0 * p1, Start::Touching(0.0), Solve::path());
         assert!(t.never_driven(), "D = {d}: {:?}", t.events());
         let e = t.events()[0];
         assert!(e.idle_start && !e.resumed && e.phi == 0.0, "D = {d}: {e:?}");
@@ -106,7 +106,7 @@ fn gears_whose_tips_cannot_engage_are_never_driven() {
     }
     // Just inside, the tips engage and drive for a moment, then slip: driven, with a slip.
     let m = Mesh::new(g.clone(), g, 399.99).unwrap();
-    let t = m.run(0.0, 3.0 * p1, Start::Touching(0.0));
+    let t = m.solve(0.0..=3.0 * p1, Start::Touching(0.0), Solve::path());
     assert!(!t.never_driven(), "{:?}", t.events());
     assert!(t.events().iter().all(|e| !e.idle_start), "{:?}", t.events());
 }

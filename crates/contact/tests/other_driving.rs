@@ -4,7 +4,7 @@
 //! out-of-round teeth, curved flanks) against the listed mesh's own outlines and obstacles.
 #![allow(clippy::unwrap_used, reason = "tests")]
 
-use contact::{Mesh, Motion, Obstacle};
+use contact::{Mesh, Motion, Obstacle, Solve};
 use geometry::Vec2;
 use proptest::prelude::*;
 use proptest::test_runner::{Config as ProptestConfig, RngSeed};
@@ -86,7 +86,10 @@ fn equal_ideal_gears_run_alike_whichever_drives() {
     let listed = Mesh::new(g.clone(), g, 310.0).unwrap();
     let other = listed.other_driving().unwrap();
     let start = contact::Start::Touching(0.0);
-    let (a, b) = (listed.run(0.1, 6.0, start), other.run(0.1, 6.0, start));
+    let (a, b) = (
+        listed.solve(0.1..=6.0, start, Solve::path()),
+        other.solve(0.1..=6.0, start, Solve::path()),
+    );
     for i in 0..=100 {
         let phi = 0.1 + 5.9 * f64::from(i) / 100.0;
         assert!(

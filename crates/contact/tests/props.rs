@@ -7,7 +7,7 @@
 
 use std::f64::consts::TAU;
 
-use contact::{Event, EventKind, Mesh, Motion, Start, Trajectory};
+use contact::{Event, EventKind, Mesh, Motion, Solve, Start, Trajectory};
 use geometry::{Gear, Vec2};
 use polycheck::P2;
 use proptest::prelude::*;
@@ -211,17 +211,16 @@ fn check_idle_start(case: &Case, start: Start) -> Result<(), TestCaseError> {
     let Some(mesh) = case.mesh() else {
         return Err(TestCaseError::reject("mesh refused"));
     };
-    let traj = mesh.run(case.phi0, case.phi_end(), start);
+    let traj = mesh.solve(case.phi0..=case.phi_end(), start, Solve::path());
     let p1 = case.driver.pitch();
     let events = traj.events();
     // A run that ends at its first jam finds the same first jam, whether or not an idle start
     // was recorded and dropped before it. (The events before it may be sized otherwise: such a
     // run ends there, so a gear not pushed by then was never pushed in it.)
-    let until = mesh.run_until(
-        case.phi0,
-        case.phi_end(),
+    let until = mesh.solve(
+        case.phi0..=case.phi_end(),
         start,
-        Some(&|e: &Event| e.kind.is_contact_stop()),
+        Solve::path().stop_at(&|e: &Event| e.kind.is_contact_stop()),
     );
     let first_jam = |events: &[Event]| {
         events
@@ -585,7 +584,7 @@ proptest! {
         };
         let p1 = a.pitch();
         let p2 = b.pitch();
-        let traj = mesh.run(0.0, 3.0 * p1, Start::Touching(0.0));
+        let traj = mesh.solve(0.0..=3.0 * p1, Start::Touching(0.0), Solve::path());
         // Thorndike's model has no jams (it ignores the driven's leading flanks).
         if traj.jams() > 0 {
             return Err(TestCaseError::reject("solver jams; thorndike does not model jams"));
@@ -664,10 +663,10 @@ fn solver_bug_zero_length_jam_loop() {
     let driven = Gear::new(r2, r2 - h, t2, e2).unwrap();
     let d = geometry::centre_distance(r1, r2, h, 68.577_716_163_936_47);
     let mesh = Mesh::new(driver, driven, d).unwrap();
-    let traj = mesh.run(
-        4.899_748_005_433_342,
-        4.916_110_467_170_788,
+    let traj = mesh.solve(
+        4.899_748_005_433_342..=4.916_110_467_170_788,
         Start::At(3.618_101_228_714_168_7),
+        Solve::path(),
     );
     assert!(traj.events().len() < 10, "{:?}", traj.events());
 }

@@ -7,7 +7,7 @@
 
 use std::f64::consts::TAU;
 
-use contact::{Mesh, Start, tooth_pair_evaluations};
+use contact::{Mesh, Solve, Start, tooth_pair_evaluations};
 use geometry::{Gear, Vec2};
 
 /// A 15-tooth driver and an eccentric 8-tooth driven gear of teeth half their radius tall, at a
@@ -25,7 +25,7 @@ fn mesh(scale: f64, g: f64) -> Mesh {
 fn run(m: &Mesh, pitches: f64) -> (f64, u64) {
     let end = pitches * TAU / 15.0;
     let before = tooth_pair_evaluations();
-    let traj = m.run(0.0, end, Start::Touching(0.0));
+    let traj = m.solve(0.0..=end, Start::Touching(0.0), Solve::path());
     (traj.theta_at(end), tooth_pair_evaluations() - before)
 }
 

@@ -13,7 +13,7 @@
 use std::f64::consts::TAU;
 use std::hint::black_box;
 
-use contact::Start;
+use contact::{Solve, Start};
 use criterion::{Criterion, criterion_group, criterion_main};
 use hypotheses::Params;
 use mechanism::{Mechanism, trial_rng};
@@ -57,7 +57,7 @@ fn kernels(c: &mut Criterion) {
             // One full turn of the gear with more teeth, in driver angle.
             let range = TAU * n1.max(n2) as f64 / n1 as f64;
             let e0 = contact::tooth_pair_evaluations();
-            let t = mesh.run(0.1, 0.1 + range, Start::Touching(0.0));
+            let t = mesh.solve(0.1..=0.1 + range, Start::Touching(0.0), Solve::path());
             let evals = contact::tooth_pair_evaluations() - e0;
             eprintln!(
                 "turn/{name}/{label}: {} engagements, {} tooth-pair evaluations ({:.0} per engagement), {} jams, {} disengagements",
@@ -68,7 +68,13 @@ fn kernels(c: &mut Criterion) {
                 t.disengagements()
             );
             c.bench_function(&format!("turn/{name}/{label}"), |b| {
-                b.iter(|| black_box(mesh).run(0.1, 0.1 + black_box(range), Start::Touching(0.0)));
+                b.iter(|| {
+                    black_box(mesh).solve(
+                        0.1..=0.1 + black_box(range),
+                        Start::Touching(0.0),
+                        Solve::path(),
+                    )
+                });
             });
         }
         c.bench_function(&format!("lunar-year/{label}"), |b| {

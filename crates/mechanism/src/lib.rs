@@ -15,7 +15,7 @@ pub mod pin_slot;
 use std::collections::BTreeMap;
 use std::f64::consts::TAU;
 
-use contact::{Mesh, Start, Trajectory};
+use contact::{Mesh, Solve, Start, Trajectory};
 use edmunds::RadialPair;
 use geometry::Gear;
 use rand::{Rng, SeedableRng};
@@ -270,7 +270,11 @@ impl Mechanism {
     ) -> Option<PointerRun> {
         let rule = &self.rule;
         let is_jam = |e: &contact::Event| rule.is_jam(e);
-        let stop: Option<&contact::StopAt<'_>> = if stop_at_jam { Some(&is_jam) } else { None };
+        let how = if stop_at_jam {
+            Solve::path().stop_at(&is_jam)
+        } else {
+            Solve::path()
+        };
         let p = self.gearing.pointer(pointer)?;
         let ratio = self.gearing.pointer_ratio(pointer)?.to_f64();
         let pin_slot = self.pin_slot_for(pointer);
@@ -285,11 +289,10 @@ impl Mechanism {
             // The most the driver turns in its own frame over the run.
             let range_in = run_frame.into_range(range, input_range);
             let run = match model {
-                Model::Triangular => StageRun::Triangular(Box::new(mesh.run_until(
-                    phi0,
-                    phi0 + range_in,
+                Model::Triangular => StageRun::Triangular(Box::new(mesh.solve(
+                    phi0..=phi0 + range_in,
                     Start::Touching(0.0),
-                    stop,
+                    how,
                 ))),
                 Model::Edmunds => {
                     StageRun::Radial(RadialPair::new(mesh.driver(), mesh.driven(), phi0))

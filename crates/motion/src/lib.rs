@@ -4,7 +4,7 @@
 //! interval of driven angles `[lo, hi]` at which driver tooth j overlaps driven tooth k
 //! ([`Mesh::obstacle`]). *How the driven gear moves* between and at its contacts is a separate
 //! assumption, and the paper's words admit more than one reading: pushed by the driver's front
-//! flanks and at rest between pushes (the exact solver's push model, [`Mesh::run`]), carried at
+//! flanks and at rest between pushes (the exact solver's push model, [`Mesh::solve`]), carried at
 //! the nominal ratio N1/N2 and stopped by whichever flank it meets, or turned after each driver
 //! step by a program that detects overlapping areas. Each reading is a plugin: one file in
 //! `src/plugins/`, registered with `inventory` by `model!`, listed by [`listing`], looked up

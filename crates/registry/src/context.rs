@@ -1,7 +1,7 @@
 //! What the runner hands an experiment: seed, thread count, parameters and config file, and
 //! the way to run trials ([`Context::trials`]) that the runner can shard and replay.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::str::FromStr;
 use std::sync::Arc;
 
@@ -11,7 +11,7 @@ use serde::de::DeserializeOwned;
 use crate::engine::{TrialEngine, TrialMode};
 use crate::progress::{Hook, Progress};
 use crate::trials::{Records, Shard};
-use crate::{Experiment, Param, RunError};
+use crate::{Entry, Param, RunError};
 
 /// The most trials a `trials` parameter may ask for: 10^6 (per cell, case or input, as the
 /// experiment counts them). By convention an experiment's `trials` parameter is its number of
@@ -45,6 +45,7 @@ pub const fn interval_trials(default: &'static str, help: &'static str) -> Param
         unit: "",
         help,
         kind: crate::Kind::count(2, MAX_TRIALS, "an interval needs two trials"),
+        reading: false,
     }
 }
 
@@ -57,6 +58,7 @@ pub const fn samples(default: &'static str, help: &'static str) -> Param {
         unit: "",
         help,
         kind: crate::Kind::count(MIN_SAMPLES, MAX_COUNT as u64, MIN_SAMPLES_WHY),
+        reading: false,
     }
 }
 
@@ -119,14 +121,6 @@ struct Value {
     overridden: bool,
 }
 
-/// Parameters that choose how the paper is read, not what is simulated: the event rule (which
-/// events count as jams and disengagements; the experiments name it in every title),
-/// `emax=paper` (Tables 5 and 6 on the paper's own E. max row, itself the paper's input), the
-/// drive (which gear of each mesh its program turned, which the paper does not say; named in
-/// every title too) and where a trial's counting ends. A run that changes only these still runs
-/// on the paper's inputs and is compared with it.
-pub const READINGS: &[&str] = &["events", "emax", "drive", "end"];
-
 /// What the runner hands an experiment: the parameter side (seed, threads, parameters, config
 /// file), read here, and the trial engine behind [`Context::trials`] (`engine.rs`).
 ///
@@ -163,6 +157,9 @@ pub struct Context {
     defaults: Vec<&'static str>,
     /// Runs, records or replays the trial batches.
     engine: TrialEngine,
+    /// The folder the run's results go to (`--out`), where [`crate::Run::results_of`] looks
+    /// for another experiment's stored results before computing them.
+    results_dir: Option<PathBuf>,
 }
 
 impl Context {
@@ -173,7 +170,7 @@ impl Context {
     /// `threads == 0`; a config file for an experiment that takes none; a `trials` value that
     /// is not an integer from 0 to [`MAX_TRIALS`].
     pub fn new(
-        exp: &Experiment,
+        exp: &Entry,
         seed: u64,
         threads: usize,
         overrides: &[(String, String)],
@@ -247,7 +244,21 @@ impl Context {
             config,
             defaults: exp.all_params().map(|p| p.default).collect(),
             engine: TrialEngine::new(exp.id, seed),
+            results_dir: None,
         })
+    }
+
+    /// This context with its results going to folder `dir` (`--out`): another experiment's
+    /// results stored there are read rather than computed again ([`crate::Run::results_of`]).
+    #[must_use]
+    pub fn with_results_dir(mut self, dir: PathBuf) -> Context {
+        self.results_dir = Some(dir);
+        self
+    }
+
+    /// The folder the run's results go to, if the runner said.
+    pub fn results_dir(&self) -> Option<&Path> {
+        self.results_dir.as_deref()
     }
 
     /// This context with `progress` told about every batch of trials as it runs (see
@@ -270,12 +281,12 @@ impl Context {
             .collect()
     }
 
-    /// [`Context::changed`] without the readings of the paper ([`READINGS`]): the inputs in
+    /// [`Context::changed`] without the readings of the paper ([`Param::reading`]): the inputs in
     /// which this run departs from the paper's, so that the paper's numbers beside ours come from
     /// other inputs and are not compared with them.
     pub fn departures(&self) -> Vec<(&'static str, &str)> {
         let mut changed = self.changed();
-        changed.retain(|(k, _)| !READINGS.contains(k));
+        changed.retain(|(k, _)| !self.params.iter().any(|p| p.name == *k && p.decl.reading));
         changed
     }
 
@@ -530,6 +541,12 @@ impl FromParam for u64 {
     }
 }
 
+impl FromParam for String {
+    fn from_param(ctx: &Context, p: &Param) -> Result<String, RunError> {
+        Ok(ctx.text(p)?.trim().to_owned())
+    }
+}
+
 impl FromParam for bool {
     fn from_param(ctx: &Context, p: &Param) -> Result<bool, RunError> {
         ctx.parse(p.name, "must be true or false")
@@ -561,57 +578,34 @@ fn check_trials(value: &str) -> Result<(), RunError> {
 #[allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
 mod tests {
     use super::*;
-    use crate::{Kind, Param, Report};
+    use crate::{Kind, Param};
     // The parameters here are `Kind::Text`: these tests read values the kinds would refuse, to
     // check the reading functions themselves (kinds are tested in lib.rs).
 
-    fn nothing(_: &Context) -> Result<Report, RunError> {
-        Ok(Report::default())
+    const TEETH: Param = Param::new("teeth", "24", "number of teeth", Kind::Text);
+    const MODULE: Param = Param::new("module", "0.5", "tooth size", Kind::Text).unit("mm");
+    const BROKEN: Param = Param::new(
+        "broken",
+        "lots",
+        "a default that does not parse",
+        Kind::Text,
+    );
+
+    /// Three text parameters, read here by name to test the readers themselves.
+    #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, crate::Settings)]
+    struct Three {
+        #[param(TEETH)]
+        teeth: String,
+        #[param(MODULE)]
+        module: String,
+        #[param(BROKEN)]
+        broken: String,
     }
 
-    const PARAMS: &[Param] = &[
-        Param {
-            name: "teeth",
-            default: "24",
-            unit: "",
-            help: "number of teeth",
-            kind: Kind::Text,
-        },
-        Param {
-            name: "module",
-            default: "0.5",
-            unit: "mm",
-            help: "tooth size",
-            kind: Kind::Text,
-        },
-        Param {
-            name: "broken",
-            default: "lots",
-            unit: "",
-            help: "a default that does not parse",
-            kind: Kind::Text,
-        },
-    ];
-
-    static EXP: Experiment = Experiment {
-        id: "t",
-        title: "test",
-        paper_item: "Figure 0",
-        params: PARAMS,
-        groups: &[],
-        config: Some("a mesh"),
-        run: nothing,
-    };
-
-    static BARE: Experiment = Experiment {
-        id: "bare",
-        title: "no params, no config",
-        paper_item: "Table 0",
-        params: &[],
-        groups: &[],
-        config: None,
-        run: nothing,
-    };
+    crate::test_experiment!(ExpT, "t", "Figure 0", Three, config: Some("a mesh"));
+    crate::test_experiment!(ExpBare, "bare", "Table 0", crate::NoSettings);
+    static EXP: Entry = Entry::of::<ExpT>();
+    static BARE: Entry = Entry::of::<ExpBare>();
 
     fn set(pairs: &[(&str, &str)]) -> Vec<(String, String)> {
         pairs
@@ -697,30 +691,20 @@ mod tests {
         assert!(matches!(ctx.finite("nope"), Err(RunError::Internal(_))));
     }
 
-    static COUNTED: Experiment = Experiment {
-        id: "counted",
-        title: "a trials parameter",
-        paper_item: "Table 0",
-        params: &[
-            Param {
-                name: "trials",
-                default: "30",
-                unit: "",
-                help: "trials",
-                kind: crate::Kind::Text,
-            },
-            Param {
-                name: "samples",
-                default: "100",
-                unit: "",
-                help: "samples",
-                kind: crate::Kind::Text,
-            },
-        ],
-        groups: &[],
-        config: None,
-        run: nothing,
-    };
+    const TRIALS: Param = Param::new("trials", "30", "trials", Kind::Text);
+    const SAMPLES: Param = Param::new("samples", "100", "samples", Kind::Text);
+
+    /// A `trials` and a `samples` parameter, as text.
+    #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, crate::Settings)]
+    struct Counted {
+        #[param(TRIALS)]
+        trials: String,
+        #[param(SAMPLES)]
+        samples: String,
+    }
+
+    crate::test_experiment!(ExpCounted, "counted", "Table 0", Counted);
+    static COUNTED: Entry = Entry::of::<ExpCounted>();
 
     #[test]
     fn trials_are_limited_before_anything_runs() {

@@ -1,25 +1,27 @@
 //! Experiment registry: experiments join with `inventory`, the runner reads them as a sorted map.
 //!
-//! An experiment crate registers each experiment once:
+//! An experiment is a type implementing [`Experiment`] - typed [`Settings`] in, typed results
+//! out, a [`Report`] drawn from them - registered once with [`register!`]:
 //!
 //! ```ignore
-//! registry::inventory::submit! {
-//!     registry::Experiment {
-//!         id: "fig2",
-//!         title: "Transmission error of a triangular-tooth pair",
-//!         paper_item: "Figure 2 (section 2)",
-//!         params: &[registry::Param { name: "samples", default: "1000", unit: "", help: "angles sampled",
-//!             kind: registry::Kind::count(2, 1_000_000, "") }],
-//!         groups: &[],
-//!         config: None,
-//!         run: fig2,
-//!     }
+//! struct Fig2;
+//! impl registry::Experiment for Fig2 {
+//!     const ID: &'static str = "fig2";
+//!     const TITLE: &'static str = "Transmission error of a triangular-tooth pair";
+//!     const PAPER_ITEM: &'static str = "Figure 2 (section 2)";
+//!     const PLACE: registry::Place = registry::Place::Paper(10);
+//!     type Settings = Settings;
+//!     type Results = Results;
+//!     fn compute(s: &Settings, run: &registry::Run) -> Result<Results, registry::RunError> { ... }
+//!     fn report(s: &Settings, r: &Results) -> Result<registry::Report, registry::RunError> { ... }
 //! }
+//! registry::register!(Fig2);
 //! ```
 //!
 //! The runner (`cargo xtask`) looks experiments up with [`experiments`], builds a [`Context`]
-//! from the command line, calls [`Experiment::run`], prints [`Report::text`] and stores the
-//! results with [`write_results`].
+//! from the command line (every value checked against its parameter's kind), calls
+//! [`Entry::run`] (settings read once, results computed, the report drawn from them), prints
+//! [`Report::text`] and stores the tables and the results with [`write_results`].
 //!
 //! Experiments run their Monte-Carlo trials with [`Context::trials`] (or
 //! [`Context::trials_whole`]), so that the runner can split a run into shards
@@ -29,28 +31,36 @@
 
 use std::collections::BTreeMap;
 
+// `#[derive(Settings)]` names `::registry`, also inside this crate.
+extern crate self as registry;
+
 pub use inventory;
 
 mod context;
 mod csv_file;
 mod engine;
 mod error;
+mod experiment;
 mod finite;
 mod lock;
 mod output;
 mod progress;
+mod settings;
 mod table;
 mod trials;
 mod values;
 
 pub use context::{
     ConfigFile, Context, FromParam, MAX_COUNT, MAX_TRIALS, MIN_PER_ENGAGEMENT,
-    MIN_PER_ENGAGEMENT_WHY, MIN_SAMPLES, MIN_SAMPLES_WHY, READINGS, SAMPLES_PER_TOOTH,
-    interval_trials, samples, samples_cover,
+    MIN_PER_ENGAGEMENT_WHY, MIN_SAMPLES, MIN_SAMPLES_WHY, SAMPLES_PER_TOOTH, interval_trials,
+    samples, samples_cover,
 };
 pub use csv_file::{Csv, csv_line};
 pub use engine::{TrialEngine, TrialMode};
 pub use error::{DuplicateId, RunError};
+pub use experiment::{
+    Entry, Experiment, Outcome, Place, RESULTS_JSON, Run, Source, forget_computed,
+};
 pub use lock::{lock_path, lock_writing, release_locks};
 pub use output::{
     Agreement, FileKind, MAX_ANGLE_DEG, MAX_DATA_ROWS, OutputFile, RECOGNISED_BYTES, Report,
@@ -58,6 +68,8 @@ pub use output::{
     tidy, write_file, write_results,
 };
 pub use progress::{BatchProgress, Progress};
+pub use settings::{NoSettings, ParamValue, Settings, changed_from_default};
+pub use settings_derive::Settings;
 pub use table::{Table, fmt_f64, fmt_number, terminal_text};
 pub use trials::{Batch, Records, Shard, ShardRecords, f64_bits, merge_records};
 pub use values::{ValueError, Values};
@@ -76,6 +88,11 @@ pub struct Param {
     /// What values it takes: checked by [`Context::new`] before anything runs, so that an
     /// experiment reads a value already known to fit.
     pub kind: Kind,
+    /// A reading of the paper rather than an input of it: it chooses how the paper is read, not
+    /// what is simulated (the event rule, which gear drives, where a trial's counting ends, the
+    /// paper's own E. max row). A run that changes only readings still runs on the paper's
+    /// inputs and is compared with it ([`Settings::departures`]).
+    pub reading: bool,
 }
 
 impl Param {
@@ -95,12 +112,21 @@ impl Param {
             unit: "",
             help,
             kind,
+            reading: false,
         }
     }
 
     /// The same parameter with `unit`, e.g. "mm" or "% of h".
     pub const fn unit(self, unit: &'static str) -> Param {
         Param { unit, ..self }
+    }
+
+    /// The same parameter as a reading of the paper ([`Param::reading`]).
+    pub const fn reading(self) -> Param {
+        Param {
+            reading: true,
+            ..self
+        }
     }
 }
 
@@ -293,47 +319,46 @@ impl Kind {
     }
 }
 
-/// A registered experiment: what it reproduces, what it accepts, and the function that runs it.
-#[derive(Debug)]
-pub struct Experiment {
-    /// Short unique id used on the command line, e.g. "fig2".
-    pub id: &'static str,
-    /// One-line title.
-    pub title: &'static str,
-    /// The item of the paper it reproduces, e.g. "Figure 2 (section 2)".
-    pub paper_item: &'static str,
-    /// Its own parameters, settable with `--set name=value`.
-    pub params: &'static [Param],
-    /// Setting groups it shares with other experiments (a gearing with h and G, an error
-    /// hypothesis, an event rule, a grid...), declared once where the group is read; settable
-    /// like its own parameters, listed after them.
-    pub groups: &'static [&'static [Param]],
-    /// `None`: the experiment takes no `--config FILE`; `Some(text)`: what the RON config file describes.
-    pub config: Option<&'static str>,
-    /// Runs the experiment.
-    pub run: fn(&Context) -> Result<Report, RunError>,
-}
+inventory::collect!(Entry);
 
-inventory::collect!(Experiment);
-
-impl Experiment {
-    /// Every parameter: its own, then those of its setting groups, in declaration order.
-    pub fn all_params(&self) -> impl Iterator<Item = &'static Param> + Clone {
-        self.params
-            .iter()
-            .chain(self.groups.iter().flat_map(|g| g.iter()))
-    }
+/// A test experiment that computes nothing: `test_experiment!(Name, "id", "paper item", Settings)`
+/// (and `, title: "..."`, `, config: Some("what the file holds")`), for tests of the registry
+/// and the runner.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! test_experiment {
+    ($name:ident, $id:literal, $item:literal, $settings:ty $(, config: $config:expr)? $(,)?) => {
+        $crate::test_experiment!($name, $id, $item, $settings, title: $id $(, config: $config)?);
+    };
+    ($name:ident, $id:literal, $item:literal, $settings:ty, title: $title:literal $(, config: $config:expr)? $(,)?) => {
+        struct $name;
+        impl $crate::Experiment for $name {
+            const ID: &'static str = $id;
+            const TITLE: &'static str = $title;
+            const PAPER_ITEM: &'static str = $item;
+            const PLACE: $crate::Place = $crate::Place::Beyond(u32::MAX);
+            $(const CONFIG: Option<&'static str> = $config;)?
+            type Settings = $settings;
+            type Results = ();
+            fn compute(_: &$settings, _: &$crate::Run) -> Result<(), $crate::RunError> {
+                Ok(())
+            }
+            fn report(_: &$settings, _: &()) -> Result<$crate::Report, $crate::RunError> {
+                Ok($crate::Report::default())
+            }
+        }
+    };
 }
 
 /// All registered experiments sorted by id; a duplicate id is an error naming it.
-pub fn experiments() -> Result<BTreeMap<&'static str, &'static Experiment>, DuplicateId> {
-    collect(inventory::iter::<Experiment>.into_iter())
+pub fn experiments() -> Result<BTreeMap<&'static str, &'static Entry>, DuplicateId> {
+    collect(inventory::iter::<Entry>.into_iter())
 }
 
 /// Sorts `items` by id, refusing a duplicate id.
 fn collect(
-    items: impl Iterator<Item = &'static Experiment>,
-) -> Result<BTreeMap<&'static str, &'static Experiment>, DuplicateId> {
+    items: impl Iterator<Item = &'static Entry>,
+) -> Result<BTreeMap<&'static str, &'static Entry>, DuplicateId> {
     let mut map = BTreeMap::new();
     for exp in items {
         if map.insert(exp.id, exp).is_some() {
@@ -348,37 +373,12 @@ fn collect(
 mod tests {
     use super::*;
 
-    fn nothing(_: &Context) -> Result<Report, RunError> {
-        Ok(Report::default())
-    }
-
-    static A: Experiment = Experiment {
-        id: "a",
-        title: "A",
-        paper_item: "Figure 1",
-        params: &[],
-        groups: &[],
-        config: None,
-        run: nothing,
-    };
-    static B: Experiment = Experiment {
-        id: "b",
-        title: "B",
-        paper_item: "Figure 2",
-        params: &[],
-        groups: &[],
-        config: None,
-        run: nothing,
-    };
-    static A2: Experiment = Experiment {
-        id: "a",
-        title: "A again",
-        paper_item: "Table 1",
-        params: &[],
-        groups: &[],
-        config: None,
-        run: nothing,
-    };
+    crate::test_experiment!(ExpA, "a", "Figure 1", NoSettings);
+    crate::test_experiment!(ExpB, "b", "Figure 2", NoSettings);
+    crate::test_experiment!(ExpA2, "a", "Table 1", NoSettings);
+    static A: Entry = Entry::of::<ExpA>();
+    static B: Entry = Entry::of::<ExpB>();
+    static A2: Entry = Entry::of::<ExpA2>();
 
     #[test]
     fn collect_sorts_by_id() {
@@ -481,41 +481,31 @@ mod kind_tests {
         assert_eq!(Kind::ANY_NUMBER.check("-1e300"), Ok(()));
     }
 
-    fn nothing(_: &Context) -> Result<Report, RunError> {
-        Ok(Report::default())
+    const CLEARANCE: Param = Param::new(
+        "clearance",
+        "40",
+        "clearance",
+        Kind::positive(100.0, "% of h"),
+    )
+    .unit("% of h");
+    const SPLIT: Param = Param::new("split", "2", "split", Kind::number(0.0, 1.0, ""));
+
+    #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, Settings)]
+    struct Ranged {
+        #[param(CLEARANCE)]
+        clearance: f64,
     }
 
-    static RANGED: Experiment = Experiment {
-        id: "ranged",
-        title: "a ranged parameter",
-        paper_item: "Table 0",
-        params: &[Param {
-            name: "clearance",
-            default: "40",
-            unit: "% of h",
-            help: "clearance",
-            kind: Kind::positive(100.0, "% of h"),
-        }],
-        groups: &[],
-        config: None,
-        run: nothing,
-    };
+    #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, Settings)]
+    struct BadDefault {
+        #[param(SPLIT)]
+        split: f64,
+    }
 
-    static BAD_DEFAULT: Experiment = Experiment {
-        id: "bad-default",
-        title: "a default outside its range",
-        paper_item: "Table 0",
-        params: &[Param {
-            name: "split",
-            default: "2",
-            unit: "",
-            help: "split",
-            kind: Kind::number(0.0, 1.0, ""),
-        }],
-        groups: &[],
-        config: None,
-        run: nothing,
-    };
+    crate::test_experiment!(RangedExp, "ranged", "Table 0", Ranged);
+    crate::test_experiment!(BadDefaultExp, "bad-default", "Table 0", BadDefault);
+    static RANGED: Entry = Entry::of::<RangedExp>();
+    static BAD_DEFAULT: Entry = Entry::of::<BadDefaultExp>();
 
     #[test]
     fn a_context_refuses_a_value_outside_its_kind_before_anything_runs() {

@@ -23,7 +23,7 @@ pub const MAX_DATA_ROWS: usize = 1_000_000;
 pub const MAX_ANGLE_DEG: f64 = 1.0e6;
 
 /// What an experiment returns.
-#[derive(Debug, Clone, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct Report {
     /// Tables, printed and stored in this order.
     pub tables: Vec<Table>,
@@ -45,7 +45,7 @@ pub struct Report {
 /// many differ. Counts out of trials (the paper's are samples of 200 too) are compared by a
 /// two-sample test (Fisher's exact, 5 %); other numbers by whether the paper's lies inside our
 /// 95 % interval (or stated tolerance). Each experiment's note says which.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct Agreement {
     /// The paper's numbers consistent with ours.
     pub consistent: u64,
@@ -120,7 +120,7 @@ impl Report {
 }
 
 /// A file an experiment wants stored in its results directory.
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct OutputFile {
     /// Plain file name, e.g. `fig2.svg` (no directories).
     pub name: String,

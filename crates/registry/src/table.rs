@@ -2,7 +2,7 @@
 
 /// A readable table: rendered as an aligned Markdown table (pipes, header separator,
 /// right-aligned numbers).
-#[derive(Debug, Clone, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 pub struct Table {
     /// Title, rendered as a `###` heading above the table and used for the CSV file name.
     pub title: String,

@@ -3,23 +3,12 @@
 #![allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
 
 use registry::{
-    Context, Experiment, Records, Report, RunError, Shard, ShardRecords, TrialMode, merge_records,
+    Context, Entry, NoSettings, Records, RunError, Shard, ShardRecords, TrialMode, merge_records,
 };
 use serde::{Deserialize, Serialize};
 
-fn nothing(_: &Context) -> Result<Report, RunError> {
-    Ok(Report::default())
-}
-
-static EXP: Experiment = Experiment {
-    id: "t",
-    title: "test",
-    paper_item: "Table 0",
-    params: &[],
-    groups: &[],
-    config: None,
-    run: nothing,
-};
+registry::test_experiment!(Exp, "t", "Table 0", NoSettings);
+static EXP: Entry = Entry::of::<Exp>();
 
 fn ctx() -> Context {
     Context::new(&EXP, 1, 2, &[], None).unwrap()

@@ -10,9 +10,11 @@
 
 use statrs::distribution::{Beta, ContinuousCDF, StudentsT};
 
+mod rank;
 mod survival;
 mod two_sample;
 
+pub use rank::{Spearman, spearman};
 pub use survival::{Step, kaplan_meier, median, step_points, survival_at};
 
 pub use two_sample::{

@@ -4,7 +4,7 @@
 //! and the stepped area test on the per-mesh tables' manufactured gears beside the exact solver
 //! (`jam-readings`, `polycheck::stepped`), trial by trial on the cells' own streams.
 
-use contact::{Event, Start};
+use contact::{Event, Solve, Start};
 use geometry::{Gear, centre_distance};
 use polycheck::area::AreaPair;
 use polycheck::stepped::{GearOutline, SteppedPair, Stepping};
@@ -171,7 +171,11 @@ fn exact_jams(drawn: &Drawn, driver: Driver) -> bool {
     };
     let stop = |events: &[Event]| events.iter().any(|e| e.kind.is_contact_stop());
     let end = run.phi0 + run.turn;
-    stop(&mesh.run_events_until_answered(run.phi0, end, Start::Touching(0.0), &stop))
+    stop(&mesh.solve(
+        run.phi0..=end,
+        Start::Touching(0.0),
+        Solve::events().until_answered(&stop),
+    ))
 }
 
 /// Whether the stepped area test at tolerance `tol` finds a jam in the trial `run`.

@@ -71,6 +71,7 @@ pub fn refine_values(best: f64, step: f64, reference: f64) -> Vec<f64> {
 }
 
 /// The search of one (case, mesh).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct MeshSearch {
     /// Index into `CASES`.
     pub case: usize,

@@ -83,11 +83,35 @@ pub const PARAM: Param = Param {
     unit: "",
     help: "which gear of each mesh drives its trials: `listed` (the first gear of the mesh's name, as the train runs), `other` (the second, both gears still turning their own way), or `either` (drawn per trial, a fair coin from the trial's own stream after its gears and initial angle)",
     kind: registry::Kind::Choice(&["listed", "other", "either"]),
+    reading: true,
 };
 
 /// The pair-trial protocol group of the per-mesh tables: which gear drives, and where a
 /// trial's counting ends ([`crate::trial_end`]).
 pub const GROUP: &[Param] = &[PARAM, crate::trial_end::PARAM];
+
+/// The pair-trial protocol group as typed ([`GROUP`]): which gear drives, where counting ends.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, registry::Settings)]
+pub struct DriveParams {
+    /// `listed`, `other` or `either` ([`PARAM`]).
+    #[param(PARAM)]
+    pub drive: String,
+    /// `turn`, `first-event` or `first-disengagement` ([`crate::trial_end::PARAM`]).
+    #[param(crate::trial_end::PARAM)]
+    pub end: String,
+}
+
+impl DriveParams {
+    /// Which gear drives.
+    pub fn drive(&self) -> Result<Drive, RunError> {
+        Drive::parse(&self.drive)
+    }
+
+    /// Where a trial's counting ends.
+    pub fn end(&self) -> Result<crate::trial_end::End, RunError> {
+        crate::trial_end::End::parse(&self.end)
+    }
+}
 
 #[cfg(test)]
 mod tests {

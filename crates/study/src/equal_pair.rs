@@ -18,6 +18,7 @@ pub const fn length(name: &'static str, default: &'static str, help: &'static st
         unit: "length",
         help,
         kind: registry::Kind::positive(MAX_LENGTH, "a length; larger is no gear"),
+        reading: false,
     }
 }
 
@@ -28,6 +29,7 @@ pub const TEETH: Param = Param {
     unit: "",
     help: "teeth N of both gears",
     kind: registry::Kind::count(3, geometry::MAX_TEETH as u64, "a gear needs three teeth"),
+    reading: false,
 };
 /// Outer radius R of both gears.
 pub const TIP_RADIUS: Param = length("tip_radius", "200", "outer radius R of both gears");
@@ -38,6 +40,35 @@ pub const CENTRE_DISTANCE: Param = length("centre_distance", "310", "centre dist
 
 /// The pair's setting group: N, R, r and D.
 pub const GROUP: &[Param] = &[TEETH, TIP_RADIUS, ROOT_RADIUS, CENTRE_DISTANCE];
+
+/// The pair's group as typed ([`GROUP`]).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, registry::Settings)]
+pub struct EqualPairParams {
+    /// Teeth of each gear ([`TEETH`]).
+    #[param(TEETH)]
+    pub teeth: usize,
+    /// Tip radius R ([`TIP_RADIUS`]).
+    #[param(TIP_RADIUS)]
+    pub tip_radius: f64,
+    /// Root radius r ([`ROOT_RADIUS`]).
+    #[param(ROOT_RADIUS)]
+    pub root_radius: f64,
+    /// Centre distance D ([`CENTRE_DISTANCE`]).
+    #[param(CENTRE_DISTANCE)]
+    pub centre_distance: f64,
+}
+
+impl EqualPairParams {
+    /// The pair built ([`build`]).
+    pub fn build(&self) -> Result<EqualPair, RunError> {
+        build(
+            self.teeth,
+            self.tip_radius,
+            self.root_radius,
+            self.centre_distance,
+        )
+    }
+}
 
 /// The pair as set by the parameters above.
 pub struct EqualPair {

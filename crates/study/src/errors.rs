@@ -12,6 +12,7 @@ pub const PARAM: Param = Param {
     unit: "",
     help: "error hypothesis (cargo xtask hypotheses lists them)",
     kind: registry::Kind::Text,
+    reading: false,
 };
 
 /// The `hypothesis_params` parameter: the chosen hypothesis's own parameters, `name=value`
@@ -22,6 +23,7 @@ pub const PARAMS_PARAM: Param = Param {
     unit: "",
     help: "parameters of the hypothesis, name=value[,name=value] (cargo xtask hypotheses lists them)",
     kind: registry::Kind::Text,
+    reading: false,
 };
 
 /// Share of the systematic error put on the sinusoid of tip positions (the rest on the axis).
@@ -31,6 +33,7 @@ pub const SPLIT: Param = Param {
     unit: "",
     help: "share of the systematic error on the sinusoid (rest: eccentricity); 0.5 as in the paper",
     kind: registry::Kind::number(0.0, 1.0, ""),
+    reading: false,
 };
 
 /// The error setting group: the hypothesis and its parameters.
@@ -39,6 +42,58 @@ pub const GROUP: &[Param] = &[PARAM, PARAMS_PARAM];
 /// The error setting group of experiments that run Edmunds' Cases: the split of the systematic
 /// error, the hypothesis and its parameters.
 pub const CASES_GROUP: &[Param] = &[SPLIT, PARAM, PARAMS_PARAM];
+
+/// The error group as typed ([`GROUP`]): the hypothesis as named and its parameters as typed.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, registry::Settings)]
+pub struct ErrorParams {
+    /// The hypothesis' name ([`PARAM`]).
+    #[param(PARAM)]
+    pub hypothesis: String,
+    /// Its own parameters, `name=value[,name=value]` ([`PARAMS_PARAM`]).
+    #[param(PARAMS_PARAM)]
+    pub hypothesis_params: String,
+}
+
+/// The error group of experiments that run Edmunds' Cases, as typed ([`CASES_GROUP`]): the
+/// split of the systematic error, then the hypothesis and its parameters.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, registry::Settings)]
+pub struct CaseParams {
+    /// Share of the systematic error on the sinusoid ([`SPLIT`]).
+    #[param(SPLIT)]
+    pub split: f64,
+    /// The hypothesis and its parameters.
+    #[group]
+    pub errors: ErrorParams,
+}
+
+impl ErrorParams {
+    /// The settings: the hypothesis looked up, `hypothesis_params` parsed, `split` where the
+    /// experiment declares one, and what [`Settings::params`] must know of the whole run to say
+    /// whose a value is - the experiment's settings `whole` (which parameters differ from their
+    /// defaults, which it declares).
+    pub fn load<S: registry::Settings>(
+        &self,
+        split: Option<f64>,
+        whole: &S,
+    ) -> Result<Settings, RunError> {
+        let mut changed = Vec::new();
+        whole.changed(&mut changed);
+        Settings::new(
+            lookup(&self.hypothesis)?,
+            &self.hypothesis_params,
+            split,
+            changed.into_iter().map(|(p, v)| (p.name, v)).collect(),
+            S::table().into_iter().map(|p| p.name).collect(),
+        )
+    }
+}
+
+impl CaseParams {
+    /// [`ErrorParams::load`] with this group's split.
+    pub fn load<S: registry::Settings>(&self, whole: &S) -> Result<Settings, RunError> {
+        self.errors.load(Some(self.split), whole)
+    }
+}
 
 /// The hypothesis `name` (the `hypothesis` parameter's value).
 pub fn lookup(name: &str) -> Result<&'static dyn Hypothesis, RunError> {

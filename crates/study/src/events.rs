@@ -11,10 +11,26 @@ pub const PARAM: Param = Param {
     unit: "",
     help: "event rule: which events count as jams and disengagements, NAME or NAME:key=value (cargo xtask rules lists them)",
     kind: registry::Kind::Text,
+    reading: true,
 };
 
 /// The event setting group: the event rule.
 pub const GROUP: &[Param] = &[PARAM];
+
+/// The event group as typed ([`GROUP`]): the event rule as named.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, registry::Settings)]
+pub struct EventParams {
+    /// The rule, `NAME` or `NAME:key=value` ([`PARAM`]).
+    #[param(PARAM)]
+    pub events: String,
+}
+
+impl EventParams {
+    /// The rule it names ([`parse`]).
+    pub fn rule(&self) -> Result<Rule, RunError> {
+        parse(&self.events)
+    }
+}
 
 /// The rule `spec` names (the `events` parameter's value).
 pub fn parse(spec: &str) -> Result<Rule, RunError> {

@@ -11,6 +11,7 @@ pub const PARAM: Param = Param {
     unit: "",
     help: "gearing RON file, or an embedded one: freeth2006 (the default, crates/train/data/freeth2006.ron) or freeth2021 (the same gearing with the outer radii of Freeth et al. 2021)",
     kind: registry::Kind::Text,
+    reading: false,
 };
 
 /// Clearance G of every mesh of the gearing (the paper's working value, Appendix II).
@@ -20,6 +21,7 @@ pub const CLEARANCE: Param = Param {
     unit: "% of h",
     help: "clearance G of every mesh",
     kind: registry::Kind::positive(100.0, "% of the tooth height h"),
+    reading: false,
 };
 
 /// The tooth heights a `tooth_height` parameter takes: 0.01 mm (a hundredth of the paper's
@@ -37,6 +39,7 @@ pub const TOOTH_HEIGHT: Param = Param {
     unit: "mm",
     help: "h = R - r of every gear (Efstathiou et al. 2012)",
     kind: TOOTH_HEIGHT_KIND,
+    reading: false,
 };
 
 /// Whether the Lunar train includes the pin-and-slot (Freeth 2006's lunar anomaly mechanism).
@@ -46,13 +49,74 @@ pub const PIN_AND_SLOT: Param = Param {
     unit: "",
     help: "true: the Lunar train includes the pin-and-slot (k1's pin in k2's slot on the turning e3 turntable) and its TD is taken against the anomaly-bearing ideal; false: left out, as in the paper",
     kind: registry::Kind::Switch,
+    reading: false,
 };
+
+/// `clearances`: Table I's clearances G, comma-separated (the paper: 10, 40 and 70). Declared
+/// here, not in Table I's file, because `replay` checks a cell's clearance against it too.
+pub const TABLE_I_CLEARANCES: Param = Param::new(
+    "clearances",
+    "10,40,70",
+    "clearances G, comma-separated (the paper: 10, 40 and 70)",
+    registry::Kind::Text,
+)
+.unit("% of h");
 
 /// The gearing setting group: the gearing file, G and h of every mesh.
 pub const GROUP: &[Param] = &[PARAM, CLEARANCE, TOOTH_HEIGHT];
 
 /// The gearing file and h, for experiments that choose their own clearances.
 pub const SHAPE: &[Param] = &[PARAM, TOOTH_HEIGHT];
+
+/// The gearing group as typed ([`GROUP`]): the gearing as named, G and h of every mesh.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, registry::Settings)]
+pub struct GearingParams {
+    /// The gearing: an embedded name or the user's RON file ([`PARAM`]).
+    #[param(PARAM)]
+    pub gearing: String,
+    /// Clearance G of every mesh, % of h ([`CLEARANCE`]).
+    #[param(CLEARANCE)]
+    pub clearance: f64,
+    /// Tooth height h of every gear, mm ([`TOOTH_HEIGHT`]).
+    #[param(TOOTH_HEIGHT)]
+    pub tooth_height: f64,
+}
+
+impl GearingParams {
+    /// The gearing loaded and h checked against it ([`Shape::load`]), with G.
+    pub fn load(&self) -> Result<Settings, RunError> {
+        Ok(Settings::new(
+            Shape::load(&self.gearing, self.tooth_height)?,
+            self.clearance,
+        ))
+    }
+
+    /// The gearing and h without G.
+    pub fn shape(&self) -> ShapeParams {
+        ShapeParams {
+            gearing: self.gearing.clone(),
+            tooth_height: self.tooth_height,
+        }
+    }
+}
+
+/// The gearing and h as typed ([`SHAPE`]), for experiments that choose their own clearances.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, registry::Settings)]
+pub struct ShapeParams {
+    /// The gearing: an embedded name or the user's RON file ([`PARAM`]).
+    #[param(PARAM)]
+    pub gearing: String,
+    /// Tooth height h of every gear, mm ([`TOOTH_HEIGHT`]).
+    #[param(TOOTH_HEIGHT)]
+    pub tooth_height: f64,
+}
+
+impl ShapeParams {
+    /// The gearing loaded and h checked against it ([`Shape::load`]).
+    pub fn load(&self) -> Result<Shape, RunError> {
+        Shape::load(&self.gearing, self.tooth_height)
+    }
+}
 
 /// A mechanism the gearing could not build, as the user's error: the gearing, the mesh and the
 /// rule it broke (one mapping for every experiment that builds a mechanism).

@@ -49,6 +49,7 @@ pub const TRIALS: Param = Param {
     unit: "",
     help: "trials per cell (the paper: 200)",
     kind: registry::Kind::count(1, registry::MAX_TRIALS, ""),
+    reading: false,
 };
 
 /// Table 4's results: counts for every (random error, mesh).

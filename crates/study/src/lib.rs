@@ -20,6 +20,7 @@
 pub mod anomaly;
 pub mod area_test;
 pub mod cell;
+pub mod claims;
 pub mod clearance_search;
 pub mod drive;
 pub mod equal_pair;
@@ -32,7 +33,9 @@ pub mod motion_models;
 pub mod pair_file;
 pub mod pointers;
 pub mod readings;
+pub mod results;
 pub mod tolerance;
 pub mod tolerance_search;
 pub mod trial_end;
+pub mod units;
 pub mod whole_mechanism;

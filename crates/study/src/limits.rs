@@ -3,7 +3,7 @@
 
 use std::f64::consts::TAU;
 
-use contact::{Mesh, Start, Trajectory};
+use contact::{Mesh, Solve, Start, Trajectory};
 use geometry::Gear;
 use registry::RunError;
 
@@ -35,6 +35,7 @@ pub const MESH: registry::Param = registry::Param {
     unit: "",
     help: "mesh label in the gearing (radii sized as crates/train sizes them)",
     kind: registry::Kind::Text,
+    reading: false,
 };
 
 impl IdealPair {
@@ -122,7 +123,11 @@ impl IdealPair {
                     ),
                 )
             })?;
-        Ok(mesh.run(phi0, phi0 + self.turn(), Start::Touching(0.0)))
+        Ok(mesh.solve(
+            phi0..=phi0 + self.turn(),
+            Start::Touching(0.0),
+            Solve::path(),
+        ))
     }
 
     /// Driver rotation for one full turn of the larger gear.
@@ -135,16 +140,20 @@ impl IdealPair {
     pub fn run(&self, g: f64) -> Result<Option<Trajectory>, RunError> {
         Ok(self
             .mesh(g)?
-            .map(|mesh| mesh.run(0.0, self.turn(), Start::Touching(0.0))))
+            .map(|mesh| mesh.solve(0.0..=self.turn(), Start::Touching(0.0), Solve::path())))
     }
 
     /// [`IdealPair::run`] ending at its first jam by `rule` (the trajectory then holds its last
     /// angle): for a caller that uses only runs without a jam, it saves the rest of the turn.
     pub fn run_to_first_jam(&self, g: f64, rule: &Rule) -> Result<Option<Trajectory>, RunError> {
         let stop = |e: &contact::Event| rule.is_jam(e);
-        Ok(self
-            .mesh(g)?
-            .map(|mesh| mesh.run_until(0.0, self.turn(), Start::Touching(0.0), Some(&stop))))
+        Ok(self.mesh(g)?.map(|mesh| {
+            mesh.solve(
+                0.0..=self.turn(),
+                Start::Touching(0.0),
+                Solve::path().stop_at(&stop),
+            )
+        }))
     }
 
     /// One full turn of the larger gear from driver angle 0 at clearance `g` with the driven
@@ -155,7 +164,9 @@ impl IdealPair {
         let Some(mesh) = self.mesh(g)? else {
             return Ok(None);
         };
-        let touching = mesh.run(0.0, 0.0, Start::Touching(0.0)).theta_at(0.0);
+        let touching = mesh
+            .solve(0.0..=0.0, Start::Touching(0.0), Solve::path())
+            .theta_at(0.0);
         // The nearest driver tooth ahead of the driven gear: where the backlash ends.
         let mut obstacles = Vec::new();
         let pitch = TAU / self.n2 as f64;
@@ -171,7 +182,11 @@ impl IdealPair {
             0.0
         };
         let start = touching + frac.clamp(0.0, 1.0) * backlash;
-        Ok(Some(mesh.run(0.0, self.turn(), Start::At(start))))
+        Ok(Some(mesh.solve(
+            0.0..=self.turn(),
+            Start::At(start),
+            Solve::path(),
+        )))
     }
 
     /// The events of [`IdealPair::run`] alone (no segments kept: cheaper), or None when the
@@ -179,7 +194,7 @@ impl IdealPair {
     fn events(&self, g: f64) -> Result<Option<Vec<contact::Event>>, RunError> {
         Ok(self
             .mesh(g)?
-            .map(|mesh| mesh.run_events(0.0, self.turn(), Start::Touching(0.0))))
+            .map(|mesh| mesh.solve(0.0..=self.turn(), Start::Touching(0.0), Solve::events())))
     }
 
     /// [`IdealPair::events`] ending at the first event for which `stop` holds: the same events
@@ -189,9 +204,13 @@ impl IdealPair {
         g: f64,
         stop: &contact::StopAt<'_>,
     ) -> Result<Option<Vec<contact::Event>>, RunError> {
-        Ok(self
-            .mesh(g)?
-            .map(|mesh| mesh.run_events_until(0.0, self.turn(), Start::Touching(0.0), stop)))
+        Ok(self.mesh(g)?.map(|mesh| {
+            mesh.solve(
+                0.0..=self.turn(),
+                Start::Touching(0.0),
+                Solve::events().stop_at(stop),
+            )
+        }))
     }
 
     /// Whether a full turn at clearance `g` jams by `rule` (or the gears overlap at every tooth):

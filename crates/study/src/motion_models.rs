@@ -141,7 +141,7 @@ pub fn cell_counts(
 
 /// Figure 2 under one model: the largest difference from Thorndike's closed form and the
 /// Theoretical Difference's σ.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Figure2 {
     /// Largest |θ(φ) − θ'(φ)| over the samples (degrees).
     pub max_diff: f64,

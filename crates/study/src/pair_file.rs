@@ -10,10 +10,10 @@ use geometry::{Gear, Vec2, polar};
 use registry::{
     MAX_ANGLE_DEG, MAX_DATA_ROWS, MIN_SAMPLES, RunError, SAMPLES_PER_TOOTH, fmt_number,
 };
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// Which way a gear's `tips_deg` (and the y axis of its tips frame) run.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Sense {
     /// The direction the driver turns (counter-clockwise in the view of the help text): today's
@@ -25,7 +25,7 @@ pub enum Sense {
 }
 
 /// The frame in which `eccentricity` or `arbor` locate the arbor.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Frame {
     /// x along the gear's zero ray, y 90° from it in the sense of its `tips_deg`.
@@ -36,7 +36,7 @@ pub enum Frame {
 }
 
 /// The arbor's position in polar form, seen from the tip-circle centre.
-#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Arbor {
     offset: f64,
@@ -44,7 +44,7 @@ pub struct Arbor {
 }
 
 /// How the driven gear starts, as written in the file.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case", deny_unknown_fields)]
 pub enum StartSpec {
     /// From θ = 0, pushed clear or turned back until it touches the driver.
@@ -65,7 +65,7 @@ pub enum StartSpec {
 }
 
 /// One gear as written in the file.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct GearSpec {
     /// Number of teeth.
@@ -116,7 +116,7 @@ impl Role {
 /// driven gear measured in its own sense is the mirror image: its angles are negated and the list
 /// reversed, so the user's tooth k becomes the solver's tooth N − 1 − k. Negating is exact, so
 /// the conversion adds no rounding.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Numbering {
     teeth: i64,
     /// Whether the user's numbering is the solver's mirrored (a driven gear in its own sense).
@@ -156,7 +156,7 @@ impl Numbering {
 }
 
 /// The whole file.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PairFile {
     /// The driving gear.
@@ -768,7 +768,9 @@ fn proportions(file: &str, mesh: &Mesh, distance_field: &str) -> Result<(), RunE
 }
 
 /// A loaded pair file, ready to run: the mesh, the file, how its tooth numbers map onto the
-/// solver's, and the start it asks for.
+/// solver's, and the start it asks for. Stored with a run's results (serde), so that what is
+/// drawn of it is drawn again without the file.
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Prepared {
     /// The mesh in the solver's conventions.
     pub mesh: Mesh,

@@ -30,6 +30,7 @@ pub const fn turns(name: &'static str, default: &'static str, help: &'static str
         unit: "turns of b",
         help,
         kind: TURNS_KIND,
+        reading: false,
     }
 }
 
@@ -46,6 +47,7 @@ pub const fn per_engagement(default: &'static str, help: &'static str) -> Param 
             registry::MAX_COUNT as u64,
             registry::MIN_PER_ENGAGEMENT_WHY,
         ),
+        reading: false,
     }
 }
 
@@ -97,6 +99,43 @@ pub const RUN_LENGTHS: &[Param] = &[
     EXELIGMOS_TURNS,
     SAMPLES_PER_ENGAGEMENT,
 ];
+
+/// The five pointers' run lengths and the TD sampling as typed ([`RUN_LENGTHS`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, registry::Settings)]
+pub struct RunLengths {
+    /// Lunar pointer, turns of b ([`LUNAR_TURNS`]).
+    #[param(LUNAR_TURNS)]
+    pub lunar_turns: f64,
+    /// Metonic pointer ([`METONIC_TURNS`]).
+    #[param(METONIC_TURNS)]
+    pub metonic_turns: f64,
+    /// Saros pointer ([`SAROS_TURNS`]).
+    #[param(SAROS_TURNS)]
+    pub saros_turns: f64,
+    /// Games pointer ([`GAMES_TURNS`]).
+    #[param(GAMES_TURNS)]
+    pub games_turns: f64,
+    /// Exeligmos pointer ([`EXELIGMOS_TURNS`]).
+    #[param(EXELIGMOS_TURNS)]
+    pub exeligmos_turns: f64,
+    /// TD samples per tooth engagement of the busiest mesh ([`SAMPLES_PER_ENGAGEMENT`]).
+    #[param(SAMPLES_PER_ENGAGEMENT)]
+    pub samples_per_engagement: usize,
+}
+
+impl RunLengths {
+    /// (pointer, input turns) for each pointer of [`POINTERS`], in its order.
+    pub fn turns(&self) -> Vec<(&'static str, f64)> {
+        let turns = [
+            self.lunar_turns,
+            self.metonic_turns,
+            self.saros_turns,
+            self.games_turns,
+            self.exeligmos_turns,
+        ];
+        POINTERS.iter().map(|&(name, _)| name).zip(turns).collect()
+    }
+}
 
 /// Pointers in the paper's column order, with the parameter holding each run length.
 pub const POINTERS: [(&str, &Param); 5] = [
@@ -159,7 +198,7 @@ pub fn samples_for(g: &train::Gearing, pointer: &str, turns: f64, per: usize) ->
 
 /// One pointer's run of one trial: its σ, Dm and mean, and whether it stopped. A pointer that
 /// could not run has NaN statistics, which JSON cannot carry: they are recorded as bits.
-#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
 pub struct PointerTrial {
     /// σ of the Theoretical Difference (degrees).
     #[serde(with = "registry::f64_bits")]
@@ -327,7 +366,7 @@ pub fn tolerated_trials(
 
 /// One pointer of one trial under both contact models, as [`TrialEngine::trials`] records it;
 /// NaN statistics are recorded as bits.
-#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
 pub struct BothModels {
     /// σ under Edmunds' radial-line model, through any jams (degrees).
     #[serde(with = "registry::f64_bits")]

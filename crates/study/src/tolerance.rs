@@ -20,6 +20,7 @@ pub const RANDOM_FROM: Param = Param {
     unit: "pitch",
     help: "smallest random error (sd of a tip's displacement / pitch 360/N); the paper's Table 4: 0.035",
     kind: RANDOM_KIND,
+    reading: false,
 };
 
 /// End of the random-error grid.
@@ -29,6 +30,7 @@ pub const RANDOM_TO: Param = Param {
     unit: "pitch",
     help: "largest random error of the grid (the paper: 0.065)",
     kind: RANDOM_KIND,
+    reading: false,
 };
 
 /// Step of the random-error grid.
@@ -38,6 +40,7 @@ pub const RANDOM_STEP: Param = Param {
     unit: "pitch",
     help: "step of the random-error grid (the paper: 0.005)",
     kind: registry::Kind::positive(f64::INFINITY, ""),
+    reading: false,
 };
 
 /// Start of the systematic-error grid (Table 5's first row).
@@ -47,6 +50,7 @@ pub const SYSTEMATIC_FROM: Param = Param {
     unit: "deg",
     help: "smallest systematic amplitude A of the grid (the paper's Table 5: 0.1)",
     kind: registry::Kind::number(0.0, f64::INFINITY, ""),
+    reading: false,
 };
 
 /// End of the systematic-error grid.
@@ -56,6 +60,7 @@ pub const SYSTEMATIC_TO: Param = Param {
     unit: "deg",
     help: "largest systematic amplitude of the grid (the paper: 1.1)",
     kind: registry::Kind::ANY_NUMBER,
+    reading: false,
 };
 
 /// Step of the systematic-error grid.
@@ -65,6 +70,7 @@ pub const SYSTEMATIC_STEP: Param = Param {
     unit: "deg",
     help: "step of the systematic grid (the paper: 0.1)",
     kind: registry::Kind::positive(f64::INFINITY, ""),
+    reading: false,
 };
 
 /// The failure threshold.
@@ -74,6 +80,7 @@ pub const RULE: Param = Param {
     unit: "%",
     help: "a value is tolerable when at most this share of trials jam (the paper: 1 %, 2 of 200)",
     kind: registry::Kind::number(0.0, 100.0, "a percentage"),
+    reading: false,
 };
 
 /// The random-error grid (Table 4's rows).
@@ -82,11 +89,84 @@ pub const RANDOM_GRID: &[Param] = &[RANDOM_FROM, RANDOM_TO, RANDOM_STEP];
 /// The systematic-error grid (Table 5's rows).
 pub const SYSTEMATIC_GRID: &[Param] = &[SYSTEMATIC_FROM, SYSTEMATIC_TO, SYSTEMATIC_STEP];
 
+/// The random-error grid as typed ([`RANDOM_GRID`], Table 4's rows).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, registry::Settings)]
+pub struct RandomGrid {
+    /// First random error, of the pitch ([`RANDOM_FROM`]).
+    #[param(RANDOM_FROM)]
+    pub random_from: f64,
+    /// Last random error ([`RANDOM_TO`]).
+    #[param(RANDOM_TO)]
+    pub random_to: f64,
+    /// Step between rows ([`RANDOM_STEP`]).
+    #[param(RANDOM_STEP)]
+    pub random_step: f64,
+}
+
+/// The systematic-error grid as typed ([`SYSTEMATIC_GRID`], Table 5's rows).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, registry::Settings)]
+pub struct SystematicGrid {
+    /// First systematic error, degrees ([`SYSTEMATIC_FROM`]).
+    #[param(SYSTEMATIC_FROM)]
+    pub systematic_from: f64,
+    /// Last systematic error ([`SYSTEMATIC_TO`]).
+    #[param(SYSTEMATIC_TO)]
+    pub systematic_to: f64,
+    /// Step between rows ([`SYSTEMATIC_STEP`]).
+    #[param(SYSTEMATIC_STEP)]
+    pub systematic_step: f64,
+}
+
+impl RandomGrid {
+    /// The grid's values ([`grid`]), the parameter the user set named in a refusal.
+    pub fn values<S: registry::Settings>(&self, whole: &S) -> Result<Vec<f64>, RunError> {
+        grid(
+            (&RANDOM_FROM, self.random_from),
+            (&RANDOM_TO, self.random_to),
+            (&RANDOM_STEP, self.random_step),
+            &changed_names(whole),
+        )
+    }
+}
+
+impl SystematicGrid {
+    /// The grid's values ([`grid`]), the parameter the user set named in a refusal.
+    pub fn values<S: registry::Settings>(&self, whole: &S) -> Result<Vec<f64>, RunError> {
+        grid(
+            (&SYSTEMATIC_FROM, self.systematic_from),
+            (&SYSTEMATIC_TO, self.systematic_to),
+            (&SYSTEMATIC_STEP, self.systematic_step),
+            &changed_names(whole),
+        )
+    }
+}
+
+/// The names of the parameters of `whole` that differ from their defaults.
+fn changed_names<S: registry::Settings>(whole: &S) -> Vec<&'static str> {
+    let mut changed = Vec::new();
+    whole.changed(&mut changed);
+    changed.into_iter().map(|(p, _)| p.name).collect()
+}
+
 /// Jams allowed among `trials` trials under a rule of `rule_percent` %: ⌊rule·trials/100⌋.
 pub fn allowed_jams(trials: u64, rule_percent: f64) -> u64 {
     let x = rule_percent * trials as f64 / 100.0;
     // A hair above, so 1 % of 200 is 2 even if the product rounds just below.
     (x + 1e-9).floor().max(0.0) as u64
+}
+
+/// The paper's failure rule, in % of the trials (section 5: "a failure rate threshold of 1 %
+/// ... in 200 trials, a maximum of 2 jams is acceptable").
+pub const PAPER_RULE_PERCENT: f64 = 1.0;
+
+/// Does a cell of `trials` trials with `jams` and `disengagements` keep the failure rule of
+/// `rule_percent` % ([`allowed_jams`]: 2 of 200 at 1 %)? The paper's text states the rule for
+/// jams and its derived E. max row tolerates 2 jams of 200 (m2-n1 at 0.035); its captions shade
+/// "cells with one or fewer trials showing jamming or disengagement", so a disengagement counts
+/// against a cell as a jam does: both counts must be within the rule.
+pub fn keeps_rule(jams: u64, disengagements: u64, trials: u64, rule_percent: f64) -> bool {
+    let allowed = allowed_jams(trials, rule_percent);
+    jams <= allowed && disengagements <= allowed
 }
 
 /// The largest grid value `e` such that every grid value up to `e` has at most

@@ -11,7 +11,7 @@ use crate::grids::CellSettings;
 use crate::tolerance;
 
 /// What the trials of one probed value say so far.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum Decision {
     /// The jam rate is at most the rule: the value is tolerable.
     Below,
@@ -57,7 +57,7 @@ pub fn decide(jams: u64, trials: u64, rule_percent: f64, cap: u64) -> Decision {
 }
 
 /// One probed value and what its trials gave.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Probe {
     /// Random error (fraction of the pitch).
     pub value: f64,
@@ -68,7 +68,7 @@ pub struct Probe {
 }
 
 /// The search of one mesh: the bracket so far and the probes run.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Search {
     /// Lower end of the searched range.
     pub lo: f64,

@@ -90,6 +90,7 @@ pub const PARAM: Param = Param {
     unit: "",
     help: "where a pair trial's counting ends: `turn` (its whole turn, every failure counted: the paper's protocol), `first-event` (only its first jam or disengagement counts), `first-disengagement` (jams until its first disengagement, and that); a reading to compare, as some of the paper's Case D cells add up to exactly 200",
     kind: registry::Kind::Choice(&["turn", "first-event", "first-disengagement"]),
+    reading: true,
 };
 
 #[cfg(test)]

@@ -9,7 +9,7 @@
 use std::collections::BTreeMap;
 use std::f64::consts::TAU;
 
-use contact::Start;
+use contact::{Solve, Start};
 use hypotheses::{Hypothesis, MeasuredHypothesis, Params};
 use mechanism::{Mechanism, PointerRun, Stage, StageRun, trial_rng};
 use rand::Rng;
@@ -30,6 +30,7 @@ pub const DAYS: Param = Param {
         100.0 * stats::DAYS_PER_YEAR,
         "one year of b: jams are counted within a year",
     ),
+    reading: false,
 };
 
 /// The `cases` parameter: which of Edmunds' cases to run.
@@ -39,6 +40,7 @@ pub const CASES_PARAM: Param = Param {
     unit: "",
     help: "Edmunds' cases to run, comma-separated (empty: none)",
     kind: registry::Kind::Text,
+    reading: false,
 };
 
 /// Whole-mechanism runs per input at the defaults (the paper: 30).
@@ -433,8 +435,11 @@ fn one_run(
                             return Err(RunError::Internal(format!("mesh {label} was not built")));
                         };
                         let is_jam = |e: &contact::Event| mech.rule().is_jam(e);
-                        let traj =
-                            mesh.run_until(phi0, phi0 + range, Start::Touching(0.0), Some(&is_jam));
+                        let traj = mesh.solve(
+                            phi0..=phi0 + range,
+                            Start::Touching(0.0),
+                            Solve::path().stop_at(&is_jam),
+                        );
                         engagements += (traj.phi_end() - traj.phi_start()) / TAU
                             * mesh.driver().teeth() as f64;
                         let s = Stage {
@@ -551,13 +556,23 @@ pub fn mean_days(days: &[f64], horizon: f64) -> stats::Estimate {
 
 /// Per run and train: the day of the first jam, or the horizon and "censored".
 pub fn runs_csv(inputs: &[Input<'_>], per_input: &[&[MechanismRun]], days: f64) -> String {
+    labelled_runs_csv(inputs.iter().map(|i| i.label.as_str()), per_input, days)
+}
+
+/// [`runs_csv`] of runs stored with their inputs' labels (`labels`, one per input) rather than
+/// the inputs themselves.
+pub fn labelled_runs_csv<'a>(
+    labels: impl IntoIterator<Item = &'a str>,
+    per_input: &[&[MechanismRun]],
+    days: f64,
+) -> String {
     let mut csv = String::from("input,trial,train,first_jam_day,status,mesh\n");
-    for (inp, runs) in inputs.iter().zip(per_input) {
+    for (label, runs) in labels.into_iter().zip(per_input) {
         for (t, o) in runs.iter().enumerate() {
             for (ti, name) in train_names().enumerate() {
                 let line = match jam_of(o, ti).filter(|j| j.day <= days) {
-                    Some(j) => registry::csv_row!(inp.label, t, name, j.day, "jammed", j.mesh),
-                    None => registry::csv_row!(inp.label, t, name, days, "censored", ""),
+                    Some(j) => registry::csv_row!(label, t, name, j.day, "jammed", j.mesh),
+                    None => registry::csv_row!(label, t, name, days, "censored", ""),
                 };
                 csv.push_str(&line);
             }

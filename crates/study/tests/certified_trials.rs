@@ -5,7 +5,7 @@
 //! same angles to 1e-9 rad.
 #![allow(clippy::unwrap_used, reason = "tests")]
 
-use contact::Start;
+use contact::{Solve, Start};
 use study::cell::{CellSpec, rebuild};
 
 #[test]
@@ -38,9 +38,12 @@ fn case_d_trials_find_the_events_of_the_plain_solver() {
                 let trial = rebuild(&g, &cell, 2025, t).unwrap();
                 let Some(mesh) = &trial.mesh else { continue };
                 let end = trial.phi0 + trial.turn;
-                let certified = mesh.run_events(trial.phi0, end, Start::Touching(0.0));
-                let plain =
-                    mesh.run_with_steps(trial.phi0, end, Start::Touching(0.0), false, 4.0, false);
+                let certified = mesh.solve(trial.phi0..=end, Start::Touching(0.0), Solve::events());
+                let plain = mesh.solve(
+                    trial.phi0..=end,
+                    Start::Touching(0.0),
+                    Solve::path().steps_per_pitch(4.0).exact_core(),
+                );
                 let what = format!("{} G {clearance} % trial {t}", m.label);
                 assert_eq!(certified.len(), plain.events().len(), "{what}");
                 for (a, b) in certified.iter().zip(plain.events()) {

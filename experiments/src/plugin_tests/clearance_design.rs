@@ -95,7 +95,7 @@ fn a_small_design_runs_and_its_reference_arm_is_the_failure_study() {
     // The reference arm's runs are failure's runs with the same seed, cases and count.
     let map = registry::experiments().unwrap();
     let set = |k: &str, v: &str| (k.to_string(), v.to_string());
-    let ctx = Context::new(
+    let ctx = registry::Context::new(
         map["failure"],
         2025,
         2,
@@ -103,7 +103,7 @@ fn a_small_design_runs_and_its_reference_arm_is_the_failure_study() {
         None,
     )
     .unwrap();
-    let f = (map["failure"].run)(&ctx).unwrap();
+    let f = (map["failure"].run)(&ctx, ctx.engine()).unwrap().report;
     let theirs = String::from_utf8(f.files[0].contents.clone()).unwrap();
     let ours = String::from_utf8(r.files[2].contents.clone()).unwrap();
     let ours_at_40: Vec<String> = ours

@@ -1,6 +1,7 @@
 #![allow(clippy::unwrap_used, reason = "tests")]
 use super::*;
 
+use registry::Settings as _;
 use study::cell::{Purpose, run_cells};
 
 #[test]
@@ -38,7 +39,7 @@ fn medians_of_odd_and_even_lists() {
 #[test]
 fn the_push_models_counts_are_the_tables() {
     let (_, ctx) = crate::context("motion-models", 2025, 1, &[]).unwrap();
-    let s = crate::settings::cells(&ctx, &TRIALS).unwrap();
+    let s = cell_settings(&Settings::read(&ctx).unwrap()).unwrap();
     let cells: Vec<CellSpec> = [
         ("m2-n1", 0.065, 0.0, 40.0),
         ("h2-i1", 0.06, 0.0, 40.0),
@@ -84,11 +85,12 @@ fn the_push_models_pointers_are_table_1s() {
         ("exeligmos_turns", "0.2"),
     ];
     let (_, ctx) = crate::context("motion-models", 7, 1, &sets).unwrap();
-    let gearing = crate::settings::gearing(&ctx).unwrap();
-    let rule = crate::settings::rule(&ctx).unwrap();
+    let settings = Settings::read(&ctx).unwrap();
+    let gearing = settings.gearing.load().unwrap();
+    let rule = settings.events.rule().unwrap();
     let mech = study::pointers::ideal_mechanism(&gearing, &rule).unwrap();
-    let per = ctx.get(&study::pointers::SAMPLES_PER_ENGAGEMENT).unwrap();
-    let turns = crate::settings::turns(&ctx, &POINTERS).unwrap();
+    let per = settings.run_lengths.samples_per_engagement;
+    let turns = settings.run_lengths.turns();
     let runs = study::pointers::pointer_runs(&gearing.gearing, &turns, per).unwrap();
     let push = Model::parse("push").unwrap();
     let ours = study::motion_models::pointer_sigmas(

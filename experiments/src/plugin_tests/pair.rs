@@ -2,7 +2,7 @@
 //! plugins so that the plugin file holds the experiment alone.
 #![allow(clippy::unwrap_used, reason = "tests")]
 use super::*;
-use contact::Start;
+use contact::{Solve, Start};
 use geometry::Gear;
 use std::f64::consts::TAU;
 use study::pair_file::load;
@@ -224,7 +224,9 @@ type Motion = (
 );
 
 fn motion(p: &Prepared, m1: &[usize], m2: &[usize]) -> Motion {
-    let traj = p.mesh.run(0.0, 400f64.to_radians(), p.start);
+    let traj = p
+        .mesh
+        .solve(0.0..=400f64.to_radians(), p.start, Solve::path());
     let thetas = (0..=2000)
         .map(|i| traj.theta_at((0.2 * f64::from(i)).to_radians()))
         .collect();
@@ -310,7 +312,7 @@ fn every_convention_recovers_the_known_gears_and_the_same_motion() {
         // The same motion from the touching start, and from the resting pair of that start
         // named by tooth numbers in this convention.
         let touching = motion(&p, &m1, &m2);
-        let traj = p.mesh.run(0.0, 0.1, p.start);
+        let traj = p.mesh.solve(0.0..=0.1, p.start, Solve::path());
         let theta0 = traj.theta_at(0.0);
         let mut obs = Vec::new();
         p.mesh
@@ -342,7 +344,10 @@ fn every_convention_recovers_the_known_gears_and_the_same_motion() {
 /// The example's mesh and its touching start angle.
 fn example_start() -> (Prepared, f64) {
     let p = prepare("x.ron", EXAMPLE).unwrap();
-    let theta0 = p.mesh.run(0.0, 0.01, p.start).theta_at(0.0);
+    let theta0 = p
+        .mesh
+        .solve(0.0..=0.01, p.start, Solve::path())
+        .theta_at(0.0);
     (p, theta0)
 }
 
@@ -385,7 +390,7 @@ fn start_at_rest_stands_still_until_the_driver_arrives() {
     .unwrap();
     let theta0 = theta_deg.to_radians();
     assert_eq!(q.start, Start::At(theta0));
-    let traj = q.mesh.run(0.0, 0.2, q.start);
+    let traj = q.mesh.solve(0.0..=0.2, q.start, Solve::path());
     let arrives = p.mesh.first_touch(theta0, 0.0, 0.2).unwrap();
     assert!(arrives > 1e-4, "{arrives}");
     assert_eq!(traj.theta_at(0.0), theta0);
@@ -426,7 +431,7 @@ fn start_on_named_teeth_puts_them_in_contact() {
     assert_eq!(theta0, o.hi);
     assert!(theta0.abs() < PI);
     // Driver tooth 0 pushes driven tooth 0 as the driver turns.
-    let traj = q.mesh.run(0.0, 0.05, q.start);
+    let traj = q.mesh.solve(0.0..=0.05, q.start, Solve::path());
     assert_eq!(traj.theta_at(0.0), theta0);
     match &traj.segments()[0].motion {
         contact::Motion::Push(pairs) => assert!(pairs.contains(&(0, 0)), "{pairs:?}"),
@@ -582,7 +587,7 @@ fn check_picture_labels_what_the_user_entered() {
         "",
     );
     let p = prepare("rt.ron", &c).unwrap();
-    let traj = p.mesh.run(0.0, 0.1, p.start);
+    let traj = p.mesh.solve(0.0..=0.1, p.start, Solve::path());
     let svg = check_svg("my <pair>.ron", &p, (0.0, traj.theta_at(0.0)));
     for words in [
         "Check of my &lt;pair&gt;.ron: both gears at phi = 0 and theta = 0",
@@ -690,7 +695,7 @@ fn the_readmes_measured_wheel_is_one_gear_in_both_spellings() {
 fn the_driven_gear_of_a_pair_file_can_drive() {
     let run = |sets: &[(&str, &str)]| {
         let (exp, ctx) = crate::context("pair", 2025, 1, sets).unwrap();
-        (exp.run)(&ctx)
+        (exp.run)(&ctx, ctx.engine()).map(|o| o.report)
     };
     let listed = run(&[]).unwrap();
     let other = run(&[("drive", "other")]).unwrap();

@@ -11,14 +11,19 @@
 
 use std::collections::BTreeMap;
 
-use registry::{Context, MAX_TRIALS, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use registry::{MAX_TRIALS, OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64};
+use serde::{Deserialize, Serialize};
 use stats::{Proportion, clopper_pearson95};
 use train::Gearing;
 
 use crate::common::{Plot, Series};
-use crate::settings::clearance_list;
+use crate::settings::typed::{Gearing as CellGearing, cells};
 use study::cell::{Counts, label};
 use study::clearance_search::{MeshSearch, Search, search};
+use study::drive::DriveParams;
+use study::errors::CaseParams;
+use study::events::EventParams;
+use study::gearing::ShapeParams;
 use study::grids::CASES;
 use study::grids::CellSettings;
 use study::whole_mechanism::{self as whole, Clearances, Input, MechanismRun, Summary};
@@ -35,11 +40,166 @@ registry::params! {
     const REFERENCE_CLEARANCE = Param::new("clearance", "40", "reference clearance: the paper's one value for every mesh, always tried, and the failure study's first setting", registry::Kind::positive(100.0, "% of the tooth height h")).unit("% of h");
 }
 
-crate::experiment! {
-    id: "clearance-design", paper_item: "Section 6 / beyond the paper", run,
-    title: "Per-mesh clearance that minimises jams and disengagements, for each of Edmunds' Cases, and the failure study rerun with it (beyond the paper)",
-    params: [GRID, COARSE_TRIALS, REFINE_STEP, REFINE_TRIALS, RUNS, whole::DAYS, whole::CASES_PARAM, REFERENCE_CLEARANCE], groups: [study::gearing::SHAPE, study::errors::CASES_GROUP, study::events::GROUP, study::drive::GROUP],
+/// The clearance design's settings: the search's grid, trials and refinement, the failure
+/// study's runs, horizon and cases, the reference clearance, the gearing with h, the Cases'
+/// errors, the event rule and the pair-trial protocol.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, registry::Settings)]
+#[settings(check = check)]
+pub struct Settings {
+    /// The coarse grid of clearances, % of h, comma-separated ([`GRID`]).
+    #[param(GRID)]
+    pub grid: String,
+    /// Pair runs per clearance of the coarse grid ([`COARSE_TRIALS`]).
+    #[param(COARSE_TRIALS)]
+    pub coarse_trials: u64,
+    /// The refinement's step, % of h; 0: none ([`REFINE_STEP`]).
+    #[param(REFINE_STEP)]
+    pub refine_step: f64,
+    /// Pair runs per clearance compared in the refinement ([`REFINE_TRIALS`]).
+    #[param(REFINE_TRIALS)]
+    pub refine_trials: u64,
+    /// Whole-mechanism runs per case and setting ([`RUNS`]).
+    #[param(RUNS)]
+    pub runs: u64,
+    /// Horizon of each run, days of b ([`whole::DAYS`]).
+    #[param(whole::DAYS)]
+    pub days: f64,
+    /// Edmunds' cases to run, comma-separated ([`whole::CASES_PARAM`]).
+    #[param(whole::CASES_PARAM)]
+    pub cases: String,
+    /// The reference clearance, % of h ([`REFERENCE_CLEARANCE`]).
+    #[param(REFERENCE_CLEARANCE)]
+    pub clearance: f64,
+    /// The gearing and h.
+    #[group]
+    pub shape: ShapeParams,
+    /// The split, the hypothesis and its parameters.
+    #[group]
+    pub errors: CaseParams,
+    /// The event rule.
+    #[group]
+    pub events: EventParams,
+    /// Which gear drives, where counting ends.
+    #[group]
+    pub drive: DriveParams,
 }
+
+/// One mesh's pair run in years of b.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MeshYears {
+    /// The mesh, driver-driven.
+    pub mesh: String,
+    /// Years of the b arbor (one turn a year) in one pair run: one turn of the mesh's gear with
+    /// more teeth, through the first pointer train holding it; `None` for a mesh on no train.
+    pub years: Option<f64>,
+}
+
+/// One setting of the failure study: a case at the reference clearance for every mesh, or at
+/// its chosen clearances.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct StudyArm {
+    /// `D at 40 %` or `D at best`.
+    pub label: String,
+    /// The whole-mechanism runs, in trial order (run t of a case draws the same gears and
+    /// initial angles at both settings).
+    pub runs: Vec<MechanismRun>,
+}
+
+/// The clearance design's results: every (case, mesh)'s search, and the failure study at the
+/// reference and at the chosen clearances.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Results {
+    /// The searches: case by case in the order run, each case's meshes in the gearing's order;
+    /// clearances in % of h.
+    pub searches: Vec<MeshSearch>,
+    /// Each mesh's pair run in years of b, in the gearing's order.
+    pub meshes: Vec<MeshYears>,
+    /// The hypothesis the gears were made with.
+    pub hypothesis: String,
+    /// The failure study: each case at the reference, then at its chosen clearances.
+    pub study: Vec<StudyArm>,
+}
+
+/// The clearance design.
+pub struct ClearanceDesign;
+
+impl registry::Experiment for ClearanceDesign {
+    const ID: &'static str = "clearance-design";
+    const TITLE: &'static str = "Per-mesh clearance that minimises jams and disengagements, for each of Edmunds' Cases, and the failure study rerun with it (beyond the paper)";
+    const PAPER_ITEM: &'static str = "Section 6 / beyond the paper";
+    const PLACE: Place = Place::Beyond(20);
+    type Settings = Settings;
+    type Results = Results;
+
+    fn compute(s: &Settings, run: &Run) -> Result<Results, RunError> {
+        // The coarse grid's cells count `coarse_trials` trials each.
+        let cells = cells(
+            CellGearing::Shape(&s.shape),
+            &s.errors,
+            Some(&s.events),
+            Some(&s.drive),
+            s.coarse_trials,
+            s,
+        )?;
+        let (g, h) = (cells.gearing(), cells.gearing.tooth_height);
+        let d = design(s)?;
+        whole::check_study(g, h, &Clearances::Uniform(d.reference))?;
+        let searches = search(run.engine(), &cells, &d.search())?;
+        let meshes = cells.meshes();
+        let maps = chosen(&d, &searches, meshes.len());
+        let study = failure_study(run, &cells, &d, &maps)?;
+        Ok(Results {
+            meshes: meshes
+                .into_iter()
+                .map(|mesh| MeshYears {
+                    years: years_per_pair_run(g, &mesh),
+                    mesh,
+                })
+                .collect(),
+            searches,
+            hypothesis: cells.hypothesis().name().to_owned(),
+            study,
+        })
+    }
+
+    fn report(s: &Settings, r: &Results) -> Result<Report, RunError> {
+        let d = design(s)?;
+        let meshes: Vec<String> = r.meshes.iter().map(|m| m.mesh.clone()).collect();
+        let (table, best_csv, probes_csv, used) = search_table(s, &d, r);
+        let design = design_table(&d, &r.searches, &meshes);
+        let per_input: Vec<&[MechanismRun]> = r.study.iter().map(|a| a.runs.as_slice()).collect();
+        let summaries: Vec<Vec<Summary>> = per_input
+            .iter()
+            .map(|runs| whole::summarise(runs, d.days))
+            .collect();
+        let mut study = study_table(&d, &per_input, &summaries);
+        case_notes(&mut study, &d, &r.searches, &meshes, &summaries, &per_input);
+        let labels = r.study.iter().map(|a| a.label.as_str());
+        let csvs = (
+            best_csv,
+            probes_csv,
+            whole::labelled_runs_csv(labels, &per_input, d.days),
+        );
+        let files = files(&d, &r.searches, meshes.len(), csvs)?;
+        let pair_engagements: u64 = r
+            .searches
+            .iter()
+            .flat_map(|sr| sr.probes.iter().map(|p| p.1.engagements))
+            .sum();
+        let runs = per_input.iter().flat_map(|runs| runs.iter());
+        let report = Report {
+            tables: vec![table, design, study],
+            files,
+            trials: used + per_input.iter().map(|runs| runs.len() as u64).sum::<u64>(),
+            engagements: pair_engagements + runs.map(|o| o.engagements).sum::<f64>().round() as u64,
+            agreement: None,
+            ..Default::default()
+        };
+        crate::settings::typed::label(&s.events, Some(&s.drive), report)
+    }
+}
+
+registry::register!(ClearanceDesign);
 
 /// How many worst meshes each case's plot draws.
 const PLOTTED: usize = 4;
@@ -49,7 +209,7 @@ const PLOTTED: usize = 4;
 const STILL_FAILING: f64 = 0.10;
 
 /// The search's and the study's parameters, checked.
-struct Settings {
+struct Design {
     /// Coarse grid with the reference, ascending, without repeats.
     grid: Vec<f64>,
     /// The reference clearance (% of h).
@@ -64,7 +224,7 @@ struct Settings {
     cases: Vec<usize>,
 }
 
-impl Settings {
+impl Design {
     /// What the clearance search runs.
     fn search(&self) -> Search {
         Search {
@@ -87,9 +247,8 @@ impl Settings {
     }
 }
 
-/// A count parameter of pair runs or mechanism runs: at least 1, at most [`MAX_TRIALS`].
-fn count(ctx: &Context, p: &Param) -> Result<u64, RunError> {
-    let n = ctx.get::<u64>(p)?;
+/// A count parameter `p` of pair runs or mechanism runs, `n`: at least 1, at most [`MAX_TRIALS`].
+fn count(p: &Param, n: u64) -> Result<u64, RunError> {
     if n == 0 || n > MAX_TRIALS {
         return Err(RunError::bad(
             "--set",
@@ -100,14 +259,21 @@ fn count(ctx: &Context, p: &Param) -> Result<u64, RunError> {
     Ok(n)
 }
 
-fn settings(ctx: &Context) -> Result<Settings, RunError> {
-    let reference = ctx.get::<f64>(&REFERENCE_CLEARANCE)?;
-    let mut grid = clearance_list(ctx, &GRID, 100.0)?;
+/// The checks across the design's parameters ([`design`]), before anything runs.
+fn check(s: &Settings, _: &registry::Context) -> Result<(), RunError> {
+    design(s).map(|_| ())
+}
+
+/// The design the settings ask for: the grid with the reference, the trials, the refinement,
+/// the study's runs, horizon and cases, each checked.
+fn design(s: &Settings) -> Result<Design, RunError> {
+    let reference = s.clearance;
+    let mut grid = study::gearing::clearance_list(&s.grid, GRID.name, 100.0)?;
     grid.push(reference);
     grid.sort_by(f64::total_cmp);
     grid.dedup();
-    let coarse = count(ctx, &COARSE_TRIALS)?;
-    let refine = count(ctx, &REFINE_TRIALS)?;
+    let coarse = count(&COARSE_TRIALS, s.coarse_trials)?;
+    let refine = count(&REFINE_TRIALS, s.refine_trials)?;
     if refine < coarse {
         return Err(RunError::bad(
             "--set",
@@ -118,7 +284,7 @@ fn settings(ctx: &Context) -> Result<Settings, RunError> {
             ),
         ));
     }
-    let step = ctx.get::<f64>(&REFINE_STEP)?;
+    let step = s.refine_step;
     if !(0.0..100.0).contains(&step) {
         return Err(RunError::bad(
             "--set",
@@ -126,9 +292,8 @@ fn settings(ctx: &Context) -> Result<Settings, RunError> {
             format!("must be at least 0 and below 100 % of h (got {step})"),
         ));
     }
-    let runs = count(ctx, &RUNS)?;
-    let days = ctx.get(&study::whole_mechanism::DAYS)?;
-    let cases = whole::parse_cases(ctx.text(&whole::CASES_PARAM)?)?;
+    let runs = count(&RUNS, s.runs)?;
+    let cases = whole::parse_cases(&s.cases)?;
     if cases.is_empty() {
         return Err(RunError::bad(
             "--set",
@@ -136,14 +301,14 @@ fn settings(ctx: &Context) -> Result<Settings, RunError> {
             "no case: nothing to run",
         ));
     }
-    Ok(Settings {
+    Ok(Design {
         grid,
         reference,
         coarse,
         step,
         refine,
         runs,
-        days,
+        days: s.days,
         cases,
     })
 }
@@ -226,39 +391,37 @@ fn share_cell(p: &Proportion) -> String {
 /// The search's table, one row per (case, mesh): the coarse grid's counts, the best clearance
 /// and the reference's, with the notes on how they were found; also clearance-design-best.csv,
 /// clearance-design-probes.csv and the pair runs used.
-fn search_table(
-    cells: &CellSettings,
-    s: &Settings,
-    searches: &[MeshSearch],
-) -> Result<(Table, String, String, u64), RunError> {
-    let g = cells.gearing();
-    let mut table = search_header(s);
+fn search_table(s: &Settings, d: &Design, r: &Results) -> (Table, String, String, u64) {
+    let mut table = search_header(d);
     let mut best_csv = String::from(
         "case,mesh,best_clearance,coarse_best,trials,failures,jams,disengagements,failure_lo,failure_hi,reference_clearance,reference_trials,reference_failures,reference_jams,reference_disengagements,reference_lo,reference_hi\n",
     );
     let mut probes_csv =
         String::from("case,mesh,clearance,trials,jams,disengagements,failures,finalist,chosen\n");
-    for sr in searches {
+    for sr in &r.searches {
         let case = CASES[sr.case].0;
+        let years = r.meshes.iter().find(|m| m.mesh == sr.mesh);
         let mut row = vec![
             case.to_string(),
             sr.mesh.clone(),
-            years_per_pair_run(g, &sr.mesh).map_or_else(|| "-".into(), |y| fmt_f64(y, 2)),
+            years
+                .and_then(|m| m.years)
+                .map_or_else(|| "-".into(), |y| fmt_f64(y, 2)),
         ];
-        for (&v, c) in s.grid.iter().zip(&sr.coarse) {
+        for (&v, c) in d.grid.iter().zip(&sr.coarse) {
             let mark = if v == sr.coarse_best { "*" } else { "" };
             row.push(format!("{}{mark}", c.failures));
         }
-        let (b, r) = (sr.at(sr.best), sr.at(s.reference));
+        let (b, at_ref) = (sr.at(sr.best), sr.at(d.reference));
         let (bp, rp) = (
             clopper_pearson95(b.failures, b.trials),
-            clopper_pearson95(r.failures, r.trials),
+            clopper_pearson95(at_ref.failures, at_ref.trials),
         );
         row.extend([
             label(sr.best, 0),
             counts_cell(&b),
             interval_cell(&bp),
-            counts_cell(&r),
+            counts_cell(&at_ref),
             interval_cell(&rp),
         ]);
         table.row(row);
@@ -266,26 +429,26 @@ fn search_table(
             (&mut best_csv, &mut probes_csv),
             case,
             sr,
-            s.reference,
+            d.reference,
             (&b, &bp),
-            (&r, &rp),
+            (&at_ref, &rp),
         );
     }
-    let used: u64 = searches.iter().map(MeshSearch::trials).sum();
-    search_notes(&mut table, cells, s, searches.len() as u64, used)?;
-    Ok((table, best_csv, probes_csv, used))
+    let used: u64 = r.searches.iter().map(MeshSearch::trials).sum();
+    search_notes(&mut table, (s, d, r), r.searches.len() as u64, used);
+    (table, best_csv, probes_csv, used)
 }
 
 /// The search table's title and columns: the coarse grid's, then the best's and the reference's.
-fn search_header(s: &Settings) -> Table {
-    let rl = label(s.reference, 0);
-    let n_final = s.final_trials();
+fn search_header(d: &Design) -> Table {
+    let rl = label(d.reference, 0);
+    let n_final = d.final_trials();
     let mut header = vec![
         "case".to_string(),
         "mesh".to_string(),
         "years of b per pair run".to_string(),
     ];
-    header.extend(s.grid.iter().map(|v| format!("{} %", label(*v, 0))));
+    header.extend(d.grid.iter().map(|v| format!("{} %", label(*v, 0))));
     header.extend([
         "best G [%]".to_string(),
         format!("best: failed of {n_final} (jams/dis)"),
@@ -296,7 +459,7 @@ fn search_header(s: &Settings) -> Table {
     Table::new(
         format!(
             "Each mesh on its own, Edmunds' Cases: pair runs (of {}) with a jam or a disengagement at each clearance of the coarse grid, and the clearance that minimises them (best), against the paper's {rl} % for every mesh",
-            s.coarse
+            d.coarse
         ),
         header,
     )
@@ -306,99 +469,95 @@ fn search_header(s: &Settings) -> Table {
 /// how to read the intervals. `n_searches` meshes were searched in `used` pair runs.
 fn search_notes(
     table: &mut Table,
-    cells: &CellSettings,
-    s: &Settings,
+    (s, d, r): (&Settings, &Design, &Results),
     n_searches: u64,
     used: u64,
-) -> Result<(), RunError> {
-    let (g, hyp, h) = (
-        cells.gearing(),
-        cells.hypothesis(),
-        cells.gearing.tooth_height,
-    );
-    let meshes = cells.meshes();
-    let rl = label(s.reference, 0);
-    let years: Vec<f64> = meshes
-        .iter()
-        .filter_map(|m| years_per_pair_run(g, m))
-        .collect();
+) {
+    let h = s.shape.tooth_height;
+    let rl = label(d.reference, 0);
+    let years: Vec<f64> = r.meshes.iter().filter_map(|m| m.years).collect();
     let (shortest, longest) = (
         years.iter().copied().fold(f64::INFINITY, f64::min),
         years.iter().copied().fold(0.0, f64::max),
     );
     table.note(format!(
         "Each pair run: both gears manufactured afresh under the Case ({} hypothesis, split {}), a random initial angle, one full turn of the gear with more teeth (the run of Tables 3, 4 and I); failed: at least one jam or at least one disengagement. One such turn is {} to {} years of the mechanism, depending on the mesh (the years column: turns of b, through the first pointer train holding the mesh), so these rates are per pair run, not per year. A step of 5 % of h is {} mm of centre distance.",
-        hyp.name(),
-        cells.errors.split()?,
+        r.hypothesis,
+        s.errors.split,
         fmt_f64(shortest, 2),
         fmt_f64(longest, 0),
         fmt_f64(0.05 * h, 3),
     ));
-    if s.step > 0.0 {
-        let lo = s.grid.first().copied().unwrap_or(s.reference);
-        let hi = s.grid.last().copied().unwrap_or(s.reference);
-        let fine_values = ((hi - lo) / s.step).floor() as u64 + 1;
-        let fine = fine_values * s.refine * n_searches;
+    if d.step > 0.0 {
+        let lo = d.grid.first().copied().unwrap_or(d.reference);
+        let hi = d.grid.last().copied().unwrap_or(d.reference);
+        let fine_values = ((hi - lo) / d.step).floor() as u64 + 1;
+        let fine = fine_values * d.refine * n_searches;
         table.note(format!(
             "Search: the coarse grid at {} trials each (grid columns; `*`: the coarse best, the fewest failures with ties going to the nearest to {rl} %, then the lower); then the coarse best, the best plus and minus {} % and the reference ({rl} %), each brought to {} trials by adding trials to the same cells, and the one with the fewest failures chosen by the same rule. {used} pair runs in all, where a single grid from {} to {} % by {} % at {} trials each would take {fine} ({} % saved).",
-            s.coarse,
-            label(s.step, 0),
-            s.refine,
+            d.coarse,
+            label(d.step, 0),
+            d.refine,
             label(lo, 0),
             label(hi, 0),
-            label(s.step, 0),
-            s.refine,
+            label(d.step, 0),
+            d.refine,
             fmt_f64(100.0 * (1.0 - used as f64 / fine as f64), 0),
         ));
     } else {
         table.note(format!(
             "Search: the coarse grid at {} trials each (`*`: the best), and the clearance with the fewest failures chosen (ties: nearest {rl} %, then the lower); {used} pair runs in all.",
-            s.coarse
+            d.coarse
         ));
     }
     table.note(format!(
         "Intervals: exact (Clopper-Pearson) 95 % of the failure rate. The best's count is the smallest of the finalists' on the trials that chose it, so it is biased low (the more finalists, the more); the failure study below, on other trials, is the independent check. A cell at {} trials of the same clearance and case is the same cell as in table3/tableI (same content, same trial streams): `--set coarse_trials=200` reuses their cells when they ran first in the same process.",
-        s.coarse
+        d.coarse
     ));
-    Ok(())
 }
 
-/// The chosen clearances by case, as a table and as each case's map from mesh to clearance.
-fn design_table(
-    s: &Settings,
-    searches: &[MeshSearch],
-    meshes: &[String],
-) -> (Table, Vec<BTreeMap<String, f64>>) {
-    let rl = label(s.reference, 0);
+/// The chosen clearances by case, as a table.
+fn design_table(d: &Design, searches: &[MeshSearch], meshes: &[String]) -> Table {
+    let rl = label(d.reference, 0);
     let mut header = vec!["case".to_string()];
     header.extend(meshes.iter().cloned());
     let mut design = Table::new(
         format!("Chosen clearance of each mesh [% of h] by case (the paper: {rl} for every mesh)"),
         header,
     );
-    let mut maps: Vec<BTreeMap<String, f64>> = Vec::new();
-    for (k, &ci) in s.cases.iter().enumerate() {
+    for (k, &ci) in d.cases.iter().enumerate() {
         let rows = &searches[k * meshes.len()..(k + 1) * meshes.len()];
         let mut row = vec![CASES[ci].0.to_string()];
         row.extend(rows.iter().map(|sr| label(sr.best, 0)));
         design.row(row);
-        maps.push(rows.iter().map(|sr| (sr.mesh.clone(), sr.best)).collect());
     }
-    (design, maps)
+    design
+}
+
+/// Each case's chosen clearances, as a map from mesh to clearance (`meshes` meshes a case).
+fn chosen(d: &Design, searches: &[MeshSearch], meshes: usize) -> Vec<BTreeMap<String, f64>> {
+    (0..d.cases.len())
+        .map(|k| {
+            searches[k * meshes..(k + 1) * meshes]
+                .iter()
+                .map(|sr| (sr.mesh.clone(), sr.best))
+                .collect()
+        })
+        .collect()
 }
 
 /// Each case's note under the failure study: how many meshes moved, the share jammed within a
 /// year at both settings, the paired split with its sign test, and the meshes still failing.
 fn case_notes(
     study: &mut Table,
-    s: &Settings,
+    d: &Design,
     searches: &[MeshSearch],
     meshes: &[String],
     summaries: &[Vec<Summary>],
     per_input: &[&[MechanismRun]],
 ) {
-    let rl = label(s.reference, 0);
-    for (k, &ci) in s.cases.iter().enumerate() {
+    let rl = label(d.reference, 0);
+    for (k, &ci) in d.cases.iter().enumerate() {
         let mech = whole::TRAINS.len();
         let (r, b) = (
             &summaries[2 * k][mech].year,
@@ -406,7 +565,7 @@ fn case_notes(
         );
         let (only_ref, only_best) = discordant(per_input[2 * k], per_input[2 * k + 1], mech);
         let rows = &searches[k * meshes.len()..(k + 1) * meshes.len()];
-        let changed = rows.iter().filter(|sr| sr.best != s.reference).count();
+        let changed = rows.iter().filter(|sr| sr.best != d.reference).count();
         let still: Vec<String> = rows
             .iter()
             .filter_map(|sr| {
@@ -422,19 +581,19 @@ fn case_notes(
                 })
             })
             .collect();
-        let horizon = if s.days > stats::DAYS_PER_YEAR {
+        let horizon = if d.days > stats::DAYS_PER_YEAR {
             let within = |runs: &[MechanismRun]| {
                 runs.iter()
-                    .filter(|o| whole::jam_of(o, mech).is_some_and(|j| j.day <= s.days))
+                    .filter(|o| whole::jam_of(o, mech).is_some_and(|j| j.day <= d.days))
                     .count()
             };
             format!(
                 " Within the whole horizon ({} days of b): {}/{} at {rl} %, {}/{} at the chosen clearances.",
-                fmt_f64(s.days, 2),
+                fmt_f64(d.days, 2),
                 within(per_input[2 * k]),
-                s.runs,
+                d.runs,
                 within(per_input[2 * k + 1]),
-                s.runs,
+                d.runs,
             )
         } else {
             String::new()
@@ -472,7 +631,7 @@ fn case_notes(
 /// The files: the search's CSVs (`best`, `probes`), the runs of the failure study (`runs`),
 /// and each case's plot of its worst meshes.
 fn files(
-    s: &Settings,
+    d: &Design,
     searches: &[MeshSearch],
     meshes: usize,
     (best_csv, probes_csv, runs_csv): (String, String, String),
@@ -490,11 +649,11 @@ fn files(
         (lo.min(g), hi.max(g))
     });
     let range = crate::common::drawable(range.0, range.1);
-    for (k, &ci) in s.cases.iter().enumerate() {
+    for (k, &ci) in d.cases.iter().enumerate() {
         let rows = &searches[k * meshes..(k + 1) * meshes];
         files.push(OutputFile::new(
             format!("clearance-design-case-{}.svg", CASES[ci].0),
-            worst_plot(CASES[ci].0, rows, s.reference, range)?,
+            worst_plot(CASES[ci].0, rows, d.reference, range)?,
         ));
     }
     Ok(files)
@@ -544,87 +703,57 @@ fn search_csv(
     }
 }
 
-fn run(ctx: &Context) -> Result<Report, RunError> {
-    crate::settings::labelled(ctx, counted)
-}
-
-/// The experiment itself; [`run`] names the event rule in its tables' titles.
-fn counted(ctx: &Context) -> Result<Report, RunError> {
-    // The coarse grid's cells count `coarse_trials` trials each.
-    let cells = crate::settings::cells(ctx, &COARSE_TRIALS)?;
+/// The failure study at both settings, each case at the reference clearance for every mesh and
+/// at its chosen clearances (`maps`), on the same gears and initial angles.
+fn failure_study(
+    run: &Run,
+    cells: &CellSettings,
+    d: &Design,
+    maps: &[BTreeMap<String, f64>],
+) -> Result<Vec<StudyArm>, RunError> {
     let (g, h) = (cells.gearing(), cells.gearing.tooth_height);
-    let s = settings(ctx)?;
-    whole::check_study(g, h, &Clearances::Uniform(s.reference))?;
-    let searches = search(ctx.engine(), &cells, &s.search())?;
-    let meshes: Vec<String> = g.meshes().iter().map(|m| m.label.clone()).collect();
-
-    let (table, best_csv, probes_csv, used) = search_table(&cells, &s, &searches)?;
-
-    // The chosen clearances as a design table.
-    let (design, maps) = design_table(&s, &searches, &meshes);
-
-    // The failure study at both settings, on the same gears and initial angles.
-    let inputs = study_inputs(&cells, &s, &maps)?;
+    let inputs = study_inputs(cells, d, maps)?;
     let key = format!(
         "clearance-design/{}",
-        whole::batch_key(&cells.gearing.file, &inputs, s.runs, h, s.reference, s.days)?
+        whole::batch_key(&cells.gearing.file, &inputs, d.runs, h, d.reference, d.days)?
     );
     let outcomes = whole::run_study(
-        ctx.engine(),
+        run.engine(),
         g,
         &inputs,
-        s.runs,
+        d.runs,
         h,
-        s.days,
+        d.days,
         &cells.rule,
         &key,
     )?;
-    let per_input: Vec<&[MechanismRun]> = outcomes.chunks(s.runs as usize).collect();
-    let summaries: Vec<Vec<Summary>> = per_input
+    Ok(inputs
         .iter()
-        .map(|runs| whole::summarise(runs, s.days))
-        .collect();
-    let mut study = study_table(&s, &per_input, &summaries);
-    case_notes(&mut study, &s, &searches, &meshes, &summaries, &per_input);
-
-    let csvs = (
-        best_csv,
-        probes_csv,
-        whole::runs_csv(&inputs, &per_input, s.days),
-    );
-    let files = files(&s, &searches, meshes.len(), csvs)?;
-    let pair_engagements: u64 = searches
-        .iter()
-        .flat_map(|sr| sr.probes.iter().map(|p| p.1.engagements))
-        .sum();
-    Ok(Report {
-        tables: vec![table, design, study],
-        files,
-        trials: used + outcomes.len() as u64,
-        engagements: pair_engagements
-            + outcomes.iter().map(|o| o.engagements).sum::<f64>().round() as u64,
-        agreement: None,
-        ..Default::default()
-    })
+        .zip(outcomes.chunks(d.runs as usize))
+        .map(|(input, runs)| StudyArm {
+            label: input.label.clone(),
+            runs: runs.to_vec(),
+        })
+        .collect())
 }
 
 /// The failure study's inputs: each case at the reference clearance for every mesh, then at its
 /// chosen clearances, on the same gears and initial angles.
 fn study_inputs<'a>(
     cells: &'a CellSettings,
-    s: &Settings,
+    d: &Design,
     maps: &[BTreeMap<String, f64>],
 ) -> Result<Vec<Input<'a>>, RunError> {
     let (g, h) = (cells.gearing(), cells.gearing.tooth_height);
-    let rl = label(s.reference, 0);
+    let rl = label(d.reference, 0);
     let mut inputs: Vec<Input<'_>> = Vec::new();
-    for (&ci, map) in s.cases.iter().zip(maps) {
+    for (&ci, map) in d.cases.iter().zip(maps) {
         let per_mesh = Clearances::PerMesh {
-            default: s.reference,
+            default: d.reference,
             meshes: map.clone(),
         };
         whole::check_study(g, h, &per_mesh)?;
-        let mut at_ref = whole::case_input(&cells.errors, ci, Clearances::Uniform(s.reference))?;
+        let mut at_ref = whole::case_input(&cells.errors, ci, Clearances::Uniform(d.reference))?;
         at_ref.label = format!("{} at {rl} %", CASES[ci].0);
         let mut at_best = whole::case_input(&cells.errors, ci, per_mesh)?;
         at_best.label = format!("{} at best", CASES[ci].0);
@@ -636,13 +765,13 @@ fn study_inputs<'a>(
 
 /// The failure study's table: per case and train, both settings side by side and the runs that
 /// jammed at one only.
-fn study_table(s: &Settings, per_input: &[&[MechanismRun]], summaries: &[Vec<Summary>]) -> Table {
-    let rl = label(s.reference, 0);
+fn study_table(d: &Design, per_input: &[&[MechanismRun]], summaries: &[Vec<Summary>]) -> Table {
+    let rl = label(d.reference, 0);
     let mut study = Table::new(
         format!(
             "The failure study rerun ({} whole mechanisms per case and setting, {} days of b): {rl} % for every mesh against each mesh at its case's chosen clearance, on the same gears and initial angles",
-            s.runs,
-            fmt_f64(s.days, 2)
+            d.runs,
+            fmt_f64(d.days, 2)
         ),
         [
             "case".to_string(),
@@ -657,7 +786,7 @@ fn study_table(s: &Settings, per_input: &[&[MechanismRun]], summaries: &[Vec<Sum
             format!("jammed within a year at {rl} % only / at best only (exact p)"),
         ],
     );
-    for (k, &ci) in s.cases.iter().enumerate() {
+    for (k, &ci) in d.cases.iter().enumerate() {
         let (at_ref, at_best) = (&summaries[2 * k], &summaries[2 * k + 1]);
         let (runs_ref, runs_best) = (per_input[2 * k], per_input[2 * k + 1]);
         for (ti, ((name, r), b)) in whole::train_names().zip(at_ref).zip(at_best).enumerate() {
@@ -666,10 +795,10 @@ fn study_table(s: &Settings, per_input: &[&[MechanismRun]], summaries: &[Vec<Sum
                 CASES[ci].0.to_string(),
                 name.to_string(),
                 share_cell(&r.year),
-                crate::common::mean_cell(&r.days, s.days),
+                crate::common::mean_cell(&r.days, d.days),
                 stats::median(&r.days).map_or_else(|| "-".into(), |d| fmt_f64(d, 0)),
                 share_cell(&b.year),
-                crate::common::mean_cell(&b.days, s.days),
+                crate::common::mean_cell(&b.days, d.days),
                 stats::median(&b.days).map_or_else(|| "-".into(), |d| fmt_f64(d, 0)),
                 crate::common::jammed_first(&b.meshes),
                 format!(

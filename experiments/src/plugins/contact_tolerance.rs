@@ -6,9 +6,14 @@
 //! whether it is largest at the smallest clearance, how σ at 40 % moves and where contact is
 //! first lost: the features the paper describes for Figure IV.
 
-use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use registry::{OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64};
+use serde::{Deserialize, Serialize};
 use study::area_test::{Point, Test, grid};
+use study::gearing::ShapeParams;
 use study::limits::IdealPair;
+use study::results::contact_tolerance::{
+    AreaTest, ContactTolerance, CurveShape, Spread, TestCurves, TestSummary,
+};
 
 use crate::common::{Series, semilog_plot};
 
@@ -21,11 +26,100 @@ registry::params! {
     const SAMPLES = Param::new("samples", "200", "driver angles per driver pitch (an ideal pair repeats every driver pitch)", registry::Kind::count(8, registry::MAX_COUNT as u64, "a sigma needs samples"));
 }
 
-crate::experiment! {
-    id: "contact-tolerance", paper_item: "Figure IV and Appendix II (beyond the paper)", run,
-    title: "Figure IV under an area contact test with a tolerance, or with blunt tips",
-    params: [TOLERANCE, BLUNT_PARAM, SAMPLES], groups: [study::gearing::SHAPE],
+/// The settings: the tolerance and the tip cut of the printed curves, driver angles per pitch,
+/// and the gearing with h.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, registry::Settings)]
+pub struct Settings {
+    /// Overlap area ignored for the printed curves, mm² ([`TOLERANCE`]).
+    #[param(TOLERANCE)]
+    pub tolerance: f64,
+    /// Depth cut off every tip for the printed curves, % of h ([`BLUNT_PARAM`]).
+    #[param(BLUNT_PARAM)]
+    pub blunt: f64,
+    /// Driver angles per driver pitch ([`SAMPLES`]).
+    #[param(SAMPLES)]
+    pub samples: usize,
+    /// The gearing and h.
+    #[group]
+    pub shape: ShapeParams,
 }
+
+/// Figure IV under an area contact test with a tolerance, or with blunt tips.
+pub struct ContactToleranceExperiment;
+
+impl registry::Experiment for ContactToleranceExperiment {
+    const ID: &'static str = "contact-tolerance";
+    const TITLE: &'static str =
+        "Figure IV under an area contact test with a tolerance, or with blunt tips";
+    const PAPER_ITEM: &'static str = "Figure IV and Appendix II (beyond the paper)";
+    const PLACE: Place = Place::Beyond(90);
+    type Settings = Settings;
+    type Results = ContactTolerance;
+
+    fn compute(s: &Settings, run: &Run) -> Result<ContactTolerance, RunError> {
+        let shape = s.shape.load()?;
+        let (g, h) = (&shape.gearing, shape.tooth_height);
+        let chosen = chosen(s);
+        let tests = ladder(&chosen);
+        let meshes: Vec<(String, IdealPair)> = g
+            .meshes()
+            .iter()
+            .map(|m| {
+                IdealPair::of_mesh(g, &m.label, h)
+                    .map(|p| (m.label.clone(), p))
+                    .ok_or_else(|| RunError::Internal(format!("no mesh {}", m.label)))
+            })
+            .collect::<Result<_, _>>()?;
+
+        // ---- Every (test, mesh) curve, through the trial engine. ----
+        let pairs: Vec<IdealPair> = meshes.iter().map(|(_, p)| *p).collect();
+        let curves = study::area_test::curves(run.engine(), &tests, &pairs, s.samples)?;
+        let n = meshes.len();
+        let of = |ti: usize, mi: usize| curves[ti * n + mi].as_slice();
+        let chosen_curves = chosen
+            .iter()
+            .map(|c| {
+                let ti = tests.iter().position(|t| t == c).unwrap_or(0);
+                TestCurves {
+                    test: area_test(*c),
+                    sigma: (0..n).map(|mi| driving_sigmas(of(ti, mi))).collect(),
+                }
+            })
+            .collect();
+        Ok(ContactTolerance {
+            meshes: meshes.into_iter().map(|(l, _)| l).collect(),
+            clearances: grid(),
+            tests: summaries(&tests, n, &of),
+            curves: chosen_curves,
+        })
+    }
+
+    fn report(s: &Settings, r: &ContactTolerance) -> Result<Report, RunError> {
+        let h = s.shape.tooth_height;
+        let mut tables = vec![summary_table(r, h)];
+        let mut files = Vec::new();
+        for c in &r.curves {
+            let (table, svg) = curves_table(r, c, h, s.samples)?;
+            tables.push(table);
+            let name = if c.test.blunt > 0.0 {
+                "blunt"
+            } else {
+                "tolerance"
+            };
+            files.push(OutputFile::new(
+                format!("contact-tolerance-{name}.svg"),
+                svg,
+            ));
+        }
+        Ok(Report {
+            tables,
+            files,
+            ..Default::default()
+        })
+    }
+}
+
+registry::register!(ContactToleranceExperiment);
 
 /// Overlap areas ignored (mm²) in the ladder; 0 is the exact test.
 const TOLERANCES: [f64; 6] = [0.0, 0.0001, 0.0003, 0.001, 0.003, 0.01];
@@ -33,8 +127,52 @@ const TOLERANCES: [f64; 6] = [0.0, 0.0001, 0.0003, 0.001, 0.003, 0.01];
 /// Tip cuts in the ladder, % of h.
 const BLUNT: [f64; 3] = [5.0, 10.0, 15.0];
 
+/// The two tests whose curves are printed: the set tolerance, then the set tip cut.
+fn chosen(s: &Settings) -> [Test; 2] {
+    [
+        Test {
+            tolerance: s.tolerance,
+            blunt: 0.0,
+        },
+        Test {
+            tolerance: 0.0,
+            blunt: s.blunt,
+        },
+    ]
+}
+
+/// The ladder of tolerances (the exact test first), then of tip cuts, then the chosen tests not
+/// on it.
+fn ladder(chosen: &[Test]) -> Vec<Test> {
+    let mut tests: Vec<Test> = TOLERANCES
+        .iter()
+        .map(|&tolerance| Test {
+            tolerance,
+            blunt: 0.0,
+        })
+        .chain(BLUNT.iter().map(|&blunt| Test {
+            tolerance: 0.0,
+            blunt,
+        }))
+        .collect();
+    for c in chosen {
+        if !tests.contains(c) {
+            tests.push(*c);
+        }
+    }
+    tests
+}
+
+/// A test as stored.
+fn area_test(t: Test) -> AreaTest {
+    AreaTest {
+        tolerance: t.tolerance,
+        blunt: t.blunt,
+    }
+}
+
 /// What a test is, for titles; `h` (mm) gives the tip cut in mm.
-fn test_name(test: &Test, h: f64) -> String {
+fn test_name(test: &AreaTest, h: f64) -> String {
     if test.tolerance > 0.0 {
         format!(
             "overlaps up to {} mm^2 ignored, sharp tips",
@@ -60,17 +198,17 @@ fn driving(curve: &[Point]) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// What one mesh's curve shows: the G of the smallest σ, whether σ is largest at the smallest
-/// G that drives, σ at 40 %, and the largest G that drives.
-#[derive(Debug, Clone, Copy)]
-struct Shape {
-    minimum_at: f64,
-    largest_first: bool,
-    at_40: f64,
-    last: f64,
+/// σ at each point of a curve where the pair drives throughout (no jam, no lost contact).
+fn driving_sigmas(curve: &[Point]) -> Vec<Option<f64>> {
+    curve
+        .iter()
+        .map(|p| (p.sigma.is_finite() && !p.lost).then_some(p.sigma))
+        .collect()
 }
 
-fn shape(curve: &[Point]) -> Option<Shape> {
+/// What one mesh's curve shows: the G of the smallest σ, whether σ is largest at the smallest
+/// G that drives, σ at 40 %, and the largest G that drives.
+fn shape(curve: &[Point]) -> Option<CurveShape> {
     let pts = driving(curve);
     let smallest = pts
         .iter()
@@ -80,115 +218,75 @@ fn shape(curve: &[Point]) -> Option<Shape> {
         .iter()
         .copied()
         .reduce(|a, b| if b.1 > a.1 { b } else { a })?;
-    Some(Shape {
+    Some(CurveShape {
         minimum_at: smallest.0,
         largest_first: pts.first().is_some_and(|f| f.0 == largest.0),
-        at_40: pts
-            .iter()
-            .find(|p| (p.0 - 40.0).abs() < 1e-9)
-            .map_or(f64::NAN, |p| p.1),
+        at_40: pts.iter().find(|p| (p.0 - 40.0).abs() < 1e-9).map(|p| p.1),
         last: pts.iter().map(|p| p.0).fold(f64::NAN, f64::max),
     })
 }
 
-/// "median (lo-hi)" of finite values, `decimals` places; "-" for none.
-fn spread(values: impl Iterator<Item = f64>, decimals: usize) -> String {
-    let mut v: Vec<f64> = values.filter(|x| x.is_finite()).collect();
-    v.sort_by(f64::total_cmp);
-    match (v.first(), v.last()) {
-        (Some(lo), Some(hi)) => format!(
-            "{} ({}-{})",
-            fmt_f64(v[v.len() / 2], decimals),
-            fmt_f64(*lo, decimals),
-            fmt_f64(*hi, decimals)
-        ),
-        _ => "-".into(),
-    }
+/// Per test: what the `n` meshes' curves (`of(test, mesh)`) show beside the paper's description.
+fn summaries<'a>(
+    tests: &[Test],
+    n: usize,
+    of: &dyn Fn(usize, usize) -> &'a [Point],
+) -> Vec<TestSummary> {
+    let paper = |q: &str| crate::paper::get("sigma-causes", q).map(|r| r.value);
+    let from = paper("figIV.minimum_from").unwrap_or(f64::NAN);
+    let to = paper("figIV.minimum_to").unwrap_or(f64::NAN);
+    let exact: Vec<f64> = (0..n)
+        .map(|mi| shape(of(0, mi)).and_then(|s| s.at_40).unwrap_or(f64::NAN))
+        .collect();
+    tests
+        .iter()
+        .enumerate()
+        .map(|(ti, test)| {
+            let shapes: Vec<Option<CurveShape>> = (0..n).map(|mi| shape(of(ti, mi))).collect();
+            let found = shapes.iter().flatten();
+            TestSummary {
+                test: area_test(*test),
+                minimum_in_paper_range: found
+                    .clone()
+                    .filter(|s| from <= s.minimum_at && s.minimum_at <= to)
+                    .count(),
+                minimum_at: Spread::of(found.clone().map(|s| s.minimum_at)),
+                largest_first: found.clone().filter(|s| s.largest_first).count(),
+                ratio_at_40: Spread::of(
+                    shapes
+                        .iter()
+                        .zip(&exact)
+                        .map(|(s, e)| s.and_then(|s| s.at_40).unwrap_or(f64::NAN) / e),
+                ),
+                last_driving: Spread::of(found.map(|s| s.last)),
+                shapes,
+            }
+        })
+        .collect()
 }
 
-fn run(ctx: &Context) -> Result<Report, RunError> {
-    let study::gearing::Shape {
-        gearing: g,
-        tooth_height: h,
-        ..
-    } = crate::settings::shape(ctx)?;
-    let samples: usize = ctx.get(&SAMPLES)?;
-    let chosen = [
-        Test {
-            tolerance: ctx.get(&TOLERANCE)?,
-            blunt: 0.0,
+/// "middle (lo-hi)", `decimals` places; "-" for none.
+fn spread(s: Option<Spread>, decimals: usize) -> String {
+    s.map_or_else(
+        || "-".into(),
+        |s| {
+            format!(
+                "{} ({}-{})",
+                fmt_f64(s.middle, decimals),
+                fmt_f64(s.lo, decimals),
+                fmt_f64(s.hi, decimals)
+            )
         },
-        Test {
-            tolerance: 0.0,
-            blunt: ctx.get(&BLUNT_PARAM)?,
-        },
-    ];
-    let mut tests: Vec<Test> = TOLERANCES
-        .iter()
-        .map(|&tolerance| Test {
-            tolerance,
-            blunt: 0.0,
-        })
-        .chain(BLUNT.iter().map(|&blunt| Test {
-            tolerance: 0.0,
-            blunt,
-        }))
-        .collect();
-    for c in chosen {
-        if !tests.contains(&c) {
-            tests.push(c);
-        }
-    }
-    let meshes: Vec<(String, IdealPair)> = g
-        .meshes()
-        .iter()
-        .map(|m| {
-            IdealPair::of_mesh(&g, &m.label, h)
-                .map(|p| (m.label.clone(), p))
-                .ok_or_else(|| RunError::Internal(format!("no mesh {}", m.label)))
-        })
-        .collect::<Result<_, _>>()?;
-
-    // ---- Every (test, mesh) curve, through the trial engine. ----
-    let pairs: Vec<IdealPair> = meshes.iter().map(|(_, p)| *p).collect();
-    let curves = study::area_test::curves(ctx.engine(), &tests, &pairs, samples)?;
-    let of = |ti: usize, mi: usize| &curves[ti * meshes.len() + mi];
-
-    let paper_from = crate::paper::get("sigma-causes", "figIV.minimum_from").map(|r| r.value);
-    let paper_to = crate::paper::get("sigma-causes", "figIV.minimum_to").map(|r| r.value);
-    let paper_last = crate::paper::get("clearance", "disengage_above").map(|r| r.value);
-    let (from, to) = (paper_from.unwrap_or(f64::NAN), paper_to.unwrap_or(f64::NAN));
-
-    let summary = summary_table(&tests, h, &meshes, &of, (from, to), paper_last);
-    let mut tables = vec![summary];
-    let mut files = Vec::new();
-    for c in chosen {
-        let ti = tests.iter().position(|t| *t == c).unwrap_or(0);
-        let (table, svg) = curves_table(c, h, &meshes, |mi| of(ti, mi), samples)?;
-        tables.push(table);
-        let name = if c.blunt > 0.0 { "blunt" } else { "tolerance" };
-        files.push(OutputFile::new(
-            format!("contact-tolerance-{name}.svg"),
-            svg,
-        ));
-    }
-    Ok(Report {
-        tables,
-        files,
-        ..Default::default()
-    })
+    )
 }
 
 /// The ladder: per test, what the fifteen curves show beside the paper's description.
-fn summary_table<'a>(
-    tests: &[Test],
-    h: f64,
-    meshes: &[(String, IdealPair)],
-    of: &dyn Fn(usize, usize) -> &'a Vec<Point>,
-    (from, to): (f64, f64),
-    paper_last: Option<f64>,
-) -> Table {
-    let n = meshes.len();
+fn summary_table(r: &ContactTolerance, h: f64) -> Table {
+    let paper = |id: &str, q: &str| crate::paper::get(id, q).map(|r| r.value);
+    let from = paper("sigma-causes", "figIV.minimum_from").unwrap_or(f64::NAN);
+    let to = paper("sigma-causes", "figIV.minimum_to").unwrap_or(f64::NAN);
+    let paper_last = paper("clearance", "disengage_above");
+    let n = r.meshes.len();
     let mut t = Table::new(
         format!(
             "Figure IV under each contact test: ideal gears of the {n} meshes, h = {h} mm, G = 10-100 % of h by 5"
@@ -209,30 +307,14 @@ fn summary_table<'a>(
             ),
         ],
     );
-    let exact: Vec<f64> = (0..n)
-        .map(|mi| shape(of(0, mi)).map_or(f64::NAN, |s| s.at_40))
-        .collect();
-    for (ti, test) in tests.iter().enumerate() {
-        let shapes: Vec<Option<Shape>> = (0..n).map(|mi| shape(of(ti, mi))).collect();
-        let found = shapes.iter().flatten();
-        let inside = found
-            .clone()
-            .filter(|s| from <= s.minimum_at && s.minimum_at <= to)
-            .count();
-        let first = found.clone().filter(|s| s.largest_first).count();
+    for x in &r.tests {
         t.row(vec![
-            test_name(test, h),
-            format!("{inside} of {n}"),
-            spread(found.clone().map(|s| s.minimum_at), 0),
-            format!("{first} of {n}"),
-            spread(
-                shapes
-                    .iter()
-                    .zip(&exact)
-                    .map(|(s, e)| s.map_or(f64::NAN, |s| s.at_40 / e)),
-                2,
-            ),
-            spread(found.map(|s| s.last), 0),
+            test_name(&x.test, h),
+            format!("{} of {n}", x.minimum_in_paper_range),
+            spread(x.minimum_at, 0),
+            format!("{} of {n}", x.largest_first),
+            spread(x.ratio_at_40, 2),
+            spread(x.last_driving, 0),
         ]);
     }
     t.note("Each mesh's ideal pair (radii as crates/train sizes them) over one driver pitch from driver angle 0, started in contact (an ideal pair repeats every driver pitch); the driven angle is where the test stops reporting contact, found by bisection on the overlap area (polycheck::area), not by a fixed step. A G drives when the pair neither jams nor loses contact at any sample.");
@@ -242,47 +324,47 @@ fn summary_table<'a>(
 }
 
 /// One test's σ(G) for every mesh, as Figure IV plots it, with its SVG.
-fn curves_table<'a>(
-    test: Test,
+fn curves_table(
+    r: &ContactTolerance,
+    c: &TestCurves,
     h: f64,
-    meshes: &[(String, IdealPair)],
-    of: impl Fn(usize) -> &'a Vec<Point>,
     samples: usize,
 ) -> Result<(Table, String), RunError> {
     let mut header = vec!["G [% of h]".to_string()];
-    header.extend(meshes.iter().map(|(l, _)| l.clone()));
+    header.extend(r.meshes.iter().cloned());
     let mut t = Table::new(
         format!(
             "Figure IV under one test - {}: sigma of the driven gear's Theoretical Difference [deg], h = {h} mm",
-            test_name(&test, h)
+            test_name(&c.test, h)
         ),
         header,
     );
-    for (k, g) in grid().into_iter().enumerate() {
-        let mut row = vec![fmt_f64(g, 0)];
-        for mi in 0..meshes.len() {
-            let p = of(mi)[k];
-            row.push(if p.sigma.is_finite() && !p.lost {
-                format!("{:.2e}", p.sigma)
-            } else {
-                "-".into()
-            });
+    for (k, g) in r.clearances.iter().enumerate() {
+        let mut row = vec![fmt_f64(*g, 0)];
+        for sigma in &c.sigma {
+            row.push(sigma[k].map_or_else(|| "-".into(), |s| format!("{s:.2e}")));
         }
         t.row(row);
     }
     t.note(format!(
         "'-': the pair jams, never touches or loses contact within the pitch ({samples} samples per driver pitch)."
     ));
-    let series: Vec<Series<'_>> = meshes
+    let series: Vec<Series<'_>> = r
+        .meshes
         .iter()
-        .enumerate()
-        .map(|(mi, (label, _))| Series {
+        .zip(&c.sigma)
+        .map(|(label, sigma)| Series {
             label: label.as_str(),
-            points: driving(of(mi)),
+            points: r
+                .clearances
+                .iter()
+                .zip(sigma)
+                .filter_map(|(&g, s)| s.map(|s| (g, s)))
+                .collect(),
         })
         .collect();
     let svg = semilog_plot(
-        &format!("Figure IV under {}", test_name(&test, h)),
+        &format!("Figure IV under {}", test_name(&c.test, h)),
         "clearance G [% of tooth height]",
         "sigma [deg], logarithmic scale",
         &series,

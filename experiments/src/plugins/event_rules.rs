@@ -8,17 +8,24 @@
 //! per-reading counts go into the shared cell cache, so Tables 3, 4 and I run afterwards in the
 //! same process (`run all`) find their cells already run.
 
-use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use registry::{OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64};
 use rules::Rule;
-use train::Gearing;
+use serde::{Deserialize, Serialize};
 
 use crate::cells::{
     PaperTable, Tally, consistent_with_paper, paper_counts, paper_table_cells, share,
 };
+use crate::settings::typed::{Gearing, cells};
 use study::cell::{CellSpec, Counting, Counts, Purpose, label, run_cells_counted};
 use study::drive::Drive;
+use study::errors::CaseParams;
+use study::gearing::GearingParams;
 use study::grids::CellSettings;
 use study::limits::IdealPair;
+use study::results::event_rules::{
+    ClearanceLimits, Consistency, Counted, EventRules, Reading, RuleCell,
+};
+use study::tolerance::RandomGrid;
 use study::trial_end::End;
 
 registry::params! {
@@ -28,23 +35,128 @@ registry::params! {
     const LIMIT_TOLERANCE = Param::new("limit_tolerance", "0.1", "how closely each ideal mesh's clearance limits are located (bisection)", registry::Kind::number(0.001, 10.0, "% of h")).unit("% of h");
 }
 
-crate::experiment! {
-    id: "event-rules", paper_item: "Tables 3, 4, I and section 3 / Appendix II (what counts as a jam or a disengagement)", run,
-    title: "Every event rule and drive side by side: the paper's counts of Tables 3, 4 and I consistent with ours, and the ideal meshes' clearance limits",
-    params: [study::grids::TRIALS, CLEARANCES, LIMIT_TOLERANCE, study::trial_end::PARAM], groups: [study::gearing::GROUP, study::errors::CASES_GROUP, study::tolerance::RANDOM_GRID],
+/// The settings: trials per cell, Table I's clearances, how closely the limits are located,
+/// where a trial's counting ends, the gearing with h and G, the Cases' errors and Table 4's grid.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, registry::Settings)]
+pub struct Settings {
+    /// Trials per cell ([`study::grids::TRIALS`]).
+    #[param(study::grids::TRIALS)]
+    pub trials: u64,
+    /// Table I's clearances, comma-separated, % of h ([`CLEARANCES`]).
+    #[param(CLEARANCES)]
+    pub clearances: String,
+    /// How closely the limits are located, % of h ([`LIMIT_TOLERANCE`]).
+    #[param(LIMIT_TOLERANCE)]
+    pub limit_tolerance: f64,
+    /// Where a trial's counting ends ([`study::trial_end::PARAM`]).
+    #[param(study::trial_end::PARAM)]
+    pub end: String,
+    /// The gearing, G and h.
+    #[group]
+    pub gearing: GearingParams,
+    /// The split, the hypothesis and its parameters.
+    #[group]
+    pub errors: CaseParams,
+    /// Table 4's grid of random errors.
+    #[group]
+    pub random: RandomGrid,
 }
 
-/// Where a cell's paper counts are: experiment id and key in `paper.ron`, and the group of
-/// cells it is reported in (table, Case, clearance).
-struct PaperCell {
-    table: &'static str,
-    key: String,
-    group: String,
-    /// `Table 4`, or the clearance of a Case's cell (`G = 40 %`).
-    region: String,
-    /// A cell of Edmunds' Case D (at any clearance).
-    case_d: bool,
+/// Every event rule and drive side by side.
+pub struct EventRulesExperiment;
+
+impl registry::Experiment for EventRulesExperiment {
+    const ID: &'static str = "event-rules";
+    const TITLE: &'static str = "Every event rule and drive side by side: the paper's counts of Tables 3, 4 and I consistent with ours, and the ideal meshes' clearance limits";
+    const PAPER_ITEM: &'static str =
+        "Tables 3, 4, I and section 3 / Appendix II (what counts as a jam or a disengagement)";
+    const PLACE: Place = Place::Beyond(50);
+    type Settings = Settings;
+    type Results = EventRules;
+
+    fn compute(s: &Settings, run: &Run) -> Result<EventRules, RunError> {
+        let mut cs = cells(
+            Gearing::WithClearance(&s.gearing),
+            &s.errors,
+            None,
+            None,
+            s.trials,
+            s,
+        )?;
+        cs.end = End::parse(&s.end)?;
+        let (g, trials) = (cs.gearing(), cs.trials);
+        let (rules, countings) = (every_rule()?, every_counting(cs.end)?);
+        let (specs, mut cells) = all_cells(s, &cs)?;
+        let counts = run_cells_counted(
+            run.engine(),
+            g,
+            &specs,
+            Some(&countings),
+            trials,
+            Purpose::Own,
+        )?;
+        for (cell, per_counting) in cells.iter_mut().zip(counts) {
+            cell.counts = per_counting;
+        }
+        let limits = ideal_limits(g, cs.gearing.tooth_height, &rules, s.limit_tolerance)?;
+        Ok(EventRules {
+            trials,
+            consistency: consistency(&cells, countings.len()),
+            countings: countings
+                .iter()
+                .map(|c| Reading {
+                    rule: c.rule.name().to_owned(),
+                    rule_label: c.rule.label(),
+                    drive: c.drive.name().to_owned(),
+                    end: c.end.name().to_owned(),
+                })
+                .collect(),
+            cells,
+            meshes: g.meshes().iter().map(|m| m.label.clone()).collect(),
+            rules: rules.iter().map(Rule::label).collect(),
+            limits,
+        })
+    }
+
+    fn report(s: &Settings, r: &EventRules) -> Result<Report, RunError> {
+        let end = End::parse(&s.end)?;
+        let mut shares = shares_table(&r.countings, &r.consistency, r.trials);
+        let (same_jams, same_dis) = agreement_between_rules(&r.cells, &r.countings);
+        shares.note(format!(
+            "Between the rules: with the listed driver driving, the same jam count under every rule in {same_jams} of {} cells, the same disengagement count in {same_dis}.",
+            r.cells.len()
+        ));
+        let breakdowns = [Drive::Listed, Drive::Either]
+            .into_iter()
+            .filter_map(|d| counting_index(&r.countings, rules::DEFAULT, d, end))
+            .map(|i| breakdown_table(&r.cells, &r.countings[i], i));
+        let mut tables = vec![
+            shares,
+            regions_table(&r.cells, &r.countings),
+            table4_sums_table(&r.meshes, &r.cells, &r.countings, end),
+        ];
+        tables.extend(breakdowns);
+        if end != End::Turn {
+            for t in &mut tables {
+                t.title = format!("{} [end: {}]", t.title, end.name());
+            }
+        }
+        tables.push(limits_table(r, s.limit_tolerance));
+        let first = |c: &RuleCell| c.counts.first().copied().unwrap_or_default();
+        Ok(Report {
+            tables,
+            files: vec![
+                OutputFile::new("event-rules-cells.csv", cells_csv(&r.cells, &r.countings)),
+                OutputFile::new("event-rules-limits.csv", limits_csv(r)),
+            ],
+            trials: r.cells.iter().map(|c| first(c).trials).sum(),
+            engagements: r.cells.iter().map(|c| first(c).engagements).sum(),
+            ..Default::default()
+        })
+    }
 }
+
+registry::register!(EventRulesExperiment);
 
 /// The tables compared, in the order they are printed.
 const TABLES: [&str; 3] = ["table3", "table4", "tableI"];
@@ -85,20 +197,21 @@ fn every_counting(end: End) -> Result<Vec<Counting>, RunError> {
     Ok(out)
 }
 
-/// The index of `rule` (by name) under `drive` and `end` in `countings`.
-fn counting_index(countings: &[Counting], rule: &str, drive: Drive, end: End) -> Option<usize> {
+/// The index of the reading of `rule` (by name) under `drive` and `end` in `countings`.
+fn counting_index(countings: &[Reading], rule: &str, drive: Drive, end: End) -> Option<usize> {
     countings
         .iter()
-        .position(|c| c.rule.name() == rule && c.drive == drive && c.end == end)
+        .position(|c| c.rule == rule && c.drive == drive.name() && c.end == end.name())
 }
 
 /// The cells of Tables 3 (Cases A-D at the clearance), 4 (the random grid, no systematic error)
-/// and I (Cases A-D at each of its clearances), each with where its paper counts are.
-fn all_cells(ctx: &Context, s: &CellSettings) -> Result<Vec<(CellSpec, PaperCell)>, RunError> {
-    let clearances = crate::settings::clearance_list(ctx, &CLEARANCES, 200.0)?;
-    let randoms = crate::settings::random_grid(ctx)?;
-    let cells = paper_table_cells(s, &randoms, &clearances)?;
-    let table3_clearance = s.clearance()?;
+/// and I (Cases A-D at each of its clearances), each with where its paper counts are (its
+/// counts not yet filled in).
+fn all_cells(s: &Settings, cs: &CellSettings) -> Result<(Vec<CellSpec>, Vec<RuleCell>), RunError> {
+    let clearances = study::gearing::clearance_list(&s.clearances, CLEARANCES.name, 200.0)?;
+    let randoms = s.random.values(s)?;
+    let cells = paper_table_cells(cs, &randoms, &clearances)?;
+    let table3_clearance = cs.clearance()?;
     let at = |g: f64| format!("G = {} %", label(g, 0));
     Ok(cells
         .into_iter()
@@ -120,41 +233,52 @@ fn all_cells(ctx: &Context, s: &CellSettings) -> Result<Vec<(CellSpec, PaperCell
                     Some(case),
                 ),
             };
-            let paper = PaperCell {
-                table: c.id,
+            let paper = RuleCell {
+                table: c.id.to_owned(),
                 key: c.key,
                 group,
                 region,
                 case_d: case.is_some_and(|c| c == "D"),
+                mesh: c.cell.mesh.clone(),
+                counts: Vec::new(),
             };
             (c.cell, paper)
         })
-        .collect())
+        .unzip())
 }
 
-/// Per counting, per table: the tally of the paper's counts against ours; then, last, the tally
-/// of every table without the paper's counts that look copied from another cell (`suspect` in
-/// the reference file).
-fn tallies(
-    cells: &[(CellSpec, PaperCell)],
-    counts: &[Vec<Counts>],
-    rules: usize,
-) -> Vec<[Tally; 4]> {
-    let mut out = vec![[Tally::default(); 4]; rules];
-    for ((_, p), per_rule) in cells.iter().zip(counts) {
-        let paper = paper_counts(p.table, &p.key);
-        let slip = |q: &str| crate::paper::suspect(p.table, &format!("{}.{q}", p.key));
+/// Per reading, per table: the paper's counts consistent with ours; and the same over every
+/// table without the paper's counts that look copied from another cell (`suspect` in the
+/// reference file).
+fn consistency(cells: &[RuleCell], readings: usize) -> Vec<Consistency> {
+    let mut out = vec![[Tally::default(); 4]; readings];
+    for p in cells {
+        let paper = paper_counts(&p.table, &p.key);
+        let slip = |q: &str| crate::paper::suspect(&p.table, &format!("{}.{q}", p.key));
         let trusted = (
             paper.0.filter(|_| !slip("jam")),
             paper.1.filter(|_| !slip("dis")),
         );
         let t = TABLES.iter().position(|&id| id == p.table).unwrap_or(0);
-        for (r, c) in per_rule.iter().enumerate() {
+        for (r, c) in p.counts.iter().enumerate() {
             out[r][t].add(c, paper);
             out[r][3].add(c, trusted);
         }
     }
-    out
+    let counted = |t: &Tally| Counted {
+        jams_consistent: t.jams_consistent,
+        jams_compared: t.jams_compared,
+        dis_consistent: t.dis_consistent,
+        dis_compared: t.dis_compared,
+    };
+    out.iter()
+        .map(|[t3, t4, ti, trusted]| Consistency {
+            table3: counted(t3),
+            table4: counted(t4),
+            table_i: counted(ti),
+            without_copy_slips: counted(trusted),
+        })
+        .collect()
 }
 
 /// The counts of the paper that look copied from another cell, as `table KEY` (for a note).
@@ -166,8 +290,8 @@ fn copy_slips() -> Vec<String> {
         .collect()
 }
 
-/// The shares table: one row per counting (rule and drive).
-fn shares_table(countings: &[Counting], tallies: &[[Tally; 4]], trials: u64) -> Table {
+/// The shares table: one row per reading (rule and drive) at the run's end.
+fn shares_table(countings: &[Reading], consistency: &[Consistency], trials: u64) -> Table {
     let mut t = Table::new(
         format!(
             "The paper's counts consistent with ours under each event rule and drive (Fisher's exact two-sample test at 5 %; ours {trials} trials per cell, the paper's 200)"
@@ -187,15 +311,16 @@ fn shares_table(countings: &[Counting], tallies: &[[Tally; 4]], trials: u64) -> 
             "all dis., copy slips out",
         ],
     );
-    let end = countings.first().map_or(End::Turn, |c| c.end);
-    for (counting, per_table) in countings.iter().zip(tallies) {
+    let end = countings
+        .first()
+        .map_or(End::Turn.name(), |c| c.end.as_str());
+    for (counting, per_table) in countings.iter().zip(consistency) {
         if counting.end != end {
             continue;
         }
-        let mut row = vec![counting.rule.label(), counting.drive.name().to_owned()];
-        let mut all = Tally::default();
-        let [tables @ .., trusted] = per_table;
-        for tally in tables {
+        let mut row = vec![counting.rule_label.clone(), counting.drive.clone()];
+        let mut all = Counted::default();
+        for tally in per_table.tables() {
             row.push(share(tally.jams_consistent, tally.jams_compared));
             row.push(share(tally.dis_consistent, tally.dis_compared));
             all.jams_consistent += tally.jams_consistent;
@@ -203,6 +328,7 @@ fn shares_table(countings: &[Counting], tallies: &[[Tally; 4]], trials: u64) -> 
             all.dis_consistent += tally.dis_consistent;
             all.dis_compared += tally.dis_compared;
         }
+        let trusted = &per_table.without_copy_slips;
         row.push(share(all.jams_consistent, all.jams_compared));
         row.push(share(all.dis_consistent, all.dis_compared));
         row.push(share(trusted.jams_consistent, trusted.jams_compared));
@@ -239,16 +365,11 @@ fn compare(into: &mut (u64, u64, u64), ours: u64, trials: u64, paper: Option<u64
 }
 
 /// Where the differences lie under `counting` (index `r`): one row per group of cells.
-fn breakdown_table(
-    cells: &[(CellSpec, PaperCell)],
-    counts: &[Vec<Counts>],
-    counting: &Counting,
-    r: usize,
-) -> Table {
+fn breakdown_table(cells: &[RuleCell], counting: &Reading, r: usize) -> Table {
     let mut groups: Vec<(String, Split)> = Vec::new();
-    for ((_, p), per_rule) in cells.iter().zip(counts) {
-        let paper = paper_counts(p.table, &p.key);
-        let c = &per_rule[r];
+    for p in cells {
+        let paper = paper_counts(&p.table, &p.key);
+        let c = &p.counts[r];
         let i = match groups.iter().position(|(g, _)| *g == p.group) {
             Some(i) => i,
             None => {
@@ -262,8 +383,7 @@ fn breakdown_table(
     let mut t = Table::new(
         format!(
             "Where the differences lie under rule {}, drive {}: the paper's counts consistent with ours, by table, Case and clearance",
-            counting.rule.label(),
-            counting.drive.name()
+            counting.rule_label, counting.drive
         ),
         [
             "cells",
@@ -296,15 +416,20 @@ fn breakdown_table(
 
 /// In how many cells every rule gives the same jam count, and the same disengagement count,
 /// with the listed driver driving.
-fn agreement_between_rules(counts: &[Vec<Counts>], countings: &[Counting]) -> (usize, usize) {
-    let end = countings.first().map_or(End::Turn, |c| c.end);
+fn agreement_between_rules(cells: &[RuleCell], countings: &[Reading]) -> (usize, usize) {
+    let end = countings
+        .first()
+        .map_or(End::Turn.name(), |c| c.end.as_str());
     let listed: Vec<usize> = (0..countings.len())
-        .filter(|&r| countings[r].drive == Drive::Listed && countings[r].end == end)
+        .filter(|&r| countings[r].drive == Drive::Listed.name() && countings[r].end == end)
         .collect();
     let same = |f: fn(&Counts) -> u64| {
-        counts
+        cells
             .iter()
-            .filter(|per| listed.iter().all(|&r| f(&per[r]) == f(&per[listed[0]])))
+            .filter(|c| {
+                let per = &c.counts;
+                listed.iter().all(|&r| f(&per[r]) == f(&per[listed[0]]))
+            })
             .count()
     };
     (same(|c| c.jams), same(|c| c.disengagements))
@@ -312,9 +437,9 @@ fn agreement_between_rules(counts: &[Vec<Counts>], countings: &[Counting]) -> (u
 
 /// The regions of the paper's cells, in print order: Table 4, each clearance, then Case D
 /// (across clearances, its cells also counted in their clearance's column).
-fn regions(cells: &[(CellSpec, PaperCell)]) -> Vec<String> {
+fn regions(cells: &[RuleCell]) -> Vec<String> {
     let mut out: Vec<String> = Vec::new();
-    for (_, p) in cells {
+    for p in cells {
         if !out.contains(&p.region) {
             out.push(p.region.clone());
         }
@@ -333,11 +458,7 @@ fn regions(cells: &[(CellSpec, PaperCell)]) -> Vec<String> {
 
 /// Per reading of the default rule (each drive): the paper's jams and disengagements consistent
 /// with ours in each region.
-fn regions_table(
-    cells: &[(CellSpec, PaperCell)],
-    counts: &[Vec<Counts>],
-    countings: &[Counting],
-) -> Table {
+fn regions_table(cells: &[RuleCell], countings: &[Reading]) -> Table {
     let regions = regions(cells);
     let mut head = vec!["rule".to_string(), "drive".to_string(), "end".to_string()];
     for r in &regions {
@@ -359,9 +480,9 @@ fn regions_table(
         };
         let mut split: Vec<Split> = regions.iter().map(|_| Split::default()).collect();
         let mut all = Split::default();
-        for ((_, p), per) in cells.iter().zip(counts) {
-            let paper = paper_counts(p.table, &p.key);
-            let c = &per[r];
+        for p in cells {
+            let paper = paper_counts(&p.table, &p.key);
+            let c = &p.counts[r];
             let mut into = |i: usize| {
                 compare(&mut split[i].jams, c.jams, c.trials, paper.0);
                 compare(&mut split[i].dis, c.disengagements, c.trials, paper.1);
@@ -376,7 +497,7 @@ fn regions_table(
             compare(&mut all.dis, c.disengagements, c.trials, paper.1);
         }
         let mut row = vec![
-            countings[r].rule.label(),
+            countings[r].rule_label.clone(),
             drive.name().to_owned(),
             end.name().to_owned(),
         ];
@@ -394,13 +515,11 @@ fn regions_table(
 /// Table 4's jams summed over its grid, mesh by mesh, under the default rule and each drive
 /// (and the setting's end), beside the paper's sums: where the drive moves the jams.
 fn table4_sums_table(
-    g: &Gearing,
-    cells: &[(CellSpec, PaperCell)],
-    counts: &[Vec<Counts>],
-    countings: &[Counting],
+    meshes: &[String],
+    cells: &[RuleCell],
+    countings: &[Reading],
     end: End,
 ) -> Table {
-    let meshes: Vec<String> = g.meshes().iter().map(|m| m.label.clone()).collect();
     let mut head = vec!["drive".to_string()];
     head.extend(meshes.iter().cloned());
     head.push("all".into());
@@ -412,13 +531,13 @@ fn table4_sums_table(
         head,
     );
     let table4: Vec<usize> = (0..cells.len())
-        .filter(|&i| cells[i].1.table == "table4")
+        .filter(|&i| cells[i].table == "table4")
         .collect();
     let paper_sum = |mesh: &str| -> u64 {
         table4
             .iter()
-            .filter(|&&i| cells[i].0.mesh == mesh)
-            .filter_map(|&i| paper_counts("table4", &cells[i].1.key).0)
+            .filter(|&&i| cells[i].mesh == mesh)
+            .filter_map(|&i| paper_counts("table4", &cells[i].key).0)
             .sum()
     };
     for drive in Drive::ALL {
@@ -428,12 +547,12 @@ fn table4_sums_table(
         let ours = |mesh: Option<&str>| -> u64 {
             table4
                 .iter()
-                .filter(|&&i| mesh.is_none_or(|m| cells[i].0.mesh == m))
-                .map(|&i| counts[i][r].jams)
+                .filter(|&&i| mesh.is_none_or(|m| cells[i].mesh == m))
+                .map(|&i| cells[i].counts[r].jams)
                 .sum()
         };
         let mut row = vec![drive.name().to_owned()];
-        for m in &meshes {
+        for m in meshes {
             row.push(format!("{} ({})", ours(Some(m)), paper_sum(m)));
         }
         let all_paper: u64 = meshes.iter().map(|m| paper_sum(m)).sum();
@@ -444,14 +563,13 @@ fn table4_sums_table(
     t
 }
 
-/// Each rule's clearance limits of every ideal mesh, with their envelope.
-struct RuleLimits {
-    /// `per_mesh[mesh][rule]`: (smallest G without a jam, largest G without a disengagement).
-    per_mesh: Vec<Vec<(Option<f64>, Option<f64>)>>,
-}
-
-/// The ideal meshes' limits under every rule, located to `tol` % of h.
-fn ideal_limits(g: &Gearing, h: f64, rules: &[Rule], tol: f64) -> Result<RuleLimits, RunError> {
+/// The ideal meshes' limits under every rule, located to `tol` % of h: per mesh, per rule.
+fn ideal_limits(
+    g: &train::Gearing,
+    h: f64,
+    rules: &[Rule],
+    tol: f64,
+) -> Result<Vec<Vec<ClearanceLimits>>, RunError> {
     let pairs: Vec<IdealPair> = g
         .meshes()
         .iter()
@@ -461,7 +579,18 @@ fn ideal_limits(g: &Gearing, h: f64, rules: &[Rule], tol: f64) -> Result<RuleLim
         })
         .collect::<Result<_, RunError>>()?;
     let per_mesh = study::limits::limits_under_rules(&pairs, tol, rules)?;
-    Ok(RuleLimits { per_mesh })
+    Ok(per_mesh
+        .into_iter()
+        .map(|per_rule| {
+            per_rule
+                .into_iter()
+                .map(|(jam_below, disengage_above)| ClearanceLimits {
+                    jam_below,
+                    disengage_above,
+                })
+                .collect()
+        })
+        .collect())
 }
 
 /// `lo .. hi` of the values given (`-` when none), and how many meshes have none.
@@ -492,13 +621,13 @@ fn show_envelope((range, missing): (Option<(f64, f64)>, usize)) -> String {
 
 /// The limits table: per rule, the envelope over the meshes, and whether the paper's figure
 /// lies inside it.
-fn limits_table(g: &Gearing, rules: &[Rule], limits: &RuleLimits, tol: f64) -> Table {
+fn limits_table(r: &EventRules, tol: f64) -> Table {
     let jam_paper = crate::paper::get("clearance", "jam_below").map(|r| r.value);
     let dis_paper = crate::paper::get("clearance", "disengage_above").map(|r| r.value);
     let mut t = Table::new(
         format!(
             "Ideal meshes' clearance limits under each rule, over all {} meshes (one turn of the larger gear, located to {} % of h): ours (the paper's section 3 / Appendix II)",
-            g.meshes().len(),
+            r.meshes.len(),
             fmt_f64(tol, 2)
         ),
         [
@@ -519,11 +648,11 @@ fn limits_table(g: &Gearing, rules: &[Rule], limits: &RuleLimits, tol: f64) -> T
         }
         _ => "-".into(),
     };
-    for (r, rule) in rules.iter().enumerate() {
-        let jam = envelope(limits.per_mesh.iter().map(|m| m[r].0));
-        let dis = envelope(limits.per_mesh.iter().map(|m| m[r].1));
+    for (i, rule) in r.rules.iter().enumerate() {
+        let jam = envelope(r.limits.iter().map(|m| m[i].jam_below));
+        let dis = envelope(r.limits.iter().map(|m| m[i].disengage_above));
         t.row(vec![
-            rule.label(),
+            rule.clone(),
             show_envelope(jam),
             inside(&jam, jam_paper),
             show_envelope(dis),
@@ -535,16 +664,16 @@ fn limits_table(g: &Gearing, rules: &[Rule], limits: &RuleLimits, tol: f64) -> T
 }
 
 /// Per mesh and rule: the limits, for the CSV.
-fn limits_csv(g: &Gearing, rules: &[Rule], limits: &RuleLimits) -> String {
+fn limits_csv(r: &EventRules) -> String {
     let mut s = String::from("mesh,rule,jam_below_percent,disengage_above_percent\n");
     let show = |v: Option<f64>| v.map_or_else(String::new, |v| fmt_f64(v, 3));
-    for (m, per_rule) in g.meshes().iter().zip(&limits.per_mesh) {
-        for (rule, (jam, dis)) in rules.iter().zip(per_rule) {
+    for (mesh, per_rule) in r.meshes.iter().zip(&r.limits) {
+        for (rule, l) in r.rules.iter().zip(per_rule) {
             s.push_str(&registry::csv_row!(
-                m.label,
-                rule.label(),
-                show(*jam),
-                show(*dis)
+                mesh,
+                rule,
+                show(l.jam_below),
+                show(l.disengage_above)
             ));
         }
     }
@@ -552,18 +681,14 @@ fn limits_csv(g: &Gearing, rules: &[Rule], limits: &RuleLimits) -> String {
 }
 
 /// Every cell's counts under every rule, with the paper's and the test's verdict.
-fn cells_csv(
-    cells: &[(CellSpec, PaperCell)],
-    countings: &[Counting],
-    counts: &[Vec<Counts>],
-) -> String {
+fn cells_csv(cells: &[RuleCell], countings: &[Reading]) -> String {
     let mut s = String::from(
         "table,key,rule,drive,end,trials,jams,paper_jams,jams_consistent,disengagements,paper_disengagements,disengagements_consistent\n",
     );
     let show = |v: Option<u64>| v.map_or_else(String::new, |v| v.to_string());
-    for ((_, p), per_rule) in cells.iter().zip(counts) {
-        let paper = paper_counts(p.table, &p.key);
-        for (counting, c) in countings.iter().zip(per_rule) {
+    for p in cells {
+        let paper = paper_counts(&p.table, &p.key);
+        for (counting, c) in countings.iter().zip(&p.counts) {
             let verdict = |k: u64, q: Option<u64>| {
                 q.map_or_else(String::new, |_| {
                     consistent_with_paper(k, c.trials, q).to_string()
@@ -572,9 +697,9 @@ fn cells_csv(
             s.push_str(&registry::csv_row!(
                 p.table,
                 p.key,
-                counting.rule.label(),
-                counting.drive.name(),
-                counting.end.name(),
+                counting.rule_label,
+                counting.drive,
+                counting.end,
                 c.trials,
                 c.jams,
                 show(paper.0),
@@ -586,58 +711,4 @@ fn cells_csv(
         }
     }
     s
-}
-
-fn run(ctx: &Context) -> Result<Report, RunError> {
-    let s = crate::settings::cells(ctx, &study::grids::TRIALS)?;
-    let (g, trials) = (s.gearing(), s.trials);
-    let tol = ctx.get(&LIMIT_TOLERANCE)?;
-    let (rules, countings) = (every_rule()?, every_counting(s.end)?);
-    let cells = all_cells(ctx, &s)?;
-    let specs: Vec<CellSpec> = cells.iter().map(|(c, _)| c.clone()).collect();
-    let counts = run_cells_counted(
-        ctx.engine(),
-        g,
-        &specs,
-        Some(&countings),
-        trials,
-        Purpose::Own,
-    )?;
-    let tallies = tallies(&cells, &counts, countings.len());
-    let limits = ideal_limits(g, s.gearing.tooth_height, &rules, tol)?;
-    let mut shares = shares_table(&countings, &tallies, trials);
-    let (same_jams, same_dis) = agreement_between_rules(&counts, &countings);
-    shares.note(format!(
-        "Between the rules: with the listed driver driving, the same jam count under every rule in {same_jams} of {} cells, the same disengagement count in {same_dis}.",
-        counts.len()
-    ));
-    let breakdowns = [Drive::Listed, Drive::Either]
-        .into_iter()
-        .filter_map(|d| counting_index(&countings, rules::DEFAULT, d, s.end))
-        .map(|r| breakdown_table(&cells, &counts, &countings[r], r));
-    let mut tables = vec![
-        shares,
-        regions_table(&cells, &counts, &countings),
-        table4_sums_table(g, &cells, &counts, &countings, s.end),
-    ];
-    tables.extend(breakdowns);
-    if s.end != End::Turn {
-        for t in &mut tables {
-            t.title = format!("{} [end: {}]", t.title, s.end.name());
-        }
-    }
-    tables.push(limits_table(g, &rules, &limits, tol));
-    Ok(Report {
-        tables,
-        files: vec![
-            OutputFile::new(
-                "event-rules-cells.csv",
-                cells_csv(&cells, &countings, &counts),
-            ),
-            OutputFile::new("event-rules-limits.csv", limits_csv(g, &rules, &limits)),
-        ],
-        trials: counts.iter().map(|c| c[0].trials).sum(),
-        engagements: counts.iter().map(|c| c[0].engagements).sum(),
-        ..Default::default()
-    })
 }

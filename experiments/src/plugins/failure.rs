@@ -12,17 +12,21 @@
 //! passed through the mesh.
 
 use hypotheses::{MeasuredHypothesis, Params};
-use registry::{Agreement, Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use registry::{Agreement, OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64};
+use serde::{Deserialize, Serialize};
 use stats::DAYS_PER_YEAR;
 
-use study::gearing;
+use study::errors::CaseParams;
+use study::events::EventParams;
+use study::gearing::{self, GearingParams};
+use study::results::{FailureInput, FailureStudy, TrainSummary};
 use study::whole_mechanism::{
-    CASES_PARAM, Clearances, DAYS, Input, MEASURED_INDEX, MechanismRun, RUNS_DEFAULT, Summary,
-    TRAINS, batch_key, case_input, check_study, jam_of, measured_table, parse_cases, run_study,
-    runs_csv, summarise, train_names,
+    CASES_PARAM, Clearances, DAYS, Input, MEASURED_INDEX, RUNS_DEFAULT, TRAINS, batch_key,
+    case_input, check_study, measured_table, parse_cases, run_study,
 };
 
-use crate::common::{Plot, Series, mean_cell, percent_cell};
+use crate::common::{Plot, Series, mean_day_cell, percent_cell};
+use crate::settings::typed::label;
 
 registry::params! {
     /// `trials`: whole-mechanism runs per input (the paper: 30).
@@ -31,88 +35,121 @@ registry::params! {
     const MEASURED = Param::new("measured", "", "per-gear error table (RON, as crates/hypotheses/data/measured-example.ron), run with the measured hypothesis; empty: not run", registry::Kind::Text);
 }
 
-crate::experiment! {
-    id: "failure", paper_item: "Section 5, the 30-run study", run,
-    title: "Days to the first jam of each train, whole mechanisms with Edmunds' errors at G = 40 %",
-    params: [TRIALS, DAYS, CASES_PARAM, MEASURED, gearing::PIN_AND_SLOT], groups: [study::gearing::GROUP, study::errors::CASES_GROUP, study::events::GROUP],
+/// The failure study's settings: runs per input, the horizon, the Cases and the measured table
+/// to run, the pin-and-slot, the gearing with h and G, the Cases' errors and the event rule.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, registry::Settings)]
+pub struct Settings {
+    /// Whole-mechanism runs per input ([`TRIALS`]).
+    #[param(TRIALS)]
+    pub trials: u64,
+    /// Horizon of each run, days of b ([`DAYS`]).
+    #[param(DAYS)]
+    pub days: f64,
+    /// Edmunds' Cases to run, comma-separated ([`CASES_PARAM`]).
+    #[param(CASES_PARAM)]
+    pub cases: String,
+    /// A per-gear error table to run with the measured hypothesis; empty: none ([`MEASURED`]).
+    #[param(MEASURED)]
+    pub measured: String,
+    /// Whether the Lunar train includes the pin-and-slot ([`gearing::PIN_AND_SLOT`]).
+    #[param(gearing::PIN_AND_SLOT)]
+    pub pin_and_slot: bool,
+    /// The gearing, G and h.
+    #[group]
+    pub gearing: GearingParams,
+    /// The split, the hypothesis and its parameters.
+    #[group]
+    pub errors: CaseParams,
+    /// The event rule.
+    #[group]
+    pub events: EventParams,
 }
+
+/// The failure study.
+pub struct Failure;
+
+impl registry::Experiment for Failure {
+    const ID: &'static str = "failure";
+    const TITLE: &'static str =
+        "Days to the first jam of each train, whole mechanisms with Edmunds' errors at G = 40 %";
+    const PAPER_ITEM: &'static str = "Section 5, the 30-run study";
+    const PLACE: Place = Place::Paper(130);
+    type Settings = Settings;
+    type Results = FailureStudy;
+
+    fn compute(s: &Settings, run: &Run) -> Result<FailureStudy, RunError> {
+        let settings = s.gearing.load()?;
+        // Read here, before the gearing's checks, with the split each case takes.
+        let errors = s.errors.load(s)?;
+        let rule = s.events.rule()?;
+        let (g, h, clearance) = (&settings.gearing, settings.tooth_height, settings.clearance);
+        check_study(g, h, &Clearances::Uniform(clearance))?;
+        // A pin-and-slot asked of a gearing without one is refused before anything runs.
+        let ideal = study::pointers::ideal_mechanism(&settings, &rule)?;
+        gearing::with_pin_and_slot(&settings.file, ideal, s.pin_and_slot)?;
+
+        let measured = measured_table(&s.measured)?;
+        let inputs = study_inputs(s, &errors, measured.as_ref(), clearance)?;
+        let (trials, days) = (s.trials, s.days);
+        let outcomes = run_study(
+            run.engine(),
+            g,
+            &inputs,
+            trials,
+            h,
+            days,
+            &rule,
+            &batch_key(&settings.file, &inputs, trials, h, clearance, days)?,
+        )?;
+        Ok(FailureStudy {
+            horizon: days,
+            runs_per_input: trials,
+            inputs: inputs
+                .iter()
+                .zip(outcomes.chunks(trials as usize))
+                .map(|(inp, runs)| FailureInput::new(inp, inp.index == MEASURED_INDEX, runs, days))
+                .collect(),
+        })
+    }
+
+    fn report(s: &Settings, r: &FailureStudy) -> Result<Report, RunError> {
+        let runs = r.inputs.iter().flat_map(|i| &i.runs);
+        let mut report = Report {
+            trials: runs.clone().count() as u64,
+            engagements: runs.map(|o| o.engagements).sum::<f64>().round() as u64,
+            ..Default::default()
+        };
+        let (mut paper_table, agreement) = paper_table(r, s.gearing.clearance);
+        if s.pin_and_slot {
+            paper_table.note("The Lunar train includes the pin-and-slot (--set pin_and_slot=true), beyond the paper: e5-k1 and k2-e6 turn in the frame of the e3 turntable, which turns at its mean rate.");
+        }
+        report.tables.push(paper_table);
+        report.tables.push(detail_table(r));
+        report.tables.push(survival_table(r));
+        report.agreement = agreement;
+        report
+            .files
+            .push(OutputFile::new("failure-runs.csv", runs_csv(r)));
+        report.files.extend(survival_files(r)?);
+        label(&s.events, None, report)
+    }
+}
+
+registry::register!(Failure);
 
 /// Points of b at which the survival table is read: degrees of the solar (b) pointer.
 const READ_AT_DEG: [f64; 5] = [30.0, 60.0, 120.0, 180.0, 360.0];
 
-fn run(ctx: &Context) -> Result<Report, RunError> {
-    crate::settings::labelled(ctx, counted)
-}
-
-/// The experiment itself; [`run`] names the event rule in its tables' titles.
-fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let settings = crate::settings::gearing(ctx)?;
-    let trials = ctx.get(&TRIALS)?;
-    let days = ctx.get(&study::whole_mechanism::DAYS)?;
-    // Read here, before the gearing's checks, with the split each case takes.
-    let errors = crate::settings::errors(ctx)?;
-    let rule = crate::settings::rule(ctx)?;
-    let (g, h, clearance) = (&settings.gearing, settings.tooth_height, settings.clearance);
-    check_study(g, h, &Clearances::Uniform(clearance))?;
-    let pin_and_slot = ctx.get(&study::gearing::PIN_AND_SLOT)?;
-    // A pin-and-slot asked of a gearing without one is refused before anything runs.
-    let ideal = study::pointers::ideal_mechanism(&settings, &rule)?;
-    gearing::with_pin_and_slot(&settings.file, ideal, pin_and_slot)?;
-
-    let measured = measured_table(ctx.text(&MEASURED)?)?;
-    let inputs = study_inputs(ctx, &errors, measured.as_ref(), clearance, pin_and_slot)?;
-
-    let outcomes = run_study(
-        ctx.engine(),
-        g,
-        &inputs,
-        trials,
-        h,
-        days,
-        &rule,
-        &batch_key(&settings.file, &inputs, trials, h, clearance, days)?,
-    )?;
-    let per_input: Vec<&[MechanismRun]> = outcomes.chunks(trials as usize).collect();
-
-    let mut report = Report {
-        trials: outcomes.len() as u64,
-        engagements: outcomes.iter().map(|o| o.engagements).sum::<f64>().round() as u64,
-        ..Default::default()
-    };
-    let summaries: Vec<Vec<Summary>> = per_input.iter().map(|runs| summarise(runs, days)).collect();
-    let (mut paper_table, agreement) = paper_table(&inputs, &summaries, trials, days, clearance);
-    if pin_and_slot {
-        paper_table.note("The Lunar train includes the pin-and-slot (--set pin_and_slot=true), beyond the paper: e5-k1 and k2-e6 turn in the frame of the e3 turntable, which turns at its mean rate.");
-    }
-    report.tables.push(paper_table);
-    report
-        .tables
-        .push(detail_table(&inputs, &summaries, trials, days));
-    report
-        .tables
-        .push(survival_table(&inputs, per_input.as_slice(), days));
-    report.agreement = agreement;
-    report.files.push(OutputFile::new(
-        "failure-runs.csv",
-        runs_csv(&inputs, &per_input, days),
-    ));
-    report
-        .files
-        .extend(survival_files(&inputs, &per_input, trials, days)?);
-    Ok(report)
-}
-
 /// The inputs of the study: the cases asked for, then the measured table if one is given, each
 /// with the pin-and-slot as asked; refused when there is nothing to run.
 fn study_inputs<'a>(
-    ctx: &Context,
+    s: &Settings,
     errors: &'a study::errors::Settings,
     measured: Option<&'a (String, MeasuredHypothesis)>,
     clearance: f64,
-    pin_and_slot: bool,
 ) -> Result<Vec<Input<'a>>, RunError> {
     let mut inputs: Vec<Input<'_>> = Vec::new();
-    for ci in parse_cases(ctx.text(&CASES_PARAM)?)? {
+    for ci in parse_cases(&s.cases)? {
         inputs.push(case_input(errors, ci, Clearances::Uniform(clearance))?);
     }
     if let Some((file, m)) = measured {
@@ -130,7 +167,7 @@ fn study_inputs<'a>(
         });
     }
     for inp in &mut inputs {
-        inp.pin_and_slot = pin_and_slot;
+        inp.pin_and_slot = s.pin_and_slot;
     }
     if inputs.is_empty() {
         return Err(RunError::bad(
@@ -145,35 +182,31 @@ fn study_inputs<'a>(
 
 /// Per train, the share of runs not yet jammed against the day (Kaplan-Meier), every input a
 /// curve.
-fn survival_files(
-    inputs: &[Input<'_>],
-    per_input: &[&[MechanismRun]],
-    trials: u64,
-    days: f64,
-) -> Result<Vec<OutputFile>, RunError> {
+fn survival_files(r: &FailureStudy) -> Result<Vec<OutputFile>, RunError> {
     let mut files = Vec::new();
-    for (ti, name) in train_names().enumerate() {
-        let curves: Vec<(String, Vec<(f64, f64)>)> = inputs
+    let Some(first) = r.inputs.first() else {
+        return Ok(files);
+    };
+    for (ti, train) in first.trains.iter().enumerate() {
+        let curves: Vec<(String, Vec<(f64, f64)>)> = r
+            .inputs
             .iter()
-            .zip(per_input)
-            .map(|(inp, runs)| {
-                let times: Vec<Option<f64>> =
-                    runs.iter().map(|o| jam_of(o, ti).map(|j| j.day)).collect();
-                (
-                    inp.legend.clone(),
-                    stats::step_points(&stats::kaplan_meier(&times, days), days),
-                )
+            .map(|inp| {
+                let steps: Vec<stats::Step> =
+                    inp.trains[ti].survival.iter().map(|s| s.step()).collect();
+                (inp.legend.clone(), stats::step_points(&steps, r.horizon))
             })
             .collect();
         let svg = survival_plot(
             &format!(
-                "Section 5's failure study, {trials} runs per input: {name}, runs not yet jammed (Kaplan-Meier)"
+                "Section 5's failure study, {} runs per input: {}, runs not yet jammed (Kaplan-Meier)",
+                r.runs_per_input, train.train
             ),
-            days,
+            r.horizon,
             &curves,
         )?;
         files.push(OutputFile::new(
-            format!("failure-{}.svg", file_stem(name)),
+            format!("failure-{}.svg", file_stem(&train.train)),
             svg,
         ));
     }
@@ -182,17 +215,19 @@ fn survival_files(
 
 /// One input's cell of the paper table, and whether the paper's value `p` is inside its 95 %
 /// interval (none where there is no paper value, or too few jams for a mean's interval).
-fn judged_cell(s: &Summary, share: bool, p: Option<f64>, days: f64) -> (String, Option<bool>) {
+fn judged_cell(s: &TrainSummary, share: bool, p: Option<f64>) -> (String, Option<bool>) {
     if share {
         let inside = p.map(|v| {
             let r = v / 100.0;
-            s.year.lo <= r && r <= s.year.hi
+            s.within_year.lo <= r && r <= s.within_year.hi
         });
-        (percent_cell(&s.year), inside)
+        (percent_cell(&s.within_year.proportion()), inside)
     } else {
-        let e = study::whole_mechanism::mean_days(&s.days, days);
-        let inside = p.filter(|_| s.days.len() >= 2).map(|v| e.contains(v));
-        (mean_cell(&s.days, days), inside)
+        let inside = s
+            .mean_day
+            .filter(|_| s.days.len() >= 2)
+            .and_then(|e| p.map(|v| e.lo <= v && v <= e.hi));
+        (mean_day_cell(s.mean_day.as_ref()), inside)
     }
 }
 
@@ -202,22 +237,20 @@ fn file_stem(train: &str) -> String {
 }
 
 /// The paper's numbers beside ours, per input; the agreement counts the measured input only.
-fn paper_table(
-    inputs: &[Input<'_>],
-    summaries: &[Vec<Summary>],
-    trials: u64,
-    days: f64,
-    clearance: f64,
-) -> (Table, Option<Agreement>) {
+fn paper_table(r: &FailureStudy, clearance: f64) -> (Table, Option<Agreement>) {
     let mut header = vec!["quantity".to_string(), "paper".to_string()];
-    header.extend(inputs.iter().map(|i| match i.index {
-        MEASURED_INDEX => "measured table".to_string(),
-        _ => format!("Case {}", i.label),
+    header.extend(r.inputs.iter().map(|i| {
+        if i.measured {
+            "measured table".to_string()
+        } else {
+            format!("Case {}", i.label)
+        }
     }));
     let mut table = Table::new(
         format!(
-            "Section 5, the 30-run study: the paper beside ours (G = {clearance} %, {trials} runs per input, {} days of b): ours [95 % interval]; * where the paper's value is outside it",
-            fmt_f64(days, 2)
+            "Section 5, the 30-run study: the paper beside ours (G = {clearance} %, {} runs per input, {} days of b): ours [95 % interval]; * where the paper's value is outside it",
+            r.runs_per_input,
+            fmt_f64(r.horizon, 2)
         ),
         header,
     );
@@ -242,12 +275,11 @@ fn paper_table(
     for (label, quantity, ti, share) in rows {
         let p = paper(&quantity);
         let mut row = vec![label, p.map_or_else(|| "-".into(), |v| fmt_f64(v, 0))];
-        for (inp, s) in inputs.iter().zip(summaries) {
-            let s = &s[ti];
-            let (cell, inside) = judged_cell(s, share, p, days);
+        for inp in &r.inputs {
+            let (cell, inside) = judged_cell(&inp.trains[ti], share, p);
             let mark = if inside == Some(false) { " *" } else { "" };
             row.push(format!("{cell}{mark}"));
-            if inp.index == MEASURED_INDEX
+            if inp.measured
                 && let Some(inside) = inside
             {
                 judged = true;
@@ -260,29 +292,37 @@ fn paper_table(
         }
         table.row(row);
     }
-    // The conclusion's "one-third (120 deg)": the median day the mechanism stopped.
-    let third = paper("stop_angle").map(|deg| deg / 360.0 * DAYS_PER_YEAR);
-    let mut row = vec![
-        "median day the mechanism stopped (of the runs that did)".to_string(),
-        third.map_or_else(|| "-".into(), |d| format!("about {}", fmt_f64(d, 0))),
-    ];
-    for s in summaries {
-        row.push(
-            stats::median(&s[TRAINS.len()].days).map_or_else(|| "-".into(), |d| fmt_f64(d, 0)),
-        );
-    }
-    table.row(row);
+    table.row(stop_row(r, paper("stop_angle")));
     table.note("The paper ran Edmunds' measured per-gear errors (its Figure 6), which are not available here: our inputs are Edmunds' Cases A-D until a measured table is given with --set measured=FILE. Only that column is counted as agreement with the paper; the cases are for orientation.");
     table.note("Shares: runs whose mechanism (any train) jammed within one year of b, 95 % Clopper-Pearson interval. Days: b arbor, 365.25 d per turn; mean over the runs that jammed within the horizon, 95 % Student-t interval clipped to 0 .. horizon (none for fewer than two).");
     table.note("The paper's horizon is not stated (Table 1 ran 1, 3.8 and 4.5 turns of b); ours is the days parameter. The last row compares with the conclusions: a mechanism with Edmunds' errors 'would generally stop after the solar pointer completed one-third (120 deg)'.");
     (table, judged.then_some(agreement))
 }
 
-fn detail_table(inputs: &[Input<'_>], summaries: &[Vec<Summary>], trials: u64, days: f64) -> Table {
+/// The conclusion's "one-third (120 deg)" (`stop_angle`, degrees of b) beside the median day
+/// each input's mechanism stopped.
+fn stop_row(r: &FailureStudy, stop_angle: Option<f64>) -> Vec<String> {
+    let third = stop_angle.map(|deg| deg / 360.0 * DAYS_PER_YEAR);
+    let mut row = vec![
+        "median day the mechanism stopped (of the runs that did)".to_string(),
+        third.map_or_else(|| "-".into(), |d| format!("about {}", fmt_f64(d, 0))),
+    ];
+    for inp in &r.inputs {
+        row.push(
+            inp.trains[TRAINS.len()]
+                .median_day
+                .map_or_else(|| "-".into(), |d| fmt_f64(d, 0)),
+        );
+    }
+    row
+}
+
+fn detail_table(r: &FailureStudy) -> Table {
     let mut table = Table::new(
         format!(
-            "Days to the first jam per input and train ({trials} runs each, horizon {} days of b)",
-            fmt_f64(days, 2)
+            "Days to the first jam per input and train ({} runs each, horizon {} days of b)",
+            r.runs_per_input,
+            fmt_f64(r.horizon, 2)
         ),
         [
             "input",
@@ -295,25 +335,26 @@ fn detail_table(inputs: &[Input<'_>], summaries: &[Vec<Summary>], trials: u64, d
             "meshes that jammed first (runs)",
         ],
     );
-    for (inp, s) in inputs.iter().zip(summaries) {
-        for (name, s) in train_names().zip(s) {
+    for inp in &r.inputs {
+        for s in &inp.trains {
+            let year = &s.within_year;
             table.row(vec![
                 inp.label.clone(),
-                name.into(),
-                format!("{}/{}", s.year.k, s.year.n),
+                s.train.clone(),
+                format!("{}/{}", year.k, year.n),
                 format!(
                     "{} .. {}",
-                    fmt_f64(100.0 * s.year.lo, 0),
-                    fmt_f64(100.0 * s.year.hi, 0)
+                    fmt_f64(100.0 * year.lo, 0),
+                    fmt_f64(100.0 * year.hi, 0)
                 ),
-                format!("{}/{}", s.days.len(), s.year.n),
-                mean_cell(&s.days, days),
-                stats::median(&s.days).map_or_else(|| "-".into(), |d| fmt_f64(d, 0)),
-                crate::common::jammed_first(&s.meshes),
+                format!("{}/{}", s.days.len(), year.n),
+                mean_day_cell(s.mean_day.as_ref()),
+                s.median_day.map_or_else(|| "-".into(), |d| fmt_f64(d, 0)),
+                crate::common::jammed_first(&s.first_meshes),
             ]);
         }
     }
-    for inp in inputs {
+    for inp in &r.inputs {
         let p: Vec<String> = inp
             .params
             .iter()
@@ -322,7 +363,7 @@ fn detail_table(inputs: &[Input<'_>], summaries: &[Vec<Summary>], trials: u64, d
         table.note(format!(
             "{}: hypothesis {} with {}.",
             inp.label,
-            inp.hypothesis.name(),
+            inp.hypothesis,
             if p.is_empty() {
                 "no parameters".into()
             } else {
@@ -335,7 +376,7 @@ fn detail_table(inputs: &[Input<'_>], summaries: &[Vec<Summary>], trials: u64, d
 }
 
 /// Share of runs not yet jammed at fixed angles of b.
-fn survival_table(inputs: &[Input<'_>], per_input: &[&[MechanismRun]], days: f64) -> Table {
+fn survival_table(r: &FailureStudy) -> Table {
     let mut header = vec!["input".to_string(), "train".to_string()];
     for deg in READ_AT_DEG {
         header.push(format!(
@@ -348,13 +389,11 @@ fn survival_table(inputs: &[Input<'_>], per_input: &[&[MechanismRun]], days: f64
         header,
     );
     let mut unplaceable = 0;
-    for (inp, runs) in inputs.iter().zip(per_input) {
-        unplaceable += runs.iter().filter(|o| o.unplaceable.is_some()).count();
-        for (ti, name) in train_names().enumerate() {
-            let times: Vec<Option<f64>> =
-                runs.iter().map(|o| jam_of(o, ti).map(|j| j.day)).collect();
-            let steps = stats::kaplan_meier(&times, days);
-            let mut row = vec![inp.label.clone(), name.to_string()];
+    for inp in &r.inputs {
+        unplaceable += inp.runs.iter().filter(|o| o.unplaceable.is_some()).count();
+        for s in &inp.trains {
+            let steps: Vec<stats::Step> = s.survival.iter().map(|p| p.step()).collect();
+            let mut row = vec![inp.label.clone(), s.train.clone()];
             for deg in READ_AT_DEG {
                 row.push(survival_cell(&steps, deg / 360.0 * DAYS_PER_YEAR));
             }
@@ -368,6 +407,23 @@ fn survival_table(inputs: &[Input<'_>], per_input: &[&[MechanismRun]], days: f64
         ));
     }
     table
+}
+
+/// Per run and train: the day of the first jam, or the horizon and "censored".
+fn runs_csv(r: &FailureStudy) -> String {
+    let mut csv = String::from("input,trial,train,first_jam_day,status,mesh\n");
+    for inp in &r.inputs {
+        for (t, o) in inp.runs.iter().enumerate() {
+            for (jam, s) in o.first_jams.iter().zip(&inp.trains) {
+                let (label, name) = (&inp.label, &s.train);
+                csv.push_str(&match jam {
+                    Some(j) => registry::csv_row!(label, t, name, j.day, "jammed", j.mesh),
+                    None => registry::csv_row!(label, t, name, r.horizon, "censored", ""),
+                });
+            }
+        }
+    }
+    csv
 }
 
 /// A survival share [%] at `day` with its 95 % band: `50 [33 .. 70]`.
@@ -471,6 +527,13 @@ mod tests {
             one.agreement, None,
             "cases are not judged against the paper"
         );
+        // The stored results hold every run's first jam of each train and of the mechanism.
+        let data = crate::outcome("failure", 11, 1, &sets).unwrap().data;
+        let study: FailureStudy = serde_json::from_value(data["results"].clone()).unwrap();
+        assert_eq!(study.inputs.len(), 1);
+        assert_eq!(study.inputs[0].runs.len(), 3);
+        assert!(study.inputs[0].runs.iter().all(|o| o.first_jams.len() == 4));
+        assert_eq!(study.inputs[0].trains[3].within_year.n, 3);
         let csv = &one.files[0];
         assert_eq!(csv.name, "failure-runs.csv");
         // 3 runs x (3 trains + mechanism) + header.

@@ -3,11 +3,14 @@
 
 use std::f64::consts::TAU;
 
-use contact::{Start, Trajectory};
-use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use contact::{Solve, Start, Trajectory};
+use registry::{OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64};
+use serde::{Deserialize, Serialize};
 
 use crate::common::{MAX_DATA_ROWS, Series, csv, deg, line_plot, paper_cell};
-use study::equal_pair;
+use crate::settings::typed::label;
+use study::equal_pair::{self, EqualPairParams};
+use study::events::EventParams;
 
 /// The most teeth fig2 simulates over a whole driver turn: 500 (a few minutes).
 const MAX_TEETH: usize = 500;
@@ -17,74 +20,102 @@ registry::params! {
     const STEP = Param::new("step", "0.01", "driver angle between samples", registry::Kind::positive(10.0, "degrees")).unit("deg");
 }
 
-crate::experiment! {
-    id: "fig2", paper_item: "Figure 2 (section 2) and Figure III (Appendix I)", run,
-    title: "theta(phi) and Theoretical Difference of two N = 8 triangular-tooth gears, simulated vs closed form",
-    params: [STEP], groups: [study::equal_pair::GROUP, study::events::GROUP],
+/// Figure 2's settings: the sampling step, the pair of equal gears and the event rule.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, registry::Settings)]
+pub struct Settings {
+    /// Driver angle between samples, degrees ([`STEP`]).
+    #[param(STEP)]
+    pub step: f64,
+    /// The pair: teeth, R, r and D.
+    #[group]
+    pub pair: EqualPairParams,
+    /// The event rule.
+    #[group]
+    pub events: EventParams,
 }
 
-/// Figure 2's numbers: θ'(0), the largest difference from the closed forms over `samples + 1`
-/// samples (`max_diff`, radians), the phase switch and hand-off, the Theoretical Difference's
-/// statistics and the run's (jams, disengagements).
-fn summary_table(
-    pair: &thorndike::Pair,
-    theta0: f64,
-    (samples, max_diff): (usize, f64),
-    stats: &stats::PointerStats,
-    counts: (usize, usize),
-) -> Table {
+/// Figure 2's results: one driver turn of the pair, simulated and in closed form.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Results {
+    /// θ'(0), the driven angle at the start in Figure III's frame, radians.
+    pub theta0: f64,
+    /// Steps over the turn (the rows are one more).
+    pub samples: usize,
+    /// Largest |θ' simulated − θ' closed form| over the samples, radians.
+    pub max_diff: f64,
+    /// φ' of the switch from Phase 1 to Phase 2 (closed form), radians.
+    pub phase_switch: f64,
+    /// φ' at which the next tooth pair takes over (closed form), radians.
+    pub handoff: f64,
+    /// σ of the Theoretical Difference, degrees.
+    pub sigma: f64,
+    /// Mean P of the Theoretical Difference, degrees.
+    pub mean: f64,
+    /// Dm, the largest |TD|, degrees.
+    pub dm: f64,
+    /// Jams in the turn, as the event rule counts them.
+    pub jams: usize,
+    /// Disengagements in the turn, as the event rule counts them.
+    pub disengagements: usize,
+    /// A row per sample (degrees): φ, θ' simulated, θ' closed form, θ, TD.
+    pub rows: Vec<[f64; 5]>,
+}
+
+/// Figure 2.
+pub struct Fig2;
+
+impl registry::Experiment for Fig2 {
+    const ID: &'static str = "fig2";
+    const TITLE: &'static str = "theta(phi) and Theoretical Difference of two N = 8 triangular-tooth gears, simulated vs closed form";
+    const PAPER_ITEM: &'static str = "Figure 2 (section 2) and Figure III (Appendix I)";
+    const PLACE: Place = Place::Paper(10);
+    type Settings = Settings;
+    type Results = Results;
+
+    fn compute(s: &Settings, _: &Run) -> Result<Results, RunError> {
+        compute(s)
+    }
+
+    fn report(s: &Settings, r: &Results) -> Result<Report, RunError> {
+        label(&s.events, None, figure(r)?)
+    }
+}
+
+registry::register!(Fig2);
+
+/// Figure 2's numbers: θ'(0), the largest difference from the closed forms, the phase switch
+/// and hand-off, the Theoretical Difference's statistics and the run's jams and disengagements.
+fn summary_table(r: &Results) -> Table {
     let mut table = Table::new(
         "Figure 2: N1 = N2 = 8, R = 200, r = 100, D = 310 (G = 10 % of h), one driver turn",
         ["quantity", "ours", "paper", "unit"],
     );
     table.row(vec![
         "theta'(0) (Figure III frame)".into(),
-        fmt_f64(deg(theta0), 4),
+        fmt_f64(deg(r.theta0), 4),
         paper_cell("fig2", "theta_prime_0", 2),
         "deg".into(),
     ]);
     table.row(vec![
         format!(
             "max |theta simulated - theta closed form| over {} samples",
-            samples + 1
+            r.samples + 1
         ),
-        below_power_of_ten(deg(max_diff)),
+        below_power_of_ten(deg(r.max_diff)),
         "-".into(),
         "deg".into(),
     ]);
-    table.row(vec![
-        "Phase 1 -> Phase 2 switch phi'".into(),
-        fmt_f64(deg(thorndike::phase_switch(pair)), 4),
-        "-".into(),
-        "deg".into(),
-    ]);
-    table.row(vec![
-        "next tooth pair takes over at phi'".into(),
-        fmt_f64(deg(thorndike::handoff(pair)), 4),
-        "-".into(),
-        "deg".into(),
-    ]);
-    table.row(vec![
-        "Theoretical Difference sigma".into(),
-        fmt_f64(stats.sigma, 4),
-        "-".into(),
-        "deg".into(),
-    ]);
-    table.row(vec![
-        "Theoretical Difference mean P".into(),
-        fmt_f64(stats.mean, 4),
-        "-".into(),
-        "deg".into(),
-    ]);
-    table.row(vec![
-        "Theoretical Difference max |TD| (Dm)".into(),
-        fmt_f64(stats.dm, 4),
-        "-".into(),
-        "deg".into(),
-    ]);
+    let mut quantity = |q: &str, v: f64| {
+        table.row(vec![q.into(), fmt_f64(v, 4), "-".into(), "deg".into()]);
+    };
+    quantity("Phase 1 -> Phase 2 switch phi'", deg(r.phase_switch));
+    quantity("next tooth pair takes over at phi'", deg(r.handoff));
+    quantity("Theoretical Difference sigma", r.sigma);
+    quantity("Theoretical Difference mean P", r.mean);
+    quantity("Theoretical Difference max |TD| (Dm)", r.dm);
     table.row(vec![
         "jams / disengagements".into(),
-        format!("{} / {}", counts.0, counts.1),
+        format!("{} / {}", r.jams, r.disengagements),
         "-".into(),
         "".into(),
     ]);
@@ -98,10 +129,10 @@ fn summary_table(
 /// Figure 2 A (θ against φ beside the ideal ratio) and B (the Theoretical Difference beside the
 /// closed forms' and its mean), from the rows of fig2.csv.
 fn plots(
-    rows: &[Vec<f64>],
+    rows: &[[f64; 5]],
     theta0: f64,
     ratio: f64,
-    stats: &stats::PointerStats,
+    mean: f64,
 ) -> Result<(String, String), RunError> {
     let plot_a = line_plot(
         "Figure 2 A: driven angle theta(phi), N = 8 pair",
@@ -136,7 +167,7 @@ fn plots(
             },
             Series {
                 label: "mean P",
-                points: vec![(0.0, stats.mean), (360.0, stats.mean)],
+                points: vec![(0.0, mean), (360.0, mean)],
             },
         ],
     )?;
@@ -182,7 +213,7 @@ fn sample(
     step: f64,
     samples: usize,
     ratio: f64,
-) -> (Vec<Vec<f64>>, Vec<f64>, f64) {
+) -> (Vec<[f64; 5]>, Vec<f64>, f64) {
     let theta0 = traj.theta_at(0.0);
     let mut rows = Vec::with_capacity(samples + 1);
     let mut max_diff: f64 = 0.0;
@@ -194,35 +225,23 @@ fn sample(
         max_diff = max_diff.max((sim - closed).abs());
         let t = sim - theta0 - ratio * phi;
         td.push(deg(t));
-        rows.push(vec![
-            deg(phi),
-            deg(sim),
-            deg(closed),
-            deg(sim - theta0),
-            deg(t),
-        ]);
+        rows.push([deg(phi), deg(sim), deg(closed), deg(sim - theta0), deg(t)]);
     }
     (rows, td, max_diff)
 }
 
-fn run(ctx: &Context) -> Result<Report, RunError> {
-    crate::settings::labelled(ctx, counted)
-}
-
-/// The experiment itself; [`run`] names the event rule in its tables' titles.
-fn counted(ctx: &Context) -> Result<Report, RunError> {
+/// Every simulation of Figure 2: one driver turn of the pair, sampled beside the closed forms.
+fn compute(s: &Settings) -> Result<Results, RunError> {
     // Refused before the mesh is built: the work of a driver turn grows as teeth squared.
-    let asked = ctx.get::<usize>(&equal_pair::TEETH)?;
-    check_teeth(asked)?;
+    check_teeth(s.pair.teeth)?;
     let equal_pair::EqualPair {
         teeth: n,
         tip_radius: big_r,
         root_radius: small_r,
         centre_distance: d,
         mesh,
-    } = crate::settings::equal_pair(ctx)?;
-    let step: f64 = ctx.get(&STEP)?;
-    check_step(step)?;
+    } = s.pair.build()?;
+    check_step(s.step)?;
     let teeth = u32::try_from(n).map_err(|_| RunError::bad("--set", "teeth", "too many teeth"))?;
     let pair =
         thorndike::Pair::new(teeth, teeth, big_r, small_r, big_r, small_r, d).map_err(|e| {
@@ -234,7 +253,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         })?;
 
     // Figure III frame: phi'_o = 0, theta'_o = theta'(0); one full driver turn.
-    let traj = mesh.run(0.0, TAU, Start::Touching(0.0));
+    let traj = mesh.solve(0.0..=TAU, Start::Touching(0.0), Solve::path());
     if traj.never_driven() {
         return Err(RunError::bad(
             "--set",
@@ -242,16 +261,31 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             "puts the gears out of reach: no driver tooth ever pushes the driven gear, so there is no theta(phi) to show (bring the centre distance below the sum of the tip radii)",
         ));
     }
-    let samples = (360.0 / step).round() as usize;
+    let samples = (360.0 / s.step).round() as usize;
     let ratio = 1.0; // N1 = N2
-    let theta0 = traj.theta_at(0.0);
-    let (rows, td, max_diff) = sample(&traj, &pair, step, samples, ratio);
+    let (rows, td, max_diff) = sample(&traj, &pair, s.step, samples, ratio);
     let stats = stats::pointer_stats(&td);
+    let (jams, disengagements) = study::events::counts(&s.events.rule()?, &traj);
+    Ok(Results {
+        theta0: traj.theta_at(0.0),
+        samples,
+        max_diff,
+        phase_switch: thorndike::phase_switch(&pair),
+        handoff: thorndike::handoff(&pair),
+        sigma: stats.sigma,
+        mean: stats.mean,
+        dm: stats.dm,
+        jams,
+        disengagements,
+        rows,
+    })
+}
 
-    let counts = study::events::counts(&crate::settings::rule(ctx)?, &traj);
-    let table = summary_table(&pair, theta0, (samples, max_diff), &stats, counts);
-
-    let (plot_a, plot_b) = plots(&rows, theta0, ratio, &stats)?;
+/// The table, fig2.csv and both plots, drawn from the results.
+fn figure(r: &Results) -> Result<Report, RunError> {
+    let ratio = 1.0; // N1 = N2
+    let table = summary_table(r);
+    let (plot_a, plot_b) = plots(&r.rows, r.theta0, ratio, r.mean)?;
     let data = csv(
         &[
             "phi_deg",
@@ -260,7 +294,7 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             "theta_deg",
             "td_deg",
         ],
-        rows.into_iter(),
+        r.rows.iter().map(|row| row.to_vec()),
         12,
     );
     Ok(Report {

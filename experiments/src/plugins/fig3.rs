@@ -3,11 +3,12 @@
 
 use std::f64::consts::TAU;
 
-use contact::{Start, Trajectory};
-use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use contact::{Solve, Start, Trajectory};
+use registry::{OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64};
+use serde::{Deserialize, Serialize};
 
 use crate::common::{Series, csv, deg, line_plot};
-use study::equal_pair;
+use study::equal_pair::{EqualPair, EqualPairParams};
 
 registry::params! {
     /// `pitches`: length of each run.
@@ -17,11 +18,64 @@ registry::params! {
 /// `samples`: samples per run.
 const SAMPLES: Param = registry::samples("1200", "samples per run");
 
-crate::experiment! {
-    id: "fig3", paper_item: "Figure 3 (section 2)", run,
-    title: "Theoretical Difference for three initial angles: lagging, centred, leading",
-    params: [PITCHES, SAMPLES], groups: [study::equal_pair::GROUP],
+/// Figure 3's settings: the length of each run, its samples and the pair of equal gears.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, registry::Settings)]
+pub struct Settings {
+    /// Length of each run, driver teeth ([`PITCHES`]).
+    #[param(PITCHES)]
+    pub pitches: usize,
+    /// Samples per run ([`SAMPLES`]).
+    #[param(SAMPLES)]
+    pub samples: usize,
+    /// The pair: teeth, R, r and D.
+    #[group]
+    pub pair: EqualPairParams,
 }
+
+/// Figure 3's results: the Theoretical Difference from each of three initial angles.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Results {
+    /// Driver angle from the initial angle of every sample, radians (the same for each run).
+    pub phis: Vec<f64>,
+    /// The runs: leading, centred, lagging.
+    pub runs: Vec<InitialAngle>,
+}
+
+/// One run of Figure 3.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct InitialAngle {
+    /// Its name, e.g. `A: leading`.
+    pub name: String,
+    /// The initial driver angle φ'_o, radians.
+    pub phi_o: f64,
+    /// The driven angle there θ'_o, radians.
+    pub theta_o: f64,
+    /// The Theoretical Difference at each of [`Results::phis`], degrees.
+    pub td: Vec<f64>,
+}
+
+/// Figure 3.
+pub struct Fig3;
+
+impl registry::Experiment for Fig3 {
+    const ID: &'static str = "fig3";
+    const TITLE: &'static str =
+        "Theoretical Difference for three initial angles: lagging, centred, leading";
+    const PAPER_ITEM: &'static str = "Figure 3 (section 2)";
+    const PLACE: Place = Place::Paper(20);
+    type Settings = Settings;
+    type Results = Results;
+
+    fn compute(s: &Settings, _: &Run) -> Result<Results, RunError> {
+        compute(s)
+    }
+
+    fn report(s: &Settings, r: &Results) -> Result<Report, RunError> {
+        figure(s, r)
+    }
+}
+
+registry::register!(Fig3);
 
 /// Number of points used to find the extreme and centred initial angles over one pitch.
 const SCAN: usize = 4000;
@@ -115,10 +169,11 @@ fn td_row(name: &str, phi_o: f64, theta_o: f64, td: &[f64]) -> Vec<String> {
     ]
 }
 
-fn run(ctx: &Context) -> Result<Report, RunError> {
-    let equal_pair::EqualPair { teeth: n, mesh, .. } = crate::settings::equal_pair(ctx)?;
-    let pitches: usize = ctx.get(&PITCHES)?;
-    let samples: usize = ctx.get(&SAMPLES)?;
+/// Every simulation of Figure 3: the long run that finds the three initial angles, then a run
+/// from each.
+fn compute(s: &Settings) -> Result<Results, RunError> {
+    let EqualPair { teeth: n, mesh, .. } = s.pair.build()?;
+    let (pitches, samples) = (s.pitches, s.samples);
     registry::samples_cover("samples", samples, pitches, "pitches")?;
     let p1 = TAU / n as f64;
     let ratio = 1.0; // equal gears
@@ -126,41 +181,57 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
     // f(x) = theta'(x) - ratio x is periodic in the driver pitch; a run starting at phi'_o has mean
     // Theoretical Difference C - f(phi'_o), C the mean of f. So the pointer leads most from the
     // minimum of f, lags most from its maximum, and is centred where f equals its mean.
-    let long = mesh.run(0.0, (pitches + 2) as f64 * p1, Start::Touching(0.0));
+    let long = mesh.solve(
+        0.0..=(pitches + 2) as f64 * p1,
+        Start::Touching(0.0),
+        Solve::path(),
+    );
     check_driven(&long)?;
     let (leading, centred, lagging) = initial_angles(&long, p1, ratio);
-
-    let mut table = fig3_table(pitches);
-    let mut series = Vec::new();
-    let mut columns: Vec<Vec<f64>> = Vec::new();
     let phis: Vec<f64> = (0..samples)
         .map(|i| pitches as f64 * p1 * i as f64 / (samples - 1) as f64)
         .collect();
+    let mut runs = Vec::new();
     for (name, phi_o) in [
         ("A: leading", leading),
         ("B: centred", centred),
         ("C: lagging", lagging),
     ] {
-        let t: Trajectory = mesh.run(
-            phi_o,
-            phi_o + pitches as f64 * p1,
+        let t: Trajectory = mesh.solve(
+            phi_o..=phi_o + pitches as f64 * p1,
             Start::Touching(long.theta_at(phi_o)),
+            Solve::path(),
         );
         let theta_o = t.theta_at(phi_o);
         let td: Vec<f64> = phis
             .iter()
             .map(|&p| deg(t.theta_at(phi_o + p) - theta_o - ratio * p))
             .collect();
-        table.row(td_row(name, phi_o, theta_o, &td));
+        runs.push(InitialAngle {
+            name: name.to_owned(),
+            phi_o,
+            theta_o,
+            td,
+        });
+    }
+    Ok(Results { phis, runs })
+}
+
+/// The table, fig3.csv and fig3.svg, drawn from the results.
+fn figure(s: &Settings, r: &Results) -> Result<Report, RunError> {
+    let phis = &r.phis;
+    let mut table = fig3_table(s.pitches);
+    let mut series = Vec::new();
+    for run in &r.runs {
+        table.row(td_row(&run.name, run.phi_o, run.theta_o, &run.td));
         series.push(Series {
-            label: name,
+            label: &run.name,
             points: phis
                 .iter()
                 .map(|&p| deg(p))
-                .zip(td.iter().copied())
+                .zip(run.td.iter().copied())
                 .collect(),
         });
-        columns.push(td);
     }
     table.note("The paper's Figure 3 gives no numbers in its text; the three curves are written to fig3.csv and fig3.svg.");
     table.note("Leading/lagging: the initial driver angle within one pitch that puts the mean Theoretical Difference highest/lowest; centred: mean zero.");
@@ -170,8 +241,11 @@ fn run(ctx: &Context) -> Result<Report, RunError> {
         "Theoretical Difference [deg]",
         &series,
     )?;
-    let rows =
-        (0..samples).map(|i| vec![deg(phis[i]), columns[0][i], columns[1][i], columns[2][i]]);
+    let rows = (0..phis.len()).map(|i| {
+        let mut row = vec![deg(phis[i])];
+        row.extend(r.runs.iter().map(|run| run.td[i]));
+        row
+    });
     let data = csv(
         &[
             "phi_deg",

@@ -5,10 +5,14 @@ use std::f64::consts::TAU;
 
 use edmunds::RadialPair;
 use geometry::Gear;
-use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64, fmt_number};
+use registry::{OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64, fmt_number};
+use serde::{Deserialize, Serialize};
 
 use crate::common::{Plot, Series, csv, drawable};
-use study::errors;
+use crate::settings::typed::label;
+use study::errors::{self, ErrorParams};
+use study::events::EventParams;
+use study::results::{SplitPairs, SplitRun};
 
 /// `tip_radius`: R of both gears.
 const TIP_RADIUS: Param = study::equal_pair::length("tip_radius", "200", "R of both gears");
@@ -37,11 +41,64 @@ registry::params! {
     const TEETH = Param::new("teeth", "50", "teeth of both gears", registry::Kind::count(3, geometry::MAX_TEETH as u64, "a gear needs three teeth"));
 }
 
-crate::experiment! {
-    id: "fig5", paper_item: "Figure 5 (section 4)", run,
-    title: "Edmunds' model against triangular teeth for three splits of the systematic error",
-    params: [TEETH, TIP_RADIUS, ROOT_RADIUS, PAIR_CLEARANCE, RANDOM, SYSTEMATIC, TRIAL, SAMPLES], groups: [study::errors::GROUP, study::events::GROUP],
+/// Figure 5's settings: the pair, its clearance, the errors offered to the hypothesis, the
+/// trial stream, the samples, the hypothesis and the event rule.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, registry::Settings)]
+pub struct Settings {
+    /// Teeth of both gears ([`TEETH`]).
+    #[param(TEETH)]
+    pub teeth: usize,
+    /// R of both gears ([`TIP_RADIUS`]).
+    #[param(TIP_RADIUS)]
+    pub tip_radius: f64,
+    /// r of both gears ([`ROOT_RADIUS`]).
+    #[param(ROOT_RADIUS)]
+    pub root_radius: f64,
+    /// Clearance G of the pair, % of h ([`PAIR_CLEARANCE`]).
+    #[param(PAIR_CLEARANCE)]
+    pub clearance: f64,
+    /// Random tooth error (sd), share of the pitch ([`RANDOM`]).
+    #[param(RANDOM)]
+    pub random: f64,
+    /// Systematic error amplitude A, degrees ([`SYSTEMATIC`]).
+    #[param(SYSTEMATIC)]
+    pub systematic: f64,
+    /// Which trial stream of the seed ([`TRIAL`]).
+    #[param(TRIAL)]
+    pub trial: u64,
+    /// Samples over the turn ([`SAMPLES`]).
+    #[param(SAMPLES)]
+    pub samples: usize,
+    /// The hypothesis and its parameters.
+    #[group]
+    pub errors: ErrorParams,
+    /// The event rule.
+    #[group]
+    pub events: EventParams,
 }
+
+/// Figure 5.
+pub struct Fig5;
+
+impl registry::Experiment for Fig5 {
+    const ID: &'static str = "fig5";
+    const TITLE: &'static str =
+        "Edmunds' model against triangular teeth for three splits of the systematic error";
+    const PAPER_ITEM: &'static str = "Figure 5 (section 4)";
+    const PLACE: Place = Place::Paper(70);
+    type Settings = Settings;
+    type Results = SplitPairs;
+
+    fn compute(s: &Settings, run: &Run) -> Result<SplitPairs, RunError> {
+        compute(s, run.seed())
+    }
+
+    fn report(s: &Settings, r: &SplitPairs) -> Result<Report, RunError> {
+        label(&s.events, None, figure(r)?)
+    }
+}
+
+registry::register!(Fig5);
 
 const SPLITS: [(&str, f64); 3] = [
     ("A: all eccentricity", 0.0),
@@ -52,18 +109,15 @@ const SPLITS: [(&str, f64); 3] = [
 /// Below this Edmunds' σ (degrees) his pointer is exact: no ratio is printed.
 const EDMUNDS_FLAT: f64 = 1e-9;
 
-/// A split's two Theoretical Differences: (split name, Edmunds', triangular teeth'), degrees.
-type Panel<'a> = (&'a str, Vec<f64>, Vec<f64>);
-
 /// The axis ranges the three panels share (degrees): the driver angles, and every panel's
 /// finite Theoretical Differences with a tenth of their span on each side.
-fn shared_ranges(series: &[Panel<'_>], phis: &[f64]) -> ((f64, f64), (f64, f64)) {
+fn shared_ranges(series: &[SplitRun], phis: &[f64]) -> ((f64, f64), (f64, f64)) {
     let x = phis.iter().map(|p| p.to_degrees());
     let x0 = x.clone().fold(f64::INFINITY, f64::min);
     let x1 = x.fold(f64::NEG_INFINITY, f64::max);
     let ys = series
         .iter()
-        .flat_map(|(_, rad, tri)| rad.iter().chain(tri));
+        .flat_map(|s| s.edmunds_td.iter().chain(&s.triangular_td));
     let (mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY);
     for y in ys.filter(|y| y.is_finite()) {
         y0 = y0.min(*y);
@@ -76,17 +130,14 @@ fn shared_ranges(series: &[Panel<'_>], phis: &[f64]) -> ((f64, f64), (f64, f64))
     (drawable(x0, x1), drawable(y0 - pad, y1 + pad))
 }
 
-/// The three panels' plots (fig5a-c.svg) and fig5.csv (every panel's curves as `columns`,
-/// over the driver angles `phis`).
-fn panels(
-    series: &[Panel<'_>],
-    columns: &[Vec<f64>],
-    phis: &[f64],
-) -> Result<Vec<OutputFile>, RunError> {
+/// The three panels' plots (fig5a-c.svg) and fig5.csv (every panel's curves over the driver
+/// angles `phis`).
+fn panels(series: &[SplitRun], phis: &[f64]) -> Result<Vec<OutputFile>, RunError> {
     let samples = phis.len();
     let (x_range, y_range) = shared_ranges(series, phis);
     let mut files = Vec::new();
-    for (i, (name, rad, tri)) in series.iter().enumerate() {
+    for (i, split) in series.iter().enumerate() {
+        let (name, rad, tri) = (&split.name, &split.edmunds_td, &split.triangular_td);
         let label = ["a", "b", "c"][i];
         // The split's name starts with its panel letter ("A: all eccentricity"): the title
         // gives the letter once.
@@ -109,7 +160,11 @@ fn panels(
     }
     let rows = (0..samples).map(|i| {
         let mut r = vec![phis[i].to_degrees()];
-        r.extend(columns.iter().map(|c| c[i]));
+        r.extend(
+            series
+                .iter()
+                .flat_map(|s| [s.edmunds_td[i], s.triangular_td[i]]),
+        );
         r
     });
     files.push(OutputFile::new(
@@ -133,13 +188,12 @@ fn panels(
 
 /// The values the hypothesis ran with, as the title names them (the split aside: each panel
 /// has its own), e.g. "random 0.04 of the pitch, systematic 0.5 deg, ".
-fn ran_values(ran: &hypotheses::Params) -> String {
+fn ran_values(ran: &[(String, f64)]) -> String {
     ran.iter()
-        .filter(|(k, _)| *k != "split")
-        .map(|(k, v)| match k {
-            "random" => format!("random {} of the pitch, ", fmt_number(v)),
-            "systematic" => format!("systematic {} deg, ", fmt_number(v)),
-            _ => format!("{k} {}, ", fmt_number(v)),
+        .map(|(k, v)| match k.as_str() {
+            "random" => format!("random {} of the pitch, ", fmt_number(*v)),
+            "systematic" => format!("systematic {} deg, ", fmt_number(*v)),
+            _ => format!("{k} {}, ", fmt_number(*v)),
         })
         .collect()
 }
@@ -217,15 +271,11 @@ fn add_notes(table: &mut Table, never_driven: bool, no_ratio: bool) {
     table.note("The paper's claim: the split does not change the pointer's behaviour significantly. Its Figure 5 gives no numbers in the text.");
 }
 
-fn run(ctx: &Context) -> Result<Report, RunError> {
-    crate::settings::labelled(ctx, counted)
-}
-
-/// The experiment itself; [`run`] names the event rule in its tables' titles.
-fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let rule = crate::settings::rule(ctx)?;
-    let n = ctx.get(&TEETH)?;
-    let (big_r, small_r): (f64, f64) = (ctx.get(&TIP_RADIUS)?, ctx.get(&ROOT_RADIUS)?);
+/// Every simulation of Figure 5: the pair made three times from one stream, each split run
+/// under both models.
+fn compute(s: &Settings, seed: u64) -> Result<SplitPairs, RunError> {
+    let rule = s.events.rule()?;
+    let (n, big_r, small_r) = (s.teeth, s.tip_radius, s.root_radius);
     let ideal =
         Gear::ideal(n, big_r, small_r).map_err(|e| RunError::bad("--set", e.field, e.rule))?;
     // Two equal gears of height R - r at the chosen clearance.
@@ -236,34 +286,24 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         r2: big_r,
         h: big_r - small_r,
     };
-    let clearance: f64 = ctx.get(&PAIR_CLEARANCE)?;
-    let errors = crate::settings::errors(ctx)?;
+    let errors = s.errors.load(None, s)?;
     let h = errors.hypothesis;
-    let samples: usize = ctx.get(&SAMPLES)?;
+    let samples = s.samples;
     registry::samples_cover(SAMPLES.name, samples, n, TEETH.name)?;
     let phis: Vec<f64> = (0..samples)
         .map(|i| TAU * i as f64 / (samples - 1) as f64)
         .collect();
-    let offered = [
-        (RANDOM.name, ctx.get(&RANDOM)?),
-        (SYSTEMATIC.name, ctx.get(&SYSTEMATIC)?),
-    ];
+    let offered = [(RANDOM.name, s.random), (SYSTEMATIC.name, s.systematic)];
     // The title names the values the hypothesis ran with (a `hypothesis_params` value replaces
     // the experiment's own), and only those it takes.
     let ran = errors.params(&offered)?;
-    let values = ran_values(&ran);
-    let mut table = figure_table(n, big_r, small_r, &values, h.name());
-    let trial = ctx.get(&TRIAL)?;
-    let mut series = Vec::new();
-    let mut columns = Vec::new();
-    let mut no_ratio = false;
-    let mut never_driven = false;
+    let mut splits = Vec::new();
     for (name, split) in SPLITS {
         let p = errors.params(&[offered[0], offered[1], ("split", split)])?;
         // The same stream for every split: only the split changes between the panels.
-        let (driver, driven, phi0) = errors::made_pair(h, &ideal, &p, ctx.seed(), trial)?;
+        let (driver, driven, phi0) = errors::made_pair(h, &ideal, &p, seed, s.trial)?;
         edmunds_sees(h.name(), &driver, &driven)?;
-        let tri = pair.run_made((&driver, &driven), clearance, phi0)?;
+        let tri = pair.run_made((&driver, &driven), s.clearance, phi0)?;
         let rad = RadialPair::new(&driver, &driven, phi0);
         let td = |f: &dyn Fn(f64) -> f64| -> Vec<f64> {
             let t0 = f(phi0);
@@ -271,23 +311,52 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
                 .map(|&p| (f(phi0 + p) - t0 - p).to_degrees())
                 .collect()
         };
-        let td_rad = td(&|p| rad.theta(p));
-        let td_tri = td(&|p| tri.theta_at(p));
-        let (s_rad, s_tri) = (
-            stats::pointer_stats(&td_rad).sigma,
-            stats::pointer_stats(&td_tri).sigma,
-        );
-        let idle = tri.never_driven();
+        let (edmunds_td, triangular_td) = (td(&|p| rad.theta(p)), td(&|p| tri.theta_at(p)));
+        let (jams, disengagements) = study::events::counts(&rule, &tri);
+        splits.push(SplitRun {
+            name: name.to_owned(),
+            sinusoid_share: split,
+            edmunds_sigma: stats::pointer_stats(&edmunds_td).sigma,
+            triangular_sigma: stats::pointer_stats(&triangular_td).sigma,
+            edmunds_td,
+            triangular_td,
+            never_driven: tri.never_driven(),
+            jams,
+            disengagements,
+        });
+    }
+    Ok(SplitPairs {
+        teeth: n,
+        tip_radius: big_r,
+        root_radius: small_r,
+        hypothesis: h.name().to_owned(),
+        values: ran
+            .iter()
+            .filter(|(k, _)| *k != "split")
+            .map(|(k, v)| (k.to_owned(), v))
+            .collect(),
+        driver_angles: phis,
+        splits,
+    })
+}
+
+/// The table, the three panels and fig5.csv, drawn from the results.
+fn figure(r: &SplitPairs) -> Result<Report, RunError> {
+    let values = ran_values(&r.values);
+    let mut table = figure_table(r.teeth, r.tip_radius, r.root_radius, &values, &r.hypothesis);
+    let mut no_ratio = false;
+    let mut never_driven = false;
+    for split in &r.splits {
+        let idle = split.never_driven;
         never_driven |= idle;
-        let cells = row_cells(name, s_rad, s_tri, idle, study::events::counts(&rule, &tri));
+        let counts = (split.jams, split.disengagements);
+        let (s_rad, s_tri) = (split.edmunds_sigma, split.triangular_sigma);
+        let cells = row_cells(&split.name, s_rad, s_tri, idle, counts);
         no_ratio |= cells[3] == "n/a";
         table.row(cells);
-        series.push((name, td_rad.clone(), td_tri.clone()));
-        columns.push(td_rad);
-        columns.push(td_tri);
     }
     add_notes(&mut table, never_driven, no_ratio);
-    let files = panels(&series, &columns, &phis)?;
+    let files = panels(&r.splits, &r.driver_angles)?;
     Ok(Report {
         tables: vec![table],
         files,

@@ -2,28 +2,154 @@
 //! meshes takes the smaller), beside the paper's (its Table 5 E. max row) and, when a table of
 //! measured errors is given, the measured ones.
 
-use registry::{Context, OutputFile, Param, Report, RunError, Table};
+use registry::{OutputFile, Param, Place, Report, Run, RunError, Table};
+use serde::{Deserialize, Serialize};
 
 use crate::common::{Series, category_plot};
 use crate::emax::{paper_random, show};
-use study::cell::{Purpose, label};
+use crate::settings::typed::{Gearing, label, off_paper_inputs, unsplit_cells};
+use study::cell::Purpose;
+use study::drive::DriveParams;
+use study::errors::ErrorParams;
+use study::events::EventParams;
+use study::gearing::GearingParams;
 use study::grids::TRIALS;
-use study::tolerance::{self, RULE};
+use study::results::{GearRandom, GearTolerances, MeasuredFile, RandomErrorTable};
+use study::tolerance::{self, RULE, RandomGrid};
 
 registry::params! {
     /// `measured`: RON table of measured per-gear errors (the `measured` hypothesis' format) to draw beside ours; empty (or none): no measured values.
     const MEASURED = Param::new("measured", "", "RON table of measured per-gear errors (the `measured` hypothesis' format) to draw beside ours; empty (or none): no measured values", registry::Kind::Text);
 }
 
-crate::experiment! {
-    id: "fig6", paper_item: "Figure 6 (section 5)", run,
-    title: "Largest tolerable random error of each gear (from Table 4 by the 1 % rule), beside the paper's and any measured errors",
-    params: [TRIALS, RULE, MEASURED], groups: [study::gearing::GROUP, study::errors::GROUP, study::tolerance::RANDOM_GRID, study::events::GROUP, study::drive::GROUP],
+/// Figure 6's settings: trials per cell, the rule, the measured table, the gearing with h and
+/// G, the hypothesis, Table 4's grid, the event rule and the pair-trial protocol.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, registry::Settings)]
+pub struct Settings {
+    /// Trials per cell of Table 4's grid ([`TRIALS`]).
+    #[param(TRIALS)]
+    pub trials: u64,
+    /// The failure rule, % of trials ([`RULE`]).
+    #[param(RULE)]
+    pub rule: f64,
+    /// The measured table to draw beside ours ([`MEASURED`]).
+    #[param(MEASURED)]
+    pub measured: String,
+    /// The gearing, G and h.
+    #[group]
+    pub gearing: GearingParams,
+    /// The hypothesis and its parameters.
+    #[group]
+    pub errors: ErrorParams,
+    /// Table 4's random errors.
+    #[group]
+    pub random: RandomGrid,
+    /// The event rule.
+    #[group]
+    pub events: EventParams,
+    /// Which gear drives, where counting ends.
+    #[group]
+    pub drive: DriveParams,
 }
 
-/// The measured table named by the `measured` parameter, if any: (file name, table).
-fn measured(ctx: &Context) -> Result<Option<(String, hypotheses::MeasuredTable)>, RunError> {
-    let Some(path) = hypotheses::measured_file_given(ctx.text(&MEASURED)?) else {
+/// Figure 6.
+pub struct Fig6;
+
+impl registry::Experiment for Fig6 {
+    const ID: &'static str = "fig6";
+    const TITLE: &'static str = "Largest tolerable random error of each gear (from Table 4 by the 1 % rule), beside the paper's and any measured errors";
+    const PAPER_ITEM: &'static str = "Figure 6 (section 5)";
+    const PLACE: Place = Place::Paper(110);
+    type Settings = Settings;
+    type Results = GearTolerances;
+
+    fn compute(s: &Settings, run: &Run) -> Result<GearTolerances, RunError> {
+        let cs = unsplit_cells(
+            Gearing::WithClearance(&s.gearing),
+            &s.errors,
+            Some(&s.events),
+            Some(&s.drive),
+            s.trials,
+            s,
+        )?;
+        let (g, clearance) = (cs.gearing(), cs.clearance()?);
+        let measured = measured(&s.measured)?;
+        let values = s.random.values(s)?;
+        let grid = study::grids::run_grid(run.engine(), &cs, values, s.trials, Purpose::Input)?;
+        let random_grid = RandomErrorTable::from_grid(&grid, clearance);
+        let tolerable = grid.tolerable(s.trials, s.rule);
+        let gears = gears_in_mesh_order(g)
+            .into_iter()
+            .map(|(gear, ms)| gear_random(g, (gear, &ms), &tolerable, measured.as_ref()))
+            .collect();
+        Ok(GearTolerances {
+            random_grid,
+            gears,
+            measured: measured.map(|(file, t)| MeasuredFile {
+                file,
+                gears: t.entries().count(),
+            }),
+        })
+    }
+
+    fn report(s: &Settings, r: &GearTolerances) -> Result<Report, RunError> {
+        let (rule, trials) = (s.rule, s.trials);
+        let smallest = r.random_grid.random.first();
+        let mut table = fig6_table(rule, trials, r.random_grid.clearance);
+        let mut csv = String::from("gear,meshes,ours,paper,measured\n");
+        let values: Vec<[Option<f64>; 3]> = r
+            .gears
+            .iter()
+            .map(|gr| [gr.tolerable, paper_of_gear(&gr.meshes), gr.measured])
+            .collect();
+        let (inside, outside) = equal_to_paper(&values);
+        for (gr, &[ours, paper, meas]) in r.gears.iter().zip(&values) {
+            table.row(gear_row(
+                &shown_name(gr),
+                &gr.meshes,
+                [ours, paper, meas],
+                smallest,
+            ));
+            let opt = |v: Option<f64>| v.map_or_else(String::new, |v| v.to_string());
+            csv.push_str(&registry::csv_row!(
+                gr.gear,
+                gr.meshes.join(" "),
+                opt(ours),
+                opt(paper),
+                opt(meas),
+            ));
+        }
+        add_notes(&mut table, (rule, trials), smallest, (inside, outside));
+        table.note(measured_note(r.measured.as_ref()));
+        if let Some(note) = renamed_note(&r.gears) {
+            table.note(note);
+        }
+        let names: Vec<String> = r.gears.iter().map(shown_name).collect();
+        let measured_file = r.measured.as_ref().map(|m| m.file.as_str());
+        let svg = plot(&names, rule, measured_file, series_points(&values))?;
+        let report = Report {
+            tables: vec![table],
+            files: vec![
+                OutputFile::new("fig6-data.csv", csv),
+                OutputFile::new("fig6.svg", svg),
+            ],
+            agreement: off_paper_inputs(s)
+                .is_empty()
+                .then_some(registry::Agreement {
+                    consistent: inside,
+                    differ: outside,
+                }),
+            ..crate::cells::counts_report(r.random_grid.table.counts())
+        };
+        label(&s.events, Some(&s.drive), report)
+    }
+}
+
+registry::register!(Fig6);
+
+/// The measured table the `measured` parameter names, if any: (file name, table).
+fn measured(given: &str) -> Result<Option<(String, hypotheses::MeasuredTable)>, RunError> {
+    let Some(path) = hypotheses::measured_file_given(given) else {
         return Ok(None);
     };
     let text = input_file::read_to_string(std::path::Path::new(path), input_file::MAX_INPUT_BYTES)
@@ -88,11 +214,10 @@ fn plot(
 }
 
 /// The note on the measured column: the file and how many gears it lists, or how to give one.
-fn measured_note(measured: Option<&(String, hypotheses::MeasuredTable)>) -> String {
+fn measured_note(measured: Option<&MeasuredFile>) -> String {
     match measured {
-        Some((file, t)) => format!(
-            "Measured: the random error of each gear in {file} ({} gears listed){}.",
-            t.entries().count(),
+        Some(MeasuredFile { file, gears }) => format!(
+            "Measured: the random error of each gear in {file} ({gears} gears listed){}.",
             if file.ends_with("measured-example.ron") {
                 "; that shipped example's values are INVENTED, not Edmunds' measurements"
             } else {
@@ -119,30 +244,33 @@ fn gears_in_mesh_order(g: &train::Gearing) -> Vec<(String, Vec<usize>)> {
 
 /// A gear as the tables show it: the paper's name (the one its mesh's label writes), with the
 /// gearing file's name beside it where the two differ (`n2 (n3)`).
-fn shown_name(g: &train::Gearing, gear: &str) -> String {
-    match g.label_name(gear) {
-        paper if paper == gear => gear.to_owned(),
-        paper => format!("{paper} ({gear})"),
+fn shown_name(gear: &GearRandom) -> String {
+    if gear.paper_name == gear.gear {
+        gear.gear.clone()
+    } else {
+        format!("{} ({})", gear.paper_name, gear.gear)
     }
 }
 
 /// The note that explains each gear shown under two names, or none.
-fn renamed_note(g: &train::Gearing, gears: &[(String, Vec<usize>)]) -> Option<String> {
+fn renamed_note(gears: &[GearRandom]) -> Option<String> {
     let renamed: Vec<String> = gears
         .iter()
-        .filter(|(n, _)| g.label_name(n) != n)
-        .map(|(n, _)| {
-            let paper = g.label_name(n);
-            format!("{paper} ({n}) is named {paper} by its mesh's label, as in the paper, and {n} by the gearing file (its source: {})", g.gear(n).map_or("-", |d| d.source.as_str()))
+        .filter(|g| g.paper_name != g.gear)
+        .map(|g| {
+            let (paper, n) = (&g.paper_name, &g.gear);
+            format!("{paper} ({n}) is named {paper} by its mesh's label, as in the paper, and {n} by the gearing file (its source: {})", g.source)
         })
         .collect();
     (!renamed.is_empty()).then(|| format!("Names: {}.", renamed.join("; ")))
 }
 
-/// The paper's value of a gear: the smaller of its meshes' E. max (none if one is missing).
-fn paper_of_gear(g: &train::Gearing, ms: &[usize]) -> Option<f64> {
-    ms.iter()
-        .map(|&m| paper_random(&g.meshes()[m].label))
+/// The paper's value of a gear in `meshes`: the smaller of its meshes' E. max (none if one is
+/// missing).
+fn paper_of_gear(meshes: &[String]) -> Option<f64> {
+    meshes
+        .iter()
+        .map(|m| paper_random(m))
         .collect::<Option<Vec<f64>>>()
         .and_then(|v| v.into_iter().reduce(f64::min))
 }
@@ -150,13 +278,13 @@ fn paper_of_gear(g: &train::Gearing, ms: &[usize]) -> Option<f64> {
 /// A gear's row: its meshes, ours, the paper's and the measured value (marked above ours).
 fn gear_row(
     gear: &str,
-    labels: &[&str],
+    labels: &[String],
     [ours, paper, meas]: [Option<f64>; 3],
     smallest: Option<&f64>,
 ) -> Vec<String> {
-    let opt = |v: Option<f64>| v.map_or_else(|| "-".into(), |v| label(v, 3));
+    let opt = |v: Option<f64>| v.map_or_else(|| "-".into(), |v| study::cell::label(v, 3));
     let meas_text = match (meas, ours) {
-        (Some(v), Some(o)) if v > o => format!("{} (above ours)", label(v, 3)),
+        (Some(v), Some(o)) if v > o => format!("{} (above ours)", study::cell::label(v, 3)),
         (v, _) => opt(v),
     };
     vec![
@@ -194,27 +322,30 @@ fn add_notes(
     table.note(format!(
     "Each mesh's value: the largest random error of Table 4's grid up to which every value has at most {} of {trials} trials jammed; each gear takes its mesh's, a gear in two meshes the smaller. `< {}`: below the grid.",
     tolerance::allowed_jams(trials, rule),
-    smallest.map_or_else(|| "-".into(), |v| label(*v, 3)),
+    smallest.map_or_else(|| "-".into(), |v| study::cell::label(*v, 3)),
 ));
     table.note(format!(
     "Gears whose value equals the paper's: {inside}; differ: {outside}. The paper's figure gives no numbers; its per-mesh values are the E. max row of its Table 5, assigned to gears the same way."
 ));
 }
 
-fn run(ctx: &Context) -> Result<Report, RunError> {
-    crate::settings::labelled(ctx, counted)
-}
-
-/// A gear's values: ours (the smaller of its meshes'), the paper's, and the measured one.
-fn gear_values(
+/// A gear's values: ours (the smaller of its meshes' `tolerable`) and the measured one.
+fn gear_random(
     g: &train::Gearing,
-    (gear, ms): (&str, &[usize]),
+    (gear, ms): (String, &[usize]),
     tolerable: &[Option<f64>],
     measured: Option<&(String, hypotheses::MeasuredTable)>,
-) -> [Option<f64>; 3] {
-    let ours = ms.iter().map(|&m| tolerable[m]).reduce(smaller).flatten();
-    let meas = measured.and_then(|(_, t)| t.errors(gear).ok().map(|e| e.random));
-    [ours, paper_of_gear(g, ms), meas]
+) -> GearRandom {
+    let tolerable = ms.iter().map(|&m| tolerable[m]).reduce(smaller).flatten();
+    let measured = measured.and_then(|(_, t)| t.errors(&gear).ok().map(|e| e.random));
+    GearRandom {
+        paper_name: g.label_name(&gear).to_owned(),
+        source: g.gear(&gear).map_or("-", |d| d.source.as_str()).to_owned(),
+        meshes: ms.iter().map(|&m| g.meshes()[m].label.clone()).collect(),
+        gear,
+        tolerable,
+        measured,
+    }
 }
 
 /// How many gears' values equal the paper's, and how many differ (of those it gives).
@@ -242,65 +373,6 @@ fn series_points(values: &[[Option<f64>; 3]]) -> (Points, Points, Points) {
             .collect()
     };
     (column(0), column(1), column(2))
-}
-
-/// The experiment itself; [`run`] names the event rule in its tables' titles.
-fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let s = crate::settings::cells(ctx, &TRIALS)?;
-    let (g, trials, clearance) = (s.gearing(), s.trials, s.clearance()?);
-    let rule = ctx.get(&study::tolerance::RULE)?;
-    let measured = measured(ctx)?;
-    let values = crate::settings::random_grid(ctx)?;
-    let grid = study::grids::run_grid(ctx.engine(), &s, values, trials, Purpose::Input)?;
-    let tolerable = grid.tolerable(trials, rule);
-
-    let gears = gears_in_mesh_order(g);
-    let smallest = grid.values.first();
-    let mut table = fig6_table(rule, trials, clearance);
-    let mut csv = String::from("gear,meshes,ours,paper,measured\n");
-    let values: Vec<[Option<f64>; 3]> = gears
-        .iter()
-        .map(|(gear, ms)| gear_values(g, (gear, ms), &tolerable, measured.as_ref()))
-        .collect();
-    let (inside, outside) = equal_to_paper(&values);
-    for ((gear, ms), &[ours, paper, meas]) in gears.iter().zip(&values) {
-        let labels: Vec<&str> = ms.iter().map(|&m| g.meshes()[m].label.as_str()).collect();
-        table.row(gear_row(
-            &shown_name(g, gear),
-            &labels,
-            [ours, paper, meas],
-            smallest,
-        ));
-        let opt = |v: Option<f64>| v.map_or_else(String::new, |v| v.to_string());
-        csv.push_str(&registry::csv_row!(
-            gear,
-            labels.join(" "),
-            opt(ours),
-            opt(paper),
-            opt(meas),
-        ));
-    }
-    add_notes(&mut table, (rule, trials), smallest, (inside, outside));
-    table.note(measured_note(measured.as_ref()));
-    let off_paper = crate::cells::off_paper_inputs(ctx);
-    if let Some(note) = renamed_note(g, &gears) {
-        table.note(note);
-    }
-    let names: Vec<String> = gears.iter().map(|(n, _)| shown_name(g, n)).collect();
-    let measured_file = measured.as_ref().map(|(f, _)| f.as_str());
-    let svg = plot(&names, rule, measured_file, series_points(&values))?;
-    Ok(Report {
-        tables: vec![table],
-        files: vec![
-            OutputFile::new("fig6-data.csv", csv),
-            OutputFile::new("fig6.svg", svg),
-        ],
-        agreement: off_paper.is_empty().then_some(registry::Agreement {
-            consistent: inside,
-            differ: outside,
-        }),
-        ..crate::cells::counts_report(grid.all())
-    })
 }
 
 #[cfg(test)]

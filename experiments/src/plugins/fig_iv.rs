@@ -1,11 +1,15 @@
 //! `figIV`: σ of each driven gear's Theoretical Difference against the clearance G, for ideal
 //! gears of the mechanism's meshes, with each pair's jam and disengagement limits.
 
-use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use registry::{OutputFile, Param, Place, Report, Run, RunError, Settings as _, Table, fmt_f64};
+use serde::{Deserialize, Serialize};
 
 use crate::common::{Limit, LimitKind, Plot, Series};
-use study::gearing;
+use crate::settings::typed::label;
+use study::events::EventParams;
+use study::gearing::ShapeParams;
 use study::limits::IdealPair;
+use study::results::{MeshSweep, SigmaAgainstClearance};
 
 registry::params! {
     /// `from`: first clearance of the sweep.
@@ -19,17 +23,60 @@ registry::params! {
 /// `samples`: TD samples per run.
 const SAMPLES: Param = registry::samples("2000", "TD samples per run");
 
-crate::experiment! {
-    id: "figIV", paper_item: "Figure IV (Appendix II)", run,
-    title: "sigma of the driven gear against clearance G for the mechanism's meshes (semi-log), with jam and disengagement limits",
-    params: [FROM, TO, STEP, SAMPLES], groups: [study::gearing::SHAPE, study::events::GROUP],
+/// Figure IV's settings: the sweep of clearances, the TD samples, the gearing and h, and the
+/// event rule.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, registry::Settings)]
+pub struct Settings {
+    /// First clearance of the sweep, % of h ([`FROM`]).
+    #[param(FROM)]
+    pub from: f64,
+    /// Last clearance of the sweep, % of h ([`TO`]).
+    #[param(TO)]
+    pub to: f64,
+    /// Clearance step, % of h ([`STEP`]).
+    #[param(STEP)]
+    pub step: f64,
+    /// TD samples per run ([`SAMPLES`]).
+    #[param(SAMPLES)]
+    pub samples: usize,
+    /// The gearing and h.
+    #[group]
+    pub shape: ShapeParams,
+    /// The event rule.
+    #[group]
+    pub events: EventParams,
 }
+
+/// Figure IV.
+pub struct FigIv;
+
+impl registry::Experiment for FigIv {
+    const ID: &'static str = "figIV";
+    const TITLE: &'static str = "sigma of the driven gear against clearance G for the mechanism's meshes (semi-log), with jam and disengagement limits";
+    const PAPER_ITEM: &'static str = "Figure IV (Appendix II)";
+    const PLACE: Place = Place::Paper(140);
+    type Settings = Settings;
+    type Results = SigmaAgainstClearance;
+
+    fn compute(s: &Settings, _: &Run) -> Result<SigmaAgainstClearance, RunError> {
+        compute(s)
+    }
+
+    fn report(s: &Settings, r: &SigmaAgainstClearance) -> Result<Report, RunError> {
+        label(&s.events, None, figure(r)?)
+    }
+}
+
+registry::register!(FigIv);
 
 /// `from` must not exceed `to`; the error names the one the user set: `to` below the default
 /// `from`, or `from` above `to`.
-fn check_range(ctx: &Context, from: f64, to: f64) -> Result<(), RunError> {
+fn check_range(s: &Settings) -> Result<(), RunError> {
+    let (from, to) = (s.from, s.to);
     if from > to {
-        let to_set = ctx.changed().iter().any(|(k, _)| *k == TO.name);
+        let mut changed = Vec::new();
+        s.changed(&mut changed);
+        let to_set = changed.iter().any(|(p, _)| p.name == TO.name);
         let (field, rule) = if to_set {
             (
                 "to",
@@ -54,16 +101,11 @@ fn check_range(ctx: &Context, from: f64, to: f64) -> Result<(), RunError> {
     Ok(())
 }
 
-/// The sweep: σ of each mesh (`labels`, columns of `grid`) at each clearance, as a table and
-/// as figIV.csv.
-fn sweep_table(
-    h: f64,
-    labels: &[&str],
-    clearances: &[f64],
-    grid: &[Vec<Option<f64>>],
-) -> (Table, String) {
+/// The sweep: σ of each mesh at each clearance, as a table and as figIV.csv.
+fn sweep_table(r: &SigmaAgainstClearance) -> (Table, String) {
+    let h = r.tooth_height;
     let mut header = vec!["G [% of h]".to_string()];
-    header.extend(labels.iter().map(|l| (*l).to_string()));
+    header.extend(r.meshes.iter().map(|m| m.mesh.clone()));
     let mut sweep = Table::new(
         format!(
             "Figure IV: sigma of the driven gear's Theoretical Difference [deg], ideal gears, h = {h} mm, one turn of the larger gear"
@@ -71,12 +113,12 @@ fn sweep_table(
         header.clone(),
     );
     let mut csv = registry::csv_line(&header);
-    for (i, &c) in clearances.iter().enumerate() {
+    for (i, &c) in r.clearances.iter().enumerate() {
         let mut row = vec![fmt_f64(c, 1)];
         let mut line = vec![c.to_string()];
-        for col in grid {
-            row.push(col[i].map_or_else(|| "-".to_string(), |s| format!("{s:.2e}")));
-            line.push(col[i].map_or_else(String::new, |s| s.to_string()));
+        for m in &r.meshes {
+            row.push(m.sigma[i].map_or_else(|| "-".to_string(), |s| format!("{s:.2e}")));
+            line.push(m.sigma[i].map_or_else(String::new, |s| s.to_string()));
         }
         sweep.row(row);
         csv.push_str(&registry::csv_line(line));
@@ -133,34 +175,44 @@ fn report(
     })
 }
 
-fn run(ctx: &Context) -> Result<Report, RunError> {
-    crate::settings::labelled(ctx, counted)
-}
-
-/// The experiment itself; [`run`] names the event rule in its tables' titles.
-fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let rule = crate::settings::rule(ctx)?;
-    let gearing::Shape {
-        gearing: g,
-        tooth_height: h,
-        ..
-    } = crate::settings::shape(ctx)?;
-    let (from, to, step): (f64, f64, f64) = (ctx.get(&FROM)?, ctx.get(&TO)?, ctx.get(&STEP)?);
-    check_range(ctx, from, to)?;
-    let samples: usize = ctx.get(&SAMPLES)?;
+/// Every simulation of Figure IV: σ of every mesh at every clearance, and each mesh's limits.
+fn compute(s: &Settings) -> Result<SigmaAgainstClearance, RunError> {
+    let rule = s.events.rule()?;
+    let shape = s.shape.load()?;
+    let (g, h) = (&shape.gearing, shape.tooth_height);
+    check_range(s)?;
+    let (from, to, step) = (s.from, s.to, s.step);
     let clearances: Vec<f64> = (0..)
         .map(|i| from + step * f64::from(i))
         .take_while(|&c| c <= to + 1e-9)
         .collect();
-    let pairs = mesh_pairs(&g, h)?;
+    let pairs = mesh_pairs(g, h)?;
     // Every (mesh, clearance) run and every mesh's limits are independent: run in parallel,
     // collected in order.
     let ideal: Vec<IdealPair> = pairs.iter().map(|(_, p)| *p).collect();
-    let grid = study::limits::sigma_sweep(&ideal, &clearances, &rule, samples)?;
+    let grid = study::limits::sigma_sweep(&ideal, &clearances, &rule, s.samples)?;
     let limits = study::limits::all_limits(&ideal, 1e-2, &rule);
-    let labels: Vec<&str> = pairs.iter().map(|(l, _)| l.as_str()).collect();
-    let (sweep, csv) = sweep_table(h, &labels, &clearances, &grid);
+    let mut meshes = Vec::new();
+    for ((label, _), (l, sigma)) in pairs.into_iter().zip(limits.into_iter().zip(grid)) {
+        let (jam, dis) = l?;
+        meshes.push(MeshSweep {
+            mesh: label,
+            smallest_sigma_at: MeshSweep::smallest_sigma(&clearances, &sigma),
+            sigma,
+            jam_limit: jam,
+            disengagement_limit: dis,
+        });
+    }
+    Ok(SigmaAgainstClearance {
+        tooth_height: h,
+        clearances,
+        meshes,
+    })
+}
 
+/// Both tables, the CSV files and Figure IV, drawn from the results.
+fn figure(r: &SigmaAgainstClearance) -> Result<Report, RunError> {
+    let (sweep, csv) = sweep_table(r);
     let mut lim = Table::new(
         "Clearance limits of each pair (bisection to 0.01 % of h)",
         [
@@ -172,8 +224,8 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let mut lim_csv = String::from("mesh,jam_below_percent,disengage_above_percent\n");
     let mut series = Vec::new();
     let mut drawn_limits = Vec::new();
-    for (k, ((label, _), (l, col))) in pairs.iter().zip(limits.into_iter().zip(&grid)).enumerate() {
-        let (jam, dis) = l?;
+    for (k, m) in r.meshes.iter().enumerate() {
+        let (label, jam, dis) = (&m.mesh, m.jam_limit, m.disengagement_limit);
         // Each mesh's limits, as computed above, on its curve: `[` where it stops jamming, `]`
         // where it starts to disengage.
         for (x, kind) in [(jam, LimitKind::Lower), (dis, LimitKind::Upper)] {
@@ -193,9 +245,10 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             dis.map_or(String::new(), |v| v.to_string())
         ));
         // Drawn only where the pair runs: between its jam and disengagement limits.
-        let points: Vec<(f64, f64)> = clearances
+        let points: Vec<(f64, f64)> = r
+            .clearances
             .iter()
-            .zip(col)
+            .zip(&m.sigma)
             .filter_map(|(&c, s)| s.map(|v| (c, v)))
             .collect();
         series.push(Series {

@@ -12,14 +12,21 @@
 //! the tables build them), so the readings differ only by the contact test.
 
 use polycheck::stepped::Stepping;
-use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use registry::{OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64};
+use serde::{Deserialize, Serialize};
 use study::area_test::{Reading, run_all};
 use study::cell::{CellSpec, PAPER_TRIALS, label};
+use study::drive::DriveParams;
+use study::errors::CaseParams;
+use study::gearing::GearingParams;
 use study::grids::CellSettings;
-use study::tolerance::{RANDOM_FROM, RANDOM_STEP, RANDOM_TO};
-use train::Gearing;
+use study::results::jam_readings::{
+    ContactReading, JamConsistency, JamReadings, ReadingCell, ReadingShares,
+};
+use study::tolerance::RandomGrid;
 
 use crate::cells::{PaperTable, consistent_with_paper, paper_counts, paper_table_cells, share};
+use crate::settings::typed::{Gearing, cells};
 
 registry::params! {
     /// `trials`: trials per cell (a screening count; the paper: 200).
@@ -36,11 +43,120 @@ registry::params! {
     const SEARCH_STEPS = Param::new("search_steps", "64", "steps per driven pitch of the area test's forward search (then bisected)", registry::Kind::count(4, 100_000, "a search step of at most a quarter pitch"));
 }
 
-crate::experiment! {
-    id: "jam-readings", paper_item: "Tables 3, 4 and I, and section 3 (the area contact test)", run,
-    title: "The jams of Tables 3, 4 and I under the paper's kind of contact test (stepped driver, overlap area up to a tolerance) beside our exact solver",
-    params: [TRIALS, CLEARANCES, TOLERANCES, STEPS_PER_PITCH, REACH, SEARCH_STEPS], groups: [study::gearing::GROUP, study::errors::CASES_GROUP, study::tolerance::RANDOM_GRID, study::drive::GROUP],
+/// The settings: trials per cell, Table I's clearances, the area test's tolerances and
+/// stepping, the gearing with h and G, the Cases' errors, Table 4's grid and which gear drives.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, registry::Settings)]
+#[settings(check = check)]
+pub struct Settings {
+    /// Trials per cell ([`TRIALS`]).
+    #[param(TRIALS)]
+    pub trials: u64,
+    /// Table I's clearances, comma-separated, % of h ([`CLEARANCES`]).
+    #[param(CLEARANCES)]
+    pub clearances: String,
+    /// The area test's tolerances, comma-separated, mm² ([`TOLERANCES`]).
+    #[param(TOLERANCES)]
+    pub tolerances: String,
+    /// Driver steps per driver pitch of the area test ([`STEPS_PER_PITCH`]).
+    #[param(STEPS_PER_PITCH)]
+    pub steps_per_pitch: usize,
+    /// How far ahead the area test looks, driven pitches ([`REACH`]).
+    #[param(REACH)]
+    pub reach: f64,
+    /// Steps per driven pitch of the area test's forward search ([`SEARCH_STEPS`]).
+    #[param(SEARCH_STEPS)]
+    pub search_steps: usize,
+    /// The gearing, G and h.
+    #[group]
+    pub gearing: GearingParams,
+    /// The split, the hypothesis and its parameters.
+    #[group]
+    pub errors: CaseParams,
+    /// Table 4's grid of random errors.
+    #[group]
+    pub random: RandomGrid,
+    /// Which gear drives, where counting ends.
+    #[group]
+    pub drive: DriveParams,
 }
+
+/// The jams of Tables 3, 4 and I under each contact test.
+pub struct JamReadingsExperiment;
+
+impl registry::Experiment for JamReadingsExperiment {
+    const ID: &'static str = "jam-readings";
+    const TITLE: &'static str = "The jams of Tables 3, 4 and I under the paper's kind of contact test (stepped driver, overlap area up to a tolerance) beside our exact solver";
+    const PAPER_ITEM: &'static str = "Tables 3, 4 and I, and section 3 (the area contact test)";
+    const PLACE: Place = Place::Beyond(60);
+    type Settings = Settings;
+    type Results = JamReadings;
+
+    fn compute(s: &Settings, run: &Run) -> Result<JamReadings, RunError> {
+        let cs = cells(
+            Gearing::WithClearance(&s.gearing),
+            &s.errors,
+            None,
+            Some(&s.drive),
+            s.trials,
+            s,
+        )?;
+        let (g, trials) = (cs.gearing(), cs.trials);
+        let mut readings: Vec<Reading> = study::drive::Drive::ALL
+            .into_iter()
+            .map(Reading::Exact)
+            .collect();
+        readings.extend(
+            tolerances(s)?
+                .into_iter()
+                .map(|t| Reading::Area(t, cs.drive)),
+        );
+        let cells = all_cells(s, &cs)?;
+        let jams = run_all(
+            run.engine(),
+            g,
+            &cells.runs,
+            &readings,
+            &stepping(s),
+            trials,
+        )?;
+        let regions = regions(&cells);
+        let shares = tallies(&cells, &regions, &jams, readings.len(), trials);
+        Ok(JamReadings {
+            trials,
+            readings: readings.iter().map(|r| contact_reading(*r)).collect(),
+            regions,
+            shares,
+            cells: cells
+                .paper
+                .iter()
+                .map(|p| ReadingCell {
+                    table: p.table.to_owned(),
+                    key: p.key.clone(),
+                    region: p.region.clone(),
+                    mesh: p.mesh.clone(),
+                    case_d: p.case_d,
+                    jams: jams[p.run].clone(),
+                })
+                .collect(),
+            cells_run: cells.runs.len(),
+            meshes: g.meshes().iter().map(|m| m.label.clone()).collect(),
+            seed: run.seed(),
+        })
+    }
+
+    fn report(s: &Settings, r: &JamReadings) -> Result<Report, RunError> {
+        let mut shares = shares_table(r);
+        notes(&mut shares, s, r);
+        Ok(Report {
+            tables: vec![shares, mesh_table(r)],
+            files: vec![OutputFile::new("jam-readings-cells.csv", cells_csv(r))],
+            trials: r.cells_run as u64 * r.trials,
+            ..Default::default()
+        })
+    }
+}
+
+registry::register!(JamReadingsExperiment);
 
 /// Where a cell's paper counts are, the region it is tallied in, its mesh, and which of the
 /// distinct cells run gives its counts (Table 3's cells are Table I's at G = 40 %).
@@ -53,11 +169,28 @@ struct PaperCell {
     run: usize,
 }
 
-/// A reading's name, as the tables print it.
-fn reading_name(r: Reading) -> String {
+/// The area test's stepping as set.
+fn stepping(s: &Settings) -> Stepping {
+    Stepping {
+        steps_per_pitch: s.steps_per_pitch,
+        reach: s.reach,
+        search_steps: s.search_steps,
+    }
+}
+
+/// A reading as stored: its name, its tolerance (none for the exact solver) and its drive.
+fn contact_reading(r: Reading) -> ContactReading {
     match r {
-        Reading::Exact(d) => format!("exact solver, drive {}", d.name()),
-        Reading::Area(t, d) => format!("area T = {} mm^2, drive {}", fmt_f64(t, 4), d.name()),
+        Reading::Exact(d) => ContactReading {
+            name: format!("exact solver, drive {}", d.name()),
+            tolerance: None,
+            drive: d.name().to_owned(),
+        },
+        Reading::Area(t, d) => ContactReading {
+            name: format!("area T = {} mm^2, drive {}", fmt_f64(t, 4), d.name()),
+            tolerance: Some(t),
+            drive: d.name().to_owned(),
+        },
     }
 }
 
@@ -92,16 +225,16 @@ impl Cells {
 
 /// The cells of Tables 3 (Cases A-D at the clearance), 4 (the random grid) and I (Cases A-D at
 /// each of its clearances), in the order of `event-rules`.
-fn all_cells(ctx: &Context, s: &CellSettings) -> Result<Cells, RunError> {
-    let clearance = s.clearance()?;
-    let clearances = crate::settings::clearance_list(ctx, &CLEARANCES, 200.0)?;
-    let randoms = crate::settings::random_grid(ctx)?;
+fn all_cells(s: &Settings, cs: &CellSettings) -> Result<Cells, RunError> {
+    let clearance = cs.clearance()?;
+    let clearances = study::gearing::clearance_list(&s.clearances, CLEARANCES.name, 200.0)?;
+    let randoms = s.random.values(s)?;
     let mut out = Cells {
         runs: Vec::new(),
         paper: Vec::new(),
     };
     let region = |gc: f64| format!("G = {} %", label(gc, 0));
-    for c in paper_table_cells(s, &randoms, &clearances)? {
+    for c in paper_table_cells(cs, &randoms, &clearances)? {
         let group = match c.table {
             PaperTable::Table3 { .. } => region(clearance),
             PaperTable::Table4 { .. } => "Table 4".into(),
@@ -112,9 +245,26 @@ fn all_cells(ctx: &Context, s: &CellSettings) -> Result<Cells, RunError> {
     Ok(out)
 }
 
+/// The settings' check across fields, before any work: the area readings' tolerances, each
+/// once, at most [`MAX_TOLERANCES`].
+fn check(s: &Settings, _: &registry::Context) -> Result<(), RunError> {
+    if tolerances(s)?.len() > MAX_TOLERANCES {
+        return Err(RunError::bad(
+            "--set",
+            TOLERANCES.name,
+            format!("at most {MAX_TOLERANCES} tolerances"),
+        ));
+    }
+    Ok(())
+}
+
+/// The most area readings a run counts: a trial's jams under every reading are bits of one
+/// `u64`, and 63 readings are counted at most, the exact solver's drives among them.
+const MAX_TOLERANCES: usize = 63 - study::drive::Drive::ALL.len();
+
 /// The tolerances of the area readings, from a comma-separated parameter.
-fn tolerances(ctx: &Context) -> Result<Vec<f64>, RunError> {
-    let text = ctx.text(&TOLERANCES)?;
+fn tolerances(s: &Settings) -> Result<Vec<f64>, RunError> {
+    let text = &s.tolerances;
     let mut out: Vec<f64> = Vec::new();
     for part in text.split(',').map(str::trim) {
         let t = part
@@ -141,33 +291,24 @@ fn tolerances(ctx: &Context) -> Result<Vec<f64>, RunError> {
     Ok(out)
 }
 
-/// Consistent and compared jam counts, and among the separated ones how many of ours are
-/// higher than the paper's.
-#[derive(Debug, Clone, Copy, Default)]
-struct Tally {
-    consistent: u64,
-    compared: u64,
-    higher: u64,
+/// Adds our count `ours` of `trials` against the paper's `paper` (of 200) to `x`.
+fn add(x: &mut JamConsistency, ours: u64, trials: u64, paper: Option<u64>) {
+    let Some(p) = paper else { return };
+    x.compared += 1;
+    if consistent_with_paper(ours, trials, paper) {
+        x.consistent += 1;
+    } else if ours as f64 / trials as f64 > p as f64 / PAPER_TRIALS as f64 {
+        x.higher += 1;
+    }
 }
 
-impl Tally {
-    fn add(&mut self, ours: u64, trials: u64, paper: Option<u64>) {
-        let Some(p) = paper else { return };
-        self.compared += 1;
-        if consistent_with_paper(ours, trials, paper) {
-            self.consistent += 1;
-        } else if ours as f64 / trials as f64 > p as f64 / PAPER_TRIALS as f64 {
-            self.higher += 1;
-        }
-    }
-
-    fn differing(&self) -> String {
-        let d = self.compared - self.consistent;
-        if d == 0 {
-            "-".into()
-        } else {
-            format!("{} / {}", self.higher, d - self.higher)
-        }
+/// Of the counts the test separates, ours higher / lower (`-` for none).
+fn differing(x: &JamConsistency) -> String {
+    let d = x.compared - x.consistent;
+    if d == 0 {
+        "-".into()
+    } else {
+        format!("{} / {}", x.higher, d - x.higher)
     }
 }
 
@@ -197,45 +338,45 @@ fn tallies(
     jams: &[Vec<u64>],
     readings: usize,
     trials: u64,
-) -> Vec<(Vec<Tally>, Tally)> {
-    let mut out = vec![(vec![Tally::default(); regions.len()], Tally::default()); readings];
+) -> Vec<ReadingShares> {
+    let empty = ReadingShares {
+        per_region: vec![JamConsistency::default(); regions.len()],
+        all: JamConsistency::default(),
+    };
+    let mut out = vec![empty; readings];
     for p in &cells.paper {
         let paper = paper_counts(p.table, &p.key).0;
         let i = regions.iter().position(|r| *r == p.region).unwrap_or(0);
-        for (r, (per_region, all)) in out.iter_mut().enumerate() {
+        for (r, x) in out.iter_mut().enumerate() {
             let ours = jams[p.run][r];
-            per_region[i].add(ours, trials, paper);
+            add(&mut x.per_region[i], ours, trials, paper);
             if p.case_d {
-                per_region[regions.len() - 1].add(ours, trials, paper);
+                add(&mut x.per_region[regions.len() - 1], ours, trials, paper);
             }
-            all.add(ours, trials, paper);
+            add(&mut x.all, ours, trials, paper);
         }
     }
     out
 }
 
 /// The shares table: one row per reading, a column per region and one for all.
-fn shares_table(
-    readings: &[Reading],
-    regions: &[String],
-    tallies: &[(Vec<Tally>, Tally)],
-    trials: u64,
-) -> Table {
+fn shares_table(r: &JamReadings) -> Table {
     let mut head = vec!["reading".to_string()];
-    head.extend(regions.iter().map(|r| format!("{r} jams")));
+    head.extend(r.regions.iter().map(|x| format!("{x} jams")));
     head.push("all jams".into());
     head.push("differing: ours higher / lower".into());
     let mut t = Table::new(
         format!(
-            "The paper's jam counts consistent with ours under each contact test (Fisher's exact two-sample test at 5 %; ours {trials} trials per cell, the paper's 200)"
+            "The paper's jam counts consistent with ours under each contact test (Fisher's exact two-sample test at 5 %; ours {} trials per cell, the paper's 200)",
+            r.trials
         ),
         head,
     );
-    for (reading, (per_region, all)) in readings.iter().zip(tallies) {
-        let mut row = vec![reading_name(*reading)];
-        row.extend(per_region.iter().map(|x| share(x.consistent, x.compared)));
-        row.push(share(all.consistent, all.compared));
-        row.push(all.differing());
+    for (reading, x) in r.readings.iter().zip(&r.shares) {
+        let mut row = vec![reading.name.clone()];
+        row.extend(x.per_region.iter().map(|x| share(x.consistent, x.compared)));
+        row.push(share(x.all.consistent, x.all.compared));
+        row.push(differing(&x.all));
         t.row(row);
     }
     t
@@ -243,35 +384,29 @@ fn shares_table(
 
 /// Where the differences lie: per mesh, per reading, the consistent share and the separated
 /// counts split into ours higher / lower.
-fn mesh_table(
-    g: &Gearing,
-    cells: &Cells,
-    readings: &[Reading],
-    jams: &[Vec<u64>],
-    trials: u64,
-) -> Table {
+fn mesh_table(r: &JamReadings) -> Table {
     let mut head = vec!["mesh".to_string()];
     head.extend(
-        readings
+        r.readings
             .iter()
-            .map(|r| format!("{}: consistent; higher / lower", reading_name(*r))),
+            .map(|x| format!("{}: consistent; higher / lower", x.name)),
     );
     let mut t = Table::new(
         "Where the jam counts differ, per mesh (all regions): the paper's counts consistent with ours; of the others, ours higher / lower",
         head,
     );
-    for m in g.meshes() {
-        let mut per = vec![Tally::default(); readings.len()];
-        for p in cells.paper.iter().filter(|p| p.mesh == m.label) {
-            let paper = paper_counts(p.table, &p.key).0;
-            for (r, x) in per.iter_mut().enumerate() {
-                x.add(jams[p.run][r], trials, paper);
+    for m in &r.meshes {
+        let mut per = vec![JamConsistency::default(); r.readings.len()];
+        for p in r.cells.iter().filter(|p| p.mesh == *m) {
+            let paper = paper_counts(&p.table, &p.key).0;
+            for (x, &ours) in per.iter_mut().zip(&p.jams) {
+                add(x, ours, r.trials, paper);
             }
         }
-        let mut row = vec![m.label.clone()];
+        let mut row = vec![m.clone()];
         row.extend(
             per.iter()
-                .map(|x| format!("{}; {}", share(x.consistent, x.compared), x.differing())),
+                .map(|x| format!("{}; {}", share(x.consistent, x.compared), differing(x))),
         );
         t.row(row);
     }
@@ -280,13 +415,13 @@ fn mesh_table(
 }
 
 /// Every paper cell's jam counts under every reading, with the paper's and the test's verdict.
-fn cells_csv(cells: &Cells, readings: &[Reading], jams: &[Vec<u64>], trials: u64) -> String {
+fn cells_csv(r: &JamReadings) -> String {
+    let trials = r.trials;
     let mut s =
         String::from("table,key,region,mesh,reading,trials,jams,paper_jams,jams_consistent\n");
-    for p in &cells.paper {
-        let paper = paper_counts(p.table, &p.key).0;
-        for (r, reading) in readings.iter().enumerate() {
-            let ours = jams[p.run][r];
+    for p in &r.cells {
+        let paper = paper_counts(&p.table, &p.key).0;
+        for (reading, &ours) in r.readings.iter().zip(&p.jams) {
             let verdict = paper.map_or_else(String::new, |_| {
                 consistent_with_paper(ours, trials, paper).to_string()
             });
@@ -295,7 +430,7 @@ fn cells_csv(cells: &Cells, readings: &[Reading], jams: &[Vec<u64>], trials: u64
                 p.key,
                 p.region,
                 p.mesh,
-                reading_name(*reading),
+                reading.name,
                 trials,
                 ours,
                 paper.map_or_else(String::new, |v| v.to_string()),
@@ -307,40 +442,33 @@ fn cells_csv(cells: &Cells, readings: &[Reading], jams: &[Vec<u64>], trials: u64
 }
 
 /// The notes saying what produced every number.
-fn notes(
-    t: &mut Table,
-    ctx: &Context,
-    s: &CellSettings,
-    stepping: &Stepping,
-    cells: &Cells,
-) -> Result<(), RunError> {
+fn notes(t: &mut Table, s: &Settings, r: &JamReadings) {
     t.note("Rule: a jam is a trial in which the contact test finds no free forward position for the driven gear at least once (exact solver: a lock, a strike or a blocked start; area test: after a driver step, no driven position within the reach ahead has an overlap area at most T). Gears whose bodies overlap at every angle are a jam under every reading.");
-    t.note(format!("Drive: the exact solver's rows differ by which gear of each mesh drives, not by the contact test: `listed` (the first gear of the mesh's name, as the train runs; the paper names the driver first, as Freeth et al. do, and does not say which gear its program turned), `other` (the second, both gears still turning their own way, started at the same share of its own pitch, over one turn of the larger gear) and `either` (drawn per trial from the trial's own stream). The area test runs with the drive `--set drive=` names ({}).", s.drive.name()));
+    t.note(format!("Drive: the exact solver's rows differ by which gear of each mesh drives, not by the contact test: `listed` (the first gear of the mesh's name, as the train runs; the paper names the driver first, as Freeth et al. do, and does not say which gear its program turned), `other` (the second, both gears still turning their own way, started at the same share of its own pitch, over one turn of the larger gear) and `either` (drawn per trial from the trial's own stream). The area test runs with the drive `--set drive=` names ({}).", s.drive.drive));
     t.note(format!(
         "Area test (polycheck::stepped): the driver turns by fixed steps of 1/{} of its pitch over one turn of the gear with more teeth; after each step the driven gear is turned forward from where it was until the overlap area of the two outlines is at most T (searched in steps of 1/{} of a driven pitch up to {} driven pitches ahead, then bisected); it starts touching, turned back from angle 0 until the area exceeds T (pushed forward if it already does), as the solver starts. Straight flanks; tips, valleys, per-tooth radii and rotation centres as manufactured.",
-        stepping.steps_per_pitch,
-        stepping.search_steps,
-        fmt_f64(stepping.reach, 2)
+        s.steps_per_pitch,
+        s.search_steps,
+        fmt_f64(s.reach, 2)
     ));
     t.note(format!(
         "Gearing {} (Freeth 2006 by default), h = {} mm, hypothesis {}, split {}; errors per Case as Edmunds' (A: 0 deg, 0.04; B: 0.5 deg, 0.04; C: 1 deg, 0.04; D: 2 deg, 0.08 of the pitch); Table 4: random error only, {} to {} of the pitch by {}, at G = {} %. Every reading runs the same gears and initial angle of trial t (the cell's stream, as the tables build them); seed {}.",
-        s.gearing.file,
+        s.gearing.gearing,
         fmt_f64(s.gearing.tooth_height, 2),
-        ctx.text(&study::errors::PARAM)?,
-        fmt_f64(s.errors.split()?, 2),
-        ctx.text(&RANDOM_FROM)?,
-        ctx.text(&RANDOM_TO)?,
-        ctx.text(&RANDOM_STEP)?,
-        fmt_f64(s.clearance()?, 0),
-        ctx.seed(),
+        s.errors.errors.hypothesis,
+        fmt_f64(s.errors.split, 2),
+        s.random.random_from,
+        s.random.random_to,
+        s.random.random_step,
+        fmt_f64(s.gearing.clearance, 0),
+        r.seed,
     ));
-    t.note(power_note(s.trials));
+    t.note(power_note(r.trials));
     t.note(format!(
         "{} paper cells ({} distinct cells run: Table 3's are Table I's at G = 40 %, the paper printed them twice and each printing is compared). Case D: its cells at every clearance, also counted in their G column. All: every paper jam count once.",
-        cells.paper.len(),
-        cells.runs.len()
+        r.cells.len(),
+        r.cells_run
     ));
-    Ok(())
 }
 
 /// What a count of `trials` can tell apart from a count of 200: the range of our counts the
@@ -362,45 +490,4 @@ fn power_note(trials: u64) -> String {
         consistent(2),
         consistent(100),
     )
-}
-
-fn run(ctx: &Context) -> Result<Report, RunError> {
-    let settings = crate::settings::cells(ctx, &TRIALS)?;
-    let (g, trials) = (settings.gearing(), settings.trials);
-    let stepping = Stepping {
-        steps_per_pitch: ctx.get(&STEPS_PER_PITCH)?,
-        reach: ctx.get(&REACH)?,
-        search_steps: ctx.get(&SEARCH_STEPS)?,
-    };
-    let mut readings: Vec<Reading> = study::drive::Drive::ALL
-        .into_iter()
-        .map(Reading::Exact)
-        .collect();
-    readings.extend(
-        tolerances(ctx)?
-            .into_iter()
-            .map(|t| Reading::Area(t, settings.drive)),
-    );
-    if readings.len() > 63 {
-        return Err(RunError::bad(
-            "--set",
-            TOLERANCES.name,
-            "at most 62 tolerances",
-        ));
-    }
-    let cells = all_cells(ctx, &settings)?;
-    let jams = run_all(ctx.engine(), g, &cells.runs, &readings, &stepping, trials)?;
-    let regions = regions(&cells);
-    let tallies = tallies(&cells, &regions, &jams, readings.len(), trials);
-    let mut shares = shares_table(&readings, &regions, &tallies, trials);
-    notes(&mut shares, ctx, &settings, &stepping, &cells)?;
-    Ok(Report {
-        tables: vec![shares, mesh_table(g, &cells, &readings, &jams, trials)],
-        files: vec![OutputFile::new(
-            "jam-readings-cells.csv",
-            cells_csv(&cells, &readings, &jams, trials),
-        )],
-        trials: cells.runs.len() as u64 * trials,
-        ..Default::default()
-    })
 }

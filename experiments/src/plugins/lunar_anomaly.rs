@@ -8,13 +8,16 @@
 //! The Cases' trials use table2's RNG streams (Case index, trial), so that without the
 //! pin-and-slot they are table2's triangular Lunar trials, number for number.
 
-use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use registry::{OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64};
+use serde::{Deserialize, Serialize};
 use stats::{DAYS_PER_YEAR, Estimate, mean_ci95};
 
 use crate::common::{Series, csv, line_plot, paper_cell};
+use crate::settings::typed::label;
 use study::anomaly::{AnomalyTrial, PinSlotTrain, Rows, RunStats};
-use study::errors;
-use study::gearing;
+use study::errors::CaseParams;
+use study::events::EventParams;
+use study::gearing::{self, GearingParams};
 use study::grids::CASES;
 use study::pointers::pointer_runs;
 
@@ -40,11 +43,107 @@ registry::params! {
     const CURVE_SAMPLES = Param::new("curve_samples", "2000", "points of the anomaly curve over one anomalistic month (amplitude and plot)", registry::Kind::count(100, registry::MAX_COUNT as u64, ""));
 }
 
-crate::experiment! {
-    id: "lunar-anomaly", paper_item: "Section 6 (assumptions) / Freeth 2006", run,
-    title: "The pin-and-slot lunar anomaly on the Lunar pointer (beyond the paper)",
-    params: [TRIALS, LUNAR_TURNS, SAMPLES_PER_ENGAGEMENT, CURVE_SAMPLES], groups: [study::gearing::GROUP, study::errors::CASES_GROUP, study::events::GROUP],
+/// The lunar anomaly's settings: trials per row, the Lunar run, the TD and curve sampling, the
+/// gearing with h and G, the Cases' errors and the event rule.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, registry::Settings)]
+pub struct Settings {
+    /// Trials per row ([`TRIALS`]).
+    #[param(TRIALS)]
+    pub trials: usize,
+    /// Run length, turns of b ([`LUNAR_TURNS`]).
+    #[param(LUNAR_TURNS)]
+    pub lunar_turns: f64,
+    /// TD samples per engagement of the busiest mesh ([`SAMPLES_PER_ENGAGEMENT`]).
+    #[param(SAMPLES_PER_ENGAGEMENT)]
+    pub samples_per_engagement: usize,
+    /// Points of the anomaly curve over one anomalistic month ([`CURVE_SAMPLES`]).
+    #[param(CURVE_SAMPLES)]
+    pub curve_samples: usize,
+    /// The gearing, G and h.
+    #[group]
+    pub gearing: GearingParams,
+    /// The split, the hypothesis and its parameters.
+    #[group]
+    pub errors: CaseParams,
+    /// The event rule.
+    #[group]
+    pub events: EventParams,
 }
+
+/// The lunar anomaly's results: (a) the anomaly from the geometry, (b) every trial of every row
+/// without and with the pin-and-slot, (c) the curves of the plot.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Results {
+    /// (a) The anomaly the pin-and-slot puts on the Lunar pointer.
+    pub anomaly: Anomaly,
+    /// The run's seed (the table names it).
+    pub seed: u64,
+    /// Clearance G of every mesh, % of h.
+    pub clearance: f64,
+    /// The Lunar run, turns of b.
+    pub turns: f64,
+    /// (b) Ideal teeth, then Cases A-D: each row's trials.
+    pub rows: Vec<AnomalyRow>,
+    /// (c) The anomaly from the geometry over two anomalistic months: (day of b, degrees).
+    pub ideal_curve: Curve,
+    /// (c) The first trial of Case B with the pin-and-slot, its pointer minus the mean motion,
+    /// up to its first jam: (day of b, degrees).
+    pub simulated: Curve,
+}
+
+/// (a): the anomaly from the gearing's pin-and-slot geometry.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Anomaly {
+    /// Axes apart e, mm.
+    pub offset: f64,
+    /// Pin radius R, mm.
+    pub pin_radius: f64,
+    /// Largest lead of the pointer over its mean motion (sampled over a period), radians.
+    pub lead: f64,
+    /// Largest lag (sampled), radians (negative).
+    pub lag: f64,
+    /// Amplitude asin(e/R) on the pointer (closed form), radians.
+    pub amplitude: f64,
+    /// Period of the anomaly (anomalistic month), days.
+    pub period_days: f64,
+    /// One turn of the turntable (apsidal line), years.
+    pub turntable_years: f64,
+}
+
+/// A curve of the plot: (day of b, degrees).
+pub type Curve = Vec<(f64, f64)>;
+
+/// (b): one row of the TD table.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct AnomalyRow {
+    /// `ideal teeth` or `Case A`-`Case D`.
+    pub label: String,
+    /// Each trial's statistics without and with the pin-and-slot.
+    pub trials: Vec<AnomalyTrial>,
+}
+
+/// The lunar anomaly.
+pub struct LunarAnomaly;
+
+impl registry::Experiment for LunarAnomaly {
+    const ID: &'static str = "lunar-anomaly";
+    const TITLE: &'static str =
+        "The pin-and-slot lunar anomaly on the Lunar pointer (beyond the paper)";
+    const PAPER_ITEM: &'static str = "Section 6 (assumptions) / Freeth 2006";
+    const PLACE: Place = Place::Beyond(30);
+    type Settings = Settings;
+    type Results = Results;
+
+    fn compute(s: &Settings, run: &Run) -> Result<Results, RunError> {
+        compute(s, run)
+    }
+
+    fn report(s: &Settings, r: &Results) -> Result<Report, RunError> {
+        label(&s.events, None, tables(s, r)?)
+    }
+}
+
+registry::register!(LunarAnomaly);
 
 /// The pointer the pin-and-slot sits on.
 const LUNAR: &str = "Lunar";
@@ -62,40 +161,23 @@ struct Row {
     case: Option<(f64, f64)>,
 }
 
-fn run(ctx: &Context) -> Result<Report, RunError> {
-    crate::settings::labelled(ctx, counted)
-}
-
-/// The experiment itself; [`run`] names the event rule in its tables' titles.
-fn counted(ctx: &Context) -> Result<Report, RunError> {
+/// Every simulation: the anomaly from the geometry, the rows' trials and the plotted trial.
+fn compute(s: &Settings, run: &Run) -> Result<Results, RunError> {
     let gearing::Settings {
         gearing: g,
         file,
         tooth_height: h,
         clearance,
-    } = crate::settings::gearing(ctx)?;
-    let trials: usize = ctx.get(&TRIALS)?;
-    let curve_samples: usize = ctx.get(&CURVE_SAMPLES)?;
-    let per = ctx.get(&SAMPLES_PER_ENGAGEMENT)?;
-    let runs = pointer_runs(&g, &[(LUNAR, ctx.get(&LUNAR_TURNS)?)], per)?;
-    let rule = crate::settings::rule(ctx)?;
+    } = s.gearing.load()?;
+    let (trials, curve_samples) = (s.trials, s.curve_samples);
+    let runs = pointer_runs(&g, &[(LUNAR, s.lunar_turns)], s.samples_per_engagement)?;
+    let rule = s.events.rule()?;
     let &[(_, turns, samples)] = runs.as_slice() else {
         return Err(RunError::Internal("one Lunar run expected".into()));
     };
     // (b)'s rows: ideal teeth and Cases A-D, each with its stream.
-    let errors = crate::settings::errors(ctx)?;
-    let mut rows = vec![Row {
-        label: "ideal teeth".into(),
-        index: IDEAL_INDEX,
-        case: None,
-    }];
-    for (ci, &(case, systematic, random)) in CASES.iter().enumerate() {
-        rows.push(Row {
-            label: format!("Case {case}"),
-            index: ci as u64,
-            case: Some((systematic, random)),
-        });
-    }
+    let errors = s.errors.load(s)?;
+    let rows = rows();
     let params: Vec<Option<hypotheses::Params>> = rows
         .iter()
         .map(|r| r.case.map(|case| errors.case_params(case)).transpose())
@@ -112,39 +194,81 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
     let train = setup.train(LUNAR)?;
 
     // (a) The anomaly from the geometry.
-    let mut tables = vec![anomaly_table(&train, curve_samples)];
+    let anomaly = anomaly(&train, curve_samples);
 
     // (b) TD statistics, ideal teeth and Cases A-D, without and with the pin-and-slot.
-    let seed = ctx.seed();
-    let typed = (file.as_str(), ctx.text(&errors::PARAM)?);
+    let seed = run.seed();
+    let typed = (file.as_str(), s.errors.errors.hypothesis.as_str());
     let key = batch_key(typed, &rows, &params, trials, h, clearance, turns, samples);
-    let results = setup.trials(ctx.engine(), &key, LUNAR, (turns, samples), trials as u64)?;
-    let per_row: Vec<&[AnomalyTrial]> = results.chunks(trials).collect();
-    tables.push(td_table(&rows, &per_row, trials, seed, clearance, turns));
+    let results = setup.trials(run.engine(), &key, LUNAR, (turns, samples), trials as u64)?;
+    let rows = rows
+        .iter()
+        .zip(results.chunks(trials))
+        .map(|(row, t)| AnomalyRow {
+            label: row.label.clone(),
+            trials: t.to_vec(),
+        })
+        .collect();
 
     // (c) The anomaly over two anomalistic months, and one Case B trajectory.
-    let (svg, curve_csv) = anomaly_plot(&setup, &train, seed, curve_samples)?;
+    let (ideal_curve, simulated) = anomaly_curves(&setup, &train, seed, curve_samples)?;
+    Ok(Results {
+        anomaly,
+        seed,
+        clearance,
+        turns,
+        rows,
+        ideal_curve,
+        simulated,
+    })
+}
+
+/// (b)'s rows: ideal teeth, then Cases A-D, each with its stream.
+fn rows() -> Vec<Row> {
+    let mut rows = vec![Row {
+        label: "ideal teeth".into(),
+        index: IDEAL_INDEX,
+        case: None,
+    }];
+    for (ci, &(case, systematic, random)) in CASES.iter().enumerate() {
+        rows.push(Row {
+            label: format!("Case {case}"),
+            index: ci as u64,
+            case: Some((systematic, random)),
+        });
+    }
+    rows
+}
+
+/// The tables, the plot and the CSV files, drawn from the results.
+fn tables(s: &Settings, r: &Results) -> Result<Report, RunError> {
+    let tables = vec![
+        anomaly_table(&r.anomaly),
+        td_table(&r.rows, s.trials, r.seed, r.clearance, r.turns),
+    ];
+    let (svg, curve_csv) = anomaly_plot(&r.ideal_curve, &r.simulated)?;
     Ok(Report {
         tables,
         files: vec![
             OutputFile::new("lunar-anomaly.svg", svg),
             OutputFile::new("lunar-anomaly-curve.csv", curve_csv),
-            OutputFile::new("lunar-anomaly-td.csv", td_csv(&rows, &per_row)),
+            OutputFile::new("lunar-anomaly-td.csv", td_csv(&r.rows)),
         ],
         // Mechanisms built: one per (row, trial), each run twice.
-        trials: results.len() as u64,
+        trials: r.rows.iter().map(|row| row.trials.len() as u64).sum(),
         ..Default::default()
     })
 }
 
-/// (c): the anomaly over two anomalistic months from the geometry, beside the first trial of
-/// Case B with the pin-and-slot (its pointer minus the mean motion): the plot and its CSV.
-fn anomaly_plot(
+/// (c): the anomaly over two anomalistic months from the geometry, and the first trial of
+/// Case B with the pin-and-slot (its pointer minus the mean motion) up to its first jam: each
+/// as (day of b, degrees).
+fn anomaly_curves(
     setup: &Rows<'_>,
     train: &PinSlotTrain,
     seed: u64,
     curve_samples: usize,
-) -> Result<(String, String), RunError> {
+) -> Result<(Curve, Curve), RunError> {
     let period = train.anomaly_period();
     let days_per_radian = DAYS_PER_YEAR / std::f64::consts::TAU;
     let points = 2 * curve_samples;
@@ -174,6 +298,14 @@ fn anomaly_plot(
             )
         })
         .collect();
+    Ok((ideal_curve, simulated))
+}
+
+/// (c): the plot of both curves, and its CSV.
+fn anomaly_plot(
+    ideal_curve: &[(f64, f64)],
+    simulated: &[(f64, f64)],
+) -> Result<(String, String), RunError> {
     let legend_sim = format!(
         "Case {PLOTTED_CASE}, trial 0, triangular teeth, with the pin-and-slot: pointer minus mean motion"
     );
@@ -184,11 +316,11 @@ fn anomaly_plot(
         &[
             Series {
                 label: "ideal gears: the anomaly from the geometry",
-                points: ideal_curve.clone(),
+                points: ideal_curve.to_vec(),
             },
             Series {
                 label: &legend_sim,
-                points: simulated.clone(),
+                points: simulated.to_vec(),
             },
         ],
     )?;
@@ -238,8 +370,9 @@ fn batch_key(
     )
 }
 
-/// (a): amplitude (sampled over one period and in closed form), periods, and the paper's value.
-fn anomaly_table(train: &PinSlotTrain, curve_samples: usize) -> Table {
+/// (a): the anomaly from the geometry: amplitude sampled over one period (`curve_samples`
+/// points) and in closed form, the periods.
+fn anomaly(train: &PinSlotTrain, curve_samples: usize) -> Anomaly {
     let period = train.anomaly_period();
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     for i in 0..=curve_samples {
@@ -247,50 +380,54 @@ fn anomaly_table(train: &PinSlotTrain, curve_samples: usize) -> Table {
         lo = lo.min(a);
         hi = hi.max(a);
     }
+    Anomaly {
+        offset: train.offset,
+        pin_radius: train.pin_radius,
+        lead: hi,
+        lag: lo,
+        amplitude: train.pointer_amplitude(),
+        period_days: train.anomaly_period_turns() * DAYS_PER_YEAR,
+        turntable_years: 1.0 / train.turntable_ratio,
+    }
+}
+
+/// (a): amplitude (sampled over one period and in closed form), periods, and the paper's value.
+fn anomaly_table(a: &Anomaly) -> Table {
     let mut t = Table::new(
         "The anomaly from the geometry: the Lunar pointer's ideal motion with the pin-and-slot, minus its mean motion",
         ["quantity", "ours", "unit", "paper"],
     );
     t.row(vec![
         "axes apart e / pin radius R (gearing data)".into(),
-        format!(
-            "{} / {}",
-            fmt_f64(train.offset, 2),
-            fmt_f64(train.pin_radius, 2)
-        ),
+        format!("{} / {}", fmt_f64(a.offset, 2), fmt_f64(a.pin_radius, 2)),
         "mm".into(),
         "-".into(),
     ]);
     t.row(vec![
         "largest lead of the pointer over its mean motion (sampled)".into(),
-        fmt_f64(hi.to_degrees(), 3),
+        fmt_f64(a.lead.to_degrees(), 3),
         "deg".into(),
         paper_cell("lunar-anomaly", "amplitude", 2),
     ]);
-    t.row(vec![
-        "largest lag (sampled)".into(),
-        fmt_f64(lo.to_degrees(), 3),
-        "deg".into(),
-        "-".into(),
-    ]);
-    t.row(vec![
-        "amplitude asin(e/R) on the pointer (closed form)".into(),
-        fmt_f64(train.pointer_amplitude().to_degrees(), 3),
-        "deg".into(),
-        "-".into(),
-    ]);
-    t.row(vec![
-        "period of the anomaly (anomalistic month)".into(),
-        fmt_f64(train.anomaly_period_turns() * DAYS_PER_YEAR, 3),
-        "days".into(),
-        "-".into(),
-    ]);
-    t.row(vec![
-        "one turn of the turntable (apsidal line)".into(),
-        fmt_f64(1.0 / train.turntable_ratio, 3),
-        "years".into(),
-        "-".into(),
-    ]);
+    let mut quantity = |q: &str, v: f64, unit: &str| {
+        t.row(vec![q.into(), fmt_f64(v, 3), unit.into(), "-".into()]);
+    };
+    quantity("largest lag (sampled)", a.lag.to_degrees(), "deg");
+    quantity(
+        "amplitude asin(e/R) on the pointer (closed form)",
+        a.amplitude.to_degrees(),
+        "deg",
+    );
+    quantity(
+        "period of the anomaly (anomalistic month)",
+        a.period_days,
+        "days",
+    );
+    quantity(
+        "one turn of the turntable (apsidal line)",
+        a.turntable_years,
+        "years",
+    );
     t.note("Ideal gears, the turntable at its mean rate from the gear ratios (b2-l1, l2-m1, m3-e3), the pin on the line of centres at the start; the anomaly is computed from the gearing file's pin_and_slot section, not typed in.");
     t.note("Paper: section 3 quotes the anomaly's angular variation as +-6.53 deg (Freeth et al. 2006) and compares it with Table 1; the paper itself leaves the pin-and-slot out.");
     t
@@ -302,14 +439,7 @@ fn show(e: &Estimate) -> String {
 }
 
 /// (b): per row, sigma, Dm and P without and with the pin-and-slot, and the paired difference.
-fn td_table(
-    rows: &[Row],
-    per_row: &[&[AnomalyTrial]],
-    trials: usize,
-    seed: u64,
-    clearance: f64,
-    turns: f64,
-) -> Table {
+fn td_table(rows: &[AnomalyRow], trials: usize, seed: u64, clearance: f64, turns: f64) -> Table {
     let mut t = Table::new(
         format!(
             "Lunar pointer TD, triangular teeth, G = {clearance} %, {turns} turn(s) of b, {trials} trials per row, seed {seed}: mean and 95 % interval over trials [deg]"
@@ -323,7 +453,8 @@ fn td_table(
             "trials that jammed (without / with)",
         ],
     );
-    for (row, trials_of) in rows.iter().zip(per_row) {
+    for row in rows {
+        let trials_of = &row.trials;
         let jams = |f: fn(&AnomalyTrial) -> bool| trials_of.iter().filter(|x| f(x)).count();
         let jammed = format!(
             "{}/{trials} / {}/{trials}",
@@ -354,10 +485,10 @@ fn td_table(
 }
 
 /// Every trial's statistics, per row and configuration.
-fn td_csv(rows: &[Row], per_row: &[&[AnomalyTrial]]) -> String {
+fn td_csv(rows: &[AnomalyRow]) -> String {
     let mut out = String::from("errors,trial,pin_and_slot,sigma_deg,dm_deg,p_deg,jammed\n");
-    for (row, trials_of) in rows.iter().zip(per_row) {
-        for (t, x) in trials_of.iter().enumerate() {
+    for row in rows {
+        for (t, x) in row.trials.iter().enumerate() {
             for (on, s) in [(false, x.rigid), (true, x.pin_slot)] {
                 out.push_str(&registry::csv_row!(
                     row.label, t, on, s.sigma, s.dm, s.p, s.jammed

@@ -8,13 +8,19 @@
 //! at an angle of its own draws it from a stream of its own.
 
 use motion::Model;
-use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use registry::{OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64};
+use serde::{Deserialize, Serialize};
 use study::cell::{CellSpec, Counts, PAPER_TRIALS};
+use study::errors::CaseParams;
+use study::events::EventParams;
+use study::gearing::GearingParams;
 use study::limits::IdealPair;
 use study::motion_models::{Figure2, PointerSigma, SigmaPoint};
-use study::pointers::POINTERS;
+use study::pointers::{POINTERS, RunLengths};
+use study::tolerance::RandomGrid;
 
 use crate::cells::{Tally, paper_counts, paper_table_cells, share};
+use crate::settings::typed::{Gearing, cells};
 
 registry::params! {
     /// `trials`: trials per cell of Tables 3, 4 and I (a screening count; the paper: 200).
@@ -33,20 +39,243 @@ registry::params! {
     const FIG_IV_SAMPLES = Param::new("fig_iv_samples", "400", "Figure IV's TD samples per run", registry::Kind::count(2, 1_000_000, ""));
 }
 
-crate::experiment! {
-    id: "motion-models", paper_item: "Tables 1, 3, 4, I and Figures 2, IV (how the driven gear moves, beyond the paper)", run,
-    title: "Motion models of the driven gear (pushed, carried at the nominal ratio, stepped the paper's way) against the paper's jams, Figure 2, Table 1 and Figure IV",
-    params: [TRIALS, MODELS, CLEARANCES, FIG2_STEP, POINTER_TRIALS, FIG_IV_CLEARANCES, FIG_IV_SAMPLES], groups: [study::gearing::GROUP, study::errors::CASES_GROUP, study::tolerance::RANDOM_GRID, study::events::GROUP, study::pointers::RUN_LENGTHS],
+/// The settings: trials per cell, the models, Table I's clearances, Figure 2's step, Table 1's
+/// trials, Figure IV's clearances and samples, the gearing with h and G, the Cases' errors,
+/// Table 4's grid, the event rule and the pointers' run lengths.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, registry::Settings)]
+pub struct Settings {
+    /// Trials per cell of Tables 3, 4 and I ([`TRIALS`]).
+    #[param(TRIALS)]
+    pub trials: u64,
+    /// The motion models compared, comma-separated, or `all` ([`MODELS`]).
+    #[param(MODELS)]
+    pub models: String,
+    /// Table I's clearances, comma-separated, % of h ([`CLEARANCES`]).
+    #[param(CLEARANCES)]
+    pub clearances: String,
+    /// Figure 2's sampling step, degrees ([`FIG2_STEP`]).
+    #[param(FIG2_STEP)]
+    pub fig2_step: f64,
+    /// Table 1's trials ([`POINTER_TRIALS`]).
+    #[param(POINTER_TRIALS)]
+    pub pointer_trials: u64,
+    /// Figure IV's clearances, comma-separated, % of h ([`FIG_IV_CLEARANCES`]).
+    #[param(FIG_IV_CLEARANCES)]
+    pub fig_iv_clearances: String,
+    /// Figure IV's TD samples per run ([`FIG_IV_SAMPLES`]).
+    #[param(FIG_IV_SAMPLES)]
+    pub fig_iv_samples: usize,
+    /// The gearing, G and h.
+    #[group]
+    pub gearing: GearingParams,
+    /// The split, the hypothesis and its parameters.
+    #[group]
+    pub errors: CaseParams,
+    /// Table 4's grid of random errors.
+    #[group]
+    pub random: RandomGrid,
+    /// The event rule.
+    #[group]
+    pub events: EventParams,
+    /// The five pointers' run lengths and TD samples per engagement (Table 1's).
+    #[group]
+    pub run_lengths: RunLengths,
 }
+
+/// What every model gave: the paper's cells counted, Figure 2 against the closed form, Table
+/// 1's pointers and Figure IV's σ.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct Results {
+    /// The seed every trial's stream comes from.
+    pub seed: u64,
+    /// The models compared, in the order of every per-model list: (name, what the driven gear
+    /// does).
+    pub models: Vec<(String, String)>,
+    /// Distinct cells run (Table 3's are Table I's at G = 40 %).
+    pub cells_run: usize,
+    /// Every paper cell of Tables 3, 4 and I, with our counts under each model.
+    pub cells: Vec<ModelCell>,
+    /// Per model: Figure 2's pair against Thorndike's closed form.
+    pub figure2: Vec<Figure2>,
+    /// Per model, per trial, per pointer of [`POINTERS`]: Table 1's σ (degrees).
+    pub pointer_sigmas: Vec<Vec<Vec<PointerSigma>>>,
+    /// Figure IV's meshes (the gearing's, in its order).
+    pub meshes: Vec<String>,
+    /// Figure IV's clearances G, % of h.
+    pub fig_iv_clearances: Vec<f64>,
+    /// Per model, per mesh, per clearance: σ of the driven gear (degrees) and how the run ended.
+    pub fig_iv: Sweeps,
+}
+
+/// A cell of the paper's tables, where its counts are, and ours under each model.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ModelCell {
+    /// The table: `table3`, `table4` or `tableI`.
+    pub table: String,
+    /// Its key in the paper's reference file.
+    pub key: String,
+    /// Its mesh (driver-driven).
+    pub mesh: String,
+    /// Our counts under each model, in [`Results::models`]' order.
+    pub counts: Vec<Counts>,
+}
+
+/// The motion models compared.
+pub struct MotionModels;
+
+impl registry::Experiment for MotionModels {
+    const ID: &'static str = "motion-models";
+    const TITLE: &'static str = "Motion models of the driven gear (pushed, carried at the nominal ratio, stepped the paper's way) against the paper's jams, Figure 2, Table 1 and Figure IV";
+    const PAPER_ITEM: &'static str =
+        "Tables 1, 3, 4, I and Figures 2, IV (how the driven gear moves, beyond the paper)";
+    const PLACE: Place = Place::Beyond(70);
+    type Settings = Settings;
+    type Results = Results;
+
+    fn compute(s: &Settings, run: &Run) -> Result<Results, RunError> {
+        motion::link();
+        let models = models(s)?;
+        let cs = cell_settings(s)?;
+        let (g, trials, rule) = (cs.gearing(), cs.trials, cs.rule.clone());
+        let (runs, paper) = all_cells(s, &cs)?;
+        let counts =
+            study::motion_models::cell_counts(run.engine(), g, &runs, &models, &rule, trials)?;
+        let figure2: Vec<Figure2> = models
+            .iter()
+            .map(|m| study::motion_models::figure2(m, s.fig2_step))
+            .collect::<Result<_, _>>()?;
+        let pointer_sigmas = pointer_sigmas(s, run, &models, &rule)?;
+        let (meshes, fig_iv_clearances, fig_iv) = fig_iv_sweeps(s, run, &models, &rule)?;
+        Ok(Results {
+            seed: run.seed(),
+            models: models
+                .iter()
+                .map(|m| (m.name().to_string(), m.definition().summary().to_string()))
+                .collect(),
+            cells_run: runs.len(),
+            cells: paper
+                .into_iter()
+                .map(|p| ModelCell {
+                    table: p.table.to_owned(),
+                    key: p.key,
+                    mesh: p.mesh,
+                    counts: counts[p.run].clone(),
+                })
+                .collect(),
+            figure2,
+            pointer_sigmas,
+            meshes,
+            fig_iv_clearances,
+            fig_iv,
+        })
+    }
+
+    fn report(s: &Settings, r: &Results) -> Result<Report, RunError> {
+        let trials = s.trials;
+        let tallies = tallies(&r.cells, r.models.len());
+        let mut counts_t = counts_table(&r.models, &tallies, trials);
+        counts_t.note(format!(
+            "Rule {}; gearing {}, h = {} mm, hypothesis {}; seed {}.",
+            s.events.rule()?.label(),
+            s.gearing.gearing,
+            fmt_f64(s.gearing.tooth_height, 2),
+            s.errors.errors.hypothesis,
+            r.seed
+        ));
+        Ok(Report {
+            tables: vec![
+                models_table(&r.models),
+                counts_t,
+                table4_sums(r, trials),
+                figure2_table(&r.models, &r.figure2, s.fig2_step),
+                table1_table(&r.models, &r.pointer_sigmas, s.pointer_trials),
+                fig_iv_table(r),
+            ],
+            files: vec![
+                OutputFile::new("motion-models-cells.csv", cells_csv(r)),
+                OutputFile::new("motion-models-fig-iv.csv", fig_iv_csv(r)),
+            ],
+            trials: r.cells_run as u64 * trials,
+            ..Default::default()
+        })
+    }
+}
+
+registry::register!(MotionModels);
 
 /// Table 4's meshes whose jams the paper's text sets apart, in the order the sums are printed.
 const TABLE4_MESHES: [&str; 7] = [
     "d2-e2", "e4-f1", "c2-d1", "m2-n1", "h2-i1", "g2-h1", "m3-e3",
 ];
 
+/// The cells' settings: the gearing with G, the Cases' errors, the event rule, the listed
+/// driver, and the trials per cell.
+fn cell_settings(s: &Settings) -> Result<study::grids::CellSettings, RunError> {
+    cells(
+        Gearing::WithClearance(&s.gearing),
+        &s.errors,
+        Some(&s.events),
+        None,
+        s.trials,
+        s,
+    )
+}
+
+/// Table 1's pointers under every model: per model, per trial, per pointer.
+fn pointer_sigmas(
+    s: &Settings,
+    run: &Run,
+    models: &[Model],
+    rule: &rules::Rule,
+) -> Result<Vec<Vec<Vec<PointerSigma>>>, RunError> {
+    let gearing = s.gearing.load()?;
+    let mech = study::pointers::ideal_mechanism(&gearing, rule)?;
+    let per = s.run_lengths.samples_per_engagement;
+    let runs = study::pointers::pointer_runs(&gearing.gearing, &s.run_lengths.turns(), per)?;
+    study::motion_models::pointer_sigmas(
+        run.engine(),
+        &mech,
+        &runs,
+        models,
+        s.pointer_trials,
+        gearing.tooth_height,
+    )
+}
+
+/// Figure IV's σ per model, per mesh, per clearance.
+pub type Sweeps = Vec<Vec<Vec<SigmaPoint>>>;
+
+/// Figure IV's sweep under every model: the meshes, the clearances, and per model, per mesh,
+/// per clearance the σ.
+fn fig_iv_sweeps(
+    s: &Settings,
+    run: &Run,
+    models: &[Model],
+    rule: &rules::Rule,
+) -> Result<(Vec<String>, Vec<f64>, Sweeps), RunError> {
+    let gearing = s.gearing.load()?;
+    let g = &gearing.gearing;
+    let clearances =
+        study::gearing::clearance_list(&s.fig_iv_clearances, FIG_IV_CLEARANCES.name, 200.0)?;
+    let labels: Vec<String> = g.meshes().iter().map(|m| m.label.clone()).collect();
+    let pairs: Vec<IdealPair> = labels
+        .iter()
+        .map(|l| IdealPair::named(l, g, gearing.tooth_height))
+        .collect::<Result<_, _>>()?;
+    let sweeps = study::motion_models::sigma_sweep(
+        run.engine(),
+        &pairs,
+        &clearances,
+        models,
+        rule,
+        s.fig_iv_samples,
+    )?;
+    Ok((labels, clearances, sweeps))
+}
+
 /// The models named by `models` (`all`: every registered one, in name order).
-fn models(ctx: &Context) -> Result<Vec<Model>, RunError> {
-    let text = ctx.text(&MODELS)?;
+fn models(s: &Settings) -> Result<Vec<Model>, RunError> {
+    let text = &s.models;
     let bad = |e: motion::ModelError| RunError::bad("--set", MODELS.name, e.to_string());
     if text.trim() == "all" {
         return Model::all().map_err(bad);
@@ -77,13 +306,13 @@ struct PaperCell {
 
 /// The distinct cells of Tables 3, 4 and I and every paper cell with the run that gives it.
 fn all_cells(
-    ctx: &Context,
-    s: &study::grids::CellSettings,
+    s: &Settings,
+    cs: &study::grids::CellSettings,
 ) -> Result<(Vec<CellSpec>, Vec<PaperCell>), RunError> {
-    let clearances = crate::settings::clearance_list(ctx, &CLEARANCES, 200.0)?;
-    let randoms = crate::settings::random_grid(ctx)?;
+    let clearances = study::gearing::clearance_list(&s.clearances, CLEARANCES.name, 200.0)?;
+    let randoms = s.random.values(s)?;
     let (mut runs, mut paper): (Vec<CellSpec>, Vec<PaperCell>) = (Vec::new(), Vec::new());
-    for c in paper_table_cells(s, &randoms, &clearances)? {
+    for c in paper_table_cells(cs, &randoms, &clearances)? {
         let canonical = c.cell.canonical();
         let run = match runs.iter().position(|r| r.canonical() == canonical) {
             Some(i) => i,
@@ -103,17 +332,17 @@ fn all_cells(
 }
 
 /// Per model: the tally of Tables 3, 4 and I, and of all three.
-fn tallies(paper: &[PaperCell], counts: &[Vec<Counts>], models: usize) -> Vec<[Tally; 4]> {
+fn tallies(cells: &[ModelCell], models: usize) -> Vec<[Tally; 4]> {
     let mut out = vec![[Tally::default(); 4]; models];
-    for p in paper {
-        let theirs = paper_counts(p.table, &p.key);
+    for p in cells {
+        let theirs = paper_counts(&p.table, &p.key);
         let t = ["table3", "table4", "tableI"]
             .iter()
             .position(|&id| id == p.table)
             .unwrap_or(0);
         for (m, tally) in out.iter_mut().enumerate() {
-            tally[t].add(&counts[p.run][m], theirs);
-            tally[3].add(&counts[p.run][m], theirs);
+            tally[t].add(&p.counts[m], theirs);
+            tally[3].add(&p.counts[m], theirs);
         }
     }
     out
@@ -128,7 +357,8 @@ fn reproduces(t: &[Tally; 4]) -> bool {
         && all.dis_consistent * 345 >= 320 * all.dis_compared
 }
 
-fn counts_table(models: &[Model], tallies: &[[Tally; 4]], trials: u64) -> Table {
+/// The models' tallies against the paper's counts, with the verdict.
+fn counts_table(models: &[(String, String)], tallies: &[[Tally; 4]], trials: u64) -> Table {
     let mut t = Table::new(
         format!(
             "The paper's counts of Tables 3, 4 and I consistent with ours under each motion model (Fisher's exact two-sample test at 5 %; ours {trials} trials per cell, the paper's 200)"
@@ -145,7 +375,7 @@ fn counts_table(models: &[Model], tallies: &[[Tally; 4]], trials: u64) -> Table 
             "reproduces the counts",
         ],
     );
-    for (m, tally) in models.iter().zip(tallies) {
+    for ((name, _), tally) in models.iter().zip(tallies) {
         let s = |x: &Tally, jams: bool| {
             if jams {
                 share(x.jams_consistent, x.jams_compared)
@@ -154,7 +384,7 @@ fn counts_table(models: &[Model], tallies: &[[Tally; 4]], trials: u64) -> Table 
             }
         };
         t.row(vec![
-            m.name().to_string(),
+            name.clone(),
             s(&tally[0], true),
             s(&tally[0], false),
             s(&tally[1], true),
@@ -191,13 +421,7 @@ fn power_note(trials: u64) -> String {
 }
 
 /// Table 4's jams summed over its rows, per mesh, under each model and in the paper.
-fn table4_sums(
-    g: &train::Gearing,
-    paper: &[PaperCell],
-    counts: &[Vec<Counts>],
-    models: &[Model],
-    trials: u64,
-) -> Table {
+fn table4_sums(r: &Results, trials: u64) -> Table {
     let mut head = vec!["model".to_string()];
     head.extend(TABLE4_MESHES.iter().map(|m| m.to_string()));
     head.push("all 15 meshes".into());
@@ -208,8 +432,8 @@ fn table4_sums(
         head,
     );
     let scale = PAPER_TRIALS as f64 / trials as f64;
-    let sum = |mesh: Option<&str>, value: &dyn Fn(&PaperCell) -> Option<u64>| -> u64 {
-        paper
+    let sum = |mesh: Option<&str>, value: &dyn Fn(&ModelCell) -> Option<u64>| -> u64 {
+        r.cells
             .iter()
             .filter(|p| p.table == "table4" && mesh.is_none_or(|m| p.mesh == m))
             .filter_map(value)
@@ -217,25 +441,26 @@ fn table4_sums(
     };
     let mut row = vec!["paper".to_string()];
     for mesh in TABLE4_MESHES.iter().map(Some).chain([None]) {
-        row.push(sum(mesh.copied(), &|p| paper_counts(p.table, &p.key).0).to_string());
+        row.push(sum(mesh.copied(), &|p| paper_counts(&p.table, &p.key).0).to_string());
     }
     t.row(row);
-    for (m, model) in models.iter().enumerate() {
-        let mut row = vec![model.name().to_string()];
+    for (m, (model, _)) in r.models.iter().enumerate() {
+        let mut row = vec![model.clone()];
         for mesh in TABLE4_MESHES.iter().map(Some).chain([None]) {
-            let ours = sum(mesh.copied(), &|p| Some(counts[p.run][m].jams));
+            let ours = sum(mesh.copied(), &|p| Some(p.counts[m].jams));
             row.push(fmt_f64(ours as f64 * scale, 0));
         }
         t.row(row);
     }
     t.note(format!(
         "The paper's sums are its own Table 4 counts added up (paper.ron); its text singles out these meshes (largest and smallest tolerances). {} meshes in the gearing.",
-        g.meshes().len()
+        r.meshes.len()
     ));
     t
 }
 
-fn figure2_table(models: &[Model], rows: &[Figure2], step: f64) -> Table {
+/// Figure 2's pair under each model against the closed form.
+fn figure2_table(models: &[(String, String)], rows: &[Figure2], step: f64) -> Table {
     let mut t = Table::new(
         format!(
             "Figure 2's pair (N1 = N2 = 8, R = 200, r = 100, D = 310) against Thorndike's closed form [I]/[II], one driver turn sampled every {} deg",
@@ -250,10 +475,10 @@ fn figure2_table(models: &[Model], rows: &[Figure2], step: f64) -> Table {
             "on the closed form",
         ],
     );
-    for (m, r) in models.iter().zip(rows) {
+    for ((name, _), r) in models.iter().zip(rows) {
         let own = r.max_diff_own.unwrap_or(r.max_diff);
         t.row(vec![
-            m.name().to_string(),
+            name.clone(),
             below_or(r.max_diff),
             r.max_diff_own.map_or_else(|| "-".to_string(), below_or),
             fmt_f64(r.sigma, 4),
@@ -281,7 +506,12 @@ fn below_or(x: f64) -> String {
     fmt_f64(x, 4)
 }
 
-fn table1_table(models: &[Model], sigmas: &[Vec<Vec<PointerSigma>>], trials: u64) -> Table {
+/// Table 1's five pointers under each model beside the paper's σ.
+fn table1_table(
+    models: &[(String, String)],
+    sigmas: &[Vec<Vec<PointerSigma>>],
+    trials: u64,
+) -> Table {
     let mut head = vec!["model".to_string()];
     head.extend(
         POINTERS
@@ -294,8 +524,8 @@ fn table1_table(models: &[Model], sigmas: &[Vec<Vec<PointerSigma>>], trials: u64
         ),
         head,
     );
-    for (m, per_trial) in models.iter().zip(sigmas) {
-        let mut row = vec![m.name().to_string()];
+    for ((name, _), per_trial) in models.iter().zip(sigmas) {
+        let mut row = vec![name.clone()];
         for (i, (name, _)) in POINTERS.iter().enumerate() {
             let values: Vec<f64> = per_trial.iter().map(|t| t[i].sigma).collect();
             let mean = values.iter().sum::<f64>() / values.len().max(1) as f64;
@@ -318,12 +548,8 @@ fn table1_table(models: &[Model], sigmas: &[Vec<Vec<PointerSigma>>], trials: u64
 
 /// Figure IV's shape under one model: meshes with σ smallest at 40-50 %, meshes with σ
 /// largest at the smallest clearance with a σ, and the median of the largest clearance with a σ.
-fn fig_iv_table(
-    models: &[Model],
-    labels: &[String],
-    clearances: &[f64],
-    sweeps: &[Vec<Vec<SigmaPoint>>],
-) -> Table {
+fn fig_iv_table(r: &Results) -> Table {
+    let (labels, clearances) = (&r.meshes, &r.fig_iv_clearances);
     let mut t = Table::new(
         format!(
             "Figure IV's shape: sigma of each ideal mesh's driven gear against G = {} %",
@@ -342,7 +568,7 @@ fn fig_iv_table(
             "largest G with a sigma (median)",
         ],
     );
-    for (m, per_pair) in models.iter().zip(sweeps) {
+    for ((name, _), per_pair) in r.models.iter().zip(&r.fig_iv) {
         let mut with = 0;
         let (mut min_mid, mut max_low) = (0, 0);
         let (mut argmins, mut lasts) = (Vec::new(), Vec::new());
@@ -373,7 +599,7 @@ fn fig_iv_table(
             lasts.push(valid[valid.len() - 1].0);
         }
         t.row(vec![
-            m.name().to_string(),
+            name.clone(),
             format!("{with} of {}", labels.len()),
             format!("{min_mid} of {with}"),
             format!("{max_low} of {with}"),
@@ -398,16 +624,14 @@ fn median(v: &mut [f64]) -> Option<f64> {
     })
 }
 
-fn models_table(models: &[Model]) -> Table {
+/// The models compared and what each does.
+fn models_table(models: &[(String, String)]) -> Table {
     let mut t = Table::new(
         "The motion models compared (`motion`, one plugin file each)",
         ["model", "what the driven gear does"],
     );
-    for m in models {
-        t.row(vec![
-            m.name().to_string(),
-            m.definition().summary().to_string(),
-        ]);
+    for (name, summary) in models {
+        t.row(vec![name.clone(), summary.clone()]);
     }
     t.note(format!(
         "Default: {} (every other table runs it).",
@@ -417,18 +641,17 @@ fn models_table(models: &[Model]) -> Table {
 }
 
 /// Every cell under every model, as CSV.
-fn cells_csv(paper: &[PaperCell], counts: &[Vec<Counts>], models: &[Model]) -> String {
+fn cells_csv(r: &Results) -> String {
     let mut s = String::from("table,key,mesh,model,trials,jams,dis,paper_jams,paper_dis\n");
-    for p in paper {
-        let (pj, pd) = paper_counts(p.table, &p.key);
+    for p in &r.cells {
+        let (pj, pd) = paper_counts(&p.table, &p.key);
         let show = |v: Option<u64>| v.map_or_else(String::new, |v| v.to_string());
-        for (m, model) in models.iter().enumerate() {
-            let c = &counts[p.run][m];
+        for ((model, _), c) in r.models.iter().zip(&p.counts) {
             s.push_str(&registry::csv_row!(
                 p.table,
                 p.key,
                 p.mesh,
-                model.name(),
+                model,
                 c.trials,
                 c.jams,
                 c.disengagements,
@@ -441,23 +664,18 @@ fn cells_csv(paper: &[PaperCell], counts: &[Vec<Counts>], models: &[Model]) -> S
 }
 
 /// Figure IV's σ under every model, as CSV.
-fn fig_iv_csv(
-    models: &[Model],
-    labels: &[String],
-    clearances: &[f64],
-    sweeps: &[Vec<Vec<SigmaPoint>>],
-) -> String {
+fn fig_iv_csv(r: &Results) -> String {
     let mut s = String::from("model,mesh,clearance,sigma_deg,jammed,disengaged\n");
-    for (m, per_pair) in models.iter().zip(sweeps) {
-        for (label, pts) in labels.iter().zip(per_pair) {
-            for (g, p) in clearances.iter().zip(pts) {
+    for ((model, _), per_pair) in r.models.iter().zip(&r.fig_iv) {
+        for (label, pts) in r.meshes.iter().zip(per_pair) {
+            for (g, p) in r.fig_iv_clearances.iter().zip(pts) {
                 let sigma = if p.sigma.is_finite() {
                     p.sigma.to_string()
                 } else {
                     String::new()
                 };
                 s.push_str(&registry::csv_row!(
-                    m.name(),
+                    model,
                     label,
                     g,
                     sigma,
@@ -468,86 +686,6 @@ fn fig_iv_csv(
         }
     }
     s
-}
-
-fn run(ctx: &Context) -> Result<Report, RunError> {
-    motion::link();
-    let models = models(ctx)?;
-    let settings = crate::settings::cells(ctx, &TRIALS)?;
-    let (g, trials, rule) = (settings.gearing(), settings.trials, settings.rule.clone());
-    let (cells, paper) = all_cells(ctx, &settings)?;
-    let counts =
-        study::motion_models::cell_counts(ctx.engine(), g, &cells, &models, &rule, trials)?;
-    let tallies = tallies(&paper, &counts, models.len());
-    let mut counts_t = counts_table(&models, &tallies, trials);
-    counts_t.note(format!(
-        "Rule {}; gearing {}, h = {} mm, hypothesis {}; seed {}.",
-        rule.label(),
-        settings.gearing.file,
-        fmt_f64(settings.gearing.tooth_height, 2),
-        ctx.text(&study::errors::PARAM)?,
-        ctx.seed()
-    ));
-    let sums = table4_sums(g, &paper, &counts, &models, trials);
-
-    let step: f64 = ctx.get(&FIG2_STEP)?;
-    let fig2: Vec<Figure2> = models
-        .iter()
-        .map(|m| study::motion_models::figure2(m, step))
-        .collect::<Result<_, _>>()?;
-
-    let gearing = crate::settings::gearing(ctx)?;
-    let mech = study::pointers::ideal_mechanism(&gearing, &rule)?;
-    let per = ctx.get(&study::pointers::SAMPLES_PER_ENGAGEMENT)?;
-    let runs = study::pointers::pointer_runs(g, &crate::settings::turns(ctx, &POINTERS)?, per)?;
-    let pointer_trials: u64 = ctx.get(&POINTER_TRIALS)?;
-    let sigmas = study::motion_models::pointer_sigmas(
-        ctx.engine(),
-        &mech,
-        &runs,
-        &models,
-        pointer_trials,
-        gearing.tooth_height,
-    )?;
-
-    let clearances = crate::settings::clearance_list(ctx, &FIG_IV_CLEARANCES, 200.0)?;
-    let labels: Vec<String> = g.meshes().iter().map(|m| m.label.clone()).collect();
-    let pairs: Vec<IdealPair> = labels
-        .iter()
-        .map(|l| IdealPair::named(l, g, gearing.tooth_height))
-        .collect::<Result<_, _>>()?;
-    let samples: usize = ctx.get(&FIG_IV_SAMPLES)?;
-    let sweeps = study::motion_models::sigma_sweep(
-        ctx.engine(),
-        &pairs,
-        &clearances,
-        &models,
-        &rule,
-        samples,
-    )?;
-
-    Ok(Report {
-        tables: vec![
-            models_table(&models),
-            counts_t,
-            sums,
-            figure2_table(&models, &fig2, step),
-            table1_table(&models, &sigmas, pointer_trials),
-            fig_iv_table(&models, &labels, &clearances, &sweeps),
-        ],
-        files: vec![
-            OutputFile::new(
-                "motion-models-cells.csv",
-                cells_csv(&paper, &counts, &models),
-            ),
-            OutputFile::new(
-                "motion-models-fig-iv.csv",
-                fig_iv_csv(&models, &labels, &clearances, &sweeps),
-            ),
-        ],
-        trials: cells.len() as u64 * trials,
-        ..Default::default()
-    })
 }
 
 #[cfg(test)]

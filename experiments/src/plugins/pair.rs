@@ -1,22 +1,76 @@
 //! `pair`: any mesh described in a RON file (tooth counts, radii, optional measured tip angles and
 //! eccentricity, centre distance or clearance): θ(φ), Theoretical Difference and every event.
 
-use registry::{Context, OutputFile, Report, RunError, Table, fmt_f64};
+use contact::Solve;
+use registry::{OutputFile, Place, Report, Run, RunError, Table, fmt_f64};
+use serde::{Deserialize, Serialize};
 
 use crate::common::{csv, deg};
 use crate::pair_svg::check_svg;
-use study::drive::Drive;
-use study::pair_file::{Prepared, default_run_deg, prepare};
+use crate::settings::typed::label;
+use study::drive::{Drive, DriveParams};
+use study::events::EventParams;
+use study::pair_file::{Numbering, Prepared, default_run_deg, prepare};
 
 const EXAMPLE: &str = include_str!("../../data/pair-example.ron");
 const EXAMPLE_NAME: &str = "experiments/data/pair-example.ron";
 
-crate::experiment! {
-    id: "pair", paper_item: "sections 2-3 (any gear pair, e.g. measured from CT scans)", run,
-    title: "One mesh from a RON file: theta(phi), Theoretical Difference, jams and disengagements",
-    params: [], groups: [study::events::GROUP, study::drive::GROUP],
-    config: CONFIG_HELP,
+/// The pair's settings: the event rule, and which gear drives and where counting ends.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, registry::Settings)]
+pub struct Settings {
+    /// The event rule.
+    #[group]
+    pub events: EventParams,
+    /// Which gear drives, where counting ends.
+    #[group]
+    pub drive: DriveParams,
 }
+
+/// The pair's results: the file as written, how the run numbers its teeth, and the run with its
+/// samples.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct Results {
+    /// The pair file's name: the `--config` file as given, or the example's path.
+    pub file: String,
+    /// The pair as its file describes it, whichever gear drives (`pair-check.svg` draws it).
+    pub as_written: Prepared,
+    /// The file's numbering of the run's driver and of its driven gear.
+    pub numbering: (Numbering, Numbering),
+    /// The run: θ(φ), its segments and events, and the mesh it ran.
+    pub traj: contact::Trajectory,
+    /// The driver angle at the start φ0, radians.
+    pub phi0: f64,
+    /// The driven angle at the start θ0, radians.
+    pub theta0: f64,
+    /// How far the driver turned, degrees.
+    pub run_deg: f64,
+    /// A row per sample (degrees): φ − φ0, θ − θ0, the Theoretical Difference, φ and θ.
+    pub rows: Vec<[f64; 5]>,
+}
+
+/// The pair.
+pub struct Pair;
+
+impl registry::Experiment for Pair {
+    const ID: &'static str = "pair";
+    const TITLE: &'static str =
+        "One mesh from a RON file: theta(phi), Theoretical Difference, jams and disengagements";
+    const PAPER_ITEM: &'static str = "sections 2-3 (any gear pair, e.g. measured from CT scans)";
+    const PLACE: Place = Place::Paper(30);
+    const CONFIG: Option<&'static str> = Some(CONFIG_HELP);
+    type Settings = Settings;
+    type Results = Results;
+
+    fn compute(s: &Settings, run: &Run) -> Result<Results, RunError> {
+        compute(s, run)
+    }
+
+    fn report(s: &Settings, r: &Results) -> Result<Report, RunError> {
+        label(&s.events, Some(&s.drive), figures(s, r)?)
+    }
+}
+
+registry::register!(Pair);
 
 /// What `cargo xtask help pair` says of the file: its fields, then every convention in a
 /// sentence, so that someone with measurements can fill it in without reading the code.
@@ -78,15 +132,9 @@ release a link of its own (open it from disk; `#phi=X` opens it at phi - phi0 = 
 /// The summary of a run: the mesh, the angles it ran through and from, its events as `rule`
 /// counts them, and the Theoretical Difference's statistics `s` (none for a driven gear never
 /// pushed).
-fn summary_table(
-    name: &str,
-    mesh: &contact::Mesh,
-    traj: &contact::Trajectory,
-    rule: &rules::Rule,
-    run_deg: f64,
-    (phi0, theta0): (f64, f64),
-    s: &stats::PointerStats,
-) -> Table {
+fn summary_table(r: &Results, rule: &rules::Rule, s: &stats::PointerStats) -> Table {
+    let (name, traj, run_deg, phi0, theta0) = (&r.file, &r.traj, r.run_deg, r.phi0, r.theta0);
+    let mesh = traj.mesh();
     let (n1, n2) = (mesh.driver().teeth(), mesh.driven().teeth());
     let mut summary = Table::new(format!("Mesh from {name}"), ["quantity", "value", "unit"]);
     let rowf = |t: &mut Table, q: &str, v: String, u: &str| t.row(vec![q.into(), v, u.into()]);
@@ -154,35 +202,39 @@ fn summary_table(
     summary
 }
 
-fn run(ctx: &Context) -> Result<Report, RunError> {
-    crate::settings::labelled(ctx, counted)
+/// Every simulation: the pair file read (under `drive`), run and sampled.
+fn compute(s: &Settings, run: &Run) -> Result<Results, RunError> {
+    // A rule that cannot be read is refused before the file is.
+    s.events.rule()?;
+    let (file, as_written, prepared) = pair_file(s, run)?;
+    let sim = simulate(&prepared);
+    Ok(Results {
+        file,
+        as_written,
+        numbering: (prepared.driver, prepared.driven),
+        traj: sim.traj,
+        phi0: sim.phi0,
+        theta0: sim.theta0,
+        run_deg: sim.run_deg,
+        rows: sim.rows,
+    })
 }
 
-/// The experiment itself; [`run`] names the event rule in its tables' titles.
-fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let rule = crate::settings::rule(ctx)?;
-    let (name, as_written, prepared, drive) = pair_file(ctx)?;
-    let run = simulate(&prepared);
-    let td: Vec<f64> = run.rows.iter().map(|r| r[2]).collect();
-    let s = stats::pointer_stats(&td);
-    let summary = summary_table(
-        &name,
-        &prepared.mesh,
-        &run.traj,
-        &rule,
-        run.run_deg,
-        (run.phi0, run.theta0),
-        &s,
-    );
-    let (events, ev_rows) = event_log(&run.traj, &rule, (run.phi0, run.theta0), &prepared);
+/// The tables and every file, drawn from the results.
+fn figures(s: &Settings, r: &Results) -> Result<Report, RunError> {
+    let rule = s.events.rule()?;
+    let td: Vec<f64> = r.rows.iter().map(|row| row[2]).collect();
+    let stats = stats::pointer_stats(&td);
+    let summary = summary_table(r, &rule, &stats);
+    let (events, ev_rows) = event_log(&r.traj, &rule, (r.phi0, r.theta0), r.numbering);
     // pair-check.svg draws the file as written; its start line gives the file's own angles (with
     // the driven gear driving, the run's phi is the file's theta and the other way round).
-    let start = match drive {
-        Drive::Other => (run.theta0, run.phi0),
-        _ => (run.phi0, run.theta0),
+    let start = match s.drive.drive()? {
+        Drive::Other => (r.theta0, r.phi0),
+        _ => (r.phi0, r.theta0),
     };
-    let ([data, td, page], pictures) = run_files(&name, &run, &prepared, &rule)?;
-    let check = OutputFile::new("pair-check.svg", check_svg(&name, &as_written, start));
+    let ([data, td, page], pictures) = run_files(r, &rule)?;
+    let check = OutputFile::new("pair-check.svg", check_svg(&r.file, &r.as_written, start));
     let mut files = vec![
         data,
         OutputFile::new("event-log.csv", ev_rows),
@@ -199,17 +251,17 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
 }
 
 /// The pair file (the `--config` file, or the example) as written and as run under `drive`,
-/// with its name and the drive.
-fn pair_file(ctx: &Context) -> Result<(String, Prepared, Prepared, Drive), RunError> {
-    let (name, text) = match ctx.config() {
+/// with its name.
+fn pair_file(s: &Settings, run: &Run) -> Result<(String, Prepared, Prepared), RunError> {
+    let (name, text) = match run.config() {
         Some(c) => (c.path.display().to_string(), c.text.as_str()),
         None => (EXAMPLE_NAME.to_string(), EXAMPLE),
     };
-    let drive = crate::settings::drive(ctx)?;
+    let drive = s.drive.drive()?;
     let as_written = prepare(&name, text)?;
     let prepared = match drive {
-        Drive::Listed => prepare(&name, text)?,
-        Drive::Other => prepare(&name, text)?.other_driving(&name)?,
+        Drive::Listed => as_written.clone(),
+        Drive::Other => as_written.clone().other_driving(&name)?,
         Drive::Either => {
             return Err(RunError::bad(
                 "--set",
@@ -218,11 +270,11 @@ fn pair_file(ctx: &Context) -> Result<(String, Prepared, Prepared, Drive), RunEr
             ));
         }
     };
-    Ok((name, as_written, prepared, drive))
+    Ok((name, as_written, prepared))
 }
 
 /// One run of the pair and its samples.
-struct Run {
+struct Sampled {
     /// The contact motion.
     traj: contact::Trajectory,
     /// The driver angle at the start, radians.
@@ -232,26 +284,26 @@ struct Run {
     /// How far the driver turns, degrees.
     run_deg: f64,
     /// A row per sample: φ − φ0, θ − θ0, the Theoretical Difference, φ and θ, degrees.
-    rows: Vec<Vec<f64>>,
+    rows: Vec<[f64; 5]>,
 }
 
 /// The run the file asks for, sampled every `sample_deg` of the driver.
-fn simulate(prepared: &Prepared) -> Run {
+fn simulate(prepared: &Prepared) -> Sampled {
     let (mesh, spec) = (&prepared.mesh, &prepared.spec);
     let (n1, n2) = (mesh.driver().teeth(), mesh.driven().teeth());
     let ratio = n1 as f64 / n2 as f64;
     let run_deg = spec.run_deg.unwrap_or_else(|| default_run_deg(n1, n2));
     let phi0 = spec.start_deg.to_radians();
     let phi_end = phi0 + run_deg.to_radians();
-    let traj = mesh.run(phi0, phi_end, prepared.start);
+    let traj = mesh.solve(phi0..=phi_end, prepared.start, Solve::path());
     let theta0 = traj.theta_at(phi0);
     let samples = (run_deg / spec.sample_deg).floor() as usize;
-    let rows: Vec<Vec<f64>> = (0..=samples)
+    let rows: Vec<[f64; 5]> = (0..=samples)
         .map(|i| {
             let phi = (phi0 + (i as f64 * spec.sample_deg).to_radians()).min(phi_end);
             let theta_abs = traj.theta_at(phi);
             let theta = theta_abs - theta0;
-            vec![
+            [
                 deg(phi - phi0),
                 deg(theta),
                 deg(theta - ratio * (phi - phi0)),
@@ -260,7 +312,7 @@ fn simulate(prepared: &Prepared) -> Run {
             ]
         })
         .collect();
-    Run {
+    Sampled {
         traj,
         phi0,
         theta0,
@@ -272,12 +324,10 @@ fn simulate(prepared: &Prepared) -> Run {
 /// The run's own files: pair.csv, the Theoretical Difference (pair.svg) and the page
 /// (pair.html), then a picture per event, every tooth numbered as the file numbers it.
 fn run_files(
-    name: &str,
-    run: &Run,
-    prepared: &Prepared,
+    run: &Results,
     rule: &rules::Rule,
 ) -> Result<([OutputFile; 3], Vec<OutputFile>), RunError> {
-    let traj = &run.traj;
+    let (name, traj, (driver, driven)) = (&run.file, &run.traj, run.numbering);
     let svg = crate::td_plot::td_plot(
         &format!("the mesh from {name}"),
         traj,
@@ -292,16 +342,11 @@ fn run_files(
             "phi_abs_deg",
             "theta_abs_deg",
         ],
-        run.rows.iter().cloned(),
+        run.rows.iter().map(|row| row.to_vec()),
         9,
     );
     // A driven gear measured in its own sense is numbered the other way round in the solver.
-    let numbered = |e: &contact::Event| {
-        (
-            prepared.driver.user(e.driver_tooth),
-            prepared.driven.user(e.driven_tooth),
-        )
-    };
+    let numbered = |e: &contact::Event| (driver.user(e.driver_tooth), driven.user(e.driven_tooth));
     let title = format!("Mesh from {name}");
     let page = crate::pair_html::page(&title, traj, &|e| counted_as(rule, e), &numbered);
     let pictures =
@@ -371,7 +416,7 @@ fn event_log(
     traj: &contact::Trajectory,
     rule: &rules::Rule,
     start: (f64, f64),
-    prepared: &Prepared,
+    numbering: (Numbering, Numbering),
 ) -> (Table, String) {
     let n2 = traj.mesh().driven().teeth();
     let mut events = Table::new(
@@ -393,7 +438,7 @@ fn event_log(
     );
     for e in traj.events() {
         let counted = counted_as(rule, e);
-        let teeth = user_teeth(e, prepared);
+        let teeth = user_teeth(e, numbering);
         ev_rows.push_str(&registry::csv_line(log_line(e, counted, &teeth, start)));
         if events.rows.len() < EVENTS_SHOWN {
             events.row(table_row(e, counted, &teeth, start, n2));
@@ -406,13 +451,13 @@ fn event_log(
 
 /// An event's driver and driven tooth as the user wrote them (a driven gear measured in its own
 /// sense is numbered the other way round inside the solver); none (empty) for an idle start.
-fn user_teeth(e: &contact::Event, prepared: &Prepared) -> (String, String) {
+fn user_teeth(e: &contact::Event, (driver, driven): (Numbering, Numbering)) -> (String, String) {
     if crate::pair_html::is_idle_start(e) {
         (String::new(), String::new())
     } else {
         (
-            prepared.driver.user(e.driver_tooth).to_string(),
-            prepared.driven.user(e.driven_tooth).to_string(),
+            driver.user(e.driver_tooth).to_string(),
+            driven.user(e.driven_tooth).to_string(),
         )
     }
 }

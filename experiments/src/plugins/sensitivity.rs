@@ -10,16 +10,20 @@
 //! trial t, so every row runs the same mechanisms, changed only by its assumption: the rows
 //! differ by the assumption, not by luck in the draws (common random numbers).
 
-use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
+use registry::{OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64};
+use serde::{Deserialize, Serialize};
 use stats::mean_ci95;
 use train::Gearing;
 
 use crate::common::{Series, category_plot};
-use crate::common::{mean_cell, percent_cell};
+use crate::common::{mean_day_cell, percent_cell};
+use crate::settings::typed::label;
 use study::errors;
-use study::gearing;
+use study::events::EventParams;
+use study::gearing::GearingParams;
 use study::grids::CASES;
-use study::whole_mechanism::{self as whole, Clearances, Input, MechanismRun, TRAINS, summarise};
+use study::results::{FailureRun, TrainSummary};
+use study::whole_mechanism::{self as whole, Clearances, Input, TRAINS};
 
 registry::params! {
     /// `trials`: whole-mechanism runs per row (the paper's failure study: 30).
@@ -28,11 +32,132 @@ registry::params! {
     const CASE = Param::new("case", "B", "Edmunds' case every row starts from (A, B, C or D)", registry::Kind::Text);
 }
 
-crate::experiment! {
-    id: "sensitivity", paper_item: "Section 6, assumptions (1)-(5)", run,
-    title: "How the Case B failure study moves when one assumption of the paper is changed (beyond the paper)",
-    params: [TRIALS, whole::DAYS, CASE, errors::SPLIT, errors::PARAM], groups: [study::gearing::GROUP, study::events::GROUP],
+/// The sensitivity study's settings: runs per row, the horizon, the Case and the split every
+/// row starts from, the base hypothesis, the gearing with h and G, and the event rule.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, registry::Settings)]
+pub struct Settings {
+    /// Whole-mechanism runs per row ([`TRIALS`]).
+    #[param(TRIALS)]
+    pub trials: u64,
+    /// Horizon of each run, days of b ([`whole::DAYS`]).
+    #[param(whole::DAYS)]
+    pub days: f64,
+    /// Edmunds' Case every row starts from ([`CASE`]).
+    #[param(CASE)]
+    pub case: String,
+    /// Share of the systematic error on the sinusoid ([`errors::SPLIT`]).
+    #[param(errors::SPLIT)]
+    pub split: f64,
+    /// The hypothesis that makes every row's gears first ([`errors::PARAM`]).
+    #[param(errors::PARAM)]
+    pub hypothesis: String,
+    /// The gearing, G and h.
+    #[group]
+    pub gearing: GearingParams,
+    /// The event rule.
+    #[group]
+    pub events: EventParams,
 }
+
+/// What the rows measured: the Case they start from, the seed their draws come from, and each
+/// row's runs.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Results {
+    /// The Case every row starts from, as Edmunds names it (`A`-`D`).
+    pub case: String,
+    /// The seed of the run (every row draws trial t's errors and angles from it alike).
+    pub seed: u64,
+    /// One per row of the table, in its order.
+    pub rows: Vec<RowResults>,
+}
+
+/// One row: the paper's model with one thing changed, its runs and what they show.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RowResults {
+    /// Which assumption it changes: the paper's numbering in section 6, or the model input.
+    pub assumption: String,
+    /// What it is changed to, with its values.
+    pub variant: String,
+    /// The hypotheses applied to each gear, in order.
+    pub hypotheses: String,
+    /// Tooth height h of its gears, mm.
+    pub tooth_height: f64,
+    /// Whether the row changes the gears' shape or h (the table then names h beside the
+    /// hypotheses).
+    pub shape_changed: bool,
+    /// Every run, in trial order.
+    pub runs: Vec<FailureRun>,
+    /// Per train, then the mechanism (a jam in any train): what the runs show.
+    pub trains: Vec<TrainSummary>,
+}
+
+/// The sensitivity study.
+pub struct Sensitivity;
+
+impl registry::Experiment for Sensitivity {
+    const ID: &'static str = "sensitivity";
+    const TITLE: &'static str = "How the Case B failure study moves when one assumption of the paper is changed (beyond the paper)";
+    const PAPER_ITEM: &'static str = "Section 6, assumptions (1)-(5)";
+    const PLACE: Place = Place::Beyond(40);
+    type Settings = Settings;
+    type Results = Results;
+
+    fn compute(s: &Settings, run: &Run) -> Result<Results, RunError> {
+        let base_gearing = s.gearing.load()?;
+        let case = s.case.trim();
+        let Some(ci) = CASES.iter().position(|c| c.0.eq_ignore_ascii_case(case)) else {
+            return Err(RunError::bad(
+                "--set",
+                CASE.name,
+                format!("unknown case `{case}` (known: A, B, C, D)"),
+            ));
+        };
+        let (case, systematic, random) = CASES[ci];
+        let base = errors::lookup(&s.hypothesis)?;
+        let rule = s.events.rule()?;
+        let embedded = embedded_gearings()?;
+        let base_params = case_params(base, [random, systematic, s.split])?;
+        let mut rows = Vec::with_capacity(VARIANTS.len());
+        for v in VARIANTS {
+            let g = match v.gearing {
+                Some(name) => embedded
+                    .iter()
+                    .find(|(n, _)| *n == name)
+                    .map(|(_, g)| g)
+                    .ok_or_else(|| RunError::Internal(format!("gearing {name}")))?,
+                None => &base_gearing.gearing,
+            };
+            let start = Start {
+                case: (ci, case),
+                base,
+                params: &base_params,
+            };
+            rows.push(run_row(s, run, &base_gearing, g, v, &start, &rule)?);
+        }
+        Ok(Results {
+            case: case.to_string(),
+            seed: run.seed(),
+            rows,
+        })
+    }
+
+    fn report(s: &Settings, r: &Results) -> Result<Report, RunError> {
+        let runs = r.rows.iter().flat_map(|row| &row.runs);
+        let mut report = Report {
+            trials: r.rows.iter().map(|row| row.runs.len() as u64).sum(),
+            engagements: runs.map(|o| o.engagements).sum::<f64>().round() as u64,
+            ..Default::default()
+        };
+        report.tables.push(headline_table(s, r));
+        report.files.push(OutputFile::new(
+            "sensitivity-share.svg",
+            share_plot(r, &r.case)?,
+        ));
+        label(&s.events, None, report)
+    }
+}
+
+registry::register!(Sensitivity);
 
 /// One row: the paper's model with one thing changed.
 struct Variant {
@@ -139,83 +264,58 @@ const VARIANTS: &[Variant] = &[
     },
 ];
 
-/// What one row measured.
-struct Row<'v> {
-    variant: &'v Variant,
-    /// The hypotheses applied, in order.
-    hypotheses: String,
-    h: f64,
-    outcomes: Vec<MechanismRun>,
+/// What every row starts from: the Case (its index in `CASES` and its name), the base
+/// hypothesis and its parameters at the Case's errors.
+struct Start<'a> {
+    case: (usize, &'static str),
+    base: &'static dyn hypotheses::Hypothesis,
+    params: &'a hypotheses::Params,
 }
 
-fn run(ctx: &Context) -> Result<Report, RunError> {
-    crate::settings::labelled(ctx, counted)
-}
-
-/// The experiment itself; [`run`] names the event rule in its tables' titles.
-fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let gearing::Settings {
-        gearing: base_gearing,
-        file,
-        tooth_height: h0,
-        clearance,
-    } = crate::settings::gearing(ctx)?;
-    let trials = ctx.get(&TRIALS)?;
-    let days = ctx.get(&study::whole_mechanism::DAYS)?;
-    let case = ctx.text(&CASE)?.trim();
-    let Some(ci) = CASES.iter().position(|c| c.0.eq_ignore_ascii_case(case)) else {
-        return Err(RunError::bad(
-            "--set",
-            CASE.name,
-            format!("unknown case `{case}` (known: A, B, C, D)"),
-        ));
+/// One row's runs: the Case's mechanisms on gearing `g` with `v`'s change.
+fn run_row(
+    s: &Settings,
+    run: &Run,
+    base: &study::gearing::Settings,
+    g: &Gearing,
+    v: &Variant,
+    start: &Start<'_>,
+    rule: &rules::Rule,
+) -> Result<RowResults, RunError> {
+    let (trials, days, clearance) = (s.trials, s.days, base.clearance);
+    let (ci, case) = start.case;
+    let extra = row_hypothesis(v)?;
+    let hypotheses = match &extra {
+        Some((h, _)) => format!("{}, then {}", start.base.name(), h.name()),
+        None => start.base.name().to_string(),
     };
-    let (case, systematic, random) = CASES[ci];
-    let split = ctx.get(&errors::SPLIT)?;
-    let base = crate::settings::hypothesis(ctx)?;
-    let rule = crate::settings::rule(ctx)?;
-    let embedded = embedded_gearings()?;
-    let base_params = case_params(base, [random, systematic, split])?;
-    let mut rows = Vec::with_capacity(VARIANTS.len());
-    for v in VARIANTS {
-        let extra = row_hypothesis(v)?;
-        let hypotheses = match &extra {
-            Some((h, _)) => format!("{}, then {}", base.name(), h.name()),
-            None => base.name().to_string(),
-        };
-        let g = match v.gearing {
-            Some(name) => embedded
-                .iter()
-                .find(|(n, _)| *n == name)
-                .map(|(_, g)| g)
-                .ok_or_else(|| RunError::Internal(format!("gearing {name}")))?,
-            None => &base_gearing,
-        };
-        let h = v.tooth_height.unwrap_or(h0);
-        whole::check_study(g, h, &Clearances::Uniform(clearance))?;
-        // The legend names the row, so every row is its own batch.
-        let input = Input {
-            label: case.to_string(),
-            legend: format!("Case {case}, {}", v.label),
-            // Case `ci`'s streams, as in `failure`: the same Edmunds draws in every row.
-            index: ci as u64,
-            source: "--hypothesis",
-            hypothesis: base,
-            params: base_params.clone(),
-            clearances: Clearances::Uniform(clearance),
-            pin_and_slot: false,
-            extra,
-        };
-        let inputs = std::slice::from_ref(&input);
-        let key = whole::batch_key(&file, inputs, trials, h, clearance, days)?;
-        rows.push(Row {
-            variant: v,
-            hypotheses,
-            h,
-            outcomes: whole::run_study(ctx.engine(), g, inputs, trials, h, days, &rule, &key)?,
-        });
-    }
-    report(&rows, case, trials, days, clearance, ctx.seed())
+    let h = v.tooth_height.unwrap_or(base.tooth_height);
+    whole::check_study(g, h, &Clearances::Uniform(clearance))?;
+    // The legend names the row, so every row is its own batch.
+    let input = Input {
+        label: case.to_string(),
+        legend: format!("Case {case}, {}", v.label),
+        // Case `ci`'s streams, as in `failure`: the same Edmunds draws in every row.
+        index: ci as u64,
+        source: "--hypothesis",
+        hypothesis: start.base,
+        params: start.params.clone(),
+        clearances: Clearances::Uniform(clearance),
+        pin_and_slot: false,
+        extra,
+    };
+    let inputs = std::slice::from_ref(&input);
+    let key = whole::batch_key(&base.file, inputs, trials, h, clearance, days)?;
+    let outcomes = whole::run_study(run.engine(), g, inputs, trials, h, days, rule, &key)?;
+    Ok(RowResults {
+        assumption: v.assumption.to_string(),
+        variant: v.label.to_string(),
+        hypotheses,
+        tooth_height: h,
+        shape_changed: v.tooth_height.is_some() || v.plugin.is_some(),
+        runs: outcomes.iter().map(|o| FailureRun::of(o, days)).collect(),
+        trains: TrainSummary::every_train(&outcomes, days),
+    })
 }
 
 /// The embedded gearings some rows use instead of the `gearing` parameter.
@@ -268,49 +368,15 @@ fn row_hypothesis(
     Ok(Some((h, p)))
 }
 
-/// The report: totals over every row, the headline table and the share plot.
-fn report(
-    rows: &[Row<'_>],
-    case: &str,
-    trials: u64,
-    days: f64,
-    clearance: f64,
-    seed: u64,
-) -> Result<Report, RunError> {
-    let mut report = Report {
-        trials: rows.iter().map(|r| r.outcomes.len() as u64).sum(),
-        engagements: rows
-            .iter()
-            .flat_map(|r| &r.outcomes)
-            .map(|o| o.engagements)
-            .sum::<f64>()
-            .round() as u64,
-        ..Default::default()
-    };
-    report
-        .tables
-        .push(headline_table(rows, case, trials, days, clearance, seed));
-    report.files.push(OutputFile::new(
-        "sensitivity-share.svg",
-        share_plot(rows, case, days)?,
-    ));
-    Ok(report)
-}
-
 /// The one table: per row, the share of mechanisms jammed within a year, the day of the first
 /// jam and the Lunar σ.
-fn headline_table(
-    rows: &[Row<'_>],
-    case: &str,
-    trials: u64,
-    days: f64,
-    clearance: f64,
-    seed: u64,
-) -> Table {
+fn headline_table(s: &Settings, r: &Results) -> Table {
     let mechanism = TRAINS.len();
+    let (case, trials, days) = (&r.case, s.trials, s.days);
     let mut t = Table::new(
         format!(
-            "Case {case}, G = {clearance} %, {trials} whole-mechanism runs per row, horizon {days} d of b, seed {seed}: one assumption changed per row"
+            "Case {case}, G = {} %, {trials} whole-mechanism runs per row, horizon {days} d of b, seed {}: one assumption changed per row",
+            s.gearing.clearance, r.seed
         ),
         [
             "assumption",
@@ -323,32 +389,34 @@ fn headline_table(
             "meshes that jammed first (runs)",
         ],
     );
-    for r in rows {
-        let summary = summarise(&r.outcomes, days);
-        let m = &summary[mechanism];
-        let sigmas: Vec<f64> = r.outcomes.iter().filter_map(|o| o.lunar_sigma).collect();
+    for row in &r.rows {
+        let m = &row.trains[mechanism];
+        let sigmas: Vec<f64> = row.runs.iter().filter_map(|o| o.lunar_sigma).collect();
         let sigma = match sigmas.len() {
             0 => "-".to_string(),
             1 => format!("{} (n = 1)", fmt_f64(sigmas[0], 3)),
             _ => crate::common::estimate(&mean_ci95(&sigmas), 3),
         };
         let first: Vec<String> = m
-            .meshes
+            .first_meshes
             .iter()
             .map(|(mesh, n)| format!("{mesh} ({n})"))
             .collect();
-        let label = if r.variant.tooth_height.is_some() || r.variant.plugin.is_some() {
-            format!("{} [h = {} mm; {}]", r.variant.label, r.h, r.hypotheses)
+        let label = if row.shape_changed {
+            format!(
+                "{} [h = {} mm; {}]",
+                row.variant, row.tooth_height, row.hypotheses
+            )
         } else {
-            format!("{} [{}]", r.variant.label, r.hypotheses)
+            format!("{} [{}]", row.variant, row.hypotheses)
         };
         t.row(vec![
-            r.variant.assumption.to_string(),
+            row.assumption.clone(),
             label,
-            format!("{}/{}", m.year.k, m.year.n),
-            percent_cell(&m.year),
-            mean_cell(&m.days, days),
-            stats::median(&m.days).map_or("-".into(), |d| fmt_f64(d, 0)),
+            format!("{}/{}", m.within_year.k, m.within_year.n),
+            percent_cell(&m.within_year.proportion()),
+            mean_day_cell(m.mean_day.as_ref()),
+            m.median_day.map_or("-".into(), |d| fmt_f64(d, 0)),
             sigma,
             if first.is_empty() {
                 "-".into()
@@ -367,12 +435,12 @@ fn headline_table(
 }
 
 /// Share jammed within a year per row, with its interval, as an SVG chart.
-fn share_plot(rows: &[Row<'_>], case: &str, days: f64) -> Result<String, RunError> {
+fn share_plot(r: &Results, case: &str) -> Result<String, RunError> {
     let mechanism = TRAINS.len();
-    let categories: Vec<String> = (1..=rows.len()).map(|i| format!("row {i}")).collect();
+    let categories: Vec<String> = (1..=r.rows.len()).map(|i| format!("row {i}")).collect();
     let (mut share, mut lo, mut hi) = (Vec::new(), Vec::new(), Vec::new());
-    for (i, r) in rows.iter().enumerate() {
-        let p = &summarise(&r.outcomes, days)[mechanism].year;
+    for (i, row) in r.rows.iter().enumerate() {
+        let p = row.trains[mechanism].within_year.proportion();
         share.push((i as f64, 100.0 * p.rate()));
         lo.push((i as f64, 100.0 * p.lo));
         hi.push((i as f64, 100.0 * p.hi));

@@ -7,7 +7,8 @@
 
 use std::collections::BTreeMap;
 
-use registry::{Context, Param, Report, RunError, Table, fmt_f64};
+use registry::{Param, Place, Report, Run, RunError, Table, fmt_f64};
+use serde::{Deserialize, Serialize};
 use train::Gearing;
 
 use study::pointers::POINTERS;
@@ -41,11 +42,118 @@ const SAMPLES: Param = registry::samples(
     "TD samples per pair run of the Figure IV sweep (figIV's default)",
 );
 
-crate::experiment! {
-    id: "sigma-causes", paper_item: "Table 1 and Figure IV (beyond the paper)", run,
-    title: "Why our sigma differs from the paper's: Figure IV's minimum and Table 1's sigma under each candidate reading",
-    params: [TRIALS, TABLE1_CLEARANCE, SAMPLES_PER_ENGAGEMENT, DRAWS, SAMPLES], groups: [],
+/// The settings: Table 1's trials, clearance and samples per engagement, and the Figure IV
+/// sweep's Case A draws and samples per run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, registry::Settings)]
+pub struct Settings {
+    /// Table 1 trials per reading ([`TRIALS`]).
+    #[param(TRIALS)]
+    pub trials: u64,
+    /// Table 1's clearance G, % of h ([`TABLE1_CLEARANCE`]).
+    #[param(TABLE1_CLEARANCE)]
+    pub clearance: f64,
+    /// TD samples per tooth engagement of the busiest mesh ([`SAMPLES_PER_ENGAGEMENT`]).
+    #[param(SAMPLES_PER_ENGAGEMENT)]
+    pub samples_per_engagement: usize,
+    /// Figure IV with Case A errors: manufactured pairs per mesh ([`DRAWS`]).
+    #[param(DRAWS)]
+    pub draws: usize,
+    /// TD samples per pair run of the Figure IV sweep ([`SAMPLES`]).
+    #[param(SAMPLES)]
+    pub samples: usize,
 }
+
+/// Each reading's Figure IV minima and Table 1 σ.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct Results {
+    /// Figure IV's meshes (the embedded Freeth 2006 gearing's, in its order).
+    pub meshes: Vec<String>,
+    /// Per column of Figure IV's table (the geometry readings of `GEOMETRY`, then Case A
+    /// errors, then the start in the backlash), per mesh: where its σ(G) is smallest, how deep,
+    /// and the largest G on the curve (% of h); `None` where no grid point runs.
+    pub minima: Vec<Vec<Option<Minimum>>>,
+    /// Table 1's rows, one per reading, in print order.
+    pub table1: Vec<Table1Row>,
+}
+
+/// One reading's Table 1: σ of each pointer, the mean over the trials.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Table1Row {
+    /// The reading, numbered as the table prints it.
+    pub reading: String,
+    /// Whether it keeps to the paper's inputs, and how.
+    pub stated: String,
+    /// Each pointer's mean σ over the trials, degrees, in [`POINTERS`]' order (`None`: no
+    /// finite value).
+    pub sigmas: Vec<Option<f64>>,
+}
+
+/// Why our σ differs from the paper's.
+pub struct SigmaCauses;
+
+impl registry::Experiment for SigmaCauses {
+    const ID: &'static str = "sigma-causes";
+    const TITLE: &'static str = "Why our sigma differs from the paper's: Figure IV's minimum and Table 1's sigma under each candidate reading";
+    const PAPER_ITEM: &'static str = "Table 1 and Figure IV (beyond the paper)";
+    const PLACE: Place = Place::Beyond(80);
+    type Settings = Settings;
+    type Results = Results;
+
+    fn compute(s: &Settings, run: &Run) -> Result<Results, RunError> {
+        let g = Gearing::freeth2006();
+        let g2021 = Gearing::builtin("freeth2021").ok_or_else(|| {
+            RunError::Internal("the embedded freeth2021 gearing is missing".into())
+        })?;
+        // ---- Figure IV: σ against G for each mesh under each geometry reading. ----
+        let grid: Vec<f64> = (0..=16).map(|i| 20.0 + 5.0 * f64::from(i)).collect();
+        let radii: Vec<BTreeMap<String, f64>> = GEOMETRY
+            .iter()
+            .map(|r| tip_radii(&g, &g2021, r.radii, r.tooth_height))
+            .collect::<Result<_, _>>()?;
+        let at = figure_iv_minima(run.engine(), &g, &radii, &grid, (s.draws, s.samples))?;
+        let columns = GEOMETRY.len() + 2;
+        let minima = (0..columns)
+            .map(|ri| {
+                (0..g.meshes().len())
+                    .map(|mi| at.get(&(ri, mi)).copied().flatten())
+                    .collect()
+            })
+            .collect();
+
+        // ---- Table 1: σ of the five pointers under every reading. ----
+        let per_trials = (s.samples_per_engagement, s.trials);
+        let rows = table1_rows(run, &g, &radii, s.clearance, per_trials)?;
+        Ok(Results {
+            meshes: g.meshes().iter().map(|m| m.label.clone()).collect(),
+            minima,
+            table1: rows
+                .into_iter()
+                .map(|(reading, stated, sigmas)| Table1Row {
+                    reading,
+                    stated: stated.to_owned(),
+                    sigmas: sigmas
+                        .into_iter()
+                        .map(|x| x.is_finite().then_some(x))
+                        .collect(),
+                })
+                .collect(),
+        })
+    }
+
+    fn report(s: &Settings, r: &Results) -> Result<Report, RunError> {
+        let paper_from = crate::paper::get("sigma-causes", "figIV.minimum_from").map(|r| r.value);
+        let paper_to = crate::paper::get("sigma-causes", "figIV.minimum_to").map(|r| r.value);
+        let fig = figure_iv_table(r, s.draws, (paper_from, paper_to));
+        let t1 = table1_table(&r.table1, s.trials, s.clearance, s.samples_per_engagement);
+        Ok(Report {
+            tables: vec![fig, t1],
+            trials: s.trials * (GEOMETRY.len() as u64 + 2),
+            ..Default::default()
+        })
+    }
+}
+
+registry::register!(SigmaCauses);
 
 /// The run length of a pointer as `table1` runs it by default (the caption's turns of b).
 fn caption_turns(p: &Param) -> Result<f64, RunError> {
@@ -119,11 +227,12 @@ fn figure_iv_notes(fig: &mut Table, draws: usize, case_a: usize, in_backlash: us
 /// per column how many fall within the paper's range, their range, the depth of the minimum
 /// and the largest clearance that runs.
 fn figure_iv_table(
-    g: &Gearing,
-    at: &BTreeMap<(usize, usize), Option<Minimum>>,
+    r: &Results,
     draws: usize,
     (paper_from, paper_to): (Option<f64>, Option<f64>),
 ) -> Table {
+    let at = |ri: usize, mi: usize| r.minima.get(ri).and_then(|c| c.get(mi)).copied().flatten();
+    let meshes = r.meshes.len();
     let (case_a, in_backlash) = (GEOMETRY.len(), GEOMETRY.len() + 1);
     let columns = in_backlash + 1;
     let mut header = vec!["mesh".to_string()];
@@ -132,15 +241,10 @@ fn figure_iv_table(
         "Figure IV: the clearance G [% of h] of the smallest sigma of each mesh under each reading (G = 20-100 % by 5)",
         header,
     );
-    for (mi, m) in g.meshes().iter().enumerate() {
-        let mut row = vec![m.label.clone()];
+    for (mi, m) in r.meshes.iter().enumerate() {
+        let mut row = vec![m.clone()];
         for ri in 0..columns {
-            row.push(
-                at.get(&(ri, mi))
-                    .copied()
-                    .flatten()
-                    .map_or_else(|| "-".into(), |m| fmt_f64(m.at, 0)),
-            );
+            row.push(at(ri, mi).map_or_else(|| "-".into(), |m| fmt_f64(m.at, 0)));
         }
         fig.row(row);
     }
@@ -157,9 +261,7 @@ fn figure_iv_table(
             .map_or_else(|| "?".into(), |r| fmt_f64(r.value, 0))
     )];
     for ri in 0..columns {
-        let found: Vec<Minimum> = (0..g.meshes().len())
-            .filter_map(|mi| at.get(&(ri, mi)).copied().flatten())
-            .collect();
+        let found: Vec<Minimum> = (0..meshes).filter_map(|mi| at(ri, mi)).collect();
         let cs: Vec<f64> = found.iter().map(|m| m.at).collect();
         let mut lasts: Vec<f64> = found.iter().map(|m| m.last).collect();
         lasts.sort_by(f64::total_cmp);
@@ -179,7 +281,7 @@ fn figure_iv_table(
             (Some(a), Some(b)) => cs.iter().filter(|&&c| a <= c && c <= b).count().to_string(),
             _ => "-".into(),
         };
-        inside.push(format!("{n_in} of {}", g.meshes().len()));
+        inside.push(format!("{n_in} of {meshes}"));
         let lo = cs.iter().copied().fold(f64::INFINITY, f64::min);
         let hi = cs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         range.push(format!("{}-{}", fmt_f64(lo, 0), fmt_f64(hi, 0)));
@@ -209,7 +311,7 @@ type Trials = Vec<Vec<PointerSigma>>;
 /// Table 1's σ under each geometry reading, on its own gears, and the first reading's trials
 /// (the baseline the other readings are taken on).
 fn geometry_rows(
-    ctx: &Context,
+    run: &Run,
     g: &Gearing,
     radii: &[BTreeMap<String, f64>],
     clearance: f64,
@@ -225,7 +327,7 @@ fn geometry_rows(
             r.name
         );
         let t = table1_trials(
-            ctx.engine(),
+            run.engine(),
             &key,
             g,
             &mech,
@@ -250,13 +352,13 @@ fn geometry_rows(
 /// `radii`), then the sampling, statistic, span and start readings on the first one's, each
 /// over `trials` trials at `per` samples per engagement.
 fn table1_rows(
-    ctx: &Context,
+    run: &Run,
     g: &Gearing,
     radii: &[BTreeMap<String, f64>],
     clearance: f64,
     (per, trials): (usize, u64),
 ) -> Result<Vec<Row>, RunError> {
-    let (mut rows, baseline) = geometry_rows(ctx, g, radii, clearance, (per, trials))?;
+    let (mut rows, baseline) = geometry_rows(run, g, radii, clearance, (per, trials))?;
     let base = baseline.ok_or_else(|| RunError::Internal("no baseline reading".into()))?;
     // (GEOMETRY.len() + 1) and (+ 2) are Figure IV's Case A and backlash columns, not run here.
     let next = GEOMETRY.len() + 3;
@@ -284,7 +386,7 @@ fn table1_rows(
     ));
     let mech = mechanism(g, &radii[0], &GEOMETRY[0], clearance)?;
     let halved = table1_trials(
-        ctx.engine(),
+        run.engine(),
         &format!(
             "sigma-causes: table1 trials, reading (1) with every run half as long, G = {clearance} %, {per} samples per engagement, random starts"
         ),
@@ -304,7 +406,7 @@ fn table1_rows(
         sigmas(&halved, |p| p.sigma),
     ));
     let zero = table1_trials(
-        ctx.engine(),
+        run.engine(),
         &format!(
             "sigma-causes: table1 trials, reading (1) with every mesh from driver angle 0, G = {clearance} %, {per} samples per engagement"
         ),
@@ -328,7 +430,7 @@ fn table1_rows(
 
 /// The Table 1 comparison: each reading's σ of every pointer beside the paper's, with the
 /// ratio's range over Lunar to Games.
-fn table1_table(rows: Vec<Row>, trials: u64, clearance: f64, per: usize) -> Table {
+fn table1_table(rows: &[Table1Row], trials: u64, clearance: f64, per: usize) -> Table {
     let mut header = vec!["reading".to_string(), "paper's inputs".to_string()];
     header.extend(
         POINTERS
@@ -353,10 +455,12 @@ fn table1_table(rows: Vec<Row>, trials: u64, clearance: f64, per: usize) -> Tabl
             .map(|p| p.map_or_else(|| "-".into(), |v| fmt_f64(v, 3))),
     );
     paper_row.push("-".into());
-    for (name, stated, sig) in rows {
-        let mut row = vec![name, stated.to_string()];
+    for r in rows {
+        let mut row = vec![r.reading.clone(), r.stated.clone()];
         let mut ratios = Vec::new();
-        for (i, s) in sig.iter().enumerate() {
+        // A σ stored as none was not finite: printed as it was computed.
+        let sig = r.sigmas.iter().map(|s| s.unwrap_or(f64::NAN));
+        for (i, s) in sig.enumerate() {
             let ratio = paper[i].map(|p| s / p);
             if i < 4
                 && let Some(q) = ratio
@@ -365,7 +469,7 @@ fn table1_table(rows: Vec<Row>, trials: u64, clearance: f64, per: usize) -> Tabl
             }
             row.push(format!(
                 "{} ({})",
-                fmt_f64(*s, 4),
+                fmt_f64(s, 4),
                 ratio.map_or_else(|| "-".into(), |q| fmt_f64(q, 2))
             ));
         }
@@ -383,39 +487,6 @@ fn table1_table(rows: Vec<Row>, trials: u64, clearance: f64, per: usize) -> Tabl
     ));
     t1.note("Ours/paper, Lunar to Games: the smallest and largest ours/paper of the Lunar, Metonic, Saros and Games pointers (the 1.21-1.27 that first prompted this study; Exeligmos, 1.8, has a cause of its own: see table1's note).");
     t1
-}
-
-fn run(ctx: &Context) -> Result<Report, RunError> {
-    let g = Gearing::freeth2006();
-    let g2021 = Gearing::builtin("freeth2021")
-        .ok_or_else(|| RunError::Internal("the embedded freeth2021 gearing is missing".into()))?;
-    let trials: u64 = ctx.get(&TRIALS)?;
-    let clearance: f64 = ctx.get(&TABLE1_CLEARANCE)?;
-    let per: usize = ctx.get(&SAMPLES_PER_ENGAGEMENT)?;
-    let samples: usize = ctx.get(&SAMPLES)?;
-    let paper_from = crate::paper::get("sigma-causes", "figIV.minimum_from").map(|r| r.value);
-    let paper_to = crate::paper::get("sigma-causes", "figIV.minimum_to").map(|r| r.value);
-
-    // ---- Figure IV: σ against G for each mesh under each geometry reading. ----
-    let grid: Vec<f64> = (0..=16).map(|i| 20.0 + 5.0 * f64::from(i)).collect();
-    let radii: Vec<BTreeMap<String, f64>> = GEOMETRY
-        .iter()
-        .map(|r| tip_radii(&g, &g2021, r.radii, r.tooth_height))
-        .collect::<Result<_, _>>()?;
-    let draws: usize = ctx.get(&DRAWS)?;
-    let at = figure_iv_minima(ctx.engine(), &g, &radii, &grid, (draws, samples))?;
-
-    let fig = figure_iv_table(&g, &at, draws, (paper_from, paper_to));
-
-    // ---- Table 1: σ of the five pointers under every reading. ----
-    let rows = table1_rows(ctx, &g, &radii, clearance, (per, trials))?;
-
-    let t1 = table1_table(rows, trials, clearance, per);
-    Ok(Report {
-        tables: vec![fig, t1],
-        trials: trials * (GEOMETRY.len() as u64 + 2),
-        ..Default::default()
-    })
 }
 
 #[cfg(test)]

@@ -2,13 +2,18 @@
 //! same manufactured gears with triangular teeth, trial by trial, with the difference and its
 //! 95 % interval.
 
-use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
-use stats::{Estimate, mean_ci95};
+use registry::{OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64};
+use serde::{Deserialize, Serialize};
+use stats::Estimate;
 
 use crate::common::{Series, semilog_plot};
-use study::gearing;
+use crate::settings::typed::{Gearing, cells, label};
+use study::errors::CaseParams;
+use study::events::EventParams;
+use study::gearing::{self, GearingParams};
 use study::grids::CASES;
-use study::pointers::{CaseMechanism, both_model_trials, pointer_runs};
+use study::pointers::{BothModels, CaseMechanism, both_model_trials, pointer_runs};
+use study::results::{CasePointer, CasePointers, CaseRun};
 
 /// `trials`: trials per case, each with fresh errors and initial angles (Edmunds gives no count).
 const TRIALS: Param = registry::interval_trials(
@@ -29,31 +34,113 @@ const SAROS_TURNS: Param = study::pointers::turns("saros_turns", "4.5", "run len
 const SAMPLES_PER_ENGAGEMENT: Param =
     study::pointers::per_engagement("8", "TD samples per engagement of the busiest mesh");
 
-crate::experiment! {
-    id: "table2", paper_item: "Table 2 (section 4)", run,
-    title: "Edmunds' Cases A-D: his radial-line model beside his Table 2, and triangular teeth on the same gears",
-    params: [TRIALS, LUNAR_TURNS, METONIC_TURNS, SAROS_TURNS, SAMPLES_PER_ENGAGEMENT, gearing::PIN_AND_SLOT], groups: [study::gearing::GROUP, study::errors::CASES_GROUP, study::events::GROUP],
+/// Table 2's settings: trials per Case, the three pointers' run lengths and TD sampling, the
+/// pin-and-slot, the gearing with h and G, the Cases' errors and the event rule.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, registry::Settings)]
+pub struct Settings {
+    /// Trials per Case ([`TRIALS`]).
+    #[param(TRIALS)]
+    pub trials: u64,
+    /// Run length of the Lunar pointer, turns of b ([`LUNAR_TURNS`]).
+    #[param(LUNAR_TURNS)]
+    pub lunar_turns: f64,
+    /// Run length of the Metonic pointer, turns of b ([`METONIC_TURNS`]).
+    #[param(METONIC_TURNS)]
+    pub metonic_turns: f64,
+    /// Run length of the Saros pointer, turns of b ([`SAROS_TURNS`]).
+    #[param(SAROS_TURNS)]
+    pub saros_turns: f64,
+    /// TD samples per engagement of the busiest mesh ([`SAMPLES_PER_ENGAGEMENT`]).
+    #[param(SAMPLES_PER_ENGAGEMENT)]
+    pub samples_per_engagement: usize,
+    /// Whether the Lunar train runs with the pin-and-slot ([`gearing::PIN_AND_SLOT`]).
+    #[param(gearing::PIN_AND_SLOT)]
+    pub pin_and_slot: bool,
+    /// The gearing, G and h.
+    #[group]
+    pub gearing: GearingParams,
+    /// The split, the hypothesis and its parameters.
+    #[group]
+    pub errors: CaseParams,
+    /// The event rule.
+    #[group]
+    pub events: EventParams,
 }
 
-const POINTERS: [(&str, &Param); 3] = [
-    ("Lunar", &LUNAR_TURNS),
-    ("Metonic", &METONIC_TURNS),
-    ("Saros", &SAROS_TURNS),
-];
+/// Table 2.
+pub struct Table2;
 
-/// One trial of one case: per pointer, (Edmunds σ, Edmunds Dm, triangular σ, triangular Dm, jammed).
-type CaseTrial = Vec<(f64, f64, f64, f64, bool)>;
+impl registry::Experiment for Table2 {
+    const ID: &'static str = "table2";
+    const TITLE: &'static str = "Edmunds' Cases A-D: his radial-line model beside his Table 2, and triangular teeth on the same gears";
+    const PAPER_ITEM: &'static str = "Table 2 (section 4)";
+    const PLACE: Place = Place::Paper(60);
+    type Settings = Settings;
+    type Results = CasePointers;
+
+    fn compute(s: &Settings, run: &Run) -> Result<CasePointers, RunError> {
+        let cells = cells(
+            Gearing::WithClearance(&s.gearing),
+            &s.errors,
+            Some(&s.events),
+            None,
+            s.trials,
+            s,
+        )?;
+        let (g, trials, clearance) = (cells.gearing(), cells.trials as usize, cells.clearance()?);
+        let turns = [
+            ("Lunar", s.lunar_turns),
+            ("Metonic", s.metonic_turns),
+            ("Saros", s.saros_turns),
+        ];
+        let runs = pointer_runs(g, &turns, s.samples_per_engagement)?;
+        let results = simulate(run, &cells, &runs, s.pin_and_slot)?;
+        let cases = CASES
+            .iter()
+            .zip(results)
+            .map(|(&(case, systematic, random), per_trial)| CaseRun {
+                case: case.to_owned(),
+                systematic,
+                random,
+                pointers: runs
+                    .iter()
+                    .enumerate()
+                    .map(|(pi, &(name, _, _))| CasePointer {
+                        pointer: name.to_owned(),
+                        trials: per_trial.iter().map(|t| t[pi]).collect(),
+                    })
+                    .collect(),
+            })
+            .collect();
+        Ok(CasePointers {
+            clearance,
+            trials,
+            pin_and_slot: s.pin_and_slot,
+            pointers: runs
+                .iter()
+                .map(|&(name, _, _)| (name.to_owned(), g.days_per_degree(name)))
+                .collect(),
+            cases,
+        })
+    }
+
+    fn report(s: &Settings, r: &CasePointers) -> Result<Report, RunError> {
+        label(&s.events, None, tables(r)?)
+    }
+}
+
+registry::register!(Table2);
 
 /// Every Case's trials under both contact models: `results[case][trial][pointer]`.
 fn simulate(
-    ctx: &Context,
+    run: &Run,
     cells: &study::grids::CellSettings,
     runs: &[(&str, f64, usize)],
     pin_and_slot: bool,
-) -> Result<Vec<Vec<CaseTrial>>, RunError> {
+) -> Result<Vec<Vec<Vec<BothModels>>>, RunError> {
     let (g, hyp, trials) = (cells.gearing(), cells.hypothesis(), cells.trials as usize);
     let (h, clearance) = (cells.gearing.tooth_height, cells.clearance()?);
-    let mut results: Vec<Vec<CaseTrial>> = Vec::new();
+    let mut results = Vec::new();
     for (ci, &(case, systematic, random)) in CASES.iter().enumerate() {
         let p = cells.errors.case_params((systematic, random))?;
         // Named by everything that determines the trials, so shards run and merge them.
@@ -73,27 +160,14 @@ fn simulate(
             rule: &cells.rule,
             pin_and_slot,
         };
-        let per_trial =
-            both_model_trials(ctx.engine(), &key, ci as u64, &made, runs, trials as u64)?;
-        results.push(
-            per_trial
-                .into_iter()
-                .map(|trial| {
-                    trial
-                        .into_iter()
-                        .map(|r| {
-                            (
-                                r.edmunds_sigma,
-                                r.edmunds_dm,
-                                r.triangular_sigma,
-                                r.triangular_dm,
-                                r.jammed,
-                            )
-                        })
-                        .collect()
-                })
-                .collect(),
-        );
+        results.push(both_model_trials(
+            run.engine(),
+            &key,
+            ci as u64,
+            &made,
+            runs,
+            trials as u64,
+        )?);
     }
     Ok(results)
 }
@@ -115,11 +189,6 @@ fn plot(curves: &std::collections::BTreeMap<String, Vec<(f64, f64)>>) -> Result<
     )
 }
 
-/// The mean of the trial-by-trial differences `a - b`, with its 95 % interval.
-fn diff(a: &[f64], b: &[f64]) -> stats::Estimate {
-    mean_ci95(&a.iter().zip(b).map(|(x, y)| x - y).collect::<Vec<_>>())
-}
-
 /// An estimate as printed: "mean [lo .. hi]".
 fn show(e: &stats::Estimate) -> String {
     crate::common::estimate(e, 3)
@@ -127,14 +196,20 @@ fn show(e: &stats::Estimate) -> String {
 
 /// The notes under both tables: what each Case draws, the days per degree, and the
 /// pin-and-slot when it is in.
-fn notes(edm_table: &mut Table, tri_table: &mut Table, g: &train::Gearing, pin_and_slot: bool) {
+fn notes(edm_table: &mut Table, tri_table: &mut Table, r: &CasePointers) {
+    let pin_and_slot = r.pin_and_slot;
+    let days = |name: &str| {
+        r.pointers
+            .iter()
+            .find(|(p, _)| p == name)
+            .and_then(|(_, d)| *d)
+            .map_or_else(|| "-".into(), |d| fmt_f64(d, 3))
+    };
     edm_table.note("Each case: every gear gets random tooth errors (sd = random x pitch) and the systematic error split between a sinusoid of tip position and an eccentric axis (split parameter, 0.5 as in the paper).");
     edm_table.note(format!(
         "Days: from each pointer's exact ratio (Metonic {} d/deg, Saros {} d/deg).",
-        g.days_per_degree("Metonic")
-            .map_or_else(|| "-".into(), |d| fmt_f64(d, 3)),
-        g.days_per_degree("Saros")
-            .map_or_else(|| "-".into(), |d| fmt_f64(d, 3)),
+        days("Metonic"),
+        days("Saros"),
     ));
     if pin_and_slot {
         let note = "Lunar: with the pin-and-slot (--set pin_and_slot=true), beyond the paper; its TD is taken against the anomaly-bearing ideal motion (cargo xtask help lunar-anomaly).";
@@ -143,37 +218,37 @@ fn notes(edm_table: &mut Table, tri_table: &mut Table, g: &train::Gearing, pin_a
     }
 }
 
-/// The CSV lines of one Case and pointer: each model's σ and Dm over the trials (`values`:
-/// Edmunds' σ and Dm, then the triangular teeth'), with the paper's for Edmunds' model.
+/// The CSV lines of one Case and pointer `p`: each model's σ and Dm over the trials, with the
+/// paper's for Edmunds' model.
 fn csv_lines(
     csv: &mut String,
-    (case, name): (&str, &str),
-    [es, ed, ts, td]: [&Vec<f64>; 4],
+    case: &str,
+    p: &CasePointer,
     (paper_sigma, paper_dm): (Option<f64>, Option<f64>),
 ) {
-    for (model, stat, v, p) in [
-        ("edmunds", "sigma", es, paper_sigma),
-        ("edmunds", "dm", ed, paper_dm),
-        ("triangular", "sigma", ts, None),
-        ("triangular", "dm", td, None),
+    let name = &p.pointer;
+    for (model, stat, e, paper) in [
+        ("edmunds", "sigma", p.edmunds_sigma(), paper_sigma),
+        ("edmunds", "dm", p.edmunds_dm(), paper_dm),
+        ("triangular", "sigma", p.triangular_sigma(), None),
+        ("triangular", "dm", p.triangular_dm(), None),
     ] {
-        let e = mean_ci95(v);
-        csv.push_str(&registry::csv_line([
-            case.to_owned(),
-            name.to_owned(),
-            model.to_owned(),
-            stat.to_owned(),
-            e.mean.to_string(),
-            e.lo.to_string(),
-            e.hi.to_string(),
-            p.map_or(String::new(), |x| x.to_string()),
-        ]));
+        csv.push_str(&registry::csv_row!(
+            case,
+            name,
+            model,
+            stat,
+            e.mean,
+            e.lo,
+            e.hi,
+            paper.map_or(String::new(), |x| x.to_string())
+        ));
     }
 }
 
 /// The two tables' titles and columns: Edmunds' model in the paper's layout, and triangular
 /// teeth against it.
-fn tables(trials: usize, clearance: f64) -> (Table, Table) {
+fn tables_of(trials: usize, clearance: f64) -> (Table, Table) {
     let edm_table = Table::new(
         format!(
             "Table 2: Edmunds' model (radial lines), {trials} trials per case: sigma - Dm, ours / paper [deg] (days)"
@@ -231,38 +306,32 @@ fn edmunds_cell(
     cell
 }
 
-fn run(ctx: &Context) -> Result<Report, RunError> {
-    crate::settings::labelled(ctx, counted)
-}
-
-/// The experiment itself; [`run`] names the event rule in its tables' titles.
-fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let cells = crate::settings::cells(ctx, &TRIALS)?;
-    let (g, trials, clearance) = (cells.gearing(), cells.trials as usize, cells.clearance()?);
-    let per = ctx.get(&SAMPLES_PER_ENGAGEMENT)?;
-    let pin_and_slot = ctx.get(&study::gearing::PIN_AND_SLOT)?;
-    let runs = pointer_runs(g, &crate::settings::turns(ctx, &POINTERS)?, per)?;
-    let results = simulate(ctx, &cells, &runs, pin_and_slot)?;
-
-    let (mut edm_table, mut tri_table) = tables(trials, clearance);
+/// The tables, the CSV and the plot drawn from the results (before the event rule is named).
+fn tables(r: &CasePointers) -> Result<Report, RunError> {
+    let (trials, clearance) = (r.trials, r.clearance);
+    let (mut edm_table, mut tri_table) = tables_of(trials, clearance);
     // sigma against the systematic error, per pointer and model, for the plot.
     let mut curves: std::collections::BTreeMap<String, Vec<(f64, f64)>> =
         std::collections::BTreeMap::new();
     let mut csv = String::from("case,pointer,model,statistic,mean_deg,lo_deg,hi_deg,paper_deg\n");
-    for (ci, &(case, systematic, random)) in CASES.iter().enumerate() {
-        let mut row = vec![case.to_string(), fmt_f64(systematic, 2), fmt_f64(random, 3)];
-        for (pi, &(name, _, _)) in runs.iter().enumerate() {
-            let col = |f: fn(&(f64, f64, f64, f64, bool)) -> f64| -> Vec<f64> {
-                results[ci].iter().map(|t| f(&t[pi])).collect()
-            };
-            let (es, ed, ts, td) = (col(|x| x.0), col(|x| x.1), col(|x| x.2), col(|x| x.3));
-            let (es_m, ed_m) = (mean_ci95(&es), mean_ci95(&ed));
+    for c in &r.cases {
+        let (case, systematic) = (c.case.as_str(), c.systematic);
+        let mut row = vec![
+            case.to_string(),
+            fmt_f64(systematic, 2),
+            fmt_f64(c.random, 3),
+        ];
+        for (p, (name, days)) in c.pointers.iter().zip(&r.pointers) {
+            let (es_m, ed_m) = (p.edmunds_sigma(), p.edmunds_dm());
             let paper = |q: &str| {
                 crate::paper::get("table2", &format!("{case}.{name}.{q}")).map(|r| r.value)
             };
-            let days = g.days_per_degree(name);
-            let cell = edmunds_cell(&es_m, &ed_m, (paper("sigma"), paper("dm")), days);
-            row.push(cell);
+            row.push(edmunds_cell(
+                &es_m,
+                &ed_m,
+                (paper("sigma"), paper("dm")),
+                *days,
+            ));
             let mut add = |label: String, y: Option<f64>| {
                 if let Some(y) = y {
                     curves.entry(label).or_default().push((systematic, y));
@@ -271,28 +340,15 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             add(format!("{name}, Edmunds' model (ours)"), Some(es_m.mean));
             add(
                 format!("{name}, triangular teeth (ours)"),
-                Some(mean_ci95(&ts).mean),
+                Some(p.triangular_sigma().mean),
             );
             add(format!("{name}, Edmunds' Table 2 (paper)"), paper("sigma"));
-            let (dsig, ddm) = (diff(&ts, &es), diff(&td, &ed));
-            let jammed = results[ci].iter().filter(|t| t[pi].4).count();
-            tri_table.row(vec![
-                case.into(),
-                name.into(),
-                fmt_f64(es_m.mean, 3),
-                fmt_f64(mean_ci95(&ts).mean, 3),
-                show(&dsig),
-                fmt_f64(ed_m.mean, 3),
-                fmt_f64(mean_ci95(&td).mean, 3),
-                show(&ddm),
-                format!("{jammed}/{trials}"),
-            ]);
-            let paper_values = (paper("sigma"), paper("dm"));
-            csv_lines(&mut csv, (case, name), [&es, &ed, &ts, &td], paper_values);
+            tri_table.row(triangular_row(case, p, trials));
+            csv_lines(&mut csv, case, p, (paper("sigma"), paper("dm")));
         }
         edm_table.row(row);
     }
-    notes(&mut edm_table, &mut tri_table, g, pin_and_slot);
+    notes(&mut edm_table, &mut tri_table, r);
     tri_table.note("A jam stops the pointer, so a triangular trial that jammed is measured up to its first jam (Edmunds' model never jams).");
     let svg = plot(&curves)?;
     Ok(Report {
@@ -302,7 +358,23 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
             OutputFile::new("table2.svg", svg),
         ],
         // Mechanisms run, per Case (each under both contact models).
-        trials: (CASES.len() * trials) as u64,
+        trials: (r.cases.len() * trials) as u64,
         ..Default::default()
     })
+}
+
+/// One Case's row of the triangular table for pointer `p`: both models' means, the differences
+/// with their intervals and the trials that jammed.
+fn triangular_row(case: &str, p: &CasePointer, trials: usize) -> Vec<String> {
+    vec![
+        case.into(),
+        p.pointer.clone(),
+        fmt_f64(p.edmunds_sigma().mean, 3),
+        fmt_f64(p.triangular_sigma().mean, 3),
+        show(&p.sigma_difference()),
+        fmt_f64(p.edmunds_dm().mean, 3),
+        fmt_f64(p.triangular_dm().mean, 3),
+        show(&p.dm_difference()),
+        format!("{}/{trials}", p.jammed()),
+    ]
 }

@@ -2,17 +2,132 @@
 //! its own, Edmunds' Cases A-D at G = 40 %, 200 trials per cell, with 95 % Wilson intervals.
 
 use crate::replay::{Cell, CellText};
-use registry::{Context, OutputFile, Report, RunError, Table};
+use registry::{OutputFile, Place, Report, Run, RunError, Table};
+use serde::{Deserialize, Serialize};
 
 use crate::cells::{CASE_TRIAL_NOTE, JamCells, case_paper_counts, counts_report, replay_note};
+use crate::settings::typed::{Gearing, cells, label, off_paper_inputs};
 use study::cell::{Purpose, run_cells};
+use study::drive::DriveParams;
+use study::errors::CaseParams;
+use study::events::EventParams;
+use study::gearing::GearingParams;
 use study::grids::{CASES, CellSettings, TRIALS, case_cells, cases_apply};
+use study::results::{CaseTable as Results, JamTable};
 
-crate::experiment! {
-    id: "table3", paper_item: "Table 3 (section 5)", run,
-    title: "Jams and disengagements of each mesh on its own, Cases A-D at G = 40 %, 200 trials per cell",
-    params: [TRIALS], groups: [study::gearing::GROUP, study::errors::CASES_GROUP, study::events::GROUP, study::drive::GROUP],
-    replay: "CASE/MESH, e.g. B/m3-e3" => cell,
+/// Table 3's settings: trials per cell, the gearing with h and G, the Cases' errors, the event
+/// rule and the pair-trial protocol.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, registry::Settings)]
+pub struct Settings {
+    /// Trials per cell ([`TRIALS`]).
+    #[param(TRIALS)]
+    pub trials: u64,
+    /// The gearing, G and h.
+    #[group]
+    pub gearing: GearingParams,
+    /// The split, the hypothesis and its parameters.
+    #[group]
+    pub errors: CaseParams,
+    /// The event rule.
+    #[group]
+    pub events: EventParams,
+    /// Which gear drives, where counting ends.
+    #[group]
+    pub drive: DriveParams,
+}
+
+/// Table 3.
+pub struct Table3;
+
+impl registry::Experiment for Table3 {
+    const ID: &'static str = "table3";
+    const TITLE: &'static str = "Jams and disengagements of each mesh on its own, Cases A-D at G = 40 %, 200 trials per cell";
+    const PAPER_ITEM: &'static str = "Table 3 (section 5)";
+    const PLACE: Place = Place::Paper(80);
+    type Settings = Settings;
+    type Results = Results;
+
+    fn compute(s: &Settings, run: &Run) -> Result<Results, RunError> {
+        let cs = cell_settings(s)?;
+        let (g, hyp, clearance) = (cs.gearing(), cs.hypothesis(), cs.clearance()?);
+        let meshes = cs.meshes();
+        let mut specs = case_cells(&cs, clearance)?;
+        // A hypothesis that takes neither a random nor a systematic error (ideal, measured, a
+        // shape-only one) makes the four Cases the same cells: one row, compared with no Case.
+        let cases_apply = cases_apply(hyp);
+        if !cases_apply {
+            specs.truncate(meshes.len());
+        }
+        let counts = run_cells(run.engine(), g, &specs, s.trials, Purpose::Own)?;
+        let rows: Vec<String> = if cases_apply {
+            CASES.iter().map(|c| c.0.to_string()).collect()
+        } else {
+            vec![format!(
+                "Cases A-D alike ({} takes no random or systematic error)",
+                hyp.name()
+            )]
+        };
+        Ok(Results {
+            table: JamTable::from_counts(meshes, rows, &counts),
+            cases_apply,
+            hypothesis: hyp.name().to_owned(),
+            clearance,
+        })
+    }
+
+    fn report(s: &Settings, r: &Results) -> Result<Report, RunError> {
+        let mut ours = Table::new(
+            format!(
+                "Table 3: trials (of {}) with at least one jam / disengagement, G = {} %: ours (paper); * where a two-sample test separates our count from the paper's; ✓ where a cell keeps the paper's 1 % rule",
+                s.trials, r.clearance
+            ),
+            ours_header(&r.table.meshes),
+        );
+        let mut cells = JamCells::new(&["case", "mesh"]).off_paper(off_paper_inputs(s));
+        for row in &r.table.rows {
+            let case = &row.label;
+            let mut line = vec![case.clone()];
+            for (mesh, n) in r.table.meshes.iter().zip(&row.cells) {
+                let paper = case_paper_counts(r.cases_apply, "table3", &format!("{case}.{mesh}"));
+                line.push(cells.cell((case, mesh), &[case, mesh], n, paper));
+            }
+            ours.row(line);
+        }
+        ours.note(cells.tally.note());
+        if let Some(note) = cells.off_paper_note() {
+            ours.note(note);
+        }
+        ours.note(cells.rule_note());
+        ours.note(CASE_TRIAL_NOTE);
+        ours.note(replay_note("table3", "B/m3-e3"));
+        let report = Report {
+            tables: vec![
+                ours,
+                cells.rule_table("Table 3", "case"),
+                intervals_table(s, r),
+            ],
+            files: vec![OutputFile::new("table3-data.csv", cells.csv)],
+            agreement: Some(cells.tally.agreement()),
+            ..counts_report(r.table.counts())
+        };
+        label(&s.events, Some(&s.drive), report)
+    }
+}
+
+registry::register!(Table3);
+
+crate::replay_cells! { "table3", "CASE/MESH, e.g. B/m3-e3" => cell }
+
+/// The cells' settings read from Table 3's.
+fn cell_settings(s: &Settings) -> Result<CellSettings, RunError> {
+    cells(
+        Gearing::WithClearance(&s.gearing),
+        &s.errors,
+        Some(&s.events),
+        Some(&s.drive),
+        s.trials,
+        s,
+    )
 }
 
 /// A cell of Table 3 for `cargo xtask replay`: `CASE/MESH`, at the experiment's G and split.
@@ -29,56 +144,24 @@ fn cell<'a>(s: &CellSettings, c: &CellText<'a>) -> Result<Cell<'a>, RunError> {
 }
 
 /// `case` and the meshes: the columns of both tables.
-fn ours_header(meshes: &[&str]) -> Vec<String> {
+fn ours_header(meshes: &[String]) -> Vec<String> {
     let mut header = vec!["case".to_string()];
-    header.extend(meshes.iter().map(|m| (*m).to_string()));
+    header.extend(meshes.iter().cloned());
     header
 }
 
-fn run(ctx: &Context) -> Result<Report, RunError> {
-    crate::settings::labelled(ctx, counted)
-}
-
-/// The experiment itself; [`run`] names the event rule in its tables' titles.
-fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let s = crate::settings::cells(ctx, &TRIALS)?;
-    let (g, hyp, trials, clearance) = (s.gearing(), s.hypothesis(), s.trials, s.clearance()?);
-    let meshes: Vec<&str> = g.meshes().iter().map(|m| m.label.as_str()).collect();
-    let mut specs = case_cells(&s, clearance)?;
-    // A hypothesis that takes neither a random nor a systematic error (ideal, measured, a
-    // shape-only one) makes the four Cases the same cells: one row, compared with no Case.
-    let cases_apply = cases_apply(hyp);
-    if !cases_apply {
-        specs.truncate(meshes.len());
-    }
-    let counts = run_cells(ctx.engine(), g, &specs, trials, Purpose::Own)?;
-
-    let mut ours = Table::new(
-        format!(
-            "Table 3: trials (of {trials}) with at least one jam / disengagement, G = {clearance} %: ours (paper); * where a two-sample test separates our count from the paper's; ✓ where a cell keeps the paper's 1 % rule"
-        ),
-        ours_header(&meshes),
-    );
-    let mut cells = JamCells::new(&["case", "mesh"]).off_paper(crate::cells::off_paper_inputs(ctx));
-    let rows: Vec<String> = if cases_apply {
-        CASES.iter().map(|c| c.0.to_string()).collect()
-    } else {
-        vec![format!(
-            "Cases A-D alike ({} takes no random or systematic error)",
-            hyp.name()
-        )]
-    };
-    // The printed intervals: our counts with their 95 % Wilson intervals, as counts of trials.
+/// Our counts with their 95 % Wilson intervals, as counts of trials.
+fn intervals_table(s: &Settings, r: &Results) -> Table {
     let mut intervals = Table::new(
         format!(
-            "Table 3, ours with 95 % Wilson intervals: jams [interval] / disengagements [interval], counts of {trials} trials, G = {clearance} %"
+            "Table 3, ours with 95 % Wilson intervals: jams [interval] / disengagements [interval], counts of {} trials, G = {} %",
+            s.trials, r.clearance
         ),
-        ours_header(&meshes),
+        ours_header(&r.table.meshes),
     );
-    for (c, case) in rows.iter().enumerate() {
-        let mut with_intervals = vec![case.clone()];
-        for m in 0..meshes.len() {
-            let n = &counts[c * meshes.len() + m];
+    for row in &r.table.rows {
+        let mut with_intervals = vec![row.label.clone()];
+        for n in &row.cells {
             let (j, d) = (n.jam_interval(), n.dis_interval());
             let t = n.trials as f64;
             with_intervals.push(format!(
@@ -94,26 +177,5 @@ fn counted(ctx: &Context) -> Result<Report, RunError> {
         intervals.row(with_intervals);
     }
     intervals.note("Wilson score intervals at 95 % of each count, in trials; table3-data.csv has the same as jam_lo, jam_hi, dis_lo and dis_hi. The `*` of the table above comes from Fisher's exact two-sample test against the paper's count, not from these intervals (the paper's counts are samples too).");
-    for (c, case) in rows.iter().enumerate() {
-        let mut row = vec![case.clone()];
-        for (m, mesh) in meshes.iter().enumerate() {
-            let n = &counts[c * meshes.len() + m];
-            let paper = case_paper_counts(cases_apply, "table3", &format!("{case}.{mesh}"));
-            row.push(cells.cell((case, mesh), &[case, mesh], n, paper));
-        }
-        ours.row(row);
-    }
-    ours.note(cells.tally.note());
-    if let Some(note) = cells.off_paper_note() {
-        ours.note(note);
-    }
-    ours.note(cells.rule_note());
-    ours.note(CASE_TRIAL_NOTE);
-    ours.note(replay_note("table3", "B/m3-e3"));
-    Ok(Report {
-        tables: vec![ours, cells.rule_table("Table 3", "case"), intervals],
-        files: vec![OutputFile::new("table3-data.csv", cells.csv)],
-        agreement: Some(cells.tally.agreement()),
-        ..counts_report(counts.iter())
-    })
+    intervals
 }

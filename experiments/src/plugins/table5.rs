@@ -3,20 +3,131 @@
 //! 50/50) on top of it, 200 trials per cell.
 
 use crate::replay::{Cell, CellText};
-use registry::{Context, OutputFile, Report, RunError, Table};
+use registry::{OutputFile, Place, Report, Run, RunError, Table};
+use serde::{Deserialize, Serialize};
 
 use crate::cells::{JamCells, counts_report, paper_counts};
-use crate::emax::{EMAX, emax_from_paper, given_random, paper_random, paper_systematic, show};
+use crate::emax::{EMAX, given_row, paper_random, paper_systematic, random_from, show};
+use crate::settings::typed::{Gearing, cells, off_paper_inputs};
 use study::cell::{Purpose, label};
+use study::drive::DriveParams;
+use study::errors::CaseParams;
+use study::events::EventParams;
+use study::gearing::GearingParams;
 use study::grids::{CellSettings, TRIALS, derive};
-use study::tolerance::{self, RULE};
+use study::results::{DerivedTolerances, RandomFrom};
+use study::tolerance::{self, RULE, RandomGrid, SystematicGrid};
 
-crate::experiment! {
-    id: "table5", paper_item: "Table 5 (section 5)", run,
-    title: "Largest tolerable random error of each mesh (from Table 4 by the 1 % rule), then jams and disengagements against the systematic error",
-    params: [TRIALS, RULE, EMAX], groups: [study::gearing::GROUP, study::errors::CASES_GROUP, study::tolerance::RANDOM_GRID, study::tolerance::SYSTEMATIC_GRID, study::events::GROUP, study::drive::GROUP],
-    replay: "RANDOM/SYSTEMATIC/MESH, e.g. 0.050/0.7/e4-f1" => cell,
+/// Table 5's settings: trials per cell, the rule, where the random E. max comes from, the
+/// gearing with h and G, the split and hypothesis, the grids of Tables 4 and 5, the event rule
+/// and the pair-trial protocol.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, registry::Settings)]
+pub struct Settings {
+    /// Trials per cell ([`TRIALS`]).
+    #[param(TRIALS)]
+    pub trials: u64,
+    /// The tolerance rule, % of trials jamming ([`RULE`]).
+    #[param(RULE)]
+    pub rule: f64,
+    /// `derived` or `paper` ([`EMAX`]).
+    #[param(EMAX)]
+    pub emax: String,
+    /// The gearing, G and h.
+    #[group]
+    pub gearing: GearingParams,
+    /// The split, the hypothesis and its parameters.
+    #[group]
+    pub errors: CaseParams,
+    /// Table 4's random errors.
+    #[group]
+    pub random: RandomGrid,
+    /// Table 5's systematic amplitudes.
+    #[group]
+    pub systematic: SystematicGrid,
+    /// The event rule.
+    #[group]
+    pub events: EventParams,
+    /// Which gear drives, where counting ends.
+    #[group]
+    pub drive: DriveParams,
 }
+
+/// Table 5.
+pub struct Table5;
+
+impl registry::Experiment for Table5 {
+    const ID: &'static str = "table5";
+    const TITLE: &'static str = "Largest tolerable random error of each mesh (from Table 4 by the 1 % rule), then jams and disengagements against the systematic error";
+    const PAPER_ITEM: &'static str = "Table 5 (section 5)";
+    const PLACE: Place = Place::Paper(100);
+    type Settings = Settings;
+    type Results = DerivedTolerances;
+
+    fn compute(s: &Settings, run: &Run) -> Result<DerivedTolerances, RunError> {
+        let cs = cells(
+            Gearing::WithClearance(&s.gearing),
+            &s.errors,
+            Some(&s.events),
+            Some(&s.drive),
+            s.trials,
+            s,
+        )?;
+        let grids = (s.random.values(s)?, s.systematic.values(s)?);
+        let from = random_from(&s.emax);
+        let given = given_row(from, &cs.meshes())?;
+        let t = derive(run.engine(), &cs, grids, s.rule, Purpose::Own, given)?;
+        Ok(DerivedTolerances::new(&t, cs.clearance()?, from))
+    }
+
+    fn report(s: &Settings, t: &DerivedTolerances) -> Result<Report, RunError> {
+        let given = random_from(&s.emax) == RandomFrom::Paper;
+        let like_for_like = like_for_like(t);
+        let mut table = Table::new(
+            title(s, given, &like_for_like),
+            std::iter::once("E. sys [deg]".to_string())
+                .chain(t.random_grid.table.meshes.iter().cloned()),
+        );
+        let (row, same) = random_row(t);
+        table.row(row);
+        let mut jam_cells = JamCells::new(&["systematic", "mesh", "random"])
+            .with_rule(s.rule)
+            .off_paper(off_paper_inputs(s));
+        for row in count_rows(t, &like_for_like, &mut jam_cells) {
+            table.row(row);
+        }
+        let emax_csv = String::from(
+            "mesh,random_emax,paper_random_emax,systematic_emax_deg,paper_systematic_emax_deg_by_rule\n",
+        );
+        let (row, emax_csv) = systematic_row(t, s.rule, emax_csv);
+        table.row(row);
+        table.note(jam_cells.tally.note());
+        if let Some(note) = jam_cells.off_paper_note() {
+            table.note(note);
+        }
+        table.note(jam_cells.rule_note());
+        add_notes(
+            &mut table,
+            t,
+            (s.rule, s.trials),
+            given,
+            (&like_for_like, same),
+        );
+        let report = Report {
+            tables: vec![table, jam_cells.rule_table("Table 5", "E. sys [deg]")],
+            files: vec![
+                OutputFile::new("table5-data.csv", jam_cells.csv),
+                OutputFile::new("table5-emax.csv", emax_csv),
+            ],
+            agreement: Some(jam_cells.tally.agreement()),
+            ..counts_report(t.all())
+        };
+        crate::settings::typed::label(&s.events, Some(&s.drive), report)
+    }
+}
+
+registry::register!(Table5);
+
+crate::replay_cells! { "table5", "RANDOM/SYSTEMATIC/MESH, e.g. 0.050/0.7/e4-f1" => cell }
 
 /// A cell of Table 5 for `cargo xtask replay`: `RANDOM/SYSTEMATIC/MESH`, the random error the
 /// mesh's E. max (Table 5's first row), the systematic one a row, at the experiment's G and split.
@@ -50,70 +161,12 @@ fn cell<'a>(s: &CellSettings, c: &CellText<'a>) -> Result<Cell<'a>, RunError> {
     })
 }
 
-fn run(ctx: &Context) -> Result<Report, RunError> {
-    crate::settings::labelled(ctx, counted)
-}
-
-/// The experiment itself; [`run`] names the event rule in its tables' titles.
-fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let s = crate::settings::cells(ctx, &TRIALS)?;
-    let rule = ctx.get(&study::tolerance::RULE)?;
-    let grids = (
-        crate::settings::random_grid(ctx)?,
-        crate::settings::systematic_grid(ctx)?,
-    );
-    let given = given_random(ctx, s.gearing())?;
-    let t = derive(ctx.engine(), &s, grids, rule, Purpose::Own, given)?;
-    let given = emax_from_paper(ctx)?;
-    let like_for_like = like_for_like(&t);
-    let mut table = Table::new(
-        title(&s, rule, given, &like_for_like)?,
-        std::iter::once("E. sys [deg]".to_string()).chain(t.random_grid.meshes.iter().cloned()),
-    );
-    let (row, same) = random_row(&t);
-    table.row(row);
-    let mut jam_cells = JamCells::new(&["systematic", "mesh", "random"])
-        .with_rule(rule)
-        .off_paper(crate::cells::off_paper_inputs(ctx));
-    for row in count_rows(&t, &like_for_like, &mut jam_cells) {
-        table.row(row);
-    }
-    let emax_csv = String::from(
-        "mesh,random_emax,paper_random_emax,systematic_emax_deg,paper_systematic_emax_deg_by_rule\n",
-    );
-    let (row, emax_csv) = systematic_row(&t, rule, emax_csv);
-    table.row(row);
-    table.note(jam_cells.tally.note());
-    if let Some(note) = jam_cells.off_paper_note() {
-        table.note(note);
-    }
-    table.note(jam_cells.rule_note());
-    add_notes(
-        &mut table,
-        &t,
-        (rule, s.trials),
-        given,
-        (&like_for_like, same),
-    );
-    Ok(Report {
-        tables: vec![table, jam_cells.rule_table("Table 5", "E. sys [deg]")],
-        files: vec![
-            OutputFile::new("table5-data.csv", jam_cells.csv),
-            OutputFile::new("table5-emax.csv", emax_csv),
-        ],
-        agreement: Some(jam_cells.tally.agreement()),
-        ..counts_report(t.all())
-    })
-}
-
 /// Whether each mesh's cells compare with the paper's: only where they ran on the paper's
 /// inputs, its E. max being the paper's (always under emax=paper).
-fn like_for_like(t: &study::grids::Tolerances) -> Vec<bool> {
-    t.random_grid
-        .meshes
+fn like_for_like(t: &DerivedTolerances) -> Vec<bool> {
+    t.meshes
         .iter()
-        .enumerate()
-        .map(|(m, mesh)| match (t.random[m], paper_random(mesh)) {
+        .map(|m| match (m.random, paper_random(&m.mesh)) {
             (Some(o), Some(p)) => (o - p).abs() <= 1e-9,
             _ => false,
         })
@@ -121,15 +174,10 @@ fn like_for_like(t: &study::grids::Tolerances) -> Vec<bool> {
 }
 
 /// The table's title: the split, G, the E. max it ran at, and the marks it uses.
-fn title(
-    s: &CellSettings,
-    rule: f64,
-    given: bool,
-    like_for_like: &[bool],
-) -> Result<String, RunError> {
-    let (trials, clearance, split) = (s.trials, s.clearance()?, s.errors.split()?);
+fn title(s: &Settings, given: bool, like_for_like: &[bool]) -> String {
+    let (trials, clearance, split, rule) = (s.trials, s.gearing.clearance, s.errors.split, s.rule);
     let apart = like_for_like.iter().filter(|l| !**l).count();
-    Ok(format!(
+    format!(
         "Table 5: trials (of {trials}) with at least one jam / disengagement against the systematic error (share {split} on the sinusoid, the rest on the axis) at each mesh's largest tolerable random error (row E. max{}), G = {clearance} %: ours (paper); * where a two-sample test separates our count from the paper's (E. max: differs); ✓ where a cell keeps the {rule} % rule{}",
         if given {
             ": the paper's own, emax=paper"
@@ -144,24 +192,24 @@ fn title(
                 like_for_like.len()
             )
         }
-    ))
+    )
 }
 
 /// The first row, each mesh's largest tolerable random error beside the paper's (`*` where
 /// they differ), and how many agree.
-fn random_row(t: &study::grids::Tolerances) -> (Vec<String>, usize) {
+fn random_row(t: &DerivedTolerances) -> (Vec<String>, usize) {
     let mut row = vec!["E. max (random)".to_string()];
     let mut same = 0;
-    for (m, mesh) in t.random_grid.meshes.iter().enumerate() {
-        let ours = t.random[m];
-        let paper = paper_random(mesh);
+    for m in &t.meshes {
+        let ours = m.random;
+        let paper = paper_random(&m.mesh);
         let differs = paper.is_some_and(|p| ours.is_none_or(|o| (o - p).abs() > 1e-9));
         if paper.is_some() && !differs {
             same += 1;
         }
         row.push(format!(
             "{} ({}){}",
-            show(ours, t.random_grid.values.first(), 3),
+            show(ours, t.random_grid.random.first(), 3),
             paper.map_or_else(|| "-".into(), |p| label(p, 3)),
             if differs { "*" } else { "" }
         ));
@@ -172,22 +220,22 @@ fn random_row(t: &study::grids::Tolerances) -> (Vec<String>, usize) {
 /// A row per systematic error: each mesh's counts beside the paper's, compared where
 /// `like_for_like`.
 fn count_rows(
-    t: &study::grids::Tolerances,
+    t: &DerivedTolerances,
     like_for_like: &[bool],
     jam_cells: &mut JamCells,
 ) -> Vec<Vec<String>> {
-    let meshes = &t.random_grid.meshes;
     let mut rows = Vec::new();
-    for (s, counts) in t.sys_values.iter().zip(&t.sys_counts) {
-        let key = label(*s, 1);
+    for sys_row in &t.rows {
+        let key = label(sys_row.systematic, 1);
         let mut row = vec![key.clone()];
-        for (m, mesh) in meshes.iter().enumerate() {
-            let Some(c) = &counts[m] else {
+        for (m, tol) in t.meshes.iter().enumerate() {
+            let mesh = &tol.mesh;
+            let Some(c) = &sys_row.cells[m] else {
                 row.push("-".into());
                 continue;
             };
             let paper = paper_counts("table5", &format!("{key}.{mesh}"));
-            let random = t.random[m].map_or_else(String::new, |e| e.to_string());
+            let random = tol.random.map_or_else(String::new, |e| e.to_string());
             row.push(jam_cells.cell_compared(
                 (&key, mesh),
                 &[&key, mesh, &random],
@@ -205,12 +253,12 @@ fn count_rows(
 /// split of the systematic error.
 fn add_notes(
     table: &mut Table,
-    t: &study::grids::Tolerances,
+    t: &DerivedTolerances,
     (rule, trials): (f64, u64),
     given: bool,
     (like_for_like, same): (&[bool], usize),
 ) {
-    let meshes = &t.random_grid.meshes;
+    let meshes = &t.random_grid.table.meshes;
     let apart = like_for_like.iter().filter(|l| !**l).count();
     if apart > 0 {
         let names: Vec<&str> = meshes
@@ -233,16 +281,16 @@ fn add_notes(
             tolerance::allowed_jams(trials, rule),
             meshes.len(),
             t.random_grid
-                .values
+                .random
                 .first()
                 .map_or_else(|| "-".into(), |v| label(*v, 3)),
         ));
     }
     table.note(format!(
         "E. max (systematic): the same rule on this table's jams (disengagements are not counted, as in the paper); in brackets the value the paper's own counts give by that rule (its text: e1-b3 up to 0.6, d2-e2 up to 0.1). `< {}`: even the smallest amplitude fails.",
-        t.sys_values
+        t.rows
             .first()
-            .map_or_else(|| "-".into(), |v| label(*v, 1)),
+            .map_or_else(|| "-".into(), |r| label(r.systematic, 1)),
     ));
     table.note("Systematic amplitude A split as in the paper: split x A on a sinusoid of tip positions, the rest an eccentric axis R tan((1 - split) A); random error as a fraction of the pitch.");
 }
@@ -250,30 +298,27 @@ fn add_notes(
 /// Table 5's last row, each mesh's largest tolerable systematic amplitude beside the one the
 /// paper's own counts give by the same rule, and the lines of `table5-emax.csv` (after its
 /// header, `emax_csv`).
-fn systematic_row(
-    t: &study::grids::Tolerances,
-    rule: f64,
-    mut emax_csv: String,
-) -> (Vec<String>, String) {
-    let meshes = &t.random_grid.meshes;
+fn systematic_row(t: &DerivedTolerances, rule: f64, mut emax_csv: String) -> (Vec<String>, String) {
+    let sys_values = t.systematic_values();
     let mut row = vec!["E. max (systematic)".to_string()];
-    for (m, mesh) in meshes.iter().enumerate() {
-        let ours = if t.random[m].is_some() {
-            show(t.systematic[m], t.sys_values.first(), 1)
+    for m in &t.meshes {
+        let mesh = &m.mesh;
+        let ours = if m.random.is_some() {
+            show(m.systematic, sys_values.first(), 1)
         } else {
             "-".into()
         };
-        let paper = paper_systematic(mesh, &t.sys_values, rule);
+        let paper = paper_systematic(mesh, &sys_values, rule);
         let paper_text = match paper {
-            Some(p) => show(p, t.sys_values.first(), 1),
+            Some(p) => show(p, sys_values.first(), 1),
             None => "-".into(),
         };
         row.push(format!("{ours} ({paper_text})"));
         emax_csv.push_str(&registry::csv_row!(
             mesh,
-            t.random[m].map_or_else(String::new, |v| v.to_string()),
+            m.random.map_or_else(String::new, |v| v.to_string()),
             paper_random(mesh).map_or_else(String::new, |v| v.to_string()),
-            t.systematic[m].map_or_else(String::new, |v| v.to_string()),
+            m.systematic.map_or_else(String::new, |v| v.to_string()),
             paper.flatten().map_or_else(String::new, |v| v.to_string()),
         ));
     }

@@ -4,13 +4,22 @@
 use std::collections::BTreeMap;
 
 use hypotheses::Params;
-use registry::{Context, OutputFile, Param, Report, RunError, Table, fmt_f64};
-use stats::{Estimate, PointerStats, mean_ci95};
+use registry::{OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64};
+use serde::{Deserialize, Serialize};
+use stats::Estimate;
 
-use crate::emax::{paper_random, paper_systematic, show};
+use crate::emax::{EMAX, given_row, paper_random, paper_systematic, random_from, show};
+use crate::settings::typed::{Gearing, cells, off_paper_inputs};
 use study::cell::{Purpose, label};
-use study::pointers::{Manufactured, POINTERS, pointer_runs};
-use study::tolerance::RULE;
+use study::drive::DriveParams;
+use study::errors::CaseParams;
+use study::events::EventParams;
+use study::gearing::GearingParams;
+use study::pointers::{Manufactured, RunLengths, pointer_runs};
+use study::results::{
+    DerivedTolerances, GearTolerance, PointerEstimates, RandomFrom, TolerableMechanism,
+};
+use study::tolerance::{RULE, RandomGrid, SystematicGrid};
 
 /// `trials`: runs of the whole mechanism, each with fresh errors and initial angles (the paper: 30).
 const TRIALS: Param = registry::interval_trials(
@@ -23,44 +32,203 @@ registry::params! {
     const CELL_TRIALS = Param::new("cell_trials", "200", "trials per cell of Tables 4 and 5, from which the tolerances are derived", registry::Kind::count(1, registry::MAX_TRIALS, ""));
 }
 
-crate::experiment! {
-    id: "table6", paper_item: "Table 6 (section 5)", run,
-    title: "Pointer errors of a mechanism built with each mesh's largest tolerable random and systematic errors",
-    params: [TRIALS, CELL_TRIALS, RULE, crate::emax::EMAX], groups: [study::gearing::GROUP, study::errors::CASES_GROUP, study::tolerance::RANDOM_GRID, study::tolerance::SYSTEMATIC_GRID, study::pointers::RUN_LENGTHS, study::events::GROUP, study::drive::GROUP],
+/// Table 6's settings: the mechanism's trials, the cells' trials, the rule, where the random E.
+/// max comes from, the gearing with h and G, the split and hypothesis, the grids of Tables 4
+/// and 5, the pointers' run lengths, the event rule and the pair-trial protocol.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, registry::Settings)]
+pub struct Settings {
+    /// Whole-mechanism trials ([`TRIALS`]).
+    #[param(TRIALS)]
+    pub trials: usize,
+    /// Trials per cell of Tables 4 and 5 ([`CELL_TRIALS`]).
+    #[param(CELL_TRIALS)]
+    pub cell_trials: u64,
+    /// The tolerance rule, % of trials jamming ([`RULE`]).
+    #[param(RULE)]
+    pub rule: f64,
+    /// `derived` or `paper` ([`EMAX`]).
+    #[param(EMAX)]
+    pub emax: String,
+    /// The gearing, G and h.
+    #[group]
+    pub gearing: GearingParams,
+    /// The split, the hypothesis and its parameters.
+    #[group]
+    pub errors: CaseParams,
+    /// Table 4's random errors.
+    #[group]
+    pub random: RandomGrid,
+    /// Table 5's systematic amplitudes.
+    #[group]
+    pub systematic: SystematicGrid,
+    /// The pointers' run lengths and sampling.
+    #[group]
+    pub run_lengths: RunLengths,
+    /// The event rule.
+    #[group]
+    pub events: EventParams,
+    /// Which gear drives, where counting ends.
+    #[group]
+    pub drive: DriveParams,
 }
 
-/// One trial: per pointer (statistics up to the first jam, jammed, tooth engagements).
-type PointerTrials = Vec<(PointerStats, bool, u64)>;
+/// Table 6.
+pub struct Table6;
 
-/// Each gear's tolerances (random, systematic) and the meshes it is in.
-type PerGear = BTreeMap<String, (f64, f64, Vec<String>)>;
+impl registry::Experiment for Table6 {
+    const ID: &'static str = "table6";
+    const TITLE: &'static str = "Pointer errors of a mechanism built with each mesh's largest tolerable random and systematic errors";
+    const PAPER_ITEM: &'static str = "Table 6 (section 5)";
+    const PLACE: Place = Place::Paper(120);
+    type Settings = Settings;
+    type Results = TolerableMechanism;
+
+    fn compute(s: &Settings, run: &Run) -> Result<TolerableMechanism, RunError> {
+        // The cells of Tables 4 and 5 count `cell_trials` trials each.
+        let cells = cells(
+            Gearing::WithClearance(&s.gearing),
+            &s.errors,
+            Some(&s.events),
+            Some(&s.drive),
+            s.cell_trials,
+            s,
+        )?;
+        let g = cells.gearing();
+        let runs = pointer_runs(
+            g,
+            &s.run_lengths.turns(),
+            s.run_lengths.samples_per_engagement,
+        )?;
+        let grids = (s.random.values(s)?, s.systematic.values(s)?);
+        let from = random_from(&s.emax);
+        let given = given_row(from, &cells.meshes())?;
+        let tol = study::grids::derive(run.engine(), &cells, grids, s.rule, Purpose::Input, given)?;
+        let tolerances = DerivedTolerances::new(&tol, cells.clearance()?, from);
+        let gears = per_gear(g, &tolerances);
+        let recorded = mechanism_trials(run, s, &cells, &gears, &runs)?;
+        let pointers = runs
+            .iter()
+            .enumerate()
+            .map(|(i, &run)| PointerEstimates::of(run, i, &recorded))
+            .collect();
+        Ok(TolerableMechanism {
+            tolerances,
+            gears,
+            trials: s.trials as u64,
+            pointers,
+        })
+    }
+
+    fn report(s: &Settings, r: &TolerableMechanism) -> Result<Report, RunError> {
+        let from_paper = random_from(&s.emax) == RandomFrom::Paper;
+        let trials = r.trials as usize;
+        let mut layout = layout_table(from_paper, s.gearing.clearance, trials);
+        let off_paper = off_paper_inputs(s);
+        let (detail, csv, (inside, outside)) =
+            pointer_rows(&mut layout, &r.pointers, trials, off_paper.is_empty());
+        layout.note(format!(
+            "Values of the paper inside our 95 % Student-t intervals: {inside}; outside: {outside}."
+        ));
+        if let Some(note) = tolerances_note(&r.tolerances, s.rule) {
+            layout.note(note);
+        }
+        layout.note("Each trial: every gear manufactured afresh with its tolerances (systematic split as the split parameter says), random initial angles; a jam stops the pointer, so a trial that jammed is measured up to its first jam (as in table2).");
+        let (inputs, inputs_csv) = inputs_table(&r.tolerances, s.rule, s.cell_trials, &r.gears);
+        let cells = || r.tolerances.all();
+        let trains = r.trials * r.pointers.len() as u64;
+        let train_engagements: u64 = r.pointers.iter().map(|p| p.engagements).sum();
+        let report = Report {
+            tables: vec![layout, detail, inputs],
+            files: vec![
+                OutputFile::new("table6-data.csv", csv),
+                OutputFile::new("table6-inputs.csv", inputs_csv),
+            ],
+            trials: cells().map(|c| c.trials).sum::<u64>() + trains,
+            engagements: cells().map(|c| c.engagements).sum::<u64>() + train_engagements,
+            agreement: off_paper.is_empty().then_some(registry::Agreement {
+                consistent: inside,
+                differ: outside,
+            }),
+            ..Default::default()
+        };
+        crate::settings::typed::label(&s.events, Some(&s.drive), report)
+    }
+}
+
+registry::register!(Table6);
 
 /// Each gear's tolerances (random, systematic) and its meshes: its mesh's; a gear in two meshes
-/// (b2) the smaller of each. Below a grid counts as 0 (no error known to be tolerable).
-fn per_gear(g: &train::Gearing, tol: &study::grids::Tolerances) -> PerGear {
-    let mut per_gear: BTreeMap<String, (f64, f64, Vec<String>)> = BTreeMap::new();
-    for (m, mesh) in g.meshes().iter().enumerate() {
-        let r = tol.random[m].unwrap_or(0.0);
-        let s = tol.systematic[m].unwrap_or(0.0);
+/// (b2) the smaller of each. Below a grid counts as 0 (no error known to be tolerable). By gear
+/// name.
+fn per_gear(g: &train::Gearing, tol: &DerivedTolerances) -> Vec<GearTolerance> {
+    let mut per_gear: BTreeMap<String, GearTolerance> = BTreeMap::new();
+    for (mesh, t) in g.meshes().iter().zip(&tol.meshes) {
+        let r = t.random.unwrap_or(0.0);
+        let s = t.systematic.unwrap_or(0.0);
         for gear in [&mesh.driver, &mesh.driven] {
-            let e =
-                per_gear
-                    .entry(gear.clone())
-                    .or_insert((f64::INFINITY, f64::INFINITY, Vec::new()));
-            e.0 = e.0.min(r);
-            e.1 = e.1.min(s);
-            e.2.push(mesh.label.clone());
+            let e = per_gear
+                .entry(gear.clone())
+                .or_insert_with(|| GearTolerance {
+                    gear: gear.clone(),
+                    random: f64::INFINITY,
+                    systematic: f64::INFINITY,
+                    meshes: Vec::new(),
+                });
+            e.random = e.random.min(r);
+            e.systematic = e.systematic.min(s);
+            e.meshes.push(mesh.label.clone());
         }
     }
-    per_gear
+    per_gear.into_values().collect()
+}
+
+/// The mechanism's trials: every gear made with its tolerances (`gears`), each trial run
+/// pointer by pointer (`runs`) up to its first jam.
+fn mechanism_trials(
+    run: &Run,
+    s: &Settings,
+    cells: &study::grids::CellSettings,
+    gears: &[GearTolerance],
+    runs: &[(&str, f64, usize)],
+) -> Result<Vec<Vec<study::pointers::ToFirstJam>>, RunError> {
+    let (g, hyp, h) = (
+        cells.gearing(),
+        cells.hypothesis(),
+        cells.gearing.tooth_height,
+    );
+    let clearance = cells.clearance()?;
+    let params = gear_params(cells, gears, s.errors.split)?;
+    // Named by everything that determines the trials (the tolerances are derived from the
+    // parameters, so naming those names them), so shards run and merge them.
+    let key = format!(
+        "table6: {} trials, hypothesis {}, tolerances {:?}, h = {h} mm, G = {clearance} %, gearing {}, events {}, pointers {:?}",
+        s.trials,
+        hyp.name(),
+        params
+            .iter()
+            .map(|(gear, p)| (gear.as_str(), p.iter().collect::<Vec<_>>()))
+            .collect::<Vec<_>>(),
+        cells.gearing.file,
+        cells.rule.label(),
+        runs,
+    );
+    let made = Manufactured {
+        gearing: g,
+        tooth_height: h,
+        clearance,
+        hypothesis: hyp,
+        params: &params,
+        rule: &cells.rule,
+    };
+    study::pointers::tolerated_trials(run.engine(), &key, &made, runs, s.trials as u64)
 }
 
 /// Table 6's inputs: each mesh's tolerances beside the paper's, and table6-inputs.csv.
 fn inputs_table(
-    tol: &study::grids::Tolerances,
+    tol: &DerivedTolerances,
     rule: f64,
     cell_trials: u64,
-    per_gear: &PerGear,
+    gears: &[GearTolerance],
 ) -> (Table, String) {
     let mut inputs = Table::new(
         format!(
@@ -69,11 +237,13 @@ fn inputs_table(
         ["mesh", "random E. max [pitch]", "systematic E. max [deg]"],
     );
     let mut inputs_csv = String::from("mesh,random_emax,systematic_emax_deg\n");
-    for (m, mesh) in tol.random_grid.meshes.iter().enumerate() {
-        let paper_sys = paper_systematic(mesh, &tol.sys_values, rule)
-            .map_or_else(|| "-".into(), |p| show(p, tol.sys_values.first(), 1));
-        let ours_sys = if tol.random[m].is_some() {
-            show(tol.systematic[m], tol.sys_values.first(), 1)
+    let sys_values = tol.systematic_values();
+    for t in &tol.meshes {
+        let mesh = &t.mesh;
+        let paper_sys = paper_systematic(mesh, &sys_values, rule)
+            .map_or_else(|| "-".into(), |p| show(p, sys_values.first(), 1));
+        let ours_sys = if t.random.is_some() {
+            show(t.systematic, sys_values.first(), 1)
         } else {
             "-".into()
         };
@@ -81,26 +251,27 @@ fn inputs_table(
             mesh.clone(),
             format!(
                 "{} ({})",
-                show(tol.random[m], tol.random_grid.values.first(), 3),
+                show(t.random, tol.random_grid.random.first(), 3),
                 paper_random(mesh).map_or_else(|| "-".into(), |p| label(p, 3))
             ),
             format!("{ours_sys} ({paper_sys})"),
         ]);
         inputs_csv.push_str(&registry::csv_line([
             mesh.clone(),
-            tol.random[m].unwrap_or(0.0).to_string(),
-            tol.systematic[m].unwrap_or(0.0).to_string(),
+            t.random.unwrap_or(0.0).to_string(),
+            t.systematic.unwrap_or(0.0).to_string(),
         ]));
     }
-    let shared: Vec<String> = per_gear
+    let shared: Vec<String> = gears
         .iter()
-        .filter(|(_, (_, _, meshes))| meshes.len() > 1)
-        .map(|(gear, (r, s, meshes))| {
+        .filter(|g| g.meshes.len() > 1)
+        .map(|g| {
             format!(
-                "{gear} ({}): random {}, systematic {} deg",
-                meshes.join(" and "),
-                label(*r, 3),
-                label(*s, 1)
+                "{} ({}): random {}, systematic {} deg",
+                g.gear,
+                g.meshes.join(" and "),
+                label(g.random, 3),
+                label(g.systematic, 1)
             )
         })
         .collect();
@@ -122,11 +293,10 @@ fn inputs_table(
 /// paper's).
 fn pointer_rows(
     layout: &mut Table,
-    runs: &[(&str, f64, usize)],
-    per_trial: &[PointerTrials],
+    pointers: &[PointerEstimates],
+    trials: usize,
     compared: bool,
 ) -> (Table, String, (u64, u64)) {
-    let trials = per_trial.len();
     let mut detail = Table::new(
         "Table 6 in detail: mean over trials with its 95 % interval, the paper's value, trials that jammed",
         [
@@ -144,24 +314,16 @@ fn pointer_rows(
         .map(|s| vec![(*s).to_string()])
         .collect();
     let (mut inside, mut outside) = (0, 0);
-    for (i, &(name, turns, _)) in runs.iter().enumerate() {
-        let jammed = per_trial.iter().filter(|t| t[i].1).count();
-        let columns: [(&str, &str, Vec<f64>); 3] = [
-            (
-                "sigma",
-                "sigma",
-                per_trial.iter().map(|t| t[i].0.sigma).collect(),
-            ),
-            ("Dm", "dm", per_trial.iter().map(|t| t[i].0.dm).collect()),
-            // P: the average absolute value of the oscillation mean, as in Table 1.
-            (
-                "P",
-                "mean",
-                per_trial.iter().map(|t| t[i].0.mean.abs()).collect(),
-            ),
+    for p in pointers {
+        let (name, turns, jammed) = (p.pointer.as_str(), p.turns, p.jammed);
+        // P: the average absolute value of the oscillation mean, as in Table 1.
+        let columns = [
+            ("sigma", "sigma", p.sigma),
+            ("Dm", "dm", p.dm),
+            ("P", "mean", p.p),
         ];
-        for (row, (label_text, key, values)) in columns.into_iter().enumerate() {
-            let e: Estimate = mean_ci95(&values);
+        for (row, (label_text, key, estimate)) in columns.into_iter().enumerate() {
+            let e: Estimate = estimate.into();
             let paper = crate::paper::get("table6", &format!("{name}.{key}")).map(|r| r.value);
             let ok = !compared || paper.is_none_or(|p| e.contains(p));
             if compared && paper.is_some() {
@@ -194,7 +356,7 @@ fn pointer_rows(
 /// than the paper's row, or a systematic one other than what the paper's own Table 5 counts give
 /// by the same rule. The paper's values come from its own tolerances, so where these differ the
 /// comparison is not like for like; none where every mesh ran at the paper's.
-fn tolerances_note(tol: &study::grids::Tolerances, rule: f64) -> Option<String> {
+fn tolerances_note(tol: &DerivedTolerances, rule: f64) -> Option<String> {
     let differs = |ours: Option<f64>, paper: Option<f64>| match (ours, paper) {
         (Some(o), Some(p)) => (o - p).abs() > 1e-9,
         (None, None) => false,
@@ -202,13 +364,15 @@ fn tolerances_note(tol: &study::grids::Tolerances, rule: f64) -> Option<String> 
     };
     let mut random = Vec::new();
     let mut systematic = Vec::new();
-    for (m, mesh) in tol.random_grid.meshes.iter().enumerate() {
-        if differs(tol.random[m], paper_random(mesh)) {
-            random.push(mesh.as_str());
+    let sys_values = tol.systematic_values();
+    for t in &tol.meshes {
+        let mesh = t.mesh.as_str();
+        if differs(t.random, paper_random(mesh)) {
+            random.push(mesh);
         }
-        let paper_sys = paper_systematic(mesh, &tol.sys_values, rule);
-        if paper_sys.is_some_and(|p| differs(tol.systematic[m], p)) {
-            systematic.push(mesh.as_str());
+        let paper_sys = paper_systematic(mesh, &sys_values, rule);
+        if paper_sys.is_some_and(|p| differs(t.systematic, p)) {
+            systematic.push(mesh);
         }
     }
     if random.is_empty() && systematic.is_empty() {
@@ -224,7 +388,7 @@ fn tolerances_note(tol: &study::grids::Tolerances, rule: f64) -> Option<String> 
     Some(format!(
         "Not like for like in every mesh: the paper's values come from its own tolerances, and this run's differ (the inputs table) in random E. max for {} of {} meshes ({}) and in systematic E. max for {} ({}); `--set emax=paper` takes the paper's random E. max row.",
         random.len(),
-        tol.random_grid.meshes.len(),
+        tol.meshes.len(),
         list(&random),
         systematic.len(),
         list(&systematic)
@@ -234,40 +398,22 @@ fn tolerances_note(tol: &study::grids::Tolerances, rule: f64) -> Option<String> 
 /// Each gear's hypothesis parameters: its tolerances, with the split the cells run.
 fn gear_params(
     cells: &study::grids::CellSettings,
-    per_gear: &PerGear,
+    gears: &[GearTolerance],
     split: f64,
 ) -> Result<BTreeMap<String, Params>, RunError> {
     let mut params: BTreeMap<String, Params> = BTreeMap::new();
-    for (gear, (r, s, _)) in per_gear {
+    for g in gears {
         params.insert(
-            gear.clone(),
-            cells
-                .errors
-                .params(&[("random", *r), ("systematic", *s), ("split", split)])?,
+            g.gear.clone(),
+            cells.errors.params(&[
+                ("random", g.random),
+                ("systematic", g.systematic),
+                ("split", split),
+            ])?,
         );
     }
 
     Ok(params)
-}
-
-/// The trials as recorded, as each pointer's statistics, whether it jammed and its engagements.
-fn pointer_trials(recorded: Vec<Vec<study::pointers::ToFirstJam>>) -> Vec<PointerTrials> {
-    recorded
-        .into_iter()
-        .map(|trial| {
-            trial
-                .into_iter()
-                .map(|r| {
-                    let s = PointerStats {
-                        sigma: r.sigma,
-                        dm: r.dm,
-                        mean: r.mean,
-                    };
-                    (s, r.jammed, r.engaged)
-                })
-                .collect()
-        })
-        .collect()
 }
 
 /// The table in the paper's layout, its title saying where the random tolerances come from.
@@ -283,90 +429,4 @@ fn layout_table(emax_from_paper: bool, clearance: f64, trials: usize) -> Table {
         ),
         study::pointers::COLUMNS,
     )
-}
-
-fn run(ctx: &Context) -> Result<Report, RunError> {
-    crate::settings::labelled(ctx, counted)
-}
-
-/// The experiment itself; [`run`] names the event rule in its tables' titles.
-fn counted(ctx: &Context) -> Result<Report, RunError> {
-    // The cells of Tables 4 and 5 count `cell_trials` trials each.
-    let cells = crate::settings::cells(ctx, &CELL_TRIALS)?;
-    let trials: usize = ctx.get(&TRIALS)?;
-    let (g, hyp, cell_trials) = (cells.gearing(), cells.hypothesis(), cells.trials);
-    let rule = ctx.get(&study::tolerance::RULE)?;
-    let (h, clearance, split) = (
-        cells.gearing.tooth_height,
-        cells.clearance()?,
-        cells.errors.split()?,
-    );
-    let per = ctx.get(&study::pointers::SAMPLES_PER_ENGAGEMENT)?;
-    let runs = pointer_runs(g, &crate::settings::turns(ctx, &POINTERS)?, per)?;
-    let grids = (
-        crate::settings::random_grid(ctx)?,
-        crate::settings::systematic_grid(ctx)?,
-    );
-    let given = crate::emax::given_random(ctx, g)?;
-    let tol = study::grids::derive(ctx.engine(), &cells, grids, rule, Purpose::Input, given)?;
-
-    let per_gear = per_gear(g, &tol);
-    let params = gear_params(&cells, &per_gear, split)?;
-
-    // Named by everything that determines the trials (the tolerances are derived from the
-    // parameters, so naming those names them), so shards run and merge them.
-    let key = format!(
-        "table6: {trials} trials, hypothesis {}, tolerances {:?}, h = {h} mm, G = {clearance} %, gearing {}, events {}, pointers {:?}",
-        hyp.name(),
-        params
-            .iter()
-            .map(|(gear, p)| (gear.as_str(), p.iter().collect::<Vec<_>>()))
-            .collect::<Vec<_>>(),
-        cells.gearing.file,
-        cells.rule.label(),
-        runs,
-    );
-    let made = Manufactured {
-        gearing: g,
-        tooth_height: h,
-        clearance,
-        hypothesis: hyp,
-        params: &params,
-        rule: &cells.rule,
-    };
-    let recorded =
-        study::pointers::tolerated_trials(ctx.engine(), &key, &made, &runs, trials as u64)?;
-    let per_trial = pointer_trials(recorded);
-
-    let mut layout = layout_table(crate::emax::emax_from_paper(ctx)?, clearance, trials);
-    let off_paper = crate::cells::off_paper_inputs(ctx);
-    let (detail, csv, (inside, outside)) =
-        pointer_rows(&mut layout, &runs, &per_trial, off_paper.is_empty());
-    layout.note(format!(
-        "Values of the paper inside our 95 % Student-t intervals: {inside}; outside: {outside}."
-    ));
-    if let Some(note) = tolerances_note(&tol, rule) {
-        layout.note(note);
-    }
-    layout.note("Each trial: every gear manufactured afresh with its tolerances (systematic split as the split parameter says), random initial angles; a jam stops the pointer, so a trial that jammed is measured up to its first jam (as in table2).");
-
-    let (inputs, inputs_csv) = inputs_table(&tol, rule, cell_trials, &per_gear);
-
-    let cells = || tol.all();
-    let trains: u64 = (trials * runs.len()) as u64;
-    let train_engagements: u64 = per_trial.iter().flatten().map(|x| x.2).sum();
-    Ok(Report {
-        tables: vec![layout, detail, inputs],
-        files: vec![
-            OutputFile::new("table6-data.csv", csv),
-            OutputFile::new("table6-inputs.csv", inputs_csv),
-        ],
-        trials: cells().map(|c| c.trials).sum::<u64>() + trains,
-        engagements: cells().map(|c| c.engagements).sum::<u64>() + train_engagements,
-        agreement: off_paper.is_empty().then_some(registry::Agreement {
-            consistent: inside,
-            differ: outside,
-        }),
-        ..Default::default()
-    })
 }

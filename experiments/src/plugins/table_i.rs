@@ -2,24 +2,113 @@
 //! 10, 40 and 70 % (Appendix II), 200 trials per cell. The 40 % rows are Table 3's cells.
 
 use crate::replay::{Cell, CellText};
-use registry::{Context, OutputFile, Param, Report, RunError, Table};
+use registry::{OutputFile, Place, Report, Run, RunError, Table};
+use serde::{Deserialize, Serialize};
 
 use crate::cells::{
     CASE_TRIAL_NOTE, JamCells, case_paper_counts, counts_report, paper_counts, replay_note,
 };
-use study::cell::{Purpose, label, run_cells};
-use study::grids::{CASES, CellSettings, TRIALS, case_cells};
+use crate::settings::typed::{Gearing, cells, label, off_paper_inputs};
+use study::cell::{Purpose, run_cells};
+use study::drive::DriveParams;
+use study::errors::CaseParams;
+use study::events::EventParams;
+use study::gearing::{MAX_LISTED_CLEARANCE, ShapeParams, TABLE_I_CLEARANCES as CLEARANCES};
+use study::grids::{CASES, CellSettings, TRIALS, case_cells, cases_apply};
+use study::results::{CaseClearanceTable, JamTable};
 
-registry::params! {
-    /// `clearances`: Table I's clearances G, comma-separated (the paper: 10, 40 and 70).
-    const CLEARANCES = Param::new("clearances", "10,40,70", "clearances G, comma-separated (the paper: 10, 40 and 70)", registry::Kind::Text).unit("% of h");
+/// Table I's settings: trials per cell, the clearances, the gearing with h, the Cases' errors,
+/// the event rule and the pair-trial protocol.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, registry::Settings)]
+pub struct Settings {
+    /// Trials per cell ([`TRIALS`]).
+    #[param(TRIALS)]
+    pub trials: u64,
+    /// The clearances G, % of h, comma-separated ([`CLEARANCES`]).
+    #[param(CLEARANCES)]
+    pub clearances: String,
+    /// The gearing and h.
+    #[group]
+    pub shape: ShapeParams,
+    /// The split, the hypothesis and its parameters.
+    #[group]
+    pub errors: CaseParams,
+    /// The event rule.
+    #[group]
+    pub events: EventParams,
+    /// Which gear drives, where counting ends.
+    #[group]
+    pub drive: DriveParams,
 }
 
-crate::experiment! {
-    id: "tableI", paper_item: "Table I (Appendix II)", run,
-    title: "Jams and disengagements of each mesh on its own, Cases A-D at G = 10, 40 and 70 %",
-    params: [TRIALS, CLEARANCES], groups: [study::gearing::SHAPE, study::errors::CASES_GROUP, study::events::GROUP, study::drive::GROUP],
-    replay: "CASE/G/MESH, e.g. B/70/m3-e3" => cell,
+/// Table I.
+pub struct TableI;
+
+impl registry::Experiment for TableI {
+    const ID: &'static str = "tableI";
+    const TITLE: &'static str =
+        "Jams and disengagements of each mesh on its own, Cases A-D at G = 10, 40 and 70 %";
+    const PAPER_ITEM: &'static str = "Table I (Appendix II)";
+    const PLACE: Place = Place::Paper(170);
+    type Settings = Settings;
+    type Results = CaseClearanceTable;
+
+    fn compute(s: &Settings, run: &Run) -> Result<CaseClearanceTable, RunError> {
+        let cs = cell_settings(s)?;
+        let gs = clearances(s)?;
+        let meshes = cs.meshes();
+        let apply = cases_apply(cs.hypothesis());
+        let cases = if apply { CASES.len() } else { 1 };
+        let counts = run_grid(run, &cs, &gs, cases * meshes.len())?;
+        let (rows, cells) = case_by_case(&counts, &gs, apply, meshes.len());
+        Ok(CaseClearanceTable {
+            clearances: gs,
+            cases_apply: apply,
+            hypothesis: cs.hypothesis().name().to_owned(),
+            table: JamTable::from_counts(meshes, rows, &cells),
+        })
+    }
+
+    fn report(s: &Settings, r: &CaseClearanceTable) -> Result<Report, RunError> {
+        let mut jam_cells =
+            JamCells::new(&["case", "clearance", "mesh"]).off_paper(off_paper_inputs(s));
+        let mut table = counts_table(s.trials, r, &mut jam_cells);
+        table.note(jam_cells.tally.note());
+        if let Some(note) = jam_cells.off_paper_note() {
+            table.note(note);
+        }
+        table.note(jam_cells.rule_note());
+        table.note(format!(
+            "{CASE_TRIAL_NOTE} The 40 % rows are the cells of table3 (same streams, so the same counts)."
+        ));
+        table.note(replay_note("tableI", "B/70/m3-e3"));
+        if let Some(note) = paper_printings_note(&r.table.meshes) {
+            table.note(note);
+        }
+        let report = Report {
+            tables: vec![table, jam_cells.rule_table("Table I", "case and G")],
+            files: vec![OutputFile::new("tableI-data.csv", jam_cells.csv)],
+            agreement: Some(jam_cells.tally.agreement()),
+            ..counts_report(r.table.counts())
+        };
+        label(&s.events, Some(&s.drive), report)
+    }
+}
+
+registry::register!(TableI);
+
+crate::replay_cells! { "tableI", "CASE/G/MESH, e.g. B/70/m3-e3" => cell }
+
+/// The cells' settings read from Table I's.
+fn cell_settings(s: &Settings) -> Result<CellSettings, RunError> {
+    cells(
+        Gearing::Shape(&s.shape),
+        &s.errors,
+        Some(&s.events),
+        Some(&s.drive),
+        s.trials,
+        s,
+    )
 }
 
 /// A cell of Table I for `cargo xtask replay`: `CASE/G/MESH`, at the experiment's split.
@@ -36,86 +125,54 @@ fn cell<'a>(s: &CellSettings, c: &CellText<'a>) -> Result<Cell<'a>, RunError> {
 }
 
 /// The `clearances` parameter: a comma-separated list of clearances, each in (0, 200] % of h.
-fn clearances(ctx: &Context) -> Result<Vec<f64>, RunError> {
-    crate::settings::clearance_list(ctx, &CLEARANCES, study::gearing::MAX_LISTED_CLEARANCE)
+fn clearances(s: &Settings) -> Result<Vec<f64>, RunError> {
+    study::gearing::clearance_list(&s.clearances, CLEARANCES.name, MAX_LISTED_CLEARANCE)
 }
 
-fn run(ctx: &Context) -> Result<Report, RunError> {
-    crate::settings::labelled(ctx, counted)
-}
-
-/// The experiment itself; [`run`] names the event rule in its tables' titles.
-fn counted(ctx: &Context) -> Result<Report, RunError> {
-    let s = crate::settings::cells(ctx, &TRIALS)?;
-    let gs = clearances(ctx)?;
-    let meshes: Vec<String> = s
-        .gearing()
-        .meshes()
-        .iter()
-        .map(|m| m.label.clone())
-        .collect();
-    let grid = run_grid(ctx, &s, &gs, meshes.len())?;
-    let mut jam_cells = JamCells::new(&["case", "clearance", "mesh"])
-        .off_paper(crate::cells::off_paper_inputs(ctx));
-    let mut table = counts_table(&s, &gs, &meshes, &grid, &mut jam_cells);
-    table.note(jam_cells.tally.note());
-    if let Some(note) = jam_cells.off_paper_note() {
-        table.note(note);
-    }
-    table.note(jam_cells.rule_note());
-    table.note(format!(
-        "{CASE_TRIAL_NOTE} The 40 % rows are the cells of table3 (same streams, so the same counts)."
-    ));
-    table.note(replay_note("tableI", "B/70/m3-e3"));
-    if let Some(note) = paper_printings_note(&meshes) {
-        table.note(note);
-    }
-    Ok(Report {
-        tables: vec![table, jam_cells.rule_table("Table I", "case and G")],
-        files: vec![OutputFile::new("tableI-data.csv", jam_cells.csv)],
-        agreement: Some(jam_cells.tally.agreement()),
-        ..counts_report(grid.counts.iter())
-    })
-}
-
-/// Table I's counts: every (clearance, case, mesh) cell, run in one call.
-struct Grid {
-    /// Counts by clearance, then case, then mesh.
-    counts: Vec<study::cell::Counts>,
-    /// Whether the hypothesis takes the Cases' errors; if not, Case A's cells stand for all.
-    cases_apply: bool,
-    /// Cases run: four, or one where they would be the same cells.
-    cases: usize,
-}
-
-/// Runs every cell in one call: Cases by clearance, as case_cells lays them out. A hypothesis
-/// the Cases do not reach makes them the same cells: Case A's alone, in one row per clearance.
-fn run_grid(ctx: &Context, s: &CellSettings, gs: &[f64], meshes: usize) -> Result<Grid, RunError> {
-    let cases_apply = study::grids::cases_apply(s.hypothesis());
-    let cases = if cases_apply { CASES.len() } else { 1 };
+/// Every cell in one call, clearance by clearance, each clearance's first `per_g` cells of
+/// case_cells' layout (Cases by meshes): a hypothesis the Cases do not reach makes them the
+/// same cells, and Case A's alone are run.
+fn run_grid(
+    run: &Run,
+    s: &CellSettings,
+    gs: &[f64],
+    per_g: usize,
+) -> Result<Vec<study::cell::Counts>, RunError> {
     let mut cells = Vec::new();
     for &clearance in gs {
         let mut these = case_cells(s, clearance)?;
-        these.truncate(cases * meshes);
+        these.truncate(per_g);
         cells.extend(these);
     }
-    let counts = run_cells(ctx.engine(), s.gearing(), &cells, s.trials, Purpose::Own)?;
-    Ok(Grid {
-        counts,
-        cases_apply,
-        cases,
-    })
+    run_cells(run.engine(), s.gearing(), &cells, s.trials, Purpose::Own)
+}
+
+/// The cells run clearance by clearance (`counts`, as [`run_grid`] ran them), laid out Case by
+/// Case, each Case's clearances in order: the rows' labels (`B/70`; `A-D/70` where the Cases do
+/// not `apply`) and their cells, row by row.
+fn case_by_case(
+    counts: &[study::cell::Counts],
+    gs: &[f64],
+    apply: bool,
+    meshes: usize,
+) -> (Vec<String>, Vec<study::cell::Counts>) {
+    let cases = if apply { CASES.len() } else { 1 };
+    let mut rows = Vec::new();
+    let mut cells = Vec::new();
+    for (c, &(case, _, _)) in CASES.iter().enumerate().take(cases) {
+        let case = if apply { case } else { "A-D" };
+        for (k, &g) in gs.iter().enumerate() {
+            rows.push(format!("{case}/{}", study::cell::label(g, 0)));
+            let at = (k * cases + c) * meshes;
+            cells.extend_from_slice(&counts[at..at + meshes]);
+        }
+    }
+    (rows, cells)
 }
 
 /// The table: a row per case and clearance, ours beside the paper's in each mesh's cell.
-fn counts_table(
-    s: &CellSettings,
-    gs: &[f64],
-    meshes: &[String],
-    grid: &Grid,
-    jam_cells: &mut JamCells,
-) -> Table {
-    let trials = s.trials;
+fn counts_table(trials: u64, r: &CaseClearanceTable, jam_cells: &mut JamCells) -> Table {
+    let meshes = &r.table.meshes;
     let mut header = vec!["case".to_string(), "G [%]".to_string()];
     header.extend(meshes.iter().cloned());
     let mut table = Table::new(
@@ -126,27 +183,23 @@ fn counts_table(
     );
     let alike = format!(
         "Cases A-D alike ({} takes no random or systematic error)",
-        s.hypothesis().name()
+        r.hypothesis
     );
-    let per_g = grid.cases * meshes.len();
-    for (c, &(case, _, _)) in CASES.iter().enumerate().take(grid.cases) {
-        let case = if grid.cases_apply {
-            case
-        } else {
-            alike.as_str()
-        };
-        for (k, &clearance) in gs.iter().enumerate() {
-            let gl = label(clearance, 0);
+    let cases = if r.cases_apply { CASES.len() } else { 1 };
+    for (c, &(case, _, _)) in CASES.iter().enumerate().take(cases) {
+        let case = if r.cases_apply { case } else { alike.as_str() };
+        for (k, &clearance) in r.clearances.iter().enumerate() {
+            let gl = study::cell::label(clearance, 0);
             let first = if k == 0 {
                 case.to_string()
             } else {
                 String::new()
             };
             let mut row = vec![first, gl.clone()];
-            for (m, mesh) in meshes.iter().enumerate() {
-                let n = &grid.counts[k * per_g + c * meshes.len() + m];
+            let cells = r.row(c, k).map_or(&[][..], |row| &row.cells);
+            for (mesh, n) in meshes.iter().zip(cells) {
                 let paper =
-                    case_paper_counts(grid.cases_apply, "tableI", &format!("{case}.{gl}.{mesh}"));
+                    case_paper_counts(r.cases_apply, "tableI", &format!("{case}.{gl}.{mesh}"));
                 row.push(jam_cells.cell(
                     (&format!("{case}, G = {gl} %"), mesh),
                     &[case, gl.as_str(), mesh],

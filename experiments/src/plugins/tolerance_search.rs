@@ -5,12 +5,19 @@
 //! at the cap. Compared with the grid-derived value (Table 4 by the rule) and the paper's E. max,
 //! with the pair turns each needed.
 
-use registry::{Context, OutputFile, Param, Report, RunError, Table};
+use registry::{OutputFile, Param, Place, Report, Run, RunError, Table};
+use serde::{Deserialize, Serialize};
 
 use crate::emax::{paper_random, show};
+use crate::settings::typed::{Gearing, off_paper_inputs, unsplit_cells};
 use study::cell::{Purpose, label};
-use study::tolerance::{self, RANDOM_STEP, RULE};
-use study::tolerance_search::{Search, Settings, search};
+use study::drive::DriveParams;
+use study::errors::ErrorParams;
+use study::events::EventParams;
+use study::gearing::GearingParams;
+use study::results::{MeshSearchResult, RandomErrorTable, SearchedTolerances};
+use study::tolerance::{self, RULE, RandomGrid};
+use study::tolerance_search::{self as sequential, Search, search};
 
 registry::params! {
     const SEARCH_LO = Param::new("search_lo", "0.02", "lower end of the searched random error (fraction of the pitch 360/N)", study::tolerance::RANDOM_KIND).unit("pitch");
@@ -20,22 +27,176 @@ registry::params! {
     const CAP = Param::new("cap", "200", "most trials at one probed value, where the paper's count rule decides; also the trials per cell of the Table 4 grid compared with (the paper: 200)", registry::Kind::count(1, registry::MAX_TRIALS, ""));
 }
 
-crate::experiment! {
-    id: "tolerance", paper_item: "Section 5, Tables 4-5 (tolerance by sequential search; beyond the paper)", run,
-    title: "Largest tolerable random error of each mesh by a sequential search (bisection, trials added until the jam rate is clearly below or above the rule), against Table 4's grid",
-    params: [SEARCH_LO, SEARCH_HI, RESOLUTION, RULE, BATCH, CAP], groups: [study::gearing::GROUP, study::errors::GROUP, study::tolerance::RANDOM_GRID, study::events::GROUP, study::drive::GROUP],
+/// The tolerance search's settings: the searched range and its resolution, the rule, the
+/// trials per batch and at most per probe, the gearing with h and G, the hypothesis, Table 4's
+/// grid compared with, the event rule and the pair-trial protocol.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, registry::Settings)]
+#[settings(check = check)]
+pub struct Settings {
+    /// Lower end of the searched random error, fraction of the pitch ([`SEARCH_LO`]).
+    #[param(SEARCH_LO)]
+    pub search_lo: f64,
+    /// Upper end ([`SEARCH_HI`]).
+    #[param(SEARCH_HI)]
+    pub search_hi: f64,
+    /// The bisection stops at a bracket this narrow ([`RESOLUTION`]).
+    #[param(RESOLUTION)]
+    pub resolution: f64,
+    /// The tolerance rule, % of trials jamming ([`RULE`]).
+    #[param(RULE)]
+    pub rule: f64,
+    /// Trials added to a probe at a time ([`BATCH`]).
+    #[param(BATCH)]
+    pub batch: u64,
+    /// Most trials at one probe, and the trials per cell of Table 4's grid ([`CAP`]).
+    #[param(CAP)]
+    pub cap: u64,
+    /// The gearing, G and h.
+    #[group]
+    pub gearing: GearingParams,
+    /// The hypothesis and its parameters.
+    #[group]
+    pub errors: ErrorParams,
+    /// Table 4's random errors, compared with.
+    #[group]
+    pub random: RandomGrid,
+    /// The event rule.
+    #[group]
+    pub events: EventParams,
+    /// Which gear drives, where counting ends.
+    #[group]
+    pub drive: DriveParams,
 }
 
-fn settings(ctx: &Context) -> Result<Settings, RunError> {
-    let (lo, hi) = (ctx.get::<f64>(&SEARCH_LO)?, ctx.get::<f64>(&SEARCH_HI)?);
-    let resolution = ctx.get::<f64>(&RESOLUTION)?;
-    let rule = ctx.get::<f64>(&RULE)?;
-    let (batch, cap) = (ctx.get::<u64>(&BATCH)?, ctx.get::<u64>(&CAP)?);
+/// The tolerance search.
+pub struct ToleranceSearch;
+
+impl registry::Experiment for ToleranceSearch {
+    const ID: &'static str = "tolerance";
+    const TITLE: &'static str = "Largest tolerable random error of each mesh by a sequential search (bisection, trials added until the jam rate is clearly below or above the rule), against Table 4's grid";
+    const PAPER_ITEM: &'static str =
+        "Section 5, Tables 4-5 (tolerance by sequential search; beyond the paper)";
+    const PLACE: Place = Place::Beyond(10);
+    type Settings = Settings;
+    type Results = SearchedTolerances;
+
+    fn compute(s: &Settings, run: &Run) -> Result<SearchedTolerances, RunError> {
+        // Table 4's grid runs `cap` trials a cell, the most a search's probe runs.
+        let cells = unsplit_cells(
+            Gearing::WithClearance(&s.gearing),
+            &s.errors,
+            Some(&s.events),
+            Some(&s.drive),
+            s.cap,
+            s,
+        )?;
+        let clearance = cells.clearance()?;
+        // The grid's parameters are checked before anything runs.
+        let values = s.random.values(s)?;
+        let searches = search(run.engine(), &cells, &sequential_settings(s))?;
+        let grid = study::grids::run_grid(run.engine(), &cells, values, s.cap, Purpose::Input)?;
+        let random_grid = RandomErrorTable::from_grid(&grid, clearance);
+        let tolerable = grid.tolerable(s.cap, s.rule);
+        let meshes = grid
+            .meshes
+            .iter()
+            .zip(searches)
+            .zip(tolerable)
+            .map(|((mesh, search), grid)| MeshSearchResult {
+                mesh: mesh.clone(),
+                search,
+                grid,
+            })
+            .collect();
+        Ok(SearchedTolerances {
+            meshes,
+            random_grid,
+        })
+    }
+
+    fn report(s: &Settings, r: &SearchedTolerances) -> Result<Report, RunError> {
+        let grid = &r.random_grid;
+        let grid_per_mesh = grid.random.len() as u64 * s.cap;
+        let mut table = search_table(s, grid.clearance);
+        let mut csv = String::from(
+            "mesh,search_emax,search_fail,grid_emax,paper_emax,probes,search_trials,grid_trials,saved_percent\n",
+        );
+        let mut probes_csv =
+            String::from("mesh,probe,random,trials,jams,disengagements,decision\n");
+        let compared = off_paper_inputs(s).is_empty();
+        let (mut inside, mut outside) = (0, 0);
+        let (mut used_total, mut grid_total, mut probes_total) = (0, 0, 0);
+        for m in &r.meshes {
+            let (mesh, sr) = (&m.mesh, &m.search);
+            let paper = paper_random(mesh);
+            // Compared only where the run's inputs are the paper's.
+            let agrees = paper
+                .filter(|_| compared)
+                .map(|p| within_resolution(sr.pass, p, s.resolution));
+            inside += u64::from(agrees == Some(true));
+            outside += u64::from(agrees == Some(false));
+            let used = sr.trials();
+            used_total += used;
+            grid_total += grid_per_mesh;
+            probes_total += sr.probes.len();
+            table.row(mesh_row(
+                m,
+                paper_cell(paper, agrees),
+                used,
+                grid_per_mesh,
+                grid,
+            ));
+            csv.push_str(&csv_line(m, paper, used, grid_per_mesh));
+            probes_csv.push_str(&probe_lines(mesh, sr));
+        }
+        table.row(total_row(probes_total, used_total, grid_total));
+        explain(&mut table, s, grid, (inside, outside));
+        let trials = used_total + grid.table.counts().map(|c| c.trials).sum::<u64>();
+        let engagements = r.meshes.iter().map(|m| m.search.engagements()).sum::<u64>()
+            + grid.table.counts().map(|c| c.engagements).sum::<u64>();
+        let report = Report {
+            tables: vec![table],
+            files: vec![
+                OutputFile::new("tolerance.csv", csv),
+                OutputFile::new("tolerance-probes.csv", probes_csv),
+            ],
+            trials,
+            engagements,
+            agreement: compared.then_some(registry::Agreement {
+                consistent: inside,
+                differ: outside,
+            }),
+            ..Default::default()
+        };
+        crate::settings::typed::label(&s.events, Some(&s.drive), report)
+    }
+}
+
+registry::register!(ToleranceSearch);
+
+/// What the sequential search runs.
+fn sequential_settings(s: &Settings) -> sequential::Settings {
+    sequential::Settings {
+        lo: s.search_lo,
+        hi: s.search_hi,
+        resolution: s.resolution,
+        rule: s.rule,
+        batch: s.batch,
+        cap: s.cap,
+    }
+}
+
+/// The checks across the search's parameters: a range from low to high, a rule strictly
+/// between 0 and 100 %, a cap of at least one batch; a refusal names the parameter the user set.
+fn check(s: &Settings, _: &registry::Context) -> Result<(), RunError> {
+    let (lo, hi, rule) = (s.search_lo, s.search_hi, s.rule);
     let short = registry::fmt_number;
     if hi.is_nan() || lo >= hi {
         // Name the one the user set: `search_hi` at or below the default low end, or
         // `search_lo` at or above the high end.
-        let hi_set = ctx.changed().iter().any(|(k, _)| *k == SEARCH_HI.name);
+        let mut changed = Vec::new();
+        registry::Settings::changed(s, &mut changed);
+        let hi_set = changed.iter().any(|(p, _)| p.name == SEARCH_HI.name);
         let (field, rule) = if hi_set {
             (
                 SEARCH_HI.name,
@@ -69,51 +230,46 @@ fn settings(ctx: &Context) -> Result<Settings, RunError> {
             ),
         ));
     }
-    if cap < batch {
+    if s.cap < s.batch {
         return Err(RunError::bad(
             "--set",
             CAP.name,
-            format!("must be at least {} = {batch} (got {cap})", BATCH.name),
+            format!(
+                "must be at least {} = {} (got {})",
+                BATCH.name, s.batch, s.cap
+            ),
         ));
     }
-    Ok(Settings {
-        lo,
-        hi,
-        resolution,
-        rule,
-        batch,
-        cap,
-    })
+    Ok(())
 }
 
 /// A search's result as printed: the largest tolerable value, `< lo` when even `lo` failed,
 /// `>= hi` when even `hi` passed.
-fn show_search(sr: &Search, s: &Settings) -> String {
+fn show_search(sr: &Search) -> String {
     match sr.pass {
         Some(p) if sr.fail.is_none() => format!(">= {}", label(p, 3)),
         Some(p) => label(p, 3),
-        None => format!("< {}", label(s.lo, 3)),
+        None => format!("< {}", label(sr.lo, 3)),
     }
 }
 
-/// The notes under the table: how the search brackets and decides, and what the grid ran; the
-/// grid's step is `step`, and `inside` and `outside` count the paper's E. max within one
-/// resolution of the search's and further.
+/// The notes under the table: how the search brackets and decides, and what the grid ran;
+/// `inside` and `outside` count the paper's E. max within one resolution of the search's and
+/// further.
 fn explain(
     table: &mut Table,
     s: &Settings,
-    grid: &study::grids::RandomGrid,
-    step: f64,
+    grid: &RandomErrorTable,
     (inside, outside): (u64, u64),
 ) {
     let allowed = tolerance::allowed_jams(s.cap, s.rule);
     table.note(format!(
         "Search: bisection of [{}, {}] (assuming the jam rate grows with the error) until the bracket is at most {} wide; the value shown is the largest probed value found tolerable, so the mesh's limit lies between it and the next probed value that failed (CSV). `< {}`: even the lower end failed; `>= {}`: even the upper end passed.",
-        label(s.lo, 3),
-        label(s.hi, 3),
+        label(s.search_lo, 3),
+        label(s.search_hi, 3),
         label(s.resolution, 3),
-        label(s.lo, 3),
-        label(s.hi, 3),
+        label(s.search_lo, 3),
+        label(s.search_hi, 3),
     ));
     table.note(format!(
         "Sequential test at each probed value: {} trials at a time, stopping as soon as the exact (Clopper-Pearson) 95 % interval of the jam rate lies entirely below or above {} %, or the count rule at the cap is already settled (more than {allowed} jams); at {} trials the paper's rule decides (at most {allowed} jams). With a 1 % rule and a cap of 200 a tolerable value always runs to the cap (0 of n has an upper bound below 1 % only from n = 368), so the savings come from failing values stopped early and from fewer values probed.",
@@ -121,9 +277,9 @@ fn explain(
     ));
     table.note(format!(
         "Grid: Table 4's cells ({} values from {} by {}, {} trials each) by the same rule; a probed value on the grid uses the same trial streams as the grid's cell. Paper's E. max within one resolution of the search's: {inside} meshes; further: {outside}.",
-        grid.values.len(),
-        grid.values.first().map_or_else(|| "-".into(), |v| label(*v, 3)),
-        label(step, 3),
+        grid.random.len(),
+        grid.random.first().map_or_else(|| "-".into(), |v| label(*v, 3)),
+        label(s.random.random_step, 3),
         s.cap,
     ));
 }
@@ -194,10 +350,6 @@ fn total_row(probes: usize, used: u64, grid: u64) -> Vec<String> {
     ]
 }
 
-fn run(ctx: &Context) -> Result<Report, RunError> {
-    crate::settings::labelled(ctx, counted)
-}
-
 /// The paper's E. max of a mesh, `*` where it is further than one resolution from the search's
 /// (`agrees`: `None` where not compared).
 fn paper_cell(paper: Option<f64>, agrees: Option<bool>) -> String {
@@ -208,83 +360,41 @@ fn paper_cell(paper: Option<f64>, agrees: Option<bool>) -> String {
     )
 }
 
-/// The experiment itself; [`run`] names the event rule in its tables' titles.
-fn counted(ctx: &Context) -> Result<Report, RunError> {
-    // Table 4's grid runs `cap` trials a cell, the most a search's probe runs.
-    let cells = crate::settings::cells(ctx, &CAP)?;
-    let s = settings(ctx)?;
-    let clearance = cells.clearance()?;
-    // The grid's parameters are checked before anything runs.
-    let values = crate::settings::random_grid(ctx)?;
-    let searches = search(ctx.engine(), &cells, &s)?;
-    let grid = study::grids::run_grid(ctx.engine(), &cells, values, s.cap, Purpose::Input)?;
-    let grid_tolerable = grid.tolerable(s.cap, s.rule);
-    let grid_per_mesh = grid.values.len() as u64 * s.cap;
+/// One mesh's row: the search's value, the grid's and the paper's (`paper`, already marked),
+/// the probes, the pair turns the search used (`used`) against the grid's, and the share saved.
+fn mesh_row(
+    m: &MeshSearchResult,
+    paper: String,
+    used: u64,
+    grid_per_mesh: u64,
+    grid: &RandomErrorTable,
+) -> Vec<String> {
+    vec![
+        m.mesh.clone(),
+        show_search(&m.search),
+        show(m.grid, grid.random.first(), 3),
+        paper,
+        m.search.probes.len().to_string(),
+        used.to_string(),
+        grid_per_mesh.to_string(),
+        format!("{:.0}", saved(used, grid_per_mesh)),
+    ]
+}
 
-    let mut table = search_table(&s, clearance);
-    let mut csv = String::from(
-        "mesh,search_emax,search_fail,grid_emax,paper_emax,probes,search_trials,grid_trials,saved_percent\n",
-    );
-    let mut probes_csv = String::from("mesh,probe,random,trials,jams,disengagements,decision\n");
-    let off_paper = crate::cells::off_paper_inputs(ctx);
-    let (mut inside, mut outside) = (0, 0);
-    let (mut used_total, mut grid_total, mut probes_total) = (0, 0, 0);
-    for ((mesh, sr), grid_value) in grid.meshes.iter().zip(&searches).zip(&grid_tolerable) {
-        let paper = paper_random(mesh);
-        // Compared only where the run's inputs are the paper's.
-        let agrees = paper
-            .filter(|_| off_paper.is_empty())
-            .map(|p| within_resolution(sr.pass, p, s.resolution));
-        inside += u64::from(agrees == Some(true));
-        outside += u64::from(agrees == Some(false));
-        let used = sr.trials();
-        used_total += used;
-        grid_total += grid_per_mesh;
-        probes_total += sr.probes.len();
-        table.row(vec![
-            mesh.clone(),
-            show_search(sr, &s),
-            show(*grid_value, grid.values.first(), 3),
-            paper_cell(paper, agrees),
-            sr.probes.len().to_string(),
-            used.to_string(),
-            grid_per_mesh.to_string(),
-            format!("{:.0}", saved(used, grid_per_mesh)),
-        ]);
-        let opt = |v: Option<f64>| v.map_or_else(String::new, |v| v.to_string());
-        csv.push_str(&registry::csv_row!(
-            mesh,
-            opt(sr.pass),
-            opt(sr.fail),
-            opt(*grid_value),
-            opt(paper),
-            sr.probes.len(),
-            used,
-            grid_per_mesh,
-            format!("{:.1}", saved(used, grid_per_mesh))
-        ));
-        probes_csv.push_str(&probe_lines(mesh, sr));
-    }
-    table.row(total_row(probes_total, used_total, grid_total));
-    let step = ctx.get::<f64>(&RANDOM_STEP)?;
-    explain(&mut table, &s, &grid, step, (inside, outside));
-    let trials = used_total + grid.all().map(|c| c.trials).sum::<u64>();
-    let engagements = searches.iter().map(Search::engagements).sum::<u64>()
-        + grid.all().map(|c| c.engagements).sum::<u64>();
-    Ok(Report {
-        tables: vec![table],
-        files: vec![
-            OutputFile::new("tolerance.csv", csv),
-            OutputFile::new("tolerance-probes.csv", probes_csv),
-        ],
-        trials,
-        engagements,
-        agreement: off_paper.is_empty().then_some(registry::Agreement {
-            consistent: inside,
-            differ: outside,
-        }),
-        ..Default::default()
-    })
+/// One mesh's line of tolerance.csv.
+fn csv_line(m: &MeshSearchResult, paper: Option<f64>, used: u64, grid_per_mesh: u64) -> String {
+    let opt = |v: Option<f64>| v.map_or_else(String::new, |v| v.to_string());
+    registry::csv_row!(
+        m.mesh,
+        opt(m.search.pass),
+        opt(m.search.fail),
+        opt(m.grid),
+        opt(paper),
+        m.search.probes.len(),
+        used,
+        grid_per_mesh,
+        format!("{:.1}", saved(used, grid_per_mesh))
+    )
 }
 
 #[cfg(test)]

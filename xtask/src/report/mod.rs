@@ -43,6 +43,7 @@ mod replays;
 #[cfg(test)]
 #[allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
 mod tests;
+mod verdict;
 
 /// The page's file name in `<out>/`.
 pub const INDEX_HTML: &str = "index.html";
@@ -183,7 +184,8 @@ fn build(exps: &Registry, out: &Path, quiet: bool) -> Result<String, Failure> {
     ids.sort();
     ids.dedup();
     let ids = order::in_paper_order(ids);
-    Ok(render(exps, &ids, &results, &replays))
+    let verdict = verdict::read(out)?;
+    Ok(render(exps, &ids, &results, &replays, verdict.as_ref()))
 }
 
 /// The result directories under `out`: `(id, path)` for each visible subdirectory holding a
@@ -608,6 +610,7 @@ fn render(
     ids: &[String],
     results: &BTreeMap<String, Results>,
     replays: &Replays,
+    verdict: Option<&verdict::VerdictScreen>,
 ) -> String {
     let mut h = String::new();
     let now = provenance::utc_now();
@@ -615,19 +618,24 @@ fn render(
         h,
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
 <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n\
-<title>Antikythera gear trains: results</title>\n<style>{CSS}</style>\n</head>\n<body>\n\
+<title>Antikythera gear trains: results</title>\n<style>{CSS}{}</style>\n</head>\n<body>\n\
 <header>\n<h1>Antikythera gear trains: results</h1>\n\
 <p class=\"meta\">A reproduction of Szigety &amp; Arenas, <i>The Impact of Triangular-Toothed Gears on the \
 Functionality of the Antikythera Mechanism</i>. Our numbers are printed as computed; the paper's numbers \
 appear in columns labelled &ldquo;paper&rdquo; or in parentheses, as in the printed tables.</p>\n\
 <p class=\"meta\">{} of {} experiments have results. Page written {} by xtask {} (git <code>{}</code>).</p>\n\
 </header>\n",
+        verdict::CSS,
         results.len(),
         ids.len(),
         esc(&now),
         esc(env!("CARGO_PKG_VERSION")),
         esc(provenance::git_describe())
     );
+
+    if let Some(v) = verdict {
+        verdict::block(&mut h, v);
+    }
 
     // Contents.
     h.push_str("<nav>\n<div class=\"table-wrap\">\n<table class=\"toc\">\n<caption>Experiments</caption>\n<thead><tr><th>id</th><th>paper item</th><th>title</th><th>status</th><th>seed</th><th>paper's numbers consistent / differing (two-sample test for counts)</th></tr></thead>\n<tbody>\n");

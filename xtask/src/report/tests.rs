@@ -2,30 +2,13 @@
 
 use super::heatmap::{Count, CountCell, count_cell, heat_rows, listing_folder};
 use super::*;
-use registry::{Context, Experiment, OutputFile, Report, RunError};
+use registry::{Context, Entry, OutputFile, Report};
 
-fn nothing(_: &Context) -> Result<Report, RunError> {
-    Ok(Report::default())
-}
-
-static A: Experiment = Experiment {
-    id: "a",
-    title: "First <one>",
-    paper_item: "Figure 1",
-    params: &[],
-    groups: &[],
-    config: None,
-    run: nothing,
-};
-static B: Experiment = Experiment {
-    id: "b",
-    title: "Second",
-    paper_item: "Table 2",
-    params: &[],
-    groups: &[],
-    config: None,
-    run: nothing,
-};
+// `a` is titled with markup the page must escape.
+registry::test_experiment!(ExpA, "a", "Figure 1", registry::NoSettings, title: "First <one>");
+registry::test_experiment!(ExpB, "b", "Table 2", registry::NoSettings, title: "Second");
+static A: Entry = Entry::of::<ExpA>();
+static B: Entry = Entry::of::<ExpB>();
 
 fn registry() -> Registry {
     let mut r: Registry = BTreeMap::new();

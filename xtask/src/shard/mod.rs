@@ -131,7 +131,7 @@ pub(crate) fn merge(exps: &Registry, m: &MergeArgs) -> Result<(), Failure> {
         )));
     }
     let config = header.config.as_ref().map(|c| PathBuf::from(&c.path));
-    let report = provenance::stamp(&report, e, &ctx, &header.sets, config.as_deref());
+    let report = provenance::stamp_outcome(&report, e, &ctx, &header.sets, config.as_deref());
     // Written before printed: a failed print must not cost the merged results.
     let dir = out.join(e.id);
     registry::write_results(&dir, &report)?;

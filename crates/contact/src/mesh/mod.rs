@@ -229,13 +229,45 @@ impl Placed {
 }
 
 /// Two gears in mesh at a centre distance, ready for the contact solver.
-#[derive(Debug, Clone)]
+///
+/// Stored (serde) as its two gears and the centre distance, and placed again by [`Mesh::new`]
+/// when read back: a stored run ([`crate::Trajectory`]) is drawn again without running it.
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
+#[serde(into = "MeshParts", try_from = "MeshParts")]
 pub struct Mesh {
     pub(crate) driver: Placed,
     pub(crate) driven: Placed,
     pub(crate) centre_distance: f64,
     /// Whether either gear has curved flanks (the curved contact path).
     pub(crate) curved: bool,
+}
+
+/// A [`Mesh`] as stored: what [`Mesh::new`] places it from.
+#[derive(serde::Serialize, serde::Deserialize)]
+struct MeshParts {
+    /// The driving gear.
+    driver: Gear,
+    /// The driven gear.
+    driven: Gear,
+    /// Centre distance D between the rotation centres.
+    centre_distance: f64,
+}
+
+impl From<Mesh> for MeshParts {
+    fn from(m: Mesh) -> Self {
+        MeshParts {
+            driver: m.driver.gear,
+            driven: m.driven.gear,
+            centre_distance: m.centre_distance,
+        }
+    }
+}
+
+impl TryFrom<MeshParts> for Mesh {
+    type Error = MeshError;
+    fn try_from(p: MeshParts) -> Result<Self, MeshError> {
+        Mesh::new(p.driver, p.driven, p.centre_distance)
+    }
 }
 
 /// The obstacle a driver tooth makes for the driven gear at one driver angle: the closed interval

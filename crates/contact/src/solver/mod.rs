@@ -1,6 +1,6 @@
-//! The exact core's run: its state, the main loop that walks the driver through its steps
-//! (`Mesh::solve`, `Run::advance`), and the bookkeeping of events (recorded, sized when the drive
-//! resumes). The crate's documentation says where each event is decided; `step.rs` takes a step,
+//! The exact core's run: its state (the driven gear's [`Drive`], the events waiting to be
+//! sized), the main loop that walks the driver through its steps (`Mesh::walk`, `Run::advance`),
+//! and the bookkeeping of events (recorded, sized when the drive resumes). The crate's documentation says where each event is decided; `step.rs` takes a step,
 //! `cover.rs` finds the next free position, `held.rs` (beside this module) lets a held gear go.
 
 use std::f64::consts::TAU;
@@ -19,7 +19,9 @@ mod trajectory;
 
 pub(crate) use crate::stats::count;
 use search::{bisect, bracket, golden_max};
-pub(crate) use shortcut::Shortcut;
+#[cfg(feature = "speed")]
+pub(crate) use shortcut::Stand;
+pub(crate) use shortcut::{ExactOnly, Shortcut};
 pub use trajectory::{Answered, Event, EventKind, Motion, Segment, Start, StopAt, Trajectory};
 
 /// Relative tolerance (radians) when deciding on which side of θ an obstacle lies.
@@ -35,24 +37,22 @@ const SIDE_LOCATE_TOL: f64 = 1e-10;
 /// How far past a first touch from rest a step ends (radians of driver angle).
 const TOUCH_STEP: f64 = 1e-8;
 /// Steps per driver pitch: how far apart the exact step looks at the tooth pairs together.
-const STEPS_PER_PITCH: f64 = 4.0;
+pub(crate) const STEPS_PER_PITCH: f64 = 4.0;
 
 /// When a run may end before its last driver angle.
 #[derive(Clone, Copy)]
-pub(crate) enum Stop<'s, 'a> {
+pub(crate) enum Stop<'s> {
     /// Never: the run goes to its end.
     Never,
     /// At the first event for which this holds, as it is recorded.
-    AtEvent(&'s StopAt<'a>),
+    AtEvent(&'s StopAt<'s>),
     /// Once this holds for the events so far, none of them waiting to be sized.
-    Answered(&'s Answered<'a>),
+    Answered(&'s Answered<'s>),
 }
 
-impl<'s, 'a> From<Option<&'s StopAt<'a>>> for Stop<'s, 'a> {
-    fn from(stop: Option<&'s StopAt<'a>>) -> Self {
-        stop.map_or(Self::Never, Self::AtEvent)
-    }
-}
+/// How the core walks a run: where it may end, the steps per driver pitch, and whether every
+/// segment is kept (else only the last).
+pub(crate) type Walk<'s> = (Stop<'s>, f64, bool);
 
 /// Which side of the driven gear a tooth pair's obstacle lies on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -70,21 +70,10 @@ pub(crate) struct Tracked {
     pub(crate) hi: f64,
 }
 
-/// How a run is solved.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct Solve {
-    /// The step is this fraction of the driver's pitch.
-    pub(crate) steps_per_pitch: f64,
-    /// Keep every segment (for θ at any φ) or only the events.
-    pub(crate) keep_segments: bool,
-}
-
-impl Default for Solve {
-    fn default() -> Self {
-        Self {
-            steps_per_pitch: STEPS_PER_PITCH,
-            keep_segments: true,
-        }
+impl Tracked {
+    /// Whether the pair pushes the driven gear at θ: behind it, its upper end at θ.
+    pub(crate) fn pushes(&self, theta: f64) -> bool {
+        self.side == Side::Behind && (self.hi - theta).abs() <= SIDE_TOL
     }
 }
 
@@ -96,15 +85,41 @@ pub(crate) type Pairs = SmallVec<[(i64, i64); 4]>;
 /// which end, where it is).
 type Memo = (f64, (i64, i64), End, Option<f64>);
 
+/// The driven gear's state between steps, which decides how the next step is taken.
+#[derive(Debug)]
+pub(crate) enum Drive {
+    /// Pushed by the pairs touching it from behind (`Run::pushers`): the speed layer is offered
+    /// the step first.
+    Pushed,
+    /// At rest, free: no pair touches it from behind.
+    AtRest,
+    /// Held: jammed with no free position ahead, until one appears (`Run::held_step`).
+    /// `links`: the tooth pairs of the chain that the last step proved to hold it through its end
+    /// (`held.rs`), where the next step starts; empty if none.
+    Held { links: Vec<(i64, i64)> },
+}
+
+/// The events waiting for the drive to resume to be sized, and what sizes them.
+#[derive(Debug, Default)]
+struct Sizing {
+    /// Tooth phase (driver tooth + driven tooth) of the last known driving pair.
+    phase: Option<i64>,
+    /// Events whose size waits for the drive to resume: (index in `events`, phase before).
+    pending: Vec<(usize, Option<i64>)>,
+    /// The idle-start candidate (its index in `events`) while no driver tooth has moved the
+    /// driven gear yet: see [`Run::record_idle_start`].
+    idle_start: Option<usize>,
+    /// Whether an idle-start candidate was dropped since the last [`Run::stops`]: the driven
+    /// gear moved within a driver pitch of the start.
+    dropped_idle_start: bool,
+}
+
 /// Working state of one run.
 pub(crate) struct Run<'m> {
     mesh: &'m Mesh,
     phi: f64,
     theta: f64,
-    held: bool,
-    /// While the driven gear is held: the tooth pairs of the chain that the last step proved to
-    /// hold it through its end (`held.rs`), where the next step starts; empty if none.
-    held_links: Vec<(i64, i64)>,
+    drive: Drive,
     /// Driver angle of the last jam check that found nothing holding the driven gear.
     unheld_at: Option<f64>,
     /// Known tooth pairs, their side of θ and their upper end at the current φ.
@@ -114,58 +129,41 @@ pub(crate) struct Run<'m> {
     /// Whether to keep every segment (for θ at any φ) or only the events.
     keep_segments: bool,
     events: Vec<Event>,
+    sizing: Sizing,
     scratch: Vec<Obstacle>,
-    /// Tooth phase (driver tooth + driven tooth) of the last known driving pair.
-    drive_phase: Option<i64>,
-    /// Events whose size waits for the drive to resume: (index in `events`, phase before).
-    pending: Vec<(usize, Option<i64>)>,
-    /// The speed layer, if the run has one: it may spare the core work it proves would find
-    /// nothing (`shortcut.rs`).
-    speed: Option<Box<dyn Shortcut>>,
-    /// The idle-start candidate (its index in `events`) while no driver tooth has moved the
-    /// driven gear yet: see [`Run::record_idle_start`].
-    idle_since: Option<usize>,
-    /// Whether an idle-start candidate was dropped since the last [`Run::stops`]: the driven
-    /// gear moved within a driver pitch of the start.
-    dropped_idle_start: bool,
 }
 
 impl Mesh {
     /// Runs the push model over driver angles `phi_start..phi_end` from `start`, walking the
-    /// driver in steps (`Run::advance`), with the speed layer `speed` if given: the main loop.
-    pub(crate) fn solve(
+    /// driver in steps (`Run::advance`), each offered to `speed` where it may spare the core
+    /// work (`shortcut.rs`): the main loop. Returns the segments (only the last where they are
+    /// not kept) and the events.
+    pub(crate) fn walk(
         &self,
         (phi_start, phi_end): (f64, f64),
         start: Start,
-        stop: Stop<'_, '_>,
-        how: Solve,
-        speed: Option<Box<dyn Shortcut>>,
-    ) -> Run<'_> {
+        (stop, steps_per_pitch, keep_segments): Walk<'_>,
+        speed: &mut dyn Shortcut,
+    ) -> (Vec<Segment>, Vec<Event>) {
         let mut run = Run {
             mesh: self,
             phi: phi_start,
             theta: 0.0,
-            held: false,
-            held_links: Vec::new(),
+            drive: Drive::AtRest,
             unheld_at: None,
             sides: Vec::new(),
             segments: Vec::new(),
-            keep_segments: how.keep_segments,
+            keep_segments,
             events: Vec::new(),
+            sizing: Sizing::default(),
             scratch: Vec::new(),
-            drive_phase: None,
-            pending: Vec::new(),
-            speed,
-            idle_since: None,
-            dropped_idle_start: false,
         };
         run.start(start);
         let mut seen = 0;
-        let step =
-            self.driver.max_gap.min(TAU / self.driver.tips.len() as f64) / how.steps_per_pitch;
+        let step = self.driver.max_gap.min(TAU / self.driver.tips.len() as f64) / steps_per_pitch;
         // A run that keeps no trajectory may end at a stopping event of the start itself (a
         // blocked start); one that keeps it takes its first step first, as it always has.
-        let stopped_at_start = !how.keep_segments && run.stops(stop, &mut seen);
+        let stopped_at_start = !keep_segments && run.stops(stop, &mut seen);
         while run.phi < phi_end && !stopped_at_start {
             // No sliver of a step at the end: it would only gather rounding noise.
             let next = if run.phi + step * (1.0 + 1e-6) >= phi_end {
@@ -173,7 +171,7 @@ impl Mesh {
             } else {
                 run.phi + step
             };
-            run.advance(next);
+            run.advance(next, speed);
             if run.stops(stop, &mut seen) {
                 break;
             }
@@ -182,7 +180,7 @@ impl Mesh {
             run.rest_to(phi_end);
         }
         run.close_pending();
-        run
+        (run.segments, run.events)
     }
 
     /// Where the pushers' upper envelope `env` peaks, refined from `phi_pk` (a golden-section
@@ -241,13 +239,13 @@ impl Mesh {
 impl<'m> Run<'m> {
     /// Whether the run ends here by `stop`, given that the events before `seen` were asked
     /// about already (`seen` is moved past those asked about now).
-    fn stops(&mut self, stop: Stop<'_, '_>, seen: &mut usize) -> bool {
+    fn stops(&mut self, stop: Stop<'_>, seen: &mut usize) -> bool {
         match stop {
             Stop::Never => false,
             Stop::AtEvent(stop) => {
                 // An idle-start candidate, asked about as it was recorded (first of all events),
                 // has gone since: the rest moved down by one.
-                if std::mem::take(&mut self.dropped_idle_start) {
+                if std::mem::take(&mut self.sizing.dropped_idle_start) {
                     *seen = seen.saturating_sub(1);
                 }
                 let stops = self.events[*seen..].iter().any(stop);
@@ -257,7 +255,7 @@ impl<'m> Run<'m> {
             // Only where every event is sized: a gap waiting for the drive may yet become a
             // slip, and its lost motion and phase shift are not known.
             Stop::Answered(answered) => {
-                let waiting = !self.pending.is_empty() || self.idle_since.is_some();
+                let waiting = !self.sizing.pending.is_empty() || self.sizing.idle_start.is_some();
                 if waiting || self.events.len() == *seen {
                     return false;
                 }
@@ -296,8 +294,7 @@ impl<'m> Run<'m> {
             None => {
                 // No free position: the gears cannot turn from here. Always an event, so that a
                 // mesh too tight to start is never silently counted as running.
-                self.held = true;
-                self.held_links.clear();
+                self.drive = Drive::Held { links: Vec::new() };
                 let gap = self.mesh.driven.max_gap;
                 self.mesh
                     .obstacles(phi, guess - gap, guess + gap, &mut self.scratch);
@@ -312,12 +309,13 @@ impl<'m> Run<'m> {
             }
         };
         self.classify_all(phi, &mut memo);
-        self.drive_phase = self
+        self.sizing.phase = self
             .touching_behind(phi, self.theta, None, &mut memo)
             .map(|p| p.0 + p.1);
-        if !self.held {
+        if !self.is_held() {
             self.record_idle_start();
         }
+        self.settle();
     }
 
     /// Every run that can turn starts with a candidate idle start, a gap waiting for the first
@@ -334,14 +332,14 @@ impl<'m> Run<'m> {
             .map_or((0, 0), |t| t.pair);
         let mut e = Event::new(EventKind::Gap, self.phi, self.theta, nearest_behind);
         e.idle_start = true;
-        self.idle_since = Some(self.events.len());
+        self.sizing.idle_start = Some(self.events.len());
         self.events.push(e);
     }
 
     /// A driver tooth (of `pairs`) moves the driven gear for the first time, at the current
     /// (φ, θ): the idle-start candidate is sized, and dropped if this came within a driver pitch.
     fn first_lift(&mut self, pairs: &[(i64, i64)]) {
-        let Some(i) = self.idle_since.take() else {
+        let Some(i) = self.sizing.idle_start.take() else {
             return;
         };
         let (phi, theta) = (self.phi, self.theta);
@@ -349,12 +347,12 @@ impl<'m> Run<'m> {
         self.size_event(i, phi, theta, true, 0);
         if self.events[i].kind == EventKind::Gap {
             self.events.remove(i);
-            for (j, _) in &mut self.pending {
+            for (j, _) in &mut self.sizing.pending {
                 if *j > i {
                     *j -= 1;
                 }
             }
-            self.dropped_idle_start = true;
+            self.sizing.dropped_idle_start = true;
         }
     }
 
@@ -383,7 +381,7 @@ impl<'m> Run<'m> {
     /// Records an event; every kind but a blocked start is sized when the drive resumes.
     fn record(&mut self, e: Event, phase_before: Option<i64>) {
         if e.kind != EventKind::BlockedAtStart {
-            self.pending.push((self.events.len(), phase_before));
+            self.sizing.pending.push((self.events.len(), phase_before));
         }
         self.events.push(e);
     }
@@ -400,7 +398,7 @@ impl<'m> Run<'m> {
             .max_by(|a, b| a.0.total_cmp(&b.0))
             .map(|(_, p)| p);
         let phase = by.map(|p| p.0 + p.1);
-        for (i, before) in std::mem::take(&mut self.pending) {
+        for (i, before) in std::mem::take(&mut self.sizing.pending) {
             let shift = match (before, phase) {
                 (Some(b), Some(a)) => a - b,
                 _ => 0,
@@ -409,17 +407,17 @@ impl<'m> Run<'m> {
             self.size_event(i, phi, theta, true, shift);
         }
         if phase.is_some() {
-            self.drive_phase = phase;
+            self.sizing.phase = phase;
         }
     }
 
     /// Events still waiting at the end of the run: drive never resumed.
     fn close_pending(&mut self) {
         let (phi, theta) = (self.phi, self.theta);
-        for (i, _) in std::mem::take(&mut self.pending) {
+        for (i, _) in std::mem::take(&mut self.sizing.pending) {
             self.size_event(i, phi, theta, false, 0);
         }
-        if let Some(i) = self.idle_since.take() {
+        if let Some(i) = self.sizing.idle_start.take() {
             self.size_event(i, phi, theta, false, 0);
             // A driven gear never moved in the whole run turned idle throughout, however short
             // the run: never a mere hand-over gap.
@@ -469,17 +467,13 @@ impl<'m> Run<'m> {
     }
 
     /// The pushing pairs: those behind the driven gear whose upper end is at θ.
-    pub(crate) fn pushers(&self) -> Pairs {
-        self.sides
-            .iter()
-            .filter(|t| t.side == Side::Behind && (t.hi - self.theta).abs() <= SIDE_TOL)
-            .map(|t| t.pair)
-            .collect()
+    fn pushers(&self) -> Pairs {
+        self.stand().pushers()
     }
 
     /// The side of the driven gear `pair` is known to lie on, if it is tracked.
-    pub(crate) fn side_of(&self, pair: (i64, i64)) -> Option<Side> {
-        self.sides.iter().find(|t| t.pair == pair).map(|t| t.side)
+    fn side_of(&self, pair: (i64, i64)) -> Option<Side> {
+        self.stand().side_of(pair)
     }
 
     fn push_segment(&mut self, phi_end: f64, theta_end: f64, motion: Motion) {
@@ -491,13 +485,13 @@ impl<'m> Run<'m> {
             self.segments.clear();
         }
         if let Motion::Push(pairs) = &motion
-            && !self.pending.is_empty()
+            && !self.sizing.pending.is_empty()
         {
             self.resume_drive(pairs);
         }
         if let Motion::Push(pairs) = &motion
             && theta_end > self.theta
-            && self.idle_since.is_some()
+            && self.sizing.idle_start.is_some()
         {
             self.first_lift(pairs);
         }
@@ -513,7 +507,7 @@ impl<'m> Run<'m> {
     }
 
     fn rest_to(&mut self, phi_end: f64) {
-        let motion = if self.held {
+        let motion = if self.is_held() {
             Motion::Held
         } else {
             Motion::Rest
@@ -527,7 +521,7 @@ impl<'m> Run<'m> {
     /// gear either let go to the free position or held by the new chain), or to `phi1`. A chain
     /// proved to hold through the step is taken up by the next one; the joints of a chain the
     /// speed layer proves to hold are not searched (`Shortcut::held_joints`).
-    fn held_step(&mut self, phi1: f64) {
+    fn held_step(&mut self, phi1: f64, speed: &mut dyn Shortcut) {
         let mesh = self.mesh;
         let theta = self.theta;
         let threshold = mesh.held_threshold(theta);
@@ -539,7 +533,10 @@ impl<'m> Run<'m> {
         };
         let mut phi = self.phi;
         // The chain the last step proved to hold through its end: no sweep of the turn needed.
-        let carried = std::mem::take(&mut self.held_links);
+        let carried = match &mut self.drive {
+            Drive::Held { links } => std::mem::take(links),
+            _ => Vec::new(),
+        };
         let mut chain = (!carried.is_empty()).then(|| held::Chain::carried(mesh, phi, carried));
         loop {
             let mut held = match chain.take() {
@@ -549,7 +546,7 @@ impl<'m> Run<'m> {
                     None => return,
                 },
             };
-            let joints = self.held_joints(&mut held, phi1);
+            let joints = speed.held_joints(&mut held, theta, phi1);
             let tols = (theta, threshold, SIDE_TOL);
             match held::first_change(&mut held, tols, phi1, joints.as_deref()) {
                 // A link's teeth parted where the step starts: the turn is swept there.
@@ -557,7 +554,9 @@ impl<'m> Run<'m> {
                 Ok(Some(change)) if change.root < phi1 => phi = past(change),
                 Ok(found) => {
                     if found.is_none() {
-                        self.held_links = held.into_pairs();
+                        self.drive = Drive::Held {
+                            links: held.into_pairs(),
+                        };
                     }
                     self.rest_to(phi1);
                     return;
@@ -597,66 +596,48 @@ impl<'m> Run<'m> {
         }
     }
 
-    /// The joints of the held gear's `chain` to search up to `phi1`: those the speed layer, if
-    /// the run has one, has not proved to hold (None: all).
-    fn held_joints(&mut self, chain: &mut held::Chain<'_>, phi1: f64) -> Option<Vec<usize>> {
-        let mut speed = self.speed.take()?;
-        let joints = speed.held_joints(chain, self.theta, phi1);
-        self.speed = Some(speed);
-        joints
-    }
-
     /// The held gear let go at φ to the free position θ = `to`.
     fn release(&mut self, phi: f64, to: f64, memo: &mut PairMemo) {
         self.rest_to(phi);
-        self.held = false;
+        self.drive = Drive::AtRest;
         self.theta = to;
         self.classify_all(phi, memo);
     }
 
-    /// Advance from `self.phi` to `phi1`, locating every event in between: a held gear waits
-    /// for its release (`held_step`); a pushed one is first offered to the speed layer, if the
-    /// run has one (`Shortcut::pushed_step`), and otherwise, as a gear at rest always, takes the
-    /// exact step (`step.rs`).
-    fn advance(&mut self, phi1: f64) {
-        if self.held {
-            self.held_step(phi1);
-            return;
-        }
-        let pushers = self.pushers();
-        // Just after a closing that held nothing (`Run::jam`) the exact step takes the rest of
-        // the step, asking only for the roots after its start.
-        if !pushers.is_empty() && self.unheld_at != Some(self.phi) && self.shortcut(phi1, &pushers)
-        {
-            return;
-        }
-        count(|st| st.bracketed += 1);
-        self.exact_step(phi1, pushers);
+    /// Whether the driven gear is held.
+    fn is_held(&self) -> bool {
+        matches!(self.drive, Drive::Held { .. })
     }
 
-    /// Offers the pushed step to `phi1` to the speed layer, if the run has one, and returns
-    /// whether it took it.
-    fn shortcut(&mut self, phi1: f64, pushers: &[(i64, i64)]) -> bool {
-        let Some(mut speed) = self.speed.take() else {
-            return false;
-        };
-        let taken = speed.pushed_step(self, phi1, pushers);
-        self.speed = Some(speed);
-        taken
-    }
-
-    /// The run as a trajectory: its segments and events.
-    pub(crate) fn into_trajectory(self) -> Trajectory {
-        Trajectory {
-            mesh: self.mesh.clone(),
-            segments: self.segments,
-            events: self.events,
+    /// The driven gear's drive read off the pairs touching it from behind, where it is not held:
+    /// where each step leaves it (and the start), for the next step to be taken by.
+    fn settle(&mut self) {
+        if !self.is_held() {
+            let theta = self.theta;
+            let pushed = self.sides.iter().any(|t| t.pushes(theta));
+            self.drive = if pushed { Drive::Pushed } else { Drive::AtRest };
         }
     }
 
-    /// The run's events.
-    pub(crate) fn into_events(self) -> Vec<Event> {
-        self.events
+    /// Advance from `self.phi` to `phi1`, locating every event in between, by the driven gear's
+    /// drive: a held gear waits for its release (`held_step`); a pushed one is first offered to
+    /// the speed layer `speed` (`Shortcut::pushed_step`), and otherwise, as a gear at rest
+    /// always, takes the exact step (`step.rs`).
+    fn advance(&mut self, phi1: f64, speed: &mut dyn Shortcut) {
+        match self.drive {
+            Drive::Held { .. } => self.held_step(phi1, speed),
+            Drive::Pushed => {
+                let pushers = self.pushers();
+                // Just after a closing that held nothing (`Run::jam`) the exact step takes the
+                // rest of the step, asking only for the roots after its start.
+                let offered = self.unheld_at != Some(self.phi);
+                if !(offered && speed.pushed_step(self, phi1, &pushers)) {
+                    self.exact_step(phi1, pushers, speed);
+                }
+            }
+            Drive::AtRest => self.exact_step(phi1, Pairs::new(), speed),
+        }
+        self.settle();
     }
 }
 

@@ -1,9 +1,11 @@
 //! The boundary between the exact core and the speed layer on top of it. The core offers the
-//! speed layer one thing to take over - a pushed gear's step, where the layer proves that no event
-//! lies in it - and lets it read and move the run through the few methods below. The core never
-//! names the layer (`entry.rs` builds it for a run); a run without it is the exact core alone,
-//! and no result depends on which: `tests/differential.rs` holds the two to the same events, bit
-//! for bit.
+//! speed layer, passed to each step, the work it may take over - a pushed gear's step, where the
+//! layer proves that no event lies in it; the joints of a held gear's chain it proves to hold; the
+//! contact conditions a closing's search need not take - and lets it read where the run stands
+//! ([`Stand`]) and move it on a proved step ([`Run::take_proved_step`]). The core never names the
+//! layer (`entry.rs` builds it for a run); [`ExactOnly`], which proves nothing, is the exact core
+//! alone, and no result depends on which: `tests/differential.rs` holds the two to the same
+//! events, bit for bit.
 
 // Without the speed layer nothing reads or moves the run through this boundary.
 #![cfg_attr(
@@ -11,9 +13,7 @@
     allow(dead_code, reason = "the speed layer's side of the boundary")
 )]
 
-use smallvec::SmallVec;
-
-use super::{Motion, Run, Segment, Side, Tracked};
+use super::{Motion, Pairs, Run, Segment, Side, Tracked};
 use crate::held::Chain;
 use crate::mesh::{ConditionSet, Mesh};
 
@@ -25,7 +25,10 @@ pub(crate) trait Shortcut {
     /// there) on a proof that no event lies in it, moving the run on exactly as the exact step
     /// would ([`Run::take_proved_step`]), and returns whether it did; if not, the run is as it
     /// was.
-    fn pushed_step(&mut self, run: &mut Run<'_>, phi1: f64, pushers: &[(i64, i64)]) -> bool;
+    fn pushed_step(&mut self, run: &mut Run<'_>, phi1: f64, pushers: &[(i64, i64)]) -> bool {
+        let _ = (run, phi1, pushers);
+        false
+    }
 
     /// The joints of a held gear's `chain` (each by the index of its lower link, the first of
     /// those a turn apart) that the core must search from the chain's driver angle to `phi1`,
@@ -51,6 +54,11 @@ pub(crate) trait Shortcut {
     }
 }
 
+/// The exact core alone: proves nothing, so every step is exact and every search whole.
+pub(crate) struct ExactOnly;
+
+impl Shortcut for ExactOnly {}
+
 /// A tooth pair as a proved step leaves it.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct PairAtEnd {
@@ -61,65 +69,133 @@ pub(crate) struct PairAtEnd {
     pub(crate) rising: bool,
 }
 
-/// The run as it was before steps the speed layer may yet take back ([`Run::checkpoint`]).
-pub(crate) struct Checkpoint {
+/// Where a run stands between steps, as the speed layer reads it: the mesh, the driver and
+/// driven angles, and the tooth pairs near the driven gear with their sides and upper ends. The
+/// run's own ([`Run::stand`]), or where proved steps would leave it ([`Moved`]).
+#[derive(Clone, Copy)]
+pub(crate) struct Stand<'r, 'm> {
+    mesh: &'m Mesh,
     phi: f64,
     theta: f64,
-    sides: SmallVec<[Tracked; 16]>,
-    segments: usize,
-    /// The last segment, set aside where only the last is kept (a step replaces it).
-    last: Option<Segment>,
+    sides: &'r [Tracked],
 }
 
-impl<'m> Run<'m> {
+/// Where a proved step would leave a run ([`Stand::after_proved`]), the run itself not moved:
+/// the speed layer proves a step's second half from there before it moves the run over both.
+pub(crate) struct Moved<'m> {
+    mesh: &'m Mesh,
+    phi: f64,
+    theta: f64,
+    sides: Vec<Tracked>,
+}
+
+impl<'m> Stand<'_, 'm> {
     /// The mesh the run is on.
     pub(crate) fn mesh(&self) -> &'m Mesh {
         self.mesh
     }
 
-    /// The driver and driven angles the run has reached.
+    /// The driver and driven angles the run stands at.
     pub(crate) fn at(&self) -> (f64, f64) {
         (self.phi, self.theta)
     }
 
-    /// The tooth pairs near the driven gear, with their sides and upper ends at the current φ.
+    /// The tooth pairs near the driven gear, with their sides and upper ends at φ.
     pub(crate) fn tracked(&self) -> &[Tracked] {
-        &self.sides
+        self.sides
+    }
+
+    /// The side of the driven gear `pair` is known to lie on, if it is tracked.
+    pub(crate) fn side_of(&self, pair: (i64, i64)) -> Option<Side> {
+        self.sides.iter().find(|t| t.pair == pair).map(|t| t.side)
+    }
+
+    /// The pushing pairs: those behind the driven gear whose upper end is at θ.
+    pub(crate) fn pushers(&self) -> Pairs {
+        self.sides
+            .iter()
+            .filter(|t| t.pushes(self.theta))
+            .map(|t| t.pair)
+            .collect()
+    }
+
+    /// Where the step to (`phi1`, `theta1`) proved free of events would leave the run, pushed by
+    /// the rising pairs of `pairs` ([`Run::take_proved_step`]), without moving it.
+    pub(crate) fn after_proved(&self, phi1: f64, theta1: f64, pairs: &[PairAtEnd]) -> Moved<'m> {
+        let mut sides = self.sides.to_vec();
+        proved_sides(&mut sides, self.mesh, phi1, pairs);
+        Moved {
+            mesh: self.mesh,
+            phi: phi1,
+            theta: theta1,
+            sides,
+        }
+    }
+}
+
+impl<'m> Moved<'m> {
+    /// Where the run would stand.
+    pub(crate) fn stand(&self) -> Stand<'_, 'm> {
+        Stand {
+            mesh: self.mesh,
+            phi: self.phi,
+            theta: self.theta,
+            sides: &self.sides,
+        }
+    }
+}
+
+/// The tooth pairs near the driven gear as a step proved free of events leaves them, at its end
+/// `phi1`: each of `pairs` with its upper end there; the sides stay (nothing crossed θ), and a
+/// pair behind that `pairs` does not hold stayed clear of the path, so it is no pusher at `phi1`.
+// Inlined into the proved step, which takes it at every certified step.
+#[inline(always)]
+fn proved_sides(sides: &mut Vec<Tracked>, mesh: &Mesh, phi1: f64, pairs: &[PairAtEnd]) {
+    // Pairs whose driver tooth has left the window (teeth enter it at lower indices as the
+    // driver turns, and leave it at higher ones) are done with.
+    let last = *mesh.driver_teeth(phi1).end();
+    sides.retain(|t| t.pair.0 <= last);
+    for t in sides.iter_mut() {
+        match pairs.iter().find(|m| m.pair == t.pair) {
+            Some(m) => t.hi = m.hi,
+            None if t.side == Side::Behind => t.hi = f64::NEG_INFINITY,
+            None => {}
+        }
+    }
+    for m in pairs {
+        if !sides.iter().any(|t| t.pair == m.pair) {
+            sides.push(Tracked {
+                pair: m.pair,
+                side: Side::Behind,
+                hi: m.hi,
+            });
+        }
+    }
+}
+
+impl<'m> Run<'m> {
+    /// Where the run stands.
+    pub(crate) fn stand(&self) -> Stand<'_, 'm> {
+        Stand {
+            mesh: self.mesh,
+            phi: self.phi,
+            theta: self.theta,
+            sides: &self.sides,
+        }
     }
 
     /// Whether an event waits for the drive to resume to be sized: a proved push would size it.
     pub(crate) fn sizing_waits(&self) -> bool {
-        !self.pending.is_empty()
+        !self.sizing.pending.is_empty()
     }
 
     /// Moves the run to (`phi1`, `theta1`) along a step proved free of events: pushed by the
-    /// rising pairs of `pairs`, each of `pairs` with its upper end at `phi1`; the sides stay
-    /// (nothing crossed θ), and a pair behind that `pairs` does not hold stayed clear of the
-    /// path, so it is no pusher at `phi1`.
+    /// rising pairs of `pairs`, each of `pairs` with its upper end at `phi1` (`proved_sides`).
     pub(crate) fn take_proved_step(&mut self, phi1: f64, theta1: f64, pairs: &[PairAtEnd]) {
         let mut rising = self.spare_pairs();
         rising.extend(pairs.iter().filter(|m| m.rising).map(|m| m.pair));
         self.push_segment(phi1, theta1, Motion::Push(rising));
-        // Pairs whose driver tooth has left the window (teeth enter it at lower indices as the
-        // driver turns, and leave it at higher ones) are done with.
-        let last = *self.mesh.driver_teeth(phi1).end();
-        self.sides.retain(|t| t.pair.0 <= last);
-        for t in &mut self.sides {
-            match pairs.iter().find(|m| m.pair == t.pair) {
-                Some(m) => t.hi = m.hi,
-                None if t.side == Side::Behind => t.hi = f64::NEG_INFINITY,
-                None => {}
-            }
-        }
-        for m in pairs {
-            if self.side_of(m.pair).is_none() {
-                self.sides.push(Tracked {
-                    pair: m.pair,
-                    side: Side::Behind,
-                    hi: m.hi,
-                });
-            }
-        }
+        proved_sides(&mut self.sides, self.mesh, phi1, pairs);
     }
 
     /// An empty list for the pairs of the next segment: the last segment's own when only the last
@@ -135,35 +211,6 @@ impl<'m> Run<'m> {
                 spare
             }
             _ => Vec::new(),
-        }
-    }
-
-    /// The run as it is, to be restored if the proved steps taken after this do not stand
-    /// ([`Run::restore`]); where only the last segment is kept, it is set aside until then.
-    pub(crate) fn checkpoint(&mut self) -> Checkpoint {
-        Checkpoint {
-            phi: self.phi,
-            theta: self.theta,
-            sides: SmallVec::from_slice(&self.sides),
-            segments: self.segments.len(),
-            last: if self.keep_segments {
-                None
-            } else {
-                self.segments.pop()
-            },
-        }
-    }
-
-    /// The run as it was at `checkpoint`.
-    pub(crate) fn restore(&mut self, checkpoint: Checkpoint) {
-        (self.phi, self.theta) = (checkpoint.phi, checkpoint.theta);
-        self.sides.clear();
-        self.sides.extend_from_slice(&checkpoint.sides);
-        if self.keep_segments {
-            self.segments.truncate(checkpoint.segments);
-        } else {
-            self.segments.clear();
-            self.segments.extend(checkpoint.last);
         }
     }
 }

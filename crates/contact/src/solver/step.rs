@@ -120,8 +120,10 @@ impl Step<'_> {
 
 impl Run<'_> {
     /// Advances from `self.phi` to `phi1` (or, at rest, to just past the first touch of any
-    /// driver tooth), locating every event in between.
-    pub(super) fn exact_step(&mut self, phi1: f64, pushers: Pairs) {
+    /// driver tooth), locating every event in between; `speed` may leave out of a closing's
+    /// search the conditions it proves to hold nowhere near the step's path.
+    pub(super) fn exact_step(&mut self, phi1: f64, pushers: Pairs, speed: &mut dyn Shortcut) {
+        count(|st| st.bracketed += 1);
         let mesh = self.mesh;
         let (phi0, theta0) = (self.phi, self.theta);
         // Standing still, the first touch of any driver tooth is found exactly; end the step just
@@ -170,7 +172,7 @@ impl Run<'_> {
         // the step's very start is that one again: only later roots are asked for, so that the
         // run moves on, and a pair ahead closing later in the step is still found.
         let after_start = self.unheld_at == Some(phi0);
-        let jam = first_jam(&step, &plan, &ahead, after_start, self.speed.as_mut());
+        let jam = first_jam(&step, &plan, &ahead, after_start, speed);
         match jam {
             None => self.follow_plan(&step, plan, &all_behind, theta1),
             Some(phi_j) => self.jam(&step, plan, phi_j, &ahead),
@@ -250,7 +252,7 @@ impl Run<'_> {
         if step.envelope(&others, phi_pk) >= theta_pk - SIDE_TOL {
             // Continuous hand-over: one push over the whole step with every pair behind.
             plan.push((phi1, e1.max(theta0), Motion::Push(behind.to_vec()), None));
-        } else if !self.pending.is_empty() && theta_pk <= theta0 + SIDE_TOL {
+        } else if !self.sizing.pending.is_empty() && theta_pk <= theta0 + SIDE_TOL {
             // The gear rests (drive lost) and the pair touching it from behind where the step
             // starts falls away without lifting it: a graze, not drive resumed (a tip of the
             // radius of the one that left the gear there passes it exactly).
@@ -344,15 +346,16 @@ impl Run<'_> {
             self.unheld_at = Some(phi_j);
             return;
         }
-        self.held = release.is_none();
-        self.held_links.clear();
+        if release.is_none() {
+            self.drive = Drive::Held { links: Vec::new() };
+        }
         let after = release.unwrap_or(theta_j);
         // Held from both sides (a pair touching behind as the one ahead closes), or struck
         // from the front with nothing pushing.
         let behind_pair = self.touching_behind(phi_j, theta_j, Some(closing), &mut memo);
         let (kind, before) = match behind_pair {
             Some(p) => (EventKind::Lock, Some(p.0 + p.1)),
-            None => (EventKind::Strike, self.drive_phase),
+            None => (EventKind::Strike, self.sizing.phase),
         };
         let mut e = Event::new(kind, phi_j, theta_j, closing);
         e.theta_after = after;
@@ -440,14 +443,14 @@ fn rest_then_maybe_push(
 /// Where the first pair of `ahead` closes on the planned path in the step: at its start if one
 /// overlaps the gear there already, else at the first root where the backlash stops being
 /// positive (`closing::first_closing`); with `after_start`, at a root after the start only. The
-/// speed layer, if given, may leave out of the search the conditions that hold nowhere in the
-/// box of the step's driver angles and the path's driven angles (`Shortcut::conditions_in_box`).
+/// speed layer may leave out of the search the conditions that hold nowhere in the box of the
+/// step's driver angles and the path's driven angles (`Shortcut::conditions_in_box`).
 fn first_jam(
     step: &Step<'_>,
     plan: &[Planned],
     ahead: &[(i64, i64)],
     after_start: bool,
-    mut speed: Option<&mut Box<dyn Shortcut>>,
+    speed: &mut dyn Shortcut,
 ) -> Option<f64> {
     if ahead.is_empty() {
         return None;
@@ -471,9 +474,12 @@ fn first_jam(
     );
     // After a closing that held nothing the search starts at its first root, whichever
     // conditions it comes from: then every condition is taken.
-    let mut sets = |pair: (i64, i64)| match speed.as_mut() {
-        Some(speed) if !after_start => speed.conditions_in_box(step.mesh, pair, phis, thetas),
-        _ => ConditionSet::ALL,
+    let mut sets = |pair: (i64, i64)| {
+        if after_start {
+            ConditionSet::ALL
+        } else {
+            speed.conditions_in_box(step.mesh, pair, phis, thetas)
+        }
     };
     let search = (
         after_start,

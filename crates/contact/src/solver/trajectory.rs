@@ -1,7 +1,7 @@
 //! What a run gives its caller: the events, each with its kind and size, and the trajectory
 //! θ(φ) as segments of one closed-form rule each.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::mesh::{End, Mesh};
 
@@ -11,7 +11,7 @@ use crate::mesh::{End, Mesh};
 /// event rule's job (the `rules` crate). [`Trajectory::jams`] and [`Trajectory::disengagements`]
 /// give the `strict` reading (every lock, strike and blocked start is a jam; every gap and slip
 /// a disengagement).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 pub enum EventKind {
     /// Held from both sides at once: the driven gear is pushed by one driver tooth (a contact
     /// behind) into another driver tooth ahead (a contact ahead), so no forward position is
@@ -68,7 +68,7 @@ impl EventKind {
 }
 
 /// One event of a run: its kind and its size.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Event {
     /// Driver angle of the event (radians).
     pub phi: f64,
@@ -144,7 +144,7 @@ impl Event {
 }
 
 /// How the driven gear moves over one segment of driver angle.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub enum Motion {
     /// Standing still.
     Rest,
@@ -155,7 +155,7 @@ pub enum Motion {
 }
 
 /// A stretch of driver angle over which the driven angle follows one closed-form rule.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Segment {
     /// First driver angle.
     pub phi_start: f64,
@@ -169,15 +169,15 @@ pub struct Segment {
     pub motion: Motion,
 }
 
-/// Which events end a run early ([`Mesh::run_until`]).
+/// Which events end a run early ([`Solve::stop_at`](crate::Solve::stop_at)).
 pub type StopAt<'a> = dyn Fn(&Event) -> bool + 'a;
 
 /// Whether the events of a run so far, every one of them sized, answer the caller's question
-/// for good (see [`Mesh::run_events_until_answered`]).
+/// for good (see [`Solve::until_answered`](crate::Solve::until_answered)).
 pub type Answered<'a> = dyn Fn(&[Event]) -> bool + 'a;
 
 /// How the driven gear starts.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub enum Start {
     /// Put the driven gear at this angle; if that overlaps, it is pushed clear first.
     At(f64),
@@ -187,11 +187,14 @@ pub enum Start {
 }
 
 /// The exact run of one mesh over a range of driver angle.
-#[derive(Debug, Clone)]
+///
+/// Stored (serde) as its mesh, segments and events, so that what is drawn from a run (θ(φ),
+/// the events and the contacts at them) is drawn again from stored results without running it.
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Trajectory {
-    pub(super) mesh: Mesh,
-    pub(super) segments: Vec<Segment>,
-    pub(super) events: Vec<Event>,
+    pub(crate) mesh: Mesh,
+    pub(crate) segments: Vec<Segment>,
+    pub(crate) events: Vec<Event>,
 }
 
 impl Trajectory {

@@ -1,17 +1,18 @@
 //! A pushed gear's step taken on a certificate, where bounds on the contact conditions over the
 //! step prove that no event lies in it, so that the step ends where the pushing curves end
 //! without any search (`certify.rs` has the bounds). Its one entry is
-//! [`Certifier::try_certified`] (the whole step, or else its two halves); it reads the run's state
-//! and, when it succeeds, moves it on as the exact step would (`Run::take_proved_step`).
+//! [`Certifier::try_certified`] (the whole step, or else its two halves); it reads where the run
+//! stands (`Stand`) and, when it succeeds, moves it on as the exact step would
+//! (`Run::take_proved_step`).
 
 use smallvec::SmallVec;
 
 use super::Certifier;
 use super::certify::{ConfigBox, PlacedTooth, Placement, Verdict};
+use super::stats::count;
 use crate::mesh::End;
 use crate::solver::shortcut::PairAtEnd;
-use crate::solver::{Pairs, Run, SIDE_TOL, Side};
-use crate::stats::count;
+use crate::solver::{Pairs, Run, SIDE_TOL, Side, Stand};
 
 /// How far a certified step's first box reaches above the pushers' end, as a share of their rise
 /// over the step (a performance choice only: any box holding the path is sound; 0.1 judged the
@@ -78,7 +79,7 @@ impl Certifier {
     ) -> bool {
         let e0 = crate::mesh::tooth_pair_evaluations();
         let certified =
-            self.certified_step(run, phi1, pushers) || self.certified_halves(run, phi1, pushers);
+            self.certified_whole(run, phi1, pushers) || self.certified_halves(run, phi1, pushers);
         let spent = crate::mesh::tooth_pair_evaluations() - e0;
         count(|st| {
             if certified {
@@ -92,8 +93,26 @@ impl Certifier {
         certified
     }
 
-    /// Takes the step to `phi1` on a certificate, if one is found, and returns whether it did
-    /// (having changed nothing if not). The certificate (`certify.rs` has the bounds):
+    /// Takes the whole step to `phi1` on a certificate ([`Certifier::proved`]), if one is
+    /// found, and returns whether it did (having changed nothing if not).
+    // One copy of this large step, its verdicts judged where they are taken (not handed back to
+    // a caller: a few hundred bytes copied at every step cost 0.7 % of table5's instructions).
+    #[inline(never)]
+    fn certified_whole(&mut self, run: &mut Run<'_>, phi1: f64, pushers: &[(i64, i64)]) -> bool {
+        let at = run.stand();
+        let Some(mut judged) = self.judge_step(&at, phi1, pushers) else {
+            return false;
+        };
+        if !self.proved(&at, &mut judged, phi1, pushers) {
+            return false;
+        }
+        run.take_proved_step(phi1, judged.theta1, &judged.pairs);
+        true
+    }
+
+    /// Whether the verdicts `judged` of the step from where the run stands (`at`) to `phi1`
+    /// ([`Certifier::judge_step`]) are a certificate for it; if so the pairs it proves ahead are
+    /// remembered for the next step. The certificate (`certify.rs` has the bounds):
     ///
     /// - Over the **box** of the step's driver angles and the driven angles from θ0 (less the
     ///   side tolerance) to θ1, every tooth pair near the driven gear either touches nowhere, or
@@ -120,13 +139,13 @@ impl Certifier {
     /// - Pairs born or gone within the step meet the conditions of `births_and_deaths_hold`.
     ///
     /// Then no event lies in the step, and it ends at θ1, exactly as the exact step would end it.
-    // One copy of this large step for its three callers (a whole step and two halves): inlined
-    // into each it made the program's resident code larger than before the halves.
-    #[inline(never)]
-    fn certified_step(&mut self, run: &mut Run<'_>, phi1: f64, pushers: &[(i64, i64)]) -> bool {
-        let Some(mut judged) = self.judge_step(run, phi1, pushers) else {
-            return false;
-        };
+    fn proved(
+        &mut self,
+        at: &Stand<'_, '_>,
+        judged: &mut JudgedStep,
+        phi1: f64,
+        pushers: &[(i64, i64)],
+    ) -> bool {
         // Every pusher is among the rising pairs (`judge_step` refuses a box where one is not):
         // one that fell would leave the driven gear.
         debug_assert!(
@@ -135,43 +154,65 @@ impl Certifier {
                 .all(|p| judged.pairs.iter().any(|m| m.pair == *p && m.rising)),
             "a pusher not judged rising"
         );
-        if !self.births_and_deaths_hold(run, &judged, phi1) {
+        if !self.births_and_deaths_hold(at, judged, phi1) {
             return false;
         }
         self.clear_ahead = (phi1, judged.theta1, std::mem::take(&mut judged.clear_ahead));
-        run.take_proved_step(phi1, judged.theta1, &judged.pairs);
         true
+    }
+
+    /// The verdicts of the step from `at` to `phi1`, if they are a certificate for it
+    /// ([`Certifier::proved`]).
+    fn proved_step(
+        &mut self,
+        at: &Stand<'_, '_>,
+        phi1: f64,
+        pushers: &[(i64, i64)],
+    ) -> Option<JudgedStep> {
+        let mut judged = self.judge_step(at, phi1, pushers)?;
+        self.proved(at, &mut judged, phi1, pushers)
+            .then_some(judged)
     }
 
     /// Takes the step to `phi1` as two certified half steps when the whole step has no
     /// certificate (a thinner box and a thinner tube about the driven gear's path prove more), and
-    /// returns whether it did. Only both halves together count: if the second finds none, the
-    /// first is undone and the whole step is bracketed as before, over the same driver angles, so
+    /// returns whether it did. Only both halves together count: the second is proved from where
+    /// the first would leave the run (`Stand::after_proved`), and the run moves over both only
+    /// if it is; if not, the whole step is bracketed as before, over the same driver angles, so
     /// that no event is located differently. (Not tried while an event waits for the drive to
-    /// resume and size it: a certified push would size it, and that is not undone.)
+    /// resume and size it: the exact step sizes it where the drive resumes.)
     fn certified_halves(&mut self, run: &mut Run<'_>, phi1: f64, pushers: &[(i64, i64)]) -> bool {
         if run.sizing_waits() {
             return false;
         }
-        let mid = 0.5 * (run.at().0 + phi1);
+        let at = run.stand();
+        let mid = 0.5 * (at.at().0 + phi1);
         let clear_ahead = self.clear_ahead.clone();
-        let checkpoint = run.checkpoint();
-        if self.certified_step(run, mid, pushers) {
-            let pushers = run.pushers();
-            if !pushers.is_empty() && self.certified_step(run, phi1, &pushers) {
+        if let Some(first) = self.proved_step(&at, mid, pushers) {
+            let moved = at.after_proved(mid, first.theta1, &first.pairs);
+            let pushers = moved.stand().pushers();
+            if !pushers.is_empty()
+                && let Some(second) = self.proved_step(&moved.stand(), phi1, &pushers)
+            {
+                run.take_proved_step(mid, first.theta1, &first.pairs);
+                run.take_proved_step(phi1, second.theta1, &second.pairs);
                 return true;
             }
         }
-        run.restore(checkpoint);
         self.clear_ahead = clear_ahead;
         false
     }
 
-    /// The verdicts of a certified step to `phi1` (see [`Certifier::certified_step`]), or None when a
+    /// The verdicts of a certified step to `phi1` (see [`Certifier::proved`]), or None when a
     /// pair may meet the driven gear other than by pushing it.
-    fn judge_step(&self, run: &Run<'_>, phi1: f64, pushers: &[(i64, i64)]) -> Option<JudgedStep> {
-        let mesh = run.mesh();
-        let (phi0, theta0) = run.at();
+    fn judge_step(
+        &self,
+        at: &Stand<'_, '_>,
+        phi1: f64,
+        pushers: &[(i64, i64)],
+    ) -> Option<JudgedStep> {
+        let mesh = at.mesh();
+        let (phi0, theta0) = at.at();
         // Each pair is evaluated at φ1 once, however often the box grows or θ1 moves; only the
         // upper ends are asked for (where the pairs behind end).
         let mut at1: SmallVec<[Evaluated; 8]> = SmallVec::new();
@@ -187,7 +228,7 @@ impl Certifier {
             .iter()
             .filter_map(|&p| end_of(p))
             .fold(theta0, f64::max);
-        let (overtakers, mut theta1) = overtakers(run, pushers, pushed, &mut end_of);
+        let (overtakers, mut theta1) = overtakers(at, pushers, pushed, &mut end_of);
         'grow: for grown in 0..4 {
             // The first box reaches a little above where the pushers end: the next pusher, taking
             // over within the step, often ends higher, and a box found too low is judged again.
@@ -197,7 +238,7 @@ impl Certifier {
                 theta1
             };
             let cell = ConfigBox::new(phi0, phi1, theta0 - SIDE_TOL, top, mesh.centre_distance);
-            let boxed = self.box_verdicts(run, &cell, phi1, top)?;
+            let boxed = self.box_verdicts(at, &cell, phi1, top)?;
             // A pusher whose contacts are not all rising cannot be followed: no certificate.
             if !pushers.iter().all(|&p| rises(&boxed, p)) {
                 return None;
@@ -312,13 +353,13 @@ impl Certifier {
     /// driven angle at the step's start.
     fn box_verdicts(
         &self,
-        run: &Run<'_>,
+        at: &Stand<'_, '_>,
         cell: &ConfigBox,
         phi1: f64,
         top: f64,
     ) -> Option<BoxedPairs> {
-        let mesh = run.mesh();
-        let (phi0, theta0) = run.at();
+        let mesh = at.mesh();
+        let (phi0, theta0) = at.at();
         let (driver, driven) = (&mesh.driver, &mesh.driven);
         let bottom = theta0 - SIDE_TOL;
         let drivers = driver.teeth_between(-phi1 - driver.window, -phi0 + driver.window);
@@ -342,7 +383,7 @@ impl Certifier {
                 let b = placed[i].get_or_insert_with(|| cell.place_driven(tooth).at);
                 let pair = (j, k);
                 let (verdict, range) = cell.pair(a, &PlacedTooth { tooth, at: *b });
-                let role = match (verdict, run.side_of(pair)) {
+                let role = match (verdict, at.side_of(pair)) {
                     (Verdict::Clear, _) => continue,
                     (Verdict::Rising, Some(Side::Behind)) => Role::Rising {
                         born: false,
@@ -358,7 +399,7 @@ impl Certifier {
                     // path (untracked, as a bracketed step finds it ahead where it starts).
                     // One the last step proved ahead (or gone) here is taken as ahead: a
                     // suspect whatever it does, it must stay clear of the path.
-                    (Verdict::Rising, None) if self.known_clear_ahead(run, pair) => {
+                    (Verdict::Rising, None) if self.known_clear_ahead(at, pair) => {
                         Role::Suspect { ahead: true }
                     }
                     (Verdict::Rising, None) => match mesh.obstacle(phi0, j, k) {
@@ -387,9 +428,9 @@ impl Certifier {
     /// ahead: a pair whose contacts only rise is born, and dies, where two of its vertices meet
     /// (`certify::vertex_meeting`). A pair born above the driven gear would be an obstacle ahead;
     /// one that died while carrying it must hand it to another there.
-    fn births_and_deaths_hold(&self, run: &Run<'_>, judged: &JudgedStep, phi1: f64) -> bool {
-        let mesh = run.mesh();
-        let (phi0, theta0) = run.at();
+    fn births_and_deaths_hold(&self, at: &Stand<'_, '_>, judged: &JudgedStep, phi1: f64) -> bool {
+        let mesh = at.mesh();
+        let (phi0, theta0) = at.at();
         // The driven angle at φ without pair `except`: the largest upper end of the other rising
         // pairs, at least θ0.
         let others = |phi: f64, except: (i64, i64)| {
@@ -432,14 +473,14 @@ impl Certifier {
 /// enough (else the box grows, and every pair is judged again, once it is found). Only pairs
 /// near enough to overtake are evaluated: within twice the pushers' rise below θ0.
 fn overtakers(
-    run: &Run<'_>,
+    at: &Stand<'_, '_>,
     pushers: &[(i64, i64)],
     pushed: f64,
     end_of: &mut impl FnMut((i64, i64)) -> Option<f64>,
 ) -> (Pairs, f64) {
-    let theta0 = run.at().1;
+    let theta0 = at.at().1;
     let (mut overtakers, mut theta1) = (Pairs::new(), pushed);
-    for t in run.tracked() {
+    for t in at.tracked() {
         if t.side == Side::Behind
             && !pushers.contains(&t.pair)
             && t.hi > theta0 - 2.0 * (pushed - theta0)

@@ -1,7 +1,7 @@
 //! Proofs about a box of configurations: which tooth pairs cannot touch the driven gear while the
 //! driver turns through a step, and, for those that can, whether their contact can only move the
 //! driven gear forwards. The solver takes a step without searching it for roots when every pair
-//! near the driven gear is proved harmless (`Certifier::certified_step` in `certified.rs`).
+//! near the driven gear is proved harmless (`Certifier::proved` in `certified.rs`).
 //!
 //! # The contact functions
 //!
@@ -577,7 +577,7 @@ mod tests {
 
     use super::*;
     use crate::speed::Certifier;
-    use crate::{Mesh, Obstacle, Start};
+    use crate::{Mesh, Obstacle, Solve, Start};
 
     fn gear(n: usize, r_tip: f64, sigma: f64, ecc: f64, rng: &mut ChaCha8Rng) -> Gear {
         let pitch = TAU / n as f64;
@@ -625,7 +625,11 @@ mod tests {
             let c = Certifier::new(&m).unwrap();
             let pitch = TAU / m.driver.tips.len() as f64;
             let phi0 = rng.random::<f64>() * TAU;
-            let run = m.run(phi0, phi0 + 2.0 * pitch, Start::Touching(0.0));
+            let run = m.solve(
+                phi0..=phi0 + 2.0 * pitch,
+                Start::Touching(0.0),
+                Solve::path(),
+            );
             let phi0 = phi0 + rng.random::<f64>() * pitch;
             let phi1 = phi0 + pitch * 10f64.powf(-3.0 * rng.random::<f64>()) * 0.5;
             let theta = run.theta_at(phi0);
@@ -700,7 +704,7 @@ mod tests {
             let pitch = TAU / m.driver.tips.len() as f64;
             let ratio = m.driver.tips.len() as f64 / m.driven.tips.len() as f64;
             let phi0 = rng.random::<f64>() * TAU;
-            let run = m.run(phi0, phi0 + pitch, Start::Touching(0.0));
+            let run = m.solve(phi0..=phi0 + pitch, Start::Touching(0.0), Solve::path());
             let theta0 = run.theta_at(phi0);
             let span = pitch * (0.05 + 0.5 * rng.random::<f64>());
             let phi1 = phi0 + span;

@@ -24,9 +24,9 @@ use std::collections::{BinaryHeap, HashMap, HashSet};
 
 use super::Certifier;
 use super::certify::ConfigBox;
+use super::stats::count;
 use crate::held::{AT_ROOT, Chain, joint_key};
 use crate::mesh::{Mesh, Obstacle};
-use crate::stats::count;
 
 /// A joint's teeth (`held::joint_key`).
 type Key = (i64, i64, i64, i64);

@@ -18,14 +18,16 @@
 
 use crate::held::Chain;
 use crate::mesh::{ConditionSet, Mesh, Placed};
-use crate::solver::{Pairs, Run, Shortcut};
+use crate::solver::{Pairs, Run, Shortcut, Stand};
 
 mod certified;
 mod certify;
 mod held;
+mod stats;
 
 use certify::{CertTooth, ConfigBox};
 use held::HeldJoints;
+pub use stats::{SpeedStats, speed_stats};
 
 /// The speed layer of one run: the certificates of both gears' teeth, and the pairs the last
 /// certified step proved ahead of the driven gear.
@@ -68,9 +70,9 @@ impl Certifier {
 
     /// Whether the last certified step proved `pair` ahead of the driven gear (or gone) where
     /// the run now is.
-    fn known_clear_ahead(&self, run: &Run<'_>, pair: (i64, i64)) -> bool {
+    fn known_clear_ahead(&self, at: &Stand<'_, '_>, pair: (i64, i64)) -> bool {
         let (phi, theta, pairs) = &self.clear_ahead;
-        (*phi, *theta) == run.at() && pairs.contains(&pair)
+        (*phi, *theta) == at.at() && pairs.contains(&pair)
     }
 
     /// Where two vertices of tooth pair (j, k) first meet (or, with `last`, meet last) while the

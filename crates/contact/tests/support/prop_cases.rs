@@ -5,7 +5,7 @@
 use std::f64::consts::TAU;
 use std::ops::Range;
 
-use contact::{Mesh, Start, Trajectory};
+use contact::{Mesh, Solve, Start, Trajectory};
 use geometry::{Gear, Vec2};
 use polycheck::{
     CurvedShape, GearShape, P2, outline_from_angles, outline_from_polar, outline_from_tips,
@@ -209,7 +209,11 @@ impl Case {
     }
 
     pub fn run(&self, mesh: &Mesh) -> Trajectory {
-        mesh.run(self.phi0, self.phi_end(), Start::Touching(self.guess))
+        mesh.solve(
+            self.phi0..=self.phi_end(),
+            Start::Touching(self.guess),
+            Solve::path(),
+        )
     }
 }
 

@@ -5,6 +5,7 @@
 
 use crate::carry::{Carried, Placement, Side};
 use crate::{Event, Mesh, Outcome, Path, Start, Trial, Want};
+use contact::Solve;
 
 fn run(trial: &Trial<'_>, want: Want<'_>) -> Outcome {
     let Some(drawn) = trial.drawn else {
@@ -55,14 +56,14 @@ fn run(trial: &Trial<'_>, want: Want<'_>) -> Outcome {
 fn push(mesh: &Mesh, phi0: f64, end: f64, start: Start, want: Want<'_>) -> Outcome {
     match want {
         Want::Path => {
-            let t = mesh.run(phi0, end, start);
+            let t = mesh.solve(phi0..=end, start, Solve::path());
             Outcome {
                 events: t.events().to_vec(),
                 path: Some(Path::Exact(Box::new(t))),
             }
         }
         Want::Events(answered) => Outcome {
-            events: mesh.run_events_until_answered(phi0, end, start, answered),
+            events: mesh.solve(phi0..=end, start, Solve::events().until_answered(answered)),
             path: None,
         },
     }

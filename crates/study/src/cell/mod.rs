@@ -15,7 +15,7 @@ use std::f64::consts::TAU;
 use std::fmt::Write as _;
 use std::sync::{Mutex, OnceLock};
 
-use contact::{Mesh, Start};
+use contact::{Mesh, Solve, Start};
 use geometry::Gear;
 use hypotheses::{Hypothesis, Params};
 use mechanism::trial_rng;
@@ -71,7 +71,7 @@ impl CellSpec {
 }
 
 /// What the trials of one cell gave.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct Counts {
     /// Trials with at least one jam.
     pub jams: u64,
@@ -199,7 +199,11 @@ impl Rebuilt {
     /// The trial's events (none for gears that cannot turn: see [`Rebuilt::mesh`]).
     pub fn events(&self) -> Vec<contact::Event> {
         self.mesh.as_ref().map_or_else(Vec::new, |mesh| {
-            mesh.run_events(self.phi0, self.phi0 + self.turn, Start::Touching(0.0))
+            mesh.solve(
+                self.phi0..=self.phi0 + self.turn,
+                Start::Touching(0.0),
+                Solve::events(),
+            )
         })
     }
 }
@@ -420,7 +424,11 @@ fn tallies_to_answer(
         all.iter().all(|t| t.closed)
     };
     let (phi0, end) = (rebuilt.phi0, rebuilt.phi0 + rebuilt.turn);
-    let events = mesh.run_events_until_answered(phi0, end, Start::Touching(0.0), &gather);
+    let events = mesh.solve(
+        phi0..=end,
+        Start::Touching(0.0),
+        Solve::events().until_answered(&gather),
+    );
     // Events sized after the last call (if any) are counted too.
     let mut all = tallies.into_inner();
     let rest = &events[counted.get().min(events.len())..];
