@@ -150,7 +150,7 @@ pub(crate) const MARKDOWN_KIND: registry::FileKind = registry::FileKind {
     recognise: |head| head.starts_with(b"# cargo xtask run all\n"),
 };
 
-/// `summary.json`, as [`json`] writes it: replaced only by another.
+/// `summary.json`, as [`json()`] writes it: replaced only by another.
 pub(crate) const JSON_KIND: registry::FileKind = registry::FileKind {
     what: "the summary of `run all`",
     recognise: |head| head.starts_with(b"{\n  \"experiments\": ["),

@@ -268,9 +268,7 @@ fn a_refusal_names_the_field_the_file_has_and_the_gear_at_fault() {
         (
             "arbor",
             pair(
-                &format!(
-                    "(teeth: 20, tip_radius: 10.0, root_radius: 9.0, arbor: Some((offset: 3.0, angle_deg: 0.0)))"
-                ),
+                "(teeth: 20, tip_radius: 10.0, root_radius: 9.0, arbor: Some((offset: 3.0, angle_deg: 0.0)))",
                 &driven(""),
                 "clearance_percent: Some(40.0)",
             ),

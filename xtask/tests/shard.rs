@@ -593,10 +593,10 @@ fn a_shard_never_replaces_another_runs_partial_file() {
             assert!(err.contains(w), "{k} {extra:?}: missing {w:?}: {err}");
         }
     }
-    for k in 0..2 {
+    for (k, was) in before.iter().enumerate() {
         assert_eq!(
-            fs::read(dir.join(format!("partial-{k}-of-2.json"))).unwrap(),
-            before[k],
+            &fs::read(dir.join(format!("partial-{k}-of-2.json"))).unwrap(),
+            was,
             "partial file {k} changed"
         );
     }

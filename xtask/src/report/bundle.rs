@@ -16,7 +16,7 @@ use std::path::{Component, Path, PathBuf};
 use crate::failure::Failure;
 use crate::provenance::{RUN_JSON, sha256};
 
-/// A bundle, as [`write`] writes it: a gzipped tar archive whose first entry is under
+/// A bundle, as [`write()`] writes it: a gzipped tar archive whose first entry is under
 /// `results/` or `inputs/`. Only such a file is replaced by another bundle.
 pub(crate) const KIND: registry::FileKind = registry::FileKind {
     what: "a bundle",
@@ -36,7 +36,7 @@ struct Input {
     folder: Option<PathBuf>,
 }
 
-/// What a bundle will hold, checked: [`plan`] makes it, [`write`] writes it.
+/// What a bundle will hold, checked: [`plan`] makes it, [`write()`] writes it.
 pub(crate) struct Plan {
     /// The archive's path, as given.
     file: PathBuf,
@@ -298,7 +298,7 @@ pub(crate) fn write(plan: &Plan, page: &[u8]) -> Result<(), Failure> {
                 .map(|n| n.to_string_lossy().into_owned())
                 .unwrap_or_default();
             let files = registry::read_one_version(d, || files_of(d, d, true))
-                .map_err(|why| std::io::Error::other(why))?;
+                .map_err(std::io::Error::other)?;
             for (rel, bytes) in files {
                 append(&mut tar, &format!("results/{name}/{rel}"), &bytes)?;
             }
