@@ -1075,7 +1075,8 @@ fn every_data_file_quotes_its_fields() {
 /// times; `report` over a results folder it could not read said "not run" and exited 0;
 /// `TMPDIR=/nonexistent fuzz` skipped its file check and found nothing. Each is refused before
 /// any work, naming what was typed. New instances: the same table through `--hypothesis
-/// measured:FILE`, a Case named twice, a tolerance named twice, a results folder whose
+/// measured:FILE`, a Case named twice, a tolerance named twice (also under `run all`, where
+/// the experiments before jam-readings would otherwise have run), a results folder whose
 /// `tables.json` is a link that leads nowhere.
 #[test]
 fn every_input_is_checked_before_any_work() {
@@ -1114,6 +1115,15 @@ fn every_input_is_checked_before_any_work() {
             vec!["run", "jam-readings", "--set", "tolerances=0.001,0.0010"],
             &["--set: tolerances: names the tolerance 0.0010 twice"],
         ),
+        // Every experiment's settings are checked before the first computes: `all` stops on
+        // jam-readings' check without running the experiments before it.
+        (
+            vec!["run", "all", "--set", "tolerances=0.001,0.0010"],
+            &[
+                "--set: tolerances: names the tolerance 0.0010 twice",
+                "for experiment jam-readings",
+            ],
+        ),
     ] {
         let mut all = args.clone();
         all.extend(["--out", &out]);
@@ -1150,6 +1160,15 @@ fn every_input_is_checked_before_any_work() {
             Box::new(move || {
                 std::fs::create_dir_all(&p).unwrap();
                 std::os::unix::fs::symlink("gone.json", p.join("tables.json")).unwrap();
+            })
+        }),
+        // The claims ledger the page opens on: a results.json that leads nowhere is not "not
+        // judged".
+        (results.join("claims/results.json"), {
+            let p = results.join("claims");
+            Box::new(move || {
+                std::fs::create_dir_all(&p).unwrap();
+                std::os::unix::fs::symlink("gone.json", p.join("results.json")).unwrap();
             })
         }),
     ];
