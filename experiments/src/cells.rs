@@ -278,7 +278,7 @@ pub fn csv_columns(
     c: &Counts,
     paper: (Option<u64>, Option<u64>),
     (rule_percent, compared): (f64, bool),
-) -> String {
+) -> Vec<String> {
     let (wj, wd) = (c.jam_interval(), c.dis_interval());
     let n = c.trials as f64;
     let show = |p: Option<u64>| p.map_or_else(String::new, |v| v.to_string());
@@ -292,21 +292,22 @@ pub fn csv_columns(
         (Some(j), Some(d)) => keeps_rule(j, d, PAPER_TRIALS, rule_percent).to_string(),
         _ => String::new(),
     };
-    format!(
-        "{},{},{},{},{},{},{},{},{},{},{},{},{paper_rule},{compared}",
-        c.trials,
-        c.jams,
-        wj.lo * n,
-        wj.hi * n,
+    vec![
+        c.trials.to_string(),
+        c.jams.to_string(),
+        (wj.lo * n).to_string(),
+        (wj.hi * n).to_string(),
         show(paper.0),
         p_value(c.jams, paper.0),
-        c.disengagements,
-        wd.lo * n,
-        wd.hi * n,
+        c.disengagements.to_string(),
+        (wd.lo * n).to_string(),
+        (wd.hi * n).to_string(),
         show(paper.1),
         p_value(c.disengagements, paper.1),
-        keeps_rule(c.jams, c.disengagements, c.trials, rule_percent),
-    )
+        keeps_rule(c.jams, c.disengagements, c.trials, rule_percent).to_string(),
+        paper_rule,
+        compared.to_string(),
+    ]
 }
 
 /// Header of [`csv_columns`]: `*_p_fisher` is the two-sided p-value of Fisher's exact test of
@@ -351,11 +352,11 @@ pub struct JamCells {
 }
 
 impl JamCells {
-    /// No cells yet; the CSV's header is `keys` (the key columns, e.g. `case,mesh`), then
+    /// No cells yet; the CSV's header is `keys` (the key columns, e.g. `["case", "mesh"]`), then
     /// [`CSV_COLUMNS`]; cells are marked by the paper's 1 % rule.
-    pub fn new(keys: &str) -> JamCells {
+    pub fn new(keys: &[&str]) -> JamCells {
         JamCells {
-            csv: format!("{keys},{CSV_COLUMNS}\n"),
+            csv: registry::csv_line(keys.iter().copied().chain(CSV_COLUMNS.split(','))),
             off_paper: Vec::new(),
             tally: Tally::default(),
             rule_percent: PAPER_RULE_PERCENT,
@@ -394,7 +395,7 @@ impl JamCells {
     pub fn cell(
         &mut self,
         (row, mesh): (&str, &str),
-        keys: &str,
+        keys: &[&str],
         c: &Counts,
         paper: (Option<u64>, Option<u64>),
     ) -> String {
@@ -406,15 +407,17 @@ impl JamCells {
     pub fn cell_compared(
         &mut self,
         (row, mesh): (&str, &str),
-        keys: &str,
+        keys: &[&str],
         c: &Counts,
         paper: (Option<u64>, Option<u64>),
         compared: bool,
     ) -> String {
         let compared = compared && self.off_paper.is_empty();
         let how = (self.rule_percent, compared);
-        self.csv
-            .push_str(&format!("{keys},{}\n", csv_columns(c, paper, how)));
+        let fields = keys.iter().map(|k| (*k).to_owned());
+        self.csv.push_str(&registry::csv_line(
+            fields.chain(csv_columns(c, paper, how)),
+        ));
         self.trials = c.trials;
         if self.rows.last().is_none_or(|r| r.label != row) {
             self.rows.push(RuleRow {
@@ -623,12 +626,22 @@ mod tests {
         );
         assert_eq!(tally, before);
         // The verdicts by row: kept cells on each side, and where they differ.
-        let mut cells = JamCells::new("case,mesh");
-        cells.cell(("A", "m3-e3"), "A,m3-e3", &c(3, 0, 200), (Some(2), Some(0)));
-        cells.cell(("A", "b2-c1"), "A,b2-c1", &c(0, 0, 200), (Some(0), Some(0)));
+        let mut cells = JamCells::new(&["case", "mesh"]);
+        cells.cell(
+            ("A", "m3-e3"),
+            &["A", "m3-e3"],
+            &c(3, 0, 200),
+            (Some(2), Some(0)),
+        );
+        cells.cell(
+            ("A", "b2-c1"),
+            &["A", "b2-c1"],
+            &c(0, 0, 200),
+            (Some(0), Some(0)),
+        );
         cells.cell(
             ("B", "m3-e3"),
-            "B,m3-e3",
+            &["B", "m3-e3"],
             &c(141, 0, 200),
             (Some(168), Some(0)),
         );

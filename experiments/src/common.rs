@@ -19,16 +19,14 @@ pub use crate::chart::{
 };
 pub use registry::MAX_DATA_ROWS;
 
-/// CSV text from a header and rows of numbers printed with `decimals` decimals.
+/// CSV text ([`registry::Csv`]) from a header and rows of numbers printed with `decimals`
+/// decimals.
 pub fn csv(header: &[&str], rows: impl Iterator<Item = Vec<f64>>, decimals: usize) -> String {
-    let mut out = header.join(",");
-    out.push('\n');
+    let mut out = registry::Csv::new(header);
     for r in rows {
-        let cells: Vec<String> = r.iter().map(|x| format!("{x:.decimals$}")).collect();
-        out.push_str(&cells.join(","));
-        out.push('\n');
+        out.row(r.iter().map(|x| format!("{x:.decimals$}")));
     }
-    out
+    out.text()
 }
 
 /// "value [lo .. hi]", each with `decimals` decimals: how an estimate and its interval print.
@@ -86,9 +84,15 @@ pub fn estimate_cells(name: &str, turns: f64, reading: &str, e: &stats::Estimate
     ]
 }
 
-/// The CSV columns of the same: `name,reading,mean,lo,hi`, the values in full.
-pub fn estimate_csv(name: &str, reading: &str, e: &stats::Estimate) -> String {
-    format!("{name},{reading},{},{},{}", e.mean, e.lo, e.hi)
+/// The CSV fields of the same: `name,reading,mean,lo,hi`, the values in full.
+pub fn estimate_csv(name: &str, reading: &str, e: &stats::Estimate) -> Vec<String> {
+    vec![
+        name.to_owned(),
+        reading.to_owned(),
+        e.mean.to_string(),
+        e.lo.to_string(),
+        e.hi.to_string(),
+    ]
 }
 
 /// `text` broken at spaces into lines of at most `width` characters; a word longer than `width`

@@ -80,7 +80,9 @@ pub fn check(
         && Gearing::builtin(&g).is_none()
         && seen.insert(("gearing", g.clone()))
     {
-        Gearing::load(Path::new(&g)).map_err(|e| e.to_string())?;
+        // Named by the setting, as the other files a run reads are (`--errors: FILE: ...`).
+        Gearing::load(Path::new(&g))
+            .map_err(|e| format!("--set: {}: {e}", study::gearing::PARAM.name))?;
     }
     if let Some(h) = value(ctx, study::errors::PARAM.name)
         && seen.insert(("hypothesis", h.clone()))
@@ -148,6 +150,23 @@ fn shared_settings(ctx: &Context) -> Result<(), String> {
     if ctx.holds(&study::events::PARAM) {
         crate::settings::rule(ctx).map_err(|e| e.to_string())?;
     }
+    // The gearing's clearance, large enough for the solver to tell from touching.
+    if ctx.holds(&study::gearing::CLEARANCE)
+        && ctx.holds(&study::gearing::TOOTH_HEIGHT)
+        && let Some(name) = value(ctx, study::gearing::PARAM.name)
+    {
+        let g = match Gearing::builtin(&name) {
+            Some(g) => g,
+            None => Gearing::load(Path::new(&name)).map_err(|e| e.to_string())?,
+        };
+        let read = |p: &registry::Param| ctx.get::<f64>(p).map_err(|e| e.to_string());
+        let (h, clearance) = (
+            read(&study::gearing::TOOTH_HEIGHT)?,
+            read(&study::gearing::CLEARANCE)?,
+        );
+        study::gearing::check_clearance(&g, h, clearance, study::gearing::CLEARANCE.name)
+            .map_err(|e| e.to_string())?;
+    }
     if let Some(label) = value(ctx, study::limits::MESH.name)
         && let Some(gearing) = value(ctx, study::gearing::PARAM.name)
     {
@@ -204,6 +223,27 @@ fn measured_gears_in_gearing(ctx: &Context, flags: (&str, &str)) -> Result<(), S
                     .join(", ")
             ));
         }
+    }
+    // Every gear the run makes needs a row (the hypothesis refuses a gear without one, but only
+    // once the run reaches it, after other Cases or experiments have been computed): the gears
+    // of every mesh, or of the one mesh the run studies.
+    let meshes: Vec<&train::MeshData> = match value(ctx, study::limits::MESH.name) {
+        Some(label) => gearing
+            .meshes()
+            .iter()
+            .filter(|m| m.label == label)
+            .collect(),
+        None => gearing.meshes().iter().collect(),
+    };
+    let listed: BTreeSet<&str> = h.table().entries().map(|(g, _)| g).collect();
+    if let Some(gear) = meshes
+        .iter()
+        .flat_map(|m| [m.driver.as_str(), m.driven.as_str()])
+        .find(|g| !listed.contains(g))
+    {
+        return Err(format!(
+            "{flag}: {file}: gear {gear}: missing from the table: every gear the run makes needs a row (the gearing `{gearing_name}` meshes {gear})"
+        ));
     }
     Ok(())
 }

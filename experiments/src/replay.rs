@@ -690,7 +690,7 @@ fn listing(
     let mut csv = String::from("trial,jammed,disengaged\n");
     for (t, (j, d)) in (0..trials).zip(&outcomes) {
         if *j || *d {
-            let _ = writeln!(csv, "{t},{j},{d}");
+            csv.push_str(&registry::csv_row!(t, j, d));
         }
     }
     let list = |v: &[u64]| v.iter().map(u64::to_string).collect::<Vec<_>>().join(", ");

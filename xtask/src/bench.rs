@@ -57,7 +57,7 @@ pub(crate) fn bench(exps: &Registry, b: &BenchArgs) -> Result<(), Failure> {
                 let ctx = progress::attach(Context::new(e, DEFAULT_SEED, threads, &[], None)?);
                 let (result, seconds) = execute(e, &ctx, &pool);
                 if let Err(err) = &result {
-                    eprintln!("bench: {}: {err}", e.id);
+                    crate::progress::say(&format!("bench: {}: {err}", e.id));
                     t.note(format!(
                         "{} with {threads} threads: {} failed: {err}",
                         target.name(),

@@ -67,7 +67,7 @@ pub(crate) fn run_every(
             Err(err) => Err(as_typed(err, p.e.id, run)),
         };
         if let Err(err) = &result {
-            eprintln!("{}: {err}", p.e.id);
+            crate::progress::say(&format!("{}: {err}", p.e.id));
         }
         rows.push(summary::Row::new(p.e.id, seconds, result.as_ref()));
     }
@@ -81,11 +81,13 @@ pub(crate) fn run_every(
     })?;
     write_atomically(
         &dir.join("summary.md"),
-        &summary::markdown(&rows, run.seed, threads),
+        &summary::MARKDOWN_KIND,
+        summary::markdown(&rows, run.seed, threads).as_bytes(),
     )?;
     write_atomically(
         &dir.join("summary.json"),
-        &summary::json(&rows, run.seed, threads),
+        &summary::JSON_KIND,
+        summary::json(&rows, run.seed, threads).as_bytes(),
     )?;
     note(&format!("summary: {}", dir.join("summary.md").display()));
     Ok(rows)

@@ -44,6 +44,17 @@ const SLOW: Duration = Duration::from_secs(2);
 pub fn command(opts: &FuzzArgs) -> Result<(), Failure> {
     // Where findings go is checked first: a run of minutes must not end unable to save them.
     crate::plan::writable_dir("--findings", &opts.findings)?;
+    // So is the folder the loaders' file checks write their inputs to: without it they would
+    // not run, and the fuzz would report nothing found.
+    let scratch = scratch_file();
+    std::fs::write(&scratch, b"")
+        .and_then(|()| std::fs::remove_file(&scratch))
+        .map_err(|e| {
+            Failure::Bad(format!(
+                "TMPDIR: {}: the fuzzer writes the files its loaders read there, and cannot ({e}): set TMPDIR to a folder that can be written",
+                std::env::temp_dir().display()
+            ))
+        })?;
     let note = match opts.budget {
         Budget::Seconds(s) => format!(
             "fuzz: {s} s over {} targets, seed {}",
@@ -57,7 +68,7 @@ pub fn command(opts: &FuzzArgs) -> Result<(), Failure> {
         ),
     };
     if !opts.quiet {
-        eprintln!("{note}");
+        crate::progress::say(&note);
     }
     let summary = run(opts.budget, opts.seed);
     crate::shared::print(&summary.table().render())?;
@@ -73,13 +84,13 @@ pub fn command(opts: &FuzzArgs) -> Result<(), Failure> {
             .join(format!("{}-{}-{i}.ron", f.target, f.kind));
         std::fs::write(&path, &f.input)
             .map_err(|e| Failure::Internal(format!("cannot write {}: {e}", path.display())))?;
-        eprintln!(
+        crate::progress::say(&format!(
             "fuzz: {} {}: {} ({})",
             f.target,
             f.kind,
             f.message,
             path.display()
-        );
+        ));
     }
     Err(Failure::Internal(format!(
         "fuzz: {} finding(s); inputs in {}",
@@ -540,10 +551,19 @@ fn execute(target: Target, input: &[u8]) -> (Result<Outcome, (&'static str, Stri
     (outcome, utf8)
 }
 
-/// A file the gearing loader reads: a non-UTF-8 one must be refused, naming it.
+/// The file the loaders' file checks write their inputs to: in the system's temporary folder.
+fn scratch_file() -> std::path::PathBuf {
+    std::env::temp_dir().join(format!("xtask-fuzz-{}.ron", std::process::id()))
+}
+
+/// A file the gearing loader reads: a non-UTF-8 one must be refused, naming it. A scratch file
+/// that cannot be written is said as a finding too: the check did not run.
 fn gearing_file_refuses(input: &[u8], scratch: &Path) -> Option<String> {
-    if std::fs::write(scratch, input).is_err() {
-        return None; // The machine's problem, not the loader's.
+    if let Err(e) = std::fs::write(scratch, input) {
+        return Some(format!(
+            "the file check did not run: {} cannot be written ({e})",
+            scratch.display()
+        ));
     }
     match catch_unwind(|| train::Gearing::load(scratch)) {
         Ok(Err(e)) if e.to_string().starts_with(&scratch.display().to_string()) => None,
@@ -571,7 +591,7 @@ pub fn run(budget: Budget, seed: u64) -> Summary {
             *m = Some(format!("{payload}{at}"));
         }
     }));
-    let scratch = std::env::temp_dir().join(format!("xtask-fuzz-{}.ron", std::process::id()));
+    let scratch = scratch_file();
     let mut summary = Summary::default();
     let mut seen_findings = BTreeSet::new();
     let targets = targets();

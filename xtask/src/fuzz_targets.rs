@@ -183,6 +183,26 @@ pub fn gearing(text: &str) -> Result<Outcome, String> {
         Err(e) => return check_refusal(e.to_string()),
     };
     check_fields(text, GEARING_FIELDS)?;
+    // Names reach tables, data files and terminals, and mesh labels name replayable cells.
+    let names = g
+        .gears()
+        .iter()
+        .map(|x| &x.name)
+        .chain(g.meshes().iter().map(|m| &m.label))
+        .chain(g.pointers().iter().map(|p| &p.name));
+    for name in names {
+        if name.chars().any(char::is_control) {
+            return Err(format!(
+                "accepted the name {name:?}, holding a control character"
+            ));
+        }
+    }
+    if let Some(m) = g.meshes().iter().find(|m| m.label.contains('/')) {
+        return Err(format!(
+            "accepted the mesh label {:?}, holding a /",
+            m.label
+        ));
+    }
     for gear in g.gears() {
         match g.tip_radius(&gear.name) {
             Some(r) if r.is_finite() && r > 0.0 => {}
@@ -332,9 +352,21 @@ pub fn pair(text: &str) -> Result<Outcome, String> {
         return Err(format!("accepted centre distance {d}"));
     }
     let mut reach = d;
+    let largest = mesh.driver().tip_radius().max(mesh.driven().tip_radius());
     for (which, g) in [("driver", mesh.driver()), ("driven", mesh.driven())] {
         if !(3..=geometry::MAX_TEETH).contains(&g.teeth()) {
             return Err(format!("accepted {which} with {} teeth", g.teeth()));
+        }
+        // Lengths within the range where the answer is the same in every unit, and no tooth
+        // too low to tell from rounding.
+        if !(geometry::MIN_LENGTH..=geometry::MAX_LENGTH).contains(&g.tip_radius())
+            || g.tip_radius() - g.root_radius() < geometry::MIN_DECIDING_SHARE * largest
+        {
+            return Err(format!(
+                "accepted {which} with radii {} and {} (the larger tip radius {largest})",
+                g.tip_radius(),
+                g.root_radius()
+            ));
         }
         if !(g.tip_radius().is_finite() && g.root_radius().is_finite()) {
             return Err(format!(

@@ -49,9 +49,12 @@ Usage:
                                 and print its events; writes pair.ron to rerun it
                                 with `run pair`;
                                 with no trial, list the cell's failed trials
-  cargo xtask report [--out DIR]
+  cargo xtask report [--out DIR] [--bundle FILE] [-q]
                                 write <out>/index.html: one self-contained page with
-                                every experiment's tables, figures and provenance
+                                every experiment's tables, figures and provenance;
+                                with --bundle, also FILE: one .tar.gz of the results
+                                and the input files their runs read (checked against
+                                the SHA-256 each run recorded)
   cargo xtask fuzz [--seconds N | --execs N] [--seed S] [--findings DIR] [-q]
                                 feed mutated RON files to the gearing, measured-
                                 errors and pair config loaders (default 60 s); exit 1

@@ -213,6 +213,16 @@ pub(crate) fn warnings(
             }
         }
     }
+    if let Some((_, h)) = sets.iter().rev().find(|(k, _)| k == "hypothesis")
+        && e.all_params().any(|p| p.name == "hypothesis")
+        && crate::provenance::uses_example_table(h)
+    {
+        out.push(format!(
+            "note: {}: {}",
+            e.id,
+            crate::provenance::EXAMPLE_TABLE
+        ));
+    }
     if e.id == "pair" {
         match config {
             None => out.push(

@@ -46,6 +46,8 @@ use crate::help::{details, hypothesis_details, overview, rule_details, usage};
 use crate::shared::{print, stop_cleanly_on_signals};
 
 fn main() -> ExitCode {
+    // The run locks end with the process however `main` ends, a panic included.
+    let _locks = shared::LocksEnd;
     // Names the plugin crate so that its `inventory` registrations are linked in.
     experiments::link();
     hypotheses::link();
@@ -67,16 +69,19 @@ fn main() -> ExitCode {
     // The run locks end with the run, whatever its outcome (a refused run leaves no empty --out).
     registry::release_locks();
     match done {
+        // What could not be said on stderr (its disk full, or closed) makes a run that did its
+        // work end with status 1 all the same: whoever started it never read its notes.
+        Ok(()) if progress::stderr_failed() => ExitCode::from(1),
         Ok(()) => ExitCode::SUCCESS,
         Err(f) => {
             // One line each: what was wrong and the rule (a usage error points to the usage).
             match &f {
-                Failure::Usage(m) => eprintln!(
+                Failure::Usage(m) => progress::say(&format!(
                     "error: {} (`cargo xtask help` shows the usage)",
                     one_line(m)
-                ),
-                Failure::Bad(m) => eprintln!("{}", one_line(&hints::did_you_mean(m))),
-                Failure::Internal(m) => eprintln!("{}", one_line(m)),
+                )),
+                Failure::Bad(m) => progress::say(&one_line(&hints::did_you_mean(m))),
+                Failure::Internal(m) => progress::say(&one_line(m)),
                 Failure::Reported(_) => {}
             }
             ExitCode::from(f.code())

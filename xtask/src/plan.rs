@@ -166,6 +166,18 @@ pub(crate) fn plan(
         planned.push(Planned { e, ctx, sets });
     }
     preflight(&planned, run)?;
+    // Every experiment's settings read and checked across their fields (a grid's end below its
+    // start, a tolerance named twice) before any of them computes.
+    for p in &planned {
+        p.e.check_settings(&p.ctx).map_err(|err| {
+            let err = as_typed(err, p.e.id, run);
+            if alone {
+                err
+            } else {
+                of_experiment(err, p.e.id)
+            }
+        })?;
+    }
     // What runs but is probably not what was meant, said before it runs.
     for p in &planned {
         for w in crate::hints::warnings(p.e, &p.sets, p.ctx.config()) {
@@ -184,11 +196,10 @@ pub(crate) fn preflight(planned: &[Planned], run: &RunArgs) -> Result<(), Failur
         Some(shard) => planned
             .iter()
             .map(|p| {
-                Target::File(format!(
-                    "{}/{}",
-                    p.e.id,
-                    crate::shard::partial::file_name(shard)
-                ))
+                Target::File(
+                    format!("{}/{}", p.e.id, crate::shard::partial::file_name(shard)),
+                    &crate::shard::partial::KIND,
+                )
             })
             .collect(),
         None => planned
@@ -196,7 +207,12 @@ pub(crate) fn preflight(planned: &[Planned], run: &RunArgs) -> Result<(), Failur
             .map(|p| Target::Results(p.e.id.to_owned()))
             .chain(
                 run.is_all()
-                    .then(|| ["summary.md", "summary.json"].map(|f| Target::File(f.into())))
+                    .then(|| {
+                        [
+                            Target::File("summary.md".into(), &crate::summary::MARKDOWN_KIND),
+                            Target::File("summary.json".into(), &crate::summary::JSON_KIND),
+                        ]
+                    })
                     .into_iter()
                     .flatten(),
             )
@@ -235,8 +251,9 @@ fn typed_flag(msg: String, run: &RunArgs) -> String {
 pub(crate) enum Target {
     /// `<out>/<id>`: an experiment's results, which replace the previous ones whole.
     Results(String),
-    /// A file, as a path relative to `<out>`: `summary.md`, `index.html`, a shard's partial file.
-    File(String),
+    /// A file, as a path relative to `<out>`: `summary.md`, `index.html`, a shard's partial
+    /// file; what is there must be a file of its kind ([`registry::check_replace`]).
+    File(String, &'static registry::FileKind),
 }
 
 /// Checks, before anything is computed, that results can be written under `out` (`--out`,
@@ -264,7 +281,7 @@ fn lock_targets(
     for t in targets {
         let (parent, name, shown) = match t {
             Target::Results(id) => (out.to_path_buf(), id.clone(), id.clone()),
-            Target::File(rel) => {
+            Target::File(rel, _) => {
                 let path = out.join(rel);
                 let name = path
                     .file_name()
@@ -300,21 +317,45 @@ pub(crate) fn writable_dir(flag: &str, out: &Path) -> Result<(), Failure> {
     if out.exists() && !out.is_dir() {
         return Err(refuse("exists and is not a directory".into()));
     }
-    // The nearest folder that exists: where the first thing would be created.
+    // The nearest folder that exists: where the first thing would be created. A path that
+    // cannot be looked at for another reason than its absence (a loop of symbolic links) is
+    // refused with that reason.
     let mut base = out.to_path_buf();
     let mut missing = Vec::new();
-    while !base.as_os_str().is_empty() && std::fs::symlink_metadata(&base).is_err() {
+    while !base.as_os_str().is_empty() {
+        match std::fs::symlink_metadata(&base) {
+            Ok(_) => break,
+            // Missing, below a file (said of the file below), or a name the probe below finds
+            // too long.
+            Err(e)
+                if matches!(
+                    e.kind(),
+                    std::io::ErrorKind::NotFound
+                        | std::io::ErrorKind::NotADirectory
+                        | std::io::ErrorKind::InvalidFilename
+                ) => {}
+            Err(e) => return Err(refuse(format!("cannot be inspected ({e})"))),
+        }
         missing.push(base.clone());
         base = base.parent().map(Path::to_path_buf).unwrap_or_default();
     }
     if base.as_os_str().is_empty() {
         base = PathBuf::from(".");
     }
-    if !base.is_dir() {
-        return Err(refuse(format!(
-            "cannot be created: {} is not a directory",
-            base.display()
-        )));
+    match std::fs::metadata(&base) {
+        Ok(m) if m.is_dir() => {}
+        Ok(_) => {
+            return Err(refuse(format!(
+                "cannot be created: {} is not a directory",
+                base.display()
+            )));
+        }
+        Err(e) => {
+            return Err(refuse(format!(
+                "cannot be created: {} cannot be followed ({e})",
+                base.display()
+            )));
+        }
     }
     // A probe folder in the nearest existing one, and in it the missing folders by their names,
     // as writing would create them; then all removed. The probe is this process's own, so runs
@@ -363,6 +404,8 @@ fn check_targets(
                     }
                     Ok(_) => {
                         keeps_partials(&dir, id, out, refuse)?;
+                        registry::results_replaceable(&dir)
+                            .map_err(|why| refuse(format!("{id}: {why}")))?;
                         replaceable(&dir).map_err(|why| {
                             refuse(format!(
                                 "{id}: the previous results cannot be replaced: {why}"
@@ -372,7 +415,7 @@ fn check_targets(
                     Err(_) => {}
                 }
             }
-            Target::File(rel) => {
+            Target::File(rel, kind) => {
                 let path = out.join(rel);
                 if let Some(parent) = path.parent()
                     && parent != out
@@ -389,8 +432,15 @@ fn check_targets(
                             "{rel}: exists and is a directory, where a file is written"
                         )));
                     }
-                    Ok(_) => replaceable_file(&path)
-                        .map_err(|why| refuse(format!("{rel}: cannot be replaced: {why}")))?,
+                    Ok(_) => {
+                        registry::check_replace(&path, kind)
+                            .map_err(|why| refuse(format!("{rel}: {why}")))?;
+                        replaceable_file(&path)
+                            .map_err(|why| refuse(format!("{rel}: cannot be replaced: {why}")))?;
+                    }
+                    Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+                        return Err(refuse(format!("{rel}: cannot be inspected ({e})")));
+                    }
                     Err(_) => {
                         if let Some(parent) = path.parent().filter(|p| p.is_dir()) {
                             probe_folder(parent).map_err(|e| {

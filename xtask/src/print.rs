@@ -103,7 +103,11 @@ impl<'a> Printer<'a> {
 pub(crate) fn csv_tables(tables: &[Table], prefix: &str) -> String {
     tables
         .iter()
-        .map(|t| format!("# {prefix}{}\n{}", t.title, t.to_csv()))
+        .map(|t| {
+            // The title on one line, shown safely (a path in it could hold a line break).
+            let title = registry::terminal_text(&t.title.replace(['\n', '\r'], " "));
+            format!("# {prefix}{title}\n{}", t.to_csv())
+        })
         .collect::<Vec<_>>()
         .join("\n")
 }

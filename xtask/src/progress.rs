@@ -77,16 +77,16 @@ pub fn check_setting() -> Result<(), String> {
 fn env_filter() -> EnvFilter {
     match std::env::var("RUST_LOG") {
         Ok(v) if !v.trim().is_empty() => EnvFilter::try_new(&v).unwrap_or_else(|e| {
-            eprintln!(
+            say(&format!(
                 "warning: RUST_LOG: `{}` is not a log filter ({e}); it is ignored and warnings are logged (e.g. RUST_LOG=info or RUST_LOG=debug)",
                 v.escape_debug()
-            );
+            ));
             EnvFilter::new("warn")
         }),
         Ok(_) => EnvFilter::new("warn"),
         Err(std::env::VarError::NotPresent) => EnvFilter::new("warn"),
         Err(std::env::VarError::NotUnicode(v)) => {
-            eprintln!("warning: RUST_LOG: {v:?} is not valid UTF-8; it is ignored and warnings are logged");
+            say(&format!("warning: RUST_LOG: {v:?} is not valid UTF-8; it is ignored and warnings are logged"));
             EnvFilter::new("warn")
         }
     }
@@ -128,6 +128,9 @@ pub fn init(verbosity: Verbosity) {
         let bars = IndicatifLayer::new().with_max_progress_bars(4, None);
         let logs = fmt::layer()
             .with_writer(bars.get_stderr_writer())
+            // A log line that cannot be written is not printed again with `eprintln!`, which
+            // panics when stderr is full.
+            .log_internal_errors(false)
             .with_ansi(colour)
             .with_target(false)
             .with_filter(filter);
@@ -142,17 +145,56 @@ pub fn init(verbosity: Verbosity) {
     } else {
         let _ = fmt()
             .with_env_filter(filter)
-            .with_writer(std::io::stderr)
+            .with_writer(|| Stderr)
+            .log_internal_errors(false)
             .with_ansi(colour)
             .with_target(false)
             .try_init();
     }
 }
 
+/// Set when a line could not be written to stderr: the command then ends with exit status 1.
+static STDERR_FAILED: AtomicBool = AtomicBool::new(false);
+
+/// Writes `text` and a line end to stderr, its control characters escaped
+/// ([`registry::terminal_text`]: a path or a name from a user's file holding an escape sequence
+/// cannot change the terminal). A failure (stderr closed, or its disk full) is recorded for the
+/// exit status ([`stderr_failed`]), never a panic as `eprintln!` would make it.
+pub fn say(text: &str) {
+    use std::io::Write as _;
+    let mut err = std::io::stderr().lock();
+    let text = registry::terminal_text(text);
+    if writeln!(err, "{text}").and_then(|()| err.flush()).is_err() {
+        STDERR_FAILED.store(true, Ordering::Relaxed);
+    }
+}
+
+/// Stderr for the logs: a failed write is recorded as [`say`] records it.
+struct Stderr;
+
+impl std::io::Write for Stderr {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        std::io::stderr().write(buf).inspect_err(|_| {
+            STDERR_FAILED.store(true, Ordering::Relaxed);
+        })
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        std::io::stderr().flush().inspect_err(|_| {
+            STDERR_FAILED.store(true, Ordering::Relaxed);
+        })
+    }
+}
+
+/// Whether a line could not be written to stderr ([`say`]).
+pub fn stderr_failed() -> bool {
+    STDERR_FAILED.load(Ordering::Relaxed)
+}
+
 /// Prints a note (where results went, what was skipped) on stderr, unless `-q`.
 pub fn note(text: &str) {
     if !QUIET.load(Ordering::Relaxed) {
-        eprintln!("{text}");
+        say(text);
     }
 }
 
@@ -180,7 +222,7 @@ pub fn watch<T>(id: &str, f: impl FnOnce() -> T) -> T {
             loop {
                 match stopped.recv_timeout(wait) {
                     Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {
-                        eprintln!("{}", lines.line(id, start.elapsed()));
+                        say(&lines.line(id, start.elapsed()));
                         wait = lines.period;
                     }
                     _ => return,

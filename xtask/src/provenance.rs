@@ -67,6 +67,10 @@ fn stamp_with(
             "readings": readings(ctx),
             "config": config,
             "inputs": inputs(ctx),
+            // Relative input paths were read from here (`report --bundle` reads them again).
+            "folder": std::env::current_dir()
+                .map(|d| d.display().to_string())
+                .unwrap_or_default(),
             "version": {
                 "crate": env!("CARGO_PKG_VERSION"),
                 "git": git_describe(),
@@ -78,6 +82,12 @@ fn stamp_with(
     text.push('\n');
     let mut stamped = report.clone();
     stamped.inputs = recorded_inputs(ctx);
+    // A run on the invented example table says so under every table.
+    if runs_example_table(ctx) {
+        for t in &mut stamped.tables {
+            t.note(EXAMPLE_TABLE);
+        }
+    }
     stamped.label_departures(departures);
     stamped.files.retain(|f| f.name != RUN_JSON);
     stamped.files.push(OutputFile::new(RUN_JSON, text));
@@ -139,6 +149,24 @@ fn readings(ctx: &Context) -> BTreeMap<&'static str, String> {
 }
 
 pub use registry::DEPARTURE;
+
+/// Said of a run whose hypothesis has a `measured` layer without a file: it runs on the example
+/// table embedded in the toolkit, whose values are invented.
+pub const EXAMPLE_TABLE: &str = "The hypothesis `measured` without a file of your own uses the example table shipped with the toolkit (crates/hypotheses/data/measured-example.ron), whose values are INVENTED: these numbers describe no real mechanism; give your own table with --errors FILE or --hypothesis measured:FILE.";
+
+/// Whether `ctx`'s hypothesis has a `measured` layer without a file ([`EXAMPLE_TABLE`]).
+pub fn runs_example_table(ctx: &Context) -> bool {
+    ctx.values()
+        .find(|(p, _)| p.name == "hypothesis")
+        .is_some_and(|(_, h)| uses_example_table(h))
+}
+
+/// Whether the hypothesis `h` (a stack `a+b`) has a `measured` layer without a file.
+pub fn uses_example_table(h: &str) -> bool {
+    hypotheses::stack_layers(h)
+        .iter()
+        .any(|layer| layer.trim() == "measured")
+}
 
 /// SHA-256 of `bytes`, in lowercase hex.
 pub fn sha256(bytes: &[u8]) -> String {

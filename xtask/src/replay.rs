@@ -128,6 +128,14 @@ pub(crate) fn command(a: &ReplayArgs) -> Result<(), Failure> {
     let e = lookup(&exps, &a.id)?;
     let threads = crate::shared::default_threads();
     let ctx = Context::new(e, a.seed, threads, &a.sets, None)?;
+    // The files the replay reads, resolved and checked by the rule `run` and `merge` use: a
+    // built-in name that is also a file here is refused, as is a file that breaks its rules.
+    experiments::inputs::check(
+        &ctx,
+        ("--set: hypothesis", "--set: measured"),
+        &mut std::collections::BTreeSet::new(),
+    )
+    .map_err(Failure::Bad)?;
     if !a.quiet {
         for w in crate::hints::warnings(e, &a.sets, None) {
             note(&w);

@@ -36,27 +36,26 @@ pub(crate) fn default_out() -> PathBuf {
         .join("results")
 }
 
-/// The hidden temporary sibling `path` is written through before it is renamed into place:
-/// `.<name>.tmp-<pid>` (`fallback` names a path without a file name).
-pub(crate) fn temp_sibling(path: &Path, fallback: &str) -> std::path::PathBuf {
-    path.with_file_name(format!(
-        ".{}.tmp-{}",
-        path.file_name()
-            .map_or_else(|| fallback.into(), |n| n.to_string_lossy().into_owned()),
-        std::process::id()
-    ))
+/// Writes `bytes` to `path` through a temporary sibling renamed into place, replacing only a
+/// file of its own `kind` ([`registry::write_file`]): what else is there (a device, a folder, a
+/// file the toolkit did not write) is refused naming the path (exit 2).
+pub(crate) fn write_atomically(
+    path: &Path,
+    kind: &registry::FileKind,
+    bytes: &[u8],
+) -> Result<(), Failure> {
+    registry::write_file(path, kind, &mut |f| f.write_all(bytes)).map_err(|e| written(path, e))
 }
 
-/// Writes `text` to `path` through a temporary sibling renamed into place.
-pub(crate) fn write_atomically(path: &Path, text: &str) -> Result<(), Failure> {
-    let tmp = temp_sibling(path, "summary");
-    let fail = |what: &str, e: std::io::Error| {
-        Failure::Internal(format!(
-            "internal error: cannot {what} {}: {e}",
-            path.display()
-        ))
-    };
-    registry::write_file_through(path, &tmp, text.as_bytes()).map_err(|(what, e)| fail(what, e))
+/// A failed [`registry::write_file`] of `path` as the command's failure: a refusal is bad
+/// input, an I/O failure internal.
+pub(crate) fn written(path: &Path, e: registry::WriteError) -> Failure {
+    match e {
+        registry::WriteError::Refused(why) => Failure::Bad(format!("{}: {why}", path.display())),
+        registry::WriteError::Io(..) => {
+            Failure::Internal(format!("internal error: {}: {e}", path.display()))
+        }
+    }
 }
 
 /// Releases every run lock of this process when dropped ([`registry::release_locks`]): held by
@@ -73,14 +72,14 @@ impl Drop for LocksEnd {
 /// ([`registry::abandon_writes`]), says so in one line and exits with `status`.
 fn stop(status: i32) -> ! {
     let cleaned = registry::abandon_writes();
-    eprintln!(
+    crate::progress::say(&format!(
         "stopped by a signal{}",
         if cleaned == 0 {
             String::new()
         } else {
             format!("; {cleaned} unfinished results removed or put back")
         }
-    );
+    ));
     std::process::exit(status);
 }
 

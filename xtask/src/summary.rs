@@ -145,6 +145,18 @@ pub fn table(rows: &[Row]) -> Table {
     t
 }
 
+/// `summary.md`, as [`markdown`] writes it: replaced only by another.
+pub(crate) const MARKDOWN_KIND: registry::FileKind = registry::FileKind {
+    what: "the summary of `run all`",
+    recognise: |head| head.starts_with(b"# cargo xtask run all\n"),
+};
+
+/// `summary.json`, as [`json()`] writes it: replaced only by another.
+pub(crate) const JSON_KIND: registry::FileKind = registry::FileKind {
+    what: "the summary of `run all`",
+    recognise: |head| head.starts_with(b"{\n  \"experiments\": ["),
+};
+
 /// `summary.md`: a heading naming the seed and threads, then the table.
 pub fn markdown(rows: &[Row], seed: u64, threads: usize) -> String {
     format!(

@@ -622,3 +622,74 @@ fn environment_settings_that_mean_nothing_are_refused_or_warned() {
     let o = support::xtask_env(&["list"], &[("RUST_LOG", "info")]);
     assert!(!stderr(&o).contains("RUST_LOG"), "{}", stderr(&o));
 }
+
+/// `bench --only table5 --only all` and `--threads 1 --threads 2`: the last silently won, where
+/// every other command refuses a repeated flag; `--bundle` was missing from the usage, and
+/// `report --help` was refused. New instances: `merge --help`, `bench --help`, `fuzz --help`
+/// and `replay --help` show the usage too.
+#[test]
+fn every_command_takes_a_flag_once_and_shows_its_usage() {
+    let cases = vec![
+        case(
+            "bench --only twice",
+            None,
+            "bench --only table5 --only all",
+            &["--only given twice"],
+        ),
+        case(
+            "bench --threads twice",
+            None,
+            "bench --threads 1 --threads 2",
+            &["--threads given twice"],
+        ),
+    ];
+    assert_none(failures("once", cases));
+    for cmd in ["report", "merge", "bench", "fuzz", "replay", "run"] {
+        let o = xtask(&[cmd, "--help"]);
+        let out = support::stdout(&o);
+        assert!(o.status.success(), "{cmd} --help: {}", stderr(&o));
+        assert!(
+            out.contains("cargo xtask report [--out DIR] [--bundle FILE] [-q]"),
+            "{cmd} --help: {out}"
+        );
+    }
+}
+
+/// `--out a/x` where `a` is a loop of symbolic links said "a is not a directory" (`report` and
+/// `merge` said "Too many levels of symbolic links"): every command names the loop. New
+/// instances: `replay`, and `report --bundle` into the loop.
+#[test]
+fn an_out_through_a_loop_of_links_is_named_as_one() {
+    let s = Scratch::new("link-loop");
+    std::os::unix::fs::symlink("b", s.0.join("a")).unwrap();
+    std::os::unix::fs::symlink("a", s.0.join("b")).unwrap();
+    let into = s.path("a/x");
+    let o = xtask(&["run", "fig3", "-q", "--out", &s.path("r")]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let bundle = s.path("a/b.tgz");
+    let shards = s.path("sh");
+    for k in ["0/2", "1/2"] {
+        let mut args = vec!["run", "table1", "-q", "--shard", k, "--out", &shards];
+        args.extend(support::TABLE1_TINY);
+        let o = xtask(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    for args in [
+        vec!["run", "fig3", "--out", &into],
+        vec![
+            "replay", "table3", "B/m3-e3", "0", "--trials", "2", "--out", &into,
+        ],
+        vec!["report", "--out", &into],
+        vec!["merge", &shards, "--out", &into],
+        vec!["report", "--out", &s.path("r"), "--bundle", &bundle],
+    ] {
+        let o = xtask(&args);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+        assert!(
+            err.contains("Too many levels of symbolic links") && !err.contains("not a directory"),
+            "{args:?}: {err}"
+        );
+    }
+}

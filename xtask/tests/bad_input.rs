@@ -507,7 +507,11 @@ fn pair_configs() {
         (
             "tip radius 1e308 with a clearance (blamed centre_distance)",
             mesh("(teeth: 20, tip_radius: 1e308, root_radius: 9.0)", g40),
-            &["{file}: driver.tip_radius: is too large"],
+            // Since lengths are checked for scale: refused for its size, in short form.
+            &[
+                "{file}: driver.tip_radius: must be from 1e-9 to 1000000000",
+                "(got 1e308)",
+            ],
         ),
         (
             "tip radius 1e308 with a distance (printed 309 digits)",
@@ -515,7 +519,10 @@ fn pair_configs() {
                 "(teeth: 20, tip_radius: 1e308, root_radius: 9.0)",
                 "centre_distance: Some(25.0)",
             ),
-            &["{file}: centre_distance: must exceed 1e308 (clearance G > 0)"],
+            &[
+                "{file}: driver.tip_radius: must be from 1e-9",
+                "(got 1e308)",
+            ],
         ),
         (
             "gears that never touch",
@@ -723,7 +730,7 @@ fn named_pipes_and_folders_given_as_input_files_are_refused_at_once() {
         return;
     }
     std::fs::create_dir_all(s.0.join("folder.ron")).unwrap();
-    let pipe = "must be a regular file, and this is a named pipe (FIFO)";
+    let pipe = "must be a regular file, and this is a pipe (a named pipe or FIFO";
     for (args, words) in [
         (
             &["run", "pair", "--config", "pipe.ron"][..],
@@ -731,7 +738,7 @@ fn named_pipes_and_folders_given_as_input_files_are_refused_at_once() {
         ),
         (
             &["run", "table1", "--gearing", "pipe.ron"],
-            &["pipe.ron: read: ", pipe],
+            &["--gearing: pipe.ron: read: ", pipe],
         ),
         (
             &["run", "table2", "--errors", "pipe.ron"],
@@ -762,7 +769,7 @@ fn named_pipes_and_folders_given_as_input_files_are_refused_at_once() {
         ),
         (
             &["run", "table1", "--gearing", "folder.ron"],
-            &["folder.ron: read: ", "is a directory"],
+            &["--gearing: folder.ron: read: ", "is a directory"],
         ),
     ] {
         let mut all = args.to_vec();
@@ -898,5 +905,352 @@ fn a_builtin_gearing_name_that_is_also_a_file_is_refused() {
     );
     let err = stderr(&o);
     assert_eq!(o.status.code(), Some(2), "{err}");
-    assert!(err.starts_with("./freeth2021: line 1"), "{err}");
+    assert!(err.starts_with("--gearing: ./freeth2021: line 1"), "{err}");
+}
+
+/// A mesh label `b2-c1\nX`, a gear name holding a NUL byte or an escape sequence
+/// (`b2\u{1b}[31mRED`) was written raw to the terminal, `table.md` and the CSV files; a label
+/// `m3/e3` or `40/m3` ran, but its cells could not be replayed. Names with a control character,
+/// and mesh labels with a `/`, are refused when the gearing is read, naming the item. New
+/// instances: an arbor name with a tab, a pointer name with an escape.
+#[test]
+fn names_that_would_break_a_line_a_terminal_or_a_cell_are_refused() {
+    let run = "run table3 --trials 2 --gearing {file} --out {out}";
+    let control = "must not contain a control character";
+    let cases = vec![
+        case(
+            "a line break in a mesh label",
+            gearing("(label: \"b2-c1\"", "(label: \"b2-c1\\nX\""),
+            run,
+            &["{file}: meshes[", control],
+        ),
+        case(
+            "a NUL in a gear name",
+            gearing("(name: \"b2\"", "(name: \"b2\\u{0}\""),
+            run,
+            &["{file}: gears[", control],
+        ),
+        case(
+            "an escape in a gear name",
+            gearing("(name: \"b2\"", "(name: \"b2\\u{1b}[31mRED\""),
+            run,
+            &["{file}: gears[", control, "\\u{1b}[31mRED"],
+        ),
+        case(
+            "a slash in a mesh label",
+            gearing("(label: \"m3-e3\"", "(label: \"m3/e3\""),
+            run,
+            &[
+                "label `m3/e3` must not contain `/`",
+                "could not be replayed",
+            ],
+        ),
+        case(
+            "a clearance-like slash in a mesh label",
+            gearing("(label: \"m3-e3\"", "(label: \"40/m3\""),
+            run,
+            &["label `40/m3` must not contain `/`"],
+        ),
+        case(
+            "a tab in an arbor name",
+            gearing("(name: \"b\"", "(name: \"b\\t\""),
+            run,
+            &["{file}: arbors[", control],
+        ),
+        case(
+            "an escape in a pointer name",
+            gearing("(name: \"Lunar\"", "(name: \"Lunar\\u{1b}]0;x\\u{7}\""),
+            run,
+            &["{file}: pointers[", control],
+        ),
+    ];
+    let bad = failures("names", cases);
+    for b in &bad {
+        assert!(!b.contains('\u{1b}'), "raw escape on stderr: {b:?}");
+    }
+    assert_none(bad);
+}
+
+/// The fields of a CSV file as a CSV reader reads them, row by row.
+fn csv_rows(path: &std::path::Path) -> Vec<Vec<String>> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut rows = Vec::new();
+    let (mut row, mut field, mut quoted, mut chars) =
+        (Vec::new(), String::new(), false, text.chars().peekable());
+    while let Some(c) = chars.next() {
+        match (c, quoted) {
+            ('"', true) if chars.peek() == Some(&'"') => {
+                chars.next();
+                field.push('"');
+            }
+            ('"', _) => quoted = !quoted,
+            (',', false) => row.push(std::mem::take(&mut field)),
+            ('\n', false) => {
+                row.push(std::mem::take(&mut field));
+                rows.push(std::mem::take(&mut row));
+            }
+            (c, _) => field.push(c),
+        }
+    }
+    rows
+}
+
+/// A mesh label `b2,c1`: `table3-data.csv` had 17 fields under its 16-column header, and
+/// `table4-data.csv` 7 bad rows. Every data file is written by one CSV writer: each row has its
+/// header's fields and the label reads back whole. New instance: `failure-runs.csv`, whose
+/// `mesh` column names where a run jammed; and a path with an escape sequence, shown escaped on
+/// the terminal.
+#[test]
+fn every_data_file_quotes_its_fields() {
+    let s = support::Scratch::new("csv-quoting");
+    let g = s.0.join("gearing.ron");
+    let text = freeth()
+        .replace("\"b2-c1\"", "\"b2,c1\"")
+        .replace("\"d2-e2\"", "\"d2,e2\"");
+    std::fs::write(&g, text).unwrap();
+    let out = s.0.join("out");
+    let (g, o_) = (g.to_str().unwrap(), out.to_str().unwrap());
+    for (run, file, label) in [
+        (
+            &["table3", "--trials", "2"][..],
+            "table3/table3-data.csv",
+            "b2,c1",
+        ),
+        (
+            &["table4", "--trials", "2"],
+            "table4/table4-data.csv",
+            "b2,c1",
+        ),
+        (
+            &[
+                "failure",
+                "--set",
+                "cases=D",
+                "--trials",
+                "2",
+                "--set",
+                "days=2000",
+            ],
+            "failure/failure-runs.csv",
+            "d2,e2",
+        ),
+    ] {
+        let o = support::run_args(run, &["-q", "--gearing", g, "--out", o_]);
+        assert!(o.status.success(), "{run:?}: {}", stderr(&o));
+        let rows = csv_rows(&out.join(file));
+        let width = rows[0].len();
+        for (i, r) in rows.iter().enumerate() {
+            assert_eq!(
+                r.len(),
+                width,
+                "{file}: row {i} has {} fields: {r:?}",
+                r.len()
+            );
+        }
+        assert!(
+            rows.iter().any(|r| r.iter().any(|f| f == label)),
+            "{file}: no field {label:?}"
+        );
+    }
+    // A path holding an escape sequence: shown escaped on stderr.
+    let o = support::xtask(&[
+        "run",
+        "table1",
+        "--gearing",
+        "no\u{1b}[31mRED.ron",
+        "--out",
+        o_,
+    ]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        !err.contains('\u{1b}') && err.contains("no\\u{1b}[31mRED.ron"),
+        "{err:?}"
+    );
+}
+
+/// `run failure --errors m.ron` with a table lacking b2 was refused only after Cases A-D were
+/// computed (8 s at 300 trials), naming `--set measured:` though `--errors` was typed; `run
+/// tableI --set clearances=10,10,10` gave three identical rows and counted 15 cells three
+/// times; `report` over a results folder it could not read said "not run" and exited 0;
+/// `TMPDIR=/nonexistent fuzz` skipped its file check and found nothing. Each is refused before
+/// any work, naming what was typed. New instances: the same table through `--hypothesis
+/// measured:FILE`, a Case named twice, a tolerance named twice (also under `run all`, where
+/// the experiments before jam-readings would otherwise have run), a results folder whose
+/// `tables.json` is a link that leads nowhere.
+#[test]
+fn every_input_is_checked_before_any_work() {
+    let s = support::Scratch::new("before-work");
+    let example = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../crates/hypotheses/data/measured-example.ron"
+    ))
+    .unwrap();
+    let lacking: String = example
+        .lines()
+        .filter(|l| !l.contains("\"b2\""))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    std::fs::write(s.0.join("m.ron"), lacking).unwrap();
+    let m = s.path("m.ron");
+    let out = s.path("out");
+    for (args, words) in [
+        (
+            vec!["run", "failure", "--errors", &m, "--trials", "300"],
+            &["--errors: ", "gear b2: missing from the table"][..],
+        ),
+        (
+            vec!["run", "table3", "--hypothesis", &format!("measured:{m}")],
+            &["--hypothesis: ", "gear b2: missing from the table"],
+        ),
+        (
+            vec!["run", "tableI", "--set", "clearances=10,10,10"],
+            &["--set: clearances: names the clearance 10 twice"],
+        ),
+        (
+            vec!["run", "failure", "--set", "cases=A,a"],
+            &["--set: cases: names the case `a` twice"],
+        ),
+        (
+            vec!["run", "jam-readings", "--set", "tolerances=0.001,0.0010"],
+            &["--set: tolerances: names the tolerance 0.0010 twice"],
+        ),
+        // Every experiment's settings are checked before the first computes: `all` stops on
+        // jam-readings' check without running the experiments before it.
+        (
+            vec!["run", "all", "--set", "tolerances=0.001,0.0010"],
+            &[
+                "--set: tolerances: names the tolerance 0.0010 twice",
+                "for experiment jam-readings",
+            ],
+        ),
+    ] {
+        let mut all = args.clone();
+        all.extend(["--out", &out]);
+        let start = std::time::Instant::now();
+        let o = support::xtask(&all);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{all:?}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{all:?}: {err}");
+        for w in words {
+            assert!(err.contains(w), "{all:?}: missing {w:?}: {err}");
+        }
+        assert!(
+            start.elapsed().as_secs() < 5,
+            "{all:?}: refused after {:?}",
+            start.elapsed()
+        );
+        assert!(!s.0.join("out").exists(), "{all:?} wrote results");
+    }
+    // Results the report cannot read: refused naming them, no page.
+    let results = s.0.join("results");
+    let o = support::xtask(&["run", "fig3", "-q", "--out", results.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let unreadable: Vec<(std::path::PathBuf, Box<dyn Fn()>)> = vec![
+        (results.join("fig2"), {
+            let p = results.join("fig2");
+            Box::new(move || std::os::unix::fs::symlink("fig2", &p).unwrap())
+        }),
+        (results.join("fig4"), {
+            let p = results.join("fig4");
+            Box::new(move || std::os::unix::fs::symlink("/nonexistent/fig4", &p).unwrap())
+        }),
+        (results.join("fig5/tables.json"), {
+            let p = results.join("fig5");
+            Box::new(move || {
+                std::fs::create_dir_all(&p).unwrap();
+                std::os::unix::fs::symlink("gone.json", p.join("tables.json")).unwrap();
+            })
+        }),
+        // The claims ledger the page opens on: a results.json that leads nowhere is not "not
+        // judged".
+        (results.join("claims/results.json"), {
+            let p = results.join("claims");
+            Box::new(move || {
+                std::fs::create_dir_all(&p).unwrap();
+                std::os::unix::fs::symlink("gone.json", p.join("results.json")).unwrap();
+            })
+        }),
+    ];
+    for (path, make) in unreadable {
+        make();
+        let o = support::xtask(&["report", "--out", results.to_str().unwrap()]);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{}: {err}", path.display());
+        assert!(
+            err.contains(path.to_str().unwrap()) && err.contains("cannot be read"),
+            "{err}"
+        );
+        assert!(!results.join("index.html").exists());
+        let _ = std::fs::remove_file(&path);
+        let _ = std::fs::remove_dir_all(results.join("fig5"));
+    }
+    // A folder that cannot be read, where this process is not root (root reads everything).
+    let root = std::process::Command::new("id")
+        .arg("-u")
+        .output()
+        .is_ok_and(|o| String::from_utf8_lossy(&o.stdout).trim() == "0");
+    if !root {
+        use std::os::unix::fs::PermissionsExt;
+        let locked = results.join("fig2");
+        std::fs::create_dir_all(&locked).unwrap();
+        std::fs::set_permissions(&locked, std::fs::Permissions::from_mode(0o000)).unwrap();
+        let o = support::xtask(&["report", "--out", results.to_str().unwrap()]);
+        std::fs::set_permissions(&locked, std::fs::Permissions::from_mode(0o755)).unwrap();
+        assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    }
+    // The fuzzer's scratch folder.
+    let o = support::xtask_env(&["fuzz", "--execs", "300"], &[("TMPDIR", "/nonexistent")]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.starts_with("TMPDIR: /nonexistent: "), "{err}");
+}
+
+/// `--gearing <(...)`: the message lacked the `--gearing:` prefix the other file flags have, and
+/// called a live pipe one "which waits for a writer that may never come". Every file flag names
+/// itself, and a pipe is said to be read only once. New instances: `--errors <(...)` and
+/// `--config <(...)`.
+#[test]
+fn a_pipe_given_as_an_input_file_is_named_by_its_flag() {
+    if std::process::Command::new("bash")
+        .arg("-c")
+        .arg("true")
+        .status()
+        .is_err()
+    {
+        eprintln!("skipped: no bash");
+        return;
+    }
+    let s = support::Scratch::new("process-substitution");
+    let gearing = s.0.join("g.ron");
+    std::fs::write(&gearing, freeth()).unwrap();
+    let xtask = env!("CARGO_BIN_EXE_xtask");
+    for (flag, run) in [
+        ("--gearing", "run table1"),
+        ("--errors", "run table2"),
+        ("--config", "run pair"),
+    ] {
+        let line = format!(
+            "{xtask} {run} {flag} <(cat {}) --out {}",
+            gearing.display(),
+            s.0.join("out").display()
+        );
+        let o = std::process::Command::new("bash")
+            .args(["-c", &line])
+            .env_remove("RUST_LOG")
+            .output()
+            .unwrap();
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{line}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{line}: {err}");
+        assert!(
+            err.starts_with(&format!("{flag}: /dev/fd/")),
+            "{line}: {err}"
+        );
+        assert!(
+            err.contains("can be read only once") && !err.contains("waits for a writer"),
+            "{line}: {err}"
+        );
+        assert!(!s.0.join("out").exists());
+    }
 }

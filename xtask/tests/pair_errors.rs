@@ -86,7 +86,8 @@ fn proportions_without_bound_on_the_work_per_pitch_are_refused() {
             // Found by `cargo xtask fuzz`: accepted, and its one pitch took 55.6 s.
             "needle teeth",
             "(driver: (teeth: 50, tip_radius: 4.3e9, root_radius: 180.0), driven: (teeth: 50, tip_radius: 1.8e19, root_radius: 180.0, eccentricity: Some((1.5, 0.5))), clearance_percent: Some(50.0), run_deg: Some(7.2))".to_string(),
-            "driver.root_radius: must be at least half of tip_radius (2150000000; got 180)",
+            // Since lengths are checked for scale, refused for its driver's radius first.
+            "driver.tip_radius: must be from 1e-9 to 1000000000",
         ),
         (
             "teeth as tall as the gear",
@@ -104,7 +105,7 @@ fn proportions_without_bound_on_the_work_per_pitch_are_refused() {
                 "(teeth: 20, tip_radius: 10.0, root_radius: 5.5)",
                 "centre_distance: Some(19.5)",
             ),
-            "driven.root_radius: the gears' teeth must be of one size: the driven gear's tooth height tip_radius - root_radius = 1 and the driver's 4.5",
+            "driver.root_radius: the gears' teeth must be of one size: the driver gear's tooth height tip_radius - root_radius = 4.5 is more than 4 times the driven gear's 1",
         ),
         (
             "eccentric tips below the valleys at every angle",
@@ -233,4 +234,163 @@ fn huge_angles_and_too_few_samples_are_refused_at_once() {
             .to_owned()
     };
     assert_eq!(sigma("0.0"), sigma("999720.0"), "999720 = 2777 turns");
+}
+
+/// A refusal names a field the file has and the gear at fault: uneven tooth heights with
+/// `clearance_percent`, or a large `eccentricity`, were blamed on `centre_distance`, which the
+/// file did not have, and an oversized driver on the driven gear's `tip_radius`/`root_radius`.
+/// New instances: the offset given as `arbor`, and an oversized driver's tooth height.
+#[test]
+fn a_refusal_names_the_field_the_file_has_and_the_gear_at_fault() {
+    let driven = |extra: &str| format!("(teeth: 20, tip_radius: 10.0, root_radius: 9.0{extra})");
+    let pair = |driver: &str, driven: &str, distance: &str| {
+        format!("(driver: {driver}, driven: {driven}, {distance})")
+    };
+    let cases = [
+        (
+            "uneven heights",
+            pair(
+                GOOD_DRIVER,
+                "(teeth: 20, tip_radius: 10.0, root_radius: 6.2)",
+                "clearance_percent: Some(40.0)",
+            ),
+            "mesh.ron: clearance_percent: must exceed",
+        ),
+        (
+            "eccentricity",
+            pair(
+                GOOD_DRIVER,
+                &driven(", eccentricity: Some((3.0, 0.0))"),
+                "clearance_percent: Some(40.0)",
+            ),
+            "mesh.ron: driven.eccentricity: must exceed",
+        ),
+        (
+            "arbor",
+            pair(
+                "(teeth: 20, tip_radius: 10.0, root_radius: 9.0, arbor: Some((offset: 3.0, angle_deg: 0.0)))",
+                &driven(""),
+                "clearance_percent: Some(40.0)",
+            ),
+            "mesh.ron: driver.arbor: must exceed",
+        ),
+        (
+            "oversized driver pitch",
+            pair(
+                "(teeth: 20, tip_radius: 200.0, root_radius: 199.0)",
+                &driven(""),
+                "clearance_percent: Some(40.0)",
+            ),
+            "mesh.ron: driver.tip_radius: the gears' teeth must be of one size: the driver gear's tooth pitch",
+        ),
+        (
+            "oversized driver height",
+            pair(
+                "(teeth: 20, tip_radius: 10.0, root_radius: 5.5)",
+                &driven(""),
+                "centre_distance: Some(19.5)",
+            ),
+            "mesh.ron: driver.root_radius: the gears' teeth must be of one size: the driver gear's tooth height",
+        ),
+    ];
+    for (tag, text, expected) in cases {
+        let (code, err, written) = run_pair(tag, &text);
+        assert_eq!(code, Some(2), "{tag}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{tag}: {err}");
+        assert!(err.contains(expected), "{tag}: {err}");
+        assert!(
+            !err.contains("centre_distance") || text.contains("centre_distance"),
+            "{tag}: {err}"
+        );
+        assert!(!written, "{tag}: results were written");
+    }
+}
+
+/// The example pair with every length multiplied by `s`.
+fn scaled(s: f64) -> String {
+    format!(
+        "(driver: (teeth: 50, tip_radius: {:?}, root_radius: {:?}), driven: (teeth: 50, tip_radius: {:?}, root_radius: {:?}, eccentricity: Some(({:?}, {:?}))), clearance_percent: Some(50.0))",
+        200.0 * s,
+        180.0 * s,
+        200.0 * s,
+        180.0 * s,
+        1.5 * s,
+        0.5 * s
+    )
+}
+
+/// A pair scaled by 2e152 or 1e-160 (every length) counted "disengagements 1, sigma -" where
+/// every scale from 1e-155 to 1e150 gave 0/0: the answer depended on the unit through
+/// overflow; a tooth 1e-13 high at R = 200 gave 50 jams of noise. Lengths outside 1e-9 to 1e9
+/// of the file's unit are refused, and so is a tooth height or clearance below 1e-8 of the
+/// larger tip radius; inside the range the events are the same in every unit. New instances:
+/// an eccentricity of 1e200, a clearance_percent of 1e-12, and the gearing's `--set
+/// clearance=1e-12` (which ran with its tips 1e-14 mm from the valleys).
+#[test]
+fn every_length_is_checked_for_scale() {
+    let cases = [
+        ("2e152", scaled(2e152), "driver.tip_radius: must be from 1e-9 to 1000000000"),
+        ("1e-160", scaled(1e-160), "driver.tip_radius: must be from 1e-9 to 1000000000"),
+        (
+            "eccentricity",
+            scaled(1.0).replace("Some((1.5, 0.5))", "Some((1e200, 0.0))"),
+            "driven.eccentricity: must be at most 1000000000 either way",
+        ),
+        (
+            "a tooth 1e-13 high",
+            "(driver: (teeth: 50, tip_radius: 200.0, root_radius: 199.9999999999999), driven: (teeth: 50, tip_radius: 200.0, root_radius: 199.9999999999999), clearance_percent: Some(40.0))".to_string(),
+            "driver.root_radius: leaves a tooth height",
+        ),
+        (
+            "a clearance of 1e-12 %",
+            mesh(GOOD_DRIVER, "clearance_percent: Some(1e-12)"),
+            "clearance_percent: leaves the driver gear's tips",
+        ),
+    ];
+    for (tag, text, expected) in cases {
+        let (code, err, written) = run_pair(tag, &text);
+        assert_eq!(code, Some(2), "{tag}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{tag}: {err}");
+        assert!(err.contains(expected), "{tag}: {err}");
+        assert!(!written, "{tag}: results were written");
+    }
+    // Inside the range, one answer in every unit: the event logs agree line for line.
+    let events = |s: f64| {
+        let dir = support::Scratch::new(&format!("scaled-{s}"));
+        let file = dir.0.join("pair.ron");
+        std::fs::write(&file, scaled(s)).unwrap();
+        let out = dir.0.join("out");
+        let o = support::xtask(&[
+            "run",
+            "pair",
+            "-q",
+            "--config",
+            file.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{s}: {}", support::stderr(&o));
+        std::fs::read_to_string(out.join("pair/event-log.csv")).unwrap()
+    };
+    let unit = events(1.0);
+    for s in [1e-9, 1e-3, 1e3, 1e6] {
+        assert_eq!(events(s), unit, "scale {s}: other events");
+    }
+    // The gearing's clearance, before anything runs.
+    let s = support::Scratch::new("tiny-clearance");
+    let o = support::xtask(&[
+        "run",
+        "table3",
+        "--set",
+        "clearance=1e-12",
+        "--out",
+        s.path("out").as_str(),
+    ]);
+    let err = support::stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.starts_with("--set: clearance: 1e-12 % of h") && err.contains("give at least"),
+        "{err}"
+    );
+    assert!(!s.0.join("out").exists());
 }

@@ -637,3 +637,133 @@ fn motion_after_the_first_lock_is_marked_as_the_papers_protocol() {
     );
     support::browser::Pixels::read(&png).assert_not_blank("protocol.png", 16, 100);
 }
+
+/// Runs the built runner in the folder `dir` with `args`.
+fn in_folder(dir: &std::path::Path, args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_xtask"))
+        .args(args)
+        .current_dir(dir)
+        .env_remove("RUST_LOG")
+        .output()
+        .unwrap()
+}
+
+/// `replay table3 B/m3-e3 --set gearing=freeth2006` with an edited file `./freeth2006` in the
+/// folder used the built-in gearing (exit 0), where `run` refuses the ambiguity. Every command
+/// that names an input resolves it by the one rule `run` uses: `replay`, and `merge` (new
+/// instance: shards that ran on the built-in gearing, merged where a file of that name
+/// appeared), and a replay's gearing file that breaks its rules (new instance) is refused
+/// before the trial is rebuilt.
+#[test]
+fn every_command_resolves_a_named_input_by_one_rule() {
+    let s = Scratch::new("one-rule");
+    let here = s.0.join("here");
+    std::fs::create_dir_all(&here).unwrap();
+    std::fs::write(here.join("freeth2006"), "(gears: [])\n").unwrap();
+    let ambiguous = "`freeth2006` is both an embedded gearing and a file in this folder";
+    let o = in_folder(
+        &here,
+        &[
+            "replay",
+            "table3",
+            "B/m3-e3",
+            "0",
+            "--trials",
+            "2",
+            "--set",
+            "gearing=freeth2006",
+            "--out",
+            "out",
+        ],
+    );
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.starts_with("--set: gearing: ") && err.contains(ambiguous),
+        "{err}"
+    );
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    assert!(!here.join("out").exists(), "the replay wrote results");
+    // A gearing file that is no gearing: refused before anything runs.
+    let o = in_folder(
+        &here,
+        &[
+            "replay",
+            "table3",
+            "B/m3-e3",
+            "0",
+            "--trials",
+            "2",
+            "--set",
+            "gearing=./freeth2006",
+            "--out",
+            "out",
+        ],
+    );
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.starts_with("--set: gearing: ./freeth2006: "), "{err}");
+    assert!(!here.join("out").exists(), "the replay wrote results");
+    // Shards on the built-in gearing, merged where a file of its name is.
+    let shards = s.path("shards");
+    for k in ["0/2", "1/2"] {
+        succeeded(&[
+            "run",
+            "table3",
+            "-q",
+            "--trials",
+            "2",
+            "--set",
+            "gearing=freeth2006",
+            "--shard",
+            k,
+            "--out",
+            &shards,
+        ]);
+    }
+    let o = in_folder(&here, &["merge", &shards, "--out", "merged"]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains(ambiguous), "{err}");
+    assert!(!here.join("merged").exists());
+}
+
+/// `run table3 --hypothesis measured` ran on the invented example table and neither its output
+/// nor stderr said so (`pair` says so of its example). Both do now; so does `replay` (new
+/// instance).
+#[test]
+fn a_run_on_the_invented_example_table_says_so() {
+    let s = Scratch::new("example-table");
+    let out = s.path("out");
+    let o = xtask(&[
+        "run",
+        "table3",
+        "--hypothesis",
+        "measured",
+        "--trials",
+        "2",
+        "--out",
+        &out,
+    ]);
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    let said = "example table shipped with the toolkit";
+    assert!(err.contains(said) && err.contains("INVENTED"), "{err}");
+    let md = std::fs::read_to_string(s.0.join("out/table3/table.md")).unwrap();
+    assert!(md.contains(said) && md.contains("INVENTED"), "{md}");
+    assert!(support::stdout(&o).contains(said));
+    let o = xtask(&[
+        "replay",
+        "table3",
+        "B/m3-e3",
+        "0",
+        "--trials",
+        "2",
+        "--set",
+        "hypothesis=measured",
+        "--out",
+        &out,
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(support::stdout(&o).contains(said) && stderr(&o).contains(said));
+}

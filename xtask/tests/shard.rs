@@ -541,3 +541,75 @@ fn a_merge_names_the_gearing_that_changed_and_the_folder_the_shards_ran_in() {
     );
     assert!(!s.0.join("never").exists());
 }
+
+/// Shards 0/2 and 1/2 in a folder, then `run table1 --shard 0/2 --seed 5` (or `--set
+/// trials=6`) into it: the other run's partial file was replaced without a word, and the run
+/// said "join the 2 shards". A shard refuses a folder holding another sharded run's partial
+/// files, before computing, naming the file and what differs; the same command again is fine.
+/// New instances: another N (`--shard 0/3`), and a partial file that cannot be read.
+#[test]
+fn a_shard_never_replaces_another_runs_partial_file() {
+    let s = Scratch::new("other-run");
+    let out = s.path("out");
+    let shard = |k: &str, extra: &[&str]| {
+        let mut args = vec!["table1", "-q", "--shard", k, "--out", &out];
+        args.extend(support::TABLE1_TINY);
+        args.extend(extra);
+        support::run_args(&args, &[])
+    };
+    for k in ["0/2", "1/2"] {
+        let o = shard(k, &[]);
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    let dir = s.0.join("out/table1");
+    let before: Vec<Vec<u8>> = (0..2)
+        .map(|k| fs::read(dir.join(format!("partial-{k}-of-2.json"))).unwrap())
+        .collect();
+    for (k, extra, words) in [
+        (
+            "0/2",
+            &["--seed", "5"][..],
+            &["its seed is 2025, this run's 5"][..],
+        ),
+        (
+            "0/2",
+            &["--set", "clearance=30"],
+            &["its --set is", "clearance=30"],
+        ),
+        ("1/2", &["--set", "tooth_height=1"], &["tooth_height=1"]),
+        ("0/3", &[], &["its N (number of shards) is 2, this run's 3"]),
+    ] {
+        let o = shard(k, extra);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{k} {extra:?}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+        assert!(
+            err.starts_with("--out: ")
+                && err.contains("table1/partial-0-of-2.json: is a shard of another sharded run")
+                && err.contains("cargo xtask merge"),
+            "{err}"
+        );
+        for w in words {
+            assert!(err.contains(w), "{k} {extra:?}: missing {w:?}: {err}");
+        }
+    }
+    for (k, was) in before.iter().enumerate() {
+        assert_eq!(
+            &fs::read(dir.join(format!("partial-{k}-of-2.json"))).unwrap(),
+            was,
+            "partial file {k} changed"
+        );
+    }
+    // The same command again: its own shard is replaced by the same.
+    let o = shard("1/2", &[]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    // A partial file that cannot be read as one.
+    fs::write(dir.join("partial-1-of-2.json"), "{\"format\":").unwrap();
+    let o = shard("0/2", &[]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("partial-1-of-2.json: cannot be read as a partial file"),
+        "{err}"
+    );
+}

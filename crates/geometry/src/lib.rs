@@ -19,6 +19,21 @@ use serde::{Deserialize, Serialize};
 /// is refused (naming this limit) rather than attempted, as every tooth is stored and simulated.
 pub const MAX_TEETH: usize = 100_000;
 
+/// The smallest length an input may give (a radius, a centre distance), in its own unit: 10^-9.
+/// With [`MAX_LENGTH`] it keeps every product the contact conditions form (up to the eighth
+/// power of a length) far inside a double's range, so that a pair's answer is the same in any
+/// unit: at 10^150 the squares overflowed and at 10^-160 they vanished, and the answer changed.
+pub const MIN_LENGTH: f64 = 1.0e-9;
+
+/// The largest length an input may give, in its own unit: 10^9 (see [`MIN_LENGTH`]).
+pub const MAX_LENGTH: f64 = 1.0e9;
+
+/// The smallest share of the larger tip radius a length that decides contacts may be (a tooth
+/// height R - r, a clearance): 10^-8, 400 times the 2.5·10^-11 rad to which the solver places a
+/// contact. Below it, rounding decides whether teeth touch: a tooth 10^-13 high on a radius of
+/// 200 counted 50 jams of noise.
+pub const MIN_DECIDING_SHARE: f64 = 1.0e-8;
+
 /// A point or vector in a plane, in millimetres (or any consistent length unit).
 pub type Vec2 = Vector2<f64>;
 

@@ -24,6 +24,21 @@ pub const MAX_INPUT_BYTES: u64 = 16 * 1024 * 1024;
 /// `InvalidData`, "is larger than N bytes, the limit on input files"); bytes that are not UTF-8
 /// (kind `InvalidData`, "stream did not contain valid UTF-8", as `std::fs::read_to_string`).
 pub fn read_to_string(path: &Path, limit: u64) -> std::io::Result<String> {
+    let bytes = read_bytes(path, limit)?;
+    String::from_utf8(bytes).map_err(|_| {
+        std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            "stream did not contain valid UTF-8",
+        )
+    })
+}
+
+/// `path`'s bytes, refusing a file of more than `limit` bytes, as [`read_to_string`] reads them
+/// (a FIFO, socket or directory refused before it is opened).
+///
+/// # Errors
+/// As [`read_to_string`], but for UTF-8.
+pub fn read_bytes(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
     readable(&std::fs::metadata(path)?)?;
     let file = open_without_waiting(path)?;
     // The path may have been replaced between the two looks: the file opened is checked too.
@@ -36,12 +51,7 @@ pub fn read_to_string(path: &Path, limit: u64) -> std::io::Result<String> {
             format!("is larger than {limit} bytes, the limit on input files"),
         ));
     }
-    String::from_utf8(bytes).map_err(|_| {
-        std::io::Error::new(
-            std::io::ErrorKind::InvalidData,
-            "stream did not contain valid UTF-8",
-        )
-    })
+    Ok(bytes)
 }
 
 /// Whether a file of this metadata may be read: a regular file or a character device, anything
@@ -70,7 +80,7 @@ fn readable(meta: &std::fs::Metadata) -> std::io::Result<()> {
 fn special(kind: &std::fs::FileType) -> &'static str {
     use std::os::unix::fs::FileTypeExt;
     if kind.is_fifo() {
-        "a named pipe (FIFO), which waits for a writer that may never come"
+        "a pipe (a named pipe or FIFO, or `<(...)`), whose contents can be read only once: an input is read more than once (checked before anything runs, then read by the run and hashed for its record), so save it to a file and give that"
     } else if kind.is_socket() {
         "a socket"
     } else if kind.is_block_device() {
@@ -350,7 +360,7 @@ mod tests {
             let e = read_to_string(&fifo, 100).unwrap_err();
             assert!(
                 e.to_string()
-                    .contains("must be a regular file, and this is a named pipe"),
+                    .contains("must be a regular file, and this is a pipe (a named pipe"),
                 "{e}"
             );
         }

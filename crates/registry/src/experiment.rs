@@ -168,9 +168,18 @@ pub enum Source {
 /// The name of the stored results in an experiment's results folder.
 pub const RESULTS_JSON: &str = "results.json";
 
+/// The largest `results.json` read back: 256 MiB, as the report reads results files.
+const MAX_RESULTS_JSON_BYTES: u64 = 256 * 1024 * 1024;
+
 /// The results stored in `dir` if they are experiment `id`'s with exactly `settings` and `seed`.
+/// Read with a size limit (a FIFO or a device named `results.json` is no stored result, never
+/// waited on), one version of the folder should a run replace it meanwhile.
 fn stored_results(dir: &Path, id: &str, seed: u64, settings: &Value) -> Option<Value> {
-    let text = std::fs::read_to_string(dir.join(RESULTS_JSON)).ok()?;
+    let path = dir.join(RESULTS_JSON);
+    let text = crate::read_one_version(dir, || {
+        input_file::read_to_string(&path, MAX_RESULTS_JSON_BYTES)
+    })
+    .ok()?;
     let stored: Value = serde_json::from_str(&text).ok()?;
     let same = stored.get("experiment")?.as_str()? == id
         && stored.get("seed")?.as_u64()? == seed
@@ -275,6 +284,16 @@ impl Entry {
     /// The name of the type it stores as its results (`std::any::type_name`).
     pub fn results_type(&self) -> &'static str {
         (self.results_type)()
+    }
+
+    /// Reads its settings under `ctx`, running their checks across fields, and keeps nothing:
+    /// what the runner asks of every experiment before any computes, so that a setting one of
+    /// them refuses stops the command before another has run.
+    ///
+    /// # Errors
+    /// The refusal of the settings' reader or check, naming the parameter and its rule.
+    pub fn check_settings(&self, ctx: &Context) -> Result<(), RunError> {
+        (self.settings_of)(ctx).map(|_| ())
     }
 
     /// Its outcome under `ctx` if this process has already computed it (as the run of another

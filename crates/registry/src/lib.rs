@@ -37,6 +37,7 @@ extern crate self as registry;
 pub use inventory;
 
 mod context;
+mod csv_file;
 mod engine;
 mod error;
 mod experiment;
@@ -54,6 +55,7 @@ pub use context::{
     MIN_PER_ENGAGEMENT_WHY, MIN_SAMPLES, MIN_SAMPLES_WHY, SAMPLES_PER_TOOTH, interval_trials,
     samples, samples_cover,
 };
+pub use csv_file::{Csv, csv_line};
 pub use engine::{TrialEngine, TrialMode};
 pub use error::RunError;
 pub use experiment::{
@@ -61,15 +63,16 @@ pub use experiment::{
 };
 pub use lock::{lock_path, lock_writing, release_locks};
 pub use output::{
-    Agreement, DEPARTURE, MAX_ANGLE_DEG, MAX_DATA_ROWS, OutputFile, Report, abandon_writes,
-    stopping, tidy, write_file_through, write_results,
+    Agreement, DEPARTURE, FileKind, MAX_ANGLE_DEG, MAX_DATA_ROWS, OutputFile, RECOGNISED_BYTES,
+    Report, WriteError, abandon_writes, check_replace, read_one_version, results_replaceable,
+    stopping, tidy, write_file, write_results,
 };
 pub use progress::{BatchProgress, Progress};
 pub use settings::{NoSettings, ParamValue, Settings, changed_from_default};
 pub use settings_derive::Settings;
 // Shared with crates below `registry` (`train`), and kept here for every crate above it.
 pub use stdx::{fmt_f64, fmt_number};
-pub use table::Table;
+pub use table::{Table, terminal_text};
 pub use trials::{Batch, Records, Shard, ShardRecords, f64_bits, merge_records};
 pub use values::{ValueError, Values};
 

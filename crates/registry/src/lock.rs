@@ -124,7 +124,7 @@ pub fn lock_writing(parent: &Path, name: &str, what: &str) -> Result<Option<Stri
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => continue,
             Err(e) => return Err(io("create the lock file", &path, e)),
         };
-        match file.try_lock() {
+        match try_lock_patiently(&file) {
             Ok(()) => {}
             Err(fs::TryLockError::WouldBlock) => {
                 let mut holder = String::new();
@@ -174,6 +174,22 @@ pub fn lock_writing(parent: &Path, name: &str, what: &str) -> Result<Option<Stri
     )))
 }
 
+/// Takes the lock of `file`, trying again for a moment when it is held: a run tidying the same
+/// folder ([`crate::tidy`]) holds a free lock for an instant to learn that it is free, and a run
+/// starting just then must not take that for another run writing.
+fn try_lock_patiently(file: &File) -> Result<(), fs::TryLockError> {
+    let mut tries = 0;
+    loop {
+        match file.try_lock() {
+            Err(fs::TryLockError::WouldBlock) if tries < 25 => {
+                tries += 1;
+                std::thread::sleep(std::time::Duration::from_millis(4));
+            }
+            other => return other,
+        }
+    }
+}
+
 /// Releases every lock this process holds: removes each lock file (while still holding it, and
 /// only if it is still the one locked), then the folders made for it if they are empty.
 pub fn release_locks() {
@@ -192,9 +208,10 @@ pub fn release_locks() {
 }
 
 /// Whether a run other than this process writes `<parent>/<name>` now: `Some(true)` when its
-/// lock is held elsewhere, `Some(false)` when nobody else holds it (free, absent, or held by
-/// this process), `None` when it cannot be told (the lock file cannot be opened for writing, or
-/// the file system takes no locks).
+/// lock is held elsewhere, `Some(false)` when nobody else holds it (free, or held by this
+/// process), `None` when it cannot be told: no lock file (what is written under that name is
+/// no run's - a folder made by a check for a moment - or its run ended and removed its lock),
+/// a lock file that cannot be opened for writing, or a file system that takes no locks.
 pub(crate) fn writer_alive(parent: &Path, name: &str) -> Option<bool> {
     let path = lock_path(parent, name);
     if held().iter().any(|h| h.path == path) {
@@ -202,7 +219,6 @@ pub(crate) fn writer_alive(parent: &Path, name: &str) -> Option<bool> {
     }
     let file = match OpenOptions::new().read(true).write(true).open(&path) {
         Ok(f) => f,
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Some(false),
         Err(_) => return None,
     };
     match file.try_lock() {
@@ -264,7 +280,7 @@ mod tests {
         assert!(path.exists(), "a held lock file was removed");
         drop(other);
         assert_eq!(writer_alive(&dir, "table3"), Some(false));
-        assert_eq!(writer_alive(&dir, "absent"), Some(false));
+        assert_eq!(writer_alive(&dir, "absent"), None);
         remove_if_free(&path);
         assert!(!path.exists(), "a free lock file was left");
         let _ = fs::remove_dir_all(&dir);

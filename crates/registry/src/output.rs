@@ -351,10 +351,16 @@ pub fn tidy(parent: &Path) -> Result<(), RunError> {
         }
     }
     found.sort();
+    // Runs sharing the folder tidy it at once: a leftover another one has just removed or put
+    // back is done, not an error.
+    let done = |r: std::io::Result<()>| match r {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        other => other,
+    };
     for (path, name, old) in found {
         let target = parent.join(&name);
         if old && fs::symlink_metadata(&target).is_err() {
-            fs::rename(&path, &target)
+            done(fs::rename(&path, &target))
                 .map_err(|e| io_err("cannot put back the previous results", &target, e))?;
             continue;
         }
@@ -363,7 +369,7 @@ pub fn tidy(parent: &Path) -> Result<(), RunError> {
         } else {
             fs::remove_file(&path)
         };
-        removed.map_err(|e| io_err("cannot remove the leftover", &path, e))?;
+        done(removed).map_err(|e| io_err("cannot remove the leftover", &path, e))?;
     }
     Ok(())
 }
@@ -434,28 +440,165 @@ fn finish_temp(path: &Path) {
     pending().temps.retain(|p| p != path);
 }
 
-/// Writes `bytes` to `path` through the temporary sibling `tmp`, renamed into place; a stop
-/// while it is written removes `tmp` ([`abandon_writes`]). On an error `tmp` is removed and the
-/// error says which step failed: ("write", e) or ("rename into", e).
-pub fn write_file_through(
+/// What a file written by [`write_file`] is: the words for it, and how a file of that kind is
+/// recognised, so that a write replaces only a file of its own kind and never another (a
+/// results file named as a bundle, a user's notes named as the report page, a device node).
+#[derive(Debug, Clone, Copy)]
+pub struct FileKind {
+    /// In words, for a refusal: `the report page`, `a bundle`, `a partial file`.
+    pub what: &'static str,
+    /// Whether an existing file, from its first bytes (up to [`RECOGNISED_BYTES`]), is one of
+    /// this kind written by the toolkit.
+    pub recognise: fn(&[u8]) -> bool,
+}
+
+/// How much of an existing file [`FileKind::recognise`] is shown: 64 KiB.
+pub const RECOGNISED_BYTES: usize = 64 * 1024;
+
+/// Why a write refused or failed.
+#[derive(Debug)]
+pub enum WriteError {
+    /// What is at the path may not be replaced (the rule broken, in words): bad input.
+    Refused(String),
+    /// An I/O failure: the step that failed (`create`, `write`, `rename into`) and the error.
+    Io(&'static str, std::io::Error),
+}
+
+impl std::fmt::Display for WriteError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            WriteError::Refused(why) => f.write_str(why),
+            WriteError::Io(what, e) => write!(f, "cannot {what} it: {e}"),
+        }
+    }
+}
+
+/// Whether a write of `kind` may replace what is at `path`: nothing there, or a regular file of
+/// that kind ([`FileKind::recognise`]). Refused (the rule, in words, without the path): a path
+/// that cannot be inspected (a loop of symbolic links, a folder on the way that is a file), a
+/// directory, a symbolic link, a device, FIFO or socket, or a file of anything else. Checked
+/// before any work, and again just before the rename into place.
+pub fn check_replace(path: &Path, kind: &FileKind) -> Result<(), String> {
+    let meta = match fs::symlink_metadata(path) {
+        Ok(m) => m,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(()),
+        Err(e) => return Err(format!("cannot be inspected ({e})")),
+    };
+    let kind_of = file_type_words(&meta.file_type());
+    if !meta.is_file() {
+        return Err(format!(
+            "exists and is {kind_of}, not a file: {} is written only where nothing is, or over {} the toolkit wrote",
+            kind.what, kind.what
+        ));
+    }
+    let mut head = Vec::new();
+    let read = fs::File::open(path).and_then(|f| {
+        use std::io::Read;
+        f.take(RECOGNISED_BYTES as u64).read_to_end(&mut head)
+    });
+    if let Err(e) = read {
+        return Err(format!("exists and cannot be read ({e})"));
+    }
+    if !(kind.recognise)(&head) {
+        return Err(format!(
+            "exists and is not {} the toolkit wrote: it would be replaced and lost; remove it or name another file",
+            kind.what
+        ));
+    }
+    Ok(())
+}
+
+/// A file type in words: `a directory`, `a symbolic link`, `a device`, `a FIFO`...
+fn file_type_words(t: &fs::FileType) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if t.is_block_device() || t.is_char_device() {
+            return "a device";
+        }
+        if t.is_fifo() {
+            return "a FIFO";
+        }
+        if t.is_socket() {
+            return "a socket";
+        }
+    }
+    if t.is_dir() {
+        "a directory"
+    } else if t.is_symlink() {
+        "a symbolic link"
+    } else if t.is_file() {
+        "a file"
+    } else {
+        "neither a file nor a directory"
+    }
+}
+
+/// Writes `path` through a fresh temporary sibling (`.NAME.tmp-PID-...`, created new, so never
+/// onto anything that is there), filled by `fill` and renamed into place; a stop while it is
+/// written removes it ([`abandon_writes`]). What is at `path` must be replaceable by a write of
+/// `kind` ([`check_replace`]), checked again just before the rename. On an error the temporary
+/// file is removed and `path` is as it was.
+pub fn write_file(
     path: &Path,
-    tmp: &Path,
-    bytes: &[u8],
-) -> Result<(), (&'static str, std::io::Error)> {
-    start_temp(tmp);
+    kind: &FileKind,
+    fill: &mut dyn FnMut(&mut fs::File) -> std::io::Result<()>,
+) -> Result<(), WriteError> {
+    check_replace(path, kind).map_err(WriteError::Refused)?;
+    let tmp = sibling(path, "tmp").map_err(|e| {
+        WriteError::Io(
+            "name a temporary file for",
+            std::io::Error::other(e.to_string()),
+        )
+    })?;
+    start_temp(&tmp);
     let written = {
         let _writing = pending_for_write();
-        fs::write(tmp, bytes).map_err(|e| ("write", e))
-    };
-    let result = written.and_then(|()| {
-        let _renaming = pending_for_write();
-        fs::rename(tmp, path).map_err(|e| ("rename into", e))
-    });
-    if result.is_err() {
-        let _ = fs::remove_file(tmp);
+        fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&tmp)
+            .map_err(|e| WriteError::Io("create a temporary file beside", e))
     }
-    finish_temp(tmp);
+    .and_then(|mut f| {
+        fill(&mut f)
+            .and_then(|()| f.sync_all())
+            .map_err(|e| WriteError::Io("write", e))
+    });
+    let result = written
+        .and_then(|()| check_replace(path, kind).map_err(WriteError::Refused))
+        .and_then(|()| {
+            let _renaming = pending_for_write();
+            fs::rename(&tmp, path).map_err(|e| WriteError::Io("rename into", e))
+        });
+    if result.is_err() {
+        let _ = fs::remove_file(&tmp);
+    }
+    finish_temp(&tmp);
     result
+}
+
+/// Whether the folder `dir` holds results the toolkit wrote (its `tables.json`), or nothing but
+/// hidden files: what [`write_results`] may replace whole. A folder of anything else (a user's
+/// own files under the name of an experiment) would be deleted by the replacement.
+pub fn results_replaceable(dir: &Path) -> Result<(), String> {
+    let entries = fs::read_dir(dir).map_err(|e| format!("cannot be read ({e})"))?;
+    let mut visible = false;
+    for entry in entries {
+        let entry = entry.map_err(|e| format!("cannot be read ({e})"))?;
+        let name = entry.file_name();
+        let name = name.to_string_lossy();
+        if name == TABLES_JSON && entry.file_type().is_ok_and(|t| t.is_file()) {
+            return Ok(());
+        }
+        visible |= !name.starts_with('.');
+    }
+    if visible {
+        return Err(format!(
+            "holds files that are not results the toolkit wrote (no {TABLES_JSON}): writing results there would delete them; move them, or give another --out"
+        ));
+    }
+    Ok(())
 }
 
 /// For a process being stopped by a signal, before it exits: removes every temporary folder and
@@ -532,7 +675,10 @@ pub fn write_results(dir: &Path, report: &Report) -> Result<(), RunError> {
     result
 }
 
-/// Renames `tmp` to `dir`, moving a previous `dir` aside first and deleting it after.
+/// Renames `tmp` to `dir`. A previous `dir` (which must hold results, [`results_replaceable`])
+/// is exchanged with `tmp` in one step where the system can (Linux), so that `dir` is never
+/// missing for a reader, and the old results, now under the temporary name, are deleted;
+/// elsewhere it is moved aside first.
 fn swap_in(tmp: &Path, dir: &Path) -> Result<(), RunError> {
     match fs::symlink_metadata(dir) {
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
@@ -545,6 +691,13 @@ fn swap_in(tmp: &Path, dir: &Path) -> Result<(), RunError> {
             dir.display()
         ))),
         Ok(_) => {
+            results_replaceable(dir)
+                .map_err(|why| RunError::Internal(format!("{}: {why}", dir.display())))?;
+            if exchanged(tmp, dir)? {
+                // `tmp` holds the previous results now: removed as a temporary folder.
+                return fs::remove_dir_all(tmp)
+                    .map_err(|e| io_err("cannot remove old results", tmp, e));
+            }
             let old = sibling(dir, "old")?;
             {
                 // Both renames under the lock: a stop sees the old results or the new in place.
@@ -563,6 +716,63 @@ fn swap_in(tmp: &Path, dir: &Path) -> Result<(), RunError> {
             removed
         }
     }
+}
+
+/// Exchanges the folders `tmp` and `dir` in one step (`renameat2` with `RENAME_EXCHANGE`):
+/// `Ok(true)` when done, `Ok(false)` where the system or file system cannot (the caller then
+/// moves `dir` aside first).
+#[cfg(all(target_os = "linux", target_env = "gnu"))]
+fn exchanged(tmp: &Path, dir: &Path) -> Result<bool, RunError> {
+    use nix::errno::Errno;
+    use nix::fcntl::{AT_FDCWD, RenameFlags, renameat2};
+    let _renaming = pending_for_write();
+    match renameat2(AT_FDCWD, tmp, AT_FDCWD, dir, RenameFlags::RENAME_EXCHANGE) {
+        Ok(()) => Ok(true),
+        Err(Errno::EINVAL | Errno::ENOSYS | Errno::EOPNOTSUPP) => Ok(false),
+        Err(e) => Err(io_err(
+            "cannot exchange the results with",
+            dir,
+            std::io::Error::from(e),
+        )),
+    }
+}
+
+/// No exchange in one step here: the caller moves `dir` aside first.
+#[cfg(not(all(target_os = "linux", target_env = "gnu")))]
+fn exchanged(_tmp: &Path, _dir: &Path) -> Result<bool, RunError> {
+    Ok(false)
+}
+
+/// Reads the folder `dir` with `read` so that what is read is one version of it: a run may put
+/// new results in its place while it is read ([`write_results`] exchanges the whole folder), so
+/// the read is repeated (up to 50 times) until the folder is the same one before and after it.
+/// A read that fails is repeated only when the folder changed meanwhile: else its error is the
+/// answer.
+pub fn read_one_version<T, E>(dir: &Path, mut read: impl FnMut() -> Result<T, E>) -> Result<T, E> {
+    let mut tries = 0;
+    loop {
+        let before = identity(dir);
+        let got = read();
+        let after = identity(dir);
+        tries += 1;
+        if before == after || tries >= 50 {
+            return got;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(2));
+    }
+}
+
+/// What tells one folder at a path from another put there later (device and inode).
+#[cfg(unix)]
+fn identity(dir: &Path) -> Option<(u64, u64)> {
+    use std::os::unix::fs::MetadataExt;
+    fs::symlink_metadata(dir).ok().map(|m| (m.dev(), m.ino()))
+}
+
+/// No identity to compare here: every read is taken as it is.
+#[cfg(not(unix))]
+fn identity(_dir: &Path) -> Option<(u64, u64)> {
+    None
 }
 
 #[cfg(test)]
@@ -704,6 +914,7 @@ mod tests {
         let dir = tmp.0.join("fig2");
         fs::create_dir_all(&dir).unwrap();
         fs::write(dir.join("stale.txt"), "old").unwrap();
+        fs::write(dir.join(TABLES_JSON), "{}").unwrap();
         write_results(&dir, &report()).unwrap();
         assert!(!dir.join("stale.txt").exists());
         assert!(dir.join("table.md").exists());
@@ -762,6 +973,79 @@ mod tests {
         fs::write(&dir, "a file").unwrap();
         assert!(write_results(&dir, &report()).is_err());
         assert_eq!(tmp.entries(), ["fig2", "plain-file"]);
+    }
+
+    #[test]
+    fn a_folder_of_other_files_is_never_replaced() {
+        let tmp = TempDir::new("foreign");
+        let dir = tmp.0.join("pair");
+        fs::create_dir_all(&dir).unwrap();
+        fs::write(dir.join("my-pair.ron"), "(mine)").unwrap();
+        let e = write_results(&dir, &report()).unwrap_err();
+        assert!(e.to_string().contains("not results"), "{e}");
+        assert!(dir.join("my-pair.ron").exists());
+        assert_eq!(tmp.entries(), ["pair"]);
+        // Nothing but hidden files (a shard folder's locks): replaced.
+        fs::remove_file(dir.join("my-pair.ron")).unwrap();
+        fs::write(dir.join(".partial-0-of-2.json.lock"), "").unwrap();
+        write_results(&dir, &report()).unwrap();
+        assert!(dir.join("table.md").exists());
+    }
+
+    const NOTE: FileKind = FileKind {
+        what: "a note",
+        recognise: |head| head.starts_with(b"note:"),
+    };
+
+    #[test]
+    fn a_file_is_written_only_over_one_of_its_kind() {
+        let tmp = TempDir::new("kind");
+        let path = tmp.0.join("n.txt");
+        let mut fill = |f: &mut fs::File| std::io::Write::write_all(f, b"note: one");
+        write_file(&path, &NOTE, &mut fill).unwrap();
+        write_file(&path, &NOTE, &mut fill).unwrap();
+        fs::write(&path, "mine").unwrap();
+        let e = write_file(&path, &NOTE, &mut fill).unwrap_err();
+        assert!(
+            e.to_string().contains("is not a note the toolkit wrote"),
+            "{e}"
+        );
+        assert_eq!(fs::read_to_string(&path).unwrap(), "mine");
+        fs::remove_file(&path).unwrap();
+        fs::create_dir(&path).unwrap();
+        let e = write_file(&path, &NOTE, &mut fill).unwrap_err();
+        assert!(e.to_string().contains("is a directory"), "{e}");
+        #[cfg(unix)]
+        {
+            let link = tmp.0.join("link");
+            std::os::unix::fs::symlink("/dev/null", &link).unwrap();
+            let e = write_file(&link, &NOTE, &mut fill).unwrap_err();
+            assert!(e.to_string().contains("is a symbolic link"), "{e}");
+        }
+        // A failed fill leaves nothing.
+        let other = tmp.0.join("m.txt");
+        let mut failing = |_: &mut fs::File| Err(std::io::Error::other("no"));
+        assert!(write_file(&other, &NOTE, &mut failing).is_err());
+        let mut left = tmp.entries();
+        left.sort();
+        assert_eq!(left, ["link", "n.txt"]);
+    }
+
+    #[test]
+    fn a_read_is_of_one_version_of_a_folder() {
+        let tmp = TempDir::new("version");
+        let dir = tmp.0.join("fig2");
+        write_results(&dir, &report()).unwrap();
+        // The folder is replaced during the first read: the read is made again.
+        let mut reads = 0;
+        let got: Result<usize, ()> = read_one_version(&dir, || {
+            reads += 1;
+            if reads == 1 {
+                write_results(&dir, &report()).unwrap();
+            }
+            Ok(reads)
+        });
+        assert_eq!(got, Ok(if cfg!(unix) { 2 } else { 1 }));
     }
 
     /// A pid no process has: above the kernel's largest (2^22).

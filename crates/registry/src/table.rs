@@ -165,20 +165,20 @@ impl Table {
         out
     }
 
-    /// The header and rows as CSV (RFC 4180 quoting, `\n` line ends); title and notes are left out.
+    /// The header and rows as CSV ([`crate::Csv`]: RFC 4180 quoting, `\n` line ends); title and
+    /// notes are left out.
     pub fn to_csv(&self) -> String {
         let n = self.width();
-        let mut out = String::new();
-        for row in std::iter::once(&self.columns).chain(&self.rows) {
-            for i in 0..n {
-                if i > 0 {
-                    out.push(',');
-                }
-                out.push_str(&csv_field(row.get(i).map(String::as_str).unwrap_or("")));
-            }
-            out.push('\n');
+        let padded = |row: &[String]| -> Vec<String> {
+            (0..n)
+                .map(|i| row.get(i).cloned().unwrap_or_default())
+                .collect()
+        };
+        let mut csv = crate::Csv::new(padded(&self.columns));
+        for row in &self.rows {
+            csv.row(padded(row));
         }
-        out
+        csv.text()
     }
 }
 
@@ -189,20 +189,31 @@ fn looks_numeric(c: &str) -> bool {
 }
 
 fn one_line(s: &str) -> String {
-    s.replace("\r\n", " ").replace(['\n', '\r'], " ")
+    terminal_text(&s.replace("\r\n", " ").replace(['\n', '\r'], " "))
+}
+
+/// `s` safe to show on a terminal (and in a text file read on one): every control character but
+/// the line break and the tab (an escape that recolours the terminal, a NUL, a bell, a carriage
+/// return) written as its escape, `\u{1b}`, so that a name read from a user's file can neither
+/// hide text nor change the terminal.
+pub fn terminal_text(s: &str) -> String {
+    if !s.chars().any(|c| c.is_control() && c != '\n' && c != '\t') {
+        return s.to_owned();
+    }
+    s.chars()
+        .map(|c| {
+            if c.is_control() && c != '\n' && c != '\t' {
+                c.escape_default().to_string()
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
 }
 
 /// A cell made safe for a Markdown table: one line, pipes escaped.
 fn md_cell(s: &str) -> String {
     one_line(s).replace('|', "\\|")
-}
-
-fn csv_field(s: &str) -> String {
-    if s.contains([',', '"', '\n', '\r']) || s.starts_with(' ') || s.ends_with(' ') {
-        format!("\"{}\"", s.replace('"', "\"\""))
-    } else {
-        s.to_owned()
-    }
 }
 
 #[cfg(test)]
@@ -267,5 +278,18 @@ mod tests {
             t.to_csv(),
             "name,value\n\"a, b\",1\n\"say \"\"hi\"\"\",2\nplain,\n"
         );
+    }
+
+    #[test]
+    fn control_characters_are_shown_escaped() {
+        let mut t = Table::new("gear b2\u{1b}[31mRED", ["gear", "n"]);
+        t.row(s(&["a\0b", "1"]));
+        let out = t.render();
+        assert!(!out.contains('\u{1b}') && !out.contains('\0'), "{out:?}");
+        assert!(
+            out.contains("b2\\u{1b}[31mRED") && out.contains("a\\u{0}b"),
+            "{out}"
+        );
+        assert_eq!(terminal_text("tab\tand\nline"), "tab\tand\nline");
     }
 }

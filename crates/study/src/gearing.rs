@@ -276,8 +276,41 @@ pub fn check(file: &str, g: &Gearing, h: f64) -> Result<(), RunError> {
     Ok(())
 }
 
+/// A clearance `g` (% of h, the parameter `name`) with tooth height `h` must leave the tips of
+/// every mesh of `gearing` at least [`geometry::MIN_DECIDING_SHARE`] of its largest tip radius
+/// from the opposite valleys: closer, rounding decides whether teeth touch (`--set
+/// clearance=1e-12` ran, its tips 10^-14 mm from the valleys, and counted noise).
+pub fn check_clearance(gearing: &Gearing, h: f64, g: f64, name: &str) -> Result<(), RunError> {
+    let largest = gearing
+        .meshes()
+        .iter()
+        .flat_map(|m| [m.driver.as_str(), m.driven.as_str()])
+        .filter_map(|gear| gearing.tip_radius(gear))
+        .fold(0.0, f64::max);
+    let smallest = geometry::MIN_DECIDING_SHARE * largest;
+    let gap = g / 100.0 * h;
+    // Three significant digits, the least clearance rounded up so that it passes.
+    let short = |x: f64| registry::fmt_number(format!("{x:.2e}").parse().unwrap_or(x));
+    if gap < smallest {
+        return Err(RunError::bad(
+            "--set",
+            name,
+            format!(
+                "{} % of h = {h} mm leaves the tips {} mm from the opposite valleys, less than {} of the gearing's largest tip radius ({} mm): a clearance that small is below what the solver can tell from touching, and its jams would be noise; give at least {} %",
+                registry::fmt_number(g),
+                short(gap),
+                registry::fmt_number(geometry::MIN_DECIDING_SHARE),
+                short(smallest),
+                short(smallest / h * 100.0 * 1.01)
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// `text`, the value of the parameter `name`: a comma-separated list of clearances (% of h),
-/// each above 0 and at most `max`.
+/// each above 0 and at most `max`, each once (a clearance named twice would be one row of the
+/// table twice over, and its cells counted twice).
 pub fn clearance_list(text: &str, name: &str, max: f64) -> Result<Vec<f64>, RunError> {
     let mut out = Vec::new();
     for part in text.split(',').map(str::trim) {
@@ -289,6 +322,13 @@ pub fn clearance_list(text: &str, name: &str, max: f64) -> Result<Vec<f64>, RunE
             };
             RunError::bad("--set", name, rule)
         })?;
+        if out.contains(&g) {
+            return Err(RunError::bad(
+                "--set",
+                name,
+                format!("names the clearance {part} twice: give each once (got `{text}`)"),
+            ));
+        }
         out.push(g);
     }
     Ok(out)

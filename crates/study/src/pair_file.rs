@@ -329,6 +329,7 @@ pub fn load(file: &str, text: &str) -> Result<(Mesh, PairFile), RunError> {
     let spec: PairFile = input_file::parse_ron(&ron::Options::default(), text, &RON_FILE)
         .map_err(|e| RunError::bad(file, e.location, e.rule))?;
     angles(file, &spec)?;
+    lengths(file, &spec)?;
     let driver = gear(file, Role::Driver, &spec.driver)?;
     let driven = gear(file, Role::Driven, &spec.driven)?;
     let d = match (spec.centre_distance, spec.clearance_percent) {
@@ -437,16 +438,102 @@ pub fn load(file: &str, text: &str) -> Result<(Mesh, PairFile), RunError> {
             ),
         ));
     }
-    let mesh = Mesh::new(driver, driven, d).map_err(|e| RunError::bad(file, e.field, e.rule))?;
     let distance_field = if spec.centre_distance.is_some() {
         "centre_distance"
     } else {
         "clearance_percent"
     };
+    let blamed = mesh_field(&spec, (&driver, &driven), d, distance_field);
+    let mesh = Mesh::new(driver, driven, d).map_err(|e| {
+        let field = if e.field == "centre_distance" {
+            blamed.clone()
+        } else {
+            e.field
+        };
+        RunError::bad(file, field, e.rule)
+    })?;
     proportions(file, &mesh, distance_field)?;
     // Last: what the file asks of the run's statistics, once the gears themselves are sound.
     samples(file, &spec, run_deg, spec.driver.teeth)?;
     Ok((mesh, spec))
+}
+
+/// The field of the file a refusal of the mesh's centre distance names: the one the file has
+/// (`centre_distance`, or `clearance_percent` from which the distance was made), but the
+/// eccentricity of a gear where it alone makes the bodies overlap (the distance clears the two
+/// root circles, and the arbors' offsets take it below them).
+fn mesh_field(spec: &PairFile, (driver, driven): (&Gear, &Gear), d: f64, distance: &str) -> String {
+    let (e1, e2) = (
+        driver.rotation_centre().norm(),
+        driven.rotation_centre().norm(),
+    );
+    let roots = driver.min_root_radius() + driven.min_root_radius();
+    if d > roots && d <= roots + e1 + e2 {
+        let (which, g) = if e1 >= e2 {
+            ("driver", &spec.driver)
+        } else {
+            ("driven", &spec.driven)
+        };
+        let offset = if g.arbor.is_some() {
+            "arbor"
+        } else {
+            "eccentricity"
+        };
+        return format!("{which}.{offset}");
+    }
+    distance.to_owned()
+}
+
+/// Every length of the file from [`geometry::MIN_LENGTH`] to [`geometry::MAX_LENGTH`] in its
+/// own unit (an offset anything up to the largest): the answer is the same in any unit only within them (a
+/// pair scaled by 2e152 or 1e-160 counted a disengagement its unscaled self did not). Refused
+/// naming the field, the value and the range.
+fn lengths(file: &str, spec: &PairFile) -> Result<(), RunError> {
+    let mut given: Vec<(String, f64, bool)> = Vec::new();
+    for (role, g) in [("driver", &spec.driver), ("driven", &spec.driven)] {
+        given.push((format!("{role}.tip_radius"), g.tip_radius, false));
+        given.push((format!("{role}.root_radius"), g.root_radius, false));
+        if let Some((x, y)) = g.eccentricity {
+            given.push((format!("{role}.eccentricity"), x, true));
+            given.push((format!("{role}.eccentricity"), y, true));
+        }
+        if let Some(a) = g.arbor {
+            given.push((format!("{role}.arbor.offset"), a.offset, true));
+        }
+    }
+    if let Some(d) = spec.centre_distance {
+        given.push(("centre_distance".into(), d, false));
+    }
+    for (field, x, offset) in given {
+        let a = x.abs();
+        // An offset may be as small as it likes (it adds nothing beside the radii), not larger.
+        let fits = if offset {
+            a <= geometry::MAX_LENGTH
+        } else {
+            (geometry::MIN_LENGTH..=geometry::MAX_LENGTH).contains(&a)
+        };
+        // Non-finite and negative values are the gear's and the distance's own rules to name.
+        if x.is_finite() && (x > 0.0 || offset) && !fits {
+            let range = if offset {
+                format!("at most {} either way", fmt_number(geometry::MAX_LENGTH))
+            } else {
+                format!(
+                    "from {} to {}",
+                    fmt_number(geometry::MIN_LENGTH),
+                    fmt_number(geometry::MAX_LENGTH)
+                )
+            };
+            return Err(RunError::bad(
+                file,
+                field,
+                format!(
+                    "must be {range} in the file's length unit (got {}): beyond that range a double cannot hold the products the contact conditions form, and the answer would depend on the unit; give the lengths in another unit",
+                    fmt_number(x)
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Every angle of the file within [`MAX_ANGLE_DEG`] either way (and finite): beyond it a double
@@ -580,8 +667,24 @@ pub const MAX_HEIGHT_RATIO: f64 = 4.0;
 /// the other's teeth.
 fn proportions(file: &str, mesh: &Mesh, distance_field: &str) -> Result<(), RunError> {
     let gears = [("driver", mesh.driver()), ("driven", mesh.driven())];
+    let largest = mesh.driver().tip_radius().max(mesh.driven().tip_radius());
+    let smallest_deciding = geometry::MIN_DECIDING_SHARE * largest;
+    // Three significant digits: a length computed from the file's, for the message.
+    let short = |x: f64| fmt_number(format!("{x:.2e}").parse().unwrap_or(x));
     for (which, g) in gears {
         let (big_r, small_r) = (g.tip_radius(), g.root_radius());
+        if big_r - small_r < smallest_deciding {
+            return Err(RunError::bad(
+                file,
+                format!("{which}.root_radius"),
+                format!(
+                    "leaves a tooth height tip_radius - root_radius of {}, less than {} of the larger tip radius ({}): a tooth that low is below what the solver can tell from rounding, and its jams would be noise",
+                    short(big_r - small_r),
+                    fmt_number(geometry::MIN_DECIDING_SHARE),
+                    short(smallest_deciding)
+                ),
+            ));
+        }
         if big_r - small_r > MAX_TOOTH_HEIGHT_SHARE * big_r {
             return Err(RunError::bad(
                 file,
@@ -595,28 +698,38 @@ fn proportions(file: &str, mesh: &Mesh, distance_field: &str) -> Result<(), RunE
         }
     }
     let [(_, g1), (_, g2)] = gears;
+    // The larger of the two is named: the gear whose size is out of line with the other's.
+    let larger = |a: f64, b: f64| {
+        if a >= b {
+            ("driver", "driven", a, b)
+        } else {
+            ("driven", "driver", b, a)
+        }
+    };
     let pitch = |g: &Gear| TAU * g.tip_radius() / g.teeth() as f64;
     let (p1, p2) = (pitch(g1), pitch(g2));
     if p1.max(p2) > MAX_PITCH_RATIO * p1.min(p2) {
+        let (big, small, pb, ps) = larger(p1, p2);
         return Err(RunError::bad(
             file,
-            "driven.tip_radius",
+            format!("{big}.tip_radius"),
             format!(
-                "the gears' teeth must be of one size: the driven gear's tooth pitch 2π·tip_radius/teeth = {} and the driver's {} are more than {MAX_PITCH_RATIO} times apart (meshing gears have teeth of one pitch)",
-                fmt_number(p2),
-                fmt_number(p1)
+                "the gears' teeth must be of one size: the {big} gear's tooth pitch 2π·tip_radius/teeth = {} is more than {MAX_PITCH_RATIO} times the {small} gear's {} (meshing gears have teeth of one pitch)",
+                fmt_number(pb),
+                fmt_number(ps)
             ),
         ));
     }
     let (h1, h2) = (g1.tooth_height(), g2.tooth_height());
     if h1.max(h2) > MAX_HEIGHT_RATIO * h1.min(h2) {
+        let (big, small, hb, hs) = larger(h1, h2);
         return Err(RunError::bad(
             file,
-            "driven.root_radius",
+            format!("{big}.root_radius"),
             format!(
-                "the gears' teeth must be of one size: the driven gear's tooth height tip_radius - root_radius = {} and the driver's {} are more than {MAX_HEIGHT_RATIO} times apart (meshing gears have teeth of one height)",
-                fmt_number(h2),
-                fmt_number(h1)
+                "the gears' teeth must be of one size: the {big} gear's tooth height tip_radius - root_radius = {} is more than {MAX_HEIGHT_RATIO} times the {small} gear's {} (meshing gears have teeth of one height)",
+                fmt_number(hb),
+                fmt_number(hs)
             ),
         ));
     }
@@ -627,6 +740,18 @@ fn proportions(file: &str, mesh: &Mesh, distance_field: &str) -> Result<(), RunE
         mesh.centre_distance() + g1.rotation_centre().norm() + g2.rotation_centre().norm();
     for (tips, valleys, g, other) in [("driver", "driven", g1, g2), ("driven", "driver", g2, g1)] {
         let deepest = g.max_tip_radius() + other.min_root_radius();
+        if farthest > deepest && farthest - deepest < smallest_deciding {
+            return Err(RunError::bad(
+                file,
+                distance_field,
+                format!(
+                    "leaves the {tips} gear's tips {} from the {valleys} gear's valleys where the gears are farthest apart, less than {} of the larger tip radius ({}): a clearance that small is below what the solver can tell from touching, and its jams would be noise",
+                    short(farthest - deepest),
+                    fmt_number(geometry::MIN_DECIDING_SHARE),
+                    short(smallest_deciding)
+                ),
+            ));
+        }
         if farthest <= deepest {
             return Err(RunError::bad(
                 file,

@@ -341,9 +341,16 @@ pub fn parse_cases(text: &str) -> Result<Vec<usize>, RunError> {
                 format!("unknown case `{name}` (known: A, B, C, D)"),
             ));
         };
-        if !out.contains(&i) {
-            out.push(i);
+        // Named twice: refused, as every list a run takes refuses a repeat (the runs of a
+        // Case would be one row twice over).
+        if out.contains(&i) {
+            return Err(RunError::bad(
+                "--set",
+                "cases",
+                format!("names the case `{name}` twice: give each once (got `{text}`)"),
+            ));
         }
+        out.push(i);
     }
     Ok(out)
 }
@@ -354,9 +361,9 @@ pub fn measured_table(file: &str) -> Result<Option<(String, MeasuredHypothesis)>
         return Ok(None);
     };
     let text = input_file::read_to_string(std::path::Path::new(file), input_file::MAX_INPUT_BYTES)
-        .map_err(|e| RunError::bad("--set measured", file, format!("cannot read: {e}")))?;
+        .map_err(|e| RunError::bad("--set", "measured", format!("{file}: cannot read: {e}")))?;
     let table = hypotheses::measured_from_ron(file, &text)
-        .map_err(|e| RunError::bad("--set measured", e.what, e.rule))?;
+        .map_err(|e| RunError::bad("--set", "measured", format!("{}: {}", e.what, e.rule)))?;
     Ok(Some((file.to_string(), table.hypothesis())))
 }
 
@@ -631,8 +638,8 @@ pub fn labelled_runs_csv<'a>(
         for (t, o) in runs.iter().enumerate() {
             for (ti, name) in train_names().enumerate() {
                 let line = match jam_of(o, ti).filter(|j| j.day <= days) {
-                    Some(j) => format!("{label},{t},{name},{},jammed,{}\n", j.day, j.mesh),
-                    None => format!("{label},{t},{name},{days},censored,\n"),
+                    Some(j) => registry::csv_row!(label, t, name, j.day, "jammed", j.mesh),
+                    None => registry::csv_row!(label, t, name, days, "censored", ""),
                 };
                 csv.push_str(&line);
             }

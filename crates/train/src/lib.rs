@@ -705,6 +705,28 @@ impl Gearing {
                     ),
                 ));
             }
+            // A name is printed in tables, data files and on the terminal: a control character
+            // (a NUL, a line break, an escape that recolours the terminal) would break a line
+            // or hide text.
+            if let Some(i) = names.iter().position(|n| n.chars().any(char::is_control)) {
+                return Err(errors.at(
+                    format_args!("{list}[{i}]"),
+                    format_args!(
+                        "{field} {:?} must not contain a control character (a line break, a tab, a NUL, an escape): names are printed in tables, data files and on the terminal",
+                        names[i]
+                    ),
+                ));
+            }
+        }
+        // A per-mesh table names its cells CASE/MESH (`cargo xtask replay table3 B/m3-e3`).
+        if let Some(i) = self.meshes.iter().position(|m| m.label.contains('/')) {
+            return Err(errors.at(
+                format_args!("meshes[{i}]"),
+                format_args!(
+                    "label `{}` must not contain `/`: the cells of a per-mesh table are named CASE/MESH (cargo xtask replay table3 B/m3-e3), so its cells could not be replayed; write e.g. `m3-e3`",
+                    self.meshes[i].label
+                ),
+            ));
         }
         Ok(())
     }

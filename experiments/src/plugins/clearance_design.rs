@@ -698,8 +698,8 @@ fn search_csv(
     (b, bp): (&Counts, &Proportion),
     (r, rp): (&Counts, &Proportion),
 ) {
-    best_csv.push_str(&format!(
-        "{case},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+    best_csv.push_str(&registry::csv_row!(
+        case,
         sr.mesh,
         sr.best,
         sr.coarse_best,
@@ -718,9 +718,10 @@ fn search_csv(
         rp.hi
     ));
     for (v, c) in &sr.probes {
-        probes_csv.push_str(&format!(
-            "{case},{},{v},{},{},{},{},{},{}\n",
+        probes_csv.push_str(&registry::csv_row!(
+            case,
             sr.mesh,
+            v,
             c.trials,
             c.jams,
             c.disengagements,

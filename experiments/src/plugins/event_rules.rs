@@ -669,8 +669,9 @@ fn limits_csv(r: &EventRules) -> String {
     let show = |v: Option<f64>| v.map_or_else(String::new, |v| fmt_f64(v, 3));
     for (mesh, per_rule) in r.meshes.iter().zip(&r.limits) {
         for (rule, l) in r.rules.iter().zip(per_rule) {
-            s.push_str(&format!(
-                "{mesh},{rule},{},{}\n",
+            s.push_str(&registry::csv_row!(
+                mesh,
+                rule,
                 show(l.jam_below),
                 show(l.disengage_above)
             ));
@@ -693,8 +694,7 @@ fn cells_csv(cells: &[RuleCell], countings: &[Reading]) -> String {
                     consistent_with_paper(k, c.trials, q).to_string()
                 })
             };
-            s.push_str(&format!(
-                "{},{},{},{},{},{},{},{},{},{},{},{}\n",
+            s.push_str(&registry::csv_row!(
                 p.table,
                 p.key,
                 counting.rule_label,

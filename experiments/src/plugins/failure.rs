@@ -421,8 +421,8 @@ fn runs_csv(r: &FailureStudy) -> String {
             for (jam, s) in o.first_jams.iter().zip(&inp.trains) {
                 let (label, name) = (&inp.label, &s.train);
                 csv.push_str(&match jam {
-                    Some(j) => format!("{label},{t},{name},{},jammed,{}\n", j.day, j.mesh),
-                    None => format!("{label},{t},{name},{},censored,\n", r.horizon),
+                    Some(j) => registry::csv_row!(label, t, name, j.day, "jammed", j.mesh),
+                    None => registry::csv_row!(label, t, name, r.horizon, "censored", ""),
                 });
             }
         }
@@ -490,8 +490,11 @@ mod tests {
 
     #[test]
     fn cases_parse_and_refuse_unknown_names() {
-        assert_eq!(parse_cases("A, c,D,a").unwrap(), [0, 2, 3]);
+        assert_eq!(parse_cases("A, c,D").unwrap(), [0, 2, 3]);
         assert!(parse_cases("").unwrap().is_empty());
+        // A Case named twice (whatever its case) is refused, as every list refuses a repeat.
+        let e = parse_cases("A, c,D,a").unwrap_err();
+        assert!(e.to_string().contains("names the case `a` twice"), "{e}");
         let e = parse_cases("A,E").unwrap_err();
         assert_eq!(e.exit_code(), 2);
         assert!(e.to_string().contains("`E`"), "{e}");

@@ -112,8 +112,7 @@ impl registry::Experiment for Fig6 {
                 smallest,
             ));
             let opt = |v: Option<f64>| v.map_or_else(String::new, |v| v.to_string());
-            csv.push_str(&format!(
-                "{},{},{},{},{}\n",
+            csv.push_str(&registry::csv_row!(
                 gr.gear,
                 gr.meshes.join(" "),
                 opt(ours),

@@ -112,8 +112,7 @@ fn sweep_table(r: &SigmaAgainstClearance) -> (Table, String) {
         ),
         header.clone(),
     );
-    let mut csv = header.join(",");
-    csv.push('\n');
+    let mut csv = registry::csv_line(&header);
     for (i, &c) in r.clearances.iter().enumerate() {
         let mut row = vec![fmt_f64(c, 1)];
         let mut line = vec![c.to_string()];
@@ -122,8 +121,7 @@ fn sweep_table(r: &SigmaAgainstClearance) -> (Table, String) {
             line.push(m.sigma[i].map_or_else(String::new, |s| s.to_string()));
         }
         sweep.row(row);
-        csv.push_str(&line.join(","));
-        csv.push('\n');
+        csv.push_str(&registry::csv_line(line));
     }
     sweep.note(
         "'-': the full turn jammed or disengaged (no sigma), or the gears overlap at every tooth.",
@@ -241,8 +239,8 @@ fn figure(r: &SigmaAgainstClearance) -> Result<Report, RunError> {
             other => show(other),
         };
         lim.row(vec![label.clone(), jam_cell, show(dis)]);
-        lim_csv.push_str(&format!(
-            "{label},{},{}\n",
+        lim_csv.push_str(&registry::csv_row!(
+            label,
             jam.map_or(String::new(), |v| v.to_string()),
             dis.map_or(String::new(), |v| v.to_string())
         ));

@@ -46,6 +46,7 @@ registry::params! {
 /// The settings: trials per cell, Table I's clearances, the area test's tolerances and
 /// stepping, the gearing with h and G, the Cases' errors, Table 4's grid and which gear drives.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, registry::Settings)]
+#[settings(check = check)]
 pub struct Settings {
     /// Trials per cell ([`TRIALS`]).
     #[param(TRIALS)]
@@ -109,13 +110,6 @@ impl registry::Experiment for JamReadingsExperiment {
                 .into_iter()
                 .map(|t| Reading::Area(t, cs.drive)),
         );
-        if readings.len() > 63 {
-            return Err(RunError::bad(
-                "--set",
-                TOLERANCES.name,
-                "at most 62 tolerances",
-            ));
-        }
         let cells = all_cells(s, &cs)?;
         let jams = run_all(
             run.engine(),
@@ -251,24 +245,50 @@ fn all_cells(s: &Settings, cs: &CellSettings) -> Result<Cells, RunError> {
     Ok(out)
 }
 
+/// The settings' check across fields, before any work: the area readings' tolerances, each
+/// once, at most [`MAX_TOLERANCES`].
+fn check(s: &Settings, _: &registry::Context) -> Result<(), RunError> {
+    if tolerances(s)?.len() > MAX_TOLERANCES {
+        return Err(RunError::bad(
+            "--set",
+            TOLERANCES.name,
+            format!("at most {MAX_TOLERANCES} tolerances"),
+        ));
+    }
+    Ok(())
+}
+
+/// The most area readings a run counts: a trial's jams under every reading are bits of one
+/// `u64`, and 63 readings are counted at most, the exact solver's drives among them.
+const MAX_TOLERANCES: usize = 63 - study::drive::Drive::ALL.len();
+
 /// The tolerances of the area readings, from a comma-separated parameter.
 fn tolerances(s: &Settings) -> Result<Vec<f64>, RunError> {
-    s.tolerances
-        .split(',')
-        .map(str::trim)
-        .map(|part| {
-            part.parse::<f64>()
-                .ok()
-                .filter(|t| t.is_finite() && *t >= 0.0 && *t <= 1.0)
-                .ok_or_else(|| {
-                    RunError::bad(
-                        "--set",
-                        TOLERANCES.name,
-                        format!("each must be a number from 0 to 1 mm^2 (got `{part}`)"),
-                    )
-                })
-        })
-        .collect()
+    let text = &s.tolerances;
+    let mut out: Vec<f64> = Vec::new();
+    for part in text.split(',').map(str::trim) {
+        let t = part
+            .parse::<f64>()
+            .ok()
+            .filter(|t| t.is_finite() && *t >= 0.0 && *t <= 1.0)
+            .ok_or_else(|| {
+                RunError::bad(
+                    "--set",
+                    TOLERANCES.name,
+                    format!("each must be a number from 0 to 1 mm^2 (got `{part}`)"),
+                )
+            })?;
+        // A reading named twice would be one column twice over.
+        if out.contains(&t) {
+            return Err(RunError::bad(
+                "--set",
+                TOLERANCES.name,
+                format!("names the tolerance {part} twice: give each once (got `{text}`)"),
+            ));
+        }
+        out.push(t);
+    }
+    Ok(out)
 }
 
 /// Adds our count `ours` of `trials` against the paper's `paper` (of 200) to `x`.
@@ -405,14 +425,16 @@ fn cells_csv(r: &JamReadings) -> String {
             let verdict = paper.map_or_else(String::new, |_| {
                 consistent_with_paper(ours, trials, paper).to_string()
             });
-            s.push_str(&format!(
-                "{},{},{},{},{},{trials},{ours},{},{verdict}\n",
+            s.push_str(&registry::csv_row!(
                 p.table,
                 p.key,
                 p.region,
                 p.mesh,
                 reading.name,
+                trials,
+                ours,
                 paper.map_or_else(String::new, |v| v.to_string()),
+                verdict,
             ));
         }
     }

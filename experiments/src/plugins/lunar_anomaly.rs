@@ -490,9 +490,8 @@ fn td_csv(rows: &[AnomalyRow]) -> String {
     for row in rows {
         for (t, x) in row.trials.iter().enumerate() {
             for (on, s) in [(false, x.rigid), (true, x.pin_slot)] {
-                out.push_str(&format!(
-                    "{},{t},{on},{},{},{},{}\n",
-                    row.label, s.sigma, s.dm, s.p, s.jammed
+                out.push_str(&registry::csv_row!(
+                    row.label, t, on, s.sigma, s.dm, s.p, s.jammed
                 ));
             }
         }

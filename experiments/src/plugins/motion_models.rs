@@ -647,8 +647,7 @@ fn cells_csv(r: &Results) -> String {
         let (pj, pd) = paper_counts(&p.table, &p.key);
         let show = |v: Option<u64>| v.map_or_else(String::new, |v| v.to_string());
         for ((model, _), c) in r.models.iter().zip(&p.counts) {
-            s.push_str(&format!(
-                "{},{},{},{},{},{},{},{},{}\n",
+            s.push_str(&registry::csv_row!(
                 p.table,
                 p.key,
                 p.mesh,
@@ -675,9 +674,13 @@ fn fig_iv_csv(r: &Results) -> String {
                 } else {
                     String::new()
                 };
-                s.push_str(&format!(
-                    "{model},{label},{g},{sigma},{},{}\n",
-                    p.jammed, p.disengaged
+                s.push_str(&registry::csv_row!(
+                    model,
+                    label,
+                    g,
+                    sigma,
+                    p.jammed,
+                    p.disengaged
                 ));
             }
         }

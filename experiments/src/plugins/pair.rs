@@ -442,14 +442,14 @@ fn event_log(
     for (i, e) in traj.events().iter().enumerate() {
         let counted = counted_as(rule, e);
         let teeth = user_teeth(e, numbering);
-        ev_rows.push_str(&log_line(e, counted, &teeth, start).join(","));
-        ev_rows.push_str(&protocol_cells(
+        let mut fields = log_line(e, counted, &teeth, start).to_vec();
+        fields.extend(protocol_cells(
             traj,
             e,
             first.is_some_and(|f| i > f),
             start.0,
         ));
-        ev_rows.push('\n');
+        ev_rows.push_str(&registry::csv_line(fields));
         if events.rows.len() < EVENTS_SHOWN {
             let mut row = table_row(e, counted, &teeth, start, n2);
             row.push(crate::pair_html::motion_word(i, first).into());
@@ -501,7 +501,7 @@ fn log_line(
     ]
 }
 
-/// The cells `event-log.csv` adds after [`log_line`]'s, each after a comma: how far the event
+/// The cells `event-log.csv` adds after [`log_line`]'s: how far the event
 /// left the driven gear ahead of the ideal ratio (driven pitches), whether it came after the
 /// first lock (the paper's protocol), and where a release let the gear go (empty without one).
 fn protocol_cells(
@@ -509,16 +509,23 @@ fn protocol_cells(
     e: &contact::Event,
     after: bool,
     phi0: f64,
-) -> String {
+) -> Vec<String> {
     let n2 = traj.mesh().driven().teeth();
-    let release = crate::pair_html::release_of(traj, e).map_or_else(
-        || ",".to_owned(),
-        |r| format!("{:.9},{:.9}", deg(r.phi - phi0), deg(r.theta)),
+    let (release_phi, release_theta) = crate::pair_html::release_of(traj, e).map_or_else(
+        || (String::new(), String::new()),
+        |r| {
+            (
+                format!("{:.9}", deg(r.phi - phi0)),
+                format!("{:.9}", deg(r.theta)),
+            )
+        },
     );
-    format!(
-        ",{:.9},{after},{release}",
-        crate::pair_html::ahead_pitches(e, n2)
-    )
+    vec![
+        format!("{:.9}", crate::pair_html::ahead_pitches(e, n2)),
+        after.to_string(),
+        release_phi,
+        release_theta,
+    ]
 }
 
 /// An event's row of the printed table (`-` for a tooth it has none of).

@@ -170,14 +170,11 @@ fn statistic_cells(
         cell(ours_days, 3),
         cell(paper_days, 3),
     ]);
-    let line = format!(
-        "{},{},{},{},{}\n",
-        crate::common::estimate_csv(name, label, e),
-        paper.map_or(String::new(), |v| v.to_string()),
-        ratio.map_or(String::new(), |v| v.to_string()),
-        ours_days.map_or(String::new(), |v| v.to_string()),
-        paper_days.map_or(String::new(), |v| v.to_string()),
+    let mut fields = crate::common::estimate_csv(name, label, e);
+    fields.extend(
+        [paper, ratio, ours_days, paper_days].map(|v| v.map_or(String::new(), |v| v.to_string())),
     );
+    let line = registry::csv_line(fields);
     (lay, cells, line)
 }
 

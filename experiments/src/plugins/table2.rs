@@ -233,8 +233,11 @@ fn csv_lines(
         ("triangular", "sigma", p.triangular_sigma(), None),
         ("triangular", "dm", p.triangular_dm(), None),
     ] {
-        csv.push_str(&format!(
-            "{case},{name},{model},{stat},{},{},{},{}\n",
+        csv.push_str(&registry::csv_row!(
+            case,
+            name,
+            model,
+            stat,
             e.mean,
             e.lo,
             e.hi,

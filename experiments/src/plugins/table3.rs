@@ -83,13 +83,13 @@ impl registry::Experiment for Table3 {
             ),
             ours_header(&r.table.meshes),
         );
-        let mut cells = JamCells::new("case,mesh").off_paper(off_paper_inputs(s));
+        let mut cells = JamCells::new(&["case", "mesh"]).off_paper(off_paper_inputs(s));
         for row in &r.table.rows {
             let case = &row.label;
             let mut line = vec![case.clone()];
             for (mesh, n) in r.table.meshes.iter().zip(&row.cells) {
                 let paper = case_paper_counts(r.cases_apply, "table3", &format!("{case}.{mesh}"));
-                line.push(cells.cell((case, mesh), &format!("{case},{mesh}"), n, paper));
+                line.push(cells.cell((case, mesh), &[case, mesh], n, paper));
             }
             ours.row(line);
         }

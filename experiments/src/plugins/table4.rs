@@ -71,13 +71,13 @@ impl registry::Experiment for Table4 {
             ),
             header,
         );
-        let mut jam_cells = JamCells::new("random,mesh").off_paper(off_paper_inputs(s));
+        let mut jam_cells = JamCells::new(&["random", "mesh"]).off_paper(off_paper_inputs(s));
         for row in &r.table.rows {
             let key = &row.label;
             let mut cells = vec![key.clone()];
             for (mesh, c) in r.table.meshes.iter().zip(&row.cells) {
                 let paper = paper_counts("table4", &format!("{key}.{mesh}"));
-                cells.push(jam_cells.cell((key, mesh), &format!("{key},{mesh}"), c, paper));
+                cells.push(jam_cells.cell((key, mesh), &[key, mesh], c, paper));
             }
             table.row(cells);
         }

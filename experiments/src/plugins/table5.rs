@@ -91,7 +91,7 @@ impl registry::Experiment for Table5 {
         );
         let (row, same) = random_row(t);
         table.row(row);
-        let mut jam_cells = JamCells::new("systematic,mesh,random")
+        let mut jam_cells = JamCells::new(&["systematic", "mesh", "random"])
             .with_rule(s.rule)
             .off_paper(off_paper_inputs(s));
         for row in count_rows(t, &like_for_like, &mut jam_cells) {
@@ -245,7 +245,7 @@ fn count_rows(
             let random = tol.random.map_or_else(String::new, |e| e.to_string());
             row.push(jam_cells.cell_compared(
                 (&key, mesh),
-                &format!("{key},{mesh},{random}"),
+                &[&key, mesh, &random],
                 c,
                 paper,
                 like_for_like[m],
@@ -343,8 +343,8 @@ fn systematic_row(t: &DerivedTolerances, rule: f64, mut emax_csv: String) -> (Ve
             None => "-".into(),
         };
         row.push(format!("{ours} ({paper_text})"));
-        emax_csv.push_str(&format!(
-            "{mesh},{},{},{},{}\n",
+        emax_csv.push_str(&registry::csv_row!(
+            mesh,
             m.random.map_or_else(String::new, |v| v.to_string()),
             paper_random(mesh).map_or_else(String::new, |v| v.to_string()),
             m.systematic.map_or_else(String::new, |v| v.to_string()),

@@ -257,11 +257,11 @@ fn inputs_table(
             ),
             format!("{ours_sys} ({paper_sys})"),
         ]);
-        inputs_csv.push_str(&format!(
-            "{mesh},{},{}\n",
-            t.random.unwrap_or(0.0),
-            t.systematic.unwrap_or(0.0)
-        ));
+        inputs_csv.push_str(&registry::csv_line([
+            mesh.clone(),
+            t.random.unwrap_or(0.0).to_string(),
+            t.systematic.unwrap_or(0.0).to_string(),
+        ]));
     }
     let shared: Vec<String> = gears
         .iter()
@@ -342,8 +342,9 @@ fn pointer_rows(
             cells.extend([cell(paper, 2), format!("{jammed}/{trials}")]);
             detail.row(cells);
             let paper_csv = paper.map_or(String::new(), |v| v.to_string());
-            let start = crate::common::estimate_csv(name, label_text, &e);
-            csv.push_str(&format!("{start},{paper_csv},{jammed}\n"));
+            let mut fields = crate::common::estimate_csv(name, label_text, &e);
+            fields.extend([paper_csv, jammed.to_string()]);
+            csv.push_str(&registry::csv_line(fields));
         }
     }
     for r in rows {

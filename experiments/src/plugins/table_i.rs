@@ -70,7 +70,8 @@ impl registry::Experiment for TableI {
     }
 
     fn report(s: &Settings, r: &CaseClearanceTable) -> Result<Report, RunError> {
-        let mut jam_cells = JamCells::new("case,clearance,mesh").off_paper(off_paper_inputs(s));
+        let mut jam_cells =
+            JamCells::new(&["case", "clearance", "mesh"]).off_paper(off_paper_inputs(s));
         let mut table = counts_table(s.trials, r, &mut jam_cells);
         table.note(jam_cells.tally.note());
         if let Some(note) = jam_cells.off_paper_note() {
@@ -201,7 +202,7 @@ fn counts_table(trials: u64, r: &CaseClearanceTable, jam_cells: &mut JamCells) -
                     case_paper_counts(r.cases_apply, "tableI", &format!("{case}.{gl}.{mesh}"));
                 row.push(jam_cells.cell(
                     (&format!("{case}, G = {gl} %"), mesh),
-                    &format!("{case},{gl},{mesh}"),
+                    &[case, gl.as_str(), mesh],
                     n,
                     paper,
                 ));

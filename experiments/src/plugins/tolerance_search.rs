@@ -339,14 +339,14 @@ fn search_table(s: &Settings, clearance: f64) -> Table {
 fn probe_lines(mesh: &str, sr: &Search) -> String {
     let mut out = String::new();
     for (i, p) in sr.probes.iter().enumerate() {
-        out.push_str(&format!(
-            "{mesh},{},{},{},{},{},{:?}\n",
+        out.push_str(&registry::csv_row!(
+            mesh,
             i + 1,
             p.value,
             p.counts.trials,
             p.counts.jams,
             p.counts.disengagements,
-            p.decision
+            format!("{:?}", p.decision)
         ));
     }
     out
@@ -405,15 +405,16 @@ fn mesh_row(
 /// One mesh's line of tolerance.csv.
 fn csv_line(m: &MeshSearchResult, paper: Option<f64>, used: u64, grid_per_mesh: u64) -> String {
     let opt = |v: Option<f64>| v.map_or_else(String::new, |v| v.to_string());
-    format!(
-        "{},{},{},{},{},{},{used},{grid_per_mesh},{:.1}\n",
+    registry::csv_row!(
         m.mesh,
         opt(m.search.pass),
         opt(m.search.fail),
         opt(m.grid),
         opt(paper),
         m.search.probes.len(),
-        saved(used, grid_per_mesh)
+        used,
+        grid_per_mesh,
+        format!("{:.1}", saved(used, grid_per_mesh))
     )
 }
 

@@ -159,6 +159,12 @@ pub fn parse_invocation(args: &[String]) -> Result<(Command, Verbosity), ArgErro
         }
         _ => args,
     };
+    // `COMMAND --help` (or `COMMAND -h` alone) asks for the usage, whatever the command.
+    if let Some((_, rest)) = args.split_first()
+        && (rest.iter().any(|a| a == "--help") || rest == ["-h"])
+    {
+        return Ok((Command::Help(None), Verbosity::Normal));
+    }
     let own = match args.split_first().map(|(c, r)| (c.as_str(), r)) {
         Some(("report", rest)) => Some(Command::Report(parse_report(rest)?)),
         Some(("fuzz", rest)) => Some(Command::Fuzz(parse_fuzz(rest)?)),
@@ -498,6 +504,7 @@ fn parse_bench(args: &[String]) -> Result<BenchArgs, ArgError> {
         targets: vec![BenchTarget::Table5, BenchTarget::All],
         threads: vec![1, 2],
     };
+    let mut seen = Vec::new();
     let mut it = args.iter();
     while let Some(arg) = it.next() {
         let known = ["--only", "--threads"];
@@ -508,6 +515,8 @@ fn parse_bench(args: &[String]) -> Result<BenchArgs, ArgError> {
                 format!("bench takes no ids (got `{arg}`); use --only table5|all")
             }));
         };
+        // As every other command: a flag given twice is refused, not won by the last.
+        once(&mut seen, flag, &value)?;
         if flag == "--only" {
             bench.targets = vec![match value.trim() {
                 "table5" => BenchTarget::Table5,

@@ -49,7 +49,18 @@ mod verdict;
 /// The page's file name in `<out>/`.
 pub const INDEX_HTML: &str = "index.html";
 
-/// `report [--out DIR]`: builds the page and writes it to `<out>/index.html`.
+/// The report page, as [`render`] writes it: replaced only by another.
+pub(crate) const PAGE_KIND: registry::FileKind = registry::FileKind {
+    what: "the report page",
+    recognise: |head| {
+        let title = b"<title>Antikythera gear trains: results</title>";
+        head.starts_with(b"<!DOCTYPE html>") && head.windows(title.len()).any(|w| w == title)
+    },
+};
+
+/// `report [--out DIR] [--bundle FILE]`: builds the page and writes it to `<out>/index.html`,
+/// then the bundle. Everything both need is checked first (the page's place and lock, the
+/// bundle's, every results folder, every input): a refusal writes neither.
 pub fn command(args: &ReportArgs) -> Result<(), Failure> {
     let out = args.out.clone().unwrap_or_else(crate::shared::default_out);
     let quiet = args.quiet;
@@ -63,17 +74,24 @@ pub fn command(args: &ReportArgs) -> Result<(), Failure> {
     let _locked = crate::shared::LocksEnd;
     // The page can be written there (checked before the results are read), and results a
     // killed run left moved aside are put back before they are read.
-    crate::plan::check_out(&out, &[crate::plan::Target::File(INDEX_HTML.into())])?;
+    crate::plan::check_out(
+        &out,
+        &[crate::plan::Target::File(INDEX_HTML.into(), &PAGE_KIND)],
+    )?;
+    let bundle = match &args.bundle {
+        Some(file) => Some(bundle::plan(&out, file)?),
+        None => None,
+    };
     let page = build(&exps, &out, &out_flag, quiet)?;
     let index = out.join(INDEX_HTML);
-    crate::shared::write_atomically(&index, &page)?;
+    crate::shared::write_atomically(&index, &PAGE_KIND, page.as_bytes())?;
     if !quiet {
-        eprintln!("report: {}", index.display());
+        crate::progress::say(&format!("report: {}", index.display()));
     }
-    if let Some(file) = &args.bundle {
-        bundle::write(&out, file)?;
+    if let (Some(plan), Some(file)) = (bundle, &args.bundle) {
+        bundle::write(&plan, page.as_bytes())?;
         if !quiet {
-            eprintln!("bundle: {}", file.display());
+            crate::progress::say(&format!("bundle: {}", file.display()));
         }
     }
     Ok(())
@@ -170,7 +188,8 @@ fn build(exps: &Registry, out: &Path, out_flag: &str, quiet: bool) -> Result<Str
     }
     let mut results = BTreeMap::new();
     for (id, dir) in &found {
-        match read_results(dir) {
+        // One version of the folder, should a run put new results in its place meanwhile.
+        match registry::read_one_version(dir, || read_results(dir)) {
             Ok(r) => {
                 results.insert(id.clone(), r);
             }
@@ -178,11 +197,11 @@ fn build(exps: &Registry, out: &Path, out_flag: &str, quiet: bool) -> Result<Str
             // skipped when unreadable rather than failing the whole page.
             Err(e) if !exps.contains_key(id.as_str()) => {
                 if !quiet {
-                    eprintln!(
+                    crate::progress::say(&format!(
                         "report: skipped {}: not an experiment of this build and unreadable: {}",
                         dir.display(),
                         one_line_of(&e)
-                    );
+                    ));
                 }
             }
             Err(e) => return Err(e),
@@ -223,13 +242,50 @@ fn scan(out: &Path) -> Result<Vec<(String, PathBuf)>, Failure> {
             continue; // Not an experiment id.
         };
         let path = entry.path();
-        if name.starts_with('.') || !path.is_dir() || !path.join("tables.json").is_file() {
+        if name.starts_with('.') {
             continue;
         }
-        found.push((name, path));
+        if holds_results(&path)? {
+            found.push((name, path));
+        }
     }
     found.sort();
     Ok(found)
+}
+
+/// Whether the entry `path` of the results folder is a folder of results (it holds a
+/// `tables.json`); other files and folders of no results (a sharded run's partial files) are
+/// not. What cannot be looked at (a folder that cannot be read, a link that leads nowhere or in
+/// a loop, a `tables.json` that is not a file) is refused naming it: a page that said "not run"
+/// of results it could not read would be wrong.
+fn holds_results(path: &Path) -> Result<bool, Failure> {
+    let unreadable = |e: std::io::Error| {
+        bad(
+            path,
+            "",
+            format!(
+                "cannot be read ({e}): the page would show it as not run; make it readable, or move it out of the results folder"
+            ),
+        )
+    };
+    let meta = fs::metadata(path).map_err(unreadable)?;
+    if !meta.is_dir() {
+        return Ok(false);
+    }
+    fs::read_dir(path).map_err(unreadable)?;
+    let tables = path.join("tables.json");
+    match fs::metadata(&tables) {
+        Ok(m) if m.is_file() => Ok(true),
+        Ok(_) => Err(bad(&tables, "", "must be a file")),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            // A link named tables.json that leads nowhere is not "no results".
+            match fs::symlink_metadata(&tables) {
+                Ok(_) => Err(bad(&tables, "", format!("cannot be read ({e})"))),
+                Err(_) => Ok(false),
+            }
+        }
+        Err(e) => Err(bad(&tables, "", format!("cannot be read ({e})"))),
+    }
 }
 
 /// The largest results file (`tables.json`, `run.json`, a figure) the report reads: 256 MiB.

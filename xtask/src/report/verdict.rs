@@ -17,12 +17,28 @@ pub(super) struct VerdictScreen {
     train: Option<String>,
 }
 
-/// The ledger stored under `out/claims/`, if `claims` was run there.
+/// The ledger stored under `out/claims/`, if `claims` was run there: one version of the folder,
+/// should a run put new results in its place meanwhile.
 pub(super) fn read(out: &Path) -> Result<Option<VerdictScreen>, Failure> {
     let dir = out.join("claims");
+    registry::read_one_version(&dir, || read_from(&dir))
+}
+
+/// [`read`] of the folder `dir`. A `results.json` that is there but cannot be read as a file (a
+/// folder, a link that leads nowhere) is refused naming it: the page would say the claims were
+/// not judged.
+fn read_from(dir: &Path) -> Result<Option<VerdictScreen>, Failure> {
     let path = dir.join(registry::RESULTS_JSON);
-    if !path.is_file() {
-        return Ok(None);
+    match std::fs::metadata(&path) {
+        Ok(m) if m.is_file() => {}
+        Ok(_) => return Err(bad(&path, "", "must be a file")),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            if std::fs::symlink_metadata(&path).is_ok() {
+                return Err(bad(&path, "", format!("cannot be read ({e})")));
+            }
+            return Ok(None);
+        }
+        Err(e) => return Err(bad(&path, "", format!("cannot be read ({e})"))),
     }
     let text = input_file::read_to_string(&path, MAX_RESULT_FILE_BYTES)
         .map_err(|e| bad(&path, "", format!("cannot read: {e}")))?;

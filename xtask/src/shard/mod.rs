@@ -32,14 +32,16 @@ pub(crate) fn run_shard(
             "internal error: a shard run without a shard".into(),
         ));
     };
+    let mut partial = partial::Partial::new(e.id, run.seed, &planned.sets, ctx.config(), shard);
+    partial.inputs = partial::input_files(&ctx);
+    let dir = out.join(e.id);
+    // Before anything is computed: the folder holds no other sharded run's partial files.
+    partial::only_this_run(&dir, &partial, out)?;
     execute(e, &ctx, pool)
         .0
         .map_err(|err| as_typed(err, e.id, run))?;
-    let mut partial = partial::Partial::new(e.id, run.seed, &planned.sets, ctx.config(), shard);
-    partial.inputs = partial::input_files(&ctx);
     partial.batches = ctx.recorded();
     let text = partial.to_json()?;
-    let dir = out.join(e.id);
     std::fs::create_dir_all(&dir).map_err(|err| {
         Failure::Internal(format!(
             "internal error: cannot create {}: {err}",
@@ -48,7 +50,7 @@ pub(crate) fn run_shard(
     })?;
     registry::tidy(&dir)?;
     let path = dir.join(partial::file_name(shard));
-    write_atomically(&path, &text)?;
+    write_atomically(&path, &partial::KIND, text.as_bytes())?;
     let (mut here, mut whole) = (0, 0);
     for b in partial.batches.values() {
         if b.whole {

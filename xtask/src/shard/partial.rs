@@ -175,6 +175,12 @@ impl Partial {
     }
 }
 
+/// A partial file, as [`Partial::to_json`] writes it: a shard replaces only another.
+pub(crate) const KIND: registry::FileKind = registry::FileKind {
+    what: "a partial file",
+    recognise: |head| head.starts_with(b"{\"format\":\"cargo-xtask-partial/"),
+};
+
 /// `partial-K-of-N.json`.
 pub fn file_name(shard: Shard) -> String {
     format!("partial-{}-of-{}.json", shard.index(), shard.count())
@@ -406,6 +412,88 @@ pub fn agree(parts: &[(PathBuf, Partial, Shard)]) -> Result<(), RunError> {
                 "N (number of shards)",
                 p.shards.to_string(),
                 first.shards.to_string(),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// How the sharded command of `theirs` differs from that of `mine`: the first field that does
+/// (as [`agree`] names it) with their value and ours; `None` for the same command.
+fn differs(theirs: &Partial, mine: &Partial) -> Option<(&'static str, String, String)> {
+    let config = |c: &Option<Config>| {
+        c.as_ref()
+            .map_or_else(|| "none".to_string(), |c| format!("`{}`", c.path))
+    };
+    let inputs = |i: &[InputFile]| {
+        i.iter()
+            .map(|i| format!("`{}` (SHA-256 {})", i.path, short(&i.sha256)))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    [
+        (
+            "experiment",
+            theirs.experiment.clone(),
+            mine.experiment.clone(),
+        ),
+        ("seed", theirs.seed.to_string(), mine.seed.to_string()),
+        ("--set", sets_text(&theirs.sets), sets_text(&mine.sets)),
+        ("--config", config(&theirs.config), config(&mine.config)),
+        (
+            "N (number of shards)",
+            theirs.shards.to_string(),
+            mine.shards.to_string(),
+        ),
+        ("code", short(&theirs.code), short(&mine.code)),
+        ("inputs", inputs(&theirs.inputs), inputs(&mine.inputs)),
+    ]
+    .into_iter()
+    .find(|(_, a, b)| a != b)
+}
+
+/// A shard writes its partial file into `dir` (`<out>/<id>/`) beside the other shards' of the
+/// same command: refused (exit 2, before anything is computed) when `dir` holds a partial file
+/// of another sharded command (another seed, `--set`, config, N, code or input), or one that
+/// cannot be read as one. Replacing it would lose that run's shard without a word, and writing
+/// beside it would leave a folder no merge can join. A partial file of the same command (the
+/// shard run again, or its siblings) is fine.
+pub fn only_this_run(dir: &Path, mine: &Partial, out: &Path) -> Result<(), RunError> {
+    let Ok(entries) = fs::read_dir(dir) else {
+        return Ok(());
+    };
+    let mut names: Vec<String> = entries
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| parse_name(n).is_some())
+        .collect();
+    names.sort();
+    let refuse = |name: &str, why: String| {
+        RunError::bad(
+            "--out",
+            format!("{}: {}/{name}", out.display(), mine.experiment),
+            format!(
+                "{why}: a shard never replaces or joins another run's partial files; merge them first (cargo xtask merge {} --out OTHER), move them, or give this run another --out",
+                dir.display()
+            ),
+        )
+    };
+    for name in names {
+        let theirs = match read(&dir.join(&name)) {
+            Ok((p, _)) => p,
+            Err(e) => {
+                return Err(refuse(
+                    &name,
+                    format!("cannot be read as a partial file ({e})"),
+                ));
+            }
+        };
+        if let Some((field, them, us)) = differs(&theirs, mine) {
+            return Err(refuse(
+                &name,
+                format!(
+                    "is a shard of another sharded run (its {field} is {them}, this run's {us})"
+                ),
             ));
         }
     }
