@@ -5,24 +5,12 @@
 //! them show alike lives in the presentation modules below. Adding an experiment is one file in
 //! `src/plugins/` (`build.rs` declares it) plus its snapshot.
 
-pub mod cells;
-pub mod chart;
-pub mod common;
 pub mod emax;
-pub mod event_picture;
 pub mod inputs;
-pub mod label_place;
-pub mod pair_html;
-pub mod pair_svg;
-pub mod paper;
 mod register;
 pub mod replay;
 pub mod settings;
 pub mod table_cells;
-pub mod td_plot;
-#[cfg(test)]
-mod test_pair;
-pub mod train_picture;
 
 pub(crate) use register::replay_cells;
 

@@ -367,10 +367,10 @@ fn events_table(
     let (n1, n2) = rebuilt.mesh.as_ref().map_or((1, 1), |m| {
         (m.driver().teeth() as i64, m.driven().teeth() as i64)
     });
-    let first = crate::pair_html::first_lock(&events);
+    let first = presentation::pair_html::first_lock(&events);
     for (i, e) in events.iter().enumerate() {
         // An idle start has no teeth: none touches the driven gear.
-        let idle = crate::pair_html::is_idle_start(e);
+        let idle = presentation::pair_html::is_idle_start(e);
         let tooth = |t: i64, n: i64| {
             if idle {
                 "-".to_string()
@@ -387,8 +387,8 @@ fn events_table(
             tooth(e.driven_tooth, n2),
             theta0.map_or_else(|| "-".into(), |t0| fmt_f64((e.theta - t0).to_degrees(), 6)),
             fmt_f64(e.theta.to_degrees(), 6),
-            crate::pair_html::size_text(e, n2 as usize),
-            crate::pair_html::motion_word(i, first).into(),
+            presentation::pair_html::size_text(e, n2 as usize),
+            presentation::pair_html::motion_word(i, first).into(),
         ]);
     }
     events_notes(&mut table, g, spec, rebuilt, n2 as usize);
@@ -406,13 +406,13 @@ fn events_notes(table: &mut Table, g: &Gearing, spec: &CellSpec, rebuilt: &Rebui
         fmt_f64(rebuilt.turn.to_degrees(), 6),
     ));
     table.note(drive_note(g, spec, rebuilt));
-    table.note(crate::pair_html::ANGLES_NOTE);
+    table.note(presentation::pair_html::ANGLES_NOTE);
     table.note("size: a release's (lock, strike) or a loss of drive's (gap, slip) effect on the driven gear, in driven pitches: how far ahead of the ideal ratio the gear was when drive resumed (behind it, for a loss), and the change of tooth phase.");
-    if crate::pair_html::first_lock(&events).is_some() {
-        table.note(crate::pair_html::MOTION_NOTE);
-        table.note(crate::pair_html::PROTOCOL_NOTE);
+    if presentation::pair_html::first_lock(&events).is_some() {
+        table.note(presentation::pair_html::MOTION_NOTE);
+        table.note(presentation::pair_html::PROTOCOL_NOTE);
     }
-    if let Some(n) = crate::pair_html::releases_note(&events, n2) {
+    if let Some(n) = presentation::pair_html::releases_note(&events, n2) {
         table.note(n);
     }
 }
@@ -429,23 +429,23 @@ fn trial_files(
 ) {
     let counted = |e: &contact::Event| counted_by(spec, e);
     table.note(oracle_note(mesh, traj));
-    let teeth = crate::pair_html::solver_teeth(mesh);
+    let teeth = presentation::pair_html::solver_teeth(mesh);
     files.push(OutputFile::new(
         "pair.html",
-        crate::pair_html::page(title, traj, &counted, &teeth),
+        presentation::pair_html::page(title, traj, &counted, &teeth),
     ));
-    for (name, svg) in crate::event_picture::event_pictures(title, traj, &counted, &teeth) {
+    for (name, svg) in presentation::event_picture::event_pictures(title, traj, &counted, &teeth) {
         files.push(OutputFile::new(name, svg));
     }
-    if let Some(n) = crate::event_picture::pictures_note(traj.events().len()) {
+    if let Some(n) = presentation::event_picture::pictures_note(traj.events().len()) {
         table.note(n);
     }
     if traj
         .events()
         .iter()
-        .any(|e| e.kind.is_contact_stop() && crate::pair_html::moves_pointer(e))
+        .any(|e| e.kind.is_contact_stop() && presentation::pair_html::moves_pointer(e))
     {
-        table.note(crate::pair_html::RELEASE_NOTE);
+        table.note(presentation::pair_html::RELEASE_NOTE);
     }
 }
 
@@ -740,7 +740,7 @@ fn pair_file(r: &Rebuilt, drive: &str) -> Result<String, String> {
         .ok_or("the gears overlap at every angle, so there is no run to rerun")?;
     let mut s =
         String::from("// Rebuilt by `cargo xtask replay`: one trial of a per-mesh table.\n");
-    for line in crate::common::wrap_at_spaces(drive, 96) {
+    for line in presentation::common::wrap_at_spaces(drive, 96) {
         let _ = writeln!(s, "// {line}");
     }
     s.push_str("(\n");

@@ -12,7 +12,7 @@ use study::claims::{ClaimRow, Judged, Ledger as Results, MeshStanding};
 use study::errors::ErrorParams;
 use study::results::CaseTable;
 
-use crate::train_picture::{Margin, MeshMargin};
+use presentation::train_picture::{Margin, MeshMargin};
 
 /// The ledger's settings: the trials of the per-mesh tables it reads, and the error hypothesis
 /// their gears are made with (the paper's, Edmunds' split, by default).
@@ -136,7 +136,8 @@ fn paper_case_table(ours: &CaseTable) -> CaseTable {
     let mut paper = ours.clone();
     for row in &mut paper.table.rows {
         for (mesh, cell) in ours.table.meshes.iter().zip(&mut row.cells) {
-            let (j, d) = crate::cells::paper_counts("table3", &format!("{}.{mesh}", row.label));
+            let (j, d) =
+                presentation::cells::paper_counts("table3", &format!("{}.{mesh}", row.label));
             *cell = study::cell::Counts {
                 jams: j.unwrap_or(0),
                 disengagements: d.unwrap_or(0),
@@ -195,7 +196,7 @@ impl registry::Experiment for Claims {
 
     fn report(s: &Settings, r: &Results) -> Result<Report, RunError> {
         let ledger = ledger_table(s, r);
-        let train = crate::train_picture::train_svg(
+        let train = presentation::train_picture::train_svg(
             &train::Gearing::freeth2006(),
             &margins(&r.case_b),
             "The Lunar, Metonic, Saros, Games and Exeligmos trains: each mesh under Edmunds' Case B at G = 40 %",
@@ -257,11 +258,11 @@ fn case_b(t: &CaseTable) -> Vec<MeshStanding> {
             mesh: m.clone(),
             failures: c.failures,
             trials: c.trials,
-            keeps_rule: crate::cells::keeps_rule(
+            keeps_rule: presentation::cells::keeps_rule(
                 c.jams,
                 c.disengagements,
                 c.trials,
-                crate::cells::PAPER_RULE_PERCENT,
+                presentation::cells::PAPER_RULE_PERCENT,
             ),
         })
         .collect()

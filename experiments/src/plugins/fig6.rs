@@ -5,9 +5,9 @@
 use registry::{OutputFile, Param, Place, Report, Run, RunError, Table};
 use serde::{Deserialize, Serialize};
 
-use crate::common::{Series, category_plot};
 use crate::emax::{paper_random, show};
 use crate::settings::typed::{Gearing, label, off_paper_inputs, unsplit_cells};
+use presentation::common::{Series, category_plot};
 use study::cell::Purpose;
 use study::drive::DriveParams;
 use study::errors::ErrorParams;
@@ -141,7 +141,7 @@ impl registry::Experiment for Fig6 {
                     differ: outside,
                     what: "gears whose largest tolerable random error, a value of Table 4's grid, equals the paper's E. max / does not (one grid step apart counts as differing; no test; each mesh's value counted once for each of its two gears)".into(),
                 }),
-            ..crate::cells::counts_report(r.random_grid.table.counts())
+            ..presentation::cells::counts_report(r.random_grid.table.counts())
         };
         label(&s.events, Some(&s.drive), report)
     }

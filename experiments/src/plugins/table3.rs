@@ -5,8 +5,10 @@ use crate::replay::{Cell, CellText};
 use registry::{OutputFile, Place, Report, Run, RunError, Table};
 use serde::{Deserialize, Serialize};
 
-use crate::cells::{CASE_TRIAL_NOTE, JamCells, case_paper_counts, counts_report, replay_note};
 use crate::settings::typed::{Gearing, cells, label, off_paper_inputs};
+use presentation::cells::{
+    CASE_TRIAL_NOTE, JamCells, case_paper_counts, counts_report, replay_note,
+};
 use study::cell::{Purpose, run_cells};
 use study::drive::DriveParams;
 use study::errors::CaseParams;

@@ -5,8 +5,8 @@ use crate::replay::{Cell, CellText};
 use registry::{OutputFile, Place, Report, Run, RunError, Table};
 use serde::{Deserialize, Serialize};
 
-use crate::cells::{JamCells, counts_report, paper_counts, replay_note};
 use crate::settings::typed::{Gearing, label, off_paper_inputs, unsplit_cells};
+use presentation::cells::{JamCells, counts_report, paper_counts, replay_note};
 use study::cell::Purpose;
 use study::drive::DriveParams;
 use study::errors::ErrorParams;

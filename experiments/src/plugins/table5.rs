@@ -6,9 +6,9 @@ use crate::replay::{Cell, CellText};
 use registry::{OutputFile, Place, Report, Run, RunError, Table};
 use serde::{Deserialize, Serialize};
 
-use crate::cells::{JamCells, counts_report, paper_counts};
 use crate::emax::{EMAX, given_row, paper_random, paper_systematic, random_from, show};
 use crate::settings::typed::{Gearing, cells, off_paper_inputs};
+use presentation::cells::{JamCells, counts_report, paper_counts};
 use study::cell::{Purpose, label};
 use study::drive::DriveParams;
 use study::errors::CaseParams;

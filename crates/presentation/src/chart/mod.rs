@@ -25,7 +25,9 @@ mod legend;
 mod svg;
 
 use legend::{Entry, LegendLayout, Sample, legend_svg};
-use svg::{bracket_svg, esc, marker_svg, polyline_svg, px};
+use svg::{bracket_svg, marker_svg, polyline_svg, px};
+
+use crate::escape_xml as esc;
 
 /// One series of a chart.
 pub struct Series<'a> {
