@@ -8,7 +8,6 @@
 pub mod emax;
 pub mod inputs;
 mod register;
-pub mod replay;
 pub mod settings;
 pub mod table_cells;
 

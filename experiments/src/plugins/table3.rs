@@ -1,8 +1,8 @@
 //! `table3`: trials with at least one jam / at least one disengagement, each of the 15 meshes on
 //! its own, Edmunds' Cases A-D at G = 40 %, 200 trials per cell, with 95 % Wilson intervals.
 
-use crate::replay::{Cell, CellText};
 use registry::{OutputFile, Place, Report, Run, RunError, Table};
+use replay::{Cell, CellText};
 use serde::{Deserialize, Serialize};
 
 use crate::settings::typed::{Gearing, cells, label, off_paper_inputs};

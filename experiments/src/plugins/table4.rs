@@ -1,8 +1,8 @@
 //! `table4`: trials with at least one jam / disengagement of each mesh on its own, random tooth
 //! error from 0.035 to 0.065 of the pitch, no systematic error, G = 40 %, 200 trials per cell.
 
-use crate::replay::{Cell, CellText};
 use registry::{OutputFile, Place, Report, Run, RunError, Table};
+use replay::{Cell, CellText};
 use serde::{Deserialize, Serialize};
 
 use crate::settings::typed::{Gearing, label, off_paper_inputs, unsplit_cells};

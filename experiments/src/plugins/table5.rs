@@ -2,8 +2,8 @@
 //! paper's 1 % rule, then jams / disengagements with systematic errors of 0.1 to 1.1° (split
 //! 50/50) on top of it, 200 trials per cell.
 
-use crate::replay::{Cell, CellText};
 use registry::{OutputFile, Place, Report, Run, RunError, Table};
+use replay::{Cell, CellText};
 use serde::{Deserialize, Serialize};
 
 use crate::emax::{EMAX, given_row, paper_random, paper_systematic, random_from, show};

@@ -170,7 +170,7 @@ pub(super) fn listing_folder(id: &str, cell: &str) -> String {
 }
 
 /// What a heatmap links its cells with: every replayed trial under the results folder, found
-/// by the key of its trials ([`experiments::replay::trial_key`]), so that a cell links to a
+/// by the key of its trials ([`replay::trial_key`]), so that a cell links to a
 /// trial of its own that had the failure it counts, whichever table's cell was replayed, and
 /// the flags its commands carry (`--out DIR` where the page was built with one).
 pub(super) struct Links<'a> {
