@@ -1119,6 +1119,22 @@ pub fn semilog_plot(
     Plot::new(title, x_label, y_label, series).log_y().svg()
 }
 
+/// The y range of a [`category_plot`]: its finite values padded by a tenth (0 to 1 with none),
+/// never below 0.
+fn category_values_range(series: &[Series<'_>]) -> (f64, f64) {
+    let values = series.iter().flat_map(|s| s.points.iter().map(|p| p.1));
+    let (mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY);
+    for y in values.filter(|y| y.is_finite()) {
+        y0 = y0.min(y);
+        y1 = y1.max(y);
+    }
+    if y0 > y1 {
+        (y0, y1) = (0.0, 1.0);
+    }
+    let pad = ((y1 - y0) * 0.1).max(1e-3);
+    drawable((y0 - pad).max(0.0), y1 + pad)
+}
+
 /// A chart of values by category (e.g. one per gear) as SVG text: the categories along the x
 /// axis, one marker per value, each series in a style of its own (its colour and marker; see
 /// [`style`]) and set a little aside from the others within its category, so that equal values
@@ -1131,17 +1147,7 @@ pub fn category_plot(
     y_label: &str,
     series: &[Series<'_>],
 ) -> Result<String, RunError> {
-    let values = series.iter().flat_map(|s| s.points.iter().map(|p| p.1));
-    let (mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY);
-    for y in values.filter(|y| y.is_finite()) {
-        y0 = y0.min(y);
-        y1 = y1.max(y);
-    }
-    if y0 > y1 {
-        (y0, y1) = (0.0, 1.0);
-    }
-    let pad = ((y1 - y0) * 0.1).max(1e-3);
-    let (y0, y1) = drawable((y0 - pad).max(0.0), y1 + pad);
+    let (y0, y1) = category_values_range(series);
     let n = categories.len().max(1) as i32;
     let entries = series_entries(series, false);
     chart_svg(
