@@ -1,8 +1,9 @@
 //! The paper's tables and figures as experiments: one file each in `src/plugins/`, registered with `inventory`.
 //!
 //! An experiment is a leaf: it reads its settings, calls the `study` crate (which owns every
-//! simulation) and formats tables and figures. No experiment imports another; what several of
-//! them show alike lives in the presentation modules below. Adding an experiment is one file in
+//! simulation) and formats tables and figures through the `presentation` crate. No experiment
+//! imports another; beside the plugins is only the glue they share (settings, inputs, the
+//! paper's tolerances, the cells a replayable table holds). Adding an experiment is one file in
 //! `src/plugins/` (`build.rs` declares it) plus its snapshot.
 
 pub mod emax;
