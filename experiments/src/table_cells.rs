@@ -6,7 +6,7 @@
 //! table's values for it and the setting that changes them.
 //!
 //! The grammar ([`replay::CellGrammar`], registered by each table's file with
-//! [`crate::replay_cells!`]) says what a cell names; this says which of those the table holds, by
+//! `crate::replay_cells!`) says what a cell names; this says which of those the table holds, by
 //! the same settings the table reads (its grids, its clearances, its E. max), and reads those
 //! settings for it.
 
