@@ -6,7 +6,7 @@ use study::cell::{PAPER_TRIALS, label};
 use study::results::RandomFrom;
 use study::tolerance;
 
-use crate::cells::paper_counts;
+use presentation::cells::paper_counts;
 
 /// Where each mesh's random error comes from: derived, as the paper did, or the paper's own row.
 pub const EMAX: Param = Param {
@@ -50,7 +50,7 @@ fn paper_emax_row(meshes: &[String]) -> Result<Vec<Option<f64>>, RunError> {
 
 /// The paper's largest tolerable random error of `mesh` (Table 5, row E. max).
 pub fn paper_random(mesh: &str) -> Option<f64> {
-    crate::paper::get("table5", &format!("emax.{mesh}")).map(|r| r.value)
+    presentation::paper::get("table5", &format!("emax.{mesh}")).map(|r| r.value)
 }
 
 /// The largest tolerable systematic amplitude the paper's own Table 5 counts give for `mesh` by

@@ -1,30 +1,16 @@
 //! The paper's tables and figures as experiments: one file each in `src/plugins/`, registered with `inventory`.
 //!
 //! An experiment is a leaf: it reads its settings, calls the `study` crate (which owns every
-//! simulation) and formats tables and figures. No experiment imports another; what several of
-//! them show alike lives in the presentation modules below. Adding an experiment is one file in
+//! simulation) and formats tables and figures through the `presentation` crate. No experiment
+//! imports another; beside the plugins is only the glue they share (settings, inputs, the
+//! paper's tolerances, the cells a replayable table holds). Adding an experiment is one file in
 //! `src/plugins/` (`build.rs` declares it) plus its snapshot.
 
-pub mod cells;
-pub mod chart;
-pub mod common;
-pub mod cosmos_svg;
 pub mod emax;
-pub mod event_picture;
 pub mod inputs;
-pub mod label_place;
-pub mod pair_html;
-pub mod pair_svg;
-pub mod paper;
 mod register;
-pub mod replay;
 pub mod settings;
 pub mod table_cells;
-pub mod td_plot;
-#[cfg(test)]
-mod test_pair;
-pub mod train_picture;
-pub mod units;
 
 pub(crate) use register::replay_cells;
 

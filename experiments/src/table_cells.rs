@@ -5,13 +5,24 @@
 //! replayed and titled as if the table had counted it. Refused naming the part typed, the
 //! table's values for it and the setting that changes them.
 //!
-//! The grammar ([`crate::replay::CellGrammar`]) says what a cell names; this says which of those
-//! the table holds, by the same settings the table reads (its grids, its clearances, its E. max).
+//! The grammar ([`replay::CellGrammar`], registered by each table's file with
+//! `crate::replay_cells!`) says what a cell names; this says which of those the table holds, by
+//! the same settings the table reads (its grids, its clearances, its E. max), and reads those
+//! settings for it.
 
 use registry::{Context, RunError, fmt_number};
 use study::cell::{Purpose, run_cells};
 use study::grids::CellSettings;
 use study::tolerance;
+
+/// The cell settings of a replayable table under `ctx`: every replayable table counts its cells
+/// with the per-cell `trials` parameter.
+///
+/// # Errors
+/// A setting [`crate::settings::cells`] refuses.
+pub fn settings(ctx: &Context) -> Result<CellSettings, RunError> {
+    crate::settings::cells(ctx, &study::grids::TRIALS)
+}
 
 /// Refuses a cell of experiment `id` that its table does not hold under `ctx`'s settings (`s`
 /// read from them); a cell the grammar refuses is refused with the grammar's words. Experiments
@@ -20,7 +31,7 @@ use study::tolerance;
 /// # Errors
 /// [`RunError::BadInput`] naming the cell, the part typed and the table's values.
 pub fn check(ctx: &Context, s: &CellSettings, id: &str, cell: &str) -> Result<(), RunError> {
-    let (spec, typed) = crate::replay::unchecked_cell_spec(s, id, cell)?;
+    let (spec, typed) = replay::unchecked_cell_spec(s, id, cell)?;
     let parts: Vec<&str> = cell.split('/').collect();
     let bad = |rule: String| RunError::bad("replay", format!("cell `{cell}` of {id}"), rule);
     let typed_value = |key: &str| {

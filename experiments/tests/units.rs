@@ -162,7 +162,7 @@ fn figure_6_shades_edmunds_published_range() {
     assert!(svg.contains("Edmunds' published range"), "and named");
     let t = units_table(&report.tables).unwrap();
     let range = &t.rows[0][column(t, "Edmunds' range at tip [mm]")];
-    let from = experiments::paper::get("fig6", "edmunds_random_from").unwrap();
+    let from = presentation::paper::get("fig6", "edmunds_random_from").unwrap();
     let b2 = train::Gearing::freeth2006();
     let expected = study::units::random_error(from.value, 64, b2.tip_radius("b2").unwrap());
     assert!(

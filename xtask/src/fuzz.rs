@@ -573,24 +573,51 @@ fn gearing_file_refuses(input: &[u8], scratch: &Path) -> Option<String> {
     }
 }
 
+/// The panic hook of a fuzzing run: keeps the message and place of the last panic in
+/// `LAST_PANIC`, for the finding to name, instead of printing it.
+fn record_panic(info: &std::panic::PanicHookInfo<'_>) {
+    let payload = info
+        .payload()
+        .downcast_ref::<&str>()
+        .map(|s| (*s).to_owned())
+        .or_else(|| info.payload().downcast_ref::<String>().cloned())
+        .unwrap_or_default();
+    let at = info
+        .location()
+        .map(|l| format!(" at {}:{}", l.file(), l.line()))
+        .unwrap_or_default();
+    if let Ok(mut m) = LAST_PANIC.lock() {
+        *m = Some(format!("{payload}{at}"));
+    }
+}
+
+/// The next input when the queue is empty: one of the accepted inputs (`valid`) or of the
+/// `corpus`, mutated one or more times, at most 1 MiB.
+fn mutated(rng: &mut Rng, valid: &[Vec<u8>], corpus: &[Vec<u8>], all_seeds: &[Vec<u8>]) -> Vec<u8> {
+    // Mostly from accepted inputs, changed once: the deep rules only see valid files.
+    let from_valid = rng.below(10) < 6;
+    let mut input = if from_valid {
+        valid[rng.below(valid.len())].clone()
+    } else {
+        corpus[rng.below(corpus.len())].clone()
+    };
+    let rounds = if from_valid && rng.below(10) < 7 {
+        1
+    } else {
+        1 + rng.below(4)
+    };
+    for _ in 0..rounds {
+        let pool = if rng.chance(4) { all_seeds } else { corpus };
+        mutate(rng, &mut input, pool);
+    }
+    input.truncate(1 << 20);
+    input
+}
+
 /// Fuzzes every target within `budget`, starting from `seed`.
 pub fn run(budget: Budget, seed: u64) -> Summary {
     let previous = std::panic::take_hook();
-    std::panic::set_hook(Box::new(|info| {
-        let payload = info
-            .payload()
-            .downcast_ref::<&str>()
-            .map(|s| (*s).to_owned())
-            .or_else(|| info.payload().downcast_ref::<String>().cloned())
-            .unwrap_or_default();
-        let at = info
-            .location()
-            .map(|l| format!(" at {}:{}", l.file(), l.line()))
-            .unwrap_or_default();
-        if let Ok(mut m) = LAST_PANIC.lock() {
-            *m = Some(format!("{payload}{at}"));
-        }
-    }));
+    std::panic::set_hook(Box::new(record_panic));
     let scratch = scratch_file();
     let mut summary = Summary::default();
     let mut seen_findings = BTreeSet::new();
@@ -622,26 +649,9 @@ pub fn run(budget: Budget, seed: u64) -> Summary {
                 (_, Some(d)) if Instant::now() >= d => break,
                 _ => {}
             }
-            let input = queue.pop().unwrap_or_else(|| {
-                // Mostly from accepted inputs, changed once: the deep rules only see valid files.
-                let from_valid = rng.below(10) < 6;
-                let mut input = if from_valid {
-                    valid[rng.below(valid.len())].clone()
-                } else {
-                    corpus[rng.below(corpus.len())].clone()
-                };
-                let rounds = if from_valid && rng.below(10) < 7 {
-                    1
-                } else {
-                    1 + rng.below(4)
-                };
-                for _ in 0..rounds {
-                    let pool = if rng.chance(4) { &all_seeds } else { &corpus };
-                    mutate(&mut rng, &mut input, pool);
-                }
-                input.truncate(1 << 20);
-                input
-            });
+            let input = queue
+                .pop()
+                .unwrap_or_else(|| mutated(&mut rng, &valid, &corpus, &all_seeds));
             let began = Instant::now();
             let (result, utf8) = execute(target, &input);
             let took = began.elapsed();

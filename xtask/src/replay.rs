@@ -1,6 +1,6 @@
 //! `cargo xtask replay <experiment> <cell> [<trial>]`: one trial of a per-mesh jam table rebuilt
 //! and rerun (its events, and `pair.ron` to rerun it with `run pair`), or the cell's failed trials
-//! listed (see `experiments::replay`).
+//! listed (see the `replay` crate).
 
 use registry::Context;
 
@@ -151,7 +151,7 @@ pub(crate) fn command(a: &ReplayArgs) -> Result<(), Failure> {
     }
     crate::plan::check_out(&out, &targets)?;
     let pool = crate::compute::make_pool(threads)?;
-    let report = pool.install(|| experiments::replay::replay(&ctx, &a.id, &a.cell, a.trial))?;
+    let report = pool.install(|| ::replay::replay(&ctx, &a.id, &a.cell, a.trial))?;
     let report = crate::provenance::stamp(&report, e, &ctx, &a.sets, None);
     if let Some((from, to)) = &aside {
         let (from, to) = (out.join(from), out.join(to));

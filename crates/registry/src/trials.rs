@@ -128,46 +128,7 @@ pub fn merge_records(parts: &[ShardRecords]) -> Result<Records, RunError> {
             "no shard records to merge",
         ));
     };
-    let count = first.shard.count();
-    let mut by_index: BTreeMap<u64, &ShardRecords> = BTreeMap::new();
-    for p in parts {
-        if p.shard.count() != count {
-            return Err(RunError::bad(
-                &p.source,
-                format!("shard {}", p.shard),
-                format!(
-                    "splits the run into {} shards, but {} splits it into {count}: all shards must come from one split",
-                    p.shard.count(),
-                    first.source
-                ),
-            ));
-        }
-        if let Some(earlier) = by_index.insert(p.shard.index(), p) {
-            return Err(RunError::bad(
-                &p.source,
-                format!("shard {}", p.shard),
-                format!(
-                    "is given twice (also {}): each shard must be given exactly once",
-                    earlier.source
-                ),
-            ));
-        }
-    }
-    let missing: Vec<String> = (0..count)
-        .filter(|k| !by_index.contains_key(k))
-        .map(|k| format!("{k}/{count}"))
-        .collect();
-    if !missing.is_empty() {
-        return Err(RunError::bad(
-            "merge",
-            format!("shard {}", missing.join(", ")),
-            format!(
-                "missing: every shard from 0/{count} to {}/{count} must be given exactly once",
-                count - 1
-            ),
-        ));
-    }
-
+    let by_index = shards_by_index(first, parts)?;
     let mut merged = Records::new();
     for (key, reference) in &first.records {
         merged.insert(
@@ -220,6 +181,55 @@ pub fn merge_records(parts: &[ShardRecords]) -> Result<Records, RunError> {
         }
     }
     Ok(merged)
+}
+
+/// The shards of `parts` by index, refused unless they come from one split (that of `first`) and
+/// every index is given exactly once.
+fn shards_by_index<'a>(
+    first: &ShardRecords,
+    parts: &'a [ShardRecords],
+) -> Result<BTreeMap<u64, &'a ShardRecords>, RunError> {
+    let count = first.shard.count();
+    let mut by_index: BTreeMap<u64, &ShardRecords> = BTreeMap::new();
+    for p in parts {
+        if p.shard.count() != count {
+            return Err(RunError::bad(
+                &p.source,
+                format!("shard {}", p.shard),
+                format!(
+                    "splits the run into {} shards, but {} splits it into {count}: all shards must come from one split",
+                    p.shard.count(),
+                    first.source
+                ),
+            ));
+        }
+        if let Some(earlier) = by_index.insert(p.shard.index(), p) {
+            return Err(RunError::bad(
+                &p.source,
+                format!("shard {}", p.shard),
+                format!(
+                    "is given twice (also {}): each shard must be given exactly once",
+                    earlier.source
+                ),
+            ));
+        }
+    }
+    let missing: Vec<String> = (0..count)
+        .filter(|k| !by_index.contains_key(k))
+        .map(|k| format!("{k}/{count}"))
+        .collect();
+    if !missing.is_empty() {
+        return Err(RunError::bad(
+            "merge",
+            format!("shard {}", missing.join(", ")),
+            format!(
+                "missing: every shard from 0/{count} to {}/{count} must be given exactly once",
+                count - 1
+            ),
+        ));
+    }
+
+    Ok(by_index)
 }
 
 /// `p` recorded exactly the batches `first` did.

@@ -332,6 +332,58 @@ pub fn load(file: &str, text: &str) -> Result<(Mesh, PairFile), RunError> {
     lengths(file, &spec)?;
     let driver = gear(file, Role::Driver, &spec.driver)?;
     let driven = gear(file, Role::Driven, &spec.driven)?;
+    let d = centre_distance(file, &spec, &driver, &driven)?;
+    let run_deg = run_length(file, &spec)?;
+    // Gears that never touch: every tip of a gear lies within its largest tip radius of its
+    // geometric centre, which is |e| from its rotation centre.
+    let reach = driver.max_tip_radius()
+        + driven.max_tip_radius()
+        + driver.rotation_centre().norm()
+        + driven.rotation_centre().norm();
+    if d >= reach {
+        let field = if spec.centre_distance.is_some() {
+            "centre_distance"
+        } else {
+            "clearance_percent"
+        };
+        return Err(RunError::bad(
+            file,
+            field,
+            format!(
+                "the gears never touch: the centre distance {} is at least R1 + R2 + |e1| + |e2| = {}, so no tip reaches the other gear",
+                fmt_number(d),
+                fmt_number(reach)
+            ),
+        ));
+    }
+    let distance_field = if spec.centre_distance.is_some() {
+        "centre_distance"
+    } else {
+        "clearance_percent"
+    };
+    let blamed = mesh_field(&spec, (&driver, &driven), d, distance_field);
+    let mesh = Mesh::new(driver, driven, d).map_err(|e| {
+        let field = if e.field == "centre_distance" {
+            blamed.clone()
+        } else {
+            e.field
+        };
+        RunError::bad(file, field, e.rule)
+    })?;
+    proportions(file, &mesh, distance_field)?;
+    // Last: what the file asks of the run's statistics, once the gears themselves are sound.
+    samples(file, &spec, run_deg, spec.driver.teeth)?;
+    Ok((mesh, spec))
+}
+
+/// The centre distance a pair file gives: its `centre_distance`, or the one its
+/// `clearance_percent` gives between `driver` and `driven` (exactly one of the two).
+fn centre_distance(
+    file: &str,
+    spec: &PairFile,
+    driver: &Gear,
+    driven: &Gear,
+) -> Result<f64, RunError> {
     let d = match (spec.centre_distance, spec.clearance_percent) {
         (Some(d), None) => d,
         (None, Some(g)) => {
@@ -369,6 +421,12 @@ pub fn load(file: &str, text: &str) -> Result<(Mesh, PairFile), RunError> {
             ));
         }
     };
+    Ok(d)
+}
+
+/// The driver angle a pair file runs, in degrees (`run_deg`, or a turn of the gear with more
+/// teeth), checked with its `sample_deg` against the rows of `pair.csv` and the solver's work.
+fn run_length(file: &str, spec: &PairFile) -> Result<f64, RunError> {
     if !(spec.sample_deg > 0.0 && spec.sample_deg.is_finite()) {
         return Err(RunError::bad(
             file,
@@ -416,46 +474,7 @@ pub fn load(file: &str, text: &str) -> Result<(Mesh, PairFile), RunError> {
             ),
         ));
     }
-    // Gears that never touch: every tip of a gear lies within its largest tip radius of its
-    // geometric centre, which is |e| from its rotation centre.
-    let reach = driver.max_tip_radius()
-        + driven.max_tip_radius()
-        + driver.rotation_centre().norm()
-        + driven.rotation_centre().norm();
-    if d >= reach {
-        let field = if spec.centre_distance.is_some() {
-            "centre_distance"
-        } else {
-            "clearance_percent"
-        };
-        return Err(RunError::bad(
-            file,
-            field,
-            format!(
-                "the gears never touch: the centre distance {} is at least R1 + R2 + |e1| + |e2| = {}, so no tip reaches the other gear",
-                fmt_number(d),
-                fmt_number(reach)
-            ),
-        ));
-    }
-    let distance_field = if spec.centre_distance.is_some() {
-        "centre_distance"
-    } else {
-        "clearance_percent"
-    };
-    let blamed = mesh_field(&spec, (&driver, &driven), d, distance_field);
-    let mesh = Mesh::new(driver, driven, d).map_err(|e| {
-        let field = if e.field == "centre_distance" {
-            blamed.clone()
-        } else {
-            e.field
-        };
-        RunError::bad(file, field, e.rule)
-    })?;
-    proportions(file, &mesh, distance_field)?;
-    // Last: what the file asks of the run's statistics, once the gears themselves are sound.
-    samples(file, &spec, run_deg, spec.driver.teeth)?;
-    Ok((mesh, spec))
+    Ok(run_deg)
 }
 
 /// The field of the file a refusal of the mesh's centre distance names: the one the file has

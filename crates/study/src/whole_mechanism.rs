@@ -386,6 +386,90 @@ pub fn jam_of_in(o: &MechanismRun, ti: usize, trains: usize) -> Option<&Jam> {
     }
 }
 
+/// A run of a mechanism whose gears, as made, cannot be placed: the errors moved the bodies into
+/// each other (the ideal gears fit, checked before), so it cannot turn at all.
+fn unplaceable(e: &mechanism::MechanismError, trains: usize) -> MechanismRun {
+    MechanismRun {
+        trains: vec![
+            Some(Jam {
+                day: 0.0,
+                mesh: e.mesh.clone(),
+            });
+            trains
+        ],
+        engagements: 0.0,
+        unplaceable: Some(e.to_string()),
+        lunar_sigma: None,
+    }
+}
+
+/// Every mesh's initial driver angle, drawn from the run's stream in the gearing's order: a
+/// share of the driver's pitch.
+fn initial_angles<'g>(
+    g: &'g train::Gearing,
+    mech: &Mechanism,
+    rng: &mut impl Rng,
+) -> Result<BTreeMap<&'g str, f64>, RunError> {
+    let mut phi0s: BTreeMap<&str, f64> = BTreeMap::new();
+    for m in g.meshes() {
+        let mesh = mech
+            .mesh(&m.label)
+            .ok_or_else(|| RunError::Internal(format!("mesh {} was not built", m.label)))?;
+        let pitch = TAU / mesh.driver().teeth() as f64;
+        phi0s.insert(m.label.as_str(), rng.random::<f64>() * pitch);
+    }
+    Ok(phi0s)
+}
+
+/// The stages of a pointer's chain of `meshes` over `horizon` of its input, each mesh run to its
+/// first jam from its initial angle; a chain's stage already run (`memo`, by the chain of meshes
+/// leading to it) is reused, so each mesh is simulated once per run. Adds the driver teeth that
+/// engaged to `engagements`.
+fn chain_stages(
+    mech: &Mechanism,
+    meshes: &[String],
+    phi0s: &BTreeMap<&str, f64>,
+    horizon: f64,
+    memo: &mut BTreeMap<String, Stage>,
+    engagements: &mut f64,
+) -> Result<Vec<Stage>, RunError> {
+    let mut range = horizon;
+    let mut key = String::new();
+    let mut stages = Vec::with_capacity(meshes.len());
+    for label in meshes {
+        key.push_str(label);
+        key.push('>');
+        let stage = match memo.get(&key) {
+            Some(s) => s.clone(),
+            None => {
+                let (Some(mesh), Some(&phi0)) = (mech.mesh(label), phi0s.get(label.as_str()))
+                else {
+                    return Err(RunError::Internal(format!("mesh {label} was not built")));
+                };
+                let is_jam = |e: &contact::Event| mech.rule().is_jam(e);
+                let traj = mesh.solve(
+                    phi0..=phi0 + range,
+                    Start::Touching(0.0),
+                    Solve::path().stop_at(&is_jam),
+                );
+                *engagements +=
+                    (traj.phi_end() - traj.phi_start()) / TAU * mesh.driver().teeth() as f64;
+                let s = Stage {
+                    label: label.clone(),
+                    phi0,
+                    theta0: traj.theta_at(phi0),
+                    run: StageRun::Triangular(Box::new(traj)),
+                };
+                memo.insert(key.clone(), s.clone());
+                s
+            }
+        };
+        range = stage.run.theta_at(stage.phi0 + range) - stage.theta0;
+        stages.push(stage);
+    }
+    Ok(stages)
+}
+
 /// One whole-mechanism run: trial `t` of `input`, at the input's clearances.
 #[allow(
     clippy::too_many_arguments,
@@ -429,33 +513,13 @@ fn one_run(
         (_, Some(e)) => return Err(e),
         // The ideal gears fit (checked before), so the errors moved the bodies into each other:
         // this mechanism cannot turn at all.
-        (Err(e), None) => {
-            return Ok(MechanismRun {
-                trains: vec![
-                    Some(Jam {
-                        day: 0.0,
-                        mesh: e.mesh.clone(),
-                    });
-                    trains_run.len()
-                ],
-                engagements: 0.0,
-                unplaceable: Some(e.to_string()),
-                lunar_sigma: None,
-            });
-        }
+        (Err(e), None) => return Ok(unplaceable(&e, trains_run.len())),
         (Ok(m), None) => m
             .with_rule(events.clone())
             .with_pin_and_slot(input.pin_and_slot)
             .map_err(|e| RunError::Internal(format!("the pin-and-slot was checked: {e}")))?,
     };
-    let mut phi0s: BTreeMap<&str, f64> = BTreeMap::new();
-    for m in g.meshes() {
-        let mesh = mech
-            .mesh(&m.label)
-            .ok_or_else(|| RunError::Internal(format!("mesh {} was not built", m.label)))?;
-        let pitch = TAU / mesh.driver().teeth() as f64;
-        phi0s.insert(m.label.as_str(), rng.random::<f64>() * pitch);
-    }
+    let phi0s = initial_angles(g, &mech, &mut rng)?;
     // Stages by the chain of meshes leading to them: each mesh is simulated once per run.
     let mut memo: BTreeMap<String, Stage> = BTreeMap::new();
     let mut engagements = 0.0;
@@ -482,41 +546,14 @@ fn one_run(
                 note_pointer(g, &run, horizon, &mut first, &mut lunar_sigma);
                 continue;
             }
-            let mut range = horizon;
-            let mut key = String::new();
-            let mut stages = Vec::with_capacity(chain.meshes.len());
-            for label in &chain.meshes {
-                key.push_str(label);
-                key.push('>');
-                let stage = match memo.get(&key) {
-                    Some(s) => s.clone(),
-                    None => {
-                        let (Some(mesh), Some(&phi0)) =
-                            (mech.mesh(label), phi0s.get(label.as_str()))
-                        else {
-                            return Err(RunError::Internal(format!("mesh {label} was not built")));
-                        };
-                        let is_jam = |e: &contact::Event| mech.rule().is_jam(e);
-                        let traj = mesh.solve(
-                            phi0..=phi0 + range,
-                            Start::Touching(0.0),
-                            Solve::path().stop_at(&is_jam),
-                        );
-                        engagements += (traj.phi_end() - traj.phi_start()) / TAU
-                            * mesh.driver().teeth() as f64;
-                        let s = Stage {
-                            label: label.clone(),
-                            phi0,
-                            theta0: traj.theta_at(phi0),
-                            run: StageRun::Triangular(Box::new(traj)),
-                        };
-                        memo.insert(key.clone(), s.clone());
-                        s
-                    }
-                };
-                range = stage.run.theta_at(stage.phi0 + range) - stage.theta0;
-                stages.push(stage);
-            }
+            let stages = chain_stages(
+                &mech,
+                &chain.meshes,
+                &phi0s,
+                horizon,
+                &mut memo,
+                &mut engagements,
+            )?;
             let run = PointerRun {
                 pointer: p.to_string(),
                 ratio,

@@ -487,6 +487,15 @@ impl Gearing {
                 ),
             ));
         }
+        let names = self.validate_gears(errors)?;
+        let (arbor_names, arbor_of) = self.validate_arbors(errors, &names)?;
+        self.validate_meshes(errors, &names, &arbor_of)?;
+        self.no_loop_of_meshes(errors, &arbor_of)?;
+        self.validate_pointers(errors, &arbor_names, &arbor_of)
+    }
+
+    /// Every gear's name once, its teeth and its measured radius within limits; the names.
+    fn validate_gears(&self, errors: &Errors<'_>) -> Result<BTreeSet<&str>, GearingError> {
         // Gears.
         let mut names = BTreeSet::new();
         for gear in &self.gears {
@@ -523,7 +532,16 @@ impl Gearing {
             }
             Self::check_design_radius(gear).map_err(|rule| errors.at(&at, rule))?;
         }
+        Ok(names)
+    }
 
+    /// Every arbor's name once, each holding known gears, each gear on exactly one arbor; the
+    /// arbors' names and the arbor of each gear.
+    fn validate_arbors<'a>(
+        &'a self,
+        errors: &Errors<'_>,
+        names: &BTreeSet<&str>,
+    ) -> Result<(BTreeSet<&'a str>, BTreeMap<&'a str, &'a str>), GearingError> {
         // Arbors: each gear on exactly one.
         let mut arbor_names = BTreeSet::new();
         let mut arbor_of: BTreeMap<&str, &str> = BTreeMap::new();
@@ -552,7 +570,16 @@ impl Gearing {
                 return Err(errors.at(format_args!("gear {}", gear.name), "on no arbor"));
             }
         }
+        Ok((arbor_names, arbor_of))
+    }
 
+    /// Every mesh's label once, between known gears on two arbors.
+    fn validate_meshes(
+        &self,
+        errors: &Errors<'_>,
+        names: &BTreeSet<&str>,
+        arbor_of: &BTreeMap<&str, &str>,
+    ) -> Result<(), GearingError> {
         // Meshes.
         let mut labels = BTreeSet::new();
         for mesh in &self.meshes {
@@ -577,7 +604,15 @@ impl Gearing {
                 ));
             }
         }
+        Ok(())
+    }
 
+    /// No loop of meshes: joined through meshes, the arbors form a forest.
+    fn no_loop_of_meshes(
+        &self,
+        errors: &Errors<'_>,
+        arbor_of: &BTreeMap<&str, &str>,
+    ) -> Result<(), GearingError> {
         // No loop of meshes: joined through meshes, the arbors form a forest.
         let arbor_index: BTreeMap<&str, usize> = self
             .arbors
@@ -603,7 +638,17 @@ impl Gearing {
             }
             parent[r1.max(r2)] = r1.min(r2);
         }
+        Ok(())
+    }
 
+    /// Every pointer's name once, from a known input arbor along a connected chain of known
+    /// meshes.
+    fn validate_pointers(
+        &self,
+        errors: &Errors<'_>,
+        arbor_names: &BTreeSet<&str>,
+        arbor_of: &BTreeMap<&str, &str>,
+    ) -> Result<(), GearingError> {
         // Pointers: known input, known meshes, a connected chain.
         let mut pointer_names = BTreeSet::new();
         for pointer in &self.pointers {
@@ -802,6 +847,19 @@ impl Gearing {
                 ),
             ));
         }
+        self.pin_and_slot_trains(errors, ps, pin_arbor, turntable_arbor)
+    }
+
+    /// Every pointer's train through the pin's arbor enters it by the pin gear and leaves it by
+    /// the slot gear, and turns the turntable from its input; at least one runs through it.
+    fn pin_and_slot_trains(
+        &self,
+        errors: &Errors<'_>,
+        ps: &PinAndSlot,
+        pin_arbor: &str,
+        turntable_arbor: &str,
+    ) -> Result<(), GearingError> {
+        let at = |field: &str| format!("pin_and_slot.{field}");
         let mut through = 0;
         for pointer in &self.pointers {
             let Some(i) = pointer.meshes.iter().position(|label| {

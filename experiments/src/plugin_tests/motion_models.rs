@@ -48,7 +48,7 @@ fn the_push_models_counts_are_the_tables() {
     ]
     .iter()
     .map(|&(mesh, random, sys, g)| {
-        crate::cells::cell(&s, mesh, &[("random", random), ("systematic", sys)], g).unwrap()
+        presentation::cells::cell(&s, mesh, &[("random", random), ("systematic", sys)], g).unwrap()
     })
     .collect();
     let push = Model::parse("push").unwrap();

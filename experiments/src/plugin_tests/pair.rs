@@ -11,8 +11,8 @@ use geometry::{Vec2, polar, rotate};
 use std::f64::consts::PI;
 use study::pair_file::Role;
 
-use crate::label_place::{Anchor, Segment, edges, segment_meets, text_box};
-use crate::pair_svg::{exaggeration, labelled_tips};
+use presentation::label_place::{Anchor, Segment, edges, segment_meets, text_box};
+use presentation::pair_svg::{exaggeration, labelled_tips};
 
 /// `help pair` states the proportions the loader refuses with the loader's own limits.
 #[test]

@@ -17,7 +17,7 @@ use study::results::{
 };
 use study::tolerance::PAPER_RULE_PERCENT;
 
-use crate::train_picture::{Margin, MeshMargin};
+use presentation::train_picture::{Margin, MeshMargin};
 
 registry::params! {
     const RUNS = Param::new("runs", "0", "trials of the pointer tables (Tables 1 and 2) and runs of the whole-mechanism study (failure) the ledger reads; 0: each experiment's own default (Table 1 and the failure study: the paper's 30; Table 2: 20)", registry::Kind::count(0, registry::MAX_TRIALS, ""));
@@ -328,7 +328,8 @@ fn paper_case_table(ours: &CaseTable) -> CaseTable {
     let mut paper = ours.clone();
     for row in &mut paper.table.rows {
         for (mesh, cell) in ours.table.meshes.iter().zip(&mut row.cells) {
-            let (j, d) = crate::cells::paper_counts("table3", &format!("{}.{mesh}", row.label));
+            let (j, d) =
+                presentation::cells::paper_counts("table3", &format!("{}.{mesh}", row.label));
             *cell = study::cell::Counts {
                 jams: j.unwrap_or(0),
                 disengagements: d.unwrap_or(0),
@@ -359,7 +360,7 @@ fn larger_radii(t: &CaseTable) -> Result<Vec<f64>, RunError> {
 
 /// The paper's value of `quantity` in experiment `id` (`paper.ron`).
 fn paper_value(id: &str, quantity: &str) -> Result<f64, RunError> {
-    crate::paper::get(id, quantity)
+    presentation::paper::get(id, quantity)
         .map(|r| r.value)
         .ok_or_else(|| RunError::Internal(format!("paper.ron has no {id} {quantity}")))
 }
@@ -370,8 +371,8 @@ fn paper_sigmas() -> Result<Vec<(String, f64, f64)>, RunError> {
     let out: Vec<(String, f64, f64)> = ["Lunar", "Metonic", "Saros"]
         .iter()
         .filter_map(|p| {
-            let ideal = crate::paper::get("table1", &format!("{p}.sigma"))?.value;
-            let case_a = crate::paper::get("table2", &format!("A.{p}.sigma"))?.value;
+            let ideal = presentation::paper::get("table1", &format!("{p}.sigma"))?.value;
+            let case_a = presentation::paper::get("table2", &format!("A.{p}.sigma"))?.value;
             Some(((*p).to_owned(), ideal, case_a))
         })
         .collect();
@@ -473,7 +474,7 @@ impl registry::Experiment for Claims {
 
     fn report(s: &Settings, r: &Results) -> Result<Report, RunError> {
         let ledger = ledger_table(s, r);
-        let train = crate::train_picture::train_svg(
+        let train = presentation::train_picture::train_svg(
             &train::Gearing::freeth2006(),
             &margins(&r.case_b),
             "The Lunar, Metonic, Saros, Games and Exeligmos trains: each mesh under Edmunds' Case B at G = 40 %",
@@ -543,11 +544,11 @@ fn case_b(t: &CaseTable) -> Vec<MeshStanding> {
             mesh: m.clone(),
             failures: c.failures,
             trials: c.trials,
-            keeps_rule: crate::cells::keeps_rule(
+            keeps_rule: presentation::cells::keeps_rule(
                 c.jams,
                 c.disengagements,
                 c.trials,
-                crate::cells::PAPER_RULE_PERCENT,
+                presentation::cells::PAPER_RULE_PERCENT,
             ),
         })
         .collect()

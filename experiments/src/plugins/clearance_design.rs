@@ -16,8 +16,8 @@ use serde::{Deserialize, Serialize};
 use stats::{Proportion, clopper_pearson95};
 use train::Gearing;
 
-use crate::common::{Plot, Series};
 use crate::settings::typed::{Gearing as CellGearing, cells};
+use presentation::common::{Plot, Series};
 use study::cell::{Counts, label};
 use study::clearance_search::{MeshSearch, Search, search};
 use study::drive::DriveParams;
@@ -209,20 +209,20 @@ registry::register!(ClearanceDesign);
 /// The errors of each Case the design ran, on each gear once, in units of the gear: what each
 /// mesh's chosen clearance is designed to tolerate.
 fn cases_in_units(d: &Design, split: f64, r: &Results) -> Table {
-    let gears = crate::units::gears_once(&r.gears);
+    let gears = presentation::units::gears_once(&r.gears);
     let mut rows = Vec::new();
     for &c in &d.cases {
         let (case, systematic, random) = CASES[c];
         for (gear, meshes) in &gears {
-            rows.push(crate::units::GearRow {
+            rows.push(presentation::units::GearRow {
                 label: format!("{case}: {}", meshes.join(", ")),
                 gear: gear.clone(),
-                random: crate::units::Value::At(random),
-                systematic: crate::units::Value::At(systematic),
+                random: presentation::units::Value::At(random),
+                systematic: presentation::units::Value::At(systematic),
             });
         }
     }
-    crate::units::table(
+    presentation::units::table(
         "Edmunds' Cases the clearances are designed for, in units of each gear".to_string(),
         "case: meshes",
         Some(split),
@@ -414,7 +414,7 @@ fn interval_cell(p: &Proportion) -> String {
 
 /// "k/n, rate % [lo .. hi]" of a share of runs.
 fn share_cell(p: &Proportion) -> String {
-    format!("{}/{}, {}", p.k, p.n, crate::common::percent_cell(p))
+    format!("{}/{}, {}", p.k, p.n, presentation::common::percent_cell(p))
 }
 
 /// The search's table, one row per (case, mesh): the coarse grid's counts, the best clearance
@@ -677,7 +677,7 @@ fn files(
     let range = tried.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), g| {
         (lo.min(g), hi.max(g))
     });
-    let range = crate::common::drawable(range.0, range.1);
+    let range = presentation::common::drawable(range.0, range.1);
     for (k, &ci) in d.cases.iter().enumerate() {
         let rows = &searches[k * meshes..(k + 1) * meshes];
         files.push(OutputFile::new(
@@ -824,12 +824,12 @@ fn study_table(d: &Design, per_input: &[&[MechanismRun]], summaries: &[Vec<Summa
                 CASES[ci].0.to_string(),
                 name.to_string(),
                 share_cell(&r.year),
-                crate::common::mean_cell(&r.days, d.days),
+                presentation::common::mean_cell(&r.days, d.days),
                 stats::median(&r.days).map_or_else(|| "-".into(), |d| fmt_f64(d, 0)),
                 share_cell(&b.year),
-                crate::common::mean_cell(&b.days, d.days),
+                presentation::common::mean_cell(&b.days, d.days),
                 stats::median(&b.days).map_or_else(|| "-".into(), |d| fmt_f64(d, 0)),
-                crate::common::jammed_first(&b.meshes),
+                presentation::common::jammed_first(&b.meshes),
                 format!(
                     "{only_ref} / {only_best} ({})",
                     fmt_f64(sign_test(only_ref, only_best), 2)

@@ -15,7 +15,7 @@ use study::results::contact_tolerance::{
     AreaTest, ContactTolerance, CurveShape, Spread, TestCurves, TestSummary,
 };
 
-use crate::common::{Series, semilog_plot};
+use presentation::common::{Series, semilog_plot};
 
 registry::params! {
     /// `tolerance`: overlap area the contact test ignores, for the printed curves (the ladder is fixed).
@@ -232,7 +232,7 @@ fn summaries<'a>(
     n: usize,
     of: &dyn Fn(usize, usize) -> &'a [Point],
 ) -> Vec<TestSummary> {
-    let paper = |q: &str| crate::paper::get("sigma-causes", q).map(|r| r.value);
+    let paper = |q: &str| presentation::paper::get("sigma-causes", q).map(|r| r.value);
     let from = paper("figIV.minimum_from").unwrap_or(f64::NAN);
     let to = paper("figIV.minimum_to").unwrap_or(f64::NAN);
     let exact: Vec<f64> = (0..n)
@@ -282,7 +282,7 @@ fn spread(s: Option<Spread>, decimals: usize) -> String {
 
 /// The ladder: per test, what the fifteen curves show beside the paper's description.
 fn summary_table(r: &ContactTolerance, h: f64) -> Table {
-    let paper = |id: &str, q: &str| crate::paper::get(id, q).map(|r| r.value);
+    let paper = |id: &str, q: &str| presentation::paper::get(id, q).map(|r| r.value);
     let from = paper("sigma-causes", "figIV.minimum_from").unwrap_or(f64::NAN);
     let to = paper("sigma-causes", "figIV.minimum_to").unwrap_or(f64::NAN);
     let paper_last = paper("clearance", "disengage_above");

@@ -11,8 +11,8 @@
 use registry::{OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64};
 use serde::{Deserialize, Serialize};
 
-use crate::common::interval;
 use crate::settings::typed::label;
+use presentation::common::interval;
 use study::cosmos::{self, DisplayRow, GearingResults, Interval, MeshTolerance, Results};
 use study::errors::CaseParams;
 use study::events::EventParams;
@@ -160,7 +160,7 @@ fn tables(s: &Settings, r: &Results) -> Result<Report, RunError> {
         let stem = file_stem(&g.gearing);
         files.push(OutputFile::new(
             format!("cosmos-train-{stem}.svg"),
-            crate::cosmos_svg::train_picture(g, s.clearance),
+            presentation::cosmos_svg::train_picture(g, s.clearance),
         ));
         files.push(OutputFile::new(
             format!("cosmos-survival-{stem}.svg"),
@@ -410,7 +410,7 @@ fn failure_table(s: &Settings, r: &Results) -> Table {
                     fmt_f64(100.0 * f.share.1, 0)
                 ),
                 mean_cell(&f.mean_day, 0),
-                crate::common::jammed_first(&f.meshes),
+                presentation::common::jammed_first(&f.meshes),
             ];
             row.extend(READ_AT_DAYS.iter().map(|d| survival_at(&f.curve, *d)));
             t.row(row);
@@ -578,14 +578,14 @@ fn survival_plot(s: &Settings, g: &GearingResults) -> Result<String, RunError> {
             (f.input.clone(), stats::step_points(&steps, s.days))
         })
         .collect();
-    let series: Vec<crate::common::Series<'_>> = curves
+    let series: Vec<presentation::common::Series<'_>> = curves
         .iter()
-        .map(|(label, points)| crate::common::Series {
+        .map(|(label, points)| presentation::common::Series {
             label,
             points: points.clone(),
         })
         .collect();
-    crate::common::Plot::new(
+    presentation::common::Plot::new(
         &format!(
             "{}: whole mechanisms with the cosmos, {} runs per Case, runs not yet jammed (Kaplan-Meier)",
             g.gearing, s.runs

@@ -12,10 +12,10 @@ use registry::{OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64};
 use rules::Rule;
 use serde::{Deserialize, Serialize};
 
-use crate::cells::{
+use crate::settings::typed::{Gearing, cells};
+use presentation::cells::{
     PaperTable, Tally, consistent_with_paper, paper_counts, paper_table_cells, share,
 };
-use crate::settings::typed::{Gearing, cells};
 use study::cell::{CellSpec, Counting, Counts, Purpose, label, run_cells_counted};
 use study::drive::Drive;
 use study::errors::CaseParams;
@@ -254,7 +254,7 @@ fn consistency(cells: &[RuleCell], readings: usize) -> Vec<Consistency> {
     let mut out = vec![[Tally::default(); 4]; readings];
     for p in cells {
         let paper = paper_counts(&p.table, &p.key);
-        let slip = |q: &str| crate::paper::suspect(&p.table, &format!("{}.{q}", p.key));
+        let slip = |q: &str| presentation::paper::suspect(&p.table, &format!("{}.{q}", p.key));
         let trusted = (
             paper.0.filter(|_| !slip("jam")),
             paper.1.filter(|_| !slip("dis")),
@@ -283,7 +283,7 @@ fn consistency(cells: &[RuleCell], readings: usize) -> Vec<Consistency> {
 
 /// The counts of the paper that look copied from another cell, as `table KEY` (for a note).
 fn copy_slips() -> Vec<String> {
-    crate::paper::all()
+    presentation::paper::all()
         .iter()
         .filter(|r| r.suspect.is_some())
         .map(|r| format!("{} {}", r.experiment, r.quantity))
@@ -622,8 +622,8 @@ fn show_envelope((range, missing): (Option<(f64, f64)>, usize)) -> String {
 /// The limits table: per rule, the envelope over the meshes, and whether the paper's figure
 /// lies inside it.
 fn limits_table(r: &EventRules, tol: f64) -> Table {
-    let jam_paper = crate::paper::get("clearance", "jam_below").map(|r| r.value);
-    let dis_paper = crate::paper::get("clearance", "disengage_above").map(|r| r.value);
+    let jam_paper = presentation::paper::get("clearance", "jam_below").map(|r| r.value);
+    let dis_paper = presentation::paper::get("clearance", "disengage_above").map(|r| r.value);
     let mut t = Table::new(
         format!(
             "Ideal meshes' clearance limits under each rule, over all {} meshes (one turn of the larger gear, located to {} % of h): ours (the paper's section 3 / Appendix II)",

@@ -25,8 +25,8 @@ use study::whole_mechanism::{
     case_input, check_study, measured_table, parse_cases, run_study,
 };
 
-use crate::common::{Plot, Series, mean_day_cell, percent_cell};
 use crate::settings::typed::label;
+use presentation::common::{Plot, Series, mean_day_cell, percent_cell};
 
 registry::params! {
     /// `trials`: whole-mechanism runs per input (the paper: 30).
@@ -254,7 +254,7 @@ fn paper_table(r: &FailureStudy, clearance: f64) -> (Table, Option<Agreement>) {
         ),
         header,
     );
-    let paper = |q: &str| crate::paper::get("failure", q).map(|r| r.value);
+    let paper = |q: &str| presentation::paper::get("failure", q).map(|r| r.value);
     let mut agreement = Agreement {
         what: "the paper's values inside / outside our 95 % intervals, the measured input's column"
             .into(),
@@ -354,7 +354,7 @@ fn detail_table(r: &FailureStudy) -> Table {
                 format!("{}/{}", s.days.len(), year.n),
                 mean_day_cell(s.mean_day.as_ref()),
                 s.median_day.map_or_else(|| "-".into(), |d| fmt_f64(d, 0)),
-                crate::common::jammed_first(&s.first_meshes),
+                presentation::common::jammed_first(&s.first_meshes),
             ]);
         }
     }
@@ -443,7 +443,7 @@ fn survival_cell(steps: &[stats::Step], day: f64) -> String {
             lo: 100.0,
             hi: 100.0,
         });
-    crate::common::interval(at.survival, at.lo, at.hi, 0)
+    presentation::common::interval(at.survival, at.lo, at.hi, 0)
 }
 
 fn survival_plot(

@@ -7,7 +7,7 @@ use contact::{Solve, Start, Trajectory};
 use registry::{OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64};
 use serde::{Deserialize, Serialize};
 
-use crate::common::{Series, csv, deg, line_plot};
+use presentation::common::{Series, csv, deg, line_plot};
 use study::equal_pair::{EqualPair, EqualPairParams};
 
 registry::params! {

@@ -8,8 +8,8 @@ use geometry::Gear;
 use registry::{OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64, fmt_number};
 use serde::{Deserialize, Serialize};
 
-use crate::common::{Plot, Series, csv, drawable};
 use crate::settings::typed::label;
+use presentation::common::{Plot, Series, csv, drawable};
 use study::errors::{self, ErrorParams};
 use study::events::EventParams;
 use study::results::{SplitPairs, SplitRun};

@@ -5,10 +5,10 @@
 use registry::{OutputFile, Param, Place, Report, Run, RunError, Table};
 use serde::{Deserialize, Serialize};
 
-use crate::common::{Band, Series, category_plot_band};
 use crate::emax::{paper_random, show};
 use crate::settings::typed::{Gearing, label, off_paper_inputs, unsplit_cells};
-use crate::units::{GearRow, Value};
+use presentation::common::{Band, Series, category_plot_band};
+use presentation::units::{GearRow, Value};
 use study::cell::Purpose;
 use study::drive::DriveParams;
 use study::errors::ErrorParams;
@@ -141,7 +141,7 @@ impl registry::Experiment for Fig6 {
                     differ: outside,
                     what: "gears whose largest tolerable random error, a value of Table 4's grid, equals the paper's E. max / does not (one grid step apart counts as differing; no test; each mesh's value counted once for each of its two gears)".into(),
                 }),
-            ..crate::cells::counts_report(r.random_grid.table.counts())
+            ..presentation::cells::counts_report(r.random_grid.table.counts())
         };
         label(&s.events, Some(&s.drive), report)
     }
@@ -227,7 +227,7 @@ fn plot(
 
 /// The range of random errors Edmunds published (the paper's section 4), as paper.ron keeps it.
 fn edmunds_range() -> Option<(f64, f64)> {
-    let end = |q: &str| crate::paper::get("fig6", q).map(|r| r.value);
+    let end = |q: &str| presentation::paper::get("fig6", q).map(|r| r.value);
     end("edmunds_random_from").zip(end("edmunds_random_to"))
 }
 
@@ -257,7 +257,7 @@ fn in_units(r: &GearTolerances) -> Table {
         .gears
         .iter()
         .filter_map(|gr| {
-            let size = crate::units::gear_named(&r.random_grid.gears, &gr.paper_name)?;
+            let size = presentation::units::gear_named(&r.random_grid.gears, &gr.paper_name)?;
             Some(GearRow {
                 label: gr.meshes.join(", "),
                 gear: size.clone(),
@@ -266,7 +266,7 @@ fn in_units(r: &GearTolerances) -> Table {
             })
         })
         .collect();
-    let mut t = crate::units::table(
+    let mut t = presentation::units::table(
         "Figure 6 in units of each gear: its largest tolerable random error".to_string(),
         "meshes",
         None,

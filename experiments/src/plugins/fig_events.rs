@@ -259,12 +259,12 @@ impl Mesh<'_> {
         );
         OutputFile::new(
             file,
-            crate::event_picture::event_svg(
+            presentation::event_picture::event_svg(
                 &title,
                 t,
                 e,
                 counted,
-                &crate::pair_html::solver_teeth(t.mesh()),
+                &presentation::pair_html::solver_teeth(t.mesh()),
             ),
         )
     }

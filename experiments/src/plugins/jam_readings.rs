@@ -25,8 +25,10 @@ use study::results::jam_readings::{
 };
 use study::tolerance::RandomGrid;
 
-use crate::cells::{PaperTable, consistent_with_paper, paper_counts, paper_table_cells, share};
 use crate::settings::typed::{Gearing, cells};
+use presentation::cells::{
+    PaperTable, consistent_with_paper, paper_counts, paper_table_cells, share,
+};
 
 registry::params! {
     /// `trials`: trials per cell (a screening count; the paper: 200).

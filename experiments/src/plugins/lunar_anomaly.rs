@@ -12,8 +12,8 @@ use registry::{OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64};
 use serde::{Deserialize, Serialize};
 use stats::{DAYS_PER_YEAR, Estimate, mean_ci95};
 
-use crate::common::{Series, csv, line_plot, paper_cell};
 use crate::settings::typed::label;
+use presentation::common::{Series, csv, line_plot, paper_cell};
 use study::anomaly::{AnomalyTrial, PinSlotTrain, Rows, RunStats};
 use study::errors::CaseParams;
 use study::events::EventParams;
@@ -435,7 +435,7 @@ fn anomaly_table(a: &Anomaly) -> Table {
 
 /// `mean [lo .. hi]` of an estimate.
 fn show(e: &Estimate) -> String {
-    crate::common::estimate(e, 3)
+    presentation::common::estimate(e, 3)
 }
 
 /// (b): per row, sigma, Dm and P without and with the pin-and-slot, and the paired difference.

@@ -19,8 +19,8 @@ use study::motion_models::{Figure2, PointerSigma, SigmaPoint};
 use study::pointers::{POINTERS, RunLengths};
 use study::tolerance::RandomGrid;
 
-use crate::cells::{Tally, paper_counts, paper_table_cells, share};
 use crate::settings::typed::{Gearing, cells};
+use presentation::cells::{Tally, paper_counts, paper_table_cells, share};
 
 registry::params! {
     /// `trials`: trials per cell of Tables 3, 4 and I (a screening count; the paper: 200).
@@ -406,7 +406,7 @@ fn counts_table(models: &[(String, String)], tallies: &[[Tally; 4]], trials: u64
 fn power_note(trials: u64) -> String {
     let range = |paper: u64| {
         let ks: Vec<u64> = (0..=trials)
-            .filter(|&k| crate::cells::consistent_with_paper(k, trials, Some(paper)))
+            .filter(|&k| presentation::cells::consistent_with_paper(k, trials, Some(paper)))
             .collect();
         match (ks.first(), ks.last()) {
             (Some(lo), Some(hi)) => format!("{lo} to {hi}"),
@@ -529,7 +529,8 @@ fn table1_table(
         for (i, (name, _)) in POINTERS.iter().enumerate() {
             let values: Vec<f64> = per_trial.iter().map(|t| t[i].sigma).collect();
             let mean = values.iter().sum::<f64>() / values.len().max(1) as f64;
-            let paper = crate::paper::get("table1", &format!("{name}.sigma")).map(|r| r.value);
+            let paper =
+                presentation::paper::get("table1", &format!("{name}.sigma")).map(|r| r.value);
             row.push(match paper {
                 Some(p) => format!(
                     "{} / {} ({})",

@@ -5,9 +5,9 @@ use contact::Solve;
 use registry::{OutputFile, Place, Report, Run, RunError, Table, fmt_f64};
 use serde::{Deserialize, Serialize};
 
-use crate::common::{csv, deg};
-use crate::pair_svg::check_svg;
 use crate::settings::typed::label;
+use presentation::common::{csv, deg};
+use presentation::pair_svg::check_svg;
 use study::drive::{Drive, DriveParams};
 use study::events::EventParams;
 use study::pair_file::{Numbering, Prepared, default_run_deg, prepare};
@@ -280,7 +280,7 @@ fn pair_file(s: &Settings, run: &Run) -> Result<(String, Prepared, Prepared), Ru
 /// whole run include the motion the paper's protocol gives after it. `None` without a lock.
 fn before_first_lock(run: &Results) -> Option<String> {
     let events = run.traj.events();
-    let first = &events[crate::pair_html::first_lock(events)?];
+    let first = &events[presentation::pair_html::first_lock(events)?];
     let at = deg(first.phi - run.phi0);
     let td: Vec<f64> = run
         .rows
@@ -360,7 +360,7 @@ fn run_files(
     rule: &rules::Rule,
 ) -> Result<([OutputFile; 3], Vec<OutputFile>), RunError> {
     let (name, traj, (driver, driven)) = (&run.file, &run.traj, run.numbering);
-    let svg = crate::td_plot::td_plot(
+    let svg = presentation::td_plot::td_plot(
         &format!("the mesh from {name}"),
         traj,
         &|e| counted_as(rule, e),
@@ -380,9 +380,13 @@ fn run_files(
     // A driven gear measured in its own sense is numbered the other way round in the solver.
     let numbered = |e: &contact::Event| (driver.user(e.driver_tooth), driven.user(e.driven_tooth));
     let title = format!("Mesh from {name}");
-    let page = crate::pair_html::page(&title, traj, &|e| counted_as(rule, e), &numbered);
-    let pictures =
-        crate::event_picture::event_pictures(&title, traj, &|e| counted_as(rule, e), &numbered);
+    let page = presentation::pair_html::page(&title, traj, &|e| counted_as(rule, e), &numbered);
+    let pictures = presentation::event_picture::event_pictures(
+        &title,
+        traj,
+        &|e| counted_as(rule, e),
+        &numbered,
+    );
     Ok((
         [
             OutputFile::new("pair.csv", data),
@@ -438,7 +442,7 @@ fn event_log(
     let mut ev_rows = String::from(
         "phi_minus_phi0_deg,kind,counted_as,driver_tooth,driven_tooth,theta_minus_theta0_deg,theta_after_minus_theta0_deg,lost_motion_pitches,resumed,phase_shift,lag_deg,wedge_angle_deg,phi_abs_deg,theta_abs_deg,theta_after_abs_deg,ahead_of_ideal_driven_pitches,after_first_lock,release_phi_minus_phi0_deg,release_theta_abs_deg\n",
     );
-    let first = crate::pair_html::first_lock(traj.events());
+    let first = presentation::pair_html::first_lock(traj.events());
     for (i, e) in traj.events().iter().enumerate() {
         let counted = counted_as(rule, e);
         let teeth = user_teeth(e, numbering);
@@ -452,7 +456,7 @@ fn event_log(
         ev_rows.push_str(&registry::csv_line(fields));
         if events.rows.len() < EVENTS_SHOWN {
             let mut row = table_row(e, counted, &teeth, start, n2);
-            row.push(crate::pair_html::motion_word(i, first).into());
+            row.push(presentation::pair_html::motion_word(i, first).into());
             events.row(row);
         }
     }
@@ -464,7 +468,7 @@ fn event_log(
 /// An event's driver and driven tooth as the user wrote them (a driven gear measured in its own
 /// sense is numbered the other way round inside the solver); none (empty) for an idle start.
 fn user_teeth(e: &contact::Event, (driver, driven): (Numbering, Numbering)) -> (String, String) {
-    if crate::pair_html::is_idle_start(e) {
+    if presentation::pair_html::is_idle_start(e) {
         (String::new(), String::new())
     } else {
         (
@@ -511,7 +515,7 @@ fn protocol_cells(
     phi0: f64,
 ) -> Vec<String> {
     let n2 = traj.mesh().driven().teeth();
-    let (release_phi, release_theta) = crate::pair_html::release_of(traj, e).map_or_else(
+    let (release_phi, release_theta) = presentation::pair_html::release_of(traj, e).map_or_else(
         || (String::new(), String::new()),
         |r| {
             (
@@ -521,7 +525,7 @@ fn protocol_cells(
         },
     );
     vec![
-        format!("{:.9}", crate::pair_html::ahead_pitches(e, n2)),
+        format!("{:.9}", presentation::pair_html::ahead_pitches(e, n2)),
         after.to_string(),
         release_phi,
         release_theta,
@@ -552,14 +556,14 @@ fn table_row(
         shown(k),
         fmt_f64(deg(e.theta - theta0), 6),
         fmt_f64(deg(e.theta_after - theta0), 6),
-        crate::pair_html::size_text(e, n2),
+        presentation::pair_html::size_text(e, n2),
     ]
 }
 
 /// The notes under the event table: the angles, what is not shown, and what the events need
 /// explained (a lock's release, an idle start, the pictures).
 fn add_event_notes(events: &mut Table, traj: &contact::Trajectory) {
-    events.note(crate::pair_html::ANGLES_NOTE);
+    events.note(presentation::pair_html::ANGLES_NOTE);
     if traj.events().len() > EVENTS_SHOWN {
         events.note(format!(
             "{} more in event-log.csv (every event, one a line)",
@@ -569,21 +573,27 @@ fn add_event_notes(events: &mut Table, traj: &contact::Trajectory) {
     if traj
         .events()
         .iter()
-        .any(|e| e.kind.is_contact_stop() && crate::pair_html::moves_pointer(e))
+        .any(|e| e.kind.is_contact_stop() && presentation::pair_html::moves_pointer(e))
     {
-        events.note(crate::pair_html::RELEASE_NOTE);
+        events.note(presentation::pair_html::RELEASE_NOTE);
     }
-    if let Some(n) = crate::pair_html::releases_note(traj.events(), traj.mesh().driven().teeth()) {
+    if let Some(n) =
+        presentation::pair_html::releases_note(traj.events(), traj.mesh().driven().teeth())
+    {
         events.note(n);
     }
-    if crate::pair_html::first_lock(traj.events()).is_some() {
-        events.note(crate::pair_html::MOTION_NOTE);
-        events.note(crate::pair_html::PROTOCOL_NOTE);
+    if presentation::pair_html::first_lock(traj.events()).is_some() {
+        events.note(presentation::pair_html::MOTION_NOTE);
+        events.note(presentation::pair_html::PROTOCOL_NOTE);
     }
-    if traj.events().iter().any(crate::pair_html::is_idle_start) {
+    if traj
+        .events()
+        .iter()
+        .any(presentation::pair_html::is_idle_start)
+    {
         events.note("An idle start has no driver or driven tooth (`-`): no tooth touches the driven gear; its picture shows where the two gears come nearest.");
     }
-    if let Some(n) = crate::event_picture::pictures_note(traj.events().len()) {
+    if let Some(n) = presentation::event_picture::pictures_note(traj.events().len()) {
         events.note(n);
     }
     if traj.events().is_empty() {

@@ -15,9 +15,9 @@ use serde::{Deserialize, Serialize};
 use stats::mean_ci95;
 use train::Gearing;
 
-use crate::common::{Series, category_plot};
-use crate::common::{mean_day_cell, percent_cell};
 use crate::settings::typed::label;
+use presentation::common::{Series, category_plot};
+use presentation::common::{mean_day_cell, percent_cell};
 use study::errors;
 use study::events::EventParams;
 use study::gearing::GearingParams;
@@ -395,7 +395,7 @@ fn headline_table(s: &Settings, r: &Results) -> Table {
         let sigma = match sigmas.len() {
             0 => "-".to_string(),
             1 => format!("{} (n = 1)", fmt_f64(sigmas[0], 3)),
-            _ => crate::common::estimate(&mean_ci95(&sigmas), 3),
+            _ => presentation::common::estimate(&mean_ci95(&sigmas), 3),
         };
         let first: Vec<String> = m
             .first_meshes

@@ -141,8 +141,10 @@ impl registry::Experiment for SigmaCauses {
     }
 
     fn report(s: &Settings, r: &Results) -> Result<Report, RunError> {
-        let paper_from = crate::paper::get("sigma-causes", "figIV.minimum_from").map(|r| r.value);
-        let paper_to = crate::paper::get("sigma-causes", "figIV.minimum_to").map(|r| r.value);
+        let paper_from =
+            presentation::paper::get("sigma-causes", "figIV.minimum_from").map(|r| r.value);
+        let paper_to =
+            presentation::paper::get("sigma-causes", "figIV.minimum_to").map(|r| r.value);
         let fig = figure_iv_table(r, s.draws, (paper_from, paper_to));
         let t1 = table1_table(&r.table1, s.trials, s.clearance, s.samples_per_engagement);
         Ok(Report {
@@ -257,7 +259,7 @@ fn figure_iv_table(
     let mut depth = vec!["sigma at 40 % / smallest sigma: median (range)".to_string()];
     let mut runs = vec![format!(
         "largest G that runs without a jam or disengagement: median (range) [paper: none above {}]",
-        crate::paper::get("clearance", "disengage_above")
+        presentation::paper::get("clearance", "disengage_above")
             .map_or_else(|| "?".into(), |r| fmt_f64(r.value, 0))
     )];
     for ri in 0..columns {
@@ -446,7 +448,7 @@ fn table1_table(rows: &[Table1Row], trials: u64, clearance: f64, per: usize) -> 
     );
     let paper: Vec<Option<f64>> = POINTERS
         .iter()
-        .map(|(n, _)| crate::paper::get("table1", &format!("{n}.sigma")).map(|r| r.value))
+        .map(|(n, _)| presentation::paper::get("table1", &format!("{n}.sigma")).map(|r| r.value))
         .collect();
     let mut paper_row = vec!["paper (Table 1)".to_string(), "-".to_string()];
     paper_row.extend(

@@ -154,8 +154,9 @@ fn statistic_cells(
     (label, key): (&str, &str),
     e: &Estimate,
 ) -> (String, Vec<String>, String) {
-    let paper = crate::paper::get("table1", &format!("{name}.{key}")).map(|r| r.value);
-    let paper_days = crate::paper::get("table1", &format!("{name}.{key}.days")).map(|r| r.value);
+    let paper = presentation::paper::get("table1", &format!("{name}.{key}")).map(|r| r.value);
+    let paper_days =
+        presentation::paper::get("table1", &format!("{name}.{key}.days")).map(|r| r.value);
     let ratio = paper.map(|p| e.mean / p);
     let ours_days = days.map(|d| e.mean * d);
     let cell = |x: Option<f64>, dec: usize| x.map_or_else(|| "-".to_string(), |v| fmt_f64(v, dec));
@@ -163,14 +164,14 @@ fn statistic_cells(
     if let Some(d) = ours_days {
         lay.push_str(&format!(" ({} / {} d)", fmt_f64(d, 3), cell(paper_days, 3)));
     }
-    let mut cells = crate::common::estimate_cells(name, turns, label, e);
+    let mut cells = presentation::common::estimate_cells(name, turns, label, e);
     cells.extend([
         cell(paper, 3),
         cell(ratio, 2),
         cell(ours_days, 3),
         cell(paper_days, 3),
     ]);
-    let mut fields = crate::common::estimate_csv(name, label, e);
+    let mut fields = presentation::common::estimate_csv(name, label, e);
     fields.extend(
         [paper, ratio, ours_days, paper_days].map(|v| v.map_or(String::new(), |v| v.to_string())),
     );

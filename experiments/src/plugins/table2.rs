@@ -6,8 +6,8 @@ use registry::{OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64};
 use serde::{Deserialize, Serialize};
 use stats::Estimate;
 
-use crate::common::{Series, semilog_plot};
 use crate::settings::typed::{Gearing, cells, label};
+use presentation::common::{Series, semilog_plot};
 use study::errors::CaseParams;
 use study::events::EventParams;
 use study::gearing::{self, GearingParams};
@@ -191,7 +191,7 @@ fn plot(curves: &std::collections::BTreeMap<String, Vec<(f64, f64)>>) -> Result<
 
 /// An estimate as printed: "mean [lo .. hi]".
 fn show(e: &stats::Estimate) -> String {
-    crate::common::estimate(e, 3)
+    presentation::common::estimate(e, 3)
 }
 
 /// The notes under both tables: what each Case draws, the days per degree, and the
@@ -324,7 +324,7 @@ fn tables(r: &CasePointers) -> Result<Report, RunError> {
         for (p, (name, days)) in c.pointers.iter().zip(&r.pointers) {
             let (es_m, ed_m) = (p.edmunds_sigma(), p.edmunds_dm());
             let paper = |q: &str| {
-                crate::paper::get("table2", &format!("{case}.{name}.{q}")).map(|r| r.value)
+                presentation::paper::get("table2", &format!("{case}.{name}.{q}")).map(|r| r.value)
             };
             row.push(edmunds_cell(
                 &es_m,

@@ -1,12 +1,14 @@
 //! `table3`: trials with at least one jam / at least one disengagement, each of the 15 meshes on
 //! its own, Edmunds' Cases A-D at G = 40 %, 200 trials per cell, with 95 % Wilson intervals.
 
-use crate::replay::{Cell, CellText};
 use registry::{OutputFile, Place, Report, Run, RunError, Table};
+use replay::{Cell, CellText};
 use serde::{Deserialize, Serialize};
 
-use crate::cells::{CASE_TRIAL_NOTE, JamCells, case_paper_counts, counts_report, replay_note};
 use crate::settings::typed::{Gearing, cells, label, off_paper_inputs};
+use presentation::cells::{
+    CASE_TRIAL_NOTE, JamCells, case_paper_counts, counts_report, replay_note,
+};
 use study::cell::{Purpose, run_cells};
 use study::drive::DriveParams;
 use study::errors::CaseParams;

@@ -1,12 +1,12 @@
 //! `table4`: trials with at least one jam / disengagement of each mesh on its own, random tooth
 //! error from 0.035 to 0.065 of the pitch, no systematic error, G = 40 %, 200 trials per cell.
 
-use crate::replay::{Cell, CellText};
 use registry::{OutputFile, Place, Report, Run, RunError, Table};
+use replay::{Cell, CellText};
 use serde::{Deserialize, Serialize};
 
-use crate::cells::{JamCells, counts_report, paper_counts, replay_note};
 use crate::settings::typed::{Gearing, label, off_paper_inputs, unsplit_cells};
+use presentation::cells::{JamCells, counts_report, paper_counts, replay_note};
 use study::cell::Purpose;
 use study::drive::DriveParams;
 use study::errors::ErrorParams;
@@ -16,7 +16,7 @@ use study::grids::{CellSettings, TRIALS, run_grid};
 use study::results::RandomErrorTable;
 use study::tolerance::{PAPER_RULE_PERCENT, RandomGrid, allowed_jams};
 
-use crate::units::Value;
+use presentation::units::Value;
 
 /// Table 4's settings: trials per cell, the gearing with h and G, the hypothesis, the grid of
 /// random errors, the event rule and the pair-trial protocol.
@@ -112,7 +112,7 @@ crate::replay_cells! { "table4", "RANDOM/MESH, e.g. 0.050/m3-e3" => cell }
 fn emax_in_units(s: &Settings, r: &RandomErrorTable) -> Table {
     let tolerable = r.tolerable(s.trials, PAPER_RULE_PERCENT);
     let smallest = r.random.first().copied();
-    crate::units::emax_table(
+    presentation::units::emax_table(
         format!(
             "Table 4's E. max, the largest random error up to which every value keeps the {PAPER_RULE_PERCENT} % rule (at most {} of {} trials jammed), in units of each gear",
             allowed_jams(s.trials, PAPER_RULE_PERCENT),

@@ -2,13 +2,13 @@
 //! paper's 1 % rule, then jams / disengagements with systematic errors of 0.1 to 1.1° (split
 //! 50/50) on top of it, 200 trials per cell.
 
-use crate::replay::{Cell, CellText};
 use registry::{OutputFile, Place, Report, Run, RunError, Table};
+use replay::{Cell, CellText};
 use serde::{Deserialize, Serialize};
 
-use crate::cells::{JamCells, counts_report, paper_counts};
 use crate::emax::{EMAX, given_row, paper_random, paper_systematic, random_from, show};
 use crate::settings::typed::{Gearing, cells, off_paper_inputs};
+use presentation::cells::{JamCells, counts_report, paper_counts};
 use study::cell::{Purpose, label};
 use study::drive::DriveParams;
 use study::errors::CaseParams;
@@ -18,7 +18,7 @@ use study::grids::{CellSettings, TRIALS, derive};
 use study::results::{DerivedTolerances, RandomFrom};
 use study::tolerance::{self, RULE, RandomGrid, SystematicGrid};
 
-use crate::units::Value;
+use presentation::units::Value;
 
 /// Table 5's settings: trials per cell, the rule, where the random E. max comes from, the
 /// gearing with h and G, the split and hypothesis, the grids of Tables 4 and 5, the event rule
@@ -309,7 +309,7 @@ fn add_notes(
 fn emax_in_units(t: &DerivedTolerances, split: f64) -> Table {
     let smallest_random = t.random_grid.random.first().copied();
     let smallest_sys = t.rows.first().map(|r| r.systematic);
-    crate::units::emax_table(
+    presentation::units::emax_table(
         "Table 5's E. max in units of each gear: the largest tolerable random error (row E. max (random)) and systematic amplitude on top of it (row E. max (systematic))".to_string(),
         &t.random_grid.gears,
         Some(split),

@@ -325,7 +325,8 @@ fn pointer_rows(
         ];
         for (row, (label_text, key, estimate)) in columns.into_iter().enumerate() {
             let e: Estimate = estimate.into();
-            let paper = crate::paper::get("table6", &format!("{name}.{key}")).map(|r| r.value);
+            let paper =
+                presentation::paper::get("table6", &format!("{name}.{key}")).map(|r| r.value);
             let ok = !compared || paper.is_none_or(|p| e.contains(p));
             if compared && paper.is_some() {
                 if ok { inside += 1 } else { outside += 1 }
@@ -338,11 +339,11 @@ fn pointer_rows(
                 cell(paper, 2),
                 if ok { "" } else { "*" }
             ));
-            let mut cells = crate::common::estimate_cells(name, turns, label_text, &e);
+            let mut cells = presentation::common::estimate_cells(name, turns, label_text, &e);
             cells.extend([cell(paper, 2), format!("{jammed}/{trials}")]);
             detail.row(cells);
             let paper_csv = paper.map_or(String::new(), |v| v.to_string());
-            let mut fields = crate::common::estimate_csv(name, label_text, &e);
+            let mut fields = presentation::common::estimate_csv(name, label_text, &e);
             fields.extend([paper_csv, jammed.to_string()]);
             csv.push_str(&registry::csv_line(fields));
         }

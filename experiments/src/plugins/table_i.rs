@@ -1,14 +1,14 @@
 //! `tableI`: jams / disengagements of each mesh on its own for Edmunds' Cases A-D at clearances of
 //! 10, 40 and 70 % (Appendix II), 200 trials per cell. The 40 % rows are Table 3's cells.
 
-use crate::replay::{Cell, CellText};
 use registry::{OutputFile, Place, Report, Run, RunError, Table};
+use replay::{Cell, CellText};
 use serde::{Deserialize, Serialize};
 
-use crate::cells::{
+use crate::settings::typed::{Gearing, cells, label, off_paper_inputs};
+use presentation::cells::{
     CASE_TRIAL_NOTE, JamCells, case_paper_counts, counts_report, paper_counts, replay_note,
 };
-use crate::settings::typed::{Gearing, cells, label, off_paper_inputs};
 use study::cell::{Purpose, run_cells};
 use study::drive::DriveParams;
 use study::errors::CaseParams;

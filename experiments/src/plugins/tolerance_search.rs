@@ -19,7 +19,7 @@ use study::results::{MeshSearchResult, RandomErrorTable, SearchedTolerances};
 use study::tolerance::{self, RULE, RandomGrid};
 use study::tolerance_search::{self as sequential, Search, search};
 
-use crate::units::Value;
+use presentation::units::Value;
 
 registry::params! {
     const SEARCH_LO = Param::new("search_lo", "0.02", "lower end of the searched random error (fraction of the pitch 360/N)", study::tolerance::RANDOM_KIND).unit("pitch");
@@ -179,7 +179,7 @@ registry::register!(ToleranceSearch);
 
 /// Each mesh's largest tolerable random error by the search, in units of both its gears.
 fn emax_in_units(r: &SearchedTolerances) -> Table {
-    crate::units::emax_table(
+    presentation::units::emax_table(
         "The search's largest tolerable random error in units of each gear".to_string(),
         &r.random_grid.gears,
         None,

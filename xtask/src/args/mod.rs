@@ -319,44 +319,57 @@ fn parse_run(args: &[String]) -> Result<RunArgs, ArgError> {
             return Err(ArgError::Usage(format!("unknown flag `{arg}`")));
         };
         once(&mut seen, flag, &value)?;
-        match flag {
-            "--seed" => {
-                run.seed = value.trim().parse().map_err(|_| {
-                    ArgError::Value(format!(
-                        "--seed: must be an integer from 0 to {} (got `{value}`)",
-                        u64::MAX
-                    ))
-                })?;
+        set_run_flag(&mut run, flag, value)?;
+    }
+    check_run(&run)?;
+    Ok(run)
+}
+
+/// Sets `run`'s field for one flag of `run` and its value (`--set` adds a setting).
+fn set_run_flag(run: &mut RunArgs, flag: &str, value: String) -> Result<(), ArgError> {
+    match flag {
+        "--seed" => {
+            run.seed = value.trim().parse().map_err(|_| {
+                ArgError::Value(format!(
+                    "--seed: must be an integer from 0 to {} (got `{value}`)",
+                    u64::MAX
+                ))
+            })?;
+        }
+        "--threads" => run.threads = Some(threads(&value)?),
+        "--out" => run.out = Some(out(value)?),
+        "--format" => run.format = format(&value)?,
+        "--trials" => run.trials = Some(trials(&value)?),
+        "--shard" => {
+            run.shard = Some(Shard::parse(&value).map_err(|e| ArgError::Value(e.to_string()))?);
+        }
+        "--config" => {
+            if value.is_empty() {
+                return Err(ArgError::Value("--config: must not be empty".into()));
             }
-            "--threads" => run.threads = Some(threads(&value)?),
-            "--out" => run.out = Some(out(value)?),
-            "--format" => run.format = format(&value)?,
-            "--trials" => run.trials = Some(trials(&value)?),
-            "--shard" => {
-                run.shard = Some(Shard::parse(&value).map_err(|e| ArgError::Value(e.to_string()))?);
-            }
-            "--config" => {
-                if value.is_empty() {
-                    return Err(ArgError::Value("--config: must not be empty".into()));
-                }
-                run.config = Some(PathBuf::from(value));
-            }
-            // The error hypothesis of experiments that manufacture gears: `--set hypothesis=NAME`.
-            "--hypothesis" => run.hypothesis = Some(not_empty(flag, value)?),
-            // The gearing file of train experiments: the same as `--set gearing=FILE`.
-            "--gearing" => run.gearing = Some(PathBuf::from(not_empty(flag, value)?)),
-            "--errors" => run.errors = Some(PathBuf::from(not_empty(flag, value)?)),
-            _ => {
-                let Some((key, val)) = value.split_once('=').filter(|(k, _)| !k.trim().is_empty())
-                else {
-                    return Err(ArgError::Usage(format!(
-                        "--set takes KEY=VALUE (got `{value}`)"
-                    )));
-                };
-                run.sets.push((key.trim().to_owned(), val.to_owned()));
-            }
+            run.config = Some(PathBuf::from(value));
+        }
+        // The error hypothesis of experiments that manufacture gears: `--set hypothesis=NAME`.
+        "--hypothesis" => run.hypothesis = Some(not_empty(flag, value)?),
+        // The gearing file of train experiments: the same as `--set gearing=FILE`.
+        "--gearing" => run.gearing = Some(PathBuf::from(not_empty(flag, value)?)),
+        "--errors" => run.errors = Some(PathBuf::from(not_empty(flag, value)?)),
+        _ => {
+            let Some((key, val)) = value.split_once('=').filter(|(k, _)| !k.trim().is_empty())
+            else {
+                return Err(ArgError::Usage(format!(
+                    "--set takes KEY=VALUE (got `{value}`)"
+                )));
+            };
+            run.sets.push((key.trim().to_owned(), val.to_owned()));
         }
     }
+    Ok(())
+}
+
+/// Refuses flags of `run` that cannot go together: no id, `all` beside ids, a flag beside the
+/// `--set` it stands for, `--errors` with `--hypothesis`, `--shard` of more than one experiment.
+fn check_run(run: &RunArgs) -> Result<(), ArgError> {
     if run.ids.is_empty() {
         return Err(ArgError::Usage(
             "run needs at least one experiment id (or `all`)".into(),
@@ -393,7 +406,7 @@ fn parse_run(args: &[String]) -> Result<RunArgs, ArgError> {
             run.ids.join(" ")
         )));
     }
-    Ok(run)
+    Ok(())
 }
 
 /// The value of a counting flag: an integer from 1 to `max`; `limit` names what the maximum is

@@ -11,7 +11,9 @@ use std::cell::RefCell;
 use std::collections::BTreeMap;
 
 use super::replays::{Replayed, Replays, Settings, TrialFailure};
-use super::{Results, esc, url_part};
+use presentation::escape_xml as esc;
+
+use super::{Results, url_part};
 use crate::shared::Registry;
 
 /// The per-mesh count tables shown as heatmaps too: experiment id, how the table's title
@@ -24,10 +26,10 @@ const HEATMAPS: [(&str, &str, usize); 4] = [
 ];
 
 /// The table's mark after a side that keeps the paper's 1 % rule.
-const RULE_MARK: char = experiments::cells::RULE_MARK;
+const RULE_MARK: char = presentation::cells::RULE_MARK;
 
 /// The table's mark after a cell not compared with the paper's (other inputs).
-const NOT_COMPARED_MARK: char = experiments::cells::NOT_COMPARED_MARK;
+const NOT_COMPARED_MARK: char = presentation::cells::NOT_COMPARED_MARK;
 
 /// One count of a cell: ours, the paper's, and whether the two-sample test separates them (the
 /// table's `*`).
@@ -168,7 +170,7 @@ pub(super) fn listing_folder(id: &str, cell: &str) -> String {
 }
 
 /// What a heatmap links its cells with: every replayed trial under the results folder, found
-/// by the key of its trials ([`experiments::replay::trial_key`]), so that a cell links to a
+/// by the key of its trials ([`replay::trial_key`]), so that a cell links to a
 /// trial of its own that had the failure it counts, whichever table's cell was replayed, and
 /// the flags its commands carry (`--out DIR` where the page was built with one).
 pub(super) struct Links<'a> {

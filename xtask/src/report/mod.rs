@@ -26,6 +26,7 @@ use std::fmt::Write as _;
 use std::fs;
 use std::path::{Path, PathBuf};
 
+use presentation::escape_xml as esc;
 use registry::Table;
 use serde_json::Value;
 
@@ -624,22 +625,6 @@ fn base64(bytes: &[u8]) -> String {
         }
     }
     s
-}
-
-/// `s` with `&`, `<`, `>`, `"` and `'` escaped for HTML text and attribute values.
-fn esc(s: &str) -> String {
-    let mut o = String::with_capacity(s.len());
-    for c in s.chars() {
-        match c {
-            '&' => o.push_str("&amp;"),
-            '<' => o.push_str("&lt;"),
-            '>' => o.push_str("&gt;"),
-            '"' => o.push_str("&quot;"),
-            '\'' => o.push_str("&#39;"),
-            _ => o.push(c),
-        }
-    }
-    o
 }
 
 /// `s` percent-encoded for one segment of a relative URL.

@@ -5,7 +5,7 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use experiments::replay::ReplayedTrial;
+use ::replay::ReplayedTrial;
 use serde_json::Value;
 
 use super::Provenance;
@@ -30,7 +30,7 @@ pub(super) struct Replayed {
     /// listing, or a title that cannot be read).
     pub(super) trial: Option<ReplayedTrial>,
     /// What makes its trial the trial it is, whichever table counts it
-    /// ([`experiments::replay::trial_key`]); `None` where it cannot be worked out.
+    /// ([`replay::trial_key`]); `None` where it cannot be worked out.
     pub(super) key: Option<String>,
 }
 
@@ -102,12 +102,12 @@ fn recorded(dir: &Path) -> Option<Settings> {
     Some(normalised(seed, &overrides))
 }
 
-/// The trial key ([`experiments::replay::trial_key`]) of cell `cell` of experiment `id` under
+/// The trial key ([`replay::trial_key`]) of cell `cell` of experiment `id` under
 /// `settings`; `None` where the settings or the cell cannot be read.
 pub(super) fn key_of(exps: &Registry, id: &str, cell: &str, settings: &Settings) -> Option<String> {
     let e = exps.get(id)?;
     let ctx = registry::Context::new(e, settings.0, 1, &settings.1, None).ok()?;
-    experiments::replay::trial_key(&ctx, id, cell).ok()
+    ::replay::trial_key(&ctx, id, cell).ok()
 }
 
 /// The trial a replay's `tables.json` names in its first title.
@@ -127,7 +127,7 @@ pub(super) fn split_replays(
     let mut rest = Vec::new();
     for (name, path) in found {
         let from = name.strip_prefix("replay-").and_then(|r| {
-            experiments::replay::REPLAYABLE
+            ::replay::REPLAYABLE
                 .iter()
                 .map(|(id, _)| *id)
                 .find(|id| r.starts_with(&format!("{id}-")))
@@ -160,9 +160,7 @@ pub(super) fn split_replays(
 /// what it did (`jam`, `disengagement`, `jam and disengagement`); `None` when there is no such
 /// file to read.
 pub(super) fn failed_trials(dir: &Path) -> Option<Vec<(u64, &'static str)>> {
-    let text =
-        input_file::read_to_string(&dir.join(experiments::replay::FAILED_TRIALS_CSV), 64 << 20)
-            .ok()?;
+    let text = input_file::read_to_string(&dir.join(::replay::FAILED_TRIALS_CSV), 64 << 20).ok()?;
     let mut out = Vec::new();
     for line in text.lines().skip(1) {
         let mut f = line.split(',');

@@ -8,7 +8,9 @@ use study::claims::{Ledger, Verdict};
 
 use crate::failure::Failure;
 
-use super::{MAX_RESULT_FILE_BYTES, bad, esc};
+use presentation::escape_xml as esc;
+
+use super::{MAX_RESULT_FILE_BYTES, bad};
 
 /// The ledger and the drawing of the train, as `claims` stored them.
 pub(super) struct VerdictScreen {

@@ -603,23 +603,7 @@ fn run_cells_under(
         .iter()
         .map(|c| countings.map_or_else(|| vec![Counting::of(c)], <[_]>::to_vec))
         .collect();
-    let gearing_id = fnv1a64(format!("{g:?}").as_bytes());
-    // One key per (cell, counting): what the cache holds.
-    let keys: Vec<Vec<String>> = prepared
-        .iter()
-        .zip(&countings_of)
-        .map(|(p, cs)| {
-            cs.iter()
-                .map(|c| {
-                    format!(
-                        "{}|{}|seed={seed}|trials={trials}|gearing={gearing_id:016x}",
-                        p.canonical,
-                        c.key()
-                    )
-                })
-                .collect()
-        })
-        .collect();
+    let keys = cache_keys(g, &prepared, &countings_of, trials, seed);
     let mut known: HashMap<String, Counts> = HashMap::new();
     if use_cache {
         let cached = cache().lock().unwrap_or_else(|e| e.into_inner());
@@ -647,23 +631,7 @@ fn run_cells_under(
         seed,
         run_batch,
     )?;
-    for (n, &i) in todo.iter().enumerate() {
-        let start = n * trials as usize;
-        for (r, k) in keys[i].iter().enumerate() {
-            let mut c = Counts {
-                trials,
-                engagements: trials * prepared[i].larger_teeth,
-                ..Counts::default()
-            };
-            for &o in &outcomes[start..start + trials as usize] {
-                let (jam, dis) = under(o, r);
-                c.jams += u64::from(jam);
-                c.disengagements += u64::from(dis);
-                c.failures += u64::from(jam || dis);
-            }
-            known.insert(k.clone(), c);
-        }
-    }
+    count_outcomes(&prepared, &keys, &todo, &outcomes, trials, &mut known);
     if use_cache {
         let mut cached = cache().lock().unwrap_or_else(|e| e.into_inner());
         for &i in &todo {
@@ -686,6 +654,62 @@ fn run_cells_under(
                 .collect()
         })
         .collect()
+}
+
+/// One key per (cell, counting) of `prepared` under `countings_of`: what the cache holds, naming
+/// the cell, the counting, the seed, the trials and the gearing.
+fn cache_keys(
+    g: &Gearing,
+    prepared: &[Prepared<'_>],
+    countings_of: &[Vec<Counting>],
+    trials: u64,
+    seed: u64,
+) -> Vec<Vec<String>> {
+    let gearing_id = fnv1a64(format!("{g:?}").as_bytes());
+    prepared
+        .iter()
+        .zip(countings_of)
+        .map(|(p, cs)| {
+            cs.iter()
+                .map(|c| {
+                    format!(
+                        "{}|{}|seed={seed}|trials={trials}|gearing={gearing_id:016x}",
+                        p.canonical,
+                        c.key()
+                    )
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// The counts of the cells `todo` from their trials' `outcomes` (in (cell, trial) order), one
+/// per counting, put in `known` under their keys.
+fn count_outcomes(
+    prepared: &[Prepared<'_>],
+    keys: &[Vec<String>],
+    todo: &[usize],
+    outcomes: &[RuleBits],
+    trials: u64,
+    known: &mut HashMap<String, Counts>,
+) {
+    for (n, &i) in todo.iter().enumerate() {
+        let start = n * trials as usize;
+        for (r, k) in keys[i].iter().enumerate() {
+            let mut c = Counts {
+                trials,
+                engagements: trials * prepared[i].larger_teeth,
+                ..Counts::default()
+            };
+            for &o in &outcomes[start..start + trials as usize] {
+                let (jam, dis) = under(o, r);
+                c.jams += u64::from(jam);
+                c.disengagements += u64::from(dis);
+                c.failures += u64::from(jam || dis);
+            }
+            known.insert(k.clone(), c);
+        }
+    }
 }
 
 /// Runs every trial of the cells `todo` in one flat batch named by everything that determines

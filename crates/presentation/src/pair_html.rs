@@ -14,6 +14,8 @@ use std::fmt::Write as _;
 use contact::Trajectory;
 use geometry::Vec2;
 
+use crate::escape_xml as escape;
+
 /// The driver's colour in the pictures of a mesh (its outline, its tooth's dot), and its fill.
 pub const DRIVER_COLOUR: &str = "#1f4e9c";
 /// See [`DRIVER_COLOUR`].
@@ -52,13 +54,6 @@ pub(crate) fn points(outline: &[Vec2]) -> String {
         let _ = write!(s, "{:.5},{:.5} ", v.x, v.y);
     }
     s.trim_end().to_owned()
-}
-
-pub(crate) fn escape(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
 }
 
 /// The tooth numbers an output shows for an event, (driver tooth, driven tooth): the numbering

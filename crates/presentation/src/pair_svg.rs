@@ -9,7 +9,7 @@ use registry::fmt_f64;
 use std::f64::consts::PI;
 use study::pair_file::{Prepared, Role, Sense, StartSpec};
 
-use crate::common::{deg, wrap_at_spaces};
+use crate::common::{deg, escape_xml as escape, wrap_at_spaces};
 use crate::label_place::{Anchor, LINE_GAP, Label, Placer, Segment, edges, nearest_on, text_box};
 use crate::pair_html::{DRIVEN_COLOUR, DRIVEN_FILL, DRIVER_COLOUR, DRIVER_FILL};
 
@@ -42,14 +42,6 @@ pub fn labelled_tips(p: &Prepared) -> Vec<(Role, i64, Vec2)> {
         }
     }
     out
-}
-
-/// Text safe inside SVG markup.
-fn escape(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
 }
 
 /// Height of the eccentricity insets of `pair-check.svg`, px.

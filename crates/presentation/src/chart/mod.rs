@@ -25,7 +25,9 @@ mod legend;
 mod svg;
 
 use legend::{Entry, LegendLayout, Sample, legend_svg};
-use svg::{bracket_svg, esc, marker_svg, polyline_svg, px};
+use svg::{bracket_svg, marker_svg, polyline_svg, px};
+
+use crate::escape_xml as esc;
 
 /// One series of a chart.
 pub struct Series<'a> {
@@ -1117,6 +1119,26 @@ pub fn semilog_plot(
     Plot::new(title, x_label, y_label, series).log_y().svg()
 }
 
+/// The y range of a [`category_plot_band`]: its finite values and the band's ends padded by a
+/// tenth (0 to 1 with none), never below 0.
+fn category_values_range(series: &[Series<'_>], band: Option<&Band<'_>>) -> (f64, f64) {
+    let ends = band.iter().flat_map(|b| [b.lo, b.hi]);
+    let values = series
+        .iter()
+        .flat_map(|s| s.points.iter().map(|p| p.1))
+        .chain(ends);
+    let (mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY);
+    for y in values.filter(|y| y.is_finite()) {
+        y0 = y0.min(y);
+        y1 = y1.max(y);
+    }
+    if y0 > y1 {
+        (y0, y1) = (0.0, 1.0);
+    }
+    let pad = ((y1 - y0) * 0.1).max(1e-3);
+    drawable((y0 - pad).max(0.0), y1 + pad)
+}
+
 /// A band of values drawn across every category (a published range beside the points): a shaded
 /// box from `lo` to `hi` on the y axis, with its legend entry.
 pub struct Band<'a> {
@@ -1157,21 +1179,7 @@ pub fn category_plot_band(
     series: &[Series<'_>],
     band: Option<&Band<'_>>,
 ) -> Result<String, RunError> {
-    let ends = band.iter().flat_map(|b| [b.lo, b.hi]);
-    let values = series
-        .iter()
-        .flat_map(|s| s.points.iter().map(|p| p.1))
-        .chain(ends);
-    let (mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY);
-    for y in values.filter(|y| y.is_finite()) {
-        y0 = y0.min(y);
-        y1 = y1.max(y);
-    }
-    if y0 > y1 {
-        (y0, y1) = (0.0, 1.0);
-    }
-    let pad = ((y1 - y0) * 0.1).max(1e-3);
-    let (y0, y1) = drawable((y0 - pad).max(0.0), y1 + pad);
+    let (y0, y1) = category_values_range(series, band);
     let n = categories.len().max(1) as i32;
     let mut entries = series_entries(series, false);
     if let Some(b) = band {

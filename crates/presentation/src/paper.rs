@@ -28,7 +28,7 @@ pub fn suspect(id: &str, quantity: &str) -> bool {
     get(id, quantity).is_some_and(|r| r.suspect.is_some())
 }
 
-const TEXT: &str = include_str!("../paper.ron");
+const TEXT: &str = include_str!("../../../experiments/paper.ron");
 
 /// Every reference number (the file is checked by a unit test, so parsing cannot fail at run time
 /// unless the file was broken after the tests ran; then the list is empty).

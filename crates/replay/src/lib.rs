@@ -1,5 +1,7 @@
-//! One trial of a per-mesh jam table rebuilt from its random stream (`cargo xtask replay`): its
-//! gears, initial angle and events, and the pair file that reruns it with `run pair`.
+//! One trial of a per-mesh jam table rebuilt from its random stream, and the grammar of its cells.
+//!
+//! `cargo xtask replay` shows a trial's gears, initial angle and events, and writes the pair file
+//! that reruns it with `run pair`.
 //!
 //! A cell is named as its table prints it, in the grammar its experiment registers beside itself
 //! (a [`CellGrammar`], keyed by the experiment's id): `table3 B/m3-e3` (Case / mesh), `tableI
@@ -22,8 +24,10 @@ use study::cell::{CellSpec, Counting, Rebuilt, rebuild};
 use study::drive::{Drive, Driver};
 use study::grids::{CASES, CellSettings};
 
-/// How the cells of a per-mesh table are named and what each one names: an experiment whose
-/// trials can be replayed registers one in its own file, beside its experiment:
+/// How the cells of a per-mesh table are named, what each one names and which of them the table
+/// holds under a run's settings: an experiment whose trials can be replayed registers one in its
+/// own file, beside its experiment (`experiments`' `replay_cells!` fills in the settings and the
+/// check, which read the experiments' shared settings):
 ///
 /// ```ignore
 /// registry::register!(Table3);
@@ -36,6 +40,12 @@ pub struct CellGrammar {
     pub form: &'static str,
     /// What the typed cell names, under the experiment's settings in the context.
     pub parse: for<'a> fn(&CellSettings, &CellText<'a>) -> Result<Cell<'a>, RunError>,
+    /// The table's cell settings, read from a run's context (every replayable table counts its
+    /// cells with the per-cell `trials` parameter).
+    pub settings: fn(&Context) -> Result<CellSettings, RunError>,
+    /// Refuses a cell (`experiment`, `cell`) the grammar reads but the table never runs under the
+    /// context's settings (its cell settings given), naming the part typed and the table's values.
+    pub holds: fn(&Context, &CellSettings, &str, &str) -> Result<(), RunError>,
 }
 
 registry::inventory::collect!(CellGrammar);
@@ -196,8 +206,13 @@ fn typed_part(e: RunError, id: &str, cell: &str, typed: &[(&str, &str, &str)]) -
     e
 }
 
-/// The (unchecked) spec of the cell and the parameters typed in it.
-pub(crate) fn unchecked_cell_spec<'a>(
+/// The (unchecked) spec of cell `cell` of experiment `id` under settings `s`, and the parameters
+/// typed in it: what the cell names, before [`CellGrammar::holds`] and [`cell_spec`]'s checks.
+///
+/// # Errors
+/// An experiment without a grammar, a malformed cell, a mesh not in the gearing, a value the
+/// hypothesis refuses (named as typed).
+pub fn unchecked_cell_spec<'a>(
     s: &CellSettings,
     id: &'a str,
     cell: &'a str,
@@ -242,11 +257,10 @@ pub(crate) fn unchecked_cell_spec<'a>(
 /// Errors: an experiment without replayable trials, a malformed cell, a mesh not in the
 /// gearing, a trial index at or beyond the experiment's trial count.
 pub fn replay(ctx: &Context, id: &str, cell: &str, trial: Option<u64>) -> Result<Report, RunError> {
-    grammar(id)?;
-    // Every replayable table counts its cells with the per-cell `trials` parameter.
-    let s = crate::settings::cells(ctx, &study::grids::TRIALS)?;
+    let grammar = grammar(id)?;
+    let s = (grammar.settings)(ctx)?;
     // A cell the table holds under these settings, before its gears are made.
-    crate::table_cells::check(ctx, &s, id, cell)?;
+    (grammar.holds)(ctx, &s, id, cell)?;
     let spec = cell_spec(&s, ctx.seed(), id, cell)?;
     let (g, trials) = (s.gearing(), s.trials);
     match trial {
@@ -367,10 +381,10 @@ fn events_table(
     let (n1, n2) = rebuilt.mesh.as_ref().map_or((1, 1), |m| {
         (m.driver().teeth() as i64, m.driven().teeth() as i64)
     });
-    let first = crate::pair_html::first_lock(&events);
+    let first = presentation::pair_html::first_lock(&events);
     for (i, e) in events.iter().enumerate() {
         // An idle start has no teeth: none touches the driven gear.
-        let idle = crate::pair_html::is_idle_start(e);
+        let idle = presentation::pair_html::is_idle_start(e);
         let tooth = |t: i64, n: i64| {
             if idle {
                 "-".to_string()
@@ -387,8 +401,8 @@ fn events_table(
             tooth(e.driven_tooth, n2),
             theta0.map_or_else(|| "-".into(), |t0| fmt_f64((e.theta - t0).to_degrees(), 6)),
             fmt_f64(e.theta.to_degrees(), 6),
-            crate::pair_html::size_text(e, n2 as usize),
-            crate::pair_html::motion_word(i, first).into(),
+            presentation::pair_html::size_text(e, n2 as usize),
+            presentation::pair_html::motion_word(i, first).into(),
         ]);
     }
     events_notes(&mut table, g, spec, rebuilt, n2 as usize);
@@ -406,13 +420,13 @@ fn events_notes(table: &mut Table, g: &Gearing, spec: &CellSpec, rebuilt: &Rebui
         fmt_f64(rebuilt.turn.to_degrees(), 6),
     ));
     table.note(drive_note(g, spec, rebuilt));
-    table.note(crate::pair_html::ANGLES_NOTE);
+    table.note(presentation::pair_html::ANGLES_NOTE);
     table.note("size: a release's (lock, strike) or a loss of drive's (gap, slip) effect on the driven gear, in driven pitches: how far ahead of the ideal ratio the gear was when drive resumed (behind it, for a loss), and the change of tooth phase.");
-    if crate::pair_html::first_lock(&events).is_some() {
-        table.note(crate::pair_html::MOTION_NOTE);
-        table.note(crate::pair_html::PROTOCOL_NOTE);
+    if presentation::pair_html::first_lock(&events).is_some() {
+        table.note(presentation::pair_html::MOTION_NOTE);
+        table.note(presentation::pair_html::PROTOCOL_NOTE);
     }
-    if let Some(n) = crate::pair_html::releases_note(&events, n2) {
+    if let Some(n) = presentation::pair_html::releases_note(&events, n2) {
         table.note(n);
     }
 }
@@ -429,23 +443,23 @@ fn trial_files(
 ) {
     let counted = |e: &contact::Event| counted_by(spec, e);
     table.note(oracle_note(mesh, traj));
-    let teeth = crate::pair_html::solver_teeth(mesh);
+    let teeth = presentation::pair_html::solver_teeth(mesh);
     files.push(OutputFile::new(
         "pair.html",
-        crate::pair_html::page(title, traj, &counted, &teeth),
+        presentation::pair_html::page(title, traj, &counted, &teeth),
     ));
-    for (name, svg) in crate::event_picture::event_pictures(title, traj, &counted, &teeth) {
+    for (name, svg) in presentation::event_picture::event_pictures(title, traj, &counted, &teeth) {
         files.push(OutputFile::new(name, svg));
     }
-    if let Some(n) = crate::event_picture::pictures_note(traj.events().len()) {
+    if let Some(n) = presentation::event_picture::pictures_note(traj.events().len()) {
         table.note(n);
     }
     if traj
         .events()
         .iter()
-        .any(|e| e.kind.is_contact_stop() && crate::pair_html::moves_pointer(e))
+        .any(|e| e.kind.is_contact_stop() && presentation::pair_html::moves_pointer(e))
     {
-        table.note(crate::pair_html::RELEASE_NOTE);
+        table.note(presentation::pair_html::RELEASE_NOTE);
     }
 }
 
@@ -597,7 +611,7 @@ impl ReplayedTrial {
 /// 3's `B/m3-e3` and Table I's `B/40/m3-e3`) have the same trials, index for index, counted
 /// alike, so a replay of one is a replay of the other.
 pub fn trial_key(ctx: &Context, id: &str, cell: &str) -> Result<String, RunError> {
-    let s = crate::settings::cells(ctx, &study::grids::TRIALS)?;
+    let s = (grammar(id)?.settings)(ctx)?;
     let (spec, _) = unchecked_cell_spec(&s, id, cell)?;
     Ok(format!(
         "{};gearing={};events={};drive={}{};seed={}",
@@ -740,7 +754,7 @@ fn pair_file(r: &Rebuilt, drive: &str) -> Result<String, String> {
         .ok_or("the gears overlap at every angle, so there is no run to rerun")?;
     let mut s =
         String::from("// Rebuilt by `cargo xtask replay`: one trial of a per-mesh table.\n");
-    for line in crate::common::wrap_at_spaces(drive, 96) {
+    for line in presentation::common::wrap_at_spaces(drive, 96) {
         let _ = writeln!(s, "// {line}");
     }
     s.push_str("(\n");
@@ -847,207 +861,4 @@ fn describable(name: &str, gear: &geometry::Gear) -> Result<(), String> {
         ));
     }
     Ok(())
-}
-
-#[cfg(test)]
-mod tests {
-    #![allow(clippy::unwrap_used, reason = "tests")]
-    use super::*;
-    use study::cell::{Purpose, run_cells};
-
-    fn ctx(id: &str, sets: &[(&str, &str)]) -> Context {
-        crate::context(id, 2025, 2, sets).unwrap().1
-    }
-
-    /// The first cell of the listing's row `row`: the count of failed trials.
-    fn listed(report: &Report, row: usize) -> u64 {
-        report.tables[0].rows[row][1].parse().unwrap()
-    }
-
-    /// Trials in which the solver once let a tooth pair born under the resting driven gear pass
-    /// through it (Table 5's 0.7 deg row of e4-f1, trial 15: 0.21 mm of interpenetration; Table
-    /// I's C/70 k2-e6, trial 196): the polygon oracle finds their teeth apart to rounding.
-    #[test]
-    fn the_polygon_oracle_finds_replayed_teeth_apart() {
-        for (id, cell, t) in [
-            ("table5", "0.050/0.7/e4-f1", 15),
-            ("tableI", "C/70/k2-e6", 196),
-        ] {
-            let report = replay(&ctx(id, &[]), id, cell, Some(t)).unwrap();
-            let note = report.tables[0]
-                .notes
-                .iter()
-                .find(|n| n.starts_with("Polygon oracle"))
-                .unwrap();
-            let depth: f64 = note
-                .split("at most ")
-                .nth(1)
-                .and_then(|r| r.split(' ').next())
-                .unwrap()
-                .parse()
-                .unwrap();
-            assert!(depth < 1e-9, "{id} {cell} trial {t}: {note}");
-        }
-    }
-
-    #[test]
-    fn replayed_trials_are_the_ones_the_table_counted() {
-        for (id, cell) in [
-            ("table3", "B/m3-e3"),
-            ("tableI", "D/70/l2-m1"),
-            ("table4", "0.065/m2-n1"),
-            ("table5", "0.050/0.7/e4-f1"),
-        ] {
-            // Fewer trials than a listing shows, so every failed one is named.
-            let ctx = ctx(id, &[("trials", "16")]);
-            let s = crate::settings::cells(&ctx, &study::grids::TRIALS).unwrap();
-            let spec = cell_spec(&s, ctx.seed(), id, cell).unwrap();
-            let counts = run_cells(
-                ctx.engine(),
-                s.gearing(),
-                std::slice::from_ref(&spec),
-                16,
-                Purpose::Own,
-            )
-            .unwrap()[0];
-            let listing = replay(&ctx, id, cell, None).unwrap();
-            assert_eq!(listed(&listing, 0), counts.jams, "{id} {cell}: jams");
-            assert_eq!(
-                listed(&listing, 1),
-                counts.disengagements,
-                "{id} {cell}: disengagements"
-            );
-            assert!(
-                counts.jams > 0,
-                "{id} {cell}: the cell must jam for the test to show anything"
-            );
-            // Each trial the listing names as jammed replays as a jam, and one it does not name
-            // does not.
-            let jammed: Vec<u64> = listing.tables[0].rows[0][2]
-                .split(", ")
-                .filter_map(|t| t.parse().ok())
-                .collect();
-            for t in 0..16 {
-                let one = replay(&ctx, id, cell, Some(t)).unwrap();
-                let title = &one.tables[0].title;
-                assert_eq!(
-                    title.contains(": jammed"),
-                    jammed.contains(&t),
-                    "{id} {cell} trial {t}: {title}"
-                );
-                // The title names the trial and what it did, for the report's links to read.
-                let named = ReplayedTrial::from_title(title).unwrap();
-                assert_eq!(
-                    (named.experiment.as_str(), named.cell.as_str(), named.trial),
-                    (id, cell, t)
-                );
-                assert_eq!(named.jammed, jammed.contains(&t), "{title}");
-            }
-        }
-    }
-
-    /// Under `drive=either` a replay names the gear its trial's coin picked, counts as the table
-    /// counted, and its pair file, run by `run pair`, gives the trial's events again; a listed
-    /// trial's pair file run with `--set drive=other` is the other gear's trial.
-    #[test]
-    fn a_replayed_trial_names_the_gear_that_drove_and_its_pair_file_reruns_it() {
-        let (id, cell) = ("table4", "0.065/m2-n1");
-        let ctx = ctx(id, &[("trials", "12"), ("drive", "either")]);
-        let s = crate::settings::cells(&ctx, &study::grids::TRIALS).unwrap();
-        let spec = cell_spec(&s, ctx.seed(), id, cell).unwrap();
-        let mut seen = [false, false];
-        for t in 0..12 {
-            let drawn = study::cell::draw_trial(s.gearing(), &spec, ctx.seed(), t).unwrap();
-            let gear = match drawn.coin() {
-                Driver::Listed => "m2",
-                Driver::Other => "n1",
-            };
-            seen[usize::from(drawn.coin() == Driver::Other)] = true;
-            let one = replay(&ctx, id, cell, Some(t)).unwrap();
-            let title = &one.tables[0].title;
-            assert!(
-                title.contains(&format!("drive: either, {gear} drove")),
-                "{title}"
-            );
-            let ron = one.files.iter().find(|f| f.name == "pair.ron").unwrap();
-            let text = String::from_utf8(ron.contents.clone()).unwrap();
-            assert!(text.contains(&format!("Driver: {gear}")), "{text}");
-            // The pair file reruns the trial: the same events, to the rounding of degrees.
-            let rebuilt = rebuild(s.gearing(), &spec, ctx.seed(), t).unwrap();
-            let p = study::pair_file::prepare("pair.ron", &text).unwrap();
-            let phi0 = p.spec.start_deg.to_radians();
-            let again = p
-                .mesh
-                .solve(phi0..=phi0 + rebuilt.turn, p.start, Solve::events());
-            let events = rebuilt.events();
-            assert_eq!(again.len(), events.len(), "trial {t}");
-            for (a, b) in again.iter().zip(&events) {
-                assert_eq!(a.kind, b.kind, "trial {t}");
-                assert!(
-                    (a.phi - b.phi).abs() < 1e-9,
-                    "trial {t}: {} {}",
-                    a.phi,
-                    b.phi
-                );
-            }
-        }
-        assert_eq!(
-            seen,
-            [true, true],
-            "the coin picked both gears in 12 trials"
-        );
-    }
-
-    /// Table 3's `B/m3-e3` and Table I's `B/40/m3-e3` are one cell, counted alike: one trial
-    /// key; another G, another rule or another seed is another.
-    #[test]
-    fn one_cell_of_two_tables_has_one_trial_key() {
-        let key = |id: &str, cell: &str, sets: &[(&str, &str)], seed: u64| {
-            let ctx = crate::context(id, seed, 1, sets).unwrap().1;
-            trial_key(&ctx, id, cell).unwrap()
-        };
-        let b = key("table3", "B/m3-e3", &[], 2025);
-        assert_eq!(b, key("tableI", "B/40/m3-e3", &[], 2025));
-        assert_ne!(b, key("tableI", "B/70/m3-e3", &[], 2025));
-        assert_ne!(b, key("table3", "B/m3-e3", &[("events", "strict")], 2025));
-        assert_ne!(b, key("table3", "B/m3-e3", &[], 7));
-        assert_eq!(b, key("table3", "B/m3-e3", &[("trials", "12")], 2025));
-    }
-
-    /// Each grammar is its experiment's: registered in its file, for a registered experiment;
-    /// `REPLAYABLE` lists them all.
-    #[test]
-    fn every_cell_grammar_belongs_to_a_registered_experiment() {
-        let experiments = registry::experiments().unwrap();
-        let all = grammars().unwrap();
-        assert!(all.len() >= 4, "{:?}", all.keys());
-        for id in all.keys() {
-            assert!(experiments.contains_key(id), "{id}");
-        }
-        let listed: Vec<&str> = REPLAYABLE.iter().map(|(id, _)| *id).collect();
-        assert_eq!(listed, all.keys().copied().collect::<Vec<_>>());
-    }
-
-    #[test]
-    fn bad_cells_and_trials_are_named() {
-        let ctx3 = ctx("table3", &[("trials", "10")]);
-        for (cell, words) in [
-            ("B", "must be CASE/MESH"),
-            ("E/m3-e3", "`E` is not a Case"),
-            ("B/x-y", "no mesh `x-y`"),
-        ] {
-            let e = replay(&ctx3, "table3", cell, Some(0)).err().unwrap();
-            assert_eq!(e.exit_code(), 2);
-            assert!(e.to_string().contains(words), "{cell}: {e}");
-        }
-        let e = replay(&ctx3, "table3", "B/m3-e3", Some(10)).err().unwrap();
-        assert!(
-            e.to_string().contains("must be below table3's 10 trials"),
-            "{e}"
-        );
-        let e = replay(&ctx("fig2", &[]), "fig2", "x", Some(0))
-            .err()
-            .unwrap();
-        assert!(e.to_string().contains("has no replayable trials"), "{e}");
-    }
 }

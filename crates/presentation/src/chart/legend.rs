@@ -3,8 +3,9 @@
 
 use std::fmt::Write as _;
 
-use super::svg::{esc, marker_svg, px};
+use super::svg::{marker_svg, px};
 use super::{BAND_OPACITY, LimitKind, Style, bracket_svg, polyline_svg, wrap_words};
+use crate::escape_xml as esc;
 
 /// Height of one legend row, px.
 const LEGEND_ROW: f64 = 18.0;

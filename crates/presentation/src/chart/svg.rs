@@ -8,14 +8,6 @@ pub(super) fn px(v: f64) -> String {
     format!("{v:.1}")
 }
 
-/// `s` with the characters that SVG text must escape escaped.
-pub(super) fn esc(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
-}
-
 /// A marker of `shape` centred at (x, y), `r` px in radius, in `colour`.
 pub(super) fn marker_svg(shape: Marker, x: f64, y: f64, r: f64, colour: &str) -> String {
     let poly = |pts: &[(f64, f64)]| {

@@ -7,10 +7,10 @@ use std::fmt::Write as _;
 use contact::Trajectory;
 use geometry::Vec2;
 
-use crate::common::wrap_at_spaces;
+use crate::common::{escape_xml as escape, wrap_at_spaces};
 use crate::pair_html::{
-    DRIVEN_COLOUR, DRIVEN_FILL, DRIVER_COLOUR, DRIVER_FILL, Teeth, contacts_at_event, escape,
-    first_lock, is_idle_start, moves_pointer, nearest_approach, points, release_text, size_text,
+    DRIVEN_COLOUR, DRIVEN_FILL, DRIVER_COLOUR, DRIVER_FILL, Teeth, contacts_at_event, first_lock,
+    is_idle_start, moves_pointer, nearest_approach, points, release_text, size_text,
 };
 
 /// The most event pictures a run writes (`event-1-...svg` to `event-500-...svg`); `pair.html`

@@ -9,7 +9,7 @@
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
-use crate::common::escape_xml as escape;
+use crate::escape_xml as escape;
 
 /// How one mesh stands, for its colour and its label.
 #[derive(Debug, Clone, PartialEq)]
