@@ -213,8 +213,11 @@ pub(crate) fn warnings(
             }
         }
     }
-    if let Some((_, h)) = sets.iter().rev().find(|(k, _)| k == "hypothesis")
-        && e.all_params().any(|p| p.name == "hypothesis")
+    if let Some((_, h)) = sets
+        .iter()
+        .rev()
+        .find(|(k, _)| k == study::errors::PARAM.name)
+        && e.declares(&study::errors::PARAM)
         && crate::provenance::uses_example_table(h)
     {
         out.push(format!(

@@ -156,9 +156,10 @@ pub const EXAMPLE_TABLE: &str = "The hypothesis `measured` without a file of you
 
 /// Whether `ctx`'s hypothesis has a `measured` layer without a file ([`EXAMPLE_TABLE`]).
 pub fn runs_example_table(ctx: &Context) -> bool {
-    ctx.values()
-        .find(|(p, _)| p.name == "hypothesis")
-        .is_some_and(|(_, h)| uses_example_table(h))
+    ctx.holds(&study::errors::PARAM)
+        && ctx
+            .text(&study::errors::PARAM)
+            .is_ok_and(uses_example_table)
 }
 
 /// Whether the hypothesis `h` (a stack `a+b`) has a `measured` layer without a file.

@@ -141,6 +141,11 @@ impl Param {
         }
     }
 
+    /// Whether it counts trials: a count bounded by [`MAX_TRIALS`], the limit on trials.
+    pub fn counts_trials(&self) -> bool {
+        matches!(self.kind, Kind::Count { max, .. } if max == MAX_TRIALS)
+    }
+
     /// The same parameter as a clearance in % of h ([`Param::clearance`]).
     pub const fn a_clearance(self) -> Param {
         Param {

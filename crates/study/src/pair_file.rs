@@ -688,33 +688,8 @@ fn proportions(file: &str, mesh: &Mesh, distance_field: &str) -> Result<(), RunE
     let gears = [("driver", mesh.driver()), ("driven", mesh.driven())];
     let largest = mesh.driver().tip_radius().max(mesh.driven().tip_radius());
     let smallest_deciding = geometry::MIN_DECIDING_SHARE * largest;
-    // Three significant digits: a length computed from the file's, for the message.
-    let short = |x: f64| fmt_number(format!("{x:.2e}").parse().unwrap_or(x));
     for (which, g) in gears {
-        let (big_r, small_r) = (g.tip_radius(), g.root_radius());
-        if big_r - small_r < smallest_deciding {
-            return Err(RunError::bad(
-                file,
-                format!("{which}.root_radius"),
-                format!(
-                    "leaves a tooth height tip_radius - root_radius of {}, less than {} of the larger tip radius ({}): a tooth that low is below what the solver can tell from rounding, and its jams would be noise",
-                    short(big_r - small_r),
-                    fmt_number(geometry::MIN_DECIDING_SHARE),
-                    short(smallest_deciding)
-                ),
-            ));
-        }
-        if big_r - small_r > MAX_TOOTH_HEIGHT_SHARE * big_r {
-            return Err(RunError::bad(
-                file,
-                format!("{which}.root_radius"),
-                format!(
-                    "must be at least half of tip_radius ({}; got {}): the tooth height tip_radius - root_radius may be at most half the tip radius (Thorndike's example pair, R = 200 and r = 100, is at this limit; the Freeth gearing's teeth are at most a third of their radius)",
-                    fmt_number(MAX_TOOTH_HEIGHT_SHARE * big_r),
-                    fmt_number(small_r)
-                ),
-            ));
-        }
+        tooth_height(file, (which, g), smallest_deciding)?;
     }
     let [(_, g1), (_, g2)] = gears;
     // The larger of the two is named: the gear whose size is out of line with the other's.
@@ -752,6 +727,58 @@ fn proportions(file: &str, mesh: &Mesh, distance_field: &str) -> Result<(), RunE
             ),
         ));
     }
+    tips_clear_valleys(file, mesh, distance_field, smallest_deciding)
+}
+
+/// Three significant digits: a length computed from the file's, for a message.
+fn short(x: f64) -> String {
+    fmt_number(format!("{x:.2e}").parse().unwrap_or(x))
+}
+
+/// Gear `which`'s tooth height against its tip radius: tall enough for the solver to tell from
+/// rounding (`smallest_deciding`, a length), at most half the tip radius.
+fn tooth_height(
+    file: &str,
+    (which, g): (&str, &Gear),
+    smallest_deciding: f64,
+) -> Result<(), RunError> {
+    let (big_r, small_r) = (g.tip_radius(), g.root_radius());
+    if big_r - small_r < smallest_deciding {
+        return Err(RunError::bad(
+            file,
+            format!("{which}.root_radius"),
+            format!(
+                "leaves a tooth height tip_radius - root_radius of {}, less than {} of the larger tip radius ({}): a tooth that low is below what the solver can tell from rounding, and its jams would be noise",
+                short(big_r - small_r),
+                fmt_number(geometry::MIN_DECIDING_SHARE),
+                short(smallest_deciding)
+            ),
+        ));
+    }
+    if big_r - small_r > MAX_TOOTH_HEIGHT_SHARE * big_r {
+        return Err(RunError::bad(
+            file,
+            format!("{which}.root_radius"),
+            format!(
+                "must be at least half of tip_radius ({}; got {}): the tooth height tip_radius - root_radius may be at most half the tip radius (Thorndike's example pair, R = 200 and r = 100, is at this limit; the Freeth gearing's teeth are at most a third of their radius)",
+                fmt_number(MAX_TOOTH_HEIGHT_SHARE * big_r),
+                fmt_number(small_r)
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The clearance G > 0 of eccentric gears where they are farthest apart, and large enough for
+/// the solver to tell from touching (`smallest_deciding`, a length); refused naming
+/// `distance_field`.
+fn tips_clear_valleys(
+    file: &str,
+    mesh: &Mesh,
+    distance_field: &str,
+    smallest_deciding: f64,
+) -> Result<(), RunError> {
+    let (g1, g2) = (mesh.driver(), mesh.driven());
     // The clearance G > 0 of eccentric gears: their tip circles' centres are at most
     // D + |e1| + |e2| apart, so at or below R + r the tips of one gear reach below the other's
     // valleys at every angle (concentric gears are refused so by `Mesh::new`).

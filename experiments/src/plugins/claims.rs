@@ -307,7 +307,7 @@ impl Evidence<'_> {
         entry
             .all_params()
             .filter_map(|q| {
-                if q.name == "trials" && *q != study::grids::TRIALS && s.runs > 0 {
+                if q.counts_trials() && *q != study::grids::TRIALS && s.runs > 0 {
                     Some((q, s.runs.to_string()))
                 } else if q.name == crate::inputs::MEASURED && !s.measured.trim().is_empty() {
                     Some((q, s.measured.clone()))

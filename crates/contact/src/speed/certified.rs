@@ -68,6 +68,32 @@ struct JudgedStep {
     clear_ahead: Pairs,
 }
 
+/// Where a certified step's pairs are judged: the stand at its start, its box, the driver angle
+/// at its end, where the pushers end and the box's top.
+struct BoxAt<'a, 's, 'm> {
+    at: &'a Stand<'s, 'm>,
+    cell: &'a ConfigBox,
+    phi1: f64,
+    pushed: f64,
+    top: f64,
+}
+
+/// What one judgement of a certified step's pairs found ([`Certifier::judge_pairs`]).
+#[allow(
+    clippy::large_enum_variant,
+    reason = "made once per judgement and moved straight out; a Box would allocate on the solver's hot path"
+)]
+enum Judgement {
+    /// The step's verdicts.
+    Step(JudgedStep),
+    /// No certificate: a pair may meet the driven gear other than by pushing it.
+    Refused,
+    /// Judge again: the path has changed (a carrier widened it, or θ1 rose within the box).
+    Again,
+    /// θ1 rose above the box: judge in a taller one.
+    Grow,
+}
+
 impl Certifier {
     /// Takes the step to `phi1` on a certificate - the whole step, or else its two halves - and
     /// returns whether it did (having changed nothing if not), counting the attempt.
@@ -249,99 +275,149 @@ impl Certifier {
             carriers.extend(overtakers.iter().copied().filter(|&o| rises(&boxed, o)));
             // θ1 only rises, each time to a pair's upper end, and the carriers only grow: this
             // ends.
-            'path: loop {
-                let slopes = carrier_slopes(&boxed, &carriers);
-                let path = cell.with_driven(theta0, theta1);
-                let clear = |(j, k): (i64, i64)| {
-                    path.clear_along(
-                        &path.place_driver(self.driver_tooth(j)),
-                        &path.place_driven(self.driven_tooth(k)),
-                        slopes,
-                        SIDE_TOL,
-                    )
+            loop {
+                let box_at = BoxAt {
+                    at,
+                    cell: &cell,
+                    phi1,
+                    pushed,
+                    top,
                 };
-                let mut judged = JudgedStep {
-                    theta1,
-                    slopes,
-                    ..JudgedStep::default()
-                };
-                for &(pair, role) in &boxed {
-                    match role {
-                        Role::Suspect { ahead } if clear(pair) => {
-                            if ahead {
-                                judged.clear_ahead.push(pair);
-                            }
-                        }
-                        Role::Suspect { .. } => return None,
-                        Role::Falling if pushed - theta0 > 2.0 * SIDE_TOL => {
-                            // Falling from behind θ0: it never reaches θ, whatever becomes of
-                            // it, and ends too far below θ1 to push at the next step.
-                            judged.pairs.push(not_carrying(pair));
-                        }
-                        Role::Falling => judged.pairs.push(PairAtEnd {
-                            pair,
-                            hi: end_of(pair).unwrap_or(f64::NEG_INFINITY),
-                            rising: false,
-                        }),
-                        // Never on the path: it carries nothing, wherever it ends. One that was
-                        // behind at φ0 still is (tracked, as no pusher); one born in the step
-                        // may be on either side of the driven gear (left untracked).
-                        Role::Rising { born, .. } if !carriers.contains(&pair) && clear(pair) => {
-                            if !born {
-                                judged.pairs.push(not_carrying(pair));
-                            }
-                        }
-                        Role::Rising { born, slopes: r } => {
-                            // It reaches the tube: a carrier, whose slopes may widen the tube
-                            // (and then every pair is judged again).
-                            if !carriers.contains(&pair) {
-                                carriers.push(pair);
-                                if r.0 < slopes.0 || r.1 > slopes.1 {
-                                    continue 'path;
-                                }
-                            }
-                            match end_of(pair) {
-                                Some(hi) if hi > theta1 => {
-                                    theta1 = hi;
-                                    if theta1 > top {
-                                        continue 'grow;
-                                    }
-                                    continue 'path;
-                                }
-                                Some(hi) => {
-                                    judged.pairs.push(PairAtEnd {
-                                        pair,
-                                        hi,
-                                        rising: true,
-                                    });
-                                    if born {
-                                        judged.newborn.push(pair);
-                                    }
-                                }
-                                None if born => {
-                                    // Neither at φ0 nor at φ1: a pair whose contacts only rise is
-                                    // born and dies where two of its vertices meet; with no meeting
-                                    // in the step it never touches.
-                                    if self
-                                        .vertex_meeting(mesh, pair, (phi0, phi1), false)
-                                        .is_some()
-                                    {
-                                        return None;
-                                    }
-                                }
-                                None => {
-                                    judged.dead.push(pair);
-                                    judged.pairs.push(PairAtEnd {
-                                        pair,
-                                        hi: f64::NEG_INFINITY,
-                                        rising: true,
-                                    });
-                                }
-                            }
-                        }
+                match self.judge_pairs(&box_at, &boxed, (&mut carriers, &mut theta1), &mut end_of) {
+                    Judgement::Step(judged) => return Some(judged),
+                    Judgement::Refused => return None,
+                    Judgement::Again => {}
+                    Judgement::Grow => continue 'grow,
+                }
+            }
+        }
+        None
+    }
+
+    /// One judgement of every pair in the box `b` holds (`boxed`) against the driven gear's path
+    /// from θ0 to `theta1` carried by `carriers`: the step's verdicts, or a refusal, or the
+    /// path to judge again (a carrier added that widens it, or θ1 raised to a pair's upper
+    /// end), or a taller box (θ1 above its top). Only `carriers` and `theta1` change between
+    /// judgements.
+    fn judge_pairs(
+        &self,
+        b: &BoxAt<'_, '_, '_>,
+        boxed: &BoxedPairs,
+        (carriers, theta1): (&mut Pairs, &mut f64),
+        end_of: &mut impl FnMut((i64, i64)) -> Option<f64>,
+    ) -> Judgement {
+        let theta0 = b.at.at().1;
+        let (cell, pushed) = (b.cell, b.pushed);
+        let theta1_now = *theta1;
+        let slopes = carrier_slopes(boxed, carriers);
+        let path = cell.with_driven(theta0, theta1_now);
+        let clear = |(j, k): (i64, i64)| {
+            path.clear_along(
+                &path.place_driver(self.driver_tooth(j)),
+                &path.place_driven(self.driven_tooth(k)),
+                slopes,
+                SIDE_TOL,
+            )
+        };
+        let mut judged = JudgedStep {
+            theta1: theta1_now,
+            slopes,
+            ..JudgedStep::default()
+        };
+        for &(pair, role) in boxed {
+            match role {
+                Role::Suspect { ahead } if clear(pair) => {
+                    if ahead {
+                        judged.clear_ahead.push(pair);
                     }
                 }
-                return Some(judged);
+                Role::Suspect { .. } => return Judgement::Refused,
+                Role::Falling if pushed - theta0 > 2.0 * SIDE_TOL => {
+                    // Falling from behind θ0: it never reaches θ, whatever becomes of
+                    // it, and ends too far below θ1 to push at the next step.
+                    judged.pairs.push(not_carrying(pair));
+                }
+                Role::Falling => judged.pairs.push(PairAtEnd {
+                    pair,
+                    hi: end_of(pair).unwrap_or(f64::NEG_INFINITY),
+                    rising: false,
+                }),
+                // Never on the path: it carries nothing, wherever it ends. One that was
+                // behind at φ0 still is (tracked, as no pusher); one born in the step
+                // may be on either side of the driven gear (left untracked).
+                Role::Rising { born, .. } if !carriers.contains(&pair) && clear(pair) => {
+                    if !born {
+                        judged.pairs.push(not_carrying(pair));
+                    }
+                }
+                Role::Rising { born, slopes: r } => {
+                    // It reaches the tube: a carrier, whose slopes may widen the tube
+                    // (and then every pair is judged again).
+                    if !carriers.contains(&pair) {
+                        carriers.push(pair);
+                        if r.0 < slopes.0 || r.1 > slopes.1 {
+                            return Judgement::Again;
+                        }
+                    }
+                    let end = end_of(pair);
+                    if let Some(early) =
+                        self.carrier_at_end(b, (pair, born), end, theta1, &mut judged)
+                    {
+                        return early;
+                    }
+                }
+            }
+        }
+        Judgement::Step(judged)
+    }
+
+    /// A carrier `pair` (`born` within the step) at the step's end, its obstacle's upper end
+    /// `end` there: θ1 raised to it (the path judged again, or in a taller box), a refusal, or
+    /// its verdict added to `judged` (`None`: judging goes on).
+    fn carrier_at_end(
+        &self,
+        b: &BoxAt<'_, '_, '_>,
+        (pair, born): ((i64, i64), bool),
+        end: Option<f64>,
+        theta1: &mut f64,
+        judged: &mut JudgedStep,
+    ) -> Option<Judgement> {
+        match end {
+            Some(hi) if hi > *theta1 => {
+                *theta1 = hi;
+                if hi > b.top {
+                    return Some(Judgement::Grow);
+                }
+                return Some(Judgement::Again);
+            }
+            Some(hi) => {
+                judged.pairs.push(PairAtEnd {
+                    pair,
+                    hi,
+                    rising: true,
+                });
+                if born {
+                    judged.newborn.push(pair);
+                }
+            }
+            None if born => {
+                // Neither at φ0 nor at φ1: a pair whose contacts only rise is
+                // born and dies where two of its vertices meet; with no meeting
+                // in the step it never touches.
+                if self
+                    .vertex_meeting(b.at.mesh(), pair, (b.at.at().0, b.phi1), false)
+                    .is_some()
+                {
+                    return Some(Judgement::Refused);
+                }
+            }
+            None => {
+                judged.dead.push(pair);
+                judged.pairs.push(PairAtEnd {
+                    pair,
+                    hi: f64::NEG_INFINITY,
+                    rising: true,
+                });
             }
         }
         None

@@ -1216,51 +1216,65 @@ pub fn category_plot_band(
             // Series side by side within a category, at most a third of its width in all.
             let slot = f64::from(xr.end - xr.start) / f64::from(n);
             let spread = (slot / 3.0).min(10.0 * series.len() as f64);
+            let coord = |x: i32, y: f64| chart.backend_coord(&(SegmentValue::CenterOf(x), y));
             let mut out = String::new();
             if let Some(b) = band {
-                let (_, top) = chart.backend_coord(&(SegmentValue::CenterOf(0), b.hi));
-                let (_, bottom) = chart.backend_coord(&(SegmentValue::CenterOf(0), b.lo));
-                let _ = writeln!(
-                    out,
-                    "<rect class=\"band\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"{BAND_COLOUR}\" fill-opacity=\"{BAND_OPACITY}\" stroke=\"{BAND_COLOUR}\"/>",
-                    xr.start,
-                    top,
-                    xr.end - xr.start,
-                    (bottom - top).max(1)
-                );
+                out.push_str(&band_rect(&xr, coord(0, b.hi).1, coord(0, b.lo).1));
             }
-            for (k, s) in series.iter().enumerate() {
-                let st = style(k);
-                let shift = if series.len() > 1 {
-                    spread * (k as f64 / (series.len() - 1) as f64 - 0.5)
-                } else {
-                    0.0
-                };
-                let _ = writeln!(
-                    out,
-                    "<g class=\"series\" data-series=\"{k}\" data-style=\"{}\">",
-                    st.key()
-                );
-                for &(x, y) in s
-                    .points
-                    .iter()
-                    .filter(|p| p.0.is_finite() && p.1.is_finite())
-                {
-                    let (cx, cy) =
-                        chart.backend_coord(&(SegmentValue::CenterOf(x.round() as i32), y));
-                    out.push_str(&marker_svg(
-                        st.marker,
-                        f64::from(cx) + shift,
-                        f64::from(cy),
-                        5.0,
-                        st.colour,
-                    ));
-                }
-                out.push_str("\n</g>\n");
-            }
+            out.push_str(&category_markers(series, spread, &coord));
             Ok(out)
         },
     )
+}
+
+/// A band's shaded box across the plot's pixel columns `xr`, from pixel row `top` to `bottom`.
+fn band_rect(xr: &std::ops::Range<i32>, top: i32, bottom: i32) -> String {
+    format!(
+        "<rect class=\"band\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"{BAND_COLOUR}\" fill-opacity=\"{BAND_OPACITY}\" stroke=\"{BAND_COLOUR}\"/>\n",
+        xr.start,
+        top,
+        xr.end - xr.start,
+        (bottom - top).max(1)
+    )
+}
+
+/// Every series' markers of a [`category_plot_band`], each series set `spread` pixels aside
+/// across its category (`coord`: a category's index and a value to pixels).
+fn category_markers(
+    series: &[Series<'_>],
+    spread: f64,
+    coord: &dyn Fn(i32, f64) -> (i32, i32),
+) -> String {
+    let mut out = String::new();
+    for (k, s) in series.iter().enumerate() {
+        let st = style(k);
+        let shift = if series.len() > 1 {
+            spread * (k as f64 / (series.len() - 1) as f64 - 0.5)
+        } else {
+            0.0
+        };
+        let _ = writeln!(
+            out,
+            "<g class=\"series\" data-series=\"{k}\" data-style=\"{}\">",
+            st.key()
+        );
+        for &(x, y) in s
+            .points
+            .iter()
+            .filter(|p| p.0.is_finite() && p.1.is_finite())
+        {
+            let (cx, cy) = coord(x.round() as i32, y);
+            out.push_str(&marker_svg(
+                st.marker,
+                f64::from(cx) + shift,
+                f64::from(cy),
+                5.0,
+                st.colour,
+            ));
+        }
+        out.push_str("\n</g>\n");
+    }
+    out
 }
 
 #[cfg(test)]
