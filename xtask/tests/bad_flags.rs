@@ -62,13 +62,13 @@ fn enormous_counts() {
             "--set trials u64::MAX, failure",
             None,
             "run failure --set trials=18446744073709551615 --out {out}",
-            &["--set: trials: must be at most 1000000 "],
+            &["--set: trials: must be at most 1000000, the limit on trials"],
         ),
         case(
             "--set trials huge under run all",
             None,
             "run all --set trials=1000001 --out {out}",
-            &["--set: trials: must be at most 1000000 "],
+            &["--set: trials: must be at most 1000000, the limit on trials"],
         ),
         case(
             "--set trials not a number",

@@ -673,7 +673,7 @@ fn partial_files() {
             "trials beyond the limit",
             f(&seal(r#"{"format":"cargo-xtask-partial/1","experiment":"table1","seed":1,"sets":[["trials","18446744073709551615"]],"config":null,"shard":0,"shards":1,"version":"0.1.0","batches":{}}"#)),
             merge,
-            &["--set: trials: must be at most 1000000 "],
+            &["--set: trials: must be at most 1000000, the limit on trials"],
         ),
         case("no partial file", None, "merge /no/such/dir --out {out}", &["merge: /no/such/dir: cannot read"]),
         case(

@@ -177,6 +177,25 @@ pub fn emax_table(
     table(title, "mesh", split, &per_mesh(gears, values))
 }
 
+/// Each mesh's E. max of Table 5 (`t`: its largest tolerable random error, and the systematic
+/// amplitude on top of it), per gear in mm and degrees, the systematic error split `split`.
+pub fn derived_tolerances_table(
+    title: String,
+    t: &study::results::DerivedTolerances,
+    split: f64,
+) -> Table {
+    let smallest_random = t.random_grid.random.first().copied();
+    let smallest_sys = t.rows.first().map(|r| r.systematic);
+    emax_table(title, &t.random_grid.gears, Some(split), |m| {
+        let tol = &t.meshes[m];
+        let systematic = match tol.random {
+            Some(_) => Value::of(tol.systematic, smallest_sys),
+            None => Value::Missing,
+        };
+        (Value::of(tol.random, smallest_random), systematic)
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -70,7 +70,8 @@ const SMALL: [(&str, &str); 6] = [
 #[test]
 fn a_small_design_runs_and_its_reference_arm_is_the_failure_study() {
     let r = run_with(2, &SMALL).unwrap();
-    assert_eq!(r.tables.len(), 3);
+    // The design, the failure study's arm, its trains, and the Cases' tolerances in mm and deg.
+    assert_eq!(r.tables.len(), 4);
     // 15 meshes of one case.
     assert_eq!(r.tables[0].rows.len(), 15);
     assert_eq!(r.tables[1].rows.len(), 1);

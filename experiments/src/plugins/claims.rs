@@ -133,7 +133,7 @@ const CLAIMS: &[Claim] = &[
     },
     Claim {
         id: "C5",
-        words: "by the 1 % rule, Cases C and D are unusable, Case A has no issues, Case B is problematic through m3-e3 and e4-f1",
+        words: "by the 1 % rule, Cases C and D are unusable, Case A gives no trouble, Case B is problematic through m3-e3 and e4-f1",
         place: "section 5, Table 3",
         judge: |e, _| {
             let paper = paper_case_table(&e.table3()?);
@@ -465,10 +465,21 @@ impl registry::Experiment for Claims {
             reading: &READINGS[0],
             index: 0,
         };
+        // Table 5's tolerances in units of the gears, where the ledger judged them (C8).
+        let judged_tolerances = claims.iter().any(|c| c.id == "C8");
+        let tolerances = if judged_tolerances {
+            Some((
+                as_run.results::<DerivedTolerances>("table5")?,
+                table5_split()?,
+            ))
+        } else {
+            None
+        };
         Ok(Results {
             claims,
             readings: READINGS.iter().map(|r| r.name.to_owned()).collect(),
             case_b: case_b(&as_run.table3()?),
+            tolerances,
         })
     }
 
@@ -490,8 +501,16 @@ impl registry::Experiment for Claims {
                 ),
             ],
         );
+        let mut tables = vec![ledger, findings(s, r)];
+        if let Some((t, split)) = &r.tolerances {
+            tables.push(presentation::units::derived_tolerances_table(
+                "The tolerances behind C7 and C8 in units of each gear: Table 5's largest tolerable random error and systematic amplitude on top of it, as run".to_string(),
+                t,
+                *split,
+            ));
+        }
         Ok(Report {
-            tables: vec![ledger, findings(s, r)],
+            tables,
             files: vec![registry::OutputFile::new("train.svg", train)],
             ..Default::default()
         })
@@ -499,6 +518,14 @@ impl registry::Experiment for Claims {
 }
 
 registry::register!(Claims);
+
+/// The systematic split Table 5 runs at when the ledger asks for it (its default).
+fn table5_split() -> Result<f64, RunError> {
+    study::errors::SPLIT
+        .default
+        .parse()
+        .map_err(|_| RunError::Internal("the split's default is no number".into()))
+}
 
 /// Claim `c` judged as run and its verdict under every other reading.
 /// `before`: the claims judged before it.

@@ -18,8 +18,6 @@ use study::grids::{CellSettings, TRIALS, derive};
 use study::results::{DerivedTolerances, RandomFrom};
 use study::tolerance::{self, RULE, RandomGrid, SystematicGrid};
 
-use presentation::units::Value;
-
 /// Table 5's settings: trials per cell, the rule, where the random E. max comes from, the
 /// gearing with h and G, the split and hypothesis, the grids of Tables 4 and 5, the event rule
 /// and the pair-trial protocol.
@@ -307,20 +305,10 @@ fn add_notes(
 /// Rows E. max (random) and E. max (systematic) in units of both gears of each mesh, the
 /// systematic amplitude split `split` on the teeth as the cells ran.
 fn emax_in_units(t: &DerivedTolerances, split: f64) -> Table {
-    let smallest_random = t.random_grid.random.first().copied();
-    let smallest_sys = t.rows.first().map(|r| r.systematic);
-    presentation::units::emax_table(
+    presentation::units::derived_tolerances_table(
         "Table 5's E. max in units of each gear: the largest tolerable random error (row E. max (random)) and systematic amplitude on top of it (row E. max (systematic))".to_string(),
-        &t.random_grid.gears,
-        Some(split),
-        |m| {
-            let tol = &t.meshes[m];
-            let systematic = match tol.random {
-                Some(_) => Value::of(tol.systematic, smallest_sys),
-                None => Value::Missing,
-            };
-            (Value::of(tol.random, smallest_random), systematic)
-        },
+        t,
+        split,
     )
 }
 

@@ -139,7 +139,7 @@ pub fn cases_by_the_rule(ours: &CaseTable, paper: &CaseTable) -> Judged {
         Verdict::from_bool(o.d.p > 0.5),
     ];
     let words = [
-        "A has no issue",
+        "A gives no trouble",
         "B fails through the paper's two worst meshes",
         "C is unusable",
         "D is unusable",

@@ -118,6 +118,10 @@ pub struct Ledger {
     pub readings: Vec<String>,
     /// Case B's meshes as run.
     pub case_b: Vec<MeshStanding>,
+    /// Table 5's tolerances as run (where the ledger judged them) and the systematic split they
+    /// ran at: drawn per gear in mm and degrees beside the verdicts.
+    #[serde(default)]
+    pub tolerances: Option<(crate::results::DerivedTolerances, f64)>,
 }
 
 #[cfg(test)]
