@@ -45,6 +45,7 @@ mod finite;
 mod lock;
 mod output;
 mod progress;
+mod report;
 mod settings;
 mod table;
 mod trials;

@@ -25,7 +25,10 @@ impl Gearing {
     }
 
     /// Every gear's name once, its teeth and its measured radius within limits; the names.
-    pub(super) fn validate_gears(&self, errors: &Errors<'_>) -> Result<BTreeSet<&str>, GearingError> {
+    pub(super) fn validate_gears(
+        &self,
+        errors: &Errors<'_>,
+    ) -> Result<BTreeSet<&str>, GearingError> {
         // Gears.
         let mut names = BTreeSet::new();
         for gear in &self.gears {
@@ -672,7 +675,10 @@ impl Gearing {
     }
 
     /// Groups the gears into mesh-connected components and fits one `mu` to each.
-    pub(super) fn find_components(&self, errors: &Errors<'_>) -> Result<Vec<Component>, GearingError> {
+    pub(super) fn find_components(
+        &self,
+        errors: &Errors<'_>,
+    ) -> Result<Vec<Component>, GearingError> {
         let index: BTreeMap<&str, usize> = self
             .gears
             .iter()
