@@ -124,3 +124,18 @@ fn table5_counts_agreement_over_the_papers_meshes_only() {
         t.notes
     );
 }
+
+/// A cosmos gearing that cannot be read, or one with no cosmos, is refused before anything runs,
+/// named by the setting that gave it (`--set gearings`) and the file.
+#[test]
+fn the_cosmos_study_names_a_bad_gearing_by_its_setting() {
+    for (gearings, words) in [
+        ("freeth2021-cosmos,no-such-file.ron", "no-such-file.ron"),
+        ("freeth2006", "has no cosmos"),
+    ] {
+        let (exp, ctx) = experiments::context("cosmos", 5, 1, &[("gearings", gearings)]).unwrap();
+        let e = (exp.run)(&ctx, ctx.engine()).err().unwrap().to_string();
+        assert!(e.starts_with("--set gearings"), "{gearings}: {e}");
+        assert!(e.contains(words), "{gearings}: {e}");
+    }
+}

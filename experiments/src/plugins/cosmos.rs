@@ -115,7 +115,15 @@ registry::register!(Cosmos);
 fn study_settings(s: &Settings) -> Result<cosmos::Settings, RunError> {
     let mut gearings = Vec::new();
     for name in s.gearings.split(',').map(str::trim) {
-        let shape = gearing::Shape::load(name, s.tooth_height)?;
+        // A file that cannot be read or is refused is named by the setting that gave it.
+        let shape = gearing::Shape::load(name, s.tooth_height).map_err(|e| match e {
+            RunError::BadInput {
+                source,
+                field,
+                rule,
+            } => RunError::bad(format!("--set gearings: {source}"), field, rule),
+            other => other,
+        })?;
         if shape.gearing.epicyclic().is_none() {
             return Err(RunError::bad(
                 "--set gearings",
