@@ -116,15 +116,6 @@ pub fn wrap_at_spaces(text: &str, width: usize) -> Vec<String> {
     lines
 }
 
-/// `s` with the characters XML text and attributes must escape escaped (`&`, `<`, `>`, `"`):
-/// for SVG and HTML pages.
-pub fn escape_xml(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
-}
-
 /// "mean [lo .. hi]" of a stored mean day (no interval for one day, "-" for none): what
 /// [`mean_cell`] prints, read from the stored estimate.
 pub fn mean_day_cell(m: Option<&study::results::MeanDay>) -> String {

@@ -10,7 +10,7 @@
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
-use crate::common::escape_xml as esc;
+use crate::escape_xml as esc;
 use crate::train_picture::Margin;
 use study::cosmos::{GearingResults, MeshTolerance, PlannedArbor, TrainPlan};
 

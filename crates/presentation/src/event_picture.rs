@@ -7,7 +7,8 @@ use std::fmt::Write as _;
 use contact::Trajectory;
 use geometry::Vec2;
 
-use crate::common::{escape_xml as escape, wrap_at_spaces};
+use crate::common::wrap_at_spaces;
+use crate::escape_xml as escape;
 use crate::pair_html::{
     DRIVEN_COLOUR, DRIVEN_FILL, DRIVER_COLOUR, DRIVER_FILL, Teeth, contacts_at_event, first_lock,
     is_idle_start, moves_pointer, nearest_approach, points, release_text, size_text,

@@ -28,5 +28,6 @@ pub mod td_plot;
 mod test_pair;
 pub mod train_picture;
 pub mod units;
+mod xml;
 
-pub use common::escape_xml;
+pub use xml::escape_xml;

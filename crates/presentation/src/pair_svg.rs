@@ -9,7 +9,8 @@ use registry::fmt_f64;
 use std::f64::consts::PI;
 use study::pair_file::{Prepared, Role, Sense, StartSpec};
 
-use crate::common::{deg, escape_xml as escape, wrap_at_spaces};
+use crate::common::{deg, wrap_at_spaces};
+use crate::escape_xml as escape;
 use crate::label_place::{Anchor, LINE_GAP, Label, Placer, Segment, edges, nearest_on, text_box};
 use crate::pair_html::{DRIVEN_COLOUR, DRIVEN_FILL, DRIVER_COLOUR, DRIVER_FILL};
 

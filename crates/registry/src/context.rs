@@ -11,7 +11,7 @@ use serde::de::DeserializeOwned;
 use crate::engine::{TrialEngine, TrialMode};
 use crate::progress::{Hook, Progress};
 use crate::trials::{Records, Shard};
-use crate::{Entry, Param, RunError};
+use crate::{Param, RunError};
 
 /// The most trials a `trials` parameter may ask for: 10^6 (per cell, case or input, as the
 /// experiment counts them). By convention an experiment's `trials` parameter is its number of
@@ -166,6 +166,32 @@ pub struct Context {
     results_dir: Option<PathBuf>,
 }
 
+/// What a context is built from: an experiment's id, its declared parameters and the
+/// configuration file it takes (the registered [`crate::Entry`] says these; a context needs no
+/// more of it, which keeps the context below the experiment that reads it).
+pub trait Declared {
+    /// The experiment's id.
+    fn id(&self) -> &'static str;
+    /// Every parameter the experiment declares, in its settings' order.
+    fn params(&self) -> Vec<&'static Param>;
+    /// What its `--config` file holds, or None if it takes none.
+    fn config(&self) -> Option<&'static str>;
+}
+
+impl<T: Declared + ?Sized> Declared for &T {
+    fn id(&self) -> &'static str {
+        (**self).id()
+    }
+
+    fn params(&self) -> Vec<&'static Param> {
+        (**self).params()
+    }
+
+    fn config(&self) -> Option<&'static str> {
+        (**self).config()
+    }
+}
+
 impl Context {
     /// Builds a context: params start at the experiment's defaults, then `overrides`
     /// (from `--set key=value`, later ones winning) replace them.
@@ -174,7 +200,7 @@ impl Context {
     /// `threads == 0`; a config file for an experiment that takes none; a value its parameter's
     /// kind refuses (a count of trials above [`MAX_TRIALS`] among them).
     pub fn new(
-        exp: &Entry,
+        exp: &impl Declared,
         seed: u64,
         threads: usize,
         overrides: &[(String, String)],
@@ -184,7 +210,8 @@ impl Context {
             return Err(RunError::bad("--threads", "threads", "must be at least 1"));
         }
         let mut params: Vec<Value> = exp
-            .all_params()
+            .params()
+            .into_iter()
             .map(|p| Value {
                 name: p.name,
                 decl: p,
@@ -199,13 +226,13 @@ impl Context {
                     p.overridden = true;
                 }
                 None => {
-                    let known = if exp.all_params().next().is_none() {
-                        format!("experiment `{}` has no parameters", exp.id)
+                    let known = if exp.params().is_empty() {
+                        format!("experiment `{}` has no parameters", exp.id())
                     } else {
-                        let names: Vec<&str> = exp.all_params().map(|p| p.name).collect();
+                        let names: Vec<&str> = exp.params().into_iter().map(|p| p.name).collect();
                         format!(
                             "unknown parameter of experiment `{}`; known: {}",
-                            exp.id,
+                            exp.id(),
                             names.join(", ")
                         )
                     };
@@ -214,7 +241,7 @@ impl Context {
             }
         }
         // Every value against its parameter's kind, before anything runs.
-        for (v, p) in params.iter().zip(exp.all_params()) {
+        for (v, p) in params.iter().zip(exp.params()) {
             if let Err(rule) = p.kind.check(&v.value) {
                 return Err(if v.overridden {
                     RunError::bad(
@@ -225,26 +252,28 @@ impl Context {
                 } else {
                     RunError::Internal(format!(
                         "experiment `{}`: default of parameter `{}` ({:?}) {rule}",
-                        exp.id, v.name, v.value
+                        exp.id(),
+                        v.name,
+                        v.value
                     ))
                 });
             }
         }
-        if let (Some(file), None) = (&config, exp.config) {
+        if let (Some(file), None) = (&config, exp.config()) {
             return Err(RunError::bad(
                 "--config",
                 file.path.display().to_string(),
-                format!("experiment `{}` takes no --config", exp.id),
+                format!("experiment `{}` takes no --config", exp.id()),
             ));
         }
         Ok(Context {
-            id: exp.id,
+            id: exp.id(),
             seed,
             threads,
             params,
             config,
-            defaults: exp.all_params().map(|p| p.default).collect(),
-            engine: TrialEngine::new(exp.id, seed),
+            defaults: exp.params().into_iter().map(|p| p.default).collect(),
+            engine: TrialEngine::new(exp.id(), seed),
             results_dir: None,
         })
     }
@@ -558,7 +587,7 @@ impl FromParam for bool {
 #[allow(clippy::unwrap_used)] // Reason: tests fail loudly on purpose.
 mod tests {
     use super::*;
-    use crate::{Kind, Param};
+    use crate::{Entry, Kind, Param};
     // The parameters here are `Kind::Text`: these tests read values the kinds would refuse, to
     // check the reading functions themselves (kinds are tested in lib.rs).
 

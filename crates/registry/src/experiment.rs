@@ -230,6 +230,20 @@ pub struct Entry {
     results_type: fn() -> &'static str,
 }
 
+impl crate::context::Declared for Entry {
+    fn id(&self) -> &'static str {
+        self.id
+    }
+
+    fn params(&self) -> Vec<&'static Param> {
+        self.all_params().collect()
+    }
+
+    fn config(&self) -> Option<&'static str> {
+        self.config
+    }
+}
+
 impl Entry {
     /// The entry of experiment `E`.
     pub const fn of<E: Experiment>() -> Entry {

@@ -52,7 +52,7 @@ mod trials;
 mod values;
 
 pub use context::{
-    ConfigFile, Context, FromParam, MAX_COUNT, MAX_TRIALS, MIN_PER_ENGAGEMENT,
+    ConfigFile, Context, Declared, FromParam, MAX_COUNT, MAX_TRIALS, MIN_PER_ENGAGEMENT,
     MIN_PER_ENGAGEMENT_WHY, MIN_SAMPLES, MIN_SAMPLES_WHY, SAMPLES_PER_TOOTH, interval_trials,
     samples, samples_cover,
 };
