@@ -58,7 +58,7 @@
 //! ([`Solve::exact_core`]). No result depends on it: `tests/differential.rs` holds runs with and
 //! without it (and with a 64-times-finer step) to the same events, and `cargo test -p contact
 //! --no-default-features` tests the core without it (CI runs it, and clippy on it).
-//! `tests/module_graph.rs` checks that no layer names one above it.
+//! The workspace's tidy test (`xtask/tests/tidy/`) checks that no layer names one above it.
 
 mod closing;
 mod entry;
