@@ -20,6 +20,7 @@ pub mod common;
 pub mod cosmos_svg;
 pub mod event_picture;
 pub mod label_place;
+pub mod pair_events;
 pub mod pair_html;
 pub mod pair_svg;
 pub mod paper;

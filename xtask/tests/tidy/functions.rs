@@ -93,3 +93,22 @@ fn the_length_reader_counts_from_fn_to_the_closing_brace() {
     lengths.visit_file(&file);
     assert_eq!(lengths.0, vec![("a".to_owned(), 2, 3)]);
 }
+
+/// The most product lines one file may hold: past that a file is usually several modules.
+const MAX_FILE_LINES: usize = 1000;
+
+#[test]
+fn no_file_is_past_a_thousand_lines() {
+    let long: Vec<String> = crate_dirs()
+        .iter()
+        .flat_map(|k| product_files(k))
+        .map(|f| (rel(&f), crate::source::product_text(&f).lines().count()))
+        .filter(|(_, n)| *n > MAX_FILE_LINES)
+        .map(|(f, n)| format!("{f}: {n} lines"))
+        .collect();
+    assert!(
+        long.is_empty(),
+        "files past {MAX_FILE_LINES} product lines (split them by concern):\n{}",
+        long.join("\n")
+    );
+}

@@ -3,7 +3,7 @@
 //! do not fool it). One module per concern:
 //!
 //! - `functions`: every function fits on a screen (80 lines in plugins and the presentation,
-//!   100 in all other product code, tests aside);
+//!   100 in all other product code, tests aside), and no file is past 1,000 product lines;
 //! - `crates`: every library opens with a one-line `//!`; no crate declares a dependency its
 //!   code never names; no crate holds more than a fifth of the product lines, `experiments`
 //!   under 10,000 and holding its plugins only;
