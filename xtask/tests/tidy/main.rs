@@ -10,7 +10,9 @@
 //! - `modules`: no module circle in any crate; the runner's `main.rs` only declares and
 //!   dispatches; the contact solver's layers never name a layer above them;
 //! - `plugins`: no plugin imports another;
-//! - `params`: no parameter is looked up by a name typed again as a string literal;
+//! - `params`: no parameter is looked up by a name typed again as a string literal, and `study`
+//!   never names a `Context`;
+//! - `streams`: only the trial engine makes a random generator;
 //! - `architecture`: ARCHITECTURE.md is current - a heading for every crate and folder and none
 //!   stale, each crate's floor (its dependencies all on lower floors) and its entry points
 //!   (each one found in the crate).
@@ -23,3 +25,4 @@ mod modules;
 mod params;
 mod plugins;
 mod source;
+mod streams;
