@@ -607,7 +607,6 @@ mod tests {
         rng
     }
 
-
     #[test]
     fn ideal_pointer_follows_its_exact_ratio_after_whole_turns() {
         let g = Gearing::freeth2006();

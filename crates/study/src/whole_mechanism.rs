@@ -270,7 +270,16 @@ pub fn run_study_of(
         let input = inputs
             .get((j / trials) as usize)
             .ok_or_else(|| RunError::Internal(format!("run {j} of {jobs}")))?;
-        one_run(g, input, h, streams, j % trials, horizon, events, study.trains)
+        one_run(
+            g,
+            input,
+            h,
+            streams,
+            j % trials,
+            horizon,
+            events,
+            study.trains,
+        )
     })
 }
 

@@ -8,11 +8,11 @@ use stats::Estimate;
 
 use crate::settings::typed::{Gearing, cells, label};
 use presentation::common::{Series, semilog_plot};
+use study::draws::Draws;
 use study::errors::CaseParams;
 use study::events::EventParams;
 use study::gearing::{self, GearingParams};
 use study::grids::CASES;
-use study::draws::Draws;
 use study::pointers::{BothModels, CaseMechanism, both_model_trials, pointer_runs};
 use study::results::{CasePointer, CasePointers, CaseRun};
 
