@@ -18,8 +18,7 @@ use std::f64::consts::TAU;
 use contact::{Mesh, Solve, Start, Trajectory};
 use edmunds::RadialPair;
 use geometry::Gear;
-use rand::{Rng, SeedableRng};
-use rand_chacha::ChaCha8Rng;
+use rand::Rng;
 use rules::Rule;
 use train::Gearing;
 
@@ -43,16 +42,6 @@ pub struct Mechanism {
     pin_and_slot: bool,
     /// Which events stop the train (the jams of an event rule).
     rule: Rule,
-}
-
-/// The generator of a trial's stream (what [`trial_rng`] returns).
-pub type TrialRng = ChaCha8Rng;
-
-/// The RNG stream of one trial: depends only on (seed, trial index), never on threads.
-pub fn trial_rng(seed: u64, trial: u64) -> TrialRng {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    rng.set_stream(trial);
-    rng
 }
 
 impl Mechanism {
@@ -607,6 +596,16 @@ impl PointerRun {
 mod tests {
     #![allow(clippy::unwrap_used, reason = "tests")]
     use super::*;
+    use rand::SeedableRng;
+    use rand_chacha::ChaCha8Rng;
+
+    /// A generator for these tests. The studies draw from `registry::Streams`, the one scheme
+    /// of every trial; a mechanism only takes the generator it is handed.
+    fn trial_rng(seed: u64, trial: u64) -> ChaCha8Rng {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        rng.set_stream(trial);
+        rng
+    }
 
     #[test]
     fn ideal_pointer_follows_its_exact_ratio_after_whole_turns() {

@@ -484,7 +484,7 @@ impl Context {
     /// so that the runner can split them across machines and join them again.
     ///
     /// `f(t)` must depend only on the experiment's inputs, the seed and `t` (draw its random
-    /// numbers from `mechanism::trial_rng(seed, t)` or a stream derived from `t`), never on other
+    /// numbers from [`TrialEngine::stream`]`(identity, t)`), never on other
     /// trials or on the thread it runs on.
     ///
     /// `batch` names the batch. It must be unique within the run (a key asked for twice is a

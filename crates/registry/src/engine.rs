@@ -13,6 +13,7 @@ use serde_json::Value as Json;
 
 use crate::RunError;
 use crate::progress::{BatchProgress, Hook};
+use crate::streams::{Identity, Streams, TrialRng};
 use crate::trials::{Batch, Records, Shard};
 
 /// How [`crate::Context::trials`] runs its trials.
@@ -86,6 +87,17 @@ impl TrialEngine {
     /// Seed for every random number generator of the run (`--seed`).
     pub fn seed(&self) -> u64 {
         self.seed
+    }
+
+    /// The run's random streams ([`Streams`]), for a study that hands the seed on.
+    pub fn streams(&self) -> Streams {
+        Streams::new(self.seed)
+    }
+
+    /// The generator of trial `trial` of the draws `identity` under the run's seed: the one
+    /// scheme every study draws through (see [`crate::streams`]).
+    pub fn stream(&self, identity: Identity, trial: u64) -> TrialRng {
+        self.streams().stream(identity, trial)
     }
 
     /// How trials are run: normally, as one shard, or replayed from records.

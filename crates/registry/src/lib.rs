@@ -47,6 +47,7 @@ mod output;
 mod progress;
 mod report;
 mod settings;
+pub mod streams;
 mod table;
 mod trials;
 mod values;
@@ -71,6 +72,7 @@ pub use output::{
 pub use progress::{BatchProgress, Progress};
 pub use settings::{NoSettings, ParamValue, Settings, changed_from_default};
 pub use settings_derive::Settings;
+pub use streams::{Identity, Streams, TrialRng, fnv1a64};
 // Shared with crates below `registry` (`train`), and kept here for every crate above it.
 pub use stdx::{fmt_f64, fmt_number};
 pub use table::{Table, terminal_text};

@@ -1,13 +1,16 @@
 //! The Lunar pointer without and with the pin-and-slot (`lunar-anomaly`): the same gears and
-//! initial angles run both ways, trial by trial, on table2's RNG streams (row index, trial), so
-//! that without the pin-and-slot a Case's trials are table2's triangular ones.
+//! initial angles run both ways, trial by trial, on table2's streams (a Case's
+//! [`Draws::Case`], trial), so that without the pin-and-slot a Case's trials are table2's
+//! triangular ones.
 
 use hypotheses::{Hypothesis, Params};
 pub use mechanism::PinSlotTrain;
-use mechanism::{Mechanism, PointerRun, TrialRng, trial_rng};
-use registry::{RunError, TrialEngine};
+use mechanism::{Mechanism, PointerRun};
+use registry::{RunError, Streams, TrialEngine, TrialRng};
 use serde::{Deserialize, Serialize};
 use train::Gearing;
+
+use crate::draws::Draws;
 
 /// TD statistics of one run, as table1 and table2 keep them. NaN (a run that stopped at once)
 /// cannot go through JSON: stored as bits.
@@ -49,8 +52,8 @@ pub struct AnomalyTrial {
 }
 
 /// The mechanisms of the study: the gearing at h and G, its file as typed (named if it has no
-/// pin-and-slot), the hypothesis, the event rule, and each row's stream index with its
-/// parameters (`None`: ideal teeth).
+/// pin-and-slot), the hypothesis, the event rule, and each row's draws with its parameters
+/// (`None`: ideal teeth).
 pub struct Rows<'a> {
     /// The gearing.
     pub gearing: &'a Gearing,
@@ -64,8 +67,9 @@ pub struct Rows<'a> {
     pub hypothesis: &'a dyn Hypothesis,
     /// The event rule that stops the pointer.
     pub rule: &'a rules::Rule,
-    /// Each row: its stream index and its parameters (`None`: ideal teeth).
-    pub rows: Vec<(u64, Option<Params>)>,
+    /// Each row: what its trials draw (a Case's [`Draws::Case`], as table2's; ideal teeth
+    /// [`Draws::IdealMechanism`]) and its parameters (`None`: ideal teeth).
+    pub rows: Vec<(Draws<'a>, Option<Params>)>,
 }
 
 impl Rows<'_> {
@@ -99,15 +103,15 @@ impl Rows<'_> {
     fn build(
         &self,
         ideal: &Mechanism,
-        seed: u64,
+        streams: Streams,
         ri: usize,
         t: u64,
     ) -> Result<(Mechanism, TrialRng), RunError> {
-        let Some((index, params)) = self.rows.get(ri) else {
+        let Some((draws, params)) = self.rows.get(ri) else {
             return Err(RunError::Internal(format!("row {ri}")));
         };
         // One stream per (row, trial): errors first, then initial angles (table2's order).
-        let mut rng = trial_rng(seed, (index << 32) | t);
+        let mut rng = draws.stream(streams, t);
         let Some(p) = params else {
             return Ok((ideal.clone(), rng));
         };
@@ -151,12 +155,12 @@ impl Rows<'_> {
         trials: u64,
     ) -> Result<Vec<AnomalyTrial>, RunError> {
         let ideal = self.ideal()?;
-        let seed = engine.seed();
         engine.trials(key, self.rows.len() as u64 * trials, |j| {
             let (ri, t) = ((j / trials) as usize, j % trials);
-            let (mech, rng) = self.build(&ideal, seed, ri, t)?;
+            let (mech, rng) = self.build(&ideal, engine.streams(), ri, t)?;
             let on = self.pinned(mech.clone())?;
-            // The same initial angles for both.
+            // The same gears and initial angles for both, on purpose: a paired comparison of
+            // the train without and with the pin-and-slot.
             let missing = || RunError::bad("gearing", format!("pointer {pointer}"), "is missing");
             let rigid = mech
                 .run_pointer_to_first_jam(pointer, turns, &mut rng.clone())
@@ -180,7 +184,7 @@ impl Rows<'_> {
         pointer: &str,
         turns: f64,
     ) -> Result<PointerRun, RunError> {
-        let (mech, rng) = self.build(&self.ideal()?, seed, ri, t)?;
+        let (mech, rng) = self.build(&self.ideal()?, Streams::new(seed), ri, t)?;
         let on = self.pinned(mech)?;
         on.run_pointer_to_first_jam(pointer, turns, &mut rng.clone())
             .ok_or_else(|| RunError::bad("gearing", format!("pointer {pointer}"), "is missing"))

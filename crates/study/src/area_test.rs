@@ -8,12 +8,12 @@ use contact::{Event, Solve, Start};
 use geometry::{Gear, centre_distance};
 use polycheck::area::AreaPair;
 use polycheck::stepped::{GearOutline, SteppedPair, Stepping};
-use registry::{RunError, TrialEngine};
+use registry::{RunError, TrialEngine, fnv1a64};
 use serde::{Deserialize, Serialize};
 
 use train::Gearing;
 
-use crate::cell::{CellSpec, Drawn, Rebuilt, draw_trial, fnv1a64};
+use crate::cell::{CellSpec, Drawn, Rebuilt, draw_trial};
 use crate::drive::{Drive, Driver};
 use crate::limits::IdealPair;
 

@@ -16,13 +16,14 @@
 
 use std::f64::consts::TAU;
 
-use mechanism::{Mechanism, PointerRun, pin_slot, trial_rng};
+use mechanism::{Mechanism, PointerRun, pin_slot};
 use rand::Rng;
-use registry::{RunError, TrialEngine};
+use registry::{RunError, TrialEngine, TrialRng};
 use serde::{Deserialize, Serialize};
 use train::{DeviceKind, Gearing, Rate};
 
 use crate::cell::Purpose;
+use crate::draws::Draws;
 use crate::grids::{CASES, CellSettings};
 use crate::pointers::PointerTrial;
 use crate::whole_mechanism::{self, Clearances, Input, Study, TRAINS, Train};
@@ -233,7 +234,7 @@ fn made(
     s: &Settings,
     shape: &crate::gearing::Shape,
     params: Option<&hypotheses::Params>,
-    rng: &mut mechanism::TrialRng,
+    rng: &mut TrialRng,
 ) -> Result<Mechanism, RunError> {
     let (g, h) = (&shape.gearing, shape.tooth_height);
     let mut failure = None;
@@ -289,7 +290,7 @@ fn planet_trial(
     pointer: &str,
     turns: f64,
     samples: usize,
-    rng: &mut mechanism::TrialRng,
+    rng: &mut TrialRng,
 ) -> Result<PlanetTrial, RunError> {
     let g = mech.gearing();
     let missing = || RunError::bad("gearing", format!("pointer {pointer}"), "is missing");
@@ -352,12 +353,14 @@ pub struct DisplayRow {
 }
 
 /// Rows of one input and run length: a batch of `trials` trials, each one mechanism on which
-/// every planet runs in turn.
+/// every planet runs in turn, trial t drawn from trial t of the input's [`Draws::Cosmos`]
+/// (both run lengths of an input on the same gears, on purpose: a year and the period relation
+/// compared on one set of mechanisms).
 fn display_batch(
     engine: &TrialEngine,
     s: &Settings,
     shape: &crate::gearing::Shape,
-    (ii, input): (usize, &(String, Option<hypotheses::Params>)),
+    input: &(String, Option<hypotheses::Params>),
     period: bool,
 ) -> Result<Vec<DisplayRow>, RunError> {
     let g = &shape.gearing;
@@ -382,9 +385,9 @@ fn display_batch(
         s.rule.label(),
         s.display_trials,
     );
-    let seed = engine.seed();
+    let draws = Draws::Cosmos { input: &input.0 }.identity();
     let per_trial = engine.trials(&key, s.display_trials, |t| {
-        let mut rng = trial_rng(seed, ((ii as u64) << 32) | t);
+        let mut rng = engine.stream(draws, t);
         let mech = made(s, shape, input.1.as_ref(), &mut rng)?;
         let with = mech
             .clone()
@@ -437,8 +440,8 @@ pub fn display_rows(
     let inputs = display_inputs(s)?;
     let mut rows = Vec::new();
     for period in [false, true] {
-        for (ii, input) in inputs.iter().enumerate() {
-            rows.extend(display_batch(engine, s, shape, (ii, input), period)?);
+        for input in &inputs {
+            rows.extend(display_batch(engine, s, shape, input, period)?);
         }
     }
     Ok(rows)
@@ -1033,6 +1036,7 @@ pub fn plan(g: &Gearing, clearance_mm: f64, h: f64) -> TrainPlan {
 mod tests {
     #![allow(clippy::unwrap_used, reason = "tests")]
     use super::*;
+    use registry::Streams;
 
     #[test]
     fn outputs_carry_the_exact_period_relations() {
@@ -1091,7 +1095,7 @@ mod tests {
             d.pin_radius / (d.axis_offset - d.pin_radius),
         );
         for t in 0..3 {
-            let mut rng = trial_rng(5, t);
+            let mut rng = Draws::Cosmos { input: "ideal" }.stream(Streams::new(5), t);
             let p = planet_trial((&m, &with), "Venus", 0.6, 4000, &mut rng).unwrap();
             assert!(p.jam_day.is_none());
             // The slope is taken over a finite error (a secant, not the tangent): 2 % slack.
@@ -1103,7 +1107,8 @@ mod tests {
             assert!(p.train.sigma > 0.0 && p.display.sigma > 0.0);
         }
         // Sampled at the run's two ends only: the start has no error, the end's is scaled.
-        let run = m.run_pointer("Venus", 0.6, &mut trial_rng(5, 9)).unwrap();
+        let mut rng = Draws::Cosmos { input: "ideal" }.stream(Streams::new(5), 9);
+        let run = m.run_pointer("Venus", 0.6, &mut rng).unwrap();
         let shown = follower_stats(&run, &d, 1.0, 0.3, 2);
         assert!(shown.dm <= 1.02 * hi * run.stats(2).dm, "{shown:?}");
     }
@@ -1112,7 +1117,7 @@ mod tests {
     fn a_slot_gear_runs_against_its_anomaly_bearing_ideal() {
         let (m, with) = ideal("freeth2021-cosmos");
         let d = m.gearing().device("Mars").unwrap().clone();
-        let mut rng = trial_rng(3, 0);
+        let mut rng = Draws::Cosmos { input: "ideal" }.stream(Streams::new(3), 0);
         let p = planet_trial((&m, &with), "Mars", 0.5, 4000, &mut rng).unwrap();
         // Shown against the ideal with the anomaly (41 degrees of it): only the tooth play
         // is left, scaled by the slot's slope, R / (R + e) to R / (R - e).
@@ -1124,7 +1129,7 @@ mod tests {
         assert!(p.display.dm > lo * p.train.dm * 0.5, "{p:?}");
         assert!(p.display.dm < 2.0, "{p:?}");
         // The same draws: the device run is the rigid run's gears and initial angles.
-        let mut again = trial_rng(3, 0);
+        let mut again = Draws::Cosmos { input: "ideal" }.stream(Streams::new(3), 0);
         let q = planet_trial((&m, &with), "Mars", 0.5, 4000, &mut again).unwrap();
         assert_eq!(p.display.sigma.to_bits(), q.display.sigma.to_bits());
     }

@@ -265,9 +265,9 @@ pub fn make(
 }
 
 /// Figure 5's trial: a driver and a driven gear made from `ideal` under `h` with `p`, and an
-/// initial driver angle within the driver's pitch, in that order from the one stream
-/// `trial_rng(seed, trial)`, so that pairs made with other parameters from the same trial differ
-/// by the parameters alone.
+/// initial driver angle within the driver's pitch, in that order from the one stream of trial
+/// `trial` of [`crate::draws::Draws::Figure5Pair`], so that pairs made with other parameters
+/// from the same trial differ by the parameters alone.
 pub fn made_pair(
     h: &dyn Hypothesis,
     ideal: &Gear,
@@ -276,7 +276,8 @@ pub fn made_pair(
     trial: u64,
 ) -> Result<(Gear, Gear, f64), RunError> {
     use rand::Rng;
-    let mut rng = mechanism::trial_rng(seed, trial);
+    let streams = registry::Streams::new(seed);
+    let mut rng = crate::draws::Draws::Figure5Pair.stream(streams, trial);
     let driver = make(h, ideal, "driver", p, &mut rng)?;
     let driven = make(h, ideal, "driven", p, &mut rng)?;
     let phi0 = rng.random::<f64>() * std::f64::consts::TAU / ideal.teeth() as f64;

@@ -127,6 +127,30 @@ impl ShapeParams {
     }
 }
 
+/// A gearing's identity in cache keys and batch names: FNV-1a of its data written as RON (its
+/// serde serialization, a stable rendering of every field it holds; never its `Debug` text,
+/// which is no contract), so two gearings with the same data have the same identity.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct GearingId(u64);
+
+impl GearingId {
+    /// The identity of `g`.
+    ///
+    /// Errors: the gearing cannot be written as RON (an internal error: its data is plain).
+    pub fn of(g: &Gearing) -> Result<GearingId, RunError> {
+        let text = ron::to_string(g)
+            .map_err(|e| RunError::Internal(format!("the gearing cannot be written: {e}")))?;
+        Ok(GearingId(registry::fnv1a64(text.as_bytes())))
+    }
+}
+
+impl std::fmt::LowerHex for GearingId {
+    /// The identity as cache keys and batch names print it (`{:016x}`).
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        std::fmt::LowerHex::fmt(&self.0, f)
+    }
+}
+
 /// A mechanism the gearing could not build, as the user's error: the gearing, the mesh and the
 /// rule it broke (one mapping for every experiment that builds a mechanism).
 pub fn mechanism_error(e: mechanism::MechanismError) -> RunError {

@@ -15,6 +15,8 @@
 //!   ideal pairs.
 //! - [`motion_models`]: the per-mesh tables' cells, Figure 2, Table 1 and Figure IV under each
 //!   registered motion model (`motion`), for `motion-models`.
+//! - [`draws`]: what every study's random numbers are for, the identity of each trial's stream
+//!   (`registry::Streams`), all in one place.
 //! - Setting groups shared by experiments: [`gearing`] (file, h, G, pin-and-slot), [`errors`]
 //!   (hypothesis and its parameters), [`events`] (the event rule), [`drive`] (which gear of a
 //!   mesh drives its trials), [`trial_end`] (where a trial's counting ends).
@@ -25,6 +27,7 @@ pub mod cell;
 pub mod claims;
 pub mod clearance_search;
 pub mod cosmos;
+pub mod draws;
 pub mod drive;
 pub mod equal_pair;
 pub mod errors;

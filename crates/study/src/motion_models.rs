@@ -5,30 +5,29 @@
 //!
 //! A model is handed the trial as the tables build it (`cell::draw_trial`, the listed driver
 //! driving: `Drawn::driven_by`), and, for the models that place the driven gear at an angle of
-//! its own, that angle drawn from a stream of its own ([`driven_angle`]), so that every other
-//! draw is the tables'.
+//! its own, that angle drawn from a stream of its own ([`driven_angle`], the
+//! [`Part::DrivenAngle`] of the tables' draws), so that every other draw is the tables'.
 
 use std::f64::consts::TAU;
 
-use mechanism::{Mechanism, trial_rng};
+use mechanism::Mechanism;
 use motion::{Model, Outcome, Path, Trial, Want};
 use rand::Rng;
-use registry::{RunError, TrialEngine};
+use registry::{RunError, Streams, TrialEngine, fnv1a64};
 use rules::Rule;
 use serde::{Deserialize, Serialize};
 use train::Gearing;
 
-use crate::cell::{CellSpec, Counts, draw_trial, fnv1a64, stream};
+use crate::cell::{CellSpec, Counts, draw_trial};
+use crate::draws::{Draws, Part};
 use crate::drive::Driver;
+use crate::gearing::GearingId;
 use crate::limits::IdealPair;
 
-/// What names the stream of the driven gear's own initial angle, beside a cell's or a trial's.
-const DRIVEN_ANGLE: &str = "motion-models: the driven gear's own initial angle";
-
-/// The driven gear's own initial angle for the trial whose stream is named by `name` and `t`:
-/// uniform over its pitch `pitch`, from a stream of its own (the tables' draws are untouched).
-pub fn driven_angle(seed: u64, name: &str, t: u64, pitch: f64) -> f64 {
-    let mut rng = trial_rng(seed, stream(&format!("{name}|{DRIVEN_ANGLE}"), t));
+/// The driven gear's own initial angle in trial `t` of `draws`: uniform over its pitch `pitch`,
+/// from the draws' [`Part::DrivenAngle`] (the tables' own draws are untouched).
+pub fn driven_angle(streams: Streams, draws: Draws<'_>, t: u64, pitch: f64) -> f64 {
+    let mut rng = streams.stream(draws.part(Part::DrivenAngle), t);
     rng.random::<f64>() * pitch
 }
 
@@ -58,7 +57,12 @@ fn cell_trial(
         mesh,
         phi0: run.phi0,
         turn: run.turn,
-        drawn: Some(driven_angle(seed, &cell.canonical(), t, pitch)),
+        drawn: Some(driven_angle(
+            Streams::new(seed),
+            Draws::Cell(&cell.canonical()),
+            t,
+            pitch,
+        )),
         tooth_height: cell.tooth_height,
     };
     let answered = |events: &[motion::Event]| tally(rule, events) == (true, true);
@@ -97,7 +101,7 @@ pub fn cell_counts(
         "{:?};{};{trials};{:016x}",
         models,
         rule.label(),
-        fnv1a64(format!("{g:?}").as_bytes())
+        GearingId::of(g)?
     ));
     let key = format!("motion-models cells:{:016x}", fnv1a64(names.as_bytes()));
     let seed = engine.seed();
@@ -266,8 +270,9 @@ fn chain(
     Some(Chain { stages })
 }
 
-/// Table 1 under each model: `trials` trials of the ideal mechanism `mech`, each from its own
-/// stream `trial_rng(seed, t)` (every pointer of `runs` in turn, as Table 1 draws them), the
+/// Table 1 under each model: `trials` trials of the ideal mechanism `mech`, trial t from Table
+/// 1's stream ([`Draws::IdealMechanism`], every pointer of `runs` in turn, as Table 1 draws
+/// them) and the driven gears' own angles from its [`Part::DrivenAngle`], the
 /// Theoretical Difference of each pointer sampled `samples` times evenly over its run (through
 /// any jam, as the paper's program went on): `result[model][trial][pointer]`.
 pub fn pointer_sigmas(
@@ -279,14 +284,16 @@ pub fn pointer_sigmas(
     h: f64,
 ) -> Result<Vec<Vec<Vec<PointerSigma>>>, RunError> {
     let key = format!("motion-models table 1: {models:?} {runs:?} {trials} trials, h = {h}");
-    let seed = engine.seed();
     let g = mech.gearing();
     let per_trial = engine.trials(&key, trials, |t| {
         Ok(models
             .iter()
             .map(|model| {
-                let mut rng = trial_rng(seed, t);
-                let mut extra = trial_rng(seed, stream(DRIVEN_ANGLE, t));
+                // Every model from the same streams, on purpose: a paired comparison, each model
+                // run on the same initial angles (and the push model's are Table 1's runs).
+                let mut rng = engine.stream(Draws::IdealMechanism.identity(), t);
+                let extra_id = Draws::IdealMechanism.part(Part::DrivenAngle);
+                let mut extra = engine.stream(extra_id, t);
                 runs.iter()
                     .map(|&(name, turns, samples)| {
                         let ratio = g.pointer_ratio(name).map_or(f64::NAN, |r| r.to_f64());

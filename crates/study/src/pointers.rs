@@ -5,10 +5,12 @@ use std::collections::BTreeMap;
 use std::f64::consts::TAU;
 
 use hypotheses::{Hypothesis, Params};
-use mechanism::{Mechanism, Model, trial_rng};
-use registry::{Param, RunError, TrialEngine};
+use mechanism::{Mechanism, Model};
+use registry::{Param, RunError, Streams, TrialEngine};
 use serde::{Deserialize, Serialize};
 use train::Gearing;
+
+use crate::draws::Draws;
 
 /// The shortest run a `*_turns` parameter may ask for, in turns of b: 0.05 turn is 11 tooth
 /// engagements of b1's mesh, about the fewest a σ of the pointer's error can be read from (at
@@ -240,9 +242,9 @@ pub fn ideal_mechanism(
 }
 
 /// Table 1's trials: `trials` runs of the ideal mechanism `mech`, each from random initial
-/// angles drawn from its own stream `trial_rng(seed, t)`, every pointer of `runs` (pointer,
-/// input turns, samples) in turn on that stream; in trial order, whatever the threads, as the
-/// batch `key` of [`TrialEngine::trials`].
+/// angles drawn from its own stream (trial t of [`Draws::IdealMechanism`]), every pointer of
+/// `runs` (pointer, input turns, samples) in turn on that stream; in trial order, whatever the
+/// threads, as the batch `key` of [`TrialEngine::trials`].
 pub fn ideal_trials(
     engine: &TrialEngine,
     key: &str,
@@ -250,9 +252,8 @@ pub fn ideal_trials(
     runs: &[(&str, f64, usize)],
     trials: u64,
 ) -> Result<Vec<Vec<PointerTrial>>, RunError> {
-    let seed = engine.seed();
     engine.trials(key, trials, |t| {
-        let mut rng = trial_rng(seed, t);
+        let mut rng = engine.stream(Draws::IdealMechanism.identity(), t);
         Ok(runs
             .iter()
             .map(
@@ -303,8 +304,8 @@ pub struct Manufactured<'a> {
     pub rule: &'a rules::Rule,
 }
 
-/// Table 6's trials: `trials` mechanisms as `m` makes them, each from its own stream
-/// `trial_rng(seed, t)` (every gear's errors, then the initial angles), every pointer of `runs`
+/// Table 6's trials: `trials` mechanisms as `m` makes them, each from its own stream (trial t
+/// of [`Draws::Tolerated`]: every gear's errors, then the initial angles), every pointer of `runs`
 /// (pointer, input turns, samples) run to its first jam; in trial order, whatever the threads,
 /// as the batch `key` of [`TrialEngine::trials`].
 pub fn tolerated_trials(
@@ -314,10 +315,9 @@ pub fn tolerated_trials(
     runs: &[(&str, f64, usize)],
     trials: u64,
 ) -> Result<Vec<Vec<ToFirstJam>>, RunError> {
-    let seed = engine.seed();
     engine.trials(key, trials, |t| {
         // One stream per trial: every gear's errors, then the initial angles.
-        let mut rng = trial_rng(seed, t);
+        let mut rng = engine.stream(Draws::Tolerated.identity(), t);
         let mut failure = None;
         let mech = Mechanism::build(m.gearing, m.tooth_height, m.clearance, |name, gear| {
             let Some(p) = m.params.get(name) else {
@@ -406,24 +406,24 @@ pub struct CaseMechanism<'a> {
     pub pin_and_slot: bool,
 }
 
-/// Table 2's trials of one Case: `trials` mechanisms as `m` makes them, trial t from the
-/// stream `trial_rng(seed, (stream << 32) | t)` (the gears' errors, then the initial angles),
+/// Table 2's trials of one Case: `trials` mechanisms as `m` makes them, trial t from trial t
+/// of the Case's stream `draws` ([`Draws::Case`]: the gears' errors, then the initial angles),
 /// every pointer of `runs` run from the same initial angles under Edmunds' model and with
 /// triangular teeth; in trial order, whatever the threads, as the batch `key` of
 /// [`TrialEngine::trials`].
 pub fn both_model_trials(
     engine: &TrialEngine,
     key: &str,
-    stream: u64,
+    draws: Draws<'_>,
     m: &CaseMechanism<'_>,
     runs: &[(&str, f64, usize)],
     trials: u64,
 ) -> Result<Vec<Vec<BothModels>>, RunError> {
-    let seed = engine.seed();
     let ((g, file), (hyp, p)) = (m.gearing, m.errors);
+    let identity = draws.identity();
     engine.trials(key, trials, |t| {
         // One stream per (case, trial): errors first, then initial angles.
-        let mut rng = trial_rng(seed, (stream << 32) | t);
+        let mut rng = engine.stream(identity, t);
         let mut failure = None;
         let mech = Mechanism::build(g, m.tooth_height, m.clearance, |name, gear| {
             crate::errors::make(hyp, &gear, name, p, &mut rng).map_err(|e| {
@@ -453,7 +453,8 @@ pub fn both_model_trials(
         };
         let mut out = Vec::new();
         for &(name, turns, samples) in runs {
-            // The same initial angles for both models.
+            // The same initial angles for both models, on purpose: a paired comparison of the
+            // two contact models on the same gears.
             let mut rng_edmunds = rng.clone();
             let edm = mech.run_pointer_with(name, turns, &mut rng_edmunds, Model::Edmunds);
             let tri = mech.run_pointer_to_first_jam(name, turns, &mut rng);
@@ -478,9 +479,10 @@ pub fn both_model_trials(
     })
 }
 
-/// One instance of the mechanism `mech` (Figure 4): each of `pointers` run over `turns` input
-/// turns in turn, all on the one stream `trial_rng(seed, trial)` (each pointer's initial angles
-/// drawn after the previous pointer's); `None` for a pointer the gearing lacks.
+/// One instance of the ideal mechanism `mech` (Figure 4): each of `pointers` run over `turns`
+/// input turns in turn, all on the one stream of trial `trial` of [`Draws::IdealMechanism`]
+/// (Table 1's trial; each pointer's initial angles drawn after the previous pointer's); `None`
+/// for a pointer the gearing lacks.
 pub fn instance(
     mech: &Mechanism,
     pointers: &[&str],
@@ -488,7 +490,7 @@ pub fn instance(
     seed: u64,
     trial: u64,
 ) -> Vec<Option<mechanism::PointerRun>> {
-    let mut rng = trial_rng(seed, trial);
+    let mut rng = Draws::IdealMechanism.stream(Streams::new(seed), trial);
     pointers
         .iter()
         .map(|name| mech.run_pointer(name, turns, &mut rng))

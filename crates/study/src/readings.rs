@@ -5,11 +5,12 @@
 use std::collections::BTreeMap;
 
 use geometry::Gear;
-use mechanism::{Mechanism, PointerRun, trial_rng};
-use registry::{RunError, TrialEngine};
+use mechanism::{Mechanism, PointerRun};
+use registry::{RunError, Streams, TrialEngine};
 use serde::{Deserialize, Serialize};
 use train::Gearing;
 
+use crate::draws::Draws;
 use crate::limits::IdealPair;
 use crate::pointers::samples_for;
 
@@ -266,8 +267,9 @@ pub enum Starts {
 }
 
 /// Table 1's σ per trial and pointer for one mechanism and one start rule: `trials` trials,
-/// trial t on the stream `trial_rng(seed, t)`, each pointer of `turns` (pointer, input turns)
-/// in turn; in trial order, as the batch `key` of [`TrialEngine::trials`].
+/// trial t on Table 1's stream (trial t of [`Draws::IdealMechanism`], on purpose: each reading
+/// is compared with Table 1 on the same initial angles), each pointer of `turns` (pointer,
+/// input turns) in turn; in trial order, as the batch `key` of [`TrialEngine::trials`].
 #[allow(
     clippy::too_many_arguments,
     reason = "the runs' inputs, each a value of its own"
@@ -282,9 +284,8 @@ pub fn table1_trials(
     per: usize,
     trials: u64,
 ) -> Result<Vec<Vec<PointerSigma>>, RunError> {
-    let seed = engine.seed();
     engine.trials(key, trials, |t| {
-        let mut rng = trial_rng(seed, t);
+        let mut rng = engine.stream(Draws::IdealMechanism.identity(), t);
         Ok(turns
             .iter()
             .map(|&(name, turns)| {
@@ -342,7 +343,7 @@ impl Minimum {
 /// (`edmunds-split`, random 0.04 of the pitch, no systematic error), each swept over every
 /// clearance of `grid` with the same gears and initial angle; through jams (the driven gear
 /// released to its next free position, as the paper's program did). Returns the minimum of
-/// the mean σ over the draws. Draw d of mesh i uses stream `1000 i + d` of `seed`.
+/// the mean σ over the draws. Draw d of the mesh is trial d of [`Draws::FigureIvCaseA`].
 fn case_a_minimum(
     g: &Gearing,
     index: usize,
@@ -370,8 +371,9 @@ fn case_a_minimum(
     let ratio = pair.n1 as f64 / pair.n2 as f64;
     let mut sums = vec![0.0; grid.len()];
     let mut counts = vec![0_usize; grid.len()];
+    let pairs = Draws::FigureIvCaseA { mesh: &m.label };
     for d in 0..draws {
-        let mut rng = trial_rng(seed, 1000 * index as u64 + d as u64);
+        let mut rng = pairs.stream(Streams::new(seed), d as u64);
         let (ideal1, ideal2) = pair.ideal_gears()?;
         let a = crate::errors::make(hyp, &ideal1, &m.driver, &params, &mut rng)?;
         let b = crate::errors::make(hyp, &ideal2, &m.driven, &params, &mut rng)?;

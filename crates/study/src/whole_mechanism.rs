@@ -11,12 +11,13 @@ use std::f64::consts::TAU;
 
 use contact::{Solve, Start};
 use hypotheses::{Hypothesis, MeasuredHypothesis, Params};
-use mechanism::{Mechanism, PointerRun, Stage, StageRun, trial_rng};
+use mechanism::{Mechanism, PointerRun, Stage, StageRun};
 use rand::Rng;
-use registry::{Param, RunError, TrialEngine};
+use registry::{Param, RunError, Streams, TrialEngine};
 use serde::{Deserialize, Serialize};
 use stats::{DAYS_PER_YEAR, Proportion, clopper_pearson95, mean_ci95};
 
+use crate::draws::{Draws, Part};
 use crate::grids::CASES;
 
 /// The `days` parameter: the horizon of each whole-mechanism run.
@@ -63,7 +64,7 @@ pub const TRAINS: [Train; 3] = [
 /// Name of the row that combines every train (a jam anywhere stops the mechanism).
 pub const MECHANISM: &str = "mechanism (any train)";
 
-/// Stream index of the measured table (the cases use their index in `CASES`).
+/// Gears index of the measured table ([`Input::index`]; the cases use their index in `CASES`).
 pub const MEASURED_INDEX: u64 = CASES.len() as u64;
 
 /// The clearance of each mesh of a whole mechanism.
@@ -98,8 +99,8 @@ pub struct Input<'a> {
     pub label: String,
     /// Legend text.
     pub legend: String,
-    /// Index selecting its RNG streams: inputs with the same index run the same gears and
-    /// initial angles (only the clearances may differ).
+    /// Which gears it draws ([`Draws::WholeMechanism`]): inputs with the same index run the
+    /// same gears and initial angles (only the clearances may differ).
     pub index: u64,
     /// Where its hypothesis came from, for errors: `--hypothesis` or `--set measured`.
     pub source: &'static str,
@@ -112,15 +113,11 @@ pub struct Input<'a> {
     /// The Lunar train includes the pin-and-slot (beyond the paper; off in the paper's study).
     pub pin_and_slot: bool,
     /// A second hypothesis applied to each gear after the first (a shape change on top of
-    /// Edmunds' errors), drawing from its own stream ([`EXTRA_STREAM`]): the first one's draws
-    /// and the initial angles stay those of the run without it, so the two runs differ by it
-    /// alone.
+    /// Edmunds' errors), drawing from a stream of its own ([`Part::ExtraErrors`]): the first
+    /// one's draws and the initial angles stay those of the run without it, so the two runs
+    /// differ by it alone.
     pub extra: Option<(&'a dyn Hypothesis, Params)>,
 }
-
-/// Stream flag of an input's [`Input::extra`] hypothesis: trial t of input i draws its extra
-/// errors from stream `EXTRA_STREAM | i << 32 | t`, apart from stream `i << 32 | t`.
-pub const EXTRA_STREAM: u64 = 1 << 63;
 
 /// The first jam of a train within the horizon.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
@@ -212,8 +209,8 @@ pub fn case_input(
 /// Runs `trials` whole mechanisms of every input over `days` of b, all in one batch named
 /// `batch` of [`TrialEngine::trials`] (flattened so that every run shares the pool), and returns
 /// the outcomes input by input, each input's in trial order. Run `t` of an input draws from
-/// `trial_rng(seed, (input.index << 32) | t)`: the gears' errors, then the meshes' initial
-/// angles, whatever the clearances. Jams are counted by `events`.
+/// trial t of [`Draws::WholeMechanism`] of `input.index`: the gears' errors, then the meshes'
+/// initial angles, whatever the clearances. Jams are counted by `events`.
 #[allow(
     clippy::too_many_arguments,
     reason = "the study's inputs, each a value of its own"
@@ -264,7 +261,7 @@ pub fn run_study_of(
     let (g, days, events) = (study.gearing, study.days, study.events);
     let h = study.h;
     let horizon = days / DAYS_PER_YEAR * TAU;
-    let seed = engine.seed();
+    let streams = engine.streams();
     // The rule decides where a train stops, so it names the batch too.
     let batch = format!("{batch}|events={}", events.label());
     // Run j is run j % trials of input j / trials (arithmetic, not a vector of every pair).
@@ -273,7 +270,16 @@ pub fn run_study_of(
         let input = inputs
             .get((j / trials) as usize)
             .ok_or_else(|| RunError::Internal(format!("run {j} of {jobs}")))?;
-        one_run(g, input, h, seed, j % trials, horizon, events, study.trains)
+        one_run(
+            g,
+            input,
+            h,
+            streams,
+            j % trials,
+            horizon,
+            events,
+            study.trains,
+        )
     })
 }
 
@@ -479,15 +485,17 @@ fn one_run(
     g: &train::Gearing,
     input: &Input<'_>,
     h: f64,
-    seed: u64,
+    streams: Streams,
     t: u64,
     horizon: f64,
     events: &rules::Rule,
     trains_run: &[Train],
 ) -> Result<MechanismRun, RunError> {
-    // One stream per (input, trial): every gear's errors, then every mesh's initial angle.
-    let mut rng = trial_rng(seed, (input.index << 32) | t);
-    let mut extra_rng = trial_rng(seed, EXTRA_STREAM | (input.index << 32) | t);
+    // One stream per (gears, trial): every gear's errors, then every mesh's initial angle; the
+    // extra hypothesis's errors from a part of their own.
+    let draws = Draws::WholeMechanism { gears: input.index };
+    let mut rng = streams.stream(draws.identity(), t);
+    let mut extra_rng = streams.stream(draws.part(Part::ExtraErrors), t);
     let mut failure = None;
     let clearances = &input.clearances;
     let mech = Mechanism::build_with_clearances(

@@ -5,8 +5,8 @@
 //! same gears and initial angles trial by trial; (c) a plot of the anomaly over two anomalistic
 //! months beside one simulated Case B trajectory.
 //!
-//! The Cases' trials use table2's RNG streams (Case index, trial), so that without the
-//! pin-and-slot they are table2's triangular Lunar trials, number for number.
+//! The Cases' trials use table2's random streams (the Case's `Draws::Case`, trial), so that
+//! without the pin-and-slot they are table2's triangular Lunar trials, number for number.
 
 use registry::{OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64};
 use serde::{Deserialize, Serialize};
@@ -15,6 +15,7 @@ use stats::{DAYS_PER_YEAR, Estimate, mean_ci95};
 use crate::settings::typed::label;
 use presentation::common::{Series, csv, line_plot, paper_cell};
 use study::anomaly::{AnomalyTrial, PinSlotTrain, Rows, RunStats};
+use study::draws::Draws;
 use study::errors::CaseParams;
 use study::events::EventParams;
 use study::gearing::{self, GearingParams};
@@ -148,16 +149,13 @@ registry::register!(LunarAnomaly);
 /// The pointer the pin-and-slot sits on.
 const LUNAR: &str = "Lunar";
 
-/// Stream index of the ideal-teeth row (the Cases use their index in `CASES`, as table2 does).
-const IDEAL_INDEX: u64 = CASES.len() as u64;
-
 /// The Case whose first trial is plotted.
 const PLOTTED_CASE: &str = "B";
 
-/// One row of the TD table: label and RNG stream index; `None` errors means ideal teeth.
+/// One row of the TD table: label and what its trials draw; `None` errors means ideal teeth.
 struct Row {
     label: String,
-    index: u64,
+    draws: Draws<'static>,
     case: Option<(f64, f64)>,
 }
 
@@ -189,7 +187,7 @@ fn compute(s: &Settings, run: &Run) -> Result<Results, RunError> {
         clearance,
         hypothesis: errors.hypothesis,
         rule: &rule,
-        rows: rows.iter().map(|r| r.index).zip(params.clone()).collect(),
+        rows: rows.iter().map(|r| r.draws).zip(params.clone()).collect(),
     };
     let train = setup.train(LUNAR)?;
 
@@ -227,13 +225,13 @@ fn compute(s: &Settings, run: &Run) -> Result<Results, RunError> {
 fn rows() -> Vec<Row> {
     let mut rows = vec![Row {
         label: "ideal teeth".into(),
-        index: IDEAL_INDEX,
+        draws: Draws::IdealMechanism,
         case: None,
     }];
-    for (ci, &(case, systematic, random)) in CASES.iter().enumerate() {
+    for &(case, systematic, random) in &CASES {
         rows.push(Row {
             label: format!("Case {case}"),
-            index: ci as u64,
+            draws: Draws::Case(case),
             case: Some((systematic, random)),
         });
     }
@@ -361,7 +359,7 @@ fn batch_key(
                     .collect::<Vec<_>>()
                     .join(",")
             });
-            format!("{} stream {} ({p})", r.label, r.index)
+            format!("{} stream {} ({p})", r.label, r.draws)
         })
         .collect();
     format!(

@@ -8,6 +8,7 @@ use stats::Estimate;
 
 use crate::settings::typed::{Gearing, cells, label};
 use presentation::common::{Series, semilog_plot};
+use study::draws::Draws;
 use study::errors::CaseParams;
 use study::events::EventParams;
 use study::gearing::{self, GearingParams};
@@ -141,7 +142,7 @@ fn simulate(
     let (g, hyp, trials) = (cells.gearing(), cells.hypothesis(), cells.trials as usize);
     let (h, clearance) = (cells.gearing.tooth_height, cells.clearance()?);
     let mut results = Vec::new();
-    for (ci, &(case, systematic, random)) in CASES.iter().enumerate() {
+    for &(case, systematic, random) in &CASES {
         let p = cells.errors.case_params((systematic, random))?;
         // Named by everything that determines the trials, so shards run and merge them.
         let key = format!(
@@ -163,7 +164,7 @@ fn simulate(
         results.push(both_model_trials(
             run.engine(),
             &key,
-            ci as u64,
+            Draws::Case(case),
             &made,
             runs,
             trials as u64,

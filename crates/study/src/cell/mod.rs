@@ -3,14 +3,15 @@
 //! whether it disengaged at least once.
 //!
 //! [`run_cells`] is the one place where such pair trials run (Tables 3, 4, 5, I and the
-//! tolerances of Table 6 and Figure 6 all go through it). A trial's random stream is derived from
-//! the *content* of its cell (mesh, hypothesis, parameter values, h, G) and the trial index, never
-//! from the cell's position in a table, so the same cell gives the same counts in every
-//! experiment; a process-wide cache then lets an experiment reuse cells another one has run
-//! (`cargo xtask run all`), with the same bits as running them again.
+//! tolerances of Table 6 and Figure 6 all go through it). A trial's random stream is named by
+//! the *content* of its cell (mesh, hypothesis, parameter values, h, G: [`Draws::Cell`]) and the
+//! trial index, never by the cell's position in a table, so the same cell gives the same counts
+//! in every experiment; a process-wide cache, keyed by a [`CellKey`], then lets an experiment
+//! reuse cells another one has run (`cargo xtask run all`), with the same bits as running them
+//! again.
 
 use std::cell::Cell;
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::f64::consts::TAU;
 use std::fmt::Write as _;
 use std::sync::{Mutex, OnceLock};
@@ -18,14 +19,15 @@ use std::sync::{Mutex, OnceLock};
 use contact::{Mesh, Solve, Start};
 use geometry::Gear;
 use hypotheses::{Hypothesis, Params};
-use mechanism::trial_rng;
 use rand::Rng;
-use registry::{RunError, TrialEngine, TrialMode, fmt_f64};
+use registry::{Identity, RunError, Streams, TrialEngine, TrialMode, fmt_f64, fnv1a64};
 use stats::{Proportion, wilson95};
 use train::Gearing;
 
+use crate::draws::Draws;
 use crate::drive::{Drive, Driver};
 use crate::errors;
+use crate::gearing::GearingId;
 use crate::trial_end::{End, Tally};
 
 /// Trials per cell in the paper's Tables 3, 4, 5 and I: its counts are out of this.
@@ -110,34 +112,12 @@ impl Counts {
     }
 }
 
-const FNV_OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
-const FNV_PRIME: u64 = 0x0000_0100_0000_01b3;
-
-/// 64-bit FNV-1a of `bytes`, continuing from `hash` (start from [`fnv1a64`]'s offset basis).
-/// Stable across Rust versions and platforms, unlike `std`'s `DefaultHasher`.
-fn fnv1a_from(mut hash: u64, bytes: &[u8]) -> u64 {
-    for &b in bytes {
-        hash ^= u64::from(b);
-        hash = hash.wrapping_mul(FNV_PRIME);
-    }
-    hash
-}
-
-/// 64-bit FNV-1a hash of `bytes`.
-pub fn fnv1a64(bytes: &[u8]) -> u64 {
-    fnv1a_from(FNV_OFFSET, bytes)
-}
-
-/// The RNG stream of trial `t` of the cell whose canonical text is `canonical`: FNV-1a of the
-/// text, continued over the trial index's eight little-endian bytes.
-pub fn stream(canonical: &str, t: u64) -> u64 {
-    fnv1a_from(fnv1a64(canonical.as_bytes()), &t.to_le_bytes())
-}
-
 /// A cell checked and sized, ready for its trials.
 struct Prepared<'a> {
     spec: &'a CellSpec,
     canonical: String,
+    /// The identity of the cell's streams ([`Draws::Cell`]).
+    identity: Identity,
     driver_name: String,
     driven_name: String,
     driver: Gear,
@@ -168,9 +148,11 @@ fn prepare<'a>(g: &Gearing, spec: &'a CellSpec) -> Result<Prepared<'a>, RunError
     };
     let (driver, driven) = (ideal(&m.driver)?, ideal(&m.driven)?);
     let larger = geo.driver_teeth.max(geo.driven_teeth);
+    let canonical = spec.canonical();
     Ok(Prepared {
         spec,
-        canonical: spec.canonical(),
+        identity: Draws::Cell(&canonical).identity(),
+        canonical,
         driver_name: m.driver.clone(),
         driven_name: m.driven.clone(),
         driver,
@@ -251,7 +233,7 @@ pub fn draw_trial(g: &Gearing, cell: &CellSpec, seed: u64, t: u64) -> Result<Dra
 
 fn draw(p: &Prepared<'_>, seed: u64, t: u64) -> Result<Drawn, RunError> {
     // One stream per (cell content, trial).
-    let mut rng = trial_rng(seed, stream(&p.canonical, t));
+    let mut rng = Streams::new(seed).stream(p.identity, t);
     let spec = p.spec;
     let driver = errors::make(
         spec.hypothesis,
@@ -449,9 +431,43 @@ fn under(o: RuleBits, r: usize) -> (bool, bool) {
     (o >> (2 * r) & 1 == 1, o >> (2 * r + 1) & 1 == 1)
 }
 
+/// What a cell's counts depend on, and so what the cache holds them under: the cell's content
+/// (which names its streams), how its trials are counted, the seed, the trial count and the
+/// gearing.
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub struct CellKey {
+    /// The cell's canonical text ([`CellSpec::canonical`]).
+    pub cell: String,
+    /// The counting's part ([`Counting`]: rule, drive, end).
+    pub counting: String,
+    /// The run's seed.
+    pub seed: u64,
+    /// Trials of the cell.
+    pub trials: u64,
+    /// The gearing the cell's mesh is taken from.
+    pub gearing: GearingId,
+}
+
+impl std::fmt::Display for CellKey {
+    /// The key as one line, the text a batch of cells is named by (hashed).
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let CellKey {
+            cell,
+            counting,
+            seed,
+            trials,
+            gearing,
+        } = self;
+        write!(
+            f,
+            "{cell}|{counting}|seed={seed}|trials={trials}|gearing={gearing:016x}"
+        )
+    }
+}
+
 /// Counts of every cell run in this process, by cache key (see [`run_cells`]).
-fn cache() -> &'static Mutex<HashMap<String, Counts>> {
-    static CACHE: OnceLock<Mutex<HashMap<String, Counts>>> = OnceLock::new();
+fn cache() -> &'static Mutex<HashMap<CellKey, Counts>> {
+    static CACHE: OnceLock<Mutex<HashMap<CellKey, Counts>>> = OnceLock::new();
     CACHE.get_or_init(|| Mutex::new(HashMap::new()))
 }
 
@@ -479,9 +495,10 @@ pub fn forget_cache() {
 /// Every (cell, trial) job runs in one flat parallel batch through [`TrialEngine::trials`] (or
 /// [`TrialEngine::trials_whole`] for a [`Purpose::Input`]) and is collected in order, so the counts
 /// do not depend on the thread count, and a run split into shards and merged gives the same
-/// counts. Trial `t` of a cell draws from `trial_rng(seed, stream(cell.canonical(), t))`: the
-/// same cell gives the same counts in any experiment. Counts are cached for the life of the
-/// process under the cell's canonical text, the seed, the trial count and a hash of the gearing,
+/// counts. Trial `t` of a cell draws from the stream of ([`Draws::Cell`]`(cell.canonical())`,
+/// `t`): the same cell gives the same counts in any experiment. Counts are cached for the life
+/// of the process under a [`CellKey`] (the cell's canonical text, the counting, the seed, the
+/// trial count and the gearing's identity),
 /// so a cell another experiment has already run (Table 5 reusing Table 4, Table I's G = 40 % rows
 /// reusing Table 3) costs nothing and gives the same bits; a shard's partial counts are never
 /// cached. [`Counts::engagements`] is counted whether or not the cell came from the cache, so a
@@ -603,8 +620,8 @@ fn run_cells_under(
         .iter()
         .map(|c| countings.map_or_else(|| vec![Counting::of(c)], <[_]>::to_vec))
         .collect();
-    let keys = cache_keys(g, &prepared, &countings_of, trials, seed);
-    let mut known: HashMap<String, Counts> = HashMap::new();
+    let keys = cache_keys(GearingId::of(g)?, &prepared, &countings_of, trials, seed);
+    let mut known: HashMap<CellKey, Counts> = HashMap::new();
     if use_cache {
         let cached = cache().lock().unwrap_or_else(|e| e.into_inner());
         for k in keys.iter().flatten() {
@@ -615,10 +632,10 @@ fn run_cells_under(
     }
     // Cells with a count still missing, each once even if listed twice (same keys).
     let mut todo: Vec<usize> = Vec::new();
-    let mut queued: HashMap<String, ()> = HashMap::new();
+    let mut queued: HashSet<&[CellKey]> = HashSet::new();
     for (i, ks) in keys.iter().enumerate() {
         let missing = ks.iter().any(|k| !known.contains_key(k));
-        if missing && queued.insert(ks.join("\n"), ()).is_none() {
+        if missing && queued.insert(ks) {
             todo.push(i);
         }
     }
@@ -659,24 +676,23 @@ fn run_cells_under(
 /// One key per (cell, counting) of `prepared` under `countings_of`: what the cache holds, naming
 /// the cell, the counting, the seed, the trials and the gearing.
 fn cache_keys(
-    g: &Gearing,
+    gearing: GearingId,
     prepared: &[Prepared<'_>],
     countings_of: &[Vec<Counting>],
     trials: u64,
     seed: u64,
-) -> Vec<Vec<String>> {
-    let gearing_id = fnv1a64(format!("{g:?}").as_bytes());
+) -> Vec<Vec<CellKey>> {
     prepared
         .iter()
         .zip(countings_of)
         .map(|(p, cs)| {
             cs.iter()
-                .map(|c| {
-                    format!(
-                        "{}|{}|seed={seed}|trials={trials}|gearing={gearing_id:016x}",
-                        p.canonical,
-                        c.key()
-                    )
+                .map(|c| CellKey {
+                    cell: p.canonical.clone(),
+                    counting: c.key(),
+                    seed,
+                    trials,
+                    gearing,
                 })
                 .collect()
         })
@@ -687,11 +703,11 @@ fn cache_keys(
 /// per counting, put in `known` under their keys.
 fn count_outcomes(
     prepared: &[Prepared<'_>],
-    keys: &[Vec<String>],
+    keys: &[Vec<CellKey>],
     todo: &[usize],
     outcomes: &[RuleBits],
     trials: u64,
-    known: &mut HashMap<String, Counts>,
+    known: &mut HashMap<CellKey, Counts>,
 ) {
     for (n, &i) in todo.iter().enumerate() {
         let start = n * trials as usize;
@@ -717,7 +733,7 @@ fn count_outcomes(
 fn run_todo(
     prepared: &[Prepared<'_>],
     countings_of: &[Vec<Counting>],
-    keys: &[Vec<String>],
+    keys: &[Vec<CellKey>],
     todo: &[usize],
     trials: u64,
     seed: u64,
@@ -732,8 +748,7 @@ fn run_todo(
     let mut names = String::new();
     for &i in todo {
         for k in &keys[i] {
-            names.push_str(k);
-            names.push('\n');
+            let _ = writeln!(names, "{k}");
         }
     }
     let batch = format!(
@@ -807,7 +822,7 @@ fn run_cell_ranges_with(
         .iter()
         .map(|r| prepare(g, &r.cell))
         .collect::<Result<_, _>>()?;
-    let gearing_id = fnv1a64(format!("{g:?}").as_bytes());
+    let gearing_id = GearingId::of(g)?;
     let mut names = String::new();
     let mut jobs: Vec<(usize, u64)> = Vec::new();
     for (i, (r, p)) in ranges.iter().zip(&prepared).enumerate() {

@@ -211,25 +211,29 @@ fn the_drive_changes_the_driver_and_nothing_drawn() {
 }
 
 #[test]
-fn fnv1a_matches_reference_values() {
-    // Published FNV-1a 64-bit test vectors.
-    assert_eq!(fnv1a64(b""), 0xcbf2_9ce4_8422_2325);
-    assert_eq!(fnv1a64(b"a"), 0xaf63_dc4c_8601_ec8c);
-    assert_eq!(fnv1a64(b"foobar"), 0x8594_4171_f739_67e8);
-}
-
-#[test]
 fn canonical_text_names_the_content() {
     let c = cell("b2-c1", 0.04);
     assert_eq!(
         c.canonical(),
         "mesh=b2-c1;hypothesis=edmunds-split;random=0.04;split=0.5;systematic=0.5;h=1.1;G=40.0"
     );
-    assert_ne!(stream(&c.canonical(), 0), stream(&c.canonical(), 1));
-    assert_ne!(
-        stream(&c.canonical(), 0),
-        stream(&cell("b2-c1", 0.045).canonical(), 0)
-    );
+    let first = |c: &CellSpec, t| -> f64 {
+        Streams::new(11)
+            .stream(Draws::Cell(&c.canonical()).identity(), t)
+            .random()
+    };
+    assert_ne!(first(&c, 0), first(&c, 1));
+    assert_ne!(first(&c, 0), first(&cell("b2-c1", 0.045), 0));
+}
+
+/// The cache's gearing identity is its data: the same gearing read twice has one identity, a
+/// gearing with other data another.
+#[test]
+fn the_gearing_identity_is_its_data() {
+    let a = GearingId::of(&Gearing::freeth2006()).unwrap();
+    assert_eq!(a, GearingId::of(&Gearing::freeth2006()).unwrap());
+    let other = Gearing::builtin("freeth2021").unwrap();
+    assert_ne!(a, GearingId::of(&other).unwrap());
 }
 
 /// The batch runner of a plain run: every trial, in order, over rayon.
