@@ -12,8 +12,9 @@ use study::events::EventParams;
 use study::gearing::GearingParams;
 
 registry::params! {
-    /// `trial`: which trial's random initial angles (stream of the seed).
-    const TRIAL = Param::new("trial", "0", "which trial's random initial angles (stream of the seed)", registry::Kind::count(0, u64::MAX, ""));
+    /// `trial`: which trial's random initial angles (the engine's stream of the ideal mechanism
+    /// at that trial, Table 1's trial of the same index).
+    const TRIAL = Param::new("trial", "0", "which trial's random initial angles (the engine's ideal-mechanism stream at that trial index: Table 1's trial)", registry::Kind::count(0, u64::MAX, ""));
 }
 
 /// `samples`: samples over the solar turn.
