@@ -29,8 +29,8 @@ registry::params! {
     const RANDOM = Param::new("random", "0.05", "random tooth error (sd)", registry::Kind::number(0.0, hypotheses::MAX_RANDOM, "of the pitch")).unit("of the pitch");
     /// `systematic`: systematic error amplitude A.
     const SYSTEMATIC = Param::new("systematic", "0.6", "systematic error amplitude A", registry::Kind::number(0.0, 45.0, "deg")).unit("deg");
-    /// `trial`: which trial stream of the seed.
-    const TRIAL = Param::new("trial", "0", "which trial stream of the seed", registry::Kind::count(0, u64::MAX, ""));
+    /// `trial`: which trial's errors and initial angle (the engine's Figure 5 stream at that trial index).
+    const TRIAL = Param::new("trial", "0", "which trial's errors and initial angle (the engine's Figure 5 stream at that trial index)", registry::Kind::count(0, u64::MAX, ""));
 }
 
 /// `samples`: samples over the turn.
@@ -63,7 +63,7 @@ pub struct Settings {
     /// Systematic error amplitude A, degrees ([`SYSTEMATIC`]).
     #[param(SYSTEMATIC)]
     pub systematic: f64,
-    /// Which trial stream of the seed ([`TRIAL`]).
+    /// Which trial's errors and initial angle ([`TRIAL`]).
     #[param(TRIAL)]
     pub trial: u64,
     /// Samples over the turn ([`SAMPLES`]).
