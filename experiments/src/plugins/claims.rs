@@ -72,7 +72,7 @@ const READINGS: [Reading; 4] = [
     },
     Reading {
         name: "emax=paper",
-        sets: &[(&crate::emax::EMAX, "paper")],
+        sets: &[(&setting_groups::emax::EMAX, "paper")],
     },
 ];
 
@@ -187,7 +187,8 @@ const CLAIMS: &[Claim] = &[
                 .meshes
                 .iter()
                 .map(|m| {
-                    let p = crate::emax::paper_systematic(&m.mesh, &values, PAPER_RULE_PERCENT);
+                    let p =
+                        presentation::emax::paper_systematic(&m.mesh, &values, PAPER_RULE_PERCENT);
                     (m.mesh.clone(), p.flatten())
                 })
                 .collect();
@@ -309,7 +310,9 @@ impl Evidence<'_> {
             .filter_map(|q| {
                 if q.counts_trials() && *q != study::grids::TRIALS && s.runs > 0 {
                     Some((q, s.runs.to_string()))
-                } else if q.name == crate::inputs::MEASURED && !s.measured.trim().is_empty() {
+                } else if q.name == setting_groups::inputs::MEASURED
+                    && !s.measured.trim().is_empty()
+                {
                     Some((q, s.measured.clone()))
                 } else {
                     None
@@ -397,7 +400,7 @@ fn paper_clearance() -> Result<study::claims::pointers::PaperClearance, RunError
 fn paper_random_row(meshes: &[String]) -> Vec<(String, Option<f64>)> {
     meshes
         .iter()
-        .map(|m| (m.clone(), crate::emax::paper_random(m)))
+        .map(|m| (m.clone(), presentation::emax::paper_random(m)))
         .collect()
 }
 

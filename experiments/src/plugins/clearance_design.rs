@@ -16,8 +16,8 @@ use serde::{Deserialize, Serialize};
 use stats::{Proportion, clopper_pearson95};
 use train::Gearing;
 
-use crate::settings::typed::{Gearing as CellGearing, cells};
 use presentation::common::{Plot, Series};
+use setting_groups::typed::{Gearing as CellGearing, cells};
 use study::cell::{Counts, label};
 use study::clearance_search::{MeshSearch, Search, search};
 use study::drive::DriveParams;
@@ -200,7 +200,7 @@ impl registry::Experiment for ClearanceDesign {
             agreement: None,
             ..Default::default()
         };
-        crate::settings::typed::label(&s.events, Some(&s.drive), report)
+        setting_groups::typed::label(&s.events, Some(&s.drive), report)
     }
 }
 

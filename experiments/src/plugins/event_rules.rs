@@ -12,10 +12,10 @@ use registry::{OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64};
 use rules::Rule;
 use serde::{Deserialize, Serialize};
 
-use crate::settings::typed::{Gearing, cells};
 use presentation::cells::{
     PaperTable, Tally, consistent_with_paper, paper_counts, paper_table_cells, share,
 };
+use setting_groups::typed::{Gearing, cells};
 use study::cell::{CellSpec, Counting, Counts, Purpose, label, run_cells_counted};
 use study::drive::Drive;
 use study::errors::CaseParams;

@@ -25,8 +25,8 @@ use study::whole_mechanism::{
     case_input, check_study, measured_table, parse_cases, run_study,
 };
 
-use crate::settings::typed::label;
 use presentation::common::{Plot, Series, mean_day_cell, percent_cell};
+use setting_groups::typed::label;
 
 registry::params! {
     /// `trials`: whole-mechanism runs per input (the paper: 30).

@@ -15,9 +15,9 @@ use serde::{Deserialize, Serialize};
 use stats::mean_ci95;
 use train::Gearing;
 
-use crate::settings::typed::label;
 use presentation::common::{Series, category_plot};
 use presentation::common::{mean_day_cell, percent_cell};
+use setting_groups::typed::label;
 use study::errors;
 use study::events::EventParams;
 use study::gearing::GearingParams;

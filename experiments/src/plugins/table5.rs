@@ -6,9 +6,10 @@ use registry::{OutputFile, Place, Report, Run, RunError, Table};
 use replay::{Cell, CellText};
 use serde::{Deserialize, Serialize};
 
-use crate::emax::{EMAX, given_row, paper_random, paper_systematic, random_from, show};
-use crate::settings::typed::{Gearing, cells, off_paper_inputs};
 use presentation::cells::{JamCells, counts_report, paper_counts};
+use presentation::emax::{paper_random, paper_systematic, show};
+use setting_groups::emax::{EMAX, given_row, random_from};
+use setting_groups::typed::{Gearing, cells, off_paper_inputs};
 use study::cell::{Purpose, label};
 use study::drive::DriveParams;
 use study::errors::CaseParams;
@@ -125,7 +126,7 @@ impl registry::Experiment for Table5 {
             agreement: Some(jam_cells.tally.agreement()),
             ..counts_report(t.all())
         };
-        crate::settings::typed::label(&s.events, Some(&s.drive), report)
+        setting_groups::typed::label(&s.events, Some(&s.drive), report)
     }
 }
 

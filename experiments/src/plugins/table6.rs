@@ -8,8 +8,9 @@ use registry::{OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64};
 use serde::{Deserialize, Serialize};
 use stats::Estimate;
 
-use crate::emax::{EMAX, given_row, paper_random, paper_systematic, random_from, show};
-use crate::settings::typed::{Gearing, cells, off_paper_inputs};
+use presentation::emax::{paper_random, paper_systematic, show};
+use setting_groups::emax::{EMAX, given_row, random_from};
+use setting_groups::typed::{Gearing, cells, off_paper_inputs};
 use study::cell::{Purpose, label};
 use study::drive::DriveParams;
 use study::errors::CaseParams;
@@ -152,7 +153,7 @@ impl registry::Experiment for Table6 {
             }),
             ..Default::default()
         };
-        crate::settings::typed::label(&s.events, Some(&s.drive), report)
+        setting_groups::typed::label(&s.events, Some(&s.drive), report)
     }
 }
 
