@@ -24,6 +24,7 @@ pub mod label_place;
 pub mod pair_html;
 pub mod pair_svg;
 pub mod paper;
+pub mod reports;
 pub mod td_plot;
 #[cfg(test)]
 mod test_pair;
