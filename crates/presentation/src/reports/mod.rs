@@ -5,3 +5,4 @@
 //! `report` hands its results here.
 
 pub mod clearance_design;
+pub mod event_rules;
