@@ -6,3 +6,4 @@
 
 pub mod clearance_design;
 pub mod event_rules;
+pub mod failure;
