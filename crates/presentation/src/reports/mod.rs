@@ -4,6 +4,7 @@
 //! experiment's plugin file keeps its settings, its computation and its registration, and its
 //! `report` hands its results here.
 
+pub mod claims;
 pub mod clearance_design;
 pub mod event_rules;
 pub mod failure;
