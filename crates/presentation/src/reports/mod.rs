@@ -8,3 +8,4 @@ pub mod claims;
 pub mod clearance_design;
 pub mod event_rules;
 pub mod failure;
+pub mod table5;
