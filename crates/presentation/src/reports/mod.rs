@@ -9,3 +9,4 @@ pub mod clearance_design;
 pub mod event_rules;
 pub mod failure;
 pub mod table5;
+pub mod table6;
