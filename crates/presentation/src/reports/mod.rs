@@ -8,5 +8,6 @@ pub mod claims;
 pub mod clearance_design;
 pub mod event_rules;
 pub mod failure;
+pub mod sensitivity;
 pub mod table5;
 pub mod table6;
