@@ -13,6 +13,8 @@
 //!   [`cells`]: a jam cell beside the paper's, the two-sample mark, the tally; [`paper`]: the
 //!   paper's numbers, read from `experiments/paper.ron`, and [`emax`], its largest tolerable
 //!   errors; [`units`]: tolerances per gear in mm and degrees beside the fraction of the pitch.
+//! - [`reports`]: one module per experiment whose drawing is its own, from its typed results
+//!   to its tables, notes, CSV and SVG (the experiment's `report` calls it).
 
 pub mod cells;
 pub mod chart;
