@@ -1,16 +1,13 @@
 //! The paper's tables and figures as experiments: one file each in `src/plugins/`, registered with `inventory`.
 //!
-//! An experiment is a leaf: it reads its settings, calls the `study` crate (which owns every
-//! simulation) and formats tables and figures through the `presentation` crate. No experiment
-//! imports another; beside the plugins is only the glue they share (settings, inputs, the
-//! paper's tolerances, the cells a replayable table holds). Adding an experiment is one file in
-//! `src/plugins/` (`build.rs` declares it) plus its snapshot.
+//! An experiment is a leaf: it reads its settings (the groups several share through
+//! `setting_groups`), calls the `study` crate (which owns every simulation) and draws its tables
+//! and figures through the `presentation` crate. No experiment imports another; beside the
+//! plugins is only their registration (`replay_cells!`, the grammar of a replayable table's
+//! cells). Adding an experiment is one file in `src/plugins/` (`build.rs` declares it) plus its
+//! snapshot.
 
-pub mod emax;
-pub mod inputs;
 mod register;
-pub mod settings;
-pub mod table_cells;
 
 pub(crate) use register::replay_cells;
 

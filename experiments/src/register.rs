@@ -4,7 +4,7 @@
 /// [`registry::Experiment`]: `replay_cells! { "table3", "CASE/MESH, e.g. B/m3-e3" => cell }`,
 /// `cell` parsing the typed cell against the table's cell settings. The grammar
 /// ([`replay::CellGrammar`]) reads the table's settings and checks that the table holds a cell
-/// through [`crate::table_cells`].
+/// through [`setting_groups::table_cells`].
 macro_rules! replay_cells {
     ($id:literal, $form:literal => $parse:expr) => {
         registry::inventory::submit! {
@@ -12,8 +12,8 @@ macro_rules! replay_cells {
                 experiment: $id,
                 form: $form,
                 parse: $parse,
-                settings: $crate::table_cells::settings,
-                holds: $crate::table_cells::check,
+                settings: ::setting_groups::table_cells::settings,
+                holds: ::setting_groups::table_cells::check,
             }
         }
     };

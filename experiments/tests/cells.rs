@@ -37,7 +37,7 @@ fn a_run_off_the_papers_inputs_is_not_compared_with_its_column() {
     let off_paper = |k: &str, v: &str| {
         let (_, ctx) = experiments::context("table3", 2025, 1, &[(k, v)]).unwrap();
         let s = <Cells as registry::Settings>::read(&ctx).unwrap();
-        experiments::settings::typed::off_paper_inputs(&s)
+        setting_groups::typed::off_paper_inputs(&s)
     };
     assert!(off_paper("events", "strict").is_empty());
     assert!(off_paper("drive", "other").is_empty());

@@ -109,11 +109,11 @@ fn table5_counts_agreement_over_the_papers_meshes_only() {
         .meshes()
         .iter()
         .map(|m| m.label.as_str())
-        .filter(|m| experiments::emax::paper_random(m).is_some())
+        .filter(|m| presentation::emax::paper_random(m).is_some())
         .collect();
     assert!(!papers.is_empty());
     for mesh in cosmos_meshes(gearing) {
-        assert!(experiments::emax::paper_random(&mesh).is_none(), "{mesh}");
+        assert!(presentation::emax::paper_random(&mesh).is_none(), "{mesh}");
     }
     let of = format!("of {} meshes", papers.len());
     assert!(

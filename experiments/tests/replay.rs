@@ -55,7 +55,7 @@ fn replayed_trials_are_the_ones_the_table_counted() {
     ] {
         // Fewer trials than a listing shows, so every failed one is named.
         let ctx = ctx(id, &[("trials", "16")]);
-        let s = experiments::settings::cells(&ctx, &study::grids::TRIALS).unwrap();
+        let s = setting_groups::read::cells(&ctx, &study::grids::TRIALS).unwrap();
         let spec = cell_spec(&s, ctx.seed(), id, cell).unwrap();
         let counts = run_cells(
             ctx.engine(),
@@ -108,7 +108,7 @@ fn replayed_trials_are_the_ones_the_table_counted() {
 fn a_replayed_trial_names_the_gear_that_drove_and_its_pair_file_reruns_it() {
     let (id, cell) = ("table4", "0.065/m2-n1");
     let ctx = ctx(id, &[("trials", "12"), ("drive", "either")]);
-    let s = experiments::settings::cells(&ctx, &study::grids::TRIALS).unwrap();
+    let s = setting_groups::read::cells(&ctx, &study::grids::TRIALS).unwrap();
     let spec = cell_spec(&s, ctx.seed(), id, cell).unwrap();
     let mut seen = [false, false];
     for t in 0..12 {

@@ -1,6 +1,6 @@
 //! The `settings` fuzz target of `cargo xtask fuzz`: the `--set KEY=VALUE` strings of every
 //! experiment, checked as `run` checks them before anything computes (the parameter kinds in
-//! [`registry::Context::new`], then the files and shared settings in [`experiments::inputs::check`]).
+//! [`registry::Context::new`], then the files and shared settings in [`setting_groups::inputs::check`]).
 //!
 //! It lives beside [`crate::fuzz_targets`] rather than in it: those targets are also built by
 //! the cargo-fuzz crate in `fuzz/`, which does not depend on the registry or the experiments.
@@ -93,7 +93,7 @@ pub fn settings(text: &str) -> Result<Outcome, String> {
             Err(err) => return check_refusal(err.to_string(), &sets),
         };
         if let Err(m) =
-            experiments::inputs::check(&ctx, ("--hypothesis", "--set measured"), &mut seen)
+            setting_groups::inputs::check(&ctx, ("--hypothesis", "--set measured"), &mut seen)
         {
             return check_refusal(m, &sets);
         }

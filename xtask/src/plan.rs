@@ -227,7 +227,7 @@ pub(crate) fn preflight(planned: &[Planned], run: &RunArgs) -> Result<(), Failur
         ("--hypothesis", "--set measured")
     };
     for p in planned {
-        experiments::inputs::check(&p.ctx, flags, &mut seen)
+        setting_groups::inputs::check(&p.ctx, flags, &mut seen)
             .map_err(|m| Failure::Bad(typed_flag(m, run)))?;
     }
     Ok(())

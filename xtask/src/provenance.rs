@@ -109,7 +109,7 @@ fn recorded_inputs(ctx: &Context) -> BTreeMap<String, String> {
         .holds(&study::errors::PARAM)
         .then(|| ctx.text(&study::errors::PARAM));
     if let Some(Ok(h)) = hypothesis {
-        for f in experiments::inputs::measured_in_hypothesis(h) {
+        for f in setting_groups::inputs::measured_in_hypothesis(h) {
             inputs.insert("errors".to_owned(), f);
         }
     }
@@ -192,7 +192,7 @@ fn inputs(ctx: &Context) -> Vec<serde_json::Value> {
             "sha256": sha256(c.text.as_bytes()),
         }));
     }
-    let files = experiments::inputs::files(ctx);
+    let files = setting_groups::inputs::files(ctx);
     for (role, path) in files {
         let hash = input_file::read_to_string(Path::new(&path), input_file::MAX_INPUT_BYTES)
             .ok()

@@ -130,7 +130,7 @@ pub(crate) fn command(a: &ReplayArgs) -> Result<(), Failure> {
     let ctx = Context::new(e, a.seed, threads, &a.sets, None)?;
     // The files the replay reads, resolved and checked by the rule `run` and `merge` use: a
     // built-in name that is also a file here is refused, as is a file that breaks its rules.
-    experiments::inputs::check(
+    setting_groups::inputs::check(
         &ctx,
         ("--set: hypothesis", "--set: measured"),
         &mut std::collections::BTreeSet::new(),

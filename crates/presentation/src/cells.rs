@@ -366,7 +366,7 @@ impl JamCells {
     }
 
     /// The same, for a run whose inputs differ from the paper's in `inputs` (`name=value`, see
-    /// `experiments::settings::typed::off_paper_inputs`): none of its cells is compared with the paper's counts, which came
+    /// `setting_groups::typed::off_paper_inputs`): none of its cells is compared with the paper's counts, which came
     /// from other inputs; they are shown for reference.
     pub fn off_paper(mut self, inputs: Vec<String>) -> JamCells {
         self.off_paper = inputs;

@@ -11,19 +11,23 @@
 //!   cosmos display's trains, each mesh coloured by its tolerance.
 //! - [`common`]: CSV, intervals, estimates, wrapped text and [`escape_xml`], the one XML escape;
 //!   [`cells`]: a jam cell beside the paper's, the two-sample mark, the tally; [`paper`]: the
-//!   paper's numbers, read from `experiments/paper.ron`; [`units`]: tolerances per gear in mm
-//!   and degrees beside the fraction of the pitch.
+//!   paper's numbers, read from `experiments/paper.ron`, and [`emax`], its largest tolerable
+//!   errors; [`units`]: tolerances per gear in mm and degrees beside the fraction of the pitch.
+//! - [`reports`]: one module per experiment whose drawing is its own, from its typed results
+//!   to its tables, notes, CSV and SVG (the experiment's `report` calls it).
 
 pub mod cells;
 pub mod chart;
 pub mod common;
 pub mod cosmos_svg;
+pub mod emax;
 pub mod event_picture;
 pub mod label_place;
 pub mod pair_events;
 pub mod pair_html;
 pub mod pair_svg;
 pub mod paper;
+pub mod reports;
 pub mod td_plot;
 #[cfg(test)]
 mod test_pair;

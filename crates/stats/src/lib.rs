@@ -3,7 +3,8 @@
 // Contents: `pointer_stats` / `Accumulator` (Table 1's σ, Dm, P, batch or streaming),
 // `mean_ci95` (Student-t interval), `wilson95` / `clopper_pearson95` (binomial counts),
 // `DAYS_PER_YEAR` / `days_per_degree` (degrees of pointer error to days); in `two_sample.rs`,
-// two binomial counts compared (`fisher_exact_two_sided`, `newcombe95`, `consistent`); in
+// two binomial counts compared (`fisher_exact_two_sided`, `newcombe95`, `consistent`) and
+// paired ones (`sign_test`, McNemar's exact test); in
 // `survival.rs`, times to an event (`median`, `kaplan_meier` with its exact band). Quantiles come from
 // `statrs` (`StudentsT`, `Beta`) without default features: it pulls in only `approx` and
 // `num-traits`.
@@ -19,6 +20,7 @@ pub use survival::{Step, kaplan_meier, median, step_points, survival_at};
 
 pub use two_sample::{
     Difference, FISHER_RELATIVE_TOLERANCE, consistent, fisher_exact_two_sided, newcombe95,
+    sign_test,
 };
 
 // ---------------------------------------------------------------------------------------------

@@ -4,6 +4,9 @@
 //! Both answer the question the per-mesh jam tables ask when they set our count of jamming
 //! trials beside the paper's: the paper's count is a sample too (of 200 trials), so the two
 //! counts are compared as two samples, not one count against the other's interval.
+//!
+//! [`sign_test`] compares two settings run on the same trials (paired): the trials that failed
+//! under one setting only, against those that failed under the other only.
 
 use statrs::function::factorial::ln_factorial;
 
@@ -147,6 +150,24 @@ pub fn newcombe95(a: u64, n1: u64, b: u64, n2: u64) -> Difference {
 #[must_use]
 pub fn consistent(a: u64, n1: u64, b: u64, n2: u64) -> bool {
     fisher_exact_two_sided(a, n1, b, n2) >= 0.05
+}
+
+/// Two-sided exact sign test of `b` against `c` discordant pairs (McNemar's exact test): the
+/// probability, with each pair going either way with probability 1/2, of a split at least as
+/// uneven; 1 when there are none.
+pub fn sign_test(b: u64, c: u64) -> f64 {
+    let n = b + c;
+    if n == 0 {
+        return 1.0;
+    }
+    // ln of C(n, i) / 2^n, from i = 0 up.
+    let mut ln_term = -(n as f64) * std::f64::consts::LN_2;
+    let mut tail = ln_term.exp();
+    for i in 1..=b.min(c) {
+        ln_term += ((n - i + 1) as f64).ln() - (i as f64).ln();
+        tail += ln_term.exp();
+    }
+    (2.0 * tail).min(1.0)
 }
 
 #[cfg(test)]
@@ -333,5 +354,21 @@ mod tests {
             );
         }
         assert!(!newcombe95(2, 200, 9, 200).contains_zero());
+    }
+
+    #[test]
+    fn the_sign_test_matches_binomial_tails() {
+        assert_eq!(sign_test(0, 0), 1.0);
+        // 3 against 0: 2 * (1/2)^3.
+        assert!((sign_test(3, 0) - 0.25).abs() < 1e-15);
+        assert!((sign_test(0, 3) - 0.25).abs() < 1e-15);
+        // 1 against 9: 2 * (1 + 10) / 1024.
+        assert!((sign_test(1, 9) - 22.0 / 1024.0).abs() < 1e-15);
+        // An even split: 1.
+        assert_eq!(sign_test(5, 5), 1.0);
+        // Large counts do not underflow: 0 against 2000 is tiny but 2 * 2^-2000 underflows to 0,
+        // and 1000 against 1000 is 1.
+        assert!(sign_test(0, 2000) < 1e-300);
+        assert_eq!(sign_test(1000, 1000), 1.0);
     }
 }

@@ -197,6 +197,50 @@ pub fn search(
     Ok(searches)
 }
 
+/// The clearance design's parameters, checked by the experiment: the search's ([`Search`]) and
+/// the failure study's (runs per case and setting, horizon in days of b).
+pub struct Design {
+    /// Coarse grid with the reference, ascending, without repeats.
+    pub grid: Vec<f64>,
+    /// The reference clearance (% of h).
+    pub reference: f64,
+    /// Pair runs per clearance of the coarse grid.
+    pub coarse: u64,
+    /// The refinement's step (% of h); 0: no refinement.
+    pub step: f64,
+    /// Pair runs per clearance compared at the refinement.
+    pub refine: u64,
+    /// Whole-mechanism runs per case and setting of the failure study.
+    pub runs: u64,
+    /// Horizon of each whole-mechanism run, days of b.
+    pub days: f64,
+    /// Indices into `CASES`.
+    pub cases: Vec<usize>,
+}
+
+impl Design {
+    /// What the clearance search runs.
+    pub fn search(&self) -> Search {
+        Search {
+            grid: self.grid.clone(),
+            reference: self.reference,
+            coarse: self.coarse,
+            step: self.step,
+            refine: self.refine,
+            cases: self.cases.clone(),
+        }
+    }
+
+    /// Trials per compared clearance at the final stage.
+    pub fn final_trials(&self) -> u64 {
+        if self.step > 0.0 {
+            self.refine
+        } else {
+            self.coarse
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

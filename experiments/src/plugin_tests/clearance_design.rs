@@ -16,22 +16,6 @@ fn a_pair_run_is_one_turn_of_the_larger_gear_in_years_of_b() {
     assert_eq!(years_per_pair_run(&g, "x-y"), None);
 }
 
-#[test]
-fn the_sign_test_matches_binomial_tails() {
-    assert_eq!(sign_test(0, 0), 1.0);
-    // 3 against 0: 2 * (1/2)^3.
-    assert!((sign_test(3, 0) - 0.25).abs() < 1e-15);
-    assert!((sign_test(0, 3) - 0.25).abs() < 1e-15);
-    // 1 against 9: 2 * (1 + 10) / 1024.
-    assert!((sign_test(1, 9) - 22.0 / 1024.0).abs() < 1e-15);
-    // An even split: 1.
-    assert_eq!(sign_test(5, 5), 1.0);
-    // Large counts do not underflow: 0 against 2000 is tiny but 2 * 2^-2000 underflows to 0,
-    // and 1000 against 1000 is 1.
-    assert!(sign_test(0, 2000) < 1e-300);
-    assert_eq!(sign_test(1000, 1000), 1.0);
-}
-
 fn run_with(threads: usize, sets: &[(&str, &str)]) -> Result<Report, RunError> {
     crate::run("clearance-design", 2025, threads, sets)
 }

@@ -6,7 +6,7 @@
 //! claim rests on (Table 3, Table 4, ...) under each reading, read from the results folder when a
 //! run with the same settings and seed is there, else computed (once per process).
 
-use registry::{Param, Place, Report, Run, RunError, Table};
+use registry::{Param, Place, Report, Run, RunError};
 use serde::{Deserialize, Serialize};
 use study::claims::tolerances::Named;
 use study::claims::{ClaimRow, Judged, Ledger as Results, MeshStanding, Verdict};
@@ -17,7 +17,7 @@ use study::results::{
 };
 use study::tolerance::PAPER_RULE_PERCENT;
 
-use presentation::train_picture::{Margin, MeshMargin};
+use presentation::reports::claims::{self, Asked};
 
 registry::params! {
     const RUNS = Param::new("runs", "0", "trials of the pointer tables (Tables 1 and 2) and runs of the whole-mechanism study (failure) the ledger reads; 0: each experiment's own default (Table 1 and the failure study: the paper's 30; Table 2: 20)", registry::Kind::count(0, registry::MAX_TRIALS, ""));
@@ -72,7 +72,7 @@ const READINGS: [Reading; 4] = [
     },
     Reading {
         name: "emax=paper",
-        sets: &[(&crate::emax::EMAX, "paper")],
+        sets: &[(&setting_groups::emax::EMAX, "paper")],
     },
 ];
 
@@ -187,7 +187,8 @@ const CLAIMS: &[Claim] = &[
                 .meshes
                 .iter()
                 .map(|m| {
-                    let p = crate::emax::paper_systematic(&m.mesh, &values, PAPER_RULE_PERCENT);
+                    let p =
+                        presentation::emax::paper_systematic(&m.mesh, &values, PAPER_RULE_PERCENT);
                     (m.mesh.clone(), p.flatten())
                 })
                 .collect();
@@ -309,7 +310,9 @@ impl Evidence<'_> {
             .filter_map(|q| {
                 if q.counts_trials() && *q != study::grids::TRIALS && s.runs > 0 {
                     Some((q, s.runs.to_string()))
-                } else if q.name == crate::inputs::MEASURED && !s.measured.trim().is_empty() {
+                } else if q.name == setting_groups::inputs::MEASURED
+                    && !s.measured.trim().is_empty()
+                {
                     Some((q, s.measured.clone()))
                 } else {
                     None
@@ -397,7 +400,7 @@ fn paper_clearance() -> Result<study::claims::pointers::PaperClearance, RunError
 fn paper_random_row(meshes: &[String]) -> Vec<(String, Option<f64>)> {
     meshes
         .iter()
-        .map(|m| (m.clone(), crate::emax::paper_random(m)))
+        .map(|m| (m.clone(), presentation::emax::paper_random(m)))
         .collect()
 }
 
@@ -484,36 +487,14 @@ impl registry::Experiment for Claims {
     }
 
     fn report(s: &Settings, r: &Results) -> Result<Report, RunError> {
-        let ledger = ledger_table(s, r);
-        let train = presentation::train_picture::train_svg(
-            &train::Gearing::freeth2006(),
-            &margins(&r.case_b),
-            "The Lunar, Metonic, Saros, Games and Exeligmos trains: each mesh under Edmunds' Case B at G = 40 %",
-            &[
-                (
-                    Margin::Clear,
-                    "keeps the paper's 1 % rule with room: no failure in the trials",
-                ),
-                (Margin::Near, "keeps the rule: at most 1 % of trials failed"),
-                (
-                    Margin::Failing,
-                    "breaks the rule: more than 1 % of trials jammed or disengaged",
-                ),
-            ],
-        );
-        let mut tables = vec![ledger, findings(s, r)];
-        if let Some((t, split)) = &r.tolerances {
-            tables.push(presentation::units::derived_tolerances_table(
-                "The tolerances behind C7 and C8 in units of each gear: Table 5's largest tolerable random error and systematic amplitude on top of it, as run".to_string(),
-                t,
-                *split,
-            ));
-        }
-        Ok(Report {
-            tables,
-            files: vec![registry::OutputFile::new("train.svg", train)],
-            ..Default::default()
-        })
+        Ok(claims::report(
+            r,
+            Asked {
+                trials: s.trials,
+                runs: s.runs,
+                hypothesis: &s.errors.hypothesis,
+            },
+        ))
     }
 }
 
@@ -579,100 +560,4 @@ fn case_b(t: &CaseTable) -> Vec<MeshStanding> {
             ),
         })
         .collect()
-}
-
-fn margins(case_b: &[MeshStanding]) -> Vec<MeshMargin> {
-    case_b
-        .iter()
-        .map(|m| MeshMargin {
-            label: m.mesh.clone(),
-            verdict: Some(if !m.keeps_rule {
-                Margin::Failing
-            } else if m.failures > 0 {
-                Margin::Near
-            } else {
-                Margin::Clear
-            }),
-            text: format!("B: {}/{}", m.failures, m.trials),
-        })
-        .collect()
-}
-
-/// The verdicts alone, one line per claim and a column per reading: the README's Findings.
-fn findings(s: &Settings, r: &Results) -> Table {
-    let mut columns = vec!["claim".to_owned(), "the paper says".to_owned()];
-    columns.extend(r.readings.iter().map(|name| match name.as_str() {
-        "as run" => "verdict".to_owned(),
-        other => format!("under {other}"),
-    }));
-    let mut t = Table::new(
-        format!(
-            "Findings: the paper's claims, our verdicts ({} trials per cell, {})",
-            s.trials,
-            runs_words(s.runs)
-        ),
-        columns,
-    );
-    for c in &r.claims {
-        let mut row = vec![c.id.clone(), c.words.clone()];
-        row.extend(c.under.iter().map(|v| v.words().to_owned()));
-        t.row(row);
-    }
-    t.note("Each verdict, its figures and its reason: `cargo xtask run claims` (the first table of its report).");
-    t
-}
-
-/// What [`RUNS`] set, in the title's words.
-fn runs_words(runs: u64) -> String {
-    if runs == 0 {
-        "Tables 1 and 2 and the failure study at their own counts".into()
-    } else {
-        format!("{runs} trials of Tables 1 and 2 and runs of the failure study")
-    }
-}
-
-/// The ledger as a table: a row per claim, a column per reading.
-fn ledger_table(s: &Settings, r: &Results) -> Table {
-    let mut columns = vec![
-        "claim",
-        "the paper says",
-        "where",
-        "paper",
-        "ours",
-        "verdict",
-        "why",
-    ]
-    .into_iter()
-    .map(String::from)
-    .collect::<Vec<_>>();
-    columns.extend(
-        r.readings
-            .iter()
-            .skip(1)
-            .map(|name| format!("under {name}")),
-    );
-    let mut t = Table::new(
-        format!(
-            "The paper's claims and what we find ({} trials per cell, {}, hypothesis {})",
-            s.trials,
-            runs_words(s.runs),
-            s.errors.hypothesis
-        ),
-        columns,
-    );
-    for c in &r.claims {
-        let mut row = vec![
-            c.id.clone(),
-            c.words.clone(),
-            c.place.clone(),
-            c.judged.paper.clone(),
-            c.judged.ours.clone(),
-            c.judged.verdict.words().to_owned(),
-            c.judged.reason.clone(),
-        ];
-        row.extend(c.under.iter().skip(1).map(|v| v.words().to_owned()));
-        t.row(row);
-    }
-    t.note("Verdicts: holds, holds in part (some parts, or the direction but not the size), differs, not testable (the data the claim rests on is not available). Each is computed by the run from the other experiments' results; `why` gives the rule.");
-    t
 }

@@ -4,8 +4,8 @@
 use registry::{OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64};
 use serde::{Deserialize, Serialize};
 
-use crate::settings::typed::label;
 use presentation::common::{Series, csv, line_plot, paper_cell};
+use setting_groups::typed::label;
 use study::events::EventParams;
 use study::gearing;
 use study::limits::{IdealPair, boundary};

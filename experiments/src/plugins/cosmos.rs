@@ -11,8 +11,8 @@
 use registry::{OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64};
 use serde::{Deserialize, Serialize};
 
-use crate::settings::typed::label;
 use presentation::common::interval;
+use setting_groups::typed::label;
 use study::cosmos::{self, DisplayRow, GearingResults, Interval, MeshTolerance, Results};
 use study::errors::CaseParams;
 use study::events::EventParams;

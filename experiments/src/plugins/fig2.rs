@@ -7,8 +7,8 @@ use contact::{Solve, Start, Trajectory};
 use registry::{OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64};
 use serde::{Deserialize, Serialize};
 
-use crate::settings::typed::label;
 use presentation::common::{MAX_DATA_ROWS, Series, csv, deg, line_plot, paper_cell};
+use setting_groups::typed::label;
 use study::equal_pair::{self, EqualPairParams};
 use study::events::EventParams;
 

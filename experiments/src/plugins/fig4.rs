@@ -6,8 +6,8 @@ use std::f64::consts::TAU;
 use registry::{OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64};
 use serde::{Deserialize, Serialize};
 
-use crate::settings::typed::label;
 use presentation::common::{Series, csv, line_plot};
+use setting_groups::typed::label;
 use study::events::EventParams;
 use study::gearing::GearingParams;
 

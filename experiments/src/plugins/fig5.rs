@@ -8,8 +8,8 @@ use geometry::Gear;
 use registry::{OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64, fmt_number};
 use serde::{Deserialize, Serialize};
 
-use crate::settings::typed::label;
 use presentation::common::{Plot, Series, csv, drawable};
+use setting_groups::typed::label;
 use study::errors::{self, ErrorParams};
 use study::events::EventParams;
 use study::results::{SplitPairs, SplitRun};

@@ -5,10 +5,10 @@
 use registry::{OutputFile, Param, Place, Report, Run, RunError, Table};
 use serde::{Deserialize, Serialize};
 
-use crate::emax::{paper_random, show};
-use crate::settings::typed::{Gearing, label, off_paper_inputs, unsplit_cells};
 use presentation::common::{Band, Series, category_plot_band};
+use presentation::emax::{paper_random, show};
 use presentation::units::{GearRow, Value};
+use setting_groups::typed::{Gearing, label, off_paper_inputs, unsplit_cells};
 use study::cell::Purpose;
 use study::drive::DriveParams;
 use study::errors::ErrorParams;

@@ -5,7 +5,7 @@
 use registry::{OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64};
 use serde::{Deserialize, Serialize};
 
-use crate::settings::typed::label;
+use setting_groups::typed::label;
 use study::events::EventParams;
 use study::gearing::ShapeParams;
 use study::limits::IdealPair;

@@ -4,8 +4,8 @@
 use registry::{OutputFile, Param, Place, Report, Run, RunError, Settings as _, Table, fmt_f64};
 use serde::{Deserialize, Serialize};
 
-use crate::settings::typed::label;
 use presentation::common::{Limit, LimitKind, Plot, Series};
+use setting_groups::typed::label;
 use study::events::EventParams;
 use study::gearing::ShapeParams;
 use study::limits::IdealPair;

@@ -25,10 +25,10 @@ use study::results::jam_readings::{
 };
 use study::tolerance::RandomGrid;
 
-use crate::settings::typed::{Gearing, cells};
 use presentation::cells::{
     PaperTable, consistent_with_paper, paper_counts, paper_table_cells, share,
 };
+use setting_groups::typed::{Gearing, cells};
 
 registry::params! {
     /// `trials`: trials per cell (a screening count; the paper: 200).

@@ -12,8 +12,8 @@ use registry::{OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64};
 use serde::{Deserialize, Serialize};
 use stats::{DAYS_PER_YEAR, Estimate, mean_ci95};
 
-use crate::settings::typed::label;
 use presentation::common::{Series, csv, line_plot, paper_cell};
+use setting_groups::typed::label;
 use study::anomaly::{AnomalyTrial, PinSlotTrain, Rows, RunStats};
 use study::draws::Draws;
 use study::errors::CaseParams;

@@ -19,8 +19,8 @@ use study::motion_models::{Figure2, PointerSigma, SigmaPoint};
 use study::pointers::{POINTERS, RunLengths};
 use study::tolerance::RandomGrid;
 
-use crate::settings::typed::{Gearing, cells};
 use presentation::cells::{Tally, paper_counts, paper_table_cells, share};
+use setting_groups::typed::{Gearing, cells};
 
 registry::params! {
     /// `trials`: trials per cell of Tables 3, 4 and I (a screening count; the paper: 200).

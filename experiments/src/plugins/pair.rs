@@ -5,9 +5,9 @@ use contact::Solve;
 use registry::{OutputFile, Place, Report, Run, RunError, Table, fmt_f64};
 use serde::{Deserialize, Serialize};
 
-use crate::settings::typed::label;
 use presentation::common::{csv, deg};
 use presentation::pair_svg::check_svg;
+use setting_groups::typed::label;
 use study::drive::{Drive, DriveParams};
 use study::events::EventParams;
 use study::pair_file::{Numbering, Prepared, default_run_deg, prepare};

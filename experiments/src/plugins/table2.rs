@@ -6,8 +6,8 @@ use registry::{OutputFile, Param, Place, Report, Run, RunError, Table, fmt_f64};
 use serde::{Deserialize, Serialize};
 use stats::Estimate;
 
-use crate::settings::typed::{Gearing, cells, label};
 use presentation::common::{Series, semilog_plot};
+use setting_groups::typed::{Gearing, cells, label};
 use study::draws::Draws;
 use study::errors::CaseParams;
 use study::events::EventParams;

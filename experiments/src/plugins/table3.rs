@@ -5,10 +5,10 @@ use registry::{OutputFile, Place, Report, Run, RunError, Table};
 use replay::{Cell, CellText};
 use serde::{Deserialize, Serialize};
 
-use crate::settings::typed::{Gearing, cells, label, off_paper_inputs};
 use presentation::cells::{
     CASE_TRIAL_NOTE, JamCells, case_paper_counts, counts_report, replay_note,
 };
+use setting_groups::typed::{Gearing, cells, label, off_paper_inputs};
 use study::cell::{Purpose, run_cells};
 use study::drive::DriveParams;
 use study::errors::CaseParams;

@@ -5,8 +5,8 @@ use registry::{OutputFile, Place, Report, Run, RunError, Table};
 use replay::{Cell, CellText};
 use serde::{Deserialize, Serialize};
 
-use crate::settings::typed::{Gearing, label, off_paper_inputs, unsplit_cells};
 use presentation::cells::{JamCells, counts_report, paper_counts, replay_note};
+use setting_groups::typed::{Gearing, label, off_paper_inputs, unsplit_cells};
 use study::cell::Purpose;
 use study::drive::DriveParams;
 use study::errors::ErrorParams;

@@ -8,8 +8,8 @@
 use registry::{OutputFile, Param, Place, Report, Run, RunError, Table};
 use serde::{Deserialize, Serialize};
 
-use crate::emax::{paper_random, show};
-use crate::settings::typed::{Gearing, off_paper_inputs, unsplit_cells};
+use presentation::emax::{paper_random, show};
+use setting_groups::typed::{Gearing, off_paper_inputs, unsplit_cells};
 use study::cell::{Purpose, label};
 use study::drive::DriveParams;
 use study::errors::ErrorParams;
@@ -171,7 +171,7 @@ impl registry::Experiment for ToleranceSearch {
             }),
             ..Default::default()
         };
-        crate::settings::typed::label(&s.events, Some(&s.drive), report)
+        setting_groups::typed::label(&s.events, Some(&s.drive), report)
     }
 }
 

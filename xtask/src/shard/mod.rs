@@ -117,7 +117,7 @@ pub(crate) fn merge(exps: &Registry, m: &MergeArgs) -> Result<(), Failure> {
     partial::same_code(&first_file, &header)?;
     partial::same_inputs(&header)?;
     let flags = ("--hypothesis", "--set measured");
-    experiments::inputs::check(&ctx, flags, &mut std::collections::BTreeSet::new())
+    setting_groups::inputs::check(&ctx, flags, &mut std::collections::BTreeSet::new())
         .map_err(|m| Failure::Bad(format!("merge: {m}")))?;
     let out = m.out.clone().unwrap_or_else(default_out);
     check_out(&out, &[Target::Results(e.id.to_owned())])?;

@@ -100,7 +100,7 @@ pub fn file_sha256(path: &Path) -> Result<String, String> {
 
 /// The files `ctx`'s run reads, with their hashes, for the partial file.
 pub fn input_files(ctx: &registry::Context) -> Vec<InputFile> {
-    experiments::inputs::files(ctx)
+    setting_groups::inputs::files(ctx)
         .into_iter()
         .map(|(role, path)| InputFile {
             role: role.to_owned(),

@@ -6,7 +6,7 @@
 //! table's values for it and the setting that changes them.
 //!
 //! The grammar ([`replay::CellGrammar`], registered by each table's file with
-//! `crate::replay_cells!`) says what a cell names; this says which of those the table holds, by
+//! `experiments`' `replay_cells!`) says what a cell names; this says which of those the table holds, by
 //! the same settings the table reads (its grids, its clearances, its E. max), and reads those
 //! settings for it.
 
@@ -19,9 +19,9 @@ use study::tolerance;
 /// with the per-cell `trials` parameter.
 ///
 /// # Errors
-/// A setting [`crate::settings::cells`] refuses.
+/// A setting [`crate::read::cells`] refuses.
 pub fn settings(ctx: &Context) -> Result<CellSettings, RunError> {
-    crate::settings::cells(ctx, &study::grids::TRIALS)
+    crate::read::cells(ctx, &study::grids::TRIALS)
 }
 
 /// Refuses a cell of experiment `id` that its table does not hold under `ctx`'s settings (`s`
@@ -51,7 +51,7 @@ pub fn check(ctx: &Context, s: &CellSettings, id: &str, cell: &str) -> Result<()
             let [_, g, _] = parts.as_slice() else {
                 return Ok(());
             };
-            let listed = crate::settings::clearance_list(
+            let listed = crate::read::clearance_list(
                 ctx,
                 &study::gearing::TABLE_I_CLEARANCES,
                 study::gearing::MAX_LISTED_CLEARANCE,
@@ -68,7 +68,7 @@ pub fn check(ctx: &Context, s: &CellSettings, id: &str, cell: &str) -> Result<()
             let Some((name, text, value)) = typed_value("random") else {
                 return Ok(());
             };
-            let grid = crate::settings::random_grid(ctx)?;
+            let grid = crate::read::random_grid(ctx)?;
             one_of(value, &grid).map_err(|near| {
                 bad(format!(
                     "{name} `{text}`: {near}a row of the table ({}; --set random_from, random_to and random_step run others)",
@@ -78,7 +78,7 @@ pub fn check(ctx: &Context, s: &CellSettings, id: &str, cell: &str) -> Result<()
         }
         "table5" => {
             if let Some((name, text, value)) = typed_value("systematic") {
-                let rows = crate::settings::systematic_grid(ctx)?;
+                let rows = crate::read::systematic_grid(ctx)?;
                 one_of(value, &rows).map_err(|near| {
                     bad(format!(
                         "{name} `{text}`: {near}a row of the table ({}; --set systematic_from, systematic_to and systematic_step run others)",
@@ -147,7 +147,7 @@ fn mesh_emax(
             .map(|e| (e, "the paper's, emax=paper".to_owned())));
     }
     let rule = ctx.get(&tolerance::RULE)?;
-    let grid = crate::settings::random_grid(ctx)?;
+    let grid = crate::read::random_grid(ctx)?;
     let clearance = s.clearance()?;
     let mut cells = Vec::with_capacity(grid.len());
     for &e in &grid {

@@ -148,7 +148,7 @@ fn names_no_file(ctx: &Context) -> Result<(), String> {
 /// before the first experiment computes, not by each experiment in turn after others ran.
 fn shared_settings(ctx: &Context) -> Result<(), String> {
     if ctx.holds(&study::events::PARAM) {
-        crate::settings::rule(ctx).map_err(|e| e.to_string())?;
+        crate::read::rule(ctx).map_err(|e| e.to_string())?;
     }
     // The gearing's clearance, large enough for the solver to tell from touching.
     if ctx.holds(&study::gearing::CLEARANCE)
