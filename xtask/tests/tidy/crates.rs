@@ -47,6 +47,31 @@ pub fn dependencies(manifest: &str, tables: &[&str]) -> Vec<String> {
 /// What the product (not the tests) depends on.
 pub const PRODUCT_TABLES: &[&str] = &["[dependencies]", "[build-dependencies]"];
 
+/// Whether `code` names the crate `dep` as a path's first segment (`dep::x`, `use dep`,
+/// `dep as`, `extern crate dep`), not as the tail of another name (`study::whole_mechanism::`
+/// does not name `mechanism`).
+fn names_crate(code: &str, dep: &str) -> bool {
+    let ident = |c: char| c.is_alphanumeric() || c == '_';
+    // A path's first segment: after no name, or after a leading `::` (`::replay::X` in a macro).
+    let starts_a_path = |i: usize| {
+        let before = code[..i].strip_suffix("::").unwrap_or(&code[..i]);
+        let leading = before.len() < i;
+        !before.ends_with(ident)
+            && !(leading && before.ends_with(['>', ')']))
+            && (leading || !before.ends_with(':'))
+    };
+    [format!("{dep}::"), format!("{dep} as ")].iter().any(|p| {
+        code.match_indices(p.as_str())
+            .any(|(i, _)| starts_a_path(i))
+    }) || [format!("use {dep}"), format!("extern crate {dep}")]
+        .iter()
+        .any(|p| {
+            code.match_indices(p.as_str()).any(|(i, m)| {
+                !code[i + m.len()..].starts_with(|c: char| c.is_alphanumeric() || c == '_')
+            })
+        })
+}
+
 #[test]
 fn no_crate_declares_a_dependency_it_never_names() {
     let mut unused = Vec::new();
@@ -57,11 +82,7 @@ fn no_crate_declares_a_dependency_it_never_names() {
             .map(|f| fs::read_to_string(f).unwrap())
             .collect();
         for dep in dependencies(&manifest, PRODUCT_TABLES) {
-            if !code.contains(&format!("{dep}::"))
-                && !code.contains(&format!("use {dep}"))
-                && !code.contains(&format!("{dep} as"))
-                && !code.contains(&format!("extern crate {dep}"))
-            {
+            if !names_crate(&code, &dep) {
                 unused.push(format!("{}: {dep}", rel(&krate)));
             }
         }
@@ -71,6 +92,17 @@ fn no_crate_declares_a_dependency_it_never_names() {
         "dependencies never named:\n{}",
         unused.join("\n")
     );
+}
+
+#[test]
+fn a_crate_is_named_by_a_path_not_by_the_tail_of_another_name() {
+    assert!(names_crate("use mechanism::Mechanism;", "mechanism"));
+    assert!(names_crate("let m = ::mechanism::run();", "mechanism"));
+    assert!(names_crate("f(mechanism::run())", "mechanism"));
+    assert!(!names_crate("study::whole_mechanism::RUNS", "mechanism"));
+    assert!(!names_crate("use mechanisms::X;", "mechanism"));
+    assert!(names_crate("use rand;", "rand"));
+    assert!(!names_crate("use rand_chacha::X;", "rand"));
 }
 
 #[test]
