@@ -52,13 +52,11 @@ pub const PRODUCT_TABLES: &[&str] = &["[dependencies]", "[build-dependencies]"];
 /// does not name `mechanism`).
 fn names_crate(code: &str, dep: &str) -> bool {
     let ident = |c: char| c.is_alphanumeric() || c == '_';
-    // A path's first segment: after no name, or after a leading `::` (`::replay::X` in a macro).
-    let starts_a_path = |i: usize| {
-        let before = code[..i].strip_suffix("::").unwrap_or(&code[..i]);
-        let leading = before.len() < i;
-        !before.ends_with(ident)
-            && !(leading && before.ends_with(['>', ')']))
-            && (leading || !before.ends_with(':'))
+    // A path's first segment: after no name, or after a leading `::` (`::replay::X` in a
+    // macro) that follows no name, type or call.
+    let starts_a_path = |i: usize| match code[..i].strip_suffix("::") {
+        Some(before) => !before.ends_with(|c: char| ident(c) || c == '>' || c == ')'),
+        None => !code[..i].ends_with(|c: char| ident(c) || c == ':'),
     };
     [format!("{dep}::"), format!("{dep} as ")].iter().any(|p| {
         code.match_indices(p.as_str())
