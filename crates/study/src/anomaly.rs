@@ -115,32 +115,13 @@ impl Rows<'_> {
         let Some(p) = params else {
             return Ok((ideal.clone(), rng));
         };
-        let mut failure = None;
-        let mech = Mechanism::build(
-            self.gearing,
-            self.tooth_height,
-            self.clearance,
-            |name, gear| {
-                crate::errors::make(self.hypothesis, &gear, name, p, &mut rng).map_err(|e| {
-                    let text = e.to_string();
-                    failure = Some(e);
-                    text
-                })
-            },
-        );
-        let mech = mech.map(|m| m.with_rule(self.rule.clone()));
-        match (mech, failure) {
-            (_, Some(e)) => Err(e),
-            (Err(e), None) => Err(RunError::bad(
-                "--hypothesis",
-                format!("mesh {}", e.mesh),
-                format!(
-                    "{}: the manufactured gears cannot be placed at this clearance",
-                    e.rule
-                ),
-            )),
-            (Ok(m), None) => Ok((m, rng)),
-        }
+        let mech = crate::errors::made_mechanism(
+            (self.gearing, self.tooth_height, self.clearance),
+            self.hypothesis,
+            |_| Ok(p),
+            &mut rng,
+        )?;
+        Ok((mech.with_rule(self.rule.clone()), rng))
     }
 
     /// `trials` trials of every row (row-major, in trial order, as the batch `key` of

@@ -264,6 +264,46 @@ pub fn make(
         .map_err(|e| RunError::bad("--hypothesis", e.what, e.rule))
 }
 
+/// A mechanism of `gearing` (tooth height `h`, clearance `clearance` % of h) whose every gear is
+/// made under `hypothesis` from `rng`, in the gearing's gear order, with `params_of(gear)` its
+/// parameters (an `Err` text refuses the gear). The hypothesis's own refusal is returned as it
+/// is; gears made so that they cannot be placed at the clearance are refused naming the mesh:
+/// these inputs cannot be run. Every study that makes a whole mechanism from errors goes
+/// through here, so that each draws the gears' errors in the same order.
+pub fn made_mechanism<'p>(
+    (gearing, h, clearance): (&train::Gearing, f64, f64),
+    hypothesis: &dyn Hypothesis,
+    params_of: impl Fn(&str) -> Result<&'p Params, String>,
+    rng: &mut dyn rand::RngCore,
+) -> Result<mechanism::Mechanism, RunError> {
+    let mut failure = None;
+    let mech = mechanism::Mechanism::build(gearing, h, clearance, |name, gear| {
+        let p = params_of(name)?;
+        make(hypothesis, &gear, name, p, rng).map_err(|e| {
+            let text = e.to_string();
+            failure = Some(e);
+            text
+        })
+    });
+    match (mech, failure) {
+        (_, Some(e)) => Err(e),
+        (Err(e), None) => Err(unplaceable(&e)),
+        (Ok(m), None) => Ok(m),
+    }
+}
+
+/// The refusal of gears that cannot be placed at the run's clearance, naming the mesh.
+pub fn unplaceable(e: &mechanism::MechanismError) -> RunError {
+    RunError::bad(
+        "--hypothesis",
+        format!("mesh {}", e.mesh),
+        format!(
+            "{}: the manufactured gears cannot be placed at this clearance",
+            e.rule
+        ),
+    )
+}
+
 /// Figure 5's trial: a driver and a driven gear made from `ideal` under `h` with `p`, and an
 /// initial driver angle within the driver's pitch, in that order from the one stream of trial
 /// `trial` of [`crate::draws::Draws::Figure5Pair`], so that pairs made with other parameters

@@ -318,22 +318,17 @@ pub fn tolerated_trials(
     engine.trials(key, trials, |t| {
         // One stream per trial: every gear's errors, then the initial angles.
         let mut rng = engine.stream(Draws::Tolerated.identity(), t);
-        let mut failure = None;
-        let mech = Mechanism::build(m.gearing, m.tooth_height, m.clearance, |name, gear| {
-            let Some(p) = m.params.get(name) else {
-                return Err(format!("gear {name} has no tolerance"));
-            };
-            crate::errors::make(m.hypothesis, &gear, name, p, &mut rng).map_err(|e| {
-                let text = e.to_string();
-                failure = Some(e);
-                text
-            })
-        });
-        let mech = match (mech, failure) {
-            (_, Some(e)) => return Err(e),
-            (Err(e), None) => return Err(RunError::Internal(e.to_string())),
-            (Ok(mech), None) => mech.with_rule(m.rule.clone()),
-        };
+        let mech = crate::errors::made_mechanism(
+            (m.gearing, m.tooth_height, m.clearance),
+            m.hypothesis,
+            |name| {
+                m.params
+                    .get(name)
+                    .ok_or_else(|| format!("gear {name} has no tolerance"))
+            },
+            &mut rng,
+        )?
+        .with_rule(m.rule.clone());
         let mut out = Vec::new();
         for &(name, turns, samples) in runs {
             let Some(run) = mech.run_pointer_to_first_jam(name, turns, &mut rng) else {
@@ -424,33 +419,17 @@ pub fn both_model_trials(
     engine.trials(key, trials, |t| {
         // One stream per (case, trial): errors first, then initial angles.
         let mut rng = engine.stream(identity, t);
-        let mut failure = None;
-        let mech = Mechanism::build(g, m.tooth_height, m.clearance, |name, gear| {
-            crate::errors::make(hyp, &gear, name, p, &mut rng).map_err(|e| {
-                let text = e.to_string();
-                failure = Some(e);
-                text
-            })
-        });
-        let mech = match (mech, failure) {
-            (_, Some(e)) => return Err(e),
-            // The errors moved the bodies into each other: these inputs cannot be run.
-            (Err(e), None) => {
-                return Err(RunError::bad(
-                    "--hypothesis",
-                    format!("mesh {}", e.mesh),
-                    format!(
-                        "{}: the manufactured gears cannot be placed at this clearance",
-                        e.rule
-                    ),
-                ));
-            }
-            (Ok(mech), None) => crate::gearing::with_pin_and_slot(
-                file,
-                mech.with_rule(m.rule.clone()),
-                m.pin_and_slot,
-            )?,
-        };
+        let mech = crate::errors::made_mechanism(
+            (g, m.tooth_height, m.clearance),
+            hyp,
+            |_| Ok(p),
+            &mut rng,
+        )?;
+        let mech = crate::gearing::with_pin_and_slot(
+            file,
+            mech.with_rule(m.rule.clone()),
+            m.pin_and_slot,
+        )?;
         let mut out = Vec::new();
         for &(name, turns, samples) in runs {
             // The same initial angles for both models, on purpose: a paired comparison of the

@@ -36,27 +36,14 @@ fn made(
     rng: &mut TrialRng,
 ) -> Result<Mechanism, RunError> {
     let (g, h) = (&shape.gearing, shape.tooth_height);
-    let mut failure = None;
-    let mech = Mechanism::build(g, h, s.clearance, |name, gear| match params {
-        None => Ok(gear),
-        Some(p) => crate::errors::make(s.errors.hypothesis, &gear, name, p, rng).map_err(|e| {
-            let text = e.to_string();
-            failure = Some(e);
-            text
-        }),
-    });
-    match (mech, failure) {
-        (_, Some(e)) => Err(e),
-        (Err(e), None) => Err(RunError::bad(
-            "--hypothesis",
-            format!("mesh {}", e.mesh),
-            format!(
-                "{}: the manufactured gears cannot be placed at this clearance",
-                e.rule
-            ),
-        )),
-        (Ok(m), None) => Ok(m.with_rule(s.rule.clone())),
-    }
+    let mech = match params {
+        None => Mechanism::build(g, h, s.clearance, |_, gear| Ok(gear))
+            .map_err(|e| crate::errors::unplaceable(&e))?,
+        Some(p) => {
+            crate::errors::made_mechanism((g, h, s.clearance), s.errors.hypothesis, |_| Ok(p), rng)?
+        }
+    };
+    Ok(mech.with_rule(s.rule.clone()))
 }
 
 /// σ, Dm and P (degrees) of a follower's TD over `samples` input angles up to the run's first
