@@ -322,7 +322,12 @@ fn found_in(krate: &Path, entry: &str) -> bool {
         .iter()
         .map(|f| product_text(f))
         .collect();
-    let defines = |kw: &str| {
+    defines(&code, name)
+}
+
+/// Whether `code` defines an item called `name` (a function, type, constant, module or macro).
+fn defines(code: &str, name: &str) -> bool {
+    let by = |kw: &str| {
         code.match_indices(&format!("{kw} {name}")).any(|(i, m)| {
             !code[i + m.len()..].starts_with(|c: char| c.is_alphanumeric() || c == '_')
         })
@@ -339,7 +344,18 @@ fn found_in(krate: &Path, entry: &str) -> bool {
         "macro_rules!",
     ]
     .iter()
-    .any(|kw| defines(kw))
+    .any(|kw| by(kw))
+}
+
+#[test]
+fn the_entry_reader_finds_a_definition_not_a_mention() {
+    let code = "pub fn solve_all() {}\n/// calls solve\nmacro_rules! register { () => {} }\n";
+    assert!(defines(code, "register"));
+    assert!(defines(code, "solve_all"));
+    assert!(
+        !defines(code, "solve"),
+        "a longer name or a comment is no definition"
+    );
 }
 
 #[test]

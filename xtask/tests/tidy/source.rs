@@ -85,14 +85,61 @@ pub fn is_test(attrs: &[syn::Attribute]) -> bool {
     })
 }
 
-/// The product text of `file`: everything before its first `#[cfg(test)]` (the house keeps a
-/// file's unit tests at its end).
-pub fn product_text(file: &Path) -> String {
-    let text = fs::read_to_string(file).unwrap();
-    match text.find("#[cfg(test)]") {
-        Some(at) => text[..at].to_owned(),
-        None => text,
+/// The attributes of an item of a file (those kinds a test can be).
+fn item_attrs(item: &syn::Item) -> &[syn::Attribute] {
+    match item {
+        syn::Item::Mod(i) => &i.attrs,
+        syn::Item::Fn(i) => &i.attrs,
+        syn::Item::Use(i) => &i.attrs,
+        syn::Item::Impl(i) => &i.attrs,
+        syn::Item::Const(i) => &i.attrs,
+        syn::Item::Static(i) => &i.attrs,
+        syn::Item::Struct(i) => &i.attrs,
+        syn::Item::Enum(i) => &i.attrs,
+        syn::Item::Macro(i) => &i.attrs,
+        syn::Item::Type(i) => &i.attrs,
+        syn::Item::Trait(i) => &i.attrs,
+        _ => &[],
     }
+}
+
+/// The lines (first, last; 1-based) of `text`'s top-level test items, their attributes included.
+fn test_items(text: &str) -> Vec<(usize, usize)> {
+    use syn::spanned::Spanned;
+    let Ok(file) = syn::parse_file(text) else {
+        return Vec::new();
+    };
+    file.items
+        .iter()
+        .filter(|item| is_test(item_attrs(item)))
+        .map(|item| {
+            let first = item_attrs(item)[0].pound_token.span.start().line;
+            (first, item.span().end().line)
+        })
+        .collect()
+}
+
+/// The product text of `text`: its lines outside top-level test items (`#[cfg(test)] mod
+/// tests`, a `#[cfg(test)] use`, a `#[test] fn`), wherever in the file they stand.
+pub fn product_lines_of(text: &str) -> String {
+    let tests = test_items(text);
+    text.lines()
+        .enumerate()
+        .filter(|(i, _)| !tests.iter().any(|&(a, b)| (a..=b).contains(&(i + 1))))
+        .map(|(_, l)| l)
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// The product text of `file` (see [`product_lines_of`]).
+pub fn product_text(file: &Path) -> String {
+    product_lines_of(&fs::read_to_string(file).unwrap())
+}
+
+#[test]
+fn product_text_leaves_out_test_items_wherever_they_stand() {
+    let text = "fn a() {}\n#[cfg(test)]\nuse x::y;\nfn b() {\n    1;\n}\n#[cfg(test)]\nmod tests {\n    fn t() {}\n}\n";
+    assert_eq!(product_lines_of(text), "fn a() {}\nfn b() {\n    1;\n}");
 }
 
 /// `file` parsed, or a failure naming it.
